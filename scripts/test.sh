@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# The project's test command (README): every test that needs nothing outside this repository.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+for tool in iverilog verilator yosys; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "error: $tool not found; install it with: apt-get install iverilog verilator yosys" >&2; exit 1; }
+done
+cargo test --release --workspace
