@@ -1,0 +1,160 @@
+//! Axis-aligned bounding boxes, the common bounding volume of two objects
+//! (the overlap of their boxes), and the exact triangle–box test that
+//! decides which triangles reach the hardware (thesis, chapter 4).
+//!
+//! Any point where a triangle of A meets a triangle of B lies in both
+//! objects' boxes, hence in the common box: a pair whose triangles do not
+//! both touch the common box cannot intersect, so filtering loses nothing.
+
+use crate::fixed_point::{FixedPoint3, FixedTriangle};
+use crate::triangle::Triangle;
+
+/// A closed axis-aligned box `lo <= p <= hi` (componentwise).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb<T> {
+    pub lo: [T; 3],
+    pub hi: [T; 3],
+}
+
+impl<T: Copy + PartialOrd> Aabb<T> {
+    /// The smallest box holding every vertex; `None` for no triangles.
+    pub fn of_triangles<'a>(triangles: impl IntoIterator<Item = &'a [[T; 3]; 3]>) -> Option<Aabb<T>>
+    where
+        T: 'a,
+    {
+        let mut it = triangles.into_iter().flat_map(|t| t.iter());
+        let first = *it.next()?;
+        let mut b = Aabb { lo: first, hi: first };
+        for p in it {
+            for k in 0..3 {
+                if p[k] < b.lo[k] {
+                    b.lo[k] = p[k];
+                }
+                if p[k] > b.hi[k] {
+                    b.hi[k] = p[k];
+                }
+            }
+        }
+        Some(b)
+    }
+
+    /// The common bounding volume: the overlap of two boxes, `None` if they
+    /// do not meet (touching boxes give a flat or empty-interior overlap).
+    pub fn overlap(&self, other: &Aabb<T>) -> Option<Aabb<T>> {
+        let mut b = *self;
+        for k in 0..3 {
+            if other.lo[k] > b.lo[k] {
+                b.lo[k] = other.lo[k];
+            }
+            if other.hi[k] < b.hi[k] {
+                b.hi[k] = other.hi[k];
+            }
+            if b.lo[k] > b.hi[k] {
+                return None;
+            }
+        }
+        Some(b)
+    }
+}
+
+impl Aabb<f64> {
+    /// The box grown by `margin` on every side.
+    pub fn expanded(&self, margin: f64) -> Aabb<f64> {
+        Aabb { lo: self.lo.map(|v| v - margin), hi: self.hi.map(|v| v + margin) }
+    }
+
+    /// Largest side length.
+    pub fn extent(&self) -> f64 {
+        (0..3).map(|k| self.hi[k] - self.lo[k]).fold(0.0, f64::max)
+    }
+}
+
+/// Does the closed triangle touch the closed box? A conservative f64 test
+/// (boxes only): it may keep a triangle that misses the box, never drops one
+/// that touches it. Used to pick what gets quantized; the exact decision is
+/// [`triangle_touches_box`] in the integer frame.
+pub fn triangle_box_overlap_conservative(t: &Triangle, b: &Aabb<f64>) -> bool {
+    let tb = Aabb::of_triangles(std::iter::once(t)).expect("one triangle");
+    tb.overlap(b).is_some()
+}
+
+/// Does the closed integer triangle touch the closed integer box? Exact
+/// separating-axis test: two convex sets are disjoint iff some axis
+/// separates them, and for a triangle (or a segment / point, its degenerate
+/// forms) and a box it suffices to try the 3 box axes, the triangle's normal
+/// and the 9 cross products of triangle edges with box axes. Zero axes are
+/// skipped; they separate nothing. Integer arithmetic in i128 is exact for
+/// W <= 32 (projections need at most 3W + 4 bits).
+pub fn triangle_touches_box(t: &FixedTriangle, b: &Aabb<i64>) -> bool {
+    let sub = |a: FixedPoint3, c: FixedPoint3| [a[0] - c[0], a[1] - c[1], a[2] - c[2]];
+    let edges = [sub(t[1], t[0]), sub(t[2], t[1]), sub(t[0], t[2])];
+    let unit = |k: usize| {
+        let mut e = [0i64; 3];
+        e[k] = 1;
+        e
+    };
+    let cross = |u: [i64; 3], v: [i64; 3]| -> [i128; 3] {
+        let m = |a: i64, c: i64| a as i128 * c as i128;
+        [m(u[1], v[2]) - m(u[2], v[1]), m(u[2], v[0]) - m(u[0], v[2]), m(u[0], v[1]) - m(u[1], v[0])]
+    };
+    let mut axes: Vec<[i128; 3]> = (0..3).map(|k| unit(k).map(i128::from)).collect();
+    axes.push(cross(edges[0], edges[1]));
+    for e in edges {
+        for k in 0..3 {
+            axes.push(cross(e, unit(k)));
+        }
+    }
+    let dot = |a: [i128; 3], p: [i64; 3]| a[0] * p[0] as i128 + a[1] * p[1] as i128 + a[2] * p[2] as i128;
+    axes.iter().filter(|a| a.iter().any(|&c| c != 0)).all(|&a| {
+        let projections = t.map(|p| dot(a, p));
+        let (tmin, tmax) = (projections.iter().min().copied().unwrap(), projections.iter().max().copied().unwrap());
+        // The box's projection: per component pick the corner that minimises / maximises.
+        let (mut bmin, mut bmax) = (0i128, 0i128);
+        for k in 0..3 {
+            let (x, y) = (a[k] * b.lo[k] as i128, a[k] * b.hi[k] as i128);
+            bmin += x.min(y);
+            bmax += x.max(y);
+        }
+        tmax >= bmin && bmax >= tmin
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Aabb<i64> {
+        Aabb { lo: [0, 0, 0], hi: [10, 10, 10] }
+    }
+
+    #[test]
+    fn overlap_of_boxes_is_their_intersection_or_none() {
+        let a = Aabb { lo: [0.0, 0.0, 0.0], hi: [2.0, 2.0, 2.0] };
+        let b = Aabb { lo: [1.0, -1.0, 2.0], hi: [3.0, 1.0, 5.0] };
+        assert_eq!(a.overlap(&b), Some(Aabb { lo: [1.0, 0.0, 2.0], hi: [2.0, 1.0, 2.0] }));
+        let c = Aabb { lo: [2.5, 0.0, 0.0], hi: [3.0, 1.0, 1.0] };
+        assert_eq!(a.overlap(&c), None);
+    }
+
+    #[test]
+    fn triangle_touching_a_box_face_counts() {
+        assert!(triangle_touches_box(&[[10, 0, 0], [20, 0, 0], [20, 5, 5]], &unit_box()));
+        assert!(!triangle_touches_box(&[[11, 0, 0], [20, 0, 0], [20, 5, 5]], &unit_box()));
+    }
+
+    #[test]
+    fn triangle_cutting_a_corner_whose_box_overlaps_is_decided_by_its_plane() {
+        // The plane x + y + z = 31 passes the corner (10,10,10) at distance; x+y+z = 30 touches it.
+        assert!(!triangle_touches_box(&[[31, 0, 0], [0, 31, 0], [0, 0, 31]], &unit_box()));
+        assert!(triangle_touches_box(&[[30, 0, 0], [0, 30, 0], [0, 0, 30]], &unit_box()));
+    }
+
+    #[test]
+    fn degenerate_triangles_are_segments_and_points() {
+        assert!(triangle_touches_box(&[[5, 5, 5], [5, 5, 5], [5, 5, 5]], &unit_box()));
+        assert!(!triangle_touches_box(&[[5, 5, 11], [5, 5, 11], [5, 5, 11]], &unit_box()));
+        // A segment passing beside an edge of the box: x + y = 21 misses, x + y = 20 touches.
+        assert!(!triangle_touches_box(&[[21, 0, 5], [0, 21, 5], [0, 21, 5]], &unit_box()));
+        assert!(triangle_touches_box(&[[20, 0, 5], [0, 20, 5], [10, 10, 5]], &unit_box()));
+    }
+}

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the FPGA tools tritri drives (Debian packages) when they are missing.
+set -euo pipefail
+need=()
+for tool in iverilog verilator yosys; do
+  command -v "$tool" >/dev/null 2>&1 || need+=("$tool")
+done
+if [ ${#need[@]} -gt 0 ]; then
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq iverilog verilator yosys >/dev/null
+fi
+echo "iverilog: $(iverilog -V 2>&1 | head -1)"
+echo "verilator: $(verilator --version)"
+echo "yosys: $(yosys -V)"
