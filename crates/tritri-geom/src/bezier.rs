@@ -1,0 +1,149 @@
+//! Bicubic Bezier patches (`.bpt` files, such as the Utah teapot) and their
+//! tessellation into triangles.
+//!
+//! `.bpt` format: the patch count, then per patch a line `3 3` (the degrees)
+//! and 16 lines `x y z`, the control net row by row.
+
+use crate::triangle::{Point, Triangle};
+use std::path::Path;
+
+/// One bicubic patch: control points `net[row][column]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BezierPatch {
+    pub net: [[Point; 4]; 4],
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum BptError {
+    #[error("{path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    #[error("{path}:{line}: {message}")]
+    Parse { path: String, line: usize, message: String },
+}
+
+/// Cubic Bernstein weights at `t`.
+fn bernstein(t: f64) -> [f64; 4] {
+    let s = 1.0 - t;
+    [s * s * s, 3.0 * s * s * t, 3.0 * s * t * t, t * t * t]
+}
+
+impl BezierPatch {
+    /// The surface point at parameters `(u, v)` in `[0, 1]^2` (u along rows).
+    pub fn evaluate(&self, u: f64, v: f64) -> Point {
+        let (bu, bv) = (bernstein(u), bernstein(v));
+        let mut p = [0.0; 3];
+        for (i, row) in self.net.iter().enumerate() {
+            for (j, c) in row.iter().enumerate() {
+                for k in 0..3 {
+                    p[k] += bu[i] * bv[j] * c[k];
+                }
+            }
+        }
+        p
+    }
+
+    /// `n x n` quads of samples, two triangles each. Triangles with two
+    /// identical vertices (where a row of the net collapses to a point, as on
+    /// the teapot's lid and bottom) are left out: they add no surface.
+    pub fn tessellate(&self, n: usize) -> Vec<Triangle> {
+        let n = n.max(1);
+        let sample = |i: usize, j: usize| self.evaluate(i as f64 / n as f64, j as f64 / n as f64);
+        let grid: Vec<Vec<Point>> = (0..=n).map(|i| (0..=n).map(|j| sample(i, j)).collect()).collect();
+        let mut out = Vec::with_capacity(2 * n * n);
+        for i in 0..n {
+            for j in 0..n {
+                let (a, b, c, d) = (grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]);
+                for t in [[a, b, c], [a, c, d]] {
+                    if t[0] != t[1] && t[1] != t[2] && t[2] != t[0] {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Reads a `.bpt` file.
+pub fn read_bpt(path: &Path) -> Result<Vec<BezierPatch>, BptError> {
+    let name = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| BptError::Io { path: name.clone(), source })?;
+    parse_bpt(&text).map_err(|(line, message)| BptError::Parse { path: name, line, message })
+}
+
+/// Parses `.bpt` text; errors are `(line, message)`.
+pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty());
+    let mut next = |what: &str| lines.next().ok_or_else(|| (0, format!("file ends where {what} was expected")));
+    let (line, count) = next("the patch count")?;
+    let count: usize = count.parse().map_err(|_| (line, format!("patch count `{count}` is not an integer")))?;
+    let mut patches = Vec::with_capacity(count.min(1 << 16));
+    for _ in 0..count {
+        let (line, degrees) = next("`3 3`")?;
+        if degrees.split_whitespace().collect::<Vec<_>>() != ["3", "3"] {
+            return Err((line, format!("only bicubic patches (`3 3`) are supported, found `{degrees}`")));
+        }
+        let mut net = [[[0.0; 3]; 4]; 4];
+        for row in net.iter_mut() {
+            for point in row.iter_mut() {
+                let (line, xyz) = next("a control point")?;
+                let values: Vec<&str> = xyz.split_whitespace().collect();
+                if values.len() != 3 {
+                    return Err((line, format!("control point has {} numbers, expected 3", values.len())));
+                }
+                for k in 0..3 {
+                    let v: f64 = values[k].parse().map_err(|_| (line, format!("`{}` is not a number", values[k])))?;
+                    if !v.is_finite() {
+                        return Err((line, format!("coordinate `{}` is not finite", values[k])));
+                    }
+                    point[k] = v;
+                }
+            }
+        }
+        patches.push(BezierPatch { net });
+    }
+    Ok(patches)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn flat_patch() -> BezierPatch {
+        let mut net = [[[0.0; 3]; 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                net[i][j] = [i as f64, j as f64, 0.0];
+            }
+        }
+        BezierPatch { net }
+    }
+
+    #[test]
+    fn corners_interpolate_the_net() {
+        let p = flat_patch();
+        assert_eq!(p.evaluate(0.0, 0.0), [0.0, 0.0, 0.0]);
+        assert_eq!(p.evaluate(1.0, 1.0), [3.0, 3.0, 0.0]);
+        assert_eq!(p.evaluate(0.5, 0.5), [1.5, 1.5, 0.0]);
+    }
+
+    #[test]
+    fn collapsed_row_gives_no_zero_area_triangles() {
+        let mut p = flat_patch();
+        p.net[0] = [[0.0, 0.0, 0.0]; 4];
+        let tris = p.tessellate(4);
+        assert_eq!(tris.len(), 2 * 16 - 4, "one triangle per quad of the collapsed row is dropped");
+        assert!(tris.iter().all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+    }
+
+    #[test]
+    fn parse_errors_name_the_line() {
+        assert_eq!(parse_bpt("1\n3 2\n").unwrap_err(), (2, "only bicubic patches (`3 3`) are supported, found `3 2`".into()));
+        let mut text = String::from("1\n3 3\n");
+        for _ in 0..15 {
+            text.push_str("0 0 0\n");
+        }
+        text.push_str("0 nan 0\n");
+        assert_eq!(parse_bpt(&text).unwrap_err(), (18, "coordinate `nan` is not finite".into()));
+    }
+}
