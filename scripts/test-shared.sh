@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 test -d ../shared/testdata || { echo "error: ../shared/testdata not found next to this checkout" >&2; exit 1; }
-cargo test --release --workspace --features tritri-geom/shared-testdata --test shared_testdata
+cargo test --release --workspace --features tritri-geom/shared-testdata --test shared_testdata -- --nocapture

@@ -28,6 +28,7 @@ pub enum Shape<P> {
 }
 
 /// Classifies a triangle exactly: degenerate when its normal is zero.
+#[inline(always)]
 pub fn shape<K: ExactKernel>(t: [K::Point; 3]) -> Shape<K::Point> {
     let [a, b, c] = t;
     let normal_is_zero = (0..3).all(|axis| K::orient2d(axis, a, b, c).is_zero());
@@ -78,9 +79,12 @@ fn segment_ends<P: Copy>(s: Shape<P>) -> (P, P) {
 }
 
 /// Signs of the three vertices of `t` against the plane of `plane`.
+#[inline(always)]
 fn plane_side<K: ExactKernel>(plane: [K::Point; 3], t: [K::Point; 3]) -> [Sign; 3] {
     let [p, q, r] = plane;
-    t.map(|v| K::orient3d(p, q, r, v))
+    // Written out (not `t.map`) so that the three calls inline side by side
+    // and the plane's normal is computed once.
+    [K::orient3d(p, q, r, t[0]), K::orient3d(p, q, r, t[1]), K::orient3d(p, q, r, t[2])]
 }
 
 fn all_strictly_same_side(s: [Sign; 3]) -> bool {
@@ -88,6 +92,7 @@ fn all_strictly_same_side(s: [Sign; 3]) -> bool {
 }
 
 /// Devillers–Guigue on two non-degenerate triangles.
+#[inline]
 pub fn triangles_intersect<K: ExactKernel>(t1: [K::Point; 3], t2: [K::Point; 3]) -> bool {
     // Steps (1)-(2): T1 against the plane of T2.
     let d1 = plane_side::<K>(t2, t1);
@@ -114,6 +119,7 @@ pub fn triangles_intersect<K: ExactKernel>(t1: [K::Point; 3], t2: [K::Point; 3])
 /// orientation is swapped (q2 <-> r2) instead of flipping signs. Returns T1,
 /// T2 and T2's signs permuted alike. This is the sign table of the reference
 /// C code (`tri_tri_overlap_test_3d`), decided on signs only.
+#[inline(always)]
 pub fn align_t1<P: Copy>(t1: [P; 3], t2: [P; 3], d1: [Sign; 3], d2: [Sign; 3]) -> ([P; 3], [P; 3], [Sign; 3]) {
     use Sign::*;
     let [p1, q1, r1] = t1;
@@ -144,6 +150,7 @@ pub fn align_t1<P: Copy>(t1: [P; 3], t2: [P; 3], d1: [Sign; 3], d2: [Sign; 3]) -
 /// comes first, and swap T1's roles in the final test accordingly. Returns
 /// the permuted T2; the permutation of T1 that the reference code applies
 /// here is `p1, r1, q1` or `p1, q1, r1`, folded into the returned flag.
+#[inline(always)]
 pub fn align_t2<P: Copy>(t2: [P; 3], d2: [Sign; 3]) -> AlignedT2<P> {
     use Sign::*;
     let [p2, q2, r2] = t2;
@@ -176,6 +183,7 @@ pub struct AlignedT2<P> {
 /// Step (7): with both triangles aligned, the segments they cut on the line
 /// of the two planes overlap iff `[p1,q1,p2,q2]`-style determinants are both
 /// `<= 0` (the reference macro CHECK_MIN_MAX).
+#[inline(always)]
 pub fn interval_overlap<K: ExactKernel>(t1: [K::Point; 3], aligned: AlignedT2<K::Point>) -> bool {
     let [p1, mut q1, mut r1] = t1;
     if aligned.swap_t1 {

@@ -18,20 +18,74 @@ fn c3(p: Point) -> Coord3D<f64> {
     Coord3D { x: p[0], y: p[1], z: p[2] }
 }
 
+#[inline(always)]
+fn sub(a: Point, b: Point) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Filter bound for `t·(u×v)` with `u, v, t` rounded differences from one
+/// point: the rounded value has the exact sign when it exceeds this times
+/// the permanent `Σ |t_i| (|u_j v_k| + |u_k v_j|)`. Shewchuk's
+/// `o3derrboundA = (7 + 56ε)ε` (ε = 2^-53) covers this form (a coordinate of
+/// one difference vector times a 2×2 minor of the other two, summed), so
+/// 8ε = 2^-50 is a safe upper bound. The same reasoning with
+/// `ccwerrboundA = (3 + 16ε)ε` gives 4ε for orient2d.
+const ORIENT3D_FILTER: f64 = 8.0 * f64::EPSILON / 2.0;
+const ORIENT2D_FILTER: f64 = 4.0 * f64::EPSILON / 2.0;
+/// The bounds assume no underflow. Below this permanent (about 2^-897) the
+/// filter defers to the exact predicate, so an underflowed product (absolute
+/// error at most 2^-1074) can never decide a sign; overflow makes the
+/// permanent infinite or NaN, which fails the test and defers as well.
+const FILTER_MIN_PERMANENT: f64 = 1e-270;
+
+/// `[a,b,c,d]` by `robust::orient3d` (adaptive, exact): it computes
+/// det[a-d, b-d, c-d], which is -[a,b,c,d].
+#[cold]
+#[inline(never)]
+fn orient3d_exact(a: Point, b: Point, c: Point, d: Point) -> Sign {
+    Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip()
+}
+
+#[cold]
+#[inline(never)]
+fn orient2d_exact(axis: usize, a: Point, b: Point, c: Point) -> Sign {
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let p = |v: Point| Coord { x: v[i], y: v[j] };
+    Sign::of_f64(robust::orient2d(p(a), p(b), p(c)))
+}
+
 impl ExactKernel for ExactF64 {
     type Point = Point;
 
-    #[inline]
+    #[inline(always)]
     fn orient3d(a: Point, b: Point, c: Point, d: Point) -> Sign {
-        // robust::orient3d is det[a-d, b-d, c-d], which is -[a,b,c,d].
-        Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip()
+        // Static filter first (see `ORIENT3D_FILTER`); it is written as
+        // (d-a)·((b-a)×(c-a)) so that, inlined, the three calls against one
+        // plane share the normal and its partial permanents.
+        let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+        let products = [u[1] * v[2], u[2] * v[1], u[2] * v[0], u[0] * v[2], u[0] * v[1], u[1] * v[0]];
+        let normal = [products[0] - products[1], products[2] - products[3], products[4] - products[5]];
+        let det = w[0] * normal[0] + w[1] * normal[1] + w[2] * normal[2];
+        let permanent = w[0].abs() * (products[0].abs() + products[1].abs())
+            + w[1].abs() * (products[2].abs() + products[3].abs())
+            + w[2].abs() * (products[4].abs() + products[5].abs());
+        if permanent >= FILTER_MIN_PERMANENT && det.abs() > ORIENT3D_FILTER * permanent {
+            return Sign::of_f64(det);
+        }
+        orient3d_exact(a, b, c, d)
     }
 
-    #[inline]
+    #[inline(always)]
     fn orient2d(axis: usize, a: Point, b: Point, c: Point) -> Sign {
         let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-        let p = |v: Point| Coord { x: v[i], y: v[j] };
-        Sign::of_f64(robust::orient2d(p(a), p(b), p(c)))
+        let (u, v) = (sub(b, a), sub(c, a));
+        let (p, q) = (u[i] * v[j], u[j] * v[i]);
+        let det = p - q;
+        let permanent = p.abs() + q.abs();
+        if permanent >= FILTER_MIN_PERMANENT && det.abs() > ORIENT2D_FILTER * permanent {
+            return Sign::of_f64(det);
+        }
+        orient2d_exact(axis, a, b, c)
     }
 
     #[inline]
@@ -53,6 +107,54 @@ impl ExactKernel for ExactF64 {
 }
 
 /// Do the closed triangles intersect? Exact on the f64 coordinates.
+#[inline]
 pub fn intersects(t1: &Triangle, t2: &Triangle) -> bool {
     devillers_guigue::intersects::<ExactF64>(*t1, *t2)
+}
+
+#[cfg(test)]
+mod filter_tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn nudge(x: f64, ulps: i64) -> f64 {
+        if x == 0.0 {
+            return ulps as f64 * f64::MIN_POSITIVE;
+        }
+        f64::from_bits((x.to_bits() as i64 + ulps) as u64)
+    }
+
+    /// The filtered predicates give robust's exact signs on points that are
+    /// nearly coplanar / collinear (a few ulps off), at scales from 1e-200
+    /// (where the filter must defer) to 1e200, with large offsets.
+    #[test]
+    fn filter_agrees_with_robust_near_degeneracy() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let mut decided_by_robust = 0;
+        for scale in [1e-200, 1e-150, 1e-5, 1.0, 1e6, 1e150, 1e200] {
+            for _ in 0..20_000 {
+                let offset = if rng.gen_bool(0.3) { 1e3 * scale } else { 0.0 };
+                let mut p = || -> Point { [0; 3].map(|_| offset + scale * rng.gen_range(-1.0..1.0)) };
+                let (a, b, c) = (p(), p(), p());
+                let (s, t): (f64, f64) = (rng.gen_range(-1.0..2.0), rng.gen_range(-1.0..2.0));
+                let mut d = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
+                let k = rng.gen_range(0..3);
+                d[k] = nudge(d[k], rng.gen_range(-3..=3));
+                let want = Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip();
+                assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+                // Nearly collinear in the projection dropping `axis`.
+                let mut e = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]));
+                e[k] = nudge(e[k], rng.gen_range(-3..=3));
+                for axis in 0..3 {
+                    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+                    let q = |v: Point| Coord { x: v[i], y: v[j] };
+                    let want = Sign::of_f64(robust::orient2d(q(a), q(b), q(e)));
+                    assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
+                }
+                decided_by_robust += usize::from(want.is_zero());
+            }
+        }
+        assert!(decided_by_robust > 0, "the test must reach exactly degenerate configurations");
+    }
 }

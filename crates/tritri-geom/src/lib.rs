@@ -16,11 +16,21 @@
 //! assert!(exact_f64::intersects(&t1, &t2)); // touching counts
 //! ```
 
+pub mod arithmetic;
+pub mod bezier;
+pub mod bounding_volume;
+pub mod builtin_scene;
 pub mod devillers_guigue;
 pub mod exact_f64;
 pub mod fixed_point;
+pub mod hard_cases;
 pub mod kernel;
+pub mod moller;
+pub mod pairs_io;
+pub mod published_float;
+pub mod mesh;
 pub mod quantize;
+pub mod scene;
 pub mod sign;
 pub mod triangle;
 pub mod widths;

@@ -10,6 +10,19 @@ use crate::fixed_point::{FixedPoint3, FixedTriangle};
 use crate::triangle::{Point, Triangle};
 use crate::widths::{FixedWidths, WidthOutOfRange};
 
+/// `x.round() as i64` (half away from zero) for `|x| < 2^62`, without the
+/// call to libm's `round` (the baseline x86-64 target has no rounding
+/// instruction): add the largest double below one half, with x's sign, and
+/// truncate. Below 2^52 the sum lands on the next integer exactly when the
+/// fraction is at least one half (the sum of a half-integer rounds up to the
+/// integer: ties go to even and the even neighbour is the integer); from
+/// 2^52 on, x is an integer and the sum rounds back to it.
+#[inline(always)]
+fn round_half_away_from_zero(x: f64) -> i64 {
+    const JUST_BELOW_HALF: f64 = 0.49999999999999994;
+    (x + JUST_BELOW_HALF.copysign(x)) as i64
+}
+
 /// The map from f64 coordinates to W-bit integers: `q = round((x - centre) / step)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
@@ -34,14 +47,20 @@ impl Frame {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
         for (i, t) in triangles.into_iter().enumerate() {
+            // Branch-free per triangle (plain comparisons, one finiteness
+            // test): this loop runs over every vertex of every batch.
+            let mut finite = true;
             for p in t {
                 for k in 0..3 {
-                    if !p[k].is_finite() {
-                        return Err(QuantizeError::NotFinite { triangle: i, value: p[k] });
-                    }
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
+                    let v = p[k];
+                    finite &= v.is_finite();
+                    lo[k] = if v < lo[k] { v } else { lo[k] };
+                    hi[k] = if v > hi[k] { v } else { hi[k] };
                 }
+            }
+            if !finite {
+                let value = t.iter().flatten().copied().find(|v| !v.is_finite()).unwrap_or(f64::NAN);
+                return Err(QuantizeError::NotFinite { triangle: i, value });
             }
         }
         if lo[0] > hi[0] {
@@ -53,23 +72,73 @@ impl Frame {
         // 2^W - 4 steps across the extent leave more than one unit of margin
         // at each end for rounding of the centre and the division.
         let steps = ((1u64 << width) - 4) as f64;
-        let step = if extent > 0.0 { extent / steps } else { 1.0 };
+        // The centre is off by up to half an ulp of the largest magnitude M
+        // present: a step of at least 2·EPSILON·M keeps that under a quarter
+        // step, inside the margin, even when the extent is only a few ulps
+        // wide (e.g. 1e9 and its next f64). A normal, not subnormal, step
+        // keeps the division accurate for tiny extents.
+        let magnitude = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0, f64::max);
+        let step = if extent > 0.0 {
+            (extent / steps).max(2.0 * f64::EPSILON * magnitude).max(f64::MIN_POSITIVE)
+        } else {
+            1.0
+        };
         Ok(Frame { widths, centre, step })
     }
 
     /// The integer grid point nearest to `p`.
+    #[inline]
     pub fn quantize_point(&self, p: Point) -> FixedPoint3 {
-        let q = [0, 1, 2].map(|k| ((p[k] - self.centre[k]) / self.step).round() as i64);
+        let q = [0, 1, 2].map(|k| round_half_away_from_zero((p[k] - self.centre[k]) / self.step));
         debug_assert!(q.iter().all(|&v| v >= self.widths.min_coordinate() && v <= self.widths.max_coordinate()));
         q
     }
 
+    /// `[quantize_point(v) for v in t]`, written over the nine coordinates
+    /// at once so that the divisions vectorize.
+    #[inline]
     pub fn quantize(&self, t: &Triangle) -> FixedTriangle {
-        t.map(|p| self.quantize_point(p))
+        let mut scaled = [0.0f64; 9];
+        for (k, s) in scaled.iter_mut().enumerate() {
+            *s = (t[k / 3][k % 3] - self.centre[k % 3]) / self.step;
+        }
+        let q = scaled.map(round_half_away_from_zero);
+        let out = [[q[0], q[1], q[2]], [q[3], q[4], q[5]], [q[6], q[7], q[8]]];
+        debug_assert_eq!(out, t.map(|p| self.quantize_point(p)));
+        out
     }
 
     /// The f64 point a grid point stands for.
     pub fn dequantize_point(&self, q: FixedPoint3) -> Point {
         [0, 1, 2].map(|k| self.centre[k] + q[k] as f64 * self.step)
+    }
+}
+
+#[cfg(test)]
+mod rounding_tests {
+    use super::round_half_away_from_zero;
+
+    /// The fast rounding is `f64::round` (half away from zero), including
+    /// the neighbours of every half-integer and the largest magnitudes used.
+    #[test]
+    fn agrees_with_f64_round() {
+        let mut xs = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, 0.49999999999999994, -0.49999999999999994];
+        for k in [1.0f64, 3.0, 1e3, 4503599627370495.0, 4503599627370496.0, 9007199254740993.0, 2f64.powi(61)] {
+            for base in [k, k + 0.5, k - 0.5] {
+                let mut v = base;
+                for _ in 0..3 {
+                    xs.extend([v, -v]);
+                    v = f64::from_bits(v.to_bits() + 1);
+                }
+                let mut v = base;
+                for _ in 0..3 {
+                    xs.extend([v, -v]);
+                    v = f64::from_bits(v.to_bits() - 1);
+                }
+            }
+        }
+        for x in xs {
+            assert_eq!(round_half_away_from_zero(x), x.round() as i64, "{x:e}");
+        }
     }
 }

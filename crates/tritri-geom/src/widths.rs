@@ -17,6 +17,21 @@
 //! The software fixed-point model and the hardware generator both read these
 //! numbers from [`FixedWidths`].
 
+/// Width of a coordinate difference for W-bit coordinates: `W + 1`.
+pub const fn difference_bits(coordinate: usize) -> usize {
+    coordinate + 1
+}
+
+/// Width of a cross-product component or orient2d value: `2W + 1`.
+pub const fn cross_bits(coordinate: usize) -> usize {
+    2 * coordinate + 1
+}
+
+/// Width of an orient3d value: `3W + 2`.
+pub const fn orient3d_bits(coordinate: usize) -> usize {
+    3 * coordinate + 2
+}
+
 /// Smallest and largest coordinate width the project supports.
 pub const MIN_WIDTH: u32 = 8;
 pub const MAX_WIDTH: u32 = 32;
@@ -47,9 +62,9 @@ impl FixedWidths {
         }
         Ok(FixedWidths {
             coordinate,
-            difference: coordinate + 1,
-            cross: 2 * coordinate + 1,
-            orient3d: 3 * coordinate + 2,
+            difference: difference_bits(coordinate as usize) as u32,
+            cross: cross_bits(coordinate as usize) as u32,
+            orient3d: orient3d_bits(coordinate as usize) as u32,
         })
     }
 

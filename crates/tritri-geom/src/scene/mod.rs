@@ -1,0 +1,230 @@
+//! From two objects to the batches the hardware processes (thesis,
+//! chapter 4; DESIGN.md, "Data flow"):
+//!
+//! 1. the AABB of each object and their overlap, the common BV (none: the
+//!    objects cannot touch, zero pairs);
+//! 2. per object the triangles whose f64 box meets the common BV (the
+//!    conservative filter of [`triangle_box_overlap_conservative`]);
+//! 3. the kept triangles of *both* objects quantized into one W-bit frame
+//!    ([`Frame::fit`] over them);
+//! 4. the exact integer triangle–box test ([`triangle_touches_box`]) against
+//!    the integer common box, see [`prepare`] for why it loses no pair;
+//! 5. the arrays split into tiles of at most `D` triangles (the memory depth
+//!    of the generated hardware): one [`Batch`] per A-tile × B-tile, so every
+//!    pair of kept triangles is in exactly one batch.
+//!
+//! Triangles carry their index in the object's triangle list as id
+//! ([`load`] documents the indices).
+//!
+//! ```
+//! use tritri_geom::scene::{load::load_object, prepare, SceneOptions};
+//! let a = load_object("@torus", 8).unwrap();
+//! let b = load_object("@sphere", 8).unwrap();
+//! let scene = prepare(&a, &b, &SceneOptions { width: 24, depth: 4096, split: true }).unwrap();
+//! assert!(scene.common.is_some());
+//! assert!(scene.pairs_tested() < (a.triangles.len() * b.triangles.len()) as u64);
+//! ```
+
+pub mod load;
+pub mod reference;
+
+use crate::bounding_volume::{triangle_box_overlap_conservative, triangle_touches_box, Aabb};
+use crate::fixed_point::FixedTriangle;
+use crate::quantize::{Frame, QuantizeError};
+use crate::triangle::Triangle;
+use load::SceneObject;
+
+/// A quantized triangle with the index it has in its object.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TaggedTriangle {
+    pub id: u32,
+    pub triangle: FixedTriangle,
+}
+
+/// One load of the hardware's memories: every triangle of `a` is tested
+/// against every triangle of `b`. All batches of a scene share one frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Batch {
+    pub a: Vec<TaggedTriangle>,
+    pub b: Vec<TaggedTriangle>,
+}
+
+impl Batch {
+    pub fn pairs(&self) -> u64 {
+        self.a.len() as u64 * self.b.len() as u64
+    }
+}
+
+/// What the scene is prepared for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SceneOptions {
+    /// Coordinate width W.
+    pub width: u32,
+    /// Memory depth D: the most triangles one array memory holds.
+    pub depth: usize,
+    /// Split arrays longer than `depth` into tiles; if false, refuse them.
+    pub split: bool,
+}
+
+/// Why a scene could not be prepared.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    #[error(transparent)]
+    Quantize(#[from] QuantizeError),
+    #[error("memory depth must be at least 1")]
+    ZeroDepth,
+    #[error(
+        "the arrays in the common BV hold {kept_a} (A) and {kept_b} (B) triangles, more than the memory depth D = {depth}; \
+         allow splitting into tiles (drop --no-split) or generate hardware with --depth {needed}"
+    )]
+    ExceedsDepth { kept_a: usize, kept_b: usize, depth: usize, needed: usize },
+}
+
+/// How the arrays were cut to fit the memories.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tiling {
+    pub depth: usize,
+    /// Number of A-tiles and of B-tiles; batches = `a_tiles * b_tiles`.
+    pub a_tiles: usize,
+    pub b_tiles: usize,
+}
+
+impl Tiling {
+    pub fn is_split(&self) -> bool {
+        self.a_tiles > 1 || self.b_tiles > 1
+    }
+}
+
+/// A scene ready for the hardware, with everything worth reporting.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedScene {
+    pub n_a: usize,
+    pub n_b: usize,
+    pub box_a: Option<Aabb<f64>>,
+    pub box_b: Option<Aabb<f64>>,
+    /// The common BV; `None`: the objects' boxes do not meet, zero pairs.
+    pub common: Option<Aabb<f64>>,
+    /// Triangles kept by the conservative f64 filter (indices, ascending).
+    pub candidates_a: Vec<u32>,
+    pub candidates_b: Vec<u32>,
+    /// The one frame of every batch (fitted over the candidates of both objects).
+    pub frame: Option<Frame>,
+    /// The integer common box of the exact filter.
+    pub integer_box: Option<Aabb<i64>>,
+    /// The arrays sent to the hardware: triangles that touch the integer box.
+    pub kept_a: Vec<TaggedTriangle>,
+    pub kept_b: Vec<TaggedTriangle>,
+    pub tiling: Tiling,
+    pub batches: Vec<Batch>,
+}
+
+impl PreparedScene {
+    /// Pairs the hardware tests: `|kept A| * |kept B|`, the sum over batches.
+    pub fn pairs_tested(&self) -> u64 {
+        self.batches.iter().map(Batch::pairs).sum()
+    }
+
+    /// `N1 * N2`: what testing every pair would cost.
+    pub fn all_pairs(&self) -> u64 {
+        self.n_a as u64 * self.n_b as u64
+    }
+
+    /// Share of all triangles (of both objects) that reach the hardware.
+    pub fn fraction_in_common_bv(&self) -> f64 {
+        let total = self.n_a + self.n_b;
+        if total == 0 {
+            0.0
+        } else {
+            (self.kept_a.len() + self.kept_b.len()) as f64 / total as f64
+        }
+    }
+}
+
+/// Runs steps 1–5 of the module documentation on objects `a` and `b` (B
+/// already posed).
+///
+/// The integer box is the overlap of the integer AABBs of the quantized
+/// candidates of A and of B. No intersecting quantized pair is lost: if the
+/// quantized triangles `qa` and `qb` share a point `p`, then `p` lies in the
+/// box of `qa`, hence in the integer AABB of A's quantized candidates, and
+/// likewise in B's, so `p` is in their overlap; `p` is a point of `qa` and of
+/// `qb` in that box, so both touch it and the exact test keeps both. (If the
+/// integer AABBs do not overlap, no quantized pair intersects at all.)
+/// A pair whose f64 triangles intersect is never dropped by the f64 filter
+/// either: the meeting point lies in both objects' boxes, so in the common
+/// BV, and the comparisons of the box filter are exact.
+pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Result<PreparedScene, SceneError> {
+    if options.depth == 0 {
+        return Err(SceneError::ZeroDepth);
+    }
+    let box_a = Aabb::of_triangles(&a.triangles);
+    let box_b = Aabb::of_triangles(&b.triangles);
+    let common = match (&box_a, &box_b) {
+        (Some(x), Some(y)) => x.overlap(y),
+        _ => None,
+    };
+    let mut scene = PreparedScene {
+        n_a: a.triangles.len(),
+        n_b: b.triangles.len(),
+        box_a,
+        box_b,
+        common,
+        candidates_a: Vec::new(),
+        candidates_b: Vec::new(),
+        frame: None,
+        integer_box: None,
+        kept_a: Vec::new(),
+        kept_b: Vec::new(),
+        tiling: Tiling { depth: options.depth, a_tiles: 0, b_tiles: 0 },
+        batches: Vec::new(),
+    };
+    let Some(common) = common else { return Ok(scene) };
+
+    let touching = |ts: &[Triangle]| -> Vec<u32> {
+        ts.iter().enumerate().filter(|(_, t)| triangle_box_overlap_conservative(t, &common)).map(|(i, _)| i as u32).collect()
+    };
+    scene.candidates_a = touching(&a.triangles);
+    scene.candidates_b = touching(&b.triangles);
+    let frame = Frame::fit(
+        scene.candidates_a.iter().map(|&i| &a.triangles[i as usize]).chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
+        options.width,
+    )?;
+    let quantize = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
+        ids.iter().map(|&id| TaggedTriangle { id, triangle: frame.quantize(&ts[id as usize]) }).collect()
+    };
+    let qa = quantize(&scene.candidates_a, &a.triangles);
+    let qb = quantize(&scene.candidates_b, &b.triangles);
+    scene.frame = Some(frame);
+
+    let integer_box = match (Aabb::of_triangles(qa.iter().map(|t| &t.triangle)), Aabb::of_triangles(qb.iter().map(|t| &t.triangle))) {
+        (Some(x), Some(y)) => x.overlap(&y),
+        _ => None,
+    };
+    scene.integer_box = integer_box;
+    if let Some(ibox) = integer_box {
+        scene.kept_a = qa.into_iter().filter(|t| triangle_touches_box(&t.triangle, &ibox)).collect();
+        scene.kept_b = qb.into_iter().filter(|t| triangle_touches_box(&t.triangle, &ibox)).collect();
+    }
+    let (ka, kb, depth) = (scene.kept_a.len(), scene.kept_b.len(), options.depth);
+    if (ka > depth || kb > depth) && !options.split {
+        return Err(SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth, needed: ka.max(kb) });
+    }
+    scene.tiling = Tiling { depth, a_tiles: ka.div_ceil(depth), b_tiles: kb.div_ceil(depth) };
+    scene.batches = tile(&scene.kept_a, &scene.kept_b, depth);
+    Ok(scene)
+}
+
+/// Every A-tile against every B-tile, tiles of at most `depth` triangles;
+/// no batch when either array is empty.
+pub fn tile(a: &[TaggedTriangle], b: &[TaggedTriangle], depth: usize) -> Vec<Batch> {
+    let mut out = Vec::new();
+    for ta in a.chunks(depth) {
+        for tb in b.chunks(depth) {
+            out.push(Batch { a: ta.to_vec(), b: tb.to_vec() });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,165 @@
+//! The software answers a hardware run is compared with.
+//!
+//! * [`fixed_point_pairs`]: the bit-exact model of the hardware
+//!   ([`crate::fixed_point`]) over every pair of every batch — what the
+//!   `model` engine reports;
+//! * [`quantized_exact_pairs`]: an independent exact model on the same
+//!   quantized coordinates ([`crate::exact_f64`], whose adaptive predicates
+//!   are exact on the integer coordinates, which f64 holds exactly for
+//!   W <= 32); it must equal the fixed-point model, any difference is a bug;
+//! * [`exact_f64_pairs`]: the ground truth, exact predicates on the original
+//!   f64 coordinates over all `N1 * N2` pairs of the full objects. The
+//!   difference between it and the quantized answer is the quantization error
+//!   ([`PairDiff`]).
+//!
+//! Every function returns the deduplicated set of intersecting pairs
+//! `(index in A, index in B)`. Skipping a pair whose two triangles have
+//! disjoint boxes is exact (closed triangles in disjoint boxes cannot meet),
+//! and all of them do it to stay fast; the hardware does not, and the
+//! number of pairs it tests is [`super::PreparedScene::pairs_tested`].
+
+use super::{Batch, TaggedTriangle};
+use crate::bounding_volume::Aabb;
+use crate::triangle::Triangle;
+use crate::{exact_f64, fixed_point};
+use std::collections::BTreeSet;
+
+/// Intersecting pairs `(i, j)`: triangle `i` of A meets triangle `j` of B.
+pub type PairSet = BTreeSet<(u32, u32)>;
+
+/// The bit-exact hardware model over every pair of every batch; `progress`
+/// is told how many pairs were done (in pieces).
+pub fn fixed_point_pairs(batches: &[Batch], progress: &(dyn Fn(u64) + Sync)) -> PairSet {
+    pairs_over_batches(batches, |x, y| fixed_point::intersects(&x.triangle, &y.triangle), progress)
+}
+
+/// Exact predicates on the quantized coordinates (as f64), over every pair of
+/// every batch, deduplicated across tiles.
+pub fn quantized_exact_pairs(batches: &[Batch]) -> PairSet {
+    let as_f64 = |t: &TaggedTriangle| t.triangle.map(|p| p.map(|c| c as f64));
+    pairs_over_batches(batches, |x, y| exact_f64::intersects(&as_f64(x), &as_f64(y)), &|_| {})
+}
+
+/// `test` on every pair of every batch (pairs with disjoint integer boxes are
+/// skipped: they cannot intersect), on all cores, deduplicated.
+pub fn pairs_over_batches(
+    batches: &[Batch],
+    test: impl Fn(&TaggedTriangle, &TaggedTriangle) -> bool + Sync,
+    progress: &(dyn Fn(u64) + Sync),
+) -> PairSet {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut out = PairSet::new();
+    for batch in batches {
+        let boxes_b: Vec<Aabb<i64>> = batch.b.iter().map(|t| triangle_box(&t.triangle)).collect();
+        let found: Vec<Vec<(u32, u32)>> = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..threads)
+                .map(|k| {
+                    let (test, boxes_b) = (&test, &boxes_b);
+                    s.spawn(move || {
+                        let mut hits = Vec::new();
+                        for x in batch.a.iter().skip(k).step_by(threads) {
+                            let bx = triangle_box(&x.triangle);
+                            for (y, by) in batch.b.iter().zip(boxes_b) {
+                                if bx.overlap(by).is_some() && test(x, y) {
+                                    hits.push((x.id, y.id));
+                                }
+                            }
+                            progress(batch.b.len() as u64);
+                        }
+                        hits
+                    })
+                })
+                .collect();
+            handles.into_iter().map(|h| h.join().expect("worker thread panicked")).collect()
+        });
+        out.extend(found.into_iter().flatten());
+    }
+    out
+}
+
+fn triangle_box<T: Copy + PartialOrd>(t: &[[T; 3]; 3]) -> Aabb<T> {
+    Aabb::of_triangles(std::iter::once(t)).expect("one triangle")
+}
+
+/// The ground truth over all pairs of the full objects.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExactF64Result {
+    pub pairs: PairSet,
+    /// Pairs whose triangle boxes overlap: the ones actually decided (every
+    /// other pair of the `N1 * N2` is disjoint by its boxes).
+    pub pairs_decided: u64,
+}
+
+/// Exact predicates on the original coordinates, every pair of `a × b`
+/// whose triangle boxes overlap (a sweep along x over the boxes).
+pub fn exact_f64_pairs(a: &[Triangle], b: &[Triangle]) -> ExactF64Result {
+    f64_pairs_with(a, b, exact_f64::intersects)
+}
+
+/// [`exact_f64_pairs`] with another decision function (for timing the
+/// published float code on the same work).
+pub fn f64_pairs_with(a: &[Triangle], b: &[Triangle], test: impl Fn(&Triangle, &Triangle) -> bool) -> ExactF64Result {
+    let boxes_a: Vec<Aabb<f64>> = a.iter().map(triangle_box).collect();
+    let mut order_b: Vec<(Aabb<f64>, u32)> = b.iter().enumerate().map(|(j, t)| (triangle_box(t), j as u32)).collect();
+    order_b.sort_by(|x, y| x.0.lo[0].total_cmp(&y.0.lo[0]));
+    // Widths rounded up, so `widest_b` is at least every true width.
+    let widest_b = order_b.iter().map(|(bb, _)| next_up(bb.hi[0] - bb.lo[0])).fold(0.0, f64::max);
+    let mut result = ExactF64Result { pairs: PairSet::new(), pairs_decided: 0 };
+    for (i, ba) in boxes_a.iter().enumerate() {
+        // A B box that overlaps has hi >= ba.lo, so lo = hi - width >= ba.lo - widest,
+        // and lo <= ba.hi. The subtraction rounds; one step down keeps the bound below.
+        let from = next_down(ba.lo[0] - widest_b);
+        let start = order_b.partition_point(|(bb, _)| bb.lo[0] < from);
+        for (bb, j) in &order_b[start..] {
+            if bb.lo[0] > ba.hi[0] {
+                break;
+            }
+            if ba.overlap(bb).is_some() {
+                result.pairs_decided += 1;
+                if test(&a[i], &b[*j as usize]) {
+                    result.pairs.insert((i as u32, *j));
+                }
+            }
+        }
+    }
+    result
+}
+
+/// The largest f64 below `x` (`x` itself for NaN and -inf).
+fn next_down(x: f64) -> f64 {
+    if x.is_nan() || x == f64::NEG_INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return -f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits - 1 } else { bits + 1 })
+}
+
+/// The smallest f64 above `x`.
+fn next_up(x: f64) -> f64 {
+    -next_down(-x)
+}
+
+/// How a set of pairs differs from the reference.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct PairDiff {
+    /// In the reference, not in the other set.
+    pub missing: Vec<(u32, u32)>,
+    /// In the other set, not in the reference.
+    pub extra: Vec<(u32, u32)>,
+}
+
+impl PairDiff {
+    pub fn between(reference: &PairSet, other: &PairSet) -> PairDiff {
+        PairDiff {
+            missing: reference.difference(other).copied().collect(),
+            extra: other.difference(reference).copied().collect(),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.missing.is_empty() && self.extra.is_empty()
+    }
+}

@@ -1,0 +1,201 @@
+use super::load::{Pose, SceneObject};
+use super::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairSet};
+use super::*;
+use crate::{exact_f64, fixed_point};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn options(width: u32, depth: usize) -> SceneOptions {
+    SceneOptions { width, depth, split: true }
+}
+
+/// Random triangles around `centre`, some of them degenerate (segments,
+/// points, zero-area), on a coarse grid so that touching happens often.
+/// Non-degenerate triangles have edges up to `edge / 8 * spread` per axis.
+fn random_object(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], spread: f64, edge: i32) -> SceneObject {
+    let point = |rng: &mut ChaCha8Rng| centre.map(|c| c + (rng.gen_range(-8i32..=8) as f64) * spread / 8.0);
+    let triangles = (0..n)
+        .map(|_| {
+            let p = point(rng);
+            match rng.gen_range(0..10) {
+                0 => [p, p, p],
+                1 => {
+                    let q = point(rng);
+                    [p, q, q]
+                }
+                2 => {
+                    // three collinear points: zero area, not coincident
+                    let q = point(rng);
+                    [p, q, [2.0 * q[0] - p[0], 2.0 * q[1] - p[1], 2.0 * q[2] - p[2]]]
+                }
+                _ => {
+                    let small = |rng: &mut ChaCha8Rng, c: f64| c + rng.gen_range(-edge..=edge) as f64 * spread / 8.0;
+                    [p, p.map(|c| small(rng, c)), p.map(|c| small(rng, c))]
+                }
+            }
+        })
+        .collect();
+    SceneObject::from_triangles("random", triangles)
+}
+
+fn brute_force(a: &[Triangle], b: &[Triangle], test: impl Fn(&Triangle, &Triangle) -> bool) -> PairSet {
+    let mut out = PairSet::new();
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            if test(x, y) {
+                out.insert((i as u32, j as u32));
+            }
+        }
+    }
+    out
+}
+
+/// Objects whose boxes do not meet: no common BV, no batch, zero pairs.
+#[test]
+fn no_overlap_gives_no_common_bv_and_zero_pairs() {
+    let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let a = SceneObject::from_triangles("a", vec![t]);
+    let b = a.posed(&Pose::translation([1.5, 0.0, 0.0]));
+    let scene = prepare(&a, &b, &options(24, 16)).unwrap();
+    assert_eq!(scene.common, None);
+    assert!(scene.batches.is_empty() && scene.kept_a.is_empty() && scene.kept_b.is_empty());
+    assert_eq!(scene.pairs_tested(), 0);
+    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), PairSet::new());
+    // An empty object has no box either.
+    let empty = SceneObject::from_triangles("empty", vec![]);
+    assert_eq!(prepare(&a, &empty, &options(24, 16)).unwrap().pairs_tested(), 0);
+}
+
+/// Boxes that only touch still give a (flat) common BV, and the touching
+/// triangles are found.
+#[test]
+fn touching_boxes_give_a_flat_common_bv_and_the_touching_pair() {
+    let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let a = SceneObject::from_triangles("a", vec![t]);
+    let b = a.posed(&Pose::translation([1.0, 0.0, 0.0])); // shares the vertex (1,0,0)
+    let scene = prepare(&a, &b, &options(24, 16)).unwrap();
+    let common = scene.common.unwrap();
+    assert_eq!(common.lo[0], common.hi[0]);
+    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), PairSet::from([(0, 0)]));
+    assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, PairSet::from([(0, 0)]));
+}
+
+/// Points, segments and zero-area triangles go through filtering,
+/// quantization, tiling and both models without panic, and their verdicts
+/// are the exact ones.
+#[test]
+fn degenerate_and_zero_area_triangles_survive_the_whole_flow() {
+    let point = [[0.5, 0.5, 0.0]; 3];
+    let segment = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 1.0, 0.0]];
+    let collinear = [[0.0, 1.0, 0.0], [0.5, 0.5, 0.0], [1.0, 0.0, 0.0]];
+    let flat = [[-1.0, -1.0, 0.0], [2.0, -1.0, 0.0], [-1.0, 2.0, 0.0]];
+    let a = SceneObject::from_triangles("a", vec![point, segment, collinear]);
+    let b = SceneObject::from_triangles("b", vec![flat, point, segment]);
+    let scene = prepare(&a, &b, &options(16, 2)).unwrap();
+    assert_eq!(scene.kept_a.len(), 3);
+    assert_eq!(scene.kept_b.len(), 3);
+    assert!(scene.tiling.is_split());
+    let expected = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
+    assert_eq!(expected.len(), 9, "every one of these degenerate pieces meets every other: {expected:?}");
+    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), expected);
+    assert_eq!(quantized_exact_pairs(&scene.batches), expected);
+    assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, expected);
+}
+
+/// Tiles partition the pairs of the kept arrays: every pair lies in exactly
+/// one batch, and the deduplicated pairs of the tiles are those of one
+/// untiled batch.
+#[test]
+fn tiling_covers_every_pair_exactly_once() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let a = random_object(&mut rng, 37, [0.0; 3], 1.0, 6);
+    let b = random_object(&mut rng, 23, [0.5, 0.0, 0.0], 1.0, 6);
+    let untiled = prepare(&a, &b, &options(12, 1 << 20)).unwrap();
+    assert_eq!(untiled.batches.len(), 1);
+    for depth in [1, 2, 5, 7, 23, 36] {
+        let tiled = prepare(&a, &b, &options(12, depth)).unwrap();
+        assert_eq!(tiled.batches.len(), tiled.tiling.a_tiles * tiled.tiling.b_tiles);
+        assert!(tiled.batches.iter().all(|batch| batch.a.len() <= depth && batch.b.len() <= depth));
+        let mut seen = std::collections::HashMap::new();
+        for batch in &tiled.batches {
+            for x in &batch.a {
+                for y in &batch.b {
+                    *seen.entry((x.id, y.id)).or_insert(0) += 1;
+                }
+            }
+        }
+        assert_eq!(seen.len() as u64, untiled.pairs_tested(), "depth {depth}");
+        assert!(seen.values().all(|&n| n == 1), "depth {depth}: a pair is in two batches");
+        assert_eq!(tiled.pairs_tested(), untiled.pairs_tested());
+        assert_eq!(fixed_point_pairs(&tiled.batches, &|_| {}), fixed_point_pairs(&untiled.batches, &|_| {}));
+    }
+}
+
+/// Refusing to split names both array sizes and the depth.
+#[test]
+fn no_split_refuses_arrays_deeper_than_the_memory() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let a = random_object(&mut rng, 20, [0.0; 3], 1.0, 6);
+    let b = random_object(&mut rng, 20, [0.2, 0.0, 0.0], 1.0, 6);
+    let scene = prepare(&a, &b, &options(16, 1000)).unwrap();
+    let (ka, kb) = (scene.kept_a.len(), scene.kept_b.len());
+    let err = prepare(&a, &b, &SceneOptions { width: 16, depth: 4, split: false }).unwrap_err();
+    assert_eq!(err, SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth: 4, needed: ka.max(kb) });
+    let text = err.to_string();
+    assert!(text.contains(&format!("{ka} (A)")) && text.contains("D = 4"), "{text}");
+}
+
+/// The filters lose nothing, on random small scenes at coarse and fine
+/// widths:
+/// * every pair of quantized candidates that intersects (all pairs, no
+///   integer filter) is found in the batches;
+/// * every pair that intersects in f64 (all N1*N2 pairs, brute force) is a
+///   pair of candidates of the f64 filter;
+/// * the fixed-point model equals the exact model on the quantized
+///   coordinates, and the f64 sweep equals brute force.
+#[test]
+fn filter_never_drops_an_intersecting_pair() {
+    let mut rng = ChaCha8Rng::seed_from_u64(2005);
+    for round in 0..40 {
+        let width = [8, 10, 16, 24][round % 4];
+        let edge = [2, 6][round / 4 % 2];
+        let a = random_object(&mut rng, 30, [0.0; 3], 1.0, edge);
+        let offset = [rng.gen_range(-2.0..2.0), rng.gen_range(-1.0..1.0), 0.0];
+        let b = random_object(&mut rng, 30, offset, 1.0, edge);
+        let b = b.posed(&Pose { translation: [0.0; 3], rotation_degrees: [rng.gen_range(0.0..360.0), 0.0, 0.0] });
+        let scene = prepare(&a, &b, &options(width, 8)).unwrap();
+        let found = fixed_point_pairs(&scene.batches, &|_| {});
+        assert_eq!(found, quantized_exact_pairs(&scene.batches), "round {round}");
+
+        let truth = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
+        assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, truth, "round {round}");
+        for &(i, j) in &truth {
+            assert!(scene.candidates_a.contains(&i) && scene.candidates_b.contains(&j), "round {round}: f64 pair ({i},{j}) dropped");
+        }
+        if let Some(frame) = scene.frame {
+            for &i in &scene.candidates_a {
+                for &j in &scene.candidates_b {
+                    let (qa, qb) = (frame.quantize(&a.triangles[i as usize]), frame.quantize(&b.triangles[j as usize]));
+                    if fixed_point::intersects(&qa, &qb) {
+                        assert!(found.contains(&(i, j)), "round {round}: quantized pair ({i},{j}) dropped by the integer filter");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The default scene: the common BV cuts the work, and the 24-bit answer is
+/// close to the exact one.
+#[test]
+fn default_scene_filter_saves_pairs_and_keeps_every_hit() {
+    let (a, b) = crate::builtin_scene::default_scene();
+    let (a, b) = (SceneObject::from_triangles("@torus", a), SceneObject::from_triangles("@sphere", b));
+    let scene = prepare(&a, &b, &options(24, 4096)).unwrap();
+    assert!(scene.pairs_tested() * 4 < scene.all_pairs(), "{} of {}", scene.pairs_tested(), scene.all_pairs());
+    let quantized = fixed_point_pairs(&scene.batches, &|_| {});
+    let truth = exact_f64_pairs(&a.triangles, &b.triangles).pairs;
+    assert!(truth.len() > 10);
+    let diff = reference::PairDiff::between(&truth, &quantized);
+    assert!(diff.missing.len() + diff.extra.len() <= truth.len() / 20, "{diff:?}");
+}

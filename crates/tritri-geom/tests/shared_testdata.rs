@@ -1,0 +1,273 @@
+//! Checks against external cases with exact answers, in `../shared/testdata`
+//! (see its README). Run by `scripts/test-shared.sh`; needs the cargo feature
+//! `shared-testdata`. A missing directory is a failure, not a skip.
+//!
+//! * `peer_cases.json` (147 pairs from five libraries' unit tests and two bug
+//!   reports): the exact model and the independent oracle both equal
+//!   `exact_closed_f64`, in all 72 orderings;
+//! * `shen_intersected.txt` / `shen_separated.txt` (5,000 + 5,000 random
+//!   pairs): the exact model and the oracle equal the file a pair is in;
+//! * on both, the fixed-point model at W = 8, 24, 32 equals the exact model
+//!   on the same quantized coordinates (in all 72 orderings for the peer
+//!   cases).
+//!
+//! Coordinates are read with Rust's correctly rounded `str::parse::<f64>`,
+//! so they are the exact f64 values of the decimal text.
+
+mod oracle;
+mod support;
+
+use std::path::PathBuf;
+use support::{failures, Timer};
+use tritri_geom::fixed_point::{self, FixedTriangle};
+use tritri_geom::quantize::Frame;
+use tritri_geom::triangle::all_orderings;
+use tritri_geom::{exact_f64, Triangle, TrianglePair};
+
+fn testdata() -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata");
+    assert!(
+        dir.is_dir(),
+        "the external test data directory {} is missing: these tests need ../shared/testdata next to the checkout",
+        dir.display()
+    );
+    dir
+}
+
+fn read(name: &str) -> String {
+    let path = testdata().join(name);
+    std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
+}
+
+struct PeerCase {
+    name: String,
+    pair: TrianglePair,
+    exact_closed_f64: bool,
+}
+
+/// The `[[x,y,z],[x,y,z],[x,y,z]]` that follows `"key":` at `text[at..]`,
+/// parsed with `str::parse` (serde_json's default float parsing is not
+/// guaranteed to be correctly rounded).
+fn triangle_after(text: &str, key: &str, at: usize) -> (Triangle, usize) {
+    let start = at + text[at..].find(key).unwrap_or_else(|| panic!("{key} not found"));
+    let open = start + text[start..].find('[').unwrap();
+    let mut depth = 0;
+    let mut end = open;
+    for (i, c) in text[open..].char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => {
+                depth -= 1;
+                if depth == 0 {
+                    end = open + i;
+                    break;
+                }
+            }
+            _ => {}
+        }
+    }
+    let numbers: Vec<f64> = text[open..end]
+        .split(|c: char| c == '[' || c == ']' || c == ',' || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().unwrap_or_else(|e| panic!("bad number {s:?}: {e}")))
+        .collect();
+    assert_eq!(numbers.len(), 9, "a triangle has nine coordinates");
+    let p = |i: usize| [numbers[3 * i], numbers[3 * i + 1], numbers[3 * i + 2]];
+    ([p(0), p(1), p(2)], end)
+}
+
+fn peer_cases() -> Vec<PeerCase> {
+    let text = read("peer_cases.json");
+    let records: Vec<serde_json::Value> = serde_json::from_str(&text).expect("peer_cases.json is a JSON array");
+    let mut at = 0;
+    let cases: Vec<PeerCase> = records
+        .iter()
+        .map(|r| {
+            // The records' coordinates in document order, read from the text.
+            let (t1, after) = triangle_after(&text, "\"t1\":", at);
+            let (t2, after) = triangle_after(&text, "\"t2\":", after);
+            at = after;
+            let from_json = |key: &str| -> Vec<f64> {
+                r[key]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .flat_map(|p| p.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+                    .collect()
+            };
+            let close = |a: &[f64], t: &Triangle| {
+                a.iter().zip(t.iter().flatten()).all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs().max(1.0))
+            };
+            let name = format!("{} / {}", r["src"].as_str().unwrap_or("?"), r["name"].as_str().unwrap_or("?"));
+            assert!(
+                close(&from_json("t1"), &t1) && close(&from_json("t2"), &t2),
+                "{name}: text and JSON coordinates differ"
+            );
+            PeerCase {
+                name,
+                pair: TrianglePair::new(t1, t2),
+                exact_closed_f64: r["exact_closed_f64"].as_bool().expect("exact_closed_f64"),
+            }
+        })
+        .collect();
+    assert_eq!(cases.len(), 147, "peer_cases.json holds 147 pairs");
+    cases
+}
+
+fn shen(name: &str) -> Vec<TrianglePair> {
+    let pairs: Vec<TrianglePair> = read(name)
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|line| {
+            let v: Vec<f64> = line.split_whitespace().map(|s| s.parse().expect("a number")).collect();
+            assert_eq!(v.len(), 18, "{name}: 18 numbers per line");
+            let p = |i: usize| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
+            TrianglePair::new([p(0), p(1), p(2)], [p(3), p(4), p(5)])
+        })
+        .collect();
+    assert_eq!(pairs.len(), 5000, "{name} holds 5,000 pairs");
+    pairs
+}
+
+fn quantized(pair: &TrianglePair, width: u32) -> (FixedTriangle, FixedTriangle) {
+    let frame = Frame::fit([&pair.t1, &pair.t2], width).expect("finite coordinates");
+    (frame.quantize(&pair.t1), frame.quantize(&pair.t2))
+}
+
+fn as_f64(t: &FixedTriangle) -> Triangle {
+    t.map(|p| p.map(|c| c as f64))
+}
+
+fn as_integers(t: &Triangle) -> FixedTriangle {
+    t.map(|p| p.map(|c| c as i64))
+}
+
+/// Fixed model == exact model on the quantized pair, in all 72 orderings
+/// of the quantized pair when `orderings`.
+fn fixed_agrees(pair: &TrianglePair, width: u32, orderings: bool) -> bool {
+    let (q1, q2) = quantized(pair, width);
+    let integer_pair = TrianglePair::new(as_f64(&q1), as_f64(&q2));
+    let check = |p: &TrianglePair| {
+        fixed_point::intersects(&as_integers(&p.t1), &as_integers(&p.t2)) == exact_f64::intersects(&p.t1, &p.t2)
+    };
+    if orderings {
+        let all = all_orderings(&integer_pair).all(|p| check(&p));
+        all
+    } else {
+        check(&integer_pair)
+    }
+}
+
+/// peer_cases.json: exact model and oracle == `exact_closed_f64` in all 72
+/// orderings of every pair.
+#[test]
+fn peer_cases_exact_model_and_oracle_match_exact_closed_f64() {
+    let timer = Timer::start();
+    let cases = peer_cases();
+    let mut model_wrong = 0;
+    let mut oracle_wrong = 0;
+    for case in &cases {
+        let m =
+            all_orderings(&case.pair).filter(|p| exact_f64::intersects(&p.t1, &p.t2) != case.exact_closed_f64).count();
+        let o = all_orderings(&case.pair).filter(|p| oracle::intersects(&p.t1, &p.t2) != case.exact_closed_f64).count();
+        if m + o > 0 {
+            eprintln!(
+                "  {}: expected {}, model wrong in {m}/72, oracle wrong in {o}/72",
+                case.name, case.exact_closed_f64
+            );
+        }
+        model_wrong += m;
+        oracle_wrong += o;
+    }
+    let intersecting = cases.iter().filter(|c| c.exact_closed_f64).count();
+    eprintln!(
+        "peer cases: {} pairs ({intersecting} intersecting) x 72 orderings = {} checks each; exact model {model_wrong} \
+         disagreements, oracle {oracle_wrong} disagreements, {:.2} s",
+        cases.len(),
+        cases.len() * 72,
+        timer.seconds()
+    );
+    assert_eq!((model_wrong, oracle_wrong), (0, 0));
+}
+
+/// peer_cases.json: fixed W = 8, 24, 32 == exact on the quantized
+/// coordinates, all 72 orderings.
+#[test]
+fn peer_cases_fixed_point_equals_exact_on_quantized() {
+    let cases = peer_cases();
+    let mut total_bad = 0;
+    for width in [8, 24, 32] {
+        let bad = failures(&cases, |c| fixed_agrees(&c.pair, width, true));
+        let changed = cases
+            .iter()
+            .filter(|c| {
+                let (q1, q2) = quantized(&c.pair, width);
+                fixed_point::intersects(&q1, &q2) != c.exact_closed_f64
+            })
+            .count();
+        eprintln!(
+            "peer cases, fixed W={width} vs exact on quantized coordinates: {} pairs x 72 orderings, {} pairs with a \
+             disagreement (quantization changed the verdict of {changed})",
+            cases.len(),
+            bad.len()
+        );
+        for &i in &bad {
+            eprintln!("  W={width}: {}", cases[i].name);
+        }
+        total_bad += bad.len();
+    }
+    assert_eq!(total_bad, 0);
+}
+
+/// Shen et al.'s 10,000 pairs: exact model and oracle == the file the pair
+/// is in.
+#[test]
+fn shen_pairs_exact_model_and_oracle_match_file_membership() {
+    let timer = Timer::start();
+    let mut total_bad = 0;
+    for (file, expected) in [("shen_intersected.txt", true), ("shen_separated.txt", false)] {
+        let pairs = shen(file);
+        let model_bad = failures(&pairs, |p| exact_f64::intersects(&p.t1, &p.t2) == expected);
+        let oracle_bad = failures(&pairs, |p| oracle::intersects(&p.t1, &p.t2) == expected);
+        eprintln!(
+            "{file}: {} pairs, exact model {} disagreements, oracle {} disagreements",
+            pairs.len(),
+            model_bad.len(),
+            oracle_bad.len()
+        );
+        for &i in model_bad.iter().chain(&oracle_bad).take(10) {
+            eprintln!("  line {}: {:?}", i + 1, pairs[i]);
+        }
+        total_bad += model_bad.len() + oracle_bad.len();
+    }
+    eprintln!("shen pairs checked in {:.2} s", timer.seconds());
+    assert_eq!(total_bad, 0);
+}
+
+/// Shen et al.'s 10,000 pairs: fixed W = 8, 24, 32 == exact on the quantized
+/// coordinates (each pair in its own frame).
+#[test]
+fn shen_pairs_fixed_point_equals_exact_on_quantized() {
+    let mut pairs = shen("shen_intersected.txt");
+    let separated = shen("shen_separated.txt");
+    let expected: Vec<bool> = (0..pairs.len()).map(|_| true).chain(separated.iter().map(|_| false)).collect();
+    pairs.extend(separated);
+    let mut total_bad = 0;
+    for width in [8, 24, 32] {
+        let bad = failures(&pairs, |p| fixed_agrees(p, width, false));
+        let changed = (0..pairs.len())
+            .filter(|&i| {
+                let (q1, q2) = quantized(&pairs[i], width);
+                fixed_point::intersects(&q1, &q2) != expected[i]
+            })
+            .count();
+        eprintln!(
+            "shen pairs, fixed W={width} vs exact on quantized coordinates: {} pairs, {} disagreements (quantization \
+             changed the verdict of {changed})",
+            pairs.len(),
+            bad.len()
+        );
+        total_bad += bad.len();
+    }
+    assert_eq!(total_bad, 0);
+}
