@@ -1,1 +1,59 @@
-fn main() {}
+//! `tritri`: the command line of the tritri toolkit.
+//!
+//! One module per subcommand; each has an `Args` struct (clap derive) and a
+//! `run(args) -> anyhow::Result<ExitCode>`. To add a subcommand, add its
+//! module, a variant to [`Command`] and an arm to the `match` in `main`.
+//!
+//! Exit codes: 0 success; 1 a failed check or an internal error; 2 bad
+//! input (unreadable or malformed records: the good ones are still
+//! processed) or bad usage.
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+mod classify;
+mod eval;
+mod gen;
+mod input;
+mod chapter5;
+mod scene_input;
+mod sim;
+
+#[derive(Parser)]
+#[command(name = "tritri", version, about = "Devillers-Guigue triangle-triangle tests in exact, float and fixed-point arithmetic")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Decide every triangle pair of a file: prints 1 (intersect) or 0 per pair.
+    Classify(classify::Args),
+    /// Compare every arithmetic with the exact answer: errors and speed.
+    Eval(eval::Args),
+    /// Run the bounding-volume-aware system on two objects (default: the built-in scene).
+    Sim(sim::Args),
+    /// The thesis's chapter-5 comparison: 5/25/50/75 % of the polygons in the common BV, hardware vs software time.
+    Chapter5(chapter5::Args),
+    /// Write the pipeline's Verilog (one module per file, filelist, FuseSoC core, README); --synth runs Yosys.
+    Gen(gen::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Classify(args) => classify::run(args),
+        Command::Eval(args) => eval::run(args),
+        Command::Sim(args) => sim::run(args),
+        Command::Chapter5(args) => chapter5::run(args),
+        Command::Gen(args) => gen::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}

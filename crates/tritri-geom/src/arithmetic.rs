@@ -141,12 +141,11 @@ pub fn classify(arith: Arithmetic, pairs: &[TrianglePair]) -> Result<Classificat
         // (Frame::fit checks it for Fixed.)
         check_finite(pairs)?;
     }
-    let verdicts_of = |f: fn(&crate::Triangle, &crate::Triangle) -> bool| pairs.iter().map(|p| f(&p.t1, &p.t2)).collect();
     Ok(match arith {
-        Arithmetic::Exact => Classification { verdicts: verdicts_of(exact_f64::intersects), frame: None },
-        Arithmetic::F64 => Classification { verdicts: verdicts_of(published_float::intersects_f64), frame: None },
-        Arithmetic::F32 => Classification { verdicts: verdicts_of(published_float::intersects_f32), frame: None },
-        Arithmetic::Moller => Classification { verdicts: verdicts_of(moller::intersects), frame: None },
+        Arithmetic::Exact => Classification { verdicts: verdicts_of(pairs, exact_f64::intersects), frame: None },
+        Arithmetic::F64 => Classification { verdicts: verdicts_of(pairs, published_float::intersects_f64), frame: None },
+        Arithmetic::F32 => Classification { verdicts: verdicts_of(pairs, published_float::intersects_f32), frame: None },
+        Arithmetic::Moller => Classification { verdicts: verdicts_of(pairs, moller::intersects), frame: None },
         Arithmetic::Fixed(width) => {
             let frame = fit_frame(pairs, width)?;
             let verdicts = pairs
@@ -156,6 +155,13 @@ pub fn classify(arith: Arithmetic, pairs: &[TrianglePair]) -> Result<Classificat
             Classification { verdicts, frame: Some(frame) }
         }
     })
+}
+
+/// Generic over the test (a distinct type per function), so that each
+/// arithmetic's loop is its own function with its test inlined.
+#[inline(never)]
+fn verdicts_of<F: Fn(&crate::Triangle, &crate::Triangle) -> bool>(pairs: &[TrianglePair], test: F) -> Vec<bool> {
+    pairs.iter().map(|p| test(&p.t1, &p.t2)).collect()
 }
 
 /// The one frame of a batch: fitted over every triangle of every pair.
@@ -175,7 +181,14 @@ pub fn quantize_pairs(pairs: &[TrianglePair], width: u32) -> Result<(Frame, Vec<
 
 fn check_finite(pairs: &[TrianglePair]) -> Result<(), ClassifyError> {
     for (i, p) in pairs.iter().enumerate() {
-        let finite = p.t1.iter().chain(&p.t2).flatten().fold(true, |all, v| all & v.is_finite());
+        let mut finite = true;
+        for t in [&p.t1, &p.t2] {
+            for v in t {
+                for c in v {
+                    finite &= c.is_finite();
+                }
+            }
+        }
         if !finite {
             let value = p.coordinates().find(|v| !v.is_finite()).unwrap_or(f64::NAN);
             return Err(ClassifyError::NotFinite { pair: i, value });

@@ -241,15 +241,18 @@ pub fn degenerate_pair<K: ExactKernel>(a: K::Point, b: K::Point, c: K::Point, d:
 /// collinear or repeated) meet in the projection dropping `axis`?
 /// Either two of their edges meet, or one hull holds a vertex of the other.
 pub fn hulls_intersect_2d<K: ExactKernel>(axis: usize, u: &[K::Point], v: &[K::Point]) -> bool {
-    let edges = |pts: &[K::Point]| -> Vec<(K::Point, K::Point)> {
+    // The edges of a hull, on the stack (this runs for every coplanar pair).
+    let edges = |pts: &[K::Point]| -> ([(K::Point, K::Point); 3], usize) {
         match *pts {
-            [a, b] => vec![(a, b)],
-            [a, b, c] => vec![(a, b), (b, c), (c, a)],
+            [a, b] => ([(a, b); 3], 1),
+            [a, b, c] => ([(a, b), (b, c), (c, a)], 3),
             _ => unreachable!("hulls of two or three points"),
         }
     };
-    for &(a, b) in &edges(u) {
-        for &(c, d) in &edges(v) {
+    let (u_edges, u_count) = edges(u);
+    let (v_edges, v_count) = edges(v);
+    for &(a, b) in &u_edges[..u_count] {
+        for &(c, d) in &v_edges[..v_count] {
             if segments_intersect_2d::<K>(axis, a, b, c, d) {
                 return true;
             }

@@ -8,9 +8,8 @@
 //!
 //! Two kernels compute the same exact signs, at different speeds:
 //!
-//! * [`FixedPoint`]: any coordinates of up to 32 bits. Normals are computed
-//!   in i64 with overflow detection and recomputed in i128 when a product
-//!   overflows (only possible at W = 32).
+//! * [`FixedPoint`]: any coordinates of up to 32 bits, everything in i128
+//!   (the normal's components need 65 bits at W = 32).
 //! * [`FixedPointNarrow`]: coordinates of up to 31 bits
 //!   (`[-2^30, 2^30 - 1]`). Differences then have at most 32 bits, each
 //!   product of two at most 62, a normal component (2W + 1 <= 63 bits) fits
@@ -48,60 +47,15 @@ fn sub(a: FixedPoint3, b: FixedPoint3) -> [i64; 3] {
 /// `u × v` exactly; components need 2W + 1 bits, i128 holds them for W <= 32.
 #[inline]
 pub fn cross(u: [i64; 3], v: [i64; 3]) -> [i128; 3] {
-    match cross_i64(u, v) {
-        Some(n) => n.map(i128::from),
-        None => cross_i128(u, v),
-    }
-}
-
-/// `u × v` in i64, or `None` if any product or difference overflows. The
-/// fast path: for W <= 31 the differences have at most 32 bits, so every
-/// product and every component (at most 2W + 1 <= 63 bits) fits and this
-/// never fails; for W = 32 it may, and the caller falls back to i128.
-#[inline(always)]
-fn cross_i64(u: [i64; 3], v: [i64; 3]) -> Option<[i64; 3]> {
-    let component = |a: i64, b: i64, c: i64, d: i64| {
-        let (ab, o1) = a.overflowing_mul(b);
-        let (cd, o2) = c.overflowing_mul(d);
-        let (r, o3) = ab.overflowing_sub(cd);
-        (r, o1 | o2 | o3)
-    };
-    let (x, ox) = component(u[1], v[2], u[2], v[1]);
-    let (y, oy) = component(u[2], v[0], u[0], v[2]);
-    let (z, oz) = component(u[0], v[1], u[1], v[0]);
-    if ox | oy | oz {
-        None
-    } else {
-        Some([x, y, z])
-    }
-}
-
-#[cold]
-#[inline(never)]
-fn cross_i128(u: [i64; 3], v: [i64; 3]) -> [i128; 3] {
     let m = |a: i64, b: i64| a as i128 * b as i128;
     [m(u[1], v[2]) - m(u[2], v[1]), m(u[2], v[0]) - m(u[0], v[2]), m(u[0], v[1]) - m(u[1], v[0])]
 }
 
 /// `[a,b,c,d] = (d-a)·((b-a)×(c-a))`, exactly.
-///
-/// Fast path: the normal in i64 (see [`cross_i64`]), then three 64×64→128
-/// products; each is at most 2^32 · 2^63 in magnitude, so the sum of three
-/// fits in i128 with room to spare.
 #[inline]
 pub fn orient3d_value(a: FixedPoint3, b: FixedPoint3, c: FixedPoint3, d: FixedPoint3) -> i128 {
-    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
-    match cross_i64(u, v) {
-        Some(n) => w[0] as i128 * n[0] as i128 + w[1] as i128 * n[1] as i128 + w[2] as i128 * n[2] as i128,
-        None => orient3d_value_i128(u, v, w),
-    }
-}
-
-#[cold]
-#[inline(never)]
-fn orient3d_value_i128(u: [i64; 3], v: [i64; 3], w: [i64; 3]) -> i128 {
-    // Components are at most 2^65, times 2^33: every term fits in i128.
-    let n = cross_i128(u, v);
+    let n = cross(sub(b, a), sub(c, a));
+    let w = sub(d, a);
     w[0] as i128 * n[0] + w[1] as i128 * n[1] + w[2] as i128 * n[2]
 }
 
@@ -110,14 +64,7 @@ fn orient3d_value_i128(u: [i64; 3], v: [i64; 3], w: [i64; 3]) -> i128 {
 pub fn orient2d_value(axis: usize, a: FixedPoint3, b: FixedPoint3, c: FixedPoint3) -> i128 {
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let (u, v) = (sub(b, a), sub(c, a));
-    let (p, o1) = u[i].overflowing_mul(v[j]);
-    let (q, o2) = u[j].overflowing_mul(v[i]);
-    let (r, o3) = p.overflowing_sub(q);
-    if o1 | o2 | o3 {
-        u[i] as i128 * v[j] as i128 - u[j] as i128 * v[i] as i128
-    } else {
-        r as i128
-    }
+    u[i] as i128 * v[j] as i128 - u[j] as i128 * v[i] as i128
 }
 
 impl ExactKernel for FixedPoint {
@@ -248,10 +195,10 @@ mod tests {
         assert_eq!(orient2d_value(2, a, b, c), m * m);
     }
 
-    /// At W = 32 the i64 normal overflows and the i128 fall-back gives the
-    /// exact value.
+    /// At W = 32 the normal needs 65 bits (more than i64): the i128
+    /// values are exact and such pairs do not take the narrow kernel.
     #[test]
-    fn width_32_falls_back_to_i128() {
+    fn width_32_extremes_are_exact() {
         let (lo, hi) = (-(1i64 << 31), (1i64 << 31) - 1);
         let (a, b, c, d) = ([lo, lo, lo], [hi, lo, lo], [lo, hi, lo], [lo, lo, hi]);
         let m = (hi - lo) as i128;

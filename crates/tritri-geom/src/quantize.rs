@@ -137,6 +137,16 @@ mod rounding_tests {
                 }
             }
         }
+        // And random values of every magnitude up to 2^62, fractions included.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        for _ in 0..1_000_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let magnitude = 2f64.powi((state % 63) as i32);
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            xs.push(if state & 1 == 0 { unit * magnitude } else { -unit * magnitude });
+        }
         for x in xs {
             assert_eq!(round_half_away_from_zero(x), x.round() as i64, "{x:e}");
         }

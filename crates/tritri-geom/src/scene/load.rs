@@ -77,7 +77,7 @@ pub fn load_object(spec: &str, bezier_level: usize) -> Result<SceneObject, LoadE
             let mut object = SceneObject { name: spec.to_string(), triangles: Vec::new(), face_of: Vec::new() };
             for (index, patch) in read_bpt(path)?.iter().enumerate() {
                 let ts = patch.tessellate(bezier_level);
-                object.face_of.extend(std::iter::repeat(index).take(ts.len()));
+                object.face_of.extend(std::iter::repeat_n(index, ts.len()));
                 object.triangles.extend(ts);
             }
             object

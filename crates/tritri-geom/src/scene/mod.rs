@@ -43,13 +43,15 @@ pub struct TaggedTriangle {
 
 /// One load of the hardware's memories: every triangle of `a` is tested
 /// against every triangle of `b`. All batches of a scene share one frame.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Batch {
-    pub a: Vec<TaggedTriangle>,
-    pub b: Vec<TaggedTriangle>,
+/// The arrays are slices of the scene's kept arrays (a large scene has
+/// many tiles; copying each would cost `O(tiles * D)` memory).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Batch<'a> {
+    pub a: &'a [TaggedTriangle],
+    pub b: &'a [TaggedTriangle],
 }
 
-impl Batch {
+impl Batch<'_> {
     pub fn pairs(&self) -> u64 {
         self.a.len() as u64 * self.b.len() as u64
     }
@@ -115,13 +117,18 @@ pub struct PreparedScene {
     pub kept_a: Vec<TaggedTriangle>,
     pub kept_b: Vec<TaggedTriangle>,
     pub tiling: Tiling,
-    pub batches: Vec<Batch>,
 }
 
 impl PreparedScene {
+    /// The batches, A-tile by A-tile, each against every B-tile
+    /// ([`Tiling`]); none when either array is empty.
+    pub fn batches(&self) -> Vec<Batch<'_>> {
+        tile(&self.kept_a, &self.kept_b, self.tiling.depth)
+    }
+
     /// Pairs the hardware tests: `|kept A| * |kept B|`, the sum over batches.
     pub fn pairs_tested(&self) -> u64 {
-        self.batches.iter().map(Batch::pairs).sum()
+        self.kept_a.len() as u64 * self.kept_b.len() as u64
     }
 
     /// `N1 * N2`: what testing every pair would cost.
@@ -176,7 +183,6 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
         kept_a: Vec::new(),
         kept_b: Vec::new(),
         tiling: Tiling { depth: options.depth, a_tiles: 0, b_tiles: 0 },
-        batches: Vec::new(),
     };
     let Some(common) = common else { return Ok(scene) };
 
@@ -210,17 +216,16 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
         return Err(SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth, needed: ka.max(kb) });
     }
     scene.tiling = Tiling { depth, a_tiles: ka.div_ceil(depth), b_tiles: kb.div_ceil(depth) };
-    scene.batches = tile(&scene.kept_a, &scene.kept_b, depth);
     Ok(scene)
 }
 
 /// Every A-tile against every B-tile, tiles of at most `depth` triangles;
 /// no batch when either array is empty.
-pub fn tile(a: &[TaggedTriangle], b: &[TaggedTriangle], depth: usize) -> Vec<Batch> {
+pub fn tile<'a>(a: &'a [TaggedTriangle], b: &'a [TaggedTriangle], depth: usize) -> Vec<Batch<'a>> {
     let mut out = Vec::new();
     for ta in a.chunks(depth) {
         for tb in b.chunks(depth) {
-            out.push(Batch { a: ta.to_vec(), b: tb.to_vec() });
+            out.push(Batch { a: ta, b: tb });
         }
     }
     out

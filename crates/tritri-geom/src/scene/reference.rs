@@ -48,33 +48,60 @@ pub fn pairs_over_batches(
     progress: &(dyn Fn(u64) + Sync),
 ) -> PairSet {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut out = PairSet::new();
-    for batch in batches {
-        let boxes_b: Vec<Aabb<i64>> = batch.b.iter().map(|t| triangle_box(&t.triangle)).collect();
-        let found: Vec<Vec<(u32, u32)>> = std::thread::scope(|s| {
-            let handles: Vec<_> = (0..threads)
-                .map(|k| {
-                    let (test, boxes_b) = (&test, &boxes_b);
-                    s.spawn(move || {
-                        let mut hits = Vec::new();
-                        for x in batch.a.iter().skip(k).step_by(threads) {
-                            let bx = triangle_box(&x.triangle);
-                            for (y, by) in batch.b.iter().zip(boxes_b) {
-                                if bx.overlap(by).is_some() && test(x, y) {
-                                    hits.push((x.id, y.id));
-                                }
-                            }
-                            progress(batch.b.len() as u64);
-                        }
-                        hits
-                    })
+    // One set of threads for all batches. Many batches: thread k takes
+    // batches k, k + threads, ...; few (large) batches: thread k takes rows
+    // k, k + threads, ... of every batch.
+    let by_batch = batches.len() >= 4 * threads;
+    let found: Vec<Vec<(u32, u32)>> = std::thread::scope(|s| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let test = &test;
+                s.spawn(move || {
+                    let mut hits = Vec::new();
+                    let mine = batches.iter().enumerate().filter(|(i, _)| !by_batch || i % threads == k);
+                    for (_, batch) in mine {
+                        let (first_row, row_step) = if by_batch { (0, 1) } else { (k, threads) };
+                        let rows = batch_pairs(batch, first_row, row_step, test, &mut hits);
+                        progress(rows * batch.b.len() as u64);
+                    }
+                    hits
                 })
-                .collect();
-            handles.into_iter().map(|h| h.join().expect("worker thread panicked")).collect()
-        });
-        out.extend(found.into_iter().flatten());
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().expect("worker thread panicked")).collect()
+    });
+    found.into_iter().flatten().collect()
+}
+
+/// `test` on rows `first_row, first_row + row_step, ...` of A against all of
+/// B, skipping pairs with disjoint boxes; returns the number of rows done.
+fn batch_pairs(
+    batch: &Batch,
+    first_row: usize,
+    row_step: usize,
+    test: &impl Fn(&TaggedTriangle, &TaggedTriangle) -> bool,
+    hits: &mut Vec<(u32, u32)>,
+) -> u64 {
+    // B's boxes sorted by their low x: the B boxes that can overlap an A box
+    // [lo, hi] in x start in [lo - widest, hi] (exact in integers).
+    let mut boxes_b: Vec<(Aabb<i64>, &TaggedTriangle)> = batch.b.iter().map(|t| (triangle_box(&t.triangle), t)).collect();
+    boxes_b.sort_unstable_by_key(|(bb, _)| bb.lo[0]);
+    let widest = boxes_b.iter().map(|(bb, _)| bb.hi[0] - bb.lo[0]).max().unwrap_or(0);
+    let mut rows = 0;
+    for x in batch.a.iter().skip(first_row).step_by(row_step) {
+        rows += 1;
+        let bx = triangle_box(&x.triangle);
+        let start = boxes_b.partition_point(|(bb, _)| bb.lo[0] < bx.lo[0] - widest);
+        for (by, y) in &boxes_b[start..] {
+            if by.lo[0] > bx.hi[0] {
+                break;
+            }
+            if bx.overlap(by).is_some() && test(x, y) {
+                hits.push((x.id, y.id));
+            }
+        }
     }
-    out
+    rows
 }
 
 fn triangle_box<T: Copy + PartialOrd>(t: &[[T; 3]; 3]) -> Aabb<T> {

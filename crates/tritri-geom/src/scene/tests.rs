@@ -58,9 +58,9 @@ fn no_overlap_gives_no_common_bv_and_zero_pairs() {
     let b = a.posed(&Pose::translation([1.5, 0.0, 0.0]));
     let scene = prepare(&a, &b, &options(24, 16)).unwrap();
     assert_eq!(scene.common, None);
-    assert!(scene.batches.is_empty() && scene.kept_a.is_empty() && scene.kept_b.is_empty());
+    assert!(scene.batches().is_empty() && scene.kept_a.is_empty() && scene.kept_b.is_empty());
     assert_eq!(scene.pairs_tested(), 0);
-    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), PairSet::new());
+    assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), PairSet::new());
     // An empty object has no box either.
     let empty = SceneObject::from_triangles("empty", vec![]);
     assert_eq!(prepare(&a, &empty, &options(24, 16)).unwrap().pairs_tested(), 0);
@@ -76,7 +76,7 @@ fn touching_boxes_give_a_flat_common_bv_and_the_touching_pair() {
     let scene = prepare(&a, &b, &options(24, 16)).unwrap();
     let common = scene.common.unwrap();
     assert_eq!(common.lo[0], common.hi[0]);
-    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), PairSet::from([(0, 0)]));
+    assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), PairSet::from([(0, 0)]));
     assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, PairSet::from([(0, 0)]));
 }
 
@@ -97,8 +97,8 @@ fn degenerate_and_zero_area_triangles_survive_the_whole_flow() {
     assert!(scene.tiling.is_split());
     let expected = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
     assert_eq!(expected.len(), 9, "every one of these degenerate pieces meets every other: {expected:?}");
-    assert_eq!(fixed_point_pairs(&scene.batches, &|_| {}), expected);
-    assert_eq!(quantized_exact_pairs(&scene.batches), expected);
+    assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), expected);
+    assert_eq!(quantized_exact_pairs(&scene.batches()), expected);
     assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, expected);
 }
 
@@ -111,15 +111,15 @@ fn tiling_covers_every_pair_exactly_once() {
     let a = random_object(&mut rng, 37, [0.0; 3], 1.0, 6);
     let b = random_object(&mut rng, 23, [0.5, 0.0, 0.0], 1.0, 6);
     let untiled = prepare(&a, &b, &options(12, 1 << 20)).unwrap();
-    assert_eq!(untiled.batches.len(), 1);
+    assert_eq!(untiled.batches().len(), 1);
     for depth in [1, 2, 5, 7, 23, 36] {
         let tiled = prepare(&a, &b, &options(12, depth)).unwrap();
-        assert_eq!(tiled.batches.len(), tiled.tiling.a_tiles * tiled.tiling.b_tiles);
-        assert!(tiled.batches.iter().all(|batch| batch.a.len() <= depth && batch.b.len() <= depth));
+        assert_eq!(tiled.batches().len(), tiled.tiling.a_tiles * tiled.tiling.b_tiles);
+        assert!(tiled.batches().iter().all(|batch| batch.a.len() <= depth && batch.b.len() <= depth));
         let mut seen = std::collections::HashMap::new();
-        for batch in &tiled.batches {
-            for x in &batch.a {
-                for y in &batch.b {
+        for batch in &tiled.batches() {
+            for x in batch.a {
+                for y in batch.b {
                     *seen.entry((x.id, y.id)).or_insert(0) += 1;
                 }
             }
@@ -127,7 +127,7 @@ fn tiling_covers_every_pair_exactly_once() {
         assert_eq!(seen.len() as u64, untiled.pairs_tested(), "depth {depth}");
         assert!(seen.values().all(|&n| n == 1), "depth {depth}: a pair is in two batches");
         assert_eq!(tiled.pairs_tested(), untiled.pairs_tested());
-        assert_eq!(fixed_point_pairs(&tiled.batches, &|_| {}), fixed_point_pairs(&untiled.batches, &|_| {}));
+        assert_eq!(fixed_point_pairs(&tiled.batches(), &|_| {}), fixed_point_pairs(&untiled.batches(), &|_| {}));
     }
 }
 
@@ -164,8 +164,8 @@ fn filter_never_drops_an_intersecting_pair() {
         let b = random_object(&mut rng, 30, offset, 1.0, edge);
         let b = b.posed(&Pose { translation: [0.0; 3], rotation_degrees: [rng.gen_range(0.0..360.0), 0.0, 0.0] });
         let scene = prepare(&a, &b, &options(width, 8)).unwrap();
-        let found = fixed_point_pairs(&scene.batches, &|_| {});
-        assert_eq!(found, quantized_exact_pairs(&scene.batches), "round {round}");
+        let found = fixed_point_pairs(&scene.batches(), &|_| {});
+        assert_eq!(found, quantized_exact_pairs(&scene.batches()), "round {round}");
 
         let truth = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
         assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, truth, "round {round}");
@@ -193,7 +193,7 @@ fn default_scene_filter_saves_pairs_and_keeps_every_hit() {
     let (a, b) = (SceneObject::from_triangles("@torus", a), SceneObject::from_triangles("@sphere", b));
     let scene = prepare(&a, &b, &options(24, 4096)).unwrap();
     assert!(scene.pairs_tested() * 4 < scene.all_pairs(), "{} of {}", scene.pairs_tested(), scene.all_pairs());
-    let quantized = fixed_point_pairs(&scene.batches, &|_| {});
+    let quantized = fixed_point_pairs(&scene.batches(), &|_| {});
     let truth = exact_f64_pairs(&a.triangles, &b.triangles).pairs;
     assert!(truth.len() > 10);
     let diff = reference::PairDiff::between(&truth, &quantized);

@@ -1,0 +1,47 @@
+//! Reading pair files for the subcommands, with the project's error rules:
+//! every bad record is reported on stderr (naming file and line) and
+//! skipped; the caller finishes its work on the good pairs and exits with
+//! status 2 when anything was skipped.
+
+use std::path::Path;
+use tritri_geom::pairs_io::{self, PairsFile};
+use tritri_geom::widths::{FixedWidths, MAX_WIDTH, MIN_WIDTH};
+use tritri_geom::TrianglePair;
+
+/// The good pairs of a file, and how many records or files could not be read.
+pub struct Loaded {
+    pub file: Option<PairsFile>,
+    pub errors: usize,
+}
+
+impl Loaded {
+    pub fn good_pairs(&self) -> Vec<TrianglePair> {
+        self.file.as_ref().map(PairsFile::good_pairs).unwrap_or_default()
+    }
+}
+
+/// Reads `path`, printing `error: FILE:LINE: ...` for each bad record.
+pub fn load(path: &Path) -> Loaded {
+    match pairs_io::read_pairs(path) {
+        Ok(file) => {
+            let mut errors = 0;
+            for e in file.errors() {
+                eprintln!("error: {e}");
+                errors += 1;
+            }
+            Loaded { file: Some(file), errors }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            Loaded { file: None, errors: 1 }
+        }
+    }
+}
+
+/// clap value parser for a coordinate width: names the value when it is
+/// out of range.
+pub fn parse_width(s: &str) -> Result<u32, String> {
+    let w: u32 = s.trim().parse().map_err(|_| format!("`{s}` is not a width (an integer from {MIN_WIDTH} to {MAX_WIDTH})"))?;
+    FixedWidths::new(w).map_err(|e| e.to_string())?;
+    Ok(w)
+}

@@ -1,0 +1,143 @@
+//! What `tritri sim` and `tritri chapter5` share: the scene options, the
+//! hardware options, loading the objects, and the cycle count of the system
+//! (the system's exact cycle model, `tritri_rtl::system::cycle_model`).
+
+use crate::input;
+use std::time::Duration;
+use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
+use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
+use tritri_geom::scene::Batch;
+
+/// The two objects and the pose of B.
+#[derive(clap::Args, Clone, Debug)]
+pub struct SceneArgs {
+    /// Objects A and B: mesh files (.obj, .ply, .off), Bezier patches (.bpt),
+    /// or the built-ins @torus and @sphere [default: the built-in scene].
+    #[arg(long, num_args = 2, value_names = ["A", "B"])]
+    pub scene: Option<Vec<String>>,
+    /// Pose of B: tx,ty,tz[,rx,ry,rz]; rotations in degrees about the x, then
+    /// y, then z axis through B's origin, then the translation.
+    #[arg(long, allow_hyphen_values = true, value_name = "TX,TY,TZ,RX,RY,RZ")]
+    pub pose_b: Option<Pose>,
+    /// Samples per side of each Bezier patch (.bpt): 2 n^2 triangles per patch.
+    #[arg(long, default_value_t = 8, value_name = "N")]
+    pub tessellation: usize,
+}
+
+impl SceneArgs {
+    /// Loads A and B (B posed); `default` names the objects when `--scene`
+    /// is not given.
+    pub fn load(&self, default: [&str; 2]) -> Result<(SceneObject, SceneObject), LoadError> {
+        let names: Vec<&str> = match &self.scene {
+            Some(v) => v.iter().map(String::as_str).collect(),
+            None => default.to_vec(),
+        };
+        let a = load_object(names[0], self.tessellation)?;
+        let b = load_object(names[1], self.tessellation)?;
+        let pose = self.pose_b.unwrap_or_default();
+        let b = if pose.is_identity() { b } else { b.posed(&pose) };
+        Ok((a, b))
+    }
+}
+
+/// The generated hardware.
+#[derive(clap::Args, Clone, Debug)]
+pub struct HardwareArgs {
+    /// Coordinate width W (8 to 32 bits).
+    #[arg(long, default_value_t = 24, value_parser = input::parse_width)]
+    pub width: u32,
+    /// Pipelines working in parallel (1 to 16).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
+    pub pipelines: u32,
+    /// Memory depth D: triangles per array per bank (1 to 32768); longer
+    /// arrays are split into tiles.
+    #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64,
+          value_parser = clap::value_parser!(u64).range(1..=1u64 << (ADDRESS_BITS - 1)))]
+    pub depth: u64,
+    /// Refuse scenes whose arrays exceed D instead of splitting them.
+    #[arg(long)]
+    pub no_split: bool,
+    /// Clock frequency in MHz, for times.
+    #[arg(long, default_value_t = 100.0, value_name = "F")]
+    pub clock_mhz: f64,
+}
+
+impl HardwareArgs {
+    pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
+        tritri_geom::scene::SceneOptions { width: self.width, depth: self.depth as usize, split: !self.no_split }
+    }
+
+    pub fn time_of(&self, cycles: u64) -> Duration {
+        Duration::from_secs_f64(cycles as f64 / (self.clock_mhz * 1e6))
+    }
+}
+
+/// Pipeline latency `L` of the generated triangle pipeline.
+pub fn pipeline_latency() -> u64 {
+    tritri_rtl::pipeline::triangle_pipeline::latency() as u64
+}
+
+impl HardwareArgs {
+    /// The generator parameters of the system these options describe.
+    pub fn system_config(&self) -> SystemConfig {
+        SystemConfig::new(self.width as usize, self.pipelines as usize, pipeline_latency() as usize)
+            .with_depth(self.depth as usize)
+    }
+
+    /// Cycles of the system on `batches`, from the system's exact cycle
+    /// model ([`system_cycles`]): the two banks alternate (loading batch k+1
+    /// overlaps processing batch k), the result reader is always ready.
+    pub fn cycles(&self, batches: &[Batch]) -> u64 {
+        let sizes: Vec<BatchSizes> = batches.iter().map(|b| BatchSizes { a: b.a.len(), b: b.b.len() }).collect();
+        system_cycles(self.system_config(), &sizes, true, ReaderBehaviour::AlwaysReady)
+    }
+}
+
+/// A duration in the unit that reads best.
+pub fn human(d: Duration) -> String {
+    let s = d.as_secs_f64();
+    if s >= 1.0 {
+        format!("{s:.3} s")
+    } else if s >= 1e-3 {
+        format!("{:.3} ms", s * 1e3)
+    } else if s >= 1e-6 {
+        format!("{:.3} us", s * 1e6)
+    } else {
+        format!("{:.0} ns", s * 1e9)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tritri_geom::scene::TaggedTriangle;
+
+    fn batch(n1: usize, n2: usize) -> Batch<'static> {
+        let t = TaggedTriangle { id: 0, triangle: [[0; 3]; 3] };
+        let (a, b) = (Box::leak(vec![t; n1].into_boxed_slice()), Box::leak(vec![t; n2].into_boxed_slice()));
+        Batch { a, b }
+    }
+
+    fn hardware(pipelines: u32) -> HardwareArgs {
+        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0 }
+    }
+
+    /// One pipeline, one batch: the thesis's N1 + N1*N2 + L, plus writing
+    /// the arrays (N1 + N2 + 1) and two cycles (bank take-over, memory read).
+    #[test]
+    fn one_pipeline_one_batch_is_the_thesis_formula_plus_loading() {
+        let l = pipeline_latency();
+        assert_eq!(hardware(1).cycles(&[batch(3, 5)]), (3 + 5 + 1) + 3 + 15 + l + 2);
+        assert_eq!(hardware(1).cycles(&[]), 0);
+    }
+
+    /// Loading the next batch hides behind processing the current one, and
+    /// two pipelines halve the streaming.
+    #[test]
+    fn loading_overlaps_processing_and_pipelines_share_the_bases() {
+        let one = hardware(1).cycles(&[batch(10, 10)]);
+        assert!(hardware(1).cycles(&[batch(10, 10), batch(10, 10)]) < 2 * one);
+        assert!(hardware(2).cycles(&[batch(10, 10)]) < one - 40);
+    }
+}

@@ -1,0 +1,287 @@
+//! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--width W]
+//! [--pipelines P] [--depth D] [--engine model|rusthdl|verilator]
+//! [--clock-mhz F] [--out PAIRS]`
+//!
+//! Runs the whole bounding-volume-aware system on two objects (without
+//! `--scene`, the built-in torus and sphere): common BV, the arrays of
+//! triangles touching it, one W-bit frame, tiles of at most D triangles,
+//! the engine, and the comparison with the exact models. Prints a report
+//! (on stdout, or on stderr when the pairs go to stdout with `--out -`).
+//!
+//! `--out PAIRS` writes the intersecting pairs, one `i j` per line in
+//! ascending order: `i` indexes A's triangles and `j` B's, in file order
+//! with polygons split into fans (`--indices faces` reports face indices
+//! instead, deduplicated).
+//!
+//! Exit status: 0 done; 1 the engine disagrees with the exact model on the
+//! quantized coordinates (a bug); 2 a scene file cannot be read (the error
+//! names the file and line), the arrays exceed D with `--no-split`, or bad
+//! usage.
+
+use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
+use anyhow::Context;
+use clap::ValueEnum;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::collections::BTreeSet;
+use std::io::{BufWriter, Write};
+use std::process::ExitCode;
+use tritri_geom::bounding_volume::Aabb;
+use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
+use tritri_geom::scene::{prepare, PreparedScene};
+
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    hardware: HardwareArgs,
+    /// What computes the verdicts.
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
+    /// Write the intersecting pairs here, one `i j` per line (`-`: stdout).
+    #[arg(long, value_name = "PAIRS")]
+    out: Option<String>,
+    /// Report triangle indices (polygons split into fans) or face indices.
+    #[arg(long, value_enum, default_value_t = Indices::Triangles)]
+    indices: Indices,
+    /// Skip the comparison with the exact models.
+    #[arg(long)]
+    no_compare: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Engine {
+    /// The bit-exact fixed-point model and the cycle model.
+    Model,
+    /// The rust-hdl simulation of the system.
+    Rusthdl,
+    /// The emitted Verilog of the system in Verilator.
+    Verilator,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Indices {
+    Triangles,
+    Faces,
+}
+
+/// Default scene of `tritri sim` without `--scene`.
+pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@sphere"];
+
+/// Pairs above which a progress bar is shown (on a terminal).
+const PROGRESS_THRESHOLD: u64 = 5_000_000;
+
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    let (a, b) = match args.scene.load(DEFAULT_SCENE) {
+        Ok(objects) => objects,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let pairs_to_stdout = args.out.as_deref() == Some("-");
+    let mut report: Box<dyn Write> = if pairs_to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
+    let pose = args.scene.pose_b.unwrap_or_default();
+    writeln!(report, "scene: A = {} ({} triangles), B = {} ({} triangles), pose of B = {pose}", a.name, a.triangles.len(), b.name, b.triangles.len())?;
+    writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
+    writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
+
+    let scene = match prepare(&a, &b, &args.hardware.scene_options()) {
+        Ok(s) => s,
+        Err(e @ tritri_geom::scene::SceneError::ExceedsDepth { .. }) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    let Some(common) = scene.common else {
+        writeln!(report, "no overlap: the bounding boxes of A and B do not meet, so no triangle pair can intersect; zero pairs tested")?;
+        write_pairs(&args, &a, &b, &PairSet::new())?;
+        return Ok(ExitCode::SUCCESS);
+    };
+    print_filter(&mut report, &args, &scene, &common)?;
+
+    let pairs_tested = scene.pairs_tested();
+    let (pairs, cycles, engine_name) = match args.engine {
+        Engine::Model => {
+            let bar = progress_bar(pairs_tested);
+            let pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
+            bar.finish_and_clear();
+            let cycles = args.hardware.cycles(&scene.batches());
+            (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)")
+        }
+        Engine::Rusthdl | Engine::Verilator => {
+            // TODO(lead): once the system with the real triangle pipeline exists (today
+            // tritri_cosim::system_harness has run_stub_system / run_system_on with stub
+            // pipelines only), run it here: convert each scene::Batch to
+            // system_harness::Batch (IdTriangle { id, triangle } per TaggedTriangle, ids are
+            // the original triangle indices), call it with args.hardware.system_config(),
+            // overlap = true, ReaderBehaviour::AlwaysReady, and report SystemResult's
+            // pairs (deduplicate across tiles), cycles (check = args.hardware.cycles(..)
+            // when stall_cycles == 0) and stall_cycles; Verilator likewise.
+            eprintln!(
+                "error: --engine {:?} is not wired yet (the system with the real pipeline has not landed); use --engine model",
+                args.engine
+            );
+            return Ok(ExitCode::from(2));
+        }
+    };
+    writeln!(report, "engine: {engine_name}")?;
+    writeln!(report, "intersecting pairs: {}", pairs.len())?;
+    let time = args.hardware.time_of(cycles);
+    writeln!(
+        report,
+        "cycles: {cycles} ({} pipelines, pipeline latency {}, banks overlapped), time at {} MHz: {}",
+        args.hardware.pipelines,
+        pipeline_latency(),
+        args.hardware.clock_mhz,
+        human(time)
+    )?;
+    write_pairs(&args, &a, &b, &pairs)?;
+
+    let mut status = ExitCode::SUCCESS;
+    if !args.no_compare {
+        let quantized = quantized_exact_pairs(&scene.batches());
+        let same = PairDiff::between(&quantized, &pairs);
+        if same.is_empty() {
+            writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
+        } else {
+            writeln!(
+                report,
+                "check: engine DIFFERS from the exact model on the quantized coordinates: {} missing, {} extra (a bug) e.g. {:?} {:?}",
+                same.missing.len(),
+                same.extra.len(),
+                &same.missing[..same.missing.len().min(5)],
+                &same.extra[..same.extra.len().min(5)]
+            )?;
+            status = ExitCode::from(1);
+        }
+        let truth = exact_f64_pairs(&a.triangles, &b.triangles);
+        let diff = PairDiff::between(&truth.pairs, &quantized);
+        writeln!(
+            report,
+            "exact f64 on the original coordinates, all {} pairs ({} with overlapping triangle boxes decided): {} intersecting",
+            scene.all_pairs(),
+            truth.pairs_decided,
+            truth.pairs.len()
+        )?;
+        writeln!(
+            report,
+            "quantization error (W = {}): {} pairs missing, {} extra against exact f64{}",
+            args.hardware.width,
+            diff.missing.len(),
+            diff.extra.len(),
+            examples(&diff)
+        )?;
+    }
+    report.flush()?;
+    Ok(status)
+}
+
+fn scene_box(o: &SceneObject) -> Option<Aabb<f64>> {
+    Aabb::of_triangles(&o.triangles)
+}
+
+fn show_box(b: &Option<Aabb<f64>>) -> String {
+    match b {
+        None => "empty".into(),
+        Some(b) => format!("[{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]", b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]),
+    }
+}
+
+fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, common: &Aabb<f64>) -> anyhow::Result<()> {
+    writeln!(report, "common BV: {}", show_box(&Some(*common)))?;
+    writeln!(
+        report,
+        "in the common BV: A {} of {} (f64 box filter {}), B {} of {} (f64 box filter {}): {:.1} % of all triangles",
+        scene.kept_a.len(),
+        scene.n_a,
+        scene.candidates_a.len(),
+        scene.kept_b.len(),
+        scene.n_b,
+        scene.candidates_b.len(),
+        100.0 * scene.fraction_in_common_bv()
+    )?;
+    if let Some(frame) = scene.frame {
+        writeln!(report, "frame: W = {} bits, step h = {:e}, centre {:?}", args.hardware.width, frame.step, frame.centre)?;
+    }
+    let t = scene.tiling;
+    if t.is_split() {
+        writeln!(
+            report,
+            "memories: depth D = {}: arrays of {} and {} triangles split into {} x {} tiles = {} batches",
+            t.depth,
+            scene.kept_a.len(),
+            scene.kept_b.len(),
+            t.a_tiles,
+            t.b_tiles,
+            scene.batches().len()
+        )?;
+    } else {
+        writeln!(report, "memories: depth D = {}: {} batch, no split", t.depth, scene.batches().len())?;
+    }
+    let (tested, all) = (scene.pairs_tested(), scene.all_pairs());
+    writeln!(
+        report,
+        "pairs tested: {tested} of N1*N2 = {all} ({:.3} %; the common BV saves {:.1} %)",
+        percent(tested, all),
+        100.0 - percent(tested, all)
+    )?;
+    Ok(())
+}
+
+fn percent(part: u64, whole: u64) -> f64 {
+    if whole == 0 {
+        0.0
+    } else {
+        100.0 * part as f64 / whole as f64
+    }
+}
+
+fn examples(diff: &PairDiff) -> String {
+    if diff.is_empty() {
+        return String::new();
+    }
+    let show = |what: &str, v: &[(u32, u32)]| {
+        let listed: Vec<String> = v.iter().take(5).map(|(i, j)| format!("({i} {j})")).collect();
+        if listed.is_empty() {
+            String::new()
+        } else {
+            format!("; {what} e.g. {}", listed.join(" "))
+        }
+    };
+    format!("{}{}", show("missing", &diff.missing), show("extra", &diff.extra))
+}
+
+fn progress_bar(total: u64) -> ProgressBar {
+    if total < PROGRESS_THRESHOLD {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} pairs [{bar:40}] {human_pos}/{human_len} ({percent} %, eta {eta})")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
+fn write_pairs(args: &Args, a: &SceneObject, b: &SceneObject, pairs: &PairSet) -> anyhow::Result<()> {
+    let Some(out) = &args.out else { return Ok(()) };
+    let pairs: BTreeSet<(usize, usize)> = match args.indices {
+        Indices::Triangles => pairs.iter().map(|&(i, j)| (i as usize, j as usize)).collect(),
+        Indices::Faces => pairs.iter().map(|&(i, j)| (a.face_of[i as usize], b.face_of[j as usize])).collect(),
+    };
+    let sink: Box<dyn Write> = if out == "-" {
+        Box::new(std::io::stdout().lock())
+    } else {
+        Box::new(std::fs::File::create(out).with_context(|| format!("cannot write {out}"))?)
+    };
+    let mut w = BufWriter::new(sink);
+    for (i, j) in pairs {
+        writeln!(w, "{i} {j}")?;
+    }
+    w.flush()?;
+    Ok(())
+}

@@ -1,0 +1,148 @@
+//! `tritri sim` and `tritri chapter5` run as a user runs them: the built
+//! binary, its exit status, its output and the pairs file.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn tritri(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// A file in this test binary's scratch directory.
+fn scratch(name: &str, contents: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sim-tests");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, contents).unwrap();
+    path
+}
+
+fn scratch_path(name: &str) -> PathBuf {
+    scratch(name, "")
+}
+
+/// A scene file that cannot be parsed: exit status 2 and an error naming the
+/// file and the line.
+#[test]
+fn unparsable_scene_file_names_file_and_line() {
+    let bad = scratch("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 x 0\nf 1 2 3\n");
+    let out = tritri(&["sim", "--scene", bad.to_str().unwrap(), "@sphere"]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(err.contains("bad.obj:3:") && err.contains("`x` is not a number"), "{err}");
+
+    let bad_off = scratch("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+    let out = tritri(&["sim", "--scene", "@torus", bad_off.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("bad.off:6:"), "{}", text(&out.stderr));
+
+    let missing = tritri(&["sim", "--scene", "/nonexistent/a.ply", "@sphere"]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(text(&missing.stderr).contains("/nonexistent/a.ply"));
+}
+
+/// Objects whose boxes do not meet: a clear message, zero pairs, an empty
+/// pairs file, success.
+#[test]
+fn no_overlap_says_so_and_writes_no_pairs() {
+    let pairs = scratch_path("none.txt");
+    let out = tritri(&["sim", "--pose-b", "10,0,0", "--out", pairs.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    assert!(report.contains("no overlap") && report.contains("zero pairs"), "{report}");
+    assert_eq!(std::fs::read_to_string(&pairs).unwrap(), "");
+}
+
+/// `tritri sim` alone runs the built-in scene, the common BV saves pairs,
+/// and the engine agrees with the exact model on the quantized coordinates.
+#[test]
+fn sim_alone_runs_the_default_scene() {
+    let out = tritri(&["sim"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (W = 24)"] {
+        assert!(report.contains(needle), "missing `{needle}` in:\n{report}");
+    }
+}
+
+/// Pairs are `i j` lines; splitting into tiles (small D) gives the same
+/// pairs as one batch, and says that it split; degenerate triangles (a
+/// point, a segment, a zero-area triangle) go through.
+#[test]
+fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
+    let a = scratch(
+        "a.off",
+        "OFF\n7 5 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 0\n1 1 0\n-1 -1 0.5\n2 2 0.5\n3 0 1 2\n3 3 3 3\n3 0 4 4\n3 5 6 6\n4 0 1 4 2\n",
+    );
+    let b = scratch("b.obj", "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n");
+    let (one, tiles) = (scratch_path("one.txt"), scratch_path("tiles.txt"));
+    let run = |depth: &str, out: &PathBuf| {
+        tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", out.to_str().unwrap()])
+    };
+    let r1 = run("100", &one);
+    assert!(r1.status.success(), "{}", text(&r1.stderr));
+    let r2 = run("2", &tiles);
+    assert!(r2.status.success(), "{}", text(&r2.stderr));
+    assert!(text(&r2.stdout).contains("split into"), "{}", text(&r2.stdout));
+    let pairs = std::fs::read_to_string(&one).unwrap();
+    assert_eq!(pairs, std::fs::read_to_string(&tiles).unwrap());
+    assert!(pairs.lines().all(|l| l.split(' ').count() == 2 && l.split(' ').all(|n| n.parse::<u32>().is_ok())), "{pairs}");
+    // The point (0.5,0.5,0) is A's triangle 1 and B's triangle 1, and lies on B's vertical triangle 0.
+    assert!(pairs.lines().any(|l| l == "1 1") && pairs.lines().any(|l| l == "1 0"), "{pairs}");
+    assert!(pairs.lines().count() >= 4, "{pairs}");
+    assert!(text(&r1.stdout).contains("0 pairs missing, 0 extra"), "{}", text(&r1.stdout));
+
+    // Face indices: the quad (face 4) is triangles 4 and 5.
+    let faces = scratch_path("faces.txt");
+    let r3 = tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--indices", "faces", "--out", faces.to_str().unwrap()]);
+    assert!(r3.status.success());
+    assert!(std::fs::read_to_string(&faces).unwrap().lines().all(|l| l.split(' ').next().unwrap().parse::<u32>().unwrap() <= 4));
+}
+
+/// With --no-split, arrays deeper than D are an error naming the sizes.
+#[test]
+fn no_split_error_names_the_sizes() {
+    let out = tritri(&["sim", "--depth", "100", "--no-split"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = text(&out.stderr);
+    assert!(err.contains("(A)") && err.contains("(B)") && err.contains("D = 100"), "{err}");
+}
+
+/// A pose that is not six (or three) numbers is refused by the parser.
+#[test]
+fn bad_pose_is_refused() {
+    let out = tritri(&["sim", "--pose-b", "1,2"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("bad pose"), "{}", text(&out.stderr));
+    // Negative numbers are values, not flags.
+    assert!(tritri(&["sim", "--pose-b", "-0.1,0,0,0,0,-45"]).status.success());
+}
+
+/// Pairs to stdout with `--out -`, the report then goes to stderr.
+#[test]
+fn pairs_to_stdout_send_the_report_to_stderr() {
+    let out = tritri(&["sim", "--out", "-"]);
+    assert!(out.status.success());
+    let stdout = text(&out.stdout);
+    assert!(stdout.lines().count() > 10 && stdout.lines().all(|l| l.split(' ').count() == 2), "{stdout}");
+    assert!(text(&out.stderr).contains("pairs tested:"));
+}
+
+/// The chapter-5 table: one row per target share, the share reached at or
+/// above the target.
+#[test]
+fn chapter5_prints_one_row_per_share() {
+    let out = tritri(&["chapter5", "--scene", "@sphere", "@sphere", "--fractions", "25,50"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    let rows: Vec<&str> = report.lines().filter(|l| l.starts_with("| 25 %") || l.starts_with("| 50 %")).collect();
+    assert_eq!(rows.len(), 2, "{report}");
+    for (row, target) in rows.iter().zip([25.0, 50.0]) {
+        let share: f64 = row.split('=').nth(1).unwrap().trim().split(' ').next().unwrap().parse().unwrap();
+        assert!(share >= target && share < target + 10.0, "{row}");
+    }
+}

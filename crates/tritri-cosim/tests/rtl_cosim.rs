@@ -1,0 +1,131 @@
+//! Rung 4 of the verification ladder: the emitted Verilog of the pipeline,
+//! run in Icarus and in Verilator with testbenches/tb_triangle_pipeline.sv,
+//! gives `tritri_geom::fixed_point::intersects` for every pair (pair ids in
+//! order, 0 mismatches) and takes exactly `N1 + N1 N2 + L` cycles.
+//!
+//! The pairs: random triangles quantized into one W-bit frame (general
+//! position), small integer coordinates (coplanar, collinear, degenerate and
+//! touching configurations are frequent) and coordinates at the ends of the
+//! W-bit range (the widest intermediate values).
+//!
+//! Scale: `TRITRI_RTL_PAIRS` (default 100 000) pairs per Verilator run;
+//! Icarus runs a tenth as many (it is ~100 times slower). A missing
+//! simulator fails the test with the package to install.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::time::Instant;
+use tritri_cosim::icarus::run_icarus_dut;
+use tritri_cosim::rtl_sim::{pipeline_dut, RtlRun};
+use tritri_cosim::stream::{IdTriangle, TriangleStream};
+use tritri_cosim::verilator::run_verilator_dut;
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
+use tritri_geom::quantize::Frame;
+
+fn env_usize(name: &str, default: usize) -> usize {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
+fn random_triangle(rng: &mut ChaCha8Rng, lo: i64, hi: i64) -> FixedTriangle {
+    [0; 3].map(|_| [0; 3].map(|_| rng.gen_range(lo..=hi)))
+}
+
+/// `n1` bases against `n2` streamed triangles, drawn from three families.
+fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    // Random and near-degenerate f64 pairs, quantized into one frame.
+    let pairs: Vec<_> = random_pairs(n1 + n2, seed).into_iter().chain(random_near_degenerate_pairs(n1 + n2, seed + 1)).collect();
+    let all: Vec<_> = pairs.iter().flat_map(|p| [p.t1, p.t2]).collect();
+    let frame = Frame::fit(all.iter(), width).unwrap();
+    let quantized: Vec<FixedTriangle> = all.iter().map(|t| frame.quantize(t)).collect();
+    let max = (1i64 << (width - 1)) - 1;
+    let min = -(1i64 << (width - 1));
+    let extremes = [min, max, 0, 1, -1, min + 1, max - 1, max / 2, min / 2];
+    let mut pick = |k: usize, rng: &mut ChaCha8Rng| -> FixedTriangle {
+        match k % 3 {
+            0 => quantized[rng.gen_range(0..quantized.len())],
+            1 => random_triangle(rng, -3, 3),
+            _ => [0; 3].map(|_| [0; 3].map(|_| extremes[rng.gen_range(0..extremes.len())])),
+        }
+    };
+    let bases = (0..n1).map(|k| IdTriangle { id: 1000 + k as u32, triangle: pick(k, &mut rng) }).collect();
+    // Stream ids near the top of the 32-bit range: the id path is checked too.
+    let streamed = (0..n2).map(|k| IdTriangle { id: u32::MAX - k as u32, triangle: pick(k, &mut rng) }).collect();
+    TriangleStream { bases, streamed }
+}
+
+fn check(engine: &str, width: usize, stream: &TriangleStream, run: &RtlRun, latency: u64) {
+    let expected = stream.expected(intersects);
+    let mismatches = run.result.mismatches(&expected);
+    let hits = expected.iter().filter(|v| v.hit).count();
+    let pairs = expected.len();
+    eprintln!(
+        "{engine} W={width}: {pairs} pairs ({hits} hits), {mismatches} mismatches, {} cycles (expected {}), \
+         build {:.1} s, simulate {:.2} s = {:.0} pairs/s",
+        run.result.cycles,
+        stream.expected_cycles(latency),
+        run.build_seconds,
+        run.simulate_seconds,
+        pairs as f64 / run.simulate_seconds
+    );
+    assert_eq!(run.result.verdicts.len(), pairs, "{engine}: one verdict per pair");
+    if let Some(k) = (0..pairs).find(|&k| run.result.verdicts[k] != expected[k]) {
+        panic!("{engine} W={width}: first mismatch at output {k}: {:?}, expected {:?}", run.result.verdicts[k], expected[k]);
+    }
+    assert_eq!(mismatches, 0);
+    assert_eq!(run.result.cycles, stream.expected_cycles(latency), "{engine}: N1 + N1 N2 + L cycles");
+    // Every verdict leaves exactly L cycles after its triangle entered.
+    let n2 = stream.streamed.len() as u64;
+    for (k, t) in run.timed.iter().enumerate() {
+        let k = k as u64;
+        let entered = (k / n2) * (n2 + 1) + 1 + k % n2;
+        assert_eq!(t.cycle, entered + latency, "{engine}: verdict {k} leaves L cycles after its input");
+    }
+}
+
+/// Icarus at W = 24 (the thesis's configuration) and W = 8.
+#[test]
+fn icarus_matches_fixed_point_model() {
+    let total = env_usize("TRITRI_RTL_PAIRS", 100_000) / 10;
+    for (width, seed) in [(24usize, 1u64), (8, 2)] {
+        let dut = pipeline_dut(width).unwrap();
+        let n1 = 10;
+        let stream = mixed_stream(width as u32, n1, (total / n1).max(1), seed);
+        let run = run_icarus_dut(&dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        check("icarus", width, &stream, &run, dut.latency);
+    }
+}
+
+/// Verilator at W = 24 and W = 8; a second run reuses the cached model.
+#[test]
+fn verilator_matches_fixed_point_model() {
+    let total = env_usize("TRITRI_RTL_PAIRS", 100_000);
+    for (width, seed) in [(24usize, 3u64), (8, 4)] {
+        let dut = pipeline_dut(width).unwrap();
+        let n1 = 20;
+        let stream = mixed_stream(width as u32, n1, (total / n1).max(1), seed);
+        let run = run_verilator_dut(&dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        check("verilator", width, &stream, &run, dut.latency);
+        let started = Instant::now();
+        let small = mixed_stream(width as u32, 2, 50, seed + 10);
+        let again = run_verilator_dut(&dut, &small).unwrap();
+        assert_eq!(again.build_seconds, 0.0, "the second run uses the cached model");
+        check("verilator (cached)", width, &small, &again, dut.latency);
+        eprintln!("cached run: {:.2} s", started.elapsed().as_secs_f64());
+    }
+}
+
+/// The library entry points agree with the rust-hdl harness on the same
+/// pairs (same result type, same ids, same cycles).
+#[test]
+fn run_icarus_and_run_verilator_equal_the_rust_hdl_harness() {
+    let stream = mixed_stream(16, 3, 40, 5);
+    let bases: Vec<_> = stream.bases.iter().map(|t| (t.id, t.triangle)).collect();
+    let streamed: Vec<_> = stream.streamed.iter().map(|t| (t.id, t.triangle)).collect();
+    let hdl = tritri_cosim::rusthdl_harness::run_pairs(16, &bases, &streamed).unwrap();
+    let icarus = tritri_cosim::icarus::run_icarus(16, &bases, &streamed).unwrap();
+    let verilator = tritri_cosim::verilator::run_verilator(16, &bases, &streamed).unwrap();
+    assert_eq!(icarus, hdl);
+    assert_eq!(verilator, hdl);
+}

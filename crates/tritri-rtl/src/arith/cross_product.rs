@@ -1,0 +1,127 @@
+//! Cross product `u × v` of two (W+1)-bit difference vectors, exact in
+//! 2W+1 bits per component.
+//!
+//! Thesis, chapter 3, figure 3.10 (the cross-product unit of the normal
+//! unit); `tritri_geom::fixed_point::cross` is the software model. Six
+//! registered multipliers `(W+1) x (W+1) -> 2W+1` (each product is at most
+//! `(2^W - 1)^2 < 2^(2W)` in magnitude, so it fits) and one registered
+//! subtraction per component, modulo `2^(2W+1)`, exact because every
+//! component is at most `M^2` in magnitude (`tritri_geom::widths`).
+
+use super::adder::{RegisteredDifference, ADDER_LATENCY};
+use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from operands to cross product.
+pub const CROSS_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + ADDER_LATENCY;
+
+#[derive(LogicBlock)]
+pub struct CrossProduct<const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub u: [Signal<In, Bits<D>>; 3],
+    pub v: [Signal<In, Bits<D>>; 3],
+    /// `u × v`, `CROSS_PRODUCT_LATENCY` enabled edges later.
+    pub product: [Signal<Out, Bits<C>>; 3],
+    /// Products `u1 v2, u2 v1, u2 v0, u0 v2, u0 v1, u1 v0`.
+    multiplier: [Multiplier<D, D, C>; 6],
+    component: [RegisteredDifference<C>; 3],
+}
+
+impl<const D: usize, const C: usize> Default for CrossProduct<D, C> {
+    fn default() -> Self {
+        assert_eq!(C, 2 * D - 1, "a cross product of {D}-bit differences has {} bits", 2 * D - 1);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            u: Default::default(),
+            v: Default::default(),
+            product: Default::default(),
+            multiplier: Default::default(),
+            component: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize, const C: usize> Logic for CrossProduct<D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..6 {
+            self.multiplier[i].clock.next = self.clock.val();
+            self.multiplier[i].advance.next = self.advance.val();
+        }
+        self.multiplier[0].a.next = self.u[1].val();
+        self.multiplier[0].b.next = self.v[2].val();
+        self.multiplier[1].a.next = self.u[2].val();
+        self.multiplier[1].b.next = self.v[1].val();
+        self.multiplier[2].a.next = self.u[2].val();
+        self.multiplier[2].b.next = self.v[0].val();
+        self.multiplier[3].a.next = self.u[0].val();
+        self.multiplier[3].b.next = self.v[2].val();
+        self.multiplier[4].a.next = self.u[0].val();
+        self.multiplier[4].b.next = self.v[1].val();
+        self.multiplier[5].a.next = self.u[1].val();
+        self.multiplier[5].b.next = self.v[0].val();
+        for k in 0..3 {
+            self.component[k].clock.next = self.clock.val();
+            self.component[k].advance.next = self.advance.val();
+            self.component[k].a.next = self.multiplier[2 * k].product.val();
+            self.component[k].b.next = self.multiplier[2 * k + 1].product.val();
+            self.product[k].next = self.component[k].difference.val();
+        }
+    }
+}
+
+/// One component of a cross product, `u.x w.y - u.y w.x`: the orient2d
+/// value of a projected triangle (`tritri_geom::fixed_point::orient2d_value`)
+/// from its two edge vectors. Exact in 2W+1 bits, same reasoning as
+/// [`CrossProduct`].
+#[derive(LogicBlock)]
+pub struct CrossProduct2d<const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub u_x: Signal<In, Bits<D>>,
+    pub u_y: Signal<In, Bits<D>>,
+    pub w_x: Signal<In, Bits<D>>,
+    pub w_y: Signal<In, Bits<D>>,
+    /// `u.x w.y - u.y w.x`, `CROSS_PRODUCT_LATENCY` enabled edges later.
+    pub product: Signal<Out, Bits<C>>,
+    multiplier: [Multiplier<D, D, C>; 2],
+    difference: RegisteredDifference<C>,
+}
+
+impl<const D: usize, const C: usize> Default for CrossProduct2d<D, C> {
+    fn default() -> Self {
+        assert_eq!(C, 2 * D - 1, "a cross product of {D}-bit differences has {} bits", 2 * D - 1);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            u_x: Default::default(),
+            u_y: Default::default(),
+            w_x: Default::default(),
+            w_y: Default::default(),
+            product: Default::default(),
+            multiplier: Default::default(),
+            difference: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize, const C: usize> Logic for CrossProduct2d<D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..2 {
+            self.multiplier[i].clock.next = self.clock.val();
+            self.multiplier[i].advance.next = self.advance.val();
+        }
+        self.multiplier[0].a.next = self.u_x.val();
+        self.multiplier[0].b.next = self.w_y.val();
+        self.multiplier[1].a.next = self.u_y.val();
+        self.multiplier[1].b.next = self.w_x.val();
+        self.difference.clock.next = self.clock.val();
+        self.difference.advance.next = self.advance.val();
+        self.difference.a.next = self.multiplier[0].product.val();
+        self.difference.b.next = self.multiplier[1].product.val();
+        self.product.next = self.difference.difference.val();
+    }
+}

@@ -1,0 +1,61 @@
+//! Dot product `u · v` of a (W+1)-bit difference vector and a (2W+1)-bit
+//! cross product, in 3W+2 bits: an orient3d value.
+//!
+//! Thesis, chapter 3, figure 3.9 (the dot-product unit, 78 bits there; 74
+//! here, the tight bound of `tritri_geom::widths`). Three registered
+//! multipliers `(W+1) x (2W+1) -> 3W+2` and one registered three-input sum.
+//! The sum is computed modulo `2^(3W+2)`: partial sums may wrap, but the
+//! final value of an orient3d is at most `2 M^3` in magnitude and fits, so
+//! the wrapped result is the exact one (DESIGN.md, "Numerics").
+
+use super::adder::{RegisteredSum3, ADDER_LATENCY};
+use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from operands to dot product.
+pub const DOT_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + ADDER_LATENCY;
+
+#[derive(LogicBlock)]
+pub struct DotProduct<const D: usize, const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub u: [Signal<In, Bits<D>>; 3],
+    pub v: [Signal<In, Bits<C>>; 3],
+    /// `u · v` modulo `2^O`, `DOT_PRODUCT_LATENCY` enabled edges later.
+    pub product: Signal<Out, Bits<O>>,
+    multiplier: [Multiplier<D, C, O>; 3],
+    sum: RegisteredSum3<O>,
+}
+
+impl<const D: usize, const C: usize, const O: usize> Default for DotProduct<D, C, O> {
+    fn default() -> Self {
+        assert!(O <= D + C, "a dot product of {D}-bit by {C}-bit vectors has at most {} bits", D + C);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            u: Default::default(),
+            v: Default::default(),
+            product: Default::default(),
+            multiplier: Default::default(),
+            sum: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize, const C: usize, const O: usize> Logic for DotProduct<D, C, O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..3 {
+            self.multiplier[i].clock.next = self.clock.val();
+            self.multiplier[i].advance.next = self.advance.val();
+            self.multiplier[i].a.next = self.u[i].val();
+            self.multiplier[i].b.next = self.v[i].val();
+        }
+        self.sum.clock.next = self.clock.val();
+        self.sum.advance.next = self.advance.val();
+        self.sum.a.next = self.multiplier[0].product.val();
+        self.sum.b.next = self.multiplier[1].product.val();
+        self.sum.c.next = self.multiplier[2].product.val();
+        self.product.next = self.sum.sum.val();
+    }
+}

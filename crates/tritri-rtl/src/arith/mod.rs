@@ -1,0 +1,13 @@
+//! Arithmetic primitives of the datapath, one per file. Every block
+//! registers its output and holds while `advance` is low.
+
+pub mod adder;
+pub mod compare;
+pub mod convert;
+pub mod cross_product;
+pub mod delay_line;
+pub mod dot_product;
+pub mod multiplier;
+pub mod sign;
+pub mod subtractor;
+pub mod valid_line;

@@ -1,0 +1,198 @@
+//! The concrete pipelines, one per supported coordinate width, and run-time
+//! selection among them.
+//!
+//! Stable Rust cannot compute `Bits<{W + 1}>` from a generic `W`, so each
+//! width is instantiated with its derived widths spelled out as constant
+//! expressions of `tritri_geom::widths` (the one place that derives them);
+//! [`TrianglePipeline::new`] checks them again.
+//!
+//! ```
+//! use tritri_rtl::configurations::{pipeline_for_width, SUPPORTED_WIDTHS};
+//! assert!(SUPPORTED_WIDTHS.contains(&24));
+//! let p = pipeline_for_width(24).unwrap();
+//! assert_eq!(p.width(), 24);
+//! assert_eq!(p.latency(), tritri_rtl::pipeline::triangle_pipeline::latency());
+//! ```
+
+use crate::arith::convert::from_i128;
+use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
+use crate::sim_drive;
+use rust_hdl::prelude::*;
+use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+
+/// One clock's worth of input bus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PipelineInput {
+    pub valid: bool,
+    pub bset: bool,
+    pub id: u32,
+    /// `x0 y0 z0 x1 y1 z1 x2 y2 z2`, each within the W-bit signed range.
+    pub vertices: [i64; 9],
+}
+
+/// The output ports after a clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PipelineOutput {
+    pub valid: bool,
+    pub hit: bool,
+    pub base_id: u32,
+    pub stream_id: u32,
+}
+
+/// A simulated pipeline of some width, driven directly (see
+/// [`crate::sim_drive`]). Object safe, so the width can be chosen at run time.
+pub trait PipelineSimulation {
+    /// Coordinate width W.
+    fn width(&self) -> usize;
+    /// Latency `L` in clocks.
+    fn latency(&self) -> usize;
+    /// Drives the input ports (they take effect at the next clock).
+    fn set_input(&mut self, input: &PipelineInput);
+    /// Drives the clock enable.
+    fn set_advance(&mut self, advance: bool);
+    /// Drives the synchronous reset.
+    fn set_reset(&mut self, rst: bool);
+    /// One clock period, then settle.
+    fn clock_cycle(&mut self);
+    /// Drives the clock to `level` and settles (half a period).
+    fn half_cycle(&mut self, level: bool);
+    /// The output ports.
+    fn output(&self) -> PipelineOutput;
+    /// The circuit, for probes (VCD).
+    fn block(&self) -> &dyn Block;
+    /// rust-hdl's Verilog for this pipeline (top module `top`).
+    fn verilog(&self) -> String;
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePipeline<W, D, C, O> {
+    /// The nine coordinate inputs `in_x0 … in_z2`, in bus order.
+    pub fn coordinate_inputs(&mut self) -> [&mut Signal<In, Bits<W>>; 9] {
+        [
+            &mut self.in_x0,
+            &mut self.in_y0,
+            &mut self.in_z0,
+            &mut self.in_x1,
+            &mut self.in_y1,
+            &mut self.in_z1,
+            &mut self.in_x2,
+            &mut self.in_y2,
+            &mut self.in_z2,
+        ]
+    }
+
+    /// A pipeline ready to simulate: every top-level input marked driven,
+    /// internal connections made, `advance` high, `reset` low.
+    pub fn new_connected() -> Self {
+        let mut p = Self::new();
+        p.clock.connect();
+        p.reset.connect();
+        p.advance.connect();
+        p.in_valid.connect();
+        p.in_bset.connect();
+        p.in_id.connect();
+        for v in p.coordinate_inputs() {
+            v.connect();
+        }
+        p.connect_all();
+        p.advance.next = true;
+        sim_drive::settle(&mut p);
+        p
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSimulation
+    for TrianglePipeline<W, D, C, O>
+{
+    fn width(&self) -> usize {
+        W
+    }
+    fn latency(&self) -> usize {
+        latency()
+    }
+    fn set_input(&mut self, input: &PipelineInput) {
+        self.in_valid.next = input.valid;
+        self.in_bset.next = input.bset;
+        self.in_id.next = Bits::from(input.id as u64);
+        for (signal, &v) in self.coordinate_inputs().into_iter().zip(&input.vertices) {
+            let lo = -(1i64 << (W - 1));
+            let hi = (1i64 << (W - 1)) - 1;
+            assert!((lo..=hi).contains(&v), "coordinate {v} does not fit in {W} bits");
+            signal.next = from_i128::<W>(v as i128);
+        }
+    }
+    fn set_advance(&mut self, advance: bool) {
+        self.advance.next = advance;
+    }
+    fn set_reset(&mut self, rst: bool) {
+        self.reset.next = rst;
+    }
+    fn clock_cycle(&mut self) {
+        sim_drive::clock_cycle(self, |p| &mut p.clock);
+    }
+    fn half_cycle(&mut self, level: bool) {
+        self.clock.next = Clock { clk: level };
+        sim_drive::settle(self);
+    }
+    fn output(&self) -> PipelineOutput {
+        PipelineOutput {
+            valid: self.out_valid.val(),
+            hit: self.out_hit.val(),
+            base_id: self.out_base_id.val().to_u32(),
+            stream_id: self.out_stream_id.val().to_u32(),
+        }
+    }
+    fn block(&self) -> &dyn Block {
+        self
+    }
+    fn verilog(&self) -> String {
+        generate_verilog(self)
+    }
+}
+
+macro_rules! widths {
+    ($($w:literal => $name:ident),* $(,)?) => {
+        $(
+            #[doc = concat!("The pipeline for ", stringify!($w), "-bit coordinates.")]
+            pub type $name = TrianglePipeline<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>;
+        )*
+
+        /// Coordinate widths with a concrete pipeline.
+        pub const SUPPORTED_WIDTHS: &[usize] = &[$($w),*];
+
+        /// A new, connected pipeline for `width`-bit coordinates.
+        pub fn pipeline_for_width(width: usize) -> Result<Box<dyn PipelineSimulation>, UnsupportedWidth> {
+            match width {
+                $($w => Ok(Box::new($name::new_connected())),)*
+                _ => Err(UnsupportedWidth(width)),
+            }
+        }
+    };
+}
+
+widths!(
+    8 => TrianglePipelineW8,
+    12 => TrianglePipelineW12,
+    16 => TrianglePipelineW16,
+    20 => TrianglePipelineW20,
+    24 => TrianglePipelineW24,
+    28 => TrianglePipelineW28,
+    32 => TrianglePipelineW32,
+);
+
+/// A width without a concrete pipeline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UnsupportedWidth(pub usize);
+
+impl std::fmt::Display for UnsupportedWidth {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "no pipeline for {}-bit coordinates; supported widths: {:?}", self.0, SUPPORTED_WIDTHS)
+    }
+}
+
+impl std::error::Error for UnsupportedWidth {}
+
+/// rust-hdl's generated Verilog for the pipeline top at `width` (top module
+/// `top`, submodules `top$child`): raw, before the emitter's clean-up.
+pub fn raw_verilog(width: usize) -> Result<String, UnsupportedWidth> {
+    Ok(pipeline_for_width(width)?.verilog())
+}

@@ -1,0 +1,216 @@
+//! Verilog emission: from rust-hdl's single string to a directory an FPGA
+//! flow can take as is.
+//!
+//! rust-hdl's `generate_verilog` prints one string with a top module `top`
+//! and one module per instance, named by instance path (`top$stage$reg`),
+//! with `$` inside identifiers. [`emit`] turns it into:
+//!
+//! * one module per file, `<module>.v`, named after the unit and its
+//!   parameters (`tritri_pipeline_w24`, `tritri_pipeline_w24_<child>`), no
+//!   `$` anywhere, each file with a header comment (purpose, parameters,
+//!   generator) between `` `default_nettype none `` and
+//!   `` `default_nettype wire ``;
+//! * modules that rust-hdl printed once per instance but are the same
+//!   circuit merged into one (see [`modules`]);
+//! * expressions re-printed with explicit widths where rust-hdl relies on
+//!   Verilog's context widths (see [`widths`]), so the files are clean under
+//!   `verilator --lint-only -Wall`;
+//! * `filelist.f`, a FuseSoC CAPI2 `<unit>.core`, a `README.md` with the
+//!   port table, latency and throughput, and Yosys scripts
+//!   `synth_generic.ys` / `synth_xilinx.ys` (run by [`crate::synth`]).
+//!
+//! ```
+//! use rust_hdl::prelude::*;
+//! use tritri_rtl::emit::{emit, UnitDescription};
+//!
+//! #[derive(LogicBlock, Default)]
+//! struct Inverter {
+//!     pub a: Signal<In, Bit>,
+//!     pub y: Signal<Out, Bit>,
+//! }
+//! impl Logic for Inverter {
+//!     #[hdl_gen]
+//!     fn update(&mut self) {
+//!         self.y.next = !self.a.val();
+//!     }
+//! }
+//! let mut uut = Inverter::default();
+//! uut.connect_all();
+//! let unit = UnitDescription::new("inverter", "Inverts a bit.")
+//!     .port("a", "input bit")
+//!     .port("y", "not a");
+//! let design = emit(&generate_verilog(&uut), &unit).unwrap();
+//! assert_eq!(design.top, "inverter");
+//! assert!(design.file("inverter.v").unwrap().contents.contains("`default_nettype none"));
+//! ```
+
+pub mod modules;
+pub mod package;
+pub mod pipeline_unit;
+pub mod tokens;
+pub mod widths;
+
+pub use pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
+
+use std::path::Path;
+
+/// What the emitter needs to know about a unit besides its Verilog.
+#[derive(Clone, Debug, Default)]
+pub struct UnitDescription {
+    /// Top module name, lower_snake_case, with its parameters
+    /// (`tritri_pipeline_w24`); children are named `<name>_<child>`.
+    pub name: String,
+    /// One line: what the unit computes.
+    pub summary: String,
+    /// Further paragraphs for the README and the top's header.
+    pub details: Vec<String>,
+    /// (name, value and meaning) of each generator parameter.
+    pub parameters: Vec<(String, String)>,
+    /// (port name, meaning); every port of the top must be described.
+    pub ports: Vec<(String, String)>,
+    /// Clock edges from an input to its result, if fixed.
+    pub latency: Option<u64>,
+    /// Throughput statement (`one triangle pair per clock`).
+    pub throughput: String,
+    /// FuseSoC VLNV vendor:library (`tritri:rtl`).
+    pub vendor_library: String,
+    /// `tritri-rtl 0.1.0 (rust-hdl 0.46.0)`, written in every header.
+    pub generator: String,
+}
+
+impl UnitDescription {
+    pub fn new(name: &str, summary: &str) -> Self {
+        UnitDescription {
+            name: name.to_string(),
+            summary: summary.to_string(),
+            vendor_library: "tritri:rtl".to_string(),
+            generator: generator_name(),
+            throughput: String::new(),
+            ..Default::default()
+        }
+    }
+    pub fn detail(mut self, paragraph: &str) -> Self {
+        self.details.push(paragraph.to_string());
+        self
+    }
+    pub fn parameter(mut self, name: &str, meaning: &str) -> Self {
+        self.parameters.push((name.to_string(), meaning.to_string()));
+        self
+    }
+    pub fn port(mut self, name: &str, meaning: &str) -> Self {
+        self.ports.push((name.to_string(), meaning.to_string()));
+        self
+    }
+    pub fn latency(mut self, cycles: u64) -> Self {
+        self.latency = Some(cycles);
+        self
+    }
+    pub fn throughput(mut self, text: &str) -> Self {
+        self.throughput = text.to_string();
+        self
+    }
+}
+
+/// `tritri-rtl <version> (rust-hdl 0.46.0)`.
+pub fn generator_name() -> String {
+    format!("tritri-rtl {} (rust-hdl 0.46.0)", env!("CARGO_PKG_VERSION"))
+}
+
+/// A port of the emitted top module.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Port {
+    pub name: String,
+    pub direction: String,
+    pub bits: usize,
+    pub signed: bool,
+}
+
+/// One file of an emitted design, by path relative to the output directory.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EmittedFile {
+    pub path: String,
+    pub contents: String,
+}
+
+/// The emitted directory, in memory.
+#[derive(Clone, Debug)]
+pub struct EmittedDesign {
+    /// Top module name.
+    pub top: String,
+    /// Module names, top first.
+    pub modules: Vec<String>,
+    pub ports: Vec<Port>,
+    /// Every file: the Verilog (top first), then filelist.f, the core, the
+    /// Yosys scripts and the README.
+    pub files: Vec<EmittedFile>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum EmitError {
+    #[error(transparent)]
+    Modules(#[from] modules::ModuleError),
+    #[error("port `{0}` of the top module has no description")]
+    UndescribedPort(String),
+    #[error("the description names port `{0}`, which the top module does not have")]
+    UnknownPort(String),
+    #[error("unit name `{0}` is not a lower_snake_case Verilog identifier")]
+    BadUnitName(String),
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// Post-processes rust-hdl's Verilog for `unit` (see the module docs).
+pub fn emit(rust_hdl_verilog: &str, unit: &UnitDescription) -> Result<EmittedDesign, EmitError> {
+    let valid_name = unit.name.chars().next().is_some_and(|c| c.is_ascii_lowercase())
+        && unit.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+    if !valid_name {
+        return Err(EmitError::BadUnitName(unit.name.clone()));
+    }
+    let mut modules = modules::normalize(rust_hdl_verilog, &unit.name)?;
+    for m in modules.iter_mut() {
+        widths::fix_module(m);
+    }
+    let ports = package::top_ports(&modules[0]);
+    for p in &ports {
+        if !unit.ports.iter().any(|(n, _)| n == &p.name) {
+            return Err(EmitError::UndescribedPort(p.name.clone()));
+        }
+    }
+    for (n, _) in &unit.ports {
+        if !ports.iter().any(|p| &p.name == n) {
+            return Err(EmitError::UnknownPort(n.clone()));
+        }
+    }
+    let files = package::files(&modules, &ports, unit);
+    Ok(EmittedDesign { top: unit.name.clone(), modules: modules.iter().map(|m| m.name.clone()).collect(), ports, files })
+}
+
+impl EmittedDesign {
+    pub fn file(&self, path: &str) -> Option<&EmittedFile> {
+        self.files.iter().find(|f| f.path == path)
+    }
+
+    /// The Verilog files, top first.
+    pub fn verilog_files(&self) -> impl Iterator<Item = &EmittedFile> {
+        self.files.iter().filter(|f| f.path.ends_with(".v"))
+    }
+
+    /// Writes every file into `dir` (created if needed). Files that a
+    /// previous emission listed in `dir/filelist.f` and this one does not
+    /// produce are removed, so the directory never holds stale modules.
+    pub fn write_to(&self, dir: &Path) -> std::io::Result<()> {
+        std::fs::create_dir_all(dir)?;
+        if let Ok(old) = std::fs::read_to_string(dir.join("filelist.f")) {
+            for line in old.lines().map(str::trim).filter(|l| l.ends_with(".v")) {
+                let stale = !self.files.iter().any(|f| f.path == line);
+                if stale && !line.contains('/') {
+                    let _ = std::fs::remove_file(dir.join(line));
+                }
+            }
+        }
+        for f in &self.files {
+            std::fs::write(dir.join(&f.path), &f.contents)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,84 @@
+//! The emitted configuration of the triangle pipeline: its name, port
+//! meanings, latency and throughput, around rust-hdl's Verilog from
+//! [`crate::raw_verilog`].
+
+use super::{emit, EmitError, EmittedDesign, UnitDescription};
+use crate::configurations::{UnsupportedWidth, SUPPORTED_WIDTHS};
+use crate::pipeline::triangle_pipeline::latency;
+use crate::pipeline::ID_BITS;
+use tritri_geom::widths::FixedWidths;
+
+/// Top module name of the `width`-bit pipeline: `tritri_pipeline_w<W>`.
+pub fn pipeline_unit_name(width: usize) -> String {
+    format!("tritri_pipeline_w{width}")
+}
+
+/// The description of the `width`-bit pipeline for the emitter.
+pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> {
+    if !SUPPORTED_WIDTHS.contains(&width) {
+        return Err(UnsupportedWidth(width));
+    }
+    let w = FixedWidths::new(width as u32).map_err(|_| UnsupportedWidth(width))?;
+    let l = latency() as u64;
+    let mut unit = UnitDescription::new(
+        &pipeline_unit_name(width),
+        &format!(
+            "Devillers-Guigue triangle-triangle overlap test for {width}-bit signed coordinates, pipelined: \
+             one triangle pair per clock, verdict after {l} clocks."
+        ),
+    )
+    .detail(
+        "Protocol (thesis, chapter 3): a valid triangle with `in_bset = 1` is loaded into the base-polygon \
+         registers and is not tested; every other valid triangle is tested against the current base and its \
+         verdict leaves the pipeline a fixed number of clocks later with `out_valid = 1` and both ids. For N1 base \
+         triangles against N2 streamed triangles, send per base one `in_bset` cycle followed by the N2 triangles.",
+    )
+    .detail(
+        "The arithmetic is exact integer arithmetic on the quantized coordinates (differences, cross products and \
+         orient3d determinants in their tight widths), so every verdict equals the exact test on the grid, \
+         touching, coplanar and degenerate triangles included.",
+    )
+    .parameter("W", &format!("{width}: coordinate width in bits (two's complement)"))
+    .parameter("D", &format!("{}: coordinate difference width, W + 1", w.difference))
+    .parameter("C", &format!("{}: cross-product and orient2d width, 2W + 1", w.cross))
+    .parameter("O", &format!("{}: orient3d width, 3W + 2", w.orient3d))
+    .parameter("ID", &format!("{ID_BITS}: triangle id width"))
+    .port("clock", "Clock; every register updates on the rising edge.")
+    .port("reset", "Synchronous reset, active high: clears the valid bits (the datapath has no reset).")
+    .port("advance", "Clock enable: while low, every register, the base polygon included, holds (back-pressure).")
+    .port("in_valid", "A triangle is on the input bus this cycle.")
+    .port("in_bset", "With `in_valid`: load this triangle as the base polygon T1 instead of testing it.")
+    .port("in_id", "Id of the triangle, returned as `out_base_id` or `out_stream_id`.")
+    .port("out_valid", &format!("A verdict is on the outputs: the streamed triangle entered {l} clocks earlier."))
+    .port("out_hit", "1 when the base and the streamed triangle intersect (touching counts).")
+    .port("out_base_id", "Id of the base triangle of this verdict.")
+    .port("out_stream_id", "Id of the streamed triangle of this verdict.")
+    .latency(l)
+    .throughput(&format!(
+        "one triangle pair per clock while `advance` is high; N1 bases against N2 streamed triangles take \
+         N1 + N1*N2 + {l} clocks (thesis, equation 3.2)."
+    ));
+    for (k, vertex) in (0..3).flat_map(|v| ["x", "y", "z"].into_iter().map(move |axis| (v, axis))).enumerate() {
+        let _ = k;
+        unit = unit.port(
+            &format!("in_{}{}", vertex.1, vertex.0),
+            &format!("Coordinate {} of vertex {}, W-bit two's complement.", vertex.1, vertex.0),
+        );
+    }
+    Ok(unit)
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineEmitError {
+    #[error("{0}")]
+    Width(#[from] UnsupportedWidth),
+    #[error(transparent)]
+    Emit(#[from] EmitError),
+}
+
+/// The emitted `width`-bit pipeline (what `tritri gen --width <W>` writes).
+pub fn emit_pipeline(width: usize) -> Result<EmittedDesign, PipelineEmitError> {
+    let unit = pipeline_unit(width)?;
+    let raw = crate::raw_verilog(width)?;
+    Ok(emit(&raw, &unit)?)
+}

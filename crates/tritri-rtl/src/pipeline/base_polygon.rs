@@ -1,0 +1,92 @@
+//! The base-polygon registers (thesis, chapter 3, figures 3.3 and 3.4):
+//! with `BSET = 1` the triangle's record (vertices, normal and the rest of
+//! the front end's output) and its id are latched here instead of being
+//! tested, and held until the next `BSET`. Every streamed triangle is then
+//! paired with this record, so one pair costs one clock and the input bus
+//! carries one triangle (`9 W` bits) per clock.
+//!
+//! `load` must already include the clock enable, `valid` and `bset`.
+
+use crate::pipeline::ID_BITS;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+#[derive(LogicBlock, Default)]
+pub struct BasePolygon<const W: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub load: Signal<In, Bit>,
+    pub id_in: Signal<In, Bits<ID_BITS>>,
+    pub vertices_in: [Signal<In, Bits<W>>; 9],
+    pub normal_in: [Signal<In, Bits<C>>; 3],
+    pub normal_negative_in: [Signal<In, Bit>; 3],
+    pub normal_zero_in: [Signal<In, Bit>; 3],
+    pub degenerate_in: Signal<In, Bit>,
+    pub dominant_axis_in: Signal<In, Bits<2>>,
+    pub segment_low_in: Signal<In, Bits<2>>,
+    pub segment_high_in: Signal<In, Bits<2>>,
+    pub id: Signal<Out, Bits<ID_BITS>>,
+    pub vertices: [Signal<Out, Bits<W>>; 9],
+    pub normal: [Signal<Out, Bits<C>>; 3],
+    pub normal_negative: [Signal<Out, Bit>; 3],
+    pub normal_zero: [Signal<Out, Bit>; 3],
+    pub degenerate: Signal<Out, Bit>,
+    pub dominant_axis: Signal<Out, Bits<2>>,
+    pub segment_low: Signal<Out, Bits<2>>,
+    pub segment_high: Signal<Out, Bits<2>>,
+    id_q: DFF<Bits<ID_BITS>>,
+    vertices_q: [DFF<Bits<W>>; 9],
+    normal_q: [DFF<Bits<C>>; 3],
+    normal_negative_q: [DFF<Bit>; 3],
+    normal_zero_q: [DFF<Bit>; 3],
+    degenerate_q: DFF<Bit>,
+    dominant_axis_q: DFF<Bits<2>>,
+    segment_low_q: DFF<Bits<2>>,
+    segment_high_q: DFF<Bits<2>>,
+}
+
+impl<const W: usize, const C: usize> Logic for BasePolygon<W, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, id_q, degenerate_q, dominant_axis_q, segment_low_q, segment_high_q);
+        for i in 0..9 {
+            self.vertices_q[i].clock.next = self.clock.val();
+            self.vertices_q[i].d.next = self.vertices_q[i].q.val();
+        }
+        for k in 0..3 {
+            self.normal_q[k].clock.next = self.clock.val();
+            self.normal_q[k].d.next = self.normal_q[k].q.val();
+            self.normal_negative_q[k].clock.next = self.clock.val();
+            self.normal_negative_q[k].d.next = self.normal_negative_q[k].q.val();
+            self.normal_zero_q[k].clock.next = self.clock.val();
+            self.normal_zero_q[k].d.next = self.normal_zero_q[k].q.val();
+        }
+        if self.load.val() {
+            self.id_q.d.next = self.id_in.val();
+            self.degenerate_q.d.next = self.degenerate_in.val();
+            self.dominant_axis_q.d.next = self.dominant_axis_in.val();
+            self.segment_low_q.d.next = self.segment_low_in.val();
+            self.segment_high_q.d.next = self.segment_high_in.val();
+            for i in 0..9 {
+                self.vertices_q[i].d.next = self.vertices_in[i].val();
+            }
+            for k in 0..3 {
+                self.normal_q[k].d.next = self.normal_in[k].val();
+                self.normal_negative_q[k].d.next = self.normal_negative_in[k].val();
+                self.normal_zero_q[k].d.next = self.normal_zero_in[k].val();
+            }
+        }
+        self.id.next = self.id_q.q.val();
+        self.degenerate.next = self.degenerate_q.q.val();
+        self.dominant_axis.next = self.dominant_axis_q.q.val();
+        self.segment_low.next = self.segment_low_q.q.val();
+        self.segment_high.next = self.segment_high_q.q.val();
+        for i in 0..9 {
+            self.vertices[i].next = self.vertices_q[i].q.val();
+        }
+        for k in 0..3 {
+            self.normal[k].next = self.normal_q[k].q.val();
+            self.normal_negative[k].next = self.normal_negative_q[k].q.val();
+            self.normal_zero[k].next = self.normal_zero_q[k].q.val();
+        }
+    }
+}

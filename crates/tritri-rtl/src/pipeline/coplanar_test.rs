@@ -1,0 +1,254 @@
+//! The exact closed 2D triangle test of the coplanar case: do the two
+//! (closed) triangles meet in the projection that drops `axis`?
+//!
+//! Software model: `hulls_intersect_2d` (with `segments_intersect_2d`,
+//! `on_segment_2d` and `point_in_triangle_2d`) in devillers_guigue.rs, as
+//! called by `coplanar_triangles` (axis: T1's dominant normal axis) and by
+//! `segment_triangle` when the segment lies in the triangle's plane (axis:
+//! the triangle's; the degenerate triangle's three collinear vertices stand
+//! for the segment, since their three edges cover it). The thesis leaves
+//! this case to software; here it is hardware, so every pair gets the exact
+//! answer.
+//!
+//! Nine edge-against-edge tests plus two point-in-triangle tests share
+//! eighteen orient2d values: `[A_e, A_e+1, B_v]` for each edge `e` of A
+//! (T1) and vertex `v` of B (T2), and `[B_f, B_f+1, A_u]`, computed here as
+//! `-(B_f+1 - B_f) × (B_f - A_u)` so that one offset `B_v - A_u` serves
+//! both. The orientation of each projected triangle is the sign of its
+//! normal's `axis` component. Collinear touching is resolved by comparing
+//! projected coordinates.
+//!
+//! Stages: projection (1), differences and comparisons (1), orient2d (4),
+//! signs (1), decision (1).
+
+use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
+use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::subtractor::{Subtractor, SUBTRACTOR_LATENCY};
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Clock edges from inputs to `hit`.
+pub const COPLANAR_TEST_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
+const ON_EDGE_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
+const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - 1;
+const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
+
+#[derive(LogicBlock, Default)]
+pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub t1_vertices: [Signal<In, Bits<W>>; 9],
+    pub t2_vertices: [Signal<In, Bits<W>>; 9],
+    /// The axis the projection drops (0, 1 or 2).
+    pub axis: Signal<In, Bits<2>>,
+    pub t1_normal_negative: [Signal<In, Bit>; 3],
+    pub t1_normal_zero: [Signal<In, Bit>; 3],
+    pub t2_normal_negative: [Signal<In, Bit>; 3],
+    pub t2_normal_zero: [Signal<In, Bit>; 3],
+    /// The closed projected hulls meet, `COPLANAR_TEST_LATENCY` edges later.
+    pub hit: Signal<Out, Bit>,
+    /// Projected coordinates `2 v + c` of vertex `v` (T1: 0..2, T2: 3..5).
+    projection_q: [DFF<Bits<W>>; 12],
+    /// Edge `e` of A (`2 e + c`) and of B.
+    edge_a: [Subtractor<W, D>; 6],
+    edge_b: [Subtractor<W, D>; 6],
+    /// `B_v - A_u` at `2 (3 u + v) + c`.
+    offset: [Subtractor<W, D>; 18],
+    /// Coordinate `c` of `A_u` against `B_v` at `9 c + 3 u + v`.
+    compare: [CoordinateCompare<W>; 18],
+    /// `B_v` on the projected edge `e` of A (`3 e + v`), when collinear.
+    on_edge_a: [DelayLine<Bit, ON_EDGE_DELAY>; 9],
+    /// `A_u` on the projected edge `f` of B (`3 f + u`), when collinear.
+    on_edge_b: [DelayLine<Bit, ON_EDGE_DELAY>; 9],
+    /// Orientation of A (negative, zero) and of B in the projection.
+    orientation: [DelayLine<Bit, ORIENTATION_DELAY>; 4],
+    /// `[A_e, A_e+1, B_v]` at `3 e + v`; `-[B_f, B_f+1, A_u]` at `9 + 3 f + u`.
+    orient: [CrossProduct2d<D, C>; 18],
+    sign: [SignOf<C>; 18],
+    positive: [Signal<Local, Bit>; 18],
+    hit_q: DFF<Bit>,
+}
+
+impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // Stage 1: project, and pick the orientations.
+        for i in 0..12 {
+            self.projection_q[i].clock.next = self.clock.val();
+            self.projection_q[i].d.next = self.projection_q[i].q.val();
+        }
+        if self.advance.val() {
+            for v in 0..3 {
+                if self.axis.val() == 0 {
+                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v + 1].val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v + 2].val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v + 1].val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v + 2].val();
+                } else if self.axis.val() == 1 {
+                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v + 2].val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v].val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v + 2].val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v].val();
+                } else {
+                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v].val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v + 1].val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v].val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v + 1].val();
+                }
+            }
+        }
+        for i in 0..4 {
+            self.orientation[i].clock.next = self.clock.val();
+            self.orientation[i].advance.next = self.advance.val();
+        }
+        if self.axis.val() == 0 {
+            self.orientation[0].d.next = self.t1_normal_negative[0].val();
+            self.orientation[1].d.next = self.t1_normal_zero[0].val();
+            self.orientation[2].d.next = self.t2_normal_negative[0].val();
+            self.orientation[3].d.next = self.t2_normal_zero[0].val();
+        } else if self.axis.val() == 1 {
+            self.orientation[0].d.next = self.t1_normal_negative[1].val();
+            self.orientation[1].d.next = self.t1_normal_zero[1].val();
+            self.orientation[2].d.next = self.t2_normal_negative[1].val();
+            self.orientation[3].d.next = self.t2_normal_zero[1].val();
+        } else {
+            self.orientation[0].d.next = self.t1_normal_negative[2].val();
+            self.orientation[1].d.next = self.t1_normal_zero[2].val();
+            self.orientation[2].d.next = self.t2_normal_negative[2].val();
+            self.orientation[3].d.next = self.t2_normal_zero[2].val();
+        }
+        // Stage 2: edge vectors, offsets, coordinate comparisons.
+        for i in 0..6 {
+            self.edge_a[i].clock.next = self.clock.val();
+            self.edge_a[i].advance.next = self.advance.val();
+            self.edge_b[i].clock.next = self.clock.val();
+            self.edge_b[i].advance.next = self.advance.val();
+        }
+        for i in 0..18 {
+            self.offset[i].clock.next = self.clock.val();
+            self.offset[i].advance.next = self.advance.val();
+            self.compare[i].clock.next = self.clock.val();
+            self.compare[i].advance.next = self.advance.val();
+            self.orient[i].clock.next = self.clock.val();
+            self.orient[i].advance.next = self.advance.val();
+            self.sign[i].clock.next = self.clock.val();
+            self.sign[i].advance.next = self.advance.val();
+            self.sign[i].value.next = self.orient[i].product.val();
+            self.positive[i].next = !self.sign[i].negative.val() && !self.sign[i].zero.val();
+        }
+        for e in 0..3 {
+            for c in 0..2 {
+                self.edge_a[2 * e + c].a.next = self.projection_q[2 * ((e + 1) % 3) + c].q.val();
+                self.edge_a[2 * e + c].b.next = self.projection_q[2 * e + c].q.val();
+                self.edge_b[2 * e + c].a.next = self.projection_q[6 + 2 * ((e + 1) % 3) + c].q.val();
+                self.edge_b[2 * e + c].b.next = self.projection_q[6 + 2 * e + c].q.val();
+            }
+        }
+        for u in 0..3 {
+            for v in 0..3 {
+                for c in 0..2 {
+                    self.offset[2 * (3 * u + v) + c].a.next = self.projection_q[6 + 2 * v + c].q.val();
+                    self.offset[2 * (3 * u + v) + c].b.next = self.projection_q[2 * u + c].q.val();
+                    self.compare[9 * c + 3 * u + v].a.next = self.projection_q[2 * u + c].q.val();
+                    self.compare[9 * c + 3 * u + v].b.next = self.projection_q[6 + 2 * v + c].q.val();
+                }
+            }
+        }
+        // Stages 3-6: orient2d values.
+        for e in 0..3 {
+            for v in 0..3 {
+                self.orient[3 * e + v].u_x.next = self.edge_a[2 * e].difference.val();
+                self.orient[3 * e + v].u_y.next = self.edge_a[2 * e + 1].difference.val();
+                self.orient[3 * e + v].w_x.next = self.offset[2 * (3 * e + v)].difference.val();
+                self.orient[3 * e + v].w_y.next = self.offset[2 * (3 * e + v) + 1].difference.val();
+                // f = e, u = v: (B_f+1 - B_f) × (B_f - A_u).
+                self.orient[9 + 3 * e + v].u_x.next = self.edge_b[2 * e].difference.val();
+                self.orient[9 + 3 * e + v].u_y.next = self.edge_b[2 * e + 1].difference.val();
+                self.orient[9 + 3 * e + v].w_x.next = self.offset[2 * (3 * v + e)].difference.val();
+                self.orient[9 + 3 * e + v].w_y.next = self.offset[2 * (3 * v + e) + 1].difference.val();
+            }
+        }
+        // Collinear touching (on_segment_2d): within the edge's bounding box
+        // on both projected coordinates. A_u <= B_v is less || equal.
+        for i in 0..9 {
+            self.on_edge_a[i].clock.next = self.clock.val();
+            self.on_edge_a[i].advance.next = self.advance.val();
+            self.on_edge_b[i].clock.next = self.clock.val();
+            self.on_edge_b[i].advance.next = self.advance.val();
+        }
+        for e in 0..3 {
+            for v in 0..3 {
+                // B_v on [A_e, A_e+1].
+                self.on_edge_a[3 * e + v].d.next = (self.compare[3 * e + v].less.val()
+                    || self.compare[3 * e + v].equal.val()
+                    || self.compare[3 * ((e + 1) % 3) + v].less.val()
+                    || self.compare[3 * ((e + 1) % 3) + v].equal.val())
+                    && (!self.compare[3 * e + v].less.val() || !self.compare[3 * ((e + 1) % 3) + v].less.val())
+                    && (self.compare[9 + 3 * e + v].less.val()
+                        || self.compare[9 + 3 * e + v].equal.val()
+                        || self.compare[9 + 3 * ((e + 1) % 3) + v].less.val()
+                        || self.compare[9 + 3 * ((e + 1) % 3) + v].equal.val())
+                    && (!self.compare[9 + 3 * e + v].less.val() || !self.compare[9 + 3 * ((e + 1) % 3) + v].less.val());
+                // f = e, u = v: A_u on [B_f, B_f+1].
+                self.on_edge_b[3 * e + v].d.next = (!self.compare[3 * v + e].less.val()
+                    || !self.compare[3 * v + (e + 1) % 3].less.val())
+                    && (self.compare[3 * v + e].less.val()
+                        || self.compare[3 * v + e].equal.val()
+                        || self.compare[3 * v + (e + 1) % 3].less.val()
+                        || self.compare[3 * v + (e + 1) % 3].equal.val())
+                    && (!self.compare[9 + 3 * v + e].less.val() || !self.compare[9 + 3 * v + (e + 1) % 3].less.val())
+                    && (self.compare[9 + 3 * v + e].less.val()
+                        || self.compare[9 + 3 * v + e].equal.val()
+                        || self.compare[9 + 3 * v + (e + 1) % 3].less.val()
+                        || self.compare[9 + 3 * v + (e + 1) % 3].equal.val());
+            }
+        }
+        // Stage 8: the decision of hulls_intersect_2d.
+        dff_setup!(self, clock, hit_q);
+        if self.advance.val() {
+            self.hit_q.d.next = false;
+            for e in 0..3 {
+                for f in 0..3 {
+                    // Proper crossing: o1, o2 strictly opposite and o3, o4
+                    // strictly opposite (o3, o4 are both negated: same test).
+                    if ((self.sign[3 * e + f].negative.val() && self.positive[3 * e + (f + 1) % 3].val())
+                        || (self.positive[3 * e + f].val() && self.sign[3 * e + (f + 1) % 3].negative.val()))
+                        && ((self.sign[9 + 3 * f + e].negative.val() && self.positive[9 + 3 * f + (e + 1) % 3].val())
+                            || (self.positive[9 + 3 * f + e].val() && self.sign[9 + 3 * f + (e + 1) % 3].negative.val()))
+                    {
+                        self.hit_q.d.next = true;
+                    }
+                    // Touching: an end collinear with the other edge and on it.
+                    if (self.sign[3 * e + f].zero.val() && self.on_edge_a[3 * e + f].q.val())
+                        || (self.sign[3 * e + (f + 1) % 3].zero.val() && self.on_edge_a[3 * e + (f + 1) % 3].q.val())
+                        || (self.sign[9 + 3 * f + e].zero.val() && self.on_edge_b[3 * f + e].q.val())
+                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val() && self.on_edge_b[3 * f + (e + 1) % 3].q.val())
+                    {
+                        self.hit_q.d.next = true;
+                    }
+                }
+            }
+            // B_0 inside A: A proper here, and B_0 on the inner side of (or
+            // on) every edge.
+            if !self.orientation[1].q.val()
+                && (self.sign[0].zero.val() || (self.sign[0].negative.val() == self.orientation[0].q.val()))
+                && (self.sign[3].zero.val() || (self.sign[3].negative.val() == self.orientation[0].q.val()))
+                && (self.sign[6].zero.val() || (self.sign[6].negative.val() == self.orientation[0].q.val()))
+            {
+                self.hit_q.d.next = true;
+            }
+            // A_0 inside B (its orient2d values are negated: positive here
+            // means negative there).
+            if !self.orientation[3].q.val()
+                && (self.sign[9].zero.val() || (self.positive[9].val() == self.orientation[2].q.val()))
+                && (self.sign[12].zero.val() || (self.positive[12].val() == self.orientation[2].q.val()))
+                && (self.sign[15].zero.val() || (self.positive[15].val() == self.orientation[2].q.val()))
+            {
+                self.hit_q.d.next = true;
+            }
+        }
+        self.hit.next = self.hit_q.q.val();
+    }
+}

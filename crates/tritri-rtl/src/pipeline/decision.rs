@@ -1,0 +1,137 @@
+//! The verdict of a pair, from signs only (DESIGN.md), mirroring the
+//! control flow of `intersects` in devillers_guigue.rs:
+//!
+//! * both triangles proper (`triangles_intersect`): no if either
+//!   triangle's vertices are all strictly on one side of the other's plane
+//!   (steps (2) and (4)); if T1 lies in T2's plane, the coplanar test;
+//!   otherwise step (7): `[q1, p2, p1, q2] <= 0` and `[p1, p2, r1, r2] <= 0`
+//!   (orient3d units 0 and 1);
+//! * one degenerate, spanning `[a, b]` (`segment_triangle`): no if `a` and
+//!   `b` are strictly on one side of the other triangle's plane; if both are
+//!   on it, the coplanar test; otherwise yes iff the three signs of
+//!   `[a, b, v_i, v_i+1]` (orient3d units 0..2) are not strictly opposite;
+//! * both degenerate (`degenerate_pair`): `[a, b, c, d] == 0` (unit 0) and
+//!   the three-projection segment test.
+//!
+//! The signs of a degenerate triangle's segment ends against the other
+//! plane are the plane-side signs of the vertices at `segment_low` and
+//! `segment_high`. Registered output.
+
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Clock edges from inputs to `hit`.
+pub const DECISION_LATENCY: usize = 1;
+
+#[derive(LogicBlock, Default)]
+pub struct Decision {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub t1_degenerate: Signal<In, Bit>,
+    pub t2_degenerate: Signal<In, Bit>,
+    pub t1_segment_low: Signal<In, Bits<2>>,
+    pub t1_segment_high: Signal<In, Bits<2>>,
+    pub t2_segment_low: Signal<In, Bits<2>>,
+    pub t2_segment_high: Signal<In, Bits<2>>,
+    /// Signs of T1's vertices against T2's plane (steps 1-2).
+    pub t1_side_negative: [Signal<In, Bit>; 3],
+    pub t1_side_zero: [Signal<In, Bit>; 3],
+    /// Signs of T2's vertices against T1's plane (steps 3-4).
+    pub t2_side_negative: [Signal<In, Bit>; 3],
+    pub t2_side_zero: [Signal<In, Bit>; 3],
+    /// Signs of the three shared orient3d units.
+    pub orient_negative: [Signal<In, Bit>; 3],
+    pub orient_zero: [Signal<In, Bit>; 3],
+    pub coplanar_hit: Signal<In, Bit>,
+    pub degenerate_pair_hit: Signal<In, Bit>,
+    pub hit: Signal<Out, Bit>,
+    t1_side_positive: [Signal<Local, Bit>; 3],
+    t2_side_positive: [Signal<Local, Bit>; 3],
+    orient_positive: [Signal<Local, Bit>; 3],
+    /// The triangles' verdict (both proper).
+    triangles_hit: Signal<Local, Bit>,
+    /// Signs of the degenerate triangle's segment ends against the other plane.
+    end_a_negative: Signal<Local, Bit>,
+    end_a_zero: Signal<Local, Bit>,
+    end_b_negative: Signal<Local, Bit>,
+    end_b_zero: Signal<Local, Bit>,
+    segment_hit: Signal<Local, Bit>,
+    hit_q: DFF<Bit>,
+}
+
+impl Logic for Decision {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for i in 0..3 {
+            self.t1_side_positive[i].next = !self.t1_side_negative[i].val() && !self.t1_side_zero[i].val();
+            self.t2_side_positive[i].next = !self.t2_side_negative[i].val() && !self.t2_side_zero[i].val();
+            self.orient_positive[i].next = !self.orient_negative[i].val() && !self.orient_zero[i].val();
+        }
+        // triangles_intersect.
+        if (self.t1_side_positive[0].val() && self.t1_side_positive[1].val() && self.t1_side_positive[2].val())
+            || (self.t1_side_negative[0].val() && self.t1_side_negative[1].val() && self.t1_side_negative[2].val())
+            || (self.t2_side_positive[0].val() && self.t2_side_positive[1].val() && self.t2_side_positive[2].val())
+            || (self.t2_side_negative[0].val() && self.t2_side_negative[1].val() && self.t2_side_negative[2].val())
+        {
+            self.triangles_hit.next = false;
+        } else if self.t1_side_zero[0].val() && self.t1_side_zero[1].val() && self.t1_side_zero[2].val() {
+            self.triangles_hit.next = self.coplanar_hit.val();
+        } else {
+            self.triangles_hit.next = !self.orient_positive[0].val() && !self.orient_positive[1].val();
+        }
+        // segment_triangle: the ends' signs.
+        self.end_a_negative.next = false;
+        self.end_a_zero.next = false;
+        self.end_b_negative.next = false;
+        self.end_b_zero.next = false;
+        if self.t1_degenerate.val() {
+            for v in 0..3 {
+                if self.t1_segment_low.val().index() == v {
+                    self.end_a_negative.next = self.t1_side_negative[v].val();
+                    self.end_a_zero.next = self.t1_side_zero[v].val();
+                }
+                if self.t1_segment_high.val().index() == v {
+                    self.end_b_negative.next = self.t1_side_negative[v].val();
+                    self.end_b_zero.next = self.t1_side_zero[v].val();
+                }
+            }
+        } else {
+            for v in 0..3 {
+                if self.t2_segment_low.val().index() == v {
+                    self.end_a_negative.next = self.t2_side_negative[v].val();
+                    self.end_a_zero.next = self.t2_side_zero[v].val();
+                }
+                if self.t2_segment_high.val().index() == v {
+                    self.end_b_negative.next = self.t2_side_negative[v].val();
+                    self.end_b_zero.next = self.t2_side_zero[v].val();
+                }
+            }
+        }
+        if (self.end_a_negative.val() && self.end_b_negative.val())
+            || (!self.end_a_negative.val()
+                && !self.end_a_zero.val()
+                && !self.end_b_negative.val()
+                && !self.end_b_zero.val())
+        {
+            self.segment_hit.next = false;
+        } else if self.end_a_zero.val() && self.end_b_zero.val() {
+            self.segment_hit.next = self.coplanar_hit.val();
+        } else {
+            self.segment_hit.next = !((self.orient_positive[0].val()
+                || self.orient_positive[1].val()
+                || self.orient_positive[2].val())
+                && (self.orient_negative[0].val() || self.orient_negative[1].val() || self.orient_negative[2].val()));
+        }
+        dff_setup!(self, clock, hit_q);
+        if self.advance.val() {
+            if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
+                self.hit_q.d.next = self.triangles_hit.val();
+            } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
+                self.hit_q.d.next = self.orient_zero[0].val() && self.degenerate_pair_hit.val();
+            } else {
+                self.hit_q.d.next = self.segment_hit.val();
+            }
+        }
+        self.hit.next = self.hit_q.q.val();
+    }
+}

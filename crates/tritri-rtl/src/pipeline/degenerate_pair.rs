@@ -1,0 +1,227 @@
+//! Two degenerate triangles: do the segments `[a, b]` (T1's lexicographic
+//! ends) and `[c, d]` (T2's) meet? Either may be a point.
+//!
+//! Software model: `degenerate_pair` in devillers_guigue.rs. They meet iff
+//! the four ends are coplanar (`orient3d(a, b, c, d) == 0`, computed by the
+//! shared orient3d unit 0 and checked in `decision`) and the 2D segment
+//! test holds in all three axis projections (each is necessary, and at
+//! least one is one-to-one on a plane through all four points). This unit
+//! computes the three 2D tests. The orient2d values of all three
+//! projections are the components of four cross products:
+//! `[a, b, c] = (b - a) × (c - a)`, `[a, b, d]`, `[c, d, a]`, `[c, d, b]`.
+//!
+//! Stages: end selection (1), differences and comparisons (1), cross
+//! products (4), signs (1), decision (1).
+
+use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
+use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Clock edges from inputs to `hit`.
+pub const DEGENERATE_PAIR_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
+const ON_SEGMENT_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
+const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
+
+#[derive(LogicBlock, Default)]
+pub struct DegeneratePair<const W: usize, const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub t1_vertices: [Signal<In, Bits<W>>; 9],
+    pub t2_vertices: [Signal<In, Bits<W>>; 9],
+    pub t1_segment_low: Signal<In, Bits<2>>,
+    pub t1_segment_high: Signal<In, Bits<2>>,
+    pub t2_segment_low: Signal<In, Bits<2>>,
+    pub t2_segment_high: Signal<In, Bits<2>>,
+    /// The projections of `[a, b]` and `[c, d]` meet along all three axes,
+    /// `DEGENERATE_PAIR_LATENCY` edges later.
+    pub hit: Signal<Out, Bit>,
+    /// `a, b, c, d`: coordinate `k` of end `j` at `3 j + k`.
+    ends_q: [DFF<Bits<W>>; 12],
+    edge_ab: VectorSubtractor<W, D>,
+    offset_ac: VectorSubtractor<W, D>,
+    offset_ad: VectorSubtractor<W, D>,
+    edge_cd: VectorSubtractor<W, D>,
+    offset_ca: VectorSubtractor<W, D>,
+    offset_cb: VectorSubtractor<W, D>,
+    /// `[a, b, c]`, `[a, b, d]`, `[c, d, a]`, `[c, d, b]` for all axes.
+    orient_abc: CrossProduct<D, C>,
+    orient_abd: CrossProduct<D, C>,
+    orient_cda: CrossProduct<D, C>,
+    orient_cdb: CrossProduct<D, C>,
+    /// Sign of component `k` of cross product `i` at `3 i + k`.
+    sign: [SignOf<C>; 12],
+    positive: [Signal<Local, Bit>; 12],
+    /// Coordinate `k` of the pairs (a, c), (a, d), (b, c), (b, d) at `3 pair + k`.
+    compare: [CoordinateCompare<W>; 12],
+    /// Along coordinate `m` (`3 i + m`): c within [a, b], d within [a, b],
+    /// a within [c, d], b within [c, d].
+    within_segment: [DelayLine<Bit, ON_SEGMENT_DELAY>; 12],
+    /// The 2D test per dropped axis.
+    meets: [Signal<Local, Bit>; 3],
+    hit_q: DFF<Bit>,
+}
+
+impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W, D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // Stage 1: fetch the ends.
+        for i in 0..12 {
+            self.ends_q[i].clock.next = self.clock.val();
+            self.ends_q[i].d.next = self.ends_q[i].q.val();
+        }
+        if self.advance.val() {
+            for k in 0..3 {
+                if self.t1_segment_low.val() == 0 {
+                    self.ends_q[k].d.next = self.t1_vertices[k].val();
+                } else if self.t1_segment_low.val() == 1 {
+                    self.ends_q[k].d.next = self.t1_vertices[3 + k].val();
+                } else {
+                    self.ends_q[k].d.next = self.t1_vertices[6 + k].val();
+                }
+                if self.t1_segment_high.val() == 0 {
+                    self.ends_q[3 + k].d.next = self.t1_vertices[k].val();
+                } else if self.t1_segment_high.val() == 1 {
+                    self.ends_q[3 + k].d.next = self.t1_vertices[3 + k].val();
+                } else {
+                    self.ends_q[3 + k].d.next = self.t1_vertices[6 + k].val();
+                }
+                if self.t2_segment_low.val() == 0 {
+                    self.ends_q[6 + k].d.next = self.t2_vertices[k].val();
+                } else if self.t2_segment_low.val() == 1 {
+                    self.ends_q[6 + k].d.next = self.t2_vertices[3 + k].val();
+                } else {
+                    self.ends_q[6 + k].d.next = self.t2_vertices[6 + k].val();
+                }
+                if self.t2_segment_high.val() == 0 {
+                    self.ends_q[9 + k].d.next = self.t2_vertices[k].val();
+                } else if self.t2_segment_high.val() == 1 {
+                    self.ends_q[9 + k].d.next = self.t2_vertices[3 + k].val();
+                } else {
+                    self.ends_q[9 + k].d.next = self.t2_vertices[6 + k].val();
+                }
+            }
+        }
+        // Stage 2: differences and comparisons.
+        self.edge_ab.clock.next = self.clock.val();
+        self.edge_ab.advance.next = self.advance.val();
+        self.offset_ac.clock.next = self.clock.val();
+        self.offset_ac.advance.next = self.advance.val();
+        self.offset_ad.clock.next = self.clock.val();
+        self.offset_ad.advance.next = self.advance.val();
+        self.edge_cd.clock.next = self.clock.val();
+        self.edge_cd.advance.next = self.advance.val();
+        self.offset_ca.clock.next = self.clock.val();
+        self.offset_ca.advance.next = self.advance.val();
+        self.offset_cb.clock.next = self.clock.val();
+        self.offset_cb.advance.next = self.advance.val();
+        self.orient_abc.clock.next = self.clock.val();
+        self.orient_abc.advance.next = self.advance.val();
+        self.orient_abd.clock.next = self.clock.val();
+        self.orient_abd.advance.next = self.advance.val();
+        self.orient_cda.clock.next = self.clock.val();
+        self.orient_cda.advance.next = self.advance.val();
+        self.orient_cdb.clock.next = self.clock.val();
+        self.orient_cdb.advance.next = self.advance.val();
+        for k in 0..3 {
+            // a = ends 0..2, b = 3..5, c = 6..8, d = 9..11.
+            self.edge_ab.a[k].next = self.ends_q[3 + k].q.val();
+            self.edge_ab.b[k].next = self.ends_q[k].q.val();
+            self.offset_ac.a[k].next = self.ends_q[6 + k].q.val();
+            self.offset_ac.b[k].next = self.ends_q[k].q.val();
+            self.offset_ad.a[k].next = self.ends_q[9 + k].q.val();
+            self.offset_ad.b[k].next = self.ends_q[k].q.val();
+            self.edge_cd.a[k].next = self.ends_q[9 + k].q.val();
+            self.edge_cd.b[k].next = self.ends_q[6 + k].q.val();
+            self.offset_ca.a[k].next = self.ends_q[k].q.val();
+            self.offset_ca.b[k].next = self.ends_q[6 + k].q.val();
+            self.offset_cb.a[k].next = self.ends_q[3 + k].q.val();
+            self.offset_cb.b[k].next = self.ends_q[6 + k].q.val();
+            // Stages 3-6: the four cross products.
+            self.orient_abc.u[k].next = self.edge_ab.difference[k].val();
+            self.orient_abc.v[k].next = self.offset_ac.difference[k].val();
+            self.orient_abd.u[k].next = self.edge_ab.difference[k].val();
+            self.orient_abd.v[k].next = self.offset_ad.difference[k].val();
+            self.orient_cda.u[k].next = self.edge_cd.difference[k].val();
+            self.orient_cda.v[k].next = self.offset_ca.difference[k].val();
+            self.orient_cdb.u[k].next = self.edge_cd.difference[k].val();
+            self.orient_cdb.v[k].next = self.offset_cb.difference[k].val();
+            self.sign[k].value.next = self.orient_abc.product[k].val();
+            self.sign[3 + k].value.next = self.orient_abd.product[k].val();
+            self.sign[6 + k].value.next = self.orient_cda.product[k].val();
+            self.sign[9 + k].value.next = self.orient_cdb.product[k].val();
+            // Comparisons: pairs (a, c), (a, d), (b, c), (b, d).
+            self.compare[k].a.next = self.ends_q[k].q.val();
+            self.compare[k].b.next = self.ends_q[6 + k].q.val();
+            self.compare[3 + k].a.next = self.ends_q[k].q.val();
+            self.compare[3 + k].b.next = self.ends_q[9 + k].q.val();
+            self.compare[6 + k].a.next = self.ends_q[3 + k].q.val();
+            self.compare[6 + k].b.next = self.ends_q[6 + k].q.val();
+            self.compare[9 + k].a.next = self.ends_q[3 + k].q.val();
+            self.compare[9 + k].b.next = self.ends_q[9 + k].q.val();
+        }
+        for i in 0..12 {
+            self.compare[i].clock.next = self.clock.val();
+            self.compare[i].advance.next = self.advance.val();
+            self.sign[i].clock.next = self.clock.val();
+            self.sign[i].advance.next = self.advance.val();
+            self.within_segment[i].clock.next = self.clock.val();
+            self.within_segment[i].advance.next = self.advance.val();
+            self.positive[i].next = !self.sign[i].negative.val() && !self.sign[i].zero.val();
+        }
+        // on_segment_2d along one coordinate m: x within [lo, hi] of the
+        // segment's two ends. For "c within [a, b]" with pairs (a,c) and
+        // (b,c): (a <= c or b <= c) and (a >= c or b >= c).
+        for m in 0..3 {
+            self.within_segment[m].d.next = (self.compare[m].less.val()
+                || self.compare[m].equal.val()
+                || self.compare[6 + m].less.val()
+                || self.compare[6 + m].equal.val())
+                && (!self.compare[m].less.val() || !self.compare[6 + m].less.val());
+            self.within_segment[3 + m].d.next = (self.compare[3 + m].less.val()
+                || self.compare[3 + m].equal.val()
+                || self.compare[9 + m].less.val()
+                || self.compare[9 + m].equal.val())
+                && (!self.compare[3 + m].less.val() || !self.compare[9 + m].less.val());
+            // a within [c, d]: pairs (a,c), (a,d); c <= a is !(a < c).
+            self.within_segment[6 + m].d.next = (!self.compare[m].less.val() || !self.compare[3 + m].less.val())
+                && (self.compare[m].less.val()
+                    || self.compare[m].equal.val()
+                    || self.compare[3 + m].less.val()
+                    || self.compare[3 + m].equal.val());
+            self.within_segment[9 + m].d.next = (!self.compare[6 + m].less.val() || !self.compare[9 + m].less.val())
+                && (self.compare[6 + m].less.val()
+                    || self.compare[6 + m].equal.val()
+                    || self.compare[9 + m].less.val()
+                    || self.compare[9 + m].equal.val());
+        }
+        // Stage 8: segments_intersect_2d for each dropped axis k, whose
+        // projection keeps the coordinates (k+1) % 3 and (k+2) % 3.
+        for k in 0..3 {
+            self.meets[k].next = ((self.sign[k].negative.val() && self.positive[3 + k].val())
+                || (self.positive[k].val() && self.sign[3 + k].negative.val()))
+                && ((self.sign[6 + k].negative.val() && self.positive[9 + k].val())
+                    || (self.positive[6 + k].val() && self.sign[9 + k].negative.val()))
+                || (self.sign[k].zero.val()
+                    && self.within_segment[(k + 1) % 3].q.val()
+                    && self.within_segment[(k + 2) % 3].q.val())
+                || (self.sign[3 + k].zero.val()
+                    && self.within_segment[3 + (k + 1) % 3].q.val()
+                    && self.within_segment[3 + (k + 2) % 3].q.val())
+                || (self.sign[6 + k].zero.val()
+                    && self.within_segment[6 + (k + 1) % 3].q.val()
+                    && self.within_segment[6 + (k + 2) % 3].q.val())
+                || (self.sign[9 + k].zero.val()
+                    && self.within_segment[9 + (k + 1) % 3].q.val()
+                    && self.within_segment[9 + (k + 2) % 3].q.val());
+        }
+        dff_setup!(self, clock, hit_q);
+        if self.advance.val() {
+            self.hit_q.d.next = self.meets[0].val() && self.meets[1].val() && self.meets[2].val();
+        }
+        self.hit.next = self.hit_q.q.val();
+    }
+}

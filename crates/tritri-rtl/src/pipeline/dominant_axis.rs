@@ -1,0 +1,71 @@
+//! The axis of the largest |component| of a normal, ties to the lowest axis:
+//! the projection used by the coplanar test drops it, so the projection is
+//! one-to-one on the triangle's plane.
+//!
+//! Software model: `FixedPoint::dominant_normal_axis` and
+//! `tritri_geom::fixed_point::dominant_axis` (used by `coplanar_triangles`
+//! and `segment_triangle` in devillers_guigue.rs). Two stages: magnitudes,
+//! then comparisons. A component's magnitude is at most `M^2 < 2^(2W)`, so
+//! the negation never overflows.
+
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Clock edges from normal to axis.
+pub const DOMINANT_AXIS_LATENCY: usize = 2;
+
+#[derive(LogicBlock)]
+pub struct DominantAxis<const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub normal: [Signal<In, Bits<C>>; 3],
+    /// 0, 1 or 2.
+    pub axis: Signal<Out, Bits<2>>,
+    top_bit: Constant<Bits<8>>,
+    magnitude: [DFF<Bits<C>>; 3],
+    axis_q: DFF<Bits<2>>,
+}
+
+impl<const C: usize> Default for DominantAxis<C> {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            normal: Default::default(),
+            axis: Default::default(),
+            top_bit: Constant::new(Bits::<8>::from((C - 1) as u64)),
+            magnitude: Default::default(),
+            axis_q: Default::default(),
+        }
+    }
+}
+
+impl<const C: usize> Logic for DominantAxis<C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for k in 0..3 {
+            self.magnitude[k].clock.next = self.clock.val();
+            self.magnitude[k].d.next = self.magnitude[k].q.val();
+            if self.advance.val() {
+                if self.normal[k].val().get_bit(self.top_bit.val().index()) {
+                    self.magnitude[k].d.next = !self.normal[k].val() + 1;
+                } else {
+                    self.magnitude[k].d.next = self.normal[k].val();
+                }
+            }
+        }
+        dff_setup!(self, clock, axis_q);
+        if self.advance.val() {
+            if (self.magnitude[0].q.val() >= self.magnitude[1].q.val())
+                && (self.magnitude[0].q.val() >= self.magnitude[2].q.val())
+            {
+                self.axis_q.d.next = 0.into();
+            } else if self.magnitude[1].q.val() >= self.magnitude[2].q.val() {
+                self.axis_q.d.next = 1.into();
+            } else {
+                self.axis_q.d.next = 2.into();
+            }
+        }
+        self.axis.next = self.axis_q.q.val();
+    }
+}

@@ -1,0 +1,21 @@
+//! The Devillers–Guigue pipeline, one unit per step of the algorithm; the
+//! top is [`triangle_pipeline::TrianglePipeline`].
+
+pub mod align_t1;
+pub mod align_t2;
+pub mod base_polygon;
+pub mod coplanar_test;
+pub mod decision;
+pub mod degenerate_pair;
+pub mod dominant_axis;
+pub mod interval_overlap;
+pub mod normal;
+pub mod orient3d;
+pub mod orient3d_operands;
+pub mod plane_side;
+pub mod segment_ends;
+pub mod triangle_front_end;
+pub mod triangle_pipeline;
+
+/// Width of the triangle ids carried with each triangle (the one place).
+pub const ID_BITS: usize = 32;

@@ -1,0 +1,48 @@
+//! Normal vector of a triangle, `N = (q - p) × (r - p)`, exact in 2W+1 bits.
+//!
+//! Thesis, steps (1) and (3) and figure 3.2 (the normal-vector unit: two
+//! vector subtractions, then the cross-product unit). One unit serves both
+//! triangles: every triangle's normal is computed once as it enters, and the
+//! base polygon keeps its own (thesis, "setting the base polygon").
+//! Software model: `tritri_geom::fixed_point::cross`.
+
+use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
+use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from vertices to normal.
+pub const NORMAL_LATENCY: usize = SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY;
+
+#[derive(LogicBlock, Default)]
+pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// `x0 y0 z0 x1 y1 z1 x2 y2 z2` of `p, q, r`.
+    pub vertices: [Signal<In, Bits<W>>; 9],
+    /// `(q - p) × (r - p)`, `NORMAL_LATENCY` enabled edges later.
+    pub normal: [Signal<Out, Bits<C>>; 3],
+    edge_pq: VectorSubtractor<W, D>,
+    edge_pr: VectorSubtractor<W, D>,
+    edge_cross: CrossProduct<D, C>,
+}
+
+impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.edge_pq.clock.next = self.clock.val();
+        self.edge_pq.advance.next = self.advance.val();
+        self.edge_pr.clock.next = self.clock.val();
+        self.edge_pr.advance.next = self.advance.val();
+        self.edge_cross.clock.next = self.clock.val();
+        self.edge_cross.advance.next = self.advance.val();
+        for k in 0..3 {
+            self.edge_pq.a[k].next = self.vertices[3 + k].val();
+            self.edge_pq.b[k].next = self.vertices[k].val();
+            self.edge_pr.a[k].next = self.vertices[6 + k].val();
+            self.edge_pr.b[k].next = self.vertices[k].val();
+            self.edge_cross.u[k].next = self.edge_pq.difference[k].val();
+            self.edge_cross.v[k].next = self.edge_pr.difference[k].val();
+            self.normal[k].next = self.edge_cross.product[k].val();
+        }
+    }
+}

@@ -1,0 +1,86 @@
+//! Signs of the three vertices of one triangle against the plane of the
+//! other: `orient3d(p, q, r, v) = (v - p) · N` for each vertex `v`.
+//!
+//! Thesis, steps (2) and (4) and figure 3.5 (the polygon/plane intersection
+//! test unit: three vector subtractions, three dot products with the normal,
+//! then the signs). The two instances run in parallel (thesis 3.4.1).
+//! Software model: `plane_side` in devillers_guigue.rs.
+
+use crate::arith::delay_line::DelayLine;
+use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from inputs to signs.
+pub const PLANE_SIDE_LATENCY: usize = SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + SIGN_LATENCY;
+
+#[derive(LogicBlock, Default)]
+pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// A vertex `p` of the plane's triangle.
+    pub plane_point: [Signal<In, Bits<W>>; 3],
+    /// The plane's triangle's normal `(q - p) × (r - p)`.
+    pub plane_normal: [Signal<In, Bits<C>>; 3],
+    /// The three vertices to classify.
+    pub vertices: [Signal<In, Bits<W>>; 9],
+    /// Vertex `i` is strictly below the plane (`PLANE_SIDE_LATENCY` later).
+    pub negative: [Signal<Out, Bit>; 3],
+    /// Vertex `i` is on the plane.
+    pub zero: [Signal<Out, Bit>; 3],
+    // (rust-hdl's Verilog generator resolves one array index per name, so
+    // units with array ports are separate fields rather than arrays.)
+    offset_0: VectorSubtractor<W, D>,
+    offset_1: VectorSubtractor<W, D>,
+    offset_2: VectorSubtractor<W, D>,
+    normal_delay: [DelayLine<Bits<C>, SUBTRACTOR_LATENCY>; 3],
+    distance_0: DotProduct<D, C, O>,
+    distance_1: DotProduct<D, C, O>,
+    distance_2: DotProduct<D, C, O>,
+    sign: [SignOf<O>; 3],
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for PlaneSide<W, D, C, O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.offset_0.clock.next = self.clock.val();
+        self.offset_0.advance.next = self.advance.val();
+        self.offset_1.clock.next = self.clock.val();
+        self.offset_1.advance.next = self.advance.val();
+        self.offset_2.clock.next = self.clock.val();
+        self.offset_2.advance.next = self.advance.val();
+        self.distance_0.clock.next = self.clock.val();
+        self.distance_0.advance.next = self.advance.val();
+        self.distance_1.clock.next = self.clock.val();
+        self.distance_1.advance.next = self.advance.val();
+        self.distance_2.clock.next = self.clock.val();
+        self.distance_2.advance.next = self.advance.val();
+        for k in 0..3 {
+            self.normal_delay[k].clock.next = self.clock.val();
+            self.normal_delay[k].advance.next = self.advance.val();
+            self.normal_delay[k].d.next = self.plane_normal[k].val();
+            self.sign[k].clock.next = self.clock.val();
+            self.sign[k].advance.next = self.advance.val();
+            self.offset_0.a[k].next = self.vertices[k].val();
+            self.offset_1.a[k].next = self.vertices[3 + k].val();
+            self.offset_2.a[k].next = self.vertices[6 + k].val();
+            self.offset_0.b[k].next = self.plane_point[k].val();
+            self.offset_1.b[k].next = self.plane_point[k].val();
+            self.offset_2.b[k].next = self.plane_point[k].val();
+            self.distance_0.u[k].next = self.offset_0.difference[k].val();
+            self.distance_1.u[k].next = self.offset_1.difference[k].val();
+            self.distance_2.u[k].next = self.offset_2.difference[k].val();
+            self.distance_0.v[k].next = self.normal_delay[k].q.val();
+            self.distance_1.v[k].next = self.normal_delay[k].q.val();
+            self.distance_2.v[k].next = self.normal_delay[k].q.val();
+        }
+        self.sign[0].value.next = self.distance_0.product.val();
+        self.sign[1].value.next = self.distance_1.product.val();
+        self.sign[2].value.next = self.distance_2.product.val();
+        for v in 0..3 {
+            self.negative[v].next = self.sign[v].negative.val();
+            self.zero[v].next = self.sign[v].zero.val();
+        }
+    }
+}

@@ -1,0 +1,98 @@
+//! Everything computed once per triangle, before pairs are formed: the
+//! normal (thesis steps (1)/(3)), the signs of its components, whether the
+//! triangle is degenerate (normal zero), the dominant axis of its normal and
+//! the ends of the segment a degenerate triangle spans. The vertices travel
+//! alongside so that the outputs describe one triangle.
+//!
+//! Software models: `tritri_geom::fixed_point::cross` (normal), `shape`
+//! (degenerate flag and segment ends) and `dominant_normal_axis`.
+
+use super::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
+use super::normal::{NormalUnit, NORMAL_LATENCY};
+use super::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from vertices to the triangle's record.
+pub const FRONT_END_LATENCY: usize = NORMAL_LATENCY + DOMINANT_AXIS_LATENCY;
+
+// The normal's signs come one stage after the normal; the axis two.
+const _: () = assert!(SIGN_LATENCY < DOMINANT_AXIS_LATENCY);
+const _: () = assert!(SEGMENT_ENDS_LATENCY < FRONT_END_LATENCY);
+
+#[derive(LogicBlock, Default)]
+pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub vertices_in: [Signal<In, Bits<W>>; 9],
+    // The record, FRONT_END_LATENCY enabled edges later:
+    pub vertices: [Signal<Out, Bits<W>>; 9],
+    pub normal: [Signal<Out, Bits<C>>; 3],
+    pub normal_negative: [Signal<Out, Bit>; 3],
+    pub normal_zero: [Signal<Out, Bit>; 3],
+    /// The normal is zero: three collinear vertices.
+    pub degenerate: Signal<Out, Bit>,
+    pub dominant_axis: Signal<Out, Bits<2>>,
+    pub segment_low: Signal<Out, Bits<2>>,
+    pub segment_high: Signal<Out, Bits<2>>,
+    normal_unit: NormalUnit<W, D, C>,
+    normal_sign: [SignOf<C>; 3],
+    axis: DominantAxis<C>,
+    ends: SegmentEnds<W>,
+    vertex_delay: [DelayLine<Bits<W>, FRONT_END_LATENCY>; 9],
+    normal_delay: [DelayLine<Bits<C>, DOMINANT_AXIS_LATENCY>; 3],
+    normal_negative_delay: [DelayLine<Bit, { DOMINANT_AXIS_LATENCY - SIGN_LATENCY }>; 3],
+    normal_zero_delay: [DelayLine<Bit, { DOMINANT_AXIS_LATENCY - SIGN_LATENCY }>; 3],
+    segment_low_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
+    segment_high_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
+}
+
+impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<W, D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.normal_unit.clock.next = self.clock.val();
+        self.normal_unit.advance.next = self.advance.val();
+        self.axis.clock.next = self.clock.val();
+        self.axis.advance.next = self.advance.val();
+        self.ends.clock.next = self.clock.val();
+        self.ends.advance.next = self.advance.val();
+        self.segment_low_delay.clock.next = self.clock.val();
+        self.segment_low_delay.advance.next = self.advance.val();
+        self.segment_high_delay.clock.next = self.clock.val();
+        self.segment_high_delay.advance.next = self.advance.val();
+        for i in 0..9 {
+            self.vertex_delay[i].clock.next = self.clock.val();
+            self.vertex_delay[i].advance.next = self.advance.val();
+            self.normal_unit.vertices[i].next = self.vertices_in[i].val();
+            self.ends.vertices[i].next = self.vertices_in[i].val();
+            self.vertex_delay[i].d.next = self.vertices_in[i].val();
+            self.vertices[i].next = self.vertex_delay[i].q.val();
+        }
+        for k in 0..3 {
+            self.normal_sign[k].clock.next = self.clock.val();
+            self.normal_sign[k].advance.next = self.advance.val();
+            self.normal_delay[k].clock.next = self.clock.val();
+            self.normal_delay[k].advance.next = self.advance.val();
+            self.normal_negative_delay[k].clock.next = self.clock.val();
+            self.normal_negative_delay[k].advance.next = self.advance.val();
+            self.normal_zero_delay[k].clock.next = self.clock.val();
+            self.normal_zero_delay[k].advance.next = self.advance.val();
+            self.normal_sign[k].value.next = self.normal_unit.normal[k].val();
+            self.axis.normal[k].next = self.normal_unit.normal[k].val();
+            self.normal_delay[k].d.next = self.normal_unit.normal[k].val();
+            self.normal_negative_delay[k].d.next = self.normal_sign[k].negative.val();
+            self.normal_zero_delay[k].d.next = self.normal_sign[k].zero.val();
+            self.normal[k].next = self.normal_delay[k].q.val();
+            self.normal_negative[k].next = self.normal_negative_delay[k].q.val();
+            self.normal_zero[k].next = self.normal_zero_delay[k].q.val();
+        }
+        self.degenerate.next =
+            self.normal_zero_delay[0].q.val() && self.normal_zero_delay[1].q.val() && self.normal_zero_delay[2].q.val();
+        self.dominant_axis.next = self.axis.axis.val();
+        self.segment_low_delay.d.next = self.ends.low.val();
+        self.segment_high_delay.d.next = self.ends.high.val();
+        self.segment_low.next = self.segment_low_delay.q.val();
+        self.segment_high.next = self.segment_high_delay.q.val();
+    }
+}

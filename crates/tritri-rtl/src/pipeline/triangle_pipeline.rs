@@ -1,0 +1,383 @@
+//! The top: the Devillers–Guigue triangle-pair pipeline (thesis, chapter 3,
+//! figure 3.1), one pair per clock, fixed latency [`latency`].
+//!
+//! Input, one triangle per clock: nine W-bit signed coordinates
+//! `in_x0 in_y0 in_z0 … in_z2`, `in_valid`, `in_bset` and an id. A triangle
+//! with `in_bset = 1` becomes the base polygon T1 (it is not tested); every
+//! other valid triangle T2 is tested against the current base, and its
+//! verdict leaves `latency()` clocks later with `out_valid = 1`, `out_hit`,
+//! and both ids. `advance` is a global clock enable: when low, the whole
+//! pipeline, base polygon included, holds (for back-pressure); `reset`
+//! (synchronous, active high) clears the valid bits only.
+//!
+//! Flow, with the stage counts of each unit:
+//!
+//! ```text
+//! input registers (1)
+//!   -> triangle front end: normal, signs, degenerate, axis, segment ends (7)
+//!   -> base polygon registers (on bset) | pair = (base, streamed)
+//!   -> plane side T1 vs plane 2 || plane side T2 vs plane 1   (6)   steps 1-4
+//!   -> align T1 (1) -> align T2 (1) -> interval overlap (1)         steps 5-7
+//!   -> orient3d operands (2) -> 3 x orient3d (10)
+//!   || coplanar test (8), degenerate pair (8) started with the plane side
+//!   -> decision (1)
+//! ```
+//!
+//! Every verdict equals `tritri_geom::fixed_point::intersects(base, streamed)`
+//! for every input, degenerate and coplanar included.
+
+use super::align_t1::{AlignT1, ALIGN_T1_LATENCY};
+use super::align_t2::{AlignT2, ALIGN_T2_LATENCY};
+use super::base_polygon::BasePolygon;
+use super::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
+use super::decision::{Decision, DECISION_LATENCY};
+use super::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
+use super::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
+use super::orient3d::{Orient3d, ORIENT3D_LATENCY};
+use super::orient3d_operands::{Orient3dOperands, ORIENT3D_OPERANDS_LATENCY};
+use super::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
+use super::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
+use super::ID_BITS;
+use crate::arith::delay_line::DelayLine;
+use crate::arith::valid_line::ValidLine;
+use rust_hdl::prelude::*;
+
+/// Input registers.
+const INPUT_LATENCY: usize = 1;
+/// From the input ports to the triangle's record.
+const RECORD_STAGE: usize = INPUT_LATENCY + FRONT_END_LATENCY;
+// Stages below count from the pair's formation.
+const OPERANDS_STAGE: usize = PLANE_SIDE_LATENCY + ALIGN_T1_LATENCY + ALIGN_T2_LATENCY + INTERVAL_OVERLAP_LATENCY;
+const DECISION_STAGE: usize = OPERANDS_STAGE + ORIENT3D_OPERANDS_LATENCY + ORIENT3D_LATENCY;
+/// From the pair's formation to the output ports.
+const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
+const _: () = assert!(COPLANAR_TEST_LATENCY < DECISION_STAGE && DEGENERATE_PAIR_LATENCY < DECISION_STAGE);
+
+/// Clock edges (with `advance` high) from a triangle on the input ports to
+/// its verdict on the output ports.
+pub const TRIANGLE_PIPELINE_LATENCY: usize = RECORD_STAGE + PAIR_LATENCY;
+
+/// The pipeline's latency `L`: a run of `N1` bases against `N2` streamed
+/// triangles takes `N1 + N1 N2 + L` clocks (thesis, equation 3.2).
+pub const fn latency() -> usize {
+    TRIANGLE_PIPELINE_LATENCY
+}
+
+#[derive(LogicBlock, Default)]
+pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high: clears the valid bits.
+    pub reset: Signal<In, Bit>,
+    /// Clock enable: when low every register holds.
+    pub advance: Signal<In, Bit>,
+    pub in_valid: Signal<In, Bit>,
+    /// Load this triangle as the base polygon instead of testing it.
+    pub in_bset: Signal<In, Bit>,
+    pub in_id: Signal<In, Bits<ID_BITS>>,
+    /// Vertices `(x0, y0, z0)`, `(x1, y1, z1)`, `(x2, y2, z2)`, W-bit two's complement.
+    pub in_x0: Signal<In, Bits<W>>,
+    pub in_y0: Signal<In, Bits<W>>,
+    pub in_z0: Signal<In, Bits<W>>,
+    pub in_x1: Signal<In, Bits<W>>,
+    pub in_y1: Signal<In, Bits<W>>,
+    pub in_z1: Signal<In, Bits<W>>,
+    pub in_x2: Signal<In, Bits<W>>,
+    pub in_y2: Signal<In, Bits<W>>,
+    pub in_z2: Signal<In, Bits<W>>,
+    pub out_valid: Signal<Out, Bit>,
+    pub out_hit: Signal<Out, Bit>,
+    pub out_base_id: Signal<Out, Bits<ID_BITS>>,
+    pub out_stream_id: Signal<Out, Bits<ID_BITS>>,
+    input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
+    record_valid: ValidLine<RECORD_STAGE>,
+    record_bset: DelayLine<Bit, RECORD_STAGE>,
+    record_id: DelayLine<Bits<ID_BITS>, RECORD_STAGE>,
+    front_end: TriangleFrontEnd<W, D, C>,
+    base: BasePolygon<W, C>,
+    pair_valid: ValidLine<PAIR_LATENCY>,
+    base_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
+    stream_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
+    /// Steps (1)-(2): T1 (base) against the plane of T2 (streamed).
+    plane_side_t1: PlaneSide<W, D, C, O>,
+    /// Steps (3)-(4): T2 against the plane of T1, in parallel.
+    plane_side_t2: PlaneSide<W, D, C, O>,
+    align_t1: AlignT1,
+    align_t2: AlignT2,
+    interval_overlap: IntervalOverlap,
+    operands: Orient3dOperands<W>,
+    orient3d_0: Orient3d<W, D, C, O>,
+    orient3d_1: Orient3d<W, D, C, O>,
+    orient3d_2: Orient3d<W, D, C, O>,
+    coplanar: CoplanarTest<W, D, C>,
+    degenerate_pair: DegeneratePair<W, D, C>,
+    decision: Decision,
+    // Alignment of the operands of later stages:
+    t1_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
+    t2_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
+    /// t1 degenerate, t2 degenerate.
+    degenerate_to_operands: [DelayLine<Bit, OPERANDS_STAGE>; 2],
+    /// t1 low, t1 high, t2 low, t2 high.
+    segment_ends_to_operands: [DelayLine<Bits<2>, OPERANDS_STAGE>; 4],
+    degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE }>; 2],
+    segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE }>; 4],
+    /// t1 negative, t1 zero, t2 negative, t2 zero at `3 j + vertex`.
+    sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 12],
+    coplanar_to_decision: DelayLine<Bit, { DECISION_STAGE - COPLANAR_TEST_LATENCY }>,
+    degenerate_pair_to_decision: DelayLine<Bit, { DECISION_STAGE - DEGENERATE_PAIR_LATENCY }>,
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePipeline<W, D, C, O> {
+    /// A pipeline for W-bit coordinates. Panics unless `D`, `C`, `O` are the
+    /// widths `tritri_geom::widths` derives from `W`.
+    pub fn new() -> Self {
+        use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+        assert_eq!(D, difference_bits(W), "difference width for W = {W}");
+        assert_eq!(C, cross_bits(W), "cross-product width for W = {W}");
+        assert_eq!(O, orient3d_bits(W), "orient3d width for W = {W}");
+        Self::default()
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for TrianglePipeline<W, D, C, O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // Clock and clock enable to every unit.
+        self.record_valid.clock.next = self.clock.val();
+        self.record_valid.reset.next = self.reset.val();
+        self.record_valid.advance.next = self.advance.val();
+        self.record_bset.clock.next = self.clock.val();
+        self.record_bset.advance.next = self.advance.val();
+        self.record_id.clock.next = self.clock.val();
+        self.record_id.advance.next = self.advance.val();
+        self.front_end.clock.next = self.clock.val();
+        self.front_end.advance.next = self.advance.val();
+        self.base.clock.next = self.clock.val();
+        self.pair_valid.clock.next = self.clock.val();
+        self.pair_valid.reset.next = self.reset.val();
+        self.pair_valid.advance.next = self.advance.val();
+        self.base_id.clock.next = self.clock.val();
+        self.base_id.advance.next = self.advance.val();
+        self.stream_id.clock.next = self.clock.val();
+        self.stream_id.advance.next = self.advance.val();
+        self.plane_side_t1.clock.next = self.clock.val();
+        self.plane_side_t1.advance.next = self.advance.val();
+        self.plane_side_t2.clock.next = self.clock.val();
+        self.plane_side_t2.advance.next = self.advance.val();
+        self.align_t1.clock.next = self.clock.val();
+        self.align_t1.advance.next = self.advance.val();
+        self.align_t2.clock.next = self.clock.val();
+        self.align_t2.advance.next = self.advance.val();
+        self.interval_overlap.clock.next = self.clock.val();
+        self.interval_overlap.advance.next = self.advance.val();
+        self.operands.clock.next = self.clock.val();
+        self.operands.advance.next = self.advance.val();
+        self.orient3d_0.clock.next = self.clock.val();
+        self.orient3d_0.advance.next = self.advance.val();
+        self.orient3d_1.clock.next = self.clock.val();
+        self.orient3d_1.advance.next = self.advance.val();
+        self.orient3d_2.clock.next = self.clock.val();
+        self.orient3d_2.advance.next = self.advance.val();
+        self.coplanar.clock.next = self.clock.val();
+        self.coplanar.advance.next = self.advance.val();
+        self.degenerate_pair.clock.next = self.clock.val();
+        self.degenerate_pair.advance.next = self.advance.val();
+        self.decision.clock.next = self.clock.val();
+        self.decision.advance.next = self.advance.val();
+        self.coplanar_to_decision.clock.next = self.clock.val();
+        self.coplanar_to_decision.advance.next = self.advance.val();
+        self.degenerate_pair_to_decision.clock.next = self.clock.val();
+        self.degenerate_pair_to_decision.advance.next = self.advance.val();
+        for i in 0..9 {
+            self.input_vertices[i].clock.next = self.clock.val();
+            self.input_vertices[i].advance.next = self.advance.val();
+            self.t1_vertices_to_operands[i].clock.next = self.clock.val();
+            self.t1_vertices_to_operands[i].advance.next = self.advance.val();
+            self.t2_vertices_to_operands[i].clock.next = self.clock.val();
+            self.t2_vertices_to_operands[i].advance.next = self.advance.val();
+        }
+        for i in 0..2 {
+            self.degenerate_to_operands[i].clock.next = self.clock.val();
+            self.degenerate_to_operands[i].advance.next = self.advance.val();
+            self.degenerate_to_decision[i].clock.next = self.clock.val();
+            self.degenerate_to_decision[i].advance.next = self.advance.val();
+        }
+        for i in 0..4 {
+            self.segment_ends_to_operands[i].clock.next = self.clock.val();
+            self.segment_ends_to_operands[i].advance.next = self.advance.val();
+            self.segment_ends_to_decision[i].clock.next = self.clock.val();
+            self.segment_ends_to_decision[i].advance.next = self.advance.val();
+        }
+        for i in 0..12 {
+            self.sides_to_decision[i].clock.next = self.clock.val();
+            self.sides_to_decision[i].advance.next = self.advance.val();
+        }
+
+        // Input registers and the per-triangle front end.
+        self.record_valid.d.next = self.in_valid.val();
+        self.record_bset.d.next = self.in_bset.val();
+        self.record_id.d.next = self.in_id.val();
+        self.input_vertices[0].d.next = self.in_x0.val();
+        self.input_vertices[1].d.next = self.in_y0.val();
+        self.input_vertices[2].d.next = self.in_z0.val();
+        self.input_vertices[3].d.next = self.in_x1.val();
+        self.input_vertices[4].d.next = self.in_y1.val();
+        self.input_vertices[5].d.next = self.in_z1.val();
+        self.input_vertices[6].d.next = self.in_x2.val();
+        self.input_vertices[7].d.next = self.in_y2.val();
+        self.input_vertices[8].d.next = self.in_z2.val();
+        for i in 0..9 {
+            self.front_end.vertices_in[i].next = self.input_vertices[i].q.val();
+        }
+
+        // Base polygon (thesis: BSET latches the record into its registers).
+        self.base.load.next = self.advance.val() && self.record_valid.q.val() && self.record_bset.q.val();
+        self.base.id_in.next = self.record_id.q.val();
+        self.base.degenerate_in.next = self.front_end.degenerate.val();
+        self.base.dominant_axis_in.next = self.front_end.dominant_axis.val();
+        self.base.segment_low_in.next = self.front_end.segment_low.val();
+        self.base.segment_high_in.next = self.front_end.segment_high.val();
+        for i in 0..9 {
+            self.base.vertices_in[i].next = self.front_end.vertices[i].val();
+        }
+        for k in 0..3 {
+            self.base.normal_in[k].next = self.front_end.normal[k].val();
+            self.base.normal_negative_in[k].next = self.front_end.normal_negative[k].val();
+            self.base.normal_zero_in[k].next = self.front_end.normal_zero[k].val();
+        }
+
+        // The pair: T1 = base, T2 = the streamed triangle's record.
+        self.pair_valid.d.next = self.record_valid.q.val() && !self.record_bset.q.val();
+        self.base_id.d.next = self.base.id.val();
+        self.stream_id.d.next = self.record_id.q.val();
+
+        // Steps (1)-(4), both sides in parallel.
+        for i in 0..9 {
+            self.plane_side_t1.vertices[i].next = self.base.vertices[i].val();
+            self.plane_side_t2.vertices[i].next = self.front_end.vertices[i].val();
+        }
+        for k in 0..3 {
+            self.plane_side_t1.plane_point[k].next = self.front_end.vertices[k].val();
+            self.plane_side_t1.plane_normal[k].next = self.front_end.normal[k].val();
+            self.plane_side_t2.plane_point[k].next = self.base.vertices[k].val();
+            self.plane_side_t2.plane_normal[k].next = self.base.normal[k].val();
+        }
+
+        // Steps (5)-(7).
+        for v in 0..3 {
+            self.align_t1.t1_negative[v].next = self.plane_side_t1.negative[v].val();
+            self.align_t1.t1_zero[v].next = self.plane_side_t1.zero[v].val();
+            self.align_t1.t2_negative[v].next = self.plane_side_t2.negative[v].val();
+            self.align_t1.t2_zero[v].next = self.plane_side_t2.zero[v].val();
+            self.align_t2.t2_aligned_negative[v].next = self.align_t1.t2_aligned_negative[v].val();
+            self.align_t2.t2_aligned_zero[v].next = self.align_t1.t2_aligned_zero[v].val();
+        }
+        self.align_t2.t1_rotation_in.next = self.align_t1.t1_rotation.val();
+        self.align_t2.t2_swap_in.next = self.align_t1.t2_swap.val();
+        self.interval_overlap.t1_rotation.next = self.align_t2.t1_rotation.val();
+        self.interval_overlap.t2_swap.next = self.align_t2.t2_swap.val();
+        self.interval_overlap.t2_rotation.next = self.align_t2.t2_rotation.val();
+        self.interval_overlap.t1_swap.next = self.align_t2.t1_swap.val();
+
+        // The operands of the shared orient3d units.
+        for i in 0..9 {
+            self.t1_vertices_to_operands[i].d.next = self.base.vertices[i].val();
+            self.t2_vertices_to_operands[i].d.next = self.front_end.vertices[i].val();
+            self.operands.t1_vertices[i].next = self.t1_vertices_to_operands[i].q.val();
+            self.operands.t2_vertices[i].next = self.t2_vertices_to_operands[i].q.val();
+        }
+        self.degenerate_to_operands[0].d.next = self.base.degenerate.val();
+        self.degenerate_to_operands[1].d.next = self.front_end.degenerate.val();
+        self.segment_ends_to_operands[0].d.next = self.base.segment_low.val();
+        self.segment_ends_to_operands[1].d.next = self.base.segment_high.val();
+        self.segment_ends_to_operands[2].d.next = self.front_end.segment_low.val();
+        self.segment_ends_to_operands[3].d.next = self.front_end.segment_high.val();
+        self.operands.t1_degenerate.next = self.degenerate_to_operands[0].q.val();
+        self.operands.t2_degenerate.next = self.degenerate_to_operands[1].q.val();
+        self.operands.t1_segment_low.next = self.segment_ends_to_operands[0].q.val();
+        self.operands.t1_segment_high.next = self.segment_ends_to_operands[1].q.val();
+        self.operands.t2_segment_low.next = self.segment_ends_to_operands[2].q.val();
+        self.operands.t2_segment_high.next = self.segment_ends_to_operands[3].q.val();
+        for j in 0..4 {
+            self.operands.overlap_first[j].next = self.interval_overlap.first[j].val();
+            self.operands.overlap_second[j].next = self.interval_overlap.second[j].val();
+        }
+        for k in 0..3 {
+            self.orient3d_0.a[k].next = self.operands.operands[k].val();
+            self.orient3d_0.b[k].next = self.operands.operands[3 + k].val();
+            self.orient3d_0.c[k].next = self.operands.operands[6 + k].val();
+            self.orient3d_0.d[k].next = self.operands.operands[9 + k].val();
+            self.orient3d_1.a[k].next = self.operands.operands[12 + k].val();
+            self.orient3d_1.b[k].next = self.operands.operands[15 + k].val();
+            self.orient3d_1.c[k].next = self.operands.operands[18 + k].val();
+            self.orient3d_1.d[k].next = self.operands.operands[21 + k].val();
+            self.orient3d_2.a[k].next = self.operands.operands[24 + k].val();
+            self.orient3d_2.b[k].next = self.operands.operands[27 + k].val();
+            self.orient3d_2.c[k].next = self.operands.operands[30 + k].val();
+            self.orient3d_2.d[k].next = self.operands.operands[33 + k].val();
+        }
+
+        // The coplanar test, in the projection of the proper triangle
+        // (T1's unless T1 is degenerate), and the degenerate pair test.
+        if self.base.degenerate.val() {
+            self.coplanar.axis.next = self.front_end.dominant_axis.val();
+        } else {
+            self.coplanar.axis.next = self.base.dominant_axis.val();
+        }
+        for i in 0..9 {
+            self.coplanar.t1_vertices[i].next = self.base.vertices[i].val();
+            self.coplanar.t2_vertices[i].next = self.front_end.vertices[i].val();
+            self.degenerate_pair.t1_vertices[i].next = self.base.vertices[i].val();
+            self.degenerate_pair.t2_vertices[i].next = self.front_end.vertices[i].val();
+        }
+        for k in 0..3 {
+            self.coplanar.t1_normal_negative[k].next = self.base.normal_negative[k].val();
+            self.coplanar.t1_normal_zero[k].next = self.base.normal_zero[k].val();
+            self.coplanar.t2_normal_negative[k].next = self.front_end.normal_negative[k].val();
+            self.coplanar.t2_normal_zero[k].next = self.front_end.normal_zero[k].val();
+        }
+        self.degenerate_pair.t1_segment_low.next = self.base.segment_low.val();
+        self.degenerate_pair.t1_segment_high.next = self.base.segment_high.val();
+        self.degenerate_pair.t2_segment_low.next = self.front_end.segment_low.val();
+        self.degenerate_pair.t2_segment_high.next = self.front_end.segment_high.val();
+
+        // The decision.
+        for i in 0..2 {
+            self.degenerate_to_decision[i].d.next = self.degenerate_to_operands[i].q.val();
+        }
+        for i in 0..4 {
+            self.segment_ends_to_decision[i].d.next = self.segment_ends_to_operands[i].q.val();
+        }
+        for v in 0..3 {
+            self.sides_to_decision[v].d.next = self.plane_side_t1.negative[v].val();
+            self.sides_to_decision[3 + v].d.next = self.plane_side_t1.zero[v].val();
+            self.sides_to_decision[6 + v].d.next = self.plane_side_t2.negative[v].val();
+            self.sides_to_decision[9 + v].d.next = self.plane_side_t2.zero[v].val();
+            self.decision.t1_side_negative[v].next = self.sides_to_decision[v].q.val();
+            self.decision.t1_side_zero[v].next = self.sides_to_decision[3 + v].q.val();
+            self.decision.t2_side_negative[v].next = self.sides_to_decision[6 + v].q.val();
+            self.decision.t2_side_zero[v].next = self.sides_to_decision[9 + v].q.val();
+        }
+        self.coplanar_to_decision.d.next = self.coplanar.hit.val();
+        self.degenerate_pair_to_decision.d.next = self.degenerate_pair.hit.val();
+        self.decision.t1_degenerate.next = self.degenerate_to_decision[0].q.val();
+        self.decision.t2_degenerate.next = self.degenerate_to_decision[1].q.val();
+        self.decision.t1_segment_low.next = self.segment_ends_to_decision[0].q.val();
+        self.decision.t1_segment_high.next = self.segment_ends_to_decision[1].q.val();
+        self.decision.t2_segment_low.next = self.segment_ends_to_decision[2].q.val();
+        self.decision.t2_segment_high.next = self.segment_ends_to_decision[3].q.val();
+        self.decision.orient_negative[0].next = self.orient3d_0.negative.val();
+        self.decision.orient_zero[0].next = self.orient3d_0.zero.val();
+        self.decision.orient_negative[1].next = self.orient3d_1.negative.val();
+        self.decision.orient_zero[1].next = self.orient3d_1.zero.val();
+        self.decision.orient_negative[2].next = self.orient3d_2.negative.val();
+        self.decision.orient_zero[2].next = self.orient3d_2.zero.val();
+        self.decision.coplanar_hit.next = self.coplanar_to_decision.q.val();
+        self.decision.degenerate_pair_hit.next = self.degenerate_pair_to_decision.q.val();
+
+        // Outputs.
+        self.out_valid.next = self.pair_valid.q.val();
+        self.out_hit.next = self.decision.hit.val();
+        self.out_base_id.next = self.base_id.q.val();
+        self.out_stream_id.next = self.stream_id.q.val();
+    }
+}

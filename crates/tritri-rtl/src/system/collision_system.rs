@@ -1,0 +1,391 @@
+//! The system top (thesis, chapter 4, figure 4.5): host stream → write
+//! state machine → two-bank triangle memories → read state machine → `P`
+//! pipelines → result FIFO → pair serializer → host result stream.
+//!
+//! # Ports
+//!
+//! | port | dir | meaning |
+//! |---|---|---|
+//! | `clock`, `reset` | in | clock; synchronous active-high reset |
+//! | `in_valid`, `in_ready` | in, out | host triangle stream handshake |
+//! | `in_end` | in | the transfer is the end-of-batch (commit) word, no triangle |
+//! | `in_object` | in | 0: the triangle belongs to object A (bases), 1: to B (streamed) |
+//! | `in_id` | in | the triangle's original id (32 bits) |
+//! | `in_x0 … in_z2` | in | its vertices, signed `W`-bit |
+//! | `out_valid`, `out_ready` | out, in | result stream handshake |
+//! | `out_id_a`, `out_id_b` | out | one intersecting pair per transfer |
+//! | `done` | out | every committed batch is tested and its hits are in the FIFO |
+//! | `results_empty` | out | the result FIFO holds nothing |
+//! | `overflow` | out | sticky: an array of a batch exceeded the memory depth |
+//! | `pairs_tested`, `hits`, `stall_cycles` | out | 32-bit counters |
+//!
+//! The host writes a batch as its triangles of A and B in any order,
+//! followed by one end-of-batch word; it may write the next batch at once
+//! (into the other bank, `in_ready` tells when that bank is free) and reads
+//! the pairs as they come. `busy` is `!done`.
+//!
+//! The top is generated for a pipeline type by [`collision_system!`]
+//! (rust-hdl cannot reach fields of a generic type): [`CollisionSystem`]
+//! uses the real [`TrianglePipeline`], [`StubCollisionSystem`] the
+//! [`StubPipeline`](super::stub_pipeline::StubPipeline).
+
+use super::stub_pipeline::StubPipeline;
+use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
+use rust_hdl::prelude::*;
+
+/// Defines a system top `$name` whose pipelines are `$pipeline`, a type with
+/// the triangle pipeline's ports (`clock reset advance in_valid in_bset
+/// in_id in_x0 … in_z2 out_valid out_hit out_base_id out_stream_id`) and
+/// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
+///
+/// ```ignore
+/// collision_system!(pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> });
+/// ```
+#[macro_export]
+macro_rules! collision_system {
+    ($(#[$meta:meta])* $vis:vis struct $name:ident < $(const $param:ident : usize),* > {
+        coordinate_bits: $w:expr, pipeline: $pipeline:ty $(,)?
+    }) => {
+        $(#[$meta])*
+        #[derive(LogicBlock)]
+        $vis struct $name<$(const $param: usize),*> {
+            pub clock: Signal<In, Clock>,
+            pub reset: Signal<In, Bit>,
+            pub in_valid: Signal<In, Bit>,
+            pub in_ready: Signal<Out, Bit>,
+            pub in_end: Signal<In, Bit>,
+            pub in_object: Signal<In, Bit>,
+            pub in_id: Signal<In, Bits<{ $crate::system::ID_BITS }>>,
+            pub in_x0: Signal<In, Bits<$w>>,
+            pub in_y0: Signal<In, Bits<$w>>,
+            pub in_z0: Signal<In, Bits<$w>>,
+            pub in_x1: Signal<In, Bits<$w>>,
+            pub in_y1: Signal<In, Bits<$w>>,
+            pub in_z1: Signal<In, Bits<$w>>,
+            pub in_x2: Signal<In, Bits<$w>>,
+            pub in_y2: Signal<In, Bits<$w>>,
+            pub in_z2: Signal<In, Bits<$w>>,
+            pub out_valid: Signal<Out, Bit>,
+            pub out_ready: Signal<In, Bit>,
+            pub out_id_a: Signal<Out, Bits<{ $crate::system::ID_BITS }>>,
+            pub out_id_b: Signal<Out, Bits<{ $crate::system::ID_BITS }>>,
+            pub done: Signal<Out, Bit>,
+            pub results_empty: Signal<Out, Bit>,
+            pub overflow: Signal<Out, Bit>,
+            pub pairs_tested: Signal<Out, Bits<{ $crate::system::COUNTER_BITS }>>,
+            pub hits: Signal<Out, Bits<{ $crate::system::COUNTER_BITS }>>,
+            pub stall_cycles: Signal<Out, Bits<{ $crate::system::COUNTER_BITS }>>,
+            address_generator: $crate::system::address_generator::AddressGenerator,
+            memory_a: $crate::system::triangle_memory::TriangleMemory<$w>,
+            memory_b: $crate::system::triangle_memory::TriangleMemory<$w>,
+            pipelines: Vec<$pipeline>,
+            result_fifo: $crate::system::result_fifo::ResultFifo,
+            pair_serializer: $crate::system::pair_serializer::PairSerializer,
+            pairs_tested_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            hits_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            stall_cycles_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            advance: Signal<Local, Bit>,
+            bus_id: Signal<Local, Bits<{ $crate::system::ID_BITS }>>,
+            bus_coordinates: [Signal<Local, Bits<$w>>; 9],
+            hit_mask_chain: Vec<Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>>,
+            tested_chain: Vec<Signal<Local, Bits<{ $crate::system::LANE_BITS }>>>,
+            hit_count_chain: Vec<Signal<Local, Bits<{ $crate::system::LANE_BITS }>>>,
+            hit_mask: Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>,
+            tested_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
+            hit_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
+            any_hit: Signal<Local, Bit>,
+            _config: $crate::system::SystemConfig,
+        }
+
+        impl<$(const $param: usize),*> $name<$($param),*> {
+            /// The system for `config`, its `P` pipelines made by `make_pipeline`.
+            pub fn new(config: $crate::system::SystemConfig, mut make_pipeline: impl FnMut() -> $pipeline) -> Self {
+                config.validate();
+                assert_eq!(config.coordinate_bits, $w, "the configuration's width differs from the type's");
+                let p = config.pipelines;
+                $name {
+                    clock: Default::default(),
+                    reset: Default::default(),
+                    in_valid: Default::default(),
+                    in_ready: Default::default(),
+                    in_end: Default::default(),
+                    in_object: Default::default(),
+                    in_id: Default::default(),
+                    in_x0: Default::default(),
+                    in_y0: Default::default(),
+                    in_z0: Default::default(),
+                    in_x1: Default::default(),
+                    in_y1: Default::default(),
+                    in_z1: Default::default(),
+                    in_x2: Default::default(),
+                    in_y2: Default::default(),
+                    in_z2: Default::default(),
+                    out_valid: Default::default(),
+                    out_ready: Default::default(),
+                    out_id_a: Default::default(),
+                    out_id_b: Default::default(),
+                    done: Default::default(),
+                    results_empty: Default::default(),
+                    overflow: Default::default(),
+                    pairs_tested: Default::default(),
+                    hits: Default::default(),
+                    stall_cycles: Default::default(),
+                    address_generator: $crate::system::address_generator::AddressGenerator::new(
+                        p,
+                        config.triangles_per_bank,
+                        config.pipeline_latency,
+                    ),
+                    memory_a: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
+                    memory_b: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
+                    pipelines: (0..p).map(|_| make_pipeline()).collect(),
+                    result_fifo: $crate::system::result_fifo::ResultFifo::new(p, config.result_fifo_depth),
+                    pair_serializer: $crate::system::pair_serializer::PairSerializer::new(p),
+                    pairs_tested_q: Default::default(),
+                    hits_q: Default::default(),
+                    stall_cycles_q: Default::default(),
+                    advance: Default::default(),
+                    bus_id: Default::default(),
+                    bus_coordinates: Default::default(),
+                    hit_mask_chain: (0..=p).map(|_| Default::default()).collect(),
+                    tested_chain: (0..=p).map(|_| Default::default()).collect(),
+                    hit_count_chain: (0..=p).map(|_| Default::default()).collect(),
+                    hit_mask: Default::default(),
+                    tested_count: Default::default(),
+                    hit_count: Default::default(),
+                    any_hit: Default::default(),
+                    _config: config,
+                }
+            }
+
+            pub fn config(&self) -> $crate::system::SystemConfig {
+                self._config
+            }
+        }
+
+        impl<$(const $param: usize),*> $crate::system::host_ports::HostPorts for $name<$($param),*> {
+            fn clock_signal(&mut self) -> &mut Signal<In, Clock> {
+                &mut self.clock
+            }
+            fn set_inputs(&mut self, inputs: &$crate::system::host_ports::HostInputs) {
+                use $crate::system::host_ports::signed_bits;
+                let c = &inputs.in_coordinates;
+                self.reset.next = inputs.reset;
+                self.in_valid.next = inputs.in_valid;
+                self.in_end.next = inputs.in_end;
+                self.in_object.next = inputs.in_object;
+                self.in_id.next = (inputs.in_id as u64).to_bits();
+                self.in_x0.next = signed_bits(c[0]);
+                self.in_y0.next = signed_bits(c[1]);
+                self.in_z0.next = signed_bits(c[2]);
+                self.in_x1.next = signed_bits(c[3]);
+                self.in_y1.next = signed_bits(c[4]);
+                self.in_z1.next = signed_bits(c[5]);
+                self.in_x2.next = signed_bits(c[6]);
+                self.in_y2.next = signed_bits(c[7]);
+                self.in_z2.next = signed_bits(c[8]);
+                self.out_ready.next = inputs.out_ready;
+            }
+            fn outputs(&self) -> $crate::system::host_ports::HostOutputs {
+                $crate::system::host_ports::HostOutputs {
+                    in_ready: self.in_ready.val(),
+                    out_valid: self.out_valid.val(),
+                    out_id_a: self.out_id_a.val().to_u64() as u32,
+                    out_id_b: self.out_id_b.val().to_u64() as u32,
+                    done: self.done.val(),
+                    results_empty: self.results_empty.val(),
+                    overflow: self.overflow.val(),
+                    pairs_tested: self.pairs_tested.val().to_u64() as u32,
+                    hits: self.hits.val().to_u64() as u32,
+                    stall_cycles: self.stall_cycles.val().to_u64() as u32,
+                }
+            }
+            fn system_config(&self) -> $crate::system::SystemConfig {
+                self._config
+            }
+            fn verilog(&self) -> String {
+                generate_verilog(self)
+            }
+        }
+
+        impl<$(const $param: usize),*> Logic for $name<$($param),*> {
+            #[hdl_gen]
+            fn update(&mut self) {
+                dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q);
+
+                // The pipelines' outputs (registers) first: the hit mask and the
+                // counts of this cycle's verdicts, then `advance`, which every
+                // register of the read side uses.
+                self.hit_mask_chain[0].next = 0.into();
+                self.tested_chain[0].next = 0.into();
+                self.hit_count_chain[0].next = 0.into();
+                self.hit_mask.next = 0.into();
+                self.tested_count.next = 0.into();
+                self.hit_count.next = 0.into();
+                for i in 0..self.pipelines.len() {
+                    self.hit_mask_chain[i + 1].next = self.hit_mask_chain[i]
+                        .val()
+                        .replace_bit(i, self.pipelines[i].out_valid.val() & self.pipelines[i].out_hit.val());
+                    self.tested_chain[i + 1].next = self.tested_chain[i].val();
+                    if self.pipelines[i].out_valid.val() {
+                        self.tested_chain[i + 1].next = self.tested_chain[i].val() + 1;
+                    }
+                    self.hit_count_chain[i + 1].next = self.hit_count_chain[i].val();
+                    if self.pipelines[i].out_valid.val() & self.pipelines[i].out_hit.val() {
+                        self.hit_count_chain[i + 1].next = self.hit_count_chain[i].val() + 1;
+                    }
+                    self.hit_mask.next = self.hit_mask_chain[i + 1].val();
+                    self.tested_count.next = self.tested_chain[i + 1].val();
+                    self.hit_count.next = self.hit_count_chain[i + 1].val();
+                }
+                // Back-pressure: hold everything on the read side while the
+                // pipelines' current output has a hit the FIFO cannot take.
+                self.any_hit.next = self.hit_mask.val().any();
+                self.advance.next = !(self.result_fifo.full.val() & self.any_hit.val());
+
+                // Host stream → write side of the address generator and memories.
+                self.address_generator.clock.next = self.clock.val();
+                self.address_generator.reset.next = self.reset.val();
+                self.address_generator.advance.next = self.advance.val();
+                self.address_generator.in_valid.next = self.in_valid.val();
+                self.address_generator.in_end.next = self.in_end.val();
+                self.address_generator.in_object.next = self.in_object.val();
+                self.in_ready.next = self.address_generator.in_ready.val();
+                self.memory_a.clock.next = self.clock.val();
+                self.memory_a.write_enable.next = self.address_generator.a_write_enable.val();
+                self.memory_a.write_address.next = self.address_generator.a_write_address.val();
+                self.memory_a.write_id.next = self.in_id.val();
+                self.memory_a.read_enable.next = self.advance.val();
+                self.memory_a.read_address.next = self.address_generator.a_read_address.val();
+                self.memory_b.clock.next = self.clock.val();
+                self.memory_b.write_enable.next = self.address_generator.b_write_enable.val();
+                self.memory_b.write_address.next = self.address_generator.b_write_address.val();
+                self.memory_b.write_id.next = self.in_id.val();
+                self.memory_b.read_enable.next = self.advance.val();
+                self.memory_b.read_address.next = self.address_generator.b_read_address.val();
+                self.memory_a.write_coordinates[0].next = self.in_x0.val();
+                self.memory_a.write_coordinates[1].next = self.in_y0.val();
+                self.memory_a.write_coordinates[2].next = self.in_z0.val();
+                self.memory_a.write_coordinates[3].next = self.in_x1.val();
+                self.memory_a.write_coordinates[4].next = self.in_y1.val();
+                self.memory_a.write_coordinates[5].next = self.in_z1.val();
+                self.memory_a.write_coordinates[6].next = self.in_x2.val();
+                self.memory_a.write_coordinates[7].next = self.in_y2.val();
+                self.memory_a.write_coordinates[8].next = self.in_z2.val();
+                self.memory_b.write_coordinates[0].next = self.in_x0.val();
+                self.memory_b.write_coordinates[1].next = self.in_y0.val();
+                self.memory_b.write_coordinates[2].next = self.in_z0.val();
+                self.memory_b.write_coordinates[3].next = self.in_x1.val();
+                self.memory_b.write_coordinates[4].next = self.in_y1.val();
+                self.memory_b.write_coordinates[5].next = self.in_z1.val();
+                self.memory_b.write_coordinates[6].next = self.in_x2.val();
+                self.memory_b.write_coordinates[7].next = self.in_y2.val();
+                self.memory_b.write_coordinates[8].next = self.in_z2.val();
+
+                // The shared triangle bus: bases come from A, streamed triangles from B.
+                self.bus_id.next = self.memory_b.read_id.val();
+                for k in 0..9 {
+                    self.bus_coordinates[k].next = self.memory_b.read_coordinates[k].val();
+                }
+                if self.address_generator.bset.val() {
+                    self.bus_id.next = self.memory_a.read_id.val();
+                    for k in 0..9 {
+                        self.bus_coordinates[k].next = self.memory_a.read_coordinates[k].val();
+                    }
+                }
+
+                // P pipelines: own bset/valid each, the same bus, one advance.
+                for i in 0..self.pipelines.len() {
+                    self.pipelines[i].clock.next = self.clock.val();
+                    self.pipelines[i].reset.next = self.reset.val();
+                    self.pipelines[i].advance.next = self.advance.val();
+                    self.pipelines[i].in_valid.next = self.address_generator.lane_valid[i].val();
+                    self.pipelines[i].in_bset.next = self.address_generator.bset.val();
+                    self.pipelines[i].in_id.next = self.bus_id.val();
+                    self.pipelines[i].in_x0.next = self.bus_coordinates[0].val();
+                    self.pipelines[i].in_y0.next = self.bus_coordinates[1].val();
+                    self.pipelines[i].in_z0.next = self.bus_coordinates[2].val();
+                    self.pipelines[i].in_x1.next = self.bus_coordinates[3].val();
+                    self.pipelines[i].in_y1.next = self.bus_coordinates[4].val();
+                    self.pipelines[i].in_z1.next = self.bus_coordinates[5].val();
+                    self.pipelines[i].in_x2.next = self.bus_coordinates[6].val();
+                    self.pipelines[i].in_y2.next = self.bus_coordinates[7].val();
+                    self.pipelines[i].in_z2.next = self.bus_coordinates[8].val();
+                    self.result_fifo.write_base_ids[i].next = self.pipelines[i].out_base_id.val();
+                    self.pair_serializer.head_base_ids[i].next = self.result_fifo.head_base_ids[i].val();
+                }
+
+                self.result_fifo.clock.next = self.clock.val();
+                self.result_fifo.reset.next = self.reset.val();
+                self.result_fifo.write.next = self.advance.val() & self.any_hit.val();
+                self.result_fifo.write_mask.next = self.hit_mask.val();
+                self.result_fifo.write_stream_id.next = self.pipelines[0].out_stream_id.val();
+                self.result_fifo.pop.next = self.pair_serializer.pop.val();
+                self.pair_serializer.clock.next = self.clock.val();
+                self.pair_serializer.reset.next = self.reset.val();
+                self.pair_serializer.head_valid.next = self.result_fifo.head_valid.val();
+                self.pair_serializer.head_mask.next = self.result_fifo.head_mask.val();
+                self.pair_serializer.head_stream_id.next = self.result_fifo.head_stream_id.val();
+                self.pair_serializer.out_ready.next = self.out_ready.val();
+                self.out_valid.next = self.pair_serializer.out_valid.val();
+                self.out_id_a.next = self.pair_serializer.out_id_a.val();
+                self.out_id_b.next = self.pair_serializer.out_id_b.val();
+
+                // Status and counters.
+                self.done.next = self.address_generator.done.val();
+                self.results_empty.next = self.result_fifo.empty.val();
+                self.overflow.next = self.address_generator.overflow.val();
+                if self.advance.val() {
+                    self.pairs_tested_q.d.next = self.pairs_tested_q.q.val()
+                        + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
+                            self.tested_count.val(),
+                        );
+                    self.hits_q.d.next = self.hits_q.q.val()
+                        + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
+                            self.hit_count.val(),
+                        );
+                } else {
+                    self.stall_cycles_q.d.next = self.stall_cycles_q.q.val() + 1;
+                }
+                if self.reset.val() {
+                    self.pairs_tested_q.d.next = 0.into();
+                    self.hits_q.d.next = 0.into();
+                    self.stall_cycles_q.d.next = 0.into();
+                }
+                self.pairs_tested.next = self.pairs_tested_q.q.val();
+                self.hits.next = self.hits_q.q.val();
+                self.stall_cycles.next = self.stall_cycles_q.q.val();
+            }
+        }
+    };
+}
+
+collision_system!(
+    /// The system with stub pipelines (see [`StubPipeline`]).
+    pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> }
+);
+
+impl<const W: usize> StubCollisionSystem<W> {
+    /// The system with stub pipelines of latency `config.pipeline_latency`.
+    pub fn with_stub_pipelines(config: crate::system::SystemConfig) -> Self {
+        let latency = config.pipeline_latency;
+        Self::new(config, || StubPipeline::new(latency))
+    }
+}
+
+collision_system!(
+    /// The system with the Devillers–Guigue pipelines (concrete widths:
+    /// [`super::system_for_width`]).
+    pub struct CollisionSystem<const W: usize, const D: usize, const C: usize, const O: usize> {
+        coordinate_bits: W,
+        pipeline: TrianglePipeline<W, D, C, O>
+    }
+);
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> CollisionSystem<W, D, C, O> {
+    /// The system with real pipelines; `config.pipeline_latency` must be the
+    /// pipeline's latency.
+    pub fn with_pipelines(config: crate::system::SystemConfig) -> Self {
+        assert_eq!(config.pipeline_latency, latency(), "the pipeline's latency is {}", latency());
+        Self::new(config, TrianglePipeline::new)
+    }
+}

@@ -1,0 +1,109 @@
+//! A simple dual-port memory: one write port and one registered read port
+//! on one clock, the shape FPGA block RAMs implement directly.
+//!
+//! * Write: when `write_enable` is high at a rising edge, `write_data` is
+//!   stored at `write_address`.
+//! * Read: when `read_enable` is high at a rising edge, `read_data` takes
+//!   the word at `read_address` as it was before that edge (read-first);
+//!   with `read_enable` low it holds, which is how a stalled reader keeps
+//!   its data.
+//!
+//! The depth (`words`) is a run-time generator parameter; the address is
+//! `A` bits wide. The simulation model is a `Vec`, so a large memory costs
+//! nothing per cycle.
+
+use rust_hdl::prelude::*;
+
+#[derive(LogicBlock)]
+pub struct SimpleDualPortRam<T: Synth, const A: usize> {
+    pub clock: Signal<In, Clock>,
+    pub write_enable: Signal<In, Bit>,
+    pub write_address: Signal<In, Bits<A>>,
+    pub write_data: Signal<In, T>,
+    pub read_enable: Signal<In, Bit>,
+    pub read_address: Signal<In, Bits<A>>,
+    pub read_data: Signal<Out, T>,
+    _memory: Vec<T>,
+}
+
+impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
+    pub fn new(words: usize) -> Self {
+        assert!(words >= 1 && words <= 1 << A, "a RAM of {words} words needs more than {A} address bits");
+        SimpleDualPortRam {
+            clock: Default::default(),
+            write_enable: Default::default(),
+            write_address: Default::default(),
+            write_data: Default::default(),
+            read_enable: Default::default(),
+            read_address: Default::default(),
+            read_data: Default::default(),
+            _memory: vec![T::default(); words],
+        }
+    }
+
+    pub fn words(&self) -> usize {
+        self._memory.len()
+    }
+}
+
+impl<T: Synth, const A: usize> Logic for SimpleDualPortRam<T, A> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() {
+            if self.read_enable.val() {
+                let address = self.read_address.val().index();
+                self.read_data.next = self._memory.get(address).copied().unwrap_or_default();
+            }
+            if self.write_enable.val() {
+                let address = self.write_address.val().index();
+                if let Some(word) = self._memory.get_mut(address) {
+                    *word = self.write_data.val();
+                }
+            }
+        }
+    }
+
+    fn connect(&mut self) {
+        self.read_data.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let words = self._memory.len();
+        let data_range = if T::BITS == 1 { String::new() } else { format!("[{}:0] ", T::BITS - 1) };
+        // The memory is indexed with just the address bits it needs.
+        let index_bits = (usize::BITS - (words.max(2) - 1).leading_zeros()) as usize;
+        let (write_index, read_index, unused) = if index_bits < A {
+            (
+                format!("write_address[{}:0]", index_bits - 1),
+                format!("read_address[{}:0]", index_bits - 1),
+                format!(
+                    "\n// Address bits above the depth are always zero.\n\
+                     // verilator lint_off UNUSEDSIGNAL\n\
+                     wire unused_address_bits = ^{{write_address[{hi}:{lo}], read_address[{hi}:{lo}]}};\n\
+                     // verilator lint_on UNUSEDSIGNAL\n",
+                    hi = A - 1,
+                    lo = index_bits
+                ),
+            )
+        } else {
+            ("write_address".to_string(), "read_address".to_string(), String::new())
+        };
+        Verilog::Custom(format!(
+            "\
+// Simple dual-port RAM: {words} words of {bits} bit(s), read-first,
+// registered read with enable (block RAM inference).
+reg {data_range}memory [0:{last}];
+{unused}
+always @(posedge clock) begin
+    if (write_enable) begin
+        memory[{write_index}] <= write_data;
+    end
+    if (read_enable) begin
+        read_data <= memory[{read_index}];
+    end
+end
+",
+            bits = T::BITS,
+            last = words - 1,
+        ))
+    }
+}

@@ -1,0 +1,158 @@
+//! The result FIFO: one word per cycle in which at least one of the `P`
+//! pipelines reported a hit. A word is the `P`-bit hit mask, the streamed
+//! triangle's id (the same for every pipeline, since B is broadcast) and
+//! the `P` base ids, so `P` hits in one cycle cost one write and nothing
+//! has to be dropped or serialized on the pipelines' side.
+//!
+//! Columns are [`SimpleDualPortRam`]s sharing the pointers. The head is
+//! shown first-word-fall-through: `head_valid` with the head word on
+//! `head_*`, removed by `pop`. Because the memory reads one cycle late, a
+//! word becomes readable two cycles after its write (`readable` counts the
+//! words written at least one edge before the read), while `full` counts
+//! every stored word: `write` must stay low while `full` is high.
+
+use super::dual_port_ram::SimpleDualPortRam;
+use super::{FIFO_POINTER_BITS, ID_BITS, MAX_PIPELINES};
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+#[derive(LogicBlock)]
+pub struct ResultFifo {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub write: Signal<In, Bit>,
+    pub write_mask: Signal<In, Bits<MAX_PIPELINES>>,
+    pub write_stream_id: Signal<In, Bits<ID_BITS>>,
+    pub write_base_ids: Vec<Signal<In, Bits<ID_BITS>>>,
+    pub full: Signal<Out, Bit>,
+    /// No word stored (readable or not).
+    pub empty: Signal<Out, Bit>,
+    pub pop: Signal<In, Bit>,
+    pub head_valid: Signal<Out, Bit>,
+    pub head_mask: Signal<Out, Bits<MAX_PIPELINES>>,
+    pub head_stream_id: Signal<Out, Bits<ID_BITS>>,
+    pub head_base_ids: Vec<Signal<Out, Bits<ID_BITS>>>,
+    depth: Constant<Bits<FIFO_POINTER_BITS>>,
+    last_address: Constant<Bits<FIFO_POINTER_BITS>>,
+    mask_column: SimpleDualPortRam<Bits<MAX_PIPELINES>, FIFO_POINTER_BITS>,
+    stream_id_column: SimpleDualPortRam<Bits<ID_BITS>, FIFO_POINTER_BITS>,
+    base_id_columns: Vec<SimpleDualPortRam<Bits<ID_BITS>, FIFO_POINTER_BITS>>,
+    write_pointer: DFF<Bits<FIFO_POINTER_BITS>>,
+    read_pointer: DFF<Bits<FIFO_POINTER_BITS>>,
+    count: DFF<Bits<FIFO_POINTER_BITS>>,
+    readable: DFF<Bits<FIFO_POINTER_BITS>>,
+    wrote: DFF<Bit>,
+    do_write: Signal<Local, Bit>,
+    do_pop: Signal<Local, Bit>,
+    next_read_pointer: Signal<Local, Bits<FIFO_POINTER_BITS>>,
+}
+
+impl ResultFifo {
+    /// `depth` words of `pipelines` lanes each.
+    pub fn new(pipelines: usize, depth: usize) -> Self {
+        assert!((1..=MAX_PIPELINES).contains(&pipelines));
+        assert!(depth >= 2 && depth < 1 << (FIFO_POINTER_BITS - 1));
+        ResultFifo {
+            clock: Default::default(),
+            reset: Default::default(),
+            write: Default::default(),
+            write_mask: Default::default(),
+            write_stream_id: Default::default(),
+            write_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
+            full: Default::default(),
+            empty: Default::default(),
+            pop: Default::default(),
+            head_valid: Default::default(),
+            head_mask: Default::default(),
+            head_stream_id: Default::default(),
+            head_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
+            depth: Constant::new((depth as u64).to_bits()),
+            last_address: Constant::new(((depth - 1) as u64).to_bits()),
+            mask_column: SimpleDualPortRam::new(depth),
+            stream_id_column: SimpleDualPortRam::new(depth),
+            base_id_columns: (0..pipelines).map(|_| SimpleDualPortRam::new(depth)).collect(),
+            write_pointer: Default::default(),
+            read_pointer: Default::default(),
+            count: Default::default(),
+            readable: Default::default(),
+            wrote: Default::default(),
+            do_write: Default::default(),
+            do_pop: Default::default(),
+            next_read_pointer: Default::default(),
+        }
+    }
+}
+
+impl Logic for ResultFifo {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, write_pointer, read_pointer, count, readable, wrote);
+        self.full.next = self.count.q.val() == self.depth.val();
+        self.empty.next = self.count.q.val() == 0;
+        self.head_valid.next = self.readable.q.val() != 0;
+        self.do_write.next = self.write.val() & !self.full.val();
+        self.do_pop.next = self.pop.val() & self.head_valid.val();
+        self.next_read_pointer.next = self.read_pointer.q.val();
+        if self.do_pop.val() {
+            if self.read_pointer.q.val() == self.last_address.val() {
+                self.next_read_pointer.next = 0.into();
+            } else {
+                self.next_read_pointer.next = self.read_pointer.q.val() + 1;
+            }
+        }
+        self.read_pointer.d.next = self.next_read_pointer.val();
+        if self.do_write.val() {
+            if self.write_pointer.q.val() == self.last_address.val() {
+                self.write_pointer.d.next = 0.into();
+            } else {
+                self.write_pointer.d.next = self.write_pointer.q.val() + 1;
+            }
+        }
+        if self.do_write.val() & !self.do_pop.val() {
+            self.count.d.next = self.count.q.val() + 1;
+        }
+        if !self.do_write.val() & self.do_pop.val() {
+            self.count.d.next = self.count.q.val() - 1;
+        }
+        if self.wrote.q.val() & !self.do_pop.val() {
+            self.readable.d.next = self.readable.q.val() + 1;
+        }
+        if !self.wrote.q.val() & self.do_pop.val() {
+            self.readable.d.next = self.readable.q.val() - 1;
+        }
+        self.wrote.d.next = self.do_write.val();
+
+        // The columns: written at the write pointer, read at the next head.
+        self.mask_column.clock.next = self.clock.val();
+        self.mask_column.write_enable.next = self.do_write.val();
+        self.mask_column.write_address.next = self.write_pointer.q.val();
+        self.mask_column.write_data.next = self.write_mask.val();
+        self.mask_column.read_enable.next = true;
+        self.mask_column.read_address.next = self.next_read_pointer.val();
+        self.head_mask.next = self.mask_column.read_data.val();
+        self.stream_id_column.clock.next = self.clock.val();
+        self.stream_id_column.write_enable.next = self.do_write.val();
+        self.stream_id_column.write_address.next = self.write_pointer.q.val();
+        self.stream_id_column.write_data.next = self.write_stream_id.val();
+        self.stream_id_column.read_enable.next = true;
+        self.stream_id_column.read_address.next = self.next_read_pointer.val();
+        self.head_stream_id.next = self.stream_id_column.read_data.val();
+        for i in 0..self.base_id_columns.len() {
+            self.base_id_columns[i].clock.next = self.clock.val();
+            self.base_id_columns[i].write_enable.next = self.do_write.val();
+            self.base_id_columns[i].write_address.next = self.write_pointer.q.val();
+            self.base_id_columns[i].write_data.next = self.write_base_ids[i].val();
+            self.base_id_columns[i].read_enable.next = true;
+            self.base_id_columns[i].read_address.next = self.next_read_pointer.val();
+            self.head_base_ids[i].next = self.base_id_columns[i].read_data.val();
+        }
+
+        if self.reset.val() {
+            self.write_pointer.d.next = 0.into();
+            self.read_pointer.d.next = 0.into();
+            self.count.d.next = 0.into();
+            self.readable.d.next = 0.into();
+            self.wrote.d.next = false;
+        }
+    }
+}

@@ -1,0 +1,56 @@
+//! The concrete system tops, one per supported coordinate width, and
+//! run-time selection among them (as [`crate::configurations`] does for the
+//! pipeline alone).
+//!
+//! ```
+//! use tritri_rtl::system::system_for_width::{system_for_config, PipelineKind};
+//! use tritri_rtl::system::SystemConfig;
+//! let config = SystemConfig::new(24, 2, 5).with_depth(16);
+//! let system = system_for_config(config, PipelineKind::Stub).unwrap();
+//! assert_eq!(system.system_config().pipelines, 2);
+//! ```
+
+use super::collision_system::{CollisionSystem, StubCollisionSystem};
+use super::host_ports::HostPorts;
+use super::SystemConfig;
+pub use crate::configurations::UnsupportedWidth;
+use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+
+/// Which pipelines the system holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PipelineKind {
+    /// The Devillers–Guigue pipeline (`config.pipeline_latency` must be its latency).
+    Real,
+    /// [`super::stub_pipeline::StubPipeline`] of latency `config.pipeline_latency`.
+    Stub,
+}
+
+macro_rules! system_widths {
+    ($($w:literal => $name:ident),* $(,)?) => {
+        $(
+            #[doc = concat!("The system for ", stringify!($w), "-bit coordinates.")]
+            pub type $name = CollisionSystem<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>;
+        )*
+
+        /// A new system for `config` (unconnected: the harness connects it).
+        pub fn system_for_config(config: SystemConfig, kind: PipelineKind) -> Result<Box<dyn HostPorts>, UnsupportedWidth> {
+            match (config.coordinate_bits, kind) {
+                $(
+                    ($w, PipelineKind::Real) => Ok(Box::new($name::with_pipelines(config))),
+                    ($w, PipelineKind::Stub) => Ok(Box::new(StubCollisionSystem::<$w>::with_stub_pipelines(config))),
+                )*
+                (w, _) => Err(UnsupportedWidth(w)),
+            }
+        }
+    };
+}
+
+system_widths!(
+    8 => CollisionSystemW8,
+    12 => CollisionSystemW12,
+    16 => CollisionSystemW16,
+    20 => CollisionSystemW20,
+    24 => CollisionSystemW24,
+    28 => CollisionSystemW28,
+    32 => CollisionSystemW32,
+);

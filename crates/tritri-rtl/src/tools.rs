@@ -1,0 +1,81 @@
+//! The external tools the project drives (Icarus Verilog, Verilator,
+//! Yosys): finding them and running them with errors that say what to do.
+//!
+//! A missing tool is always an error naming the tool and the Debian package
+//! that provides it, never a silent pass.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A tool and the Debian package it comes in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tool {
+    pub program: &'static str,
+    pub package: &'static str,
+}
+
+pub const IVERILOG: Tool = Tool { program: "iverilog", package: "iverilog" };
+pub const VVP: Tool = Tool { program: "vvp", package: "iverilog" };
+pub const VERILATOR: Tool = Tool { program: "verilator", package: "verilator" };
+pub const YOSYS: Tool = Tool { program: "yosys", package: "yosys" };
+
+#[derive(Debug, thiserror::Error)]
+pub enum ToolError {
+    #[error("`{program}` was not found on PATH; install it with `apt-get install {package}`")]
+    Missing { program: &'static str, package: &'static str },
+    #[error("`{command}` failed ({status}):\n{output}")]
+    Failed { command: String, status: String, output: String },
+    #[error("running `{command}`: {source}")]
+    Io { command: String, source: std::io::Error },
+}
+
+impl Tool {
+    /// The tool's path on PATH, or [`ToolError::Missing`].
+    pub fn locate(&self) -> Result<PathBuf, ToolError> {
+        let path = std::env::var_os("PATH").unwrap_or_default();
+        for dir in std::env::split_paths(&path) {
+            let candidate = dir.join(self.program);
+            if is_executable(&candidate) {
+                return Ok(candidate);
+            }
+        }
+        Err(ToolError::Missing { program: self.program, package: self.package })
+    }
+
+    /// A command for the tool (after checking it exists).
+    pub fn command(&self) -> Result<Command, ToolError> {
+        Ok(Command::new(self.locate()?))
+    }
+}
+
+fn is_executable(path: &Path) -> bool {
+    use std::os::unix::fs::PermissionsExt;
+    path.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+}
+
+/// Runs `command`; a non-zero exit is an error carrying stdout and stderr
+/// (the last 200 lines).
+pub fn run(command: &mut Command) -> Result<Output, ToolError> {
+    let description = format!("{command:?}").replace('"', "");
+    let output = command.output().map_err(|source| ToolError::Io { command: description.clone(), source })?;
+    if !output.status.success() {
+        let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+        let lines: Vec<&str> = text.lines().collect();
+        let tail = lines[lines.len().saturating_sub(200)..].join("\n");
+        return Err(ToolError::Failed { command: description, status: output.status.to_string(), output: tail });
+    }
+    Ok(output)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tool that does not exist is reported with its package name.
+    #[test]
+    fn missing_tool_names_the_package() {
+        let tool = Tool { program: "tritri-no-such-tool", package: "tritri-no-such-package" };
+        let message = tool.locate().unwrap_err().to_string();
+        assert!(message.contains("tritri-no-such-tool") && message.contains("apt-get install tritri-no-such-package"));
+    }
+}
