@@ -44,7 +44,10 @@ enum ArithName {
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let arith = match (args.arith, args.width) {
         (ArithName::Fixed, width) => Arithmetic::Fixed(width.unwrap_or(DEFAULT_WIDTH)),
-        (_, Some(w)) => anyhow::bail!("--width {w} applies only to --arith fixed"),
+        (_, Some(w)) => {
+            eprintln!("error: --width {w} applies only to --arith fixed");
+            return Ok(ExitCode::from(2));
+        }
         (ArithName::Exact, None) => Arithmetic::Exact,
         (ArithName::F64, None) => Arithmetic::F64,
         (ArithName::F32, None) => Arithmetic::F32,

@@ -90,7 +90,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut batches = Vec::new();
     for name in &args.files {
         if let Some(selector) = name.strip_prefix('@') {
-            batches.extend(suite_batches(selector)?);
+            match suite_batches(selector) {
+                Ok(b) => batches.extend(b),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return Ok(ExitCode::from(2));
+                }
+            }
             continue;
         }
         let loaded = input::load(Path::new(name));
@@ -161,7 +167,9 @@ fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> an
         if let Arithmetic::Fixed(width) = arith {
             let (_, quantized) = quantize_pairs(pairs, width)?;
             kernel_ns_per_pair = Some(time_per_pair(pairs.len(), min_time, || {
-                black_box(black_box(&quantized).iter().map(|q| fixed_point::intersects(&q[0], &q[1])).collect::<Vec<_>>());
+                black_box(
+                    black_box(&quantized).iter().map(|q| fixed_point::intersects(&q[0], &q[1])).collect::<Vec<_>>(),
+                );
             }));
             let as_f64 = |t: &fixed_point::FixedTriangle| t.map(|p| p.map(|c| c as f64));
             let on_grid = quantized.iter().map(|q| exact_f64::intersects(&as_f64(&q[0]), &as_f64(&q[1])));
@@ -243,7 +251,8 @@ fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
                 false_negatives: sum(&|r| r.false_negatives),
                 ns_per_pair: weighted(&|r| Some(r.rows[i].ns_per_pair)).unwrap_or(0.0),
                 kernel_ns_per_pair: weighted(&|r| r.rows[i].kernel_ns_per_pair),
-                grid_exact_disagreements: matches!(a, Arithmetic::Fixed(_)).then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
+                grid_exact_disagreements: matches!(a, Arithmetic::Fixed(_))
+                    .then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
                 step: None,
             }
         })

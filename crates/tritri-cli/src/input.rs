@@ -41,7 +41,8 @@ pub fn load(path: &Path) -> Loaded {
 /// clap value parser for a coordinate width: names the value when it is
 /// out of range.
 pub fn parse_width(s: &str) -> Result<u32, String> {
-    let w: u32 = s.trim().parse().map_err(|_| format!("`{s}` is not a width (an integer from {MIN_WIDTH} to {MAX_WIDTH})"))?;
+    let w: u32 =
+        s.trim().parse().map_err(|_| format!("`{s}` is not a width (an integer from {MIN_WIDTH} to {MAX_WIDTH})"))?;
     FixedWidths::new(w).map_err(|e| e.to_string())?;
     Ok(w)
 }

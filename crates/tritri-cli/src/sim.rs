@@ -13,8 +13,14 @@
 //! with polygons split into fans (`--indices faces` reports face indices
 //! instead, deduplicated).
 //!
+//! Engines: `model` is the bit-exact fixed-point model with the system's
+//! exact cycle model; `rusthdl` simulates the system (memories, address
+//! generator, P Devillers–Guigue pipelines, result FIFO) in rust-hdl and
+//! `verilator` runs its emitted Verilog, both cycle by cycle (slow: use
+//! small scenes), reporting the simulated cycle count.
+//!
 //! Exit status: 0 done; 1 the engine disagrees with the exact model on the
-//! quantized coordinates (a bug); 2 a scene file cannot be read (the error
+//! quantized coordinates, or its cycle count with the cycle model (a bug); 2 a scene file cannot be read (the error
 //! names the file and line), the arrays exceed D with `--no-split`, or bad
 //! usage.
 
@@ -28,7 +34,10 @@ use std::process::ExitCode;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
-use tritri_geom::scene::{prepare, PreparedScene};
+use tritri_cosim::stream::IdTriangle;
+use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
+use tritri_cosim::system_verilator::run_system_verilator;
+use tritri_geom::scene::{prepare, Batch, PreparedScene, TaggedTriangle};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -54,9 +63,9 @@ pub struct Args {
 enum Engine {
     /// The bit-exact fixed-point model and the cycle model.
     Model,
-    /// The rust-hdl simulation of the system.
+    /// The rust-hdl simulation of the system (cycle by cycle; slow).
     Rusthdl,
-    /// The emitted Verilog of the system in Verilator.
+    /// The emitted Verilog of the system in Verilator (cycle by cycle).
     Verilator,
 }
 
@@ -103,31 +112,58 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     print_filter(&mut report, &args, &scene, &common)?;
 
     let pairs_tested = scene.pairs_tested();
-    let (pairs, cycles, engine_name) = match args.engine {
+    let mut status = ExitCode::SUCCESS;
+    let (pairs, cycles, engine_name, notes) = match args.engine {
         Engine::Model => {
             let bar = progress_bar(pairs_tested);
             let pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
             bar.finish_and_clear();
             let cycles = args.hardware.cycles(&scene.batches());
-            (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)")
+            (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)", None)
         }
         Engine::Rusthdl | Engine::Verilator => {
-            // TODO(lead): once the system with the real triangle pipeline exists (today
-            // tritri_cosim::system_harness has run_stub_system / run_system_on with stub
-            // pipelines only), run it here: convert each scene::Batch to
-            // system_harness::Batch (IdTriangle { id, triangle } per TaggedTriangle, ids are
-            // the original triangle indices), call it with args.hardware.system_config(),
-            // overlap = true, ReaderBehaviour::AlwaysReady, and report SystemResult's
-            // pairs (deduplicate across tiles), cycles (check = args.hardware.cycles(..)
-            // when stall_cycles == 0) and stall_cycles; Verilator likewise.
-            eprintln!(
-                "error: --engine {:?} is not wired yet (the system with the real pipeline has not landed); use --engine model",
-                args.engine
+            let config = args.hardware.system_config();
+            let batches: Vec<harness::Batch> = scene.batches().iter().map(to_harness_batch).collect();
+            let spinner = spinner(pairs_tested, args.engine);
+            let result = match args.engine {
+                Engine::Rusthdl => harness::run_system(config, &batches, ReaderBehaviour::AlwaysReady),
+                _ => run_system_verilator(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady),
+            };
+            spinner.finish_and_clear();
+            let result = match result {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("error: --engine {:?}: {e:#}", args.engine);
+                    return Ok(ExitCode::from(2));
+                }
+            };
+            let model_cycles = args.hardware.cycles(&scene.batches());
+            let mut notes = format!(
+                "{} pairs tested by the hardware's counter (wraps at 2^32), {} hits, {} stall cycles; cycle model {model_cycles}",
+                result.pairs_tested, result.hits, result.stall_cycles
             );
-            return Ok(ExitCode::from(2));
+            if result.overflow {
+                notes.push_str("; OVERFLOW flag set (an array exceeded the memory depth)");
+                status = ExitCode::from(1);
+            }
+            if result.stall_cycles == 0 && result.cycles != model_cycles {
+                notes.push_str(" (DIFFERS from the simulated count: a bug)");
+                status = ExitCode::from(1);
+            }
+            // Tiles partition the pairs, so a pair comes once; the set also
+            // drops any repeat.
+            let pairs: PairSet = result.pairs.iter().copied().collect();
+            let name = match args.engine {
+                Engine::Rusthdl => "rusthdl (rust-hdl simulation of the system)",
+                _ => "verilator (the emitted Verilog of the system)",
+            };
+            (pairs, result.cycles, name, Some(notes))
         }
     };
     writeln!(report, "engine: {engine_name}")?;
+    if let Some(notes) = notes {
+        writeln!(report, "hardware: {notes}")?;
+    }
     writeln!(report, "intersecting pairs: {}", pairs.len())?;
     let time = args.hardware.time_of(cycles);
     writeln!(
@@ -140,7 +176,6 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     )?;
     write_pairs(&args, &a, &b, &pairs)?;
 
-    let mut status = ExitCode::SUCCESS;
     if !args.no_compare {
         let quantized = quantized_exact_pairs(&scene.batches());
         let same = PairDiff::between(&quantized, &pairs);
@@ -252,6 +287,23 @@ fn examples(diff: &PairDiff) -> String {
         }
     };
     format!("{}{}", show("missing", &diff.missing), show("extra", &diff.extra))
+}
+
+/// The batches as the system harness takes them (ids: original triangle indices).
+fn to_harness_batch(batch: &Batch) -> harness::Batch {
+    let tag = |ts: &[TaggedTriangle]| ts.iter().map(|t| IdTriangle { id: t.id, triangle: t.triangle }).collect();
+    harness::Batch { a: tag(batch.a), b: tag(batch.b) }
+}
+
+/// A spinner while a hardware simulation runs (they report no progress).
+fn spinner(pairs: u64, engine: Engine) -> ProgressBar {
+    if pairs < 10_000 {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new_spinner();
+    bar.set_message(format!("simulating {pairs} pairs ({engine:?})"));
+    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+    bar
 }
 
 fn progress_bar(total: u64) -> ProgressBar {

@@ -146,3 +146,28 @@ fn chapter5_prints_one_row_per_share() {
         assert!(share >= target && share < target + 10.0, "{row}");
     }
 }
+
+/// The rust-hdl simulation of the system gives the same pairs and the same
+/// cycle count as the model engine, on a tiled scene with degenerate
+/// triangles (several batches through the two banks).
+#[test]
+fn rusthdl_engine_agrees_with_the_model() {
+    let a = scratch("ra.off", "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 0\n1 1 0\n3 0 1 2\n3 3 3 3\n3 0 4 4\n4 0 1 4 2\n");
+    let b = scratch("rb.obj", "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n");
+    let (model, hdl) = (scratch_path("model.txt"), scratch_path("hdl.txt"));
+    let run = |engine: &str, out: &PathBuf| {
+        let o = tritri(&[
+            "sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", "2", "--engine", engine, "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{engine}: {}", text(&o.stderr));
+        let report = text(&o.stdout);
+        assert!(report.contains(": equal"), "{report}");
+        report.lines().find(|l| l.starts_with("cycles:")).unwrap().to_string()
+    };
+    let (cycles_model, cycles_hdl) = (run("model", &model), run("rusthdl", &hdl));
+    assert_eq!(cycles_model, cycles_hdl);
+    let pairs = std::fs::read_to_string(&model).unwrap();
+    assert!(!pairs.is_empty());
+    assert_eq!(pairs, std::fs::read_to_string(&hdl).unwrap());
+}

@@ -4,7 +4,7 @@
 //! holds the whole pipeline; `reset` clears the valid bits.
 //!
 //! Scale: `TRITRI_PAIRS` (default 20 000) random pairs per width; the hard
-//! case suite runs every 8th case unless `TRITRI_HARD_CASES=all`. For
+//! case suite runs every 16th case unless `TRITRI_HARD_CASES=all`. For
 //! 100 000 pairs and more, see `examples/rusthdl_throughput.rs`.
 
 use rand::{Rng, SeedableRng};
@@ -107,8 +107,32 @@ fn extreme_groups(width: usize, seed: u64, bases: usize, streamed: usize) -> Vec
     let min = -(1i64 << (width - 1));
     let values = [min, max, 0, 1, -1, min + 1, max - 1, max / 2, min / 2];
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut pick = |rng: &mut ChaCha8Rng| [0; 3].map(|_| [0; 3].map(|_| values[rng.gen_range(0..values.len())]));
+    let pick = |rng: &mut ChaCha8Rng| [0; 3].map(|_| [0; 3].map(|_| values[rng.gen_range(0..values.len())]));
     (0..bases).map(|_| (pick(&mut rng), (0..streamed).map(|_| pick(&mut rng)).collect())).collect()
+}
+
+/// Triangles on one integer plane per group, `h = a u + b v + c` with the
+/// height `h` along a random axis and small slopes: coplanar pairs with
+/// every dominant axis (ties included), touching and overlapping often.
+fn coplanar_integer_groups(seed: u64, bases: usize, streamed: usize) -> Vec<(FixedTriangle, Vec<FixedTriangle>)> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..bases)
+        .map(|_| {
+            let (a, b, c, h) = (rng.gen_range(-2..=2), rng.gen_range(-2..=2), rng.gen_range(-2..=2), rng.gen_range(0..3));
+            let on_plane = |rng: &mut ChaCha8Rng| -> FixedTriangle {
+                [0; 3].map(|_| {
+                    let (u, v) = (rng.gen_range(-3i64..=3), rng.gen_range(-3i64..=3));
+                    let mut p = [0; 3];
+                    p[(h + 1) % 3] = u;
+                    p[(h + 2) % 3] = v;
+                    p[h] = a * u + b * v + c;
+                    p
+                })
+            };
+            let base = on_plane(&mut rng);
+            (base, (0..streamed).map(|_| on_plane(&mut rng)).collect())
+        })
+        .collect()
 }
 
 /// All 72 orderings of a pair as 12 groups (6 bases, each against the 6
@@ -192,18 +216,20 @@ fn hand_made_cases_in_all_orderings() {
     }
 }
 
-/// Small random integer triangles (every branch, many ties) and triangles
-/// at the extremes of the coordinate range (widest intermediate values).
+/// Small random integer triangles (every branch, many ties), triangles on
+/// common integer planes, and triangles at the extremes of the coordinate
+/// range (widest intermediate values).
 #[test]
-fn small_and_extreme_integer_triangles() {
+fn small_coplanar_and_extreme_integer_triangles() {
     for width in [8, 24, 32] {
         let mut pipeline = pipeline_for_width(width).unwrap();
         let mut check = Check::default();
         for (seed, range) in [(1, 1), (2, 2), (3, 3)] {
             check.run(pipeline.as_mut(), &small_integer_groups(seed + width as u64, range, 8, 250));
         }
+        check.run(pipeline.as_mut(), &coplanar_integer_groups(40 + width as u64, 8, 250));
         check.run(pipeline.as_mut(), &extreme_groups(width, 7, 8, 250));
-        check.report_and_assert(&format!("small and extreme integers, W = {width}"));
+        check.report_and_assert(&format!("small, coplanar and extreme integers, W = {width}"));
     }
 }
 
@@ -214,7 +240,7 @@ fn quantized_random(width: usize) {
     let mut pipeline = pipeline_for_width(width).unwrap();
     let mut check = Check::default();
     let start = std::time::Instant::now();
-    for (i, raw) in [random_pairs(pairs / 40 + 1, 11), random_near_degenerate_pairs(pairs / 40 + 1, 12)].iter().enumerate() {
+    for raw in [random_pairs(pairs / 40 + 1, 11), random_near_degenerate_pairs(pairs / 40 + 1, 12)] {
         let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32).unwrap();
         let n1 = 20;
         let groups: Vec<_> = raw
@@ -223,7 +249,6 @@ fn quantized_random(width: usize) {
             .map(|b| (frame.quantize(&b.t1), raw.iter().map(|p| frame.quantize(&p.t2)).collect::<Vec<_>>()))
             .collect();
         check.run(pipeline.as_mut(), &groups);
-        let _ = i;
     }
     let elapsed = start.elapsed().as_secs_f64();
     check.report_and_assert(&format!("quantized random pairs, W = {width}"));
@@ -252,7 +277,7 @@ fn hard_case_suite_in_all_orderings_w24() {
     let width = 24;
     let all = std::env::var("TRITRI_HARD_CASES").map(|v| v == "all").unwrap_or(false);
     let suite = hard_case_suite();
-    let step = if all { 1 } else { 8 };
+    let step = if all { 1 } else { 16 };
     let mut pipeline = pipeline_for_width(width).unwrap();
     let mut check = Check::default();
     for case in suite.iter().step_by(step) {
@@ -363,6 +388,22 @@ fn reset_clears_valid_bits() {
     let mut check = Check::default();
     check.run(p, &groups);
     check.report_and_assert("after reset");
+}
+
+/// A VCD trace of a small run is written and names the top's ports.
+#[test]
+fn vcd_trace_of_a_small_run() {
+    let path = std::env::temp_dir().join(format!("tritri_rusthdl_{}.vcd", std::process::id()));
+    let t = [[0, 0, 0], [8, 0, 0], [0, 8, 0]];
+    let stream = TriangleStream::from_triangles(&[t], &[t, [[9, 9, 9], [9, 9, 10], [9, 10, 9]]]);
+    let options = HarnessOptions { vcd: Some(path.clone()) };
+    let result = tritri_cosim::rusthdl_harness::run_stream(16, &stream, &options).unwrap();
+    assert_eq!(result.verdicts.iter().map(|v| v.hit).collect::<Vec<_>>(), vec![true, false]);
+    assert_eq!(result.cycles, 3 + latency() as u64);
+    let vcd = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    assert!(vcd.contains("$enddefinitions") && vcd.contains("out_hit") && vcd.contains("in_bset"));
+    assert!(vcd.lines().filter(|l| l.starts_with('#')).count() >= 2 * result.cycles as usize);
 }
 
 fn flatten(t: &FixedTriangle) -> [i64; 9] {

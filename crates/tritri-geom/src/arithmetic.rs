@@ -143,15 +143,17 @@ pub fn classify(arith: Arithmetic, pairs: &[TrianglePair]) -> Result<Classificat
     }
     Ok(match arith {
         Arithmetic::Exact => Classification { verdicts: verdicts_of(pairs, exact_f64::intersects), frame: None },
-        Arithmetic::F64 => Classification { verdicts: verdicts_of(pairs, published_float::intersects_f64), frame: None },
-        Arithmetic::F32 => Classification { verdicts: verdicts_of(pairs, published_float::intersects_f32), frame: None },
+        Arithmetic::F64 => {
+            Classification { verdicts: verdicts_of(pairs, published_float::intersects_f64), frame: None }
+        }
+        Arithmetic::F32 => {
+            Classification { verdicts: verdicts_of(pairs, published_float::intersects_f32), frame: None }
+        }
         Arithmetic::Moller => Classification { verdicts: verdicts_of(pairs, moller::intersects), frame: None },
         Arithmetic::Fixed(width) => {
             let frame = fit_frame(pairs, width)?;
-            let verdicts = pairs
-                .iter()
-                .map(|p| fixed_point::intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2)))
-                .collect();
+            let verdicts =
+                pairs.iter().map(|p| fixed_point::intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2))).collect();
             Classification { verdicts, frame: Some(frame) }
         }
     })

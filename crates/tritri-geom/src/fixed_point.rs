@@ -219,9 +219,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         for shift in [0, 20, 27] {
             for _ in 0..3000 {
-                let mut t = || -> FixedTriangle {
-                    [0; 3].map(|_| [0; 3].map(|_| rng.gen_range(-3i64..=3) << shift))
-                };
+                let mut t = || -> FixedTriangle { [0; 3].map(|_| [0; 3].map(|_| rng.gen_range(-3i64..=3) << shift)) };
                 let (t1, t2) = (t(), t());
                 assert_eq!(
                     devillers_guigue::intersects::<FixedPointNarrow>(t1, t2),

@@ -189,7 +189,8 @@ fn parse_json(file: &str, text: &str) -> Result<Vec<Record>, FileError> {
         .iter()
         .enumerate()
         .map(|(i, item)| {
-            let location = Location { file: file.to_string(), line: lines.get(i).copied().unwrap_or(1), index: Some(i) };
+            let location =
+                Location { file: file.to_string(), line: lines.get(i).copied().unwrap_or(1), index: Some(i) };
             let pair = json_pair(item).map_err(|kind| RecordError { location: location.clone(), kind });
             Record { location, pair }
         })

@@ -71,7 +71,9 @@ fn dot<F: Float>(a: V3<F>, b: V3<F>) -> F {
 /// (the coordinates are rounded to `F` first).
 #[inline]
 pub fn intersects<F: Float>(t1: &Triangle, t2: &Triangle) -> bool {
-    let c = |t: &Triangle| t.map(|p| p.map(F::from_f64));
+    // Written out: `t.map(..)` is not always optimized away for f64.
+    let v = |p: &[f64; 3]| [F::from_f64(p[0]), F::from_f64(p[1]), F::from_f64(p[2])];
+    let c = |t: &Triangle| [v(&t[0]), v(&t[1]), v(&t[2])];
     let [p1, q1, r1] = c(t1);
     let [p2, q2, r2] = c(t2);
     tri_tri_overlap_test_3d(p1, q1, r1, p2, q2, r2)
@@ -234,17 +236,16 @@ pub fn coplanar_tri_tri3d<F: Float>(
 ) -> bool {
     let abs = |v: F| if v < F::ZERO { -v } else { v };
     let (n_x, n_y, n_z) = (abs(normal_1[0]), abs(normal_1[1]), abs(normal_1[2]));
-    // The first two projections swap p and q, as the C code does.
-    let (proj, swap): (fn(V3<F>) -> V2<F>, bool) = if n_x > n_z && n_x >= n_y {
-        // Project onto plane YZ.
-        (|v| [v[2], v[1]], true)
+    // Kept coordinates (first, second); the first two projections swap p
+    // and q, as the C code does.
+    let (i, j, swap) = if n_x > n_z && n_x >= n_y {
+        (2, 1, true) // Project onto plane YZ.
     } else if n_y > n_z && n_y >= n_x {
-        // Project onto plane XZ.
-        (|v| [v[0], v[2]], true)
+        (0, 2, true) // Project onto plane XZ.
     } else {
-        // Project onto plane XY.
-        (|v| [v[0], v[1]], false)
+        (0, 1, false) // Project onto plane XY.
     };
+    let proj = |v: V3<F>| [v[i], v[j]];
     let (p1, q1, p2, q2) = if swap { (q1, p1, q2, p2) } else { (p1, q1, p2, q2) };
     tri_tri_overlap_test_2d(proj(p1), proj(q1), proj(r1), proj(p2), proj(q2), proj(r2))
 }
@@ -386,8 +387,10 @@ mod tests {
     /// deciding on signs removes.
     #[test]
     fn product_of_distances_underflows() {
-        let a: Triangle = [[0.393902, 0.191015, 0.232398], [0.344035, 0.238807, 0.87286], [0.576037, 0.440291, 0.781701]];
-        let b: Triangle = [[0.423536, 0.603717, 0.931516], [0.316111, 0.654317, 0.545549], [0.913968, 0.933531, 0.035066]];
+        let a: Triangle =
+            [[0.393902, 0.191015, 0.232398], [0.344035, 0.238807, 0.87286], [0.576037, 0.440291, 0.781701]];
+        let b: Triangle =
+            [[0.423536, 0.603717, 0.931516], [0.316111, 0.654317, 0.545549], [0.913968, 0.933531, 0.035066]];
         assert!(!exact_f64::intersects(&a, &b));
         assert!(!intersects_f64(&a, &b), "unscaled, the published code is right");
         let s = 2f64.powi(-200);
@@ -406,7 +409,8 @@ mod tests {
     #[cfg_attr(not(feature = "shared-testdata"), ignore = "needs ../shared/testdata and --features shared-testdata")]
     fn wrong_as_often_as_the_c_code_on_peer_cases() {
         use crate::triangle::{permute, VERTEX_PERMUTATIONS};
-        let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata/peer_cases.json");
+        let path =
+            std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata/peer_cases.json");
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
         let records = crate::pairs_io::parse_pairs("peer_cases.json", &text).unwrap();

@@ -161,14 +161,40 @@ pub enum EmitError {
 
 /// Post-processes rust-hdl's Verilog for `unit` (see the module docs).
 pub fn emit(rust_hdl_verilog: &str, unit: &UnitDescription) -> Result<EmittedDesign, EmitError> {
+    emit_with(rust_hdl_verilog, unit, EmitOptions::default())
+}
+
+/// Switches for [`emit_with`].
+#[derive(Clone, Copy, Debug)]
+pub struct EmitOptions {
+    /// Run the [`widths`] pass (on by default). Off, the output differs from
+    /// the default only in its expressions: the formal equivalence check of
+    /// the pass compares the two.
+    pub explicit_widths: bool,
+}
+
+impl Default for EmitOptions {
+    fn default() -> Self {
+        EmitOptions { explicit_widths: true }
+    }
+}
+
+/// [`emit`] with options.
+pub fn emit_with(
+    rust_hdl_verilog: &str,
+    unit: &UnitDescription,
+    options: EmitOptions,
+) -> Result<EmittedDesign, EmitError> {
     let valid_name = unit.name.chars().next().is_some_and(|c| c.is_ascii_lowercase())
         && unit.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
     if !valid_name {
         return Err(EmitError::BadUnitName(unit.name.clone()));
     }
     let mut modules = modules::normalize(rust_hdl_verilog, &unit.name)?;
-    for m in modules.iter_mut() {
-        widths::fix_module(m);
+    if options.explicit_widths {
+        for m in modules.iter_mut() {
+            widths::fix_module(m);
+        }
     }
     let ports = package::top_ports(&modules[0]);
     for p in &ports {

@@ -311,9 +311,11 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
     // and identical modules have the same height, wherever they sit.
     let heights = module_heights(&modules);
     let max_height = heights.values().copied().max().unwrap_or(0);
-    let mut canonical: HashMap<String, String> = HashMap::new(); // rust-hdl name -> final name
-    let mut taken: BTreeSet<String> = BTreeSet::new();
-    taken.insert(unit.to_string());
+    // Each group first gets a placeholder name `group$<n>`; the final names
+    // are chosen once every group is known, so that two groups that would
+    // get the same name are told apart the same way.
+    let mut desired: BTreeMap<String, (String, Option<(usize, bool)>)> = BTreeMap::new();
+    let mut group_count = 0;
     for level in 0..=max_height {
         // Group this level's modules by structure.
         let mut groups: BTreeMap<String, Vec<usize>> = BTreeMap::new();
@@ -328,20 +330,18 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
         for group in group_list {
             let members: Vec<&str> = group.iter().map(|&i| modules[i].name.as_str()).collect();
             let dff = rust_hdl_dff_shape(&modules[group[0]]);
-            let mut name = if let Some((bits, signed)) = dff {
+            let name = if let Some((bits, signed)) = dff {
                 format!("{unit}_dff_{}{bits}", if signed { "signed_" } else { "" })
             } else if group.len() == 1 {
                 path_name(unit, members[0])
             } else {
                 shared_name(unit, &members)
             };
-            if dff.is_none() && taken.contains(&name) {
-                let stem = name.clone();
-                name = (2..).map(|k| format!("{stem}_{k}")).find(|n| !taken.contains(n)).unwrap();
-            }
-            taken.insert(name.clone());
+            let placeholder = format!("group${group_count}");
+            group_count += 1;
+            desired.insert(placeholder.clone(), (name, dff));
             for m in &members {
-                renames.insert(m.to_string(), name.clone());
+                renames.insert(m.to_string(), placeholder.clone());
             }
         }
         // Rename this level's names inside every module (parents refer to them).
@@ -355,7 +355,6 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
                 m.name = n.clone();
             }
         }
-        canonical.extend(renames);
         // Keep one module per name, with the instances of all.
         let mut instances: BTreeMap<String, Vec<String>> = BTreeMap::new();
         for m in &modules {
@@ -366,6 +365,64 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
         for m in modules.iter_mut() {
             m.instances = instances.remove(&m.name).unwrap_or_default();
         }
+    }
+    // Final names. Registers of one width share one name by construction
+    // (enum registers differ only in their labels, dropped by dff_module).
+    // Other names wanted by several groups get the width of the group's
+    // widest port (`multiplier_w49`, `multiplier_w74`), then a number.
+    let mut wanted: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for (placeholder, (name, dff)) in &desired {
+        if dff.is_none() {
+            wanted.entry(name.clone()).or_default().push(placeholder.clone());
+        }
+    }
+    let widest = |placeholder: &str| {
+        modules
+            .iter()
+            .find(|m| m.name == placeholder)
+            .map(|m| super::package::top_ports(m).iter().map(|p| p.bits).max().unwrap_or(1))
+            .unwrap_or(1)
+    };
+    let mut final_names: HashMap<String, String> = HashMap::new();
+    let mut taken: BTreeSet<String> = BTreeSet::new();
+    taken.insert(unit.to_string());
+    for (placeholder, (name, dff)) in &desired {
+        if dff.is_some() {
+            final_names.insert(placeholder.clone(), name.clone());
+            taken.insert(name.clone());
+        }
+    }
+    for (name, placeholders) in &wanted {
+        for p in placeholders {
+            let mut candidate = if placeholders.len() == 1 { name.clone() } else { format!("{name}_w{}", widest(p)) };
+            if taken.contains(&candidate) {
+                let stem = candidate.clone();
+                candidate = (2..).map(|k| format!("{stem}_{k}")).find(|n| !taken.contains(n)).unwrap();
+            }
+            taken.insert(candidate.clone());
+            final_names.insert(p.clone(), candidate);
+        }
+    }
+    for m in modules.iter_mut() {
+        for t in m.tokens.iter_mut().filter(|t| t.kind == Kind::Identifier) {
+            if let Some(n) = final_names.get(&t.text) {
+                t.text = n.clone();
+            }
+        }
+        if let Some(n) = final_names.get(&m.name) {
+            m.name = n.clone();
+        }
+    }
+    // Registers of one width from several groups (enum registers) are now
+    // duplicates by name: keep one, with every instance.
+    let mut instances: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for m in &modules {
+        instances.entry(m.name.clone()).or_default().extend(m.instances.iter().cloned());
+    }
+    let mut seen = BTreeSet::new();
+    modules.retain(|m| seen.insert(m.name.clone()));
+    for m in modules.iter_mut() {
+        m.instances = instances.remove(&m.name).unwrap_or_default();
     }
     let mut names: HashMap<String, String> = HashMap::new();
     for m in &modules {
@@ -439,7 +496,7 @@ fn normalized_segment(segment: &str) -> &str {
 /// they all end with (`orient3d_k.determinant.multiplier[j]` →
 /// `orient3d_determinant_multiplier`); else the words their last segments
 /// end with (`t1_vertices_to_operands`, `t2_vertices_to_operands` →
-/// `vertices_to_operands`); else the most frequent last segment.
+/// `vertices_to_operands`) or begin with; else the most frequent last segment.
 fn shared_name(unit: &str, members: &[&str]) -> String {
     let segments: Vec<Vec<&str>> = members
         .iter()
@@ -472,8 +529,20 @@ fn shared_name(unit: &str, members: &[&str]) -> String {
             _ => break,
         }
     }
-    if !suffix.is_empty() && suffix.len() < words[0].len().max(1) + 1 {
+    if !suffix.is_empty() {
         return format!("{unit}_{}", suffix.join("_"));
+    }
+    // ... or begin with (`plane_side_t1`, `plane_side_t2` → `plane_side`).
+    let mut prefix: Vec<&str> = Vec::new();
+    for k in 0.. {
+        let w: Vec<Option<&&str>> = words.iter().map(|s| s.get(k)).collect();
+        match w[0] {
+            Some(word) if w.iter().all(|x| *x == Some(word)) => prefix.push(word),
+            _ => break,
+        }
+    }
+    if !prefix.is_empty() {
+        return format!("{unit}_{}", prefix.join("_"));
     }
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     for l in &lasts {
@@ -510,7 +579,7 @@ mod tests {
             let text = m.text();
             assert!(!text.contains('$'), "{text}");
         }
-        assert!(modules[0].text().contains("unit_w8_dff_9 r("));
+        assert!(modules[0].text().contains("unit_w8_dff_9 u_r("));
         assert!(modules[0].text().contains("a_x"));
     }
 
@@ -532,5 +601,6 @@ mod tests {
         assert_eq!(shared_name("u", &["top$orient3d_0", "top$orient3d_1"]), "u_orient3d");
         assert_eq!(shared_name("u", &["top$t1_to_ops$0", "top$t2_to_ops$3"]), "u_to_ops");
         assert_eq!(shared_name("u", &["top$edge_a", "top$x$difference", "top$y$difference"]), "u_difference");
+        assert_eq!(shared_name("u", &["top$plane_side_t1", "top$plane_side_t2"]), "u_plane_side");
     }
 }

@@ -1,0 +1,75 @@
+//! `tritri gen`: the committed rtl-out/w24 is exactly what `tritri gen
+//! --width 24` writes (so it cannot go stale), and a width without a
+//! pipeline is refused with a message naming it.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn tritri() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+}
+
+fn repository() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Files `tritri gen --synth` adds next to the emitted ones.
+fn is_synthesis_report(name: &str) -> bool {
+    name == "resources.md" || (name.starts_with("stat_") && name.ends_with(".txt"))
+}
+
+/// rtl-out/w24 holds every file `tritri gen --width 24` writes, byte for
+/// byte, and nothing else (Yosys reports aside). To update it:
+/// `cargo run --release -p tritri-cli -- gen --width 24`.
+#[test]
+fn rtl_out_w24_is_what_gen_writes() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-test-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri().args(["gen", "--width", "24", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    let committed = repository().join("rtl-out/w24");
+    let names = |dir: &Path| {
+        let mut v: Vec<String> = std::fs::read_dir(dir)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !is_synthesis_report(n))
+            .collect();
+        v.sort();
+        v
+    };
+    let fresh = names(&out);
+    assert_eq!(
+        names(&committed),
+        fresh,
+        "rtl-out/w24 has other files than `tritri gen --width 24` writes; regenerate it"
+    );
+    for name in &fresh {
+        let a = std::fs::read_to_string(out.join(name)).unwrap();
+        let b = std::fs::read_to_string(committed.join(name)).unwrap();
+        assert!(a == b, "rtl-out/w24/{name} is stale: run `cargo run --release -p tritri-cli -- gen --width 24`");
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
+
+/// A width without a pipeline: exit status 2 and a message with the width
+/// and the supported ones.
+#[test]
+fn unsupported_width_is_refused() {
+    let out = tritri().args(["gen", "--width", "23", "--out", "/nonexistent/never-written"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(message.contains("width 23") && message.contains("24"), "{message}");
+}
+
+/// Several widths go to `<out>/w<W>`.
+#[test]
+fn several_widths_go_to_subdirectories() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-multi-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri().args(["gen", "--width", "8,16", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    assert!(out.join("w8/tritri_pipeline_w8.v").is_file());
+    assert!(out.join("w16/tritri_pipeline_w16.v").is_file());
+    assert!(out.join("w16/filelist.f").is_file());
+    std::fs::remove_dir_all(&out).unwrap();
+}

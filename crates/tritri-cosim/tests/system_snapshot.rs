@@ -1,0 +1,29 @@
+//! Snapshot of the emitted system Verilog (W = 24, P = 2, depth 64, result
+//! FIFO of 8 words): the modules of the system itself (top, address
+//! generator, memories and their columns, result FIFO, pair serializer),
+//! and the list of all modules. The pipeline's modules are left out: the
+//! pipeline has its own snapshot. Any change to the emitted system RTL
+//! shows up here for review.
+
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::emit_system;
+use tritri_rtl::system::SystemConfig;
+
+#[test]
+fn emitted_system_w24_p2_d64() {
+    let config = SystemConfig::new(24, 2, latency()).with_depth(64).with_result_fifo_depth(8);
+    let design = emit_system(config, PipelineKind::Real).unwrap();
+    assert_eq!(design.top, "tritri_system_w24_p2_d64");
+    let system_module = |path: &str| {
+        path == format!("{}.v", design.top)
+            || ["address_generator", "memory", "column", "result_fifo", "pair_serializer"]
+                .iter()
+                .any(|part| path.contains(part))
+    };
+    let mut text = format!("// modules: {}\n", design.modules.join(" "));
+    for f in design.verilog_files().filter(|f| system_module(&f.path)) {
+        text.push_str(&format!("// ===== {} =====\n{}\n", f.path, f.contents));
+    }
+    insta::assert_snapshot!(text);
+}
