@@ -12,6 +12,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod classify;
+mod demo;
 mod eval;
 mod gen;
 mod input;
@@ -38,22 +39,32 @@ enum Command {
     Chapter5(chapter5::Args),
     /// Write the pipeline's Verilog (one module per file, filelist, FuseSoC core, README); --synth runs Yosys.
     Gen(gen::Args),
+    /// The main job on a built-in default: emit the RTL, run the built-in scene in the model and in Verilator.
+    Demo(demo::Args),
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
-        Command::Classify(args) => classify::run(args),
-        Command::Eval(args) => eval::run(args),
-        Command::Sim(args) => sim::run(args),
-        Command::Chapter5(args) => chapter5::run(args),
-        Command::Gen(args) => gen::run(args),
-    };
+    let result = dispatch(Cli::parse());
     match result {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// Runs one parsed command line.
+fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Classify(args) => classify::run(args),
+        Command::Eval(args) => eval::run(args),
+        Command::Sim(args) => sim::run(args),
+        Command::Chapter5(args) => chapter5::run(args),
+        Command::Gen(args) => gen::run(args),
+        Command::Demo(args) => demo::run(args, |words| {
+            let argv = std::iter::once("tritri".to_string()).chain(words);
+            dispatch(Cli::try_parse_from(argv)?)
+        }),
     }
 }

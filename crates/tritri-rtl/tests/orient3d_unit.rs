@@ -45,7 +45,6 @@ fn orient3d_sign_matches_software_at_w24() {
         }
         points.push(p);
     }
-    let t0 = std::time::Instant::now();
     let mut got = Vec::new();
     for cycle in 0..points.len() + ORIENT3D_LATENCY {
         if let Some(p) = points.get(cycle) {
@@ -59,11 +58,10 @@ fn orient3d_sign_matches_software_at_w24() {
             got.push((uut.negative.val(), uut.zero.val()));
         }
     }
-    eprintln!("{} cycles in {:?}", points.len() + ORIENT3D_LATENCY, t0.elapsed());
     for (p, g) in points.iter().zip(&got) {
         let v = orient3d_value(p[0], p[1], p[2], p[3]);
         assert_eq!(*g, (v < 0, v == 0), "points {p:?} value {v}");
     }
-    let v = generate_verilog(&uut);
-    std::fs::write(std::env::temp_dir().join("orient3d_w24.v"), v).unwrap();
+    // rust-hdl's checks (connectivity, logic loops) pass and it emits Verilog.
+    assert!(generate_verilog(&uut).contains("module top("));
 }
