@@ -7,8 +7,9 @@
 //! and the time per pair.
 //!
 //! Timing: each arithmetic runs over the whole batch repeatedly for at least
-//! `--min-time-ms` (default 50 ms); the reported ns/pair is the fastest
-//! sample, which is stable when other work shares the machine. `ns/pair`
+//! `--min-time-ms` (default 50 ms), in samples of about 1 ms; the reported
+//! ns/pair is the fastest sample, which stays stable when other work shares
+//! the machine. `ns/pair`
 //! is the whole `classify` call (for fixed: fitting the frame, quantizing,
 //! deciding); `kernel` is fixed point's integer test alone on the already
 //! quantized pairs, the part the hardware replaces. `÷f64` divides by the
@@ -202,8 +203,9 @@ fn compare(verdicts: &[bool], exact: &[bool]) -> (usize, usize) {
 }
 
 /// Fastest sample of `run` (one pass over `n` pairs), in ns per pair. Each
-/// sample repeats `run` for about a tenth of `min_time` (at least 0.5 ms);
-/// samples continue until `min_time` has passed and at least three exist.
+/// sample repeats `run` for about 1 ms (shorter than a scheduler time slice,
+/// so that some samples run undisturbed on a busy machine); samples
+/// continue until `min_time` has passed and at least three exist.
 fn time_per_pair(n: usize, min_time: Duration, mut run: impl FnMut()) -> f64 {
     if n == 0 {
         return 0.0;
@@ -211,7 +213,7 @@ fn time_per_pair(n: usize, min_time: Duration, mut run: impl FnMut()) -> f64 {
     let t = Instant::now();
     run();
     let once = t.elapsed().as_secs_f64().max(1e-9);
-    let sample = (min_time.as_secs_f64() / 10.0).max(5e-4);
+    let sample = 1e-3;
     let repeats = (sample / once).ceil().max(1.0) as u32;
     let start = Instant::now();
     let (mut best, mut samples) = (f64::INFINITY, 0);

@@ -73,3 +73,22 @@ fn several_widths_go_to_subdirectories() {
     assert!(out.join("w16/filelist.f").is_file());
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// `--synth` without Yosys on PATH: an error naming the tool and its package.
+#[test]
+fn missing_yosys_is_named() {
+    let empty = std::env::temp_dir().join(format!("tritri-empty-path-{}", std::process::id()));
+    let out = std::env::temp_dir().join(format!("tritri-gen-noyosys-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).unwrap();
+    let result = tritri()
+        .env("PATH", &empty)
+        .args(["gen", "--width", "8", "--synth", "xilinx", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(result.status.code(), Some(1));
+    let message = String::from_utf8_lossy(&result.stderr);
+    assert!(message.contains("`yosys` was not found") && message.contains("apt-get install yosys"), "{message}");
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&empty);
+}

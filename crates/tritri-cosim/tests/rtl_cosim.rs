@@ -42,7 +42,7 @@ fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
     let max = (1i64 << (width - 1)) - 1;
     let min = -(1i64 << (width - 1));
     let extremes = [min, max, 0, 1, -1, min + 1, max - 1, max / 2, min / 2];
-    let mut pick = |k: usize, rng: &mut ChaCha8Rng| -> FixedTriangle {
+    let pick = |k: usize, rng: &mut ChaCha8Rng| -> FixedTriangle {
         match k % 3 {
             0 => quantized[rng.gen_range(0..quantized.len())],
             1 => random_triangle(rng, -3, 3),

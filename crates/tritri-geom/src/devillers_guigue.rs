@@ -237,25 +237,19 @@ pub fn degenerate_pair<K: ExactKernel>(a: K::Point, b: K::Point, c: K::Point, d:
     (0..3).all(|axis| hulls_intersect_2d::<K>(axis, &[a, b], &[c, d]))
 }
 
-/// Up to three edges, and how many are used.
-type EdgeList<P> = ([(P, P); 3], usize);
-
 /// Do the closed convex hulls of `u` and `v` (2 or 3 points each, possibly
 /// collinear or repeated) meet in the projection dropping `axis`?
 /// Either two of their edges meet, or one hull holds a vertex of the other.
 pub fn hulls_intersect_2d<K: ExactKernel>(axis: usize, u: &[K::Point], v: &[K::Point]) -> bool {
-    // The edges of a hull, on the stack (this runs for every coplanar pair).
-    let edges = |pts: &[K::Point]| -> EdgeList<K::Point> {
+    let edges = |pts: &[K::Point]| -> Vec<(K::Point, K::Point)> {
         match *pts {
-            [a, b] => ([(a, b); 3], 1),
-            [a, b, c] => ([(a, b), (b, c), (c, a)], 3),
+            [a, b] => vec![(a, b)],
+            [a, b, c] => vec![(a, b), (b, c), (c, a)],
             _ => unreachable!("hulls of two or three points"),
         }
     };
-    let (u_edges, u_count) = edges(u);
-    let (v_edges, v_count) = edges(v);
-    for &(a, b) in &u_edges[..u_count] {
-        for &(c, d) in &v_edges[..v_count] {
+    for &(a, b) in &edges(u) {
+        for &(c, d) in &edges(v) {
             if segments_intersect_2d::<K>(axis, a, b, c, d) {
                 return true;
             }

@@ -10,6 +10,9 @@
 //!   `$` anywhere, each file with a header comment (purpose, parameters,
 //!   generator) between `` `default_nettype none `` and
 //!   `` `default_nettype wire ``;
+//! * identifiers: rust-hdl's `a$b` becomes `a_b` (or `a__b` where `a_b`
+//!   exists too), a field named like a SystemVerilog keyword (`table`,
+//!   `cross`) gets the suffix `_kw`, instances get the prefix `u_`;
 //! * modules that rust-hdl printed once per instance but are the same
 //!   circuit merged into one (see [`modules`]);
 //! * expressions re-printed with explicit widths where rust-hdl relies on

@@ -3,9 +3,8 @@
 //! the shapes rust-hdl prints for any design, checked without the pipeline.
 
 use rust_hdl::prelude::*;
-use std::process::Command;
 use tritri_rtl::emit::{emit, EmittedDesign, UnitDescription};
-use tritri_rtl::tools::{run, IVERILOG, VERILATOR, YOSYS};
+use tritri_rtl::tools::{run, IVERILOG, VERILATOR};
 
 #[derive(LogicBlock, Default)]
 pub struct RegisteredAdder {
@@ -169,6 +168,8 @@ fn module_names() {
     assert_eq!(design.modules[0], "tritri_sample_w8");
     assert!(design.modules.iter().all(|m| m.starts_with("tritri_sample_w8")));
     assert!(design.modules.contains(&"tritri_sample_w8_dff_9".to_string()), "{:?}", design.modules);
+    // Instances carry the u_ prefix.
+    assert!(design.file("tritri_sample_w8.v").unwrap().contents.contains("tritri_sample_w8_adder u_adder("));
     // adder and other_adder are the same circuit.
     let adders: Vec<_> = design.modules.iter().filter(|m| m.contains("adder")).collect();
     assert_eq!(adders.len(), 1, "{:?}", design.modules);
@@ -210,7 +211,5 @@ fn sample_is_lint_clean_and_synthesizes() {
     run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"])).unwrap();
     let report = tritri_rtl::synth::synthesize(&dir, tritri_rtl::synth::Target::Generic).unwrap();
     assert!(report.cells > 0);
-    let _ = YOSYS;
-    let _ = Command::new("true");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -115,7 +115,7 @@ fn header(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
         let mut first = true;
         for (name, meaning) in &unit.parameters {
             let lead = if first { "// Parameters: " } else { "//             " };
-            h.push_str(&wrap_comment(&format!("{name}: {meaning}"), lead, "//               ", 80));
+            h.push_str(&wrap_comment(&format!("{name} = {meaning}"), lead, "//               ", 80));
             first = false;
         }
         h.push_str("//\n");

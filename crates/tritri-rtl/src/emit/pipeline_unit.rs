@@ -58,12 +58,13 @@ pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> 
         "one triangle pair per clock while `advance` is high; N1 bases against N2 streamed triangles take \
          N1 + N1*N2 + {l} clocks (thesis, equation 3.2)."
     ));
-    for (k, vertex) in (0..3).flat_map(|v| ["x", "y", "z"].into_iter().map(move |axis| (v, axis))).enumerate() {
-        let _ = k;
-        unit = unit.port(
-            &format!("in_{}{}", vertex.1, vertex.0),
-            &format!("Coordinate {} of vertex {}, W-bit two's complement.", vertex.1, vertex.0),
-        );
+    for vertex in 0..3 {
+        for axis in ["x", "y", "z"] {
+            unit = unit.port(
+                &format!("in_{axis}{vertex}"),
+                &format!("Coordinate {axis} of vertex {vertex}, W-bit two's complement."),
+            );
+        }
     }
     Ok(unit)
 }

@@ -406,7 +406,7 @@ impl Printer<'_> {
                 let inner = self.emit(a, k, ctx)?;
                 Some(if is_atomic_text(&inner) { inner } else { format!("({inner})") })
             }
-            Expr::Ident(name) => self.fit_leaf(name, own, k, ctx, true),
+            Expr::Ident(name) => self.fit_leaf(name, own, k, ctx),
             Expr::Number { bits, signed, value } => {
                 // Extend to the context (sign-extend a negative literal in a
                 // signed context), then keep k bits.
@@ -489,7 +489,7 @@ impl Printer<'_> {
                 }
                 match strip_paren(a) {
                     Expr::Ident(name) => {
-                        self.fit_leaf(name, Ty { bits: inner_ty.bits, signed: *signed }, k, ctx, true)
+                        self.fit_leaf(name, Ty { bits: inner_ty.bits, signed: *signed }, k, ctx)
                     }
                     _ => None,
                 }
@@ -572,7 +572,7 @@ impl Printer<'_> {
     }
 
     /// An identifier of type `own` as `k` bits of its value in `ctx`.
-    fn fit_leaf(&self, name: &str, own: Ty, k: usize, ctx: Context, _is_ident: bool) -> Option<String> {
+    fn fit_leaf(&self, name: &str, own: Ty, k: usize, ctx: Context) -> Option<String> {
         let w = own.bits;
         let sign_extend = ctx.signed && own.signed;
         let text = if k == w {
