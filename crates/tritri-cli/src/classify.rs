@@ -23,8 +23,27 @@ pub struct Args {
     /// Coordinate width for `--arith fixed` (8 to 32 bits) [default: 24].
     #[arg(long, value_parser = input::parse_width)]
     width: Option<u32>,
+    /// Who decides the fixed-point pairs: the software model, the rust-hdl
+    /// simulation of the pipeline, or its emitted Verilog in Icarus or Verilator.
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
+    /// With `--engine rusthdl`: write a VCD waveform of the run (keep the file small).
+    #[arg(long, value_name = "FILE")]
+    vcd: Option<PathBuf>,
     /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}.
     file: PathBuf,
+}
+
+#[derive(Clone, Copy, PartialEq, ValueEnum)]
+enum Engine {
+    /// The bit-exact fixed-point software model.
+    Model,
+    /// The rust-hdl pipeline, driven cycle by cycle.
+    Rusthdl,
+    /// The emitted Verilog in Icarus Verilog.
+    Icarus,
+    /// The emitted Verilog in Verilator.
+    Verilator,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -53,9 +72,22 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         (ArithName::F32, None) => Arithmetic::F32,
         (ArithName::Moller, None) => Arithmetic::Moller,
     };
+    if (args.engine != Engine::Model || args.vcd.is_some()) && !matches!(arith, Arithmetic::Fixed(_)) {
+        eprintln!("error: --engine and --vcd apply only to --arith fixed");
+        return Ok(ExitCode::from(2));
+    }
+    if args.vcd.is_some() && args.engine != Engine::Rusthdl {
+        eprintln!("error: --vcd needs --engine rusthdl");
+        return Ok(ExitCode::from(2));
+    }
     let loaded = input::load(&args.file);
     let pairs = loaded.good_pairs();
-    let result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
+    let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
+    if let (Arithmetic::Fixed(width), Some(frame)) = (arith, result.frame) {
+        if args.engine != Engine::Model {
+            result.verdicts = run_engine(args.engine, width as usize, &frame, &pairs, args.vcd)?;
+        }
+    }
     if let Some(frame) = result.frame {
         eprintln!(
             "note: {}: {arith}: {} pairs quantized into one frame, step h = {:e}, centre {:?}",
@@ -71,4 +103,43 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     out.flush()?;
     Ok(if loaded.errors > 0 { ExitCode::from(2) } else { ExitCode::SUCCESS })
+}
+
+/// Decides the quantized pairs on a hardware engine: per pair one `bset`
+/// cycle loads t1 and the next cycle tests t2, both tagged with the pair's
+/// index; the verdicts come back in order and their ids are checked.
+fn run_engine(
+    engine: Engine,
+    width: usize,
+    frame: &tritri_geom::quantize::Frame,
+    pairs: &[tritri_geom::TrianglePair],
+    vcd: Option<PathBuf>,
+) -> anyhow::Result<Vec<bool>> {
+    use tritri_cosim::stream::{IdTriangle, InputCycle};
+    let schedule: Vec<InputCycle> = pairs
+        .iter()
+        .enumerate()
+        .flat_map(|(i, p)| {
+            let id = i as u32;
+            [
+                InputCycle::load_base(&IdTriangle { id, triangle: frame.quantize(&p.t1) }),
+                InputCycle::test(&IdTriangle { id, triangle: frame.quantize(&p.t2) }),
+            ]
+        })
+        .collect();
+    let result = match engine {
+        Engine::Model => unreachable!("the model needs no engine run"),
+        Engine::Rusthdl => {
+            let mut pipeline = tritri_rtl::configurations::pipeline_for_width(width)?;
+            let options = tritri_cosim::rusthdl_harness::HarnessOptions { vcd };
+            tritri_cosim::rusthdl_harness::run_schedule_on(pipeline.as_mut(), &schedule, &options)?
+        }
+        Engine::Icarus => tritri_cosim::icarus::run_icarus_schedule(width, &schedule)?,
+        Engine::Verilator => tritri_cosim::verilator::run_verilator_schedule(width, &schedule)?,
+    };
+    anyhow::ensure!(result.verdicts.len() == pairs.len(), "the engine returned {} verdicts for {} pairs", result.verdicts.len(), pairs.len());
+    for (i, v) in result.verdicts.iter().enumerate() {
+        anyhow::ensure!(v.base_id == i as u32 && v.stream_id == i as u32, "verdict {i} carries ids ({}, {})", v.base_id, v.stream_id);
+    }
+    Ok(result.verdicts.iter().map(|v| v.hit).collect())
 }

@@ -13,6 +13,18 @@ use tritri_rtl::tools::{run, IVERILOG, VVP};
 
 /// Simulates `dut` on `stream` in Icarus.
 pub fn run_icarus_dut(dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<RtlRun> {
+    run_icarus_on_vectors(dut, &vectors(stream, dut.width, dut.id_bits))
+}
+
+/// Runs an arbitrary schedule of input cycles on the emitted `width`-bit
+/// pipeline in Icarus (see `rusthdl_harness::run_schedule_on`).
+pub fn run_icarus_schedule(width: usize, schedule: &[crate::stream::InputCycle]) -> anyhow::Result<crate::stream::StreamResult> {
+    let dut = crate::rtl_sim::pipeline_dut(width)?;
+    let text = crate::vectors::vectors_for_schedule(schedule, dut.width, dut.id_bits);
+    Ok(run_icarus_on_vectors(&dut, &text)?.result)
+}
+
+fn run_icarus_on_vectors(dut: &RtlDut, vector_text: &str) -> anyhow::Result<RtlRun> {
     let iverilog = IVERILOG.locate()?;
     let vvp = VVP.locate()?;
     let work = WorkDir::new("icarus").context("creating the Icarus work directory")?;
@@ -35,7 +47,7 @@ pub fn run_icarus_dut(dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<R
 
     let vectors_path = work.join("vectors.txt");
     let outputs_path = work.join("outputs.txt");
-    std::fs::write(&vectors_path, vectors(stream, dut.width, dut.id_bits))?;
+    std::fs::write(&vectors_path, vector_text)?;
     let simulate = Instant::now();
     let mut sim = std::process::Command::new(vvp);
     sim.arg("-n")

@@ -49,8 +49,20 @@ pub fn vectors(stream: &TriangleStream, width: u32, id_bits: u32) -> String {
         stream.bases.len(),
         stream.streamed.len()
     );
+    schedule_vectors(text, stream.schedule(), width, id_bits)
+}
+
+/// The vector file for an arbitrary schedule of input cycles (for example one
+/// `bset` cycle and one test cycle per pair), with a comment header.
+pub fn vectors_for_schedule(schedule: &[InputCycle], width: u32, id_bits: u32) -> String {
+    let mut text = String::with_capacity((schedule.len() + 4) * (12 + 10 * digits(width)));
+    let _ = writeln!(text, "# tritri vectors: W={width} ID_WIDTH={id_bits} schedule of {} cycles (testbenches/README.md)", schedule.len());
+    schedule_vectors(text, schedule.iter().copied(), width, id_bits)
+}
+
+fn schedule_vectors(mut text: String, schedule: impl Iterator<Item = InputCycle>, width: u32, id_bits: u32) -> String {
     text.push_str("# valid bset id x0 y0 z0 x1 y1 z1 x2 y2 z2\n");
-    for c in stream.schedule() {
+    for c in schedule {
         text.push_str(&vector_line(&c, width, id_bits));
         text.push('\n');
     }

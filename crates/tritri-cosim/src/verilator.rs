@@ -82,10 +82,23 @@ pub fn build(dut: &RtlDut) -> anyhow::Result<(PathBuf, f64)> {
 
 /// Runs a built executable on `stream`.
 pub fn run_executable(exe: &Path, dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<(RtlRun, f64)> {
+    run_executable_on_vectors(exe, &vectors(stream, dut.width, dut.id_bits))
+}
+
+/// Runs an arbitrary schedule of input cycles on the emitted `width`-bit
+/// pipeline in Verilator (see `rusthdl_harness::run_schedule_on`).
+pub fn run_verilator_schedule(width: usize, schedule: &[crate::stream::InputCycle]) -> anyhow::Result<crate::stream::StreamResult> {
+    let dut = crate::rtl_sim::pipeline_dut(width)?;
+    let (exe, _) = build(&dut)?;
+    let text = crate::vectors::vectors_for_schedule(schedule, dut.width, dut.id_bits);
+    Ok(run_executable_on_vectors(&exe, &text)?.0.result)
+}
+
+fn run_executable_on_vectors(exe: &Path, vector_text: &str) -> anyhow::Result<(RtlRun, f64)> {
     let work = WorkDir::new("verilator-run")?;
     let vectors_path = work.join("vectors.txt");
     let outputs_path = work.join("outputs.txt");
-    std::fs::write(&vectors_path, vectors(stream, dut.width, dut.id_bits))?;
+    std::fs::write(&vectors_path, vector_text)?;
     let started = Instant::now();
     let mut cmd = std::process::Command::new(exe);
     cmd.arg(format!("+vectors={}", vectors_path.display())).arg(format!("+outputs={}", outputs_path.display()));
