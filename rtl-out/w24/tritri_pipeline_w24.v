@@ -16,11 +16,11 @@
 //             tight widths), so every verdict equals the exact test on the
 //             grid, touching, coplanar and degenerate triangles included.
 //
-// Parameters: W: 24: coordinate width in bits (two's complement)
-//             D: 25: coordinate difference width, W + 1
-//             C: 49: cross-product and orient2d width, 2W + 1
-//             O: 74: orient3d width, 3W + 2
-//             ID: 32: triangle id width
+// Parameters: W = 24: coordinate width in bits (two's complement)
+//             D = 25: coordinate difference width, W + 1
+//             C = 49: cross-product and orient2d width, 2W + 1
+//             O = 74: orient3d width, 3W + 2
+//             ID = 32: triangle id width
 //
 // Latency:    30 clock cycles
 // Throughput: one triangle pair per clock while `advance` is high; N1 bases
