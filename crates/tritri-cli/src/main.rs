@@ -11,6 +11,7 @@
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
+mod bench;
 mod classify;
 mod demo;
 mod eval;
@@ -39,6 +40,8 @@ enum Command {
     Chapter5(chapter5::Args),
     /// Write the pipeline's Verilog (one module per file, filelist, FuseSoC core, README); --synth runs Yosys.
     Gen(gen::Args),
+    /// Co-simulation throughput: the same pairs through the model, rust-hdl, Verilator and Icarus, with mismatches.
+    Bench(bench::Args),
     /// The main job on a built-in default: emit the RTL, run the built-in scene in the model and in Verilator.
     Demo(demo::Args),
 }
@@ -62,6 +65,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Sim(args) => sim::run(args),
         Command::Chapter5(args) => chapter5::run(args),
         Command::Gen(args) => gen::run(args),
+        Command::Bench(args) => bench::run(args),
         Command::Demo(args) => demo::run(args, |words| {
             let argv = std::iter::once("tritri".to_string()).chain(words);
             dispatch(Cli::try_parse_from(argv)?)

@@ -92,3 +92,21 @@ fn missing_yosys_is_named() {
     let _ = std::fs::remove_dir_all(&out);
     let _ = std::fs::remove_dir_all(&empty);
 }
+
+/// The committed rtl-out/w24 itself, as a user would check it: `verilator
+/// --lint-only -Wall` prints nothing (the command of its README).
+#[test]
+fn committed_rtl_out_is_lint_clean() {
+    let dir = repository().join("rtl-out/w24");
+    let out = tritri_rtl::tools::run(tritri_rtl::tools::VERILATOR.command().unwrap().current_dir(&dir).args([
+        "--lint-only",
+        "-Wall",
+        "-f",
+        "filelist.f",
+        "--top-module",
+        "tritri_pipeline_w24",
+    ]))
+    .unwrap_or_else(|e| panic!("{e}"));
+    let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(messages.trim().is_empty(), "verilator said:\n{messages}");
+}

@@ -173,6 +173,7 @@ widths!(
     8 => TrianglePipelineW8,
     12 => TrianglePipelineW12,
     16 => TrianglePipelineW16,
+    18 => TrianglePipelineW18,
     20 => TrianglePipelineW20,
     24 => TrianglePipelineW24,
     28 => TrianglePipelineW28,

@@ -1,0 +1,194 @@
+//! `tritri bench [--width W]... [--pairs N] [--engines LIST]`
+//!
+//! Co-simulation throughput: the same stream of triangle pairs through the
+//! fixed-point model (the baseline), the rust-hdl pipeline (direct-drive
+//! harness) and the emitted Verilog in Verilator and Icarus. For each width
+//! and engine it prints the pairs, the mismatches against the model, the
+//! cycles measured against the thesis's N1 + N1·N2 + L, the simulation time
+//! and pairs per second, and the speed as a ratio to the rust-hdl harness
+//! measured in the same run (absolute times on a shared machine are noisy;
+//! ratios much less so).
+//!
+//! The pairs: `N1` base triangles against `N2` streamed ones (`N1 = --bases`,
+//! `N2 = ceil(N / N1)`), half of them uniform in the unit cube and half
+//! near-degenerate (coarse-grid, shared vertices, coplanar: the coplanar and
+//! degenerate paths of the pipeline run too), quantized into one W-bit frame.
+//!
+//! Verilator's time excludes its C++ build (printed separately, 0 when the
+//! cached model is reused); Icarus's excludes its compile.
+//!
+//! Exit status: 0 no mismatch; 1 a mismatch, a cycle count off the formula,
+//! or a tool failure; 2 bad usage (the message names the value).
+
+use anyhow::{bail, Context};
+use std::process::ExitCode;
+use std::time::Instant;
+use tritri_cosim::rtl_sim::pipeline_dut;
+use tritri_cosim::rusthdl_harness::{run_stream_on, HarnessOptions};
+use tritri_cosim::stream::{StreamResult, TriangleStream};
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
+use tritri_geom::quantize::Frame;
+use tritri_rtl::configurations::{pipeline_for_width, SUPPORTED_WIDTHS};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Coordinate width in bits; repeat or separate with commas for several.
+    #[arg(long, value_delimiter = ',', default_value = "24")]
+    width: Vec<usize>,
+    /// Number of pairs per width (rounded up to a multiple of --bases).
+    #[arg(long, default_value_t = 20_000)]
+    pairs: usize,
+    /// Number of base triangles N1.
+    #[arg(long, default_value_t = 50)]
+    bases: usize,
+    /// Engines to run, the model always first as the baseline.
+    #[arg(long, value_delimiter = ',', default_value = "rusthdl,verilator,icarus", value_parser = ["rusthdl", "verilator", "icarus"])]
+    engines: Vec<String>,
+    /// Seed of the random triangles.
+    #[arg(long, default_value_t = 2005)]
+    seed: u64,
+}
+
+/// One engine's run on one width.
+struct Measurement {
+    engine: &'static str,
+    pairs: usize,
+    mismatches: usize,
+    cycles: Option<u64>,
+    seconds: f64,
+    /// Build or compile time, not included in `seconds`.
+    build_seconds: Option<f64>,
+}
+
+impl Measurement {
+    fn pairs_per_second(&self) -> f64 {
+        self.pairs as f64 / self.seconds.max(1e-9)
+    }
+}
+
+/// The stream of the benchmark at `width` (see the module docs).
+fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Result<TriangleStream> {
+    let n1 = bases.min(pairs);
+    let n2 = pairs.div_ceil(n1);
+    let count = n1.max(n2);
+    let mut raw = random_pairs(count.div_ceil(2), seed);
+    raw.extend(random_near_degenerate_pairs(count / 2, seed + 1));
+    // Interleave uniform and near-degenerate triangles so both kinds are bases.
+    let half = count.div_ceil(2);
+    let order: Vec<usize> = (0..count).map(|i| if i % 2 == 0 { i / 2 } else { half + i / 2 }).collect();
+    let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32).context("fitting the frame")?;
+    let pick = |n: usize, second: bool| -> Vec<FixedTriangle> {
+        order.iter().take(n).map(|&i| frame.quantize(if second { &raw[i].t2 } else { &raw[i].t1 })).collect()
+    };
+    Ok(TriangleStream::from_triangles(&pick(n1, false), &pick(n2, true)))
+}
+
+fn measure_rtl(
+    engine: &'static str,
+    run: impl FnOnce() -> anyhow::Result<tritri_cosim::rtl_sim::RtlRun>,
+    expected: &[tritri_cosim::stream::PairVerdict],
+) -> anyhow::Result<Measurement> {
+    let r = run().with_context(|| format!("running {engine}"))?;
+    Ok(Measurement {
+        engine,
+        pairs: r.result.verdicts.len(),
+        mismatches: r.result.mismatches(expected),
+        cycles: Some(r.result.cycles),
+        seconds: r.simulate_seconds,
+        build_seconds: Some(r.build_seconds),
+    })
+}
+
+fn from_stream_result(engine: &'static str, r: &StreamResult, expected: &[tritri_cosim::stream::PairVerdict], seconds: f64) -> Measurement {
+    Measurement {
+        engine,
+        pairs: r.verdicts.len(),
+        mismatches: r.mismatches(expected),
+        cycles: Some(r.cycles),
+        seconds,
+        build_seconds: None,
+    }
+}
+
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    for &w in &args.width {
+        if !SUPPORTED_WIDTHS.contains(&w) {
+            eprintln!("error: --width {w}: no pipeline for this width; supported widths are {SUPPORTED_WIDTHS:?}");
+            return Ok(ExitCode::from(2));
+        }
+    }
+    if args.pairs == 0 || args.bases == 0 {
+        eprintln!("error: --pairs {} --bases {}: both must be at least 1", args.pairs, args.bases);
+        return Ok(ExitCode::from(2));
+    }
+    let mut failed = false;
+    println!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rust-hdl |");
+    println!("|---:|---|---:|---:|---|---:|---:|---:|---:|");
+    for &width in &args.width {
+        let stream = stream_for(width, args.pairs, args.bases, args.seed)?;
+        let latency = tritri_rtl::pipeline::triangle_pipeline::latency() as u64;
+        let formula = stream.expected_cycles(latency);
+
+        // Baseline: the fixed-point model, timed on its own.
+        let started = Instant::now();
+        let expected = stream.expected(intersects);
+        let model = Measurement {
+            engine: "model",
+            pairs: expected.len(),
+            mismatches: 0,
+            cycles: None,
+            seconds: started.elapsed().as_secs_f64(),
+            build_seconds: None,
+        };
+        let mut rows = vec![model];
+        for engine in &args.engines {
+            eprintln!("W = {width}: {} pairs through {engine} ...", expected.len());
+            let m = match engine.as_str() {
+                "rusthdl" => {
+                    let mut pipeline = pipeline_for_width(width)?;
+                    let started = Instant::now();
+                    let r = run_stream_on(pipeline.as_mut(), &stream, &HarnessOptions::default())?;
+                    from_stream_result("rust-hdl", &r, &expected, started.elapsed().as_secs_f64())
+                }
+                "verilator" => {
+                    let dut = pipeline_dut(width)?;
+                    measure_rtl("verilator", || tritri_cosim::verilator::run_verilator_dut(&dut, &stream), &expected)?
+                }
+                "icarus" => {
+                    let dut = pipeline_dut(width)?;
+                    measure_rtl("icarus", || tritri_cosim::icarus::run_icarus_dut(&dut, &stream), &expected)?
+                }
+                other => bail!("unknown engine {other}"),
+            };
+            rows.push(m);
+        }
+        let reference = rows.iter().find(|m| m.engine == "rust-hdl").map(Measurement::pairs_per_second);
+        for m in &rows {
+            let cycles = match m.cycles {
+                Some(c) if c == formula => format!("{c} (= formula)"),
+                Some(c) => {
+                    failed = true;
+                    format!("{c} (formula {formula})")
+                }
+                None => "-".into(),
+            };
+            failed |= m.mismatches != 0 || m.pairs != expected.len();
+            println!(
+                "| {width} | {} | {} | {} | {cycles} | {} | {:.2} | {:.0} | {} |",
+                m.engine,
+                m.pairs,
+                m.mismatches,
+                m.build_seconds.map_or("-".into(), |s| format!("{s:.1}")),
+                m.seconds,
+                m.pairs_per_second(),
+                reference.map_or("-".into(), |r| format!("{:.2}", m.pairs_per_second() / r)),
+            );
+        }
+    }
+    if failed {
+        eprintln!("error: an engine disagreed with the model or with the cycle formula (see the table)");
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
