@@ -5,7 +5,7 @@
 //!
 //! Scale: `TRITRI_PAIRS` (default 20 000) random pairs per width; the hard
 //! case suite runs every 16th case unless `TRITRI_HARD_CASES=all`. For
-//! 100 000 pairs and more, see `examples/rusthdl_throughput.rs`.
+//! 100 000 pairs and more with throughput, see `tritri bench --pairs 100000`.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -271,10 +271,9 @@ fn quantized_random_pairs_w32() {
 }
 
 /// The hard case suite (tritri_geom::hard_cases), each case quantized in
-/// its own frame, in all 72 orderings.
-#[test]
-fn hard_case_suite_in_all_orderings_w24() {
-    let width = 24;
+/// its own frame, in all 72 orderings: every 16th case by default, all of
+/// them with `TRITRI_HARD_CASES=all`.
+fn hard_case_suite_in_all_orderings(width: usize) {
     let all = std::env::var("TRITRI_HARD_CASES").map(|v| v == "all").unwrap_or(false);
     let suite = hard_case_suite();
     let step = if all { 1 } else { 16 };
@@ -286,6 +285,21 @@ fn hard_case_suite_in_all_orderings_w24() {
         check.run(pipeline.as_mut(), &all_orderings_groups(t1, t2));
     }
     check.report_and_assert(&format!("hard cases (every {step}th of {}), W = {width}", suite.len()));
+}
+
+#[test]
+fn hard_case_suite_in_all_orderings_w24() {
+    hard_case_suite_in_all_orderings(24);
+}
+
+#[test]
+fn hard_case_suite_in_all_orderings_w16() {
+    hard_case_suite_in_all_orderings(16);
+}
+
+#[test]
+fn hard_case_suite_in_all_orderings_w32() {
+    hard_case_suite_in_all_orderings(32);
 }
 
 /// Measured cycles are `N1 + N1 N2 + L` (thesis, equation 3.2).

@@ -38,7 +38,7 @@ use rust_hdl::prelude::*;
 /// in_id in_x0 … in_z2 out_valid out_hit out_base_id out_stream_id`) and
 /// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
 ///
-/// ```ignore
+/// ```text
 /// collision_system!(pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> });
 /// ```
 #[macro_export]
