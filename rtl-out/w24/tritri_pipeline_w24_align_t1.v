@@ -34,48 +34,48 @@ module tritri_pipeline_w24_align_t1(clock,advance,t1_negative_0,t1_negative_1,t1
     input wire  t2_zero_0;
     input wire  t2_zero_1;
     input wire  t2_zero_2;
-    output reg  [1:0] t1_rotation;
-    output reg  t2_swap;
-    output reg  t2_aligned_negative_0;
-    output reg  t2_aligned_negative_1;
-    output reg  t2_aligned_negative_2;
-    output reg  t2_aligned_zero_0;
-    output reg  t2_aligned_zero_1;
-    output reg  t2_aligned_zero_2;
+    output wire  [1:0] t1_rotation;
+    output wire  t2_swap;
+    output wire  t2_aligned_negative_0;
+    output wire  t2_aligned_negative_1;
+    output wire  t2_aligned_negative_2;
+    output wire  t2_aligned_zero_0;
+    output wire  t2_aligned_zero_1;
+    output wire  t2_aligned_zero_2;
 
     // Stub signals
-    reg  sign_table_negative_0;
-    reg  sign_table_negative_1;
-    reg  sign_table_negative_2;
-    reg  sign_table_zero_0;
-    reg  sign_table_zero_1;
-    reg  sign_table_zero_2;
+    wire  sign_table_negative_0;
+    wire  sign_table_negative_1;
+    wire  sign_table_negative_2;
+    wire  sign_table_zero_0;
+    wire  sign_table_zero_1;
+    wire  sign_table_zero_2;
     wire  [1:0] sign_table_rotation;
     wire  sign_table_swap;
     reg  [1:0] t1_rotation_q_d;
     wire  [1:0] t1_rotation_q_q;
-    reg  t1_rotation_q_clock;
+    wire  t1_rotation_q_clock;
     reg  t2_swap_q_d;
     wire  t2_swap_q_q;
-    reg  t2_swap_q_clock;
+    wire  t2_swap_q_clock;
     reg  t2_aligned_negative_q_0_d;
     wire  t2_aligned_negative_q_0_q;
-    reg  t2_aligned_negative_q_0_clock;
+    wire  t2_aligned_negative_q_0_clock;
     reg  t2_aligned_negative_q_1_d;
     wire  t2_aligned_negative_q_1_q;
-    reg  t2_aligned_negative_q_1_clock;
+    wire  t2_aligned_negative_q_1_clock;
     reg  t2_aligned_negative_q_2_d;
     wire  t2_aligned_negative_q_2_q;
-    reg  t2_aligned_negative_q_2_clock;
+    wire  t2_aligned_negative_q_2_clock;
     reg  t2_aligned_zero_q_0_d;
     wire  t2_aligned_zero_q_0_q;
-    reg  t2_aligned_zero_q_0_clock;
+    wire  t2_aligned_zero_q_0_clock;
     reg  t2_aligned_zero_q_1_d;
     wire  t2_aligned_zero_q_1_q;
-    reg  t2_aligned_zero_q_1_clock;
+    wire  t2_aligned_zero_q_1_clock;
     reg  t2_aligned_zero_q_2_d;
     wire  t2_aligned_zero_q_2_q;
-    reg  t2_aligned_zero_q_2_clock;
+    wire  t2_aligned_zero_q_2_clock;
 
     // Sub module instances
     tritri_pipeline_w24_sign_table u_sign_table(
@@ -130,33 +130,35 @@ module tritri_pipeline_w24_align_t1(clock,advance,t1_negative_0,t1_negative_1,t1
     );
 
     // Update code
+    assign sign_table_negative_0 = t1_negative_0;
+    assign sign_table_zero_0 = t1_zero_0;
+    assign t2_aligned_negative_q_0_clock = clock;
+    assign t2_aligned_zero_q_0_clock = clock;
+    assign t2_aligned_negative_0 = t2_aligned_negative_q_0_q;
+    assign t2_aligned_zero_0 = t2_aligned_zero_q_0_q;
+    assign sign_table_negative_1 = t1_negative_1;
+    assign sign_table_zero_1 = t1_zero_1;
+    assign t2_aligned_negative_q_1_clock = clock;
+    assign t2_aligned_zero_q_1_clock = clock;
+    assign t2_aligned_negative_1 = t2_aligned_negative_q_1_q;
+    assign t2_aligned_zero_1 = t2_aligned_zero_q_1_q;
+    assign sign_table_negative_2 = t1_negative_2;
+    assign sign_table_zero_2 = t1_zero_2;
+    assign t2_aligned_negative_q_2_clock = clock;
+    assign t2_aligned_zero_q_2_clock = clock;
+    assign t2_aligned_negative_2 = t2_aligned_negative_q_2_q;
+    assign t2_aligned_zero_2 = t2_aligned_zero_q_2_q;
+    assign t1_rotation_q_clock = clock;
+    assign t2_swap_q_clock = clock;
+    assign t1_rotation = t1_rotation_q_q;
+    assign t2_swap = t2_swap_q_q;
     always @(*) begin
-        sign_table_negative_0 = t1_negative_0;
-        sign_table_zero_0 = t1_zero_0;
-        t2_aligned_negative_q_0_clock = clock;
         t2_aligned_negative_q_0_d = t2_aligned_negative_q_0_q;
-        t2_aligned_zero_q_0_clock = clock;
         t2_aligned_zero_q_0_d = t2_aligned_zero_q_0_q;
-        t2_aligned_negative_0 = t2_aligned_negative_q_0_q;
-        t2_aligned_zero_0 = t2_aligned_zero_q_0_q;
-        sign_table_negative_1 = t1_negative_1;
-        sign_table_zero_1 = t1_zero_1;
-        t2_aligned_negative_q_1_clock = clock;
         t2_aligned_negative_q_1_d = t2_aligned_negative_q_1_q;
-        t2_aligned_zero_q_1_clock = clock;
         t2_aligned_zero_q_1_d = t2_aligned_zero_q_1_q;
-        t2_aligned_negative_1 = t2_aligned_negative_q_1_q;
-        t2_aligned_zero_1 = t2_aligned_zero_q_1_q;
-        sign_table_negative_2 = t1_negative_2;
-        sign_table_zero_2 = t1_zero_2;
-        t2_aligned_negative_q_2_clock = clock;
         t2_aligned_negative_q_2_d = t2_aligned_negative_q_2_q;
-        t2_aligned_zero_q_2_clock = clock;
         t2_aligned_zero_q_2_d = t2_aligned_zero_q_2_q;
-        t2_aligned_negative_2 = t2_aligned_negative_q_2_q;
-        t2_aligned_zero_2 = t2_aligned_zero_q_2_q;
-        t1_rotation_q_clock = clock;
-        t2_swap_q_clock = clock;
         t1_rotation_q_d = t1_rotation_q_q;
         t2_swap_q_d = t2_swap_q_q;
         if (advance) begin
@@ -177,8 +179,6 @@ module tritri_pipeline_w24_align_t1(clock,advance,t1_negative_0,t1_negative_1,t1
                 t2_aligned_zero_q_2_d = t2_zero_2;
             end
         end
-        t1_rotation = t1_rotation_q_q;
-        t2_swap = t2_swap_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_align_t1

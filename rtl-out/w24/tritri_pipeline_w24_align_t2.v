@@ -30,32 +30,32 @@ module tritri_pipeline_w24_align_t2(clock,advance,t1_rotation_in,t2_swap_in,t2_a
     input wire  t2_aligned_zero_0;
     input wire  t2_aligned_zero_1;
     input wire  t2_aligned_zero_2;
-    output reg  [1:0] t1_rotation;
-    output reg  t2_swap;
-    output reg  [1:0] t2_rotation;
-    output reg  t1_swap;
+    output wire  [1:0] t1_rotation;
+    output wire  t2_swap;
+    output wire  [1:0] t2_rotation;
+    output wire  t1_swap;
 
     // Stub signals
-    reg  sign_table_negative_0;
-    reg  sign_table_negative_1;
-    reg  sign_table_negative_2;
-    reg  sign_table_zero_0;
-    reg  sign_table_zero_1;
-    reg  sign_table_zero_2;
+    wire  sign_table_negative_0;
+    wire  sign_table_negative_1;
+    wire  sign_table_negative_2;
+    wire  sign_table_zero_0;
+    wire  sign_table_zero_1;
+    wire  sign_table_zero_2;
     wire  [1:0] sign_table_rotation;
     wire  sign_table_swap;
     reg  [1:0] t1_rotation_q_d;
     wire  [1:0] t1_rotation_q_q;
-    reg  t1_rotation_q_clock;
+    wire  t1_rotation_q_clock;
     reg  t2_swap_q_d;
     wire  t2_swap_q_q;
-    reg  t2_swap_q_clock;
+    wire  t2_swap_q_clock;
     reg  [1:0] t2_rotation_q_d;
     wire  [1:0] t2_rotation_q_q;
-    reg  t2_rotation_q_clock;
+    wire  t2_rotation_q_clock;
     reg  t1_swap_q_d;
     wire  t1_swap_q_q;
-    reg  t1_swap_q_clock;
+    wire  t1_swap_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_sign_table u_sign_table(
@@ -90,17 +90,21 @@ module tritri_pipeline_w24_align_t2(clock,advance,t1_rotation_in,t2_swap_in,t2_a
     );
 
     // Update code
+    assign sign_table_negative_0 = t2_aligned_negative_0;
+    assign sign_table_zero_0 = t2_aligned_zero_0;
+    assign sign_table_negative_1 = t2_aligned_negative_1;
+    assign sign_table_zero_1 = t2_aligned_zero_1;
+    assign sign_table_negative_2 = t2_aligned_negative_2;
+    assign sign_table_zero_2 = t2_aligned_zero_2;
+    assign t1_rotation_q_clock = clock;
+    assign t2_swap_q_clock = clock;
+    assign t2_rotation_q_clock = clock;
+    assign t1_swap_q_clock = clock;
+    assign t1_rotation = t1_rotation_q_q;
+    assign t2_swap = t2_swap_q_q;
+    assign t2_rotation = t2_rotation_q_q;
+    assign t1_swap = t1_swap_q_q;
     always @(*) begin
-        sign_table_negative_0 = t2_aligned_negative_0;
-        sign_table_zero_0 = t2_aligned_zero_0;
-        sign_table_negative_1 = t2_aligned_negative_1;
-        sign_table_zero_1 = t2_aligned_zero_1;
-        sign_table_negative_2 = t2_aligned_negative_2;
-        sign_table_zero_2 = t2_aligned_zero_2;
-        t1_rotation_q_clock = clock;
-        t2_swap_q_clock = clock;
-        t2_rotation_q_clock = clock;
-        t1_swap_q_clock = clock;
         t1_rotation_q_d = t1_rotation_q_q;
         t2_swap_q_d = t2_swap_q_q;
         t2_rotation_q_d = t2_rotation_q_q;
@@ -111,10 +115,6 @@ module tritri_pipeline_w24_align_t2(clock,advance,t1_rotation_in,t2_swap_in,t2_a
             t2_rotation_q_d = sign_table_rotation;
             t1_swap_q_d = sign_table_swap;
         end
-        t1_rotation = t1_rotation_q_q;
-        t2_swap = t2_swap_q_q;
-        t2_rotation = t2_rotation_q_q;
-        t1_swap = t1_swap_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_align_t2

@@ -26,8 +26,8 @@ module tritri_pipeline_w24_compare(clock,advance,a,b,less,equal);
     input wire  advance;
     input wire  [23:0] a;
     input wire  [23:0] b;
-    output reg  less;
-    output reg  equal;
+    output wire  less;
+    output wire  equal;
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;
@@ -35,10 +35,10 @@ module tritri_pipeline_w24_compare(clock,advance,a,b,less,equal);
     // Stub signals
     reg  less_q_d;
     wire  less_q_q;
-    reg  less_q_clock;
+    wire  less_q_clock;
     reg  equal_q_d;
     wire  equal_q_q;
-    reg  equal_q_clock;
+    wire  equal_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_1 u_less_q(
@@ -53,17 +53,17 @@ module tritri_pipeline_w24_compare(clock,advance,a,b,less,equal);
     );
 
     // Update code
+    assign less_q_clock = clock;
+    assign equal_q_clock = clock;
+    assign less = less_q_q;
+    assign equal = equal_q_q;
     always @(*) begin
-        less_q_clock = clock;
-        equal_q_clock = clock;
         less_q_d = less_q_q;
         equal_q_d = equal_q_q;
         if (advance) begin
             less_q_d = (a ^ sign_flip) < (b ^ sign_flip);
             equal_q_d = a == b;
         end
-        less = less_q_q;
-        equal = equal_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_compare

@@ -28,23 +28,23 @@ module tritri_pipeline_w24_coplanar_orient(clock,advance,u_x,u_y,w_x,w_y,product
     input wire  [24:0] u_y;
     input wire  [24:0] w_x;
     input wire  [24:0] w_y;
-    output reg  [48:0] product;
+    output wire  [48:0] product;
 
     // Stub signals
-    reg  multiplier_0_clock;
-    reg  multiplier_0_advance;
-    reg  [24:0] multiplier_0_a;
-    reg  [24:0] multiplier_0_b;
+    wire  multiplier_0_clock;
+    wire  multiplier_0_advance;
+    wire  [24:0] multiplier_0_a;
+    wire  [24:0] multiplier_0_b;
     wire  [48:0] multiplier_0_product;
-    reg  multiplier_1_clock;
-    reg  multiplier_1_advance;
-    reg  [24:0] multiplier_1_a;
-    reg  [24:0] multiplier_1_b;
+    wire  multiplier_1_clock;
+    wire  multiplier_1_advance;
+    wire  [24:0] multiplier_1_a;
+    wire  [24:0] multiplier_1_b;
     wire  [48:0] multiplier_1_product;
-    reg  difference_clock;
-    reg  difference_advance;
-    reg  [48:0] difference_a;
-    reg  [48:0] difference_b;
+    wire  difference_clock;
+    wire  difference_advance;
+    wire  [48:0] difference_a;
+    wire  [48:0] difference_b;
     wire  [48:0] difference_difference;
 
     // Sub module instances
@@ -71,21 +71,19 @@ module tritri_pipeline_w24_coplanar_orient(clock,advance,u_x,u_y,w_x,w_y,product
     );
 
     // Update code
-    always @(*) begin
-        multiplier_0_clock = clock;
-        multiplier_0_advance = advance;
-        multiplier_1_clock = clock;
-        multiplier_1_advance = advance;
-        multiplier_0_a = u_x;
-        multiplier_0_b = w_y;
-        multiplier_1_a = u_y;
-        multiplier_1_b = w_x;
-        difference_clock = clock;
-        difference_advance = advance;
-        difference_a = multiplier_0_product;
-        difference_b = multiplier_1_product;
-        product = difference_difference;
-    end
+    assign multiplier_0_clock = clock;
+    assign multiplier_0_advance = advance;
+    assign multiplier_1_clock = clock;
+    assign multiplier_1_advance = advance;
+    assign multiplier_0_a = u_x;
+    assign multiplier_0_b = w_y;
+    assign multiplier_1_a = u_y;
+    assign multiplier_1_b = w_x;
+    assign difference_clock = clock;
+    assign difference_advance = advance;
+    assign difference_a = multiplier_0_product;
+    assign difference_b = multiplier_1_product;
+    assign product = difference_difference;
 
 endmodule  // tritri_pipeline_w24_coplanar_orient
 

@@ -48,23 +48,23 @@ module tritri_pipeline_w24_decision(clock,advance,t1_degenerate,t2_degenerate,t1
     input wire  orient_zero_2;
     input wire  coplanar_hit;
     input wire  degenerate_pair_hit;
-    output reg  hit;
+    output wire  hit;
 
     // Stub signals
     reg  hit_q_d;
     wire  hit_q_q;
-    reg  hit_q_clock;
+    wire  hit_q_clock;
 
     // Local signals
-    reg  t1_side_positive_0;
-    reg  t1_side_positive_1;
-    reg  t1_side_positive_2;
-    reg  t2_side_positive_0;
-    reg  t2_side_positive_1;
-    reg  t2_side_positive_2;
-    reg  orient_positive_0;
-    reg  orient_positive_1;
-    reg  orient_positive_2;
+    wire  t1_side_positive_0;
+    wire  t1_side_positive_1;
+    wire  t1_side_positive_2;
+    wire  t2_side_positive_0;
+    wire  t2_side_positive_1;
+    wire  t2_side_positive_2;
+    wire  orient_positive_0;
+    wire  orient_positive_1;
+    wire  orient_positive_2;
     reg  triangles_hit;
     reg  end_a_negative;
     reg  end_a_zero;
@@ -80,16 +80,18 @@ module tritri_pipeline_w24_decision(clock,advance,t1_degenerate,t2_degenerate,t1
     );
 
     // Update code
+    assign t1_side_positive_0 = ~t1_side_negative_0 && ~t1_side_zero_0;
+    assign t2_side_positive_0 = ~t2_side_negative_0 && ~t2_side_zero_0;
+    assign orient_positive_0 = ~orient_negative_0 && ~orient_zero_0;
+    assign t1_side_positive_1 = ~t1_side_negative_1 && ~t1_side_zero_1;
+    assign t2_side_positive_1 = ~t2_side_negative_1 && ~t2_side_zero_1;
+    assign orient_positive_1 = ~orient_negative_1 && ~orient_zero_1;
+    assign t1_side_positive_2 = ~t1_side_negative_2 && ~t1_side_zero_2;
+    assign t2_side_positive_2 = ~t2_side_negative_2 && ~t2_side_zero_2;
+    assign orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
+    assign hit_q_clock = clock;
+    assign hit = hit_q_q;
     always @(*) begin
-        t1_side_positive_0 = ~t1_side_negative_0 && ~t1_side_zero_0;
-        t2_side_positive_0 = ~t2_side_negative_0 && ~t2_side_zero_0;
-        orient_positive_0 = ~orient_negative_0 && ~orient_zero_0;
-        t1_side_positive_1 = ~t1_side_negative_1 && ~t1_side_zero_1;
-        t2_side_positive_1 = ~t2_side_negative_1 && ~t2_side_zero_1;
-        orient_positive_1 = ~orient_negative_1 && ~orient_zero_1;
-        t1_side_positive_2 = ~t1_side_negative_2 && ~t1_side_zero_2;
-        t2_side_positive_2 = ~t2_side_negative_2 && ~t2_side_zero_2;
-        orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
         if ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2) || (t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)) begin
             triangles_hit = 1'h0;
         end
@@ -164,7 +166,6 @@ module tritri_pipeline_w24_decision(clock,advance,t1_degenerate,t2_degenerate,t1
         else begin
             segment_hit = ~((orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2));
         end
-        hit_q_clock = clock;
         hit_q_d = hit_q_q;
         if (advance) begin
             if (~t1_degenerate && ~t2_degenerate) begin
@@ -177,7 +178,6 @@ module tritri_pipeline_w24_decision(clock,advance,t1_degenerate,t2_degenerate,t1
                 hit_q_d = segment_hit;
             end
         end
-        hit = hit_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_decision

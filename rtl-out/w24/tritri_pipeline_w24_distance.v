@@ -30,29 +30,29 @@ module tritri_pipeline_w24_distance(clock,advance,u_0,u_1,u_2,v_0,v_1,v_2,produc
     input wire  [48:0] v_0;
     input wire  [48:0] v_1;
     input wire  [48:0] v_2;
-    output reg  [73:0] product;
+    output wire  [73:0] product;
 
     // Stub signals
-    reg  multiplier_0_clock;
-    reg  multiplier_0_advance;
-    reg  [24:0] multiplier_0_a;
-    reg  [48:0] multiplier_0_b;
+    wire  multiplier_0_clock;
+    wire  multiplier_0_advance;
+    wire  [24:0] multiplier_0_a;
+    wire  [48:0] multiplier_0_b;
     wire  [73:0] multiplier_0_product;
-    reg  multiplier_1_clock;
-    reg  multiplier_1_advance;
-    reg  [24:0] multiplier_1_a;
-    reg  [48:0] multiplier_1_b;
+    wire  multiplier_1_clock;
+    wire  multiplier_1_advance;
+    wire  [24:0] multiplier_1_a;
+    wire  [48:0] multiplier_1_b;
     wire  [73:0] multiplier_1_product;
-    reg  multiplier_2_clock;
-    reg  multiplier_2_advance;
-    reg  [24:0] multiplier_2_a;
-    reg  [48:0] multiplier_2_b;
+    wire  multiplier_2_clock;
+    wire  multiplier_2_advance;
+    wire  [24:0] multiplier_2_a;
+    wire  [48:0] multiplier_2_b;
     wire  [73:0] multiplier_2_product;
-    reg  sum_clock;
-    reg  sum_advance;
-    reg  [73:0] sum_a;
-    reg  [73:0] sum_b;
-    reg  [73:0] sum_c;
+    wire  sum_clock;
+    wire  sum_advance;
+    wire  [73:0] sum_a;
+    wire  [73:0] sum_b;
+    wire  [73:0] sum_c;
     wire  [73:0] sum_sum;
 
     // Sub module instances
@@ -87,26 +87,24 @@ module tritri_pipeline_w24_distance(clock,advance,u_0,u_1,u_2,v_0,v_1,v_2,produc
     );
 
     // Update code
-    always @(*) begin
-        multiplier_0_clock = clock;
-        multiplier_0_advance = advance;
-        multiplier_0_a = u_0;
-        multiplier_0_b = v_0;
-        multiplier_1_clock = clock;
-        multiplier_1_advance = advance;
-        multiplier_1_a = u_1;
-        multiplier_1_b = v_1;
-        multiplier_2_clock = clock;
-        multiplier_2_advance = advance;
-        multiplier_2_a = u_2;
-        multiplier_2_b = v_2;
-        sum_clock = clock;
-        sum_advance = advance;
-        sum_a = multiplier_0_product;
-        sum_b = multiplier_1_product;
-        sum_c = multiplier_2_product;
-        product = sum_sum;
-    end
+    assign multiplier_0_clock = clock;
+    assign multiplier_0_advance = advance;
+    assign multiplier_0_a = u_0;
+    assign multiplier_0_b = v_0;
+    assign multiplier_1_clock = clock;
+    assign multiplier_1_advance = advance;
+    assign multiplier_1_a = u_1;
+    assign multiplier_1_b = v_1;
+    assign multiplier_2_clock = clock;
+    assign multiplier_2_advance = advance;
+    assign multiplier_2_a = u_2;
+    assign multiplier_2_b = v_2;
+    assign sum_clock = clock;
+    assign sum_advance = advance;
+    assign sum_a = multiplier_0_product;
+    assign sum_b = multiplier_1_product;
+    assign sum_c = multiplier_2_product;
+    assign product = sum_sum;
 
 endmodule  // tritri_pipeline_w24_distance
 

@@ -25,22 +25,22 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
     input wire  [48:0] normal_0;
     input wire  [48:0] normal_1;
     input wire  [48:0] normal_2;
-    output reg  [1:0] axis;
+    output wire  [1:0] axis;
 
     // Constant declarations
     // Stub signals
     reg  [48:0] magnitude_0_d;
     wire  [48:0] magnitude_0_q;
-    reg  magnitude_0_clock;
+    wire  magnitude_0_clock;
     reg  [48:0] magnitude_1_d;
     wire  [48:0] magnitude_1_q;
-    reg  magnitude_1_clock;
+    wire  magnitude_1_clock;
     reg  [48:0] magnitude_2_d;
     wire  [48:0] magnitude_2_q;
-    reg  magnitude_2_clock;
+    wire  magnitude_2_clock;
     reg  [1:0] axis_q_d;
     wire  [1:0] axis_q_q;
-    reg  axis_q_clock;
+    wire  axis_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_49 u_magnitude_0(
@@ -65,8 +65,12 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
     );
 
     // Update code
+    assign magnitude_0_clock = clock;
+    assign magnitude_1_clock = clock;
+    assign magnitude_2_clock = clock;
+    assign axis_q_clock = clock;
+    assign axis = axis_q_q;
     always @(*) begin
-        magnitude_0_clock = clock;
         magnitude_0_d = magnitude_0_q;
         if (advance) begin
             if (normal_0[48]) begin
@@ -76,7 +80,6 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
                 magnitude_0_d = normal_0;
             end
         end
-        magnitude_1_clock = clock;
         magnitude_1_d = magnitude_1_q;
         if (advance) begin
             if (normal_1[48]) begin
@@ -86,7 +89,6 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
                 magnitude_1_d = normal_1;
             end
         end
-        magnitude_2_clock = clock;
         magnitude_2_d = magnitude_2_q;
         if (advance) begin
             if (normal_2[48]) begin
@@ -96,7 +98,6 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
                 magnitude_2_d = normal_2;
             end
         end
-        axis_q_clock = clock;
         axis_q_d = axis_q_q;
         if (advance) begin
             if ((magnitude_0_q >= magnitude_1_q) && (magnitude_0_q >= magnitude_2_q)) begin
@@ -109,7 +110,6 @@ module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal
                 axis_q_d = 2'h2;
             end
         end
-        axis = axis_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_front_end_axis

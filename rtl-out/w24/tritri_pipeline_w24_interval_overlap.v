@@ -26,40 +26,40 @@ module tritri_pipeline_w24_interval_overlap(clock,advance,t1_rotation,t2_swap,t2
     input wire  t2_swap;
     input wire  [1:0] t2_rotation;
     input wire  t1_swap;
-    output reg  [2:0] first_0;
-    output reg  [2:0] first_1;
-    output reg  [2:0] first_2;
-    output reg  [2:0] first_3;
-    output reg  [2:0] second_0;
-    output reg  [2:0] second_1;
-    output reg  [2:0] second_2;
-    output reg  [2:0] second_3;
+    output wire  [2:0] first_0;
+    output wire  [2:0] first_1;
+    output wire  [2:0] first_2;
+    output wire  [2:0] first_3;
+    output wire  [2:0] second_0;
+    output wire  [2:0] second_1;
+    output wire  [2:0] second_2;
+    output wire  [2:0] second_3;
 
     // Stub signals
     reg  [2:0] first_q_0_d;
     wire  [2:0] first_q_0_q;
-    reg  first_q_0_clock;
+    wire  first_q_0_clock;
     reg  [2:0] first_q_1_d;
     wire  [2:0] first_q_1_q;
-    reg  first_q_1_clock;
+    wire  first_q_1_clock;
     reg  [2:0] first_q_2_d;
     wire  [2:0] first_q_2_q;
-    reg  first_q_2_clock;
+    wire  first_q_2_clock;
     reg  [2:0] first_q_3_d;
     wire  [2:0] first_q_3_q;
-    reg  first_q_3_clock;
+    wire  first_q_3_clock;
     reg  [2:0] second_q_0_d;
     wire  [2:0] second_q_0_q;
-    reg  second_q_0_clock;
+    wire  second_q_0_clock;
     reg  [2:0] second_q_1_d;
     wire  [2:0] second_q_1_q;
-    reg  second_q_1_clock;
+    wire  second_q_1_clock;
     reg  [2:0] second_q_2_d;
     wire  [2:0] second_q_2_q;
-    reg  second_q_2_clock;
+    wire  second_q_2_clock;
     reg  [2:0] second_q_3_d;
     wire  [2:0] second_q_3_q;
-    reg  second_q_3_clock;
+    wire  second_q_3_clock;
 
     // Local signals
     reg  [2:0] p1;
@@ -116,6 +116,22 @@ module tritri_pipeline_w24_interval_overlap(clock,advance,t1_rotation,t2_swap,t2
     );
 
     // Update code
+    assign first_q_0_clock = clock;
+    assign second_q_0_clock = clock;
+    assign first_0 = first_q_0_q;
+    assign second_0 = second_q_0_q;
+    assign first_q_1_clock = clock;
+    assign second_q_1_clock = clock;
+    assign first_1 = first_q_1_q;
+    assign second_1 = second_q_1_q;
+    assign first_q_2_clock = clock;
+    assign second_q_2_clock = clock;
+    assign first_2 = first_q_2_q;
+    assign second_2 = second_q_2_q;
+    assign first_q_3_clock = clock;
+    assign second_q_3_clock = clock;
+    assign first_3 = first_q_3_q;
+    assign second_3 = second_q_3_q;
     always @(*) begin
         if (t1_rotation == 2'h0) begin
             p1 = 3'h0;
@@ -163,30 +179,14 @@ module tritri_pipeline_w24_interval_overlap(clock,advance,t1_rotation,t2_swap,t2
             q2 = 3'h3;
             r2 = s1;
         end
-        first_q_0_clock = clock;
         first_q_0_d = first_q_0_q;
-        second_q_0_clock = clock;
         second_q_0_d = second_q_0_q;
-        first_0 = first_q_0_q;
-        second_0 = second_q_0_q;
-        first_q_1_clock = clock;
         first_q_1_d = first_q_1_q;
-        second_q_1_clock = clock;
         second_q_1_d = second_q_1_q;
-        first_1 = first_q_1_q;
-        second_1 = second_q_1_q;
-        first_q_2_clock = clock;
         first_q_2_d = first_q_2_q;
-        second_q_2_clock = clock;
         second_q_2_d = second_q_2_q;
-        first_2 = first_q_2_q;
-        second_2 = second_q_2_q;
-        first_q_3_clock = clock;
         first_q_3_d = first_q_3_q;
-        second_q_3_clock = clock;
         second_q_3_d = second_q_3_q;
-        first_3 = first_q_3_q;
-        second_3 = second_q_3_q;
         if (advance) begin
             first_q_0_d = q1;
             first_q_1_d = p2;

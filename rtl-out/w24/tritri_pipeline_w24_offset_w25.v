@@ -26,7 +26,7 @@ module tritri_pipeline_w24_offset_w25(clock,advance,a,b,difference);
     input wire  advance;
     input wire  [23:0] a;
     input wire  [23:0] b;
-    output reg  [24:0] difference;
+    output wire  [24:0] difference;
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;
@@ -34,7 +34,7 @@ module tritri_pipeline_w24_offset_w25(clock,advance,a,b,difference);
     // Stub signals
     reg  [24:0] difference_q_d;
     wire  [24:0] difference_q_q;
-    reg  difference_q_clock;
+    wire  difference_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_25 u_difference_q(
@@ -44,13 +44,13 @@ module tritri_pipeline_w24_offset_w25(clock,advance,a,b,difference);
     );
 
     // Update code
+    assign difference_q_clock = clock;
+    assign difference = difference_q_q;
     always @(*) begin
-        difference_q_clock = clock;
         difference_q_d = difference_q_q;
         if (advance) begin
             difference_q_d = {1'h0, a ^ sign_flip} - {1'h0, b ^ sign_flip};
         end
-        difference = difference_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_offset_w25

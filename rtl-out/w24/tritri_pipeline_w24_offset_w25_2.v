@@ -30,9 +30,9 @@ module tritri_pipeline_w24_offset_w25_2(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,di
     input wire  [23:0] b_0;
     input wire  [23:0] b_1;
     input wire  [23:0] b_2;
-    output reg  [24:0] difference__0;
-    output reg  [24:0] difference__1;
-    output reg  [24:0] difference__2;
+    output wire  [24:0] difference__0;
+    output wire  [24:0] difference__1;
+    output wire  [24:0] difference__2;
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;
@@ -40,13 +40,13 @@ module tritri_pipeline_w24_offset_w25_2(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,di
     // Stub signals
     reg  [24:0] difference_0_d;
     wire  [24:0] difference_0_q;
-    reg  difference_0_clock;
+    wire  difference_0_clock;
     reg  [24:0] difference_1_d;
     wire  [24:0] difference_1_q;
-    reg  difference_1_clock;
+    wire  difference_1_clock;
     reg  [24:0] difference_2_d;
     wire  [24:0] difference_2_q;
-    reg  difference_2_clock;
+    wire  difference_2_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_25 u_difference_0(
@@ -66,10 +66,13 @@ module tritri_pipeline_w24_offset_w25_2(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,di
     );
 
     // Update code
+    assign difference_0_clock = clock;
+    assign difference_1_clock = clock;
+    assign difference_2_clock = clock;
+    assign difference__0 = difference_0_q;
+    assign difference__1 = difference_1_q;
+    assign difference__2 = difference_2_q;
     always @(*) begin
-        difference_0_clock = clock;
-        difference_1_clock = clock;
-        difference_2_clock = clock;
         difference_0_d = difference_0_q;
         difference_1_d = difference_1_q;
         difference_2_d = difference_2_q;
@@ -78,9 +81,6 @@ module tritri_pipeline_w24_offset_w25_2(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,di
             difference_1_d = {1'h0, a_1 ^ sign_flip} - {1'h0, b_1 ^ sign_flip};
             difference_2_d = {1'h0, a_2 ^ sign_flip} - {1'h0, b_2 ^ sign_flip};
         end
-        difference__0 = difference_0_q;
-        difference__1 = difference_1_q;
-        difference__2 = difference_2_q;
     end
 
 endmodule  // tritri_pipeline_w24_offset_w25_2

@@ -54,260 +54,260 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
     input wire  [23:0] t2_vertices_6;
     input wire  [23:0] t2_vertices_7;
     input wire  [23:0] t2_vertices_8;
-    output reg  [23:0] operands_0;
-    output reg  [23:0] operands_1;
-    output reg  [23:0] operands_2;
-    output reg  [23:0] operands_3;
-    output reg  [23:0] operands_4;
-    output reg  [23:0] operands_5;
-    output reg  [23:0] operands_6;
-    output reg  [23:0] operands_7;
-    output reg  [23:0] operands_8;
-    output reg  [23:0] operands_9;
-    output reg  [23:0] operands_10;
-    output reg  [23:0] operands_11;
-    output reg  [23:0] operands_12;
-    output reg  [23:0] operands_13;
-    output reg  [23:0] operands_14;
-    output reg  [23:0] operands_15;
-    output reg  [23:0] operands_16;
-    output reg  [23:0] operands_17;
-    output reg  [23:0] operands_18;
-    output reg  [23:0] operands_19;
-    output reg  [23:0] operands_20;
-    output reg  [23:0] operands_21;
-    output reg  [23:0] operands_22;
-    output reg  [23:0] operands_23;
-    output reg  [23:0] operands_24;
-    output reg  [23:0] operands_25;
-    output reg  [23:0] operands_26;
-    output reg  [23:0] operands_27;
-    output reg  [23:0] operands_28;
-    output reg  [23:0] operands_29;
-    output reg  [23:0] operands_30;
-    output reg  [23:0] operands_31;
-    output reg  [23:0] operands_32;
-    output reg  [23:0] operands_33;
-    output reg  [23:0] operands_34;
-    output reg  [23:0] operands_35;
+    output wire  [23:0] operands_0;
+    output wire  [23:0] operands_1;
+    output wire  [23:0] operands_2;
+    output wire  [23:0] operands_3;
+    output wire  [23:0] operands_4;
+    output wire  [23:0] operands_5;
+    output wire  [23:0] operands_6;
+    output wire  [23:0] operands_7;
+    output wire  [23:0] operands_8;
+    output wire  [23:0] operands_9;
+    output wire  [23:0] operands_10;
+    output wire  [23:0] operands_11;
+    output wire  [23:0] operands_12;
+    output wire  [23:0] operands_13;
+    output wire  [23:0] operands_14;
+    output wire  [23:0] operands_15;
+    output wire  [23:0] operands_16;
+    output wire  [23:0] operands_17;
+    output wire  [23:0] operands_18;
+    output wire  [23:0] operands_19;
+    output wire  [23:0] operands_20;
+    output wire  [23:0] operands_21;
+    output wire  [23:0] operands_22;
+    output wire  [23:0] operands_23;
+    output wire  [23:0] operands_24;
+    output wire  [23:0] operands_25;
+    output wire  [23:0] operands_26;
+    output wire  [23:0] operands_27;
+    output wire  [23:0] operands_28;
+    output wire  [23:0] operands_29;
+    output wire  [23:0] operands_30;
+    output wire  [23:0] operands_31;
+    output wire  [23:0] operands_32;
+    output wire  [23:0] operands_33;
+    output wire  [23:0] operands_34;
+    output wire  [23:0] operands_35;
 
     // Stub signals
     reg  [2:0] index_q_0_d;
     wire  [2:0] index_q_0_q;
-    reg  index_q_0_clock;
+    wire  index_q_0_clock;
     reg  [2:0] index_q_1_d;
     wire  [2:0] index_q_1_q;
-    reg  index_q_1_clock;
+    wire  index_q_1_clock;
     reg  [2:0] index_q_2_d;
     wire  [2:0] index_q_2_q;
-    reg  index_q_2_clock;
+    wire  index_q_2_clock;
     reg  [2:0] index_q_3_d;
     wire  [2:0] index_q_3_q;
-    reg  index_q_3_clock;
+    wire  index_q_3_clock;
     reg  [2:0] index_q_4_d;
     wire  [2:0] index_q_4_q;
-    reg  index_q_4_clock;
+    wire  index_q_4_clock;
     reg  [2:0] index_q_5_d;
     wire  [2:0] index_q_5_q;
-    reg  index_q_5_clock;
+    wire  index_q_5_clock;
     reg  [2:0] index_q_6_d;
     wire  [2:0] index_q_6_q;
-    reg  index_q_6_clock;
+    wire  index_q_6_clock;
     reg  [2:0] index_q_7_d;
     wire  [2:0] index_q_7_q;
-    reg  index_q_7_clock;
+    wire  index_q_7_clock;
     reg  [2:0] index_q_8_d;
     wire  [2:0] index_q_8_q;
-    reg  index_q_8_clock;
+    wire  index_q_8_clock;
     reg  [2:0] index_q_9_d;
     wire  [2:0] index_q_9_q;
-    reg  index_q_9_clock;
+    wire  index_q_9_clock;
     reg  [2:0] index_q_10_d;
     wire  [2:0] index_q_10_q;
-    reg  index_q_10_clock;
+    wire  index_q_10_clock;
     reg  [2:0] index_q_11_d;
     wire  [2:0] index_q_11_q;
-    reg  index_q_11_clock;
-    reg  t1_delay_0_clock;
-    reg  t1_delay_0_advance;
-    reg  [23:0] t1_delay_0_d;
+    wire  index_q_11_clock;
+    wire  t1_delay_0_clock;
+    wire  t1_delay_0_advance;
+    wire  [23:0] t1_delay_0_d;
     wire  [23:0] t1_delay_0_q;
-    reg  t1_delay_1_clock;
-    reg  t1_delay_1_advance;
-    reg  [23:0] t1_delay_1_d;
+    wire  t1_delay_1_clock;
+    wire  t1_delay_1_advance;
+    wire  [23:0] t1_delay_1_d;
     wire  [23:0] t1_delay_1_q;
-    reg  t1_delay_2_clock;
-    reg  t1_delay_2_advance;
-    reg  [23:0] t1_delay_2_d;
+    wire  t1_delay_2_clock;
+    wire  t1_delay_2_advance;
+    wire  [23:0] t1_delay_2_d;
     wire  [23:0] t1_delay_2_q;
-    reg  t1_delay_3_clock;
-    reg  t1_delay_3_advance;
-    reg  [23:0] t1_delay_3_d;
+    wire  t1_delay_3_clock;
+    wire  t1_delay_3_advance;
+    wire  [23:0] t1_delay_3_d;
     wire  [23:0] t1_delay_3_q;
-    reg  t1_delay_4_clock;
-    reg  t1_delay_4_advance;
-    reg  [23:0] t1_delay_4_d;
+    wire  t1_delay_4_clock;
+    wire  t1_delay_4_advance;
+    wire  [23:0] t1_delay_4_d;
     wire  [23:0] t1_delay_4_q;
-    reg  t1_delay_5_clock;
-    reg  t1_delay_5_advance;
-    reg  [23:0] t1_delay_5_d;
+    wire  t1_delay_5_clock;
+    wire  t1_delay_5_advance;
+    wire  [23:0] t1_delay_5_d;
     wire  [23:0] t1_delay_5_q;
-    reg  t1_delay_6_clock;
-    reg  t1_delay_6_advance;
-    reg  [23:0] t1_delay_6_d;
+    wire  t1_delay_6_clock;
+    wire  t1_delay_6_advance;
+    wire  [23:0] t1_delay_6_d;
     wire  [23:0] t1_delay_6_q;
-    reg  t1_delay_7_clock;
-    reg  t1_delay_7_advance;
-    reg  [23:0] t1_delay_7_d;
+    wire  t1_delay_7_clock;
+    wire  t1_delay_7_advance;
+    wire  [23:0] t1_delay_7_d;
     wire  [23:0] t1_delay_7_q;
-    reg  t1_delay_8_clock;
-    reg  t1_delay_8_advance;
-    reg  [23:0] t1_delay_8_d;
+    wire  t1_delay_8_clock;
+    wire  t1_delay_8_advance;
+    wire  [23:0] t1_delay_8_d;
     wire  [23:0] t1_delay_8_q;
-    reg  t2_delay_0_clock;
-    reg  t2_delay_0_advance;
-    reg  [23:0] t2_delay_0_d;
+    wire  t2_delay_0_clock;
+    wire  t2_delay_0_advance;
+    wire  [23:0] t2_delay_0_d;
     wire  [23:0] t2_delay_0_q;
-    reg  t2_delay_1_clock;
-    reg  t2_delay_1_advance;
-    reg  [23:0] t2_delay_1_d;
+    wire  t2_delay_1_clock;
+    wire  t2_delay_1_advance;
+    wire  [23:0] t2_delay_1_d;
     wire  [23:0] t2_delay_1_q;
-    reg  t2_delay_2_clock;
-    reg  t2_delay_2_advance;
-    reg  [23:0] t2_delay_2_d;
+    wire  t2_delay_2_clock;
+    wire  t2_delay_2_advance;
+    wire  [23:0] t2_delay_2_d;
     wire  [23:0] t2_delay_2_q;
-    reg  t2_delay_3_clock;
-    reg  t2_delay_3_advance;
-    reg  [23:0] t2_delay_3_d;
+    wire  t2_delay_3_clock;
+    wire  t2_delay_3_advance;
+    wire  [23:0] t2_delay_3_d;
     wire  [23:0] t2_delay_3_q;
-    reg  t2_delay_4_clock;
-    reg  t2_delay_4_advance;
-    reg  [23:0] t2_delay_4_d;
+    wire  t2_delay_4_clock;
+    wire  t2_delay_4_advance;
+    wire  [23:0] t2_delay_4_d;
     wire  [23:0] t2_delay_4_q;
-    reg  t2_delay_5_clock;
-    reg  t2_delay_5_advance;
-    reg  [23:0] t2_delay_5_d;
+    wire  t2_delay_5_clock;
+    wire  t2_delay_5_advance;
+    wire  [23:0] t2_delay_5_d;
     wire  [23:0] t2_delay_5_q;
-    reg  t2_delay_6_clock;
-    reg  t2_delay_6_advance;
-    reg  [23:0] t2_delay_6_d;
+    wire  t2_delay_6_clock;
+    wire  t2_delay_6_advance;
+    wire  [23:0] t2_delay_6_d;
     wire  [23:0] t2_delay_6_q;
-    reg  t2_delay_7_clock;
-    reg  t2_delay_7_advance;
-    reg  [23:0] t2_delay_7_d;
+    wire  t2_delay_7_clock;
+    wire  t2_delay_7_advance;
+    wire  [23:0] t2_delay_7_d;
     wire  [23:0] t2_delay_7_q;
-    reg  t2_delay_8_clock;
-    reg  t2_delay_8_advance;
-    reg  [23:0] t2_delay_8_d;
+    wire  t2_delay_8_clock;
+    wire  t2_delay_8_advance;
+    wire  [23:0] t2_delay_8_d;
     wire  [23:0] t2_delay_8_q;
     reg  [23:0] operands_q_0_d;
     wire  [23:0] operands_q_0_q;
-    reg  operands_q_0_clock;
+    wire  operands_q_0_clock;
     reg  [23:0] operands_q_1_d;
     wire  [23:0] operands_q_1_q;
-    reg  operands_q_1_clock;
+    wire  operands_q_1_clock;
     reg  [23:0] operands_q_2_d;
     wire  [23:0] operands_q_2_q;
-    reg  operands_q_2_clock;
+    wire  operands_q_2_clock;
     reg  [23:0] operands_q_3_d;
     wire  [23:0] operands_q_3_q;
-    reg  operands_q_3_clock;
+    wire  operands_q_3_clock;
     reg  [23:0] operands_q_4_d;
     wire  [23:0] operands_q_4_q;
-    reg  operands_q_4_clock;
+    wire  operands_q_4_clock;
     reg  [23:0] operands_q_5_d;
     wire  [23:0] operands_q_5_q;
-    reg  operands_q_5_clock;
+    wire  operands_q_5_clock;
     reg  [23:0] operands_q_6_d;
     wire  [23:0] operands_q_6_q;
-    reg  operands_q_6_clock;
+    wire  operands_q_6_clock;
     reg  [23:0] operands_q_7_d;
     wire  [23:0] operands_q_7_q;
-    reg  operands_q_7_clock;
+    wire  operands_q_7_clock;
     reg  [23:0] operands_q_8_d;
     wire  [23:0] operands_q_8_q;
-    reg  operands_q_8_clock;
+    wire  operands_q_8_clock;
     reg  [23:0] operands_q_9_d;
     wire  [23:0] operands_q_9_q;
-    reg  operands_q_9_clock;
+    wire  operands_q_9_clock;
     reg  [23:0] operands_q_10_d;
     wire  [23:0] operands_q_10_q;
-    reg  operands_q_10_clock;
+    wire  operands_q_10_clock;
     reg  [23:0] operands_q_11_d;
     wire  [23:0] operands_q_11_q;
-    reg  operands_q_11_clock;
+    wire  operands_q_11_clock;
     reg  [23:0] operands_q_12_d;
     wire  [23:0] operands_q_12_q;
-    reg  operands_q_12_clock;
+    wire  operands_q_12_clock;
     reg  [23:0] operands_q_13_d;
     wire  [23:0] operands_q_13_q;
-    reg  operands_q_13_clock;
+    wire  operands_q_13_clock;
     reg  [23:0] operands_q_14_d;
     wire  [23:0] operands_q_14_q;
-    reg  operands_q_14_clock;
+    wire  operands_q_14_clock;
     reg  [23:0] operands_q_15_d;
     wire  [23:0] operands_q_15_q;
-    reg  operands_q_15_clock;
+    wire  operands_q_15_clock;
     reg  [23:0] operands_q_16_d;
     wire  [23:0] operands_q_16_q;
-    reg  operands_q_16_clock;
+    wire  operands_q_16_clock;
     reg  [23:0] operands_q_17_d;
     wire  [23:0] operands_q_17_q;
-    reg  operands_q_17_clock;
+    wire  operands_q_17_clock;
     reg  [23:0] operands_q_18_d;
     wire  [23:0] operands_q_18_q;
-    reg  operands_q_18_clock;
+    wire  operands_q_18_clock;
     reg  [23:0] operands_q_19_d;
     wire  [23:0] operands_q_19_q;
-    reg  operands_q_19_clock;
+    wire  operands_q_19_clock;
     reg  [23:0] operands_q_20_d;
     wire  [23:0] operands_q_20_q;
-    reg  operands_q_20_clock;
+    wire  operands_q_20_clock;
     reg  [23:0] operands_q_21_d;
     wire  [23:0] operands_q_21_q;
-    reg  operands_q_21_clock;
+    wire  operands_q_21_clock;
     reg  [23:0] operands_q_22_d;
     wire  [23:0] operands_q_22_q;
-    reg  operands_q_22_clock;
+    wire  operands_q_22_clock;
     reg  [23:0] operands_q_23_d;
     wire  [23:0] operands_q_23_q;
-    reg  operands_q_23_clock;
+    wire  operands_q_23_clock;
     reg  [23:0] operands_q_24_d;
     wire  [23:0] operands_q_24_q;
-    reg  operands_q_24_clock;
+    wire  operands_q_24_clock;
     reg  [23:0] operands_q_25_d;
     wire  [23:0] operands_q_25_q;
-    reg  operands_q_25_clock;
+    wire  operands_q_25_clock;
     reg  [23:0] operands_q_26_d;
     wire  [23:0] operands_q_26_q;
-    reg  operands_q_26_clock;
+    wire  operands_q_26_clock;
     reg  [23:0] operands_q_27_d;
     wire  [23:0] operands_q_27_q;
-    reg  operands_q_27_clock;
+    wire  operands_q_27_clock;
     reg  [23:0] operands_q_28_d;
     wire  [23:0] operands_q_28_q;
-    reg  operands_q_28_clock;
+    wire  operands_q_28_clock;
     reg  [23:0] operands_q_29_d;
     wire  [23:0] operands_q_29_q;
-    reg  operands_q_29_clock;
+    wire  operands_q_29_clock;
     reg  [23:0] operands_q_30_d;
     wire  [23:0] operands_q_30_q;
-    reg  operands_q_30_clock;
+    wire  operands_q_30_clock;
     reg  [23:0] operands_q_31_d;
     wire  [23:0] operands_q_31_q;
-    reg  operands_q_31_clock;
+    wire  operands_q_31_clock;
     reg  [23:0] operands_q_32_d;
     wire  [23:0] operands_q_32_q;
-    reg  operands_q_32_clock;
+    wire  operands_q_32_clock;
     reg  [23:0] operands_q_33_d;
     wire  [23:0] operands_q_33_q;
-    reg  operands_q_33_clock;
+    wire  operands_q_33_clock;
     reg  [23:0] operands_q_34_d;
     wire  [23:0] operands_q_34_q;
-    reg  operands_q_34_clock;
+    wire  operands_q_34_clock;
     reg  [23:0] operands_q_35_d;
     wire  [23:0] operands_q_35_q;
-    reg  operands_q_35_clock;
+    wire  operands_q_35_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_3 u_index_q_0(
@@ -660,30 +660,156 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
     );
 
     // Update code
+    assign index_q_0_clock = clock;
+    assign index_q_1_clock = clock;
+    assign index_q_2_clock = clock;
+    assign index_q_3_clock = clock;
+    assign index_q_4_clock = clock;
+    assign index_q_5_clock = clock;
+    assign index_q_6_clock = clock;
+    assign index_q_7_clock = clock;
+    assign index_q_8_clock = clock;
+    assign index_q_9_clock = clock;
+    assign index_q_10_clock = clock;
+    assign index_q_11_clock = clock;
+    assign t1_delay_0_clock = clock;
+    assign t1_delay_0_advance = advance;
+    assign t1_delay_0_d = t1_vertices_0;
+    assign t2_delay_0_clock = clock;
+    assign t2_delay_0_advance = advance;
+    assign t2_delay_0_d = t2_vertices_0;
+    assign t1_delay_1_clock = clock;
+    assign t1_delay_1_advance = advance;
+    assign t1_delay_1_d = t1_vertices_1;
+    assign t2_delay_1_clock = clock;
+    assign t2_delay_1_advance = advance;
+    assign t2_delay_1_d = t2_vertices_1;
+    assign t1_delay_2_clock = clock;
+    assign t1_delay_2_advance = advance;
+    assign t1_delay_2_d = t1_vertices_2;
+    assign t2_delay_2_clock = clock;
+    assign t2_delay_2_advance = advance;
+    assign t2_delay_2_d = t2_vertices_2;
+    assign t1_delay_3_clock = clock;
+    assign t1_delay_3_advance = advance;
+    assign t1_delay_3_d = t1_vertices_3;
+    assign t2_delay_3_clock = clock;
+    assign t2_delay_3_advance = advance;
+    assign t2_delay_3_d = t2_vertices_3;
+    assign t1_delay_4_clock = clock;
+    assign t1_delay_4_advance = advance;
+    assign t1_delay_4_d = t1_vertices_4;
+    assign t2_delay_4_clock = clock;
+    assign t2_delay_4_advance = advance;
+    assign t2_delay_4_d = t2_vertices_4;
+    assign t1_delay_5_clock = clock;
+    assign t1_delay_5_advance = advance;
+    assign t1_delay_5_d = t1_vertices_5;
+    assign t2_delay_5_clock = clock;
+    assign t2_delay_5_advance = advance;
+    assign t2_delay_5_d = t2_vertices_5;
+    assign t1_delay_6_clock = clock;
+    assign t1_delay_6_advance = advance;
+    assign t1_delay_6_d = t1_vertices_6;
+    assign t2_delay_6_clock = clock;
+    assign t2_delay_6_advance = advance;
+    assign t2_delay_6_d = t2_vertices_6;
+    assign t1_delay_7_clock = clock;
+    assign t1_delay_7_advance = advance;
+    assign t1_delay_7_d = t1_vertices_7;
+    assign t2_delay_7_clock = clock;
+    assign t2_delay_7_advance = advance;
+    assign t2_delay_7_d = t2_vertices_7;
+    assign t1_delay_8_clock = clock;
+    assign t1_delay_8_advance = advance;
+    assign t1_delay_8_d = t1_vertices_8;
+    assign t2_delay_8_clock = clock;
+    assign t2_delay_8_advance = advance;
+    assign t2_delay_8_d = t2_vertices_8;
+    assign operands_q_0_clock = clock;
+    assign operands_0 = operands_q_0_q;
+    assign operands_q_1_clock = clock;
+    assign operands_1 = operands_q_1_q;
+    assign operands_q_2_clock = clock;
+    assign operands_2 = operands_q_2_q;
+    assign operands_q_3_clock = clock;
+    assign operands_3 = operands_q_3_q;
+    assign operands_q_4_clock = clock;
+    assign operands_4 = operands_q_4_q;
+    assign operands_q_5_clock = clock;
+    assign operands_5 = operands_q_5_q;
+    assign operands_q_6_clock = clock;
+    assign operands_6 = operands_q_6_q;
+    assign operands_q_7_clock = clock;
+    assign operands_7 = operands_q_7_q;
+    assign operands_q_8_clock = clock;
+    assign operands_8 = operands_q_8_q;
+    assign operands_q_9_clock = clock;
+    assign operands_9 = operands_q_9_q;
+    assign operands_q_10_clock = clock;
+    assign operands_10 = operands_q_10_q;
+    assign operands_q_11_clock = clock;
+    assign operands_11 = operands_q_11_q;
+    assign operands_q_12_clock = clock;
+    assign operands_12 = operands_q_12_q;
+    assign operands_q_13_clock = clock;
+    assign operands_13 = operands_q_13_q;
+    assign operands_q_14_clock = clock;
+    assign operands_14 = operands_q_14_q;
+    assign operands_q_15_clock = clock;
+    assign operands_15 = operands_q_15_q;
+    assign operands_q_16_clock = clock;
+    assign operands_16 = operands_q_16_q;
+    assign operands_q_17_clock = clock;
+    assign operands_17 = operands_q_17_q;
+    assign operands_q_18_clock = clock;
+    assign operands_18 = operands_q_18_q;
+    assign operands_q_19_clock = clock;
+    assign operands_19 = operands_q_19_q;
+    assign operands_q_20_clock = clock;
+    assign operands_20 = operands_q_20_q;
+    assign operands_q_21_clock = clock;
+    assign operands_21 = operands_q_21_q;
+    assign operands_q_22_clock = clock;
+    assign operands_22 = operands_q_22_q;
+    assign operands_q_23_clock = clock;
+    assign operands_23 = operands_q_23_q;
+    assign operands_q_24_clock = clock;
+    assign operands_24 = operands_q_24_q;
+    assign operands_q_25_clock = clock;
+    assign operands_25 = operands_q_25_q;
+    assign operands_q_26_clock = clock;
+    assign operands_26 = operands_q_26_q;
+    assign operands_q_27_clock = clock;
+    assign operands_27 = operands_q_27_q;
+    assign operands_q_28_clock = clock;
+    assign operands_28 = operands_q_28_q;
+    assign operands_q_29_clock = clock;
+    assign operands_29 = operands_q_29_q;
+    assign operands_q_30_clock = clock;
+    assign operands_30 = operands_q_30_q;
+    assign operands_q_31_clock = clock;
+    assign operands_31 = operands_q_31_q;
+    assign operands_q_32_clock = clock;
+    assign operands_32 = operands_q_32_q;
+    assign operands_q_33_clock = clock;
+    assign operands_33 = operands_q_33_q;
+    assign operands_q_34_clock = clock;
+    assign operands_34 = operands_q_34_q;
+    assign operands_q_35_clock = clock;
+    assign operands_35 = operands_q_35_q;
     always @(*) begin
-        index_q_0_clock = clock;
         index_q_0_d = index_q_0_q;
-        index_q_1_clock = clock;
         index_q_1_d = index_q_1_q;
-        index_q_2_clock = clock;
         index_q_2_d = index_q_2_q;
-        index_q_3_clock = clock;
         index_q_3_d = index_q_3_q;
-        index_q_4_clock = clock;
         index_q_4_d = index_q_4_q;
-        index_q_5_clock = clock;
         index_q_5_d = index_q_5_q;
-        index_q_6_clock = clock;
         index_q_6_d = index_q_6_q;
-        index_q_7_clock = clock;
         index_q_7_d = index_q_7_q;
-        index_q_8_clock = clock;
         index_q_8_d = index_q_8_q;
-        index_q_9_clock = clock;
         index_q_9_d = index_q_9_q;
-        index_q_10_clock = clock;
         index_q_10_d = index_q_10_q;
-        index_q_11_clock = clock;
         index_q_11_d = index_q_11_q;
         if (advance) begin
             if (~t1_degenerate && ~t2_degenerate) begin
@@ -743,61 +869,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 index_q_11_d = 3'h0;
             end
         end
-        t1_delay_0_clock = clock;
-        t1_delay_0_advance = advance;
-        t1_delay_0_d = t1_vertices_0;
-        t2_delay_0_clock = clock;
-        t2_delay_0_advance = advance;
-        t2_delay_0_d = t2_vertices_0;
-        t1_delay_1_clock = clock;
-        t1_delay_1_advance = advance;
-        t1_delay_1_d = t1_vertices_1;
-        t2_delay_1_clock = clock;
-        t2_delay_1_advance = advance;
-        t2_delay_1_d = t2_vertices_1;
-        t1_delay_2_clock = clock;
-        t1_delay_2_advance = advance;
-        t1_delay_2_d = t1_vertices_2;
-        t2_delay_2_clock = clock;
-        t2_delay_2_advance = advance;
-        t2_delay_2_d = t2_vertices_2;
-        t1_delay_3_clock = clock;
-        t1_delay_3_advance = advance;
-        t1_delay_3_d = t1_vertices_3;
-        t2_delay_3_clock = clock;
-        t2_delay_3_advance = advance;
-        t2_delay_3_d = t2_vertices_3;
-        t1_delay_4_clock = clock;
-        t1_delay_4_advance = advance;
-        t1_delay_4_d = t1_vertices_4;
-        t2_delay_4_clock = clock;
-        t2_delay_4_advance = advance;
-        t2_delay_4_d = t2_vertices_4;
-        t1_delay_5_clock = clock;
-        t1_delay_5_advance = advance;
-        t1_delay_5_d = t1_vertices_5;
-        t2_delay_5_clock = clock;
-        t2_delay_5_advance = advance;
-        t2_delay_5_d = t2_vertices_5;
-        t1_delay_6_clock = clock;
-        t1_delay_6_advance = advance;
-        t1_delay_6_d = t1_vertices_6;
-        t2_delay_6_clock = clock;
-        t2_delay_6_advance = advance;
-        t2_delay_6_d = t2_vertices_6;
-        t1_delay_7_clock = clock;
-        t1_delay_7_advance = advance;
-        t1_delay_7_d = t1_vertices_7;
-        t2_delay_7_clock = clock;
-        t2_delay_7_advance = advance;
-        t2_delay_7_d = t2_vertices_7;
-        t1_delay_8_clock = clock;
-        t1_delay_8_advance = advance;
-        t1_delay_8_d = t1_vertices_8;
-        t2_delay_8_clock = clock;
-        t2_delay_8_advance = advance;
-        t2_delay_8_d = t2_vertices_8;
-        operands_q_0_clock = clock;
         operands_q_0_d = operands_q_0_q;
         if (advance) begin
             if (index_q_0_q == 3'h0) begin
@@ -819,8 +890,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_0_d = t2_delay_6_q;
             end
         end
-        operands_0 = operands_q_0_q;
-        operands_q_1_clock = clock;
         operands_q_1_d = operands_q_1_q;
         if (advance) begin
             if (index_q_0_q == 3'h0) begin
@@ -842,8 +911,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_1_d = t2_delay_7_q;
             end
         end
-        operands_1 = operands_q_1_q;
-        operands_q_2_clock = clock;
         operands_q_2_d = operands_q_2_q;
         if (advance) begin
             if (index_q_0_q == 3'h0) begin
@@ -865,8 +932,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_2_d = t2_delay_8_q;
             end
         end
-        operands_2 = operands_q_2_q;
-        operands_q_3_clock = clock;
         operands_q_3_d = operands_q_3_q;
         if (advance) begin
             if (index_q_1_q == 3'h0) begin
@@ -888,8 +953,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_3_d = t2_delay_6_q;
             end
         end
-        operands_3 = operands_q_3_q;
-        operands_q_4_clock = clock;
         operands_q_4_d = operands_q_4_q;
         if (advance) begin
             if (index_q_1_q == 3'h0) begin
@@ -911,8 +974,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_4_d = t2_delay_7_q;
             end
         end
-        operands_4 = operands_q_4_q;
-        operands_q_5_clock = clock;
         operands_q_5_d = operands_q_5_q;
         if (advance) begin
             if (index_q_1_q == 3'h0) begin
@@ -934,8 +995,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_5_d = t2_delay_8_q;
             end
         end
-        operands_5 = operands_q_5_q;
-        operands_q_6_clock = clock;
         operands_q_6_d = operands_q_6_q;
         if (advance) begin
             if (index_q_2_q == 3'h0) begin
@@ -957,8 +1016,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_6_d = t2_delay_6_q;
             end
         end
-        operands_6 = operands_q_6_q;
-        operands_q_7_clock = clock;
         operands_q_7_d = operands_q_7_q;
         if (advance) begin
             if (index_q_2_q == 3'h0) begin
@@ -980,8 +1037,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_7_d = t2_delay_7_q;
             end
         end
-        operands_7 = operands_q_7_q;
-        operands_q_8_clock = clock;
         operands_q_8_d = operands_q_8_q;
         if (advance) begin
             if (index_q_2_q == 3'h0) begin
@@ -1003,8 +1058,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_8_d = t2_delay_8_q;
             end
         end
-        operands_8 = operands_q_8_q;
-        operands_q_9_clock = clock;
         operands_q_9_d = operands_q_9_q;
         if (advance) begin
             if (index_q_3_q == 3'h0) begin
@@ -1026,8 +1079,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_9_d = t2_delay_6_q;
             end
         end
-        operands_9 = operands_q_9_q;
-        operands_q_10_clock = clock;
         operands_q_10_d = operands_q_10_q;
         if (advance) begin
             if (index_q_3_q == 3'h0) begin
@@ -1049,8 +1100,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_10_d = t2_delay_7_q;
             end
         end
-        operands_10 = operands_q_10_q;
-        operands_q_11_clock = clock;
         operands_q_11_d = operands_q_11_q;
         if (advance) begin
             if (index_q_3_q == 3'h0) begin
@@ -1072,8 +1121,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_11_d = t2_delay_8_q;
             end
         end
-        operands_11 = operands_q_11_q;
-        operands_q_12_clock = clock;
         operands_q_12_d = operands_q_12_q;
         if (advance) begin
             if (index_q_4_q == 3'h0) begin
@@ -1095,8 +1142,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_12_d = t2_delay_6_q;
             end
         end
-        operands_12 = operands_q_12_q;
-        operands_q_13_clock = clock;
         operands_q_13_d = operands_q_13_q;
         if (advance) begin
             if (index_q_4_q == 3'h0) begin
@@ -1118,8 +1163,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_13_d = t2_delay_7_q;
             end
         end
-        operands_13 = operands_q_13_q;
-        operands_q_14_clock = clock;
         operands_q_14_d = operands_q_14_q;
         if (advance) begin
             if (index_q_4_q == 3'h0) begin
@@ -1141,8 +1184,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_14_d = t2_delay_8_q;
             end
         end
-        operands_14 = operands_q_14_q;
-        operands_q_15_clock = clock;
         operands_q_15_d = operands_q_15_q;
         if (advance) begin
             if (index_q_5_q == 3'h0) begin
@@ -1164,8 +1205,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_15_d = t2_delay_6_q;
             end
         end
-        operands_15 = operands_q_15_q;
-        operands_q_16_clock = clock;
         operands_q_16_d = operands_q_16_q;
         if (advance) begin
             if (index_q_5_q == 3'h0) begin
@@ -1187,8 +1226,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_16_d = t2_delay_7_q;
             end
         end
-        operands_16 = operands_q_16_q;
-        operands_q_17_clock = clock;
         operands_q_17_d = operands_q_17_q;
         if (advance) begin
             if (index_q_5_q == 3'h0) begin
@@ -1210,8 +1247,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_17_d = t2_delay_8_q;
             end
         end
-        operands_17 = operands_q_17_q;
-        operands_q_18_clock = clock;
         operands_q_18_d = operands_q_18_q;
         if (advance) begin
             if (index_q_6_q == 3'h0) begin
@@ -1233,8 +1268,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_18_d = t2_delay_6_q;
             end
         end
-        operands_18 = operands_q_18_q;
-        operands_q_19_clock = clock;
         operands_q_19_d = operands_q_19_q;
         if (advance) begin
             if (index_q_6_q == 3'h0) begin
@@ -1256,8 +1289,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_19_d = t2_delay_7_q;
             end
         end
-        operands_19 = operands_q_19_q;
-        operands_q_20_clock = clock;
         operands_q_20_d = operands_q_20_q;
         if (advance) begin
             if (index_q_6_q == 3'h0) begin
@@ -1279,8 +1310,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_20_d = t2_delay_8_q;
             end
         end
-        operands_20 = operands_q_20_q;
-        operands_q_21_clock = clock;
         operands_q_21_d = operands_q_21_q;
         if (advance) begin
             if (index_q_7_q == 3'h0) begin
@@ -1302,8 +1331,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_21_d = t2_delay_6_q;
             end
         end
-        operands_21 = operands_q_21_q;
-        operands_q_22_clock = clock;
         operands_q_22_d = operands_q_22_q;
         if (advance) begin
             if (index_q_7_q == 3'h0) begin
@@ -1325,8 +1352,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_22_d = t2_delay_7_q;
             end
         end
-        operands_22 = operands_q_22_q;
-        operands_q_23_clock = clock;
         operands_q_23_d = operands_q_23_q;
         if (advance) begin
             if (index_q_7_q == 3'h0) begin
@@ -1348,8 +1373,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_23_d = t2_delay_8_q;
             end
         end
-        operands_23 = operands_q_23_q;
-        operands_q_24_clock = clock;
         operands_q_24_d = operands_q_24_q;
         if (advance) begin
             if (index_q_8_q == 3'h0) begin
@@ -1371,8 +1394,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_24_d = t2_delay_6_q;
             end
         end
-        operands_24 = operands_q_24_q;
-        operands_q_25_clock = clock;
         operands_q_25_d = operands_q_25_q;
         if (advance) begin
             if (index_q_8_q == 3'h0) begin
@@ -1394,8 +1415,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_25_d = t2_delay_7_q;
             end
         end
-        operands_25 = operands_q_25_q;
-        operands_q_26_clock = clock;
         operands_q_26_d = operands_q_26_q;
         if (advance) begin
             if (index_q_8_q == 3'h0) begin
@@ -1417,8 +1436,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_26_d = t2_delay_8_q;
             end
         end
-        operands_26 = operands_q_26_q;
-        operands_q_27_clock = clock;
         operands_q_27_d = operands_q_27_q;
         if (advance) begin
             if (index_q_9_q == 3'h0) begin
@@ -1440,8 +1457,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_27_d = t2_delay_6_q;
             end
         end
-        operands_27 = operands_q_27_q;
-        operands_q_28_clock = clock;
         operands_q_28_d = operands_q_28_q;
         if (advance) begin
             if (index_q_9_q == 3'h0) begin
@@ -1463,8 +1478,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_28_d = t2_delay_7_q;
             end
         end
-        operands_28 = operands_q_28_q;
-        operands_q_29_clock = clock;
         operands_q_29_d = operands_q_29_q;
         if (advance) begin
             if (index_q_9_q == 3'h0) begin
@@ -1486,8 +1499,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_29_d = t2_delay_8_q;
             end
         end
-        operands_29 = operands_q_29_q;
-        operands_q_30_clock = clock;
         operands_q_30_d = operands_q_30_q;
         if (advance) begin
             if (index_q_10_q == 3'h0) begin
@@ -1509,8 +1520,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_30_d = t2_delay_6_q;
             end
         end
-        operands_30 = operands_q_30_q;
-        operands_q_31_clock = clock;
         operands_q_31_d = operands_q_31_q;
         if (advance) begin
             if (index_q_10_q == 3'h0) begin
@@ -1532,8 +1541,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_31_d = t2_delay_7_q;
             end
         end
-        operands_31 = operands_q_31_q;
-        operands_q_32_clock = clock;
         operands_q_32_d = operands_q_32_q;
         if (advance) begin
             if (index_q_10_q == 3'h0) begin
@@ -1555,8 +1562,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_32_d = t2_delay_8_q;
             end
         end
-        operands_32 = operands_q_32_q;
-        operands_q_33_clock = clock;
         operands_q_33_d = operands_q_33_q;
         if (advance) begin
             if (index_q_11_q == 3'h0) begin
@@ -1578,8 +1583,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_33_d = t2_delay_6_q;
             end
         end
-        operands_33 = operands_q_33_q;
-        operands_q_34_clock = clock;
         operands_q_34_d = operands_q_34_q;
         if (advance) begin
             if (index_q_11_q == 3'h0) begin
@@ -1601,8 +1604,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_34_d = t2_delay_7_q;
             end
         end
-        operands_34 = operands_q_34_q;
-        operands_q_35_clock = clock;
         operands_q_35_d = operands_q_35_q;
         if (advance) begin
             if (index_q_11_q == 3'h0) begin
@@ -1624,7 +1625,6 @@ module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1
                 operands_q_35_d = t2_delay_8_q;
             end
         end
-        operands_35 = operands_q_35_q;
     end
 
 endmodule  // tritri_pipeline_w24_operands

@@ -25,17 +25,17 @@ module tritri_pipeline_w24_sign_w49(clock,advance,value,negative,zero);
     input wire  clock;
     input wire  advance;
     input wire  [48:0] value;
-    output reg  negative;
-    output reg  zero;
+    output wire  negative;
+    output wire  zero;
 
     // Constant declarations
     // Stub signals
     reg  negative_q_d;
     wire  negative_q_q;
-    reg  negative_q_clock;
+    wire  negative_q_clock;
     reg  zero_q_d;
     wire  zero_q_q;
-    reg  zero_q_clock;
+    wire  zero_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_1 u_negative_q(
@@ -50,17 +50,17 @@ module tritri_pipeline_w24_sign_w49(clock,advance,value,negative,zero);
     );
 
     // Update code
+    assign negative_q_clock = clock;
+    assign zero_q_clock = clock;
+    assign negative = negative_q_q;
+    assign zero = zero_q_q;
     always @(*) begin
-        negative_q_clock = clock;
-        zero_q_clock = clock;
         negative_q_d = negative_q_q;
         zero_q_d = zero_q_q;
         if (advance) begin
             negative_q_d = value[48];
             zero_q_d = ~|value;
         end
-        negative = negative_q_q;
-        zero = zero_q_q;
     end
 
 endmodule  // tritri_pipeline_w24_sign_w49

@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D]]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline for each
 //! coordinate width W (default 24, the thesis's): one module per file, named
@@ -17,6 +17,11 @@
 //! `--synth xilinx` or `--synth generic` runs one of the two (the generic
 //! flow maps the wide multipliers to gates and takes minutes).
 //!
+//! `--system` writes the whole bounding-volume-aware system instead (two-bank
+//! triangle memories, address generator, `--pipelines P` pipelines, result
+//! FIFO; `--depth D` triangles per array per bank), top
+//! `tritri_system_w<W>_p<P>_d<D>`, by default into `rtl-out/<top>`.
+//!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
 
@@ -24,7 +29,10 @@ use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::SUPPORTED_WIDTHS;
-use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name};
+use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::emit_system;
+use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 
 #[derive(clap::Args)]
@@ -39,13 +47,53 @@ pub struct Args {
     /// without a value), `xilinx` or `generic`.
     #[arg(long, num_args = 0..=1, default_missing_value = "all", value_parser = ["all", "xilinx", "generic"])]
     synth: Option<String>,
+    /// Emit the whole system (memories, address generator, pipelines,
+    /// result FIFO) instead of the pipeline alone.
+    #[arg(long)]
+    system: bool,
+    /// With --system: pipelines working in parallel (1 to 16).
+    #[arg(long, default_value_t = 2, requires = "system",
+          value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
+    pipelines: u32,
+    /// With --system: memory depth, triangles per array per bank (1 to 32768).
+    #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64, requires = "system",
+          value_parser = clap::value_parser!(u64).range(1..=1u64 << (ADDRESS_BITS - 1)))]
+    depth: u64,
+}
+
+impl Args {
+    /// The system configuration at `width` (with --system).
+    fn system_config(&self, width: usize) -> SystemConfig {
+        let latency = tritri_rtl::pipeline::triangle_pipeline::latency();
+        SystemConfig::new(width, self.pipelines as usize, latency).with_depth(self.depth as usize)
+    }
+
+    /// The design for `width`: the pipeline, or the system with --system.
+    fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
+        if self.system {
+            let config = self.system_config(width);
+            return emit_system(config, PipelineKind::Real).with_context(|| format!("emitting {}", config.unit_name()));
+        }
+        emit_pipeline(width).with_context(|| format!("emitting the {width}-bit pipeline"))
+    }
+
+    /// The top module's name for `width`.
+    fn unit_name(&self, width: usize) -> String {
+        if self.system {
+            self.system_config(width).unit_name()
+        } else {
+            pipeline_unit_name(width)
+        }
+    }
 }
 
 /// Where width `width` goes.
 fn out_dir(args: &Args, width: usize) -> PathBuf {
     match (&args.out, args.width.len()) {
         (Some(dir), 1) => dir.clone(),
+        (Some(parent), _) if args.system => parent.join(args.unit_name(width)),
         (Some(parent), _) => parent.join(format!("w{width}")),
+        (None, _) if args.system => PathBuf::from("rtl-out").join(args.unit_name(width)),
         (None, _) => PathBuf::from("rtl-out").join(format!("w{width}")),
     }
 }
@@ -60,7 +108,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut rows = Vec::new();
     for &w in &args.width {
         let dir = out_dir(&args, w);
-        let design = emit_pipeline(w).with_context(|| format!("emitting the {w}-bit pipeline"))?;
+        let design = args.emit(w)?;
         design.write_to(&dir).with_context(|| format!("writing {}", dir.display()))?;
         eprintln!(
             "wrote {} ({} modules, {} files) to {}",
@@ -70,7 +118,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             dir.display()
         );
         if let Some(which) = &args.synth {
-            let mut row = ResourceRow { unit: pipeline_unit_name(w), generic: None, xilinx: None };
+            let mut row = ResourceRow { unit: args.unit_name(w), generic: None, xilinx: None };
             if which == "all" || which == "xilinx" {
                 eprintln!("yosys synth_xilinx in {} ...", dir.display());
                 row.xilinx = Some(synthesize(&dir, Target::Xilinx)?);

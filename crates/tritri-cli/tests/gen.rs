@@ -110,3 +110,24 @@ fn committed_rtl_out_is_lint_clean() {
     let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(messages.trim().is_empty(), "verilator said:\n{messages}");
 }
+
+/// `--system` writes the whole system, named after its parameters, into
+/// `<out>` with its README and filelist; its parameters are range-checked.
+#[test]
+fn system_is_emitted_with_its_parameters() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-system-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status =
+        tritri().args(["gen", "--system", "--width", "8", "--pipelines", "4", "--depth", "32", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    assert!(out.join("tritri_system_w8_p4_d32.v").is_file());
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    assert!(readme.contains("| `out_id_a` |") && readme.contains("4: pipelines in parallel"), "{readme}");
+    std::fs::remove_dir_all(&out).unwrap();
+
+    let refused = tritri().args(["gen", "--system", "--pipelines", "17"]).output().unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("17"));
+    let refused = tritri().args(["gen", "--pipelines", "2"]).output().unwrap();
+    assert_eq!(refused.status.code(), Some(2), "--pipelines without --system");
+}

@@ -3,7 +3,7 @@
 //! generator, memories and their columns, result FIFO, pair serializer),
 //! and the list of all modules. The pipeline's modules are left out: the
 //! pipeline has its own snapshot. Any change to the emitted system RTL
-//! shows up here for review.
+//! shows up here for review. And the emitted system is lint-clean.
 
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -26,4 +26,32 @@ fn emitted_system_w24_p2_d64() {
         text.push_str(&format!("// ===== {} =====\n{}\n", f.path, f.contents));
     }
     insta::assert_snapshot!(text);
+}
+
+/// `verilator --lint-only -Wall` prints nothing on the emitted system with
+/// 1, 2 and 4 pipelines, and Icarus compiles it.
+#[test]
+fn emitted_system_is_lint_clean() {
+    use tritri_rtl::tools::{run, IVERILOG, VERILATOR};
+    for pipelines in [1, 2, 4] {
+        let config = SystemConfig::new(8, pipelines, latency()).with_depth(16);
+        let design = emit_system(config, PipelineKind::Real).unwrap();
+        let dir = std::env::temp_dir().join(format!("tritri-system-lint-{}-{pipelines}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        design.write_to(&dir).unwrap();
+        let out = run(VERILATOR.command().unwrap().current_dir(&dir).args([
+            "--lint-only",
+            "-Wall",
+            "-f",
+            "filelist.f",
+            "--top-module",
+            &design.top,
+        ]))
+        .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        assert!(messages.trim().is_empty(), "P={pipelines}: verilator said:\n{messages}");
+        run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
+            .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -18,6 +18,9 @@
 //! * expressions re-printed with explicit widths where rust-hdl relies on
 //!   Verilog's context widths (see [`widths`]), so the files are clean under
 //!   `verilator --lint-only -Wall`;
+//! * unconditional assignments of rust-hdl's combinational block written as
+//!   continuous `assign`s (see [`continuous_assigns`]), so that Verilator
+//!   sees no false combinational loop through the children;
 //! * `filelist.f`, a FuseSoC CAPI2 `<unit>.core`, a `README.md` with the
 //!   port table, latency and throughput, and Yosys scripts
 //!   `synth_generic.ys` / `synth_xilinx.ys` (run by [`crate::synth`]).
@@ -47,6 +50,7 @@
 //! assert!(design.file("inverter.v").unwrap().contents.contains("`default_nettype none"));
 //! ```
 
+pub mod continuous_assigns;
 pub mod modules;
 pub mod package;
 pub mod pipeline_unit;
@@ -174,11 +178,14 @@ pub struct EmitOptions {
     /// the default only in its expressions: the formal equivalence check of
     /// the pass compares the two.
     pub explicit_widths: bool,
+    /// Run the [`continuous_assigns`] pass (on by default); the same formal
+    /// check covers it.
+    pub continuous_assigns: bool,
 }
 
 impl Default for EmitOptions {
     fn default() -> Self {
-        EmitOptions { explicit_widths: true }
+        EmitOptions { explicit_widths: true, continuous_assigns: true }
     }
 }
 
@@ -197,6 +204,11 @@ pub fn emit_with(
     if options.explicit_widths {
         for m in modules.iter_mut() {
             widths::fix_module(m);
+        }
+    }
+    if options.continuous_assigns {
+        for m in modules.iter_mut() {
+            continuous_assigns::continuous_assigns(m);
         }
     }
     let ports = package::top_ports(&modules[0]);

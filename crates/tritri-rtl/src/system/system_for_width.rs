@@ -49,6 +49,7 @@ system_widths!(
     8 => CollisionSystemW8,
     12 => CollisionSystemW12,
     16 => CollisionSystemW16,
+    18 => CollisionSystemW18,
     20 => CollisionSystemW20,
     24 => CollisionSystemW24,
     28 => CollisionSystemW28,
