@@ -1,6 +1,7 @@
 //! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D]]`
 //!
-//! Writes the synthesizable Verilog of the triangle pipeline for each
+//! Writes the synthesizable Verilog of the triangle pipeline (or, with
+//! `--system`, of the whole system, see below) for each
 //! coordinate width W (default 24, the thesis's): one module per file, named
 //! `tritri_pipeline_w<W>*.v`, with `filelist.f`, a FuseSoC core, Yosys
 //! scripts and a README with the port table, latency and throughput.

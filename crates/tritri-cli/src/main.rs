@@ -38,7 +38,7 @@ enum Command {
     Sim(sim::Args),
     /// The thesis's chapter-5 comparison: 5/25/50/75 % of the polygons in the common BV, hardware vs software time.
     Chapter5(chapter5::Args),
-    /// Write the pipeline's Verilog (one module per file, filelist, FuseSoC core, README); --synth runs Yosys.
+    /// Write the pipeline's (or with --system the whole system's) Verilog: one module per file, filelist, FuseSoC core, README; --synth runs Yosys.
     Gen(gen::Args),
     /// Co-simulation throughput: the same pairs through the model, rust-hdl, Verilator and Icarus, with mismatches.
     Bench(bench::Args),
