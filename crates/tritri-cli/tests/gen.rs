@@ -98,16 +98,7 @@ fn missing_yosys_is_named() {
 #[test]
 fn committed_rtl_out_is_lint_clean() {
     let dir = repository().join("rtl-out/w24");
-    let out = tritri_rtl::tools::run(tritri_rtl::tools::VERILATOR.command().unwrap().current_dir(&dir).args([
-        "--lint-only",
-        "-Wall",
-        "-f",
-        "filelist.f",
-        "--top-module",
-        "tritri_pipeline_w24",
-    ]))
-    .unwrap_or_else(|e| panic!("{e}"));
-    let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let messages = tritri_rtl::tools::lint(&dir, "tritri_pipeline_w24").unwrap_or_else(|e| panic!("{e}"));
     assert!(messages.trim().is_empty(), "verilator said:\n{messages}");
 }
 

@@ -32,23 +32,14 @@ fn emitted_system_w24_p2_d64() {
 /// 1, 2 and 4 pipelines, and Icarus compiles it.
 #[test]
 fn emitted_system_is_lint_clean() {
-    use tritri_rtl::tools::{run, IVERILOG, VERILATOR};
+    use tritri_rtl::tools::{lint, run, IVERILOG};
     for pipelines in [1, 2, 4] {
         let config = SystemConfig::new(8, pipelines, latency()).with_depth(16);
         let design = emit_system(config, PipelineKind::Real).unwrap();
         let dir = std::env::temp_dir().join(format!("tritri-system-lint-{}-{pipelines}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
-        let out = run(VERILATOR.command().unwrap().current_dir(&dir).args([
-            "--lint-only",
-            "-Wall",
-            "-f",
-            "filelist.f",
-            "--top-module",
-            &design.top,
-        ]))
-        .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
-        let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        let messages = lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
         assert!(messages.trim().is_empty(), "P={pipelines}: verilator said:\n{messages}");
         run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
             .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));

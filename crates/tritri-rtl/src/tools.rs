@@ -67,6 +67,15 @@ pub fn run(command: &mut Command) -> Result<Output, ToolError> {
     Ok(output)
 }
 
+/// `verilator --lint-only -Wall -f filelist.f --top-module <top>` in an
+/// emitted directory: Verilator's messages (empty when the design is clean).
+/// Any warning makes Verilator exit non-zero, so a warning is an `Err` whose
+/// text carries the messages.
+pub fn lint(dir: &Path, top: &str) -> Result<String, ToolError> {
+    let out = run(VERILATOR.command()?.current_dir(dir).args(["--lint-only", "-Wall", "-f", "filelist.f", "--top-module", top]))?;
+    Ok(format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,7 +8,7 @@
 use tritri_rtl::configurations::SUPPORTED_WIDTHS;
 use tritri_rtl::emit::{emit_pipeline, EmittedDesign};
 use tritri_rtl::synth::{synthesize, Target};
-use tritri_rtl::tools::{run, IVERILOG, VERILATOR};
+use tritri_rtl::tools::{run, IVERILOG};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("tritri-emit-pipeline-{}-{name}", std::process::id()));
@@ -30,16 +30,7 @@ fn every_width_is_lint_clean() {
     for &width in SUPPORTED_WIDTHS {
         let design = emit_pipeline(width).unwrap();
         let dir = write(&design, &format!("lint-w{width}"));
-        let out = run(VERILATOR.command().unwrap().current_dir(&dir).args([
-            "--lint-only",
-            "-Wall",
-            "-f",
-            "filelist.f",
-            "--top-module",
-            &design.top,
-        ]))
-        .unwrap_or_else(|e| panic!("W={width}: {e}"));
-        let messages = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+        let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
         assert!(messages.trim().is_empty(), "W={width}: verilator said:\n{messages}");
         run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
             .unwrap_or_else(|e| panic!("W={width}: {e}"));
@@ -133,7 +124,6 @@ fn emission_passes_are_formally_equivalent() {
     use tritri_rtl::system::system_for_width::{system_for_config, PipelineKind};
     use tritri_rtl::system::system_unit::system_unit;
     use tritri_rtl::system::SystemConfig;
-    use rust_hdl::prelude::Block;
     let system = SystemConfig::new(8, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(16);
     let raw_system = {
         let mut s = system_for_config(system, PipelineKind::Real).unwrap();

@@ -4,7 +4,7 @@
 
 use rust_hdl::prelude::*;
 use tritri_rtl::emit::{emit, EmittedDesign, UnitDescription};
-use tritri_rtl::tools::{run, IVERILOG, VERILATOR};
+use tritri_rtl::tools::{run, IVERILOG};
 
 #[derive(LogicBlock, Default)]
 pub struct RegisteredAdder {
@@ -197,11 +197,7 @@ fn sample_is_lint_clean_and_synthesizes() {
     let design = sample_design();
     let dir = temp_dir("lint");
     design.write_to(&dir).unwrap();
-    let lint = run(VERILATOR
-        .command()
-        .unwrap()
-        .current_dir(&dir)
-        .args(["--lint-only", "-Wall", "-f", "filelist.f", "--top-module", "tritri_sample_w8"]));
+    let lint = tritri_rtl::tools::lint(&dir, "tritri_sample_w8");
     if std::env::var_os("TRITRI_SHOW").is_some() || lint.is_err() {
         for f in design.verilog_files() {
             eprintln!("==== {}\n{}", f.path, f.contents);
