@@ -12,6 +12,7 @@
 //! two engines agree when their results are equal.
 
 use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
 
 /// A triangle with the id it carries through the pipeline.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,6 +104,48 @@ impl TriangleStream {
     }
 }
 
+/// A base triangle and the triangles streamed past it. A list of groups is
+/// the general form of a test run: unlike a [`TriangleStream`], every base
+/// has a stream of its own.
+pub type PairGroup = (FixedTriangle, Vec<FixedTriangle>);
+
+/// The 72 orderings of a pair (6 vertex orders of each triangle, and the two
+/// roles swapped) as 12 groups: each ordering of one triangle as the base,
+/// against the 6 orderings of the other. The algorithm's alignment steps
+/// take a different branch for each, so a verdict that depends on the
+/// ordering shows up here.
+pub fn all_orderings(t1: FixedTriangle, t2: FixedTriangle) -> Vec<PairGroup> {
+    let mut groups = Vec::with_capacity(12);
+    for (a, b) in [(t1, t2), (t2, t1)] {
+        for p in VERTEX_PERMUTATIONS {
+            groups.push((permute(a, p), VERTEX_PERMUTATIONS.iter().map(|&q| permute(b, q)).collect()));
+        }
+    }
+    groups
+}
+
+/// The input cycles of `groups` (per group one `bset` cycle, then its
+/// streamed triangles) and the verdicts `model` expects, in output order.
+/// A base's id is its group's index, a streamed triangle's id its position
+/// in the group, so a verdict names the pair it belongs to.
+pub fn group_schedule(
+    groups: &[PairGroup],
+    model: impl Fn(&FixedTriangle, &FixedTriangle) -> bool,
+) -> (Vec<InputCycle>, Vec<PairVerdict>) {
+    let mut cycles = Vec::with_capacity(groups.iter().map(|(_, s)| 1 + s.len()).sum());
+    let mut expected = Vec::with_capacity(cycles.capacity() - groups.len());
+    for (g, (base, streamed)) in groups.iter().enumerate() {
+        let base_id = g as u32;
+        cycles.push(InputCycle::load_base(&IdTriangle { id: base_id, triangle: *base }));
+        for (s, t) in streamed.iter().enumerate() {
+            let stream_id = s as u32;
+            cycles.push(InputCycle::test(&IdTriangle { id: stream_id, triangle: *t }));
+            expected.push(PairVerdict { base_id, stream_id, hit: model(base, t) });
+        }
+    }
+    (cycles, expected)
+}
+
 /// One output of the pipeline: the verdict for (base, streamed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct PairVerdict {
@@ -150,5 +193,22 @@ mod tests {
         );
         assert_eq!(s.input_cycles(), 8);
         assert_eq!(s.expected_cycles(30), 38);
+    }
+
+    /// The 72 orderings are 72 distinct pairs, and the group schedule names
+    /// each verdict by (group, position).
+    #[test]
+    fn all_orderings_are_72_distinct_pairs() {
+        let t1 = [[0, 0, 0], [1, 0, 0], [0, 1, 0]];
+        let t2 = [[5, 5, 5], [6, 5, 5], [5, 7, 5]];
+        let groups = all_orderings(t1, t2);
+        let pairs: std::collections::BTreeSet<_> =
+            groups.iter().flat_map(|(b, s)| s.iter().map(move |t| (*b, *t))).collect();
+        assert_eq!(pairs.len(), 72);
+        let (cycles, expected) = group_schedule(&groups, |a, _| a == &t1);
+        assert_eq!(cycles.len(), 12 + 72);
+        assert_eq!(cycles.iter().filter(|c| c.bset).count(), 12);
+        assert_eq!(expected.iter().filter(|v| v.hit).count(), 6, "t1 in its own order is the base of one group");
+        assert_eq!((expected[7].base_id, expected[7].stream_id), (1, 1));
     }
 }

@@ -13,10 +13,9 @@
 
 use std::path::PathBuf;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
-use tritri_cosim::stream::{IdTriangle, InputCycle, StreamResult};
+use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, PairVerdict, StreamResult};
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::quantize::Frame;
-use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
 use tritri_geom::TrianglePair;
 use tritri_rtl::configurations::pipeline_for_width;
 
@@ -28,27 +27,12 @@ fn read_pairs(name: &str) -> Vec<TrianglePair> {
     file.good_pairs()
 }
 
-/// Base triangle and the triangles tested against it.
-type Group = (FixedTriangle, Vec<FixedTriangle>);
-
 fn quantized(pair: &TrianglePair, width: usize) -> (FixedTriangle, FixedTriangle) {
     let frame = Frame::fit([&pair.t1, &pair.t2], width as u32).expect("finite coordinates");
     (frame.quantize(&pair.t1), frame.quantize(&pair.t2))
 }
 
-/// The 72 orderings of a quantized pair as 12 groups: 6 orderings of each
-/// triangle as the base, each against the 6 orderings of the other.
-fn all_orderings(t1: FixedTriangle, t2: FixedTriangle) -> Vec<Group> {
-    let mut groups = Vec::new();
-    for (a, b) in [(t1, t2), (t2, t1)] {
-        for p in VERTEX_PERMUTATIONS {
-            groups.push((permute(a, p), VERTEX_PERMUTATIONS.iter().map(|&q| permute(b, q)).collect()));
-        }
-    }
-    groups
-}
-
-fn peer_groups(width: usize) -> Vec<Group> {
+fn peer_groups(width: usize) -> Vec<PairGroup> {
     let pairs = read_pairs("peer_cases.json");
     assert_eq!(pairs.len(), 147);
     pairs.iter().flat_map(|p| {
@@ -57,7 +41,7 @@ fn peer_groups(width: usize) -> Vec<Group> {
     }).collect()
 }
 
-fn shen_groups(width: usize) -> Vec<Group> {
+fn shen_groups(width: usize) -> Vec<PairGroup> {
     let mut groups = Vec::new();
     for name in ["shen_intersected.txt", "shen_separated.txt"] {
         let pairs = read_pairs(name);
@@ -70,29 +54,12 @@ fn shen_groups(width: usize) -> Vec<Group> {
     groups
 }
 
-/// The input schedule of `groups` (one `bset` cycle per base, then its
-/// streamed triangles) and the model's verdicts in output order.
-fn schedule(groups: &[Group]) -> (Vec<InputCycle>, Vec<bool>) {
-    let mut cycles = Vec::new();
-    let mut expected = Vec::new();
-    let mut next_id = 0u32;
-    for (base, streamed) in groups {
-        cycles.push(InputCycle::load_base(&IdTriangle { id: next_id, triangle: *base }));
-        next_id += 1;
-        for t in streamed {
-            cycles.push(InputCycle::test(&IdTriangle { id: next_id, triangle: *t }));
-            next_id += 1;
-            expected.push(intersects(base, t));
-        }
-    }
-    (cycles, expected)
-}
-
-fn assert_equal(engine: &str, what: &str, width: usize, result: &StreamResult, expected: &[bool]) {
+/// Verdicts, ids included, equal the model's, output by output.
+fn assert_equal(engine: &str, what: &str, width: usize, result: &StreamResult, expected: &[PairVerdict]) {
     assert_eq!(result.verdicts.len(), expected.len(), "{engine} W={width} {what}: verdict count");
     let wrong: Vec<usize> =
-        result.verdicts.iter().zip(expected).enumerate().filter(|(_, (v, &e))| v.hit != e).map(|(i, _)| i).collect();
-    let hits = expected.iter().filter(|&&h| h).count();
+        result.verdicts.iter().zip(expected).enumerate().filter(|(_, (v, e))| v != e).map(|(i, _)| i).collect();
+    let hits = expected.iter().filter(|v| v.hit).count();
     eprintln!("{engine} W={width} {what}: {} pairs ({hits} hits), {} mismatches", expected.len(), wrong.len());
     assert!(wrong.is_empty(), "{engine} W={width} {what}: mismatches at outputs {:?}", &wrong[..wrong.len().min(10)]);
 }
@@ -102,7 +69,7 @@ fn rusthdl_pipeline_equals_model_on_shared_cases() {
     for width in [8, 16, 24, 32] {
         let mut pipeline = pipeline_for_width(width).unwrap();
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
-            let (cycles, expected) = schedule(&groups);
+            let (cycles, expected) = group_schedule(&groups, intersects);
             let result = run_schedule_on(pipeline.as_mut(), &cycles, &HarnessOptions::default()).unwrap();
             assert_equal("rust-hdl", what, width, &result, &expected);
         }
@@ -113,7 +80,7 @@ fn rusthdl_pipeline_equals_model_on_shared_cases() {
 fn verilator_equals_model_on_shared_cases() {
     for width in [8, 16, 24] {
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
-            let (cycles, expected) = schedule(&groups);
+            let (cycles, expected) = group_schedule(&groups, intersects);
             let result = tritri_cosim::verilator::run_verilator_schedule(width, &cycles).unwrap();
             assert_equal("verilator", what, width, &result, &expected);
         }
@@ -123,7 +90,7 @@ fn verilator_equals_model_on_shared_cases() {
 #[test]
 fn icarus_equals_model_on_peer_cases() {
     let width = 24;
-    let (cycles, expected) = schedule(&peer_groups(width));
+    let (cycles, expected) = group_schedule(&peer_groups(width), intersects);
     let result = tritri_cosim::icarus::run_icarus_schedule(width, &cycles).unwrap();
     assert_equal("icarus", "peer cases x 72", width, &result, &expected);
 }

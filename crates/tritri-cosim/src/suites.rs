@@ -1,0 +1,27 @@
+//! Test vectors that every engine runs, so the rust-hdl harness, Icarus and
+//! Verilator are compared with the model on the very same pairs.
+
+use crate::stream::{all_orderings, PairGroup};
+use tritri_geom::hard_cases::hard_case_suite;
+use tritri_geom::quantize::Frame;
+
+/// The hard-case suite (`tritri_geom::hard_cases`: coplanar, touching,
+/// near-degenerate, needles and slivers, ...) at `width` bits, every
+/// `every`-th case, each quantized in a frame of its own (so the case keeps
+/// as much of its geometry as W bits allow) and sent in all 72 orderings
+/// (12 groups per case).
+pub fn hard_case_groups(width: u32, every: usize) -> Vec<PairGroup> {
+    hard_case_suite()
+        .iter()
+        .step_by(every.max(1))
+        .flat_map(|case| {
+            let frame = Frame::fit([&case.pair.t1, &case.pair.t2], width).expect("the hard cases have finite coordinates");
+            all_orderings(frame.quantize(&case.pair.t1), frame.quantize(&case.pair.t2))
+        })
+        .collect()
+}
+
+/// The number of cases in the hard-case suite.
+pub fn hard_case_count() -> usize {
+    hard_case_suite().len()
+}
