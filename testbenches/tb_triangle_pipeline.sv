@@ -10,11 +10,14 @@
 //   W         coordinate width in bits (the DUT's W)
 //   ID_WIDTH  width of the triangle ids on the bus
 //   TIMEOUT   cycles to wait for an outstanding verdict before giving up
-// Macro:
+// Macros:
 //   TRITRI_DUT  module name of the pipeline top (default tritri_pipeline_w24)
+//   TRITRI_VCD  define to dump every signal to the +vcd file (Verilator
+//               needs --trace for it; runs are slower, keep them short)
 // Plusargs:
 //   +vectors=FILE  input vectors (required)
 //   +outputs=FILE  where verdicts go (required)
+//   +vcd=FILE      the waveform, with TRITRI_VCD (required then)
 //
 // The run ends when every tested triangle (valid, bset = 0) has its verdict;
 // the last line written is "# cycles N" with N counted from the first input
@@ -97,6 +100,18 @@ module tb_triangle_pipeline #(
     integer last_verdict_cycle = -1;
     integer idle_cycles = 0;
     integer k;
+
+`ifdef TRITRI_VCD
+    reg [8*1000-1:0] vcd_path;
+    initial begin
+        if (!$value$plusargs("vcd=%s", vcd_path)) begin
+            $display("tb_triangle_pipeline: error: TRITRI_VCD is defined but +vcd=FILE is missing");
+            $finish;
+        end
+        $dumpfile(vcd_path);
+        $dumpvars(0, tb_triangle_pipeline);
+    end
+`endif
 
     initial begin
         for (k = 0; k < 9; k = k + 1) in_coordinate[k] = {W{1'b0}};

@@ -27,7 +27,8 @@ pub struct Args {
     /// simulation of the pipeline, or its emitted Verilog in Icarus or Verilator.
     #[arg(long, value_enum, default_value_t = Engine::Model)]
     engine: Engine,
-    /// With `--engine rusthdl`: write a VCD waveform of the run (keep the file small).
+    /// With a hardware engine: write a VCD waveform of the run (of the rust-hdl
+    /// signals, or of the emitted Verilog in Icarus or Verilator); keep the file small.
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
     /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}.
@@ -76,8 +77,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --engine and --vcd apply only to --arith fixed");
         return Ok(ExitCode::from(2));
     }
-    if args.vcd.is_some() && args.engine != Engine::Rusthdl {
-        eprintln!("error: --vcd needs --engine rusthdl");
+    if let (Some(vcd), Engine::Model) = (&args.vcd, args.engine) {
+        eprintln!("error: --vcd {}: the model has no waveform; choose --engine rusthdl, icarus or verilator", vcd.display());
         return Ok(ExitCode::from(2));
     }
     let loaded = input::load(&args.file);
@@ -85,7 +86,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
     if let (Arithmetic::Fixed(width), Some(frame)) = (arith, result.frame) {
         if args.engine != Engine::Model {
-            result.verdicts = run_engine(args.engine, width as usize, &frame, &pairs, args.vcd)?;
+            result.verdicts = run_engine(args.engine, width as usize, &frame, &pairs, args.vcd.as_deref())?;
         }
     }
     if let Some(frame) = result.frame {
@@ -113,7 +114,7 @@ fn run_engine(
     width: usize,
     frame: &tritri_geom::quantize::Frame,
     pairs: &[tritri_geom::TrianglePair],
-    vcd: Option<PathBuf>,
+    vcd: Option<&std::path::Path>,
 ) -> anyhow::Result<Vec<bool>> {
     use tritri_cosim::stream::{IdTriangle, InputCycle};
     let schedule: Vec<InputCycle> = pairs
@@ -127,16 +128,24 @@ fn run_engine(
             ]
         })
         .collect();
+    if let Some(path) = vcd {
+        // The simulator overwrites it; removed first so that a run writing
+        // nothing is caught below instead of leaving an old waveform.
+        let _ = std::fs::remove_file(path);
+    }
     let result = match engine {
         Engine::Model => unreachable!("the model needs no engine run"),
         Engine::Rusthdl => {
             let mut pipeline = tritri_rtl::configurations::pipeline_for_width(width)?;
-            let options = tritri_cosim::rusthdl_harness::HarnessOptions { vcd };
+            let options = tritri_cosim::rusthdl_harness::HarnessOptions { vcd: vcd.map(Into::into) };
             tritri_cosim::rusthdl_harness::run_schedule_on(pipeline.as_mut(), &schedule, &options)?
         }
-        Engine::Icarus => tritri_cosim::icarus::run_icarus_schedule(width, &schedule)?,
-        Engine::Verilator => tritri_cosim::verilator::run_verilator_schedule(width, &schedule)?,
+        Engine::Icarus => tritri_cosim::icarus::run_icarus_schedule(width, &schedule, vcd)?,
+        Engine::Verilator => tritri_cosim::verilator::run_verilator_schedule(width, &schedule, vcd)?,
     };
+    if let Some(path) = vcd {
+        anyhow::ensure!(path.is_file(), "the simulation wrote no waveform to {}", path.display());
+    }
     anyhow::ensure!(result.verdicts.len() == pairs.len(), "the engine returned {} verdicts for {} pairs", result.verdicts.len(), pairs.len());
     for (i, v) in result.verdicts.iter().enumerate() {
         anyhow::ensure!(v.base_id == i as u32 && v.stream_id == i as u32, "verdict {i} carries ids ({}, {})", v.base_id, v.stream_id);

@@ -1,12 +1,14 @@
 //! `tritri classify --arith fixed --engine E` prints the same verdicts from
 //! the software model, the rust-hdl pipeline and the emitted Verilog in
-//! Icarus, on pairs that include touching, coplanar and degenerate ones.
+//! Icarus and Verilator, on pairs that include touching, coplanar and
+//! degenerate ones; `--vcd FILE` writes a waveform from every hardware engine.
 
 use std::process::Command;
 
-fn classify(file: &std::path::Path, engine: &str) -> String {
+fn classify(file: &std::path::Path, engine: &str, extra: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_tritri"))
         .args(["classify", "--arith", "fixed", "--width", "16", "--engine", engine])
+        .args(extra)
         .arg(file)
         .output()
         .expect("running tritri");
@@ -14,23 +16,59 @@ fn classify(file: &std::path::Path, engine: &str) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
-#[test]
-fn every_engine_gives_the_model_verdicts() {
-    let pairs = [
+const PAIRS: [&str; 6] = [
         "0 0 0 1 0 0 0 1 0  0 0 0 0 0 1 1 1 1",       // shared vertex
         "0 0 0 2 0 0 0 2 0  1 1 0 3 1 0 1 3 0",       // coplanar, touching at a vertex
         "0 0 0 2 0 0 0 2 0  3 3 0 4 3 0 3 4 0",       // coplanar, apart
         "0 0 0 1 1 1 2 2 2  0 0 1 1 0 0 0 1 0",       // degenerate segment through a triangle
         "0 0 0 1 0 0 0 1 0  0.2 0.2 0.5 0.3 0.2 -0.5 0.2 0.3 0.5", // crossing
         "0 0 0 1 0 0 0 1 0  0 0 0.001 1 0 0.001 0 1 0.001",       // parallel near miss
-    ];
-    let file = std::env::temp_dir().join(format!("tritri-classify-engines-{}.txt", std::process::id()));
-    std::fs::write(&file, pairs.join("\n")).unwrap();
-    let model = classify(&file, "model");
-    assert_eq!(model.lines().count(), pairs.len());
+];
+
+fn pair_file(label: &str) -> std::path::PathBuf {
+    let file = std::env::temp_dir().join(format!("tritri-classify-{label}-{}.txt", std::process::id()));
+    std::fs::write(&file, PAIRS.join("\n")).unwrap();
+    file
+}
+
+#[test]
+fn every_engine_gives_the_model_verdicts() {
+    let file = pair_file("engines");
+    let model = classify(&file, "model", &[]);
+    assert_eq!(model.lines().count(), PAIRS.len());
     assert!(model.contains('1') && model.contains('0'), "the set has both verdicts: {model}");
-    for engine in ["rusthdl", "icarus"] {
-        assert_eq!(classify(&file, engine), model, "engine {engine}");
+    for engine in ["rusthdl", "icarus", "verilator"] {
+        assert_eq!(classify(&file, engine, &[]), model, "engine {engine}");
     }
     std::fs::remove_file(&file).ok();
+}
+
+/// Every hardware engine writes a VCD that declares the pipeline's ports and
+/// has a time step for each clock edge of the run (6 pairs: 12 input cycles,
+/// plus the latency), and gives the same verdicts as without it.
+#[test]
+fn vcd_from_every_hardware_engine() {
+    let file = pair_file("vcd");
+    let model = classify(&file, "model", &[]);
+    for engine in ["rusthdl", "icarus", "verilator"] {
+        let vcd = std::env::temp_dir().join(format!("tritri-classify-{engine}-{}.vcd", std::process::id()));
+        let verdicts = classify(&file, engine, &["--vcd", vcd.to_str().unwrap()]);
+        assert_eq!(verdicts, model, "engine {engine} with --vcd");
+        let text = std::fs::read_to_string(&vcd).unwrap_or_else(|e| panic!("{engine}: {}: {e}", vcd.display()));
+        assert!(text.contains("$enddefinitions"), "{engine}: no VCD header");
+        for port in ["in_bset", "in_x0", "out_hit", "out_stream_id"] {
+            assert!(text.contains(port), "{engine}: the VCD does not name {port}");
+        }
+        let steps = text.lines().filter(|l| l.starts_with('#')).count();
+        assert!(steps >= 12 + 30, "{engine}: {steps} time steps");
+        std::fs::remove_file(&vcd).ok();
+    }
+    std::fs::remove_file(&file).ok();
+    let out = Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(["classify", "--arith", "fixed", "--vcd", "x.vcd"])
+        .arg(pair_file("vcd-model"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--vcd x.vcd"), "the error names the option");
 }

@@ -2,29 +2,36 @@
 //! vectors of a stream, with `testbenches/tb_triangle_pipeline.sv`.
 //!
 //! Each run compiles into a fresh temporary directory: Icarus compiles in
-//! well under a second, so there is nothing worth caching.
+//! well under a second, so there is nothing worth caching. A run can dump a
+//! VCD waveform of the emitted Verilog (testbench macro `TRITRI_VCD`).
 
 use crate::rtl_sim::{write_sources, RtlDut, RtlRun, WorkDir, TESTBENCH_TOP};
 use crate::stream::TriangleStream;
 use crate::vectors::{parse_outputs, vectors};
 use anyhow::Context as _;
+use std::path::Path;
 use std::time::Instant;
 use tritri_rtl::tools::{run, IVERILOG, VVP};
 
 /// Simulates `dut` on `stream` in Icarus.
 pub fn run_icarus_dut(dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<RtlRun> {
-    run_icarus_on_vectors(dut, &vectors(stream, dut.width, dut.id_bits))
+    run_icarus_on_vectors(dut, &vectors(stream, dut.width, dut.id_bits), None)
 }
 
 /// Runs an arbitrary schedule of input cycles on the emitted `width`-bit
-/// pipeline in Icarus (see `rusthdl_harness::run_schedule_on`).
-pub fn run_icarus_schedule(width: usize, schedule: &[crate::stream::InputCycle]) -> anyhow::Result<crate::stream::StreamResult> {
+/// pipeline in Icarus (see `rusthdl_harness::run_schedule_on`); with `vcd`,
+/// writes the waveform of every signal there.
+pub fn run_icarus_schedule(
+    width: usize,
+    schedule: &[crate::stream::InputCycle],
+    vcd: Option<&Path>,
+) -> anyhow::Result<crate::stream::StreamResult> {
     let dut = crate::rtl_sim::pipeline_dut(width)?;
     let text = crate::vectors::vectors_for_schedule(schedule, dut.width, dut.id_bits);
-    Ok(run_icarus_on_vectors(&dut, &text)?.result)
+    Ok(run_icarus_on_vectors(&dut, &text, vcd)?.result)
 }
 
-fn run_icarus_on_vectors(dut: &RtlDut, vector_text: &str) -> anyhow::Result<RtlRun> {
+fn run_icarus_on_vectors(dut: &RtlDut, vector_text: &str, vcd: Option<&Path>) -> anyhow::Result<RtlRun> {
     let iverilog = IVERILOG.locate()?;
     let vvp = VVP.locate()?;
     let work = WorkDir::new("icarus").context("creating the Icarus work directory")?;
@@ -41,6 +48,7 @@ fn run_icarus_on_vectors(dut: &RtlDut, vector_text: &str) -> anyhow::Result<RtlR
         .arg(format!("-DTRITRI_DUT={}", dut.design.top))
         .arg(format!("-P{TESTBENCH_TOP}.W={}", dut.width))
         .arg(format!("-P{TESTBENCH_TOP}.ID_WIDTH={}", dut.id_bits))
+        .args(vcd.map(|_| "-DTRITRI_VCD"))
         .args(&sources);
     run(&mut compile)?;
     let build_seconds = build.elapsed().as_secs_f64();
@@ -53,7 +61,8 @@ fn run_icarus_on_vectors(dut: &RtlDut, vector_text: &str) -> anyhow::Result<RtlR
     sim.arg("-n")
         .arg(&image)
         .arg(format!("+vectors={}", vectors_path.display()))
-        .arg(format!("+outputs={}", outputs_path.display()));
+        .arg(format!("+outputs={}", outputs_path.display()))
+        .args(vcd.map(|path| format!("+vcd={}", path.display())));
     let output = run(&mut sim)?;
     let simulate_seconds = simulate.elapsed().as_secs_f64();
     let text = std::fs::read_to_string(&outputs_path).with_context(|| {

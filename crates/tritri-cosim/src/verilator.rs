@@ -7,6 +7,11 @@
 //! testbench, W, the id width and the Verilator version. A run with the same
 //! design reuses the executable. Builds go to a private directory first and
 //! are renamed into place, so parallel runs never see half a build.
+//!
+//! A run that asks for a VCD waveform uses a second build of the same
+//! design with `--trace` (and the testbench macro `TRITRI_VCD`), cached
+//! under its own key: tracing slows every cycle, so the plain build stays
+//! the fast one.
 
 use crate::rtl_sim::{write_sources, RtlDut, RtlRun, WorkDir, TESTBENCH_TOP};
 use crate::stream::TriangleStream;
@@ -40,11 +45,22 @@ fn verilator_version() -> anyhow::Result<String> {
     Ok(String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// Whether a build can write a VCD waveform.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tracing {
+    Off,
+    Vcd,
+}
+
 /// The executable for `dut`, built unless cached; returns it and the build time.
-pub fn build(dut: &RtlDut) -> anyhow::Result<(PathBuf, f64)> {
+pub fn build(dut: &RtlDut, tracing: Tracing) -> anyhow::Result<(PathBuf, f64)> {
     VERILATOR.locate()?;
     let version = verilator_version()?;
-    let key = format!("w{}-{:016x}", dut.width, dut.fingerprint(&version));
+    let suffix = match tracing {
+        Tracing::Off => "",
+        Tracing::Vcd => "-vcd",
+    };
+    let key = format!("w{}-{:016x}{suffix}", dut.width, dut.fingerprint(&version));
     let dir = cache_root().join("verilator").join(&key);
     let exe = dir.join(executable_name());
     if exe.is_file() {
@@ -63,6 +79,7 @@ pub fn build(dut: &RtlDut) -> anyhow::Result<(PathBuf, f64)> {
         .arg(format!("-GID_WIDTH={}", dut.id_bits))
         // Optimize the model for run time; the build is cached.
         .args(["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS", "-O2"])
+        .args(if tracing == Tracing::Vcd { &["--trace", "-DTRITRI_VCD"][..] } else { &[] })
         .args(&sources);
     run(&mut cmd).context("building the Verilator model")?;
     let built = staging.path.join("obj").join(executable_name());
@@ -82,26 +99,33 @@ pub fn build(dut: &RtlDut) -> anyhow::Result<(PathBuf, f64)> {
 
 /// Runs a built executable on `stream`.
 pub fn run_executable(exe: &Path, dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<(RtlRun, f64)> {
-    run_executable_on_vectors(exe, &vectors(stream, dut.width, dut.id_bits))
+    run_executable_on_vectors(exe, &vectors(stream, dut.width, dut.id_bits), None)
 }
 
 /// Runs an arbitrary schedule of input cycles on the emitted `width`-bit
-/// pipeline in Verilator (see `rusthdl_harness::run_schedule_on`).
-pub fn run_verilator_schedule(width: usize, schedule: &[crate::stream::InputCycle]) -> anyhow::Result<crate::stream::StreamResult> {
+/// pipeline in Verilator (see `rusthdl_harness::run_schedule_on`); with
+/// `vcd`, writes the waveform of every signal there (from the traced build).
+pub fn run_verilator_schedule(
+    width: usize,
+    schedule: &[crate::stream::InputCycle],
+    vcd: Option<&Path>,
+) -> anyhow::Result<crate::stream::StreamResult> {
     let dut = crate::rtl_sim::pipeline_dut(width)?;
-    let (exe, _) = build(&dut)?;
+    let (exe, _) = build(&dut, if vcd.is_some() { Tracing::Vcd } else { Tracing::Off })?;
     let text = crate::vectors::vectors_for_schedule(schedule, dut.width, dut.id_bits);
-    Ok(run_executable_on_vectors(&exe, &text)?.0.result)
+    Ok(run_executable_on_vectors(&exe, &text, vcd)?.0.result)
 }
 
-fn run_executable_on_vectors(exe: &Path, vector_text: &str) -> anyhow::Result<(RtlRun, f64)> {
+fn run_executable_on_vectors(exe: &Path, vector_text: &str, vcd: Option<&Path>) -> anyhow::Result<(RtlRun, f64)> {
     let work = WorkDir::new("verilator-run")?;
     let vectors_path = work.join("vectors.txt");
     let outputs_path = work.join("outputs.txt");
     std::fs::write(&vectors_path, vector_text)?;
     let started = Instant::now();
     let mut cmd = std::process::Command::new(exe);
-    cmd.arg(format!("+vectors={}", vectors_path.display())).arg(format!("+outputs={}", outputs_path.display()));
+    cmd.arg(format!("+vectors={}", vectors_path.display()))
+        .arg(format!("+outputs={}", outputs_path.display()))
+        .args(vcd.map(|path| format!("+vcd={}", path.display())));
     let output = run(&mut cmd)?;
     let seconds = started.elapsed().as_secs_f64();
     let text = std::fs::read_to_string(&outputs_path).with_context(|| {
@@ -113,7 +137,7 @@ fn run_executable_on_vectors(exe: &Path, vector_text: &str) -> anyhow::Result<(R
 
 /// Simulates `dut` on `stream` in Verilator (building or reusing the cached model).
 pub fn run_verilator_dut(dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<RtlRun> {
-    let (exe, build_seconds) = build(dut)?;
+    let (exe, build_seconds) = build(dut, Tracing::Off)?;
     let (mut run, _) = run_executable(&exe, dut, stream)?;
     run.build_seconds = build_seconds;
     Ok(run)

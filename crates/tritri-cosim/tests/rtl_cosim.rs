@@ -154,7 +154,7 @@ fn check_schedule(engine: &str, what: &str, result: &StreamResult, expected: &[t
 fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
     for width in [16, 24, 32] {
         let (schedule, expected) = group_schedule(&hard_case_groups(width, 1), intersects);
-        let result = tritri_cosim::verilator::run_verilator_schedule(width as usize, &schedule).unwrap_or_else(|e| panic!("{e:#}"));
+        let result = tritri_cosim::verilator::run_verilator_schedule(width as usize, &schedule, None).unwrap_or_else(|e| panic!("{e:#}"));
         let what = format!("W={width} hard cases ({} x 72 orderings)", hard_case_count());
         check_schedule("verilator", &what, &result, &expected, schedule.len());
     }
@@ -166,6 +166,6 @@ fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
 fn icarus_matches_fixed_point_model_on_the_hard_case_suite() {
     let width = 24;
     let (schedule, expected) = group_schedule(&hard_case_groups(width, 16), intersects);
-    let result = tritri_cosim::icarus::run_icarus_schedule(width as usize, &schedule).unwrap_or_else(|e| panic!("{e:#}"));
+    let result = tritri_cosim::icarus::run_icarus_schedule(width as usize, &schedule, None).unwrap_or_else(|e| panic!("{e:#}"));
     check_schedule("icarus", "W=24 hard cases (every 16th x 72 orderings)", &result, &expected, schedule.len());
 }

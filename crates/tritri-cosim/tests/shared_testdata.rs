@@ -81,7 +81,7 @@ fn verilator_equals_model_on_shared_cases() {
     for width in [8, 16, 24] {
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
             let (cycles, expected) = group_schedule(&groups, intersects);
-            let result = tritri_cosim::verilator::run_verilator_schedule(width, &cycles).unwrap();
+            let result = tritri_cosim::verilator::run_verilator_schedule(width, &cycles, None).unwrap();
             assert_equal("verilator", what, width, &result, &expected);
         }
     }
@@ -91,6 +91,6 @@ fn verilator_equals_model_on_shared_cases() {
 fn icarus_equals_model_on_peer_cases() {
     let width = 24;
     let (cycles, expected) = group_schedule(&peer_groups(width), intersects);
-    let result = tritri_cosim::icarus::run_icarus_schedule(width, &cycles).unwrap();
+    let result = tritri_cosim::icarus::run_icarus_schedule(width, &cycles, None).unwrap();
     assert_equal("icarus", "peer cases x 72", width, &result, &expected);
 }
