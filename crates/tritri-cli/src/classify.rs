@@ -77,6 +77,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --engine and --vcd apply only to --arith fixed");
         return Ok(ExitCode::from(2));
     }
+    if let (Arithmetic::Fixed(width), true) = (arith, args.engine != Engine::Model) {
+        let supported = tritri_rtl::configurations::SUPPORTED_WIDTHS;
+        if !supported.contains(&(width as usize)) {
+            eprintln!("error: --width {width}: no pipeline is generated for this width; the hardware engines support {supported:?} (the model takes 8 to 32)");
+            return Ok(ExitCode::from(2));
+        }
+    }
     if let (Some(vcd), Engine::Model) = (&args.vcd, args.engine) {
         eprintln!("error: --vcd {}: the model has no waveform; choose --engine rusthdl, icarus or verilator", vcd.display());
         return Ok(ExitCode::from(2));

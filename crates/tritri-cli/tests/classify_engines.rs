@@ -72,3 +72,21 @@ fn vcd_from_every_hardware_engine() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--vcd x.vcd"), "the error names the option");
 }
+
+/// A width the model takes but no pipeline is generated for is a usage
+/// error (exit 2) that names the width, before any simulation runs.
+#[test]
+fn hardware_engines_refuse_widths_without_a_pipeline() {
+    let file = pair_file("width");
+    for engine in ["rusthdl", "icarus", "verilator"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_tritri"))
+            .args(["classify", "--arith", "fixed", "--width", "9", "--engine", engine])
+            .arg(&file)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "engine {engine}");
+        assert!(String::from_utf8_lossy(&out.stderr).contains("--width 9"), "engine {engine}: the error names the width");
+        assert!(out.stdout.is_empty(), "engine {engine}: no verdicts");
+    }
+    std::fs::remove_file(&file).ok();
+}
