@@ -67,11 +67,23 @@ impl Frame {
             // No triangles: any frame will do.
             return Ok(Frame { widths, centre: [0.0; 3], step: 1.0 });
         }
-        let centre = [0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) / 2.0);
+        // A batch with coordinates of both signs near ±1e308 spans more than
+        // f64::MAX: `hi - lo` overflows to infinity, its halves do not (and
+        // halving a normal number is exact, so the step below is the same
+        // quotient).
+        let centre = [0, 1, 2].map(|k| {
+            let span = hi[k] - lo[k];
+            if span.is_finite() { lo[k] + span / 2.0 } else { lo[k] / 2.0 + hi[k] / 2.0 }
+        });
         let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         // 2^W - 4 steps across the extent leave more than one unit of margin
         // at each end for rounding of the centre and the division.
         let steps = ((1u64 << width) - 4) as f64;
+        let extent_per_step = if extent.is_finite() {
+            extent / steps
+        } else {
+            (0..3).map(|k| hi[k] / 2.0 - lo[k] / 2.0).fold(0.0, f64::max) / (steps / 2.0)
+        };
         // The centre is off by up to half an ulp of the largest magnitude M
         // present: a step of at least 2·EPSILON·M keeps that under a quarter
         // step, inside the margin, even when the extent is only a few ulps
@@ -79,7 +91,7 @@ impl Frame {
         // keeps the division accurate for tiny extents.
         let magnitude = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0, f64::max);
         let step = if extent > 0.0 {
-            (extent / steps).max(2.0 * f64::EPSILON * magnitude).max(f64::MIN_POSITIVE)
+            extent_per_step.max(2.0 * f64::EPSILON * magnitude).max(f64::MIN_POSITIVE)
         } else {
             1.0
         };

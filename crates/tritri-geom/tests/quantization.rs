@@ -86,6 +86,13 @@ fn extreme_batches() -> Vec<(String, Vec<Triangle>)> {
     for scale in [1e100, 1e300] {
         batches.push((format!("huge extent {scale:e}"), transformed(&base, scale, [0.0; 3])));
     }
+    // Extents beyond f64::MAX: `hi - lo` itself overflows.
+    let max = f64::MAX;
+    batches.push((
+        "extent beyond f64::MAX".into(),
+        vec![[[-max, -1e308, 0.0], [max, 1e308, 1.0], [0.0, 0.0, -max]], [[1e300, -1e300, max]; 3]],
+    ));
+    batches.push(("two points at -f64::MAX and f64::MAX".into(), vec![[[-max; 3]; 3], [[max; 3]; 3]]));
     let p = [1e9 + 0.25, -3.5, 7.0];
     batches.push(("single point".into(), vec![[p, p, p]]));
     batches.push(("single point at the origin".into(), vec![[[0.0; 3]; 3]]));
