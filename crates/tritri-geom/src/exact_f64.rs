@@ -1,7 +1,9 @@
 //! The ground truth: Devillers–Guigue on exact predicates over the f64
-//! coordinates as given (Shewchuk's adaptive orient2d / orient3d from the
+//! coordinates as given: Shewchuk's adaptive orient2d / orient3d from the
 //! `robust` crate, which are exact for every finite f64 input whose
-//! intermediate products neither overflow nor underflow).
+//! intermediate products neither overflow nor underflow, and exact big
+//! integers ([`crate::exact_big_integer`]) for inputs beyond that range
+//! (coordinates near ±1e308 or 1e-300), so every finite input is exact.
 //!
 //! Each predicate first tries a static floating-point filter with Shewchuk's
 //! first-stage error bound, written so that the calls against one plane
@@ -11,6 +13,7 @@
 //! no-underflow assumption as `robust`.
 
 use crate::devillers_guigue;
+use crate::exact_big_integer::{self, within_robust_range};
 use crate::kernel::ExactKernel;
 use crate::sign::Sign;
 use crate::triangle::{Point, Triangle};
@@ -50,12 +53,18 @@ const FILTER_MIN_PERMANENT: f64 = 1e-270;
 #[cold]
 #[inline(never)]
 fn orient3d_exact(a: Point, b: Point, c: Point, d: Point) -> Sign {
+    if !within_robust_range(&[a, b, c, d]) {
+        return exact_big_integer::orient3d(a, b, c, d);
+    }
     Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip()
 }
 
 #[cold]
 #[inline(never)]
 fn orient2d_exact(axis: usize, a: Point, b: Point, c: Point) -> Sign {
+    if !within_robust_range(&[a, b, c]) {
+        return exact_big_integer::orient2d(axis, a, b, c);
+    }
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let p = |v: Point| Coord { x: v[i], y: v[j] };
     Sign::of_f64(robust::orient2d(p(a), p(b), p(c)))
@@ -97,7 +106,9 @@ impl ExactKernel for ExactF64 {
 
     #[inline]
     fn compare_coordinate(axis: usize, a: Point, b: Point) -> Ordering {
-        a[axis].total_cmp(&b[axis])
+        // `+ 0.0` turns -0.0 into +0.0: the two are one coordinate, but
+        // `total_cmp` alone orders -0.0 below +0.0 (input is never NaN).
+        (a[axis] + 0.0).total_cmp(&(b[axis] + 0.0))
     }
 
     fn dominant_normal_axis(a: Point, b: Point, c: Point) -> usize {
@@ -135,36 +146,88 @@ mod filter_tests {
         f64::from_bits((x.to_bits() as i64 + ulps) as u64)
     }
 
-    /// The filtered predicates give robust's exact signs on points that are
-    /// nearly coplanar / collinear (a few ulps off), at scales from 1e-200
-    /// (where the filter must defer) to 1e200, with large offsets.
+    /// The filtered predicates give the exact signs (big integers) on points
+    /// that are nearly coplanar / collinear (a few ulps off), at scales from
+    /// 1e-310 (subnormal; the filter must defer) to 1e300, with large
+    /// offsets; and inside `ROBUST_RANGE` robust's signs are those exact signs.
     #[test]
-    fn filter_agrees_with_robust_near_degeneracy() {
+    fn filter_agrees_with_exact_signs_near_degeneracy() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut decided_by_robust = 0;
-        for scale in [1e-200, 1e-150, 1e-5, 1.0, 1e6, 1e150, 1e200] {
-            for _ in 0..20_000 {
+        let mut degenerate = 0;
+        let mut robust_checked = 0;
+        for scale in [1e-310, 1e-300, 1e-200, 1e-150, 1e-5, 1.0, 1e6, 1e150, 1e200, 1e300] {
+            for _ in 0..14_000 {
                 let offset = if rng.gen_bool(0.3) { 1e3 * scale } else { 0.0 };
                 let mut p = || -> Point { [0; 3].map(|_| offset + scale * rng.gen_range(-1.0..1.0)) };
-                let (a, b, c) = (p(), p(), p());
+                let (mut a, mut b, mut c) = (p(), p(), p());
                 let (s, t): (f64, f64) = (rng.gen_range(-1.0..2.0), rng.gen_range(-1.0..2.0));
                 let mut d = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
                 let k = rng.gen_range(0..3);
                 d[k] = nudge(d[k], rng.gen_range(-3..=3));
-                let want = Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip();
+                if rng.gen_bool(0.1) {
+                    // Exactly coplanar: small integers on a power-of-two grid near `scale`.
+                    let unit = 2f64.powi(scale.log2().round() as i32);
+                    let mut g = || -> [i64; 3] { [0; 3].map(|_| rng.gen_range(-8..=8)) };
+                    let (ga, gb, gc) = (g(), g(), g());
+                    let (gs, gt) = (rng.gen_range(-2..=2), rng.gen_range(-2..=2));
+                    let on_grid = |v: [i64; 3]| v.map(|x| x as f64 * unit);
+                    (a, b, c) = (on_grid(ga), on_grid(gb), on_grid(gc));
+                    d = on_grid([0, 1, 2].map(|k| ga[k] + gs * (gb[k] - ga[k]) + gt * (gc[k] - ga[k])));
+                }
+                let want = exact_big_integer::orient3d(a, b, c, d);
                 assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+                degenerate += usize::from(want.is_zero());
+                if within_robust_range(&[a, b, c, d]) {
+                    assert_eq!(Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip(), want);
+                    robust_checked += 1;
+                }
                 // Nearly collinear in the projection dropping `axis`.
                 let mut e = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]));
                 e[k] = nudge(e[k], rng.gen_range(-3..=3));
                 for axis in 0..3 {
-                    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-                    let q = |v: Point| Coord { x: v[i], y: v[j] };
-                    let want = Sign::of_f64(robust::orient2d(q(a), q(b), q(e)));
+                    let want = exact_big_integer::orient2d(axis, a, b, e);
                     assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
+                    if within_robust_range(&[a, b, e]) {
+                        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+                        let q = |v: Point| Coord { x: v[i], y: v[j] };
+                        assert_eq!(Sign::of_f64(robust::orient2d(q(a), q(b), q(e))), want);
+                    }
+                    degenerate += usize::from(want.is_zero());
                 }
-                decided_by_robust += usize::from(want.is_zero());
             }
         }
-        assert!(decided_by_robust > 0, "the test must reach exactly degenerate configurations");
+        assert!(degenerate > 0, "the test must reach exactly degenerate configurations");
+        assert!(robust_checked > 10_000, "and compare robust with the exact signs inside its range");
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    use super::intersects;
+
+    /// -0.0 and +0.0 are the same coordinate: two point-triangles at the
+    /// origin, one written with negative zeros, touch.
+    #[test]
+    fn signed_zeros_are_one_coordinate() {
+        let plus = [[0.0; 3]; 3];
+        let minus = [[-0.0; 3]; 3];
+        assert!(intersects(&plus, &minus));
+        let t = [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]];
+        assert!(intersects(&t, &[[0.0, -0.0, -0.0]; 3]));
+    }
+
+    /// Pairs at the ends of the f64 range, where f64 products overflow or
+    /// underflow, get exact answers (and no panic).
+    #[test]
+    fn extreme_magnitudes_are_exact() {
+        let max = f64::MAX;
+        let left = [[-max, 0.0, 0.0], [-0.9 * max, 0.0, 0.0], [-max, 1e307, 0.0]];
+        let right = left.map(|p| [-p[0], p[1], p[2]]);
+        assert!(!intersects(&left, &right), "far apart, both in z = 0");
+        let big = [[-max, -max, 0.0], [max, -max, 0.0], [0.0, max, 0.0]];
+        let needle = [[0.0, 0.0, -5e-324], [0.0, 0.0, 5e-324], [0.0, 0.0, 5e-324]];
+        assert!(intersects(&big, &needle), "a segment through the plane");
+        let above = [[0.0, 0.0, 5e-324], [1e-300, 0.0, 5e-324], [0.0, 1e-300, 1e-323]];
+        assert!(!intersects(&big, &above), "a tiny triangle just above the plane");
     }
 }

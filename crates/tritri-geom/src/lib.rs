@@ -21,6 +21,7 @@ pub mod bezier;
 pub mod bounding_volume;
 pub mod builtin_scene;
 pub mod devillers_guigue;
+pub mod exact_big_integer;
 pub mod exact_f64;
 pub mod fixed_point;
 pub mod hard_cases;

@@ -206,3 +206,58 @@ fn exact_model_is_invariant_under_the_72_orderings() {
     report_pairs("not invariant", &pairs, &bad);
     assert!(bad.is_empty());
 }
+
+/// Exact model == oracle at the ends of the f64 range, where the products
+/// inside Shewchuk's predicates overflow or underflow: every hard case and
+/// 2,000 random and near-degenerate pairs, scaled by powers of two from
+/// 2^-1070 to 2^1020 (exact unless the scaling itself underflows, so the
+/// answer of the unscaled pair must come back too wherever no coordinate
+/// lost bits), plus pairs that span more than f64::MAX.
+#[test]
+fn exact_model_equals_oracle_at_extreme_magnitudes() {
+    let timer = Timer::start();
+    let mut base: Vec<TrianglePair> = hard_case_suite().iter().map(|c| c.pair).collect();
+    base.extend(random_pairs(1_000, 31));
+    base.extend(random_near_degenerate_pairs(1_000, 32));
+    let scale_pair = |p: &TrianglePair, s: f64| TrianglePair::new(p.t1.map(|v| v.map(|x| x * s)), p.t2.map(|v| v.map(|x| x * s)));
+    let mut pairs = Vec::new();
+    let mut unscaled_answer = Vec::new();
+    for exponent in [-1070, -1000, -700, -400, 300, 600, 900, 1000, 1020] {
+        let s = 2f64.powi(exponent);
+        for p in &base {
+            let q = scale_pair(p, s);
+            // Scaling is exact when every coordinate comes back.
+            let exact_scaling = q.coordinates().zip(p.coordinates()).all(|(a, b)| a.is_finite() && a / s == b);
+            if q.coordinates().all(f64::is_finite) {
+                pairs.push(q);
+                unscaled_answer.push(exact_scaling.then(|| model(p)));
+            }
+        }
+    }
+    // Spans beyond f64::MAX: copies of a pair moved far apart to either
+    // side of the origin (disjoint), and pairs straddling the origin at
+    // full scale (not an exact scaling: compared with the oracle only).
+    let max = f64::MAX;
+    for p in base.iter().take(2_000) {
+        let far = |t: tritri_geom::Triangle, side: f64| {
+            t.map(|v| [side * max * (0.5 + 0.25 * v[0].clamp(0.0, 1.0)), v[1].clamp(-1.0, 1.0) * 1e300, v[2].clamp(-1.0, 1.0) * 1e300])
+        };
+        pairs.push(TrianglePair::new(far(p.t1, -1.0), far(p.t2, 1.0)));
+        unscaled_answer.push(Some(false));
+        let full = |t: tritri_geom::Triangle| t.map(|v| v.map(|x| (x.clamp(-1.0, 1.0) - 0.5) * (max / 2.0)));
+        pairs.push(TrianglePair::new(full(p.t1), full(p.t2)));
+        unscaled_answer.push(None);
+    }
+    let bad = failures(&pairs, |p| model(p) == oracle(p));
+    let lost = (0..pairs.len()).filter(|&i| unscaled_answer[i].is_some_and(|a| oracle(&pairs[i]) != a)).count();
+    eprintln!(
+        "exact model vs oracle at extreme magnitudes: {} pairs, {} disagreements, {lost} exactly scaled pairs whose \
+         answer changed, {:.1} s",
+        pairs.len(),
+        bad.len(),
+        timer.seconds()
+    );
+    report_pairs("extreme", &pairs, &bad);
+    assert!(bad.is_empty(), "{} disagreements at extreme magnitudes", bad.len());
+    assert_eq!(lost, 0, "scaling by a power of two changed an exact answer");
+}
