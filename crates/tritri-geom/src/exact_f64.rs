@@ -1,9 +1,12 @@
 //! The ground truth: Devillers–Guigue on exact predicates over the f64
-//! coordinates as given: Shewchuk's adaptive orient2d / orient3d from the
-//! `robust` crate, which are exact for every finite f64 input whose
-//! intermediate products neither overflow nor underflow, and exact big
-//! integers ([`crate::exact_big_integer`]) for inputs beyond that range
-//! (coordinates near ±1e308 or 1e-300), so every finite input is exact.
+//! coordinates as given. [`ExactF64`] uses Shewchuk's adaptive orient2d /
+//! orient3d from the `robust` crate, which are exact while their
+//! intermediate products neither overflow nor underflow: for coordinates
+//! inside [`ROBUST_RANGE`](crate::exact_big_integer::ROBUST_RANGE). A pair with any coordinate outside it (near
+//! ±1e308 or 1e-300) goes to the big-integer kernel
+//! [`crate::exact_big_integer::ExactBigInteger`] instead, so [`intersects`]
+//! is exact for every finite input. The choice is made once per pair, which
+//! keeps the fast kernel's code as it was.
 //!
 //! Each predicate first tries a static floating-point filter with Shewchuk's
 //! first-stage error bound, written so that the calls against one plane
@@ -13,7 +16,7 @@
 //! no-underflow assumption as `robust`.
 
 use crate::devillers_guigue;
-use crate::exact_big_integer::{self, within_robust_range};
+use crate::exact_big_integer::{pair_within_robust_range, ExactBigInteger};
 use crate::kernel::ExactKernel;
 use crate::sign::Sign;
 use crate::triangle::{Point, Triangle};
@@ -53,18 +56,12 @@ const FILTER_MIN_PERMANENT: f64 = 1e-270;
 #[cold]
 #[inline(never)]
 fn orient3d_exact(a: Point, b: Point, c: Point, d: Point) -> Sign {
-    if !within_robust_range(&[a, b, c, d]) {
-        return exact_big_integer::orient3d(a, b, c, d);
-    }
     Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip()
 }
 
 #[cold]
 #[inline(never)]
 fn orient2d_exact(axis: usize, a: Point, b: Point, c: Point) -> Sign {
-    if !within_robust_range(&[a, b, c]) {
-        return exact_big_integer::orient2d(axis, a, b, c);
-    }
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let p = |v: Point| Coord { x: v[i], y: v[j] };
     Sign::of_f64(robust::orient2d(p(a), p(b), p(c)))
@@ -130,12 +127,23 @@ impl ExactKernel for ExactF64 {
 /// and inlined into a caller's loop it measured about 40 % slower.
 #[inline(never)]
 pub fn intersects(t1: &Triangle, t2: &Triangle) -> bool {
-    devillers_guigue::intersects::<ExactF64>(*t1, *t2)
+    if pair_within_robust_range(t1, t2) {
+        devillers_guigue::intersects::<ExactF64>(*t1, *t2)
+    } else {
+        intersects_outside_robust_range(t1, t2)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn intersects_outside_robust_range(t1: &Triangle, t2: &Triangle) -> bool {
+    devillers_guigue::intersects::<ExactBigInteger>(*t1, *t2)
 }
 
 #[cfg(test)]
 mod filter_tests {
     use super::*;
+    use crate::exact_big_integer::{self, within_robust_range};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -146,10 +154,11 @@ mod filter_tests {
         f64::from_bits((x.to_bits() as i64 + ulps) as u64)
     }
 
-    /// The filtered predicates give the exact signs (big integers) on points
-    /// that are nearly coplanar / collinear (a few ulps off), at scales from
-    /// 1e-310 (subnormal; the filter must defer) to 1e300, with large
-    /// offsets; and inside `ROBUST_RANGE` robust's signs are those exact signs.
+    /// Inside `ROBUST_RANGE`, the filtered predicates and robust's give the
+    /// exact signs (big integers) on points that are nearly coplanar /
+    /// collinear (a few ulps off) or exactly so, at scales from 1e-310 to
+    /// 1e300 (the points outside the range are skipped: `intersects` sends
+    /// them to the big-integer kernel), with large offsets.
     #[test]
     fn filter_agrees_with_exact_signs_near_degeneracy() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
@@ -174,25 +183,25 @@ mod filter_tests {
                     (a, b, c) = (on_grid(ga), on_grid(gb), on_grid(gc));
                     d = on_grid([0, 1, 2].map(|k| ga[k] + gs * (gb[k] - ga[k]) + gt * (gc[k] - ga[k])));
                 }
-                let want = exact_big_integer::orient3d(a, b, c, d);
-                assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
-                degenerate += usize::from(want.is_zero());
                 if within_robust_range(&[a, b, c, d]) {
+                    let want = exact_big_integer::orient3d(a, b, c, d);
+                    assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
                     assert_eq!(Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip(), want);
+                    degenerate += usize::from(want.is_zero());
                     robust_checked += 1;
                 }
                 // Nearly collinear in the projection dropping `axis`.
                 let mut e = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]));
                 e[k] = nudge(e[k], rng.gen_range(-3..=3));
                 for axis in 0..3 {
-                    let want = exact_big_integer::orient2d(axis, a, b, e);
-                    assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
                     if within_robust_range(&[a, b, e]) {
+                        let want = exact_big_integer::orient2d(axis, a, b, e);
+                        assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
                         let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
                         let q = |v: Point| Coord { x: v[i], y: v[j] };
                         assert_eq!(Sign::of_f64(robust::orient2d(q(a), q(b), q(e))), want);
+                        degenerate += usize::from(want.is_zero());
                     }
-                    degenerate += usize::from(want.is_zero());
                 }
             }
         }
