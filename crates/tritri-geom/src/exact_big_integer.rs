@@ -1,6 +1,5 @@
-//! orient3d and orient2d of f64 points in exact big-integer arithmetic, and
-//! the kernel [`ExactBigInteger`] built on them: the fallback of
-//! [`crate::exact_f64::intersects`] for pairs where Shewchuk's adaptive
+//! orient3d and orient2d of f64 points in exact big-integer arithmetic: the
+//! fallback of [`crate::exact_f64`]'s predicates where Shewchuk's adaptive
 //! predicates are not exact, because their products overflow (coordinates
 //! near ±1e308) or underflow (coordinates near 1e-300).
 //!
@@ -10,11 +9,9 @@
 //! determinants are exact integer polynomials of them. Slow (products of
 //! thousands of bits), which is why it only runs outside [`ROBUST_RANGE`].
 
-use crate::kernel::ExactKernel;
 use crate::sign::Sign;
 use crate::triangle::Point;
 use num_bigint::BigInt;
-use std::cmp::Ordering;
 
 /// Magnitudes inside which `robust`'s expansions are exact: with every
 /// non-zero coordinate in `[2^-240, 2^240]`, every exact term of a degree-3
@@ -34,24 +31,9 @@ pub fn within_robust_range(points: &[Point]) -> bool {
     points.iter().all(|p| p.iter().all(|&x| coordinate_within_robust_range(x)))
 }
 
-/// [`within_robust_range`] of the six vertices of a pair, written for the
-/// hot path of [`crate::exact_f64::intersects`]: a fixed-size loop of
-/// integer tests on the exponent bits, without branches.
-#[inline(always)]
-pub fn pair_within_robust_range(t1: &[Point; 3], t2: &[Point; 3]) -> bool {
-    let mut inside = true;
-    for t in [t1, t2] {
-        for p in t {
-            for &x in p {
-                inside &= coordinate_within_robust_range(x);
-            }
-        }
-    }
-    inside
-}
-
 /// Zero, or a magnitude in `[2^-240, 2^240]`: a biased exponent in
-/// `[1023 - 240, 1023 + 239]`, or exactly `2^240`.
+/// `[1023 - 240, 1023 + 239]`, or exactly `2^240` (integer tests on the
+/// bits, no branches).
 #[inline(always)]
 fn coordinate_within_robust_range(x: f64) -> bool {
     const LOWEST: u64 = 1023 - 240;
@@ -93,6 +75,7 @@ fn sign_of(v: &BigInt) -> Sign {
 }
 
 /// Sign of `[a,b,c,d] = (d-a)·((b-a)×(c-a))`.
+#[inline(never)]
 pub fn orient3d(a: Point, b: Point, c: Point, d: Point) -> Sign {
     let g = on_common_grid([a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], d[0], d[1], d[2]]);
     let difference = |p: usize| [0, 1, 2].map(|k| &g[3 * p + k] - &g[k]);
@@ -104,45 +87,12 @@ pub fn orient3d(a: Point, b: Point, c: Point, d: Point) -> Sign {
 /// Sign of the 2D orientation of `a, b, c` projected along `axis` (onto the
 /// coordinates `(axis + 1) % 3` and `(axis + 2) % 3`): positive when
 /// counter-clockwise.
+#[inline(never)]
 pub fn orient2d(axis: usize, a: Point, b: Point, c: Point) -> Sign {
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let g = on_common_grid([a[i], a[j], b[i], b[j], c[i], c[j]]);
     let (ux, uy, vx, vy) = (&g[2] - &g[0], &g[3] - &g[1], &g[4] - &g[0], &g[5] - &g[1]);
     sign_of(&(ux * vy - uy * vx))
-}
-
-/// The exact kernel for any finite f64 input: every predicate in big
-/// integers. Much slower than [`crate::exact_f64::ExactF64`]; used for the
-/// pairs that kernel cannot decide exactly.
-pub struct ExactBigInteger;
-
-impl ExactKernel for ExactBigInteger {
-    type Point = Point;
-
-    fn orient3d(a: Point, b: Point, c: Point, d: Point) -> Sign {
-        orient3d(a, b, c, d)
-    }
-
-    fn orient2d(axis: usize, a: Point, b: Point, c: Point) -> Sign {
-        orient2d(axis, a, b, c)
-    }
-
-    fn compare_coordinate(axis: usize, a: Point, b: Point) -> Ordering {
-        // IEEE order: -0.0 == +0.0 (the input is never NaN).
-        a[axis].partial_cmp(&b[axis]).expect("finite coordinates")
-    }
-
-    /// The largest exact normal component (the lowest axis on ties).
-    fn dominant_normal_axis(a: Point, b: Point, c: Point) -> usize {
-        let g = on_common_grid([a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2]]);
-        let difference = |p: usize| [0, 1, 2].map(|k| &g[3 * p + k] - &g[k]);
-        let (u, v) = (difference(1), difference(2));
-        let normal = [0, 1, 2].map(|k| {
-            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-            (&u[i] * &v[j] - &u[j] * &v[i]).magnitude().clone()
-        });
-        (0..3).rev().max_by(|&i, &j| normal[i].cmp(&normal[j])).expect("three axes")
-    }
 }
 
 #[cfg(test)]
@@ -172,21 +122,10 @@ mod tests {
             assert!(!coordinate_within_robust_range(x), "{x:e}");
         }
         let t = [[1.0, 2.0, 3.0]; 3];
-        assert!(pair_within_robust_range(&t, &t));
+        assert!(within_robust_range(&t));
         let mut far = t;
         far[2][1] = 1e300;
-        assert!(!pair_within_robust_range(&t, &far) && !within_robust_range(&far));
-    }
-
-    /// The dominant axis is the largest exact normal component.
-    #[test]
-    fn dominant_normal_axis_is_exact() {
-        let max = f64::MAX;
-        // Normal along z, at full scale (its f64 value would overflow).
-        assert_eq!(ExactBigInteger::dominant_normal_axis([-max, -max, 0.0], [max, -max, 0.0], [0.0, max, 0.0]), 2);
-        // Normal (0, -1, 1) scaled: a tie between y and z picks y.
-        assert_eq!(ExactBigInteger::dominant_normal_axis([0.0; 3], [1e-320, 0.0, 0.0], [0.0, 1e-320, 1e-320]), 1);
-        assert_eq!(ExactBigInteger::compare_coordinate(0, [-0.0; 3], [0.0; 3]), Ordering::Equal);
+        assert!(!within_robust_range(&far));
     }
 
     /// Signs at the ends of the range, where f64 products overflow or underflow.

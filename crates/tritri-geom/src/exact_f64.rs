@@ -1,22 +1,23 @@
 //! The ground truth: Devillers–Guigue on exact predicates over the f64
-//! coordinates as given. [`ExactF64`] uses Shewchuk's adaptive orient2d /
-//! orient3d from the `robust` crate, which are exact while their
-//! intermediate products neither overflow nor underflow: for coordinates
-//! inside [`ROBUST_RANGE`](crate::exact_big_integer::ROBUST_RANGE). A pair with any coordinate outside it (near
-//! ±1e308 or 1e-300) goes to the big-integer kernel
-//! [`crate::exact_big_integer::ExactBigInteger`] instead, so [`intersects`]
-//! is exact for every finite input. The choice is made once per pair, which
-//! keeps the fast kernel's code as it was.
+//! coordinates as given, for every finite input: Shewchuk's adaptive
+//! orient2d / orient3d from the `robust` crate, which are exact while their
+//! intermediate products neither overflow nor underflow (coordinates inside
+//! [`ROBUST_RANGE`](crate::exact_big_integer::ROBUST_RANGE)), and exact big
+//! integers ([`crate::exact_big_integer`]) for points outside it (near
+//! ±1e308 or 1e-300).
 //!
 //! Each predicate first tries a static floating-point filter with Shewchuk's
 //! first-stage error bound, written so that the calls against one plane
 //! share its normal once inlined; only when the rounded value is too close
 //! to zero does it call `robust` (on the Shen sets almost never, on
-//! coplanar and degenerate pairs always). The filter is sound under the same
-//! no-underflow assumption as `robust`.
+//! coplanar and degenerate pairs always). The filter is sound at every
+//! magnitude: an overflow makes its bound infinite or NaN and a tiny bound
+//! is refused (`FILTER_MIN_PERMANENT`), so it defers in both cases; the
+//! range test sits in the deferred path only, which keeps the fast path as
+//! it was.
 
 use crate::devillers_guigue;
-use crate::exact_big_integer::{pair_within_robust_range, ExactBigInteger};
+use crate::exact_big_integer::{self, within_robust_range};
 use crate::kernel::ExactKernel;
 use crate::sign::Sign;
 use crate::triangle::{Point, Triangle};
@@ -56,12 +57,18 @@ const FILTER_MIN_PERMANENT: f64 = 1e-270;
 #[cold]
 #[inline(never)]
 fn orient3d_exact(a: Point, b: Point, c: Point, d: Point) -> Sign {
+    if !within_robust_range(&[a, b, c, d]) {
+        return exact_big_integer::orient3d(a, b, c, d);
+    }
     Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip()
 }
 
 #[cold]
 #[inline(never)]
 fn orient2d_exact(axis: usize, a: Point, b: Point, c: Point) -> Sign {
+    if !within_robust_range(&[a, b, c]) {
+        return exact_big_integer::orient2d(axis, a, b, c);
+    }
     let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
     let p = |v: Point| Coord { x: v[i], y: v[j] };
     Sign::of_f64(robust::orient2d(p(a), p(b), p(c)))
@@ -110,7 +117,10 @@ impl ExactKernel for ExactF64 {
 
     fn dominant_normal_axis(a: Point, b: Point, c: Point) -> usize {
         // The float normal picks the largest component; the exact sign makes
-        // sure the chosen component is really non-zero.
+        // sure the chosen component is really non-zero. (Near ±1e308 the
+        // float normal may overflow and the pick be another non-zero
+        // component: the projection dropping it is still one-to-one on the
+        // plane, which is all the coplanar test needs.)
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
         let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
@@ -127,23 +137,12 @@ impl ExactKernel for ExactF64 {
 /// and inlined into a caller's loop it measured about 40 % slower.
 #[inline(never)]
 pub fn intersects(t1: &Triangle, t2: &Triangle) -> bool {
-    if pair_within_robust_range(t1, t2) {
-        devillers_guigue::intersects::<ExactF64>(*t1, *t2)
-    } else {
-        intersects_outside_robust_range(t1, t2)
-    }
-}
-
-#[cold]
-#[inline(never)]
-fn intersects_outside_robust_range(t1: &Triangle, t2: &Triangle) -> bool {
-    devillers_guigue::intersects::<ExactBigInteger>(*t1, *t2)
+    devillers_guigue::intersects::<ExactF64>(*t1, *t2)
 }
 
 #[cfg(test)]
 mod filter_tests {
     use super::*;
-    use crate::exact_big_integer::{self, within_robust_range};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
