@@ -153,11 +153,10 @@ mod filter_tests {
         f64::from_bits((x.to_bits() as i64 + ulps) as u64)
     }
 
-    /// Inside `ROBUST_RANGE`, the filtered predicates and robust's give the
-    /// exact signs (big integers) on points that are nearly coplanar /
-    /// collinear (a few ulps off) or exactly so, at scales from 1e-310 to
-    /// 1e300 (the points outside the range are skipped: `intersects` sends
-    /// them to the big-integer kernel), with large offsets.
+    /// The predicates give the exact signs (big integers) on points that are
+    /// nearly coplanar / collinear (a few ulps off) or exactly so, at scales
+    /// from 1e-310 (subnormal) to 1e300, with large offsets; and inside
+    /// `ROBUST_RANGE`, robust's signs are those exact signs too.
     #[test]
     fn filter_agrees_with_exact_signs_near_degeneracy() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
@@ -182,24 +181,24 @@ mod filter_tests {
                     (a, b, c) = (on_grid(ga), on_grid(gb), on_grid(gc));
                     d = on_grid([0, 1, 2].map(|k| ga[k] + gs * (gb[k] - ga[k]) + gt * (gc[k] - ga[k])));
                 }
+                let want = exact_big_integer::orient3d(a, b, c, d);
+                assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+                degenerate += usize::from(want.is_zero());
                 if within_robust_range(&[a, b, c, d]) {
-                    let want = exact_big_integer::orient3d(a, b, c, d);
-                    assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
                     assert_eq!(Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip(), want);
-                    degenerate += usize::from(want.is_zero());
                     robust_checked += 1;
                 }
                 // Nearly collinear in the projection dropping `axis`.
                 let mut e = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]));
                 e[k] = nudge(e[k], rng.gen_range(-3..=3));
                 for axis in 0..3 {
+                    let want = exact_big_integer::orient2d(axis, a, b, e);
+                    assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
+                    degenerate += usize::from(want.is_zero());
                     if within_robust_range(&[a, b, e]) {
-                        let want = exact_big_integer::orient2d(axis, a, b, e);
-                        assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
                         let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
                         let q = |v: Point| Coord { x: v[i], y: v[j] };
                         assert_eq!(Sign::of_f64(robust::orient2d(q(a), q(b), q(e))), want);
-                        degenerate += usize::from(want.is_zero());
                     }
                 }
             }
