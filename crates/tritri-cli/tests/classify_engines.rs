@@ -63,12 +63,12 @@ fn vcd_from_every_hardware_engine() {
         assert!(steps >= 12 + 30, "{engine}: {steps} time steps");
         std::fs::remove_file(&vcd).ok();
     }
-    std::fs::remove_file(&file).ok();
     let out = Command::new(env!("CARGO_BIN_EXE_tritri"))
         .args(["classify", "--arith", "fixed", "--vcd", "x.vcd"])
-        .arg(pair_file("vcd-model"))
+        .arg(&file)
         .output()
         .unwrap();
+    std::fs::remove_file(&file).ok();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--vcd x.vcd"), "the error names the option");
 }

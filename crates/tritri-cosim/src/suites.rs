@@ -3,7 +3,7 @@
 
 use crate::stream::{all_orderings, PairGroup};
 use tritri_geom::hard_cases::hard_case_suite;
-use tritri_geom::quantize::Frame;
+use tritri_geom::quantize::quantize_pair;
 
 /// The hard-case suite (`tritri_geom::hard_cases`: coplanar, touching,
 /// near-degenerate, needles and slivers, ...) at `width` bits, every
@@ -15,8 +15,8 @@ pub fn hard_case_groups(width: u32, every: usize) -> Vec<PairGroup> {
         .iter()
         .step_by(every.max(1))
         .flat_map(|case| {
-            let frame = Frame::fit([&case.pair.t1, &case.pair.t2], width).expect("the hard cases have finite coordinates");
-            all_orderings(frame.quantize(&case.pair.t1), frame.quantize(&case.pair.t2))
+            let (t1, t2) = quantize_pair(&case.pair, width).expect("the hard cases have finite coordinates");
+            all_orderings(t1, t2)
         })
         .collect()
 }

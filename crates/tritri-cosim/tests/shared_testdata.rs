@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, PairVerdict, StreamResult};
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
-use tritri_geom::quantize::Frame;
+use tritri_geom::quantize::quantize_pair;
 use tritri_geom::TrianglePair;
 use tritri_rtl::configurations::pipeline_for_width;
 
@@ -28,8 +28,7 @@ fn read_pairs(name: &str) -> Vec<TrianglePair> {
 }
 
 fn quantized(pair: &TrianglePair, width: usize) -> (FixedTriangle, FixedTriangle) {
-    let frame = Frame::fit([&pair.t1, &pair.t2], width as u32).expect("finite coordinates");
-    (frame.quantize(&pair.t1), frame.quantize(&pair.t2))
+    quantize_pair(pair, width as u32).expect("finite coordinates")
 }
 
 fn peer_groups(width: usize) -> Vec<PairGroup> {

@@ -7,7 +7,7 @@
 //! `[-2^(W-1) + 1, 2^(W-1) - 1]`: overflow cannot happen.
 
 use crate::fixed_point::{FixedPoint3, FixedTriangle};
-use crate::triangle::{Point, Triangle};
+use crate::triangle::{Point, Triangle, TrianglePair};
 use crate::widths::{FixedWidths, WidthOutOfRange};
 
 /// `x.round() as i64` (half away from zero) for `|x| < 2^62`, without the
@@ -124,6 +124,14 @@ impl Frame {
     pub fn dequantize_point(&self, q: FixedPoint3) -> Point {
         [0, 1, 2].map(|k| self.centre[k] + q[k] as f64 * self.step)
     }
+}
+
+/// A pair quantized in a frame of its own (the frame that fits just its six
+/// vertices), so it keeps as much of its geometry as `width` bits allow: how
+/// the tests and the hard-case vectors quantize single cases.
+pub fn quantize_pair(pair: &TrianglePair, width: u32) -> Result<(FixedTriangle, FixedTriangle), QuantizeError> {
+    let frame = Frame::fit([&pair.t1, &pair.t2], width)?;
+    Ok((frame.quantize(&pair.t1), frame.quantize(&pair.t2)))
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Verification step 2: the fixed-point model (exact i128 predicates on W-bit
 //! coordinates, the hardware's arithmetic) gives the same answer as the exact
 //! model run on the same quantized coordinates, for W = 8, 24 and 32. Each
-//! pair is quantized into its own frame (`Frame::fit` over its two
+//! pair is quantized into its own frame (`quantize_pair`: `Frame::fit` over its two
 //! triangles); the integer coordinates are converted to f64 exactly
 //! (|q| < 2^53). Any difference is a bug in one of the two kernels.
 //!
@@ -14,15 +14,14 @@ mod support;
 use support::{failures, Timer};
 use tritri_geom::fixed_point::{self, FixedTriangle};
 use tritri_geom::hard_cases::{hard_case_suite, random_near_degenerate_pairs, random_pairs};
-use tritri_geom::quantize::Frame;
+use tritri_geom::quantize::quantize_pair;
 use tritri_geom::triangle::all_orderings;
 use tritri_geom::{exact_f64, Triangle, TrianglePair};
 
 const WIDTHS: [u32; 3] = [8, 24, 32];
 
 fn quantized(pair: &TrianglePair, width: u32) -> (FixedTriangle, FixedTriangle) {
-    let frame = Frame::fit([&pair.t1, &pair.t2], width).expect("finite coordinates, supported width");
-    (frame.quantize(&pair.t1), frame.quantize(&pair.t2))
+    quantize_pair(pair, width).expect("finite coordinates, supported width")
 }
 
 /// Integer coordinates as f64: exact, since they are below 2^32 in magnitude.

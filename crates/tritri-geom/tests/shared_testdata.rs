@@ -20,7 +20,7 @@ mod support;
 use std::path::PathBuf;
 use support::{failures, Timer};
 use tritri_geom::fixed_point::{self, FixedTriangle};
-use tritri_geom::quantize::Frame;
+use tritri_geom::quantize::quantize_pair;
 use tritri_geom::triangle::all_orderings;
 use tritri_geom::{exact_f64, Triangle, TrianglePair};
 
@@ -130,8 +130,7 @@ fn shen(name: &str) -> Vec<TrianglePair> {
 }
 
 fn quantized(pair: &TrianglePair, width: u32) -> (FixedTriangle, FixedTriangle) {
-    let frame = Frame::fit([&pair.t1, &pair.t2], width).expect("finite coordinates");
-    (frame.quantize(&pair.t1), frame.quantize(&pair.t2))
+    quantize_pair(pair, width).expect("finite coordinates")
 }
 
 fn as_f64(t: &FixedTriangle) -> Triangle {
