@@ -19,10 +19,14 @@
 //!   hardware tests (every A-array × B-array pair, original coordinates);
 //! * fixed point: the bit-exact model on the same pairs, quantized.
 //!
+//! The last three columns are the same scene with the octree broad phase
+//! (whatever `--broad-phase` says; the other columns are the thesis's flat
+//! system): pairs tested, hardware time, and exact f64's time over it.
+//!
 //! Ratios are software time / hardware time: they compare this machine with
 //! the cycle model at the given clock, nothing more.
 
-use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
+use crate::scene_input::{human, pipeline_latency, BroadPhase, HardwareArgs, SceneArgs};
 use clap::ValueEnum;
 use std::hint::black_box;
 use std::process::ExitCode;
@@ -104,9 +108,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     println!("software: measured on this machine, one thread; hardware: cycle model of the system at the clock");
     println!();
     println!(
-        "| target | in BV (A+B) | offset | pairs tested | of N1*N2 | hw cycles | hw time | exact f64, all pairs (AABB) | ratio | published f64, same pairs | ratio | fixed point, same pairs | ratio |"
+        "| target | in BV (A+B) | offset | pairs tested | of N1*N2 | hw cycles | hw time | exact f64, all pairs (AABB) | ratio | published f64, same pairs | ratio | fixed point, same pairs | ratio | octree: pairs tested | octree: hw time | ratio |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &target in &args.fractions {
         let goal = target / 100.0;
         // Bisection: the share falls as the offset grows (the common box shrinks).
@@ -151,9 +155,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             }
             hits
         });
-        let ratio = |sw: Duration| if hw.is_zero() { "-".to_string() } else { format!("{:.1}", sw.as_secs_f64() / hw.as_secs_f64()) };
+        let ratio_to = |sw: Duration, hw: Duration| if hw.is_zero() { "-".to_string() } else { format!("{:.1}", sw.as_secs_f64() / hw.as_secs_f64()) };
+        let ratio = |sw: Duration| ratio_to(sw, hw);
+        let octree = args.hardware.prepare_with(BroadPhase::Octree, &a, &b_placed)?;
+        let octree_hw = args.hardware.time_of(args.hardware.cycles(&octree.batches()));
         println!(
-            "| {target} % | {} + {} = {:.1} %{} | {:.4} | {} | {:.2} % | {cycles} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {target} % | {} + {} = {:.1} %{} | {:.4} | {} | {:.2} % | {cycles} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             scene.kept_a.len(),
             scene.kept_b.len(),
             100.0 * scene.fraction_in_common_bv(),
@@ -168,6 +175,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(published),
             human(fixed),
             ratio(fixed),
+            octree.pairs_tested(),
+            human(octree_hw),
+            ratio_to(exact, octree_hw),
         );
     }
     Ok(ExitCode::SUCCESS)

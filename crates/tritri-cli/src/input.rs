@@ -46,3 +46,11 @@ pub fn parse_width(s: &str) -> Result<u32, String> {
     FixedWidths::new(w).map_err(|e| e.to_string())?;
     Ok(w)
 }
+
+/// A scale factor: a finite number > 0.
+pub fn parse_scale(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a scale factor (a finite number greater than 0)")),
+    }
+}

@@ -7,7 +7,7 @@ use std::time::Duration;
 use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
-use tritri_geom::scene::Batch;
+use tritri_geom::scene::{prepare, prepare_octree, Batch, PreparedScene, SceneError};
 
 /// The two objects and the pose of B.
 #[derive(clap::Args, Clone, Debug)]
@@ -20,6 +20,10 @@ pub struct SceneArgs {
     /// y, then z axis through B's origin, then the translation.
     #[arg(long, allow_hyphen_values = true, value_name = "TX,TY,TZ,RX,RY,RZ")]
     pub pose_b: Option<Pose>,
+    /// Uniform scale of B about its own origin, applied before the pose
+    /// (the bunny is about 1 unit across, the armadillo about 127).
+    #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = input::parse_scale)]
+    pub scale_b: f64,
     /// Samples per side of each Bezier patch (.bpt): 2 n^2 triangles per patch.
     #[arg(long, default_value_t = 8, value_name = "N")]
     pub tessellation: usize,
@@ -35,6 +39,7 @@ impl SceneArgs {
         };
         let a = load_object(names[0], self.tessellation)?;
         let b = load_object(names[1], self.tessellation)?;
+        let b = if self.scale_b == 1.0 { b } else { b.scaled(self.scale_b) };
         let pose = self.pose_b.unwrap_or_default();
         let b = if pose.is_identity() { b } else { b.posed(&pose) };
         Ok((a, b))
@@ -61,11 +66,37 @@ pub struct HardwareArgs {
     /// Clock frequency in MHz, for times.
     #[arg(long, default_value_t = 100.0, value_name = "F")]
     pub clock_mhz: f64,
+    /// Broad phase: `octree` subdivides the common box and schedules only
+    /// leaves holding triangles of both objects; `flat` tests every pair in
+    /// the common box (the thesis's system).
+    #[arg(long, value_enum, default_value_t = BroadPhase::Octree)]
+    pub broad_phase: BroadPhase,
+}
+
+/// Which pairs the system is given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BroadPhase {
+    /// Every pair of triangles in the common box (thesis, chapter 4).
+    Flat,
+    /// Octree leaves over the common box, costed by the cycle model.
+    Octree,
 }
 
 impl HardwareArgs {
     pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
         tritri_geom::scene::SceneOptions { width: self.width, depth: self.depth as usize, split: !self.no_split }
+    }
+
+    /// The scene prepared for this hardware with the chosen broad phase.
+    pub fn prepare(&self, a: &SceneObject, b: &SceneObject) -> Result<PreparedScene, SceneError> {
+        self.prepare_with(self.broad_phase, a, b)
+    }
+
+    pub fn prepare_with(&self, broad_phase: BroadPhase, a: &SceneObject, b: &SceneObject) -> Result<PreparedScene, SceneError> {
+        match broad_phase {
+            BroadPhase::Flat => prepare(a, b, &self.scene_options()),
+            BroadPhase::Octree => prepare_octree(a, b, &self.scene_options(), &self.system_config()),
+        }
     }
 
     pub fn time_of(&self, cycles: u64) -> Duration {
@@ -120,7 +151,7 @@ mod tests {
     }
 
     fn hardware(pipelines: u32) -> HardwareArgs {
-        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0 }
+        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0, broad_phase: BroadPhase::Octree }
     }
 
     /// One pipeline, one batch: the thesis's N1 + N1*N2 + L, plus writing

@@ -31,13 +31,14 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
 use std::io::{BufWriter, Write};
 use std::process::ExitCode;
+use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_cosim::stream::IdTriangle;
 use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
 use tritri_cosim::system_verilator::run_system_verilator;
-use tritri_geom::scene::{prepare, Batch, PreparedScene, TaggedTriangle};
+use tritri_geom::scene::{Batch, PreparedScene, TaggedTriangle};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -96,7 +97,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
     writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
 
-    let scene = match prepare(&a, &b, &args.hardware.scene_options()) {
+    let started = Instant::now();
+    let scene = match args.hardware.prepare(&a, &b) {
         Ok(s) => s,
         Err(e @ tritri_geom::scene::SceneError::ExceedsDepth { .. }) => {
             eprintln!("error: {e}");
@@ -109,7 +111,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         write_pairs(&args, &a, &b, &PairSet::new())?;
         return Ok(ExitCode::SUCCESS);
     };
+    let host_time = started.elapsed();
     print_filter(&mut report, &args, &scene, &common)?;
+    writeln!(report, "host: common box, quantization and broad phase in software took {} (this machine)", human(host_time))?;
 
     let pairs_tested = scene.pairs_tested();
     let mut status = ExitCode::SUCCESS;
@@ -192,7 +196,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             )?;
             status = ExitCode::from(1);
         }
+        let started = Instant::now();
         let truth = exact_f64_pairs(&a.triangles, &b.triangles);
+        let software = started.elapsed();
         let diff = PairDiff::between(&truth.pairs, &quantized);
         writeln!(
             report,
@@ -200,6 +206,23 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             scene.all_pairs(),
             truth.pairs_decided,
             truth.pairs.len()
+        )?;
+        writeln!(
+            report,
+            "work: pairs tested {} = {:.2} x the box-overlap pairs ({}) = {:.2e} of N1*N2",
+            scene.pairs_tested(),
+            scene.pairs_tested() as f64 / truth.pairs_decided.max(1) as f64,
+            truth.pairs_decided,
+            scene.pairs_tested() as f64 / scene.all_pairs().max(1) as f64
+        )?;
+        let hardware = args.hardware.time_of(cycles);
+        writeln!(
+            report,
+            "speed: software (box sweep + exact predicates, one thread, triangles in memory) {}; hardware {} at {} MHz: {:.1} x",
+            human(software),
+            human(hardware),
+            args.hardware.clock_mhz,
+            software.as_secs_f64() / hardware.as_secs_f64().max(f64::MIN_POSITIVE)
         )?;
         writeln!(
             report,
@@ -242,7 +265,9 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         writeln!(report, "frame: W = {} bits, step h = {:e}, centre {:?}", args.hardware.width, frame.step, frame.centre)?;
     }
     let t = scene.tiling;
-    if t.is_split() {
+    if scene.octree.is_some() {
+        writeln!(report, "memories: depth D = {}: {} batches (one per leaf, tiled where a leaf exceeds D)", t.depth, scene.batches().len())?;
+    } else if t.is_split() {
         writeln!(
             report,
             "memories: depth D = {}: arrays of {} and {} triangles split into {} x {} tiles = {} batches",
@@ -256,10 +281,25 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
     } else {
         writeln!(report, "memories: depth D = {}: {} batch, no split", t.depth, scene.batches().len())?;
     }
+    if let Some(octree) = &scene.octree {
+        writeln!(
+            report,
+            "broad phase: octree over the common box, root side 2^{} grid steps: {} cells classified, {} leaves with both objects, depth {}, arrays {} (A) + {} (B) triangles{}",
+            octree.root.map_or(0, |r| r.level),
+            octree.cells_visited,
+            octree.leaves.len(),
+            octree.depth,
+            octree.a.len(),
+            octree.b.len(),
+            if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }
+        )?;
+    } else {
+        writeln!(report, "broad phase: flat (every pair in the common box)")?;
+    }
     let (tested, all) = (scene.pairs_tested(), scene.all_pairs());
     writeln!(
         report,
-        "pairs tested: {tested} of N1*N2 = {all} ({:.3} %; the common BV saves {:.1} %)",
+        "pairs tested: {tested} of N1*N2 = {all} ({:.3} %; the broad phase saves {:.1} %)",
         percent(tested, all),
         100.0 - percent(tested, all)
     )?;

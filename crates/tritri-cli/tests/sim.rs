@@ -64,9 +64,33 @@ fn sim_alone_runs_the_default_scene() {
     let out = tritri(&["sim"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (W = 24)"] {
+    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (W = 24)", "broad phase: octree"] {
         assert!(report.contains(needle), "missing `{needle}` in:\n{report}");
     }
+}
+
+/// The octree broad phase (the default) reports the flat system's pairs
+/// while testing far fewer pairs in far fewer cycles.
+#[test]
+fn octree_gives_the_flat_pairs_with_less_work() {
+    let run = |broad_phase: &str, out: &PathBuf| {
+        let o = tritri(&["sim", "--broad-phase", broad_phase, "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        text(&o.stdout)
+    };
+    let (flat_pairs, octree_pairs) = (scratch_path("flat_default.txt"), scratch_path("octree_default.txt"));
+    let (flat, octree) = (run("flat", &flat_pairs), run("octree", &octree_pairs));
+    assert_eq!(std::fs::read_to_string(&flat_pairs).unwrap(), std::fs::read_to_string(&octree_pairs).unwrap());
+    let number_after = |report: &str, key: &str| -> u64 {
+        let rest = &report[report.find(key).unwrap_or_else(|| panic!("no `{key}` in {report}")) + key.len()..];
+        rest.split(|c: char| !c.is_ascii_digit()).find(|s| !s.is_empty()).unwrap().parse().unwrap()
+    };
+    let (flat_tested, octree_tested) = (number_after(&flat, "pairs tested: "), number_after(&octree, "pairs tested: "));
+    let (flat_cycles, octree_cycles) = (number_after(&flat, "cycles: "), number_after(&octree, "cycles: "));
+    assert!(octree_tested * 20 < flat_tested, "{octree_tested} vs {flat_tested}");
+    assert!(octree_cycles * 10 < flat_cycles, "{octree_cycles} vs {flat_cycles}");
+    // Work within 4 x the pairs whose triangle boxes overlap.
+    assert!(octree_tested <= 4 * number_after(&octree, "box-overlap pairs ("), "{octree}");
 }
 
 /// Pairs are `i j` lines; splitting into tiles (small D) gives the same
@@ -81,7 +105,7 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
     let b = scratch("b.obj", "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n");
     let (one, tiles) = (scratch_path("one.txt"), scratch_path("tiles.txt"));
     let run = |depth: &str, out: &PathBuf| {
-        tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", out.to_str().unwrap()])
+        tritri(&["sim", "--broad-phase", "flat", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", out.to_str().unwrap()])
     };
     let r1 = run("100", &one);
     assert!(r1.status.success(), "{}", text(&r1.stderr));
@@ -95,6 +119,14 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
     assert!(pairs.lines().any(|l| l == "1 1") && pairs.lines().any(|l| l == "1 0"), "{pairs}");
     assert!(pairs.lines().count() >= 4, "{pairs}");
     assert!(text(&r1.stdout).contains("0 pairs missing, 0 extra"), "{}", text(&r1.stdout));
+    // The octree broad phase, with memories of 2 and of 100, reports the same pairs.
+    for depth in ["2", "100"] {
+        let octree = scratch_path(&format!("octree{depth}.txt"));
+        let r = tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", octree.to_str().unwrap()]);
+        assert!(r.status.success(), "{}", text(&r.stderr));
+        assert!(text(&r.stdout).contains("broad phase: octree"), "{}", text(&r.stdout));
+        assert_eq!(pairs, std::fs::read_to_string(&octree).unwrap(), "octree, depth {depth}");
+    }
 
     // Face indices: the quad (face 4) is triangles 4 and 5.
     let faces = scratch_path("faces.txt");
@@ -106,7 +138,7 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
 /// With --no-split, arrays deeper than D are an error naming the sizes.
 #[test]
 fn no_split_error_names_the_sizes() {
-    let out = tritri(&["sim", "--depth", "100", "--no-split"]);
+    let out = tritri(&["sim", "--broad-phase", "flat", "--depth", "100", "--no-split"]);
     assert_eq!(out.status.code(), Some(2));
     let err = text(&out.stderr);
     assert!(err.contains("(A)") && err.contains("(B)") && err.contains("D = 100"), "{err}");

@@ -6,7 +6,8 @@
 //! objects' boxes, hence in the common box: a pair whose triangles do not
 //! both touch the common box cannot intersect, so filtering loses nothing.
 
-use crate::fixed_point::{FixedPoint3, FixedTriangle};
+use crate::fixed_point::FixedTriangle;
+use crate::octree::triangle_cell::TriangleCellTest;
 use crate::triangle::Triangle;
 
 /// A closed axis-aligned box `lo <= p <= hi` (componentwise).
@@ -78,45 +79,11 @@ pub fn triangle_box_overlap_conservative(t: &Triangle, b: &Aabb<f64>) -> bool {
     tb.overlap(b).is_some()
 }
 
-/// Does the closed integer triangle touch the closed integer box? Exact
-/// separating-axis test: two convex sets are disjoint iff some axis
-/// separates them, and for a triangle (or a segment / point, its degenerate
-/// forms) and a box it suffices to try the 3 box axes, the triangle's normal
-/// and the 9 cross products of triangle edges with box axes. Zero axes are
-/// skipped; they separate nothing. Integer arithmetic in i128 is exact for
-/// W <= 32 (projections need at most 3W + 4 bits).
+/// Does the closed integer triangle touch the closed integer box? Exact:
+/// the octree engine's triangle classifier
+/// ([`crate::octree::triangle_cell`]), the one place this rule lives.
 pub fn triangle_touches_box(t: &FixedTriangle, b: &Aabb<i64>) -> bool {
-    let sub = |a: FixedPoint3, c: FixedPoint3| [a[0] - c[0], a[1] - c[1], a[2] - c[2]];
-    let edges = [sub(t[1], t[0]), sub(t[2], t[1]), sub(t[0], t[2])];
-    let unit = |k: usize| {
-        let mut e = [0i64; 3];
-        e[k] = 1;
-        e
-    };
-    let cross = |u: [i64; 3], v: [i64; 3]| -> [i128; 3] {
-        let m = |a: i64, c: i64| a as i128 * c as i128;
-        [m(u[1], v[2]) - m(u[2], v[1]), m(u[2], v[0]) - m(u[0], v[2]), m(u[0], v[1]) - m(u[1], v[0])]
-    };
-    let mut axes: Vec<[i128; 3]> = (0..3).map(|k| unit(k).map(i128::from)).collect();
-    axes.push(cross(edges[0], edges[1]));
-    for e in edges {
-        for k in 0..3 {
-            axes.push(cross(e, unit(k)));
-        }
-    }
-    let dot = |a: [i128; 3], p: [i64; 3]| a[0] * p[0] as i128 + a[1] * p[1] as i128 + a[2] * p[2] as i128;
-    axes.iter().filter(|a| a.iter().any(|&c| c != 0)).all(|&a| {
-        let projections = t.map(|p| dot(a, p));
-        let (tmin, tmax) = (projections.iter().min().copied().unwrap(), projections.iter().max().copied().unwrap());
-        // The box's projection: per component pick the corner that minimises / maximises.
-        let (mut bmin, mut bmax) = (0i128, 0i128);
-        for k in 0..3 {
-            let (x, y) = (a[k] * b.lo[k] as i128, a[k] * b.hi[k] as i128);
-            bmin += x.min(y);
-            bmax += x.max(y);
-        }
-        tmax >= bmin && bmax >= tmin
-    })
+    TriangleCellTest::new(t).touches_box(b)
 }
 
 #[cfg(test)]

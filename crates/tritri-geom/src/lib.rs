@@ -27,6 +27,7 @@ pub mod fixed_point;
 pub mod hard_cases;
 pub mod kernel;
 pub mod moller;
+pub mod octree;
 pub mod pairs_io;
 pub mod published_float;
 pub mod mesh;

@@ -53,6 +53,12 @@ impl SceneObject {
         SceneObject { name: name.into(), triangles, face_of }
     }
 
+    /// The same object scaled by `factor` about its origin.
+    pub fn scaled(&self, factor: f64) -> SceneObject {
+        let triangles = self.triangles.iter().map(|t| t.map(|p| p.map(|c| c * factor))).collect();
+        SceneObject { name: self.name.clone(), triangles, face_of: self.face_of.clone() }
+    }
+
     /// The same object moved by `pose`.
     pub fn posed(&self, pose: &Pose) -> SceneObject {
         let triangles = self.triangles.iter().map(|t| t.map(|p| pose.apply(p))).collect();

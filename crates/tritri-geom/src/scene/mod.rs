@@ -26,6 +26,7 @@
 //! ```
 
 pub mod load;
+pub mod octree;
 pub mod reference;
 
 use crate::bounding_volume::{triangle_box_overlap_conservative, triangle_touches_box, Aabb};
@@ -33,6 +34,7 @@ use crate::fixed_point::FixedTriangle;
 use crate::quantize::{Frame, QuantizeError};
 use crate::triangle::Triangle;
 use load::SceneObject;
+use octree::{BatchCost, OctreeSchedule};
 
 /// A quantized triangle with the index it has in its object.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -117,18 +119,36 @@ pub struct PreparedScene {
     pub kept_a: Vec<TaggedTriangle>,
     pub kept_b: Vec<TaggedTriangle>,
     pub tiling: Tiling,
+    /// The octree broad phase's leaves ([`prepare_octree`]); `None`: the
+    /// flat system of the thesis, every kept pair in one (tiled) batch.
+    pub octree: Option<OctreeSchedule>,
 }
 
 impl PreparedScene {
-    /// The batches, A-tile by A-tile, each against every B-tile
-    /// ([`Tiling`]); none when either array is empty.
+    /// The batches: with the octree, each scheduled leaf's arrays (tiled
+    /// when a leaf exceeds the depth); flat, A-tile by A-tile, each against
+    /// every B-tile ([`Tiling`]). None when either array is empty.
     pub fn batches(&self) -> Vec<Batch<'_>> {
-        tile(&self.kept_a, &self.kept_b, self.tiling.depth)
+        match &self.octree {
+            Some(octree) => octree
+                .leaves
+                .iter()
+                .flat_map(|leaf| {
+                    let (a, b) = octree.leaf_arrays(leaf);
+                    tile(a, b, self.tiling.depth)
+                })
+                .collect(),
+            None => tile(&self.kept_a, &self.kept_b, self.tiling.depth),
+        }
     }
 
-    /// Pairs the hardware tests: `|kept A| * |kept B|`, the sum over batches.
+    /// Pairs the hardware tests, the sum over batches: `|kept A| * |kept B|`
+    /// flat, the sum over leaves with the octree.
     pub fn pairs_tested(&self) -> u64 {
-        self.kept_a.len() as u64 * self.kept_b.len() as u64
+        match &self.octree {
+            Some(octree) => octree.leaves.iter().map(|l| l.a.len() as u64 * l.b.len() as u64).sum(),
+            None => self.kept_a.len() as u64 * self.kept_b.len() as u64,
+        }
     }
 
     /// `N1 * N2`: what testing every pair would cost.
@@ -183,6 +203,7 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
         kept_a: Vec::new(),
         kept_b: Vec::new(),
         tiling: Tiling { depth: options.depth, a_tiles: 0, b_tiles: 0 },
+        octree: None,
     };
     let Some(common) = common else { return Ok(scene) };
 
@@ -216,6 +237,24 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
         return Err(SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth, needed: ka.max(kb) });
     }
     scene.tiling = Tiling { depth, a_tiles: ka.div_ceil(depth), b_tiles: kb.div_ceil(depth) };
+    Ok(scene)
+}
+
+/// [`prepare`], then the octree broad phase ([`octree`]) over the kept
+/// arrays inside the integer common box, its leaves costed by `cost` (the
+/// system's cycle model). With `split: false`, a leaf that still exceeds
+/// the memory depth (a cell of side 1 holding more triangles) is refused.
+pub fn prepare_octree(a: &SceneObject, b: &SceneObject, options: &SceneOptions, cost: &dyn BatchCost) -> Result<PreparedScene, SceneError> {
+    let mut scene = prepare(a, b, &SceneOptions { split: true, ..*options })?;
+    let Some(ibox) = scene.integer_box else { return Ok(scene) };
+    let octree = octree::schedule(&scene.kept_a, &scene.kept_b, &ibox, options.depth, cost);
+    if let Some(leaf) = octree.leaves.iter().find(|l| l.a.len() > options.depth || l.b.len() > options.depth) {
+        if !options.split {
+            let (kept_a, kept_b) = (leaf.a.len(), leaf.b.len());
+            return Err(SceneError::ExceedsDepth { kept_a, kept_b, depth: options.depth, needed: kept_a.max(kept_b) });
+        }
+    }
+    scene.octree = Some(octree);
     Ok(scene)
 }
 

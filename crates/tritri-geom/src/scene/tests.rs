@@ -199,3 +199,146 @@ fn default_scene_filter_saves_pairs_and_keeps_every_hit() {
     let diff = reference::PairDiff::between(&truth, &quantized);
     assert!(diff.missing.len() + diff.extra.len() <= truth.len() / 20, "{diff:?}");
 }
+
+/// The system's batch cost with overlapped banks (a copy for these tests;
+/// the real one is the hardware crate's cycle model).
+struct OverlappedCycles {
+    pipelines: usize,
+}
+
+impl octree::BatchCost for OverlappedCycles {
+    fn batch_cycles(&self, a: usize, b: usize) -> u64 {
+        ((a + b + 1) as u64).max((1 + a + a.div_ceil(self.pipelines) * b) as u64)
+    }
+}
+
+/// Every intersecting pair of `a × b` (integer triangles), brute force.
+fn brute_force_fixed(a: &[TaggedTriangle], b: &[TaggedTriangle]) -> PairSet {
+    let mut out = PairSet::new();
+    for x in a {
+        for y in b {
+            if fixed_point::intersects(&x.triangle, &y.triangle) {
+                out.insert((x.id, y.id));
+            }
+        }
+    }
+    out
+}
+
+/// The owner rule: every pair found is owned by exactly one leaf, the first
+/// that holds both triangles, and reporting each leaf's hits only where it
+/// owns them gives every pair once.
+fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &PairSet, context: &str) {
+    let mut reported = Vec::new();
+    for (k, leaf) in schedule.leaves.iter().enumerate() {
+        let (la, lb) = schedule.leaf_arrays(leaf);
+        for x in la {
+            for y in lb {
+                if fixed_point::intersects(&x.triangle, &y.triangle) {
+                    let owner = schedule.owner(x.id, y.id).expect("a pair tested in a leaf has an owner");
+                    assert!(owner <= k, "{context}: owner {owner} after a leaf {k} holding both");
+                    if owner == k {
+                        reported.push((x.id, y.id));
+                    }
+                }
+            }
+        }
+    }
+    let unique: PairSet = reported.iter().copied().collect();
+    assert_eq!(unique.len(), reported.len(), "{context}: a pair reported twice");
+    assert_eq!(&unique, expected, "{context}");
+}
+
+/// The octree broad phase finds exactly the flat system's pairs (the exact
+/// model on the same quantized coordinates), each reported once, on random
+/// scenes full of degenerate and touching triangles, at several widths and
+/// with small memories so that the tree must split.
+#[test]
+fn octree_finds_the_flat_pairs_each_once() {
+    let mut rng = ChaCha8Rng::seed_from_u64(13);
+    let mut split_scenes = 0;
+    for round in 0..40 {
+        let width = [8, 10, 16, 24][round % 4];
+        let edge = [1, 2, 6][round % 3];
+        let a = random_object(&mut rng, 120, [0.0; 3], 1.0, edge);
+        let offset = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), 0.0];
+        let b = random_object(&mut rng, 120, offset, 1.0, edge);
+        let depth = [4, 16, 64][round % 3];
+        let flat = prepare(&a, &b, &options(width, depth)).unwrap();
+        let tree = prepare_octree(&a, &b, &options(width, depth), &OverlappedCycles { pipelines: 2 }).unwrap();
+        let expected = fixed_point_pairs(&flat.batches(), &|_| {});
+        assert_eq!(fixed_point_pairs(&tree.batches(), &|_| {}), expected, "round {round}");
+        assert_eq!(quantized_exact_pairs(&tree.batches()), expected, "round {round}");
+        let schedule = tree.octree.as_ref().expect("octree scheduled");
+        assert_each_pair_reported_once(schedule, &expected, &format!("round {round}"));
+        assert!(tree.batches().iter().all(|b| b.a.len() <= depth && b.b.len() <= depth));
+        split_scenes += (schedule.depth > 0) as usize;
+    }
+    assert!(split_scenes > 30, "only {split_scenes} scenes split");
+}
+
+/// Triangles lying exactly on cell faces, along cell edges and at cell
+/// corners of every level (coordinates on multiples of powers of two),
+/// touching each other there: the schedule finds the brute-force pairs,
+/// each once.
+#[test]
+fn octree_pairs_straddling_cell_faces_edges_and_corners() {
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    for round in 0..30 {
+        let level = [2u32, 4, 6][round % 3];
+        let side = 1i64 << level;
+        // Points on the lattice of cell corners of the levels below, so
+        // faces, edges and corners of many cells are hit exactly.
+        let lattice = |rng: &mut ChaCha8Rng| {
+            let step = 1i64 << rng.gen_range(0..level);
+            [0; 3].map(|_: i64| rng.gen_range(0..=side / step) * step)
+        };
+        let object = |rng: &mut ChaCha8Rng, base: u32| -> Vec<TaggedTriangle> {
+            (0..60)
+                .map(|i| {
+                    let p = lattice(rng);
+                    let (q, r) = match rng.gen_range(0..4) {
+                        // a face-aligned triangle: one coordinate shared by all three
+                        0 => {
+                            let k = rng.gen_range(0..3);
+                            let (mut q, mut r) = (lattice(rng), lattice(rng));
+                            q[k] = p[k];
+                            r[k] = p[k];
+                            (q, r)
+                        }
+                        1 => (p, p),
+                        2 => (lattice(rng), lattice(rng)),
+                        _ => {
+                            let q = lattice(rng);
+                            (q, q)
+                        }
+                    };
+                    TaggedTriangle { id: base + i, triangle: [p, q, r] }
+                })
+                .collect()
+        };
+        let (a, b) = (object(&mut rng, 0), object(&mut rng, 0));
+        let root = Aabb { lo: [0; 3], hi: [side; 3] };
+        let expected = brute_force_fixed(&a, &b);
+        for depth in [2, 8] {
+            let schedule = octree::schedule(&a, &b, &root, depth, &OverlappedCycles { pipelines: 1 });
+            assert_each_pair_reported_once(&schedule, &expected, &format!("round {round}, depth {depth}"));
+        }
+    }
+}
+
+/// Many coplanar triangles overlapping over an area stay together in every
+/// cell around them however deep the tree goes: the planner must stop
+/// (tiling the leaf) instead of multiplying cells, and stay exact.
+#[test]
+fn octree_stops_on_coplanar_overlaps_deeper_than_the_memory() {
+    let big = 1i64 << 22;
+    let object = |shift: i64| -> Vec<TaggedTriangle> {
+        (0..12).map(|i| TaggedTriangle { id: i as u32, triangle: [[-big + shift * i, -big, 0], [big, -big + i, 0], [0, big, 0]] }).collect()
+    };
+    let (a, b) = (object(3), object(-5));
+    let root = Aabb { lo: [-big; 3], hi: [big; 3] };
+    let schedule = octree::schedule(&a, &b, &root, 2, &OverlappedCycles { pipelines: 2 });
+    assert!(schedule.cells_visited < 10_000, "{} cells", schedule.cells_visited);
+    assert_each_pair_reported_once(&schedule, &brute_force_fixed(&a, &b), "coplanar");
+}

@@ -45,6 +45,7 @@
 //! ```
 
 use super::SystemConfig;
+use tritri_geom::scene::octree::BatchCost;
 
 /// The sizes of one batch: triangles of A (bases) and of B (streamed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -110,6 +111,22 @@ pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool
         done_previous = done;
     }
     done.max(0) as u64
+}
+
+/// What one batch adds to a long run with the banks overlapped: in the
+/// recurrence, writing it (`N1 + N2 + 1`) hides behind reading the previous
+/// batch and reading it (`1 + I`, the idle cycle and the reads) behind
+/// writing the next, so the slower of the two sets the pace. The octree
+/// broad phase decides its splits with this ([`BatchCost`]).
+pub fn overlapped_batch_cycles(config: SystemConfig, batch: BatchSizes) -> u64 {
+    let writes = (batch.a + batch.b + 1) as u64;
+    writes.max(1 + read_cycles(config.pipelines, batch))
+}
+
+impl BatchCost for SystemConfig {
+    fn batch_cycles(&self, a: usize, b: usize) -> u64 {
+        overlapped_batch_cycles(*self, BatchSizes { a, b })
+    }
 }
 
 /// [`system_cycles`] of one batch in closed form.

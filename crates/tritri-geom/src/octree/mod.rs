@@ -1,0 +1,21 @@
+//! The octree engine's software model (`octree_engine.txt`): cubic cells on
+//! the integer grid, and the classification of cells against affine test
+//! functions by the seed's interpolation rule.
+//!
+//! * [`cell`]: a cell is a closed cube `[lo, lo + size]` with a power-of-two
+//!   side on the integer grid; its eight children halve it.
+//! * [`affine`]: an affine function `g · p` tracked over a cell by its value
+//!   at the low corner and its increments along the three edges. A child's
+//!   values are the parent's plus halved increments: adds and shifts, exact
+//!   because every corner of a cell of side >= 2 is a grid point (the seed's
+//!   "children's corner distances interpolated from the parent's").
+//! * [`triangle_cell`]: does a closed triangle meet a closed cell? Thirteen
+//!   affine functions (the three coordinates, the triangle's plane, and the
+//!   nine edge functions of the three axis projections) decide it exactly.
+//!
+//! The collision system's broad phase ([`crate::scene::octree`]) subdivides
+//! the common box with [`triangle_cell::TriangleCellTest::children_touched`].
+
+pub mod affine;
+pub mod cell;
+pub mod triangle_cell;

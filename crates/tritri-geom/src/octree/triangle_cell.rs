@@ -1,0 +1,165 @@
+//! Does a closed triangle meet a closed cell? The octree engine's
+//! triangle classifier, decided exactly on the integer grid.
+//!
+//! Two convex sets are disjoint iff an axis separates them. For a triangle
+//! (or its degenerate forms, a segment or a point) and a box it suffices to
+//! try the box's three axes, the triangle's normal, and the nine cross
+//! products of a triangle edge with a box axis (zero axes separate nothing
+//! and are skipped). Along an axis `g` the triangle projects to
+//! `[min g·v, max g·v]` over its vertices; the box projects to the range of
+//! the affine function `g · p` over it, which [`AffineOverBox`] tracks by
+//! interpolation. So the test is thirteen affine functions, each asked
+//! whether it reaches the triangle's interval somewhere on the cell:
+//!
+//! * `x`, `y`, `z`: the cell against the triangle's bounding box;
+//! * the plane `n · p` with `n = (v1 - v0) × (v2 - v1)`: the seed's plane
+//!   classification, the cell meets the plane of the triangle;
+//! * `(e × u_k) · p` for each edge `e` and axis `u_k`: the edge functions of
+//!   the triangle's projection along `u_k`, whose interval spans from the
+//!   edge's line to the opposite vertex.
+//!
+//! Magnitudes: coordinates of cells and triangles stay below `2^34` for
+//! `W <= 32`, a normal component below `2^66`, so every value fits an i128.
+
+use super::affine::AffineOverBox;
+use super::cell::Cell;
+use crate::bounding_volume::Aabb;
+use crate::fixed_point::FixedTriangle;
+
+/// The most test functions one triangle needs.
+pub const MAX_AXES: usize = 13;
+
+/// One affine test function and the triangle's interval along it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+struct Axis {
+    gradient: [i128; 3],
+    low: i128,
+    high: i128,
+}
+
+/// The triangle's test functions, built once per triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TriangleCellTest {
+    axes: [Axis; MAX_AXES],
+    count: usize,
+}
+
+/// The test functions' values over one cell.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellValues {
+    values: [AffineOverBox; MAX_AXES],
+    count: usize,
+}
+
+impl TriangleCellTest {
+    pub fn new(t: &FixedTriangle) -> TriangleCellTest {
+        let p = t.map(|v| v.map(i128::from));
+        let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+        let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let unit = |k: usize| {
+            let mut e = [0i128; 3];
+            e[k] = 1;
+            e
+        };
+        let edges = [sub(p[1], p[0]), sub(p[2], p[1]), sub(p[0], p[2])];
+        let mut test = TriangleCellTest { axes: [Axis::default(); MAX_AXES], count: 0 };
+        let mut add = |gradient: [i128; 3]| {
+            if gradient == [0; 3] {
+                return;
+            }
+            let projections = p.map(|v| gradient[0] * v[0] + gradient[1] * v[1] + gradient[2] * v[2]);
+            let low = projections.into_iter().min().unwrap_or(0);
+            let high = projections.into_iter().max().unwrap_or(0);
+            test.axes[test.count] = Axis { gradient, low, high };
+            test.count += 1;
+        };
+        for k in 0..3 {
+            add(unit(k));
+        }
+        add(cross(edges[0], edges[1]));
+        for e in edges {
+            for k in 0..3 {
+                add(cross(e, unit(k)));
+            }
+        }
+        test
+    }
+
+    /// The test functions over the box `b` (multiplications: done once per
+    /// root, or per cell when cells are visited directly).
+    pub fn values(&self, b: &Aabb<i64>) -> CellValues {
+        let mut values = [AffineOverBox { at_lo: 0, along: [0; 3] }; MAX_AXES];
+        for (v, axis) in values.iter_mut().zip(&self.axes[..self.count]) {
+            *v = AffineOverBox::over_box(axis.gradient, b);
+        }
+        CellValues { values, count: self.count }
+    }
+
+    /// Does the closed triangle meet the closed box whose values these are?
+    #[inline]
+    pub fn touches(&self, values: &CellValues) -> bool {
+        self.axes[..self.count].iter().zip(&values.values[..values.count]).all(|(axis, v)| v.meets(axis.low, axis.high))
+    }
+
+    /// Does the closed triangle meet the closed box `b`?
+    pub fn touches_box(&self, b: &Aabb<i64>) -> bool {
+        self.touches(&self.values(b))
+    }
+
+    /// The classifier's step: the children of `cell` (side >= 2) that the
+    /// triangle meets, as a mask (bit `o` for octant `o`), from the parent's
+    /// values by interpolation, and their values for the next step.
+    pub fn children_touched(&self, parent: &CellValues) -> (u8, [CellValues; 8]) {
+        let mut mask = 0u8;
+        let children = std::array::from_fn(|octant| {
+            let mut child = *parent;
+            for v in &mut child.values[..child.count] {
+                *v = v.child(octant);
+            }
+            if self.touches(&child) {
+                mask |= 1 << octant;
+            }
+            child
+        });
+        (mask, children)
+    }
+
+    /// [`Self::children_touched`]'s mask for a cell given directly.
+    pub fn children_of_cell(&self, cell: &Cell) -> u8 {
+        self.children_touched(&self.values(&cell.as_box())).0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Aabb<i64> {
+        Aabb { lo: [0, 0, 0], hi: [10, 10, 10] }
+    }
+
+    #[test]
+    fn plane_decides_a_corner_cut() {
+        // x + y + z = 31 passes the corner (10,10,10); x + y + z = 30 touches it.
+        assert!(!TriangleCellTest::new(&[[31, 0, 0], [0, 31, 0], [0, 0, 31]]).touches_box(&unit_box()));
+        assert!(TriangleCellTest::new(&[[30, 0, 0], [0, 30, 0], [0, 0, 30]]).touches_box(&unit_box()));
+    }
+
+    #[test]
+    fn edge_functions_decide_a_segment_beside_an_edge() {
+        assert!(!TriangleCellTest::new(&[[21, 0, 5], [0, 21, 5], [0, 21, 5]]).touches_box(&unit_box()));
+        assert!(TriangleCellTest::new(&[[20, 0, 5], [0, 20, 5], [10, 10, 5]]).touches_box(&unit_box()));
+    }
+
+    /// The interpolated children's mask equals testing each child directly.
+    #[test]
+    fn children_by_interpolation_equal_direct_tests() {
+        let cell = Cell { lo: [-8, -8, -8], level: 4 };
+        let triangles = [[[-8, -8, -8], [8, 8, 8], [8, -8, 0]], [[0, 0, 0], [0, 0, 0], [0, 0, 0]], [[-3, 5, 100], [7, 1, -50], [2, 2, 2]], [[1, 1, 1], [3, 1, 1], [1, 3, 1]]];
+        for t in triangles {
+            let test = TriangleCellTest::new(&t);
+            let direct: u8 = (0..8).filter(|&o| test.touches_box(&cell.child(o).as_box())).map(|o| 1u8 << o).sum();
+            assert_eq!(test.children_of_cell(&cell), direct, "{t:?}");
+        }
+    }
+}

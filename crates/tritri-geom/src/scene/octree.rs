@@ -1,0 +1,223 @@
+//! The octree broad phase: the common box subdivided with the octree
+//! engine's triangle–cell classifier until each leaf's arrays fit the
+//! memories and splitting no longer lowers the system's cycle count; one
+//! batch per leaf that holds triangles of both objects.
+//!
+//! # Why no pair is lost
+//!
+//! Work on the scene's integer grid. If the quantized triangles `a` and `b`
+//! share a point `p`, then `p` lies in the integer common box (see
+//! [`super::prepare`]), which the root cell covers. The leaves' closed cells
+//! cover the root, so some leaf `L` holds `p`; `a` and `b` both meet the
+//! closed cell of `L` at `p`, the classifier is exact, so both are in `L`'s
+//! arrays and the pair is tested there, whole (a leaf tests its triangles,
+//! not their parts inside the cell). A cell with no triangle of one object
+//! is never scheduled, and loses nothing: no pair has a point there.
+//!
+//! # One owner per pair
+//!
+//! Two triangles may share several leaves and be tested in each. Leaves are
+//! numbered in the order they are scheduled (depth first, octant order),
+//! and a pair is reported only by its *owner*: the first leaf that holds
+//! both ([`OctreeSchedule::owner`]). Every intersecting pair has at least
+//! one common leaf (above), so it is reported exactly once.
+//!
+//! # When to split
+//!
+//! A leaf costs what the system's cycle model says a batch of its sizes
+//! costs ([`BatchCost`]), its arrays cut into tiles of at most the memory
+//! depth (so an array that does not fit costs its tiles). A cell is split
+//! when its children, scheduled as leaves, cost less. Splitting that does
+//! not pay at once is still tried [`LOOKAHEAD`] levels deeper (a triangle
+//! straddling the centre planes only separates one level down), and kept
+//! only if the subtree is cheaper. Splitting is never forced: triangles
+//! that overlap over an area (coplanar, or many sharing a point) stay in
+//! every cell around them however deep the tree goes, so forcing would
+//! multiply cells without end; such a leaf is tiled instead.
+
+use super::TaggedTriangle;
+use crate::bounding_volume::Aabb;
+use crate::octree::cell::Cell;
+use crate::octree::triangle_cell::{CellValues, TriangleCellTest};
+use std::collections::HashMap;
+use std::ops::Range;
+
+/// How many levels a split that does not pay at once is pursued.
+pub const LOOKAHEAD: u32 = 2;
+
+/// The cycles one batch of `a` A-triangles and `b` B-triangles adds to a
+/// run, from the system's cycle model (implemented by the hardware crate's
+/// configuration; arrays already cut to the memory depth).
+pub trait BatchCost {
+    fn batch_cycles(&self, a: usize, b: usize) -> u64;
+}
+
+/// One scheduled leaf: its cell and its arrays in [`OctreeSchedule::a`] and
+/// [`OctreeSchedule::b`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Leaf {
+    pub cell: Cell,
+    pub a: Range<usize>,
+    pub b: Range<usize>,
+}
+
+/// The leaves of the octree broad phase, with everything worth reporting.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct OctreeSchedule {
+    pub root: Option<Cell>,
+    /// Leaves holding triangles of both objects, in schedule order.
+    pub leaves: Vec<Leaf>,
+    /// Every leaf's A-array, concatenated in leaf order (a triangle in
+    /// several leaves appears once per leaf).
+    pub a: Vec<TaggedTriangle>,
+    pub b: Vec<TaggedTriangle>,
+    /// Cells the classifier visited (each classifies its triangles into
+    /// its eight children).
+    pub cells_visited: u64,
+    /// Largest depth of a scheduled leaf below the root.
+    pub depth: u32,
+    /// Leaves whose arrays still exceed the memory depth (splitting them
+    /// further would not lower the cycle count); they are tiled like the
+    /// flat system's arrays.
+    pub oversized_leaves: usize,
+    /// `leaves_of_a[id]`: the scheduled leaves holding A's triangle `id`, ascending.
+    leaves_of_a: HashMap<u32, Vec<u32>>,
+    leaves_of_b: HashMap<u32, Vec<u32>>,
+}
+
+impl OctreeSchedule {
+    /// The leaf that reports the pair: the first that holds both triangles
+    /// (`None` if no leaf does, so the pair was never tested).
+    pub fn owner(&self, a_id: u32, b_id: u32) -> Option<usize> {
+        let (la, lb) = (self.leaves_of_a.get(&a_id)?, self.leaves_of_b.get(&b_id)?);
+        let (mut i, mut j) = (0, 0);
+        while i < la.len() && j < lb.len() {
+            match la[i].cmp(&lb[j]) {
+                std::cmp::Ordering::Less => i += 1,
+                std::cmp::Ordering::Greater => j += 1,
+                std::cmp::Ordering::Equal => return Some(la[i] as usize),
+            }
+        }
+        None
+    }
+
+    pub fn leaf_arrays(&self, leaf: &Leaf) -> (&[TaggedTriangle], &[TaggedTriangle]) {
+        (&self.a[leaf.a.clone()], &self.b[leaf.b.clone()])
+    }
+}
+
+/// A triangle on its way down the tree: its test functions' values over
+/// the current cell.
+struct Item<'t> {
+    triangle: &'t TaggedTriangle,
+    test: &'t TriangleCellTest,
+    values: CellValues,
+}
+
+/// A subtree's plan: the leaves it schedules and their cost.
+struct Plan<'t> {
+    cost: u64,
+    leaves: Vec<(Cell, u32, Vec<&'t TaggedTriangle>, Vec<&'t TaggedTriangle>)>,
+}
+
+/// Subdivides `root_box` (the integer common box) over the arrays `a` and
+/// `b` (triangles that touch it) as the module documentation says.
+pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>, depth: usize, cost: &dyn BatchCost) -> OctreeSchedule {
+    let root = Cell::covering(root_box);
+    let mut out = OctreeSchedule { root: Some(root), ..Default::default() };
+    if a.is_empty() || b.is_empty() {
+        return out;
+    }
+    let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
+    let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
+    // The root's values take multiplications; every cell below, adds and shifts.
+    let root_box = root.as_box();
+    let planner = Planner { depth, cost };
+    let mut visited = 0;
+    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root_box), root_items(b, &tests_b, &root_box), LOOKAHEAD, &mut visited);
+    out.cells_visited = visited;
+    for (index, (cell, level, la, lb)) in plan.leaves.into_iter().enumerate() {
+        let start = (out.a.len(), out.b.len());
+        for t in &la {
+            out.leaves_of_a.entry(t.id).or_default().push(index as u32);
+        }
+        for t in &lb {
+            out.leaves_of_b.entry(t.id).or_default().push(index as u32);
+        }
+        if la.len() > depth || lb.len() > depth {
+            out.oversized_leaves += 1;
+        }
+        out.a.extend(la.into_iter().copied());
+        out.b.extend(lb.into_iter().copied());
+        out.depth = out.depth.max(level);
+        out.leaves.push(Leaf { cell, a: start.0..out.a.len(), b: start.1..out.b.len() });
+    }
+    out
+}
+
+struct Planner<'c> {
+    depth: usize,
+    cost: &'c dyn BatchCost,
+}
+
+impl Planner<'_> {
+    /// Cost of a leaf with these array sizes, tiled to the memory depth.
+    fn leaf_cost(&self, na: usize, nb: usize) -> u64 {
+        if na == 0 || nb == 0 {
+            return 0;
+        }
+        let tiles = |n: usize| (0..n.div_ceil(self.depth)).map(move |t| (n - t * self.depth).min(self.depth));
+        tiles(na).map(|ta| tiles(nb).map(|tb| self.cost.batch_cycles(ta, tb)).sum::<u64>()).sum()
+    }
+
+    fn plan<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, visited: &mut u64) -> Plan<'t> {
+        if a.is_empty() || b.is_empty() {
+            return Plan { cost: 0, leaves: Vec::new() };
+        }
+        let as_leaf = |a: Vec<Item<'t>>, b: Vec<Item<'t>>| Plan {
+            cost: self.leaf_cost(a.len(), b.len()),
+            leaves: vec![(cell, level, a.iter().map(|i| i.triangle).collect(), b.iter().map(|i| i.triangle).collect())],
+        };
+        if !cell.splittable() {
+            return as_leaf(a, b);
+        }
+        *visited += 1;
+        let leaf_cost = self.leaf_cost(a.len(), b.len());
+        let (children_a, children_b) = (split(&a), split(&b));
+        let children_cost: u64 = (0..8).map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len())).sum();
+        let improving = children_cost < leaf_cost;
+        if !improving && slack == 0 {
+            return as_leaf(a, b);
+        }
+        let next_slack = if improving { LOOKAHEAD } else { slack - 1 };
+        let mut subtree = Plan { cost: 0, leaves: Vec::new() };
+        for (o, (ca, cb)) in children_a.into_iter().zip(children_b).enumerate() {
+            let child = self.plan(cell.child(o), level + 1, ca, cb, next_slack, visited);
+            subtree.cost += child.cost;
+            subtree.leaves.extend(child.leaves);
+        }
+        if subtree.cost >= leaf_cost {
+            as_leaf(a, b)
+        } else {
+            subtree
+        }
+    }
+}
+
+fn root_items<'t>(ts: &'t [TaggedTriangle], tests: &'t [TriangleCellTest], root: &Aabb<i64>) -> Vec<Item<'t>> {
+    ts.iter().zip(tests).map(|(triangle, test)| Item { triangle, test, values: test.values(root) }).collect()
+}
+
+/// Each item into the children its triangle meets, with its values there.
+fn split<'t>(items: &[Item<'t>]) -> [Vec<Item<'t>>; 8] {
+    let mut children: [Vec<Item<'t>>; 8] = Default::default();
+    for item in items {
+        let (mask, values) = item.test.children_touched(&item.values);
+        for (o, v) in values.into_iter().enumerate() {
+            if mask >> o & 1 == 1 {
+                children[o].push(Item { triangle: item.triangle, test: item.test, values: v });
+            }
+        }
+    }
+    children
+}
