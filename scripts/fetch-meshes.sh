@@ -6,6 +6,8 @@
 #                               (data/meshes/bunny00.off)
 #   build/meshes/armadillo.off  the Stanford armadillo (26,002 vertices, 52,000 triangles),
 #                               same source
+#   build/meshes/camel.off      a camel (19,536 triangles), same source
+#   build/meshes/elephant.off   an elephant (5,558 triangles), same source
 #   build/meshes/teapot.bpt     the Utah teapot's 32 Bezier patches, copied from
 #                               ../shared/testdata when it is there (tessellate with
 #                               `tritri sim --tessellation N`)
@@ -21,7 +23,7 @@ cd "$(dirname "$0")/.."
 out=build/meshes
 mkdir -p "$out"
 
-if [ ! -s "$out/bunny.off" ] || [ ! -s "$out/armadillo.off" ]; then
+if [ ! -s "$out/bunny.off" ] || [ ! -s "$out/armadillo.off" ] || [ ! -s "$out/camel.off" ] || [ ! -s "$out/elephant.off" ]; then
   SUDO=""
   [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   work=$(mktemp -d)
@@ -33,9 +35,11 @@ if [ ! -s "$out/bunny.off" ] || [ ! -s "$out/armadillo.off" ]; then
   dpkg -x "$work"/libcgal-demo_*.deb "$work/pkg"
   data=$(find "$work/pkg" -name data.tar.gz -path '*cgal*' | head -1)
   [ -n "$data" ] || { echo "error: libcgal-demo has no data.tar.gz" >&2; exit 1; }
-  tar -xzf "$data" -C "$work" data/meshes/bunny00.off data/meshes/armadillo.off
+  tar -xzf "$data" -C "$work" data/meshes/bunny00.off data/meshes/armadillo.off data/meshes/camel.off data/meshes/elephant.off
   cp "$work/data/meshes/bunny00.off" "$out/bunny.off"
-  cp "$work/data/meshes/armadillo.off" "$out/armadillo.off"
+  for mesh in armadillo camel elephant; do
+    cp "$work/data/meshes/$mesh.off" "$out/$mesh.off"
+  done
 fi
 
 if [ -f ../shared/testdata/teapot.bpt ]; then

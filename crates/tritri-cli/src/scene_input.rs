@@ -24,6 +24,10 @@ pub struct SceneArgs {
     /// (the bunny is about 1 unit across, the armadillo about 127).
     #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = input::parse_scale)]
     pub scale_b: f64,
+    /// Cut every triangle of both objects into 4^K by edge midpoints (the
+    /// same surfaces with more triangles, for scaling studies; 0 to 4).
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=4))]
+    pub subdivide: u32,
     /// Samples per side of each Bezier patch (.bpt): 2 n^2 triangles per patch.
     #[arg(long, default_value_t = 8, value_name = "N")]
     pub tessellation: usize,
@@ -37,8 +41,8 @@ impl SceneArgs {
             Some(v) => v.iter().map(String::as_str).collect(),
             None => default.to_vec(),
         };
-        let a = load_object(names[0], self.tessellation)?;
-        let b = load_object(names[1], self.tessellation)?;
+        let a = load_object(names[0], self.tessellation)?.subdivided(self.subdivide);
+        let b = load_object(names[1], self.tessellation)?.subdivided(self.subdivide);
         let b = if self.scale_b == 1.0 { b } else { b.scaled(self.scale_b) };
         let pose = self.pose_b.unwrap_or_default();
         let b = if pose.is_identity() { b } else { b.posed(&pose) };

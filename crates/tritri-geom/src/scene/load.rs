@@ -59,6 +59,27 @@ impl SceneObject {
         SceneObject { name: self.name.clone(), triangles, face_of: self.face_of.clone() }
     }
 
+    /// The same surface cut into `4^levels` times as many triangles: each
+    /// triangle into four by its edge midpoints, `levels` times (a face
+    /// index still names the original face). For scaling studies: the
+    /// geometry, and so the contact, stays the same.
+    pub fn subdivided(&self, levels: u32) -> SceneObject {
+        let mut triangles = self.triangles.clone();
+        let mut face_of = self.face_of.clone();
+        for _ in 0..levels {
+            let mid = |p: Point, q: Point| [0, 1, 2].map(|k| (p[k] + q[k]) / 2.0);
+            triangles = triangles
+                .iter()
+                .flat_map(|&[a, b, c]| {
+                    let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+                    [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+                })
+                .collect();
+            face_of = face_of.iter().flat_map(|&f| [f; 4]).collect();
+        }
+        SceneObject { name: self.name.clone(), triangles, face_of }
+    }
+
     /// The same object moved by `pose`.
     pub fn posed(&self, pose: &Pose) -> SceneObject {
         let triangles = self.triangles.iter().map(|t| t.map(|p| pose.apply(p))).collect();

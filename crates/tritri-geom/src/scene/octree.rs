@@ -74,6 +74,9 @@ pub struct OctreeSchedule {
     /// Cells the classifier visited (each classifies its triangles into
     /// its eight children).
     pub cells_visited: u64,
+    /// Triangle–cell classifications: the sum over visited cells of the
+    /// triangles in them (each one classified into the eight children).
+    pub classifications: u64,
     /// Largest depth of a scheduled leaf below the root.
     pub depth: u32,
     /// Leaves whose arrays still exceed the memory depth (splitting them
@@ -133,9 +136,10 @@ pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>
     // The root's values take multiplications; every cell below, adds and shifts.
     let root_box = root.as_box();
     let planner = Planner { depth, cost };
-    let mut visited = 0;
-    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root_box), root_items(b, &tests_b, &root_box), LOOKAHEAD, &mut visited);
-    out.cells_visited = visited;
+    let mut work = Work::default();
+    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root_box), root_items(b, &tests_b, &root_box), LOOKAHEAD, &mut work);
+    out.cells_visited = work.cells;
+    out.classifications = work.classifications;
     for (index, (cell, level, la, lb)) in plan.leaves.into_iter().enumerate() {
         let start = (out.a.len(), out.b.len());
         for t in &la {
@@ -155,6 +159,13 @@ pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>
     out
 }
 
+/// What the planner did, for the report.
+#[derive(Default)]
+struct Work {
+    cells: u64,
+    classifications: u64,
+}
+
 struct Planner<'c> {
     depth: usize,
     cost: &'c dyn BatchCost,
@@ -170,7 +181,7 @@ impl Planner<'_> {
         tiles(na).map(|ta| tiles(nb).map(|tb| self.cost.batch_cycles(ta, tb)).sum::<u64>()).sum()
     }
 
-    fn plan<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, visited: &mut u64) -> Plan<'t> {
+    fn plan<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, work: &mut Work) -> Plan<'t> {
         if a.is_empty() || b.is_empty() {
             return Plan { cost: 0, leaves: Vec::new() };
         }
@@ -181,7 +192,8 @@ impl Planner<'_> {
         if !cell.splittable() {
             return as_leaf(a, b);
         }
-        *visited += 1;
+        work.cells += 1;
+        work.classifications += (a.len() + b.len()) as u64;
         let leaf_cost = self.leaf_cost(a.len(), b.len());
         let (children_a, children_b) = (split(&a), split(&b));
         let children_cost: u64 = (0..8).map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len())).sum();
@@ -192,7 +204,7 @@ impl Planner<'_> {
         let next_slack = if improving { LOOKAHEAD } else { slack - 1 };
         let mut subtree = Plan { cost: 0, leaves: Vec::new() };
         for (o, (ca, cb)) in children_a.into_iter().zip(children_b).enumerate() {
-            let child = self.plan(cell.child(o), level + 1, ca, cb, next_slack, visited);
+            let child = self.plan(cell.child(o), level + 1, ca, cb, next_slack, work);
             subtree.cost += child.cost;
             subtree.leaves.extend(child.leaves);
         }

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The octree broad phase against the thesis's flat system on real meshes in
+# contact (issue 13): per scene, both broad phases through the model engine,
+# their pairs compared, and one table row in Markdown.
+#
+#   bash scripts/fetch-meshes.sh          # once: CGAL's meshes into build/meshes
+#   bash scripts/broad-phase-scenes.sh [--subdivide K] [other tritri sim options]
+#
+# Times: software is the exact box sweep measured by `tritri sim` on this
+# machine (one thread); hardware is the system's cycle model at 100 MHz
+# (no post-route clock yet), the binning column an estimate of a binning
+# unit that is not built yet (see `tritri sim`'s report).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+m=build/meshes
+[ -s "$m/camel.off" ] || { echo "error: $m/camel.off missing; run: bash scripts/fetch-meshes.sh" >&2; exit 1; }
+cargo build --release -q -p tritri-cli
+tritri=target/release/tritri
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+scenes=(
+  "bunny x armadillo|$m/bunny.off $m/armadillo.off --scale-b 0.008 --pose-b 0.6,0,0"
+  "armadillo x camel|$m/armadillo.off $m/camel.off --scale-b 127 --pose-b 55,0,0"
+  "camel x elephant|$m/camel.off $m/elephant.off --pose-b 0.3,0,0"
+  "teapot (16) x bunny|$m/teapot.bpt $m/bunny.off --tessellation 16 --scale-b 3 --pose-b 3,0,1.5"
+  "bunny x bunny (README)|$m/bunny.off $m/bunny.off --pose-b 0.02,0.01,0,0,30,0"
+)
+
+field() { grep -m1 "$1" "$2" | sed -E "s/.*$3.*/\1/"; }
+echo "| scene | N1 x N2 | box-overlap pairs | flat: pairs tested | octree: pairs tested | / box-overlap | leaves, depth | intersecting | = flat | vs exact f64 | flat time | octree time | + binning (est.) | software | ratio | ratio with binning |"
+echo "|---|---|---:|---:|---:|---:|---|---:|---|---|---:|---:|---:|---:|---:|---:|"
+for entry in "${scenes[@]}"; do
+  name=${entry%%|*}
+  read -r -a args <<<"${entry#*|}"
+  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --broad-phase flat --out "$work/flat.txt" >"$work/flat.log"
+  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --broad-phase octree --out "$work/octree.txt" >"$work/octree.log"
+  same=$(cmp -s "$work/flat.txt" "$work/octree.txt" && echo yes || echo NO)
+  grep -q "engine = exact model on the quantized coordinates.*equal" "$work/octree.log" || same="NO (model)"
+  n1=$(grep -m1 "^scene:" "$work/octree.log" | sed -E 's/.*A = [^(]*\(([0-9]+) triangles.*/\1/')
+  n2=$(grep -m1 "^scene:" "$work/octree.log" | sed -E 's/.*B = [^(]*\(([0-9]+) triangles.*/\1/')
+  box=$(field "^work:" "$work/octree.log" 'box-overlap pairs \(([0-9]+)\)')
+  flat_tested=$(field "^pairs tested:" "$work/flat.log" 'pairs tested: ([0-9]+) .*')
+  tested=$(field "^pairs tested:" "$work/octree.log" 'pairs tested: ([0-9]+) .*')
+  per_box=$(field "^work:" "$work/octree.log" '= ([0-9.]+) x the box-overlap.*')
+  leaves=$(field "^broad phase:" "$work/octree.log" ' ([0-9]+) leaves with both objects.*')
+  depth=$(field "^broad phase:" "$work/octree.log" 'depth ([0-9]+),.*')
+  hits=$(field "^intersecting pairs:" "$work/octree.log" 'intersecting pairs: ([0-9]+)')
+  quant=$(field "^quantization error" "$work/octree.log" ': ([0-9]+ pairs missing, [0-9]+ extra).*')
+  flat_time=$(field "^cycles:" "$work/flat.log" 'time at [0-9.]+ MHz: (.*)')
+  octree_time=$(field "^cycles:" "$work/octree.log" 'time at [0-9.]+ MHz: (.*)')
+  software=$(field "^speed:" "$work/octree.log" 'one thread, triangles in memory\) ([0-9.]+ [a-z]+);.*')
+  ratio=$(field "^speed:" "$work/octree.log" ': ([0-9.]+) x$')
+  whole=$(field "^speed with binning" "$work/octree.log" 'cycles, one classifier\): (.*) in all.*')
+  whole_ratio=$(field "^speed with binning" "$work/octree.log" 'in all, ([0-9.]+) x$')
+  echo "| $name | $n1 x $n2 | $box | $flat_tested | $tested | $per_box | $leaves, $depth | $hits | $same | $quant | $flat_time | $octree_time | $whole | $software | $ratio | $whole_ratio |"
+done
