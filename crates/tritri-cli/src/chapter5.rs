@@ -62,6 +62,10 @@ enum Axis {
 pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@torus"];
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    if args.hardware.grid_bits.is_some_and(|g| g != args.hardware.width) {
+        eprintln!("error: --grid-bits: chapter5 compares the flat system, which sends the whole box in one W-bit frame; use it with tritri sim");
+        return Ok(ExitCode::from(2));
+    }
     let (a, b) = match args.scene.load(DEFAULT_SCENE) {
         Ok(objects) => objects,
         Err(e) => {

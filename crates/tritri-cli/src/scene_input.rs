@@ -7,6 +7,7 @@ use std::time::Duration;
 use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
+use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::{prepare, prepare_octree, Batch, PreparedScene, SceneError};
 
 /// The two objects and the pose of B.
@@ -75,6 +76,11 @@ pub struct HardwareArgs {
     /// the common box (the thesis's system).
     #[arg(long, value_enum, default_value_t = BroadPhase::Octree)]
     pub broad_phase: BroadPhase,
+    /// Bits of the one grid the scene is quantized onto (W to 32; default
+    /// W). Above W, each octree leaf goes to the W-bit hardware in a frame
+    /// of its own: the same W gives a finer step.
+    #[arg(long, value_name = "G", value_parser = input::parse_width)]
+    pub grid_bits: Option<u32>,
 }
 
 /// Which pairs the system is given.
@@ -88,7 +94,29 @@ pub enum BroadPhase {
 
 impl HardwareArgs {
     pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
-        tritri_geom::scene::SceneOptions { width: self.width, depth: self.depth as usize, split: !self.no_split }
+        tritri_geom::scene::SceneOptions { width: self.grid_bits(), depth: self.depth as usize, split: !self.no_split }
+    }
+
+    /// The grid's width G (W unless `--grid-bits` says more).
+    pub fn grid_bits(&self) -> u32 {
+        self.grid_bits.unwrap_or(self.width).max(self.width)
+    }
+
+    /// Leaves in frames of their own when the grid is finer than W.
+    pub fn local_frames(&self) -> Option<LocalFrames> {
+        (self.grid_bits() > self.width).then_some(LocalFrames { width: self.width })
+    }
+
+    /// A grid finer than W needs the octree's local frames.
+    pub fn validate(&self) -> Result<(), String> {
+        match self.grid_bits {
+            Some(g) if g < self.width => Err(format!("--grid-bits {g} is below --width {}: the grid needs at least W bits", self.width)),
+            Some(g) if g > self.width && self.broad_phase == BroadPhase::Flat => Err(format!(
+                "--grid-bits {g} above --width {} needs --broad-phase octree (the flat system sends the whole box in one W-bit frame)",
+                self.width
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// The scene prepared for this hardware with the chosen broad phase.
@@ -99,7 +127,7 @@ impl HardwareArgs {
     pub fn prepare_with(&self, broad_phase: BroadPhase, a: &SceneObject, b: &SceneObject) -> Result<PreparedScene, SceneError> {
         match broad_phase {
             BroadPhase::Flat => prepare(a, b, &self.scene_options()),
-            BroadPhase::Octree => prepare_octree(a, b, &self.scene_options(), &self.system_config()),
+            BroadPhase::Octree => prepare_octree(a, b, &self.scene_options(), &self.system_config(), self.local_frames()),
         }
     }
 
@@ -155,7 +183,7 @@ mod tests {
     }
 
     fn hardware(pipelines: u32) -> HardwareArgs {
-        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0, broad_phase: BroadPhase::Octree }
+        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0, broad_phase: BroadPhase::Octree, grid_bits: None }
     }
 
     /// One pipeline, one batch: the thesis's N1 + N1*N2 + L, plus writing

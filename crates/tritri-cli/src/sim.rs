@@ -34,7 +34,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
+use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, host_pair_hits, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_cosim::stream::IdTriangle;
 use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
 use tritri_cosim::system_verilator::run_system_verilator;
@@ -83,6 +83,10 @@ pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@sphere"];
 const PROGRESS_THRESHOLD: u64 = 5_000_000;
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    if let Err(e) = args.hardware.validate() {
+        eprintln!("error: {e}");
+        return Ok(ExitCode::from(2));
+    }
     let (a, b) = match args.scene.load(DEFAULT_SCENE) {
         Ok(objects) => objects,
         Err(e) => {
@@ -120,7 +124,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let (pairs, cycles, engine_name, notes) = match args.engine {
         Engine::Model => {
             let bar = progress_bar(pairs_tested);
-            let pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
+            let mut pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
+            pairs.extend(host_pair_hits(scene.host_pairs()));
             bar.finish_and_clear();
             let cycles = args.hardware.cycles(&scene.batches());
             (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)", None)
@@ -156,7 +161,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             }
             // Tiles partition the pairs, so a pair comes once; the set also
             // drops any repeat.
-            let pairs: PairSet = result.pairs.iter().copied().collect();
+            let mut pairs: PairSet = result.pairs.iter().copied().collect();
+            pairs.extend(host_pair_hits(scene.host_pairs()));
             let name = match args.engine {
                 Engine::Rusthdl => "rusthdl (rust-hdl simulation of the system)",
                 _ => "verilator (the emitted Verilog of the system)",
@@ -181,7 +187,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     write_pairs(&args, &a, &b, &pairs)?;
 
     if !args.no_compare {
-        let quantized = quantized_exact_pairs(&scene.batches());
+        let mut quantized = quantized_exact_pairs(&scene.batches());
+        quantized.extend(host_pair_hits(scene.host_pairs()));
         let same = PairDiff::between(&quantized, &pairs);
         if same.is_empty() {
             writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
@@ -242,8 +249,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
         writeln!(
             report,
-            "quantization error (W = {}): {} pairs missing, {} extra against exact f64{}",
-            args.hardware.width,
+            "quantization error (grid of {} bits): {} pairs missing, {} extra against exact f64{}",
+            args.hardware.grid_bits(),
             diff.missing.len(),
             diff.extra.len(),
             examples(&diff)
@@ -278,7 +285,15 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         100.0 * scene.fraction_in_common_bv()
     )?;
     if let Some(frame) = scene.frame {
-        writeln!(report, "frame: W = {} bits, step h = {:e}, centre {:?}", args.hardware.width, frame.step, frame.centre)?;
+        writeln!(report, "frame: {} bits, step h = {:e}, centre {:?}", args.hardware.grid_bits(), frame.step, frame.centre)?;
+        if let Some(local) = args.hardware.local_frames() {
+            writeln!(
+                report,
+                "local frames: leaves go to the {}-bit hardware as grid coordinates minus the leaf's centre; {} pairs with a triangle outside its leaf's window decided by the host",
+                local.width,
+                scene.host_pairs().len()
+            )?;
+        }
     }
     let t = scene.tiling;
     if scene.octree.is_some() {

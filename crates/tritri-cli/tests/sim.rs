@@ -203,3 +203,22 @@ fn rusthdl_engine_agrees_with_the_model() {
     assert!(!pairs.is_empty());
     assert_eq!(pairs, std::fs::read_to_string(&hdl).unwrap());
 }
+
+/// `--grid-bits G` above W: leaves go to W-bit hardware in frames of their
+/// own and the answer is the flat system's on the same G-bit grid; a grid
+/// below W, or above W with the flat system, is refused naming the option.
+#[test]
+fn local_frames_give_the_answer_of_the_finer_grid() {
+    let (local, flat) = (scratch_path("local.txt"), scratch_path("flat20.txt"));
+    let o = tritri(&["sim", "--width", "16", "--grid-bits", "20", "--out", local.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert!(text(&o.stdout).contains("local frames: leaves go to the 16-bit hardware"), "{}", text(&o.stdout));
+    let o = tritri(&["sim", "--broad-phase", "flat", "--width", "20", "--out", flat.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert_eq!(std::fs::read_to_string(&local).unwrap(), std::fs::read_to_string(&flat).unwrap());
+    for bad in [&["sim", "--width", "24", "--grid-bits", "16"][..], &["sim", "--broad-phase", "flat", "--width", "16", "--grid-bits", "20"]] {
+        let o = tritri(bad);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        assert!(text(&o.stderr).contains("--grid-bits"), "{}", text(&o.stderr));
+    }
+}

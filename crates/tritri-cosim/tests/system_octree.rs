@@ -26,7 +26,7 @@ fn octree_leaves_through_rust_hdl_and_verilator_give_the_flat_pairs() {
     let config = SystemConfig::new(24, 2, latency()).with_depth(64);
     let options = SceneOptions { width: 24, depth: 64, split: true };
     let flat = prepare(&a, &b, &options).unwrap();
-    let scene = prepare_octree(&a, &b, &options, &config).unwrap();
+    let scene = prepare_octree(&a, &b, &options, &config, None).unwrap();
     let expected = fixed_point_pairs(&flat.batches(), &|_| {});
     assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), expected);
     assert!(expected.len() > 100, "{} pairs", expected.len());

@@ -34,7 +34,7 @@ use crate::fixed_point::FixedTriangle;
 use crate::quantize::{Frame, QuantizeError};
 use crate::triangle::Triangle;
 use load::SceneObject;
-use octree::{BatchCost, OctreeSchedule};
+use octree::{BatchCost, LocalFrames, OctreeSchedule};
 
 /// A quantized triangle with the index it has in its object.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -151,6 +151,12 @@ impl PreparedScene {
         }
     }
 
+    /// Pairs the host decides on the grid instead of the hardware: a
+    /// triangle outside its leaf's window ([`LocalFrames`]). Grid coordinates.
+    pub fn host_pairs(&self) -> &[(TaggedTriangle, TaggedTriangle)] {
+        self.octree.as_ref().map_or(&[], |o| &o.host_pairs)
+    }
+
     /// `N1 * N2`: what testing every pair would cost.
     pub fn all_pairs(&self) -> u64 {
         self.n_a as u64 * self.n_b as u64
@@ -243,11 +249,19 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
 /// [`prepare`], then the octree broad phase ([`octree`]) over the kept
 /// arrays inside the integer common box, its leaves costed by `cost` (the
 /// system's cycle model). With `split: false`, a leaf that still exceeds
-/// the memory depth (a cell of side 1 holding more triangles) is refused.
-pub fn prepare_octree(a: &SceneObject, b: &SceneObject, options: &SceneOptions, cost: &dyn BatchCost) -> Result<PreparedScene, SceneError> {
+/// the memory depth is refused. With `local_frames`, `options.width` is
+/// the grid's width and the leaves go to hardware of `local_frames.width`
+/// bits in frames of their own ([`LocalFrames`]).
+pub fn prepare_octree(
+    a: &SceneObject,
+    b: &SceneObject,
+    options: &SceneOptions,
+    cost: &dyn BatchCost,
+    local_frames: Option<LocalFrames>,
+) -> Result<PreparedScene, SceneError> {
     let mut scene = prepare(a, b, &SceneOptions { split: true, ..*options })?;
     let Some(ibox) = scene.integer_box else { return Ok(scene) };
-    let octree = octree::schedule(&scene.kept_a, &scene.kept_b, &ibox, options.depth, cost);
+    let octree = octree::schedule(&scene.kept_a, &scene.kept_b, &ibox, options.depth, cost, local_frames);
     if let Some(leaf) = octree.leaves.iter().find(|l| l.a.len() > options.depth || l.b.len() > options.depth) {
         if !options.split {
             let (kept_a, kept_b) = (leaf.a.len(), leaf.b.len());

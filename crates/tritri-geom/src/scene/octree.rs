@@ -53,12 +53,41 @@ pub trait BatchCost {
 }
 
 /// One scheduled leaf: its cell and its arrays in [`OctreeSchedule::a`] and
-/// [`OctreeSchedule::b`].
+/// [`OctreeSchedule::b`], whose coordinates are the grid's minus `offset`
+/// (zero without local frames).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Leaf {
     pub cell: Cell,
+    pub offset: [i64; 3],
     pub a: Range<usize>,
     pub b: Range<usize>,
+}
+
+/// Leaves in frames of their own: the scene is quantized onto one fine
+/// grid, and each leaf's triangles are sent to `width`-bit hardware as grid
+/// coordinates minus the leaf cell's centre. An exact integer translation
+/// changes no verdict, so "exact on the grid" still means one grid, whose
+/// step is finer than one W-bit frame over the whole box could give. Cells
+/// wider than `2^(width - 2)` steps are always split, so a leaf's cell
+/// takes at most a quarter of its window; a triangle reaching outside the
+/// window anyway (a long one) is not sent, and its pairs in that leaf
+/// are decided by the host on the grid ([`OctreeSchedule::host_pairs`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LocalFrames {
+    pub width: u32,
+}
+
+impl LocalFrames {
+    /// The largest cell level a leaf may have.
+    fn max_leaf_level(&self) -> u32 {
+        self.width - 2
+    }
+
+    /// Is every coordinate of `t - offset` a W-bit integer?
+    fn fits(&self, t: &TaggedTriangle, offset: [i64; 3]) -> bool {
+        let half = 1i64 << (self.width - 1);
+        t.triangle.iter().all(|p| (0..3).all(|k| (-half..half).contains(&(p[k] - offset[k]))))
+    }
 }
 
 /// The leaves of the octree broad phase, with everything worth reporting.
@@ -77,6 +106,9 @@ pub struct OctreeSchedule {
     /// Triangle–cell classifications: the sum over visited cells of the
     /// triangles in them (each one classified into the eight children).
     pub classifications: u64,
+    /// Pairs of a leaf with a triangle outside the leaf's W-bit window
+    /// ([`LocalFrames`]), in grid coordinates: the host decides them.
+    pub host_pairs: Vec<(TaggedTriangle, TaggedTriangle)>,
     /// Largest depth of a scheduled leaf below the root.
     pub depth: u32,
     /// Leaves whose arrays still exceed the memory depth (splitting them
@@ -125,7 +157,16 @@ struct Plan<'t> {
 
 /// Subdivides `root_box` (the integer common box) over the arrays `a` and
 /// `b` (triangles that touch it) as the module documentation says.
-pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>, depth: usize, cost: &dyn BatchCost) -> OctreeSchedule {
+/// With `local_frames`, leaves are sent in frames of their own
+/// ([`LocalFrames`]).
+pub fn schedule(
+    a: &[TaggedTriangle],
+    b: &[TaggedTriangle],
+    root_box: &Aabb<i64>,
+    depth: usize,
+    cost: &dyn BatchCost,
+    local_frames: Option<LocalFrames>,
+) -> OctreeSchedule {
     let root = Cell::covering(root_box);
     let mut out = OctreeSchedule { root: Some(root), ..Default::default() };
     if a.is_empty() || b.is_empty() {
@@ -135,7 +176,7 @@ pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>
     let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     // The root's values take multiplications; every cell below, adds and shifts.
     let root_box = root.as_box();
-    let planner = Planner { depth, cost };
+    let planner = Planner { depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
     let mut work = Work::default();
     let plan = planner.plan(root, 0, root_items(a, &tests_a, &root_box), root_items(b, &tests_b, &root_box), LOOKAHEAD, &mut work);
     out.cells_visited = work.cells;
@@ -148,13 +189,27 @@ pub fn schedule(a: &[TaggedTriangle], b: &[TaggedTriangle], root_box: &Aabb<i64>
         for t in &lb {
             out.leaves_of_b.entry(t.id).or_default().push(index as u32);
         }
-        if la.len() > depth || lb.len() > depth {
+        let offset = match local_frames {
+            Some(_) => cell.lo.map(|v| v + cell.size() / 2),
+            None => [0; 3],
+        };
+        let fits = |t: &TaggedTriangle| local_frames.is_none_or(|l| l.fits(t, offset));
+        for x in &la {
+            for y in &lb {
+                if !fits(x) || !fits(y) {
+                    out.host_pairs.push((**x, **y));
+                }
+            }
+        }
+        let translate = |t: &&TaggedTriangle| TaggedTriangle { id: t.id, triangle: t.triangle.map(|p| [0, 1, 2].map(|k| p[k] - offset[k])) };
+        out.a.extend(la.iter().filter(|t| fits(t)).map(translate));
+        out.b.extend(lb.iter().filter(|t| fits(t)).map(translate));
+        let leaf = Leaf { cell, offset, a: start.0..out.a.len(), b: start.1..out.b.len() };
+        if leaf.a.len() > depth || leaf.b.len() > depth {
             out.oversized_leaves += 1;
         }
-        out.a.extend(la.into_iter().copied());
-        out.b.extend(lb.into_iter().copied());
         out.depth = out.depth.max(level);
-        out.leaves.push(Leaf { cell, a: start.0..out.a.len(), b: start.1..out.b.len() });
+        out.leaves.push(leaf);
     }
     out
 }
@@ -169,6 +224,8 @@ struct Work {
 struct Planner<'c> {
     depth: usize,
     cost: &'c dyn BatchCost,
+    /// Cells above this level must be split ([`LocalFrames`]).
+    max_leaf_level: Option<u32>,
 }
 
 impl Planner<'_> {
@@ -197,7 +254,8 @@ impl Planner<'_> {
         let leaf_cost = self.leaf_cost(a.len(), b.len());
         let (children_a, children_b) = (split(&a), split(&b));
         let children_cost: u64 = (0..8).map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len())).sum();
-        let improving = children_cost < leaf_cost;
+        let forced = self.max_leaf_level.is_some_and(|m| cell.level > m);
+        let improving = forced || children_cost < leaf_cost;
         if !improving && slack == 0 {
             return as_leaf(a, b);
         }
@@ -208,7 +266,7 @@ impl Planner<'_> {
             subtree.cost += child.cost;
             subtree.leaves.extend(child.leaves);
         }
-        if subtree.cost >= leaf_cost {
+        if !forced && subtree.cost >= leaf_cost {
             as_leaf(a, b)
         } else {
             subtree

@@ -265,7 +265,7 @@ fn octree_finds_the_flat_pairs_each_once() {
         let b = random_object(&mut rng, 120, offset, 1.0, edge);
         let depth = [4, 16, 64][round % 3];
         let flat = prepare(&a, &b, &options(width, depth)).unwrap();
-        let tree = prepare_octree(&a, &b, &options(width, depth), &OverlappedCycles { pipelines: 2 }).unwrap();
+        let tree = prepare_octree(&a, &b, &options(width, depth), &OverlappedCycles { pipelines: 2 }, None).unwrap();
         let expected = fixed_point_pairs(&flat.batches(), &|_| {});
         assert_eq!(fixed_point_pairs(&tree.batches(), &|_| {}), expected, "round {round}");
         assert_eq!(quantized_exact_pairs(&tree.batches()), expected, "round {round}");
@@ -321,7 +321,7 @@ fn octree_pairs_straddling_cell_faces_edges_and_corners() {
         let root = Aabb { lo: [0; 3], hi: [side; 3] };
         let expected = brute_force_fixed(&a, &b);
         for depth in [2, 8] {
-            let schedule = octree::schedule(&a, &b, &root, depth, &OverlappedCycles { pipelines: 1 });
+            let schedule = octree::schedule(&a, &b, &root, depth, &OverlappedCycles { pipelines: 1 }, None);
             assert_each_pair_reported_once(&schedule, &expected, &format!("round {round}, depth {depth}"));
         }
     }
@@ -338,7 +338,58 @@ fn octree_stops_on_coplanar_overlaps_deeper_than_the_memory() {
     };
     let (a, b) = (object(3), object(-5));
     let root = Aabb { lo: [-big; 3], hi: [big; 3] };
-    let schedule = octree::schedule(&a, &b, &root, 2, &OverlappedCycles { pipelines: 2 });
+    let schedule = octree::schedule(&a, &b, &root, 2, &OverlappedCycles { pipelines: 2 }, None);
     assert!(schedule.cells_visited < 10_000, "{} cells", schedule.cells_visited);
     assert_each_pair_reported_once(&schedule, &brute_force_fixed(&a, &b), "coplanar");
+}
+
+/// Small triangles (up to 0.02 across, some degenerate) and a few long ones
+/// (up to 0.3) in the thin slab [-0.3, 0.3]^2 x [-0.01, 0.01], where they
+/// meet often.
+fn slab_object(rng: &mut ChaCha8Rng, n: usize) -> SceneObject {
+    let triangles = (0..n)
+        .map(|i| {
+            let p = [rng.gen_range(-0.3..0.3), rng.gen_range(-0.3..0.3), rng.gen_range(-0.01..0.01)];
+            let size = if i % 20 == 0 { 0.3 } else { 0.02 };
+            let mut near = || [0, 1, 2].map(|k| p[k] + rng.gen_range(-size..size) / if k == 2 { 4.0 } else { 2.0 });
+            match i % 10 {
+                0 => [p, p, p],
+                1 => [p, near(), p],
+                _ => [p, near(), near()],
+            }
+        })
+        .collect();
+    SceneObject::from_triangles("slab", triangles)
+}
+
+/// Local frames: the scene on a G-bit grid, leaves sent as W-bit
+/// coordinates around their centres, long triangles' pairs to the host.
+/// The union of leaf hits and host hits is the flat system's answer on the
+/// same G-bit grid, every batch coordinate fits W bits, and translation
+/// leaves the verdicts alone.
+#[test]
+fn local_frames_keep_the_grid_answer_with_fewer_bits() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let (mut hosted, mut sent, mut hits) = (0, 0, 0);
+    for round in 0..24 {
+        let (grid, width) = [(16, 12), (20, 16), (24, 20), (12, 8)][round % 4];
+        let (a, b) = (slab_object(&mut rng, 1500), slab_object(&mut rng, 1500));
+        let flat = prepare(&a, &b, &options(grid, 32)).unwrap();
+        let local = Some(octree::LocalFrames { width });
+        let tree = prepare_octree(&a, &b, &options(grid, 32), &OverlappedCycles { pipelines: 2 }, local).unwrap();
+        let mut found = fixed_point_pairs(&tree.batches(), &|_| {});
+        found.extend(reference::host_pair_hits(tree.host_pairs()));
+        assert_eq!(found, fixed_point_pairs(&flat.batches(), &|_| {}), "round {round}");
+        hits += found.len();
+        let half = 1i64 << (width - 1);
+        for batch in tree.batches() {
+            assert!(batch.a.iter().chain(batch.b).all(|t| t.triangle.iter().flatten().all(|c| (-half..half).contains(c))), "round {round}");
+        }
+        let schedule = tree.octree.as_ref().unwrap();
+        assert!(schedule.leaves.iter().all(|l| l.cell.level <= width - 2));
+        hosted += tree.host_pairs().len();
+        sent += tree.pairs_tested();
+    }
+    // Both routes are exercised.
+    assert!(hosted > 0 && sent > 0 && hits > 300, "host {hosted}, hardware {sent}, intersecting {hits}");
 }
