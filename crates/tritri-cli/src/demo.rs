@@ -4,8 +4,9 @@
 //!
 //! 1. `tritri gen --width 24 --out DIR/rtl`: the pipeline's Verilog;
 //! 2. `tritri sim --engine model`: the built-in torus/sphere scene through
-//!    the bounding-volume-aware system, bit-exact model and cycle model,
-//!    compared with the exact software models;
+//!    the octree broad phase and the bounding-volume-aware system,
+//!    bit-exact model and cycle model, compared with the exact software
+//!    models;
 //! 3. `tritri sim --engine verilator`: the same scene through the emitted
 //!    system Verilog in Verilator, which must give the same pairs.
 

@@ -1,12 +1,16 @@
-//! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--width W]
-//! [--pipelines P] [--depth D] [--engine model|rusthdl|verilator]
+//! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
+//! [--width W] [--pipelines P] [--depth D] [--broad-phase octree|flat]
+//! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|verilator]
 //! [--clock-mhz F] [--out PAIRS]`
 //!
 //! Runs the whole bounding-volume-aware system on two objects (without
 //! `--scene`, the built-in torus and sphere): common BV, the arrays of
-//! triangles touching it, one W-bit frame, tiles of at most D triangles,
-//! the engine, and the comparison with the exact models. Prints a report
-//! (on stdout, or on stderr when the pairs go to stdout with `--out -`).
+//! triangles touching it, one W-bit frame (or a G-bit grid with leaves in
+//! W-bit frames of their own), the broad phase (octree leaves by default,
+//! or the thesis's flat common box; `docs/broad-phase.md`), batches of at
+//! most D triangles, the engine, and the comparison with the exact models
+//! and with the software box sweep's time. Prints a report (on stdout, or
+//! on stderr when the pairs go to stdout with `--out -`).
 //!
 //! `--out PAIRS` writes the intersecting pairs, one `i j` per line in
 //! ascending order: `i` indexes A's triangles and `j` B's, in file order

@@ -64,7 +64,7 @@ fn sim_alone_runs_the_default_scene() {
     let out = tritri(&["sim"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (W = 24)", "broad phase: octree"] {
+    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (grid of 24 bits)", "broad phase: octree"] {
         assert!(report.contains(needle), "missing `{needle}` in:\n{report}");
     }
 }

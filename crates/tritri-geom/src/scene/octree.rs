@@ -11,8 +11,10 @@
 //! cover the root, so some leaf `L` holds `p`; `a` and `b` both meet the
 //! closed cell of `L` at `p`, the classifier is exact, so both are in `L`'s
 //! arrays and the pair is tested there, whole (a leaf tests its triangles,
-//! not their parts inside the cell). A cell with no triangle of one object
-//! is never scheduled, and loses nothing: no pair has a point there.
+//! not their parts inside the cell), or, with [`LocalFrames`], decided by
+//! the host when one of them does not fit `L`'s window. A cell with no
+//! triangle of one object is never scheduled, and loses nothing: no pair
+//! has a point there.
 //!
 //! # One owner per pair
 //!
@@ -30,10 +32,11 @@
 //! when its children, scheduled as leaves, cost less. Splitting that does
 //! not pay at once is still tried [`LOOKAHEAD`] levels deeper (a triangle
 //! straddling the centre planes only separates one level down), and kept
-//! only if the subtree is cheaper. Splitting is never forced: triangles
-//! that overlap over an area (coplanar, or many sharing a point) stay in
-//! every cell around them however deep the tree goes, so forcing would
-//! multiply cells without end; such a leaf is tiled instead.
+//! only if the subtree is cheaper. A leaf over the memory depth does not
+//! force a split: triangles that overlap over an area (coplanar, or many
+//! sharing a point) stay in every cell around them however deep the tree
+//! goes, so forcing would multiply cells without end; such a leaf is tiled
+//! instead. (Only [`LocalFrames`] force splits, down to a fixed level.)
 
 use super::TaggedTriangle;
 use crate::bounding_volume::Aabb;
