@@ -33,7 +33,7 @@ use tritri_rtl::configurations::SUPPORTED_WIDTHS;
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
-use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 
 #[derive(clap::Args)]
@@ -56,9 +56,9 @@ pub struct Args {
     #[arg(long, default_value_t = 2, requires = "system",
           value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
     pipelines: u32,
-    /// With --system: memory depth, triangles per array per bank (1 to 32768).
+    /// With --system: memory depth, triangles per array per bank (1 to 32767).
     #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64, requires = "system",
-          value_parser = clap::value_parser!(u64).range(1..=1u64 << (ADDRESS_BITS - 1)))]
+          value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
     depth: u64,
 }
 

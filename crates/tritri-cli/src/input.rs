@@ -54,3 +54,12 @@ pub fn parse_scale(s: &str) -> Result<f64, String> {
         _ => Err(format!("`{s}` is not a scale factor (a finite number greater than 0)")),
     }
 }
+
+/// A clock frequency in MHz: a finite number from 0.001 (1 kHz) to 100000
+/// (100 GHz), so every time printed is a finite duration.
+pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.001..=100_000.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{s}` is not a clock frequency in MHz (a number from 0.001 to 100000)")),
+    }
+}

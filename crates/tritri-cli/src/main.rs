@@ -47,6 +47,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    end_quietly_on_closed_pipe();
     let result = dispatch(Cli::parse());
     match result {
         Ok(code) => code,
@@ -54,6 +55,18 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             ExitCode::from(1)
         }
+    }
+}
+
+/// `tritri eval @hard | head -1`: when the reader closes the pipe, end as
+/// Unix tools do (killed by SIGPIPE, no message) instead of Rust's default
+/// of ignoring the signal and panicking in the next `println!`.
+fn end_quietly_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: called first in `main`, before any thread starts; SIG_DFL is a
+    // valid disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 

@@ -5,7 +5,7 @@
 use crate::input;
 use std::time::Duration;
 use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
-use tritri_rtl::system::{SystemConfig, ADDRESS_BITS, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
 use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::{prepare, prepare_octree, Batch, PreparedScene, SceneError};
@@ -60,16 +60,16 @@ pub struct HardwareArgs {
     /// Pipelines working in parallel (1 to 16).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
     pub pipelines: u32,
-    /// Memory depth D: triangles per array per bank (1 to 32768); longer
+    /// Memory depth D: triangles per array per bank (1 to 32767); longer
     /// arrays are split into tiles.
     #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64,
-          value_parser = clap::value_parser!(u64).range(1..=1u64 << (ADDRESS_BITS - 1)))]
+          value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
     pub depth: u64,
     /// Refuse scenes whose arrays exceed D instead of splitting them.
     #[arg(long)]
     pub no_split: bool,
-    /// Clock frequency in MHz, for times.
-    #[arg(long, default_value_t = 100.0, value_name = "F")]
+    /// Clock frequency in MHz, for times (0.001 to 100000).
+    #[arg(long, default_value_t = 100.0, value_name = "F", allow_negative_numbers = true, value_parser = input::parse_clock_mhz)]
     pub clock_mhz: f64,
     /// Broad phase: `octree` subdivides the common box and schedules only
     /// leaves holding triangles of both objects; `flat` tests every pair in

@@ -34,7 +34,7 @@
 //! the read side is idle and the last streamed pair has left the pipelines
 //! (`L + 1` advancing cycles after its read).
 
-use super::{ADDRESS_BITS, LANE_BITS};
+use super::{ADDRESS_BITS, LANE_BITS, MAX_TRIANGLES_PER_BANK};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
@@ -120,7 +120,7 @@ impl AddressGenerator {
     /// `triangles_per_bank` triangles per array per bank.
     pub fn new(pipelines: usize, triangles_per_bank: usize, pipeline_latency: usize) -> Self {
         assert!(pipelines >= 1 && pipelines <= 1 << LANE_BITS);
-        assert!(triangles_per_bank >= 1 && triangles_per_bank < 1 << (ADDRESS_BITS - 1));
+        assert!((1..=MAX_TRIANGLES_PER_BANK).contains(&triangles_per_bank));
         assert!(pipeline_latency + 1 < 1 << FLIGHT_BITS);
         AddressGenerator {
             clock: Default::default(),

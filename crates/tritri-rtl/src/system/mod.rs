@@ -56,9 +56,11 @@ pub mod system_for_width;
 pub mod system_unit;
 pub mod triangle_memory;
 
-/// Width of every memory address and array pointer (bank bit included):
-/// a bank holds at most `2^(ADDRESS_BITS - 1)` triangles per object.
+/// Width of every memory address and array pointer (bank bit included).
 pub const ADDRESS_BITS: usize = 16;
+/// The most triangles a bank holds per object: an array's end pointer,
+/// `ADDRESS_BITS - 1` bits within its bank, must hold the count itself.
+pub const MAX_TRIANGLES_PER_BANK: usize = (1 << (ADDRESS_BITS - 1)) - 1;
 /// Width of the result FIFO's pointers and fill count.
 pub const FIFO_POINTER_BITS: usize = 16;
 /// Width of the triangle ids carried through memories and pipelines (the
@@ -118,9 +120,9 @@ impl SystemConfig {
             self.pipelines
         );
         assert!(
-            (1..=1 << (ADDRESS_BITS - 1)).contains(&self.triangles_per_bank),
+            (1..=MAX_TRIANGLES_PER_BANK).contains(&self.triangles_per_bank),
             "triangles per bank must be in 1..={}, got {}",
-            1 << (ADDRESS_BITS - 1),
+            MAX_TRIANGLES_PER_BANK,
             self.triangles_per_bank
         );
         assert!(
