@@ -51,6 +51,18 @@ pub struct CellValues {
     count: usize,
 }
 
+impl CellValues {
+    /// The values over child `octant` of this cell (side >= 2): adds and shifts.
+    #[inline]
+    pub fn child(&self, octant: usize) -> CellValues {
+        let mut child = *self;
+        for v in &mut child.values[..child.count] {
+            *v = v.child(octant);
+        }
+        child
+    }
+}
+
 impl TriangleCellTest {
     pub fn new(t: &FixedTriangle) -> TriangleCellTest {
         let p = t.map(|v| v.map(i128::from));
@@ -106,27 +118,16 @@ impl TriangleCellTest {
         self.touches(&self.values(b))
     }
 
-    /// The classifier's step: the children of `cell` (side >= 2) that the
-    /// triangle meets, as a mask (bit `o` for octant `o`), from the parent's
-    /// values by interpolation, and their values for the next step.
-    pub fn children_touched(&self, parent: &CellValues) -> (u8, [CellValues; 8]) {
-        let mut mask = 0u8;
-        let children = std::array::from_fn(|octant| {
-            let mut child = *parent;
-            for v in &mut child.values[..child.count] {
-                *v = v.child(octant);
-            }
-            if self.touches(&child) {
-                mask |= 1 << octant;
-            }
-            child
-        });
-        (mask, children)
+    /// The classifier's step: the children of a cell of side >= 2 that the
+    /// triangle meets, as a mask (bit `o` for octant `o`), from the
+    /// parent's values by interpolation.
+    pub fn children_touched(&self, parent: &CellValues) -> u8 {
+        (0..8).filter(|&octant| self.touches(&parent.child(octant))).fold(0u8, |mask, octant| mask | 1 << octant)
     }
 
     /// [`Self::children_touched`]'s mask for a cell given directly.
     pub fn children_of_cell(&self, cell: &Cell) -> u8 {
-        self.children_touched(&self.values(&cell.as_box())).0
+        self.children_touched(&self.values(&cell.as_box()))
     }
 }
 

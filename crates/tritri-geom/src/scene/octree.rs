@@ -285,10 +285,10 @@ fn root_items<'t>(ts: &'t [TaggedTriangle], tests: &'t [TriangleCellTest], root:
 fn split<'t>(items: &[Item<'t>]) -> [Vec<Item<'t>>; 8] {
     let mut children: [Vec<Item<'t>>; 8] = Default::default();
     for item in items {
-        let (mask, values) = item.test.children_touched(&item.values);
-        for (o, v) in values.into_iter().enumerate() {
+        let mask = item.test.children_touched(&item.values);
+        for (o, child) in children.iter_mut().enumerate() {
             if mask >> o & 1 == 1 {
-                children[o].push(Item { triangle: item.triangle, test: item.test, values: v });
+                child.push(Item { triangle: item.triangle, test: item.test, values: item.values.child(o) });
             }
         }
     }
