@@ -13,9 +13,15 @@
 //!   affine functions (the three coordinates, the triangle's plane, and the
 //!   nine edge functions of the three axis projections) decide it exactly.
 //!
+//! * [`plane`]: the engine's core circuit, a plane against the grid: the
+//!   voxels it crosses and the half-space solid, uniform cells filled whole.
+//! * [`voxels`]: the voxel model, one bit per voxel.
+//!
 //! The collision system's broad phase ([`crate::scene::octree`]) subdivides
 //! the common box with [`triangle_cell::TriangleCellTest::children_touched`].
 
 pub mod affine;
 pub mod cell;
+pub mod plane;
 pub mod triangle_cell;
+pub mod voxels;
