@@ -44,23 +44,14 @@ pub struct TriangleCellTest {
     count: usize,
 }
 
-/// The test functions' values over one cell.
+/// The test functions' values at one cell's low corner. Over a cube of
+/// side `2^level` a function's increments along the edges are its gradient
+/// shifted by the level, so the corner values and the level are all a cell
+/// needs to carry (a quarter of [`AffineOverBox`]'s size).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CellValues {
-    values: [AffineOverBox; MAX_AXES],
-    count: usize,
-}
-
-impl CellValues {
-    /// The values over child `octant` of this cell (side >= 2): adds and shifts.
-    #[inline]
-    pub fn child(&self, octant: usize) -> CellValues {
-        let mut child = *self;
-        for v in &mut child.values[..child.count] {
-            *v = v.child(octant);
-        }
-        child
-    }
+    at_lo: [i128; MAX_AXES],
+    level: u32,
 }
 
 impl TriangleCellTest {
@@ -97,37 +88,54 @@ impl TriangleCellTest {
         test
     }
 
-    /// The test functions over the box `b` (multiplications: done once per
-    /// root, or per cell when cells are visited directly).
-    pub fn values(&self, b: &Aabb<i64>) -> CellValues {
-        let mut values = [AffineOverBox { at_lo: 0, along: [0; 3] }; MAX_AXES];
-        for (v, axis) in values.iter_mut().zip(&self.axes[..self.count]) {
-            *v = AffineOverBox::over_box(axis.gradient, b);
+    /// The test functions at the low corner of `cell` (multiplications:
+    /// done once per root, or per cell when cells are visited directly).
+    pub fn values(&self, cell: &Cell) -> CellValues {
+        let mut at_lo = [0i128; MAX_AXES];
+        for (v, axis) in at_lo.iter_mut().zip(&self.axes[..self.count]) {
+            *v = AffineOverBox::over_cell(axis.gradient, cell).at_lo;
         }
-        CellValues { values, count: self.count }
+        CellValues { at_lo, level: cell.level }
     }
 
-    /// Does the closed triangle meet the closed box whose values these are?
+    /// Test function `i` over the cell whose values these are.
+    #[inline]
+    fn function(&self, values: &CellValues, i: usize) -> AffineOverBox {
+        AffineOverBox { at_lo: values.at_lo[i], along: self.axes[i].gradient.map(|g| g << values.level) }
+    }
+
+    /// Does the closed triangle meet the closed cell whose values these are?
     #[inline]
     pub fn touches(&self, values: &CellValues) -> bool {
-        self.axes[..self.count].iter().zip(&values.values[..values.count]).all(|(axis, v)| v.meets(axis.low, axis.high))
+        (0..self.count).all(|i| self.function(values, i).meets(self.axes[i].low, self.axes[i].high))
     }
 
-    /// Does the closed triangle meet the closed box `b`?
+    /// The values over child `octant` of a cell of side >= 2: adds and shifts.
+    #[inline]
+    pub fn child(&self, parent: &CellValues, octant: usize) -> CellValues {
+        let mut child = CellValues { at_lo: [0; MAX_AXES], level: parent.level - 1 };
+        for i in 0..self.count {
+            child.at_lo[i] = self.function(parent, i).child(octant).at_lo;
+        }
+        child
+    }
+
+    /// Does the closed triangle meet the closed box `b` (any box, not only
+    /// a cell)?
     pub fn touches_box(&self, b: &Aabb<i64>) -> bool {
-        self.touches(&self.values(b))
+        self.axes[..self.count].iter().all(|axis| AffineOverBox::over_box(axis.gradient, b).meets(axis.low, axis.high))
     }
 
     /// The classifier's step: the children of a cell of side >= 2 that the
     /// triangle meets, as a mask (bit `o` for octant `o`), from the
     /// parent's values by interpolation.
     pub fn children_touched(&self, parent: &CellValues) -> u8 {
-        (0..8).filter(|&octant| self.touches(&parent.child(octant))).fold(0u8, |mask, octant| mask | 1 << octant)
+        (0..8).filter(|&octant| self.touches(&self.child(parent, octant))).fold(0u8, |mask, octant| mask | 1 << octant)
     }
 
     /// [`Self::children_touched`]'s mask for a cell given directly.
     pub fn children_of_cell(&self, cell: &Cell) -> u8 {
-        self.children_touched(&self.values(&cell.as_box()))
+        self.children_touched(&self.values(cell))
     }
 }
 

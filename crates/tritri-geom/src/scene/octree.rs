@@ -178,10 +178,9 @@ pub fn schedule(
     let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     // The root's values take multiplications; every cell below, adds and shifts.
-    let root_box = root.as_box();
     let planner = Planner { depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
     let mut work = Work::default();
-    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root_box), root_items(b, &tests_b, &root_box), LOOKAHEAD, &mut work);
+    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root), root_items(b, &tests_b, &root), LOOKAHEAD, &mut work);
     out.cells_visited = work.cells;
     out.classifications = work.classifications;
     for (index, (cell, level, la, lb)) in plan.leaves.into_iter().enumerate() {
@@ -277,7 +276,7 @@ impl Planner<'_> {
     }
 }
 
-fn root_items<'t>(ts: &'t [TaggedTriangle], tests: &'t [TriangleCellTest], root: &Aabb<i64>) -> Vec<Item<'t>> {
+fn root_items<'t>(ts: &'t [TaggedTriangle], tests: &'t [TriangleCellTest], root: &Cell) -> Vec<Item<'t>> {
     ts.iter().zip(tests).map(|(triangle, test)| Item { triangle, test, values: test.values(root) }).collect()
 }
 
@@ -288,7 +287,7 @@ fn split<'t>(items: &[Item<'t>]) -> [Vec<Item<'t>>; 8] {
         let mask = item.test.children_touched(&item.values);
         for (o, child) in children.iter_mut().enumerate() {
             if mask >> o & 1 == 1 {
-                child.push(Item { triangle: item.triangle, test: item.test, values: item.values.child(o) });
+                child.push(Item { triangle: item.triangle, test: item.test, values: item.test.child(&item.values, o) });
             }
         }
     }
