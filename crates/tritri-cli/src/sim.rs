@@ -163,8 +163,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 notes.push_str(" (DIFFERS from the simulated count: a bug)");
                 status = ExitCode::from(1);
             }
-            // Tiles partition the pairs, so a pair comes once; the set also
-            // drops any repeat.
+            // Flat tiles partition the pairs, so a pair comes once; octree
+            // leaves that share both triangles each report it, and the set
+            // keeps one (the owner rule, `OctreeSchedule::owner`, decided
+            // on the host until the hardware applies it).
             let mut pairs: PairSet = result.pairs.iter().copied().collect();
             pairs.extend(host_pair_hits(scene.host_pairs()));
             let name = match args.engine {
