@@ -277,12 +277,23 @@ fn shen_pairs_fixed_point_equals_exact_on_quantized() {
 /// exact model on the quantized coordinates; every pair that intersects in
 /// f64 survives the f64 filter; tiled equals untiled; against an identical
 /// copy every triangle meets its twin (identical coordinates quantize
-/// identically, so the W = 8 grid keeps them too).
+/// identically, so the W = 8 grid keeps them too). The octree broad phase
+/// finds the same pairs in every case, the identical copy (every triangle
+/// coplanar with its twin, collapsed patch corners) included.
 #[test]
 fn teapot_scene_flows_through_filters_and_tiles() {
     use tritri_geom::scene::load::{load_object, Pose};
+    use tritri_geom::scene::octree::BatchCost;
     use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs};
-    use tritri_geom::scene::{prepare, SceneOptions};
+    use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
+    /// The system's overlapped batch cost at P = 2 (the hardware crate's
+    /// cycle model, restated for this crate's tests).
+    struct Cycles;
+    impl BatchCost for Cycles {
+        fn batch_cycles(&self, a: usize, b: usize) -> u64 {
+            ((a + b + 1) as u64).max((1 + a + a.div_ceil(2) * b) as u64)
+        }
+    }
     let path = testdata().join("teapot.bpt");
     let teapot = load_object(path.to_str().unwrap(), 6).unwrap();
     assert_eq!(teapot.triangles.len(), 2272, "32 patches x 72 triangles, less those with coincident vertices");
@@ -294,6 +305,8 @@ fn teapot_scene_flows_through_filters_and_tiles() {
         let found = fixed_point_pairs(&tiled.batches(), &|_| {});
         assert_eq!(found, quantized_exact_pairs(&tiled.batches()), "W = {width}");
         assert_eq!(found, fixed_point_pairs(&untiled.batches(), &|_| {}), "W = {width}");
+        let octree = prepare_octree(&teapot, &posed, &SceneOptions { width, depth: 64, split: true }, &Cycles, None).unwrap();
+        assert_eq!(fixed_point_pairs(&octree.batches(), &|_| {}), found, "octree, W = {width}");
         for (i, j) in &truth {
             assert!(tiled.candidates_a.binary_search(i).is_ok() && tiled.candidates_b.binary_search(j).is_ok());
         }
@@ -302,6 +315,8 @@ fn teapot_scene_flows_through_filters_and_tiles() {
     let itself = prepare(&teapot, &teapot, &SceneOptions { width: 8, depth: 256, split: true }).unwrap();
     let found = fixed_point_pairs(&itself.batches(), &|_| {});
     assert!((0..teapot.triangles.len() as u32).all(|i| found.contains(&(i, i))));
+    let octree = prepare_octree(&teapot, &teapot, &SceneOptions { width: 8, depth: 256, split: true }, &Cycles, None).unwrap();
+    assert_eq!(fixed_point_pairs(&octree.batches(), &|_| {}), found, "octree, teapot against itself");
 }
 
 /// Fidelity of `published_float` (our translation of Guigue and
