@@ -38,7 +38,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, host_pair_hits, quantized_exact_pairs, PairDiff, PairSet};
+use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_cosim::stream::IdTriangle;
 use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
 use tritri_cosim::system_verilator::run_system_verilator;
@@ -129,7 +129,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         Engine::Model => {
             let bar = progress_bar(pairs_tested);
             let mut pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
-            pairs.extend(host_pair_hits(scene.host_pairs()));
+            pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
             bar.finish_and_clear();
             let cycles = args.hardware.cycles(&scene.batches());
             (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)", None)
@@ -168,7 +168,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             // keeps one (the owner rule, `OctreeSchedule::owner`, decided
             // on the host until the hardware applies it).
             let mut pairs: PairSet = result.pairs.iter().copied().collect();
-            pairs.extend(host_pair_hits(scene.host_pairs()));
+            pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
             let name = match args.engine {
                 Engine::Rusthdl => "rusthdl (rust-hdl simulation of the system)",
                 _ => "verilator (the emitted Verilog of the system)",
@@ -194,7 +194,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 
     if !args.no_compare {
         let mut quantized = quantized_exact_pairs(&scene.batches());
-        quantized.extend(host_pair_hits(scene.host_pairs()));
+        quantized.extend(quantized_exact_pairs(&scene.host_batches()));
         let same = PairDiff::between(&quantized, &pairs);
         if same.is_empty() {
             writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
@@ -295,9 +295,9 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         if let Some(local) = args.hardware.local_frames() {
             writeln!(
                 report,
-                "local frames: leaves go to the {}-bit hardware as grid coordinates minus the leaf's centre; {} pairs with a triangle outside its leaf's window decided by the host",
+                "local frames: leaves go to the {}-bit hardware as grid coordinates minus the leaf's centre; {} pairs with a triangle too long for a leaf's window decided by the host",
                 local.width,
-                scene.host_pairs().len()
+                scene.host_pairs()
             )?;
         }
     }

@@ -151,10 +151,16 @@ impl PreparedScene {
         }
     }
 
-    /// Pairs the host decides on the grid instead of the hardware: a
-    /// triangle outside its leaf's window ([`LocalFrames`]). Grid coordinates.
-    pub fn host_pairs(&self) -> &[(TaggedTriangle, TaggedTriangle)] {
-        self.octree.as_ref().map_or(&[], |o| &o.host_pairs)
+    /// What the host decides on the grid instead of the hardware, as
+    /// batches: triangles too long for a leaf's window ([`LocalFrames`])
+    /// against the other object. Grid coordinates.
+    pub fn host_batches(&self) -> Vec<Batch<'_>> {
+        self.octree.as_ref().map_or(Vec::new(), |o| o.host_arrays.iter().map(|(a, b)| Batch { a, b }).collect())
+    }
+
+    /// Pairs in [`Self::host_batches`].
+    pub fn host_pairs(&self) -> u64 {
+        self.host_batches().iter().map(Batch::pairs).sum()
     }
 
     /// `N1 * N2`: what testing every pair would cost.

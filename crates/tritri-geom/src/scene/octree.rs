@@ -72,9 +72,12 @@ pub struct Leaf {
 /// changes no verdict, so "exact on the grid" still means one grid, whose
 /// step is finer than one W-bit frame over the whole box could give. Cells
 /// wider than `2^(width - 2)` steps are always split, so a leaf's cell
-/// takes at most a quarter of its window; a triangle reaching outside the
-/// window anyway (a long one) is not sent, and its pairs in that leaf
-/// are decided by the host on the grid ([`OctreeSchedule::host_pairs`]).
+/// takes at most a quarter of its window, and every triangle short enough
+/// ([`LocalFrames::fits_any_leaf`]) fits the window of every leaf it
+/// meets. A longer triangle is not binned at all: the host decides it
+/// against every triangle of the other object on the grid
+/// ([`OctreeSchedule::host_arrays`]); binning it would force splits around
+/// it to no purpose, without end when the grid is much finer than W.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LocalFrames {
     pub width: u32,
@@ -84,6 +87,19 @@ impl LocalFrames {
     /// The largest cell level a leaf may have.
     fn max_leaf_level(&self) -> u32 {
         self.width - 2
+    }
+
+    /// Can `t` fit the window of every leaf it may meet? A leaf's cell has
+    /// side `s <= 2^(W-2)` and its window is centred on it, so a triangle
+    /// touching the cell lies within `s/2 + e` of the centre, `e` its
+    /// largest extent along an axis: it fits when
+    /// `e <= 2^(W-1) - 1 - 2^(W-3)`.
+    fn fits_any_leaf(&self, t: &TaggedTriangle) -> bool {
+        let limit = (1i64 << (self.width - 1)) - 1 - (1i64 << (self.width - 3));
+        (0..3).all(|k| {
+            let (lo, hi) = t.triangle.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
+            hi - lo <= limit
+        })
     }
 
     /// Is every coordinate of `t - offset` a W-bit integer?
@@ -109,9 +125,10 @@ pub struct OctreeSchedule {
     /// Triangle–cell classifications: the sum over visited cells of the
     /// triangles in them (each one classified into the eight children).
     pub classifications: u64,
-    /// Pairs of a leaf with a triangle outside the leaf's W-bit window
-    /// ([`LocalFrames`]), in grid coordinates: the host decides them.
-    pub host_pairs: Vec<(TaggedTriangle, TaggedTriangle)>,
+    /// What the host decides on the grid ([`LocalFrames`]), as pairs of
+    /// arrays, every pair of each: A's long triangles against all of B's,
+    /// and A's binned triangles against B's long ones. Grid coordinates.
+    pub host_arrays: Vec<(Vec<TaggedTriangle>, Vec<TaggedTriangle>)>,
     /// Largest depth of a scheduled leaf below the root.
     pub depth: u32,
     /// Leaves whose arrays still exceed the memory depth (splitting them
@@ -175,6 +192,17 @@ pub fn schedule(
     if a.is_empty() || b.is_empty() {
         return out;
     }
+    // Triangles too long for any leaf's window go to the host.
+    let b_all = b;
+    let (a, a_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = a.iter().partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
+    let (b, b_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = b.iter().partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
+    if !a_long.is_empty() {
+        out.host_arrays.push((a_long, b_all.to_vec()));
+    }
+    if !b_long.is_empty() && !a.is_empty() {
+        out.host_arrays.push((a.clone(), b_long));
+    }
+    let (a, b) = (&a[..], &b[..]);
     let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     // The root's values take multiplications; every cell below, adds and shifts.
@@ -195,17 +223,13 @@ pub fn schedule(
             Some(_) => cell.lo.map(|v| v + cell.size() / 2),
             None => [0; 3],
         };
-        let fits = |t: &TaggedTriangle| local_frames.is_none_or(|l| l.fits(t, offset));
-        for x in &la {
-            for y in &lb {
-                if !fits(x) || !fits(y) {
-                    out.host_pairs.push((**x, **y));
-                }
-            }
-        }
-        let translate = |t: &&TaggedTriangle| TaggedTriangle { id: t.id, triangle: t.triangle.map(|p| [0, 1, 2].map(|k| p[k] - offset[k])) };
-        out.a.extend(la.iter().filter(|t| fits(t)).map(translate));
-        out.b.extend(lb.iter().filter(|t| fits(t)).map(translate));
+        let translate = |t: &&TaggedTriangle| {
+            // Never fails: every binned triangle fits every leaf's window.
+            assert!(local_frames.is_none_or(|l| l.fits(t, offset)), "triangle {} outside the window of leaf {cell:?}", t.id);
+            TaggedTriangle { id: t.id, triangle: t.triangle.map(|p| [0, 1, 2].map(|k| p[k] - offset[k])) }
+        };
+        out.a.extend(la.iter().map(translate));
+        out.b.extend(lb.iter().map(translate));
         let leaf = Leaf { cell, offset, a: start.0..out.a.len(), b: start.1..out.b.len() };
         if leaf.a.len() > depth || leaf.b.len() > depth {
             out.oversized_leaves += 1;

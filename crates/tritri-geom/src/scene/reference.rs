@@ -40,12 +40,6 @@ pub fn quantized_exact_pairs(batches: &[Batch]) -> PairSet {
     pairs_over_batches(batches, |x, y| exact_f64::intersects(&as_f64(x), &as_f64(y)), &|_| {})
 }
 
-/// The intersecting pairs among `pairs` (the host's share of a scene,
-/// [`super::PreparedScene::host_pairs`]), by the bit-exact model.
-pub fn host_pair_hits(pairs: &[(TaggedTriangle, TaggedTriangle)]) -> PairSet {
-    pairs.iter().filter(|(x, y)| fixed_point::intersects(&x.triangle, &y.triangle)).map(|(x, y)| (x.id, y.id)).collect()
-}
-
 /// `test` on every pair of every batch (pairs with disjoint integer boxes are
 /// skipped: they cannot intersect), on all cores, deduplicated.
 pub fn pairs_over_batches(
