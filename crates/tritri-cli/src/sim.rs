@@ -325,7 +325,7 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             octree.root.map_or(0, |r| r.level),
             octree.cells_visited,
             octree.leaves.len(),
-            octree.depth,
+            octree.tree_depth,
             octree.a.len(),
             octree.b.len(),
             if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }

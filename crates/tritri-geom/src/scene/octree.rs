@@ -130,7 +130,7 @@ pub struct OctreeSchedule {
     /// and A's binned triangles against B's long ones. Grid coordinates.
     pub host_arrays: Vec<(Vec<TaggedTriangle>, Vec<TaggedTriangle>)>,
     /// Largest depth of a scheduled leaf below the root.
-    pub depth: u32,
+    pub tree_depth: u32,
     /// Leaves whose arrays still exceed the memory depth (splitting them
     /// further would not lower the cycle count); they are tiled like the
     /// flat system's arrays.
@@ -183,7 +183,7 @@ pub fn schedule(
     a: &[TaggedTriangle],
     b: &[TaggedTriangle],
     root_box: &Aabb<i64>,
-    depth: usize,
+    memory_depth: usize,
     cost: &dyn BatchCost,
     local_frames: Option<LocalFrames>,
 ) -> OctreeSchedule {
@@ -206,7 +206,7 @@ pub fn schedule(
     let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
     // The root's values take multiplications; every cell below, adds and shifts.
-    let planner = Planner { depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
+    let planner = Planner { memory_depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
     let mut work = Work::default();
     let plan = planner.plan(root, 0, root_items(a, &tests_a, &root), root_items(b, &tests_b, &root), LOOKAHEAD, &mut work);
     out.cells_visited = work.cells;
@@ -231,10 +231,10 @@ pub fn schedule(
         out.a.extend(la.iter().map(translate));
         out.b.extend(lb.iter().map(translate));
         let leaf = Leaf { cell, offset, a: start.0..out.a.len(), b: start.1..out.b.len() };
-        if leaf.a.len() > depth || leaf.b.len() > depth {
+        if leaf.a.len() > memory_depth || leaf.b.len() > memory_depth {
             out.oversized_leaves += 1;
         }
-        out.depth = out.depth.max(level);
+        out.tree_depth = out.tree_depth.max(level);
         out.leaves.push(leaf);
     }
     out
@@ -248,7 +248,8 @@ struct Work {
 }
 
 struct Planner<'c> {
-    depth: usize,
+    /// Triangles per array the memories hold.
+    memory_depth: usize,
     cost: &'c dyn BatchCost,
     /// Cells above this level must be split ([`LocalFrames`]).
     max_leaf_level: Option<u32>,
@@ -260,7 +261,7 @@ impl Planner<'_> {
         if na == 0 || nb == 0 {
             return 0;
         }
-        let tiles = |n: usize| (0..n.div_ceil(self.depth)).map(move |t| (n - t * self.depth).min(self.depth));
+        let tiles = |n: usize| (0..n.div_ceil(self.memory_depth)).map(move |t| (n - t * self.memory_depth).min(self.memory_depth));
         tiles(na).map(|ta| tiles(nb).map(|tb| self.cost.batch_cycles(ta, tb)).sum::<u64>()).sum()
     }
 

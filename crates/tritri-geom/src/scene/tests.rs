@@ -272,7 +272,7 @@ fn octree_finds_the_flat_pairs_each_once() {
         let schedule = tree.octree.as_ref().expect("octree scheduled");
         assert_each_pair_reported_once(schedule, &expected, &format!("round {round}"));
         assert!(tree.batches().iter().all(|b| b.a.len() <= depth && b.b.len() <= depth));
-        split_scenes += (schedule.depth > 0) as usize;
+        split_scenes += (schedule.tree_depth > 0) as usize;
     }
     assert!(split_scenes > 30, "only {split_scenes} scenes split");
 }
