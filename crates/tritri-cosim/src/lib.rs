@@ -11,6 +11,7 @@
 //!   address generator, pipelines, result FIFO).
 //!
 //! [`suites`] holds vector sets shared by the tests of every engine.
+pub mod cell_classifier;
 pub mod icarus;
 pub mod rtl_sim;
 pub mod rusthdl_harness;

@@ -50,6 +50,7 @@
 //! assert!(design.file("inverter.v").unwrap().contents.contains("`default_nettype none"));
 //! ```
 
+pub mod cell_classifier_unit;
 pub mod continuous_assigns;
 pub mod modules;
 pub mod package;

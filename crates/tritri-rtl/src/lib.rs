@@ -6,5 +6,6 @@ pub mod emit;
 pub mod synth;
 pub mod tools;
 pub mod system;
+pub mod octree;
 pub mod configurations;
 pub use configurations::raw_verilog;

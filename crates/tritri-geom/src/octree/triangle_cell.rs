@@ -54,6 +54,17 @@ pub struct CellValues {
     level: u32,
 }
 
+impl CellValues {
+    /// The values at the cell's low corner, zero for padded functions.
+    pub fn at_lo(&self) -> [i128; MAX_AXES] {
+        self.at_lo
+    }
+
+    pub fn level(&self) -> u32 {
+        self.level
+    }
+}
+
 impl TriangleCellTest {
     pub fn new(t: &FixedTriangle) -> TriangleCellTest {
         let p = t.map(|v| v.map(i128::from));
@@ -86,6 +97,13 @@ impl TriangleCellTest {
             }
         }
         test
+    }
+
+    /// Every test function as `(gradient, low, high)`, padded to
+    /// [`MAX_AXES`] with the zero function and `[0, 0]`, which meets every
+    /// cell (what a fixed-width hardware classifier takes).
+    pub fn padded_axes(&self) -> [([i128; 3], i128, i128); MAX_AXES] {
+        self.axes.map(|a| (a.gradient, a.low, a.high))
     }
 
     /// The test functions at the low corner of `cell` (multiplications:

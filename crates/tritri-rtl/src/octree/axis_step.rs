@@ -1,0 +1,237 @@
+//! One test function of the octree engine's triangle classifier, for one
+//! entry (a triangle in a cell): the value at the cell's low corner, moved
+//! into a child when the controller descends, and the mask of the cell's
+//! eight children whose ranges meet the triangle's interval.
+//!
+//! The software model is `tritri_geom::octree::triangle_cell`: for
+//! `f(p) = g · p` over a cell of level `l`, child `o` (bit `k`: upper half
+//! along axis `k`) has its low-corner value at `at_lo + S_o` with
+//! `q_k = g_k << (l - 1)` and `S_o = Σ_{k in o} q_k`, and its range is that
+//! value plus `[Σ min(0, q_k), Σ max(0, q_k)]`. The range meets
+//! `[low, high]` iff `ε <= S_o <= δ` with
+//! `δ = high - at_lo - Σ min(0, q_k)` and `ε = low - at_lo - Σ max(0, q_k)`:
+//! two subtractions per entry, then eight pairs of comparisons against the
+//! eight subset sums of the same three `q_k`. Only adds, shifts and
+//! compares; the multiplications were done once, for the root.
+//!
+//! Descending into child `o` of the previous cell (level `l + 1`) first
+//! adds `Σ_{k in o} 2 q_k` to the value: the same interpolation.
+//!
+//! Stages: shifts (1); descent, subset sums and range ends (2); `δ`, `ε`
+//! (3); comparisons (4). `V`-bit two's complement throughout, modulo
+//! `2^V`: exact while every value fits `V` signed bits, which
+//! [`super::value_bits`] guarantees for the grid width.
+//!
+//! A custom-Verilog primitive with an exact i128 model evaluated only at
+//! clock edges, like [`crate::arith::multiplier::Multiplier`].
+
+use crate::arith::convert::{from_i128, to_i128, wrap_i128};
+use rust_hdl::prelude::*;
+
+/// Clock edges from an entry to its child mask.
+pub const AXIS_STEP_LATENCY: usize = 4;
+
+#[derive(LogicBlock)]
+pub struct AxisStep<const V: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// Level of the cell whose children are classified (>= 1).
+    pub level: Signal<In, Bits<6>>,
+    /// The entry moves into child `octant` of the cell it was in.
+    pub descend: Signal<In, Bit>,
+    pub octant: Signal<In, Bits<3>>,
+    /// `f` at the low corner of the entry's cell (before any descent).
+    pub at_lo: Signal<In, Bits<V>>,
+    pub gradient_x: Signal<In, Bits<V>>,
+    pub gradient_y: Signal<In, Bits<V>>,
+    pub gradient_z: Signal<In, Bits<V>>,
+    /// The triangle's interval along `g`.
+    pub low: Signal<In, Bits<V>>,
+    pub high: Signal<In, Bits<V>>,
+    /// `f` at the low corner of the classified cell.
+    pub value: Signal<Out, Bits<V>>,
+    /// Bit `o`: child `o`'s range meets `[low, high]`.
+    pub mask: Signal<Out, Bits<8>>,
+    _s1: Stage1,
+    _s2: Stage2,
+    _s3: Stage3,
+}
+
+#[derive(Clone, Copy, Default)]
+struct Stage1 {
+    q: [i128; 3],
+    step: u8,
+    at_lo: i128,
+    low: i128,
+    high: i128,
+}
+
+#[derive(Clone, Copy, Default)]
+struct Stage2 {
+    sums: [i128; 8],
+    value: i128,
+    negative: i128,
+    positive: i128,
+    low: i128,
+    high: i128,
+}
+
+#[derive(Clone, Copy, Default)]
+struct Stage3 {
+    sums: [i128; 8],
+    value: i128,
+    delta: i128,
+    epsilon: i128,
+}
+
+impl<const V: usize> Default for AxisStep<V> {
+    fn default() -> Self {
+        assert!((8..=127).contains(&V), "axis step of {V} bits is not supported");
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            level: Default::default(),
+            descend: Default::default(),
+            octant: Default::default(),
+            at_lo: Default::default(),
+            gradient_x: Default::default(),
+            gradient_y: Default::default(),
+            gradient_z: Default::default(),
+            low: Default::default(),
+            high: Default::default(),
+            value: Default::default(),
+            mask: Default::default(),
+            _s1: Stage1::default(),
+            _s2: Stage2::default(),
+            _s3: Stage3::default(),
+        }
+    }
+}
+
+/// `S_o` for the eight octants: the subset sums of `q`.
+fn subset_sums(q: [i128; 3], bits: usize) -> [i128; 8] {
+    let mut sums = [0i128; 8];
+    for (o, s) in sums.iter_mut().enumerate() {
+        *s = wrap_i128((0..3).filter(|k| o >> k & 1 == 1).map(|k| q[k]).sum(), bits);
+    }
+    sums
+}
+
+impl<const V: usize> Logic for AxisStep<V> {
+    fn update(&mut self) {
+        if !(self.clock.pos_edge() && self.advance.val()) {
+            return;
+        }
+        // Stage 4: comparisons.
+        let s3 = self._s3;
+        let mask = (0..8).filter(|&o| s3.epsilon <= s3.sums[o] && s3.sums[o] <= s3.delta).fold(0u64, |m, o| m | 1 << o);
+        self.mask.next = Bits::from(mask);
+        self.value.next = from_i128::<V>(s3.value);
+        // Stage 3: the two differences.
+        let s2 = self._s2;
+        self._s3 = Stage3 {
+            sums: s2.sums,
+            value: s2.value,
+            delta: wrap_i128(s2.high - s2.value - s2.negative, V),
+            epsilon: wrap_i128(s2.low - s2.value - s2.positive, V),
+        };
+        // Stage 2: descent, subset sums, range ends.
+        let s1 = self._s1;
+        let descent: i128 = (0..3).filter(|k| s1.step >> k & 1 == 1).map(|k| s1.q[k] << 1).sum();
+        self._s2 = Stage2 {
+            sums: subset_sums(s1.q, V),
+            value: wrap_i128(s1.at_lo + descent, V),
+            negative: wrap_i128(s1.q.iter().filter(|q| **q < 0).sum(), V),
+            positive: wrap_i128(s1.q.iter().filter(|q| **q > 0).sum(), V),
+            low: s1.low,
+            high: s1.high,
+        };
+        // Stage 1: shifts (Verilog's `<<` by `level - 1`, six bits, modulo 2^V).
+        let shift = (self.level.val().index() as u32).wrapping_sub(1) & 63;
+        let octant = self.octant.val().index() as u8;
+        let gradient = [self.gradient_x.val(), self.gradient_y.val(), self.gradient_z.val()];
+        self._s1 = Stage1 {
+            q: gradient.map(|g| if shift >= V as u32 { 0 } else { wrap_i128(to_i128(g) << shift, V) }),
+            step: if self.descend.val() { octant } else { 0 },
+            at_lo: to_i128(self.at_lo.val()),
+            low: to_i128(self.low.val()),
+            high: to_i128(self.high.val()),
+        };
+    }
+
+    fn connect(&mut self) {
+        self.value.connect();
+        self.mask.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let v1 = V - 1;
+        let text = format!(
+            "\
+// Stage 1: the increments of the children, q_k = g_k << (level - 1).
+reg [{v1}:0] q0_1, q1_1, q2_1, at_lo_1, low_1, high_1;
+reg [2:0] step_1;
+// Stage 2: descent, subset sums S_o, range ends.
+reg [{v1}:0] s_2 [0:7];
+reg [{v1}:0] value_2, negative_2, positive_2, low_2, high_2;
+// Stage 3: delta = high - value - negative, epsilon = low - value - positive.
+reg [{v1}:0] s_3 [0:7];
+reg [{v1}:0] value_3, delta_3, epsilon_3;
+wire [5:0] shift = level - 6'd1;
+integer i;
+initial begin
+    q0_1 = {V}'d0; q1_1 = {V}'d0; q2_1 = {V}'d0; at_lo_1 = {V}'d0; low_1 = {V}'d0; high_1 = {V}'d0; step_1 = 3'd0;
+    value_2 = {V}'d0; negative_2 = {V}'d0; positive_2 = {V}'d0; low_2 = {V}'d0; high_2 = {V}'d0;
+    value_3 = {V}'d0; delta_3 = {V}'d0; epsilon_3 = {V}'d0;
+    for (i = 0; i < 8; i = i + 1) begin
+        s_2[i] = {V}'d0;
+        s_3[i] = {V}'d0;
+    end
+    value = {V}'d0;
+    mask = 8'd0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        q0_1 <= gradient_x << shift;
+        q1_1 <= gradient_y << shift;
+        q2_1 <= gradient_z << shift;
+        at_lo_1 <= at_lo;
+        low_1 <= low;
+        high_1 <= high;
+        step_1 <= descend ? octant : 3'd0;
+
+        value_2 <= at_lo_1 + (step_1[0] ? {{q0_1[{v2}:0], 1'b0}} : {V}'d0)
+                           + (step_1[1] ? {{q1_1[{v2}:0], 1'b0}} : {V}'d0)
+                           + (step_1[2] ? {{q2_1[{v2}:0], 1'b0}} : {V}'d0);
+        negative_2 <= (q0_1[{v1}] ? q0_1 : {V}'d0) + (q1_1[{v1}] ? q1_1 : {V}'d0) + (q2_1[{v1}] ? q2_1 : {V}'d0);
+        positive_2 <= (q0_1[{v1}] ? {V}'d0 : q0_1) + (q1_1[{v1}] ? {V}'d0 : q1_1) + (q2_1[{v1}] ? {V}'d0 : q2_1);
+        s_2[0] <= {V}'d0;
+        s_2[1] <= q0_1;
+        s_2[2] <= q1_1;
+        s_2[3] <= q0_1 + q1_1;
+        s_2[4] <= q2_1;
+        s_2[5] <= q0_1 + q2_1;
+        s_2[6] <= q1_1 + q2_1;
+        s_2[7] <= q0_1 + q1_1 + q2_1;
+        low_2 <= low_1;
+        high_2 <= high_1;
+
+        value_3 <= value_2;
+        delta_3 <= high_2 - value_2 - negative_2;
+        epsilon_3 <= low_2 - value_2 - positive_2;
+        for (i = 0; i < 8; i = i + 1) begin
+            s_3[i] <= s_2[i];
+        end
+
+        value <= value_3;
+        for (i = 0; i < 8; i = i + 1) begin
+            mask[i] <= $signed(epsilon_3) <= $signed(s_3[i]) && $signed(s_3[i]) <= $signed(delta_3);
+        end
+    end
+end
+",
+            v2 = V - 2,
+        );
+        Verilog::Custom(text)
+    }
+}

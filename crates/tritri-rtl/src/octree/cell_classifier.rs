@@ -1,0 +1,110 @@
+//! The octree engine's triangle classifier step, one entry per clock: a
+//! triangle's thirteen test functions over a cell (optionally moved into a
+//! child of the cell they were over) and the mask of the cell's children
+//! that the triangle meets, exactly as `tritri_geom::octree::triangle_cell`
+//! decides it.
+//!
+//! An entry is a triangle in a cell: the values of its thirteen affine
+//! test functions at the cell's low corner, with the triangle's gradients
+//! and intervals (fixed per triangle; the setup that computes them and the
+//! root's values takes the multiplications and is not part of this unit).
+//! Thirteen [`AxisStep`]s run side by side; a child is met when every
+//! function's range meets its interval there (separating axes), so the
+//! masks are ANDed. A triangle with fewer than thirteen distinct axes pads
+//! with zero functions (gradient 0, interval `[0, 0]`), which meet every
+//! cell.
+
+use super::axis_step::{AxisStep, AXIS_STEP_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::valid_line::ValidLine;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Test functions per triangle (`tritri_geom::octree::triangle_cell::MAX_AXES`).
+pub const AXES: usize = 13;
+
+/// Bits of the entry tag carried alongside (the controller's index).
+pub const TAG_BITS: usize = 16;
+
+/// Clock edges from an entry to its mask: the axis steps, then the AND.
+pub const CELL_CLASSIFIER_LATENCY: usize = AXIS_STEP_LATENCY + 1;
+
+#[derive(LogicBlock, Default)]
+pub struct CellClassifier<const V: usize> {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub advance: Signal<In, Bit>,
+    pub in_valid: Signal<In, Bit>,
+    pub in_tag: Signal<In, Bits<TAG_BITS>>,
+    /// Level of the classified cell (>= 1: it has children).
+    pub in_level: Signal<In, Bits<6>>,
+    /// The values are over the parent; classify its child `in_octant`.
+    pub in_descend: Signal<In, Bit>,
+    pub in_octant: Signal<In, Bits<3>>,
+    pub in_at_lo: [Signal<In, Bits<V>>; AXES],
+    pub in_gradient_x: [Signal<In, Bits<V>>; AXES],
+    pub in_gradient_y: [Signal<In, Bits<V>>; AXES],
+    pub in_gradient_z: [Signal<In, Bits<V>>; AXES],
+    pub in_low: [Signal<In, Bits<V>>; AXES],
+    pub in_high: [Signal<In, Bits<V>>; AXES],
+    pub out_valid: Signal<Out, Bit>,
+    pub out_tag: Signal<Out, Bits<TAG_BITS>>,
+    /// Bit `o`: the triangle meets child `o` of the classified cell.
+    pub out_mask: Signal<Out, Bits<8>>,
+    /// The values at the classified cell's low corner (the entry to store).
+    pub out_at_lo: [Signal<Out, Bits<V>>; AXES],
+    axis: [AxisStep<V>; AXES],
+    mask_q: DFF<Bits<8>>,
+    value_q: [DelayLine<Bits<V>, 1>; AXES],
+    tag: DelayLine<Bits<TAG_BITS>, CELL_CLASSIFIER_LATENCY>,
+    valid: ValidLine<CELL_CLASSIFIER_LATENCY>,
+}
+
+impl<const V: usize> Logic for CellClassifier<V> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, mask_q);
+        self.tag.clock.next = self.clock.val();
+        self.tag.advance.next = self.advance.val();
+        self.tag.d.next = self.in_tag.val();
+        self.out_tag.next = self.tag.q.val();
+        self.valid.clock.next = self.clock.val();
+        self.valid.reset.next = self.reset.val();
+        self.valid.advance.next = self.advance.val();
+        self.valid.d.next = self.in_valid.val();
+        self.out_valid.next = self.valid.q.val();
+        for i in 0..AXES {
+            self.axis[i].clock.next = self.clock.val();
+            self.axis[i].advance.next = self.advance.val();
+            self.axis[i].level.next = self.in_level.val();
+            self.axis[i].descend.next = self.in_descend.val();
+            self.axis[i].octant.next = self.in_octant.val();
+            self.axis[i].at_lo.next = self.in_at_lo[i].val();
+            self.axis[i].gradient_x.next = self.in_gradient_x[i].val();
+            self.axis[i].gradient_y.next = self.in_gradient_y[i].val();
+            self.axis[i].gradient_z.next = self.in_gradient_z[i].val();
+            self.axis[i].low.next = self.in_low[i].val();
+            self.axis[i].high.next = self.in_high[i].val();
+            self.value_q[i].clock.next = self.clock.val();
+            self.value_q[i].advance.next = self.advance.val();
+            self.value_q[i].d.next = self.axis[i].value.val();
+            self.out_at_lo[i].next = self.value_q[i].q.val();
+        }
+        if self.advance.val() {
+            self.mask_q.d.next = self.axis[0].mask.val()
+                & self.axis[1].mask.val()
+                & self.axis[2].mask.val()
+                & self.axis[3].mask.val()
+                & self.axis[4].mask.val()
+                & self.axis[5].mask.val()
+                & self.axis[6].mask.val()
+                & self.axis[7].mask.val()
+                & self.axis[8].mask.val()
+                & self.axis[9].mask.val()
+                & self.axis[10].mask.val()
+                & self.axis[11].mask.val()
+                & self.axis[12].mask.val();
+        }
+        self.out_mask.next = self.mask_q.q.val();
+    }
+}

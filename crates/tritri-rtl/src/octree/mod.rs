@@ -1,0 +1,19 @@
+//! The octree engine in hardware (`octree_engine.txt`): the triangle–cell
+//! classifier step that bins triangles into the broad phase's leaves.
+//!
+//! * [`axis_step`]: one affine test function of one entry: its value moved
+//!   into a child by interpolation, and the eight children's ranges against
+//!   the triangle's interval;
+//! * [`cell_classifier`]: thirteen axis steps side by side, one entry
+//!   (triangle in a cell) per clock, the children mask out.
+
+pub mod axis_step;
+pub mod cell_classifier;
+
+/// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
+/// corners stay below `2^(G+1)` in magnitude and gradients below
+/// `2^(2G+1)` (a normal), so a value `g · p` stays below `2^(3G+4)` and
+/// `δ`, `ε` below `2^(3G+5)`: `3G + 6` signed bits hold everything.
+pub const fn value_bits(grid_bits: usize) -> usize {
+    3 * grid_bits + 6
+}
