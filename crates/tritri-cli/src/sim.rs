@@ -42,7 +42,9 @@ use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantize
 use tritri_cosim::stream::IdTriangle;
 use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
 use tritri_cosim::system_verilator::run_system_verilator;
+use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{Batch, PreparedScene, TaggedTriangle};
+use tritri_rtl::octree::binning_model::{binning_cycles, binning_memory_bits, entry_bits, triangle_record_bits, BinningWork};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -239,17 +241,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(narrow)
         )?;
         if let Some(octree) = &scene.octree {
-            // Not hardware yet: the host bins. A binning unit with one
-            // classifier would stream both objects once and read and write
-            // every classified triangle once per cell (a counting and a
-            // placement pass).
-            let binning = (scene.n_a + scene.n_b) as u64 + 2 * octree.classifications;
+            let binning = binning_cycles(&binning_work(octree));
             let whole = args.hardware.time_of(binning + cycles);
             writeln!(
                 report,
-                "speed with binning in hardware (an estimate, not built yet: N1 + N2 + 2 x {} classifications = {binning} cycles, one classifier): {} in all, {:.1} x",
-                octree.classifications,
+                "speed, first triangle in to last pair out (binning {binning} + narrow phase {cycles} cycles, not overlapped): {} at {} MHz, {:.1} x",
                 human(whole),
+                args.hardware.clock_mhz,
                 ratio(whole)
             )?;
         }
@@ -330,6 +328,20 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             octree.b.len(),
             if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }
         )?;
+        let work = binning_work(octree);
+        let grid_bits = args.hardware.grid_bits() as usize;
+        writeln!(
+            report,
+            "binning unit (two classifier steps, one per object, built and co-simulated; setup and controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
+            work.triangles,
+            work.entries,
+            work.cells,
+            binning_cycles(&work),
+            binning_memory_bits(&work, grid_bits) as f64 / 1e6,
+            work.peak_path_entries,
+            entry_bits(grid_bits),
+            triangle_record_bits(grid_bits)
+        )?;
     } else {
         writeln!(report, "broad phase: flat (every pair in the common box)")?;
     }
@@ -341,6 +353,17 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         100.0 - percent(tested, all)
     )?;
     Ok(())
+}
+
+/// What the broad phase's plan asks of the binning unit.
+fn binning_work(octree: &OctreeSchedule) -> BinningWork {
+    BinningWork {
+        triangles: octree.binned,
+        cells: octree.cells_visited,
+        entries: octree.classifications,
+        cell_cycles: octree.classify_cycles,
+        peak_path_entries: octree.peak_path_entries,
+    }
 }
 
 fn percent(part: u64, whole: u64) -> f64 {

@@ -29,7 +29,10 @@
 //! A leaf costs what the system's cycle model says a batch of its sizes
 //! costs ([`BatchCost`]), its arrays cut into tiles of at most the memory
 //! depth (so an array that does not fit costs its tiles). A cell is split
-//! when its children, scheduled as leaves, cost less. Splitting that does
+//! when its children, scheduled as leaves, cost less. A subtree also costs
+//! the binning unit's classification of every cell in it that is split or
+//! looked into ([`BatchCost::classify_cycles`]), so a split must save more
+//! narrow-phase cycles than its children take to classify. Splitting that does
 //! not pay at once is still tried [`LOOKAHEAD`] levels deeper (a triangle
 //! straddling the centre planes only separates one level down), and kept
 //! only if the subtree is cheaper. A leaf over the memory depth does not
@@ -53,6 +56,13 @@ pub const LOOKAHEAD: u32 = 2;
 /// configuration; arrays already cut to the memory depth).
 pub trait BatchCost {
     fn batch_cycles(&self, a: usize, b: usize) -> u64;
+
+    /// The cycles a binning unit spends classifying one cell of `a`
+    /// A-triangles and `b` B-triangles into its children (0 when the host
+    /// bins).
+    fn classify_cycles(&self, _a: usize, _b: usize) -> u64 {
+        0
+    }
 }
 
 /// One scheduled leaf: its cell and its arrays in [`OctreeSchedule::a`] and
@@ -125,6 +135,16 @@ pub struct OctreeSchedule {
     /// Triangle–cell classifications: the sum over visited cells of the
     /// triangles in them (each one classified into the eight children).
     pub classifications: u64,
+    /// The binning unit's cycles for those classifications
+    /// ([`BatchCost::classify_cycles`] summed over the visited cells).
+    pub classify_cycles: u64,
+    /// Triangles binned: the entries the root starts with (A's and B's
+    /// triangles that touch the root and fit a leaf).
+    pub binned: u64,
+    /// The most entries (triangle in a cell, with its values) held at once
+    /// along the depth-first path of cells being decided: what a binning
+    /// unit that follows this plan must store.
+    pub peak_path_entries: u64,
     /// What the host decides on the grid ([`LocalFrames`]), as pairs of
     /// arrays, every pair of each: A's long triangles against all of B's,
     /// and A's binned triangles against B's long ones. Grid coordinates.
@@ -211,6 +231,9 @@ pub fn schedule(
     let plan = planner.plan(root, 0, root_items(a, &tests_a, &root), root_items(b, &tests_b, &root), LOOKAHEAD, &mut work);
     out.cells_visited = work.cells;
     out.classifications = work.classifications;
+    out.classify_cycles = work.classify_cycles;
+    out.binned = (a.len() + b.len()) as u64;
+    out.peak_path_entries = work.peak_path_entries;
     for (index, (cell, level, la, lb)) in plan.leaves.into_iter().enumerate() {
         let start = (out.a.len(), out.b.len());
         for t in &la {
@@ -245,6 +268,10 @@ pub fn schedule(
 struct Work {
     cells: u64,
     classifications: u64,
+    classify_cycles: u64,
+    /// Entries of the cells on the current path, and their maximum.
+    path_entries: u64,
+    peak_path_entries: u64,
 }
 
 struct Planner<'c> {
@@ -265,26 +292,60 @@ impl Planner<'_> {
         tiles(na).map(|ta| tiles(nb).map(|tb| self.cost.batch_cycles(ta, tb)).sum::<u64>()).sum()
     }
 
+    /// A leaf of these arrays.
+    fn leaf<'t>(&self, cell: Cell, level: u32, a: &[Item<'t>], b: &[Item<'t>]) -> Plan<'t> {
+        Plan {
+            cost: self.leaf_cost(a.len(), b.len()),
+            leaves: vec![(cell, level, a.iter().map(|i| i.triangle).collect(), b.iter().map(|i| i.triangle).collect())],
+        }
+    }
+
+    /// Would classifying the cell cost more than any split could save? Any
+    /// subtree writes each of its triangles into some leaf's batch (at
+    /// least `a + b + 1` cycles in the system's cycle model) after
+    /// classifying the cell; if the cell as one leaf costs no more than
+    /// that, it is not worth looking into. Only when classifying costs
+    /// cycles (a binning unit, not the host), and never where a split is
+    /// forced.
+    fn split_cannot_pay(&self, cell: &Cell, a: usize, b: usize) -> bool {
+        let classify = self.cost.classify_cycles(a, b);
+        let forced = self.max_leaf_level.is_some_and(|m| cell.level > m);
+        classify > 0 && !forced && self.leaf_cost(a, b) <= (a + b + 1) as u64 + classify
+    }
+
     fn plan<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, work: &mut Work) -> Plan<'t> {
         if a.is_empty() || b.is_empty() {
             return Plan { cost: 0, leaves: Vec::new() };
         }
-        let as_leaf = |a: Vec<Item<'t>>, b: Vec<Item<'t>>| Plan {
-            cost: self.leaf_cost(a.len(), b.len()),
-            leaves: vec![(cell, level, a.iter().map(|i| i.triangle).collect(), b.iter().map(|i| i.triangle).collect())],
-        };
-        if !cell.splittable() {
-            return as_leaf(a, b);
+        if !cell.splittable() || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len())) {
+            return self.leaf(cell, level, &a, &b);
         }
+        // The cell's entries are classified, and held until it is decided.
+        let entries = (a.len() + b.len()) as u64;
+        // The root's entries are classified as they stream in from the
+        // host: its pass costs no more than an empty cell's.
+        let classify = if level == 0 { self.cost.classify_cycles(0, 0) } else { self.cost.classify_cycles(a.len(), b.len()) };
         work.cells += 1;
-        work.classifications += (a.len() + b.len()) as u64;
+        work.classifications += entries;
+        work.classify_cycles += classify;
+        work.path_entries += entries;
+        work.peak_path_entries = work.peak_path_entries.max(work.path_entries);
+        let mut plan = self.split_or_keep(cell, level, a, b, slack, work);
+        work.path_entries -= entries;
+        // Deciding the cell cost its classification, whatever was decided.
+        plan.cost += classify;
+        plan
+    }
+
+    /// The cheaper of a classified cell as a leaf and its split subtree.
+    fn split_or_keep<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, work: &mut Work) -> Plan<'t> {
         let leaf_cost = self.leaf_cost(a.len(), b.len());
         let (children_a, children_b) = (split(&a), split(&b));
         let children_cost: u64 = (0..8).map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len())).sum();
         let forced = self.max_leaf_level.is_some_and(|m| cell.level > m);
         let improving = forced || children_cost < leaf_cost;
         if !improving && slack == 0 {
-            return as_leaf(a, b);
+            return self.leaf(cell, level, &a, &b);
         }
         let next_slack = if improving { LOOKAHEAD } else { slack - 1 };
         let mut subtree = Plan { cost: 0, leaves: Vec::new() };
@@ -294,7 +355,7 @@ impl Planner<'_> {
             subtree.leaves.extend(child.leaves);
         }
         if !forced && subtree.cost >= leaf_cost {
-            as_leaf(a, b)
+            self.leaf(cell, level, &a, &b)
         } else {
             subtree
         }

@@ -212,6 +212,19 @@ impl octree::BatchCost for OverlappedCycles {
     }
 }
 
+/// [`OverlappedCycles`] with a binning unit that classifies a cell of `a`
+/// and `b` entries in `max(a, b) + 6` clocks (the hardware crate's model).
+struct WithBinning(OverlappedCycles);
+
+impl octree::BatchCost for WithBinning {
+    fn batch_cycles(&self, a: usize, b: usize) -> u64 {
+        self.0.batch_cycles(a, b)
+    }
+    fn classify_cycles(&self, a: usize, b: usize) -> u64 {
+        a.max(b) as u64 + 6
+    }
+}
+
 /// Every intersecting pair of `a × b` (integer triangles), brute force.
 fn brute_force_fixed(a: &[TaggedTriangle], b: &[TaggedTriangle]) -> PairSet {
     let mut out = PairSet::new();
@@ -256,7 +269,7 @@ fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &
 #[test]
 fn octree_finds_the_flat_pairs_each_once() {
     let mut rng = ChaCha8Rng::seed_from_u64(13);
-    let mut split_scenes = 0;
+    let (mut split_scenes, mut fewer_cells) = (0, 0);
     for round in 0..40 {
         let width = [8, 10, 16, 24][round % 4];
         let edge = [1, 2, 6][round % 3];
@@ -273,8 +286,19 @@ fn octree_finds_the_flat_pairs_each_once() {
         assert_each_pair_reported_once(schedule, &expected, &format!("round {round}"));
         assert!(tree.batches().iter().all(|b| b.a.len() <= depth && b.b.len() <= depth));
         split_scenes += (schedule.tree_depth > 0) as usize;
+        // Charging the binning unit's classifications: the same pairs, each
+        // once, from no more cells, and the cycles of those charged.
+        let binned = prepare_octree(&a, &b, &options(width, depth), &WithBinning(OverlappedCycles { pipelines: 2 }), None).unwrap();
+        assert_eq!(fixed_point_pairs(&binned.batches(), &|_| {}), expected, "round {round}, binning charged");
+        let binned_schedule = binned.octree.as_ref().expect("octree scheduled");
+        assert_each_pair_reported_once(binned_schedule, &expected, &format!("round {round}, binning charged"));
+        assert!(binned_schedule.cells_visited <= schedule.cells_visited, "round {round}");
+        fewer_cells += (binned_schedule.cells_visited < schedule.cells_visited) as usize;
+        assert_eq!(schedule.classify_cycles, 0);
+        assert!(binned_schedule.classify_cycles >= binned_schedule.cells_visited * 6, "round {round}");
     }
     assert!(split_scenes > 30, "only {split_scenes} scenes split");
+    assert!(fewer_cells > 10, "charging classification cut cells in only {fewer_cells} scenes");
 }
 
 /// Triangles lying exactly on cell faces, along cell edges and at cell

@@ -5,9 +5,12 @@
 //!   into a child by interpolation, and the eight children's ranges against
 //!   the triangle's interval;
 //! * [`cell_classifier`]: thirteen axis steps side by side, one entry
-//!   (triangle in a cell) per clock, the children mask out.
+//!   (triangle in a cell) per clock, the children mask out;
+//! * [`binning_model`]: the cycles and memory of a binning unit around it
+//!   that follows the broad phase's plan (setup and controller modelled).
 
 pub mod axis_step;
+pub mod binning_model;
 pub mod cell_classifier;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell

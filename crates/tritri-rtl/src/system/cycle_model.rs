@@ -127,6 +127,10 @@ impl BatchCost for SystemConfig {
     fn batch_cycles(&self, a: usize, b: usize) -> u64 {
         overlapped_batch_cycles(*self, BatchSizes { a, b })
     }
+
+    fn classify_cycles(&self, a: usize, b: usize) -> u64 {
+        crate::octree::binning_model::cell_cycles(a as u64, b as u64)
+    }
 }
 
 /// [`system_cycles`] of one batch in closed form.

@@ -1,0 +1,94 @@
+//! Cycles and memory of a binning unit built around the classifier step
+//! ([`super::cell_classifier`]), following the broad phase's plan
+//! (`tritri_geom::scene::octree`) cell for cell. The classifier is built
+//! and co-simulated; the setup unit (each triangle's gradients, intervals
+//! and root values: the multiplications) and the depth-first controller
+//! are modelled here, not built yet.
+//!
+//! The unit works like this:
+//!
+//! 1. The host streams each object's triangles once, one per clock; the
+//!    setup unit turns each into an entry of the root, which goes straight
+//!    on through the classifier (the root's pass is the stream itself).
+//! 2. A cell is decided by streaming its entries through the classifiers,
+//!    one per clock and object (two classifiers, one per object, as the
+//!    system has one memory per object): each comes out with its values over the cell and its
+//!    children mask, is stored for the cell, and counted per child and
+//!    object. After the last entry and the classifier's latency, one clock
+//!    decides: leaf, or split (the planner's rule on the counts).
+//! 3. Splitting visits each child with entries of both objects: its
+//!    entries are the parent's with the child's bit set, streamed again
+//!    with `descend` (an index list per child, written in step 2, saves
+//!    scanning the parent).
+//! 4. A leaf's triangle ids go to the system's write port; loading them is
+//!    the batch load the system's cycle model already counts.
+//!
+//! So binning takes `N + setup + Σ_cells (max(a, b) + latency + 1)`
+//! clocks, and the narrow phase follows (not overlapped: an upper bound).
+
+use super::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY, TAG_BITS};
+use super::value_bits;
+
+/// Clocks from a triangle into the setup unit to its root entry: the
+/// pipeline's front end does the same products (normal, projections) in
+/// about this many stages. An assumption until the unit is built; it is
+/// paid once per run.
+pub const SETUP_LATENCY: u64 = 12;
+
+/// What the plan asks of the binning unit (from the broad phase's schedule).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BinningWork {
+    /// Triangles streamed in and binned.
+    pub triangles: u64,
+    /// Cells classified.
+    pub cells: u64,
+    /// Entries classified: the sum over classified cells of their entries.
+    pub entries: u64,
+    /// [`cell_cycles`] summed over the classified cells.
+    pub cell_cycles: u64,
+    /// Most entries held at once along the depth-first path.
+    pub peak_path_entries: u64,
+}
+
+/// Clocks to classify one cell of `a` A-entries and `b` B-entries, one
+/// classifier per object, and decide it.
+pub fn cell_cycles(a: u64, b: u64) -> u64 {
+    a.max(b) + CELL_CLASSIFIER_LATENCY as u64 + 1
+}
+
+/// Clocks from the first triangle in to the last leaf decided.
+pub fn binning_cycles(work: &BinningWork) -> u64 {
+    work.triangles + SETUP_LATENCY + work.cell_cycles
+}
+
+/// Bits of one stored entry: the thirteen values, the triangle id and the
+/// children mask (gradients and intervals stay in a per-triangle table).
+pub fn entry_bits(grid_bits: usize) -> u64 {
+    (AXES * value_bits(grid_bits) + TAG_BITS + 8) as u64
+}
+
+/// Bits of the per-triangle table: the vertices (the edge-axis gradients
+/// are their differences, wired; the axes' gradients are constants), the
+/// normal, and the triangle's interval along each function.
+pub fn triangle_record_bits(grid_bits: usize) -> u64 {
+    (9 * grid_bits + 3 * (2 * grid_bits + 3) + 2 * AXES * value_bits(grid_bits)) as u64
+}
+
+/// Memory the binning unit needs: the entries on the path at their peak
+/// plus the per-triangle table.
+pub fn binning_memory_bits(work: &BinningWork, grid_bits: usize) -> u64 {
+    work.peak_path_entries * entry_bits(grid_bits) + work.triangles * triangle_record_bits(grid_bits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cycles_count_every_entry_and_each_cell_once() {
+        assert_eq!(cell_cycles(40, 90), 90 + 6);
+        let work = BinningWork { triangles: 100, cells: 3, entries: 250, cell_cycles: 200, peak_path_entries: 180 };
+        assert_eq!(binning_cycles(&work), 100 + SETUP_LATENCY + 200);
+        assert_eq!(entry_bits(24), 13 * 78 + 16 + 8);
+    }
+}
