@@ -1,9 +1,10 @@
 //! `tritri classify [--arith A] [--width W] FILE`
 //!
-//! Prints one line per pair that could be read, in file order: `1` when the
-//! closed triangles intersect, `0` when not. A record that cannot be read
-//! gets no line on stdout but an error on stderr naming the file and line
-//! (so stdout has exactly one line per good pair), and the exit status is 2.
+//! Prints one line per pair, in file order: `1` when the closed triangles
+//! intersect, `0` when not. A file with a record that cannot be read gets
+//! no verdict at all: every bad record is named on stderr (file and line)
+//! and the exit status is 2, so a partial answer is never mistaken for the
+//! file's.
 //! With `--arith fixed` the whole file is quantized into one W-bit frame,
 //! whose step is printed on stderr as a note.
 
@@ -89,6 +90,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     let loaded = input::load(&args.file);
+    if loaded.errors > 0 {
+        eprintln!("error: {}: no verdicts: {} record(s) could not be read", args.file.display(), loaded.errors);
+        return Ok(ExitCode::from(2));
+    }
     let pairs = loaded.good_pairs();
     let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
     if let (Arithmetic::Fixed(width), Some(frame)) = (arith, result.frame) {
@@ -110,7 +115,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         writeln!(out, "{}", u8::from(*v))?;
     }
     out.flush()?;
-    Ok(if loaded.errors > 0 { ExitCode::from(2) } else { ExitCode::SUCCESS })
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Decides the quantized pairs on a hardware engine: per pair one `bset`

@@ -2,7 +2,9 @@
 //! fresh machine. It is a script of ordinary subcommands, run through the
 //! same dispatcher as the command line, so it shows what a user would type:
 //!
-//! 1. `tritri gen --width 24 --out DIR/rtl`: the pipeline's Verilog;
+//! 1. `tritri gen --width 24 --out DIR/rtl`: the pipeline's Verilog, and
+//!    `tritri gen --system ... --out DIR/system-rtl`: the system's, the one
+//!    step 3 simulates;
 //! 2. `tritri sim --engine model`: the built-in torus/sphere scene through
 //!    the octree broad phase and the bounding-volume-aware system,
 //!    bit-exact model and cycle model, compared with the exact software
@@ -12,6 +14,7 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use tritri_rtl::system::DEFAULT_TRIANGLES_PER_BANK;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -28,6 +31,7 @@ pub fn run(args: Args, dispatch: impl Fn(Vec<String>) -> anyhow::Result<ExitCode
     let out = args.out.display().to_string();
     let mut steps = vec![
         format!("gen --width 24 --out {out}/rtl"),
+        format!("gen --system --width 24 --pipelines 2 --depth {DEFAULT_TRIANGLES_PER_BANK} --out {out}/system-rtl"),
         format!("sim --width 24 --pipelines 2 --engine model --out {out}/pairs_model.txt"),
     ];
     if !args.no_verilator {

@@ -4,9 +4,9 @@
 //! `run(args) -> anyhow::Result<ExitCode>`. To add a subcommand, add its
 //! module, a variant to [`Command`] and an arm to the `match` in `main`.
 //!
-//! Exit codes: 0 success; 1 a failed check or an internal error; 2 bad
-//! input (unreadable or malformed records: the good ones are still
-//! processed) or bad usage.
+//! Exit codes: 0 success; 1 a failed check, a runtime or I/O failure; 2
+//! bad input or bad usage (nothing is computed); 130 / 143 interrupted by
+//! SIGINT / SIGTERM (running tools stopped, work directories removed).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -17,12 +17,19 @@ mod demo;
 mod eval;
 mod gen;
 mod input;
+mod output_file;
 mod chapter5;
 mod scene_input;
 mod sim;
 
 #[derive(Parser)]
-#[command(name = "tritri", version, about = "Devillers-Guigue triangle-triangle tests in exact, float and fixed-point arithmetic")]
+#[command(
+    name = "tritri",
+    version,
+    about = "Devillers-Guigue triangle-triangle tests in exact, float and fixed-point arithmetic",
+    after_help = "Exit status: 0 done; 1 a failed check or a runtime / I/O failure; 2 bad input or usage (nothing computed); \
+                  130 / 143 interrupted by SIGINT / SIGTERM (tools stopped, temporary files removed)."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -48,6 +55,7 @@ enum Command {
 
 fn main() -> ExitCode {
     end_quietly_on_closed_pipe();
+    clean_up_on_interrupt();
     let result = dispatch(Cli::parse());
     match result {
         Ok(code) => code,
@@ -67,6 +75,35 @@ fn end_quietly_on_closed_pipe() {
     // valid disposition for SIGPIPE.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+/// Ctrl-C (SIGINT) and SIGTERM stop the simulators and tools `tritri`
+/// started and remove its work directories (`tools::interrupt`), then end
+/// with the conventional status 128 + signal. The two signals are blocked
+/// in every thread (the mask is inherited; children get a clean one) and
+/// taken by one thread with `sigwait`, where cleaning up may lock and
+/// allocate, which a signal handler may not.
+fn clean_up_on_interrupt() {
+    #[cfg(unix)]
+    // SAFETY: called in `main` before any other thread starts; the set is
+    // initialized by sigemptyset before use.
+    unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        libc::sigaddset(&mut set, libc::SIGINT);
+        libc::sigaddset(&mut set, libc::SIGTERM);
+        libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut());
+        std::thread::spawn(move || {
+            let mut signal: libc::c_int = 0;
+            if libc::sigwait(&set, &mut signal) != 0 {
+                return;
+            }
+            let (groups, temporaries) = tritri_rtl::tools::interrupt::clean_up();
+            let name = if signal == libc::SIGINT { "SIGINT" } else { "SIGTERM" };
+            eprintln!("\ntritri: {name}: stopped {groups} running tool(s), removed {temporaries} temporary file(s) and directory(ies)");
+            std::process::exit(128 + signal);
+        });
     }
 }
 

@@ -25,6 +25,11 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["sim", "--scale-b", "0"], "--scale-b"),
         (&["sim", "--subdivide", "9"], "--subdivide"),
         (&["sim", "--grid-bits", "40"], "--grid-bits"),
+        (&["sim", "--tessellation", "0"], "--tessellation"),
+        (&["sim", "--tessellation", "100000"], "--tessellation"),
+        (&["sim", "--width", "10", "--engine", "verilator"], "--width 10 --engine verilator"),
+        (&["sim", "--out", "/nonexistent-directory/pairs.txt"], "--out"),
+        (&["sim", "--engine", "rusthdl", "--broad-phase", "flat", "--max-cycles", "1000"], "--max-cycles"),
     ];
     for (args, option) in cases {
         let out = tritri(args);
@@ -61,4 +66,35 @@ fn closed_pipe_ends_quietly() {
         assert_ne!(out.status.code(), Some(101), "{args:?}");
         assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
     }
+}
+
+/// An empty mesh is an error naming the file; nothing is written to `--out`.
+#[test]
+fn empty_mesh_is_an_error_and_leaves_no_output() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("empty-mesh");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = dir.join("empty.off");
+    std::fs::write(&mesh, "OFF\n0 0 0\n").unwrap();
+    let pairs = dir.join("pairs.txt");
+    let _ = std::fs::remove_file(&pairs);
+    let out = tritri(&["sim", "--scene", mesh.to_str().unwrap(), "@sphere", "--out", pairs.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("empty.off") && err.contains("no triangles"), "{err}");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(left, [std::ffi::OsString::from("empty.off")], "no pairs file and no temporary");
+}
+
+/// A request far above `--max-cycles` is refused at once, before any
+/// simulator starts (the estimate comes from the cycle model).
+#[test]
+fn long_simulation_is_refused_in_under_a_second() {
+    let started = std::time::Instant::now();
+    let out = tritri(&["sim", "--engine", "verilator", "--broad-phase", "flat", "--subdivide", "4"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("969418118 cycles is above --max-cycles"), "{err}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("estimate: "), "the estimate is printed");
+    // Generous against a loaded machine; the point is: no simulation ran.
+    assert!(started.elapsed() < std::time::Duration::from_secs(20), "{:?}", started.elapsed());
 }

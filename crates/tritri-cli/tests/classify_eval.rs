@@ -35,17 +35,33 @@ fn classify_prints_one_verdict_per_pair() {
     assert!(text(&out.stderr).contains("fixed12") && text(&out.stderr).contains("step h ="), "{}", text(&out.stderr));
 }
 
-/// Bad records: an error naming file:line on stderr, no stdout line, exit 2;
-/// the good pairs still get their verdicts.
+/// Bad records: every one named (file:line) on stderr, exit 2, and no
+/// verdict at all on stdout, in every arithmetic (a partial answer would
+/// read as the file's).
 #[test]
-fn classify_reports_bad_records_and_exits_2() {
+fn classify_reports_bad_records_and_gives_no_verdicts() {
     let file = write("bad.txt", &format!("{GOOD}1 2 3\n0 0 0 1 0 0 0 1 0  5 5 5 6 5 5 5 6 inf\n{GOOD}"));
-    let out = tritri(&["classify", file.to_str().unwrap()]);
+    for arith in ["exact", "fixed"] {
+        let out = tritri(&["classify", "--arith", arith, file.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(2), "{arith}");
+        assert_eq!(text(&out.stdout), "", "{arith}");
+        let err = text(&out.stderr);
+        assert!(err.contains("bad.txt:3: expected 18 numbers"), "{err}");
+        assert!(err.contains("bad.txt:4: number 18 `inf` is not finite"), "{err}");
+        assert!(!err.contains("note:"), "{arith}: no frame note after an error: {err}");
+    }
+}
+
+/// `eval bad.txt good.txt`: no table and no total that would silently
+/// leave the bad file out.
+#[test]
+fn eval_with_a_bad_file_evaluates_nothing() {
+    let bad = write("eval-bad.txt", "0 0 0 1 0 0 0 1 0  5 5 5 6 5 5 5 6 nan\n");
+    let good = write("eval-good.txt", GOOD);
+    let out = tritri(&["eval", "--min-time-ms", "1", bad.to_str().unwrap(), good.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert_eq!(text(&out.stdout), "1\n0\n1\n0\n");
-    let err = text(&out.stderr);
-    assert!(err.contains("bad.txt:3: expected 18 numbers"), "{err}");
-    assert!(err.contains("bad.txt:4: number 18 `inf` is not finite"), "{err}");
+    assert_eq!(text(&out.stdout), "");
+    assert!(text(&out.stderr).contains("eval-bad.txt:1:"), "{}", text(&out.stderr));
 }
 
 /// Widths outside 8..=32 are refused, naming the value; --width needs --arith fixed.

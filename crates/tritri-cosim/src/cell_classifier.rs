@@ -167,6 +167,7 @@ pub fn run_emitted(grid_bits: usize, entries: &[ClassifierEntry], simulator: Sim
             let obj = work.join("obj");
             run(VERILATOR
                 .command()?
+                .env("TMPDIR", &work.path)
                 .args(["--binary", "--timing", "-Wno-fatal", "-Wno-lint", "-Wno-style", "-O2", "--top-module", "tb_cell_classifier", "--Mdir"])
                 .arg(&obj)
                 .args(&sources))?;

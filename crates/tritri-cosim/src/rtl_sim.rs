@@ -88,6 +88,7 @@ impl WorkDir {
         ));
         let _ = std::fs::remove_dir_all(&path);
         std::fs::create_dir_all(&path)?;
+        tritri_rtl::tools::interrupt::register_temporary(&path);
         Ok(WorkDir { path })
     }
     pub fn join(&self, name: &str) -> PathBuf {
@@ -97,6 +98,7 @@ impl WorkDir {
 
 impl Drop for WorkDir {
     fn drop(&mut self) {
+        tritri_rtl::tools::interrupt::unregister_temporary(&self.path);
         if std::env::var_os("TRITRI_KEEP_WORK").is_none() {
             let _ = std::fs::remove_dir_all(&self.path);
         } else {

@@ -127,7 +127,10 @@ pub fn build_system_model(design: &EmittedDesign, width: usize) -> anyhow::Resul
     }
     let jobs = std::thread::available_parallelism().map_or(2, |n| n.get()).to_string();
     let mut cmd = VERILATOR.command()?;
+    // The compiler's temporary files go into the staging directory too, so
+    // an interrupted build leaves nothing behind (`tools::interrupt`).
     cmd.current_dir(&staging.path)
+        .env("TMPDIR", &staging.path)
         .args(["--binary", "-j", &jobs, "--top-module", SYSTEM_TESTBENCH_TOP, "-Mdir", "obj"])
         .arg(format!("-DTRITRI_SYSTEM={}", design.top))
         .arg(format!("-GW={width}"))

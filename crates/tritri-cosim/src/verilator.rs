@@ -72,7 +72,10 @@ pub fn build(dut: &RtlDut, tracing: Tracing) -> anyhow::Result<(PathBuf, f64)> {
     let sources = write_sources(dut, &staging.path)?;
     let jobs = std::thread::available_parallelism().map_or(2, |n| n.get()).to_string();
     let mut cmd = VERILATOR.command()?;
+    // The compiler's temporary files go into the staging directory too, so
+    // an interrupted build leaves nothing behind (`tools::interrupt`).
     cmd.current_dir(&staging.path)
+        .env("TMPDIR", &staging.path)
         .args(["--binary", "-j", &jobs, "--top-module", TESTBENCH_TOP, "-Mdir", "obj"])
         .arg(format!("-DTRITRI_DUT={}", dut.design.top))
         .arg(format!("-GW={}", dut.width))

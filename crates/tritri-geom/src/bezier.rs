@@ -73,8 +73,10 @@ pub fn read_bpt(path: &Path) -> Result<Vec<BezierPatch>, BptError> {
 
 /// Parses `.bpt` text; errors are `(line, message)`.
 pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
+    // A truncated file is reported at the line after its last.
+    let end = text.lines().count() + 1;
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty());
-    let mut next = |what: &str| lines.next().ok_or_else(|| (0, format!("file ends where {what} was expected")));
+    let mut next = |what: &str| lines.next().ok_or_else(|| (end, format!("file ends where {what} was expected")));
     let (line, count) = next("the patch count")?;
     let count: usize = count.parse().map_err(|_| (line, format!("patch count `{count}` is not an integer")))?;
     let mut patches = Vec::with_capacity(count.min(1 << 16));

@@ -54,10 +54,23 @@ fn is_executable(path: &Path) -> bool {
 }
 
 /// Runs `command`; a non-zero exit is an error carrying stdout and stderr
-/// (the last 200 lines).
+/// (the last 200 lines). The child runs in a process group of its own,
+/// registered with [`interrupt`] while it runs, so that an interrupted
+/// `tritri` stops it and everything it started (make, the compiler).
 pub fn run(command: &mut Command) -> Result<Output, ToolError> {
+    use std::os::unix::process::CommandExt;
     let description = format!("{command:?}").replace('"', "");
-    let output = command.output().map_err(|source| ToolError::Io { command: description.clone(), source })?;
+    let io_error = |source| ToolError::Io { command: description.clone(), source };
+    let child = command
+        .process_group(0)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .map_err(io_error)?;
+    let group = interrupt::ChildGroup::register(child.id());
+    let output = child.wait_with_output().map_err(io_error)?;
+    drop(group);
     if !output.status.success() {
         let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
         let lines: Vec<&str> = text.lines().collect();
@@ -65,6 +78,65 @@ pub fn run(command: &mut Command) -> Result<Output, ToolError> {
         return Err(ToolError::Failed { command: description, status: output.status.to_string(), output: tail });
     }
     Ok(output)
+}
+
+/// What an interrupted run must undo: the process groups of the tools
+/// running now and the temporary files and work directories that exist
+/// now. A program that
+/// wants Ctrl-C and SIGTERM to leave nothing behind calls
+/// [`interrupt::clean_up`] from its signal handling (the `tritri` binary
+/// does); everything here only records.
+pub mod interrupt {
+    use std::path::{Path, PathBuf};
+    use std::sync::Mutex;
+
+    static GROUPS: Mutex<Vec<u32>> = Mutex::new(Vec::new());
+    static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+    /// A running child's process group, registered until dropped.
+    pub struct ChildGroup(u32);
+
+    impl ChildGroup {
+        pub fn register(pid: u32) -> ChildGroup {
+            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).push(pid);
+            ChildGroup(pid)
+        }
+    }
+
+    impl Drop for ChildGroup {
+        fn drop(&mut self) {
+            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).retain(|&p| p != self.0);
+        }
+    }
+
+    /// Records a temporary file or directory to remove on interruption.
+    pub fn register_temporary(path: &Path) {
+        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.to_path_buf());
+    }
+
+    /// Forgets a temporary its owner has removed, renamed or kept.
+    pub fn unregister_temporary(path: &Path) {
+        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).retain(|p| p != path);
+    }
+
+    /// Kills every registered process group (SIGKILL: a simulator
+    /// mid-cycle has nothing to save) and removes every registered
+    /// temporary. Returns how many of each it found.
+    pub fn clean_up() -> (usize, usize) {
+        let groups: Vec<u32> = GROUPS.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
+        for &pid in &groups {
+            // SAFETY: killpg only sends a signal; the group was created for
+            // a child of this process by `run`.
+            unsafe {
+                libc::killpg(pid as libc::pid_t, libc::SIGKILL);
+            }
+        }
+        let temporaries: Vec<PathBuf> = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
+        for path in &temporaries {
+            let _ = if path.is_dir() { std::fs::remove_dir_all(path) } else { std::fs::remove_file(path) };
+        }
+        (groups.len(), temporaries.len())
+    }
 }
 
 /// `verilator --lint-only -Wall -f filelist.f --top-module <top>` in an

@@ -45,6 +45,8 @@ pub enum LoadError {
     UnknownBuiltin(String),
     #[error("{name}: has {count} triangles, more than the 2^32 that triangle ids can name")]
     TooManyTriangles { name: String, count: usize },
+    #[error("{0}: has no triangles (an empty mesh collides with nothing; check the file)")]
+    Empty(String),
 }
 
 impl SceneObject {
@@ -113,6 +115,9 @@ pub fn load_object(spec: &str, bezier_level: usize) -> Result<SceneObject, LoadE
             SceneObject { name: spec.to_string(), triangles, face_of }
         }
     };
+    if object.triangles.is_empty() {
+        return Err(LoadError::Empty(object.name));
+    }
     if u32::try_from(object.triangles.len()).is_err() {
         return Err(LoadError::TooManyTriangles { name: object.name, count: object.triangles.len() });
     }

@@ -1,0 +1,66 @@
+//! Output files that are checked before the work and written atomically:
+//! [`OutputFile::reserve`] creates a temporary file next to the
+//! destination (so an unwritable path fails at once, before a long run),
+//! and [`OutputFile::commit`] fills it and renames it into place, so a
+//! reader never sees half a file and an interrupted run leaves none (the
+//! temporary is registered with `tools::interrupt`).
+
+use anyhow::Context;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+use tritri_rtl::tools::interrupt;
+
+/// A destination and its reserved temporary, or standard output (`-`).
+pub enum OutputFile {
+    Stdout,
+    File { destination: PathBuf, temporary: PathBuf },
+}
+
+impl OutputFile {
+    /// Checks that `path` can be written by creating its temporary now.
+    pub fn reserve(path: &str) -> anyhow::Result<OutputFile> {
+        if path == "-" {
+            return Ok(OutputFile::Stdout);
+        }
+        let destination = PathBuf::from(path);
+        if destination.is_dir() {
+            anyhow::bail!("cannot write {path}: it is a directory");
+        }
+        let name = destination.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let temporary = destination.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
+        std::fs::File::create(&temporary).with_context(|| format!("cannot write {path}"))?;
+        interrupt::register_temporary(&temporary);
+        Ok(OutputFile::File { destination, temporary })
+    }
+
+    /// Writes the contents with `fill` and puts the file in place.
+    pub fn commit(self, fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> anyhow::Result<()> {
+        match &self {
+            OutputFile::Stdout => {
+                let mut w = BufWriter::new(std::io::stdout().lock());
+                fill(&mut w)?;
+                w.flush()?;
+            }
+            OutputFile::File { destination, temporary } => {
+                let mut w = BufWriter::new(std::fs::File::create(temporary).with_context(|| format!("cannot write {}", destination.display()))?);
+                fill(&mut w).with_context(|| format!("writing {}", destination.display()))?;
+                w.flush().with_context(|| format!("writing {}", destination.display()))?;
+                std::fs::rename(temporary, destination).with_context(|| format!("cannot write {}", destination.display()))?;
+                interrupt::unregister_temporary(temporary);
+            }
+        }
+        std::mem::forget(self);
+        Ok(())
+    }
+
+}
+
+/// An output never committed (an error on the way) leaves no temporary.
+impl Drop for OutputFile {
+    fn drop(&mut self) {
+        if let OutputFile::File { temporary, .. } = self {
+            let _ = std::fs::remove_file(&*temporary);
+            interrupt::unregister_temporary(temporary);
+        }
+    }
+}
