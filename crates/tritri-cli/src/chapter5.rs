@@ -26,6 +26,7 @@
 //! Ratios are software time / hardware time: they compare this machine with
 //! the cycle model at the given clock, nothing more.
 
+use crate::input;
 use crate::scene_input::{human, pipeline_latency, BroadPhase, HardwareArgs, SceneArgs};
 use clap::ValueEnum;
 use std::hint::black_box;
@@ -44,7 +45,7 @@ pub struct Args {
     #[command(flatten)]
     hardware: HardwareArgs,
     /// Target shares of the triangles in the common BV, in percent.
-    #[arg(long, value_delimiter = ',', default_value = "5,25,50,75")]
+    #[arg(long, value_delimiter = ',', default_value = "5,25,50,75", value_parser = input::parse_percentage)]
     fractions: Vec<f64>,
     /// Axis along which B slides.
     #[arg(long, value_enum, default_value_t = Axis::X)]
@@ -73,9 +74,6 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    for &f in &args.fractions {
-        anyhow::ensure!(f > 0.0 && f <= 100.0, "--fractions: {f} is not a percentage in (0, 100]");
-    }
     let (Some(box_a), Some(box_b)) = (Aabb::of_triangles(&a.triangles), Aabb::of_triangles(&b.triangles)) else {
         anyhow::bail!("both objects need at least one triangle");
     };

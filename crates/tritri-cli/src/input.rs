@@ -63,3 +63,11 @@ pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {
         _ => Err(format!("`{s}` is not a clock frequency in MHz (a number from 0.001 to 100000)")),
     }
 }
+
+/// A percentage in (0, 100].
+pub fn parse_percentage(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= 100.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a percentage in (0, 100]")),
+    }
+}

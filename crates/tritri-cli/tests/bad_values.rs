@@ -26,6 +26,7 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["sim", "--subdivide", "9"], "--subdivide"),
         (&["sim", "--grid-bits", "40"], "--grid-bits"),
         (&["sim", "--tessellation", "0"], "--tessellation"),
+        (&["chapter5", "--fractions", "0"], "--fractions"),
         (&["sim", "--tessellation", "100000"], "--tessellation"),
         (&["sim", "--width", "10", "--engine", "verilator"], "--width 10 --engine verilator"),
         (&["sim", "--out", "/nonexistent-directory/pairs.txt"], "--out"),
