@@ -32,7 +32,7 @@ pub struct Args {
     /// signals, or of the emitted Verilog in Icarus or Verilator); keep the file small.
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
-    /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}.
+    /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}; `-` reads standard input.
     file: PathBuf,
 }
 

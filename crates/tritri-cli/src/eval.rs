@@ -49,7 +49,7 @@ pub struct Args {
     /// Minimum time spent timing each arithmetic on each file, in ms.
     #[arg(long, default_value_t = 50)]
     min_time_ms: u64,
-    /// Pair files (18 numbers per line, or a JSON array of {t1, t2}); `@hard` for the hard-case suite.
+    /// Pair files (18 numbers per line, or a JSON array of {t1, t2}); `-` for standard input, `@hard` for the hard-case suite.
     #[arg(required = true)]
     files: Vec<String>,
 }

@@ -20,9 +20,19 @@ impl Loaded {
     }
 }
 
-/// Reads `path`, printing `error: FILE:LINE: ...` for each bad record.
+/// Reads `path` (`-`: standard input), printing `error: FILE:LINE: ...`
+/// for each bad record.
 pub fn load(path: &Path) -> Loaded {
-    match pairs_io::read_pairs(path) {
+    let read = if path == Path::new("-") {
+        let mut text = String::new();
+        match std::io::Read::read_to_string(&mut std::io::stdin(), &mut text) {
+            Ok(_) => pairs_io::parse_pairs("<stdin>", &text).map(|records| PairsFile { file: "<stdin>".to_string(), records }),
+            Err(source) => Err(pairs_io::FileError::Io { file: "<stdin>".to_string(), source }),
+        }
+    } else {
+        pairs_io::read_pairs(path)
+    };
+    match read {
         Ok(file) => {
             let mut errors = 0;
             for e in file.errors() {

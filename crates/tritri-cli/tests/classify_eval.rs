@@ -116,3 +116,19 @@ fn eval_refuses_unknown_suite() {
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains("known are"), "{}", text(&out.stderr));
 }
+
+/// `-` reads the pairs from standard input.
+#[test]
+fn classify_reads_standard_input() {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(["classify", "-"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(GOOD.as_bytes()).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    assert_eq!(text(&out.stdout), "1\n0\n");
+}
