@@ -53,7 +53,7 @@ use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviou
 use tritri_cosim::system_verilator::run_system_verilator;
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{Batch, PreparedScene, TaggedTriangle};
-use tritri_rtl::octree::binning_model::{binning_cycles, binning_memory_bits, entry_bits, triangle_record_bits, BinningWork};
+use tritri_rtl::octree::binning_model::{binning_cycles, binning_memory_bits, entry_bits, triangle_record_bits, BinningWork, LANES_PER_OBJECT};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -406,7 +406,7 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         let grid_bits = args.hardware.grid_bits() as usize;
         writeln!(
             report,
-            "binning unit (two classifier steps, one per object, built and co-simulated; setup and controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
+            "binning unit (classifier step built and co-simulated, {LANES_PER_OBJECT} per object; setup and controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
             work.triangles,
             work.entries,
             work.cells,

@@ -213,7 +213,8 @@ impl octree::BatchCost for OverlappedCycles {
 }
 
 /// [`OverlappedCycles`] with a binning unit that classifies a cell of `a`
-/// and `b` entries in `max(a, b) + 6` clocks (the hardware crate's model).
+/// and `b` entries in `max(a, b) + 6` clocks (like the hardware crate's
+/// model, with one classifier per object).
 struct WithBinning(OverlappedCycles);
 
 impl octree::BatchCost for WithBinning {
