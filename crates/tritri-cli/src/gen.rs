@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D]]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -23,6 +23,11 @@
 //! FIFO; `--depth D` triangles per array per bank), top
 //! `tritri_system_w<W>_p<P>_d<D>`, by default into `rtl-out/<top>`.
 //!
+//! `--classifier` writes the octree engine's triangle classifier step (the
+//! broad phase's binning unit, `docs/broad-phase.md`) for a `--width`-bit
+//! grid (16, 24 or 32), top `tritri_cell_classifier_g<G>`, by default into
+//! `rtl-out/<top>`.
+//!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
 
@@ -30,6 +35,7 @@ use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::SUPPORTED_WIDTHS;
+use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
@@ -50,8 +56,13 @@ pub struct Args {
     synth: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "classifier")]
     system: bool,
+    /// Emit the octree engine's triangle classifier step instead (the
+    /// broad phase's binning unit); --width is then the grid's width (16,
+    /// 24 or 32).
+    #[arg(long)]
+    classifier: bool,
     /// With --system: pipelines working in parallel (1 to 16).
     #[arg(long, default_value_t = 2, requires = "system",
           value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
@@ -71,6 +82,9 @@ impl Args {
 
     /// The design for `width`: the pipeline, or the system with --system.
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
+        if self.classifier {
+            return emit_cell_classifier(width).with_context(|| format!("emitting the {width}-bit grid's classifier"));
+        }
         if self.system {
             let config = self.system_config(width);
             return emit_system(config, PipelineKind::Real).with_context(|| format!("emitting {}", config.unit_name()));
@@ -80,7 +94,9 @@ impl Args {
 
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
-        if self.system {
+        if self.classifier {
+            cell_classifier_unit_name(width)
+        } else if self.system {
             self.system_config(width).unit_name()
         } else {
             pipeline_unit_name(width)
@@ -92,16 +108,20 @@ impl Args {
 fn out_dir(args: &Args, width: usize) -> PathBuf {
     match (&args.out, args.width.len()) {
         (Some(dir), 1) => dir.clone(),
-        (Some(parent), _) if args.system => parent.join(args.unit_name(width)),
+        (Some(parent), _) if args.system || args.classifier => parent.join(args.unit_name(width)),
         (Some(parent), _) => parent.join(format!("w{width}")),
-        (None, _) if args.system => PathBuf::from("rtl-out").join(args.unit_name(width)),
+        (None, _) if args.system || args.classifier => PathBuf::from("rtl-out").join(args.unit_name(width)),
         (None, _) => PathBuf::from("rtl-out").join(format!("w{width}")),
     }
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for &w in &args.width {
-        if !SUPPORTED_WIDTHS.contains(&w) {
+        if args.classifier && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
+            eprintln!("error: --classifier --width {w}: the classifier is emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
+            return Ok(ExitCode::from(2));
+        }
+        if !args.classifier && !SUPPORTED_WIDTHS.contains(&w) {
             eprintln!("error: no pipeline for width {w}: supported widths are {SUPPORTED_WIDTHS:?}");
             return Ok(ExitCode::from(2));
         }

@@ -74,6 +74,25 @@ fn several_widths_go_to_subdirectories() {
     std::fs::remove_dir_all(&out).unwrap();
 }
 
+/// `--classifier` writes the octree classifier step for a grid width, and
+/// refuses a grid it is not emitted for.
+#[test]
+fn classifier_is_emitted_for_its_grid_widths() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-classifier-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri().args(["gen", "--classifier", "--width", "16,32", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    for g in [16, 32] {
+        let top = out.join(format!("tritri_cell_classifier_g{g}/tritri_cell_classifier_g{g}.v"));
+        let text = std::fs::read_to_string(&top).unwrap_or_else(|e| panic!("{}: {e}", top.display()));
+        assert!(text.contains(&format!("V = {}: value width, 3G + 6", 3 * g + 6)), "{}", top.display());
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+    let refused = tritri().args(["gen", "--classifier", "--width", "20", "--out", "/nonexistent/never-written"]).output().unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--classifier --width 20"));
+}
+
 /// `--synth` without Yosys on PATH: an error naming the tool and its package.
 #[test]
 fn missing_yosys_is_named() {
