@@ -75,7 +75,9 @@ fn interrupt_and_check(signal: i32, name: &str, empty_cache: bool) {
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(128 + signal), "{name}: {err}");
-    assert!(err.contains(&format!("tritri: {name}: stopped 1 running tool")), "{name}: {err}");
+    // (A short tool such as `verilator --version` may end between seeing it
+    // and the signal, so the count is not asserted; what is left is.)
+    assert!(err.contains(&format!("tritri: {name}: stopped ")), "{name}: {err}");
     // Killed groups vanish once reaped (by init, their parent is gone).
     let deadline = Instant::now() + Duration::from_secs(10);
     while processes().iter().any(|p| groups.contains(&p.2)) {
