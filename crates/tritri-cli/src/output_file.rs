@@ -49,13 +49,13 @@ impl OutputFile {
                 interrupt::unregister_temporary(temporary);
             }
         }
-        std::mem::forget(self);
         Ok(())
     }
 
 }
 
-/// An output never committed (an error on the way) leaves no temporary.
+/// An output never committed (an error on the way) leaves no temporary;
+/// a committed one has nothing left to remove.
 impl Drop for OutputFile {
     fn drop(&mut self) {
         if let OutputFile::File { temporary, .. } = self {

@@ -39,13 +39,18 @@ pub struct ClassifierAnswer {
     pub at_lo: [i128; MAX_AXES],
 }
 
+/// The values over the classified cell: the entry's own, or its child's.
+fn classified(test: &TriangleCellTest, values: &CellValues, descend: Option<u8>) -> CellValues {
+    match descend {
+        Some(o) => test.child(values, o as usize),
+        None => *values,
+    }
+}
+
 /// The software classifier's answer: the values over the classified cell
 /// and its children mask.
 pub fn expected_answer(test: &TriangleCellTest, values: &CellValues, descend: Option<u8>, tag: u16) -> ClassifierAnswer {
-    let cell = match descend {
-        Some(o) => test.child(values, o as usize),
-        None => *values,
-    };
+    let cell = classified(test, values, descend);
     ClassifierAnswer { tag, mask: test.children_touched(&cell), at_lo: cell.at_lo() }
 }
 
@@ -68,10 +73,7 @@ pub fn harvest(triangles: &[[[i64; 3]; 3]], root: Cell, levels: u32, limit: usiz
             let answer = expected_answer(&test, &values, descend, tag);
             let level = values.level() - descend.map_or(0, |_| 1);
             out.push((ClassifierEntry { tag, level, descend, at_lo: values.at_lo(), axes }, answer));
-            let cell = match descend {
-                Some(o) => test.child(&values, o as usize),
-                None => values,
-            };
+            let cell = classified(&test, &values, descend);
             if depth < levels && cell.level() >= 2 {
                 for o in (0..8u8).filter(|o| answer.mask >> o & 1 == 1) {
                     stack.push((cell, Some(o), depth + 1));
