@@ -24,10 +24,11 @@ impl Loaded {
 /// for each bad record.
 pub fn load(path: &Path) -> Loaded {
     let read = if path == Path::new("-") {
+        let file = "<stdin>".to_string();
         let mut text = String::new();
         match std::io::Read::read_to_string(&mut std::io::stdin(), &mut text) {
-            Ok(_) => pairs_io::parse_pairs("<stdin>", &text).map(|records| PairsFile { file: "<stdin>".to_string(), records }),
-            Err(source) => Err(pairs_io::FileError::Io { file: "<stdin>".to_string(), source }),
+            Ok(_) => pairs_io::parse_pairs(&file, &text).map(|records| PairsFile { file, records }),
+            Err(source) => Err(pairs_io::FileError::Io { file, source }),
         }
     } else {
         pairs_io::read_pairs(path)

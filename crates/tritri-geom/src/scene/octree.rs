@@ -300,15 +300,14 @@ impl Planner<'_> {
         }
     }
 
-    /// Would classifying the cell cost more than any split could save? Any
-    /// subtree writes each of its triangles into some leaf's batch (at
-    /// least `a + b + 1` cycles in the system's cycle model) after
-    /// classifying the cell; if the cell as one leaf costs no more than
-    /// that, it is not worth looking into. Only when classifying costs
+    /// Would classifying the cell (`classify` cycles) cost more than any
+    /// split could save? Any subtree writes each of its triangles into some
+    /// leaf's batch (at least `a + b + 1` cycles in the system's cycle
+    /// model) after classifying the cell; if the cell as one leaf costs no
+    /// more than that, it is not worth looking into. Only when classifying costs
     /// cycles (a binning unit, not the host), and never where a split is
     /// forced.
-    fn split_cannot_pay(&self, cell: &Cell, a: usize, b: usize) -> bool {
-        let classify = self.cost.classify_cycles(a, b);
+    fn split_cannot_pay(&self, cell: &Cell, a: usize, b: usize, classify: u64) -> bool {
         let forced = self.max_leaf_level.is_some_and(|m| cell.level > m);
         classify > 0 && !forced && self.leaf_cost(a, b) <= (a + b + 1) as u64 + classify
     }
@@ -317,14 +316,15 @@ impl Planner<'_> {
         if a.is_empty() || b.is_empty() {
             return Plan { cost: 0, leaves: Vec::new() };
         }
-        if !cell.splittable() || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len())) {
+        // The root's entries are classified as they stream in from the
+        // host: its pass costs no more than an empty cell's, and it is
+        // always looked into.
+        let classify = if level == 0 { self.cost.classify_cycles(0, 0) } else { self.cost.classify_cycles(a.len(), b.len()) };
+        if !cell.splittable() || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len(), classify)) {
             return self.leaf(cell, level, &a, &b);
         }
         // The cell's entries are classified, and held until it is decided.
         let entries = (a.len() + b.len()) as u64;
-        // The root's entries are classified as they stream in from the
-        // host: its pass costs no more than an empty cell's.
-        let classify = if level == 0 { self.cost.classify_cycles(0, 0) } else { self.cost.classify_cycles(a.len(), b.len()) };
         work.cells += 1;
         work.classifications += entries;
         work.classify_cycles += classify;
