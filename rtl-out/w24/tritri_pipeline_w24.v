@@ -34,28 +34,27 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24(clock,reset,advance,in_valid,in_bset,in_id,in_x0,in_y0,in_z0,in_x1,in_y1,in_z1,in_x2,in_y2,in_z2,out_valid,out_hit,out_base_id,out_stream_id);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  advance;
-    input wire  in_valid;
-    input wire  in_bset;
-    input wire  [31:0] in_id;
-    input wire  [23:0] in_x0;
-    input wire  [23:0] in_y0;
-    input wire  [23:0] in_z0;
-    input wire  [23:0] in_x1;
-    input wire  [23:0] in_y1;
-    input wire  [23:0] in_z1;
-    input wire  [23:0] in_x2;
-    input wire  [23:0] in_y2;
-    input wire  [23:0] in_z2;
-    output wire  out_valid;
-    output wire  out_hit;
-    output wire  [31:0] out_base_id;
-    output wire  [31:0] out_stream_id;
+module tritri_pipeline_w24 (
+    input  wire        clock,
+    input  wire        reset,
+    input  wire        advance,
+    input  wire        in_valid,
+    input  wire        in_bset,
+    input  wire [31:0] in_id,
+    input  wire [23:0] in_x0,
+    input  wire [23:0] in_y0,
+    input  wire [23:0] in_z0,
+    input  wire [23:0] in_x1,
+    input  wire [23:0] in_y1,
+    input  wire [23:0] in_z1,
+    input  wire [23:0] in_x2,
+    input  wire [23:0] in_y2,
+    input  wire [23:0] in_z2,
+    output wire        out_valid,
+    output wire        out_hit,
+    output wire [31:0] out_base_id,
+    output wire [31:0] out_stream_id
+);
 
     // Stub signals
     wire  input_vertices_0_clock;

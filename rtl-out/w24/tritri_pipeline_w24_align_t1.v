@@ -17,31 +17,30 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_align_t1(clock,advance,t1_negative_0,t1_negative_1,t1_negative_2,t1_zero_0,t1_zero_1,t1_zero_2,t2_negative_0,t2_negative_1,t2_negative_2,t2_zero_0,t2_zero_1,t2_zero_2,t1_rotation,t2_swap,t2_aligned_negative_0,t2_aligned_negative_1,t2_aligned_negative_2,t2_aligned_zero_0,t2_aligned_zero_1,t2_aligned_zero_2);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  t1_negative_0;
-    input wire  t1_negative_1;
-    input wire  t1_negative_2;
-    input wire  t1_zero_0;
-    input wire  t1_zero_1;
-    input wire  t1_zero_2;
-    input wire  t2_negative_0;
-    input wire  t2_negative_1;
-    input wire  t2_negative_2;
-    input wire  t2_zero_0;
-    input wire  t2_zero_1;
-    input wire  t2_zero_2;
-    output wire  [1:0] t1_rotation;
-    output wire  t2_swap;
-    output wire  t2_aligned_negative_0;
-    output wire  t2_aligned_negative_1;
-    output wire  t2_aligned_negative_2;
-    output wire  t2_aligned_zero_0;
-    output wire  t2_aligned_zero_1;
-    output wire  t2_aligned_zero_2;
+module tritri_pipeline_w24_align_t1 (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire       t1_negative_0,
+    input  wire       t1_negative_1,
+    input  wire       t1_negative_2,
+    input  wire       t1_zero_0,
+    input  wire       t1_zero_1,
+    input  wire       t1_zero_2,
+    input  wire       t2_negative_0,
+    input  wire       t2_negative_1,
+    input  wire       t2_negative_2,
+    input  wire       t2_zero_0,
+    input  wire       t2_zero_1,
+    input  wire       t2_zero_2,
+    output wire [1:0] t1_rotation,
+    output wire       t2_swap,
+    output wire       t2_aligned_negative_0,
+    output wire       t2_aligned_negative_1,
+    output wire       t2_aligned_negative_2,
+    output wire       t2_aligned_zero_0,
+    output wire       t2_aligned_zero_1,
+    output wire       t2_aligned_zero_2
+);
 
     // Stub signals
     wire  sign_table_negative_0;

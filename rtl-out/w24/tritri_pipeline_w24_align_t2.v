@@ -17,23 +17,22 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_align_t2(clock,advance,t1_rotation_in,t2_swap_in,t2_aligned_negative_0,t2_aligned_negative_1,t2_aligned_negative_2,t2_aligned_zero_0,t2_aligned_zero_1,t2_aligned_zero_2,t1_rotation,t2_swap,t2_rotation,t1_swap);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [1:0] t1_rotation_in;
-    input wire  t2_swap_in;
-    input wire  t2_aligned_negative_0;
-    input wire  t2_aligned_negative_1;
-    input wire  t2_aligned_negative_2;
-    input wire  t2_aligned_zero_0;
-    input wire  t2_aligned_zero_1;
-    input wire  t2_aligned_zero_2;
-    output wire  [1:0] t1_rotation;
-    output wire  t2_swap;
-    output wire  [1:0] t2_rotation;
-    output wire  t1_swap;
+module tritri_pipeline_w24_align_t2 (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire [1:0] t1_rotation_in,
+    input  wire       t2_swap_in,
+    input  wire       t2_aligned_negative_0,
+    input  wire       t2_aligned_negative_1,
+    input  wire       t2_aligned_negative_2,
+    input  wire       t2_aligned_zero_0,
+    input  wire       t2_aligned_zero_1,
+    input  wire       t2_aligned_zero_2,
+    output wire [1:0] t1_rotation,
+    output wire       t2_swap,
+    output wire [1:0] t2_rotation,
+    output wire       t1_swap
+);
 
     // Stub signals
     wire  sign_table_negative_0;

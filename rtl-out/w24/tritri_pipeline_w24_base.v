@@ -17,57 +17,56 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_base(clock,load,id_in,vertices_in_0,vertices_in_1,vertices_in_2,vertices_in_3,vertices_in_4,vertices_in_5,vertices_in_6,vertices_in_7,vertices_in_8,normal_in_0,normal_in_1,normal_in_2,normal_negative_in_0,normal_negative_in_1,normal_negative_in_2,normal_zero_in_0,normal_zero_in_1,normal_zero_in_2,degenerate_in,dominant_axis_in,segment_low_in,segment_high_in,id,vertices_0,vertices_1,vertices_2,vertices_3,vertices_4,vertices_5,vertices_6,vertices_7,vertices_8,normal_0,normal_1,normal_2,normal_negative_0,normal_negative_1,normal_negative_2,normal_zero_0,normal_zero_1,normal_zero_2,degenerate,dominant_axis,segment_low,segment_high);
-
-    // Module arguments
-    input wire  clock;
-    input wire  load;
-    input wire  [31:0] id_in;
-    input wire  [23:0] vertices_in_0;
-    input wire  [23:0] vertices_in_1;
-    input wire  [23:0] vertices_in_2;
-    input wire  [23:0] vertices_in_3;
-    input wire  [23:0] vertices_in_4;
-    input wire  [23:0] vertices_in_5;
-    input wire  [23:0] vertices_in_6;
-    input wire  [23:0] vertices_in_7;
-    input wire  [23:0] vertices_in_8;
-    input wire  [48:0] normal_in_0;
-    input wire  [48:0] normal_in_1;
-    input wire  [48:0] normal_in_2;
-    input wire  normal_negative_in_0;
-    input wire  normal_negative_in_1;
-    input wire  normal_negative_in_2;
-    input wire  normal_zero_in_0;
-    input wire  normal_zero_in_1;
-    input wire  normal_zero_in_2;
-    input wire  degenerate_in;
-    input wire  [1:0] dominant_axis_in;
-    input wire  [1:0] segment_low_in;
-    input wire  [1:0] segment_high_in;
-    output wire  [31:0] id;
-    output wire  [23:0] vertices_0;
-    output wire  [23:0] vertices_1;
-    output wire  [23:0] vertices_2;
-    output wire  [23:0] vertices_3;
-    output wire  [23:0] vertices_4;
-    output wire  [23:0] vertices_5;
-    output wire  [23:0] vertices_6;
-    output wire  [23:0] vertices_7;
-    output wire  [23:0] vertices_8;
-    output wire  [48:0] normal_0;
-    output wire  [48:0] normal_1;
-    output wire  [48:0] normal_2;
-    output wire  normal_negative_0;
-    output wire  normal_negative_1;
-    output wire  normal_negative_2;
-    output wire  normal_zero_0;
-    output wire  normal_zero_1;
-    output wire  normal_zero_2;
-    output wire  degenerate;
-    output wire  [1:0] dominant_axis;
-    output wire  [1:0] segment_low;
-    output wire  [1:0] segment_high;
+module tritri_pipeline_w24_base (
+    input  wire        clock,
+    input  wire        load,
+    input  wire [31:0] id_in,
+    input  wire [23:0] vertices_in_0,
+    input  wire [23:0] vertices_in_1,
+    input  wire [23:0] vertices_in_2,
+    input  wire [23:0] vertices_in_3,
+    input  wire [23:0] vertices_in_4,
+    input  wire [23:0] vertices_in_5,
+    input  wire [23:0] vertices_in_6,
+    input  wire [23:0] vertices_in_7,
+    input  wire [23:0] vertices_in_8,
+    input  wire [48:0] normal_in_0,
+    input  wire [48:0] normal_in_1,
+    input  wire [48:0] normal_in_2,
+    input  wire        normal_negative_in_0,
+    input  wire        normal_negative_in_1,
+    input  wire        normal_negative_in_2,
+    input  wire        normal_zero_in_0,
+    input  wire        normal_zero_in_1,
+    input  wire        normal_zero_in_2,
+    input  wire        degenerate_in,
+    input  wire [1:0]  dominant_axis_in,
+    input  wire [1:0]  segment_low_in,
+    input  wire [1:0]  segment_high_in,
+    output wire [31:0] id,
+    output wire [23:0] vertices_0,
+    output wire [23:0] vertices_1,
+    output wire [23:0] vertices_2,
+    output wire [23:0] vertices_3,
+    output wire [23:0] vertices_4,
+    output wire [23:0] vertices_5,
+    output wire [23:0] vertices_6,
+    output wire [23:0] vertices_7,
+    output wire [23:0] vertices_8,
+    output wire [48:0] normal_0,
+    output wire [48:0] normal_1,
+    output wire [48:0] normal_2,
+    output wire        normal_negative_0,
+    output wire        normal_negative_1,
+    output wire        normal_negative_2,
+    output wire        normal_zero_0,
+    output wire        normal_zero_1,
+    output wire        normal_zero_2,
+    output wire        degenerate,
+    output wire [1:0]  dominant_axis,
+    output wire [1:0]  segment_low,
+    output wire [1:0]  segment_high
+);
 
     // Stub signals
     reg  [31:0] id_q_d;

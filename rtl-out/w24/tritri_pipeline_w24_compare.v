@@ -19,15 +19,14 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_compare(clock,advance,a,b,less,equal);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] a;
-    input wire  [23:0] b;
-    output wire  less;
-    output wire  equal;
+module tritri_pipeline_w24_compare (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] a,
+    input  wire [23:0] b,
+    output wire        less,
+    output wire        equal
+);
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;

@@ -19,14 +19,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_component(clock,advance,a,b,difference);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [48:0] a;
-    input wire  [48:0] b;
-    output reg  [48:0] difference;
+module tritri_pipeline_w24_component (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [48:0] a,
+    input  wire [48:0] b,
+    output reg  [48:0] difference
+);
 
     // Update code (custom)
     // Registered 49-bit difference (modulo 2^49).

@@ -17,43 +17,42 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_coplanar(clock,advance,t1_vertices_0,t1_vertices_1,t1_vertices_2,t1_vertices_3,t1_vertices_4,t1_vertices_5,t1_vertices_6,t1_vertices_7,t1_vertices_8,t2_vertices_0,t2_vertices_1,t2_vertices_2,t2_vertices_3,t2_vertices_4,t2_vertices_5,t2_vertices_6,t2_vertices_7,t2_vertices_8,axis,t1_normal_negative_0,t1_normal_negative_1,t1_normal_negative_2,t1_normal_zero_0,t1_normal_zero_1,t1_normal_zero_2,t2_normal_negative_0,t2_normal_negative_1,t2_normal_negative_2,t2_normal_zero_0,t2_normal_zero_1,t2_normal_zero_2,hit);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] t1_vertices_0;
-    input wire  [23:0] t1_vertices_1;
-    input wire  [23:0] t1_vertices_2;
-    input wire  [23:0] t1_vertices_3;
-    input wire  [23:0] t1_vertices_4;
-    input wire  [23:0] t1_vertices_5;
-    input wire  [23:0] t1_vertices_6;
-    input wire  [23:0] t1_vertices_7;
-    input wire  [23:0] t1_vertices_8;
-    input wire  [23:0] t2_vertices_0;
-    input wire  [23:0] t2_vertices_1;
-    input wire  [23:0] t2_vertices_2;
-    input wire  [23:0] t2_vertices_3;
-    input wire  [23:0] t2_vertices_4;
-    input wire  [23:0] t2_vertices_5;
-    input wire  [23:0] t2_vertices_6;
-    input wire  [23:0] t2_vertices_7;
-    input wire  [23:0] t2_vertices_8;
-    input wire  [1:0] axis;
-    input wire  t1_normal_negative_0;
-    input wire  t1_normal_negative_1;
-    input wire  t1_normal_negative_2;
-    input wire  t1_normal_zero_0;
-    input wire  t1_normal_zero_1;
-    input wire  t1_normal_zero_2;
-    input wire  t2_normal_negative_0;
-    input wire  t2_normal_negative_1;
-    input wire  t2_normal_negative_2;
-    input wire  t2_normal_zero_0;
-    input wire  t2_normal_zero_1;
-    input wire  t2_normal_zero_2;
-    output wire  hit;
+module tritri_pipeline_w24_coplanar (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] t1_vertices_0,
+    input  wire [23:0] t1_vertices_1,
+    input  wire [23:0] t1_vertices_2,
+    input  wire [23:0] t1_vertices_3,
+    input  wire [23:0] t1_vertices_4,
+    input  wire [23:0] t1_vertices_5,
+    input  wire [23:0] t1_vertices_6,
+    input  wire [23:0] t1_vertices_7,
+    input  wire [23:0] t1_vertices_8,
+    input  wire [23:0] t2_vertices_0,
+    input  wire [23:0] t2_vertices_1,
+    input  wire [23:0] t2_vertices_2,
+    input  wire [23:0] t2_vertices_3,
+    input  wire [23:0] t2_vertices_4,
+    input  wire [23:0] t2_vertices_5,
+    input  wire [23:0] t2_vertices_6,
+    input  wire [23:0] t2_vertices_7,
+    input  wire [23:0] t2_vertices_8,
+    input  wire [1:0]  axis,
+    input  wire        t1_normal_negative_0,
+    input  wire        t1_normal_negative_1,
+    input  wire        t1_normal_negative_2,
+    input  wire        t1_normal_zero_0,
+    input  wire        t1_normal_zero_1,
+    input  wire        t1_normal_zero_2,
+    input  wire        t2_normal_negative_0,
+    input  wire        t2_normal_negative_1,
+    input  wire        t2_normal_negative_2,
+    input  wire        t2_normal_zero_0,
+    input  wire        t2_normal_zero_1,
+    input  wire        t2_normal_zero_2,
+    output wire        hit
+);
 
     // Stub signals
     reg  [23:0] projection_q_0_d;

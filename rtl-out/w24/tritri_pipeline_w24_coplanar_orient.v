@@ -19,16 +19,15 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_coplanar_orient(clock,advance,u_x,u_y,w_x,w_y,product);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [24:0] u_x;
-    input wire  [24:0] u_y;
-    input wire  [24:0] w_x;
-    input wire  [24:0] w_y;
-    output wire  [48:0] product;
+module tritri_pipeline_w24_coplanar_orient (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [24:0] u_x,
+    input  wire [24:0] u_y,
+    input  wire [24:0] w_x,
+    input  wire [24:0] w_y,
+    output wire [48:0] product
+);
 
     // Stub signals
     wire  multiplier_0_clock;

@@ -17,38 +17,37 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_decision(clock,advance,t1_degenerate,t2_degenerate,t1_segment_low,t1_segment_high,t2_segment_low,t2_segment_high,t1_side_negative_0,t1_side_negative_1,t1_side_negative_2,t1_side_zero_0,t1_side_zero_1,t1_side_zero_2,t2_side_negative_0,t2_side_negative_1,t2_side_negative_2,t2_side_zero_0,t2_side_zero_1,t2_side_zero_2,orient_negative_0,orient_negative_1,orient_negative_2,orient_zero_0,orient_zero_1,orient_zero_2,coplanar_hit,degenerate_pair_hit,hit);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  t1_degenerate;
-    input wire  t2_degenerate;
-    input wire  [1:0] t1_segment_low;
-    input wire  [1:0] t1_segment_high;
-    input wire  [1:0] t2_segment_low;
-    input wire  [1:0] t2_segment_high;
-    input wire  t1_side_negative_0;
-    input wire  t1_side_negative_1;
-    input wire  t1_side_negative_2;
-    input wire  t1_side_zero_0;
-    input wire  t1_side_zero_1;
-    input wire  t1_side_zero_2;
-    input wire  t2_side_negative_0;
-    input wire  t2_side_negative_1;
-    input wire  t2_side_negative_2;
-    input wire  t2_side_zero_0;
-    input wire  t2_side_zero_1;
-    input wire  t2_side_zero_2;
-    input wire  orient_negative_0;
-    input wire  orient_negative_1;
-    input wire  orient_negative_2;
-    input wire  orient_zero_0;
-    input wire  orient_zero_1;
-    input wire  orient_zero_2;
-    input wire  coplanar_hit;
-    input wire  degenerate_pair_hit;
-    output wire  hit;
+module tritri_pipeline_w24_decision (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire       t1_degenerate,
+    input  wire       t2_degenerate,
+    input  wire [1:0] t1_segment_low,
+    input  wire [1:0] t1_segment_high,
+    input  wire [1:0] t2_segment_low,
+    input  wire [1:0] t2_segment_high,
+    input  wire       t1_side_negative_0,
+    input  wire       t1_side_negative_1,
+    input  wire       t1_side_negative_2,
+    input  wire       t1_side_zero_0,
+    input  wire       t1_side_zero_1,
+    input  wire       t1_side_zero_2,
+    input  wire       t2_side_negative_0,
+    input  wire       t2_side_negative_1,
+    input  wire       t2_side_negative_2,
+    input  wire       t2_side_zero_0,
+    input  wire       t2_side_zero_1,
+    input  wire       t2_side_zero_2,
+    input  wire       orient_negative_0,
+    input  wire       orient_negative_1,
+    input  wire       orient_negative_2,
+    input  wire       orient_zero_0,
+    input  wire       orient_zero_1,
+    input  wire       orient_zero_2,
+    input  wire       coplanar_hit,
+    input  wire       degenerate_pair_hit,
+    output wire       hit
+);
 
     // Stub signals
     reg  hit_q_d;

@@ -17,34 +17,33 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_degenerate_pair(clock,advance,t1_vertices_0,t1_vertices_1,t1_vertices_2,t1_vertices_3,t1_vertices_4,t1_vertices_5,t1_vertices_6,t1_vertices_7,t1_vertices_8,t2_vertices_0,t2_vertices_1,t2_vertices_2,t2_vertices_3,t2_vertices_4,t2_vertices_5,t2_vertices_6,t2_vertices_7,t2_vertices_8,t1_segment_low,t1_segment_high,t2_segment_low,t2_segment_high,hit);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] t1_vertices_0;
-    input wire  [23:0] t1_vertices_1;
-    input wire  [23:0] t1_vertices_2;
-    input wire  [23:0] t1_vertices_3;
-    input wire  [23:0] t1_vertices_4;
-    input wire  [23:0] t1_vertices_5;
-    input wire  [23:0] t1_vertices_6;
-    input wire  [23:0] t1_vertices_7;
-    input wire  [23:0] t1_vertices_8;
-    input wire  [23:0] t2_vertices_0;
-    input wire  [23:0] t2_vertices_1;
-    input wire  [23:0] t2_vertices_2;
-    input wire  [23:0] t2_vertices_3;
-    input wire  [23:0] t2_vertices_4;
-    input wire  [23:0] t2_vertices_5;
-    input wire  [23:0] t2_vertices_6;
-    input wire  [23:0] t2_vertices_7;
-    input wire  [23:0] t2_vertices_8;
-    input wire  [1:0] t1_segment_low;
-    input wire  [1:0] t1_segment_high;
-    input wire  [1:0] t2_segment_low;
-    input wire  [1:0] t2_segment_high;
-    output wire  hit;
+module tritri_pipeline_w24_degenerate_pair (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] t1_vertices_0,
+    input  wire [23:0] t1_vertices_1,
+    input  wire [23:0] t1_vertices_2,
+    input  wire [23:0] t1_vertices_3,
+    input  wire [23:0] t1_vertices_4,
+    input  wire [23:0] t1_vertices_5,
+    input  wire [23:0] t1_vertices_6,
+    input  wire [23:0] t1_vertices_7,
+    input  wire [23:0] t1_vertices_8,
+    input  wire [23:0] t2_vertices_0,
+    input  wire [23:0] t2_vertices_1,
+    input  wire [23:0] t2_vertices_2,
+    input  wire [23:0] t2_vertices_3,
+    input  wire [23:0] t2_vertices_4,
+    input  wire [23:0] t2_vertices_5,
+    input  wire [23:0] t2_vertices_6,
+    input  wire [23:0] t2_vertices_7,
+    input  wire [23:0] t2_vertices_8,
+    input  wire [1:0]  t1_segment_low,
+    input  wire [1:0]  t1_segment_high,
+    input  wire [1:0]  t2_segment_low,
+    input  wire [1:0]  t2_segment_high,
+    output wire        hit
+);
 
     // Stub signals
     reg  [23:0] ends_q_0_d;
@@ -1068,9 +1067,9 @@ module tritri_pipeline_w24_degenerate_pair(clock,advance,t1_vertices_0,t1_vertic
     assign within_segment_5_d = (compare_5_less || compare_5_equal || compare_11_less || compare_11_equal) && (~compare_5_less || ~compare_11_less);
     assign within_segment_8_d = (~compare_2_less || ~compare_5_less) && (compare_2_less || compare_2_equal || compare_5_less || compare_5_equal);
     assign within_segment_11_d = (~compare_8_less || ~compare_11_less) && (compare_8_less || compare_8_equal || compare_11_less || compare_11_equal);
-    assign meets_0 = ((sign_0_negative && positive_3) || (positive_0 && sign_3_negative)) && ((sign_6_negative && positive_9) || (positive_6 && sign_9_negative)) || (sign_0_zero && within_segment_1_q && within_segment_2_q) || (sign_3_zero && within_segment_4_q && within_segment_5_q) || (sign_6_zero && within_segment_7_q && within_segment_8_q) || (sign_9_zero && within_segment_10_q && within_segment_11_q);
-    assign meets_1 = ((sign_1_negative && positive_4) || (positive_1 && sign_4_negative)) && ((sign_7_negative && positive_10) || (positive_7 && sign_10_negative)) || (sign_1_zero && within_segment_2_q && within_segment_0_q) || (sign_4_zero && within_segment_5_q && within_segment_3_q) || (sign_7_zero && within_segment_8_q && within_segment_6_q) || (sign_10_zero && within_segment_11_q && within_segment_9_q);
-    assign meets_2 = ((sign_2_negative && positive_5) || (positive_2 && sign_5_negative)) && ((sign_8_negative && positive_11) || (positive_8 && sign_11_negative)) || (sign_2_zero && within_segment_0_q && within_segment_1_q) || (sign_5_zero && within_segment_3_q && within_segment_4_q) || (sign_8_zero && within_segment_6_q && within_segment_7_q) || (sign_11_zero && within_segment_9_q && within_segment_10_q);
+    assign meets_0 = (((sign_0_negative && positive_3) || (positive_0 && sign_3_negative)) && ((sign_6_negative && positive_9) || (positive_6 && sign_9_negative))) || (sign_0_zero && within_segment_1_q && within_segment_2_q) || (sign_3_zero && within_segment_4_q && within_segment_5_q) || (sign_6_zero && within_segment_7_q && within_segment_8_q) || (sign_9_zero && within_segment_10_q && within_segment_11_q);
+    assign meets_1 = (((sign_1_negative && positive_4) || (positive_1 && sign_4_negative)) && ((sign_7_negative && positive_10) || (positive_7 && sign_10_negative))) || (sign_1_zero && within_segment_2_q && within_segment_0_q) || (sign_4_zero && within_segment_5_q && within_segment_3_q) || (sign_7_zero && within_segment_8_q && within_segment_6_q) || (sign_10_zero && within_segment_11_q && within_segment_9_q);
+    assign meets_2 = (((sign_2_negative && positive_5) || (positive_2 && sign_5_negative)) && ((sign_8_negative && positive_11) || (positive_8 && sign_11_negative))) || (sign_2_zero && within_segment_0_q && within_segment_1_q) || (sign_5_zero && within_segment_3_q && within_segment_4_q) || (sign_8_zero && within_segment_6_q && within_segment_7_q) || (sign_11_zero && within_segment_9_q && within_segment_10_q);
     assign hit_q_clock = clock;
     assign hit = hit_q_q;
     always @(*) begin

@@ -18,13 +18,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_degenerate_to_operands(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_degenerate_to_operands (
+    input wire clock,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 9 stage(s) of 1 bit(s).

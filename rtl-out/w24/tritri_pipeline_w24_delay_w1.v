@@ -21,13 +21,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_delay_w1(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_delay_w1 (
+    input wire clock,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 1 stage(s) of 1 bit(s).

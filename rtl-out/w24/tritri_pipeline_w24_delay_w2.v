@@ -18,13 +18,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_delay_w2(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [1:0] d;
-    output reg  [1:0] q;
+module tritri_pipeline_w24_delay_w2 (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire [1:0] d,
+    output reg  [1:0] q
+);
 
     // Update code (custom)
     // Delay line: 5 stage(s) of 2 bit(s).

@@ -19,18 +19,17 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_distance(clock,advance,u_0,u_1,u_2,v_0,v_1,v_2,product);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [24:0] u_0;
-    input wire  [24:0] u_1;
-    input wire  [24:0] u_2;
-    input wire  [48:0] v_0;
-    input wire  [48:0] v_1;
-    input wire  [48:0] v_2;
-    output wire  [73:0] product;
+module tritri_pipeline_w24_distance (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [24:0] u_0,
+    input  wire [24:0] u_1,
+    input  wire [24:0] u_2,
+    input  wire [48:0] v_0,
+    input  wire [48:0] v_1,
+    input  wire [48:0] v_2,
+    output wire [73:0] product
+);
 
     // Stub signals
     wire  multiplier_0_clock;

@@ -17,15 +17,14 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_front_end_axis(clock,advance,normal_0,normal_1,normal_2,axis);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [48:0] normal_0;
-    input wire  [48:0] normal_1;
-    input wire  [48:0] normal_2;
-    output wire  [1:0] axis;
+module tritri_pipeline_w24_front_end_axis (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [48:0] normal_0,
+    input  wire [48:0] normal_1,
+    input  wire [48:0] normal_2,
+    output wire [1:0]  axis
+);
 
     // Constant declarations
     // Stub signals

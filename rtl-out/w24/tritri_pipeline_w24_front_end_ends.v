@@ -17,22 +17,21 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_front_end_ends(clock,advance,vertices_0,vertices_1,vertices_2,vertices_3,vertices_4,vertices_5,vertices_6,vertices_7,vertices_8,low,high);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] vertices_0;
-    input wire  [23:0] vertices_1;
-    input wire  [23:0] vertices_2;
-    input wire  [23:0] vertices_3;
-    input wire  [23:0] vertices_4;
-    input wire  [23:0] vertices_5;
-    input wire  [23:0] vertices_6;
-    input wire  [23:0] vertices_7;
-    input wire  [23:0] vertices_8;
-    output wire  [1:0] low;
-    output wire  [1:0] high;
+module tritri_pipeline_w24_front_end_ends (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] vertices_0,
+    input  wire [23:0] vertices_1,
+    input  wire [23:0] vertices_2,
+    input  wire [23:0] vertices_3,
+    input  wire [23:0] vertices_4,
+    input  wire [23:0] vertices_5,
+    input  wire [23:0] vertices_6,
+    input  wire [23:0] vertices_7,
+    input  wire [23:0] vertices_8,
+    output wire [1:0]  low,
+    output wire [1:0]  high
+);
 
     // Stub signals
     wire  compare_0_clock;

@@ -17,23 +17,22 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_front_end_normal_unit(clock,advance,vertices_0,vertices_1,vertices_2,vertices_3,vertices_4,vertices_5,vertices_6,vertices_7,vertices_8,normal_0,normal_1,normal_2);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] vertices_0;
-    input wire  [23:0] vertices_1;
-    input wire  [23:0] vertices_2;
-    input wire  [23:0] vertices_3;
-    input wire  [23:0] vertices_4;
-    input wire  [23:0] vertices_5;
-    input wire  [23:0] vertices_6;
-    input wire  [23:0] vertices_7;
-    input wire  [23:0] vertices_8;
-    output wire  [48:0] normal_0;
-    output wire  [48:0] normal_1;
-    output wire  [48:0] normal_2;
+module tritri_pipeline_w24_front_end_normal_unit (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] vertices_0,
+    input  wire [23:0] vertices_1,
+    input  wire [23:0] vertices_2,
+    input  wire [23:0] vertices_3,
+    input  wire [23:0] vertices_4,
+    input  wire [23:0] vertices_5,
+    input  wire [23:0] vertices_6,
+    input  wire [23:0] vertices_7,
+    input  wire [23:0] vertices_8,
+    output wire [48:0] normal_0,
+    output wire [48:0] normal_1,
+    output wire [48:0] normal_2
+);
 
     // Stub signals
     wire  edge_pq_clock;

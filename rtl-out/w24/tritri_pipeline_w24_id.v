@@ -17,13 +17,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_id(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [31:0] d;
-    output reg  [31:0] q;
+module tritri_pipeline_w24_id (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [31:0] d,
+    output reg  [31:0] q
+);
 
     // Update code (custom)
     // Delay line: 22 stage(s) of 32 bit(s).

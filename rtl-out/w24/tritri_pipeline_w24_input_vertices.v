@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_input_vertices(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] d;
-    output reg  [23:0] q;
+module tritri_pipeline_w24_input_vertices (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] d,
+    output reg  [23:0] q
+);
 
     // Update code (custom)
     // Delay line: 1 stage(s) of 24 bit(s).

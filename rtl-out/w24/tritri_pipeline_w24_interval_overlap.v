@@ -17,23 +17,22 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_interval_overlap(clock,advance,t1_rotation,t2_swap,t2_rotation,t1_swap,first_0,first_1,first_2,first_3,second_0,second_1,second_2,second_3);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [1:0] t1_rotation;
-    input wire  t2_swap;
-    input wire  [1:0] t2_rotation;
-    input wire  t1_swap;
-    output wire  [2:0] first_0;
-    output wire  [2:0] first_1;
-    output wire  [2:0] first_2;
-    output wire  [2:0] first_3;
-    output wire  [2:0] second_0;
-    output wire  [2:0] second_1;
-    output wire  [2:0] second_2;
-    output wire  [2:0] second_3;
+module tritri_pipeline_w24_interval_overlap (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire [1:0] t1_rotation,
+    input  wire       t2_swap,
+    input  wire [1:0] t2_rotation,
+    input  wire       t1_swap,
+    output wire [2:0] first_0,
+    output wire [2:0] first_1,
+    output wire [2:0] first_2,
+    output wire [2:0] first_3,
+    output wire [2:0] second_0,
+    output wire [2:0] second_1,
+    output wire [2:0] second_2,
+    output wire [2:0] second_3
+);
 
     // Stub signals
     reg  [2:0] first_q_0_d;

@@ -21,14 +21,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_multiplier_w49(clock,advance,a,b,product);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [24:0] a;
-    input wire  [24:0] b;
-    output reg  [48:0] product;
+module tritri_pipeline_w24_multiplier_w49 (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [24:0] a,
+    input  wire [24:0] b,
+    output reg  [48:0] product
+);
 
     // Update code (custom)
     // Registered signed multiplier 25 x 25 -> 49 bits (product modulo 2^49).
@@ -43,10 +42,10 @@ module tritri_pipeline_w24_multiplier_w49(clock,advance,a,b,product);
     end
     always @(posedge clock) begin
         if (advance) begin
-            a_q <= a;
-            b_q <= b;
+            a_q <= $signed(a);
+            b_q <= $signed(b);
             m_q <= a_q * b_q;
-            product <= m_q;
+            product <= $unsigned(m_q);
         end
     end
 endmodule  // tritri_pipeline_w24_multiplier_w49

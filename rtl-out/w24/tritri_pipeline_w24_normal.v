@@ -19,20 +19,19 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_normal(clock,advance,u_0,u_1,u_2,v_0,v_1,v_2,product_0,product_1,product_2);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [24:0] u_0;
-    input wire  [24:0] u_1;
-    input wire  [24:0] u_2;
-    input wire  [24:0] v_0;
-    input wire  [24:0] v_1;
-    input wire  [24:0] v_2;
-    output wire  [48:0] product_0;
-    output wire  [48:0] product_1;
-    output wire  [48:0] product_2;
+module tritri_pipeline_w24_normal (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [24:0] u_0,
+    input  wire [24:0] u_1,
+    input  wire [24:0] u_2,
+    input  wire [24:0] v_0,
+    input  wire [24:0] v_1,
+    input  wire [24:0] v_2,
+    output wire [48:0] product_0,
+    output wire [48:0] product_1,
+    output wire [48:0] product_2
+);
 
     // Stub signals
     wire  multiplier_0_clock;

@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_normal_delay(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [48:0] d;
-    output reg  [48:0] q;
+module tritri_pipeline_w24_normal_delay (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [48:0] d,
+    output reg  [48:0] q
+);
 
     // Update code (custom)
     // Delay line: 1 stage(s) of 49 bit(s).

@@ -19,14 +19,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_offset_w25(clock,advance,a,b,difference);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] a;
-    input wire  [23:0] b;
-    output wire  [24:0] difference;
+module tritri_pipeline_w24_offset_w25 (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] a,
+    input  wire [23:0] b,
+    output wire [24:0] difference
+);
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;

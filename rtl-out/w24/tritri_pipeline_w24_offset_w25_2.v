@@ -19,20 +19,19 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_offset_w25_2(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,difference__0,difference__1,difference__2);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] a_0;
-    input wire  [23:0] a_1;
-    input wire  [23:0] a_2;
-    input wire  [23:0] b_0;
-    input wire  [23:0] b_1;
-    input wire  [23:0] b_2;
-    output wire  [24:0] difference__0;
-    output wire  [24:0] difference__1;
-    output wire  [24:0] difference__2;
+module tritri_pipeline_w24_offset_w25_2 (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] a_0,
+    input  wire [23:0] a_1,
+    input  wire [23:0] a_2,
+    input  wire [23:0] b_0,
+    input  wire [23:0] b_1,
+    input  wire [23:0] b_2,
+    output wire [24:0] difference__0,
+    output wire [24:0] difference__1,
+    output wire [24:0] difference__2
+);
 
     // Constant declarations
     localparam  sign_flip = 24'h800000;

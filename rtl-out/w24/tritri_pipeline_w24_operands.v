@@ -17,79 +17,78 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_operands(clock,advance,t1_degenerate,t2_degenerate,t1_segment_low,t1_segment_high,t2_segment_low,t2_segment_high,overlap_first_0,overlap_first_1,overlap_first_2,overlap_first_3,overlap_second_0,overlap_second_1,overlap_second_2,overlap_second_3,t1_vertices_0,t1_vertices_1,t1_vertices_2,t1_vertices_3,t1_vertices_4,t1_vertices_5,t1_vertices_6,t1_vertices_7,t1_vertices_8,t2_vertices_0,t2_vertices_1,t2_vertices_2,t2_vertices_3,t2_vertices_4,t2_vertices_5,t2_vertices_6,t2_vertices_7,t2_vertices_8,operands_0,operands_1,operands_2,operands_3,operands_4,operands_5,operands_6,operands_7,operands_8,operands_9,operands_10,operands_11,operands_12,operands_13,operands_14,operands_15,operands_16,operands_17,operands_18,operands_19,operands_20,operands_21,operands_22,operands_23,operands_24,operands_25,operands_26,operands_27,operands_28,operands_29,operands_30,operands_31,operands_32,operands_33,operands_34,operands_35);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  t1_degenerate;
-    input wire  t2_degenerate;
-    input wire  [1:0] t1_segment_low;
-    input wire  [1:0] t1_segment_high;
-    input wire  [1:0] t2_segment_low;
-    input wire  [1:0] t2_segment_high;
-    input wire  [2:0] overlap_first_0;
-    input wire  [2:0] overlap_first_1;
-    input wire  [2:0] overlap_first_2;
-    input wire  [2:0] overlap_first_3;
-    input wire  [2:0] overlap_second_0;
-    input wire  [2:0] overlap_second_1;
-    input wire  [2:0] overlap_second_2;
-    input wire  [2:0] overlap_second_3;
-    input wire  [23:0] t1_vertices_0;
-    input wire  [23:0] t1_vertices_1;
-    input wire  [23:0] t1_vertices_2;
-    input wire  [23:0] t1_vertices_3;
-    input wire  [23:0] t1_vertices_4;
-    input wire  [23:0] t1_vertices_5;
-    input wire  [23:0] t1_vertices_6;
-    input wire  [23:0] t1_vertices_7;
-    input wire  [23:0] t1_vertices_8;
-    input wire  [23:0] t2_vertices_0;
-    input wire  [23:0] t2_vertices_1;
-    input wire  [23:0] t2_vertices_2;
-    input wire  [23:0] t2_vertices_3;
-    input wire  [23:0] t2_vertices_4;
-    input wire  [23:0] t2_vertices_5;
-    input wire  [23:0] t2_vertices_6;
-    input wire  [23:0] t2_vertices_7;
-    input wire  [23:0] t2_vertices_8;
-    output wire  [23:0] operands_0;
-    output wire  [23:0] operands_1;
-    output wire  [23:0] operands_2;
-    output wire  [23:0] operands_3;
-    output wire  [23:0] operands_4;
-    output wire  [23:0] operands_5;
-    output wire  [23:0] operands_6;
-    output wire  [23:0] operands_7;
-    output wire  [23:0] operands_8;
-    output wire  [23:0] operands_9;
-    output wire  [23:0] operands_10;
-    output wire  [23:0] operands_11;
-    output wire  [23:0] operands_12;
-    output wire  [23:0] operands_13;
-    output wire  [23:0] operands_14;
-    output wire  [23:0] operands_15;
-    output wire  [23:0] operands_16;
-    output wire  [23:0] operands_17;
-    output wire  [23:0] operands_18;
-    output wire  [23:0] operands_19;
-    output wire  [23:0] operands_20;
-    output wire  [23:0] operands_21;
-    output wire  [23:0] operands_22;
-    output wire  [23:0] operands_23;
-    output wire  [23:0] operands_24;
-    output wire  [23:0] operands_25;
-    output wire  [23:0] operands_26;
-    output wire  [23:0] operands_27;
-    output wire  [23:0] operands_28;
-    output wire  [23:0] operands_29;
-    output wire  [23:0] operands_30;
-    output wire  [23:0] operands_31;
-    output wire  [23:0] operands_32;
-    output wire  [23:0] operands_33;
-    output wire  [23:0] operands_34;
-    output wire  [23:0] operands_35;
+module tritri_pipeline_w24_operands (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire        t1_degenerate,
+    input  wire        t2_degenerate,
+    input  wire [1:0]  t1_segment_low,
+    input  wire [1:0]  t1_segment_high,
+    input  wire [1:0]  t2_segment_low,
+    input  wire [1:0]  t2_segment_high,
+    input  wire [2:0]  overlap_first_0,
+    input  wire [2:0]  overlap_first_1,
+    input  wire [2:0]  overlap_first_2,
+    input  wire [2:0]  overlap_first_3,
+    input  wire [2:0]  overlap_second_0,
+    input  wire [2:0]  overlap_second_1,
+    input  wire [2:0]  overlap_second_2,
+    input  wire [2:0]  overlap_second_3,
+    input  wire [23:0] t1_vertices_0,
+    input  wire [23:0] t1_vertices_1,
+    input  wire [23:0] t1_vertices_2,
+    input  wire [23:0] t1_vertices_3,
+    input  wire [23:0] t1_vertices_4,
+    input  wire [23:0] t1_vertices_5,
+    input  wire [23:0] t1_vertices_6,
+    input  wire [23:0] t1_vertices_7,
+    input  wire [23:0] t1_vertices_8,
+    input  wire [23:0] t2_vertices_0,
+    input  wire [23:0] t2_vertices_1,
+    input  wire [23:0] t2_vertices_2,
+    input  wire [23:0] t2_vertices_3,
+    input  wire [23:0] t2_vertices_4,
+    input  wire [23:0] t2_vertices_5,
+    input  wire [23:0] t2_vertices_6,
+    input  wire [23:0] t2_vertices_7,
+    input  wire [23:0] t2_vertices_8,
+    output wire [23:0] operands_0,
+    output wire [23:0] operands_1,
+    output wire [23:0] operands_2,
+    output wire [23:0] operands_3,
+    output wire [23:0] operands_4,
+    output wire [23:0] operands_5,
+    output wire [23:0] operands_6,
+    output wire [23:0] operands_7,
+    output wire [23:0] operands_8,
+    output wire [23:0] operands_9,
+    output wire [23:0] operands_10,
+    output wire [23:0] operands_11,
+    output wire [23:0] operands_12,
+    output wire [23:0] operands_13,
+    output wire [23:0] operands_14,
+    output wire [23:0] operands_15,
+    output wire [23:0] operands_16,
+    output wire [23:0] operands_17,
+    output wire [23:0] operands_18,
+    output wire [23:0] operands_19,
+    output wire [23:0] operands_20,
+    output wire [23:0] operands_21,
+    output wire [23:0] operands_22,
+    output wire [23:0] operands_23,
+    output wire [23:0] operands_24,
+    output wire [23:0] operands_25,
+    output wire [23:0] operands_26,
+    output wire [23:0] operands_27,
+    output wire [23:0] operands_28,
+    output wire [23:0] operands_29,
+    output wire [23:0] operands_30,
+    output wire [23:0] operands_31,
+    output wire [23:0] operands_32,
+    output wire [23:0] operands_33,
+    output wire [23:0] operands_34,
+    output wire [23:0] operands_35
+);
 
     // Stub signals
     reg  [2:0] index_q_0_d;

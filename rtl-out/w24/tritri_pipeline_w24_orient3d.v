@@ -18,25 +18,24 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_orient3d(clock,advance,a_0,a_1,a_2,b_0,b_1,b_2,c_0,c_1,c_2,d_0,d_1,d_2,negative,zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] a_0;
-    input wire  [23:0] a_1;
-    input wire  [23:0] a_2;
-    input wire  [23:0] b_0;
-    input wire  [23:0] b_1;
-    input wire  [23:0] b_2;
-    input wire  [23:0] c_0;
-    input wire  [23:0] c_1;
-    input wire  [23:0] c_2;
-    input wire  [23:0] d_0;
-    input wire  [23:0] d_1;
-    input wire  [23:0] d_2;
-    output wire  negative;
-    output wire  zero;
+module tritri_pipeline_w24_orient3d (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] a_0,
+    input  wire [23:0] a_1,
+    input  wire [23:0] a_2,
+    input  wire [23:0] b_0,
+    input  wire [23:0] b_1,
+    input  wire [23:0] b_2,
+    input  wire [23:0] c_0,
+    input  wire [23:0] c_1,
+    input  wire [23:0] c_2,
+    input  wire [23:0] d_0,
+    input  wire [23:0] d_1,
+    input  wire [23:0] d_2,
+    output wire        negative,
+    output wire        zero
+);
 
     // Stub signals
     wire  edge_ab_clock;

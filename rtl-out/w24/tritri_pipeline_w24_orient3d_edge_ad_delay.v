@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_orient3d_edge_ad_delay(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [24:0] d;
-    output reg  [24:0] q;
+module tritri_pipeline_w24_orient3d_edge_ad_delay (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [24:0] d,
+    output reg  [24:0] q
+);
 
     // Update code (custom)
     // Delay line: 4 stage(s) of 25 bit(s).

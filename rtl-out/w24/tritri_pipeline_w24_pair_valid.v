@@ -17,14 +17,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_pair_valid(clock,reset,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_pair_valid (
+    input wire clock,
+    input wire reset,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 22 stage(s) of 1 bit(s).

@@ -18,32 +18,31 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_plane_side(clock,advance,plane_point_0,plane_point_1,plane_point_2,plane_normal_0,plane_normal_1,plane_normal_2,vertices_0,vertices_1,vertices_2,vertices_3,vertices_4,vertices_5,vertices_6,vertices_7,vertices_8,negative_0,negative_1,negative_2,zero_0,zero_1,zero_2);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [23:0] plane_point_0;
-    input wire  [23:0] plane_point_1;
-    input wire  [23:0] plane_point_2;
-    input wire  [48:0] plane_normal_0;
-    input wire  [48:0] plane_normal_1;
-    input wire  [48:0] plane_normal_2;
-    input wire  [23:0] vertices_0;
-    input wire  [23:0] vertices_1;
-    input wire  [23:0] vertices_2;
-    input wire  [23:0] vertices_3;
-    input wire  [23:0] vertices_4;
-    input wire  [23:0] vertices_5;
-    input wire  [23:0] vertices_6;
-    input wire  [23:0] vertices_7;
-    input wire  [23:0] vertices_8;
-    output wire  negative_0;
-    output wire  negative_1;
-    output wire  negative_2;
-    output wire  zero_0;
-    output wire  zero_1;
-    output wire  zero_2;
+module tritri_pipeline_w24_plane_side (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [23:0] plane_point_0,
+    input  wire [23:0] plane_point_1,
+    input  wire [23:0] plane_point_2,
+    input  wire [48:0] plane_normal_0,
+    input  wire [48:0] plane_normal_1,
+    input  wire [48:0] plane_normal_2,
+    input  wire [23:0] vertices_0,
+    input  wire [23:0] vertices_1,
+    input  wire [23:0] vertices_2,
+    input  wire [23:0] vertices_3,
+    input  wire [23:0] vertices_4,
+    input  wire [23:0] vertices_5,
+    input  wire [23:0] vertices_6,
+    input  wire [23:0] vertices_7,
+    input  wire [23:0] vertices_8,
+    output wire        negative_0,
+    output wire        negative_1,
+    output wire        negative_2,
+    output wire        zero_0,
+    output wire        zero_1,
+    output wire        zero_2
+);
 
     // Stub signals
     wire  offset_0_clock;

@@ -17,13 +17,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_record_bset(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_record_bset (
+    input wire clock,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 8 stage(s) of 1 bit(s).

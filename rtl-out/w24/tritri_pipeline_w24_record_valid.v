@@ -17,14 +17,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_record_valid(clock,reset,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  reset;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_record_valid (
+    input wire clock,
+    input wire reset,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 8 stage(s) of 1 bit(s).

@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_segment_ends_to_operands(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [1:0] d;
-    output reg  [1:0] q;
+module tritri_pipeline_w24_segment_ends_to_operands (
+    input  wire       clock,
+    input  wire       advance,
+    input  wire [1:0] d,
+    output reg  [1:0] q
+);
 
     // Update code (custom)
     // Delay line: 9 stage(s) of 2 bit(s).

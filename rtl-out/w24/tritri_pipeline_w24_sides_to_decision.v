@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_sides_to_decision(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_sides_to_decision (
+    input wire clock,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 15 stage(s) of 1 bit(s).

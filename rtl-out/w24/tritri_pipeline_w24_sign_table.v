@@ -18,17 +18,16 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_sign_table(negative_0,negative_1,negative_2,zero_0,zero_1,zero_2,rotation,swap);
-
-    // Module arguments
-    input wire  negative_0;
-    input wire  negative_1;
-    input wire  negative_2;
-    input wire  zero_0;
-    input wire  zero_1;
-    input wire  zero_2;
-    output reg  [1:0] rotation;
-    output reg  swap;
+module tritri_pipeline_w24_sign_table (
+    input  wire       negative_0,
+    input  wire       negative_1,
+    input  wire       negative_2,
+    input  wire       zero_0,
+    input  wire       zero_1,
+    input  wire       zero_2,
+    output reg  [1:0] rotation,
+    output reg        swap
+);
 
     // Update code
     always @(*) begin

@@ -19,14 +19,13 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_sign_w49(clock,advance,value,negative,zero);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [48:0] value;
-    output wire  negative;
-    output wire  zero;
+module tritri_pipeline_w24_sign_w49 (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [48:0] value,
+    output wire        negative,
+    output wire        zero
+);
 
     // Constant declarations
     // Stub signals

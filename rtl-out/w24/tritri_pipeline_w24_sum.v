@@ -19,15 +19,14 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_sum(clock,advance,a,b,c,sum);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  [73:0] a;
-    input wire  [73:0] b;
-    input wire  [73:0] c;
-    output reg  [73:0] sum;
+module tritri_pipeline_w24_sum (
+    input  wire        clock,
+    input  wire        advance,
+    input  wire [73:0] a,
+    input  wire [73:0] b,
+    input  wire [73:0] c,
+    output reg  [73:0] sum
+);
 
     // Update code (custom)
     // Registered 74-bit sum of three (modulo 2^74).

@@ -19,13 +19,12 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_within_segment(clock,advance,d,q);
-
-    // Module arguments
-    input wire  clock;
-    input wire  advance;
-    input wire  d;
-    output reg  q;
+module tritri_pipeline_w24_within_segment (
+    input wire clock,
+    input wire advance,
+    input wire d,
+    output reg q
+);
 
     // Update code (custom)
     // Delay line: 5 stage(s) of 1 bit(s).

@@ -20,16 +20,15 @@
 //! Exit status: 0 no mismatch; 1 a mismatch, a cycle count off the formula,
 //! or a tool failure; 2 bad usage (the message names the value).
 
-use anyhow::{bail, Context};
+use anyhow::Context;
 use std::process::ExitCode;
 use std::time::Instant;
-use tritri_cosim::rtl_sim::pipeline_dut;
-use tritri_cosim::rusthdl_harness::{run_stream_on, HarnessOptions};
-use tritri_cosim::stream::{StreamResult, TriangleStream};
+use tritri_cosim::engine::{run_pipeline, Engine};
+use tritri_cosim::stream::TriangleStream;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
-use tritri_rtl::configurations::{pipeline_for_width, SUPPORTED_WIDTHS};
+use tritri_rtl::configurations::{check_width, PipelineInput};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -43,8 +42,8 @@ pub struct Args {
     #[arg(long, default_value_t = 50)]
     bases: usize,
     /// Engines to run, the model always first as the baseline.
-    #[arg(long, value_delimiter = ',', default_value = "rusthdl,verilator,icarus", value_parser = ["rusthdl", "verilator", "icarus"])]
-    engines: Vec<String>,
+    #[arg(long, value_enum, value_delimiter = ',', default_value = "rusthdl,verilator,icarus")]
+    engines: Vec<Engine>,
     /// Seed of the random triangles.
     #[arg(long, default_value_t = 2005)]
     seed: u64,
@@ -84,37 +83,10 @@ fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Re
     Ok(TriangleStream::from_triangles(&pick(n1, false), &pick(n2, true)))
 }
 
-fn measure_rtl(
-    engine: &'static str,
-    run: impl FnOnce() -> anyhow::Result<tritri_cosim::rtl_sim::RtlRun>,
-    expected: &[tritri_cosim::stream::PairVerdict],
-) -> anyhow::Result<Measurement> {
-    let r = run().with_context(|| format!("running {engine}"))?;
-    Ok(Measurement {
-        engine,
-        pairs: r.result.verdicts.len(),
-        mismatches: r.result.mismatches(expected),
-        cycles: Some(r.result.cycles),
-        seconds: r.simulate_seconds,
-        build_seconds: Some(r.build_seconds),
-    })
-}
-
-fn from_stream_result(engine: &'static str, r: &StreamResult, expected: &[tritri_cosim::stream::PairVerdict], seconds: f64) -> Measurement {
-    Measurement {
-        engine,
-        pairs: r.verdicts.len(),
-        mismatches: r.mismatches(expected),
-        cycles: Some(r.cycles),
-        seconds,
-        build_seconds: None,
-    }
-}
-
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for &w in &args.width {
-        if !SUPPORTED_WIDTHS.contains(&w) {
-            eprintln!("error: --width {w}: no pipeline for this width; supported widths are {SUPPORTED_WIDTHS:?}");
+        if let Err(e) = check_width(w) {
+            eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }
     }
@@ -123,7 +95,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     let mut failed = false;
-    println!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rust-hdl |");
+    println!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rusthdl |");
     println!("|---:|---|---:|---:|---|---:|---:|---:|---:|");
     for &width in &args.width {
         let stream = stream_for(width, args.pairs, args.bases, args.seed)?;
@@ -142,28 +114,20 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             build_seconds: None,
         };
         let mut rows = vec![model];
-        for engine in &args.engines {
-            eprintln!("W = {width}: {} pairs through {engine} ...", expected.len());
-            let m = match engine.as_str() {
-                "rusthdl" => {
-                    let mut pipeline = pipeline_for_width(width)?;
-                    let started = Instant::now();
-                    let r = run_stream_on(pipeline.as_mut(), &stream, &HarnessOptions::default())?;
-                    from_stream_result("rust-hdl", &r, &expected, started.elapsed().as_secs_f64())
-                }
-                "verilator" => {
-                    let dut = pipeline_dut(width)?;
-                    measure_rtl("verilator", || tritri_cosim::verilator::run_verilator_dut(&dut, &stream), &expected)?
-                }
-                "icarus" => {
-                    let dut = pipeline_dut(width)?;
-                    measure_rtl("icarus", || tritri_cosim::icarus::run_icarus_dut(&dut, &stream), &expected)?
-                }
-                other => bail!("unknown engine {other}"),
-            };
-            rows.push(m);
+        let schedule: Vec<PipelineInput> = stream.schedule().collect();
+        for &engine in args.engines.iter().filter(|&&e| e != Engine::Model) {
+            eprintln!("W = {width}: {} pairs through {} ...", expected.len(), engine.name());
+            let run = run_pipeline(engine, width, &schedule, None).with_context(|| format!("running {}", engine.name()))?;
+            rows.push(Measurement {
+                engine: engine.name(),
+                pairs: run.result.verdicts.len(),
+                mismatches: run.result.mismatches(&expected),
+                cycles: Some(run.result.cycles),
+                seconds: run.simulate_seconds,
+                build_seconds: engine.simulator().map(|_| run.build_seconds),
+            });
         }
-        let reference = rows.iter().find(|m| m.engine == "rust-hdl").map(Measurement::pairs_per_second);
+        let reference = rows.iter().find(|m| m.engine == Engine::Rusthdl.name()).map(Measurement::pairs_per_second);
         for m in &rows {
             let cycles = match m.cycles {
                 Some(c) if c == formula => format!("{c} (= formula)"),

@@ -37,6 +37,7 @@ use tritri_geom::scene::load::{Pose, SceneObject};
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_geom::scene::{prepare, PreparedScene, SceneOptions};
 use tritri_geom::{fixed_point, published_float};
+use tritri_rtl::system::cycle_model::scene_cycles;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -78,6 +79,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         anyhow::bail!("both objects need at least one triangle");
     };
     let options = SceneOptions { split: true, ..args.hardware.scene_options() };
+    let config = args.hardware.system_config();
     let axis = args.axis as usize;
     let centre = |b: &Aabb<f64>| [0, 1, 2].map(|k| (b.lo[k] + b.hi[k]) / 2.0);
     let (ca, cb) = (centre(&box_a), centre(&box_b));
@@ -131,7 +133,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
         let (b_placed, scene) = scene_at(near)?;
         let batches = scene.batches();
-        let cycles = args.hardware.cycles(&batches);
+        let cycles = scene_cycles(config, &batches);
         let hw = args.hardware.time_of(cycles);
         let exact = time(|| exact_f64_pairs(&a.triangles, &b_placed.triangles).pairs.len());
         let published = time(|| {
@@ -160,7 +162,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let ratio_to = |sw: Duration, hw: Duration| if hw.is_zero() { "-".to_string() } else { format!("{:.1}", sw.as_secs_f64() / hw.as_secs_f64()) };
         let ratio = |sw: Duration| ratio_to(sw, hw);
         let octree = args.hardware.prepare_with(BroadPhase::Octree, &a, &b_placed)?;
-        let octree_hw = args.hardware.time_of(args.hardware.cycles(&octree.batches()));
+        let octree_hw = args.hardware.time_of(scene_cycles(config, &octree.batches()));
         println!(
             "| {target} % | {} + {} = {:.1} %{} | {:.4} | {} | {:.2} % | {cycles} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             scene.kept_a.len(),

@@ -14,7 +14,10 @@ use clap::ValueEnum;
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use tritri_cosim::engine::{run_pipeline, Engine};
 use tritri_geom::arithmetic::{classify, Arithmetic, DEFAULT_WIDTH};
+use tritri_geom::scene::TaggedTriangle;
+use tritri_rtl::configurations::PipelineInput;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -34,18 +37,6 @@ pub struct Args {
     vcd: Option<PathBuf>,
     /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}; `-` reads standard input.
     file: PathBuf,
-}
-
-#[derive(Clone, Copy, PartialEq, ValueEnum)]
-enum Engine {
-    /// The bit-exact fixed-point software model.
-    Model,
-    /// The rust-hdl pipeline, driven cycle by cycle.
-    Rusthdl,
-    /// The emitted Verilog in Icarus Verilog.
-    Icarus,
-    /// The emitted Verilog in Verilator.
-    Verilator,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -78,10 +69,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --engine and --vcd apply only to --arith fixed");
         return Ok(ExitCode::from(2));
     }
-    if let (Arithmetic::Fixed(width), true) = (arith, args.engine != Engine::Model) {
-        let supported = tritri_rtl::configurations::SUPPORTED_WIDTHS;
-        if !supported.contains(&(width as usize)) {
-            eprintln!("error: --width {width}: no pipeline is generated for this width; the hardware engines support {supported:?} (the model takes 8 to 32)");
+    if let (Arithmetic::Fixed(width), true) = (arith, args.engine.is_hardware()) {
+        if let Err(e) = tritri_rtl::configurations::check_width(width as usize) {
+            eprintln!("error: --width {width} --engine {}: {e} (the model takes 8 to 32)", args.engine.name());
             return Ok(ExitCode::from(2));
         }
     }
@@ -128,15 +118,14 @@ fn run_engine(
     pairs: &[tritri_geom::TrianglePair],
     vcd: Option<&std::path::Path>,
 ) -> anyhow::Result<Vec<bool>> {
-    use tritri_cosim::stream::{IdTriangle, InputCycle};
-    let schedule: Vec<InputCycle> = pairs
+    let schedule: Vec<PipelineInput> = pairs
         .iter()
         .enumerate()
         .flat_map(|(i, p)| {
             let id = i as u32;
             [
-                InputCycle::load_base(&IdTriangle { id, triangle: frame.quantize(&p.t1) }),
-                InputCycle::test(&IdTriangle { id, triangle: frame.quantize(&p.t2) }),
+                PipelineInput::load_base(&TaggedTriangle { id, triangle: frame.quantize(&p.t1) }),
+                PipelineInput::test(&TaggedTriangle { id, triangle: frame.quantize(&p.t2) }),
             ]
         })
         .collect();
@@ -145,16 +134,7 @@ fn run_engine(
         // nothing is caught below instead of leaving an old waveform.
         let _ = std::fs::remove_file(path);
     }
-    let result = match engine {
-        Engine::Model => unreachable!("the model needs no engine run"),
-        Engine::Rusthdl => {
-            let mut pipeline = tritri_rtl::configurations::pipeline_for_width(width)?;
-            let options = tritri_cosim::rusthdl_harness::HarnessOptions { vcd: vcd.map(Into::into) };
-            tritri_cosim::rusthdl_harness::run_schedule_on(pipeline.as_mut(), &schedule, &options)?
-        }
-        Engine::Icarus => tritri_cosim::icarus::run_icarus_schedule(width, &schedule, vcd)?,
-        Engine::Verilator => tritri_cosim::verilator::run_verilator_schedule(width, &schedule, vcd)?,
-    };
+    let result = run_pipeline(engine, width, &schedule, vcd)?.result;
     if let Some(path) = vcd {
         anyhow::ensure!(path.is_file(), "the simulation wrote no waveform to {}", path.display());
     }

@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -26,7 +26,9 @@
 //! `--classifier` writes the octree engine's triangle classifier step (the
 //! broad phase's binning unit, `docs/broad-phase.md`) for a `--width`-bit
 //! grid (16, 24 or 32), top `tritri_cell_classifier_g<G>`, by default into
-//! `rtl-out/<top>`.
+//! `rtl-out/<top>`. `--setup` writes the setup that feeds it (one triangle
+//! per clock to its thirteen test functions at the root cell), top
+//! `tritri_triangle_setup_g<G>`.
 //!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
@@ -34,8 +36,9 @@
 use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use tritri_rtl::configurations::SUPPORTED_WIDTHS;
+use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
@@ -56,13 +59,17 @@ pub struct Args {
     synth: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
-    #[arg(long, conflicts_with = "classifier")]
+    #[arg(long, conflicts_with_all = ["classifier", "setup"])]
     system: bool,
     /// Emit the octree engine's triangle classifier step instead (the
     /// broad phase's binning unit); --width is then the grid's width (16,
     /// 24 or 32).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "setup")]
     classifier: bool,
+    /// Emit the classifier's setup instead (a triangle's test functions at
+    /// the root cell); --width is the grid's width (16, 24 or 32).
+    #[arg(long)]
+    setup: bool,
     /// With --system: pipelines working in parallel (1 to 16).
     #[arg(long, default_value_t = 2, requires = "system",
           value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
@@ -85,6 +92,9 @@ impl Args {
         if self.classifier {
             return emit_cell_classifier(width).with_context(|| format!("emitting the {width}-bit grid's classifier"));
         }
+        if self.setup {
+            return emit_triangle_setup(width).with_context(|| format!("emitting the {width}-bit grid's setup"));
+        }
         if self.system {
             let config = self.system_config(width);
             return emit_system(config, PipelineKind::Real).with_context(|| format!("emitting {}", config.unit_name()));
@@ -92,10 +102,22 @@ impl Args {
         emit_pipeline(width).with_context(|| format!("emitting the {width}-bit pipeline"))
     }
 
+    /// Everything but the pipeline goes into a directory named after its top.
+    fn named_by_unit(&self) -> bool {
+        self.system || self.classifier || self.setup
+    }
+
+    /// The grid-width units of the octree engine.
+    fn octree_unit(&self) -> bool {
+        self.classifier || self.setup
+    }
+
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
         if self.classifier {
             cell_classifier_unit_name(width)
+        } else if self.setup {
+            triangle_setup_unit_name(width)
         } else if self.system {
             self.system_config(width).unit_name()
         } else {
@@ -108,21 +130,22 @@ impl Args {
 fn out_dir(args: &Args, width: usize) -> PathBuf {
     match (&args.out, args.width.len()) {
         (Some(dir), 1) => dir.clone(),
-        (Some(parent), _) if args.system || args.classifier => parent.join(args.unit_name(width)),
+        (Some(parent), _) if args.named_by_unit() => parent.join(args.unit_name(width)),
         (Some(parent), _) => parent.join(format!("w{width}")),
-        (None, _) if args.system || args.classifier => PathBuf::from("rtl-out").join(args.unit_name(width)),
+        (None, _) if args.named_by_unit() => PathBuf::from("rtl-out").join(args.unit_name(width)),
         (None, _) => PathBuf::from("rtl-out").join(format!("w{width}")),
     }
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for &w in &args.width {
-        if args.classifier && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
-            eprintln!("error: --classifier --width {w}: the classifier is emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
+        if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
+            let unit = if args.setup { "--setup" } else { "--classifier" };
+            eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if !args.classifier && !SUPPORTED_WIDTHS.contains(&w) {
-            eprintln!("error: no pipeline for width {w}: supported widths are {SUPPORTED_WIDTHS:?}");
+        if let (false, Err(e)) = (args.octree_unit(), check_width(w)) {
+            eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }
     }

@@ -1,14 +1,12 @@
 //! What `tritri sim` and `tritri chapter5` share: the scene options, the
-//! hardware options, loading the objects, and the cycle count of the system
-//! (the system's exact cycle model, `tritri_rtl::system::cycle_model`).
+//! hardware options and loading the objects.
 
 use crate::input;
 use std::time::Duration;
-use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
 use tritri_geom::scene::octree::LocalFrames;
-use tritri_geom::scene::{prepare, prepare_octree, Batch, PreparedScene, SceneError};
+use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError};
 
 /// Most samples per side of a Bezier patch.
 pub const MAX_TESSELLATION: u64 = 256;
@@ -151,14 +149,6 @@ impl HardwareArgs {
         SystemConfig::new(self.width as usize, self.pipelines as usize, pipeline_latency() as usize)
             .with_depth(self.depth as usize)
     }
-
-    /// Cycles of the system on `batches`, from the system's exact cycle
-    /// model ([`system_cycles`]): the two banks alternate (loading batch k+1
-    /// overlaps processing batch k), the result reader is always ready.
-    pub fn cycles(&self, batches: &[Batch]) -> u64 {
-        let sizes: Vec<BatchSizes> = batches.iter().map(|b| BatchSizes { a: b.a.len(), b: b.b.len() }).collect();
-        system_cycles(self.system_config(), &sizes, true, ReaderBehaviour::AlwaysReady)
-    }
 }
 
 /// A duration in the unit that reads best.
@@ -172,39 +162,5 @@ pub fn human(d: Duration) -> String {
         format!("{:.3} us", s * 1e6)
     } else {
         format!("{:.0} ns", s * 1e9)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use tritri_geom::scene::TaggedTriangle;
-
-    fn batch(n1: usize, n2: usize) -> Batch<'static> {
-        let t = TaggedTriangle { id: 0, triangle: [[0; 3]; 3] };
-        let (a, b) = (Box::leak(vec![t; n1].into_boxed_slice()), Box::leak(vec![t; n2].into_boxed_slice()));
-        Batch { a, b }
-    }
-
-    fn hardware(pipelines: u32) -> HardwareArgs {
-        HardwareArgs { width: 24, pipelines, depth: 256, no_split: false, clock_mhz: 100.0, broad_phase: BroadPhase::Octree, grid_bits: None }
-    }
-
-    /// One pipeline, one batch: the thesis's N1 + N1*N2 + L, plus writing
-    /// the arrays (N1 + N2 + 1) and two cycles (bank take-over, memory read).
-    #[test]
-    fn one_pipeline_one_batch_is_the_thesis_formula_plus_loading() {
-        let l = pipeline_latency();
-        assert_eq!(hardware(1).cycles(&[batch(3, 5)]), (3 + 5 + 1) + 3 + 15 + l + 2);
-        assert_eq!(hardware(1).cycles(&[]), 0);
-    }
-
-    /// Loading the next batch hides behind processing the current one, and
-    /// two pipelines halve the streaming.
-    #[test]
-    fn loading_overlaps_processing_and_pipelines_share_the_bases() {
-        let one = hardware(1).cycles(&[batch(10, 10)]);
-        assert!(hardware(1).cycles(&[batch(10, 10), batch(10, 10)]) < 2 * one);
-        assert!(hardware(2).cycles(&[batch(10, 10)]) < one - 40);
     }
 }

@@ -1,6 +1,6 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
 //! [--width W] [--pipelines P] [--depth D] [--broad-phase octree|flat]
-//! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|verilator]
+//! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
 //! [--clock-mhz F] [--out PAIRS]`
 //!
 //! Runs the whole bounding-volume-aware system on two objects (without
@@ -17,13 +17,14 @@
 //! with polygons split into fans (`--indices faces` reports face indices
 //! instead, deduplicated).
 //!
-//! Engines: `model` is the bit-exact fixed-point model with the system's
-//! exact cycle model; `rusthdl` simulates the system (memories, address
-//! generator, P Devillers–Guigue pipelines, result FIFO) in rust-hdl and
-//! `verilator` runs its emitted Verilog, both cycle by cycle (slow: use
-//! small scenes), reporting the simulated cycle count.
+//! Engines (`tritri_cosim::engine`, the route this command only prints):
+//! `model` is the bit-exact fixed-point model with the system's exact
+//! cycle model; `rusthdl` simulates the system (memories, address
+//! generator, P Devillers–Guigue pipelines, result FIFO) in rust-hdl, and
+//! `icarus` and `verilator` run its emitted Verilog, all cycle by cycle
+//! (slow: use small scenes), reporting the simulated cycle count.
 //!
-//! Before a cycle-by-cycle run (`rusthdl`, `verilator`) the report gives
+//! Before a cycle-by-cycle run (`rusthdl`, `icarus`, `verilator`) the report gives
 //! an estimate (cycles from the cycle model, time at the engine's measured
 //! speed, vector file size); above `--max-cycles` (default: what the
 //! engine runs in about five minutes) the run is refused. `--out` is checked
@@ -38,7 +39,7 @@
 
 use crate::output_file::OutputFile;
 use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
-use tritri_rtl::configurations::SUPPORTED_WIDTHS;
+use tritri_rtl::configurations::check_width;
 use clap::ValueEnum;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::collections::BTreeSet;
@@ -47,12 +48,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
-use tritri_cosim::stream::IdTriangle;
-use tritri_cosim::system_harness::{self as harness, PipelineKind, ReaderBehaviour};
-use tritri_cosim::system_verilator::run_system_verilator;
+use tritri_cosim::engine::{check_quantized, run_scene, Engine};
+use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
 use tritri_geom::scene::octree::OctreeSchedule;
-use tritri_geom::scene::{Batch, PreparedScene, TaggedTriangle};
+use tritri_geom::scene::PreparedScene;
+use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::octree::binning_model::{binning_cycles, binning_memory_bits, entry_bits, triangle_record_bits, BinningWork, LANES_PER_OBJECT};
 
 #[derive(clap::Args)]
@@ -73,7 +73,7 @@ pub struct Args {
     /// Skip the comparison with the exact models.
     #[arg(long)]
     no_compare: bool,
-    /// Refuse a cycle-by-cycle simulation (rusthdl, verilator) longer than
+    /// Refuse a cycle-by-cycle simulation (rusthdl, icarus, verilator) longer than
     /// this many system cycles [default: what the engine runs in about
     /// five minutes here]; the estimate is printed either way.
     #[arg(long, value_name = "N")]
@@ -83,46 +83,7 @@ pub struct Args {
 /// Seconds of simulation allowed without `--max-cycles`.
 const DEFAULT_MAX_SECONDS: f64 = 300.0;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-enum Engine {
-    /// The bit-exact fixed-point model and the cycle model.
-    Model,
-    /// The rust-hdl simulation of the system (cycle by cycle; slow).
-    Rusthdl,
-    /// The emitted Verilog of the system in Verilator (cycle by cycle).
-    Verilator,
-}
-
-impl Engine {
-    /// The name the command line uses.
-    fn name(self) -> &'static str {
-        match self {
-            Engine::Model => "model",
-            Engine::Rusthdl => "rusthdl",
-            Engine::Verilator => "verilator",
-        }
-    }
-
-    /// System cycles per second on this 2-core machine (`tritri sim
-    /// --engine E --broad-phase flat` on the built-in scene), for the
-    /// estimate before a run; `None` for the model, which does not step
-    /// cycles.
-    fn cycles_per_second(self) -> Option<f64> {
-        match self {
-            Engine::Model => None,
-            Engine::Rusthdl => Some(RUSTHDL_CYCLES_PER_SECOND),
-            Engine::Verilator => Some(VERILATOR_CYCLES_PER_SECOND),
-        }
-    }
-}
-
-// Measured 2026-11-23: 25,347 cycles in 18.4 s (rust-hdl, built-in scene,
-// flat); 4,284,520 cycles in 31 s (Verilator, --subdivide 2, flat, model
-// cached), both including the scene's preparation.
-const RUSTHDL_CYCLES_PER_SECOND: f64 = 1_400.0;
-const VERILATOR_CYCLES_PER_SECOND: f64 = 140_000.0;
-
-/// Bytes of the Verilator testbench's vector file per triangle sent.
+/// Bytes of the system testbench's vector file per triangle sent.
 const VECTOR_BYTES_PER_TRIANGLE: u64 = 90;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -142,12 +103,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: {e}");
         return Ok(ExitCode::from(2));
     }
-    if args.engine != Engine::Model && !SUPPORTED_WIDTHS.contains(&(args.hardware.width as usize)) {
-        eprintln!(
-            "error: --width {} --engine {}: no pipeline is generated for this width; the hardware engines support {SUPPORTED_WIDTHS:?} (the model takes 8 to 32)",
-            args.hardware.width,
-            args.engine.name()
-        );
+    if let (true, Err(e)) = (args.engine.is_hardware(), check_width(args.hardware.width as usize)) {
+        eprintln!("error: --width {} --engine {}: {e} (the model takes 8 to 32)", args.hardware.width, args.engine.name());
         return Ok(ExitCode::from(2));
     }
     let output = match args.out.as_deref().map(OutputFile::reserve).transpose() {
@@ -191,69 +148,41 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 
     let pairs_tested = scene.pairs_tested();
     let mut status = ExitCode::SUCCESS;
-    let (pairs, cycles, engine_name, notes) = match args.engine {
-        Engine::Model => {
-            let bar = progress_bar(pairs_tested);
-            let mut pairs = fixed_point_pairs(&scene.batches(), &|n| bar.inc(n));
-            pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
-            bar.finish_and_clear();
-            let cycles = args.hardware.cycles(&scene.batches());
-            (pairs, cycles, "model (bit-exact fixed-point model; cycle model of the system)", None)
-        }
-        Engine::Rusthdl | Engine::Verilator => {
-            let model_cycles = args.hardware.cycles(&scene.batches());
-            writeln!(report, "estimate: {}", estimate(args.engine, model_cycles, &scene))?;
-            let limit = args.max_cycles.unwrap_or_else(|| (DEFAULT_MAX_SECONDS * args.engine.cycles_per_second().unwrap_or(0.0)) as u64);
-            if model_cycles > limit {
-                let why = if args.max_cycles.is_some() { String::new() } else { format!(" (the default: about {DEFAULT_MAX_SECONDS} s of simulation)") };
-                eprintln!(
-                    "error: --engine {}: {model_cycles} cycles is above --max-cycles {limit}{why}; raise the limit to run it, or use --engine model (the same pairs and cycle count, bit-exact)",
-                    args.engine.name(),
-                );
-                return Ok(ExitCode::from(2));
-            }
-            let config = args.hardware.system_config();
-            let batches: Vec<harness::Batch> = scene.batches().iter().map(to_harness_batch).collect();
-            let spinner = spinner(pairs_tested, args.engine);
-            let result = match args.engine {
-                Engine::Rusthdl => harness::run_system(config, &batches, ReaderBehaviour::AlwaysReady),
-                _ => run_system_verilator(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady),
-            };
-            spinner.finish_and_clear();
-            let result = match result {
-                Ok(r) => r,
-                Err(e) => {
-                    eprintln!("error: --engine {}: {e:#}", args.engine.name());
-                    return Ok(ExitCode::from(2));
-                }
-            };
-            let mut notes = format!(
-                "{} pairs tested by the hardware's counter (wraps at 2^32), {} hits, {} stall cycles; cycle model {model_cycles}",
-                result.pairs_tested, result.hits, result.stall_cycles
+    let config = args.hardware.system_config();
+    if args.engine.is_hardware() {
+        let model_cycles = scene_cycles(config, &scene.batches());
+        writeln!(report, "estimate: {}", estimate(args.engine, model_cycles, &scene))?;
+        let limit = args.max_cycles.unwrap_or_else(|| (DEFAULT_MAX_SECONDS * args.engine.system_cycles_per_second().unwrap_or(0.0)) as u64);
+        if model_cycles > limit {
+            let why = if args.max_cycles.is_some() { String::new() } else { format!(" (the default: about {DEFAULT_MAX_SECONDS} s of simulation)") };
+            eprintln!(
+                "error: --engine {}: {model_cycles} cycles is above --max-cycles {limit}{why}; raise the limit to run it, or use --engine model (the same pairs and cycle count, bit-exact)",
+                args.engine.name(),
             );
-            if result.overflow {
-                notes.push_str("; OVERFLOW flag set (an array exceeded the memory depth)");
-                status = ExitCode::from(1);
-            }
-            if result.stall_cycles == 0 && result.cycles != model_cycles {
-                notes.push_str(" (DIFFERS from the simulated count: a bug)");
-                status = ExitCode::from(1);
-            }
-            // Flat tiles partition the pairs, so a pair comes once; octree
-            // leaves that share both triangles each report it, and the set
-            // keeps one (the owner rule, `OctreeSchedule::owner`, decided
-            // on the host until the hardware applies it).
-            let mut pairs: PairSet = result.pairs.iter().copied().collect();
-            pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
-            let name = match args.engine {
-                Engine::Rusthdl => "rusthdl (rust-hdl simulation of the system)",
-                _ => "verilator (the emitted Verilog of the system)",
-            };
-            (pairs, result.cycles, name, Some(notes))
+            return Ok(ExitCode::from(2));
+        }
+    }
+    let bar = if args.engine.is_hardware() { spinner(pairs_tested, args.engine) } else { progress_bar(pairs_tested) };
+    let run = run_scene(args.engine, &scene, config, &|n| bar.inc(n));
+    bar.finish_and_clear();
+    let run = match run {
+        Ok(run) => run,
+        Err(e) => {
+            eprintln!("error: --engine {}: {e:#}", args.engine.name());
+            return Ok(ExitCode::from(2));
         }
     };
-    writeln!(report, "engine: {engine_name}")?;
-    if let Some(notes) = notes {
+    let (pairs, cycles) = (&run.pairs, run.cycles);
+    writeln!(report, "engine: {}", args.engine.describe())?;
+    if let Some(c) = run.counters {
+        let mut notes = format!(
+            "{} pairs tested by the hardware's counter (wraps at 2^32), {} hits, {} stall cycles; cycle model {}",
+            c.pairs_tested, c.hits, c.stall_cycles, run.model_cycles
+        );
+        for fault in run.faults() {
+            notes.push_str(&format!("; {fault}"));
+            status = ExitCode::from(1);
+        }
         writeln!(report, "hardware: {notes}")?;
     }
     writeln!(report, "intersecting pairs: {}", pairs.len())?;
@@ -266,12 +195,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         args.hardware.clock_mhz,
         human(time)
     )?;
-    write_pairs(output, args.indices, &a, &b, &pairs)?;
+    write_pairs(output, args.indices, &a, &b, pairs)?;
 
     if !args.no_compare {
-        let mut quantized = quantized_exact_pairs(&scene.batches());
-        quantized.extend(quantized_exact_pairs(&scene.host_batches()));
-        let same = PairDiff::between(&quantized, &pairs);
+        let (quantized, same) = check_quantized(&scene, pairs);
         if same.is_empty() {
             writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
         } else {
@@ -406,7 +333,7 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         let grid_bits = args.hardware.grid_bits() as usize;
         writeln!(
             report,
-            "binning unit (classifier step built and co-simulated, {LANES_PER_OBJECT} per object; setup and controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
+            "binning unit (setup and classifier step built and co-simulated, {LANES_PER_OBJECT} classifiers per object; controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
             work.triangles,
             work.entries,
             work.cells,
@@ -463,12 +390,6 @@ fn examples(diff: &PairDiff) -> String {
     format!("{}{}", show("missing", &diff.missing), show("extra", &diff.extra))
 }
 
-/// The batches as the system harness takes them (ids: original triangle indices).
-fn to_harness_batch(batch: &Batch) -> harness::Batch {
-    let tag = |ts: &[TaggedTriangle]| ts.iter().map(|t| IdTriangle { id: t.id, triangle: t.triangle }).collect();
-    harness::Batch { a: tag(batch.a), b: tag(batch.b) }
-}
-
 /// A spinner while a hardware simulation runs (they report no progress).
 fn spinner(pairs: u64, engine: Engine) -> ProgressBar {
     if pairs < 10_000 {
@@ -510,11 +431,11 @@ fn write_pairs(output: Option<OutputFile>, indices: Indices, a: &SceneObject, b:
 
 /// What a cycle-by-cycle run will take, before it starts.
 fn estimate(engine: Engine, cycles: u64, scene: &PreparedScene) -> String {
-    let seconds = engine.cycles_per_second().map_or(0.0, |rate| cycles as f64 / rate);
+    let seconds = engine.system_cycles_per_second().map_or(0.0, |rate| cycles as f64 / rate);
     let triangles: u64 = scene.batches().iter().map(|b| (b.a.len() + b.b.len()) as u64).sum();
-    let disk = match engine {
-        Engine::Verilator => format!(", vector file about {:.1} MB in the temporary directory", (triangles * VECTOR_BYTES_PER_TRIANGLE) as f64 / 1e6),
-        _ => String::new(),
+    let disk = match engine.simulator() {
+        Some(_) => format!(", vector file about {:.1} MB in the temporary directory", (triangles * VECTOR_BYTES_PER_TRIANGLE) as f64 / 1e6),
+        None => String::new(),
     };
     format!(
         "{cycles} system cycles (cycle model), about {} with --engine {} on this machine{disk}",

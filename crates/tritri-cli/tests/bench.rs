@@ -15,7 +15,7 @@ fn small_bench_agrees_everywhere() {
     let out = tritri().args(["bench", "--width", "16", "--pairs", "300", "--bases", "7"]).output().unwrap();
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{table}\n{}", String::from_utf8_lossy(&out.stderr));
-    for engine in ["model", "rust-hdl", "verilator", "icarus"] {
+    for engine in ["model", "rusthdl", "verilator", "icarus"] {
         let row = table
             .lines()
             .find(|l| l.starts_with(&format!("| 16 | {engine} |")))

@@ -93,6 +93,21 @@ fn classifier_is_emitted_for_its_grid_widths() {
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--classifier --width 20"));
 }
 
+/// `--setup` writes the classifier's setup, with its latency in the header.
+#[test]
+fn setup_is_emitted_for_its_grid_widths() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-setup-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri().args(["gen", "--setup", "--width", "24", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(out.join("tritri_triangle_setup_g24.v")).unwrap();
+    assert!(text.contains("Latency:    5 clock cycles"), "{text}");
+    std::fs::remove_dir_all(&out).unwrap();
+    let refused = tritri().args(["gen", "--setup", "--width", "20"]).output().unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--setup --width 20"));
+}
+
 /// `--synth` without Yosys on PATH: an error naming the tool and its package.
 #[test]
 fn missing_yosys_is_named() {

@@ -6,7 +6,8 @@
 //! The testbench is generated here from the port list (78 value ports), so
 //! the port names are written in one place, the rust-hdl struct.
 
-use crate::rtl_sim::WorkDir;
+pub use crate::simulator::Simulator;
+use crate::simulator::{compile, run_on_vectors, Testbench};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::octree::cell::Cell;
@@ -16,7 +17,6 @@ use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GR
 use tritri_rtl::octree::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, settle};
-use tritri_rtl::tools::{run, IVERILOG, VERILATOR, VVP};
 
 /// One entry on the classifier's inputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -136,47 +136,15 @@ fn run_rusthdl_v<const V: usize>(entries: &[ClassifierEntry]) -> Vec<ClassifierA
     answers
 }
 
-/// Which simulator runs the emitted Verilog.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Simulator {
-    Icarus,
-    Verilator,
-}
-
 /// Runs the entries through the emitted `grid_bits` classifier.
 pub fn run_emitted(grid_bits: usize, entries: &[ClassifierEntry], simulator: Simulator) -> anyhow::Result<Vec<ClassifierAnswer>> {
     let design = emit_cell_classifier(grid_bits)?;
     let v = value_bits(grid_bits);
-    let work = WorkDir::new("classifier").context("creating the classifier work directory")?;
-    let mut sources = vec![work.join("tb_cell_classifier.sv")];
-    std::fs::write(&sources[0], testbench(&design.top, v))?;
-    for f in design.verilog_files() {
-        let p = work.join(&f.path);
-        std::fs::write(&p, &f.contents)?;
-        sources.push(p);
-    }
-    let vectors = work.join("vectors.txt");
-    let outputs = work.join("outputs.txt");
-    std::fs::write(&vectors, vector_text(entries, v))?;
-    let plusargs = [format!("+vectors={}", vectors.display()), format!("+outputs={}", outputs.display())];
-    match simulator {
-        Simulator::Icarus => {
-            let image = work.join("tb.vvp");
-            run(std::process::Command::new(IVERILOG.locate()?).arg("-g2012").arg("-o").arg(&image).arg("-s").arg("tb_cell_classifier").args(&sources))?;
-            run(std::process::Command::new(VVP.locate()?).arg("-n").arg(&image).args(&plusargs))?;
-        }
-        Simulator::Verilator => {
-            let obj = work.join("obj");
-            run(VERILATOR
-                .command()?
-                .env("TMPDIR", &work.path)
-                .args(["--binary", "--timing", "-Wno-fatal", "-Wno-lint", "-Wno-style", "-O2", "--top-module", "tb_cell_classifier", "--Mdir"])
-                .arg(&obj)
-                .args(&sources))?;
-            run(std::process::Command::new(obj.join("Vtb_cell_classifier")).args(&plusargs))?;
-        }
-    }
-    let text = std::fs::read_to_string(&outputs).context("the classifier testbench wrote no outputs")?;
+    let mut files = vec![("tb_cell_classifier.sv".to_string(), testbench(&design.top, v))];
+    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    let bench = Testbench { top: "tb_cell_classifier".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    let compiled = compile(simulator, &bench)?;
+    let (text, _) = run_on_vectors(&compiled, "classifier-run", &vector_text(entries, v), &[])?;
     text.lines().map(|line| parse_answer(line, v)).collect()
 }
 

@@ -1,23 +1,32 @@
-//! Co-simulation of tritri's hardware against the software models.
+//! Co-simulation of tritri's hardware against the software models, and the
+//! route from a scene or a list of pairs to verdicts.
 //!
-//! Every engine takes the same input (a [`stream::TriangleStream`] or a
-//! schedule of [`stream::InputCycle`]s) and returns a
-//! [`stream::StreamResult`], so results compare with `==`:
-//!
-//! * [`rusthdl_harness`]: the rust-hdl pipeline, driven directly;
-//! * [`icarus`] and [`verilator`]: the emitted Verilog with
-//!   `testbenches/tb_triangle_pipeline.sv`, on vector files ([`vectors`]);
-//! * [`system_harness`] and [`system_verilator`]: the whole system (memories,
-//!   address generator, pipelines, result FIFO).
-//!
-//! [`suites`] holds vector sets shared by the tests of every engine.
+//! * [`engine`]: the route as a library. One [`engine::Engine`] (model,
+//!   rusthdl, icarus, verilator) and one function per kind of work:
+//!   [`engine::run_pipeline`] for a schedule of pairs through a pipeline,
+//!   [`engine::run_scene`] for a prepared scene through the system. The
+//!   command line only parses arguments and prints what these return.
+//! * The pipeline: [`rusthdl_harness`] drives the rust-hdl pipeline
+//!   directly; [`pipeline_rtl`] runs its emitted Verilog with
+//!   `testbenches/tb_triangle_pipeline.sv` on vector files ([`vectors`]).
+//!   Both take a schedule of `tritri_rtl::configurations::PipelineInput`s
+//!   (or a [`stream::TriangleStream`]) and return a
+//!   [`stream::StreamResult`], so results compare with `==`.
+//! * The system: [`system_harness`] (rust-hdl) and [`system_rtl`] (emitted
+//!   Verilog with `testbenches/tb_collision_system.sv`) take the same
+//!   batches and return the same [`system_harness::SystemResult`].
+//! * The octree classifier and its setup: [`cell_classifier`],
+//!   [`triangle_setup`].
+//! * [`simulator`]: the one place that compiles and runs a testbench in
+//!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod cell_classifier;
-pub mod icarus;
-pub mod rtl_sim;
+pub mod engine;
+pub mod pipeline_rtl;
 pub mod rusthdl_harness;
+pub mod simulator;
 pub mod stream;
 pub mod suites;
 pub mod system_harness;
-pub mod system_verilator;
+pub mod system_rtl;
+pub mod triangle_setup;
 pub mod vectors;
-pub mod verilator;

@@ -1,6 +1,6 @@
 //! Direct-drive co-simulation of the rust-hdl triangle pipeline: set the
 //! input ports, toggle the clock, call `update_all()` until nothing changes
-//! (DESIGN.md; no `simple_sim!` threads), and collect one verdict per
+//! (docs/ARCHITECTURE.md, conventions; no `simple_sim!` threads), and collect one verdict per
 //! tested pair.
 //!
 //! Schedule (thesis, chapter 3, and [`crate::stream`]): per base triangle,
@@ -18,7 +18,7 @@
 //! assert_eq!(r.pairs, vec![(7, 9, true)]);
 //! ```
 
-use crate::stream::{InputCycle, PairVerdict, StreamResult, TriangleStream};
+use crate::stream::{PairVerdict, StreamResult, TriangleStream};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use tritri_geom::fixed_point::FixedTriangle;
@@ -48,11 +48,7 @@ impl From<StreamResult> for RunResult {
 /// Runs `bases` (each loaded once with `bset`) against `streamed` on the
 /// `width`-bit pipeline.
 pub fn run_pairs(width: usize, bases: &[(u32, FixedTriangle)], streamed: &[(u32, FixedTriangle)]) -> Result<RunResult> {
-    let stream = TriangleStream {
-        bases: bases.iter().map(|&(id, triangle)| crate::stream::IdTriangle { id, triangle }).collect(),
-        streamed: streamed.iter().map(|&(id, triangle)| crate::stream::IdTriangle { id, triangle }).collect(),
-    };
-    Ok(run_stream(width, &stream, &HarnessOptions::default())?.into())
+    Ok(run_stream(width, &TriangleStream::from_tagged(bases, streamed), &HarnessOptions::default())?.into())
 }
 
 /// Runs `stream` on a fresh `width`-bit pipeline.
@@ -106,7 +102,7 @@ pub fn run_stream_on(
     stream: &TriangleStream,
     options: &HarnessOptions,
 ) -> Result<StreamResult> {
-    let schedule: Vec<InputCycle> = stream.schedule().collect();
+    let schedule: Vec<PipelineInput> = stream.schedule().collect();
     run_schedule_on(pipeline, &schedule, options)
 }
 
@@ -117,7 +113,7 @@ pub fn run_stream_on(
 /// cycle to the cycle of the last verdict, inclusive.
 pub fn run_schedule_on(
     pipeline: &mut dyn PipelineSimulation,
-    schedule: &[InputCycle],
+    schedule: &[PipelineInput],
     options: &HarnessOptions,
 ) -> Result<StreamResult> {
     let mut trace = Trace::open(options.vcd.as_deref(), pipeline)?;
@@ -175,7 +171,7 @@ pub fn run_schedule_on(
             );
         }
         let input = match schedule.get(cycle as usize - 1) {
-            Some(c) => PipelineInput { valid: c.valid, bset: c.bset, id: c.id, vertices: c.coordinates },
+            Some(c) => *c,
             None => PipelineInput::default(),
         };
         pipeline.set_input(&input);

@@ -12,65 +12,38 @@
 //! two engines agree when their results are equal.
 
 use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::scene::TaggedTriangle;
 use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
-
-/// A triangle with the id it carries through the pipeline.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct IdTriangle {
-    pub id: u32,
-    pub triangle: FixedTriangle,
-}
+use tritri_rtl::configurations::PipelineInput;
 
 /// The work of one run: every base triangle against every streamed triangle.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TriangleStream {
     /// The outer loop (`N1` triangles), each loaded once with `bset = 1`.
-    pub bases: Vec<IdTriangle>,
+    pub bases: Vec<TaggedTriangle>,
     /// The inner loop (`N2` triangles), streamed past every base.
-    pub streamed: Vec<IdTriangle>,
-}
-
-/// One cycle on the pipeline's input bus.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct InputCycle {
-    pub valid: bool,
-    pub bset: bool,
-    pub id: u32,
-    /// `x0 y0 z0 x1 y1 z1 x2 y2 z2`, each a signed W-bit value.
-    pub coordinates: [i64; 9],
-}
-
-impl InputCycle {
-    pub fn load_base(t: &IdTriangle) -> Self {
-        InputCycle { valid: true, bset: true, id: t.id, coordinates: flatten(&t.triangle) }
-    }
-    pub fn test(t: &IdTriangle) -> Self {
-        InputCycle { valid: true, bset: false, id: t.id, coordinates: flatten(&t.triangle) }
-    }
-    /// A bubble: nothing on the bus.
-    pub fn idle() -> Self {
-        InputCycle { valid: false, bset: false, id: 0, coordinates: [0; 9] }
-    }
-}
-
-/// `x0 y0 z0 x1 y1 z1 x2 y2 z2`.
-pub fn flatten(t: &FixedTriangle) -> [i64; 9] {
-    [t[0][0], t[0][1], t[0][2], t[1][0], t[1][1], t[1][2], t[2][0], t[2][1], t[2][2]]
+    pub streamed: Vec<TaggedTriangle>,
 }
 
 impl TriangleStream {
     /// Pairs the lists up with ids `0..` in their order.
     pub fn from_triangles(bases: &[FixedTriangle], streamed: &[FixedTriangle]) -> Self {
         let tag = |ts: &[FixedTriangle]| {
-            ts.iter().enumerate().map(|(i, t)| IdTriangle { id: i as u32, triangle: *t }).collect()
+            ts.iter().enumerate().map(|(i, t)| TaggedTriangle { id: i as u32, triangle: *t }).collect()
         };
         TriangleStream { bases: tag(bases), streamed: tag(streamed) }
     }
 
+    /// `(id, triangle)` lists as a stream.
+    pub fn from_tagged(bases: &[(u32, FixedTriangle)], streamed: &[(u32, FixedTriangle)]) -> Self {
+        let tag = |ts: &[(u32, FixedTriangle)]| ts.iter().map(|&(id, triangle)| TaggedTriangle { id, triangle }).collect();
+        TriangleStream { bases: tag(bases), streamed: tag(streamed) }
+    }
+
     /// The input cycles, in order: per base one `bset` cycle, then the stream.
-    pub fn schedule(&self) -> impl Iterator<Item = InputCycle> + '_ {
+    pub fn schedule(&self) -> impl Iterator<Item = PipelineInput> + '_ {
         self.bases.iter().flat_map(move |b| {
-            std::iter::once(InputCycle::load_base(b)).chain(self.streamed.iter().map(InputCycle::test))
+            std::iter::once(PipelineInput::load_base(b)).chain(self.streamed.iter().map(PipelineInput::test))
         })
     }
 
@@ -131,15 +104,15 @@ pub fn all_orderings(t1: FixedTriangle, t2: FixedTriangle) -> Vec<PairGroup> {
 pub fn group_schedule(
     groups: &[PairGroup],
     model: impl Fn(&FixedTriangle, &FixedTriangle) -> bool,
-) -> (Vec<InputCycle>, Vec<PairVerdict>) {
+) -> (Vec<PipelineInput>, Vec<PairVerdict>) {
     let mut cycles = Vec::with_capacity(groups.iter().map(|(_, s)| 1 + s.len()).sum());
     let mut expected = Vec::with_capacity(cycles.capacity() - groups.len());
     for (g, (base, streamed)) in groups.iter().enumerate() {
         let base_id = g as u32;
-        cycles.push(InputCycle::load_base(&IdTriangle { id: base_id, triangle: *base }));
+        cycles.push(PipelineInput::load_base(&TaggedTriangle { id: base_id, triangle: *base }));
         for (s, t) in streamed.iter().enumerate() {
             let stream_id = s as u32;
-            cycles.push(InputCycle::test(&IdTriangle { id: stream_id, triangle: *t }));
+            cycles.push(PipelineInput::test(&TaggedTriangle { id: stream_id, triangle: *t }));
             expected.push(PairVerdict { base_id, stream_id, hit: model(base, t) });
         }
     }

@@ -1,4 +1,4 @@
-//! Direct drive of the collision system's rust-hdl model (DESIGN.md: set
+//! Direct drive of the collision system's rust-hdl model (docs/ARCHITECTURE.md, conventions: set
 //! the inputs, settle, clock; no `simple_sim!` threads), with a host that
 //! writes batches and reads pairs.
 //!
@@ -17,28 +17,14 @@
 //! in which `done` is high (as [`system_cycles`] predicts); the run goes on
 //! until the result FIFO is empty, so every pair is collected.
 
-use crate::stream::IdTriangle;
 use rust_hdl::prelude::*;
 use tritri_rtl::sim_drive::MAX_DELTA_CYCLES;
 pub use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_for_width::system_for_config;
+pub use tritri_geom::scene::{Batch, TaggedTriangle};
 pub use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::host_ports::{HostInputs, HostOutputs, HostPorts};
 pub use tritri_rtl::system::SystemConfig;
-
-/// One batch: the arrays of A (bases) and B (streamed) of one common
-/// bounding volume, quantized by the caller.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Batch {
-    pub a: Vec<IdTriangle>,
-    pub b: Vec<IdTriangle>,
-}
-
-impl Batch {
-    pub fn sizes(&self) -> BatchSizes {
-        BatchSizes { a: self.a.len(), b: self.b.len() }
-    }
-}
 
 /// What a run returns.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -65,11 +51,11 @@ pub struct HostWord {
 
 /// The host stream of a batch: A, then B, then the end-of-batch word.
 pub fn host_words(batch: &Batch) -> Vec<HostWord> {
-    let word = |t: &IdTriangle, object_b| HostWord {
+    let word = |t: &TaggedTriangle, object_b| HostWord {
         end: false,
         object_b,
         id: t.id,
-        coordinates: crate::stream::flatten(&t.triangle),
+        coordinates: tritri_rtl::configurations::flatten(&t.triangle),
     };
     let mut words: Vec<HostWord> = batch.a.iter().map(|t| word(t, false)).collect();
     words.extend(batch.b.iter().map(|t| word(t, true)));
@@ -129,7 +115,7 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
     let config = uut.system_config();
     uut.connect_all();
     let words: Vec<Vec<HostWord>> = batches.iter().map(host_words).collect();
-    let sizes: Vec<BatchSizes> = batches.iter().map(Batch::sizes).collect();
+    let sizes: Vec<BatchSizes> = batches.iter().map(BatchSizes::of).collect();
     let budget = 4 * system_cycles(config, &sizes, false, ReaderBehaviour::AlwaysReady)
         + 16 * batches.iter().map(|b| b.a.len() * b.b.len()).sum::<usize>() as u64
             * match reader {
@@ -221,44 +207,4 @@ fn tick<S: HostPorts + ?Sized>(uut: &mut S) {
     settle(uut);
     uut.clock_signal().next = Clock { clk: false };
     settle(uut);
-}
-
-/// The pairs every batch should yield: all pairs `(a, b)` of each batch's
-/// arrays for which `intersects` holds, sorted.
-pub fn expected_pairs(
-    batches: &[Batch],
-    intersects: impl Fn(&IdTriangle, &IdTriangle) -> bool,
-) -> Vec<(u32, u32)> {
-    let mut pairs: Vec<(u32, u32)> = batches
-        .iter()
-        .flat_map(|batch| {
-            batch.a.iter().flat_map(|a| batch.b.iter().filter(|b| intersects(a, b)).map(|b| (a.id, b.id)))
-                .collect::<Vec<_>>()
-        })
-        .collect();
-    pairs.sort_unstable();
-    pairs
-}
-
-/// `(missing, extra)`: pairs of `expected` not in `got`, and of `got` not in
-/// `expected`, as multisets.
-pub fn pair_differences(got: &[(u32, u32)], expected: &[(u32, u32)]) -> (usize, usize) {
-    let mut got = got.to_vec();
-    got.sort_unstable();
-    let mut expected = expected.to_vec();
-    expected.sort_unstable();
-    let (mut i, mut j, mut missing, mut extra) = (0, 0, 0, 0);
-    while i < got.len() || j < expected.len() {
-        if j == expected.len() || (i < got.len() && got[i] < expected[j]) {
-            extra += 1;
-            i += 1;
-        } else if i == got.len() || expected[j] < got[i] {
-            missing += 1;
-            j += 1;
-        } else {
-            i += 1;
-            j += 1;
-        }
-    }
-    (missing, extra)
 }

@@ -10,7 +10,8 @@
 //! expected run): one line per verdict, `cycle base_id stream_id hit`, the
 //! cycle in decimal, the ids in hex, `hit` 0 or 1; then `# cycles N`.
 
-use crate::stream::{InputCycle, PairVerdict, StreamResult, TriangleStream};
+use crate::stream::{PairVerdict, StreamResult, TriangleStream};
+use tritri_rtl::configurations::PipelineInput;
 use std::fmt::Write as _;
 
 /// Hex digits for `bits` bits.
@@ -25,7 +26,7 @@ pub fn hex_twos_complement(v: i64, bits: u32) -> String {
 }
 
 /// One vector line (no newline).
-pub fn vector_line(c: &InputCycle, width: u32, id_bits: u32) -> String {
+pub fn vector_line(c: &PipelineInput, width: u32, id_bits: u32) -> String {
     let mut line = format!(
         "{} {} {:0w$x}",
         c.valid as u8,
@@ -33,7 +34,7 @@ pub fn vector_line(c: &InputCycle, width: u32, id_bits: u32) -> String {
         c.id,
         w = digits(id_bits)
     );
-    for v in c.coordinates {
+    for v in c.vertices {
         line.push(' ');
         line.push_str(&hex_twos_complement(v, width));
     }
@@ -54,13 +55,13 @@ pub fn vectors(stream: &TriangleStream, width: u32, id_bits: u32) -> String {
 
 /// The vector file for an arbitrary schedule of input cycles (for example one
 /// `bset` cycle and one test cycle per pair), with a comment header.
-pub fn vectors_for_schedule(schedule: &[InputCycle], width: u32, id_bits: u32) -> String {
+pub fn vectors_for_schedule(schedule: &[PipelineInput], width: u32, id_bits: u32) -> String {
     let mut text = String::with_capacity((schedule.len() + 4) * (12 + 10 * digits(width)));
     let _ = writeln!(text, "# tritri vectors: W={width} ID_WIDTH={id_bits} schedule of {} cycles (testbenches/README.md)", schedule.len());
     schedule_vectors(text, schedule.iter().copied(), width, id_bits)
 }
 
-fn schedule_vectors(mut text: String, schedule: impl Iterator<Item = InputCycle>, width: u32, id_bits: u32) -> String {
+fn schedule_vectors(mut text: String, schedule: impl Iterator<Item = PipelineInput>, width: u32, id_bits: u32) -> String {
     text.push_str("# valid bset id x0 y0 z0 x1 y1 z1 x2 y2 z2\n");
     for c in schedule {
         text.push_str(&vector_line(&c, width, id_bits));
@@ -152,7 +153,7 @@ mod tests {
 
     #[test]
     fn vector_lines() {
-        let c = InputCycle { valid: true, bset: false, id: 0x2a, coordinates: [-1, 0, 1, 2, 3, 4, 5, 6, -8] };
+        let c = PipelineInput { valid: true, bset: false, id: 0x2a, vertices: [-1, 0, 1, 2, 3, 4, 5, 6, -8] };
         assert_eq!(vector_line(&c, 8, 32), "1 0 0000002a ff 00 01 02 03 04 05 06 f8");
     }
 

@@ -18,11 +18,12 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
-use tritri_cosim::icarus::run_icarus_dut;
-use tritri_cosim::rtl_sim::{pipeline_dut, RtlRun};
-use tritri_cosim::stream::{group_schedule, IdTriangle, StreamResult, TriangleStream};
+use tritri_cosim::engine::{run_pipeline, Engine};
+use tritri_cosim::pipeline_rtl::{pipeline_dut, run_schedule, run_stream, RtlRun};
+use tritri_cosim::simulator::Simulator;
+use tritri_cosim::stream::{group_schedule, StreamResult, TriangleStream};
+use tritri_geom::scene::TaggedTriangle;
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
-use tritri_cosim::verilator::run_verilator_dut;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
@@ -53,9 +54,9 @@ fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
             _ => [0; 3].map(|_| [0; 3].map(|_| extremes[rng.gen_range(0..extremes.len())])),
         }
     };
-    let bases = (0..n1).map(|k| IdTriangle { id: 1000 + k as u32, triangle: pick(k, &mut rng) }).collect();
+    let bases = (0..n1).map(|k| TaggedTriangle { id: 1000 + k as u32, triangle: pick(k, &mut rng) }).collect();
     // Stream ids near the top of the 32-bit range: the id path is checked too.
-    let streamed = (0..n2).map(|k| IdTriangle { id: u32::MAX - k as u32, triangle: pick(k, &mut rng) }).collect();
+    let streamed = (0..n2).map(|k| TaggedTriangle { id: u32::MAX - k as u32, triangle: pick(k, &mut rng) }).collect();
     TriangleStream { bases, streamed }
 }
 
@@ -96,7 +97,7 @@ fn icarus_matches_fixed_point_model() {
         let dut = pipeline_dut(width).unwrap();
         let n1 = 10;
         let stream = mixed_stream(width as u32, n1, (total / n1).max(1), seed);
-        let run = run_icarus_dut(&dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        let run = run_stream(Simulator::Icarus, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
         check("icarus", width, &stream, &run, dut.latency);
     }
 }
@@ -109,29 +110,30 @@ fn verilator_matches_fixed_point_model() {
         let dut = pipeline_dut(width).unwrap();
         let n1 = 20;
         let stream = mixed_stream(width as u32, n1, (total / n1).max(1), seed);
-        let run = run_verilator_dut(&dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        let run = run_stream(Simulator::Verilator, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
         check("verilator", width, &stream, &run, dut.latency);
         let started = Instant::now();
         let small = mixed_stream(width as u32, 2, 50, seed + 10);
-        let again = run_verilator_dut(&dut, &small).unwrap();
+        let again = run_stream(Simulator::Verilator, &dut, &small).unwrap();
         assert_eq!(again.build_seconds, 0.0, "the second run uses the cached model");
         check("verilator (cached)", width, &small, &again, dut.latency);
         eprintln!("cached run: {:.2} s", started.elapsed().as_secs_f64());
     }
 }
 
-/// The library entry points agree with the rust-hdl harness on the same
-/// pairs (same result type, same ids, same cycles).
+/// The route's one entry point gives the same result on every engine (same
+/// verdicts, same ids, same cycles), the model included.
 #[test]
-fn run_icarus_and_run_verilator_equal_the_rust_hdl_harness() {
+fn every_engine_of_the_route_gives_the_same_result() {
     let stream = mixed_stream(16, 3, 40, 5);
-    let bases: Vec<_> = stream.bases.iter().map(|t| (t.id, t.triangle)).collect();
-    let streamed: Vec<_> = stream.streamed.iter().map(|t| (t.id, t.triangle)).collect();
-    let hdl = tritri_cosim::rusthdl_harness::run_pairs(16, &bases, &streamed).unwrap();
-    let icarus = tritri_cosim::icarus::run_icarus(16, &bases, &streamed).unwrap();
-    let verilator = tritri_cosim::verilator::run_verilator(16, &bases, &streamed).unwrap();
-    assert_eq!(icarus, hdl);
-    assert_eq!(verilator, hdl);
+    let schedule: Vec<_> = stream.schedule().collect();
+    let model = run_pipeline(Engine::Model, 16, &schedule, None).unwrap().result;
+    assert_eq!(model.verdicts, stream.expected(intersects));
+    assert_eq!(model.cycles, stream.expected_cycles(tritri_rtl::pipeline::triangle_pipeline::latency() as u64));
+    for engine in [Engine::Rusthdl, Engine::Icarus, Engine::Verilator] {
+        let run = run_pipeline(engine, 16, &schedule, None).unwrap_or_else(|e| panic!("{}: {e:#}", engine.name()));
+        assert_eq!(run.result, model, "{}", engine.name());
+    }
 }
 
 /// Checks a run of a group schedule: every verdict (ids included) equals the
@@ -154,7 +156,7 @@ fn check_schedule(engine: &str, what: &str, result: &StreamResult, expected: &[t
 fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
     for width in [16, 24, 32] {
         let (schedule, expected) = group_schedule(&hard_case_groups(width, 1), intersects);
-        let result = tritri_cosim::verilator::run_verilator_schedule(width as usize, &schedule, None).unwrap_or_else(|e| panic!("{e:#}"));
+        let result = run_schedule(Simulator::Verilator, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
         let what = format!("W={width} hard cases ({} x 72 orderings)", hard_case_count());
         check_schedule("verilator", &what, &result, &expected, schedule.len());
     }
@@ -166,6 +168,6 @@ fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
 fn icarus_matches_fixed_point_model_on_the_hard_case_suite() {
     let width = 24;
     let (schedule, expected) = group_schedule(&hard_case_groups(width, 16), intersects);
-    let result = tritri_cosim::icarus::run_icarus_schedule(width as usize, &schedule, None).unwrap_or_else(|e| panic!("{e:#}"));
+    let result = run_schedule(Simulator::Icarus, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
     check_schedule("icarus", "W=24 hard cases (every 16th x 72 orderings)", &result, &expected, schedule.len());
 }

@@ -404,5 +404,5 @@ fn vcd_trace_of_a_small_run() {
 }
 
 fn flatten(t: &FixedTriangle) -> [i64; 9] {
-    tritri_cosim::stream::flatten(t)
+    tritri_rtl::configurations::flatten(t)
 }

@@ -80,7 +80,7 @@ fn verilator_equals_model_on_shared_cases() {
     for width in [8, 16, 24] {
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
             let (cycles, expected) = group_schedule(&groups, intersects);
-            let result = tritri_cosim::verilator::run_verilator_schedule(width, &cycles, None).unwrap();
+            let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Verilator, width, &cycles, None).unwrap().result;
             assert_equal("verilator", what, width, &result, &expected);
         }
     }
@@ -90,6 +90,6 @@ fn verilator_equals_model_on_shared_cases() {
 fn icarus_equals_model_on_peer_cases() {
     let width = 24;
     let (cycles, expected) = group_schedule(&peer_groups(width), intersects);
-    let result = tritri_cosim::icarus::run_icarus_schedule(width, &cycles, None).unwrap();
+    let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Icarus, width, &cycles, None).unwrap().result;
     assert_equal("icarus", "peer cases x 72", width, &result, &expected);
 }

@@ -8,6 +8,7 @@
 mod system_common;
 
 use tritri_cosim::system_harness::*;
+use tritri_geom::scene::reference::{pairs_where, PairDiff};
 use tritri_rtl::system::stub_pipeline::stub_hit;
 
 #[test]
@@ -16,16 +17,10 @@ fn cycles_equal_the_model_for_p_1_2_4_with_and_without_overlap() {
     // Includes empty arrays, single triangles, a full bank (8) and groups
     // that do not divide by P.
     let shapes = [(5, 3), (0, 4), (7, 6), (1, 1), (4, 0), (8, 8), (3, 5), (0, 0), (6, 2)];
-    let batches: Vec<Batch> = shapes
-        .iter()
-        .enumerate()
-        .map(|(k, &(a, b))| Batch {
-            a: system_common::random_triangles(&mut rng, a, 24, 1000 * k as u32),
-            b: system_common::random_triangles(&mut rng, b, 24, 1000 * k as u32 + 500),
-        })
-        .collect();
-    let expected = expected_pairs(&batches, |a, b| stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2]));
-    let sizes: Vec<_> = batches.iter().map(Batch::sizes).collect();
+    let arrays = system_common::random_arrays(&mut rng, &shapes, 24, 1000);
+    let batches = system_common::batches(&arrays);
+    let expected = pairs_where(&batches, |a, b| stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2]));
+    let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
     let tested: u64 = sizes.iter().map(|s| (s.a * s.b) as u64).sum();
     for latency in [1, 9] {
         for p in [1, 2, 4] {
@@ -33,7 +28,7 @@ fn cycles_equal_the_model_for_p_1_2_4_with_and_without_overlap() {
                 let config = SystemConfig::new(24, p, latency).with_depth(8).with_result_fifo_depth(16);
                 let r = run_stub_system(config, &batches, overlap, ReaderBehaviour::AlwaysReady);
                 let model = system_cycles(config, &sizes, overlap, ReaderBehaviour::AlwaysReady);
-                let (missing, extra) = pair_differences(&r.pairs, &expected);
+                let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
                 eprintln!(
                     "L={latency} P={p} overlap={overlap}: cycles {} model {model}, pairs {} missing {missing} extra {extra}",
                     r.cycles,

@@ -6,16 +6,16 @@
 //! rust-hdl and Verilator runs are identical word for word, and the cycle
 //! count is the system's cycle model over the leaf batches.
 
-use tritri_cosim::stream::IdTriangle;
-use tritri_cosim::system_harness::{run_system, Batch, ReaderBehaviour};
-use tritri_cosim::system_verilator::run_system_verilator;
+use tritri_cosim::system_harness::{run_system, ReaderBehaviour};
+use tritri_cosim::simulator::Simulator;
+use tritri_cosim::system_rtl::run_system_rtl;
 use tritri_cosim::system_harness::PipelineKind;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{fixed_point_pairs, PairSet};
 use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
-use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes};
+use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;
 
 #[test]
@@ -32,19 +32,11 @@ fn octree_leaves_through_rust_hdl_and_verilator_give_the_flat_pairs() {
     assert!(expected.len() > 100, "{} pairs", expected.len());
     assert!(scene.pairs_tested() * 100 < flat.pairs_tested(), "{} vs {}", scene.pairs_tested(), flat.pairs_tested());
 
-    let batches: Vec<Batch> = scene
-        .batches()
-        .iter()
-        .map(|batch| {
-            let tag = |ts: &[tritri_geom::scene::TaggedTriangle]| ts.iter().map(|t| IdTriangle { id: t.id, triangle: t.triangle }).collect();
-            Batch { a: tag(batch.a), b: tag(batch.b) }
-        })
-        .collect();
-    let sizes: Vec<BatchSizes> = batches.iter().map(|b| BatchSizes { a: b.a.len(), b: b.b.len() }).collect();
-    let model_cycles = system_cycles(config, &sizes, true, ReaderBehaviour::AlwaysReady);
+    let batches = scene.batches();
+    let model_cycles = scene_cycles(config, &batches);
 
     let hdl = run_system(config, &batches, ReaderBehaviour::AlwaysReady).unwrap();
-    let rtl = run_system_verilator(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady).unwrap();
+    let rtl = run_system_rtl(Simulator::Verilator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady).unwrap();
     eprintln!(
         "octree: {} leaves' batches, {} pairs tested (flat {}), {} pairs, cycles {} (model {model_cycles})",
         batches.len(),

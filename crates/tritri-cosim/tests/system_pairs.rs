@@ -11,15 +11,16 @@ mod system_common;
 
 use std::time::Instant;
 use tritri_cosim::system_harness::*;
+use tritri_geom::scene::reference::{pairs_where, PairDiff};
 use tritri_geom::fixed_point::intersects;
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 
 #[test]
 fn real_pipelines_return_exactly_the_intersecting_pairs() {
     let (a, b) = system_common::small_scene(24, 12, 6);
-    let batches = system_common::tile(&a, &b, 8);
-    let expected = expected_pairs(&batches, |x, y| intersects(&x.triangle, &y.triangle));
-    let sizes: Vec<_> = batches.iter().map(Batch::sizes).collect();
+    let batches = tritri_geom::scene::tile(&a, &b, 8);
+    let expected = pairs_where(&batches, |x, y| intersects(&x.triangle, &y.triangle));
+    let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
     let tested: u64 = sizes.iter().map(|s| (s.a * s.b) as u64).sum();
     eprintln!(
         "scene: {} A and {} B triangles in the common box, {} batches, {tested} pairs, {} hits",
@@ -35,7 +36,7 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
             let started = Instant::now();
             let r = run_system_with(config, PipelineKind::Real, &batches, overlap, ReaderBehaviour::AlwaysReady)
                 .unwrap();
-            let (missing, extra) = pair_differences(&r.pairs, &expected);
+            let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
             let model = system_cycles(config, &sizes, overlap, ReaderBehaviour::AlwaysReady);
             eprintln!(
                 "P={p} overlap={overlap}: pairs {} missing {missing} extra {extra}, cycles {} model {model}, \

@@ -2,7 +2,7 @@
 //!
 //! Coordinates are W-bit two's-complement integers, so every coordinate lies
 //! in `[-2^(W-1), 2^(W-1) - 1]` and a difference of two is at most
-//! `M = 2^W - 1` in magnitude. The tight bounds (DESIGN.md, "Numerics"):
+//! `M = 2^W - 1` in magnitude. The tight bounds (docs/ARCHITECTURE.md, conventions):
 //!
 //! * a difference needs `W + 1` bits;
 //! * a cross-product component of two edge vectors from a common vertex is

@@ -18,9 +18,14 @@ use crate::arith::convert::from_i128;
 use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
 use crate::sim_drive;
 use rust_hdl::prelude::*;
+use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::scene::TaggedTriangle;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 
-/// One clock's worth of input bus.
+/// One clock's worth of the pipeline's input bus (thesis, chapter 3: a
+/// `bset` cycle loads the base triangle, every following valid cycle tests
+/// one streamed triangle against it). Every engine, rust-hdl, Icarus and
+/// Verilator, is driven with these.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PipelineInput {
     pub valid: bool,
@@ -28,6 +33,26 @@ pub struct PipelineInput {
     pub id: u32,
     /// `x0 y0 z0 x1 y1 z1 x2 y2 z2`, each within the W-bit signed range.
     pub vertices: [i64; 9],
+}
+
+impl PipelineInput {
+    /// The cycle that loads `t` into the base registers.
+    pub fn load_base(t: &TaggedTriangle) -> Self {
+        PipelineInput { valid: true, bset: true, id: t.id, vertices: flatten(&t.triangle) }
+    }
+    /// The cycle that tests `t` against the loaded base.
+    pub fn test(t: &TaggedTriangle) -> Self {
+        PipelineInput { valid: true, bset: false, id: t.id, vertices: flatten(&t.triangle) }
+    }
+    /// A bubble: nothing on the bus.
+    pub fn idle() -> Self {
+        PipelineInput::default()
+    }
+}
+
+/// `x0 y0 z0 x1 y1 z1 x2 y2 z2`, the order of the coordinate ports.
+pub fn flatten(t: &FixedTriangle) -> [i64; 9] {
+    [t[0][0], t[0][1], t[0][2], t[1][0], t[1][1], t[1][2], t[2][0], t[2][1], t[2][2]]
 }
 
 /// The output ports after a clock.
@@ -149,36 +174,45 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSim
     }
 }
 
-macro_rules! widths {
-    ($($w:literal => $name:ident),* $(,)?) => {
-        $(
-            #[doc = concat!("The pipeline for ", stringify!($w), "-bit coordinates.")]
-            pub type $name = TrianglePipeline<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>;
-        )*
+/// Calls `$then!` with the one list of coordinate widths that have
+/// hardware. The pipelines here, the systems
+/// (`system::system_for_width`), [`SUPPORTED_WIDTHS`] and through it the
+/// command line's checks and help all come from this list.
+macro_rules! for_supported_widths {
+    ($then:ident) => {
+        $then!(8, 12, 16, 18, 20, 24, 28, 32);
+    };
+}
+pub(crate) use for_supported_widths;
 
-        /// Coordinate widths with a concrete pipeline.
+macro_rules! pipeline_widths {
+    ($($w:literal),*) => {
+        /// Coordinate widths with a concrete pipeline and system.
         pub const SUPPORTED_WIDTHS: &[usize] = &[$($w),*];
 
         /// A new, connected pipeline for `width`-bit coordinates.
         pub fn pipeline_for_width(width: usize) -> Result<Box<dyn PipelineSimulation>, UnsupportedWidth> {
             match width {
-                $($w => Ok(Box::new($name::new_connected())),)*
+                $($w => Ok(Box::new(
+                    TrianglePipeline::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::new_connected(),
+                )),)*
                 _ => Err(UnsupportedWidth(width)),
             }
         }
     };
 }
 
-widths!(
-    8 => TrianglePipelineW8,
-    12 => TrianglePipelineW12,
-    16 => TrianglePipelineW16,
-    18 => TrianglePipelineW18,
-    20 => TrianglePipelineW20,
-    24 => TrianglePipelineW24,
-    28 => TrianglePipelineW28,
-    32 => TrianglePipelineW32,
-);
+for_supported_widths!(pipeline_widths);
+
+/// `Ok` when `width` has hardware, else the error that lists the widths
+/// that do.
+pub fn check_width(width: usize) -> Result<(), UnsupportedWidth> {
+    if SUPPORTED_WIDTHS.contains(&width) {
+        Ok(())
+    } else {
+        Err(UnsupportedWidth(width))
+    }
+}
 
 /// A width without a concrete pipeline.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -186,7 +220,7 @@ pub struct UnsupportedWidth(pub usize);
 
 impl std::fmt::Display for UnsupportedWidth {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "no pipeline for {}-bit coordinates; supported widths: {:?}", self.0, SUPPORTED_WIDTHS)
+        write!(f, "no hardware is generated for {}-bit coordinates; the supported widths are {:?}", self.0, SUPPORTED_WIDTHS)
     }
 }
 

@@ -18,6 +18,8 @@
 //! * expressions re-printed with explicit widths where rust-hdl relies on
 //!   Verilog's context widths (see [`widths`]), so the files are clean under
 //!   `verilator --lint-only -Wall`;
+//! * ports declared in the module header, Verilog-2001 style (see
+//!   [`ansi_ports`]);
 //! * unconditional assignments of rust-hdl's combinational block written as
 //!   continuous `assign`s (see [`continuous_assigns`]), so that Verilator
 //!   sees no false combinational loop through the children;
@@ -50,12 +52,14 @@
 //! assert!(design.file("inverter.v").unwrap().contents.contains("`default_nettype none"));
 //! ```
 
+pub mod ansi_ports;
 pub mod cell_classifier_unit;
 pub mod continuous_assigns;
 pub mod modules;
 pub mod package;
 pub mod pipeline_unit;
 pub mod tokens;
+pub mod triangle_setup_unit;
 pub mod widths;
 
 pub use pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
@@ -182,11 +186,22 @@ pub struct EmitOptions {
     /// Run the [`continuous_assigns`] pass (on by default); the same formal
     /// check covers it.
     pub continuous_assigns: bool,
+    /// Declare the ports in the module headers ([`ansi_ports`], on by
+    /// default); the same formal check covers it.
+    pub ansi_ports: bool,
+}
+
+impl EmitOptions {
+    /// rust-hdl's text, only split, renamed and merged: the reference the
+    /// formal equivalence check compares the default emission with.
+    pub fn no_rewrites() -> Self {
+        EmitOptions { explicit_widths: false, continuous_assigns: false, ansi_ports: false }
+    }
 }
 
 impl Default for EmitOptions {
     fn default() -> Self {
-        EmitOptions { explicit_widths: true, continuous_assigns: true }
+        EmitOptions { explicit_widths: true, continuous_assigns: true, ansi_ports: true }
     }
 }
 
@@ -213,6 +228,11 @@ pub fn emit_with(
         }
     }
     let ports = package::top_ports(&modules[0]);
+    if options.ansi_ports {
+        for m in modules.iter_mut() {
+            ansi_ports::ansi_ports(m);
+        }
+    }
     for p in &ports {
         if !unit.ports.iter().any(|(n, _)| n == &p.name) {
             return Err(EmitError::UndescribedPort(p.name.clone()));

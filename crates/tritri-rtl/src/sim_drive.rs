@@ -1,4 +1,4 @@
-//! Direct drive of a rust-hdl simulation (DESIGN.md: no `simple_sim!`
+//! Direct drive of a rust-hdl simulation (docs/ARCHITECTURE.md, conventions: no `simple_sim!`
 //! threads): set the inputs, toggle the clock, and call `update_all()` until
 //! `has_changed()` is false.
 

@@ -1,16 +1,25 @@
-//! The emitted octree classifier step: lint-clean under
+//! The emitted octree classifier step and its setup: lint-clean under
 //! `verilator --lint-only -Wall` and compiled by Icarus at every grid
-//! width, following the emitter's naming conventions. (Its behaviour is
-//! co-simulated in tritri-cosim's tests/cell_classifier.rs.)
+//! width, following the emitter's naming conventions. (Their behaviour is
+//! co-simulated in tritri-cosim's tests/cell_classifier.rs and
+//! tests/triangle_setup.rs.)
 
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
+use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::tools::{run, IVERILOG};
 
 #[test]
 fn every_grid_width_is_lint_clean() {
     for &g in &CLASSIFIER_GRID_WIDTHS {
-        let design = emit_cell_classifier(g).unwrap();
-        let dir = std::env::temp_dir().join(format!("tritri-emit-classifier-{}-g{g}", std::process::id()));
+        check(g, emit_cell_classifier(g).unwrap());
+        check(g, emit_triangle_setup(g).unwrap());
+    }
+}
+
+fn check(g: usize, design: EmittedDesign) {
+    {
+        let dir = std::env::temp_dir().join(format!("tritri-emit-{}-{}", design.top, std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
         let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
@@ -19,7 +28,7 @@ fn every_grid_width_is_lint_clean() {
             .unwrap_or_else(|e| panic!("G={g}: {e}"));
         for f in design.verilog_files() {
             assert!(f.path.starts_with(&design.top), "{}", f.path);
-            assert!(!f.contents.replace("$signed", "").contains('$'), "{}: a `$` is left", f.path);
+            assert!(!f.contents.replace("$signed", "").replace("$unsigned", "").contains('$'), "{}: a `$` is left", f.path);
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -111,11 +111,12 @@ fn w24_snapshots() {
     }
 }
 
-/// The rewriting passes (explicit widths, continuous assigns) change no
+/// The rewriting passes (explicit widths, continuous assigns, ANSI ports) change no
 /// behaviour: module by module, Yosys proves the design emitted with them
 /// equivalent to the same emission without them (same names, so every
 /// signal and register pairs up; children are black boxes with the same
-/// ports; `equiv_simple` then `equiv_induct`). Checked on the pipeline at
+/// ports; memories mapped to registers; `equiv_simple` then
+/// `equiv_induct`). Checked on the pipeline at
 /// W = 8 and 24 and on a two-pipeline system (its top has the valid/ready
 /// paths the continuous-assigns pass is for).
 #[test]
@@ -136,8 +137,7 @@ fn emission_passes_are_formally_equivalent() {
         ("system".to_string(), raw_system, system_unit(system, PipelineKind::Real)),
     ];
     for (width, raw, unit) in cases {
-        let none = EmitOptions { explicit_widths: false, continuous_assigns: false };
-        let gold = emit_with(&raw, &unit, none).unwrap();
+        let gold = emit_with(&raw, &unit, EmitOptions::no_rewrites()).unwrap();
         let gate = emit_with(&raw, &unit, EmitOptions::default()).unwrap();
         assert_eq!(gold.modules, gate.modules);
         let dir = temp_dir(&format!("equiv-w{width}"));
@@ -155,8 +155,8 @@ fn emission_passes_are_formally_equivalent() {
             let others: Vec<String> =
                 gate.modules.iter().filter(|m| *m != module).map(|m| format!("gate/{m}.v")).collect();
             let script = format!(
-                "read_verilog -lib {}\nread_verilog gold/{file}\nproc\nrename {module} gold\n\
-                 read_verilog gate/{file}\nproc\nrename {module} gate\nequiv_make gold gate equiv\n\
+                "read_verilog -lib {}\nread_verilog gold/{file}\nproc\nmemory\nrename {module} gold\n\
+                 read_verilog gate/{file}\nproc\nmemory\nrename {module} gate\nequiv_make gold gate equiv\n\
                  hierarchy -top equiv\nequiv_simple\nequiv_induct\nequiv_status -assert\n",
                 others.join(" ")
             );

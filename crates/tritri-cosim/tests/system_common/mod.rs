@@ -5,8 +5,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tritri_cosim::stream::IdTriangle;
-use tritri_cosim::system_harness::Batch;
+use tritri_geom::scene::{Batch, TaggedTriangle};
 use tritri_geom::bounding_volume::{triangle_box_overlap_conservative, Aabb};
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::quantize::Frame;
@@ -14,7 +13,7 @@ use tritri_geom::triangle::Triangle;
 
 /// The triangles of each object inside the common box, with their indices
 /// in the mesh as ids, quantized together at `width` bits.
-pub fn small_scene(width: u32, nu: usize, nv: usize) -> (Vec<IdTriangle>, Vec<IdTriangle>) {
+pub fn small_scene(width: u32, nu: usize, nv: usize) -> (Vec<TaggedTriangle>, Vec<TaggedTriangle>) {
     let a = torus([0.0, 0.0, 0.0], 1.0, 0.35, nu, nv);
     let b = sphere([1.0, 0.0, 0.55], 0.4, nu.max(4) / 2 + 2, nv.max(4) / 2 + 2);
     let box_a = Aabb::of_triangles(a.iter()).unwrap();
@@ -29,23 +28,33 @@ pub fn small_scene(width: u32, nu: usize, nv: usize) -> (Vec<IdTriangle>, Vec<Id
     };
     let (ka, kb) = (keep(&a), keep(&b));
     let frame = Frame::fit(ka.iter().chain(kb.iter()).map(|(_, t)| t), width).unwrap();
-    let q = |v: Vec<(u32, Triangle)>| v.into_iter().map(|(id, t)| IdTriangle { id, triangle: frame.quantize(&t) }).collect();
+    let q = |v: Vec<(u32, Triangle)>| v.into_iter().map(|(id, t)| TaggedTriangle { id, triangle: frame.quantize(&t) }).collect();
     (q(ka), q(kb))
 }
 
-/// Every (A chunk, B chunk) pair of chunks of at most `depth` triangles.
-pub fn tile(a: &[IdTriangle], b: &[IdTriangle], depth: usize) -> Vec<Batch> {
-    let mut batches = Vec::new();
-    for ca in a.chunks(depth) {
-        for cb in b.chunks(depth) {
-            batches.push(Batch { a: ca.to_vec(), b: cb.to_vec() });
-        }
-    }
-    batches
+/// The arrays of one batch, owned (a [`Batch`] borrows them).
+pub type Arrays = (Vec<TaggedTriangle>, Vec<TaggedTriangle>);
+
+/// Random arrays of the given `(A, B)` sizes; batch k's ids start at
+/// `k * id_step` (A) and `k * id_step + id_step / 2` (B).
+pub fn random_arrays(rng: &mut ChaCha8Rng, shapes: &[(usize, usize)], width: u32, id_step: u32) -> Vec<Arrays> {
+    shapes
+        .iter()
+        .enumerate()
+        .map(|(k, &(a, b))| {
+            let first = id_step * k as u32;
+            (random_triangles(rng, a, width, first), random_triangles(rng, b, width, first + id_step / 2))
+        })
+        .collect()
+}
+
+/// The batches over owned arrays.
+pub fn batches(arrays: &[Arrays]) -> Vec<Batch<'_>> {
+    arrays.iter().map(|(a, b)| Batch { a, b }).collect()
 }
 
 /// `n` random W-bit triangles with ids from `first_id`.
-pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize, width: u32, first_id: u32) -> Vec<IdTriangle> {
+pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize, width: u32, first_id: u32) -> Vec<TaggedTriangle> {
     let half = 1i64 << (width - 1);
     (0..n)
         .map(|i| {
@@ -55,7 +64,7 @@ pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize, width: u32, first_id: u3
                     *c = rng.gen_range(-half..half);
                 }
             }
-            IdTriangle { id: first_id + i as u32, triangle: t }
+            TaggedTriangle { id: first_id + i as u32, triangle: t }
         })
         .collect()
 }

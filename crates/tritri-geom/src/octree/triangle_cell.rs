@@ -157,6 +157,33 @@ impl TriangleCellTest {
     }
 }
 
+/// One triangle's test functions as the hardware setup unit delivers them
+/// to the classifier (`tritri_rtl::octree::triangle_setup`): in fixed
+/// positions (x, y, z; the normal; the nine edge-axis products, edge by
+/// edge), zero gradients kept (their interval `[0, 0]` meets every cell),
+/// and relative to the root cell's low corner `lo`: the functions are
+/// `g · (p - lo)`, so every value at the root's low corner is zero and the
+/// classifier starts from nothing but the level. The masks are the same as
+/// [`TriangleCellTest`]'s, since moving a function by a constant moves the
+/// triangle's interval with it.
+pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3]) -> [([i128; 3], i128, i128); MAX_AXES] {
+    let p = t.map(|v| [0, 1, 2].map(|k| v[k] as i128 - lo[k] as i128));
+    let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let unit = |k: usize| [0, 1, 2].map(|j| i128::from(j == k));
+    let edges = [sub(p[1], p[0]), sub(p[2], p[1]), sub(p[0], p[2])];
+    let mut gradients = vec![unit(0), unit(1), unit(2), cross(edges[0], edges[1])];
+    for e in edges {
+        gradients.extend((0..3).map(|k| cross(e, unit(k))));
+    }
+    let mut axes = [([0i128; 3], 0i128, 0i128); MAX_AXES];
+    for (axis, g) in axes.iter_mut().zip(gradients) {
+        let projections = p.map(|v| g[0] * v[0] + g[1] * v[1] + g[2] * v[2]);
+        *axis = (g, projections.into_iter().min().unwrap_or(0), projections.into_iter().max().unwrap_or(0));
+    }
+    axes
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,6 +202,31 @@ mod tests {
             let test = TriangleCellTest::new(&t);
             let direct: u8 = (0..8).filter(|&o| test.touches_box(&cell.child(o).as_box())).map(|o| 1u8 << o).sum();
             assert_eq!(test.children_of_cell(&cell), direct, "{t:?}");
+        }
+    }
+
+    /// The root-relative axes decide every cell under the root as the
+    /// triangle's own test does.
+    #[test]
+    fn root_relative_axes_decide_as_the_test_does() {
+        let root = Cell { lo: [-8, -3, 5], level: 4 };
+        let triangles = [[[-8, -3, 5], [8, 13, 21], [8, -3, 13]], [[0, 0, 9], [0, 0, 9], [0, 0, 9]], [[-3, 5, 100], [7, 1, -50], [2, 2, 2]], [[1, 1, 6], [3, 1, 6], [1, 3, 6]], [[2, 2, 7], [6, 6, 11], [4, 4, 9]]];
+        for t in triangles {
+            let test = TriangleCellTest::new(&t);
+            let axes = root_relative_axes(&t, root.lo);
+            for level in 0..=2 {
+                let side = 1i64 << level;
+                for i in 0..(16 / side) {
+                    for j in 0..(16 / side) {
+                        for k in [0, 16 / side - 1] {
+                            let cell = Cell { lo: [root.lo[0] + i * side, root.lo[1] + j * side, root.lo[2] + k * side], level: level as u32 };
+                            let relative = Cell { lo: [0, 1, 2].map(|a| cell.lo[a] - root.lo[a]), level: cell.level };
+                            let hardware = axes.iter().all(|&(g, low, high)| AffineOverBox::over_cell(g, &relative).meets(low, high));
+                            assert_eq!(hardware, test.touches_box(&cell.as_box()), "{t:?} {cell:?}");
+                        }
+                    }
+                }
+            }
         }
     }
 }

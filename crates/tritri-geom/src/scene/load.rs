@@ -20,6 +20,7 @@ use crate::bezier::{read_bpt, BptError};
 use crate::builtin_scene;
 use crate::mesh::{Mesh, MeshError};
 use crate::triangle::{Point, Triangle};
+use nalgebra::{IsometryMatrix3, Matrix3, Point3, Rotation3, Translation3, Vector3};
 use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
@@ -84,7 +85,8 @@ impl SceneObject {
 
     /// The same object moved by `pose`.
     pub fn posed(&self, pose: &Pose) -> SceneObject {
-        let triangles = self.triangles.iter().map(|t| t.map(|p| pose.apply(p))).collect();
+        let motion = pose.isometry();
+        let triangles = self.triangles.iter().map(|t| t.map(|p| motion.transform_point(&Point3::from(p)).coords.into())).collect();
         SceneObject { name: self.name.clone(), triangles, face_of: self.face_of.clone() }
     }
 }
@@ -153,24 +155,21 @@ impl Pose {
         self.translation == [0.0; 3] && self.rotation_degrees == [0.0; 3]
     }
 
-    /// The rotation matrix `Rz · Ry · Rx`, rows first.
-    pub fn rotation(&self) -> [[f64; 3]; 3] {
+    /// The rigid motion: rotation `Rz · Ry · Rx` (fixed axes: about x
+    /// first), then the translation. The rotation is kept as a matrix, not
+    /// a quaternion, so that quarter turns stay exact.
+    pub fn isometry(&self) -> IsometryMatrix3<f64> {
         let [(sx, cx), (sy, cy), (sz, cz)] = self.rotation_degrees.map(sin_cos_degrees);
-        let rx = [[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]];
-        let ry = [[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]];
-        let rz = [[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]];
-        multiply(rz, multiply(ry, rx))
+        let rx = Matrix3::new(1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx);
+        let ry = Matrix3::new(cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy);
+        let rz = Matrix3::new(cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0);
+        let rotation = Rotation3::from_matrix_unchecked(rz * ry * rx);
+        IsometryMatrix3::from_parts(Translation3::from(Vector3::from(self.translation)), rotation)
     }
 
     /// The posed point.
     pub fn apply(&self, p: Point) -> Point {
-        let r = self.rotation();
-        let rotated = if self.rotation_degrees == [0.0; 3] {
-            p
-        } else {
-            [0, 1, 2].map(|i| r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2])
-        };
-        [0, 1, 2].map(|k| rotated[k] + self.translation[k])
+        self.isometry().transform_point(&Point3::from(p)).coords.into()
     }
 }
 
@@ -187,10 +186,6 @@ fn sin_cos_degrees(deg: f64) -> (f64, f64) {
     } else {
         deg.to_radians().sin_cos()
     }
-}
-
-fn multiply(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
 impl FromStr for Pose {

@@ -1,5 +1,5 @@
 //! From two objects to the batches the hardware processes (thesis,
-//! chapter 4; DESIGN.md, "Data flow"):
+//! chapter 4; docs/ARCHITECTURE.md, conventions):
 //!
 //! 1. the AABB of each object and their overlap, the common BV (none: the
 //!    objects cannot touch, zero pairs);

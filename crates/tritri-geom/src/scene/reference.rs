@@ -169,24 +169,81 @@ fn next_up(x: f64) -> f64 {
     -next_down(-x)
 }
 
-/// How a set of pairs differs from the reference.
+/// How a list of pairs differs from the reference, as multisets: a pair
+/// the other list holds twice but the reference once is one extra (so a
+/// hardware run that reports a pair twice is caught).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PairDiff {
-    /// In the reference, not in the other set.
+    /// In the reference, not in the other list (sorted).
     pub missing: Vec<(u32, u32)>,
-    /// In the other set, not in the reference.
+    /// In the other list, not in the reference (sorted).
     pub extra: Vec<(u32, u32)>,
 }
 
 impl PairDiff {
-    pub fn between(reference: &PairSet, other: &PairSet) -> PairDiff {
-        PairDiff {
-            missing: reference.difference(other).copied().collect(),
-            extra: other.difference(reference).copied().collect(),
+    /// `reference` and `other` in any order: sets, sorted lists, or pairs
+    /// in the order a run delivered them.
+    pub fn between<'p>(reference: impl IntoIterator<Item = &'p (u32, u32)>, other: impl IntoIterator<Item = &'p (u32, u32)>) -> PairDiff {
+        let sorted = |pairs: Vec<&'p (u32, u32)>| {
+            let mut v: Vec<(u32, u32)> = pairs.into_iter().copied().collect();
+            v.sort_unstable();
+            v
+        };
+        let (reference, other) = (sorted(reference.into_iter().collect()), sorted(other.into_iter().collect()));
+        let mut diff = PairDiff::default();
+        let (mut i, mut j) = (0, 0);
+        while i < reference.len() || j < other.len() {
+            if j == other.len() || (i < reference.len() && reference[i] < other[j]) {
+                diff.missing.push(reference[i]);
+                i += 1;
+            } else if i == reference.len() || other[j] < reference[i] {
+                diff.extra.push(other[j]);
+                j += 1;
+            } else {
+                i += 1;
+                j += 1;
+            }
         }
+        diff
     }
 
     pub fn is_empty(&self) -> bool {
         self.missing.is_empty() && self.extra.is_empty()
+    }
+
+    /// `(missing, extra)` counts.
+    pub fn counts(&self) -> (usize, usize) {
+        (self.missing.len(), self.extra.len())
+    }
+}
+
+/// Every pair `(a.id, b.id)` of every batch's arrays for which `test`
+/// holds, one entry per batch it occurs in, sorted. Unlike
+/// [`pairs_over_batches`] it skips nothing, so `test` may be any verdict
+/// (the stub pipeline's, for example), and it keeps duplicates across
+/// batches, as a hardware run reports them.
+pub fn pairs_where(batches: &[Batch], test: impl Fn(&TaggedTriangle, &TaggedTriangle) -> bool) -> Vec<(u32, u32)> {
+    let mut pairs: Vec<(u32, u32)> = batches
+        .iter()
+        .flat_map(|batch| batch.a.iter().flat_map(|a| batch.b.iter().filter(|b| test(a, b)).map(|b| (a.id, b.id))).collect::<Vec<_>>())
+        .collect();
+    pairs.sort_unstable();
+    pairs
+}
+
+#[cfg(test)]
+mod pair_diff_tests {
+    use super::*;
+
+    /// Missing and extra are found in unsorted input, and a duplicate in
+    /// the other list is an extra.
+    #[test]
+    fn differences_are_multiset_differences() {
+        let reference = [(1, 2), (0, 5), (3, 3)];
+        let other = [(3, 3), (0, 5), (0, 5), (4, 4)];
+        let diff = PairDiff::between(&reference, &other);
+        assert_eq!(diff.missing, vec![(1, 2)]);
+        assert_eq!(diff.extra, vec![(0, 5), (4, 4)]);
+        assert!(PairDiff::between(&other, &other).is_empty());
     }
 }

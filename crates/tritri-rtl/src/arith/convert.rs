@@ -2,7 +2,7 @@
 //! for the exact simulation models of the arithmetic primitives and for test
 //! benches. Values are kept as plain [`Bits`] (two's complement, no sign
 //! attached), which sidesteps the `Signed` pitfalls of rust-hdl 0.46
-//! (DESIGN.md): `Signed::from(i64)` overflows the stack on `-2^(N-1)`.
+//! (docs/ARCHITECTURE.md, conventions): `Signed::from(i64)` overflows the stack on `-2^(N-1)`.
 
 use rust_hdl::core::bitvec::BitVec;
 use rust_hdl::prelude::*;

@@ -4,7 +4,7 @@
 //! same pair (thesis, chapter 3: the base-polygon values "are passed on to
 //! the registers of the next pipeline stage").
 //!
-//! Datapath only: no reset (DESIGN.md). Valid bits use
+//! Datapath only: no reset (docs/ARCHITECTURE.md, conventions). Valid bits use
 //! [`super::valid_line::ValidLine`], which has one.
 //! Verilog: one register per stage, `stage_<i>_q`, the last being `q`;
 //! FPGA tools map long ones onto shift-register LUTs.

@@ -6,7 +6,7 @@
 //! multipliers `(W+1) x (2W+1) -> 3W+2` and one registered three-input sum.
 //! The sum is computed modulo `2^(3W+2)`: partial sums may wrap, but the
 //! final value of an orient3d is at most `2 M^3` in magnitude and fits, so
-//! the wrapped result is the exact one (DESIGN.md, "Numerics").
+//! the wrapped result is the exact one (docs/ARCHITECTURE.md, conventions).
 
 use super::adder::{RegisteredSum3, ADDER_LATENCY};
 use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};

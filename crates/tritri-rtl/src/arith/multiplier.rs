@@ -80,10 +80,10 @@ initial begin
 end
 always @(posedge clock) begin
     if (advance) begin
-        a_q <= a;
-        b_q <= b;
+        a_q <= $signed(a);
+        b_q <= $signed(b);
         m_q <= a_q * b_q;
-        product <= m_q;
+        product <= $unsigned(m_q);
     end
 end
 ",

@@ -1,5 +1,5 @@
 //! Sign of a two's-complement predicate value, registered: the only thing
-//! the decisions look at (DESIGN.md: decide on signs, never on products of
+//! the decisions look at (docs/ARCHITECTURE.md, conventions: decide on signs, never on products of
 //! predicate values). Thesis, chapter 3: "the sign is in the top bit".
 
 use rust_hdl::prelude::*;

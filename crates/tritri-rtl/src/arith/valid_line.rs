@@ -1,6 +1,6 @@
 //! The valid-bit companion of [`super::delay_line::DelayLine`]: an `N`-stage
 //! enabled shift register of one bit with a synchronous active-high reset
-//! (control state is reset, DESIGN.md). It marks which pipeline slots hold
+//! (control state is reset, docs/ARCHITECTURE.md, conventions). It marks which pipeline slots hold
 //! a pair.
 
 use super::delay_line::delay_line_verilog;

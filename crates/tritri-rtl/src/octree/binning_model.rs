@@ -1,9 +1,10 @@
 //! Cycles and memory of a binning unit built around the classifier step
 //! ([`super::cell_classifier`]), following the broad phase's plan
-//! (`tritri_geom::scene::octree`) cell for cell. The classifier is built
-//! and co-simulated; the setup unit (each triangle's gradients, intervals
-//! and root values: the multiplications) and the depth-first controller
-//! are modelled here, not built yet.
+//! (`tritri_geom::scene::octree`) cell for cell. The classifier and the
+//! setup unit ([`super::triangle_setup`]: each triangle's gradients and
+//! intervals at the root, the multiplications) are built and
+//! co-simulated; the depth-first controller is modelled here, not built
+//! yet.
 //!
 //! The unit works like this:
 //!
@@ -31,11 +32,9 @@
 use super::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY, TAG_BITS};
 use super::value_bits;
 
-/// Clocks from a triangle into the setup unit to its root entry: the
-/// pipeline's front end does the same products (normal, projections) in
-/// about this many stages. An assumption until the unit is built; it is
-/// paid once per run.
-pub const SETUP_LATENCY: u64 = 12;
+/// Clocks from a triangle into the setup unit to its root entry (the
+/// built unit's latency); paid once per run.
+pub const SETUP_LATENCY: u64 = super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64;
 
 /// Classifiers per object. Two rather than one: classifying is the larger
 /// part of the time on real scenes, and with one the split rule stops

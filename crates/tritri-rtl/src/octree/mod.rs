@@ -4,14 +4,17 @@
 //! * [`axis_step`]: one affine test function of one entry: its value moved
 //!   into a child by interpolation, and the eight children's ranges against
 //!   the triangle's interval;
+//! * [`triangle_setup`]: one triangle per clock, its thirteen test
+//!   functions relative to the root cell (the multiplications);
 //! * [`cell_classifier`]: thirteen axis steps side by side, one entry
 //!   (triangle in a cell) per clock, the children mask out;
 //! * [`binning_model`]: the cycles and memory of a binning unit around it
-//!   that follows the broad phase's plan (setup and controller modelled).
+//!   that follows the broad phase's plan (the controller modelled).
 
 pub mod axis_step;
 pub mod binning_model;
 pub mod cell_classifier;
+pub mod triangle_setup;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
 /// corners stay below `2^(G+1)` in magnitude and gradients below

@@ -1,4 +1,4 @@
-//! The verdict of a pair, from signs only (DESIGN.md), mirroring the
+//! The verdict of a pair, from signs only (docs/ARCHITECTURE.md, conventions), mirroring the
 //! control flow of `intersects` in devillers_guigue.rs:
 //!
 //! * both triangles proper (`triangles_intersect`): no if either

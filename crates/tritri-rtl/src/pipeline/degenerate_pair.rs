@@ -201,10 +201,12 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
         // Stage 8: segments_intersect_2d for each dropped axis k, whose
         // projection keeps the coordinates (k+1) % 3 and (k+2) % 3.
         for k in 0..3 {
-            self.meets[k].next = ((self.sign[k].negative.val() && self.positive[3 + k].val())
+            // The proper crossing in parentheses of its own, so that no
+            // reader (or linter) has to recall that && binds tighter.
+            self.meets[k].next = (((self.sign[k].negative.val() && self.positive[3 + k].val())
                 || (self.positive[k].val() && self.sign[3 + k].negative.val()))
                 && ((self.sign[6 + k].negative.val() && self.positive[9 + k].val())
-                    || (self.positive[6 + k].val() && self.sign[9 + k].negative.val()))
+                    || (self.positive[6 + k].val() && self.sign[9 + k].negative.val())))
                 || (self.sign[k].zero.val()
                     && self.within_segment[(k + 1) % 3].q.val()
                     && self.within_segment[(k + 2) % 3].q.val())

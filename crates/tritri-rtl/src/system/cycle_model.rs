@@ -46,12 +46,27 @@
 
 use super::SystemConfig;
 use tritri_geom::scene::octree::BatchCost;
+use tritri_geom::scene::Batch;
 
 /// The sizes of one batch: triangles of A (bases) and of B (streamed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct BatchSizes {
     pub a: usize,
     pub b: usize,
+}
+
+impl BatchSizes {
+    pub fn of(batch: &Batch) -> BatchSizes {
+        BatchSizes { a: batch.a.len(), b: batch.b.len() }
+    }
+}
+
+/// The cycles of `batches` as a scene runs them: the banks alternate
+/// (loading batch k+1 overlaps processing batch k), the reader is always
+/// ready. What `tritri sim` reports and every engine must reproduce.
+pub fn scene_cycles(config: SystemConfig, batches: &[Batch]) -> u64 {
+    let sizes: Vec<BatchSizes> = batches.iter().map(BatchSizes::of).collect();
+    system_cycles(config, &sizes, true, ReaderBehaviour::AlwaysReady)
 }
 
 /// How the host reads the result stream.
@@ -179,5 +194,20 @@ mod tests {
         let (n1, n2) = (10u64, 20u64);
         let expected = (n1 + n2 + 1) + n1 + n1 * n2 + 32 + 2;
         assert_eq!(single_batch_cycles(config, BatchSizes { a: 10, b: 20 }), expected);
+    }
+
+    /// A scene's batches: loading the next batch hides behind processing
+    /// the current one, two pipelines share the bases, no batch costs 0.
+    #[test]
+    fn scene_cycles_overlap_loading_and_share_the_bases() {
+        use tritri_geom::scene::TaggedTriangle;
+        let ts = vec![TaggedTriangle { id: 0, triangle: [[0; 3]; 3] }; 10];
+        let batch = Batch { a: &ts, b: &ts };
+        let config = |p| SystemConfig::new(24, p, 30);
+        let one = scene_cycles(config(1), &[batch]);
+        assert_eq!(one, single_batch_cycles(config(1), BatchSizes::of(&batch)));
+        assert!(scene_cycles(config(1), &[batch, batch]) < 2 * one);
+        assert!(scene_cycles(config(2), &[batch]) < one - 40);
+        assert_eq!(scene_cycles(config(1), &[]), 0);
     }
 }

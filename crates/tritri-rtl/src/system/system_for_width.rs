@@ -26,17 +26,14 @@ pub enum PipelineKind {
 }
 
 macro_rules! system_widths {
-    ($($w:literal => $name:ident),* $(,)?) => {
-        $(
-            #[doc = concat!("The system for ", stringify!($w), "-bit coordinates.")]
-            pub type $name = CollisionSystem<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>;
-        )*
-
+    ($($w:literal),*) => {
         /// A new system for `config` (unconnected: the harness connects it).
         pub fn system_for_config(config: SystemConfig, kind: PipelineKind) -> Result<Box<dyn HostPorts>, UnsupportedWidth> {
             match (config.coordinate_bits, kind) {
                 $(
-                    ($w, PipelineKind::Real) => Ok(Box::new($name::with_pipelines(config))),
+                    ($w, PipelineKind::Real) => Ok(Box::new(
+                        CollisionSystem::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::with_pipelines(config),
+                    )),
                     ($w, PipelineKind::Stub) => Ok(Box::new(StubCollisionSystem::<$w>::with_stub_pipelines(config))),
                 )*
                 (w, _) => Err(UnsupportedWidth(w)),
@@ -45,13 +42,4 @@ macro_rules! system_widths {
     };
 }
 
-system_widths!(
-    8 => CollisionSystemW8,
-    12 => CollisionSystemW12,
-    16 => CollisionSystemW16,
-    18 => CollisionSystemW18,
-    20 => CollisionSystemW20,
-    24 => CollisionSystemW24,
-    28 => CollisionSystemW28,
-    32 => CollisionSystemW32,
-);
+crate::configurations::for_supported_widths!(system_widths);

@@ -1,0 +1,255 @@
+//! The one place that compiles a testbench with emitted Verilog and runs
+//! it, in Icarus Verilog or Verilator. The pipeline, the system and the
+//! octree classifier each describe their testbench ([`Testbench`]) and
+//! read its output file; how the simulators are invoked, cached and
+//! cleaned up is written here once.
+//!
+//! * **Icarus** (`iverilog -g2012`, `vvp`) compiles in about a second, so
+//!   every run compiles into a fresh work directory.
+//! * **Verilator** (`verilator --binary`) builds C++ for tens of seconds
+//!   to minutes, so the executable is cached under
+//!   `$TRITRI_CACHE_DIR/verilator/<key>` (default `$XDG_CACHE_HOME/tritri`,
+//!   else `~/.cache/tritri`), the key a hash of every source file, define,
+//!   parameter, flag and the Verilator version. Builds go to a private
+//!   staging directory and are renamed into place, so parallel runs never
+//!   see half a build.
+//!
+//! A traced build (`trace`) defines `TRITRI_VCD`, which every testbench
+//! uses to dump a VCD waveform to the file named by `+vcd=PATH`; Verilator
+//! also needs `--trace`, and caches that build under a key of its own
+//! (tracing slows every cycle, so the plain build stays the fast one).
+//!
+//! Work directories and the simulator processes are registered with
+//! `tritri_rtl::tools::interrupt`, so an interrupted run leaves nothing.
+
+use anyhow::Context as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+use tritri_rtl::tools::{run, IVERILOG, VERILATOR, VVP};
+
+/// Which simulator runs emitted Verilog.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Simulator {
+    Icarus,
+    Verilator,
+}
+
+/// A testbench and the design under test, ready to compile.
+#[derive(Clone, Debug)]
+pub struct Testbench {
+    /// The testbench's top module.
+    pub top: String,
+    /// Source files `(name, contents)`, the testbench first.
+    pub files: Vec<(String, String)>,
+    /// Preprocessor defines, `NAME=VALUE` or `NAME`.
+    pub defines: Vec<String>,
+    /// Parameters of the top module, `(name, value)`.
+    pub parameters: Vec<(String, String)>,
+    /// Verilator's C++ optimization level (`-O1` builds large designs
+    /// faster; `-O2` runs small ones faster).
+    pub c_optimization: u8,
+    /// Build with waveform dumping (module docs).
+    pub trace: bool,
+}
+
+/// A compiled testbench, ready to run.
+pub struct Compiled {
+    simulator: Simulator,
+    /// The `vvp` image (Icarus) or the executable (Verilator).
+    image: PathBuf,
+    /// Seconds spent compiling (0 for a cached Verilator build).
+    pub build_seconds: f64,
+    /// Icarus's image lives in a work directory that goes with it.
+    _work: Option<WorkDir>,
+}
+
+/// Compiles `testbench` in `simulator` (Verilator: or reuses the cache).
+pub fn compile(simulator: Simulator, testbench: &Testbench) -> anyhow::Result<Compiled> {
+    match simulator {
+        Simulator::Icarus => compile_icarus(testbench),
+        Simulator::Verilator => compile_verilator(testbench),
+    }
+}
+
+impl Compiled {
+    /// Runs the compiled testbench with `+plusargs`; a non-zero exit is an
+    /// error carrying the simulator's output.
+    pub fn run(&self, plusargs: &[String]) -> anyhow::Result<Output> {
+        let mut command = match self.simulator {
+            Simulator::Icarus => {
+                let mut c = Command::new(VVP.locate()?);
+                c.arg("-n").arg(&self.image);
+                c
+            }
+            Simulator::Verilator => Command::new(&self.image),
+        };
+        command.args(plusargs);
+        Ok(run(&mut command)?)
+    }
+}
+
+impl Testbench {
+    fn trace_define(&self) -> Option<&'static str> {
+        self.trace.then_some("-DTRITRI_VCD")
+    }
+
+    /// Writes the sources into `dir`; returns their paths, testbench first.
+    fn write_into(&self, dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+        self.files
+            .iter()
+            .map(|(name, contents)| {
+                let path = dir.join(name);
+                std::fs::write(&path, contents)?;
+                Ok(path)
+            })
+            .collect()
+    }
+}
+
+fn compile_icarus(testbench: &Testbench) -> anyhow::Result<Compiled> {
+    let iverilog = IVERILOG.locate()?;
+    VVP.locate()?;
+    let work = WorkDir::new("icarus").context("creating the Icarus work directory")?;
+    let sources = testbench.write_into(&work.path).context("writing the Verilog sources")?;
+    let started = Instant::now();
+    let image = work.join("tb.vvp");
+    let mut command = Command::new(iverilog);
+    command.arg("-g2012").arg("-o").arg(&image).arg("-s").arg(&testbench.top);
+    command.args(testbench.defines.iter().map(|d| format!("-D{d}")));
+    command.args(testbench.parameters.iter().map(|(k, v)| format!("-P{}.{k}={v}", testbench.top)));
+    command.args(testbench.trace_define()).args(&sources);
+    run(&mut command).context("compiling in Icarus")?;
+    Ok(Compiled { simulator: Simulator::Icarus, image, build_seconds: started.elapsed().as_secs_f64(), _work: Some(work) })
+}
+
+fn compile_verilator(testbench: &Testbench) -> anyhow::Result<Compiled> {
+    VERILATOR.locate()?;
+    let version = String::from_utf8_lossy(&run(VERILATOR.command()?.arg("--version"))?.stdout).trim().to_string();
+    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get()).to_string();
+    let mut flags: Vec<String> = ["--binary", "-j", &jobs, "--top-module", &testbench.top, "-Mdir", "obj", "-Wno-fatal"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    // Optimize the model for run time: the build is cached.
+    flags.extend(["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS"].map(String::from));
+    flags.push(format!("-O{}", testbench.c_optimization));
+    flags.extend(testbench.defines.iter().map(|d| format!("-D{d}")));
+    flags.extend(testbench.parameters.iter().map(|(k, v)| format!("-G{k}={v}")));
+    if testbench.trace {
+        flags.extend(["--trace", "-DTRITRI_VCD"].map(String::from));
+    }
+
+    let mut parts: Vec<&str> = vec![&version];
+    parts.extend(flags.iter().filter(|f| *f != &jobs).map(String::as_str));
+    for (name, contents) in &testbench.files {
+        parts.extend([name.as_str(), contents.as_str()]);
+    }
+    let key = format!("{}-{:016x}{}", testbench.top, fingerprint(parts), if testbench.trace { "-vcd" } else { "" });
+    let dir = cache_root().join("verilator").join(&key);
+    let exe_name = format!("V{}", testbench.top);
+    let exe = dir.join(&exe_name);
+    if exe.is_file() {
+        return Ok(Compiled { simulator: Simulator::Verilator, image: exe, build_seconds: 0.0, _work: None });
+    }
+
+    let started = Instant::now();
+    std::fs::create_dir_all(cache_root().join("verilator")).context("creating the Verilator cache directory")?;
+    let staging = WorkDir::new(&format!("verilator-build-{key}"))?;
+    let sources = testbench.write_into(&staging.path).context("writing the Verilog sources")?;
+    let mut command = VERILATOR.command()?;
+    // The compiler's temporary files go into the staging directory too, so
+    // an interrupted build leaves nothing behind.
+    command.current_dir(&staging.path).env("TMPDIR", &staging.path).args(&flags).args(&sources);
+    run(&mut command).context("building the Verilator model")?;
+    let built = staging.path.join("obj").join(&exe_name);
+    anyhow::ensure!(built.is_file(), "verilator --binary did not produce {}", built.display());
+    // Publish: copy the executable into a fresh directory, then rename it
+    // into place; if someone else published the same key first, theirs is
+    // as good.
+    let publish = dir.with_extension(format!("tmp{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&publish);
+    std::fs::create_dir_all(&publish)?;
+    std::fs::copy(&built, publish.join(&exe_name))?;
+    if std::fs::rename(&publish, &dir).is_err() {
+        let _ = std::fs::remove_dir_all(&publish);
+    }
+    anyhow::ensure!(exe.is_file(), "the Verilator cache entry {} is incomplete", dir.display());
+    Ok(Compiled { simulator: Simulator::Verilator, image: exe, build_seconds: started.elapsed().as_secs_f64(), _work: None })
+}
+
+/// The cache root (see the module docs).
+pub fn cache_root() -> PathBuf {
+    if let Some(dir) = std::env::var_os("TRITRI_CACHE_DIR") {
+        return PathBuf::from(dir);
+    }
+    if let Some(dir) = std::env::var_os("XDG_CACHE_HOME") {
+        return PathBuf::from(dir).join("tritri");
+    }
+    if let Some(home) = std::env::var_os("HOME") {
+        return PathBuf::from(home).join(".cache").join("tritri");
+    }
+    std::env::temp_dir().join("tritri-cache")
+}
+
+/// FNV-1a over the strings, each ended by a zero byte: a hash that is the
+/// same in every build, as a cache key must be.
+pub fn fingerprint<'a>(parts: impl IntoIterator<Item = &'a str>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for part in parts {
+        for &b in part.as_bytes().iter().chain(b"\0") {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// A directory removed on drop (unless `TRITRI_KEEP_WORK` is set, for
+/// debugging), and on an interrupt.
+pub struct WorkDir {
+    pub path: PathBuf,
+}
+
+impl WorkDir {
+    pub fn new(label: &str) -> std::io::Result<Self> {
+        static COUNTER: AtomicU64 = AtomicU64::new(0);
+        let path = std::env::temp_dir().join(format!("tritri-{label}-{}-{}", std::process::id(), COUNTER.fetch_add(1, Ordering::Relaxed)));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path)?;
+        tritri_rtl::tools::interrupt::register_temporary(&path);
+        Ok(WorkDir { path })
+    }
+
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+}
+
+impl Drop for WorkDir {
+    fn drop(&mut self) {
+        tritri_rtl::tools::interrupt::unregister_temporary(&self.path);
+        if std::env::var_os("TRITRI_KEEP_WORK").is_none() {
+            let _ = std::fs::remove_dir_all(&self.path);
+        } else {
+            eprintln!("tritri: kept work directory {}", self.path.display());
+        }
+    }
+}
+
+/// Runs `compiled` on a vector file and returns the output file's text:
+/// both files live in a work directory of their own for the run.
+pub fn run_on_vectors(compiled: &Compiled, label: &str, vectors: &str, extra: &[String]) -> anyhow::Result<(String, f64)> {
+    let work = WorkDir::new(label)?;
+    let (vectors_path, outputs_path) = (work.join("vectors.txt"), work.join("outputs.txt"));
+    std::fs::write(&vectors_path, vectors).with_context(|| format!("writing {}", vectors_path.display()))?;
+    let mut plusargs = vec![format!("+vectors={}", vectors_path.display()), format!("+outputs={}", outputs_path.display())];
+    plusargs.extend_from_slice(extra);
+    let started = Instant::now();
+    let output = compiled.run(&plusargs)?;
+    let seconds = started.elapsed().as_secs_f64();
+    let text = std::fs::read_to_string(&outputs_path)
+        .with_context(|| format!("the testbench wrote no outputs; the simulator said:\n{}", String::from_utf8_lossy(&output.stdout)))?;
+    Ok((text, seconds))
+}

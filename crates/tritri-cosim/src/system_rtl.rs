@@ -1,0 +1,126 @@
+//! Runs the emitted system Verilog in Icarus or Verilator
+//! ([`crate::simulator`]) with `testbenches/tb_collision_system.sv`, on
+//! the same batches and host
+//! behaviour as the rust-hdl harness ([`crate::system_harness`]); the two
+//! must return the same pairs in the same order, the same cycle count and
+//! the same counters.
+//!
+//! Vector format (testbenches/README.md, "Collision system"): one host word
+//! per line (no comments), eleven hex fields `kind id x0 y0 z0 x1 y1 z1 x2 y2 z2`, kind 0
+//! = triangle of A, 1 = triangle of B, 2 = end of batch; coordinates as W-bit
+//! two's complement. Output: one `id_a id_b` line (hex) per pair, then
+//! `# cycles N`, `# pairs_tested N`, `# hits N`, `# stall_cycles N`,
+//! `# overflow 0|1`.
+//!
+//! Overlap and the reader are plusargs.
+
+use crate::simulator::{compile, run_on_vectors, Compiled, Simulator, Testbench};
+use crate::system_harness::{host_words, Batch, ReaderBehaviour, SystemResult};
+use anyhow::Context as _;
+use std::fmt::Write as _;
+use tritri_rtl::emit::EmittedDesign;
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::emit_system;
+use tritri_rtl::system::SystemConfig;
+
+/// The testbench, compiled into the library so runs need no checkout.
+pub const SYSTEM_TESTBENCH: &str = include_str!("../../../testbenches/tb_collision_system.sv");
+/// Its top module.
+pub const SYSTEM_TESTBENCH_TOP: &str = "tb_collision_system";
+
+/// The vector file of `batches` (module docs).
+pub fn system_vectors(batches: &[Batch], width: usize) -> String {
+    let mask = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
+    let mut text = String::new();
+    for batch in batches {
+        for word in host_words(batch) {
+            let kind = if word.end { 2 } else if word.object_b { 1 } else { 0 };
+            let _ = write!(text, "{kind} {:x}", word.id);
+            for c in word.coordinates {
+                let _ = write!(text, " {:x}", (c as u64) & mask);
+            }
+            text.push('\n');
+        }
+    }
+    text
+}
+
+/// Parses the testbench's output file.
+pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
+    let mut result = SystemResult::default();
+    let mut saw_cycles = false;
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            continue;
+        }
+        if let Some(rest) = line.strip_prefix('#') {
+            let mut words = rest.split_whitespace();
+            let key = words.next().unwrap_or("");
+            anyhow::ensure!(key != "timeout", "the testbench timed out");
+            let value: u64 = words.next().with_context(|| format!("line {}: `{line}`", n + 1))?.parse()?;
+            match key {
+                "cycles" => {
+                    result.cycles = value;
+                    saw_cycles = true;
+                }
+                "pairs_tested" => result.pairs_tested = value,
+                "hits" => result.hits = value,
+                "stall_cycles" => result.stall_cycles = value,
+                "overflow" => result.overflow = value != 0,
+                _ => anyhow::bail!("line {}: unknown summary `{line}`", n + 1),
+            }
+            continue;
+        }
+        let mut words = line.split_whitespace();
+        let mut id = || -> anyhow::Result<u32> {
+            let w = words.next().with_context(|| format!("line {}: `{line}` needs two ids", n + 1))?;
+            Ok(u32::from_str_radix(w, 16)?)
+        };
+        let pair = (id()?, id()?);
+        result.pairs.push(pair);
+    }
+    anyhow::ensure!(saw_cycles, "the testbench output has no `# cycles` line");
+    Ok(result)
+}
+
+/// The testbench around the emitted system `design` of `width`-bit coordinates.
+pub fn system_testbench(design: &EmittedDesign, width: usize) -> Testbench {
+    let mut files = vec![(format!("{SYSTEM_TESTBENCH_TOP}.sv"), SYSTEM_TESTBENCH.to_string())];
+    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    Testbench {
+        top: SYSTEM_TESTBENCH_TOP.into(),
+        files,
+        defines: vec![format!("TRITRI_SYSTEM={}", design.top)],
+        parameters: vec![("W".into(), width.to_string())],
+        // The system is large: a faster C++ build, at little cost per cycle.
+        c_optimization: 1,
+        trace: false,
+    }
+}
+
+/// Runs a compiled system testbench on `batches`.
+pub fn run_compiled_system(compiled: &Compiled, width: usize, batches: &[Batch], overlap: bool, reader: ReaderBehaviour) -> anyhow::Result<SystemResult> {
+    let period = match reader {
+        ReaderBehaviour::AlwaysReady => 1,
+        ReaderBehaviour::OneIn(k) => k.max(1),
+    };
+    let extra = [format!("+overlap={}", overlap as u8), format!("+reader_period={period}")];
+    let (text, _) = run_on_vectors(compiled, "system-run", &system_vectors(batches, width), &extra)?;
+    parse_system_outputs(&text)
+}
+
+/// Emits the system for `config`, compiles it in `simulator` (Verilator:
+/// or reuses the cached model) and runs `batches` through it.
+pub fn run_system_rtl(
+    simulator: Simulator,
+    config: SystemConfig,
+    kind: PipelineKind,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+) -> anyhow::Result<SystemResult> {
+    let design = emit_system(config, kind)?;
+    let compiled = compile(simulator, &system_testbench(&design, config.coordinate_bits))?;
+    run_compiled_system(&compiled, config.coordinate_bits, batches, overlap, reader)
+}

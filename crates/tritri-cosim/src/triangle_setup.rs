@@ -1,0 +1,193 @@
+//! Co-simulation of the classifier's setup
+//! ([`tritri_rtl::octree::triangle_setup`]): the same triangles through the
+//! software model (`tritri_geom::octree::triangle_cell::root_relative_axes`),
+//! the rust-hdl model and the emitted Verilog in Icarus and Verilator.
+//!
+//! Vectors: one triangle per line, `tag x0 y0 z0 x1 y1 z1 x2 y2 z2 rx ry rz`
+//! (hex, coordinates as G-bit two's complement). Outputs: one line per
+//! triangle, `tag` then the five packed buses (gradient x, y, z, low,
+//! high) in hex.
+
+use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
+use anyhow::{bail, Context as _};
+use rust_hdl::prelude::*;
+use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::octree::triangle_cell::{root_relative_axes, MAX_AXES};
+use tritri_rtl::arith::convert::{from_i128, to_i128};
+use tritri_rtl::emit::cell_classifier_unit::CLASSIFIER_GRID_WIDTHS;
+use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
+use tritri_rtl::octree::cell_classifier::AXES;
+use tritri_rtl::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use tritri_rtl::octree::value_bits;
+use tritri_rtl::sim_drive::{clock_cycle, settle};
+
+/// One triangle's functions, `(gradient, low, high)` in the fixed order.
+pub type SetupAnswer = (u16, [([i128; 3], i128, i128); MAX_AXES]);
+
+/// What the software model says for each triangle (tags `0..`).
+pub fn expected(triangles: &[FixedTriangle], root: [i64; 3]) -> Vec<SetupAnswer> {
+    triangles.iter().enumerate().map(|(i, t)| (i as u16, root_relative_axes(t, root))).collect()
+}
+
+/// The triangles through the rust-hdl model of the `grid_bits` setup, one
+/// per clock.
+pub fn run_rusthdl(grid_bits: usize, triangles: &[FixedTriangle], root: [i64; 3]) -> anyhow::Result<Vec<SetupAnswer>> {
+    match grid_bits {
+        16 => Ok(run_rusthdl_g::<16, { value_bits(16) }, { AXES * value_bits(16) }>(triangles, root)),
+        24 => Ok(run_rusthdl_g::<24, { value_bits(24) }, { AXES * value_bits(24) }>(triangles, root)),
+        32 => Ok(run_rusthdl_g::<32, { value_bits(32) }, { AXES * value_bits(32) }>(triangles, root)),
+        g => bail!("no setup for a {g}-bit grid (have {CLASSIFIER_GRID_WIDTHS:?})"),
+    }
+}
+
+fn unpack<const N: usize, const V: usize>(bus: Bits<N>) -> [i128; AXES] {
+    std::array::from_fn(|i| to_i128(bus.get_bits::<V>(i * V)))
+}
+
+fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[FixedTriangle], root: [i64; 3]) -> Vec<SetupAnswer> {
+    let mut uut = TriangleSetup::<G, V, N>::default();
+    uut.connect_all();
+    uut.advance.next = true;
+    uut.reset.next = true;
+    settle(&mut uut);
+    clock_cycle(&mut uut, |u| &mut u.clock);
+    uut.reset.next = false;
+    let g = |x: i64| from_i128::<G>(x as i128);
+    uut.in_root_x.next = g(root[0]);
+    uut.in_root_y.next = g(root[1]);
+    uut.in_root_z.next = g(root[2]);
+    let mut answers = Vec::new();
+    let idle = std::iter::repeat_n(None, TRIANGLE_SETUP_LATENCY + 1);
+    for (tag, t) in triangles.iter().enumerate().map(Some).chain(idle).map(|x| x.map_or((0, None), |(i, t)| (i, Some(t)))) {
+        uut.in_valid.next = t.is_some();
+        uut.in_tag.next = (tag as u64).into();
+        if let Some(t) = t {
+            let inputs = [
+                &mut uut.in_x0, &mut uut.in_y0, &mut uut.in_z0, &mut uut.in_x1, &mut uut.in_y1, &mut uut.in_z1, &mut uut.in_x2, &mut uut.in_y2,
+                &mut uut.in_z2,
+            ];
+            for (signal, value) in inputs.into_iter().zip(t.iter().flatten()) {
+                signal.next = g(*value);
+            }
+        }
+        clock_cycle(&mut uut, |u| &mut u.clock);
+        if uut.out_valid.val() {
+            let (gx, gy, gz) = (unpack::<N, V>(uut.out_gradient_x.val()), unpack::<N, V>(uut.out_gradient_y.val()), unpack::<N, V>(uut.out_gradient_z.val()));
+            let (low, high) = (unpack::<N, V>(uut.out_low.val()), unpack::<N, V>(uut.out_high.val()));
+            let axes = std::array::from_fn(|i| ([gx[i], gy[i], gz[i]], low[i], high[i]));
+            answers.push((uut.out_tag.val().index() as u16, axes));
+        }
+    }
+    answers
+}
+
+/// The triangles through the emitted `grid_bits` setup.
+pub fn run_emitted(grid_bits: usize, triangles: &[FixedTriangle], root: [i64; 3], simulator: Simulator) -> anyhow::Result<Vec<SetupAnswer>> {
+    let design = emit_triangle_setup(grid_bits)?;
+    let v = value_bits(grid_bits);
+    let mut files = vec![("tb_triangle_setup.sv".to_string(), testbench(&design.top, grid_bits, v))];
+    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    let bench = Testbench { top: "tb_triangle_setup".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    let compiled = compile(simulator, &bench)?;
+    let mask = (1u64 << grid_bits) - 1;
+    let hex = |x: i64| format!("{:x}", (x as u64) & mask);
+    let mut vectors = String::new();
+    for (tag, t) in triangles.iter().enumerate() {
+        let fields: Vec<String> = std::iter::once(format!("{tag:x}")).chain(t.iter().flatten().chain(&root).map(|&x| hex(x))).collect();
+        vectors += &fields.join(" ");
+        vectors.push('\n');
+    }
+    let (text, _) = run_on_vectors(&compiled, "setup-run", &vectors, &[])?;
+    text.lines().map(|line| parse_answer(line, v)).collect()
+}
+
+fn parse_answer(line: &str, v: usize) -> anyhow::Result<SetupAnswer> {
+    let fields: Vec<&str> = line.split_whitespace().collect();
+    if fields.len() != 6 {
+        bail!("setup output line `{line}` has {} fields, not 6", fields.len());
+    }
+    let tag = u16::from_str_radix(fields[0], 16).with_context(|| format!("tag `{}` in `{line}`", fields[0]))?;
+    // A bus is AXES * V bits of hex, most significant first.
+    let bus = |s: &str| -> anyhow::Result<[i128; AXES]> {
+        let digits: Vec<u8> = s.chars().map(|c| c.to_digit(16).map(|d| d as u8).with_context(|| format!("`{s}` is not hexadecimal"))).collect::<anyhow::Result<_>>()?;
+        let bit = |k: usize| -> bool {
+            let (digit, within) = (k / 4, k % 4);
+            digit < digits.len() && digits[digits.len() - 1 - digit] >> within & 1 == 1
+        };
+        Ok(std::array::from_fn(|i| {
+            let raw: i128 = (0..v).filter(|&b| bit(i * v + b)).map(|b| 1i128 << b).sum();
+            if raw >> (v - 1) & 1 == 1 {
+                raw - (1i128 << v)
+            } else {
+                raw
+            }
+        }))
+    };
+    let (gx, gy, gz, low, high) = (bus(fields[1])?, bus(fields[2])?, bus(fields[3])?, bus(fields[4])?, bus(fields[5])?);
+    Ok((tag, std::array::from_fn(|i| ([gx[i], gy[i], gz[i]], low[i], high[i]))))
+}
+
+fn testbench(top: &str, g: usize, v: usize) -> String {
+    let n = AXES * v;
+    format!(
+        "\
+// Generated by tritri-cosim: drives {top} from a vector file.
+`timescale 1ns/1ps
+module tb_triangle_setup;
+    reg clock = 1'b0;
+    reg reset = 1'b1;
+    reg advance = 1'b1;
+    reg in_valid = 1'b0;
+    reg [15:0] tag = 16'd0;
+    reg [{g1}:0] c [0:11];
+    wire out_valid;
+    wire [15:0] out_tag;
+    wire [{n1}:0] gx, gy, gz, low, high;
+    {top} dut (
+        .clock(clock), .reset(reset), .advance(advance), .in_valid(in_valid), .in_tag(tag),
+        .in_x0(c[0]), .in_y0(c[1]), .in_z0(c[2]), .in_x1(c[3]), .in_y1(c[4]), .in_z1(c[5]),
+        .in_x2(c[6]), .in_y2(c[7]), .in_z2(c[8]), .in_root_x(c[9]), .in_root_y(c[10]), .in_root_z(c[11]),
+        .out_valid(out_valid), .out_tag(out_tag),
+        .out_gradient_x(gx), .out_gradient_y(gy), .out_gradient_z(gz), .out_low(low), .out_high(high)
+    );
+
+    always #5 clock = ~clock;
+
+    integer vectors, outputs, r, i;
+    reg [8*4096-1:0] vectors_path, outputs_path;
+    reg [{g1}:0] field;
+
+    // Registered outputs are stable at the falling edge.
+    always @(negedge clock) begin
+        if (!reset && out_valid) begin
+            $fwrite(outputs, \"%h %h %h %h %h %h\\n\", out_tag, gx, gy, gz, low, high);
+        end
+    end
+
+    initial begin
+        if (!$value$plusargs(\"vectors=%s\", vectors_path) || !$value$plusargs(\"outputs=%s\", outputs_path)) begin
+            $display(\"usage: +vectors=FILE +outputs=FILE\");
+            $finish;
+        end
+        vectors = $fopen(vectors_path, \"r\");
+        outputs = $fopen(outputs_path, \"w\");
+        for (i = 0; i < 12; i = i + 1) c[i] = 0;
+        repeat (2) @(negedge clock);
+        reset = 1'b0;
+        while ($fscanf(vectors, \"%h\", tag) == 1) begin
+            for (i = 0; i < 12; i = i + 1) begin r = $fscanf(vectors, \"%h\", field); c[i] = field; end
+            in_valid = 1'b1;
+            @(negedge clock);
+        end
+        in_valid = 1'b0;
+        repeat ({drain}) @(negedge clock);
+        $fclose(outputs);
+        $finish;
+    end
+endmodule
+",
+        g1 = g - 1,
+        n1 = n - 1,
+        drain = TRIANGLE_SETUP_LATENCY + 2,
+    )
+}

@@ -1,0 +1,359 @@
+//! The binning unit's setup: one triangle per clock in, its thirteen test
+//! functions out, ready for the classifier ([`super::cell_classifier`]) at
+//! the root cell. It is where the multiplications are; below the root the
+//! classifier needs only adds and shifts.
+//!
+//! The functions are taken relative to the root's low corner `lo`:
+//! `f(p) = g · (p - lo)`, so every function is zero at the root's low
+//! corner and the classifier's first entry carries no values at all. In
+//! fixed positions (`tritri_geom::octree::triangle_cell::root_relative_axes`
+//! is the software model, which it equals bit for bit):
+//!
+//! * 0–2, the axes x, y, z: interval `[min, max]` of the vertices' relative
+//!   coordinates;
+//! * 3, the plane: `n = e0 × e1` with `e0 = p1 - p0`, `e1 = p2 - p1`; every
+//!   vertex projects to the same `n · p0`, so the interval is one point;
+//! * 4–12, edge `j` (`e_j` from `p_j`, `e2 = p0 - p2`) across axis `k`:
+//!   `g = e_j × u_k`. Both ends of the edge project to `g · p_j` (two
+//!   products), and the opposite vertex to `g · p_j - n_k` (the triple
+//!   product `(e_j × u_k) · (p_opposite - p_j) = -n_k`, the same for every
+//!   edge), so the interval needs no third product.
+//!
+//! 27 multiplications per triangle (6 for the normal, 18 for the edges, 3
+//! for the plane), against 90 for evaluating every function at every
+//! vertex and at the root.
+//!
+//! Stages: relative coordinates and edges (1); products (2); the normal and
+//! the edge starts (3); the plane's products and the opposite ends (4);
+//! the plane's sum, minima and maxima into the output registers (5).
+//! `V`-bit two's complement throughout, `V = 3G + 6` ([`super::value_bits`]),
+//! which holds every value exactly.
+//!
+//! A custom-Verilog primitive with an exact i128 model evaluated only at
+//! clock edges, like [`super::axis_step::AxisStep`]. The outputs are packed:
+//! function `i`'s field is bits `[i V +: V]` of each bus.
+
+use super::cell_classifier::{AXES, TAG_BITS};
+use crate::arith::convert::{to_i128, wrap_i128};
+use rust_hdl::core::bitvec::BitVec;
+use rust_hdl::prelude::*;
+
+/// Clock edges from a triangle to its functions.
+pub const TRIANGLE_SETUP_LATENCY: usize = 5;
+
+#[derive(LogicBlock)]
+pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous reset, active high: clears the valid bits.
+    pub reset: Signal<In, Bit>,
+    pub advance: Signal<In, Bit>,
+    pub in_valid: Signal<In, Bit>,
+    pub in_tag: Signal<In, Bits<TAG_BITS>>,
+    /// The triangle's vertices, G-bit two's complement grid coordinates.
+    pub in_x0: Signal<In, Bits<G>>,
+    pub in_y0: Signal<In, Bits<G>>,
+    pub in_z0: Signal<In, Bits<G>>,
+    pub in_x1: Signal<In, Bits<G>>,
+    pub in_y1: Signal<In, Bits<G>>,
+    pub in_z1: Signal<In, Bits<G>>,
+    pub in_x2: Signal<In, Bits<G>>,
+    pub in_y2: Signal<In, Bits<G>>,
+    pub in_z2: Signal<In, Bits<G>>,
+    /// The root cell's low corner.
+    pub in_root_x: Signal<In, Bits<G>>,
+    pub in_root_y: Signal<In, Bits<G>>,
+    pub in_root_z: Signal<In, Bits<G>>,
+    pub out_valid: Signal<Out, Bit>,
+    pub out_tag: Signal<Out, Bits<TAG_BITS>>,
+    /// Function `i`'s gradient, interval ends: bits `[i V +: V]`.
+    pub out_gradient_x: Signal<Out, Bits<N>>,
+    pub out_gradient_y: Signal<Out, Bits<N>>,
+    pub out_gradient_z: Signal<Out, Bits<N>>,
+    pub out_low: Signal<Out, Bits<N>>,
+    pub out_high: Signal<Out, Bits<N>>,
+    _stages: [Stage; TRIANGLE_SETUP_LATENCY],
+}
+
+/// What one pipeline stage holds (the model keeps every stage's values in
+/// one shape; each stage fills the fields it has computed).
+#[derive(Clone, Copy, Default)]
+struct Stage {
+    valid: bool,
+    tag: u64,
+    /// Relative vertices, edges.
+    p: [[i128; 3]; 3],
+    e: [[i128; 3]; 3],
+    normal: [i128; 3],
+    /// Edge `j` across axis `k` at `3 j + k`: the edge's projection, the
+    /// opposite vertex's.
+    start: [i128; 9],
+    opposite: [i128; 9],
+    plane: i128,
+}
+
+impl<const G: usize, const V: usize, const N: usize> Default for TriangleSetup<G, V, N> {
+    fn default() -> Self {
+        assert!(V == super::value_bits(G) && N == AXES * V && V <= 127, "setup for G = {G}: V = {V}, N = {N}");
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            advance: Default::default(),
+            in_valid: Default::default(),
+            in_tag: Default::default(),
+            in_x0: Default::default(),
+            in_y0: Default::default(),
+            in_z0: Default::default(),
+            in_x1: Default::default(),
+            in_y1: Default::default(),
+            in_z1: Default::default(),
+            in_x2: Default::default(),
+            in_y2: Default::default(),
+            in_z2: Default::default(),
+            in_root_x: Default::default(),
+            in_root_y: Default::default(),
+            in_root_z: Default::default(),
+            out_valid: Default::default(),
+            out_tag: Default::default(),
+            out_gradient_x: Default::default(),
+            out_gradient_y: Default::default(),
+            out_gradient_z: Default::default(),
+            out_low: Default::default(),
+            out_high: Default::default(),
+            _stages: [Stage::default(); TRIANGLE_SETUP_LATENCY],
+        }
+    }
+}
+
+/// `e × u_k` for axis `k`.
+pub fn edge_gradient(e: [i128; 3], k: usize) -> [i128; 3] {
+    match k {
+        0 => [0, e[2], -e[1]],
+        1 => [-e[2], 0, e[0]],
+        _ => [e[1], -e[0], 0],
+    }
+}
+
+/// The thirteen `(gradient, low, high)` of a stage-4 record: what the
+/// output registers take.
+fn functions(s: &Stage, v: usize) -> [([i128; 3], i128, i128); AXES] {
+    let mut out = [([0i128; 3], 0i128, 0i128); AXES];
+    for (k, f) in out.iter_mut().take(3).enumerate() {
+        let coordinates = s.p.map(|p| p[k]);
+        let unit = [0, 1, 2].map(|j| i128::from(j == k));
+        *f = (unit, coordinates.into_iter().min().unwrap_or(0), coordinates.into_iter().max().unwrap_or(0));
+    }
+    out[3] = (s.normal, s.plane, s.plane);
+    for j in 0..3 {
+        for k in 0..3 {
+            let (a, b) = (s.start[3 * j + k], s.opposite[3 * j + k]);
+            out[4 + 3 * j + k] = (edge_gradient(s.e[j], k).map(|g| wrap_i128(g, v)), a.min(b), a.max(b));
+        }
+    }
+    out
+}
+
+/// Packs `AXES` values of `v` bits into one bus, value `i` at `[i v +: v]`.
+fn pack<const N: usize>(values: [i128; AXES], v: usize) -> Bits<N> {
+    let mut bits = [false; N];
+    for (i, value) in values.iter().enumerate() {
+        for b in 0..v {
+            bits[i * v + b] = (value >> b) & 1 == 1;
+        }
+    }
+    Bits::Long(BitVec::from(bits))
+}
+
+impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, V, N> {
+    fn update(&mut self) {
+        if !self.clock.pos_edge() {
+            return;
+        }
+        if self.advance.val() {
+            let w = |x: i128| wrap_i128(x, V);
+            let [s1, s2, s3, s4, _] = self._stages;
+            // Stage 5: the outputs.
+            let f = functions(&s4, V);
+            let next5 = Stage { plane: w(s4.plane), ..s4 };
+            // Stage 4: the plane's products (summed here, as the Verilog
+            // sums them into the output) and the opposite ends.
+            let plane = w((0..3).map(|k| w(s3.normal[k] * s3.p[0][k])).sum());
+            let opposite = std::array::from_fn(|i| w(s3.start[i] - s3.normal[i % 3]));
+            let next4 = Stage { plane, opposite, ..s3 };
+            // Stages 2 and 3: products, then differences (one step in the
+            // model: the products are exact in i128).
+            let e = s2.e;
+            let normal = [0, 1, 2].map(|k| {
+                let (a, b) = ((k + 1) % 3, (k + 2) % 3);
+                w(w(e[0][a] * e[1][b]) - w(e[0][b] * e[1][a]))
+            });
+            let start = std::array::from_fn(|i| {
+                let (j, k) = (i / 3, i % 3);
+                let g = edge_gradient(e[j], k);
+                w((0..3).map(|c| w(g[c] * s2.p[j][c])).sum())
+            });
+            let next3 = Stage { normal, start, ..s2 };
+            let next2 = s1;
+            // Stage 1: relative coordinates and edges.
+            let v = [
+                [&self.in_x0, &self.in_y0, &self.in_z0].map(|x| to_i128(x.val())),
+                [&self.in_x1, &self.in_y1, &self.in_z1].map(|x| to_i128(x.val())),
+                [&self.in_x2, &self.in_y2, &self.in_z2].map(|x| to_i128(x.val())),
+            ];
+            let root = [&self.in_root_x, &self.in_root_y, &self.in_root_z].map(|x| to_i128(x.val()));
+            let p = v.map(|q| [0, 1, 2].map(|k| w(q[k] - root[k])));
+            let edge = |a: usize, b: usize| [0, 1, 2].map(|k| w(v[b][k] - v[a][k]));
+            let next1 = Stage { valid: self.in_valid.val(), tag: self.in_tag.val().index() as u64, p, e: [edge(0, 1), edge(1, 2), edge(2, 0)], ..Stage::default() };
+            self._stages = [next1, next2, next3, next4, next5];
+            self.out_gradient_x.next = pack(f.map(|a| a.0[0]), V);
+            self.out_gradient_y.next = pack(f.map(|a| a.0[1]), V);
+            self.out_gradient_z.next = pack(f.map(|a| a.0[2]), V);
+            self.out_low.next = pack(f.map(|a| a.1), V);
+            self.out_high.next = pack(f.map(|a| a.2), V);
+            self.out_tag.next = Bits::from(s4.tag);
+        }
+        if self.reset.val() {
+            for s in self._stages.iter_mut() {
+                s.valid = false;
+            }
+        }
+        self.out_valid.next = self._stages[TRIANGLE_SETUP_LATENCY - 1].valid;
+    }
+
+    fn connect(&mut self) {
+        self.out_valid.connect();
+        self.out_tag.connect();
+        self.out_gradient_x.connect();
+        self.out_gradient_y.connect();
+        self.out_gradient_z.connect();
+        self.out_low.connect();
+        self.out_high.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(setup_verilog(G, V))
+    }
+}
+
+/// The Verilog of the setup (module docs), for `g`-bit grids and `v`-bit values.
+fn setup_verilog(g: usize, v: usize) -> String {
+    let v1 = v - 1;
+    let mut text = String::new();
+    let mut line = |s: String| {
+        text.push_str(&s);
+        text.push('\n');
+    };
+    let xyz = ["x", "y", "z"];
+    let extend = |port: String| format!("$signed({{{{{}{{{port}[{}]}}}}, {port}}})", v - g, g - 1);
+    let regs = |names: Vec<String>| format!("reg signed [{v1}:0] {};", names.join(", "));
+    let per = |stage: usize, what: &str, n: usize| (0..n).map(|i| format!("{what}{i}_{stage}")).collect::<Vec<_>>();
+    let coords = |stage: usize, what: &str| (0..3).flat_map(|i| xyz.map(|c| format!("{what}{i}{c}_{stage}"))).collect::<Vec<_>>();
+    line("// Stage 1: p_i = v_i - root, e_j = v_{j+1} - v_j.".into());
+    line(regs([coords(1, "p"), coords(1, "e")].concat()));
+    line("// Stage 2: the products of the normal and of the edge starts.".into());
+    line(regs([per(2, "na", 3), per(2, "nb", 3), per(2, "sa", 9), per(2, "sb", 9), coords(2, "p"), coords(2, "e")].concat()));
+    line("// Stage 3: the normal and the edge starts.".into());
+    line(regs([per(3, "n", 3), per(3, "s", 9), coords(3, "p"), coords(3, "e")].concat()));
+    line("// Stage 4: the plane's products, the opposite ends.".into());
+    line(regs([per(4, "pl", 3), per(4, "n", 3), per(4, "s", 9), per(4, "o", 9), coords(4, "p"), coords(4, "e")].concat()));
+    line(format!("reg [{}:0] tag_1, tag_2, tag_3, tag_4;", TAG_BITS - 1));
+    line("reg valid_1, valid_2, valid_3, valid_4;".into());
+    line("always @(posedge clock) begin".into());
+    line("    if (reset) begin".into());
+    line("        valid_1 <= 1'b0; valid_2 <= 1'b0; valid_3 <= 1'b0; valid_4 <= 1'b0; out_valid <= 1'b0;".into());
+    line("    end else if (advance) begin".into());
+    line("        valid_1 <= in_valid; valid_2 <= valid_1; valid_3 <= valid_2; valid_4 <= valid_3; out_valid <= valid_4;".into());
+    line("    end".into());
+    line("    if (advance) begin".into());
+    line("        tag_1 <= in_tag; tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3; out_tag <= tag_4;".into());
+    for i in 0..3 {
+        for c in xyz {
+            line(format!("        p{i}{c}_1 <= {} - {};", extend(format!("in_{c}{i}")), extend(format!("in_root_{c}"))));
+            let next = (i + 1) % 3;
+            line(format!("        e{i}{c}_1 <= {} - {};", extend(format!("in_{c}{next}")), extend(format!("in_{c}{i}"))));
+        }
+    }
+    // Stage 2. n_k = e0_a e1_b - e0_b e1_a with (a, b) = (k+1, k+2) mod 3.
+    for k in 0..3 {
+        let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
+        line(format!("        na{k}_2 <= e0{a}_1 * e1{b}_1;"));
+        line(format!("        nb{k}_2 <= e0{b}_1 * e1{a}_1;"));
+    }
+    // Edge j across axis k: g = e_j × u_k, start = g · p_j as two products
+    // (x: e_z p_y - e_y p_z; y: e_x p_z - e_z p_x; z: e_y p_x - e_x p_y).
+    for j in 0..3 {
+        for k in 0..3 {
+            let (a, b) = (xyz[(k + 2) % 3], xyz[(k + 1) % 3]);
+            line(format!("        sa{}_2 <= e{j}{a}_1 * p{j}{b}_1;", 3 * j + k));
+            line(format!("        sb{}_2 <= e{j}{b}_1 * p{j}{a}_1;", 3 * j + k));
+        }
+    }
+    let pass = |line: &mut dyn FnMut(String), from: usize, to: usize| {
+        for i in 0..3 {
+            for c in xyz {
+                line(format!("        p{i}{c}_{to} <= p{i}{c}_{from};"));
+                line(format!("        e{i}{c}_{to} <= e{i}{c}_{from};"));
+            }
+        }
+    };
+    pass(&mut line, 1, 2);
+    for k in 0..3 {
+        line(format!("        n{k}_3 <= na{k}_2 - nb{k}_2;"));
+    }
+    for i in 0..9 {
+        line(format!("        s{i}_3 <= sa{i}_2 - sb{i}_2;"));
+    }
+    pass(&mut line, 2, 3);
+    for k in 0..3 {
+        line(format!("        pl{k}_4 <= n{k}_3 * p0{}_3;", xyz[k]));
+        line(format!("        n{k}_4 <= n{k}_3;"));
+    }
+    for i in 0..9 {
+        line(format!("        s{i}_4 <= s{i}_3;"));
+        line(format!("        o{i}_4 <= s{i}_3 - n{}_3;", i % 3));
+    }
+    pass(&mut line, 3, 4);
+    // Stage 5: the packed outputs, function i at [i V +: V].
+    let min = |a: &str, b: &str| format!("(({a} < {b}) ? {a} : {b})");
+    let max = |a: &str, b: &str| format!("(({a} < {b}) ? {b} : {a})");
+    let mut gradient: [Vec<String>; 3] = Default::default();
+    let (mut low, mut high) = (Vec::new(), Vec::new());
+    for (k, c) in xyz.iter().enumerate() {
+        for (d, g) in gradient.iter_mut().enumerate() {
+            g.push(format!("{v}'sd{}", u8::from(d == k)));
+        }
+        let (c0, c1, c2) = (format!("p0{c}_4"), format!("p1{c}_4"), format!("p2{c}_4"));
+        low.push(min(&min(&c0, &c1), &c2));
+        high.push(max(&max(&c0, &c1), &c2));
+    }
+    for (k, g) in gradient.iter_mut().enumerate() {
+        g.push(format!("n{k}_4"));
+    }
+    low.push("pl0_4 + pl1_4 + pl2_4".into());
+    high.push("pl0_4 + pl1_4 + pl2_4".into());
+    for j in 0..3 {
+        for k in 0..3 {
+            let e = |c: usize| format!("e{j}{}_4", xyz[c]);
+            let zero = format!("{v}'sd0");
+            let g = match k {
+                0 => [zero.clone(), e(2), format!("-{}", e(1))],
+                1 => [format!("-{}", e(2)), zero.clone(), e(0)],
+                _ => [e(1), format!("-{}", e(0)), zero.clone()],
+            };
+            for (d, component) in g.into_iter().enumerate() {
+                gradient[d].push(component);
+            }
+            let i = 3 * j + k;
+            low.push(min(&format!("s{i}_4"), &format!("o{i}_4")));
+            high.push(max(&format!("s{i}_4"), &format!("o{i}_4")));
+        }
+    }
+    // Each field is a V-bit signed expression written into its slice.
+    for (name, fields) in [("out_gradient_x", &gradient[0]), ("out_gradient_y", &gradient[1]), ("out_gradient_z", &gradient[2]), ("out_low", &low), ("out_high", &high)] {
+        for (i, f) in fields.iter().enumerate() {
+            line(format!("        {name}[{}:{}] <= $unsigned({f});", i * v + v1, i * v));
+        }
+    }
+    line("    end".into());
+    line("end".into());
+    text
+}
