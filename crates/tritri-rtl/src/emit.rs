@@ -113,6 +113,13 @@ impl UnitDescription {
         self.ports.push((name.to_string(), meaning.to_string()));
         self
     }
+    /// The three control ports every pipelined unit of the octree engine
+    /// and the pipeline share, described once.
+    pub fn pipelined_control_ports(self) -> Self {
+        self.port("clock", "Clock; every register updates on the rising edge.")
+            .port("reset", "Synchronous reset, active high: clears the valid bits (the datapath has no reset).")
+            .port("advance", "Clock enable: while low, every register holds (back-pressure).")
+    }
     pub fn latency(mut self, cycles: u64) -> Self {
         self.latency = Some(cycles);
         self
