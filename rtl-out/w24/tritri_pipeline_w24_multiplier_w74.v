@@ -44,7 +44,7 @@ module tritri_pipeline_w24_multiplier_w74 (
         if (advance) begin
             a_q <= $signed(a);
             b_q <= $signed(b);
-            m_q <= a_q * b_q;
+            m_q <= $signed({{24{a_q[24]}}, a_q}) * b_q;
             product <= $unsigned(m_q);
         end
     end

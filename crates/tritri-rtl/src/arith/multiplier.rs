@@ -82,7 +82,7 @@ always @(posedge clock) begin
     if (advance) begin
         a_q <= $signed(a);
         b_q <= $signed(b);
-        m_q <= a_q * b_q;
+        m_q <= {operands};
         product <= $unsigned(m_q);
     end
 end
@@ -90,6 +90,19 @@ end
             a1 = A - 1,
             b1 = B - 1,
             p1 = P - 1,
+            operands = signed_operands(A, B),
         ))
+    }
+}
+
+/// `a_q * b_q` with the narrower operand sign-extended to the wider one's
+/// width. Verilog extends both to the context width anyway; spelling it out
+/// keeps strict front ends (slang's `-Warith-op-mismatch`) quiet without
+/// changing the circuit (Yosys maps it to the same cells).
+fn signed_operands(a: usize, b: usize) -> String {
+    match a.cmp(&b) {
+        std::cmp::Ordering::Equal => "a_q * b_q".to_string(),
+        std::cmp::Ordering::Less => format!("$signed({{{{{}{{a_q[{}]}}}}, a_q}}) * b_q", b - a, a - 1),
+        std::cmp::Ordering::Greater => format!("a_q * $signed({{{{{}{{b_q[{}]}}}}, b_q}})", a - b, b - 1),
     }
 }
