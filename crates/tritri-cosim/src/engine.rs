@@ -121,22 +121,24 @@ pub struct PipelineRun {
 /// last tested cycle plus the latency.
 pub fn run_pipeline(engine: Engine, width: usize, schedule: &[PipelineInput], vcd: Option<&Path>) -> anyhow::Result<PipelineRun> {
     let started = Instant::now();
-    match engine {
-        Engine::Model => {
+    // Dispatched on the simulator, as `run_scene` does: the emitted
+    // Verilog's two engines share one runner.
+    match (engine, engine.simulator()) {
+        (_, Some(simulator)) => {
+            let run = pipeline_rtl::run_schedule(simulator, width, schedule, vcd)?;
+            Ok(PipelineRun { result: run.result, build_seconds: run.build_seconds, simulate_seconds: run.simulate_seconds })
+        }
+        (Engine::Model, None) => {
             anyhow::ensure!(vcd.is_none(), "the model has no waveform; choose a hardware engine (rusthdl, icarus or verilator)");
             let result = model_result(schedule, latency() as u64)?;
             Ok(PipelineRun { result, build_seconds: 0.0, simulate_seconds: started.elapsed().as_secs_f64() })
         }
-        Engine::Rusthdl => {
+        (_, None) => {
+            // Rusthdl: the rust-hdl pipeline, driven directly.
             let mut pipeline = pipeline_for_width(width)?;
             let options = HarnessOptions { vcd: vcd.map(Into::into) };
             let result = run_schedule_on(pipeline.as_mut(), schedule, &options)?;
             Ok(PipelineRun { result, build_seconds: 0.0, simulate_seconds: started.elapsed().as_secs_f64() })
-        }
-        Engine::Icarus | Engine::Verilator => {
-            let simulator = engine.simulator().expect("an RTL engine");
-            let run = pipeline_rtl::run_schedule(simulator, width, schedule, vcd)?;
-            Ok(PipelineRun { result: run.result, build_seconds: run.build_seconds, simulate_seconds: run.simulate_seconds })
         }
     }
 }
