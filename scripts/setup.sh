@@ -15,3 +15,12 @@ fi
 echo "iverilog: $(iverilog -V 2>&1 | head -1)"
 echo "verilator: $(verilator --version)"
 echo "yosys: $(yosys -V)"
+
+# Python tools of the examples (cocotb, FuseSoC), pinned in
+# scripts/python-requirements.txt, in a project-local virtual environment.
+cd "$(dirname "$0")/.."
+if [ ! -x build/venv/bin/python ]; then
+  python3 -m venv build/venv
+fi
+build/venv/bin/pip install --quiet --disable-pip-version-check -r scripts/python-requirements.txt
+echo "python tools: $(build/venv/bin/cocotb-config --version | sed 's/^/cocotb /'), $(build/venv/bin/fusesoc --version 2>&1 | head -1 | sed 's/^/fusesoc /')"

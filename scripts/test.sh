@@ -5,6 +5,9 @@ cd "$(dirname "$0")/.."
 for tool in iverilog verilator yosys; do
   command -v "$tool" >/dev/null 2>&1 || { echo "error: $tool not found; install it with: apt-get install iverilog verilator yosys" >&2; exit 1; }
 done
+for tool in cocotb-config fusesoc; do
+  [ -x "build/venv/bin/$tool" ] || { echo "error: build/venv/bin/$tool not found; run bash scripts/setup.sh (it installs scripts/python-requirements.txt)" >&2; exit 1; }
+done
 cargo test --release --workspace
 
 # The examples (examples/README.md): each checks what it shows and fails
@@ -14,3 +17,9 @@ for example in classify_pairs scene_pairs emit_and_synthesize; do
   echo "example: $example"
   target/release/examples/$example
 done
+echo "example: fpga-top"
+bash examples/fpga-top/run.sh
+echo "example: cocotb"
+bash examples/cocotb/run.sh
+echo "example: scenes"
+bash examples/scenes/check.sh

@@ -57,7 +57,11 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
             if kind == PipelineKind::Stub { " (stub pipelines: trivial verdict)" } else { "" }
         ),
     )
-    .throughput(&format!("{} triangle pairs per clock while B streams", config.pipelines));
+    .throughput(&format!(
+        "{} triangle pair{} per clock while B streams",
+        config.pipelines,
+        if config.pipelines == 1 { "" } else { "s" }
+    ));
     let ports: [(&str, String); 26] = [
         ("clock", "clock".into()),
         ("reset", "synchronous active-high reset".into()),
