@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N]]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -28,7 +28,9 @@
 //! grid (16, 24 or 32), top `tritri_cell_classifier_g<G>`, by default into
 //! `rtl-out/<top>`. `--setup` writes the setup that feeds it (one triangle
 //! per clock to its thirteen test functions at the root cell), top
-//! `tritri_triangle_setup_g<G>`.
+//! `tritri_triangle_setup_g<G>`. `--owner-filter` writes the filter that
+//! reports each pair of the octree broad phase once (`--slots N` words per
+//! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
 //!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
@@ -38,6 +40,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -70,6 +73,16 @@ pub struct Args {
     /// the root cell); --width is the grid's width (16, 24 or 32).
     #[arg(long)]
     setup: bool,
+    /// Emit the octree broad phase's owner filter instead (each
+    /// intersecting pair reported once, from its first leaf); --width does
+    /// not apply.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "width"])]
+    owner_filter: bool,
+    /// With --owner-filter: words of each object's slot table, one per
+    /// triangle per leaf (1 to 16777216).
+    #[arg(long, default_value_t = 65536, requires = "owner_filter",
+          value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
+    slots: u64,
     /// With --system: pipelines working in parallel (1 to 16).
     #[arg(long, default_value_t = 2, requires = "system",
           value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
@@ -89,6 +102,9 @@ impl Args {
 
     /// The design for `width`: the pipeline, or the system with --system.
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
+        if self.owner_filter {
+            return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
+        }
         if self.classifier {
             return emit_cell_classifier(width).with_context(|| format!("emitting the {width}-bit grid's classifier"));
         }
@@ -104,7 +120,7 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup
+        self.system || self.classifier || self.setup || self.owner_filter
     }
 
     /// The grid-width units of the octree engine.
@@ -114,7 +130,9 @@ impl Args {
 
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
-        if self.classifier {
+        if self.owner_filter {
+            owner_filter_unit_name(self.slots as usize)
+        } else if self.classifier {
             cell_classifier_unit_name(width)
         } else if self.setup {
             triangle_setup_unit_name(width)
@@ -144,7 +162,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit(), check_width(w)) {
+        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter, check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

@@ -21,6 +21,7 @@
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod cell_classifier;
 pub mod engine;
+pub mod owner_filter;
 pub mod pipeline_rtl;
 pub mod rusthdl_harness;
 pub mod simulator;

@@ -56,6 +56,7 @@ pub mod ansi_ports;
 pub mod cell_classifier_unit;
 pub mod continuous_assigns;
 pub mod modules;
+pub mod owner_filter_unit;
 pub mod package;
 pub mod pipeline_unit;
 pub mod tokens;

@@ -67,6 +67,14 @@ impl ResourceReport {
     pub fn shift_registers(&self) -> u64 {
         self.sum(|k| k.starts_with("SRL"))
     }
+    /// Block RAMs: (RAMB36E1, RAMB18E1).
+    pub fn block_rams(&self) -> (u64, u64) {
+        (self.sum(|k| k.starts_with("RAMB36")), self.sum(|k| k.starts_with("RAMB18")))
+    }
+    /// Distributed RAM: LUTs used as memory (RAM32M, RAM64M, RAM64X1D, ...).
+    pub fn distributed_rams(&self) -> u64 {
+        self.sum(|k| k.starts_with("RAM") && !k.starts_with("RAMB"))
+    }
 }
 
 /// Parses the last `stat` report in a Yosys log: the `Number of cells` line
@@ -122,15 +130,17 @@ pub struct ResourceRow {
     pub xilinx: Option<ResourceReport>,
 }
 
-/// A Markdown table: unit, generic cells, LUTs, FFs, DSP48s, CARRY4s, SRLs.
+/// A Markdown table: unit, generic cells, LUTs, FFs, DSP48s, CARRY4s, SRLs,
+/// block RAMs (36K + 18K) and distributed RAM cells.
 pub fn resource_table(rows: &[ResourceRow]) -> String {
     let mut t = String::from(
-        "| unit | generic cells | LUT | FF | DSP48E1 | CARRY4 | SRL |\n|---|---:|---:|---:|---:|---:|---:|\n",
+        "| unit | generic cells | LUT | FF | DSP48E1 | CARRY4 | SRL | block RAM (36K + 18K) | distributed RAM |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     let cell = |r: &Option<ResourceReport>, f: fn(&ResourceReport) -> u64| r.as_ref().map_or("-".into(), |r| f(r).to_string());
     for r in rows {
         t.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {} |\n",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
             r.unit,
             cell(&r.generic, |r| r.cells),
             cell(&r.xilinx, ResourceReport::luts),
@@ -138,6 +148,11 @@ pub fn resource_table(rows: &[ResourceRow]) -> String {
             cell(&r.xilinx, ResourceReport::dsps),
             cell(&r.xilinx, ResourceReport::carry_chains),
             cell(&r.xilinx, ResourceReport::shift_registers),
+            r.xilinx.as_ref().map_or("-".into(), |r| {
+                let (b36, b18) = r.block_rams();
+                format!("{b36} + {b18}")
+            }),
+            cell(&r.xilinx, ResourceReport::distributed_rams),
         ));
     }
     t
@@ -153,5 +168,15 @@ mod tests {
         let r = parse_stat(log).unwrap();
         assert_eq!(r.cells, 7);
         assert_eq!((r.luts(), r.flip_flops(), r.carry_chains(), r.dsps()), (3, 3, 1, 0));
+        assert_eq!((r.block_rams(), r.distributed_rams()), ((0, 0), 0));
+    }
+
+    #[test]
+    fn memories_are_counted_by_kind() {
+        let log = "   Number of cells:                 9\n     RAM32M                          2\n     RAM64M                          3\n     RAMB18E1                        1\n     RAMB36E1                        3\n\n";
+        let r = parse_stat(log).unwrap();
+        assert_eq!((r.block_rams(), r.distributed_rams(), r.luts()), ((3, 1), 5, 0));
+        let table = resource_table(&[ResourceRow { unit: "u".into(), generic: None, xilinx: Some(r) }]);
+        assert!(table.lines().nth(2).unwrap().ends_with("| 3 + 1 | 5 |"), "{table}");
     }
 }

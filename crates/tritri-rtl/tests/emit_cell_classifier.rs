@@ -1,10 +1,12 @@
-//! The emitted octree classifier step and its setup: lint-clean under
-//! `verilator --lint-only -Wall` and compiled by Icarus at every grid
-//! width, following the emitter's naming conventions. (Their behaviour is
-//! co-simulated in tritri-cosim's tests/cell_classifier.rs and
-//! tests/triangle_setup.rs.)
+//! The emitted octree classifier step, its setup and the owner filter:
+//! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
+//! at every grid width (table size for the filter), following the
+//! emitter's naming conventions. (Their behaviour is co-simulated in
+//! tritri-cosim's tests/cell_classifier.rs, tests/triangle_setup.rs and
+//! tests/owner_filter.rs.)
 
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::tools::{run, IVERILOG};
@@ -14,6 +16,14 @@ fn every_grid_width_is_lint_clean() {
     for &g in &CLASSIFIER_GRID_WIDTHS {
         check(g, emit_cell_classifier(g).unwrap());
         check(g, emit_triangle_setup(g).unwrap());
+    }
+}
+
+#[test]
+fn the_owner_filter_is_lint_clean() {
+    // A table that fills its address bits, and one that does not.
+    for slots in [1000, 65536] {
+        check(slots, emit_owner_filter(slots).unwrap());
     }
 }
 

@@ -27,6 +27,7 @@
 
 pub mod load;
 pub mod octree;
+pub mod owner_slots;
 pub mod reference;
 
 use crate::bounding_volume::{triangle_box_overlap_conservative, triangle_touches_box, Aabb};

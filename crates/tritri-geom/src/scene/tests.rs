@@ -243,6 +243,7 @@ fn brute_force_fixed(a: &[TaggedTriangle], b: &[TaggedTriangle]) -> PairSet {
 /// that holds both triangles, and reporting each leaf's hits only where it
 /// owns them gives every pair once.
 fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &PairSet, context: &str) {
+    assert_slots_decide_as_the_owner_rule(schedule, context);
     let mut reported = Vec::new();
     for (k, leaf) in schedule.leaves.iter().enumerate() {
         let (la, lb) = schedule.leaf_arrays(leaf);
@@ -261,6 +262,28 @@ fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &
     let unique: PairSet = reported.iter().copied().collect();
     assert_eq!(unique.len(), reported.len(), "{context}: a pair reported twice");
     assert_eq!(&unique, expected, "{context}");
+}
+
+/// The hardware's form of the owner rule (`owner_slots`): for every pair of
+/// every leaf, intersecting or not, the slots' merge says "owner" exactly
+/// when the leaf is the first holding both triangles, within the bound on
+/// comparisons the hardware's cycle model relies on.
+fn assert_slots_decide_as_the_owner_rule(schedule: &octree::OctreeSchedule, context: &str) {
+    let slots = owner_slots::OwnerSlots::of(schedule);
+    assert_eq!(slots.a.len(), schedule.a.len(), "{context}: one slot per entry");
+    for (k, leaf) in schedule.leaves.iter().enumerate() {
+        for i in leaf.a.clone() {
+            for j in leaf.b.clone() {
+                let (sa, sb) = (slots.a_slot[i], slots.b_slot[j]);
+                let (x, y) = (slots.a[sa as usize], slots.b[sb as usize]);
+                assert_eq!((x.id, y.id, x.leaf, y.leaf), (schedule.a[i].id, schedule.b[j].id, k as u32, k as u32), "{context}");
+                let decision = slots.decide(sa, sb);
+                let owner = schedule.owner(x.id, y.id) == Some(k);
+                assert_eq!(decision.owner, owner, "{context}: leaf {k}, pair ({}, {})", x.id, y.id);
+                assert!(decision.comparisons <= (sa - x.first) + (sb - y.first) + 1, "{context}");
+            }
+        }
+    }
 }
 
 /// The octree broad phase finds exactly the flat system's pairs (the exact

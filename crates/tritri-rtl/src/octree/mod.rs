@@ -14,6 +14,7 @@
 pub mod axis_step;
 pub mod binning_model;
 pub mod cell_classifier;
+pub mod owner_filter;
 pub mod triangle_setup;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
