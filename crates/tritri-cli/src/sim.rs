@@ -185,6 +185,23 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
         writeln!(report, "hardware: {notes}")?;
     }
+    if let Some(owner) = run.owner {
+        writeln!(
+            report,
+            "owner filter (hardware rule: each pair from the first leaf holding both triangles): {} hits from the leaves, {} duplicates dropped, {} pairs through; {} cycles for the hits back to back{}",
+            owner.hits,
+            owner.hits - owner.pairs,
+            owner.pairs,
+            owner.cycles,
+            if args.engine.is_hardware() { format!("; simulated in {}: equal to its model", args.engine.name()) } else { String::new() }
+        )?;
+        for fault in run.faults().into_iter().filter(|f| f.contains("owner filter")) {
+            if run.counters.is_none() {
+                writeln!(report, "owner filter: {fault}")?;
+                status = ExitCode::from(1);
+            }
+        }
+    }
     writeln!(report, "intersecting pairs: {}", pairs.len())?;
     let time = args.hardware.time_of(cycles);
     writeln!(
@@ -243,10 +260,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         )?;
         if let Some(octree) = &scene.octree {
             let binning = binning_cycles(&binning_work(octree));
-            let whole = args.hardware.time_of(binning + cycles);
+            let owner = run.owner.map_or(0, |o| o.cycles);
+            let whole = args.hardware.time_of(binning + cycles + owner);
             writeln!(
                 report,
-                "speed, first triangle in to last pair out (binning {binning} + narrow phase {cycles} cycles, not overlapped): {} at {} MHz, {:.1} x",
+                "speed, first triangle in to last pair out (binning {binning} + narrow phase {cycles} + owner filter {owner} cycles, not overlapped): {} at {} MHz, {:.1} x",
                 human(whole),
                 args.hardware.clock_mhz,
                 ratio(whole)

@@ -21,6 +21,7 @@
 //! assert_eq!(run.cycles, run.model_cycles);
 //! ```
 
+use crate::owner_filter;
 use crate::pipeline_rtl;
 use crate::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use crate::simulator::Simulator;
@@ -31,9 +32,11 @@ use std::path::Path;
 use std::time::Instant;
 use tritri_geom::fixed_point::{self, FixedTriangle};
 use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
+use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::configurations::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::octree::owner_filter::pair_cycles;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;
 
@@ -176,15 +179,31 @@ pub struct HardwareCounters {
     pub overflow: bool,
 }
 
+/// What the owner filter did on an octree scene's hits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OwnerFiltering {
+    /// Hits that left the system: every leaf's, a pair found in several
+    /// leaves once per leaf.
+    pub hits: u64,
+    /// Pairs the filter let through: each intersecting pair once.
+    pub pairs: u64,
+    /// The filter's cycles for those hits offered back to back (its cycle
+    /// model, `tritri_rtl::octree::owner_filter::pair_cycles`).
+    pub cycles: u64,
+}
+
 /// One scene through the system.
 #[derive(Clone, Debug)]
 pub struct SceneRun {
     pub engine: Engine,
     /// Every intersecting pair `(i in A, j in B)`: the hardware's and the
-    /// host's. Octree leaves that share both triangles each report a pair,
-    /// the set keeps one (the owner rule, `OctreeSchedule::owner`, decided
-    /// on the host until the hardware applies it).
+    /// host's. With the octree broad phase the leaves' arrays carry slots,
+    /// and the hits go through the owner filter's rule
+    /// (`tritri_geom::scene::owner_slots`), which lets each pair through
+    /// once, from its first leaf.
     pub pairs: PairSet,
+    /// The owner filter's work (octree scenes).
+    pub owner: Option<OwnerFiltering>,
     /// Cycles from the first host word to `done`: simulated by a hardware
     /// engine, the cycle model's for the model.
     pub cycles: u64,
@@ -196,7 +215,8 @@ pub struct SceneRun {
 
 impl SceneRun {
     /// What says the hardware is wrong, apart from its pairs: the overflow
-    /// flag, or a cycle count off the cycle model without a stall (a bug).
+    /// flag, a cycle count off the cycle model without a stall, or a pair
+    /// the owner filter let through twice (each a bug).
     pub fn faults(&self) -> Vec<String> {
         let mut faults = Vec::new();
         if let Some(c) = self.counters {
@@ -207,19 +227,35 @@ impl SceneRun {
                 faults.push(format!("{} cycles simulated, the cycle model says {} (a bug)", self.cycles, self.model_cycles));
             }
         }
+        if let Some(owner) = self.owner {
+            if owner.pairs > self.pairs.len() as u64 {
+                faults.push(format!("the owner filter let {} pairs through for {} distinct pairs (a bug)", owner.pairs, self.pairs.len()));
+            }
+        }
         faults
     }
 }
 
 /// Runs a prepared scene's batches through the system `config` describes
 /// on `engine`, the host's pairs (triangles too long for a leaf's local
-/// frame) through the model. `progress` is told of pairs done by the model
-/// (hardware engines report no progress).
+/// frame) through the model. With the octree broad phase the leaves'
+/// arrays carry slots and the hits go through the owner filter's rule.
+/// `progress` is told of pairs done by the model (hardware engines report
+/// no progress).
 pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, progress: &(dyn Fn(u64) + Sync)) -> anyhow::Result<SceneRun> {
-    let batches = scene.batches();
+    let slots = scene.octree.as_ref().map(OwnerSlots::of);
+    let slotted = match (&scene.octree, &slots) {
+        (Some(octree), Some(slots)) => Some(slots.slotted(octree)),
+        _ => None,
+    };
+    let batches = match &slotted {
+        Some((a, b)) => scene.leaf_batches(a, b),
+        None => scene.batches(),
+    };
     let model_cycles = scene_cycles(config, &batches);
-    let (mut pairs, cycles, counters) = match engine {
-        Engine::Model => (fixed_point_pairs(&batches, progress), model_cycles, None),
+    // The system's hits in the order they leave it (ids, or slots).
+    let (hits, cycles, counters) = match engine {
+        Engine::Model => (owner_filter::hits(&batches, progress), model_cycles, None),
         _ => {
             let result: SystemResult = match engine.simulator() {
                 None => run_system(config, &batches, ReaderBehaviour::AlwaysReady)?,
@@ -231,11 +267,39 @@ pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, pr
                 stall_cycles: result.stall_cycles,
                 overflow: result.overflow,
             };
-            (result.pairs.iter().copied().collect(), result.cycles, Some(counters))
+            (result.pairs, result.cycles, Some(counters))
         }
     };
+    let (mut pairs, owner) = match &slots {
+        Some(slots) => {
+            // The filter's model, and a hardware engine's own simulation of
+            // the filter on the same hits, which must agree with it.
+            let model = owner_filter::expected(slots, &hits);
+            let simulated = match (engine, engine.simulator()) {
+                (Engine::Model, _) => None,
+                (_, None) => Some(owner_filter::run_rusthdl(slots, &hits, |_| true)),
+                (_, Some(simulator)) => Some(owner_filter::run_emitted(slots, &hits, simulator)?),
+            };
+            if let Some(simulated) = simulated {
+                anyhow::ensure!(
+                    simulated == model,
+                    "the owner filter's {} simulation differs from its model: {} pairs at edges ending {:?}, the model {} ending {:?} (a bug)",
+                    engine.name(),
+                    simulated.pairs.len(),
+                    simulated.edges.last(),
+                    model.pairs.len(),
+                    model.edges.last()
+                );
+            }
+            let decisions = hits.iter().map(|&(sa, sb)| slots.decide(sa, sb));
+            let (_, busy) = pair_cycles(decisions.map(|d| (d.owner, d.comparisons)));
+            let owner = OwnerFiltering { hits: hits.len() as u64, pairs: model.pairs.len() as u64, cycles: busy };
+            (model.pairs.into_iter().collect::<PairSet>(), Some(owner))
+        }
+        None => (hits.into_iter().collect(), None),
+    };
     pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
-    Ok(SceneRun { engine, pairs, cycles, model_cycles, counters })
+    Ok(SceneRun { engine, pairs, owner, cycles, model_cycles, counters })
 }
 
 /// The exact model on the scene's quantized coordinates (every batch and

@@ -14,7 +14,7 @@ use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Tes
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point;
-use tritri_geom::scene::octree::OctreeSchedule;
+use tritri_geom::scene::Batch;
 use tritri_geom::scene::owner_slots::{OwnerSlots, Slot};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::octree::owner_filter::{pair_cycles, slot_word, OwnerFilter, SLOT_BITS};
@@ -28,18 +28,21 @@ pub struct OwnerRun {
     pub edges: Vec<u64>,
 }
 
-/// Every hit of the schedule's leaves as `(s_a, s_b)`, leaf by leaf, in the
-/// order the system tests them (A's triangles, then B's, within a leaf).
-pub fn hits(schedule: &OctreeSchedule, slots: &OwnerSlots) -> Vec<(u32, u32)> {
+/// Every hit of `batches` as `(id_a, id_b)` (slots, for the leaves'
+/// slotted batches), batch by batch, in the order the system tests them
+/// (A's triangles, then B's, within a batch); `progress` is told of each
+/// batch's pairs.
+pub fn hits(batches: &[Batch], progress: &dyn Fn(u64)) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
-    for leaf in &schedule.leaves {
-        for i in leaf.a.clone() {
-            for j in leaf.b.clone() {
-                if fixed_point::intersects(&schedule.a[i].triangle, &schedule.b[j].triangle) {
-                    out.push((slots.a_slot[i], slots.b_slot[j]));
+    for batch in batches {
+        for x in batch.a {
+            for y in batch.b {
+                if fixed_point::intersects(&x.triangle, &y.triangle) {
+                    out.push((x.id, y.id));
                 }
             }
         }
+        progress(batch.pairs());
     }
     out
 }
@@ -52,7 +55,7 @@ pub fn expected(slots: &OwnerSlots, hits: &[(u32, u32)]) -> OwnerRun {
         .iter()
         .zip(&decisions)
         .filter(|(_, d)| d.owner)
-        .map(|(&(sa, sb), _)| (slots.a[sa as usize].id, slots.b[sb as usize].id))
+        .map(|(&(sa, sb), _)| slots.ids(sa, sb))
         .collect();
     OwnerRun { pairs, edges }
 }

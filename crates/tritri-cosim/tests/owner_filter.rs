@@ -29,7 +29,8 @@ fn each_pair_leaves_once_in_rust_hdl_icarus_and_verilator() {
     let scene = scene();
     let schedule = scene.octree.as_ref().expect("an octree schedule");
     let slots = OwnerSlots::of(schedule);
-    let hits = hits(schedule, &slots);
+    let (a, b) = slots.slotted(schedule);
+    let hits = hits(&scene.leaf_batches(&a, &b), &|_| {});
     let model = expected(&slots, &hits);
 
     // The model: every pair of the scene, once.
@@ -64,7 +65,8 @@ fn a_slow_reader_changes_no_pair() {
     let scene = scene();
     let schedule = scene.octree.as_ref().expect("an octree schedule");
     let slots = OwnerSlots::of(schedule);
-    let hits = hits(schedule, &slots);
+    let (a, b) = slots.slotted(schedule);
+    let hits = hits(&scene.leaf_batches(&a, &b), &|_| {});
     let model = expected(&slots, &hits);
     let slow = run_rusthdl(&slots, &hits, |edge| edge % 3 == 2);
     assert_eq!(slow.pairs, model.pairs);

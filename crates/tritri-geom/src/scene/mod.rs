@@ -131,16 +131,18 @@ impl PreparedScene {
     /// every B-tile ([`Tiling`]). None when either array is empty.
     pub fn batches(&self) -> Vec<Batch<'_>> {
         match &self.octree {
-            Some(octree) => octree
-                .leaves
-                .iter()
-                .flat_map(|leaf| {
-                    let (a, b) = octree.leaf_arrays(leaf);
-                    tile(a, b, self.tiling.depth)
-                })
-                .collect(),
+            Some(octree) => self.leaf_batches(&octree.a, &octree.b),
             None => tile(&self.kept_a, &self.kept_b, self.tiling.depth),
         }
+    }
+
+    /// The octree leaves' batches over arrays parallel to the schedule's
+    /// (`a[i]` stands for `octree.a[i]`), for example the same triangles
+    /// with slots for ids ([`owner_slots::OwnerSlots::slotted`]). Empty
+    /// without an octree.
+    pub fn leaf_batches<'a>(&self, a: &'a [TaggedTriangle], b: &'a [TaggedTriangle]) -> Vec<Batch<'a>> {
+        let Some(octree) = &self.octree else { return Vec::new() };
+        octree.leaves.iter().flat_map(|leaf| tile(&a[leaf.a.clone()], &b[leaf.b.clone()], self.tiling.depth)).collect()
     }
 
     /// Pairs the hardware tests, the sum over batches: `|kept A| * |kept B|`

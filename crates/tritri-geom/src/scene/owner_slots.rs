@@ -25,6 +25,7 @@
 //! software broad phase assigns to that leaf.
 
 use super::octree::OctreeSchedule;
+use super::TaggedTriangle;
 use std::collections::HashMap;
 
 /// One triangle in one of its leaves.
@@ -70,6 +71,19 @@ impl OwnerSlots {
         let (a, a_slot) = tables(schedule.a.iter().map(|t| t.id), &entry_leaf_a);
         let (b, b_slot) = tables(schedule.b.iter().map(|t| t.id), &entry_leaf_b);
         OwnerSlots { a, b, a_slot, b_slot }
+    }
+
+    /// The schedule's leaf arrays with each triangle's slot as its id:
+    /// what the hardware's memories hold, so that its hits come out as
+    /// slots ([`super::PreparedScene::leaf_batches`] makes the batches).
+    pub fn slotted(&self, schedule: &OctreeSchedule) -> (Vec<TaggedTriangle>, Vec<TaggedTriangle>) {
+        let with = |arrays: &[TaggedTriangle], slots: &[u32]| arrays.iter().zip(slots).map(|(t, &id)| TaggedTriangle { id, ..*t }).collect();
+        (with(&schedule.a, &self.a_slot), with(&schedule.b, &self.b_slot))
+    }
+
+    /// The triangle ids of a hit's slots.
+    pub fn ids(&self, s_a: u32, s_b: u32) -> (u32, u32) {
+        (self.a[s_a as usize].id, self.b[s_b as usize].id)
     }
 
     /// The owner test of a hit `(s_a, s_b)` (two slots of one leaf), as

@@ -44,8 +44,8 @@ pub fn owner_filter_unit(slots: usize) -> UnitDescription {
     )
     .detail(
         "Cycles: a hit accepted at edge t whose merge makes m comparisons leaves at edge t + 2 + m if owned \
-         (out_ready high), and the next hit is accepted at t + 3 + m; a duplicate frees the filter at t + 2 + m \
-         (tritri_rtl::octree::owner_filter::pair_cycles). A hit whose triangles are in one leaf each takes 3 cycles.",
+         (out_ready high), and the next hit can be accepted at that edge; a duplicate frees the filter at t + 2 + m \
+         too (tritri_rtl::octree::owner_filter::pair_cycles). A hit whose triangles are in one leaf each takes 2 cycles.",
     )
     .parameter("SLOTS", &format!("{slots}: words per slot table (one table per object)"))
     .parameter("SLOT_BITS", &format!("{SLOT_BITS}: bits of a slot number"))
@@ -60,14 +60,14 @@ pub fn owner_filter_unit(slots: usize) -> UnitDescription {
     .port("write_b_slot", "Slot of B's table to write.")
     .port("write_b_word", &word)
     .port("in_valid", "A hit is offered: the slots of its A and B triangles in the leaf that found it.")
-    .port("in_ready", "The filter takes the hit (transfer = in_valid & in_ready); high in Idle only.")
+    .port("in_ready", "The filter takes the hit (transfer = in_valid & in_ready): in Idle, and as an owned pair leaves.")
     .port("in_slot_a", "Slot of the hit's A triangle.")
     .port("in_slot_b", "Slot of the hit's B triangle.")
     .port("out_valid", "An owned pair is offered.")
     .port("out_ready", "The reader takes it.")
     .port("out_id_a", "Id of the pair's A triangle.")
     .port("out_id_b", "Id of the pair's B triangle.")
-    .throughput("one hit per 3 cycles when its triangles are in one leaf each; 1 more per comparison of the merge.")
+    .throughput("one hit per 2 cycles when its triangles are in one leaf each; 1 more per comparison of the merge.")
 }
 
 /// The emitted filter with `slots` words per table.

@@ -18,14 +18,16 @@
 //! Merge: leaves equal: the leaf of the hit ───────────────────► Emit
 //!                      an earlier leaf (a duplicate) ─────────► Idle
 //!        A's leaf lower: read A's next slot, else B's next ───► Merge
-//! Emit:  out_valid; with out_ready ───────────────────────────► Idle
+//! Emit:  out_valid; with out_ready: the next hit (as in Idle) ► Head
+//!                                   or none ──────────────────► Idle
 //! ```
 //!
 //! Timing (the cycle model [`pair_cycles`] counts it): a hit accepted at a
 //! rising edge `t` whose test makes `m` comparisons in Merge leaves at
-//! edge `t + 2 + m` if owned (with `out_ready` high), and the next hit is
-//! accepted at `t + 3 + m`; a duplicate frees the unit at `t + 2 + m`.
-//! Most hits need no comparison (a triangle in one leaf only): 3 cycles.
+//! edge `t + 2 + m` if owned (with `out_ready` high), and the next hit can
+//! be accepted at that same edge; a duplicate frees the unit at `t + 2 + m`
+//! too. Most hits need no comparison (a triangle in one leaf only): 2
+//! cycles. `in_ready` depends on `out_ready` (in Emit) but on no data.
 
 use crate::system::dual_port_ram::SimpleDualPortRam;
 use crate::system::ID_BITS;
@@ -157,7 +159,7 @@ impl Logic for OwnerFilter {
         self.table_b.read_enable.next = false;
         self.table_a.read_address.next = self.slot_a.q.val();
         self.table_b.read_address.next = self.slot_b.q.val();
-        self.in_ready.next = self.state.q.val() == OwnerState::Idle;
+        self.in_ready.next = (self.state.q.val() == OwnerState::Idle) | ((self.state.q.val() == OwnerState::Emit) & self.out_ready.val());
         self.out_valid.next = self.state.q.val() == OwnerState::Emit;
         self.out_id_a.next = self.id_a.q.val();
         self.out_id_b.next = self.id_b.q.val();
@@ -207,8 +209,18 @@ impl Logic for OwnerFilter {
                 }
             }
             OwnerState::Emit => {
+                // The next hit is taken as this pair leaves.
                 if self.out_ready.val() {
                     self.state.d.next = OwnerState::Idle;
+                    if self.in_valid.val() {
+                        self.table_a.read_enable.next = true;
+                        self.table_b.read_enable.next = true;
+                        self.table_a.read_address.next = self.in_slot_a.val();
+                        self.table_b.read_address.next = self.in_slot_b.val();
+                        self.slot_a.d.next = self.in_slot_a.val();
+                        self.slot_b.d.next = self.in_slot_b.val();
+                        self.state.d.next = OwnerState::Head;
+                    }
                 }
             }
         }
@@ -220,20 +232,17 @@ impl Logic for OwnerFilter {
 
 /// The cycle model: the rising edges (counted from 0, the edge at which
 /// the first hit is accepted) at which each owned pair leaves, for hits
-/// offered back to back and `out_ready` always high; `comparisons[k]` and
-/// `owned[k]` are hit `k`'s Merge comparisons and verdict
+/// offered back to back and `out_ready` always high; each item is a hit's
+/// verdict and its Merge comparisons
 /// (`tritri_geom::scene::owner_slots::OwnerDecision`). Also returns the
-/// edge at which the unit is idle again after the last hit.
+/// edge at which the filter has finished the last hit.
 pub fn pair_cycles(decisions: impl IntoIterator<Item = (bool, u32)>) -> (Vec<u64>, u64) {
     let mut edge = 0u64;
     let mut out = Vec::new();
     for (owned, comparisons) in decisions {
-        let m = comparisons as u64;
+        edge += 2 + comparisons as u64;
         if owned {
-            out.push(edge + 2 + m);
-            edge += 3 + m;
-        } else {
-            edge += 2 + m;
+            out.push(edge);
         }
     }
     (out, edge)
