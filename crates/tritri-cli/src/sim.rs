@@ -49,6 +49,7 @@ use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
 use tritri_cosim::engine::{check_quantized, run_scene, Engine};
+use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
 use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::PreparedScene;
@@ -188,11 +189,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if let Some(owner) = run.owner {
         writeln!(
             report,
-            "owner filter (hardware rule: each pair from the first leaf holding both triangles): {} hits from the leaves, {} duplicates dropped, {} pairs through; {} cycles for the hits back to back{}",
+            "owner filter (hardware rule: each pair from the first leaf holding both triangles): {} hits from the leaves, {} duplicates dropped, {} pairs through; {} cycles for the hits back to back; slot tables {} + {} words of {SLOT_WORD_BITS} bits ({:.1} Mbit){}",
             owner.hits,
             owner.hits - owner.pairs,
             owner.pairs,
             owner.cycles,
+            owner.slots.0,
+            owner.slots.1,
+            (owner.slots.0 + owner.slots.1) as f64 * SLOT_WORD_BITS as f64 / 1e6,
             if args.engine.is_hardware() { format!("; simulated in {}: equal to its model", args.engine.name()) } else { String::new() }
         )?;
         for fault in run.faults().into_iter().filter(|f| f.contains("owner filter")) {

@@ -92,9 +92,15 @@ fn octree_gives_the_flat_pairs_with_less_work() {
     // Work within 4 x the pairs whose triangle boxes overlap (3.4 x here:
     // the split rule also counts the binning unit's classifications).
     assert!(octree_tested <= 4 * number_after(&octree, "box-overlap pairs ("), "{octree}");
-    // The binning unit's cycles are reported and counted in the whole run.
+    // The binning unit's and the owner filter's cycles are reported and
+    // counted in the whole run; the filter drops the duplicates the leaves
+    // found, leaving each pair once.
     let binning = number_after(&octree, "(binning ");
-    assert!(binning > 0 && octree.contains(&format!("(binning {binning} + narrow phase {octree_cycles} cycles")), "{octree}");
+    let filter = number_after(&octree, "+ owner filter ");
+    assert!(binning > 0 && octree.contains(&format!("(binning {binning} + narrow phase {octree_cycles} + owner filter {filter} cycles")), "{octree}");
+    let (hits, pairs) = (number_after(&octree, "owner filter (hardware rule"), number_after(&octree, "intersecting pairs: "));
+    assert!(hits > pairs && octree.contains(&format!("{} duplicates dropped, {pairs} pairs through", hits - pairs)), "{octree}");
+    assert!(filter >= 2 * hits, "{octree}");
 }
 
 /// Pairs are `i j` lines; splitting into tiles (small D) gives the same

@@ -190,6 +190,8 @@ pub struct OwnerFiltering {
     /// The filter's cycles for those hits offered back to back (its cycle
     /// model, `tritri_rtl::octree::owner_filter::pair_cycles`).
     pub cycles: u64,
+    /// Words of A's and B's slot tables (one per triangle per leaf).
+    pub slots: (u64, u64),
 }
 
 /// One scene through the system.
@@ -293,7 +295,12 @@ pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, pr
             }
             let decisions = hits.iter().map(|&(sa, sb)| slots.decide(sa, sb));
             let (_, busy) = pair_cycles(decisions.map(|d| (d.owner, d.comparisons)));
-            let owner = OwnerFiltering { hits: hits.len() as u64, pairs: model.pairs.len() as u64, cycles: busy };
+            let owner = OwnerFiltering {
+                hits: hits.len() as u64,
+                pairs: model.pairs.len() as u64,
+                cycles: busy,
+                slots: (slots.a.len() as u64, slots.b.len() as u64),
+            };
             (model.pairs.into_iter().collect::<PairSet>(), Some(owner))
         }
         None => (hits.into_iter().collect(), None),

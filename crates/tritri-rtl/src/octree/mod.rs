@@ -1,5 +1,6 @@
 //! The octree engine in hardware (`octree_engine.txt`): the triangle–cell
-//! classifier step that bins triangles into the broad phase's leaves.
+//! classifier step that bins triangles into the broad phase's leaves, and
+//! the filter that reports each pair of the leaves once.
 //!
 //! * [`axis_step`]: one affine test function of one entry: its value moved
 //!   into a child by interpolation, and the eight children's ranges against
@@ -9,7 +10,10 @@
 //! * [`cell_classifier`]: thirteen axis steps side by side, one entry
 //!   (triangle in a cell) per clock, the children mask out;
 //! * [`binning_model`]: the cycles and memory of a binning unit around it
-//!   that follows the broad phase's plan (the controller modelled).
+//!   that follows the broad phase's plan (the controller modelled);
+//! * [`owner_filter`]: behind the system's result stream, lets each
+//!   intersecting pair through once, from the first leaf holding both
+//!   triangles.
 
 pub mod axis_step;
 pub mod binning_model;
