@@ -14,13 +14,17 @@
 //   W         coordinate width in bits (the DUT's W)
 //   ID_WIDTH  width of the triangle ids
 //   TIMEOUT   cycles after the last word before giving up
-// Macro:
+// Macros:
 //   TRITRI_SYSTEM  module name of the system top (default tritri_system)
+//   TRITRI_VCD     define to dump every signal to the +vcd file (Verilator
+//                  needs --trace for it; runs are slower, keep them short)
 // Plusargs:
-//   +vectors=FILE      host words (required)
+//   +vectors=FILE      host words (required; a named pipe will do)
 //   +outputs=FILE      where pairs and counters go (required)
 //   +overlap=0|1       1: write the next batch at once; 0: wait for done (default 1)
 //   +reader_period=K   out_ready in cycles K-1, 2K-1, ... (default 1: always)
+//   +progress=N        print "# progress CYCLE" (flushed) every N cycles (default 0: never)
+//   +vcd=FILE          the waveform, with TRITRI_VCD (required then)
 //
 // Host: two reset cycles, then cycle 0 presents the first word; a word
 // stays on the bus until accepted (in_valid & in_ready). Without overlap the
@@ -104,6 +108,7 @@ module tb_collision_system #(
     integer reader_period = 1;
     integer fields;
     integer line_number = 0;
+    integer progress = 0;
 
     // One parsed word.
     reg [31:0] field_kind;
@@ -132,6 +137,7 @@ module tb_collision_system #(
         end
         if (!$value$plusargs("overlap=%d", overlap)) overlap = 1;
         if (!$value$plusargs("reader_period=%d", reader_period)) reader_period = 1;
+        if (!$value$plusargs("progress=%d", progress)) progress = 0;
         vectors_fd = $fopen(vectors_path, "r");
         if (vectors_fd == 0) begin
             $display("tb_collision_system: error: cannot open vectors %0s", vectors_path);
@@ -169,8 +175,24 @@ module tb_collision_system #(
 
     // At the edge that ends cycle `cycle`, the DUT's outputs are those of
     // that cycle; the host then sets its inputs for cycle + 1.
+`ifdef TRITRI_VCD
+    reg [8*1000-1:0] vcd_path;
+    initial begin
+        if (!$value$plusargs("vcd=%s", vcd_path)) begin
+            $display("tb_collision_system: error: TRITRI_VCD is defined but +vcd=FILE is missing");
+            $finish;
+        end
+        $dumpfile(vcd_path);
+        $dumpvars(0, tb_collision_system);
+    end
+`endif
+
     always @(posedge clock) begin
         if (cycle >= 0) begin
+            if (progress > 0 && cycle > 0 && cycle % progress == 0) begin
+                $display("# progress %0d", cycle);
+                $fflush();
+            end
             if (out_valid && out_ready) begin
                 $fdisplay(outputs_fd, "%0h %0h", out_id_a, out_id_b);
                 pairs_seen = pairs_seen + 1;

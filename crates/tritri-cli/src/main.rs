@@ -18,6 +18,7 @@ mod eval;
 mod gen;
 mod input;
 mod output_file;
+mod progress;
 mod chapter5;
 mod scene_input;
 mod sim;

@@ -52,6 +52,23 @@ impl OutputFile {
         Ok(())
     }
 
+    /// Where a tool writes the file itself (the reserved temporary; `None`
+    /// for standard output); [`OutputFile::commit_written`] puts it in place.
+    pub fn temporary(&self) -> Option<&std::path::Path> {
+        match self {
+            OutputFile::Stdout => None,
+            OutputFile::File { temporary, .. } => Some(temporary),
+        }
+    }
+
+    /// Puts the temporary a tool has filled in place; returns its size.
+    pub fn commit_written(self) -> anyhow::Result<u64> {
+        let OutputFile::File { destination, temporary } = &self else { return Ok(0) };
+        let size = std::fs::metadata(temporary).with_context(|| format!("{} was not written", destination.display()))?.len();
+        std::fs::rename(temporary, destination).with_context(|| format!("cannot write {}", destination.display()))?;
+        interrupt::unregister_temporary(temporary);
+        Ok(size)
+    }
 }
 
 /// An output never committed (an error on the way) leaves no temporary;

@@ -26,8 +26,8 @@ use crate::pipeline_rtl;
 use crate::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use crate::simulator::Simulator;
 use crate::stream::{PairVerdict, StreamResult};
-use crate::system_harness::{run_system, PipelineKind, ReaderBehaviour, SystemResult};
-use crate::system_rtl::run_system_rtl;
+use crate::system_harness::{run_system_reporting, PipelineKind, ReaderBehaviour, SystemResult};
+use crate::system_rtl::{run_system_rtl_with, SystemRunOptions};
 use std::path::Path;
 use std::time::Instant;
 use tritri_geom::fixed_point::{self, FixedTriangle};
@@ -71,6 +71,16 @@ impl Engine {
             Engine::Icarus => Some(Simulator::Icarus),
             Engine::Verilator => Some(Simulator::Verilator),
             Engine::Model | Engine::Rusthdl => None,
+        }
+    }
+
+    /// What [`run_scene`]'s progress counts: pairs decided by the model,
+    /// cycles simulated by a hardware engine.
+    pub fn progress_unit(self) -> &'static str {
+        if self.is_hardware() {
+            "cycles"
+        } else {
+            "pairs"
         }
     }
 
@@ -242,9 +252,22 @@ impl SceneRun {
 /// on `engine`, the host's pairs (triangles too long for a leaf's local
 /// frame) through the model. With the octree broad phase the leaves'
 /// arrays carry slots and the hits go through the owner filter's rule.
-/// `progress` is told of pairs done by the model (hardware engines report
-/// no progress).
+/// `progress` is told of work done as it is done: pairs for the model,
+/// simulated cycles for a hardware engine ([`Engine::progress_unit`]).
 pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, progress: &(dyn Fn(u64) + Sync)) -> anyhow::Result<SceneRun> {
+    run_scene_with(engine, scene, config, progress, None)
+}
+
+/// [`run_scene`], and with `vcd` the system's waveform written there
+/// (Icarus and Verilator only: a traced build).
+pub fn run_scene_with(
+    engine: Engine,
+    scene: &PreparedScene,
+    config: SystemConfig,
+    progress: &(dyn Fn(u64) + Sync),
+    vcd: Option<&Path>,
+) -> anyhow::Result<SceneRun> {
+    anyhow::ensure!(vcd.is_none() || engine.simulator().is_some(), "a waveform needs --engine icarus or verilator, not {}", engine.name());
     let slots = scene.octree.as_ref().map(OwnerSlots::of);
     let slotted = match (&scene.octree, &slots) {
         (Some(octree), Some(slots)) => Some(slots.slotted(octree)),
@@ -260,8 +283,11 @@ pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, pr
         Engine::Model => (owner_filter::hits(&batches, progress), model_cycles, None),
         _ => {
             let result: SystemResult = match engine.simulator() {
-                None => run_system(config, &batches, ReaderBehaviour::AlwaysReady)?,
-                Some(simulator) => run_system_rtl(simulator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady)?,
+                None => run_system_reporting(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, progress)?,
+                Some(simulator) => {
+                    let options = SystemRunOptions { progress: Some(progress), vcd };
+                    run_system_rtl_with(simulator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, options)?
+                }
             };
             let counters = HardwareCounters {
                 pairs_tested: result.pairs_tested,

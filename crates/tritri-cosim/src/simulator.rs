@@ -23,11 +23,12 @@
 //! `tritri_rtl::tools::interrupt`, so an interrupted run leaves nothing.
 
 use anyhow::Context as _;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
-use tritri_rtl::tools::{run, IVERILOG, VERILATOR, VVP};
+use tritri_rtl::tools::{block_sigpipe_in_this_thread, make_fifo, release_fifo_writer, run, run_with_lines, IVERILOG, VERILATOR, VVP};
 
 /// Which simulator runs emitted Verilog.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -77,6 +78,12 @@ impl Compiled {
     /// Runs the compiled testbench with `+plusargs`; a non-zero exit is an
     /// error carrying the simulator's output.
     pub fn run(&self, plusargs: &[String]) -> anyhow::Result<Output> {
+        self.run_with_lines(plusargs, &mut |_| {})
+    }
+
+    /// [`Compiled::run`], and `on_line` sees each line the testbench
+    /// prints as it prints it.
+    pub fn run_with_lines(&self, plusargs: &[String], on_line: &mut dyn FnMut(&str)) -> anyhow::Result<Output> {
         let mut command = match self.simulator {
             Simulator::Icarus => {
                 let mut c = Command::new(VVP.locate()?);
@@ -86,7 +93,7 @@ impl Compiled {
             Simulator::Verilator => Command::new(&self.image),
         };
         command.args(plusargs);
-        Ok(run(&mut command)?)
+        Ok(run_with_lines(&mut command, on_line)?)
     }
 }
 
@@ -241,16 +248,51 @@ impl Drop for WorkDir {
 /// Runs `compiled` on a vector file and returns the output file's text:
 /// both files live in a work directory of their own for the run.
 pub fn run_on_vectors(compiled: &Compiled, label: &str, vectors: &str, extra: &[String]) -> anyhow::Result<(String, f64)> {
+    run_on_vector_stream(compiled, label, &mut |out| out.write_all(vectors.as_bytes()), extra, &mut |_| {})
+}
+
+/// Runs `compiled` on the vectors `write` produces and returns the output
+/// file's text and the run's seconds. The vectors go through a named pipe:
+/// a thread writes them as the simulator reads them, so a run of 10^9
+/// cycles needs neither the memory nor the disk its vector file would
+/// (over a gigabyte). `on_line` sees what the testbench prints, as it
+/// prints it.
+pub fn run_on_vector_stream(
+    compiled: &Compiled,
+    label: &str,
+    write: &mut (dyn FnMut(&mut dyn Write) -> std::io::Result<()> + Send),
+    extra: &[String],
+    on_line: &mut dyn FnMut(&str),
+) -> anyhow::Result<(String, f64)> {
     let work = WorkDir::new(label)?;
-    let (vectors_path, outputs_path) = (work.join("vectors.txt"), work.join("outputs.txt"));
-    std::fs::write(&vectors_path, vectors).with_context(|| format!("writing {}", vectors_path.display()))?;
+    let (vectors_path, outputs_path) = (work.join("vectors.fifo"), work.join("outputs.txt"));
+    make_fifo(&vectors_path).with_context(|| format!("creating the named pipe {}", vectors_path.display()))?;
     let mut plusargs = vec![format!("+vectors={}", vectors_path.display()), format!("+outputs={}", outputs_path.display())];
     plusargs.extend_from_slice(extra);
     let started = Instant::now();
-    let output = compiled.run(&plusargs)?;
+    let (output, written) = std::thread::scope(|scope| {
+        let writer = scope.spawn(|| -> std::io::Result<()> {
+            block_sigpipe_in_this_thread();
+            // Opening blocks until the simulator opens the pipe to read.
+            let mut out = std::io::BufWriter::with_capacity(1 << 16, std::fs::OpenOptions::new().write(true).open(&vectors_path)?);
+            write(&mut out)?;
+            out.flush()
+        });
+        let output = compiled.run_with_lines(&plusargs, on_line);
+        if !writer.is_finished() {
+            // The simulator has ended without reading to the end (or without
+            // opening the pipe at all): a reader opened and closed here
+            // releases a writer blocked in `open`, whose writes then fail.
+            release_fifo_writer(&vectors_path);
+        }
+        let written = writer.join().unwrap_or_else(|_| Err(std::io::Error::other("the vector writer panicked")));
+        (output, written)
+    });
+    let output = output?;
     let seconds = started.elapsed().as_secs_f64();
     let text = std::fs::read_to_string(&outputs_path)
         .with_context(|| format!("the testbench wrote no outputs; the simulator said:\n{}", String::from_utf8_lossy(&output.stdout)))?;
+    written.with_context(|| format!("writing the vectors into {}", vectors_path.display()))?;
     Ok((text, seconds))
 }
 

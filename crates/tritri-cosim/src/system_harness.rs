@@ -22,6 +22,7 @@ use tritri_rtl::sim_drive::MAX_DELTA_CYCLES;
 pub use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_for_width::system_for_config;
 pub use tritri_geom::scene::{Batch, TaggedTriangle};
+pub use crate::system_rtl::PROGRESS_PERIOD;
 pub use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::host_ports::{HostInputs, HostOutputs, HostPorts};
 pub use tritri_rtl::system::SystemConfig;
@@ -96,8 +97,21 @@ pub fn run_system_with(
     overlap: bool,
     reader: ReaderBehaviour,
 ) -> anyhow::Result<SystemResult> {
+    run_system_reporting(config, kind, batches, overlap, reader, &|_| {})
+}
+
+/// [`run_system_with`], telling `progress` the cycles simulated since its
+/// last call, every [`PROGRESS_PERIOD`] cycles.
+pub fn run_system_reporting(
+    config: SystemConfig,
+    kind: PipelineKind,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+    progress: &dyn Fn(u64),
+) -> anyhow::Result<SystemResult> {
     let mut uut = system_for_config(config, kind)?;
-    Ok(run_system_on(uut.as_mut(), batches, overlap, reader))
+    run_system_on(uut.as_mut(), batches, overlap, reader, progress)
 }
 
 /// Runs the batches through a system with stub pipelines.
@@ -105,13 +119,16 @@ pub fn run_stub_system(config: SystemConfig, batches: &[Batch], overlap: bool, r
     run_system_with(config, PipelineKind::Stub, batches, overlap, reader).expect("a supported width")
 }
 
-/// Runs the batches through `uut` (connected or not) and collects the pairs.
+/// Runs the batches through `uut` (connected or not) and collects the
+/// pairs; `progress` as in [`run_system_reporting`]. A system that does
+/// not finish within a generous budget of cycles is an error (a bug).
 pub fn run_system_on<S: HostPorts + ?Sized>(
     uut: &mut S,
     batches: &[Batch],
     overlap: bool,
     reader: ReaderBehaviour,
-) -> SystemResult {
+    progress: &dyn Fn(u64),
+) -> anyhow::Result<SystemResult> {
     let config = uut.system_config();
     uut.connect_all();
     let words: Vec<Vec<HostWord>> = batches.iter().map(host_words).collect();
@@ -176,17 +193,21 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
                 }
             }
         }
-        if done_cycle.is_some() && out.results_empty && !out.out_valid {
-            result.cycles = done_cycle.unwrap();
+        if let (Some(done), true, false) = (done_cycle, out.results_empty, out.out_valid) {
+            result.cycles = done;
             result.pairs_tested = out.pairs_tested as u64;
             result.hits = out.hits as u64;
             result.stall_cycles = out.stall_cycles as u64;
             result.overflow = out.overflow;
-            return result;
+            progress(cycle % PROGRESS_PERIOD);
+            return Ok(result);
         }
         tick(uut);
         cycle += 1;
-        assert!(cycle < budget, "the system did not finish within {budget} cycles");
+        if cycle % PROGRESS_PERIOD == 0 {
+            progress(PROGRESS_PERIOD);
+        }
+        anyhow::ensure!(cycle < budget, "the system did not finish within {budget} cycles (a bug)");
     }
 }
 

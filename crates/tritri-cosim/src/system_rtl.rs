@@ -12,12 +12,15 @@
 //! `# cycles N`, `# pairs_tested N`, `# hits N`, `# stall_cycles N`,
 //! `# overflow 0|1`.
 //!
-//! Overlap and the reader are plusargs.
+//! Overlap, the reader, progress reports and the waveform are plusargs;
+//! the vectors are written into a named pipe as the simulator reads them
+//! ([`run_on_vector_stream`]), so a long run stores no vector file.
 
-use crate::simulator::{compile, run_on_vectors, Compiled, Simulator, Testbench};
+use crate::simulator::{compile, run_on_vector_stream, Compiled, Simulator, Testbench};
 use crate::system_harness::{host_words, Batch, ReaderBehaviour, SystemResult};
 use anyhow::Context as _;
-use std::fmt::Write as _;
+use std::io::Write;
+use std::path::Path;
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
@@ -28,21 +31,20 @@ pub const SYSTEM_TESTBENCH: &str = include_str!("../../../testbenches/tb_collisi
 /// Its top module.
 pub const SYSTEM_TESTBENCH_TOP: &str = "tb_collision_system";
 
-/// The vector file of `batches` (module docs).
-pub fn system_vectors(batches: &[Batch], width: usize) -> String {
+/// Writes the vectors of `batches` (module docs) to `out`, word by word.
+pub fn write_system_vectors(out: &mut dyn Write, batches: &[Batch], width: usize) -> std::io::Result<()> {
     let mask = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
-    let mut text = String::new();
     for batch in batches {
         for word in host_words(batch) {
             let kind = if word.end { 2 } else if word.object_b { 1 } else { 0 };
-            let _ = write!(text, "{kind} {:x}", word.id);
+            write!(out, "{kind} {:x}", word.id)?;
             for c in word.coordinates {
-                let _ = write!(text, " {:x}", (c as u64) & mask);
+                write!(out, " {:x}", (c as u64) & mask)?;
             }
-            text.push('\n');
+            writeln!(out)?;
         }
     }
-    text
+    Ok(())
 }
 
 /// Parses the testbench's output file.
@@ -84,8 +86,9 @@ pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
     Ok(result)
 }
 
-/// The testbench around the emitted system `design` of `width`-bit coordinates.
-pub fn system_testbench(design: &EmittedDesign, width: usize) -> Testbench {
+/// The testbench around the emitted system `design` of `width`-bit
+/// coordinates; `trace`: built to dump a waveform (`+vcd=FILE`).
+pub fn system_testbench(design: &EmittedDesign, width: usize, trace: bool) -> Testbench {
     let mut files = vec![(format!("{SYSTEM_TESTBENCH_TOP}.sv"), SYSTEM_TESTBENCH.to_string())];
     files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
     Testbench {
@@ -95,18 +98,52 @@ pub fn system_testbench(design: &EmittedDesign, width: usize) -> Testbench {
         parameters: vec![("W".into(), width.to_string())],
         // The system is large: a faster C++ build, at little cost per cycle.
         c_optimization: 1,
-        trace: false,
+        trace,
     }
 }
 
+/// Cycles between two progress reports of the testbench.
+pub const PROGRESS_PERIOD: u64 = 1 << 16;
+
+/// How a system run reports and records, beyond its result.
+#[derive(Clone, Copy, Default)]
+pub struct SystemRunOptions<'a> {
+    /// Told the cycles simulated since its last call, every
+    /// [`PROGRESS_PERIOD`] cycles.
+    pub progress: Option<&'a (dyn Fn(u64) + Sync)>,
+    /// Dump the run's waveform here (a traced build: slower).
+    pub vcd: Option<&'a Path>,
+}
+
 /// Runs a compiled system testbench on `batches`.
-pub fn run_compiled_system(compiled: &Compiled, width: usize, batches: &[Batch], overlap: bool, reader: ReaderBehaviour) -> anyhow::Result<SystemResult> {
+pub fn run_compiled_system(
+    compiled: &Compiled,
+    width: usize,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+    options: SystemRunOptions,
+) -> anyhow::Result<SystemResult> {
     let period = match reader {
         ReaderBehaviour::AlwaysReady => 1,
         ReaderBehaviour::OneIn(k) => k.max(1),
     };
-    let extra = [format!("+overlap={}", overlap as u8), format!("+reader_period={period}")];
-    let (text, _) = run_on_vectors(compiled, "system-run", &system_vectors(batches, width), &extra)?;
+    let mut extra = vec![format!("+overlap={}", overlap as u8), format!("+reader_period={period}")];
+    if options.progress.is_some() {
+        extra.push(format!("+progress={PROGRESS_PERIOD}"));
+    }
+    if let Some(vcd) = options.vcd {
+        extra.push(format!("+vcd={}", vcd.display()));
+    }
+    let mut reported = 0u64;
+    let mut on_line = |line: &str| {
+        if let (Some(progress), Some(cycle)) = (options.progress, line.strip_prefix("# progress ").and_then(|c| c.trim().parse::<u64>().ok())) {
+            progress(cycle.saturating_sub(reported));
+            reported = reported.max(cycle);
+        }
+    };
+    let mut write = |out: &mut dyn Write| write_system_vectors(out, batches, width);
+    let (text, _) = run_on_vector_stream(compiled, "system-run", &mut write, &extra, &mut on_line)?;
     parse_system_outputs(&text)
 }
 
@@ -120,7 +157,20 @@ pub fn run_system_rtl(
     overlap: bool,
     reader: ReaderBehaviour,
 ) -> anyhow::Result<SystemResult> {
+    run_system_rtl_with(simulator, config, kind, batches, overlap, reader, SystemRunOptions::default())
+}
+
+/// [`run_system_rtl`] with progress reports or a waveform.
+pub fn run_system_rtl_with(
+    simulator: Simulator,
+    config: SystemConfig,
+    kind: PipelineKind,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+    options: SystemRunOptions,
+) -> anyhow::Result<SystemResult> {
     let design = emit_system(config, kind)?;
-    let compiled = compile(simulator, &system_testbench(&design, config.coordinate_bits))?;
-    run_compiled_system(&compiled, config.coordinate_bits, batches, overlap, reader)
+    let compiled = compile(simulator, &system_testbench(&design, config.coordinate_bits, options.vcd.is_some()))?;
+    run_compiled_system(&compiled, config.coordinate_bits, batches, overlap, reader, options)
 }

@@ -58,10 +58,17 @@ fn is_executable(path: &Path) -> bool {
 /// registered with [`interrupt`] while it runs, so that an interrupted
 /// `tritri` stops it and everything it started (make, the compiler).
 pub fn run(command: &mut Command) -> Result<Output, ToolError> {
+    run_with_lines(command, &mut |_| {})
+}
+
+/// [`run`], and `on_line` sees each line the tool writes to its standard
+/// output as it writes it (a simulator's progress reports).
+pub fn run_with_lines(command: &mut Command, on_line: &mut dyn FnMut(&str)) -> Result<Output, ToolError> {
+    use std::io::{BufRead, BufReader, Read};
     use std::os::unix::process::CommandExt;
     let description = format!("{command:?}").replace('"', "");
     let io_error = |source| ToolError::Io { command: description.clone(), source };
-    let child = command
+    let mut child = command
         .process_group(0)
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::piped())
@@ -69,8 +76,25 @@ pub fn run(command: &mut Command) -> Result<Output, ToolError> {
         .spawn()
         .map_err(io_error)?;
     let group = interrupt::ChildGroup::register(child.id());
-    let output = child.wait_with_output().map_err(io_error)?;
+    let no_pipe = || io_error(std::io::Error::other("the child's output is not piped"));
+    let (mut stdout, mut stderr) = (BufReader::new(child.stdout.take().ok_or_else(no_pipe)?), child.stderr.take().ok_or_else(no_pipe)?);
+    // Standard error is drained beside, so that neither pipe fills up.
+    let stderr_reader = std::thread::spawn(move || {
+        let mut text = Vec::new();
+        let _ = stderr.read_to_end(&mut text);
+        text
+    });
+    let mut out = Vec::new();
+    loop {
+        let start = out.len();
+        if stdout.read_until(b'\n', &mut out).map_err(io_error)? == 0 {
+            break;
+        }
+        on_line(String::from_utf8_lossy(&out[start..]).trim_end());
+    }
+    let status = child.wait().map_err(io_error)?;
     drop(group);
+    let output = Output { status, stdout: out, stderr: stderr_reader.join().unwrap_or_default() };
     if !output.status.success() {
         let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
         let lines: Vec<&str> = text.lines().collect();
@@ -78,6 +102,41 @@ pub fn run(command: &mut Command) -> Result<Output, ToolError> {
         return Err(ToolError::Failed { command: description, status: output.status.to_string(), output: tail });
     }
     Ok(output)
+}
+
+/// Makes a named pipe at `path`: a file one thread writes while a tool
+/// reads it, so that a long stream of vectors needs neither memory nor disk.
+pub fn make_fifo(path: &std::path::Path) -> std::io::Result<()> {
+    use std::os::unix::ffi::OsStrExt;
+    let name = std::ffi::CString::new(path.as_os_str().as_bytes()).map_err(std::io::Error::other)?;
+    // SAFETY: `name` is a valid NUL-terminated path for the call's duration.
+    if unsafe { libc::mkfifo(name.as_ptr(), 0o600) } == 0 {
+        Ok(())
+    } else {
+        Err(std::io::Error::last_os_error())
+    }
+}
+
+/// Opens the named pipe at `path` for reading without waiting, and closes
+/// it: a writer blocked in `open` (its reader never came) goes on, and its
+/// writes then fail instead of waiting for ever.
+pub fn release_fifo_writer(path: &std::path::Path) {
+    use std::os::unix::fs::OpenOptionsExt;
+    let _ = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path);
+}
+
+/// Blocks SIGPIPE in the calling thread, so that writing to a pipe whose
+/// reader has gone returns an error (EPIPE) there instead of ending the
+/// program (`tritri` restores SIGPIPE's default action for `| head`).
+pub fn block_sigpipe_in_this_thread() {
+    // SAFETY: the set is initialized by sigemptyset before use; changing
+    // this thread's mask affects no other thread.
+    unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        libc::sigaddset(&mut set, libc::SIGPIPE);
+        libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut());
+    }
 }
 
 /// What an interrupted run must undo: the process groups of the tools
