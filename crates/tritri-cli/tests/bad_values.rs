@@ -13,6 +13,8 @@ fn tritri(args: &[&str]) -> Output {
 fn out_of_range_options_are_usage_errors_naming_the_option() {
     let out_dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad-values-gen");
     let out_dir = out_dir.to_str().unwrap();
+    let out_vcd = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bad-values.vcd");
+    let out_vcd = out_vcd.to_str().unwrap();
     let cases: &[(&[&str], &str)] = &[
         (&["sim", "--clock-mhz", "0"], "--clock-mhz"),
         (&["sim", "--clock-mhz", "nan"], "--clock-mhz"),
@@ -31,6 +33,14 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["sim", "--width", "10", "--engine", "verilator"], "--width 10 --engine verilator"),
         (&["sim", "--out", "/nonexistent-directory/pairs.txt"], "--out"),
         (&["sim", "--engine", "rusthdl", "--broad-phase", "flat", "--max-cycles", "1000"], "--max-cycles"),
+        (&["sim", "--vcd", "wave.vcd"], "--vcd"),
+        (&["sim", "--engine", "icarus", "--vcd", "/nonexistent-directory/wave.vcd"], "--vcd"),
+        (&["sim", "--engine", "icarus", "--vcd", "-"], "--vcd"),
+        (&["sim", "--engine", "verilator", "--vcd", out_vcd, "--vcd-max-cycles", "100"], "--vcd-max-cycles 100"),
+        (&["gen", "--owner-filter", "--slots", "0"], "--slots"),
+        (&["gen", "--owner-filter", "--slots", "16777217"], "--slots"),
+        (&["gen", "--slots", "64"], "--owner-filter"),
+        (&["gen", "--owner-filter", "--width", "16"], "--width"),
     ];
     for (args, option) in cases {
         let out = tritri(args);
