@@ -149,22 +149,38 @@ pub mod interrupt {
     use std::path::{Path, PathBuf};
     use std::sync::Mutex;
 
-    static GROUPS: Mutex<Vec<u32>> = Mutex::new(Vec::new());
+    /// The registered groups, and whether [`clean_up`] has begun: a tool
+    /// spawned while it runs (the main thread goes on meanwhile) is killed
+    /// as it registers, so none outlives `tritri`.
+    static GROUPS: Mutex<(Vec<u32>, bool)> = Mutex::new((Vec::new(), false));
     static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+    fn kill_group(pid: u32) {
+        // SAFETY: killpg only sends a signal; the group was created for a
+        // child of this process by `run_with_lines`.
+        unsafe {
+            libc::killpg(pid as libc::pid_t, libc::SIGKILL);
+        }
+    }
 
     /// A running child's process group, registered until dropped.
     pub struct ChildGroup(u32);
 
     impl ChildGroup {
         pub fn register(pid: u32) -> ChildGroup {
-            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).push(pid);
+            let mut groups = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
+            if groups.1 {
+                kill_group(pid);
+            } else {
+                groups.0.push(pid);
+            }
             ChildGroup(pid)
         }
     }
 
     impl Drop for ChildGroup {
         fn drop(&mut self) {
-            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).retain(|&p| p != self.0);
+            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).0.retain(|&p| p != self.0);
         }
     }
 
@@ -182,13 +198,13 @@ pub mod interrupt {
     /// mid-cycle has nothing to save) and removes every registered
     /// temporary. Returns how many of each it found.
     pub fn clean_up() -> (usize, usize) {
-        let groups: Vec<u32> = GROUPS.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
+        let groups: Vec<u32> = {
+            let mut registered = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
+            registered.1 = true;
+            registered.0.drain(..).collect()
+        };
         for &pid in &groups {
-            // SAFETY: killpg only sends a signal; the group was created for
-            // a child of this process by `run`.
-            unsafe {
-                libc::killpg(pid as libc::pid_t, libc::SIGKILL);
-            }
+            kill_group(pid);
         }
         let temporaries: Vec<PathBuf> = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
         for path in &temporaries {
