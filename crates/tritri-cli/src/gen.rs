@@ -16,7 +16,12 @@
 //! CARRY4, SRL for Xilinx 7-series), also written to `resources.md` next to
 //! the Verilog, with Yosys' reports `stat_generic.txt` and `stat_xilinx.txt`.
 //! `--synth xilinx` or `--synth generic` runs one of the two (the generic
-//! flow maps the wide multipliers to gates and takes minutes).
+//! flow maps the wide multipliers to gates and takes minutes). `--synth
+//! ecp5` places and routes instead (`tritri_rtl::route`: Yosys and
+//! nextpnr-ecp5 from PyPI, out of context on an ECP5-85 at speed grade 6)
+//! and prints the post-route Fmax, the critical path and the resources,
+//! also written to `route_ecp5.md` (a whole pipeline takes tens of minutes
+//! to hours; a unit on its own, seconds to minutes).
 //!
 //! `--system` writes the whole bounding-volume-aware system instead (two-bank
 //! triangle memories, address generator, `--pipelines P` pipelines, result
@@ -46,6 +51,7 @@ use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
 use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 
 #[derive(clap::Args)]
@@ -57,8 +63,11 @@ pub struct Args {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Run Yosys and print a resource table: `all` (default when given
-    /// without a value), `xilinx` or `generic`.
-    #[arg(long, num_args = 0..=1, default_missing_value = "all", value_parser = ["all", "xilinx", "generic"])]
+    /// without a value: `xilinx` and `generic`), `xilinx`, `generic`, or
+    /// `ecp5`: Yosys and nextpnr-ecp5 place and route (out of context,
+    /// LFE5U-85F speed 6, aiming at 150 MHz) and report the post-route
+    /// Fmax, the critical path and LUT4 / FF / MULT18X18D / EBR.
+    #[arg(long, num_args = 0..=1, default_missing_value = "all", value_parser = ["all", "xilinx", "generic", "ecp5"])]
     synth: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
@@ -168,6 +177,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     let mut rows = Vec::new();
+    let mut routes = Vec::new();
     for &w in &args.width {
         let dir = out_dir(&args, w);
         let design = args.emit(w)?;
@@ -179,7 +189,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             design.files.len(),
             dir.display()
         );
-        if let Some(which) = &args.synth {
+        if args.synth.as_deref() == Some("ecp5") {
+            eprintln!("yosys synth_ecp5 and nextpnr-ecp5 (out of context, LFE5U-85F, speed 6) in {} ...", dir.display());
+            let report = route_ecp5(&dir, &design.top, &Ecp5Options::default()).with_context(|| format!("place and route of {}", design.top))?;
+            std::fs::write(dir.join("route_ecp5.md"), route_table(std::slice::from_ref(&report)))?;
+            routes.push(report);
+        } else if let Some(which) = &args.synth {
             let mut row = ResourceRow { unit: args.unit_name(w), generic: None, xilinx: None };
             if which == "all" || which == "xilinx" {
                 eprintln!("yosys synth_xilinx in {} ...", dir.display());
@@ -195,6 +210,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     if !rows.is_empty() {
         print!("{}", resource_table(&rows));
+    }
+    if !routes.is_empty() {
+        print!("{}", route_table(&routes));
     }
     Ok(ExitCode::SUCCESS)
 }

