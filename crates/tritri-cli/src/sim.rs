@@ -239,7 +239,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if let Some(owner) = run.owner {
         writeln!(
             report,
-            "owner filter (hardware rule: each pair from the first leaf holding both triangles): {} hits from the leaves, {} duplicates dropped, {} pairs through; {} cycles for the hits back to back; slot tables {} + {} words of {SLOT_WORD_BITS} bits ({:.1} Mbit){}",
+            "owner filter (hardware rule: each pair from the first leaf holding both triangles): {} hits from the leaves, {} duplicates dropped, {} pairs through; {} cycles for the hits back to back; slot tables {} + {} words of {SLOT_WORD_BITS} bits ({:.2} Mbit){}",
             owner.hits,
             owner.hits - owner.pairs,
             owner.pairs,

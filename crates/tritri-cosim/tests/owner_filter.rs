@@ -24,13 +24,20 @@ fn scene() -> PreparedScene {
     prepare_octree(&a, &b, &SceneOptions { width: 24, depth: 16, split: true }, &config, None).unwrap()
 }
 
-#[test]
-fn each_pair_leaves_once_in_rust_hdl_icarus_and_verilator() {
-    let scene = scene();
+/// The scene's slot tables and its hits in leaf order, as slots.
+fn slots_and_hits(scene: &PreparedScene) -> (OwnerSlots, Vec<(u32, u32)>) {
     let schedule = scene.octree.as_ref().expect("an octree schedule");
     let slots = OwnerSlots::of(schedule);
     let (a, b) = slots.slotted(schedule);
     let hits = hits(&scene.leaf_batches(&a, &b), &|_| {});
+    (slots, hits)
+}
+
+#[test]
+fn each_pair_leaves_once_in_rust_hdl_icarus_and_verilator() {
+    let scene = scene();
+    let schedule = scene.octree.as_ref().expect("an octree schedule");
+    let (slots, hits) = slots_and_hits(&scene);
     let model = expected(&slots, &hits);
 
     // The model: every pair of the scene, once.
@@ -62,11 +69,7 @@ fn each_pair_leaves_once_in_rust_hdl_icarus_and_verilator() {
 /// which or in what order.
 #[test]
 fn a_slow_reader_changes_no_pair() {
-    let scene = scene();
-    let schedule = scene.octree.as_ref().expect("an octree schedule");
-    let slots = OwnerSlots::of(schedule);
-    let (a, b) = slots.slotted(schedule);
-    let hits = hits(&scene.leaf_batches(&a, &b), &|_| {});
+    let (slots, hits) = slots_and_hits(&scene());
     let model = expected(&slots, &hits);
     let slow = run_rusthdl(&slots, &hits, |edge| edge % 3 == 2);
     assert_eq!(slow.pairs, model.pairs);

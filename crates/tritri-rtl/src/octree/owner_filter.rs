@@ -91,6 +91,8 @@ pub struct OwnerFilter {
     word_b_leaf: Signal<Local, Bits<LEAF_BITS>>,
     word_a_first: Signal<Local, Bits<SLOT_BITS>>,
     word_b_first: Signal<Local, Bits<SLOT_BITS>>,
+    /// A hit moves in this cycle.
+    take: Signal<Local, Bit>,
 }
 
 impl OwnerFilter {
@@ -125,6 +127,7 @@ impl OwnerFilter {
             word_b_leaf: Default::default(),
             word_a_first: Default::default(),
             word_b_first: Default::default(),
+            take: Default::default(),
         }
     }
 }
@@ -160,21 +163,12 @@ impl Logic for OwnerFilter {
         self.table_a.read_address.next = self.slot_a.q.val();
         self.table_b.read_address.next = self.slot_b.q.val();
         self.in_ready.next = (self.state.q.val() == OwnerState::Idle) | ((self.state.q.val() == OwnerState::Emit) & self.out_ready.val());
+        self.take.next = self.in_valid.val() & self.in_ready.val();
         self.out_valid.next = self.state.q.val() == OwnerState::Emit;
         self.out_id_a.next = self.id_a.q.val();
         self.out_id_b.next = self.id_b.q.val();
         match self.state.q.val() {
-            OwnerState::Idle => {
-                if self.in_valid.val() {
-                    self.table_a.read_enable.next = true;
-                    self.table_b.read_enable.next = true;
-                    self.table_a.read_address.next = self.in_slot_a.val();
-                    self.table_b.read_address.next = self.in_slot_b.val();
-                    self.slot_a.d.next = self.in_slot_a.val();
-                    self.slot_b.d.next = self.in_slot_b.val();
-                    self.state.d.next = OwnerState::Head;
-                }
-            }
+            OwnerState::Idle => {}
             OwnerState::Head => {
                 self.id_a.d.next = self.table_a.read_data.val().get_bits::<32>(40);
                 self.id_b.d.next = self.table_b.read_data.val().get_bits::<32>(40);
@@ -209,20 +203,20 @@ impl Logic for OwnerFilter {
                 }
             }
             OwnerState::Emit => {
-                // The next hit is taken as this pair leaves.
                 if self.out_ready.val() {
                     self.state.d.next = OwnerState::Idle;
-                    if self.in_valid.val() {
-                        self.table_a.read_enable.next = true;
-                        self.table_b.read_enable.next = true;
-                        self.table_a.read_address.next = self.in_slot_a.val();
-                        self.table_b.read_address.next = self.in_slot_b.val();
-                        self.slot_a.d.next = self.in_slot_a.val();
-                        self.slot_b.d.next = self.in_slot_b.val();
-                        self.state.d.next = OwnerState::Head;
-                    }
                 }
             }
+        }
+        // A hit is taken in Idle, or as an owned pair leaves (in_ready).
+        if self.take.val() {
+            self.table_a.read_enable.next = true;
+            self.table_b.read_enable.next = true;
+            self.table_a.read_address.next = self.in_slot_a.val();
+            self.table_b.read_address.next = self.in_slot_b.val();
+            self.slot_a.d.next = self.in_slot_a.val();
+            self.slot_b.d.next = self.in_slot_b.val();
+            self.state.d.next = OwnerState::Head;
         }
         if self.reset.val() {
             self.state.d.next = OwnerState::Idle;
