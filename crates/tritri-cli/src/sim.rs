@@ -206,9 +206,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let progress = if args.engine.is_hardware() {
         // Shown for runs of more than a few seconds.
         let threshold = (5.0 * args.engine.system_cycles_per_second().unwrap_or(0.0)) as u64;
-        Progress::new(model_cycles, "cycles", threshold)
+        Progress::new(model_cycles, args.engine.progress_unit(), threshold)
     } else {
-        Progress::new(pairs_tested, "pairs", PROGRESS_THRESHOLD)
+        Progress::new(pairs_tested, args.engine.progress_unit(), PROGRESS_THRESHOLD)
     };
     let run = run_scene_with(args.engine, &scene, config, &|n| progress.inc(n), vcd.as_ref().and_then(OutputFile::temporary));
     progress.finish();

@@ -5,19 +5,19 @@
 //! ([`OctreeSchedule::owner`]). Deciding that needs each triangle's list of
 //! leaves. Here every object gets a *slot table*: one slot per triangle per
 //! leaf, a triangle's slots consecutive and in leaf order, each holding
-//! the triangle's id, the leaf, and the slot's rank in the triangle's list
-//! (0 for its first leaf). A leaf's arrays carry slot numbers instead of
-//! triangle ids, so a hit arrives as two slots `(s_a, s_b)`, both of the
-//! leaf `L` that found it, and
+//! the triangle's id, the leaf, and the triangle's first slot. A leaf's
+//! arrays carry slot numbers instead of triangle ids, so a hit arrives as
+//! two slots `(s_a, s_b)`, both of the leaf `L` that found it, and
 //!
-//! * if either rank is 0, one of the triangles is in no earlier leaf, so no
-//!   earlier leaf holds both: `L` owns the pair;
-//! * otherwise the two lists up to `L`, `a`'s slots `s_a - rank_a ..= s_a`
-//!   and `b`'s `s_b - rank_b ..= s_b`, are merged (both ascending): the
-//!   first leaf found in both is the first leaf holding both triangles, and
-//!   `L` owns the pair exactly when that leaf is `L`. Both lists end with
-//!   `L`, so the merge always stops, after at most `rank_a + rank_b + 1`
-//!   comparisons.
+//! * if either slot is its triangle's first, that triangle is in no
+//!   earlier leaf, so no earlier leaf holds both: `L` owns the pair;
+//! * otherwise the two lists up to `L`, `a`'s slots `first_a ..= s_a` and
+//!   `b`'s `first_b ..= s_b`, are merged (both ascending): the first leaf
+//!   found in both is the first leaf holding both triangles, and `L` owns
+//!   the pair exactly when that leaf is `L`. Both lists end with `L`, so
+//!   the merge stops there at the latest, after at most
+//!   `(s_a - first_a) + (s_b - first_b) + 1` comparisons, and never reads
+//!   past `s_a` or `s_b`.
 //!
 //! That is [`OctreeSchedule::owner`]'s merge, cut at `L`: the same rule,
 //! so the hardware that follows this model (`tritri_rtl::octree::
