@@ -36,7 +36,6 @@ use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::configurations::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
-use tritri_rtl::octree::owner_filter::pair_cycles;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;
 
@@ -302,7 +301,7 @@ pub fn run_scene_with(
         Some(slots) => {
             // The filter's model, and a hardware engine's own simulation of
             // the filter on the same hits, which must agree with it.
-            let model = owner_filter::expected(slots, &hits);
+            let (model, busy) = owner_filter::model(slots, &hits);
             let simulated = match (engine, engine.simulator()) {
                 (Engine::Model, _) => None,
                 (_, None) => Some(owner_filter::run_rusthdl(slots, &hits, |_| true)),
@@ -319,8 +318,6 @@ pub fn run_scene_with(
                     model.edges.last()
                 );
             }
-            let decisions = hits.iter().map(|&(sa, sb)| slots.decide(sa, sb));
-            let (_, busy) = pair_cycles(decisions.map(|d| (d.owner, d.comparisons)));
             let owner = OwnerFiltering {
                 hits: hits.len() as u64,
                 pairs: model.pairs.len() as u64,

@@ -49,15 +49,21 @@ pub fn hits(batches: &[Batch], progress: &dyn Fn(u64)) -> Vec<(u32, u32)> {
 
 /// What the model says the filter does with `hits` offered back to back.
 pub fn expected(slots: &OwnerSlots, hits: &[(u32, u32)]) -> OwnerRun {
+    model(slots, hits).0
+}
+
+/// [`expected`], and the edge at which the filter has finished the last
+/// hit (its cycles for the hits back to back).
+pub fn model(slots: &OwnerSlots, hits: &[(u32, u32)]) -> (OwnerRun, u64) {
     let decisions: Vec<_> = hits.iter().map(|&(sa, sb)| slots.decide(sa, sb)).collect();
-    let (edges, _) = pair_cycles(decisions.iter().map(|d| (d.owner, d.comparisons)));
+    let (edges, busy) = pair_cycles(decisions.iter().map(|d| (d.owner, d.comparisons)));
     let pairs = hits
         .iter()
         .zip(&decisions)
         .filter(|(_, d)| d.owner)
         .map(|(&(sa, sb), _)| slots.ids(sa, sb))
         .collect();
-    OwnerRun { pairs, edges }
+    (OwnerRun { pairs, edges }, busy)
 }
 
 fn word(slot: &Slot) -> Bits<{ tritri_rtl::octree::owner_filter::SLOT_WORD_BITS }> {
