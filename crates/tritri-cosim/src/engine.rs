@@ -301,6 +301,11 @@ pub fn run_scene_with(
         Some(slots) => {
             // The filter's model, and a hardware engine's own simulation of
             // the filter on the same hits, which must agree with it.
+            // A slot outside the tables would be a fault of the system's
+            // simulation; say so rather than index past them.
+            if let Some(&(sa, sb)) = hits.iter().find(|&&(sa, sb)| sa as usize >= slots.a.len() || sb as usize >= slots.b.len()) {
+                anyhow::bail!("the {} system returned the hit ({sa}, {sb}) outside the slot tables ({} and {} slots; a bug)", engine.name(), slots.a.len(), slots.b.len());
+            }
             let (model, busy) = owner_filter::model(slots, &hits);
             let simulated = match (engine, engine.simulator()) {
                 (Engine::Model, _) => None,
