@@ -16,6 +16,10 @@
 //! * [`plane`]: the engine's core circuit, a plane against the grid: the
 //!   voxels it crosses and the half-space solid, uniform cells filled whole.
 //! * [`voxels`]: the voxel model, one bit per voxel.
+//! * [`voxelize`]: meshes to voxels, surface and solid, exact on a fine
+//!   grid.
+//! * [`tree`]: the octree model in preorder, its file format, conversion
+//!   both ways and set operations done directly on trees.
 //!
 //! The collision system's broad phase ([`crate::scene::octree`]) subdivides
 //! the common box with [`triangle_cell::TriangleCellTest::children_touched`].
@@ -23,5 +27,7 @@
 pub mod affine;
 pub mod cell;
 pub mod plane;
+pub mod tree;
 pub mod triangle_cell;
+pub mod voxelize;
 pub mod voxels;

@@ -13,11 +13,14 @@
 //!   plane": a voxel belongs to it when its centre does, decided as
 //!   `2 n · p + n · (1,1,1) <= 2 d` at its low corner `p`, exact in integers.
 //!   A cell whose whole closed range lies at `f <= 0` holds only solid
-//!   voxels and is filled a word at a time; one at `f > 0`, none.
+//!   voxels and is one full leaf of the result's octree; one at `f > 0`,
+//!   an empty leaf. The traversal emits the octree in preorder as it goes;
+//!   [`Octree::to_voxels`] writes its full cells into a voxel memory a word
+//!   at a time.
 
 use super::affine::AffineOverBox;
 use super::cell::Cell;
-use super::voxels::VoxelGrid;
+use super::tree::{Node, Octree};
 
 /// What one classification of the grid against a plane found.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -26,8 +29,9 @@ pub struct PlaneClassification {
     pub crossed_voxels: u64,
     /// Cells whose corner values were interpolated (split cells).
     pub cells_split: u64,
-    /// The voxels of the half-space `n · p <= d` (by their centres).
-    pub half_space: VoxelGrid,
+    /// The voxels of the half-space `n · p <= d` (by their centres), as an
+    /// octree: the traversal's uniform cells are its leaves.
+    pub half_space: Octree,
 }
 
 /// Classifies the `2^level` grid against the plane `n · p = d`.
@@ -35,34 +39,36 @@ pub fn classify_plane(level: u32, normal: [i64; 3], d: i64) -> PlaneClassificati
     let root = Cell { lo: [0; 3], level };
     let gradient = normal.map(i128::from);
     let f = AffineOverBox::over_cell(gradient, &root);
-    let mut out = PlaneClassification { crossed_voxels: 0, cells_split: 0, half_space: VoxelGrid::empty(level) };
+    let mut nodes = Vec::new();
+    let mut counts = (0u64, 0u64);
     // Twice the plane, so voxel centres (half-integers) are integers.
     let centre_offset: i128 = gradient.iter().sum();
-    visit(root, f, d as i128, centre_offset, &mut out);
-    out
+    visit(root, f, d as i128, centre_offset, &mut counts, &mut nodes);
+    let half_space = Octree::from_preorder(level, &nodes).expect("the traversal emits one tree of the root's level");
+    PlaneClassification { crossed_voxels: counts.0, cells_split: counts.1, half_space }
 }
 
-fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, out: &mut PlaneClassification) {
+/// Emits the nodes of `cell` in preorder; counts `(crossed voxels, splits)`.
+fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, counts: &mut (u64, u64), nodes: &mut Vec<Node>) {
     let (lo, hi) = f.range();
-    let lo_corner = cell.lo.map(|c| c as usize);
     if hi < d {
         // Wholly inside the open half-space: every centre is inside too.
-        out.half_space.fill_cube(lo_corner, cell.level);
+        nodes.push(Node::Full);
         return;
     }
     if lo > d {
+        nodes.push(Node::Empty);
         return;
     }
     if !cell.splittable() {
-        out.crossed_voxels += 1;
-        if 2 * f.at_lo + centre_offset <= 2 * d {
-            out.half_space.set(lo_corner);
-        }
+        counts.0 += 1;
+        nodes.push(if 2 * f.at_lo + centre_offset <= 2 * d { Node::Full } else { Node::Empty });
         return;
     }
-    out.cells_split += 1;
+    counts.1 += 1;
+    nodes.push(Node::Mixed);
     for octant in 0..8 {
-        visit(cell.child(octant), f.child(octant), d, centre_offset, out);
+        visit(cell.child(octant), f.child(octant), d, centre_offset, counts, nodes);
     }
 }
 
@@ -86,6 +92,7 @@ mod tests {
             let normal = if normal == [0; 3] { [1, 0, 0] } else { normal };
             let d = rng.gen_range(-n..=4 * n);
             let c = classify_plane(level, normal, d);
+            let half_space = c.half_space.to_voxels();
             let (mut crossed, mut inside) = (0u64, 0u64);
             for z in 0..n {
                 for y in 0..n {
@@ -96,12 +103,12 @@ mod tests {
                         crossed += is_crossed as u64;
                         let centre_inside = 2 * (normal[0] * x + normal[1] * y + normal[2] * z) + normal.iter().sum::<i64>() <= 2 * d;
                         inside += centre_inside as u64;
-                        assert_eq!(c.half_space.get([x as usize, y as usize, z as usize]), centre_inside, "round {round} voxel ({x},{y},{z})");
+                        assert_eq!(half_space.get([x as usize, y as usize, z as usize]), centre_inside, "round {round} voxel ({x},{y},{z})");
                     }
                 }
             }
             assert_eq!(c.crossed_voxels, crossed, "round {round}: {normal:?} {d}");
-            assert_eq!(c.half_space.count(), inside, "round {round}");
+            assert_eq!(half_space.count(), inside, "round {round}");
         }
     }
 }

@@ -2,6 +2,8 @@
 //! stored one bit per voxel in x-fastest order (the engine's memory holds
 //! the same bits a word at a time).
 
+use super::tree::SetOperation;
+
 /// Voxel `(x, y, z)` is the unit cell `[x, x+1] × [y, y+1] × [z, z+1]`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct VoxelGrid {
@@ -57,6 +59,29 @@ impl VoxelGrid {
     /// Occupied voxels.
     pub fn count(&self) -> u64 {
         self.bits.iter().map(|w| w.count_ones() as u64).sum()
+    }
+
+    /// A set operation, 64 voxels a word (the engine's memory-side unit
+    /// streams words the same way). Both grids must have one level.
+    pub fn combine(&self, op: SetOperation, other: &VoxelGrid) -> VoxelGrid {
+        assert_eq!(self.level, other.level, "set operations need models of one grid");
+        let word = |a: u64, b: u64| match op {
+            SetOperation::Union => a | b,
+            SetOperation::Intersection => a & b,
+            SetOperation::Difference => a & !b,
+        };
+        VoxelGrid { level: self.level, bits: self.bits.iter().zip(&other.bits).map(|(&a, &b)| word(a, b)).collect() }
+    }
+
+    /// The voxels not in the model.
+    pub fn complement(&self) -> VoxelGrid {
+        let mut bits: Vec<u64> = self.bits.iter().map(|w| !w).collect();
+        // A grid of fewer than 64 voxels (level 1) keeps its unused bits clear.
+        let voxels = 1usize << (3 * self.level);
+        if voxels % 64 != 0 {
+            bits[voxels / 64] &= (1u64 << (voxels % 64)) - 1;
+        }
+        VoxelGrid { level: self.level, bits }
     }
 }
 
