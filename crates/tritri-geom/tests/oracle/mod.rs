@@ -41,6 +41,8 @@
 
 #![allow(dead_code)]
 
+pub mod voxels;
+
 use num_bigint::BigInt;
 use num_traits::Zero;
 use std::cell::OnceCell;
@@ -371,4 +373,29 @@ impl Arith for Bounded {
         let e = (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + UNIT_ROUNDOFF * p.abs()) * INFLATE + TINY;
         Bounded { v: p, e }
     }
+}
+
+/// Does the closed triangle (integer vertices) meet the closed box? It
+/// does iff it meets one of the 12 triangles of the box's surface or has a
+/// vertex inside the box (a convex set meeting a box either crosses its
+/// boundary or lies inside it); the surface test is [`intersects`].
+pub fn triangle_touches_box(t: &[[i64; 3]; 3], b: &tritri_geom::bounding_volume::Aabb<i64>) -> bool {
+    let inside = |p: &[i64; 3]| (0..3).all(|k| b.lo[k] <= p[k] && p[k] <= b.hi[k]);
+    if t.iter().any(inside) {
+        return true;
+    }
+    let corner = |o: usize| [0, 1, 2].map(|k| if o >> k & 1 == 1 { b.hi[k] } else { b.lo[k] } as f64);
+    let tf = t.map(|p| p.map(|c| c as f64));
+    // Each face of the box as two triangles: the four corners with bit k fixed.
+    for k in 0..3 {
+        for side in 0..2 {
+            let corners: Vec<usize> = (0..8).filter(|o| o >> k & 1 == side).collect();
+            // corners in the face, ordered around it: 0, 1, 3, 2 of the two free bits.
+            let quad = [corners[0], corners[1], corners[3], corners[2]].map(corner);
+            if intersects(&tf, &[quad[0], quad[1], quad[2]]) || intersects(&tf, &[quad[0], quad[2], quad[3]]) {
+                return true;
+            }
+        }
+    }
+    false
 }
