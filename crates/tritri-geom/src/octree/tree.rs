@@ -91,6 +91,8 @@ pub enum OctreeFormatError {
     NotCanonical { index: u64, kind: &'static str },
     #[error("the header says {declared} nodes but the tree has {actual}")]
     Count { declared: u64, actual: u64 },
+    #[error("the origin or the voxel size is not a finite number (the size must be positive)")]
+    Placement,
     #[error("{0} bytes after the tree")]
     Trailing(usize),
 }
@@ -99,6 +101,8 @@ pub enum OctreeFormatError {
 pub const MAGIC: &[u8; 8] = b"TRIOCT1\n";
 /// Levels the model keeps (as [`VoxelGrid`]).
 pub const MAX_LEVEL: u32 = 10;
+/// Magic, level, origin, voxel size, node count.
+const HEADER_BYTES: usize = 8 + 1 + 4 * 8 + 8;
 
 impl Octree {
     pub fn empty(level: u32) -> Octree {
@@ -183,16 +187,48 @@ impl Octree {
     pub fn complement(&self) -> Octree {
         Octree { level: self.level, nodes: self.nodes.iter().map(|n| n.complement()).collect() }
     }
+}
 
-    /// The file: [`MAGIC`], the level (1 byte), the node count (u64, little
-    /// endian), then the nodes' 2-bit codes packed four to a byte, the first
-    /// node in the lowest bits, the last byte padded with zeros.
+/// Where a model's grid sits in the user's coordinates: voxel `(i, j, k)`
+/// is the cube from `origin + voxel_size · (i, j, k)` with side
+/// `voxel_size`. Kept with a model in its file, so a model voxelized from a
+/// mesh comes back out (as a boundary mesh, a `.binvox`) in the mesh's
+/// units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub origin: [f64; 3],
+    pub voxel_size: f64,
+}
+
+impl Default for Placement {
+    /// The grid's own units.
+    fn default() -> Placement {
+        Placement { origin: [0.0; 3], voxel_size: 1.0 }
+    }
+}
+
+/// An octree model with its placement: the file format.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OctreeFile {
+    pub tree: Octree,
+    pub placement: Placement,
+}
+
+impl OctreeFile {
+    /// The file: [`MAGIC`]; the level (1 byte); the origin (3 f64) and the
+    /// voxel size (f64); the node count (u64); then the nodes' 2-bit codes
+    /// packed four to a byte, the first node in the lowest bits, the last
+    /// byte padded with zeros. Numbers are little endian.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut bytes = Vec::with_capacity(17 + self.nodes.len().div_ceil(4));
+        let nodes = &self.tree.nodes;
+        let mut bytes = Vec::with_capacity(HEADER_BYTES + nodes.len().div_ceil(4));
         bytes.extend_from_slice(MAGIC);
-        bytes.push(self.level as u8);
-        bytes.extend_from_slice(&(self.nodes.len() as u64).to_le_bytes());
-        for chunk in self.nodes.chunks(4) {
+        bytes.push(self.tree.level as u8);
+        for v in self.placement.origin.iter().chain([&self.placement.voxel_size]) {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        bytes.extend_from_slice(&(nodes.len() as u64).to_le_bytes());
+        for chunk in nodes.chunks(4) {
             bytes.push(chunk.iter().enumerate().fold(0u8, |b, (k, &n)| b | (n as u8) << (2 * k)));
         }
         bytes
@@ -200,18 +236,29 @@ impl Octree {
 
     /// Reads [`Self::to_bytes`]'s format, checking that the nodes form one
     /// canonical tree and nothing follows it.
-    pub fn from_bytes(bytes: &[u8]) -> Result<Octree, OctreeFormatError> {
+    pub fn from_bytes(bytes: &[u8]) -> Result<OctreeFile, OctreeFormatError> {
         if bytes.len() < MAGIC.len() || &bytes[..MAGIC.len()] != MAGIC {
             return Err(OctreeFormatError::Magic);
         }
-        let rest = &bytes[MAGIC.len()..];
-        let (&level, rest) = rest.split_first().ok_or(OctreeFormatError::Truncated("header"))?;
+        if bytes.len() < HEADER_BYTES {
+            return Err(OctreeFormatError::Truncated("header"));
+        }
+        let level = bytes[MAGIC.len()];
         if u32::from(level) > MAX_LEVEL {
             return Err(OctreeFormatError::Level(level));
         }
-        let count_bytes: [u8; 8] = rest.get(..8).and_then(|s| s.try_into().ok()).ok_or(OctreeFormatError::Truncated("header"))?;
-        let declared = u64::from_le_bytes(count_bytes);
-        let packed = &rest[8..];
+        let word = |k: usize| -> [u8; 8] {
+            let at = MAGIC.len() + 1 + 8 * k;
+            let mut w = [0u8; 8];
+            w.copy_from_slice(&bytes[at..at + 8]);
+            w
+        };
+        let [x, y, z, size] = [0, 1, 2, 3].map(|k| f64::from_le_bytes(word(k)));
+        if ![x, y, z].iter().all(|v| v.is_finite()) || !(size.is_finite() && size > 0.0) {
+            return Err(OctreeFormatError::Placement);
+        }
+        let declared = u64::from_le_bytes(word(4));
+        let packed = &bytes[HEADER_BYTES..];
         let available = packed.len() as u64 * 4;
         // Decode lazily: the tree decides how many nodes it has.
         let code = |index: u64| -> Result<Node, OctreeFormatError> {
@@ -226,7 +273,7 @@ impl Octree {
             }
         };
         let mut nodes = Vec::new();
-        // (index of the mixed node, its level) for each open mixed node.
+        // The level of each node still to read.
         let mut pending: Vec<u32> = vec![u32::from(level)];
         while let Some(node_level) = pending.pop() {
             let index = nodes.len() as u64;
@@ -254,7 +301,8 @@ impl Octree {
                 return Err(OctreeFormatError::NotCanonical { index: index as u64, kind });
             }
         }
-        Ok(Octree { level: u32::from(level), nodes })
+        let tree = Octree { level: u32::from(level), nodes };
+        Ok(OctreeFile { tree, placement: Placement { origin: [x, y, z], voxel_size: size } })
     }
 }
 
@@ -395,7 +443,8 @@ mod tests {
             let t = Octree::from_voxels(&g);
             assert_eq!(t.to_voxels(), g);
             assert_eq!(t.voxel_count(), g.count());
-            assert_eq!(Octree::from_bytes(&t.to_bytes()), Ok(t.clone()));
+            let file = OctreeFile { tree: t.clone(), placement: Placement { origin: [1.5, -2.0, 0.25], voxel_size: 0.125 } };
+            assert_eq!(OctreeFile::from_bytes(&file.to_bytes()), Ok(file));
             assert_eq!(Octree::from_preorder(level, t.nodes()), Some(t));
         }
         assert_eq!(Octree::from_voxels(&VoxelGrid::empty(3)), Octree::empty(3));
@@ -424,19 +473,24 @@ mod tests {
             g.set([1, 2, 3]);
             g
         });
-        let bytes = t.to_bytes();
-        assert_eq!(Octree::from_bytes(b"PLY"), Err(OctreeFormatError::Magic));
-        assert_eq!(Octree::from_bytes(&bytes[..bytes.len() - 1]), Err(OctreeFormatError::Truncated("nodes")));
+        let file = |tree: Octree| OctreeFile { tree, placement: Placement::default() };
+        let bytes = file(t).to_bytes();
+        let read = |b: &[u8]| OctreeFile::from_bytes(b).map(|f| f.tree);
+        assert_eq!(read(b"PLY"), Err(OctreeFormatError::Magic));
+        assert_eq!(read(&bytes[..bytes.len() - 1]), Err(OctreeFormatError::Truncated("nodes")));
         let mut extra = bytes.clone();
         extra.push(0);
-        assert_eq!(Octree::from_bytes(&extra), Err(OctreeFormatError::Trailing(1)));
+        assert_eq!(read(&extra), Err(OctreeFormatError::Trailing(1)));
         let mut count = bytes.clone();
-        count[9] += 1;
-        assert!(matches!(Octree::from_bytes(&count), Err(OctreeFormatError::Count { .. })));
-        let uniform = Octree { level: 1, nodes: [[Node::Mixed].as_slice(), &[Node::Full; 8]].concat() }.to_bytes();
-        assert_eq!(Octree::from_bytes(&uniform), Err(OctreeFormatError::NotCanonical { index: 0, kind: "full" }));
-        let mut level = bytes;
+        count[HEADER_BYTES - 8] += 1;
+        assert!(matches!(read(&count), Err(OctreeFormatError::Count { .. })));
+        let uniform = file(Octree { level: 1, nodes: [[Node::Mixed].as_slice(), &[Node::Full; 8]].concat() }).to_bytes();
+        assert_eq!(read(&uniform), Err(OctreeFormatError::NotCanonical { index: 0, kind: "full" }));
+        let mut level = bytes.clone();
         level[8] = 11;
-        assert_eq!(Octree::from_bytes(&level), Err(OctreeFormatError::Level(11)));
+        assert_eq!(read(&level), Err(OctreeFormatError::Level(11)));
+        let mut size = bytes;
+        size[8 + 1 + 24..8 + 1 + 32].copy_from_slice(&(-1.0f64).to_le_bytes());
+        assert_eq!(read(&size), Err(OctreeFormatError::Placement));
     }
 }

@@ -28,6 +28,7 @@
 //! each triangle's plane for a centre along its dominant axis.
 
 use super::cell::Cell;
+use super::tree::Placement;
 use super::triangle_cell::TriangleCellTest;
 use super::voxels::VoxelGrid;
 use crate::fixed_point::{FixedPoint3, FixedTriangle};
@@ -138,9 +139,9 @@ impl VoxelFrame {
         [0, 1, 2].map(|k| self.origin[k] + q[k] as f64 * self.fine_step())
     }
 
-    /// The fine-grid cell of the whole grid.
-    fn root(&self) -> Cell {
-        Cell { lo: [0; 3], level: self.level + SUB_BITS }
+    /// Where the voxel grid sits in the mesh's coordinates.
+    pub fn placement(&self) -> Placement {
+        Placement { origin: self.origin, voxel_size: self.voxel_size }
     }
 }
 
