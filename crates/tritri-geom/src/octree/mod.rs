@@ -18,6 +18,10 @@
 //! * [`voxels`]: the voxel model, one bit per voxel.
 //! * [`voxelize`]: meshes to voxels, surface and solid, exact on a fine
 //!   grid.
+//! * [`clip`]: a model against an axis-aligned box, octants inside,
+//!   outside or crossing.
+//! * [`render`]: shaded pictures of voxel models; [`export`]: `.binvox`
+//!   and the boundary faces as a mesh.
 //! * [`tree`]: the octree model in preorder, its file format, conversion
 //!   both ways and set operations done directly on trees.
 //!
@@ -26,7 +30,10 @@
 
 pub mod affine;
 pub mod cell;
+pub mod clip;
+pub mod export;
 pub mod plane;
+pub mod render;
 pub mod tree;
 pub mod triangle_cell;
 pub mod voxelize;

@@ -331,7 +331,7 @@ fn collapse_if_uniform(out: &mut Vec<Node>, at: usize) {
 }
 
 /// The index after the subtree starting at `i`.
-fn skip_subtree(nodes: &[Node], mut i: usize) -> usize {
+pub(crate) fn skip_subtree(nodes: &[Node], mut i: usize) -> usize {
     let mut open = 1usize;
     while open > 0 {
         if nodes[i] == Node::Mixed {
