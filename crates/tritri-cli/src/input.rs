@@ -82,3 +82,48 @@ pub fn parse_percentage(s: &str) -> Result<f64, String> {
         _ => Err(format!("`{s}` is not a percentage in (0, 100]")),
     }
 }
+
+/// A voxel grid's resolution: a power of two from 2 to 1024.
+pub fn parse_resolution(s: &str) -> Result<u64, String> {
+    let n: u64 = s.trim().parse().map_err(|_| format!("`{s}` is not a resolution (a power of two from 2 to 1024)"))?;
+    tritri_geom::octree::voxelize::level_of_resolution(n).map_err(|e| e.to_string())?;
+    Ok(n)
+}
+
+/// `N` comma-separated numbers of type `T`, named in the error.
+fn parse_list<T: std::str::FromStr, const N: usize>(s: &str, what: &str) -> Result<[T; N], String> {
+    let fields: Vec<&str> = s.split(',').map(str::trim).collect();
+    if fields.len() != N {
+        return Err(format!("`{s}` is not {what} ({N} comma-separated numbers)"));
+    }
+    let values: Vec<T> = fields.iter().map(|f| f.parse::<T>().map_err(|_| format!("`{f}` in `{s}` is not a number ({what})"))).collect::<Result<_, _>>()?;
+    values.try_into().map_err(|_| format!("`{s}` is not {what}"))
+}
+
+/// A viewing direction `x,y,z`: finite, not zero.
+pub fn parse_eye(s: &str) -> Result<[f64; 3], String> {
+    let v: [f64; 3] = parse_list(s, "an eye direction x,y,z")?;
+    if !v.iter().all(|c| c.is_finite()) || v == [0.0; 3] {
+        return Err(format!("`{s}` is not an eye direction (finite, not 0,0,0)"));
+    }
+    Ok(v)
+}
+
+/// A plane's integer normal `a,b,c`, not zero, each at most 2^20 in size
+/// (the classification's values stay far inside i128).
+pub fn parse_normal(s: &str) -> Result<[i64; 3], String> {
+    let v: [i64; 3] = parse_list(s, "an integer normal a,b,c")?;
+    if v == [0; 3] || v.iter().any(|c| c.unsigned_abs() > 1 << 20) {
+        return Err(format!("`{s}` is not a plane normal (integers up to 2^20 in size, not all 0)"));
+    }
+    Ok(v)
+}
+
+/// A box of voxels `x0,y0,z0,x1,y1,z1`, half-open, `x0 < x1` etc.
+pub fn parse_voxel_box(s: &str) -> Result<[i64; 6], String> {
+    let v: [i64; 6] = parse_list(s, "a voxel box x0,y0,z0,x1,y1,z1")?;
+    if (0..3).any(|k| v[k] >= v[k + 3]) || v.iter().any(|c| c.unsigned_abs() > 1 << 20) {
+        return Err(format!("`{s}` is not a voxel box (x0 < x1, y0 < y1, z0 < z1, each at most 2^20 in size)"));
+    }
+    Ok(v)
+}

@@ -17,11 +17,14 @@ mod demo;
 mod eval;
 mod gen;
 mod input;
+mod model_files;
+mod octree;
 mod output_file;
 mod progress;
 mod chapter5;
 mod scene_input;
 mod sim;
+mod voxelize;
 
 #[derive(Parser)]
 #[command(
@@ -50,6 +53,10 @@ enum Command {
     Gen(gen::Args),
     /// Co-simulation throughput: the same pairs through the model, rust-hdl, Verilator and Icarus, with mismatches.
     Bench(bench::Args),
+    /// Voxelize a mesh, surface or solid, exactly: write an octree (.oct), .binvox, .vox, its boundary (.obj) or a render (.png).
+    Voxelize(voxelize::Args),
+    /// The octree engine on model files: plane classification, clipping, union / intersection / difference, conversion, renders.
+    Octree(octree::Args),
     /// The main job on a built-in default: emit the RTL, run the built-in scene in the model and in Verilator.
     Demo(demo::Args),
 }
@@ -117,6 +124,8 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Chapter5(args) => chapter5::run(args),
         Command::Gen(args) => gen::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Voxelize(args) => voxelize::run(args),
+        Command::Octree(args) => octree::run(args),
         Command::Demo(args) => demo::run(args, |words| {
             let argv = std::iter::once("tritri".to_string()).chain(words);
             dispatch(Cli::try_parse_from(argv)?)

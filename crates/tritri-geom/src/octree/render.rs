@@ -3,8 +3,9 @@
 //! through the voxel grid (a 3D digital differential analyser, so a ray
 //! visits exactly the voxels it passes through, in order).
 //!
-//! The view is orthographic, looking from `eye` (a direction from the
-//! grid's centre, any length) towards the centre, with `z` up. A voxel
+//! The view is orthographic, looking from `eye` (a direction, any length)
+//! towards the centre of the occupied voxels' bounding box, which fills
+//! the picture, with the chosen axis up. A voxel
 //! face is shaded by the angle between its normal and a light above and to
 //! the left of the eye, darkened with depth, and tinted by its axis so the
 //! three face orientations stay apart even under the same light.
@@ -26,11 +27,13 @@ pub struct View {
     pub eye: [f64; 3],
     /// Pixels on a side (the picture is square).
     pub size: u32,
+    /// The axis that points up in the picture (0, 1 or 2: x, y or z).
+    pub up: usize,
 }
 
 impl Default for View {
     fn default() -> View {
-        View { eye: [1.0, -1.6, 0.9], size: 512 }
+        View { eye: [1.0, 0.7, 1.6], size: 512, up: 1 }
     }
 }
 
@@ -53,16 +56,40 @@ fn add(a: V3, b: V3, s: f64) -> V3 {
     [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]]
 }
 
+/// The box `[lo, hi]` (voxel corners) around the occupied voxels.
+fn occupied_box(grid: &VoxelGrid) -> Option<([f64; 3], [f64; 3])> {
+    let n = grid.side();
+    let (mut lo, mut hi) = ([usize::MAX; 3], [0usize; 3]);
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                if grid.get([x, y, z]) {
+                    for (k, c) in [x, y, z].into_iter().enumerate() {
+                        lo[k] = lo[k].min(c);
+                        hi[k] = hi[k].max(c + 1);
+                    }
+                }
+            }
+        }
+    }
+    (lo[0] <= hi[0]).then(|| (lo.map(|c| c as f64), hi.map(|c| c as f64)))
+}
+
 /// The picture of the model. `eye` must not be the zero vector.
 pub fn render(grid: &VoxelGrid, view: &View) -> Image {
-    let n = grid.side() as f64;
+    let (lo, hi) = occupied_box(grid).unwrap_or(([0.0; 3], [grid.side() as f64; 3]));
     let forward = normalized(view.eye.map(|c| -c));
-    let up_hint = if forward[2].abs() > 0.99 { [0.0, 1.0, 0.0] } else { [0.0, 0.0, 1.0] };
+    let mut up_hint = [0.0; 3];
+    up_hint[view.up.min(2)] = 1.0;
+    if dot(forward, up_hint).abs() > 0.99 {
+        up_hint = [up_hint[2], up_hint[0], up_hint[1]];
+    }
     let right = normalized(cross(forward, up_hint));
     let up = cross(right, forward);
     let light = normalized(add(add(forward.map(|c| -c), up, 0.8), right, -0.5));
-    let radius = n * 3f64.sqrt() / 2.0;
-    let centre = [n / 2.0; 3];
+    let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    // A margin of 4 % around the box's bounding sphere.
+    let radius = 1.04 * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt() / 2.0;
     let size = view.size.max(1);
     let mut pixels = Vec::with_capacity((size * size) as usize);
     for py in 0..size {
@@ -78,7 +105,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
                     // Depth from the front of the bounding sphere, 0 to 1.
                     let depth = ((t - radius) / (2.0 * radius)).clamp(0.0, 1.0);
                     let tint = [[0.93, 0.78, 0.62], [0.80, 0.84, 0.93], [0.95, 0.92, 0.85]][axis];
-                    let shade = (0.22 + 0.78 * lambert) * (1.0 - 0.35 * depth);
+                    let shade = (0.36 + 0.64 * lambert) * (1.0 - 0.35 * depth);
                     tint.map(|c| (255.0 * c * shade).round().clamp(0.0, 255.0) as u8)
                 }
                 None => {
@@ -152,19 +179,20 @@ fn first_hit(grid: &VoxelGrid, origin: V3, dir: V3) -> Option<(f64, usize)> {
 mod tests {
     use super::*;
 
-    /// A single voxel in the middle: seen from +x only its x face (the
-    /// pixels at the centre), the background at the corners.
+    /// A block in the middle: seen from +x only its x face (the pixels at
+    /// the centre; the block fills the picture up to the margin), the
+    /// background at the corners.
     #[test]
     fn a_voxel_shows_the_face_towards_the_eye() {
         let mut g = VoxelGrid::empty(3);
         g.fill_cube([2, 2, 2], 2);
-        let image = render(&g, &View { eye: [1.0, 0.0, 0.0], size: 64 });
+        let image = render(&g, &View { eye: [1.0, 0.0, 0.0], size: 64, up: 2 });
         let centre = image.pixels[32 * 64 + 32];
         let corner = image.pixels[0];
         assert_ne!(centre, corner);
         // The x-face tint: red above blue.
         assert!(centre[0] > centre[2], "{centre:?}");
-        let empty = render(&VoxelGrid::empty(3), &View { eye: [1.0, 0.0, 0.0], size: 64 });
+        let empty = render(&VoxelGrid::empty(3), &View { eye: [1.0, 0.0, 0.0], size: 64, up: 2 });
         assert_eq!(empty.pixels[32 * 64 + 32], empty.pixels[32 * 64 + 1]);
     }
 }

@@ -1,0 +1,279 @@
+//! `tritri octree`: the octree engine's operations on model files
+//! (`.oct`): plane classification and the half-space cut, clipping to a
+//! box, the set operations, conversion to other formats, renders.
+
+use crate::input;
+use crate::model_files::{read_octree, ModelOutput};
+use crate::voxelize::ViewArgs;
+use clap::Subcommand;
+use std::process::ExitCode;
+use std::time::Instant;
+use tritri_geom::octree::clip::clip;
+use tritri_geom::octree::plane::classify_plane;
+use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
+use tritri_geom::octree::voxelize::level_of_resolution;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(subcommand)]
+    operation: Operation,
+}
+
+#[derive(Subcommand, Debug)]
+enum Operation {
+    /// Classify the grid against the plane n·p = d (p in voxel units): the
+    /// voxels it crosses, and the half-space n·p <= d by voxel centres;
+    /// with MODEL, the model cut by that half-space.
+    Plane(PlaneArgs),
+    /// Clip a model to a box of voxels: octants inside, outside, crossing.
+    Clip(ClipArgs),
+    /// A ∪ B.
+    Union(PairArgs),
+    /// A ∩ B.
+    Intersection(PairArgs),
+    /// A \ B.
+    Difference(PairArgs),
+    /// Write a model in other formats (.oct, .binvox, .vox, .obj, .png).
+    Convert(ConvertArgs),
+    /// A shaded render of a model.
+    Render(RenderArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct Outputs {
+    /// Where to write the result: .oct, .binvox, .vox, .obj or .png; may be
+    /// given several times.
+    #[arg(long, value_name = "FILE")]
+    out: Vec<String>,
+    #[command(flatten)]
+    view: ViewArgs,
+}
+
+#[derive(clap::Args, Debug)]
+struct PlaneArgs {
+    /// The model to cut (.oct); without it, the grid given by --resolution.
+    model: Option<String>,
+    /// Voxels per side when no model is given.
+    #[arg(long, default_value_t = 512, value_name = "N", value_parser = input::parse_resolution)]
+    resolution: u64,
+    /// The plane's integer normal n.
+    #[arg(long, value_name = "A,B,C", allow_hyphen_values = true, value_parser = input::parse_normal)]
+    normal: [i64; 3],
+    /// The plane's offset d (an integer).
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    offset: i64,
+    #[command(flatten)]
+    outputs: Outputs,
+}
+
+#[derive(clap::Args, Debug)]
+struct ClipArgs {
+    model: String,
+    /// The box in voxel indices, half-open: x0 <= x < x1 and so on.
+    #[arg(long = "box", value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true, value_parser = input::parse_voxel_box)]
+    voxel_box: [i64; 6],
+    #[command(flatten)]
+    outputs: Outputs,
+}
+
+#[derive(clap::Args, Debug)]
+struct PairArgs {
+    a: String,
+    b: String,
+    #[command(flatten)]
+    outputs: Outputs,
+}
+
+#[derive(clap::Args, Debug)]
+struct ConvertArgs {
+    model: String,
+    #[command(flatten)]
+    outputs: Outputs,
+}
+
+#[derive(clap::Args, Debug)]
+struct RenderArgs {
+    model: String,
+    /// The picture (.png).
+    #[arg(long, value_name = "FILE")]
+    png: String,
+    #[command(flatten)]
+    view: ViewArgs,
+}
+
+/// Bad input: the message, status 2, nothing computed.
+fn bad(e: anyhow::Error) -> anyhow::Result<ExitCode> {
+    eprintln!("error: {e:#}");
+    Ok(ExitCode::from(2))
+}
+
+/// Reserves every output for a grid of `side`.
+fn reserve(paths: &[String], side: usize) -> anyhow::Result<Vec<ModelOutput>> {
+    paths.iter().map(|p| ModelOutput::reserve(p, side)).collect()
+}
+
+/// Writes `model` to every output.
+fn write_all(outputs: Vec<ModelOutput>, model: &OctreeFile, view: &ViewArgs) -> anyhow::Result<()> {
+    if outputs.is_empty() {
+        return Ok(());
+    }
+    let grid = model.tree.to_voxels();
+    for output in outputs {
+        let path = output.path.clone();
+        let bytes = output.write(&model.tree, &grid, &model.placement, &view.view())?;
+        println!("wrote {path} ({bytes} bytes)");
+    }
+    Ok(())
+}
+
+fn describe(name: &str, model: &OctreeFile) {
+    let n = 1u64 << model.tree.level();
+    println!("{name}: {n}^3 grid, {} voxels, {} octree nodes", model.tree.voxel_count(), model.tree.nodes().len());
+}
+
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    match args.operation {
+        Operation::Plane(a) => plane(a),
+        Operation::Clip(a) => clip_model(a),
+        Operation::Union(a) => combine(a, SetOperation::Union),
+        Operation::Intersection(a) => combine(a, SetOperation::Intersection),
+        Operation::Difference(a) => combine(a, SetOperation::Difference),
+        Operation::Convert(a) => {
+            let model = match read_octree(&a.model) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            let outputs = match reserve(&a.outputs.out, 1 << model.tree.level()) {
+                Ok(o) => o,
+                Err(e) => return bad(e),
+            };
+            describe(&a.model, &model);
+            write_all(outputs, &model, &a.outputs.view)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Operation::Render(a) => {
+            if !a.png.to_ascii_lowercase().ends_with(".png") {
+                return bad(anyhow::anyhow!("--png {}: the render is written as .png", a.png));
+            }
+            let model = match read_octree(&a.model) {
+                Ok(m) => m,
+                Err(e) => return bad(e),
+            };
+            let outputs = match reserve(&[a.png.clone()], 1 << model.tree.level()) {
+                Ok(o) => o,
+                Err(e) => return bad(e),
+            };
+            describe(&a.model, &model);
+            write_all(outputs, &model, &a.view)?;
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
+    let model = match &a.model {
+        Some(path) => match read_octree(path) {
+            Ok(m) => Some(m),
+            Err(e) => return bad(e),
+        },
+        None => None,
+    };
+    let level = match &model {
+        Some(m) => m.tree.level(),
+        None => level_of_resolution(a.resolution)?,
+    };
+    let outputs = match reserve(&a.outputs.out, 1 << level) {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    let started = Instant::now();
+    let c = classify_plane(level, a.normal, a.offset);
+    let took = started.elapsed();
+    let n = 1u64 << level;
+    println!(
+        "plane {:?}·p = {} on {n}^3: {} voxels crossed, {} cells split, half-space {} voxels in {} octree nodes; {:.3} ms",
+        a.normal,
+        a.offset,
+        c.crossed_voxels,
+        c.cells_split,
+        c.half_space.voxel_count(),
+        c.half_space.nodes().len(),
+        took.as_secs_f64() * 1e3
+    );
+    let result = match model {
+        Some(m) => {
+            describe(a.model.as_deref().unwrap_or(""), &m);
+            let cut = m.tree.combine(SetOperation::Intersection, &c.half_space);
+            println!("cut: {} voxels kept of {}", cut.voxel_count(), m.tree.voxel_count());
+            OctreeFile { tree: cut, placement: m.placement }
+        }
+        None => OctreeFile { tree: c.half_space, placement: Placement::default() },
+    };
+    write_all(outputs, &result, &a.outputs.view)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
+    let model = match read_octree(&a.model) {
+        Ok(m) => m,
+        Err(e) => return bad(e),
+    };
+    let outputs = match reserve(&a.outputs.out, 1 << model.tree.level()) {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    describe(&a.model, &model);
+    let b = a.voxel_box;
+    let started = Instant::now();
+    let (clipped, counts) = clip(&model.tree, [b[0], b[1], b[2]], [b[3], b[4], b[5]]);
+    let took = started.elapsed();
+    println!(
+        "clip to [{}, {}) x [{}, {}) x [{}, {}): {} octants ({} inside, {} outside, {} crossing) in {:.3} ms, {:.1} ns per octant; {} voxels kept",
+        b[0],
+        b[3],
+        b[1],
+        b[4],
+        b[2],
+        b[5],
+        counts.octants(),
+        counts.inside,
+        counts.outside,
+        counts.crossing,
+        took.as_secs_f64() * 1e3,
+        took.as_secs_f64() * 1e9 / counts.octants() as f64,
+        clipped.voxel_count()
+    );
+    write_all(outputs, &OctreeFile { tree: clipped, placement: model.placement }, &a.outputs.view)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
+    let (ma, mb) = match (read_octree(&a.a), read_octree(&a.b)) {
+        (Ok(x), Ok(y)) => (x, y),
+        (Err(e), _) | (_, Err(e)) => return bad(e),
+    };
+    if ma.tree.level() != mb.tree.level() {
+        return bad(anyhow::anyhow!(
+            "{} is a {}^3 grid and {} a {}^3 grid: set operations need models of one grid",
+            a.a,
+            1u64 << ma.tree.level(),
+            a.b,
+            1u64 << mb.tree.level()
+        ));
+    }
+    if ma.placement != mb.placement {
+        eprintln!("warning: {} and {} are placed differently; the result keeps {}'s placement", a.a, a.b, a.a);
+    }
+    let outputs = match reserve(&a.outputs.out, 1 << ma.tree.level()) {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    describe(&a.a, &ma);
+    describe(&a.b, &mb);
+    let started = Instant::now();
+    let result = ma.tree.combine(op, &mb.tree);
+    let took = started.elapsed();
+    println!("{op:?}: {} voxels, {} octree nodes, {:.3} ms (on the trees, no voxels expanded)", result.voxel_count(), result.nodes().len(), took.as_secs_f64() * 1e3);
+    write_all(outputs, &OctreeFile { tree: result, placement: ma.placement }, &a.outputs.view)?;
+    Ok(ExitCode::SUCCESS)
+}
