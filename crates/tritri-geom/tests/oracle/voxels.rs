@@ -48,6 +48,38 @@ pub fn solid(mesh: &Mesh, n: i64, s: i64) -> Vec<[i64; 3]> {
     out
 }
 
+/// [`solid`] for large meshes: the same per-centre decision, but each
+/// centre asks only the triangles whose bounding box spans its (y, z) foot
+/// (no other triangle can hold the centre or cross its +x ray). Sorted.
+pub fn solid_by_columns(mesh: &Mesh, n: i64, s: i64) -> Vec<[i64; 3]> {
+    let foot = |i: i64| i * s + s / 2;
+    let mut columns: Vec<Vec<usize>> = vec![Vec::new(); (n * n) as usize];
+    for (index, t) in mesh.iter().enumerate() {
+        let range = |k: usize| {
+            let lo = t.iter().map(|v| v[k]).min().unwrap();
+            let hi = t.iter().map(|v| v[k]).max().unwrap();
+            (0..n).filter(move |&i| lo <= foot(i) && foot(i) <= hi)
+        };
+        for z in range(2) {
+            for y in range(1) {
+                columns[(z * n + y) as usize].push(index);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                let candidates: Vec<[[i64; 3]; 3]> = columns[(z * n + y) as usize].iter().map(|&i| mesh[i]).collect();
+                if inside_or_on(&candidates, [foot(x), foot(y), foot(z)].map(i128::from)) {
+                    out.push([x, y, z]);
+                }
+            }
+        }
+    }
+    out
+}
+
 fn inside_or_on(mesh: &Mesh, c: [i128; 3]) -> bool {
     let mut parity = false;
     for t in mesh {
