@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N]]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -36,6 +36,8 @@
 //! `tritri_triangle_setup_g<G>`. `--owner-filter` writes the filter that
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
+//! `--plane-traversal` writes the octree engine's plane classification
+//! (grids up to 1024^3, one octant per clock), top `tritri_plane_traversal`.
 //!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
@@ -46,6 +48,7 @@ use std::process::ExitCode;
 use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
+use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -87,6 +90,10 @@ pub struct Args {
     /// not apply.
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "width"])]
     owner_filter: bool,
+    /// Emit the octree engine's plane classification instead (the grid
+    /// against a plane, one octant per clock); --width does not apply.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "width"])]
+    plane_traversal: bool,
     /// With --owner-filter: words of each object's slot table, one per
     /// triangle per leaf (1 to 16777216).
     #[arg(long, default_value_t = 65536, requires = "owner_filter",
@@ -111,6 +118,9 @@ impl Args {
 
     /// The design for `width`: the pipeline, or the system with --system.
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
+        if self.plane_traversal {
+            return emit_plane_traversal().with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
+        }
         if self.owner_filter {
             return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
         }
@@ -129,7 +139,7 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup || self.owner_filter
+        self.system || self.classifier || self.setup || self.owner_filter || self.plane_traversal
     }
 
     /// The grid-width units of the octree engine.
@@ -139,7 +149,9 @@ impl Args {
 
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
-        if self.owner_filter {
+        if self.plane_traversal {
+            PLANE_TRAVERSAL_NAME.to_string()
+        } else if self.owner_filter {
             owner_filter_unit_name(self.slots as usize)
         } else if self.classifier {
             cell_classifier_unit_name(width)
@@ -171,7 +183,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter, check_width(w)) {
+        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter || args.plane_traversal, check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

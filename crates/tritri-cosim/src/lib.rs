@@ -22,6 +22,7 @@
 pub mod cell_classifier;
 pub mod engine;
 pub mod owner_filter;
+pub mod plane_traversal;
 pub mod pipeline_rtl;
 pub mod rusthdl_harness;
 pub mod simulator;

@@ -58,6 +58,7 @@ pub mod continuous_assigns;
 pub mod modules;
 pub mod owner_filter_unit;
 pub mod package;
+pub mod plane_traversal_unit;
 pub mod pipeline_unit;
 pub mod tokens;
 pub mod triangle_setup_unit;

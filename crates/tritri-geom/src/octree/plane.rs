@@ -21,6 +21,7 @@
 use super::affine::AffineOverBox;
 use super::cell::Cell;
 use super::tree::{Node, Octree};
+use super::voxels::VoxelGrid;
 
 /// What one classification of the grid against a plane found.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -72,6 +73,160 @@ fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, counts: &mu
     }
 }
 
+/// One record of the hardware traversal (`tritri_rtl::octree::
+/// plane_traversal`): a classified cell and which of its children belong
+/// to the half-space as wholes (`full`: entirely below the plane, or, for a
+/// level-1 cell, voxels whose centre is) and, for a level-1 cell, which
+/// voxels the closed plane crosses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct TraversalRecord {
+    pub lo: [i64; 3],
+    pub level: u32,
+    pub full: u8,
+    pub crossed: u8,
+}
+
+/// The hardware traversal's run: its records in the order they leave, the
+/// clock edge each is taken at (counted from 0, the edge that issues the
+/// root; the reader always ready), and the edges the unit is busy.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TraversalRun {
+    pub records: Vec<TraversalRecord>,
+    pub edges: Vec<u64>,
+    pub cycles: u64,
+    /// Cells classified (one per issue: the root, then crossing cells).
+    pub cells: u64,
+}
+
+impl TraversalRun {
+    /// The half-space the records describe (full children filled whole).
+    pub fn half_space(&self, level: u32) -> VoxelGrid {
+        let mut grid = VoxelGrid::empty(level);
+        for r in &self.records {
+            let cell = Cell { lo: r.lo, level: r.level };
+            for o in (0..8).filter(|o| r.full >> o & 1 == 1) {
+                let child = cell.child(o);
+                grid.fill_cube(child.lo.map(|c| c as usize), child.level);
+            }
+        }
+        grid
+    }
+
+    /// Voxels the closed plane crosses.
+    pub fn crossed_voxels(&self) -> u64 {
+        self.records.iter().map(|r| r.crossed.count_ones() as u64).sum()
+    }
+}
+
+/// Clock edges from an issue to its result in the hardware.
+pub const TRAVERSAL_LATENCY: u64 = 5;
+
+/// The cycle model of the hardware traversal: the same schedule, clock
+/// edge by clock edge. Each edge issues one cell: the root at edge 0, then
+/// the lowest remaining crossing child of the stack's top; the result of
+/// the cell issued at edge `e` is taken at edge `e + 5`, pushing the cell
+/// with its crossing children when its level is >= 2. A top whose last
+/// child is issued is dropped; the next comes back from the RAM at the
+/// edge after (no issue at that edge) unless a push takes its place. The
+/// masks are decided here by [`AffineOverBox`] over each child directly.
+pub fn traversal_schedule(level: u32, normal: [i64; 3], d: i64) -> TraversalRun {
+    #[derive(Clone, Copy)]
+    struct Entry {
+        cell: Cell,
+        mask: u8,
+    }
+    let gradient = normal.map(i128::from);
+    let d = d as i128;
+    let centre_offset: i128 = gradient.iter().sum();
+    // A cell's record and its crossing children.
+    let classify = |cell: Cell| -> (TraversalRecord, u8) {
+        let f = AffineOverBox::over_cell(gradient, &cell);
+        let (mut full, mut crossing) = (0u8, 0u8);
+        for o in 0..8 {
+            let child = f.child(o);
+            let (lo, hi) = child.range();
+            if lo <= d && d <= hi {
+                crossing |= 1 << o;
+                // A voxel by its centre: 2 f(lo) + Σn <= 2d.
+                if cell.level == 1 && 2 * child.at_lo + centre_offset <= 2 * d {
+                    full |= 1 << o;
+                }
+            } else if hi < d {
+                full |= 1 << o;
+            }
+        }
+        let crossed = if cell.level == 1 { crossing } else { 0 };
+        (TraversalRecord { lo: cell.lo, level: cell.level, full, crossed }, crossing)
+    };
+    let mut run = TraversalRun::default();
+    let mut in_flight: std::collections::VecDeque<(u64, (TraversalRecord, u8))> = Default::default();
+    let mut start_pending = true;
+    let mut top: Option<Entry> = None;
+    // The entry read from the RAM, the top after this edge.
+    let mut refill: Option<Entry> = None;
+    let mut stack: Vec<Entry> = Vec::new();
+    // A record shown after the previous edge (taken at this one).
+    let mut shown = false;
+    let mut edge = 0u64;
+    loop {
+        let busy = start_pending || top.is_some() || refill.is_some() || !stack.is_empty() || !in_flight.is_empty() || shown;
+        if !busy {
+            break;
+        }
+        let result = match in_flight.front() {
+            Some(&(ready, _)) if ready == edge => in_flight.pop_front().map(|(_, r)| r),
+            _ => None,
+        };
+        // Issue: the root, else the top's lowest remaining child.
+        let from_top = if start_pending { None } else { top };
+        let remaining = from_top.map_or(0, |t| t.mask & t.mask.wrapping_sub(1));
+        let issued = match from_top {
+            None if start_pending => Some(Cell { lo: [0; 3], level }),
+            None => None,
+            Some(t) => Some(t.cell.child(t.mask.trailing_zeros() as usize)),
+        };
+        if let Some(cell) = issued {
+            in_flight.push_back((edge + TRAVERSAL_LATENCY, classify(cell)));
+            run.cells += 1;
+        }
+        start_pending = false;
+        if let Some(t) = from_top {
+            top = (remaining != 0).then_some(Entry { cell: t.cell, mask: remaining });
+        }
+        match result {
+            Some((record, crossing)) if record.level >= 2 && crossing != 0 => {
+                if let (Some(t), true) = (from_top, remaining != 0) {
+                    stack.push(Entry { cell: t.cell, mask: remaining });
+                }
+                // An entry being read back stays on the stack.
+                if let Some(e) = refill.take() {
+                    stack.push(e);
+                }
+                top = Some(Entry { cell: Cell { lo: record.lo, level: record.level }, mask: crossing });
+            }
+            _ => {
+                if let Some(e) = refill.take() {
+                    top = Some(e);
+                } else if from_top.is_some() && remaining == 0 {
+                    refill = stack.pop();
+                }
+            }
+        }
+        shown = false;
+        if let Some((record, _)) = result {
+            if record.full != 0 || record.crossed != 0 {
+                run.records.push(record);
+                // Shown after this edge, taken (the reader ready) at the next.
+                run.edges.push(edge + 1);
+                shown = true;
+            }
+        }
+        edge += 1;
+    }
+    run.cycles = edge;
+    run
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,6 +263,10 @@ mod tests {
                 }
             }
             assert_eq!(c.crossed_voxels, crossed, "round {round}: {normal:?} {d}");
+            // The hardware's schedule describes the same half-space.
+            let run = traversal_schedule(level, normal, d);
+            assert_eq!(run.half_space(level), half_space, "round {round}: schedule");
+            assert_eq!(run.crossed_voxels(), crossed, "round {round}: schedule");
             assert_eq!(half_space.count(), inside, "round {round}");
         }
     }

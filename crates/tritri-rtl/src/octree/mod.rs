@@ -1,6 +1,7 @@
-//! The octree engine in hardware (`octree_engine.txt`): the triangle–cell
-//! classifier step that bins triangles into the broad phase's leaves, and
-//! the filter that reports each pair of the leaves once.
+//! The octree engine in hardware (`octree_engine.txt`): plane
+//! classification of the grid, the triangle–cell classifier step that bins
+//! triangles into the broad phase's leaves, and the filter that reports
+//! each pair of the leaves once.
 //!
 //! * [`axis_step`]: one affine test function of one entry: its value moved
 //!   into a child by interpolation, and the eight children's ranges against
@@ -11,6 +12,9 @@
 //!   (triangle in a cell) per clock, the children mask out;
 //! * [`binning_model`]: the cycles and memory of a binning unit around it
 //!   that follows the broad phase's plan (the controller modelled);
+//! * [`plane_traversal`]: the seed's core circuit, the grid classified
+//!   against a plane one octant per clock, with a stack in block RAM
+//!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
 //! * [`owner_filter`]: behind the system's result stream, lets each
 //!   intersecting pair through once, from the first leaf holding both
 //!   triangles.
@@ -18,7 +22,9 @@
 pub mod axis_step;
 pub mod binning_model;
 pub mod cell_classifier;
+pub mod centre_test;
 pub mod owner_filter;
+pub mod plane_traversal;
 pub mod triangle_setup;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell

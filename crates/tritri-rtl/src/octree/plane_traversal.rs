@@ -1,0 +1,412 @@
+//! The octree engine's core circuit (`octree_engine.txt`, section 5): the
+//! grid classified against the plane `f(p) = n · p = d`, one octant per
+//! clock, children's values interpolated from the parent's.
+//!
+//! The software model is `tritri_geom::octree::plane`; the cycle model,
+//! record for record and edge for edge, is
+//! `tritri_geom::octree::plane::traversal_schedule`.
+//!
+//! ```text
+//!  start ─► root ─┐
+//!  stack top ─────┴─► issue (one child of the top per clock: its lowest
+//!        ▲               remaining octant, moved into by interpolation)
+//!        │                 │  two axis steps, f against [d, d] (crossing)
+//!        │                 │  and against [root_min, d] (some point below)
+//!        │                 ▼  + the centre test of a level-1 cell's voxels
+//!        └── push ◄─── result (5 clocks later): children inside the
+//!            (crossing     half-space, crossing it, or outside
+//!             children)    └─► record out: cell, level, full children mask,
+//!                              crossed voxels mask (valid/ready)
+//! ```
+//!
+//! A *record* says which children of a classified cell belong to the
+//! half-space `f <= d` as wholes: a child entirely below the plane, or a
+//! voxel (child of a level-1 cell) whose centre is; a memory-side unit
+//! writes each such child into the voxel memory a word at a time. For a
+//! level-1 cell the record also has the voxels the closed plane crosses.
+//! Crossing children of a cell of level >= 2 are classified in turn: the
+//! cell goes onto the stack with the mask of those children, and the issue
+//! logic takes them one per clock from the top.
+//!
+//! The stack's top sits in registers; the rest in a block RAM. Pushing a
+//! result while the top has children left writes the top to the RAM; a top
+//! whose last child is issued is dropped, and the next comes back from the
+//! RAM (one clock without an issue). The order records leave in is not
+//! preorder (writes into a voxel memory need none); the set of records is
+//! the software traversal's, and the cycle model gives the order.
+//!
+//! The whole unit stalls while a record waits for `out_ready`.
+
+use super::axis_step::{AxisStep, AXIS_STEP_LATENCY};
+use super::centre_test::CentreTest;
+use crate::arith::delay_line::DelayLine;
+use crate::arith::valid_line::ValidLine;
+use crate::system::dual_port_ram::SimpleDualPortRam;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Bits of the plane's values: a grid of up to 1024 voxels a side and
+/// normal components up to 2^20 give `|n · p| < 2^32`.
+pub const PLANE_VALUE_BITS: usize = 40;
+/// Bits of a cell corner coordinate (0 to 1024).
+pub const CORNER_BITS: usize = 11;
+/// Stack entries in block RAM.
+pub const STACK_ADDRESS_BITS: usize = 8;
+/// Clock edges from an issue to its result: the axis steps, then one
+/// register stage (masks, value and the centre test).
+pub const CLASSIFY_LATENCY: usize = AXIS_STEP_LATENCY + 1;
+/// Largest grid level (1024 voxels a side).
+pub const MAX_LEVEL: u32 = 10;
+
+/// A cell on the stack: its value `f(lo)`, its low corner, its level and
+/// the children still to classify.
+#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
+pub struct StackEntry {
+    pub value: Bits<40>,
+    pub x: Bits<11>,
+    pub y: Bits<11>,
+    pub z: Bits<11>,
+    pub level: Bits<4>,
+    pub mask: Bits<8>,
+}
+
+const _: () = assert!(PLANE_VALUE_BITS == 40 && CORNER_BITS == 11);
+
+#[derive(LogicBlock)]
+pub struct PlaneTraversal {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high: idle, stack empty.
+    pub reset: Signal<In, Bit>,
+    // The plane, held from `start` until `busy` falls.
+    pub gradient_x: Signal<In, Bits<40>>,
+    pub gradient_y: Signal<In, Bits<40>>,
+    pub gradient_z: Signal<In, Bits<40>>,
+    pub d: Signal<In, Bits<40>>,
+    /// The least value of `f` over the grid (the low end of "some point
+    /// at or below the plane").
+    pub root_min: Signal<In, Bits<40>>,
+    /// `2d - Σn`, for the voxel centres.
+    pub centre_offset: Signal<In, Bits<40>>,
+    /// The grid is `2^level` voxels a side (1 to 10).
+    pub level: Signal<In, Bits<4>>,
+    /// One clock high while idle: classify the grid.
+    pub start: Signal<In, Bit>,
+    pub busy: Signal<Out, Bit>,
+    // Records out (valid/ready).
+    pub out_valid: Signal<Out, Bit>,
+    pub out_ready: Signal<In, Bit>,
+    pub out_x: Signal<Out, Bits<11>>,
+    pub out_y: Signal<Out, Bits<11>>,
+    pub out_z: Signal<Out, Bits<11>>,
+    /// The classified cell's level (its children's is one less).
+    pub out_level: Signal<Out, Bits<4>>,
+    /// Children wholly in the half-space (for a level-1 cell: voxels whose
+    /// centre is).
+    pub out_full: Signal<Out, Bits<8>>,
+    /// For a level-1 cell, the voxels the closed plane crosses.
+    pub out_crossed: Signal<Out, Bits<8>>,
+    crossing: AxisStep<40>,
+    below: AxisStep<40>,
+    centre: CentreTest<40>,
+    cell_x: DelayLine<Bits<11>, CLASSIFY_LATENCY>,
+    cell_y: DelayLine<Bits<11>, CLASSIFY_LATENCY>,
+    cell_z: DelayLine<Bits<11>, CLASSIFY_LATENCY>,
+    cell_level: DelayLine<Bits<4>, CLASSIFY_LATENCY>,
+    cell_valid: ValidLine<CLASSIFY_LATENCY>,
+    crossing_q: DFF<Bits<8>>,
+    below_q: DFF<Bits<8>>,
+    value_q: DFF<Bits<40>>,
+    stack: SimpleDualPortRam<StackEntry, STACK_ADDRESS_BITS>,
+    top: DFF<StackEntry>,
+    top_valid: DFF<Bit>,
+    /// The RAM's read data is the next top (read the clock before).
+    refill: DFF<Bit>,
+    /// Entries in the RAM.
+    depth: DFF<Bits<9>>,
+    in_flight: DFF<Bits<4>>,
+    start_pending: DFF<Bit>,
+    out_valid_q: DFF<Bit>,
+    out_x_q: DFF<Bits<11>>,
+    out_y_q: DFF<Bits<11>>,
+    out_z_q: DFF<Bits<11>>,
+    out_level_q: DFF<Bits<4>>,
+    out_full_q: DFF<Bits<8>>,
+    out_crossed_q: DFF<Bits<8>>,
+    // Combinational.
+    advance: Signal<Local, Bit>,
+    issue: Signal<Local, Bit>,
+    /// The top's mask (a struct field cannot be indexed in Verilog).
+    top_mask: Signal<Local, Bits<8>>,
+    octant: Signal<Local, Bits<3>>,
+    remaining: Signal<Local, Bits<8>>,
+    half: Signal<Local, Bits<11>>,
+    inside: Signal<Local, Bits<8>>,
+    full: Signal<Local, Bits<8>>,
+    crossed: Signal<Local, Bits<8>>,
+    push: Signal<Local, Bit>,
+    pushed: Signal<Local, StackEntry>,
+}
+
+impl Default for PlaneTraversal {
+    fn default() -> Self {
+        PlaneTraversal {
+            clock: Default::default(),
+            reset: Default::default(),
+            gradient_x: Default::default(),
+            gradient_y: Default::default(),
+            gradient_z: Default::default(),
+            d: Default::default(),
+            root_min: Default::default(),
+            centre_offset: Default::default(),
+            level: Default::default(),
+            start: Default::default(),
+            busy: Default::default(),
+            out_valid: Default::default(),
+            out_ready: Default::default(),
+            out_x: Default::default(),
+            out_y: Default::default(),
+            out_z: Default::default(),
+            out_level: Default::default(),
+            out_full: Default::default(),
+            out_crossed: Default::default(),
+            crossing: Default::default(),
+            below: Default::default(),
+            centre: Default::default(),
+            cell_x: Default::default(),
+            cell_y: Default::default(),
+            cell_z: Default::default(),
+            cell_level: Default::default(),
+            cell_valid: Default::default(),
+            crossing_q: Default::default(),
+            below_q: Default::default(),
+            value_q: Default::default(),
+            stack: SimpleDualPortRam::new(1 << STACK_ADDRESS_BITS),
+            top: Default::default(),
+            top_valid: Default::default(),
+            refill: Default::default(),
+            depth: Default::default(),
+            in_flight: Default::default(),
+            start_pending: Default::default(),
+            out_valid_q: Default::default(),
+            out_x_q: Default::default(),
+            out_y_q: Default::default(),
+            out_z_q: Default::default(),
+            out_level_q: Default::default(),
+            out_full_q: Default::default(),
+            out_crossed_q: Default::default(),
+            advance: Default::default(),
+            issue: Default::default(),
+            top_mask: Default::default(),
+            octant: Default::default(),
+            remaining: Default::default(),
+            half: Default::default(),
+            inside: Default::default(),
+            full: Default::default(),
+            crossed: Default::default(),
+            push: Default::default(),
+            pushed: Default::default(),
+        }
+    }
+}
+
+impl Logic for PlaneTraversal {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clock, crossing_q, below_q, value_q, top, top_valid, refill, depth, in_flight, start_pending, out_valid_q, out_x_q, out_y_q,
+            out_z_q, out_level_q, out_full_q, out_crossed_q
+        );
+        // Everything moves unless a record waits at the output.
+        self.advance.next = !self.out_valid_q.q.val() | self.out_ready.val();
+        self.out_valid.next = self.out_valid_q.q.val();
+        self.out_x.next = self.out_x_q.q.val();
+        self.out_y.next = self.out_y_q.q.val();
+        self.out_z.next = self.out_z_q.q.val();
+        self.out_level.next = self.out_level_q.q.val();
+        self.out_full.next = self.out_full_q.q.val();
+        self.out_crossed.next = self.out_crossed_q.q.val();
+        self.busy.next = self.start_pending.q.val()
+            | self.top_valid.q.val()
+            | self.refill.q.val()
+            | (self.depth.q.val() != 0)
+            | (self.in_flight.q.val() != 0)
+            | self.out_valid_q.q.val();
+
+        // Issue: the root after start, else the top's lowest remaining child.
+        self.top_mask.next = self.top.q.val().mask;
+        self.octant.next = 0.into();
+        if self.top_mask.val().get_bit(0) {
+            self.octant.next = 0.into();
+        } else if self.top_mask.val().get_bit(1) {
+            self.octant.next = 1.into();
+        } else if self.top_mask.val().get_bit(2) {
+            self.octant.next = 2.into();
+        } else if self.top_mask.val().get_bit(3) {
+            self.octant.next = 3.into();
+        } else if self.top_mask.val().get_bit(4) {
+            self.octant.next = 4.into();
+        } else if self.top_mask.val().get_bit(5) {
+            self.octant.next = 5.into();
+        } else if self.top_mask.val().get_bit(6) {
+            self.octant.next = 6.into();
+        } else {
+            self.octant.next = 7.into();
+        }
+        self.remaining.next = self.top_mask.val() & (self.top_mask.val() - 1);
+        self.half.next = bits::<11>(1) << (self.top.q.val().level - 1);
+        self.issue.next = self.start_pending.q.val() | self.top_valid.q.val();
+
+        self.crossing.clock.next = self.clock.val();
+        self.below.clock.next = self.clock.val();
+        self.centre.clock.next = self.clock.val();
+        self.crossing.advance.next = self.advance.val();
+        self.below.advance.next = self.advance.val();
+        self.centre.advance.next = self.advance.val();
+        self.crossing.gradient_x.next = self.gradient_x.val();
+        self.crossing.gradient_y.next = self.gradient_y.val();
+        self.crossing.gradient_z.next = self.gradient_z.val();
+        self.below.gradient_x.next = self.gradient_x.val();
+        self.below.gradient_y.next = self.gradient_y.val();
+        self.below.gradient_z.next = self.gradient_z.val();
+        self.crossing.low.next = self.d.val();
+        self.crossing.high.next = self.d.val();
+        self.below.low.next = self.root_min.val();
+        self.below.high.next = self.d.val();
+        self.centre.gradient_x.next = self.gradient_x.val();
+        self.centre.gradient_y.next = self.gradient_y.val();
+        self.centre.gradient_z.next = self.gradient_z.val();
+        self.centre.offset.next = self.centre_offset.val();
+        self.centre.value.next = self.crossing.value.val();
+        self.cell_x.clock.next = self.clock.val();
+        self.cell_y.clock.next = self.clock.val();
+        self.cell_z.clock.next = self.clock.val();
+        self.cell_level.clock.next = self.clock.val();
+        self.cell_valid.clock.next = self.clock.val();
+        self.cell_x.advance.next = self.advance.val();
+        self.cell_y.advance.next = self.advance.val();
+        self.cell_z.advance.next = self.advance.val();
+        self.cell_level.advance.next = self.advance.val();
+        self.cell_valid.advance.next = self.advance.val();
+        self.cell_valid.reset.next = self.reset.val();
+        self.cell_valid.d.next = self.issue.val();
+        if self.start_pending.q.val() {
+            self.crossing.level.next = bit_cast::<6, 4>(self.level.val());
+            self.crossing.descend.next = false;
+            self.crossing.at_lo.next = 0.into();
+            self.cell_level.d.next = self.level.val();
+            self.cell_x.d.next = 0.into();
+            self.cell_y.d.next = 0.into();
+            self.cell_z.d.next = 0.into();
+        } else {
+            self.crossing.level.next = bit_cast::<6, 4>(self.top.q.val().level - 1);
+            self.crossing.descend.next = true;
+            self.crossing.at_lo.next = self.top.q.val().value;
+            self.cell_level.d.next = self.top.q.val().level - 1;
+            self.cell_x.d.next = self.top.q.val().x;
+            self.cell_y.d.next = self.top.q.val().y;
+            self.cell_z.d.next = self.top.q.val().z;
+            if self.octant.val().get_bit(0) {
+                self.cell_x.d.next = self.top.q.val().x + self.half.val();
+            }
+            if self.octant.val().get_bit(1) {
+                self.cell_y.d.next = self.top.q.val().y + self.half.val();
+            }
+            if self.octant.val().get_bit(2) {
+                self.cell_z.d.next = self.top.q.val().z + self.half.val();
+            }
+        }
+        self.crossing.octant.next = self.octant.val();
+        self.below.level.next = self.crossing.level.val();
+        self.below.descend.next = self.crossing.descend.val();
+        self.below.at_lo.next = self.crossing.at_lo.val();
+        self.below.octant.next = self.octant.val();
+
+        // One register after the axis steps, beside the centre test.
+        if self.advance.val() {
+            self.crossing_q.d.next = self.crossing.mask.val();
+            self.below_q.d.next = self.below.mask.val();
+            self.value_q.d.next = self.crossing.value.val();
+        }
+
+        // The result: children inside (below and not crossing), crossing,
+        // or outside; a level-1 cell's voxels by their centres.
+        self.inside.next = self.below_q.q.val() & !self.crossing_q.q.val();
+        self.full.next = self.inside.val();
+        self.crossed.next = 0.into();
+        if self.cell_level.q.val() == 1 {
+            self.full.next = self.inside.val() | (self.crossing_q.q.val() & self.centre.mask.val());
+            self.crossed.next = self.crossing_q.q.val();
+        }
+        self.push.next = self.cell_valid.q.val() & (self.cell_level.q.val() != 1) & (self.crossing_q.q.val() != 0);
+        self.pushed.next.value = self.value_q.q.val();
+        self.pushed.next.x = self.cell_x.q.val();
+        self.pushed.next.y = self.cell_y.q.val();
+        self.pushed.next.z = self.cell_z.q.val();
+        self.pushed.next.level = self.cell_level.q.val();
+        self.pushed.next.mask = self.crossing_q.q.val();
+
+        // The stack.
+        self.stack.clock.next = self.clock.val();
+        self.stack.write_enable.next = false;
+        self.stack.write_address.next = bit_cast::<8, 9>(self.depth.q.val());
+        self.stack.write_data.next = self.top.q.val();
+        self.stack.write_data.next.mask = self.remaining.val();
+        self.stack.read_enable.next = false;
+        self.stack.read_address.next = bit_cast::<8, 9>(self.depth.q.val() - 1);
+        if self.advance.val() {
+            if self.start_pending.q.val() {
+                self.start_pending.d.next = false;
+            } else if self.top_valid.q.val() {
+                self.top.d.next.mask = self.remaining.val();
+                if self.remaining.val() == 0 {
+                    self.top_valid.d.next = false;
+                }
+            }
+            if self.push.val() {
+                if self.top_valid.q.val() & !self.start_pending.q.val() & (self.remaining.val() != 0) {
+                    self.stack.write_enable.next = true;
+                    self.depth.d.next = self.depth.q.val() + 1;
+                }
+                if self.refill.q.val() {
+                    // The entry just read stays where it was.
+                    self.depth.d.next = self.depth.q.val() + 1;
+                }
+                self.top.d.next = self.pushed.val();
+                self.top_valid.d.next = true;
+                self.refill.d.next = false;
+            } else if self.refill.q.val() {
+                self.top.d.next = self.stack.read_data.val();
+                self.top_valid.d.next = true;
+                self.refill.d.next = false;
+            } else if self.top_valid.q.val() & !self.start_pending.q.val() & (self.remaining.val() == 0) & (self.depth.q.val() != 0) {
+                self.stack.read_enable.next = true;
+                self.depth.d.next = self.depth.q.val() - 1;
+                self.refill.d.next = true;
+            }
+            if self.issue.val() & !self.cell_valid.q.val() {
+                self.in_flight.d.next = self.in_flight.q.val() + 1;
+            }
+            if !self.issue.val() & self.cell_valid.q.val() {
+                self.in_flight.d.next = self.in_flight.q.val() - 1;
+            }
+            self.out_valid_q.d.next = self.cell_valid.q.val() & ((self.full.val() != 0) | (self.crossed.val() != 0));
+            self.out_x_q.d.next = self.cell_x.q.val();
+            self.out_y_q.d.next = self.cell_y.q.val();
+            self.out_z_q.d.next = self.cell_z.q.val();
+            self.out_level_q.d.next = self.cell_level.q.val();
+            self.out_full_q.d.next = self.full.val();
+            self.out_crossed_q.d.next = self.crossed.val();
+        }
+        if self.start.val() & !self.busy.val() {
+            self.start_pending.d.next = true;
+        }
+        if self.reset.val() {
+            self.start_pending.d.next = false;
+            self.top_valid.d.next = false;
+            self.refill.d.next = false;
+            self.depth.d.next = 0.into();
+            self.in_flight.d.next = 0.into();
+            self.out_valid_q.d.next = false;
+        }
+    }
+}
