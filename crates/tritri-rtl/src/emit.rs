@@ -58,6 +58,7 @@ pub mod continuous_assigns;
 pub mod modules;
 pub mod owner_filter_unit;
 pub mod package;
+pub mod part_selects;
 pub mod plane_traversal_unit;
 pub mod pipeline_unit;
 pub mod tokens;
@@ -225,7 +226,8 @@ pub fn emit_with(
     if !valid_name {
         return Err(EmitError::BadUnitName(unit.name.clone()));
     }
-    let mut modules = modules::normalize(rust_hdl_verilog, &unit.name)?;
+    let rust_hdl_verilog = part_selects::constant_part_selects(rust_hdl_verilog);
+    let mut modules = modules::normalize(&rust_hdl_verilog, &unit.name)?;
     if options.explicit_widths {
         for m in modules.iter_mut() {
             widths::fix_module(m);

@@ -1,12 +1,14 @@
-//! The emitted octree classifier step, its setup and the owner filter:
+//! The emitted octree classifier step, its setup, the owner filter and the
+//! plane traversal:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
 //! tritri-cosim's tests/cell_classifier.rs, tests/triangle_setup.rs and
-//! tests/owner_filter.rs.)
+//! tests/owner_filter.rs and tests/plane_traversal.rs.)
 
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
+use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::tools::{run, IVERILOG};
@@ -25,6 +27,11 @@ fn the_owner_filter_is_lint_clean() {
     for slots in [1000, 65536] {
         check(slots, emit_owner_filter(slots).unwrap());
     }
+}
+
+#[test]
+fn the_plane_traversal_is_lint_clean() {
+    check(0, emit_plane_traversal().unwrap());
 }
 
 fn check(g: usize, design: EmittedDesign) {

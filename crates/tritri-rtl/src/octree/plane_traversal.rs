@@ -325,7 +325,9 @@ impl Logic for PlaneTraversal {
         if self.advance.val() {
             self.crossing_q.d.next = self.crossing.mask.val();
             self.below_q.d.next = self.below.mask.val();
-            self.value_q.d.next = self.crossing.value.val();
+            // Both steps carry the cell's value; the centre test takes one,
+            // the stack the other.
+            self.value_q.d.next = self.below.value.val();
         }
 
         // The result: children inside (below and not crossing), crossing,
