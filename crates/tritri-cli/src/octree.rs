@@ -12,6 +12,8 @@ use tritri_geom::octree::clip::clip;
 use tritri_geom::octree::plane::classify_plane;
 use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
+use tritri_cosim::engine::Engine;
+use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -62,9 +64,21 @@ struct PlaneArgs {
     /// The plane's offset d (an integer).
     #[arg(long, value_name = "D", allow_hyphen_values = true)]
     offset: i64,
+    /// Who classifies: `model` (the software model and the hardware's
+    /// cycle model), `rusthdl`, `icarus` or `verilator` (the hardware,
+    /// checked against the model).
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
+    /// Clock frequency in MHz for the hardware's time.
+    #[arg(long, default_value_t = DEFAULT_CLOCK_MHZ, value_name = "F", value_parser = input::parse_clock_mhz)]
+    clock_mhz: f64,
     #[command(flatten)]
     outputs: Outputs,
 }
+
+/// The plane traversal's post-route clock on an ECP5-85 at speed 6
+/// (rtl-out/README.md, `tritri gen --plane-traversal --synth ecp5`).
+const DEFAULT_CLOCK_MHZ: f64 = 100.0;
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
@@ -182,6 +196,9 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         Some(m) => m.tree.level(),
         None => level_of_resolution(a.resolution)?,
     };
+    if let Err(e) = PlaneInputs::new(level, a.normal, a.offset) {
+        return bad(anyhow::anyhow!("--normal {:?}: {e}", a.normal));
+    }
     let outputs = match reserve(&a.outputs.out, 1 << level) {
         Ok(o) => o,
         Err(e) => return bad(e),
@@ -199,6 +216,25 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         c.half_space.voxel_count(),
         c.half_space.nodes().len(),
         took.as_secs_f64() * 1e3
+    );
+    // The hardware: its records must describe the model's half-space.
+    let started = Instant::now();
+    let hardware = tritri_cosim::plane_traversal::run(a.engine, level, a.normal, a.offset)?;
+    let simulated = started.elapsed();
+    let agrees = hardware.crossed_voxels() == c.crossed_voxels && hardware.half_space(level) == c.half_space.to_voxels();
+    anyhow::ensure!(agrees, "the plane traversal in {} differs from the software model (a bug)", a.engine.name());
+    let words = hardware.fill_words(64);
+    println!(
+        "hardware ({}): {} cells classified, {} records, {} cycles = {:.3} ms at {} MHz{}; the same half-space and crossed voxels as the model; \
+         filling a voxel memory of 64-bit words takes {words} writes ({:.3} ms at one write per clock, overlapped with the traversal)",
+        a.engine.name(),
+        if a.engine == Engine::Model { hardware.cells.to_string() } else { "-".into() },
+        hardware.records.len(),
+        hardware.cycles,
+        hardware.cycles as f64 / (a.clock_mhz * 1e3),
+        a.clock_mhz,
+        if a.engine == Engine::Model { String::new() } else { format!(" (simulated in {:.1} s)", simulated.as_secs_f64()) },
+        words as f64 / (a.clock_mhz * 1e3)
     );
     let result = match model {
         Some(m) => {

@@ -169,3 +169,14 @@ endmodule
 "
     )
 }
+
+/// One plane through `engine`: the cycle model, the rust-hdl model or the
+/// emitted Verilog (the reader always ready).
+pub fn run(engine: crate::engine::Engine, level: u32, normal: [i64; 3], d: i64) -> anyhow::Result<TraversalRun> {
+    let plane = PlaneInputs::new(level, normal, d).map_err(anyhow::Error::msg)?;
+    Ok(match (engine, engine.simulator()) {
+        (crate::engine::Engine::Model, _) => tritri_geom::octree::plane::traversal_schedule(level, normal, plane.d),
+        (_, None) => run_rusthdl(&plane, |_| true),
+        (_, Some(simulator)) => run_emitted(&[plane], simulator)?.remove(0),
+    })
+}

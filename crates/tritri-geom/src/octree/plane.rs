@@ -112,6 +112,22 @@ impl TraversalRun {
         grid
     }
 
+    /// Word writes a memory-side unit needs to put the records' full
+    /// children into a voxel memory of `word_bits`-voxel words along x
+    /// (the layout of [`VoxelGrid`]): a cube of side `s` is `s^2` rows of
+    /// `ceil(s / word_bits)` words (a row shorter than a word is one
+    /// masked write).
+    pub fn fill_words(&self, word_bits: u64) -> u64 {
+        self.records
+            .iter()
+            .map(|r| {
+                let side = 1u64 << r.level.saturating_sub(1);
+                let per_child = side * side * side.div_ceil(word_bits);
+                r.full.count_ones() as u64 * per_child
+            })
+            .sum()
+    }
+
     /// Voxels the closed plane crosses.
     pub fn crossed_voxels(&self) -> u64 {
         self.records.iter().map(|r| r.crossed.count_ones() as u64).sum()
