@@ -78,7 +78,7 @@ struct PlaneArgs {
 
 /// The plane traversal's post-route clock on an ECP5-85 at speed 6
 /// (rtl-out/README.md, `tritri gen --plane-traversal --synth ecp5`).
-const DEFAULT_CLOCK_MHZ: f64 = 100.0;
+const DEFAULT_CLOCK_MHZ: f64 = 68.3;
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
