@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -37,7 +37,11 @@
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
 //! `--plane-traversal` writes the octree engine's plane classification
-//! (grids up to 1024^3, one octant per clock), top `tritri_plane_traversal`.
+//! (grids up to 1024^3, one octant per clock), top `tritri_plane_traversal`;
+//! `--set-operation` its set-operation unit (two voxel models, a 64-voxel
+//! word per clock), top `tritri_set_operation`; `--octant-clipper` its
+//! clipping unit (one octant per clock against a box), top
+//! `tritri_octant_clipper`.
 //!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
@@ -49,6 +53,7 @@ use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
+use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -94,6 +99,14 @@ pub struct Args {
     /// against a plane, one octant per clock); --width does not apply.
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "width"])]
     plane_traversal: bool,
+    /// Emit the octree engine's set-operation unit instead (union,
+    /// intersection, difference of two voxel models, a word per clock).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "width"])]
+    set_operation: bool,
+    /// Emit the octree engine's clipping unit instead (one octant per clock
+    /// against a box).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "width"])]
+    octant_clipper: bool,
     /// With --owner-filter: words of each object's slot table, one per
     /// triangle per leaf (1 to 16777216).
     #[arg(long, default_value_t = 65536, requires = "owner_filter",
@@ -121,6 +134,12 @@ impl Args {
         if self.plane_traversal {
             return emit_plane_traversal().with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
         }
+        if self.set_operation {
+            return emit_set_operation().with_context(|| format!("emitting {SET_OPERATION_NAME}"));
+        }
+        if self.octant_clipper {
+            return emit_octant_clipper().with_context(|| format!("emitting {OCTANT_CLIPPER_NAME}"));
+        }
         if self.owner_filter {
             return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
         }
@@ -139,7 +158,12 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup || self.owner_filter || self.plane_traversal
+        self.system || self.classifier || self.setup || self.owner_filter || self.engine_unit()
+    }
+
+    /// The octree engine's units that take no width.
+    fn engine_unit(&self) -> bool {
+        self.plane_traversal || self.set_operation || self.octant_clipper
     }
 
     /// The grid-width units of the octree engine.
@@ -151,6 +175,10 @@ impl Args {
     fn unit_name(&self, width: usize) -> String {
         if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
+        } else if self.set_operation {
+            SET_OPERATION_NAME.to_string()
+        } else if self.octant_clipper {
+            OCTANT_CLIPPER_NAME.to_string()
         } else if self.owner_filter {
             owner_filter_unit_name(self.slots as usize)
         } else if self.classifier {
@@ -183,7 +211,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter || args.plane_traversal, check_width(w)) {
+        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter || args.engine_unit(), check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

@@ -32,3 +32,4 @@ pub mod system_harness;
 pub mod system_rtl;
 pub mod triangle_setup;
 pub mod vectors;
+pub mod voxel_units;

@@ -56,6 +56,21 @@ impl VoxelGrid {
         }
     }
 
+    /// The voxels 64 to a word, voxel `i` (x fastest) in bit `i % 64` of
+    /// word `i / 64`: the voxel memory's words.
+    pub fn words(&self) -> &[u64] {
+        &self.bits
+    }
+
+    /// A grid from [`Self::words`]; `None` if the count does not fit the
+    /// level or a bit beyond the last voxel is set.
+    pub fn from_words(level: u32, words: Vec<u64>) -> Option<VoxelGrid> {
+        let grid = VoxelGrid { level, bits: words };
+        let voxels = 1usize << (3 * level);
+        let fits = level <= 10 && grid.bits.len() == voxels.div_ceil(64);
+        (fits && (voxels % 64 == 0 || grid.bits[voxels / 64] >> (voxels % 64) == 0)).then_some(grid)
+    }
+
     /// Occupied voxels.
     pub fn count(&self) -> u64 {
         self.bits.iter().map(|w| w.count_ones() as u64).sum()

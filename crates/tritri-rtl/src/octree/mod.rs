@@ -15,6 +15,10 @@
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
+//! * [`set_operation_unit`]: union, intersection, difference of two voxel
+//!   models streamed a 64-voxel word per clock;
+//! * [`octant_clipper`]: one octant per clock against a box: inside,
+//!   outside or crossing;
 //! * [`owner_filter`]: behind the system's result stream, lets each
 //!   intersecting pair through once, from the first leaf holding both
 //!   triangles.
@@ -23,8 +27,10 @@ pub mod axis_step;
 pub mod binning_model;
 pub mod cell_classifier;
 pub mod centre_test;
+pub mod octant_clipper;
 pub mod owner_filter;
 pub mod plane_traversal;
+pub mod set_operation_unit;
 pub mod triangle_setup;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
