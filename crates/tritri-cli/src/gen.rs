@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -41,7 +41,9 @@
 //! `--set-operation` its set-operation unit (two voxel models, a 64-voxel
 //! word per clock), top `tritri_set_operation`; `--octant-clipper` its
 //! clipping unit (one octant per clock against a box), top
-//! `tritri_octant_clipper`.
+//! `tritri_octant_clipper`; `--voxel-fill` its memory side (cells'
+//! children written into the voxel memory a word per clock), top
+//! `tritri_voxel_fill`.
 //!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
@@ -53,7 +55,7 @@ use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
-use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME};
+use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -107,6 +109,10 @@ pub struct Args {
     /// against a box).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "width"])]
     octant_clipper: bool,
+    /// Emit the octree engine's voxel fill instead (cells' children
+    /// written into the voxel memory, a word per clock).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
+    voxel_fill: bool,
     /// With --owner-filter: words of each object's slot table, one per
     /// triangle per leaf (1 to 16777216).
     #[arg(long, default_value_t = 65536, requires = "owner_filter",
@@ -140,6 +146,9 @@ impl Args {
         if self.octant_clipper {
             return emit_octant_clipper().with_context(|| format!("emitting {OCTANT_CLIPPER_NAME}"));
         }
+        if self.voxel_fill {
+            return emit_voxel_fill().with_context(|| format!("emitting {VOXEL_FILL_NAME}"));
+        }
         if self.owner_filter {
             return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
         }
@@ -163,7 +172,7 @@ impl Args {
 
     /// The octree engine's units that take no width.
     fn engine_unit(&self) -> bool {
-        self.plane_traversal || self.set_operation || self.octant_clipper
+        self.plane_traversal || self.set_operation || self.octant_clipper || self.voxel_fill
     }
 
     /// The grid-width units of the octree engine.
@@ -179,6 +188,8 @@ impl Args {
             SET_OPERATION_NAME.to_string()
         } else if self.octant_clipper {
             OCTANT_CLIPPER_NAME.to_string()
+        } else if self.voxel_fill {
+            VOXEL_FILL_NAME.to_string()
         } else if self.owner_filter {
             owner_filter_unit_name(self.slots as usize)
         } else if self.classifier {

@@ -32,4 +32,5 @@ pub mod system_harness;
 pub mod system_rtl;
 pub mod triangle_setup;
 pub mod vectors;
+pub mod voxel_fill;
 pub mod voxel_units;

@@ -62,3 +62,28 @@ fn emitted_verilog_equals_the_cycle_model() {
         }
     }
 }
+
+/// The traversal's records through the voxel fill, in rust-hdl and the
+/// emitted Verilog: the memory holds exactly the software model's
+/// half-space, written a word per clock (the model's word count, one
+/// clock more per record without a child to fill).
+#[test]
+fn the_voxel_fill_writes_the_half_space_a_word_per_clock() {
+    use tritri_cosim::voxel_fill::{fill_emitted, fill_rusthdl};
+    let cases = [(4, [1, 2, 3], 40), (6, [3, -5, 7], 100), (7, [0, 0, 1], 64), (7, [1, 1, 1], 150), (3, [2, 2, 2], 1000)];
+    for (level, normal, d) in cases {
+        let model = traversal_schedule(level, normal, d);
+        let expected = classify_plane(level, normal, d).half_space.to_voxels();
+        // Records without a child to fill, before the last that has one.
+        let last_full = model.records.iter().rposition(|r| r.full != 0).unwrap_or(0);
+        let empty_records = model.records[..last_full].iter().filter(|r| r.full == 0).count() as u64;
+        let run = fill_rusthdl(level, &model.records).unwrap();
+        assert_eq!(run.words, expected.words(), "{level} {normal:?} {d}");
+        assert_eq!(run.writes, model.fill_words(64), "{level} {normal:?} {d}");
+        assert_eq!(run.last_edge, run.writes + empty_records, "{level} {normal:?} {d}: one write per clock");
+        for simulator in [Simulator::Icarus, Simulator::Verilator] {
+            let emitted = fill_emitted(level, &model.records, simulator).unwrap();
+            assert_eq!((emitted.words.as_slice(), emitted.writes), (expected.words(), run.writes), "{simulator:?} {level} {normal:?} {d}");
+        }
+    }
+}

@@ -6,7 +6,6 @@ mod oracle;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::triangle_cell::TriangleCellTest;
 

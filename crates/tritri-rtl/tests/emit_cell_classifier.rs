@@ -9,7 +9,7 @@
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
-use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation};
+use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::tools::{run, IVERILOG};
@@ -35,6 +35,7 @@ fn the_octree_engines_units_are_lint_clean() {
     check(0, emit_plane_traversal().unwrap());
     check(0, emit_set_operation().unwrap());
     check(0, emit_octant_clipper().unwrap());
+    check(0, emit_voxel_fill().unwrap());
 }
 
 fn check(g: usize, design: EmittedDesign) {

@@ -1,14 +1,52 @@
-//! The emitted set-operation unit ([`crate::octree::set_operation_unit`])
-//! and octant clipper ([`crate::octree::octant_clipper`]): names, port
-//! meanings and timing.
+//! The emitted set-operation unit ([`crate::octree::set_operation_unit`]),
+//! octant clipper ([`crate::octree::octant_clipper`]) and voxel fill
+//! ([`crate::octree::voxel_fill`]): names, port meanings and timing.
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
 use crate::octree::octant_clipper::{OctantClipper, CLIPPER_LATENCY};
 use crate::octree::set_operation_unit::{SetOperationUnit, WORD_BITS};
+use crate::octree::voxel_fill::{VoxelFill, ADDRESS_BITS};
 use rust_hdl::prelude::*;
 
 pub const SET_OPERATION_NAME: &str = "tritri_set_operation";
 pub const OCTANT_CLIPPER_NAME: &str = "tritri_octant_clipper";
+pub const VOXEL_FILL_NAME: &str = "tritri_voxel_fill";
+
+pub fn voxel_fill_unit() -> UnitDescription {
+    UnitDescription::new(
+        VOXEL_FILL_NAME,
+        "The octree engine's memory side: cells with a mask of children to fill (the plane traversal's records) written \
+         into the voxel memory, one 64-voxel word per clock.",
+    )
+    .detail(
+        "The memory holds the 2^level grid x fastest, voxel i in bit i % 64 of word i / 64. A full child of side s is s^2 \
+         rows, each s / 64 whole words (s >= 64) or s bits of one word; rows x fastest, then y, then z; children in octant \
+         order. A record without children to fill costs one clock; the next record is taken with the last write of the \
+         previous one.",
+    )
+    .parameter("ADDRESS_BITS", &format!("{ADDRESS_BITS}: bits of a word address (1024^3 voxels)"))
+    .port("clock", "Clock; every register updates on the rising edge.")
+    .port("reset", "Synchronous reset, active high: idle.")
+    .port("level", "The grid is 2^level voxels a side (1 to 10), held.")
+    .port("in_valid", "A record is offered.")
+    .port("in_ready", "The unit takes it: idle, or sending the last write of the record before.")
+    .port("in_x", "The cell's low corner, x, in voxels.")
+    .port("in_y", "Low corner, y.")
+    .port("in_z", "Low corner, z.")
+    .port("in_level", "The cell's level (>= 1); its children's side is 2^(in_level - 1).")
+    .port("in_full", "Bit o: fill child o (bit k of o: upper half along axis k).")
+    .port("write_valid", "A word write is offered.")
+    .port("write_ready", "The memory takes it.")
+    .port("write_address", "The word's address.")
+    .port("write_mask", "The bits to set: word |= write_mask.")
+    .throughput("one word write per clock.")
+}
+
+pub fn emit_voxel_fill() -> Result<EmittedDesign, EmitError> {
+    let mut uut = VoxelFill::default();
+    uut.connect_all();
+    emit(&generate_verilog(&uut), &voxel_fill_unit())
+}
 
 pub fn set_operation_unit() -> UnitDescription {
     UnitDescription::new(

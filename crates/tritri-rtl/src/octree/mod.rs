@@ -17,6 +17,8 @@
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
 //! * [`set_operation_unit`]: union, intersection, difference of two voxel
 //!   models streamed a 64-voxel word per clock;
+//! * [`voxel_fill`]: cells with children to fill (the plane traversal's
+//!   records) written into the voxel memory a word per clock;
 //! * [`octant_clipper`]: one octant per clock against a box: inside,
 //!   outside or crossing;
 //! * [`owner_filter`]: behind the system's result stream, lets each
@@ -31,6 +33,7 @@ pub mod octant_clipper;
 pub mod owner_filter;
 pub mod plane_traversal;
 pub mod set_operation_unit;
+pub mod voxel_fill;
 pub mod triangle_setup;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
