@@ -126,6 +126,14 @@ fn reserve(paths: &[String], side: usize) -> anyhow::Result<Vec<ModelOutput>> {
     paths.iter().map(|p| ModelOutput::reserve(p, side)).collect()
 }
 
+/// Reads a model and reserves its outputs (errors: bad input).
+fn open(path: &str, outputs: &[String]) -> anyhow::Result<(OctreeFile, Vec<ModelOutput>)> {
+    let model = read_octree(path)?;
+    let outputs = reserve(outputs, 1 << model.tree.level())?;
+    describe(path, &model);
+    Ok((model, outputs))
+}
+
 /// Writes `model` to every output.
 fn write_all(outputs: Vec<ModelOutput>, model: &OctreeFile, view: &ViewArgs) -> anyhow::Result<()> {
     if outputs.is_empty() {
@@ -153,15 +161,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         Operation::Intersection(a) => combine(a, SetOperation::Intersection),
         Operation::Difference(a) => combine(a, SetOperation::Difference),
         Operation::Convert(a) => {
-            let model = match read_octree(&a.model) {
-                Ok(m) => m,
+            let (model, outputs) = match open(&a.model, &a.outputs.out) {
+                Ok(x) => x,
                 Err(e) => return bad(e),
             };
-            let outputs = match reserve(&a.outputs.out, 1 << model.tree.level()) {
-                Ok(o) => o,
-                Err(e) => return bad(e),
-            };
-            describe(&a.model, &model);
             write_all(outputs, &model, &a.outputs.view)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -169,15 +172,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             if !a.png.to_ascii_lowercase().ends_with(".png") {
                 return bad(anyhow::anyhow!("--png {}: the render is written as .png", a.png));
             }
-            let model = match read_octree(&a.model) {
-                Ok(m) => m,
+            let (model, outputs) = match open(&a.model, std::slice::from_ref(&a.png)) {
+                Ok(x) => x,
                 Err(e) => return bad(e),
             };
-            let outputs = match reserve(&[a.png.clone()], 1 << model.tree.level()) {
-                Ok(o) => o,
-                Err(e) => return bad(e),
-            };
-            describe(&a.model, &model);
             write_all(outputs, &model, &a.view)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -250,15 +248,10 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
 }
 
 fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
-    let model = match read_octree(&a.model) {
-        Ok(m) => m,
+    let (model, outputs) = match open(&a.model, &a.outputs.out) {
+        Ok(x) => x,
         Err(e) => return bad(e),
     };
-    let outputs = match reserve(&a.outputs.out, 1 << model.tree.level()) {
-        Ok(o) => o,
-        Err(e) => return bad(e),
-    };
-    describe(&a.model, &model);
     let b = a.voxel_box;
     let started = Instant::now();
     let (clipped, counts) = clip(&model.tree, [b[0], b[1], b[2]], [b[3], b[4], b[5]]);

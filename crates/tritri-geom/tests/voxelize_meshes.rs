@@ -12,7 +12,6 @@ mod support;
 use std::path::PathBuf;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::voxelize::{self, VoxelFrame, SUB_BITS};
-use tritri_geom::octree::voxels::VoxelGrid;
 use tritri_geom::scene::load::load_object;
 
 const S: i64 = 1 << SUB_BITS;
@@ -28,24 +27,9 @@ fn quantized(spec: &PathBuf, level: u32) -> (Vec<FixedTriangle>, VoxelFrame) {
     (object.triangles.iter().map(|t| frame.quantize(t)).collect(), frame)
 }
 
-fn voxels_of(grid: &VoxelGrid) -> Vec<[i64; 3]> {
-    let n = grid.side();
-    let mut out = Vec::new();
-    for x in 0..n {
-        for y in 0..n {
-            for z in 0..n {
-                if grid.get([x, y, z]) {
-                    out.push([x as i64, y as i64, z as i64]);
-                }
-            }
-        }
-    }
-    out
-}
-
 /// Compares the model's surface with the oracle's, split over the cores.
 fn check_surface(mesh: &[FixedTriangle], level: u32, name: &str) -> usize {
-    let model = voxels_of(&voxelize::surface(mesh, level, &mut |_| {}));
+    let model = oracle::voxels::voxels_of(&voxelize::surface(mesh, level, &mut |_| {}));
     let n = 1i64 << level;
     let chunks: Vec<&[FixedTriangle]> = mesh.chunks(mesh.len().div_ceil(8).max(1)).collect();
     let parts = std::sync::Mutex::new(Vec::new());
@@ -65,7 +49,7 @@ fn check_surface(mesh: &[FixedTriangle], level: u32, name: &str) -> usize {
 }
 
 fn check_solid(mesh: &[FixedTriangle], frame: &VoxelFrame, name: &str) -> usize {
-    let model = voxels_of(&voxelize::solid(mesh, frame, &mut |_| {}).unwrap());
+    let model = oracle::voxels::voxels_of(&voxelize::solid(mesh, frame, &mut |_| {}).unwrap());
     let n = 1i64 << frame.level;
     let expected = oracle::voxels::solid_by_columns(mesh, n, S);
     let missing = expected.iter().filter(|v| model.binary_search(v).is_err()).count();

@@ -9,24 +9,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::voxelize::{self, VoxelFrame, SUB_BITS};
-use tritri_geom::octree::voxels::VoxelGrid;
 
 const S: i64 = 1 << SUB_BITS;
-
-fn voxels_of(grid: &VoxelGrid) -> Vec<[i64; 3]> {
-    let n = grid.side();
-    let mut out = Vec::new();
-    for z in 0..n {
-        for y in 0..n {
-            for x in 0..n {
-                if grid.get([x, y, z]) {
-                    out.push([x as i64, y as i64, z as i64]);
-                }
-            }
-        }
-    }
-    out
-}
 
 fn sorted(mut v: Vec<[i64; 3]>) -> Vec<[i64; 3]> {
     v.sort_unstable();
@@ -39,9 +23,9 @@ fn check(mesh: &[FixedTriangle], level: u32, what: &str) -> u64 {
     let n = 1i64 << level;
     let frame = VoxelFrame { level, origin: [0.0; 3], voxel_size: 1.0 };
     let surface = voxelize::surface(mesh, level, &mut |_| {});
-    assert_eq!(sorted(voxels_of(&surface)), oracle::voxels::surface(mesh, n, S), "surface of {what}");
+    assert_eq!(sorted(oracle::voxels::voxels_of(&surface)), oracle::voxels::surface(mesh, n, S), "surface of {what}");
     let solid = voxelize::solid(mesh, &frame, &mut |_| {}).unwrap_or_else(|e| panic!("{what}: {e}"));
-    assert_eq!(sorted(voxels_of(&solid)), sorted(oracle::voxels::solid(mesh, n, S)), "solid of {what}");
+    assert_eq!(sorted(oracle::voxels::voxels_of(&solid)), sorted(oracle::voxels::solid(mesh, n, S)), "solid of {what}");
     solid.count()
 }
 

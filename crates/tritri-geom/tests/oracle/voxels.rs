@@ -10,6 +10,24 @@
 //!   `(y + ε, z + ε²)`.
 
 use tritri_geom::bounding_volume::Aabb;
+use tritri_geom::octree::voxels::VoxelGrid;
+
+/// The occupied voxels of a grid, sorted (x, then y, then z), for
+/// comparing with the oracles' lists.
+pub fn voxels_of(grid: &VoxelGrid) -> Vec<[i64; 3]> {
+    let n = grid.side();
+    let mut out = Vec::new();
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                if grid.get([x, y, z]) {
+                    out.push([x as i64, y as i64, z as i64]);
+                }
+            }
+        }
+    }
+    out
+}
 
 /// Fine-grid vertices; `s` fine steps per voxel, `n` voxels per side.
 pub type Mesh = [[[i64; 3]; 3]];
