@@ -8,7 +8,9 @@ use crate::voxelize::ViewArgs;
 use clap::Subcommand;
 use std::process::ExitCode;
 use std::time::Instant;
-use tritri_geom::octree::clip::clip;
+use tritri_geom::octree::cell::Cell;
+use tritri_geom::octree::clip::clip_logged;
+use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 use tritri_geom::octree::plane::classify_plane;
 use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
@@ -76,9 +78,11 @@ struct PlaneArgs {
     outputs: Outputs,
 }
 
-/// The plane traversal's post-route clock on an ECP5-85 at speed 6
-/// (rtl-out/README.md, `tritri gen --plane-traversal --synth ecp5`).
+/// Post-route clocks on an ECP5-85 at speed 6 (rtl-out/README.md, `tritri
+/// gen --plane-traversal | --octant-clipper | --set-operation --synth ecp5`).
 const DEFAULT_CLOCK_MHZ: f64 = 68.3;
+const CLIPPER_CLOCK_MHZ: f64 = 134.2;
+const SET_OPERATION_CLOCK_MHZ: f64 = 379.2;
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
@@ -87,13 +91,30 @@ struct ClipArgs {
     #[arg(long = "box", value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true, value_parser = input::parse_voxel_box)]
     voxel_box: [i64; 6],
     #[command(flatten)]
+    hardware: HardwareArgs,
+    #[command(flatten)]
     outputs: Outputs,
+}
+
+/// Who computes, and the clock for the hardware's time.
+#[derive(clap::Args, Debug)]
+struct HardwareArgs {
+    /// `model` (software), or the hardware unit in `rusthdl`, `icarus` or
+    /// `verilator`, checked against the model.
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
+    /// Clock frequency in MHz for the hardware's time [default: the
+    /// unit's post-route clock on an ECP5-85, rtl-out/README.md].
+    #[arg(long, value_name = "F", value_parser = input::parse_clock_mhz)]
+    clock_mhz: Option<f64>,
 }
 
 #[derive(clap::Args, Debug)]
 struct PairArgs {
     a: String,
     b: String,
+    #[command(flatten)]
+    hardware: HardwareArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
@@ -254,7 +275,8 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
     };
     let b = a.voxel_box;
     let started = Instant::now();
-    let (clipped, counts) = clip(&model.tree, [b[0], b[1], b[2]], [b[3], b[4], b[5]]);
+    let (lo, hi) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
+    let (clipped, counts, octants) = clip_logged(&model.tree, lo, hi);
     let took = started.elapsed();
     println!(
         "clip to [{}, {}) x [{}, {}) x [{}, {}): {} octants ({} inside, {} outside, {} crossing) in {:.3} ms, {:.1} ns per octant; {} voxels kept",
@@ -272,6 +294,29 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         took.as_secs_f64() * 1e9 / counts.octants() as f64,
         clipped.voxel_count()
     );
+    if a.hardware.engine != Engine::Model {
+        // The clipper takes the box clamped to the grid (no octant changes class).
+        let n = 1i64 << model.tree.level();
+        let (lo, hi) = (lo.map(|c| c.clamp(0, n)), hi.map(|c| c.clamp(0, n)));
+        let cells: Vec<Cell> = octants.iter().map(|&(c, _)| c).collect();
+        let started = Instant::now();
+        let classes = match a.hardware.engine.simulator() {
+            None => tritri_cosim::voxel_units::clip_rusthdl(lo, hi, &cells)?,
+            Some(simulator) => tritri_cosim::voxel_units::clip_emitted(&[(lo, hi, &cells)], simulator)?.remove(0),
+        };
+        let wrong = classes.iter().zip(&octants).filter(|(h, (_, m))| *h != m).count() + octants.len().abs_diff(classes.len());
+        anyhow::ensure!(wrong == 0, "the octant clipper in {} classified {wrong} octants differently from the model (a bug)", a.hardware.engine.name());
+        let clock = a.hardware.clock_mhz.unwrap_or(CLIPPER_CLOCK_MHZ);
+        let cycles = cells.len() as u64 + CLIPPER_LATENCY as u64;
+        println!(
+            "hardware ({}): the model's {} classes, one octant per clock: {cycles} cycles = {:.3} ms at {clock} MHz ({:.1} ns per octant; simulated in {:.1} s)",
+            a.hardware.engine.name(),
+            cells.len(),
+            cycles as f64 / (clock * 1e3),
+            1e3 / clock,
+            started.elapsed().as_secs_f64()
+        );
+    }
     write_all(outputs, &OctreeFile { tree: clipped, placement: model.placement }, &a.outputs.view)?;
     Ok(ExitCode::SUCCESS)
 }
@@ -303,6 +348,29 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
     let result = ma.tree.combine(op, &mb.tree);
     let took = started.elapsed();
     println!("{op:?}: {} voxels, {} octree nodes, {:.3} ms (on the trees, no voxels expanded)", result.voxel_count(), result.nodes().len(), took.as_secs_f64() * 1e3);
+    if a.hardware.engine != Engine::Model {
+        // The unit streams both voxel memories a word per clock.
+        let (va, vb) = (ma.tree.to_voxels(), mb.tree.to_voxels());
+        let started = Instant::now();
+        let words = match a.hardware.engine.simulator() {
+            None => tritri_cosim::voxel_units::set_operation_rusthdl(op, va.words(), vb.words()).0,
+            Some(simulator) => tritri_cosim::voxel_units::set_operations_emitted(&[(op, va.words(), vb.words())], simulator)?.remove(0),
+        };
+        anyhow::ensure!(
+            words.as_slice() == result.to_voxels().words(),
+            "the set-operation unit in {} differs from the model (a bug)",
+            a.hardware.engine.name()
+        );
+        let clock = a.hardware.clock_mhz.unwrap_or(SET_OPERATION_CLOCK_MHZ);
+        let cycles = words.len() as u64 + 1;
+        println!(
+            "hardware ({}): {} words of 64 voxels, the model's result; {cycles} cycles = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
+            a.hardware.engine.name(),
+            words.len(),
+            cycles as f64 / (clock * 1e3),
+            started.elapsed().as_secs_f64()
+        );
+    }
     write_all(outputs, &OctreeFile { tree: result, placement: ma.placement }, &a.outputs.view)?;
     Ok(ExitCode::SUCCESS)
 }

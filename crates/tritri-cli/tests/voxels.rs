@@ -58,6 +58,13 @@ fn voxelized_models_obey_the_laws_of_set_operations() {
     let kept = number_after(&cut, "cut:");
     assert!(kept > 0 && kept < n_solid, "{cut}");
     let clip = ok(&["octree", "clip", &p("solid.oct"), "--box", "0,0,0,32,32,32"]);
+    // The hardware units agree with the model (the command fails if not).
+    let hardware = ok(&["octree", "intersection", &p("surface.oct"), &p("solid.oct"), "--engine", "rusthdl"]);
+    assert!(hardware.contains("hardware (rusthdl): 512 words of 64 voxels, the model's result"), "{hardware}");
+    let clipped = ok(&["octree", "clip", &p("solid.oct"), "--box", "3,-5,7,20,31,40", "--engine", "rusthdl"]);
+    assert!(clipped.contains("hardware (rusthdl): the model's"), "{clipped}");
+    let plane = ok(&["octree", "plane", &p("solid.oct"), "--normal", "1,-2,3", "--offset", "20", "--engine", "rusthdl"]);
+    assert!(plane.contains("the same half-space and crossed voxels as the model"), "{plane}");
     assert!(clip.contains(&format!("; {n_solid} voxels kept")), "{clip}");
     let half = ok(&["octree", "clip", &p("solid.oct"), "--box", "0,0,0,16,32,32"]);
     assert!(half.contains(&format!("; {kept} voxels kept")), "the x < 16 box keeps what x <= 16 by centres keeps: {half}\n{cut}");

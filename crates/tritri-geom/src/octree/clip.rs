@@ -49,70 +49,87 @@ pub fn classify(cell: &Cell, lo: [i64; 3], hi: [i64; 3]) -> Side {
 
 /// The model clipped to the box, and the octants of each class.
 pub fn clip(tree: &Octree, lo: [i64; 3], hi: [i64; 3]) -> (Octree, ClipCounts) {
-    let mut out = Vec::new();
-    let mut counts = ClipCounts::default();
-    let mut i = 0;
-    clip_at(tree.nodes(), &mut i, Cell { lo: [0; 3], level: tree.level() }, lo, hi, &mut counts, &mut out);
-    let clipped = Octree::from_preorder(tree.level(), &out).expect("clipping emits one tree of the model's level");
-    (clipped, counts)
+    let mut pass = Pass { lo, hi, counts: ClipCounts::default(), log: None };
+    let clipped = pass.run(tree);
+    (clipped, pass.counts)
 }
 
-/// Clips the subtree at `*i` over `cell`, advancing `*i` past it. `None`
-/// for `node` stands for a full leaf being split (no node to read).
-fn clip_at(nodes: &[Node], i: &mut usize, cell: Cell, lo: [i64; 3], hi: [i64; 3], counts: &mut ClipCounts, out: &mut Vec<Node>) {
-    let node = nodes[*i];
-    match classify(&cell, lo, hi) {
-        Side::Inside => {
-            counts.inside += 1;
-            let end = skip_subtree(nodes, *i);
-            out.extend_from_slice(&nodes[*i..end]);
-            *i = end;
+/// [`clip`], also listing every octant classified with its class, in the
+/// order the pass met them (what a hardware clipper is given).
+pub fn clip_logged(tree: &Octree, lo: [i64; 3], hi: [i64; 3]) -> (Octree, ClipCounts, Vec<(Cell, Side)>) {
+    let mut pass = Pass { lo, hi, counts: ClipCounts::default(), log: Some(Vec::new()) };
+    let clipped = pass.run(tree);
+    (clipped, pass.counts, pass.log.unwrap_or_default())
+}
+
+/// One clipping pass: the box, what it has counted, and optionally its log.
+struct Pass {
+    lo: [i64; 3],
+    hi: [i64; 3],
+    counts: ClipCounts,
+    log: Option<Vec<(Cell, Side)>>,
+}
+
+impl Pass {
+    fn run(&mut self, tree: &Octree) -> Octree {
+        let mut out = Vec::new();
+        let mut i = 0;
+        self.clip_at(tree.nodes(), &mut i, Cell { lo: [0; 3], level: tree.level() }, &mut out);
+        Octree::from_preorder(tree.level(), &out).expect("clipping emits one tree of the model's level")
+    }
+
+    /// Classifies `cell`, counting and logging it.
+    fn classify(&mut self, cell: Cell) -> Side {
+        let side = classify(&cell, self.lo, self.hi);
+        match side {
+            Side::Inside => self.counts.inside += 1,
+            Side::Outside => self.counts.outside += 1,
+            Side::Crossing => self.counts.crossing += 1,
         }
-        Side::Outside => {
-            counts.outside += 1;
-            out.push(Node::Empty);
-            *i = skip_subtree(nodes, *i);
+        if let Some(log) = self.log.as_mut() {
+            log.push((cell, side));
         }
-        Side::Crossing => {
-            counts.crossing += 1;
-            match node {
-                Node::Empty => {
-                    out.push(Node::Empty);
-                    *i += 1;
-                }
-                Node::Full => {
-                    *i += 1;
-                    clip_full(cell, lo, hi, counts, out);
-                }
-                Node::Mixed => {
-                    *i += 1;
-                    out.push(Node::Mixed);
-                    for o in 0..8 {
-                        clip_at(nodes, i, cell.child(o), lo, hi, counts, out);
+        side
+    }
+
+    /// Clips the subtree at `*i` over `cell`, advancing `*i` past it.
+    fn clip_at(&mut self, nodes: &[Node], i: &mut usize, cell: Cell, out: &mut Vec<Node>) {
+        let node = nodes[*i];
+        match self.classify(cell) {
+            Side::Inside => {
+                let end = skip_subtree(nodes, *i);
+                out.extend_from_slice(&nodes[*i..end]);
+                *i = end;
+            }
+            Side::Outside => {
+                out.push(Node::Empty);
+                *i = skip_subtree(nodes, *i);
+            }
+            Side::Crossing => {
+                *i += 1;
+                match node {
+                    Node::Empty => out.push(Node::Empty),
+                    Node::Full => self.clip_full(cell, out),
+                    Node::Mixed => {
+                        out.push(Node::Mixed);
+                        for o in 0..8 {
+                            self.clip_at(nodes, i, cell.child(o), out);
+                        }
                     }
                 }
             }
         }
     }
-}
 
-/// A full cell crossing the box: its part inside.
-fn clip_full(cell: Cell, lo: [i64; 3], hi: [i64; 3], counts: &mut ClipCounts, out: &mut Vec<Node>) {
-    out.push(Node::Mixed);
-    for o in 0..8 {
-        let child = cell.child(o);
-        match classify(&child, lo, hi) {
-            Side::Inside => {
-                counts.inside += 1;
-                out.push(Node::Full);
-            }
-            Side::Outside => {
-                counts.outside += 1;
-                out.push(Node::Empty);
-            }
-            Side::Crossing => {
-                counts.crossing += 1;
-                clip_full(child, lo, hi, counts, out);
+    /// A full cell crossing the box: its part inside.
+    fn clip_full(&mut self, cell: Cell, out: &mut Vec<Node>) {
+        out.push(Node::Mixed);
+        for o in 0..8 {
+            let child = cell.child(o);
+            match self.classify(child) {
+                Side::Inside => out.push(Node::Full),
+                Side::Outside => out.push(Node::Empty),
+                Side::Crossing => self.clip_full(child, out),
             }
         }
     }
@@ -148,6 +165,8 @@ mod tests {
             let (clipped, counts) = clip(&tree, lo, hi);
             assert_eq!(clipped.to_voxels(), model.combine(SetOperation::Intersection, &box_voxels), "{lo:?} {hi:?}");
             assert!(counts.octants() >= 1);
+            let (logged, _, log) = clip_logged(&tree, lo, hi);
+            assert_eq!((logged, log.len() as u64), (clipped, counts.octants()));
         }
     }
 }
