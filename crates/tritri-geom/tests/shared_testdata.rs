@@ -361,3 +361,57 @@ fn wrong_as_often_as_the_c_code_on_peer_cases() {
     assert_eq!(records.len(), 147);
     assert!(mismatches.is_empty(), "{mismatches:#?}");
 }
+
+/// The cone of normals is a guarantee on the teapot: at 32, 64, 128, 256
+/// and 512 patches, no normal sampled on a 17 × 17 grid of a patch lies
+/// outside its cone; and from eight eyes around and inside the teapot's
+/// box, no patch the conservative test culls has a sampled point facing the
+/// eye. The paper's test as stated (equation 3.1) is counted beside it.
+#[test]
+fn teapot_normal_cones_hold_every_sampled_normal() {
+    use tritri_geom::bezier::cone::{back_facing, paper_back_facing, NormalCone};
+    use tritri_geom::bezier::read_bpt;
+    use tritri_geom::bezier::subdivide::subdivide;
+    let patches = read_bpt(&testdata().join("teapot.bpt")).unwrap();
+    let eyes = [[10.0, 0.0, 1.5], [-10.0, 3.0, 1.5], [0.0, -8.0, 6.0], [0.0, 0.0, -6.0], [0.0, 0.0, 1.0], [2.0, 2.0, 8.0], [4.0, -4.0, 0.5], [-1.0, 0.5, 2.0]];
+    let m = 16;
+    for times in 0..=4 {
+        let level = subdivide(&patches, times);
+        let (mut culled, mut paper_culled, mut paper_wrong) = (0, 0, 0);
+        // The paper's test read with inward normals (the cone turned round).
+        let (mut inward_culled, mut inward_wrong) = (0, 0);
+        for (index, p) in level.iter().enumerate() {
+            let Some(cone) = NormalCone::of(p) else { continue };
+            let samples: Vec<([f64; 3], [f64; 3])> = (0..=m)
+                .flat_map(|i| (0..=m).map(move |j| (i as f64 / m as f64, j as f64 / m as f64)))
+                .filter_map(|(u, v)| p.normal(u, v).map(|n| (p.evaluate(u, v), n)))
+                .collect();
+            for (_, n) in &samples {
+                assert!(cone.contains(*n, 1e-9), "{} patches, patch {index}: a normal outside the cone", level.len());
+            }
+            for eye in eyes {
+                let faces_eye = samples.iter().any(|(q, n)| (0..3).map(|k| n[k] * (q[k] - eye[k])).sum::<f64>() < 0.0);
+                if back_facing(&cone, p, eye) {
+                    culled += 1;
+                    assert!(!faces_eye, "{} patches, patch {index}: culled from {eye:?} with a point facing the eye", level.len());
+                }
+                if paper_back_facing(&cone, p, eye) {
+                    paper_culled += 1;
+                    paper_wrong += faces_eye as usize;
+                }
+                // Facing the eye with the normals turned round too.
+                let faces_eye_inward = samples.iter().any(|(q, n)| (0..3).map(|k| n[k] * (q[k] - eye[k])).sum::<f64>() > 0.0);
+                let inward = NormalCone { axis: cone.axis.map(|c| -c), ..cone };
+                if paper_back_facing(&inward, p, eye) {
+                    inward_culled += 1;
+                    inward_wrong += faces_eye_inward as usize;
+                }
+            }
+        }
+        println!(
+            "teapot at {} patches, 8 eyes: the conservative test culls {culled} patch views; the paper's test as stated culls {paper_culled}, {paper_wrong} of them with a point facing the eye; read with inward normals (both the cone and facing turned round) {inward_culled}, {inward_wrong} of them with a point facing the eye",
+            level.len()
+        );
+        assert!(culled > 0, "the conservative test should cull something");
+    }
+}

@@ -1,11 +1,25 @@
 //! Bicubic Bezier patches (`.bpt` files, such as the Utah teapot) and their
-//! tessellation into triangles.
+//! tessellation into triangles; the level-of-detail machinery of
+//! `bezier_lod_gpu.txt`:
+//!
+//! * [`evaluate`]: the point and derivatives by De Casteljau and by forward
+//!   differencing; normals defined at collapsed corners;
+//! * [`subdivide`]: De Casteljau subdivision (the teapot's 32 patches into
+//!   64 to 512);
+//! * [`cone`]: the cone of normals as a guarantee, the paper's back-facing
+//!   and silhouette tests and their conservative forms;
+//! * [`lod`]: the paper's distance levels and an error-driven level.
 //!
 //! `.bpt` format: the patch count, then per patch a line `3 3` (the degrees)
 //! and 16 lines `x y z`, the control net row by row.
 
 use crate::triangle::{Point, Triangle};
 use std::path::Path;
+
+pub mod cone;
+pub mod evaluate;
+pub mod lod;
+pub mod subdivide;
 
 /// One bicubic patch: control points `net[row][column]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -108,8 +122,20 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A curved, twisted patch for the submodules' tests.
+    pub(crate) fn wavy_patch() -> BezierPatch {
+        let mut net = [[[0.0; 3]; 4]; 4];
+        for i in 0..4 {
+            for j in 0..4 {
+                let (x, y) = (i as f64, j as f64);
+                net[i][j] = [x + 0.3 * y, y - 0.2 * x, (x * 1.3).sin() + 0.5 * (y * 0.9).cos() + 0.1 * x * y];
+            }
+        }
+        BezierPatch { net }
+    }
 
     fn flat_patch() -> BezierPatch {
         let mut net = [[[0.0; 3]; 4]; 4];
