@@ -32,6 +32,7 @@ pub mod pairs_io;
 pub mod published_float;
 pub mod mesh;
 pub mod quantize;
+pub mod raster;
 pub mod scene;
 pub mod sign;
 pub mod triangle;

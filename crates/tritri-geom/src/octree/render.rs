@@ -11,14 +11,7 @@
 //! three face orientations stay apart even under the same light.
 
 use super::voxels::VoxelGrid;
-
-/// An 8-bit RGB picture, rows from the top.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Image {
-    pub width: u32,
-    pub height: u32,
-    pub pixels: Vec<[u8; 3]>,
-}
+pub use crate::raster::Image;
 
 /// Where the picture is taken from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,6 +84,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
     // A margin of 4 % around the box's bounding sphere.
     let radius = 1.04 * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt() / 2.0;
     let size = view.size.max(1);
+    let background = Image::background(size, size);
     let mut pixels = Vec::with_capacity((size * size) as usize);
     for py in 0..size {
         for px in 0..size {
@@ -108,10 +102,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
                     let shade = (0.36 + 0.64 * lambert) * (1.0 - 0.35 * depth);
                     tint.map(|c| (255.0 * c * shade).round().clamp(0.0, 255.0) as u8)
                 }
-                None => {
-                    let g = (236.0 - 24.0 * py as f64 / size as f64) as u8;
-                    [g, g, g.saturating_add(6)]
-                }
+                None => background.pixels[(py * size + px) as usize],
             };
             pixels.push(colour);
         }

@@ -1,0 +1,174 @@
+//! Pictures: an 8-bit RGB image, and a software rasterizer for triangles
+//! (a z-buffer, flat shading by each triangle's normal), for renders of
+//! Bezier tessellations and scenes. Voxel models have their own ray caster
+//! (`octree::render`).
+
+use crate::triangle::{Point, Triangle};
+
+/// An 8-bit RGB picture, rows from the top.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<[u8; 3]>,
+}
+
+impl Image {
+    /// A picture of one colour, with a soft vertical gradient.
+    pub fn background(width: u32, height: u32) -> Image {
+        let mut pixels = Vec::with_capacity((width * height) as usize);
+        for y in 0..height {
+            let g = (236.0 - 24.0 * y as f64 / height.max(1) as f64) as u8;
+            pixels.extend(std::iter::repeat([g, g, g.saturating_add(6)]).take(width as usize));
+        }
+        Image { width, height, pixels }
+    }
+}
+
+fn dot(a: Point, b: Point) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: Point, b: Point) -> Point {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn normalized(a: Point) -> Point {
+    let l = dot(a, a).sqrt();
+    if l == 0.0 {
+        a
+    } else {
+        a.map(|c| c / l)
+    }
+}
+
+/// A perspective camera at `eye` looking at `target`, `up` roughly up,
+/// with a vertical field of view of `fov_degrees`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Point,
+    pub target: Point,
+    pub up: Point,
+    pub fov_degrees: f64,
+}
+
+/// A z-buffered canvas.
+pub struct Canvas {
+    pub image: Image,
+    depth: Vec<f64>,
+    camera: Camera,
+    forward: Point,
+    right: Point,
+    up: Point,
+    focal: f64,
+}
+
+impl Canvas {
+    pub fn new(width: u32, height: u32, camera: Camera) -> Canvas {
+        let forward = normalized([0, 1, 2].map(|k| camera.target[k] - camera.eye[k]));
+        let mut right = normalized(cross(forward, camera.up));
+        if dot(right, right) == 0.0 {
+            right = normalized(cross(forward, [1.0, 0.0, 0.0]));
+        }
+        let up = cross(right, forward);
+        let focal = 0.5 * height as f64 / (0.5 * camera.fov_degrees.to_radians()).tan();
+        Canvas {
+            image: Image::background(width, height),
+            depth: vec![f64::INFINITY; (width * height) as usize],
+            camera,
+            forward,
+            right,
+            up,
+            focal,
+        }
+    }
+
+    /// Screen position (x right, y down, pixels) and depth along the view.
+    fn project(&self, p: Point) -> Option<(f64, f64, f64)> {
+        let d = [0, 1, 2].map(|k| p[k] - self.camera.eye[k]);
+        let z = dot(d, self.forward);
+        if z <= 1e-9 {
+            return None;
+        }
+        let x = 0.5 * self.image.width as f64 + self.focal * dot(d, self.right) / z;
+        let y = 0.5 * self.image.height as f64 - self.focal * dot(d, self.up) / z;
+        Some((x, y, z))
+    }
+
+    /// Draws a triangle in `colour`, shaded by the angle between its normal
+    /// and the view (both sides lit; back sides darker).
+    pub fn triangle(&mut self, t: &Triangle, colour: [u8; 3]) {
+        let n = normalized(cross([0, 1, 2].map(|k| t[1][k] - t[0][k]), [0, 1, 2].map(|k| t[2][k] - t[0][k])));
+        let to_eye = normalized([0, 1, 2].map(|k| self.camera.eye[k] - t[0][k]));
+        let light = normalized([0, 1, 2].map(|k| to_eye[k] + 0.5 * self.up[k] - 0.3 * self.right[k]));
+        let facing = dot(n, to_eye);
+        let lambert = if facing >= 0.0 { dot(n, light).abs() } else { 0.5 * dot(n, light).abs() };
+        let shade = 0.3 + 0.7 * lambert;
+        let colour = colour.map(|c| (c as f64 * shade).round().clamp(0.0, 255.0) as u8);
+        let (Some(a), Some(b), Some(c)) = (self.project(t[0]), self.project(t[1]), self.project(t[2])) else { return };
+        let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
+        if area.abs() < 1e-12 {
+            return;
+        }
+        let (w, h) = (self.image.width as i64, self.image.height as i64);
+        let x0 = a.0.min(b.0).min(c.0).floor().max(0.0) as i64;
+        let x1 = (a.0.max(b.0).max(c.0).ceil() as i64).min(w - 1);
+        let y0 = a.1.min(b.1).min(c.1).floor().max(0.0) as i64;
+        let y1 = (a.1.max(b.1).max(c.1).ceil() as i64).min(h - 1);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+                let w0 = ((b.0 - px) * (c.1 - py) - (b.1 - py) * (c.0 - px)) / area;
+                let w1 = ((c.0 - px) * (a.1 - py) - (c.1 - py) * (a.0 - px)) / area;
+                let w2 = 1.0 - w0 - w1;
+                if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                    continue;
+                }
+                // Perspective-correct depth: interpolate 1/z.
+                let inv = w0 / a.2 + w1 / b.2 + w2 / c.2;
+                let z = 1.0 / inv;
+                let i = (y * w + x) as usize;
+                if z < self.depth[i] {
+                    self.depth[i] = z;
+                    self.image.pixels[i] = colour;
+                }
+            }
+        }
+    }
+
+    /// Draws a line segment on top of everything (1 pixel, no depth test).
+    pub fn line(&mut self, a: Point, b: Point, colour: [u8; 3]) {
+        let (Some(p), Some(q)) = (self.project(a), self.project(b)) else { return };
+        let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).max(1);
+        for s in 0..=steps {
+            let t = s as f64 / steps as f64;
+            let (x, y) = (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1));
+            if x >= 0.0 && y >= 0.0 && (x as u32) < self.image.width && (y as u32) < self.image.height {
+                self.image.pixels[(y as u32 * self.image.width + x as u32) as usize] = colour;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A triangle in front of the camera covers the centre pixel; a nearer
+    /// one hides it; one behind the camera draws nothing.
+    #[test]
+    fn the_nearer_triangle_wins() {
+        let camera = Camera { eye: [0.0, 0.0, 5.0], target: [0.0; 3], up: [0.0, 1.0, 0.0], fov_degrees: 40.0 };
+        let mut canvas = Canvas::new(64, 64, camera);
+        let background = canvas.image.pixels[32 * 64 + 32];
+        canvas.triangle(&[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]], [200, 0, 0]);
+        let red = canvas.image.pixels[32 * 64 + 32];
+        assert!(red[0] > 0 && red[1] == 0 && red != background);
+        canvas.triangle(&[[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 1.0]], [0, 200, 0]);
+        assert!(canvas.image.pixels[32 * 64 + 32][1] > 0);
+        canvas.triangle(&[[-1.0, -1.0, -0.5], [1.0, -1.0, -0.5], [0.0, 1.0, -0.5]], [0, 0, 200]);
+        assert!(canvas.image.pixels[32 * 64 + 32][2] == 0, "hidden behind the green one");
+        canvas.triangle(&[[-1.0, -1.0, 9.0], [1.0, -1.0, 9.0], [0.0, 1.0, 9.0]], [0, 0, 200]);
+        assert!(canvas.image.pixels[32 * 64 + 32][2] == 0, "behind the camera");
+    }
+}
