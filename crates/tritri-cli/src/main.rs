@@ -12,6 +12,7 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
+mod bezier;
 mod classify;
 mod demo;
 mod eval;
@@ -57,6 +58,8 @@ enum Command {
     Voxelize(voxelize::Args),
     /// The octree engine on model files: plane classification, clipping, union / intersection / difference, conversion, renders.
     Octree(octree::Args),
+    /// Bezier patches with the level of detail of bezier_lod_gpu.txt: render with cone-of-normals culling, silhouettes and distance levels.
+    Bezier(bezier::Args),
     /// The main job on a built-in default: emit the RTL, run the built-in scene in the model and in Verilator.
     Demo(demo::Args),
 }
@@ -125,6 +128,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Gen(args) => gen::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Voxelize(args) => voxelize::run(args),
+        Command::Bezier(args) => bezier::run(args),
         Command::Octree(args) => octree::run(args),
         Command::Demo(args) => demo::run(args, |words| {
             let argv = std::iter::once("tritri".to_string()).chain(words);

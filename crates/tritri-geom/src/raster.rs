@@ -136,15 +136,22 @@ impl Canvas {
         }
     }
 
-    /// Draws a line segment on top of everything (1 pixel, no depth test).
+    /// Draws a line segment (1 pixel) where it is not behind a drawn
+    /// surface (a depth test with a 1 % allowance, so lines on a surface
+    /// show).
     pub fn line(&mut self, a: Point, b: Point, colour: [u8; 3]) {
         let (Some(p), Some(q)) = (self.project(a), self.project(b)) else { return };
         let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).max(1);
         for s in 0..=steps {
             let t = s as f64 / steps as f64;
             let (x, y) = (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1));
+            // 1/z is linear along the screen-space segment.
+            let z = 1.0 / ((1.0 - t) / p.2 + t / q.2);
             if x >= 0.0 && y >= 0.0 && (x as u32) < self.image.width && (y as u32) < self.image.height {
-                self.image.pixels[(y as u32 * self.image.width + x as u32) as usize] = colour;
+                let i = (y as u32 * self.image.width + x as u32) as usize;
+                if z <= self.depth[i] * 1.01 {
+                    self.image.pixels[i] = colour;
+                }
             }
         }
     }

@@ -370,9 +370,10 @@ fn wrong_as_often_as_the_c_code_on_peer_cases() {
 #[test]
 fn teapot_normal_cones_hold_every_sampled_normal() {
     use tritri_geom::bezier::cone::{back_facing, paper_back_facing, NormalCone};
-    use tritri_geom::bezier::read_bpt;
+    use tritri_geom::bezier::{oriented_outwards, read_bpt};
     use tritri_geom::bezier::subdivide::subdivide;
-    let patches = read_bpt(&testdata().join("teapot.bpt")).unwrap();
+    let (patches, turned) = oriented_outwards(&read_bpt(&testdata().join("teapot.bpt")).unwrap());
+    assert!(turned, "the teapot's d_u x d_v points inwards");
     let eyes = [[10.0, 0.0, 1.5], [-10.0, 3.0, 1.5], [0.0, -8.0, 6.0], [0.0, 0.0, -6.0], [0.0, 0.0, 1.0], [2.0, 2.0, 8.0], [4.0, -4.0, 0.5], [-1.0, 0.5, 2.0]];
     let m = 16;
     for times in 0..=4 {

@@ -8,7 +8,9 @@
 //!   64 to 512);
 //! * [`cone`]: the cone of normals as a guarantee, the paper's back-facing
 //!   and silhouette tests and their conservative forms;
-//! * [`lod`]: the paper's distance levels and an error-driven level.
+//! * [`lod`]: the paper's distance levels and an error-driven level;
+//! * [`view`]: each patch's treatment for one eye (culled, silhouette,
+//!   samples).
 //!
 //! `.bpt` format: the patch count, then per patch a line `3 3` (the degrees)
 //! and 16 lines `x y z`, the control net row by row.
@@ -20,6 +22,7 @@ pub mod cone;
 pub mod evaluate;
 pub mod lod;
 pub mod subdivide;
+pub mod view;
 
 /// One bicubic patch: control points `net[row][column]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,6 +78,38 @@ impl BezierPatch {
             }
         }
         out
+    }
+}
+
+impl BezierPatch {
+    /// The same surface with `u` reversed: `d_u × d_v`, and so the side
+    /// the cone of normals calls the outside, turns round.
+    pub fn reversed(&self) -> BezierPatch {
+        let mut net = self.net;
+        net.reverse();
+        BezierPatch { net }
+    }
+}
+
+/// The volume the patches enclose, signed by their orientation: positive
+/// when `d_u × d_v` points out of it (from a tessellation at 8 samples a
+/// side, by the divergence theorem; for surfaces that are not quite closed,
+/// such as the teapot, its sign still tells the orientation).
+pub fn signed_volume(patches: &[BezierPatch]) -> f64 {
+    patches
+        .iter()
+        .flat_map(|p| p.tessellate(8))
+        .map(|[a, b, c]| (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0)
+        .sum()
+}
+
+/// The patches oriented so that `d_u × d_v` points outwards (by
+/// [`signed_volume`]), and whether they were turned round.
+pub fn oriented_outwards(patches: &[BezierPatch]) -> (Vec<BezierPatch>, bool) {
+    if signed_volume(patches) < 0.0 {
+        (patches.iter().map(BezierPatch::reversed).collect(), true)
+    } else {
+        (patches.to_vec(), false)
     }
 }
 

@@ -1,0 +1,144 @@
+//! `tritri bezier render`: Bezier patches drawn the way
+//! `bezier_lod_gpu.txt` displays them: back-facing patches culled by their
+//! cone of normals, patches that may hold a silhouette refined, the rest
+//! sampled by distance (5, 10, 15 or 20 per side), each patch coloured by
+//! its level and silhouette patches outlined in red.
+
+use crate::input;
+use crate::model_files::write_png;
+use crate::output_file::OutputFile;
+use clap::Subcommand;
+use std::process::ExitCode;
+use tritri_geom::bezier::subdivide::subdivide;
+use tritri_geom::bezier::view::plan;
+use tritri_geom::bezier::{oriented_outwards, read_bpt, BezierPatch};
+use tritri_geom::raster::{Camera, Canvas};
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(subcommand)]
+    command: BezierCommand,
+}
+
+#[derive(Subcommand, Debug)]
+enum BezierCommand {
+    /// Render the patches of a .bpt file with the paper's level of detail.
+    Render(RenderArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct RenderArgs {
+    /// The patches (.bpt, e.g. ../shared/testdata/teapot.bpt).
+    file: String,
+    /// The eye's position, in the patches' coordinates.
+    #[arg(long, default_value = "7,-10,6", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = parse_point)]
+    eye: [f64; 3],
+    /// The point looked at.
+    #[arg(long, default_value = "0.2,0,1.3", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = parse_point)]
+    target: [f64; 3],
+    /// Cut every patch in two this many times first (32 teapot patches
+    /// become 64 to 512 for 1 to 4), 0 to 6.
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    subdivide: u32,
+    /// Patches nearer than this get 20 samples per side; to twice it 15, to
+    /// four times 10, beyond 5.
+    #[arg(long, default_value_t = 4.0, value_name = "D", value_parser = input::parse_scale)]
+    near: f64,
+    /// The picture.
+    #[arg(long, value_name = "FILE")]
+    png: String,
+    /// Picture size in pixels (16 to 4096).
+    #[arg(long, default_value_t = 640, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=4096))]
+    size: u32,
+}
+
+fn parse_point(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s.split(',').map(|f| f.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| format!("`{s}` is not a point x,y,z"))?;
+    match v.as_slice() {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+        _ => Err(format!("`{s}` is not a point x,y,z (three finite numbers)")),
+    }
+}
+
+/// Colours of the four levels, coarse to fine.
+const LEVEL_COLOURS: [[u8; 3]; 4] = [[90, 140, 230], [110, 200, 120], [235, 210, 90], [240, 150, 70]];
+
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    let BezierCommand::Render(a) = args.command;
+    if !a.png.to_ascii_lowercase().ends_with(".png") {
+        eprintln!("error: --png {}: the render is written as .png", a.png);
+        return Ok(ExitCode::from(2));
+    }
+    let output = match OutputFile::reserve(&a.png) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("error: --png: {e:#}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    // The cone tests need d_u x d_v to point out of the object.
+    let (patches, turned) = match read_bpt(std::path::Path::new(&a.file)) {
+        Ok(p) => oriented_outwards(&subdivide(&p, a.subdivide)),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    if a.eye == a.target {
+        eprintln!("error: --eye and --target are the same point");
+        return Ok(ExitCode::from(2));
+    }
+    let views = plan(&patches, a.eye, a.near);
+    let camera = Camera { eye: a.eye, target: a.target, up: [0.0, 0.0, 1.0], fov_degrees: 40.0 };
+    let mut canvas = Canvas::new(a.size, a.size, camera);
+    let mut triangles = 0usize;
+    let mut per_level = [0usize; 4];
+    for (patch, view) in patches.iter().zip(&views) {
+        if view.culled {
+            continue;
+        }
+        let level = tritri_geom::bezier::lod::DISTANCE_LEVELS.iter().position(|&l| l == view.samples).unwrap_or(0);
+        per_level[level] += 1;
+        for t in patch.tessellate(view.samples) {
+            canvas.triangle(&t, LEVEL_COLOURS[level]);
+            triangles += 1;
+        }
+    }
+    for (patch, view) in patches.iter().zip(&views) {
+        if view.silhouette {
+            outline(&mut canvas, patch, [200, 30, 30]);
+        }
+    }
+    let culled = views.iter().filter(|v| v.culled).count();
+    let silhouettes = views.iter().filter(|v| v.silhouette).count();
+    let uniform = patches.iter().map(|p| p.tessellate(20).len()).sum::<usize>();
+    println!(
+        "{}: {} patches from eye {:?}: {culled} culled (back-facing by their cone of normals), {silhouettes} may hold a silhouette (refined, outlined in red); \
+         samples per side 5 / 10 / 15 / 20: {} / {} / {} / {} patches; {triangles} triangles against {uniform} for every patch at 20{}",
+        a.file,
+        patches.len(),
+        a.eye,
+        per_level[0],
+        per_level[1],
+        per_level[2],
+        per_level[3],
+        if turned { " (the file's d_u x d_v points inwards: patches turned round)" } else { "" }
+    );
+    let image = canvas.image;
+    output.commit(|w| write_png(&image, w))?;
+    println!("wrote {}", a.png);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The patch's four boundary curves as lines.
+fn outline(canvas: &mut Canvas, patch: &BezierPatch, colour: [u8; 3]) {
+    let steps = 16;
+    let edges: [Box<dyn Fn(f64) -> (f64, f64)>; 4] = [Box::new(|t| (t, 0.0)), Box::new(|t| (t, 1.0)), Box::new(|t| (0.0, t)), Box::new(|t| (1.0, t))];
+    for edge in &edges {
+        for s in 0..steps {
+            let (u0, v0) = edge(s as f64 / steps as f64);
+            let (u1, v1) = edge((s + 1) as f64 / steps as f64);
+            canvas.line(patch.evaluate(u0, v0), patch.evaluate(u1, v1), colour);
+        }
+    }
+}

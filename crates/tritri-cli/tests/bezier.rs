@@ -1,0 +1,52 @@
+//! `tritri bezier render` on a small file: a picture is written and the
+//! report counts what the cone of normals culled and refined; bad input is
+//! refused with status 2, naming it.
+
+use std::process::{Command, Output};
+
+fn tritri(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+}
+
+/// Two patches of a flat square, one facing up, one (the same square with
+/// its rows reversed) facing down, side by side.
+fn two_squares() -> String {
+    let mut text = String::from("2\n");
+    for (dx, reversed) in [(0.0, false), (4.0, true)] {
+        text += "3 3\n";
+        for i in 0..4 {
+            let i = if reversed { 3 - i } else { i };
+            for j in 0..4 {
+                text += &format!("{} {} 0\n", dx + i as f64, j);
+            }
+        }
+    }
+    text
+}
+
+#[test]
+fn render_culls_what_faces_away_and_refuses_bad_input() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bezier-cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    let bpt = dir.join("squares.bpt");
+    std::fs::write(&bpt, two_squares()).unwrap();
+    let png = dir.join("squares.png");
+    let (bpt, png) = (bpt.to_str().unwrap(), png.to_str().unwrap());
+    let out = tritri(&["bezier", "render", bpt, "--eye", "3,1.5,10", "--target", "3,1.5,0", "--png", png, "--size", "64"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    // Seen from above, the square whose d_u x d_v points down is culled.
+    assert!(text.contains("2 patches") && text.contains("1 culled"), "{text}");
+    assert!(std::fs::metadata(png).unwrap().len() > 100);
+    for (args, needle) in [
+        (vec!["bezier", "render", "missing.bpt", "--png", png], "missing.bpt"),
+        (vec!["bezier", "render", bpt, "--png", "out.jpg"], "--png"),
+        (vec!["bezier", "render", bpt, "--png", png, "--eye", "1,1,1", "--target", "1,1,1"], "same point"),
+        (vec!["bezier", "render", bpt, "--png", png, "--subdivide", "9"], "--subdivide"),
+    ] {
+        let out = tritri(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}
