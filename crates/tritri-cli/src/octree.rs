@@ -83,6 +83,7 @@ struct PlaneArgs {
 const DEFAULT_CLOCK_MHZ: f64 = 68.3;
 const CLIPPER_CLOCK_MHZ: f64 = 134.2;
 const SET_OPERATION_CLOCK_MHZ: f64 = 379.2;
+const VOXEL_FILL_CLOCK_MHZ: f64 = 67.9;
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
@@ -122,6 +123,10 @@ struct PairArgs {
 #[derive(clap::Args, Debug)]
 struct ConvertArgs {
     model: String,
+    /// With a hardware engine, the octree's full leaves are also written
+    /// into a voxel memory by the voxel fill unit and checked.
+    #[command(flatten)]
+    hardware: HardwareArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
@@ -186,6 +191,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 Ok(x) => x,
                 Err(e) => return bad(e),
             };
+            if a.hardware.engine != Engine::Model {
+                fill_in_hardware(&model, &a.hardware)?;
+            }
             write_all(outputs, &model, &a.outputs.view)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -201,6 +209,35 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+/// Octree → voxels in hardware: the tree's full leaves as records through
+/// the voxel fill, the memory checked against the model's voxels.
+fn fill_in_hardware(model: &OctreeFile, hardware: &HardwareArgs) -> anyhow::Result<()> {
+    let level = model.tree.level();
+    anyhow::ensure!(level >= 1, "the voxel fill needs a grid of at least 2^3 voxels");
+    let records = model.tree.fill_records();
+    let started = Instant::now();
+    let run = match hardware.engine.simulator() {
+        None => tritri_cosim::voxel_fill::fill_rusthdl(level, &records)?,
+        Some(simulator) => tritri_cosim::voxel_fill::fill_emitted(level, &records, simulator)?,
+    };
+    anyhow::ensure!(
+        run.words.as_slice() == model.tree.to_voxels().words(),
+        "the voxel fill in {} left a memory that differs from the model (a bug)",
+        hardware.engine.name()
+    );
+    let clock = hardware.clock_mhz.unwrap_or(VOXEL_FILL_CLOCK_MHZ);
+    println!(
+        "hardware ({}): {} fill records, {} word writes into the voxel memory, the model's voxels; {} cycles (a write per clock) = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
+        hardware.engine.name(),
+        records.len(),
+        run.writes,
+        run.writes + 1,
+        (run.writes + 1) as f64 / (clock * 1e3),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
 }
 
 fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {

@@ -63,6 +63,8 @@ fn voxelized_models_obey_the_laws_of_set_operations() {
     assert!(hardware.contains("hardware (rusthdl): 512 words of 64 voxels, the model's result"), "{hardware}");
     let clipped = ok(&["octree", "clip", &p("solid.oct"), "--box", "3,-5,7,20,31,40", "--engine", "rusthdl"]);
     assert!(clipped.contains("hardware (rusthdl): the model's"), "{clipped}");
+    let filled = ok(&["octree", "convert", &p("solid.oct"), "--engine", "rusthdl"]);
+    assert!(filled.contains("the model's voxels"), "{filled}");
     let plane = ok(&["octree", "plane", &p("solid.oct"), "--normal", "1,-2,3", "--offset", "20", "--engine", "rusthdl"]);
     assert!(plane.contains("the same half-space and crossed voxels as the model"), "{plane}");
     assert!(clip.contains(&format!("; {n_solid} voxels kept")), "{clip}");

@@ -162,6 +162,43 @@ impl Octree {
         }
     }
 
+    /// The full leaves as fill records for a voxel memory (the form the
+    /// hardware's voxel fill takes, `tritri_rtl::octree::voxel_fill`): the
+    /// full children of each mixed node, one record per mixed node that
+    /// has any, and for a full root its eight children. In preorder.
+    pub fn fill_records(&self) -> Vec<super::plane::TraversalRecord> {
+        let mut out = Vec::new();
+        if self.nodes == [Node::Full] {
+            if self.level >= 1 {
+                out.push(super::plane::TraversalRecord { lo: [0; 3], level: self.level, full: 0xFF, crossed: 0 });
+            }
+            return out;
+        }
+        // Walk mixed nodes with the index of their first child.
+        let mut stack = vec![(Cell { lo: [0; 3], level: self.level }, 0usize)];
+        while let Some((cell, at)) = stack.pop() {
+            if self.nodes[at] != Node::Mixed {
+                continue;
+            }
+            let mut child_at = at + 1;
+            let mut full = 0u8;
+            let mut children = Vec::new();
+            for o in 0..8 {
+                match self.nodes[child_at] {
+                    Node::Full => full |= 1 << o,
+                    Node::Mixed => children.push((cell.child(o), child_at)),
+                    Node::Empty => {}
+                }
+                child_at = skip_subtree(&self.nodes, child_at);
+            }
+            if full != 0 {
+                out.push(super::plane::TraversalRecord { lo: cell.lo, level: cell.level, full, crossed: 0 });
+            }
+            stack.extend(children.into_iter().rev());
+        }
+        out
+    }
+
     /// Voxels inside the solid.
     pub fn voxel_count(&self) -> u64 {
         let mut count = 0u64;
@@ -445,6 +482,9 @@ mod tests {
             assert_eq!(t.voxel_count(), g.count());
             let file = OctreeFile { tree: t.clone(), placement: Placement { origin: [1.5, -2.0, 0.25], voxel_size: 0.125 } };
             assert_eq!(OctreeFile::from_bytes(&file.to_bytes()), Ok(file));
+            // The fill records describe the same voxels.
+            let run = super::super::plane::TraversalRun { records: t.fill_records(), ..Default::default() };
+            assert_eq!(run.half_space(level), g, "round {round}: fill records");
             assert_eq!(Octree::from_preorder(level, t.nodes()), Some(t));
         }
         assert_eq!(Octree::from_voxels(&VoxelGrid::empty(3)), Octree::empty(3));
