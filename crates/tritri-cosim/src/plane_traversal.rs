@@ -174,8 +174,13 @@ endmodule
 /// emitted Verilog (the reader always ready).
 pub fn run(engine: crate::engine::Engine, level: u32, normal: [i64; 3], d: i64) -> anyhow::Result<TraversalRun> {
     let plane = PlaneInputs::new(level, normal, d).map_err(anyhow::Error::msg)?;
+    let model = tritri_geom::octree::plane::traversal_schedule(level, normal, plane.d);
+    // The RAM has no overflow check: the cycle model says first whether the
+    // plane fits (the most seen on 512^3 and 1024^3 planes is 42 entries).
+    let capacity = 1usize << tritri_rtl::octree::plane_traversal::STACK_ADDRESS_BITS;
+    anyhow::ensure!(model.stack_depth < capacity, "the plane needs {} stack entries, more than the traversal's {capacity}", model.stack_depth);
     Ok(match (engine, engine.simulator()) {
-        (crate::engine::Engine::Model, _) => tritri_geom::octree::plane::traversal_schedule(level, normal, plane.d),
+        (crate::engine::Engine::Model, _) => model,
         (_, None) => run_rusthdl(&plane, |_| true),
         (_, Some(simulator)) => run_emitted(&[plane], simulator)?.remove(0),
     })

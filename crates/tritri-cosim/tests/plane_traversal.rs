@@ -12,6 +12,7 @@ use tritri_cosim::plane_traversal::{run_emitted, run_rusthdl};
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::octree::plane::{classify_plane, traversal_schedule};
 use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
+use tritri_rtl::octree::plane_traversal::STACK_ADDRESS_BITS;
 
 fn planes(count: usize, seed: u64) -> Vec<(u32, [i64; 3], i64)> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -30,6 +31,7 @@ fn planes(count: usize, seed: u64) -> Vec<(u32, [i64; 3], i64)> {
 fn rusthdl_equals_the_cycle_model_and_the_software_model() {
     for (level, normal, d) in planes(40, 1995) {
         let model = traversal_schedule(level, normal, d);
+        assert!(model.stack_depth < 1 << STACK_ADDRESS_BITS, "the stack's RAM holds the traversal");
         let plane = PlaneInputs::new(level, normal, d).unwrap();
         let hardware = run_rusthdl(&plane, |_| true);
         assert_eq!(hardware.records, model.records, "{level} {normal:?} {d}");

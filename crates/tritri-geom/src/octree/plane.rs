@@ -96,6 +96,8 @@ pub struct TraversalRun {
     pub cycles: u64,
     /// Cells classified (one per issue: the root, then crossing cells).
     pub cells: u64,
+    /// The most entries the stack's RAM held (the top register apart).
+    pub stack_depth: usize,
 }
 
 impl TraversalRun {
@@ -228,6 +230,7 @@ pub fn traversal_schedule(level: u32, normal: [i64; 3], d: i64) -> TraversalRun 
                 }
             }
         }
+        run.stack_depth = run.stack_depth.max(stack.len() + usize::from(refill.is_some()));
         shown = false;
         if let Some((record, _)) = result {
             if record.full != 0 || record.crossed != 0 {
