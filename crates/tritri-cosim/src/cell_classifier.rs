@@ -16,7 +16,7 @@ use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::octree::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
 use tritri_rtl::octree::value_bits;
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock};
 
 /// One entry on the classifier's inputs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -101,10 +101,7 @@ fn run_rusthdl_v<const V: usize>(entries: &[ClassifierEntry]) -> Vec<ClassifierA
     let mut uut = CellClassifier::<V>::default();
     uut.connect_all();
     uut.advance.next = true;
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let mut answers = Vec::new();
     let idle = std::iter::repeat_n(None, CELL_CLASSIFIER_LATENCY + 1);
     for entry in entries.iter().map(Some).chain(idle) {

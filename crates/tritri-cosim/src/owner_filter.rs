@@ -18,7 +18,7 @@ use tritri_geom::scene::Batch;
 use tritri_geom::scene::owner_slots::{OwnerSlots, Slot};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::octree::owner_filter::{pair_cycles, slot_word, OwnerFilter, SLOT_BITS};
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// Owned pairs `(id_a, id_b)` in the order they left, and the edge at
 /// which each left, counted from the edge that took the first hit.
@@ -75,10 +75,7 @@ fn word(slot: &Slot) -> Bits<{ tritri_rtl::octree::owner_filter::SLOT_WORD_BITS 
 pub fn run_rusthdl(slots: &OwnerSlots, hits: &[(u32, u32)], reader_ready: impl Fn(u64) -> bool) -> OwnerRun {
     let mut uut = OwnerFilter::new(slots.a.len().max(1), slots.b.len().max(1));
     uut.connect_all();
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let s = |x: u32| -> Bits<SLOT_BITS> { (x as u64).into() };
     for (k, slot) in slots.a.iter().enumerate() {
         uut.write_a_enable.next = true;

@@ -16,7 +16,7 @@ use tritri_geom::octree::plane::{TraversalRecord, TraversalRun};
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PlaneInputs, PLANE_TRAVERSAL_NAME};
 use tritri_rtl::octree::plane_traversal::{PlaneTraversal, PLANE_VALUE_BITS};
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// What a hardware run reports: the records with their edges, and the
 /// edges it was busy (`cells` is the cycle model's only).
@@ -29,10 +29,7 @@ fn record(x: u64, y: u64, z: u64, level: u64, full: u64, crossed: u64) -> Traver
 pub fn run_rusthdl(plane: &PlaneInputs, reader_ready: impl Fn(u64) -> bool) -> TraversalRun {
     let mut uut = PlaneTraversal::default();
     uut.connect_all();
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let v = |x: i64| from_i128::<PLANE_VALUE_BITS>(x as i128);
     uut.gradient_x.next = v(plane.gradient[0]);
     uut.gradient_y.next = v(plane.gradient[1]);

@@ -19,7 +19,7 @@ use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
 use tritri_rtl::octree::value_bits;
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock};
 
 /// One triangle's functions, `(gradient, low, high)` in the fixed order.
 pub type SetupAnswer = (u16, [([i128; 3], i128, i128); MAX_AXES]);
@@ -48,10 +48,7 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[Fi
     let mut uut = TriangleSetup::<G, V, N>::default();
     uut.connect_all();
     uut.advance.next = true;
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let g = |x: i64| from_i128::<G>(x as i128);
     uut.in_root_x.next = g(root[0]);
     uut.in_root_y.next = g(root[1]);

@@ -12,7 +12,7 @@ use rust_hdl::prelude::*;
 use tritri_geom::octree::plane::TraversalRecord;
 use tritri_rtl::emit::voxel_units::{emit_voxel_fill, VOXEL_FILL_NAME};
 use tritri_rtl::octree::voxel_fill::VoxelFill;
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// The memory after the writes, and the edge of the last write (counted
 /// from the edge that takes the first record).
@@ -31,10 +31,7 @@ fn memory(level: u32) -> Vec<u64> {
 pub fn fill_rusthdl(level: u32, records: &[TraversalRecord]) -> anyhow::Result<FillRun> {
     let mut uut = VoxelFill::default();
     uut.connect_all();
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     uut.level.next = (level as u64).into();
     uut.write_ready.next = true;
     let mut run = FillRun { words: memory(level), writes: 0, last_edge: 0 };

@@ -17,7 +17,7 @@ use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, OCT
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::octree::octant_clipper::{OctantClipper, CLASS_CROSSING, CLASS_INSIDE, CLASS_OUTSIDE};
 use tritri_rtl::octree::set_operation_unit::{SetOperationUnit, OP_DIFFERENCE, OP_INTERSECTION, OP_UNION};
-use tritri_rtl::sim_drive::{clock_cycle, settle};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 fn op_code(op: SetOperation) -> u64 {
     match op {
@@ -41,10 +41,7 @@ fn side_of(class: u64) -> anyhow::Result<Side> {
 pub fn set_operation_rusthdl(op: SetOperation, a: &[u64], b: &[u64]) -> (Vec<u64>, u64) {
     let mut uut = SetOperationUnit::default();
     uut.connect_all();
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     uut.op.next = op_code(op).into();
     uut.out_ready.next = true;
     let mut out = Vec::with_capacity(a.len());
@@ -123,10 +120,7 @@ pub fn set_operations_emitted(jobs: &[(SetOperation, &[u64], &[u64])], simulator
 pub fn clip_rusthdl(lo: [i64; 3], hi: [i64; 3], octants: &[Cell]) -> anyhow::Result<Vec<Side>> {
     let mut uut = OctantClipper::default();
     uut.connect_all();
-    uut.reset.next = true;
-    settle(&mut uut);
-    clock_cycle(&mut uut, |u| &mut u.clock);
-    uut.reset.next = false;
+    reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let c = |v: i64| -> Bits<11> { (v as u64).into() };
     uut.box_lo_x.next = c(lo[0]);
     uut.box_lo_y.next = c(lo[1]);

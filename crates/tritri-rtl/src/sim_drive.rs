@@ -41,3 +41,13 @@ pub fn clock_cycle<B: Block>(uut: &mut B, clock: fn(&mut B) -> &mut Signal<In, C
     clock(uut).next = Clock { clk: true };
     settle(uut);
 }
+
+/// Holds a freshly connected unit in reset for one clock (reset high, the
+/// circuit settled, one clock period, reset low): the start of every
+/// direct-drive run. `reset` and `clock` select the top's signals.
+pub fn reset_one_clock<B: Block>(uut: &mut B, reset: fn(&mut B) -> &mut Signal<In, Bit>, clock: fn(&mut B) -> &mut Signal<In, Clock>) {
+    reset(uut).next = true;
+    settle(uut);
+    clock_cycle(uut, clock);
+    reset(uut).next = false;
+}
