@@ -4,6 +4,7 @@
 //! (`octree::render`).
 
 use crate::triangle::{Point, Triangle};
+use crate::vector::{cross, dot, normalized};
 
 /// An 8-bit RGB picture, rows from the top.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -22,23 +23,6 @@ impl Image {
             pixels.extend(std::iter::repeat([g, g, g.saturating_add(6)]).take(width as usize));
         }
         Image { width, height, pixels }
-    }
-}
-
-fn dot(a: Point, b: Point) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: Point, b: Point) -> Point {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn normalized(a: Point) -> Point {
-    let l = dot(a, a).sqrt();
-    if l == 0.0 {
-        a
-    } else {
-        a.map(|c| c / l)
     }
 }
 

@@ -13,7 +13,7 @@
 //! directions; its half-angle the largest angle from the axis to one of
 //! them.
 
-use super::evaluate::{cross, dot, length};
+use crate::vector::{cross, dot, length};
 use super::BezierPatch;
 use crate::triangle::Point;
 

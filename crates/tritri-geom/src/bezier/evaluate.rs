@@ -7,22 +7,7 @@
 
 use super::BezierPatch;
 use crate::triangle::Point;
-
-pub(crate) fn sub(a: Point, b: Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(crate) fn cross(a: Point, b: Point) -> Point {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-pub(crate) fn dot(a: Point, b: Point) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub(crate) fn length(a: Point) -> f64 {
-    dot(a, a).sqrt()
-}
+use crate::vector::{cross, length, sub};
 
 fn lerp(a: Point, b: Point, t: f64) -> Point {
     [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t]
@@ -136,6 +121,7 @@ fn forward_differences(b: [Point; 4], n: usize) -> Vec<Point> {
 mod tests {
     use super::super::tests::wavy_patch;
     use super::*;
+    use crate::vector::dot;
 
     /// De Casteljau's derivatives equal central differences of `evaluate`,
     /// and its point equals the Bernstein form.

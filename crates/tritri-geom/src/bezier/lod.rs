@@ -10,7 +10,7 @@
 //! P_{i+1,j} - P_{i,j+1} + P_{i,j}|`, `|S_vv|` likewise: each derivative is
 //! a Bernstein combination of those differences, whose weights sum to 1.
 
-use super::evaluate::length;
+use crate::vector::length;
 use super::BezierPatch;
 
 /// The paper's samples per side, by distance: 5, 10, 15, 20.
@@ -68,7 +68,7 @@ pub fn error_level(patch: &BezierPatch, tolerance: f64, max: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use super::super::evaluate::sub;
+    use crate::vector::sub;
     use super::super::tests::wavy_patch;
     use super::*;
 

@@ -61,7 +61,7 @@ pub fn subdivide(patches: &[BezierPatch], times: u32) -> Vec<BezierPatch> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::evaluate::{length, sub};
+    use crate::vector::{length, sub};
     use super::super::tests::wavy_patch;
     use super::*;
 

@@ -5,7 +5,7 @@
 //! eye.
 
 use super::cone::{back_facing, may_hold_silhouette, NormalCone};
-use super::evaluate::{length, sub};
+use crate::vector::{length, sub};
 use super::lod::{distance_level, DISTANCE_LEVELS};
 use super::BezierPatch;
 use crate::triangle::Point;

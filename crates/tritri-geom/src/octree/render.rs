@@ -11,6 +11,7 @@
 //! three face orientations stay apart even under the same light.
 
 use super::voxels::VoxelGrid;
+use crate::vector::{add_scaled, cross, dot, normalized};
 pub use crate::raster::Image;
 
 /// Where the picture is taken from.
@@ -31,23 +32,6 @@ impl Default for View {
 }
 
 type V3 = [f64; 3];
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn normalized(a: V3) -> V3 {
-    let l = dot(a, a).sqrt();
-    a.map(|c| c / l)
-}
-
-fn add(a: V3, b: V3, s: f64) -> V3 {
-    [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]]
-}
 
 /// The box `[lo, hi]` (voxel corners) around the occupied voxels.
 fn occupied_box(grid: &VoxelGrid) -> Option<([f64; 3], [f64; 3])> {
@@ -79,7 +63,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
     }
     let right = normalized(cross(forward, up_hint));
     let up = cross(right, forward);
-    let light = normalized(add(add(forward.map(|c| -c), up, 0.8), right, -0.5));
+    let light = normalized(add_scaled(add_scaled(forward.map(|c| -c), up, 0.8), right, -0.5));
     let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
     // A margin of 4 % around the box's bounding sphere.
     let radius = 1.04 * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt() / 2.0;
@@ -90,7 +74,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
         for px in 0..size {
             let x = ((px as f64 + 0.5) / size as f64 * 2.0 - 1.0) * radius;
             let y = (1.0 - (py as f64 + 0.5) / size as f64 * 2.0) * radius;
-            let origin = add(add(add(centre, right, x), up, y), forward, -2.0 * radius);
+            let origin = add_scaled(add_scaled(add_scaled(centre, right, x), up, y), forward, -2.0 * radius);
             let colour = match first_hit(grid, origin, forward) {
                 Some((t, axis)) => {
                     let mut normal = [0.0; 3];
@@ -135,7 +119,7 @@ fn first_hit(grid: &VoxelGrid, origin: V3, dir: V3) -> Option<(f64, usize)> {
         return None;
     }
     let side = grid.side() as i64;
-    let entry = add(origin, dir, t_in);
+    let entry = add_scaled(origin, dir, t_in);
     let mut cell = [0, 1, 2].map(|k| {
         // Nudged inward along the ray, so a ray entering on a face starts
         // in the voxel behind it.
