@@ -31,10 +31,10 @@ struct RenderArgs {
     /// The patches (.bpt, e.g. ../shared/testdata/teapot.bpt).
     file: String,
     /// The eye's position, in the patches' coordinates.
-    #[arg(long, default_value = "7,-10,6", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = parse_point)]
+    #[arg(long, default_value = "7,-10,6", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = input::parse_point)]
     eye: [f64; 3],
     /// The point looked at.
-    #[arg(long, default_value = "0.2,0,1.3", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = parse_point)]
+    #[arg(long, default_value = "0.2,0,1.3", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = input::parse_point)]
     target: [f64; 3],
     /// Cut every patch in two this many times first (32 teapot patches
     /// become 64 to 512 for 1 to 4), 0 to 6.
@@ -50,14 +50,6 @@ struct RenderArgs {
     /// Picture size in pixels (16 to 4096).
     #[arg(long, default_value_t = 640, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=4096))]
     size: u32,
-}
-
-fn parse_point(s: &str) -> Result<[f64; 3], String> {
-    let v: Vec<f64> = s.split(',').map(|f| f.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| format!("`{s}` is not a point x,y,z"))?;
-    match v.as_slice() {
-        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
-        _ => Err(format!("`{s}` is not a point x,y,z (three finite numbers)")),
-    }
 }
 
 /// Colours of the four levels, coarse to fine.

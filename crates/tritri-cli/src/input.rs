@@ -100,6 +100,15 @@ fn parse_list<T: std::str::FromStr, const N: usize>(s: &str, what: &str) -> Resu
     values.try_into().map_err(|_| format!("`{s}` is not {what}"))
 }
 
+/// A point `x,y,z`: three finite numbers.
+pub fn parse_point(s: &str) -> Result<[f64; 3], String> {
+    let v: [f64; 3] = parse_list(s, "a point x,y,z")?;
+    if !v.iter().all(|c| c.is_finite()) {
+        return Err(format!("`{s}` is not a point x,y,z (three finite numbers)"));
+    }
+    Ok(v)
+}
+
 /// A viewing direction `x,y,z`: finite, not zero.
 pub fn parse_eye(s: &str) -> Result<[f64; 3], String> {
     let v: [f64; 3] = parse_list(s, "an eye direction x,y,z")?;
