@@ -270,13 +270,19 @@ fn centres_within(lo: i128, hi: i128, level: u32) -> std::ops::Range<usize> {
     first as usize..end.max(first) as usize
 }
 
+/// The voxel indices along axis `k` whose centres lie within the
+/// triangle's extent along `k`.
+fn centres_under(p: &[[i128; 3]; 3], k: usize, level: u32) -> std::ops::Range<usize> {
+    centres_within(p.iter().map(|v| v[k]).min().unwrap_or(0), p.iter().map(|v| v[k]).max().unwrap_or(0), level)
+}
+
 /// Calls `f(i, j, centre)` for every column of voxel centres along the
 /// third axis whose foot, in axes `a` and `b`, lies in the triangle's
 /// projected bounding box.
 fn for_columns_under(p: &[[i128; 3]; 3], a: usize, b: usize, level: u32, mut f: impl FnMut(usize, usize, [i128; 2])) {
-    let range = |k: usize| centres_within(p.iter().map(|v| v[k]).min().unwrap_or(0), p.iter().map(|v| v[k]).max().unwrap_or(0), level);
-    for j in range(b) {
-        for i in range(a) {
+    let columns = centres_under(p, a, level);
+    for j in centres_under(p, b, level) {
+        for i in columns.clone() {
             f(i, j, [centre_of(i as i128), centre_of(j as i128)]);
         }
     }
@@ -331,10 +337,10 @@ fn mark_centres_on(p: &[[i128; 3]; 3], normal: [i128; 3], level: u32, grid: &mut
     let d = (0..3).max_by_key(|&k| normal[k].abs()).unwrap_or(2);
     let (a, b) = ((d + 1) % 3, (d + 2) % 3);
     let s = 1i128 << SUB_BITS;
-    let range = |k: usize| centres_within(p.iter().map(|v| v[k]).min().unwrap_or(0), p.iter().map(|v| v[k]).max().unwrap_or(0), level);
     let orient = |u: [i128; 3], v: [i128; 3], c: [i128; 2]| (v[a] - u[a]) * (c[1] - u[b]) - (v[b] - u[b]) * (c[0] - u[a]);
-    for j in range(b) {
-        for i in range(a) {
+    let columns = centres_under(p, a, level);
+    for j in centres_under(p, b, level) {
+        for i in columns.clone() {
             let foot = [centre_of(i as i128), centre_of(j as i128)];
             let signs = [orient(p[0], p[1], foot), orient(p[1], p[2], foot), orient(p[2], p[0], foot)];
             if !(signs.iter().all(|&v| v >= 0) || signs.iter().all(|&v| v <= 0)) {
