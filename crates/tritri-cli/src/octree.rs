@@ -9,7 +9,7 @@ use clap::Subcommand;
 use std::process::ExitCode;
 use std::time::Instant;
 use tritri_geom::octree::cell::Cell;
-use tritri_geom::octree::clip::clip_logged;
+use tritri_geom::octree::clip::{clip, clip_logged};
 use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 use tritri_geom::octree::plane::classify_plane;
 use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
@@ -313,7 +313,13 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
     let b = a.voxel_box;
     let started = Instant::now();
     let (lo, hi) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
-    let (clipped, counts, octants) = clip_logged(&model.tree, lo, hi);
+    // The octants are listed only for a hardware engine to be given them.
+    let (clipped, counts, octants) = if a.hardware.engine == Engine::Model {
+        let (clipped, counts) = clip(&model.tree, lo, hi);
+        (clipped, counts, Vec::new())
+    } else {
+        clip_logged(&model.tree, lo, hi)
+    };
     let took = started.elapsed();
     println!(
         "clip to [{}, {}) x [{}, {}) x [{}, {}): {} octants ({} inside, {} outside, {} crossing) in {:.3} ms, {:.1} ns per octant; {} voxels kept",

@@ -11,7 +11,7 @@
 //! one octant per clock).
 
 use super::cell::Cell;
-use super::tree::{skip_subtree, Node, Octree};
+use super::tree::{collapse_if_uniform, skip_subtree, Node, Octree};
 
 /// How many octants of each class the pass met.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -75,7 +75,7 @@ impl Pass {
         let mut out = Vec::new();
         let mut i = 0;
         self.clip_at(tree.nodes(), &mut i, Cell { lo: [0; 3], level: tree.level() }, &mut out);
-        Octree::from_preorder(tree.level(), &out).expect("clipping emits one tree of the model's level")
+        Octree::from_canonical(tree.level(), out)
     }
 
     /// Classifies `cell`, counting and logging it.
@@ -111,10 +111,13 @@ impl Pass {
                     Node::Empty => out.push(Node::Empty),
                     Node::Full => self.clip_full(cell, out),
                     Node::Mixed => {
+                        let at = out.len();
                         out.push(Node::Mixed);
                         for o in 0..8 {
                             self.clip_at(nodes, i, cell.child(o), out);
                         }
+                        // Every child may have been clipped away.
+                        collapse_if_uniform(out, at);
                     }
                 }
             }
@@ -123,6 +126,7 @@ impl Pass {
 
     /// A full cell crossing the box: its part inside.
     fn clip_full(&mut self, cell: Cell, out: &mut Vec<Node>) {
+        let at = out.len();
         out.push(Node::Mixed);
         for o in 0..8 {
             let child = cell.child(o);
@@ -132,6 +136,8 @@ impl Pass {
                 Side::Crossing => self.clip_full(child, out),
             }
         }
+        // A box empty along an axis crosses cells but holds no voxel.
+        collapse_if_uniform(out, at);
     }
 }
 
@@ -165,6 +171,7 @@ mod tests {
             let (clipped, counts) = clip(&tree, lo, hi);
             assert_eq!(clipped.to_voxels(), model.combine(SetOperation::Intersection, &box_voxels), "{lo:?} {hi:?}");
             assert!(counts.octants() >= 1);
+            assert_eq!(clipped, Octree::from_voxels(&clipped.to_voxels()), "{lo:?} {hi:?}: canonical");
             let (logged, _, log) = clip_logged(&tree, lo, hi);
             assert_eq!((logged, log.len() as u64), (clipped, counts.octants()));
         }

@@ -20,7 +20,7 @@
 
 use super::affine::AffineOverBox;
 use super::cell::Cell;
-use super::tree::{Node, Octree};
+use super::tree::{collapse_if_uniform, Node, Octree};
 use super::voxels::VoxelGrid;
 
 /// What one classification of the grid against a plane found.
@@ -45,7 +45,7 @@ pub fn classify_plane(level: u32, normal: [i64; 3], d: i64) -> PlaneClassificati
     // Twice the plane, so voxel centres (half-integers) are integers.
     let centre_offset: i128 = gradient.iter().sum();
     visit(root, f, d as i128, centre_offset, &mut counts, &mut nodes);
-    let half_space = Octree::from_preorder(level, &nodes).expect("the traversal emits one tree of the root's level");
+    let half_space = Octree::from_canonical(level, nodes);
     PlaneClassification { crossed_voxels: counts.0, cells_split: counts.1, half_space }
 }
 
@@ -67,10 +67,13 @@ fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, counts: &mu
         return;
     }
     counts.1 += 1;
+    let at = nodes.len();
     nodes.push(Node::Mixed);
     for octant in 0..8 {
         visit(cell.child(octant), f.child(octant), d, centre_offset, counts, nodes);
     }
+    // A split cell whose voxels all fall on one side is one leaf.
+    collapse_if_uniform(nodes, at);
 }
 
 /// One record of the hardware traversal (`tritri_rtl::octree::
@@ -267,6 +270,8 @@ mod tests {
             let d = rng.gen_range(-n..=4 * n);
             let c = classify_plane(level, normal, d);
             let half_space = c.half_space.to_voxels();
+            // Built canonical in one pass: equal to the tree of its voxels.
+            assert_eq!(c.half_space, Octree::from_voxels(&half_space), "round {round}: canonical");
             let (mut crossed, mut inside) = (0u64, 0u64);
             for z in 0..n {
                 for y in 0..n {

@@ -132,6 +132,13 @@ impl Octree {
         (end == nodes.len()).then_some(Octree { level, nodes: out })
     }
 
+    /// A tree from preorder nodes its builder kept canonical (by
+    /// [`collapse_if_uniform`] after each mixed node's children).
+    pub(crate) fn from_canonical(level: u32, nodes: Vec<Node>) -> Octree {
+        debug_assert_eq!(Octree::from_preorder(level, &nodes).map(|t| t.nodes), Some(nodes.clone()), "not one canonical tree");
+        Octree { level, nodes }
+    }
+
     /// The tree of a voxel model.
     pub fn from_voxels(grid: &VoxelGrid) -> Octree {
         let mut nodes = Vec::new();
@@ -359,7 +366,7 @@ fn push_from_voxels(grid: &VoxelGrid, cell: Cell, out: &mut Vec<Node>) {
 
 /// If the mixed node at `at` has just its eight children after it and they
 /// are equal leaves, replaces the nine nodes by that leaf.
-fn collapse_if_uniform(out: &mut Vec<Node>, at: usize) {
+pub(crate) fn collapse_if_uniform(out: &mut Vec<Node>, at: usize) {
     if out.len() == at + 9 && out[at + 1] != Node::Mixed && out[at + 2..].iter().all(|&n| n == out[at + 1]) {
         let leaf = out[at + 1];
         out.truncate(at);
