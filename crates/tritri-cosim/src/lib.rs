@@ -19,6 +19,7 @@
 //!   [`triangle_setup`].
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
+pub mod binning_unit;
 pub mod cell_classifier;
 pub mod engine;
 pub mod owner_filter;

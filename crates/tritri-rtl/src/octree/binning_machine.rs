@@ -29,7 +29,8 @@
 //!   cost, the cost of the subtree so far, the slack of the lookahead).
 //! * **The children** of the top frame are visited in octant order: read
 //!   the child's list counts (1 clock), skip it when one object is absent
-//!   (1), else its leaf cost ([`super::leaf_cost::LEAF_COST_LATENCY`] + 1)
+//!   (1), else its leaf cost and the decision
+//!   ([`super::leaf_cost::LEAF_COST_LATENCY`] clocks)
 //!   and either a leaf at once (the rule's "cannot pay", or a unit cell) or
 //!   a pass. Each visit returns its cost to the frame (1 clock).
 //! * **A frame is finished** after its eighth child: the subtree is kept,
@@ -50,9 +51,10 @@ use tritri_geom::octree::triangle_cell::TriangleCellTest;
 use tritri_geom::scene::octree::LOOKAHEAD;
 
 /// Clocks after a pass's last read until its lists and counts are final:
-/// list memory (1), triangle memory (1), setup, classifier, the list
-/// memories' write (1), the packers' flush of a half word (1).
-pub const PASS_DRAIN: u64 = 2 + super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64 + CELL_CLASSIFIER_LATENCY as u64 + 2;
+/// list memory (1), triangle memory (1), setup and classifier (the last
+/// masks are written into the list memories as they come out), and the
+/// packers' flush of a half word (1).
+pub const PASS_DRAIN: u64 = 2 + super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64 + CELL_CLASSIFIER_LATENCY as u64 + 1;
 /// Clocks of the cost queries after a pass: the eight children and the
 /// cell, one per clock, and the last one's latency.
 pub const COSTS_CLOCKS: u64 = 9 + LEAF_COST_LATENCY as u64;
@@ -213,8 +215,9 @@ impl Machine<'_> {
         if a == 0 || b == 0 {
             return Err(0);
         }
-        // Its leaf cost, then the decision before a pass (1).
-        self.run.cycles += LEAF_COST_LATENCY as u64 + 1;
+        // Its leaf cost (queried as the counts are looked at), then the
+        // decision before a pass (1).
+        self.run.cycles += LEAF_COST_LATENCY as u64;
         let cell = top.cell.child(octant);
         let classify = classify_cost(a, b);
         let leaf_cost = self.leaf_cost(lists);

@@ -89,11 +89,12 @@ impl Logic for LeafCost {
         if !self.clock.pos_edge() {
             return;
         }
-        // The model keeps the queries in flight and evaluates the one that leaves.
-        let (a, b) = self._queries[LEAF_COST_LATENCY - 1];
-        self.cost.next = Bits::from(leaf_cost(a, b, self._log_depth, self._log_pipelines));
+        // The model keeps the queries in flight and evaluates the one that
+        // reaches the output register at this edge (taken three edges ago).
         self._queries.copy_within(0..LEAF_COST_LATENCY - 1, 1);
         self._queries[0] = (self.a.val().index() as u64, self.b.val().index() as u64);
+        let (a, b) = self._queries[LEAF_COST_LATENCY - 1];
+        self.cost.next = Bits::from(leaf_cost(a, b, self._log_depth, self._log_pipelines));
     }
 
     fn connect(&mut self) {

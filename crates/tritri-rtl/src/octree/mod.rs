@@ -28,9 +28,11 @@
 pub mod axis_step;
 pub mod binning_machine;
 pub mod binning_model;
+pub mod binning_unit;
 pub mod cell_classifier;
 pub mod centre_test;
 pub mod leaf_cost;
+pub mod list_packer;
 pub mod octant_clipper;
 pub mod owner_filter;
 pub mod plane_traversal;

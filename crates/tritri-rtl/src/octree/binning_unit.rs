@@ -1,0 +1,867 @@
+//! The octree broad phase's binning unit: the host streams each object's
+//! triangles once, the unit subdivides the root cell depth first with the
+//! split rule and writes the leaves, then streams them out for the
+//! collision system. How it works, clock by clock, is the cycle-exact
+//! model's documentation ([`super::binning_machine`]); this is that
+//! machine in rust-hdl, and the co-simulation holds it to the model's
+//! leaves and cycles.
+//!
+//! ```text
+//!  host ─► triangle memories (one per lane) ─┐
+//!    └──── root's pass ──┐                   ▼
+//!  list memory ─► index ─┴─► triangle ─► setup at the cell's corner ─► classifier
+//!  (8 per object,             memory      (5 clocks)                  (6 clocks)
+//!   2 indices a word)                                                      │ mask
+//!        ▲                                                                  ▼
+//!        └─────────────── list packers (8 per object) ◄────────────────────┘
+//!  counts ─► leaf costs (split rule) ─► decide ─► frames (stack) / leaves
+//! ```
+//!
+//! Four lanes: A0, A1, B0, B1. A lane is a triangle memory, a setup unit
+//! and a classifier step; the two lanes of an object read one list word
+//! (two indices) per clock.
+
+use super::binning_machine::{IDENTITY_LIST, PASS_DRAIN};
+use super::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use super::leaf_cost::{LeafCost, COUNT_BITS, LEAF_COST_LATENCY};
+use super::list_packer::{ListPacker, INDEX_BITS, LIST_ADDRESS_BITS, LIST_WORD_BITS};
+use super::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::system::dual_port_ram::SimpleDualPortRam;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Bits of a leaf memory address.
+pub const LEAF_ADDRESS_BITS: usize = 20;
+/// Bits of a frame memory address: the stack holds a frame per level.
+pub const FRAME_ADDRESS_BITS: usize = 6;
+/// Clocks from a lane's triangle memory output to its mask: setup and classifier.
+const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CELL_CLASSIFIER_LATENCY;
+// The kernel counts clocks with literals: the drain's last clock is
+// PASS_DRAIN - 1 = 12, the cost queries' results come 4 clocks after them.
+const _: () = assert!(PASS_DRAIN == 2 + LANE_LATENCY as u64 + 1 && PASS_DRAIN == 13 && LEAF_COST_LATENCY == 4 && INDEX_BITS == 18 && COUNT_BITS == 20);
+/// `binning_model::cell_cycles(0, 0)`: what the split rule charges a cell
+/// besides its entries.
+const CLASSIFY_BASE: u64 = CELL_CLASSIFIER_LATENCY as u64 + 1;
+
+/// A cell and its two lists: the current cell, and a leaf.
+#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
+pub struct CellLists {
+    pub x: Bits<32>,
+    pub y: Bits<32>,
+    pub z: Bits<32>,
+    pub level: Bits<6>,
+    pub a_memory: Bits<4>,
+    pub a_start: Bits<20>,
+    pub a_count: Bits<20>,
+    pub b_memory: Bits<4>,
+    pub b_start: Bits<20>,
+    pub b_count: Bits<20>,
+}
+
+/// A cell whose children are being visited.
+#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
+pub struct Frame {
+    pub x: Bits<32>,
+    pub y: Bits<32>,
+    pub z: Bits<32>,
+    pub level: Bits<6>,
+    pub a_memory: Bits<4>,
+    pub a_start: Bits<20>,
+    pub a_count: Bits<20>,
+    pub b_memory: Bits<4>,
+    pub b_start: Bits<20>,
+    pub b_count: Bits<20>,
+    pub leaf_cost: Bits<48>,
+    pub classify: Bits<48>,
+    pub subtree: Bits<48>,
+    pub slack_next: Bits<2>,
+    pub forced: Bit,
+    pub leaf_mark: Bits<20>,
+    pub octant: Bits<4>,
+}
+
+/// A child's two lists, written by its parent's pass.
+#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
+pub struct ChildLists {
+    pub a_start: Bits<20>,
+    pub a_count: Bits<20>,
+    pub b_start: Bits<20>,
+    pub b_count: Bits<20>,
+}
+
+#[derive(Copy, Clone, PartialEq, Eq, Debug, LogicState)]
+pub enum BinState {
+    Idle,
+    Load,
+    Drain,
+    Costs,
+    Decide,
+    Next,
+    Check,
+    ChildWait,
+    ChildDecide,
+    Pass,
+    Return,
+    Finish,
+    PopWait,
+    OutLeaf,
+    OutHeader,
+    OutA,
+    OutB,
+    Done,
+}
+
+#[derive(LogicBlock)]
+pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high: idle, every memory empty.
+    pub reset: Signal<In, Bit>,
+    /// One clock high while idle: a run begins with the root cell below,
+    /// held until `done`.
+    pub start: Signal<In, Bit>,
+    pub root_x: Signal<In, Bits<G>>,
+    pub root_y: Signal<In, Bits<G>>,
+    pub root_z: Signal<In, Bits<G>>,
+    pub root_level: Signal<In, Bits<6>>,
+    /// With `max_leaf_enable`, cells above this level are always split.
+    pub max_leaf_level: Signal<In, Bits<6>>,
+    pub max_leaf_enable: Signal<In, Bit>,
+    // Triangles in (valid/ready): A's and B's, any order, the last marked.
+    pub in_valid: Signal<In, Bit>,
+    pub in_ready: Signal<Out, Bit>,
+    pub in_last: Signal<In, Bit>,
+    /// 0: object A, 1: object B.
+    pub in_object: Signal<In, Bit>,
+    /// The vertices, `x0 y0 z0 x1 … z2` from bit 0 up, G bits each.
+    pub in_vertices: Signal<In, Bits<T>>,
+    // Leaves out (valid/ready): a header, then the A indices, then the B ones.
+    pub out_valid: Signal<Out, Bit>,
+    pub out_ready: Signal<In, Bit>,
+    pub out_header: Signal<Out, Bit>,
+    pub out_object: Signal<Out, Bit>,
+    /// An entry: the triangle's index in its object's stream (from 0).
+    pub out_index: Signal<Out, Bits<INDEX_BITS>>,
+    /// A header: the leaf's cell and its arrays' sizes.
+    pub out_x: Signal<Out, Bits<G>>,
+    pub out_y: Signal<Out, Bits<G>>,
+    pub out_z: Signal<Out, Bits<G>>,
+    pub out_level: Signal<Out, Bits<6>>,
+    pub out_count_a: Signal<Out, Bits<COUNT_BITS>>,
+    pub out_count_b: Signal<Out, Bits<COUNT_BITS>>,
+    /// Binning is over (the leaves are being streamed out, or are out).
+    pub binned: Signal<Out, Bit>,
+    /// Every leaf is out.
+    pub done: Signal<Out, Bit>,
+    state: DFF<BinState>,
+    counter: DFF<Bits<20>>,
+    loaded_a: DFF<Bits<20>>,
+    loaded_b: DFF<Bits<20>>,
+    cur: DFF<CellLists>,
+    cur_slack: DFF<Bits<2>>,
+    cur_classify: DFF<Bits<48>>,
+    cur_leaf_cost: DFF<Bits<48>>,
+    children_cost: DFF<Bits<48>>,
+    returned: DFF<Bits<48>>,
+    top: DFF<Frame>,
+    frame_count: DFF<Bits<7>>,
+    frames: SimpleDualPortRam<Frame, FRAME_ADDRESS_BITS>,
+    children: SimpleDualPortRam<ChildLists, 9>,
+    leaf_count: DFF<Bits<LEAF_ADDRESS_BITS>>,
+    leaves: SimpleDualPortRam<CellLists, LEAF_ADDRESS_BITS>,
+    cost: LeafCost,
+    triangles: [SimpleDualPortRam<Bits<T>, INDEX_BITS>; 4],
+    list_a: [SimpleDualPortRam<Bits<LIST_WORD_BITS>, LIST_ADDRESS_BITS>; 8],
+    list_b: [SimpleDualPortRam<Bits<LIST_WORD_BITS>, LIST_ADDRESS_BITS>; 8],
+    packer_a: [ListPacker; 8],
+    packer_b: [ListPacker; 8],
+    /// The memory the lists being read are in (the selects of the list words).
+    read_memory_a: DFF<Bits<4>>,
+    read_memory_b: DFF<Bits<4>>,
+    // Lanes A0, A1, B0, B1: stage 1 (index), stage 2 (vertices).
+    s1_root: DFF<Bit>,
+    s1_valid: [DFF<Bit>; 4],
+    s1_root_index: [DFF<Bits<INDEX_BITS>>; 4],
+    s2_valid: [DFF<Bit>; 4],
+    s2_index: [DFF<Bits<INDEX_BITS>>; 4],
+    setup: [TriangleSetup<G, V, N>; 4],
+    classifier: [CellClassifier<V>; 4],
+    index_line: [DelayLine<Bits<INDEX_BITS>, LANE_LATENCY>; 4],
+    // Output.
+    out_valid_q: DFF<Bit>,
+    out_header_q: DFF<Bit>,
+    out_object_q: DFF<Bit>,
+    out_index_q: DFF<Bits<INDEX_BITS>>,
+    out_leaf: DFF<Bits<LEAF_ADDRESS_BITS>>,
+    out_cell: DFF<CellLists>,
+    // Constants: octant numbers, field and vertex offsets in packed buses.
+    octant_id: [Constant<Bits<4>>; 8],
+    field_offset: [Constant<Bits<16>>; AXES],
+    vertex_offset: [Constant<Bits<16>>; 9],
+    identity: Constant<Bits<4>>,
+    classify_base: Constant<Bits<48>>,
+    // Combinational.
+    advance_out: Signal<Local, Bit>,
+    word_a: Signal<Local, Bits<LIST_WORD_BITS>>,
+    word_b: Signal<Local, Bits<LIST_WORD_BITS>>,
+    index1: [Signal<Local, Bits<INDEX_BITS>>; 4],
+    accept: Signal<Local, Bit>,
+    words_a: Signal<Local, Bits<20>>,
+    words_b: Signal<Local, Bits<20>>,
+    pass_words: Signal<Local, Bits<20>>,
+    larger: Signal<Local, Bits<20>>,
+    classify: Signal<Local, Bits<48>>,
+    both: Signal<Local, Bit>,
+    forced: Signal<Local, Bit>,
+    improving: Signal<Local, Bit>,
+    half: Signal<Local, Bits<32>>,
+    child_data: Signal<Local, ChildLists>,
+    slot: Signal<Local, Bits<20>>,
+    entry_a: Signal<Local, Bits<INDEX_BITS>>,
+    entry_b: Signal<Local, Bits<INDEX_BITS>>,
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit<G, V, N, T> {
+    /// A unit for up to `triangles` per object, `list_words` words per list
+    /// memory and `leaves` leaf descriptors.
+    pub fn new(triangles: usize, list_words: usize, leaves: usize) -> Self {
+        assert!(V == super::value_bits(G) && N == AXES * V && T == 9 * G && G <= 32, "binning unit for G = {G}");
+        BinningUnit {
+            clock: Default::default(),
+            reset: Default::default(),
+            start: Default::default(),
+            root_x: Default::default(),
+            root_y: Default::default(),
+            root_z: Default::default(),
+            root_level: Default::default(),
+            max_leaf_level: Default::default(),
+            max_leaf_enable: Default::default(),
+            in_valid: Default::default(),
+            in_ready: Default::default(),
+            in_last: Default::default(),
+            in_object: Default::default(),
+            in_vertices: Default::default(),
+            out_valid: Default::default(),
+            out_ready: Default::default(),
+            out_header: Default::default(),
+            out_object: Default::default(),
+            out_index: Default::default(),
+            out_x: Default::default(),
+            out_y: Default::default(),
+            out_z: Default::default(),
+            out_level: Default::default(),
+            out_count_a: Default::default(),
+            out_count_b: Default::default(),
+            binned: Default::default(),
+            done: Default::default(),
+            state: Default::default(),
+            counter: Default::default(),
+            loaded_a: Default::default(),
+            loaded_b: Default::default(),
+            cur: Default::default(),
+            cur_slack: Default::default(),
+            cur_classify: Default::default(),
+            cur_leaf_cost: Default::default(),
+            children_cost: Default::default(),
+            returned: Default::default(),
+            top: Default::default(),
+            frame_count: Default::default(),
+            frames: SimpleDualPortRam::new(1 << FRAME_ADDRESS_BITS),
+            children: SimpleDualPortRam::new(1 << 9),
+            leaf_count: Default::default(),
+            leaves: SimpleDualPortRam::new(leaves),
+            cost: Default::default(),
+            triangles: std::array::from_fn(|_| SimpleDualPortRam::new(triangles)),
+            list_a: std::array::from_fn(|_| SimpleDualPortRam::new(list_words)),
+            list_b: std::array::from_fn(|_| SimpleDualPortRam::new(list_words)),
+            packer_a: Default::default(),
+            packer_b: Default::default(),
+            read_memory_a: Default::default(),
+            read_memory_b: Default::default(),
+            s1_root: Default::default(),
+            s1_valid: Default::default(),
+            s1_root_index: Default::default(),
+            s2_valid: Default::default(),
+            s2_index: Default::default(),
+            setup: Default::default(),
+            classifier: Default::default(),
+            index_line: Default::default(),
+            out_valid_q: Default::default(),
+            out_header_q: Default::default(),
+            out_object_q: Default::default(),
+            out_index_q: Default::default(),
+            out_leaf: Default::default(),
+            out_cell: Default::default(),
+            octant_id: std::array::from_fn(|o| Constant::new(Bits::<4>::from(o as u64))),
+            field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
+            vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
+            identity: Constant::new(Bits::<4>::from(IDENTITY_LIST as u64)),
+            classify_base: Constant::new(Bits::<48>::from(CLASSIFY_BASE)),
+            advance_out: Default::default(),
+            word_a: Default::default(),
+            word_b: Default::default(),
+            index1: Default::default(),
+            accept: Default::default(),
+            words_a: Default::default(),
+            words_b: Default::default(),
+            pass_words: Default::default(),
+            larger: Default::default(),
+            classify: Default::default(),
+            both: Default::default(),
+            forced: Default::default(),
+            improving: Default::default(),
+            half: Default::default(),
+            child_data: Default::default(),
+            slot: Default::default(),
+            entry_a: Default::default(),
+            entry_b: Default::default(),
+        }
+    }
+
+    /// With a unit split rule for memory depth `2^log_depth` and
+    /// `2^log_pipelines` pipelines (the default is the system's 256 and 2).
+    pub fn with_system(mut self, log_depth: u32, log_pipelines: u32) -> Self {
+        self.cost = LeafCost::new(log_depth, log_pipelines);
+        self
+    }
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for BinningUnit<G, V, N, T> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clock, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost, children_cost, returned, top, frame_count,
+            leaf_count, read_memory_a, read_memory_b, s1_root, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell
+        );
+        self.frames.clock.next = self.clock.val();
+        self.children.clock.next = self.clock.val();
+        self.leaves.clock.next = self.clock.val();
+        self.cost.clock.next = self.clock.val();
+
+        // ---- Defaults: no writes, no reads, no lane entry.
+        self.frames.write_enable.next = false;
+        self.frames.write_address.next = bit_cast::<6, 7>(self.frame_count.q.val() - 1);
+        self.frames.write_data.next = self.top.q.val();
+        self.frames.read_enable.next = false;
+        self.frames.read_address.next = bit_cast::<6, 7>(self.frame_count.q.val() - 2);
+        self.children.write_enable.next = false;
+        self.children.write_address.next =
+            (bit_cast::<9, 7>(self.frame_count.q.val()) << 3) | bit_cast::<9, 20>(self.counter.q.val() & 7);
+        self.children.read_enable.next = false;
+        self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3) | bit_cast::<9, 4>(self.top.q.val().octant & 7);
+        self.leaves.write_enable.next = false;
+        self.leaves.write_address.next = self.leaf_count.q.val();
+        self.leaves.write_data.next = self.cur.q.val();
+        self.leaves.read_enable.next = false;
+        self.leaves.read_address.next = self.out_leaf.q.val();
+        self.cost.a.next = self.cur.q.val().a_count;
+        self.cost.b.next = self.cur.q.val().b_count;
+        for o in 0..8 {
+            self.list_a[o].clock.next = self.clock.val();
+            self.list_b[o].clock.next = self.clock.val();
+            self.packer_a[o].clock.next = self.clock.val();
+            self.packer_b[o].clock.next = self.clock.val();
+            self.packer_a[o].reset.next = self.reset.val();
+            self.packer_b[o].reset.next = self.reset.val();
+            self.packer_a[o].begin.next = false;
+            self.packer_b[o].begin.next = false;
+            self.packer_a[o].flush.next = false;
+            self.packer_b[o].flush.next = false;
+            self.list_a[o].write_enable.next = self.packer_a[o].write_enable.val();
+            self.list_a[o].write_address.next = self.packer_a[o].write_address.val();
+            self.list_a[o].write_data.next = self.packer_a[o].write_data.val();
+            self.list_b[o].write_enable.next = self.packer_b[o].write_enable.val();
+            self.list_b[o].write_address.next = self.packer_b[o].write_address.val();
+            self.list_b[o].write_data.next = self.packer_b[o].write_data.val();
+            self.list_a[o].read_enable.next = false;
+            self.list_b[o].read_enable.next = false;
+            self.list_a[o].read_address.next = self.cur.q.val().a_start + self.counter.q.val();
+            self.list_b[o].read_address.next = self.cur.q.val().b_start + self.counter.q.val();
+        }
+        for l in 0..4 {
+            self.s1_valid[l].clock.next = self.clock.val();
+            self.s1_root_index[l].clock.next = self.clock.val();
+            self.s2_valid[l].clock.next = self.clock.val();
+            self.s2_index[l].clock.next = self.clock.val();
+            self.s1_valid[l].d.next = false;
+            self.triangles[l].clock.next = self.clock.val();
+            self.triangles[l].write_enable.next = false;
+            self.triangles[l].write_data.next = self.in_vertices.val();
+            self.triangles[l].read_enable.next = true;
+        }
+        self.triangles[0].write_address.next = bit_cast::<INDEX_BITS, 20>(self.loaded_a.q.val());
+        self.triangles[1].write_address.next = bit_cast::<INDEX_BITS, 20>(self.loaded_a.q.val());
+        self.triangles[2].write_address.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
+        self.triangles[3].write_address.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
+
+        // ---- The list words being read, from the memory they are in.
+        self.word_a.next = 0.into();
+        self.word_b.next = 0.into();
+        for o in 0..8 {
+            if self.read_memory_a.q.val() == self.octant_id[o].val() {
+                self.word_a.next = self.list_a[o].read_data.val();
+            }
+            if self.read_memory_b.q.val() == self.octant_id[o].val() {
+                self.word_b.next = self.list_b[o].read_data.val();
+            }
+        }
+
+        // ---- Lanes: index (the root's from the stream, else from the list
+        // word), triangle memory, setup at the cell's corner, classifier.
+        self.index1[0].next = self.word_a.val().get_bits::<INDEX_BITS>(0);
+        self.index1[1].next = self.word_a.val().get_bits::<INDEX_BITS>(18);
+        self.index1[2].next = self.word_b.val().get_bits::<INDEX_BITS>(0);
+        self.index1[3].next = self.word_b.val().get_bits::<INDEX_BITS>(18);
+        if self.s1_root.q.val() {
+            self.index1[0].next = self.s1_root_index[0].q.val();
+            self.index1[2].next = self.s1_root_index[2].q.val();
+        }
+        for l in 0..4 {
+            self.triangles[l].read_address.next = self.index1[l].val();
+            self.s2_valid[l].d.next = self.s1_valid[l].q.val();
+            self.s2_index[l].d.next = self.index1[l].val();
+            self.setup[l].clock.next = self.clock.val();
+            self.setup[l].reset.next = self.reset.val();
+            self.setup[l].advance.next = true;
+            self.setup[l].in_valid.next = self.s2_valid[l].q.val();
+            self.setup[l].in_tag.next = 0.into();
+            self.setup[l].in_x0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[0].val().index());
+            self.setup[l].in_y0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[1].val().index());
+            self.setup[l].in_z0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[2].val().index());
+            self.setup[l].in_x1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[3].val().index());
+            self.setup[l].in_y1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[4].val().index());
+            self.setup[l].in_z1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[5].val().index());
+            self.setup[l].in_x2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[6].val().index());
+            self.setup[l].in_y2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[7].val().index());
+            self.setup[l].in_z2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[8].val().index());
+            self.setup[l].in_root_x.next = bit_cast::<G, 32>(self.cur.q.val().x);
+            self.setup[l].in_root_y.next = bit_cast::<G, 32>(self.cur.q.val().y);
+            self.setup[l].in_root_z.next = bit_cast::<G, 32>(self.cur.q.val().z);
+            self.classifier[l].clock.next = self.clock.val();
+            self.classifier[l].reset.next = self.reset.val();
+            self.classifier[l].advance.next = true;
+            self.classifier[l].in_valid.next = self.setup[l].out_valid.val();
+            self.classifier[l].in_tag.next = 0.into();
+            self.classifier[l].in_level.next = self.cur.q.val().level;
+            self.classifier[l].in_descend.next = false;
+            self.classifier[l].in_octant.next = 0.into();
+            for i in 0..13 {
+                self.classifier[l].in_at_lo[i].next = 0.into();
+                self.classifier[l].in_gradient_x[i].next = self.setup[l].out_gradient_x.val().get_bits::<V>(self.field_offset[i].val().index());
+                self.classifier[l].in_gradient_y[i].next = self.setup[l].out_gradient_y.val().get_bits::<V>(self.field_offset[i].val().index());
+                self.classifier[l].in_gradient_z[i].next = self.setup[l].out_gradient_z.val().get_bits::<V>(self.field_offset[i].val().index());
+                self.classifier[l].in_low[i].next = self.setup[l].out_low.val().get_bits::<V>(self.field_offset[i].val().index());
+                self.classifier[l].in_high[i].next = self.setup[l].out_high.val().get_bits::<V>(self.field_offset[i].val().index());
+            }
+            self.index_line[l].clock.next = self.clock.val();
+            self.index_line[l].advance.next = true;
+            self.index_line[l].d.next = self.s2_index[l].q.val();
+        }
+        // The masks into the packers: lane 0 before lane 1.
+        for o in 0..8 {
+            self.packer_a[o].in0_valid.next = self.classifier[0].out_valid.val() & self.classifier[0].out_mask.val().get_bit(o);
+            self.packer_a[o].in0_index.next = self.index_line[0].q.val();
+            self.packer_a[o].in1_valid.next = self.classifier[1].out_valid.val() & self.classifier[1].out_mask.val().get_bit(o);
+            self.packer_a[o].in1_index.next = self.index_line[1].q.val();
+            self.packer_b[o].in0_valid.next = self.classifier[2].out_valid.val() & self.classifier[2].out_mask.val().get_bit(o);
+            self.packer_b[o].in0_index.next = self.index_line[2].q.val();
+            self.packer_b[o].in1_valid.next = self.classifier[3].out_valid.val() & self.classifier[3].out_mask.val().get_bit(o);
+            self.packer_b[o].in1_index.next = self.index_line[3].q.val();
+        }
+
+        // ---- The split rule's quantities for the current cell.
+        self.words_a.next = (self.cur.q.val().a_count + 1) >> 1;
+        self.words_b.next = (self.cur.q.val().b_count + 1) >> 1;
+        self.pass_words.next = self.words_a.val();
+        if self.words_b.val() > self.words_a.val() {
+            self.pass_words.next = self.words_b.val();
+        }
+        self.larger.next = self.cur.q.val().a_count;
+        if self.cur.q.val().b_count > self.cur.q.val().a_count {
+            self.larger.next = self.cur.q.val().b_count;
+        }
+        // binning_model::cell_cycles: ceil(max(a, b) / 2) + classifier latency + 1.
+        self.classify.next = bit_cast::<48, 20>((self.larger.val() + 1) >> 1) + self.classify_base.val();
+        self.both.next = (self.cur.q.val().a_count != 0) & (self.cur.q.val().b_count != 0);
+        self.forced.next = self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
+        self.improving.next = self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
+        self.half.next = bits::<32>(1) << (self.top.q.val().level - 1);
+        self.child_data.next = self.children.read_data.val();
+
+        // ---- Output stream (stalls while a word waits).
+        self.advance_out.next = !self.out_valid_q.q.val() | self.out_ready.val();
+        self.out_valid.next = self.out_valid_q.q.val();
+        self.out_header.next = self.out_header_q.q.val();
+        self.out_object.next = self.out_object_q.q.val();
+        self.out_index.next = self.out_index_q.q.val();
+        self.out_x.next = bit_cast::<G, 32>(self.out_cell.q.val().x);
+        self.out_y.next = bit_cast::<G, 32>(self.out_cell.q.val().y);
+        self.out_z.next = bit_cast::<G, 32>(self.out_cell.q.val().z);
+        self.out_level.next = self.out_cell.q.val().level;
+        self.out_count_a.next = self.out_cell.q.val().a_count;
+        self.out_count_b.next = self.out_cell.q.val().b_count;
+        self.slot.next = self.counter.q.val();
+        self.entry_a.next = self.word_a.val().get_bits::<INDEX_BITS>(0);
+        if self.slot.val().get_bit(0) {
+            self.entry_a.next = self.word_a.val().get_bits::<INDEX_BITS>(18);
+        }
+        if self.out_cell.q.val().a_memory == self.identity.val() {
+            self.entry_a.next = bit_cast::<INDEX_BITS, 20>(self.slot.val());
+        }
+        self.entry_b.next = self.word_b.val().get_bits::<INDEX_BITS>(0);
+        if self.slot.val().get_bit(0) {
+            self.entry_b.next = self.word_b.val().get_bits::<INDEX_BITS>(18);
+        }
+        if self.out_cell.q.val().b_memory == self.identity.val() {
+            self.entry_b.next = bit_cast::<INDEX_BITS, 20>(self.slot.val());
+        }
+
+        self.in_ready.next = self.state.q.val() == BinState::Load;
+        self.accept.next = self.in_valid.val() & self.in_ready.val();
+        self.binned.next = (self.state.q.val() == BinState::OutLeaf)
+            | (self.state.q.val() == BinState::OutHeader)
+            | (self.state.q.val() == BinState::OutA)
+            | (self.state.q.val() == BinState::OutB)
+            | (self.state.q.val() == BinState::Done);
+        self.done.next = self.state.q.val() == BinState::Done;
+
+        match self.state.q.val() {
+            BinState::Idle => {
+                if self.start.val() {
+                    // The root: its lists are the streams themselves.
+                    self.cur.d.next.x = bit_cast::<32, G>(self.root_x.val());
+                    self.cur.d.next.y = bit_cast::<32, G>(self.root_y.val());
+                    self.cur.d.next.z = bit_cast::<32, G>(self.root_z.val());
+                    self.cur.d.next.level = self.root_level.val();
+                    self.cur.d.next.a_memory = self.identity.val();
+                    self.cur.d.next.b_memory = self.identity.val();
+                    self.cur.d.next.a_start = 0.into();
+                    self.cur.d.next.b_start = 0.into();
+                    self.cur.d.next.a_count = 0.into();
+                    self.cur.d.next.b_count = 0.into();
+                    self.cur_slack.d.next = 2.into();
+                    // cell_cycles(0, 0): the root is classified as it streams in.
+                    self.cur_classify.d.next = self.classify_base.val();
+                    self.loaded_a.d.next = 0.into();
+                    self.loaded_b.d.next = 0.into();
+                    self.frame_count.d.next = 0.into();
+                    self.leaf_count.d.next = 0.into();
+                    self.s1_root.d.next = true;
+                    for o in 0..8 {
+                        self.packer_a[o].begin.next = true;
+                        self.packer_b[o].begin.next = true;
+                    }
+                    self.state.d.next = BinState::Load;
+                }
+            }
+            BinState::Load => {
+                if self.accept.val() {
+                    if self.in_object.val() {
+                        self.triangles[2].write_enable.next = true;
+                        self.triangles[3].write_enable.next = true;
+                        self.s1_valid[2].d.next = true;
+                        self.s1_root_index[2].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
+                        self.loaded_b.d.next = self.loaded_b.q.val() + 1;
+                    } else {
+                        self.triangles[0].write_enable.next = true;
+                        self.triangles[1].write_enable.next = true;
+                        self.s1_valid[0].d.next = true;
+                        self.s1_root_index[0].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_a.q.val());
+                        self.loaded_a.d.next = self.loaded_a.q.val() + 1;
+                    }
+                    if self.in_last.val() {
+                        self.counter.d.next = 0.into();
+                        self.state.d.next = BinState::Drain;
+                    }
+                }
+            }
+            BinState::Pass => {
+                // Word `counter` of each list; a slot past the count is empty.
+                for o in 0..8 {
+                    self.list_a[o].read_enable.next = true;
+                    self.list_b[o].read_enable.next = true;
+                }
+                self.s1_valid[0].d.next = (self.counter.q.val() << 1) < self.cur.q.val().a_count;
+                self.s1_valid[1].d.next = ((self.counter.q.val() << 1) + 1) < self.cur.q.val().a_count;
+                self.s1_valid[2].d.next = (self.counter.q.val() << 1) < self.cur.q.val().b_count;
+                self.s1_valid[3].d.next = ((self.counter.q.val() << 1) + 1) < self.cur.q.val().b_count;
+                self.counter.d.next = self.counter.q.val() + 1;
+                if self.counter.q.val() + 1 == self.pass_words.val() {
+                    self.counter.d.next = 0.into();
+                    self.state.d.next = BinState::Drain;
+                }
+            }
+            BinState::Drain => {
+                self.counter.d.next = self.counter.q.val() + 1;
+                if self.counter.q.val() == 12 {
+                    // The last masks were written: flush half words.
+                    for o in 0..8 {
+                        self.packer_a[o].flush.next = true;
+                        self.packer_b[o].flush.next = true;
+                    }
+                    self.s1_root.d.next = false;
+                    self.cur.d.next.a_count = self.loaded_a.q.val();
+                    self.cur.d.next.b_count = self.loaded_b.q.val();
+                    if self.cur.q.val().a_memory != self.identity.val() {
+                        self.cur.d.next.a_count = self.cur.q.val().a_count;
+                        self.cur.d.next.b_count = self.cur.q.val().b_count;
+                    }
+                    self.counter.d.next = 0.into();
+                    self.state.d.next = BinState::Costs;
+                }
+            }
+            BinState::Costs => {
+                // Queries: children 0..7, then the cell (8); results 4 clocks later.
+                for o in 0..8 {
+                    if bit_cast::<4, 20>(self.counter.q.val()) == self.octant_id[o].val() {
+                        self.cost.a.next = self.packer_a[o].count.val();
+                        self.cost.b.next = self.packer_b[o].count.val();
+                        self.children.write_data.next.a_start = self.packer_a[o].start.val();
+                        self.children.write_data.next.a_count = self.packer_a[o].count.val();
+                        self.children.write_data.next.b_start = self.packer_b[o].start.val();
+                        self.children.write_data.next.b_count = self.packer_b[o].count.val();
+                    }
+                }
+                if self.counter.q.val() < 8 {
+                    self.children.write_enable.next = true;
+                }
+                if self.counter.q.val() == 0 {
+                    self.children_cost.d.next = 0.into();
+                }
+                if (self.counter.q.val() >= 4) & (self.counter.q.val() < 12) {
+                    self.children_cost.d.next = self.children_cost.q.val() + self.cost.cost.val();
+                }
+                self.counter.d.next = self.counter.q.val() + 1;
+                if self.counter.q.val() == 12 {
+                    self.cur_leaf_cost.d.next = self.cost.cost.val();
+                    self.state.d.next = BinState::Decide;
+                }
+            }
+            BinState::Decide => {
+                if !self.both.val() {
+                    self.returned.d.next = 0.into();
+                    self.state.d.next = BinState::Return;
+                } else if (self.cur.q.val().level == 0) | (!self.improving.val() & (self.cur_slack.q.val() == 0)) {
+                    self.leaves.write_enable.next = true;
+                    self.leaf_count.d.next = self.leaf_count.q.val() + 1;
+                    self.returned.d.next = self.cur_leaf_cost.q.val() + self.cur_classify.q.val();
+                    self.state.d.next = BinState::Return;
+                } else {
+                    // Push: the old top into the memory, the cell on top.
+                    if self.frame_count.q.val() != 0 {
+                        self.frames.write_enable.next = true;
+                    }
+                    self.top.d.next.x = self.cur.q.val().x;
+                    self.top.d.next.y = self.cur.q.val().y;
+                    self.top.d.next.z = self.cur.q.val().z;
+                    self.top.d.next.level = self.cur.q.val().level;
+                    self.top.d.next.a_memory = self.cur.q.val().a_memory;
+                    self.top.d.next.a_start = self.cur.q.val().a_start;
+                    self.top.d.next.a_count = self.cur.q.val().a_count;
+                    self.top.d.next.b_memory = self.cur.q.val().b_memory;
+                    self.top.d.next.b_start = self.cur.q.val().b_start;
+                    self.top.d.next.b_count = self.cur.q.val().b_count;
+                    self.top.d.next.leaf_cost = self.cur_leaf_cost.q.val();
+                    self.top.d.next.classify = self.cur_classify.q.val();
+                    self.top.d.next.subtree = 0.into();
+                    self.top.d.next.slack_next = 2.into();
+                    if !self.improving.val() {
+                        self.top.d.next.slack_next = self.cur_slack.q.val() - 1;
+                    }
+                    self.top.d.next.forced = self.forced.val();
+                    self.top.d.next.leaf_mark = self.leaf_count.q.val();
+                    self.top.d.next.octant = 0.into();
+                    self.frame_count.d.next = self.frame_count.q.val() + 1;
+                    self.state.d.next = BinState::Next;
+                }
+            }
+            BinState::Next => {
+                self.children.read_enable.next = true;
+                self.state.d.next = BinState::Check;
+            }
+            BinState::Check => {
+                // The child: its cell, its lists in the octant's memories.
+                self.cur.d.next.x = self.top.q.val().x;
+                self.cur.d.next.y = self.top.q.val().y;
+                self.cur.d.next.z = self.top.q.val().z;
+                if self.top.q.val().octant.get_bit(0) {
+                    self.cur.d.next.x = self.top.q.val().x + self.half.val();
+                }
+                if self.top.q.val().octant.get_bit(1) {
+                    self.cur.d.next.y = self.top.q.val().y + self.half.val();
+                }
+                if self.top.q.val().octant.get_bit(2) {
+                    self.cur.d.next.z = self.top.q.val().z + self.half.val();
+                }
+                self.cur.d.next.level = self.top.q.val().level - 1;
+                self.cur.d.next.a_memory = self.top.q.val().octant;
+                self.cur.d.next.b_memory = self.top.q.val().octant;
+                self.cur.d.next.a_start = self.child_data.val().a_start;
+                self.cur.d.next.a_count = self.child_data.val().a_count;
+                self.cur.d.next.b_start = self.child_data.val().b_start;
+                self.cur.d.next.b_count = self.child_data.val().b_count;
+                self.read_memory_a.d.next = self.top.q.val().octant;
+                self.read_memory_b.d.next = self.top.q.val().octant;
+                self.cur_slack.d.next = self.top.q.val().slack_next;
+                self.cost.a.next = self.child_data.val().a_count;
+                self.cost.b.next = self.child_data.val().b_count;
+                self.counter.d.next = 0.into();
+                if (self.child_data.val().a_count == 0) | (self.child_data.val().b_count == 0) {
+                    self.returned.d.next = 0.into();
+                    self.state.d.next = BinState::Return;
+                } else {
+                    self.state.d.next = BinState::ChildWait;
+                }
+            }
+            BinState::ChildWait => {
+                self.counter.d.next = self.counter.q.val() + 1;
+                if self.counter.q.val() == 2 {
+                    self.state.d.next = BinState::ChildDecide;
+                }
+            }
+            BinState::ChildDecide => {
+                self.cur_classify.d.next = self.classify.val();
+                self.cur_leaf_cost.d.next = self.cost.cost.val();
+                self.counter.d.next = 0.into();
+                if (self.cur.q.val().level == 0)
+                    | (!self.forced.val()
+                        & (self.cost.cost.val()
+                            <= bit_cast::<48, 20>(self.cur.q.val().a_count) + bit_cast::<48, 20>(self.cur.q.val().b_count) + 1 + self.classify.val()))
+                {
+                    self.leaves.write_enable.next = true;
+                    self.leaf_count.d.next = self.leaf_count.q.val() + 1;
+                    self.returned.d.next = self.cost.cost.val();
+                    self.state.d.next = BinState::Return;
+                } else {
+                    for o in 0..8 {
+                        self.packer_a[o].begin.next = true;
+                        self.packer_b[o].begin.next = true;
+                    }
+                    self.state.d.next = BinState::Pass;
+                }
+            }
+            BinState::Return => {
+                if self.frame_count.q.val() == 0 {
+                    self.counter.d.next = 0.into();
+                    self.out_leaf.d.next = 0.into();
+                    self.state.d.next = BinState::OutLeaf;
+                } else {
+                    self.top.d.next.subtree = self.top.q.val().subtree + self.returned.q.val();
+                    self.top.d.next.octant = self.top.q.val().octant + 1;
+                    if self.top.q.val().octant == 7 {
+                        self.state.d.next = BinState::Finish;
+                    } else {
+                        self.state.d.next = BinState::Next;
+                    }
+                }
+            }
+            BinState::Finish => {
+                if !self.top.q.val().forced & (self.top.q.val().subtree >= self.top.q.val().leaf_cost) {
+                    // The subtree did not pay: its leaves are dropped, the cell is one.
+                    self.leaves.write_enable.next = true;
+                    self.leaves.write_address.next = self.top.q.val().leaf_mark;
+                    self.leaves.write_data.next.x = self.top.q.val().x;
+                    self.leaves.write_data.next.y = self.top.q.val().y;
+                    self.leaves.write_data.next.z = self.top.q.val().z;
+                    self.leaves.write_data.next.level = self.top.q.val().level;
+                    self.leaves.write_data.next.a_memory = self.top.q.val().a_memory;
+                    self.leaves.write_data.next.a_start = self.top.q.val().a_start;
+                    self.leaves.write_data.next.a_count = self.top.q.val().a_count;
+                    self.leaves.write_data.next.b_memory = self.top.q.val().b_memory;
+                    self.leaves.write_data.next.b_start = self.top.q.val().b_start;
+                    self.leaves.write_data.next.b_count = self.top.q.val().b_count;
+                    self.leaf_count.d.next = self.top.q.val().leaf_mark + 1;
+                    self.returned.d.next = self.top.q.val().leaf_cost + self.top.q.val().classify;
+                } else {
+                    self.returned.d.next = self.top.q.val().subtree + self.top.q.val().classify;
+                }
+                // Pop: the frame below comes back from the memory.
+                self.frames.read_enable.next = true;
+                self.frame_count.d.next = self.frame_count.q.val() - 1;
+                self.state.d.next = BinState::PopWait;
+            }
+            BinState::PopWait => {
+                self.top.d.next = self.frames.read_data.val();
+                self.state.d.next = BinState::Return;
+            }
+            BinState::OutLeaf => {
+                if self.advance_out.val() {
+                    self.out_valid_q.d.next = false;
+                    if self.out_leaf.q.val() == self.leaf_count.q.val() {
+                        self.state.d.next = BinState::Done;
+                    } else {
+                        self.leaves.read_enable.next = true;
+                        self.state.d.next = BinState::OutHeader;
+                    }
+                }
+            }
+            BinState::OutHeader => {
+                if self.advance_out.val() {
+                    self.out_cell.d.next = self.leaves.read_data.val();
+                    self.out_valid_q.d.next = true;
+                    self.out_header_q.d.next = true;
+                    self.read_memory_a.d.next = self.leaves.read_data.val().a_memory;
+                    self.read_memory_b.d.next = self.leaves.read_data.val().b_memory;
+                    // The first word of A's list.
+                    for o in 0..8 {
+                        self.list_a[o].read_enable.next = true;
+                        self.list_a[o].read_address.next = self.leaves.read_data.val().a_start;
+                    }
+                    self.counter.d.next = 0.into();
+                    self.state.d.next = BinState::OutA;
+                }
+            }
+            BinState::OutA => {
+                if self.advance_out.val() {
+                    self.out_valid_q.d.next = true;
+                    self.out_header_q.d.next = false;
+                    self.out_object_q.d.next = false;
+                    self.out_index_q.d.next = self.entry_a.val();
+                    self.counter.d.next = self.counter.q.val() + 1;
+                    for o in 0..8 {
+                        self.list_a[o].read_enable.next = true;
+                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + ((self.counter.q.val() + 1) >> 1);
+                    }
+                    if self.counter.q.val() + 1 == self.out_cell.q.val().a_count {
+                        for o in 0..8 {
+                            self.list_b[o].read_enable.next = true;
+                            self.list_b[o].read_address.next = self.out_cell.q.val().b_start;
+                        }
+                        self.counter.d.next = 0.into();
+                        self.state.d.next = BinState::OutB;
+                    }
+                }
+            }
+            BinState::OutB => {
+                if self.advance_out.val() {
+                    self.out_valid_q.d.next = true;
+                    self.out_header_q.d.next = false;
+                    self.out_object_q.d.next = true;
+                    self.out_index_q.d.next = self.entry_b.val();
+                    self.counter.d.next = self.counter.q.val() + 1;
+                    for o in 0..8 {
+                        self.list_b[o].read_enable.next = true;
+                        self.list_b[o].read_address.next = self.out_cell.q.val().b_start + ((self.counter.q.val() + 1) >> 1);
+                    }
+                    if self.counter.q.val() + 1 == self.out_cell.q.val().b_count {
+                        self.out_leaf.d.next = self.out_leaf.q.val() + 1;
+                        self.state.d.next = BinState::OutLeaf;
+                    }
+                }
+            }
+            BinState::Done => {
+                if self.advance_out.val() {
+                    self.out_valid_q.d.next = false;
+                }
+            }
+        }
+        if self.reset.val() {
+            self.state.d.next = BinState::Idle;
+            self.out_valid_q.d.next = false;
+            self.s1_root.d.next = false;
+            for l in 0..4 {
+                self.s1_valid[l].d.next = false;
+            }
+        }
+    }
+}
