@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -33,7 +33,11 @@
 //! grid (16, 24 or 32), top `tritri_cell_classifier_g<G>`, by default into
 //! `rtl-out/<top>`. `--setup` writes the setup that feeds it (one triangle
 //! per clock to its thirteen test functions at the root cell), top
-//! `tritri_triangle_setup_g<G>`. `--owner-filter` writes the filter that
+//! `tritri_triangle_setup_g<G>`. `--binning-unit` writes the broad phase's
+//! binning unit for a `--width`-bit grid (each object's triangles in once,
+//! the leaves out; memories sized by `--triangles`, `--list-words` and
+//! `--leaves`, the split rule by the system's `--depth` and `--pipelines`),
+//! top `tritri_binning_g<G>_t<N>_w<N>_l<N>_d<D>_p<P>`. `--owner-filter` writes the filter that
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
 //! `--plane-traversal` writes the octree engine's plane classification
@@ -52,6 +56,7 @@ use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::check_width;
+use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
@@ -60,6 +65,8 @@ use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_
 use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
+use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
+use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
@@ -118,21 +125,84 @@ pub struct Args {
     #[arg(long, default_value_t = 65536, requires = "owner_filter",
           value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
     slots: u64,
-    /// With --system: pipelines working in parallel (1 to 16).
-    #[arg(long, default_value_t = 2, requires = "system",
-          value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
-    pipelines: u32,
-    /// With --system: memory depth, triangles per array per bank (1 to 32767).
-    #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64, requires = "system",
-          value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
-    depth: u64,
+    /// With --system or --binning-unit: pipelines working in parallel (1
+    /// to 16; a power of two for the binning unit's split rule) [default: 2].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
+    pipelines: Option<u32>,
+    /// With --system or --binning-unit: memory depth, triangles per array
+    /// per bank (1 to 32767; a power of two for the binning unit) [default: 256].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
+    depth: Option<u64>,
+    /// Emit the octree broad phase's binning unit instead (triangles in,
+    /// leaves out); --width is the grid's width (16, 24 or 32), --depth and
+    /// --pipelines the system it feeds.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill"])]
+    binning_unit: bool,
+    /// With --binning-unit: triangles per object (1 to 262144).
+    #[arg(long, default_value_t = 8192, requires = "binning_unit",
+          value_parser = clap::value_parser!(u64).range(1..=1 << INDEX_BITS))]
+    triangles: u64,
+    /// With --binning-unit: words of each of the sixteen list memories, two
+    /// indices a word (1 to 1048576).
+    #[arg(long, default_value_t = 16384, requires = "binning_unit",
+          value_parser = clap::value_parser!(u64).range(1..=1 << LIST_ADDRESS_BITS))]
+    list_words: u64,
+    /// With --binning-unit: leaf descriptors (1 to 1048576).
+    #[arg(long, default_value_t = 4096, requires = "binning_unit",
+          value_parser = clap::value_parser!(u64).range(1..=1 << LEAF_ADDRESS_BITS))]
+    leaves: u64,
 }
 
 impl Args {
+    fn pipelines(&self) -> u32 {
+        self.pipelines.unwrap_or(2)
+    }
+
+    fn depth(&self) -> u64 {
+        self.depth.unwrap_or(DEFAULT_TRIANGLES_PER_BANK as u64)
+    }
+
     /// The system configuration at `width` (with --system).
     fn system_config(&self, width: usize) -> SystemConfig {
         let latency = tritri_rtl::pipeline::triangle_pipeline::latency();
-        SystemConfig::new(width, self.pipelines as usize, latency).with_depth(self.depth as usize)
+        SystemConfig::new(width, self.pipelines() as usize, latency).with_depth(self.depth() as usize)
+    }
+
+    /// The binning unit's configuration for a `grid_bits`-bit grid (with
+    /// --binning-unit; `check_usage` has checked the powers of two).
+    fn binning_config(&self, grid_bits: usize) -> BinningUnitConfig {
+        BinningUnitConfig {
+            grid_bits,
+            triangles: self.triangles as usize,
+            list_words: self.list_words as usize,
+            leaves: self.leaves as usize,
+            log_depth: self.depth().trailing_zeros(),
+            log_pipelines: self.pipelines().trailing_zeros(),
+        }
+    }
+
+    /// An error for options that do not go together, naming them.
+    fn check_usage(&self) -> Result<(), String> {
+        if !(self.system || self.binning_unit) {
+            if self.pipelines.is_some() {
+                return Err("--pipelines applies to --system and --binning-unit".into());
+            }
+            if self.depth.is_some() {
+                return Err("--depth applies to --system and --binning-unit".into());
+            }
+        }
+        if self.binning_unit {
+            if !self.pipelines().is_power_of_two() {
+                return Err(format!("--pipelines {}: the binning unit's split rule takes a power of two", self.pipelines()));
+            }
+            if !self.depth().is_power_of_two() {
+                return Err(format!("--depth {}: the binning unit's split rule takes a power of two", self.depth()));
+            }
+            for &w in &self.width {
+                self.binning_config(w).check().map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
+            }
+        }
+        Ok(())
     }
 
     /// The design for `width`: the pipeline, or the system with --system.
@@ -148,6 +218,10 @@ impl Args {
         }
         if self.voxel_fill {
             return emit_voxel_fill().with_context(|| format!("emitting {VOXEL_FILL_NAME}"));
+        }
+        if self.binning_unit {
+            let config = self.binning_config(width);
+            return emit_binning_unit(&config).with_context(|| format!("emitting {}", config.unit_name()));
         }
         if self.owner_filter {
             return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
@@ -167,7 +241,7 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup || self.owner_filter || self.engine_unit()
+        self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.engine_unit()
     }
 
     /// The octree engine's units that take no width.
@@ -192,6 +266,8 @@ impl Args {
             VOXEL_FILL_NAME.to_string()
         } else if self.owner_filter {
             owner_filter_unit_name(self.slots as usize)
+        } else if self.binning_unit {
+            self.binning_config(width).unit_name()
         } else if self.classifier {
             cell_classifier_unit_name(width)
         } else if self.setup {
@@ -216,13 +292,17 @@ fn out_dir(args: &Args, width: usize) -> PathBuf {
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    if let Err(e) = args.check_usage() {
+        eprintln!("error: {e}");
+        return Ok(ExitCode::from(2));
+    }
     for &w in &args.width {
         if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
             let unit = if args.setup { "--setup" } else { "--classifier" };
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit() || args.owner_filter || args.engine_unit(), check_width(w)) {
+        if let (false, Err(e)) = (args.octree_unit() || args.binning_unit || args.owner_filter || args.engine_unit(), check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

@@ -59,7 +59,8 @@ use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::system::cycle_model::scene_cycles;
-use tritri_rtl::octree::binning_model::{binning_cycles, binning_memory_bits, entry_bits, triangle_record_bits, BinningWork, LANES_PER_OBJECT};
+use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
+use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -313,7 +314,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(narrow)
         )?;
         if let Some(octree) = &scene.octree {
-            let binning = binning_cycles(&binning_work(octree));
+            let binning = match scene_binning(&args, &scene) {
+                Ok(unit) => unit.run.cycles,
+                Err(_) => binning_cycles(&binning_work(octree)),
+            };
             let owner = run.owner.map_or(0, |o| o.cycles);
             let whole = args.hardware.time_of(binning + cycles + owner);
             writeln!(
@@ -401,20 +405,39 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             octree.b.len(),
             if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }
         )?;
-        let work = binning_work(octree);
-        let grid_bits = args.hardware.grid_bits() as usize;
-        writeln!(
-            report,
-            "binning unit (setup and classifier step built and co-simulated, {LANES_PER_OBJECT} classifiers per object; controller modelled): {} triangles in, {} entries classified in {} cells: {} cycles; memory {:.1} Mbit ({} entries on the path at most x {} bits + {} bits per triangle)",
-            work.triangles,
-            work.entries,
-            work.cells,
-            binning_cycles(&work),
-            binning_memory_bits(&work, grid_bits) as f64 / 1e6,
-            work.peak_path_entries,
-            entry_bits(grid_bits),
-            triangle_record_bits(grid_bits)
-        )?;
+        match scene_binning(args, scene) {
+            Ok(SceneBinning { config, run }) => writeln!(
+                report,
+                "binning unit (built; its cycle-exact model here, equal to its Verilog in co-simulation): {} triangles in, {} cell passes over {} entries, {} leaves (the planner's), at most {} frames deep: {} cycles; memories {:.2} Mbit for {} triangles per object, {} list words, {} leaves (tritri gen --binning-unit --width {} --triangles {} --list-words {} --leaves {} --depth {} --pipelines {})",
+                scene.kept_a.len() + scene.kept_b.len(),
+                run.cells,
+                run.entries,
+                run.leaves.len(),
+                run.peak_frames,
+                run.cycles,
+                config.memory_bits() as f64 / 1e6,
+                config.triangles,
+                config.list_words,
+                config.leaves,
+                config.grid_bits,
+                config.triangles,
+                config.list_words,
+                config.leaves,
+                1u64 << config.log_depth,
+                1u64 << config.log_pipelines
+            )?,
+            Err(why) => {
+                let work = binning_work(octree);
+                writeln!(
+                    report,
+                    "binning unit: not built for this configuration ({why}); its cost formula: {} triangles in, {} entries classified in {} cells: {} cycles",
+                    work.triangles,
+                    work.entries,
+                    work.cells,
+                    binning_cycles(&work)
+                )?
+            }
+        }
     } else {
         writeln!(report, "broad phase: flat (every pair in the common box)")?;
     }
@@ -428,14 +451,22 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
     Ok(())
 }
 
-/// What the broad phase's plan asks of the binning unit.
+/// The binning unit on the scene's broad phase (the cycle-exact model of
+/// the unit built for it), or why the unit does not apply.
+fn scene_binning(args: &Args, scene: &PreparedScene) -> Result<SceneBinning, String> {
+    let hardware = &args.hardware;
+    let max_leaf_level = hardware.local_frames().map(|l| l.max_leaf_level());
+    bin_scene(scene, hardware.grid_bits() as usize, hardware.depth as usize, hardware.pipelines as usize, max_leaf_level)
+}
+
+/// What the broad phase's plan asks of the binning unit (its cost formula,
+/// where the unit does not apply).
 fn binning_work(octree: &OctreeSchedule) -> BinningWork {
     BinningWork {
         triangles: octree.binned,
         cells: octree.cells_visited,
         entries: octree.classifications,
         cell_cycles: octree.classify_cycles,
-        peak_path_entries: octree.peak_path_entries,
     }
 }
 

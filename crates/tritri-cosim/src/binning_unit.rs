@@ -1,14 +1,26 @@
 //! Co-simulation of the binning unit ([`tritri_rtl::octree::binning_unit`]):
-//! a scene's two arrays streamed in, the leaves streamed out, against the
-//! cycle-exact model ([`tritri_rtl::octree::binning_machine`]), whose
-//! leaves are the broad phase planner's.
+//! a scene's two arrays streamed in, the leaves streamed out, in the rust-hdl
+//! model and in the emitted Verilog (Icarus or Verilator), against the
+//! cycle-exact model ([`tritri_rtl::octree::binning_machine`]), whose leaves
+//! are the broad phase planner's.
+//!
+//! Vectors for the emitted unit: a first line `0 x y z level enable
+//! max_level` (hex) starts the run at the root cell; then one line per
+//! triangle, `1 object last x0 y0 z0 x1 y1 z1 x2 y2 z2` (coordinates as
+//! G-bit two's complement), each held until the unit takes it. Outputs,
+//! each with `edge`, the rising edge counted from reset: `H edge x y z
+//! level` a leaf's header, `E edge object index` an entry, `D edge` the
+//! first edge with `binned` high.
 
-use anyhow::bail;
+use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
-use tritri_rtl::octree::binning_machine::BinningParams;
-use tritri_rtl::octree::binning_unit::BinningUnit;
+use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
+use tritri_geom::scene::PreparedScene;
+use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::octree::binning_unit::{on_unit_stack, BinningUnit, BinningUnitConfig, BINNING_GRID_WIDTHS};
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -30,38 +42,30 @@ pub struct BinningOutput {
     pub cycles: u64,
 }
 
-/// Memory sizes for a scene: every triangle, and list words for what the
-/// model's run wrote.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct UnitSizes {
-    pub triangles: usize,
-    pub list_words: usize,
-    pub leaves: usize,
+/// The model's leaves as the unit streams them.
+pub fn expected_leaves(run: &BinningRun) -> Vec<StreamedLeaf> {
+    run.leaves.iter().zip(&run.leaf_lists).map(|(leaf, (a, b))| StreamedLeaf { cell: leaf.cell, a: a.clone(), b: b.clone() }).collect()
 }
 
-/// The unit's grids: the widths its setup and classifier are built for.
-pub const BINNING_GRID_WIDTHS: [usize; 3] = [16, 24, 32];
-
-/// The scene through the rust-hdl model of the unit for `grid_bits`-bit
-/// coordinates; `reader_ready(clock)` drives `out_ready`.
+/// The scene through the rust-hdl model of the unit built for `config`;
+/// `reader_ready(clock)` drives `out_ready`.
 pub fn run_rusthdl(
-    grid_bits: usize,
+    config: &BinningUnitConfig,
     a: &[FixedTriangle],
     b: &[FixedTriangle],
     root: Cell,
-    params: BinningParams,
-    sizes: UnitSizes,
-    reader_ready: &dyn Fn(u64) -> bool,
+    max_leaf_level: Option<u32>,
+    reader_ready: &(dyn Fn(u64) -> bool + Sync),
 ) -> anyhow::Result<BinningOutput> {
     fn run<const G: usize, const V: usize, const N: usize, const T: usize>(
+        config: &BinningUnitConfig,
         a: &[FixedTriangle],
         b: &[FixedTriangle],
         root: Cell,
-        params: BinningParams,
-        sizes: UnitSizes,
+        max_leaf_level: Option<u32>,
         reader_ready: &dyn Fn(u64) -> bool,
     ) -> anyhow::Result<BinningOutput> {
-        let mut uut = BinningUnit::<G, V, N, T>::new(sizes.triangles, sizes.list_words, sizes.leaves).with_system(params.log_depth, params.log_pipelines);
+        let mut uut = BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves).with_system(config.log_depth, config.log_pipelines);
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
         let g = |v: i64| -> Bits<G> { Bits::from((v as u64) & ((1u64 << G) - 1)) };
@@ -69,8 +73,8 @@ pub fn run_rusthdl(
         uut.root_y.next = g(root.lo[1]);
         uut.root_z.next = g(root.lo[2]);
         uut.root_level.next = (root.level as u64).into();
-        uut.max_leaf_enable.next = params.max_leaf_level.is_some();
-        uut.max_leaf_level.next = (params.max_leaf_level.unwrap_or(0) as u64).into();
+        uut.max_leaf_enable.next = max_leaf_level.is_some();
+        uut.max_leaf_level.next = (max_leaf_level.unwrap_or(0) as u64).into();
         uut.start.next = true;
         clock_cycle(&mut uut, |u| &mut u.clock);
         uut.start.next = false;
@@ -104,8 +108,7 @@ pub fn run_rusthdl(
             if uut.out_valid.val() && uut.out_ready.val() {
                 if uut.out_header.val() {
                     out.leaves.extend(current.take());
-                    let coordinate = |v: Bits<G>| -> i64 { ((v.index() as i64) << (64 - G)) >> (64 - G) };
-                    let lo = [coordinate(uut.out_x.val()), coordinate(uut.out_y.val()), coordinate(uut.out_z.val())];
+                    let lo = [signed::<G>(uut.out_x.val().index() as u64), signed::<G>(uut.out_y.val().index() as u64), signed::<G>(uut.out_z.val().index() as u64)];
                     current = Some(StreamedLeaf { cell: Cell { lo, level: uut.out_level.val().index() as u32 }, a: Vec::new(), b: Vec::new() });
                 } else {
                     let Some(leaf) = current.as_mut() else { bail!("an entry before the first header at clock {clock}") };
@@ -127,10 +130,203 @@ pub fn run_rusthdl(
         out.cycles = binned_at.unwrap_or(clock);
         Ok(out)
     }
-    match grid_bits {
-        16 => run::<16, { value_bits(16) }, { AXES * value_bits(16) }, { 9 * 16 }>(a, b, root, params, sizes, reader_ready),
-        24 => run::<24, { value_bits(24) }, { AXES * value_bits(24) }, { 9 * 24 }>(a, b, root, params, sizes, reader_ready),
-        32 => run::<32, { value_bits(32) }, { AXES * value_bits(32) }, { 9 * 32 }>(a, b, root, params, sizes, reader_ready),
+    on_unit_stack(|| match config.grid_bits {
+        16 => run::<16, { value_bits(16) }, { AXES * value_bits(16) }, { 9 * 16 }>(config, a, b, root, max_leaf_level, reader_ready),
+        24 => run::<24, { value_bits(24) }, { AXES * value_bits(24) }, { 9 * 24 }>(config, a, b, root, max_leaf_level, reader_ready),
+        32 => run::<32, { value_bits(32) }, { AXES * value_bits(32) }, { 9 * 32 }>(config, a, b, root, max_leaf_level, reader_ready),
         g => bail!("the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {g}"),
+    })
+}
+
+/// A `G`-bit two's complement value.
+fn signed<const G: usize>(v: u64) -> i64 {
+    ((v as i64) << (64 - G)) >> (64 - G)
+}
+
+/// The scene through the emitted unit built for `config` in `simulator`
+/// (the reader always ready). `clock_bound` bounds the clocks the run may
+/// take after its last triangle (binning and the leaves out).
+pub fn run_emitted(
+    config: &BinningUnitConfig,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+    root: Cell,
+    max_leaf_level: Option<u32>,
+    clock_bound: u64,
+    simulator: Simulator,
+) -> anyhow::Result<BinningOutput> {
+    let design = emit_binning_unit(config)?;
+    let mut files = vec![("tb_binning_unit.sv".to_string(), testbench(&design.top, config.grid_bits, clock_bound as usize))];
+    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    let bench = Testbench { top: "tb_binning_unit".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
+    let compiled = compile(simulator, &bench)?;
+    let mask = |v: i64| (v as u64) & ((1u64 << config.grid_bits) - 1);
+    let mut vectors = format!(
+        "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
+        mask(root.lo[0]),
+        mask(root.lo[1]),
+        mask(root.lo[2]),
+        root.level,
+        max_leaf_level.is_some() as u8,
+        max_leaf_level.unwrap_or(0)
+    );
+    let total = a.len() + b.len();
+    for (k, (object, t)) in a.iter().map(|t| (0, t)).chain(b.iter().map(|t| (1, t))).enumerate() {
+        vectors += &format!("1 {object} {}", (k + 1 == total) as u8);
+        for v in t.iter().flatten() {
+            vectors += &format!(" {:x}", mask(*v));
+        }
+        vectors.push('\n');
     }
+    let (text, _) = run_on_vectors(&compiled, "binning-unit-run", &vectors, &[])?;
+    parse_outputs(&text, config.grid_bits)
+}
+
+/// The testbench's output lines as leaves and cycles. The start line is
+/// offered before edge 0 and the first triangle at edge 1, the unit's
+/// clock 0: an output at edge `k` is the model's clock `k - 1`.
+fn parse_outputs(text: &str, grid_bits: usize) -> anyhow::Result<BinningOutput> {
+    let mut out = BinningOutput::default();
+    let mut current: Option<StreamedLeaf> = None;
+    let mut binned = None;
+    for line in text.lines() {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let number = |k: usize, radix| -> anyhow::Result<u64> {
+            let s = fields.get(k).with_context(|| format!("binning unit output line `{line}` has no field {k}"))?;
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
+        let coordinate = |v: u64| ((v as i64) << (64 - grid_bits)) >> (64 - grid_bits);
+        match fields.first().copied() {
+            Some("H") => {
+                out.leaves.extend(current.take());
+                let lo = [coordinate(number(2, 16)?), coordinate(number(3, 16)?), coordinate(number(4, 16)?)];
+                current = Some(StreamedLeaf { cell: Cell { lo, level: number(5, 16)? as u32 }, a: Vec::new(), b: Vec::new() });
+            }
+            Some("E") => {
+                let Some(leaf) = current.as_mut() else { bail!("an entry before the first header: `{line}`") };
+                let index = number(3, 16)? as u32;
+                if number(2, 16)? == 1 { leaf.b.push(index) } else { leaf.a.push(index) }
+            }
+            Some("D") => binned = Some(number(1, 10)?),
+            _ => bail!("binning unit output line `{line}` is not H, E or D"),
+        }
+    }
+    out.leaves.extend(current.take());
+    let Some(edge) = binned else { bail!("the emitted binning unit never raised `binned`") };
+    out.cycles = edge.checked_sub(1).context("`binned` at edge 0, before the first triangle")?;
+    Ok(out)
+}
+
+/// The testbench: the start line for one clock, each triangle held until
+/// taken, the reader always ready; every leaf word written with its edge;
+/// the run ends when the unit says `done` (or `drain` clocks after the
+/// last triangle).
+fn testbench(top: &str, g: usize, drain: usize) -> String {
+    let g1 = g - 1;
+    let body = format!(
+        "\
+    reg [3:0] kind = 4'd0;
+    // Scalars, not an array: Verilator's $fscanf does not fill array elements.
+    reg [31:0] f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10;
+    // The run's root and leaf limit, held from the start line to the end.
+    reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;
+    reg [63:0] edge_count = 64'd0;
+    reg binned_seen = 1'b0;
+    wire in_ready, out_valid, out_header, out_object, binned, done;
+    wire [17:0] out_index;
+    wire [{g1}:0] out_x, out_y, out_z;
+    wire [5:0] out_level;
+    wire [19:0] out_count_a, out_count_b;
+    {top} dut (
+        .clock(clock), .reset(reset),
+        .start(in_valid && kind == 4'd0),
+        .root_x(held_x[{g1}:0]), .root_y(held_y[{g1}:0]), .root_z(held_z[{g1}:0]), .root_level(held_level[5:0]),
+        .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
+        .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
+        .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),
+        .out_valid(out_valid), .out_ready(1'b1), .out_header(out_header), .out_object(out_object), .out_index(out_index),
+        .out_x(out_x), .out_y(out_y), .out_z(out_z), .out_level(out_level), .out_count_a(out_count_a), .out_count_b(out_count_b),
+        .binned(binned), .done(done)
+    );
+
+    always @(posedge clock) if (!reset) edge_count <= edge_count + 64'd1;
+
+    // Outputs are registered, stable at the falling edge; a word shown
+    // there leaves at the next rising edge, number edge_count.
+    always @(negedge clock) begin
+        if (!reset && binned && !binned_seen) begin
+            $fwrite(outputs, \"D %0d\\n\", edge_count);
+            binned_seen = 1'b1;
+        end
+        if (!reset && out_valid && out_header) $fwrite(outputs, \"H %0d %h %h %h %h\\n\", edge_count, out_x, out_y, out_z, out_level);
+        if (!reset && out_valid && !out_header) $fwrite(outputs, \"E %0d %h %h\\n\", edge_count, out_object, out_index);
+        if (!reset && done) begin
+            $fclose(outputs);
+            $finish;
+        end
+    end
+"
+    );
+    vector_testbench(&VectorTestbench {
+        name: "tb_binning_unit",
+        body,
+        start: "        f0 = 0; f1 = 0; f2 = 0; f3 = 0; f4 = 0; f5 = 0; f6 = 0; f7 = 0; f8 = 0; f9 = 0; f10 = 0;\n        held_x = 0; held_y = 0; held_z = 0; held_level = 0; held_enable = 0; held_max = 0;".into(),
+        read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
+        // The start line: six fields, one clock. A triangle: eleven,
+        // offered until the unit takes it.
+        fill: "            if (kind == 4'd0) r = $fscanf(vectors, \"%h %h %h %h %h %h\", held_x, held_y, held_z, held_level, held_enable, held_max);\n            \
+               else begin\n                \
+               r = $fscanf(vectors, \"%h %h %h %h %h %h %h %h %h %h %h\", f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10);\n                \
+               in_valid = 1'b1; while (!in_ready) @(negedge clock);\n            \
+               end"
+            .into(),
+        drain,
+    })
+}
+
+/// The binning unit on a scene's broad phase: the unit built for it and
+/// its run (the cycle-exact model, which the rust-hdl model and the
+/// emitted Verilog equal: tests/binning_unit.rs).
+#[derive(Clone, Debug)]
+pub struct SceneBinning {
+    pub config: BinningUnitConfig,
+    pub run: BinningRun,
+}
+
+/// Bins the scene's arrays (the triangles in the common box, which the
+/// broad phase's planner bins into `scene.octree`) as the unit does, for a system of
+/// `depth` triangles per array and `pipelines` pipelines on a `grid_bits`
+/// grid (leaves at most `max_leaf_level` with local frames). An error says
+/// why the unit does not apply: a depth or pipeline count that is not a
+/// power of two, a grid it is not built for, triangles left to the host,
+/// or (a bug) leaves other than the planner's.
+pub fn bin_scene(
+    scene: &PreparedScene,
+    grid_bits: usize,
+    depth: usize,
+    pipelines: usize,
+    max_leaf_level: Option<u32>,
+) -> Result<SceneBinning, String> {
+    if !depth.is_power_of_two() || !pipelines.is_power_of_two() {
+        return Err(format!("its split rule takes a power-of-two depth and pipeline count, not D = {depth}, P = {pipelines}"));
+    }
+    if !BINNING_GRID_WIDTHS.contains(&grid_bits) {
+        return Err(format!("it is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {grid_bits}"));
+    }
+    let Some(octree) = &scene.octree else { return Err("the scene has no octree broad phase".into()) };
+    if !octree.host_arrays.is_empty() {
+        return Err("some triangles are too long for a leaf's window and go to the host".into());
+    }
+    let Some(root) = octree.root else { return Err("the common box is empty".into()) };
+    let params = BinningParams { log_depth: depth.trailing_zeros(), log_pipelines: pipelines.trailing_zeros(), max_leaf_level };
+    let a: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
+    let b: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
+    let run = run_binning(&a, &b, root, params);
+    let planned: Vec<Cell> = octree.leaves.iter().map(|l| l.cell).collect();
+    if run.leaves.iter().map(|l| l.cell).ne(planned.iter().copied()) {
+        return Err(format!("its {} leaves differ from the planner's {} (a bug)", run.leaves.len(), planned.len()));
+    }
+    let config = BinningUnitConfig::sized_for(grid_bits, params, a.len().max(b.len()), &run);
+    config.check()?;
+    Ok(SceneBinning { config, run })
 }

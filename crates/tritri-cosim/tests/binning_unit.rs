@@ -1,52 +1,109 @@
 //! The binning unit bins in hardware what the broad phase's planner bins in
 //! software: a scene's arrays streamed in once, the leaves streamed out,
 //! equal to the cycle-exact model (whose leaves are the planner's) in
-//! cells, triangles and order, and in clocks.
+//! cells, triangles and order, and in clocks: in rust-hdl (with and
+//! without back-pressure on the leaf stream), and as emitted Verilog in
+//! Icarus and in Verilator.
 
-use tritri_cosim::binning_unit::{run_rusthdl, StreamedLeaf, UnitSizes};
+use tritri_cosim::binning_unit::{expected_leaves, run_emitted, run_rusthdl, BinningOutput, StreamedLeaf};
+use tritri_cosim::simulator::Simulator;
 use tritri_geom::builtin_scene::{sphere, torus};
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, PreparedScene, SceneOptions};
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::octree::binning_unit::BinningUnitConfig;
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
 /// A torus and a sphere in contact, at memory depth `depth` (small: many
 /// leaves, deep frames, dropped subtrees).
-fn scene(depth: usize, torus_segments: usize) -> PreparedScene {
+fn scene(depth: usize, torus_segments: usize, sphere_segments: usize) -> PreparedScene {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, torus_segments, torus_segments / 2));
-    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, sphere_segments, sphere_segments / 2));
     let config = SystemConfig::new(24, 2, latency()).with_depth(depth);
     prepare_octree(&a, &b, &SceneOptions { width: 24, depth, split: true }, &config, None).unwrap()
 }
 
+fn arrays(scene: &PreparedScene) -> (Vec<FixedTriangle>, Vec<FixedTriangle>) {
+    (scene.kept_a.iter().map(|t| t.triangle).collect(), scene.kept_b.iter().map(|t| t.triangle).collect())
+}
+
+/// The model's run on the scene, checked against the scene's schedule.
 fn model(scene: &PreparedScene, params: BinningParams) -> BinningRun {
-    let a: Vec<_> = scene.kept_a.iter().map(|t| t.triangle).collect();
-    let b: Vec<_> = scene.kept_b.iter().map(|t| t.triangle).collect();
-    run_binning(&a, &b, scene.octree.as_ref().unwrap().root.unwrap(), params)
+    let (a, b) = arrays(scene);
+    let run = run_binning(&a, &b, scene.octree.as_ref().unwrap().root.unwrap(), params);
+    // The model is the planner (tested in the hardware crate); here the
+    // leaves must also be the scene's schedule.
+    assert_eq!(run.leaves.len(), scene.octree.as_ref().unwrap().leaves.len());
+    run
 }
 
-fn sizes(scene: &PreparedScene, run: &BinningRun) -> UnitSizes {
-    let words = run.list_words.iter().flatten().max().copied().unwrap_or(1).max(1) as usize;
-    UnitSizes { triangles: scene.kept_a.len().max(scene.kept_b.len()), list_words: words, leaves: run.peak_leaves.max(1) }
+/// The unit's output equals the model's run: leaves (reported by the first
+/// that differs, not printed whole) and cycles.
+fn assert_bins_as(out: &BinningOutput, run: &BinningRun) {
+    let expected = expected_leaves(run);
+    let show = |l: Option<&StreamedLeaf>| l.map_or("none".to_string(), |l| format!("{:?} with {} + {} triangles", l.cell, l.a.len(), l.b.len()));
+    if let Some(k) = (0..out.leaves.len().max(expected.len())).find(|&k| out.leaves.get(k) != expected.get(k)) {
+        panic!(
+            "{} leaves, expected {}; leaf {k} is {}, expected {}",
+            out.leaves.len(),
+            expected.len(),
+            show(out.leaves.get(k)),
+            show(expected.get(k))
+        );
+    }
+    assert_eq!(out.cycles, run.cycles);
 }
 
-fn expected_leaves(run: &BinningRun) -> Vec<StreamedLeaf> {
-    run.leaves.iter().zip(&run.leaf_lists).map(|(leaf, (a, b))| StreamedLeaf { cell: leaf.cell, a: a.clone(), b: b.clone() }).collect()
-}
+const PARAMS: BinningParams = BinningParams { log_depth: 4, log_pipelines: 1, max_leaf_level: None };
 
 #[test]
 fn rust_hdl_bins_as_the_model_leaf_for_leaf_and_clock_for_clock() {
-    let scene = scene(16, 48);
-    let params = BinningParams { log_depth: 4, log_pipelines: 1, max_leaf_level: None };
-    let run = model(&scene, params);
-    // The model is the planner (tested in the hardware crate); here the
-    // leaves must also be the scene's schedule.
-    let schedule = scene.octree.as_ref().unwrap();
-    assert_eq!(run.leaves.len(), schedule.leaves.len());
+    let scene = scene(16, 48, 32);
+    let run = model(&scene, PARAMS);
     assert!(run.leaves.len() > 20 && run.peak_frames > 3, "{} leaves, {} frames", run.leaves.len(), run.peak_frames);
-    let out = run_rusthdl(24, &scene.kept_a.iter().map(|t| t.triangle).collect::<Vec<_>>(), &scene.kept_b.iter().map(|t| t.triangle).collect::<Vec<_>>(), schedule.root.unwrap(), params, sizes(&scene, &run), &|_| true).unwrap();
-    assert_eq!(out.leaves, expected_leaves(&run));
-    assert_eq!(out.cycles, run.cycles);
-    eprintln!("{} leaves, {} frames at most, {} cells passed, {} clocks; {} + {} triangles", run.leaves.len(), run.peak_frames, run.cells, run.cycles, scene.kept_a.len(), scene.kept_b.len());
+    let (a, b) = arrays(&scene);
+    let config = BinningUnitConfig::sized_for(24, PARAMS, a.len().max(b.len()), &run);
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let out = run_rusthdl(&config, &a, &b, root, None, &|_| true).unwrap();
+    assert_bins_as(&out, &run);
+    // A reader that stalls: the same leaves (binning is over before the
+    // first leaf leaves, so the same cycles too).
+    let stalled = run_rusthdl(&config, &a, &b, root, None, &|clock| (clock * 7919) % 5 < 2).unwrap();
+    assert_eq!(stalled, out);
+    eprintln!("{} leaves, {} frames at most, {} cells passed, {} clocks; {} + {} triangles", run.leaves.len(), run.peak_frames, run.cells, run.cycles, a.len(), b.len());
 }
+
+#[test]
+fn the_emitted_unit_bins_as_the_model_in_icarus() {
+    let scene = scene(16, 48, 32);
+    let run = model(&scene, PARAMS);
+    let (a, b) = arrays(&scene);
+    let config = BinningUnitConfig::sized_for(24, PARAMS, a.len().max(b.len()), &run);
+    let bound = run.cycles + 4 * (run.leaves.len() as u64 + run.entries) + 100;
+    let out = run_emitted(&config, &a, &b, scene.octree.as_ref().unwrap().root.unwrap(), None, bound, Simulator::Icarus).unwrap();
+    assert_bins_as(&out, &run);
+}
+
+#[test]
+fn the_emitted_unit_bins_a_large_scene_as_the_model_in_verilator() {
+    // Two dense spheres overlapping deeply: over 5,000 triangles per object
+    // in the common box, the system's default memory depth, and local
+    // frames (cells above level 18 always split).
+    let a = SceneObject::from_triangles("sphere a", sphere([0.0, 0.0, 0.0], 1.0, 112, 56));
+    let b = SceneObject::from_triangles("sphere b", sphere([0.6, 0.2, 0.1], 0.9, 112, 56));
+    let system = SystemConfig::new(24, 2, latency()).with_depth(256);
+    let scene = prepare_octree(&a, &b, &SceneOptions { width: 24, depth: 256, split: true }, &system, None).unwrap();
+    let params = BinningParams { log_depth: 8, log_pipelines: 1, max_leaf_level: Some(18) };
+    let (a, b) = arrays(&scene);
+    assert!(a.len() > 5000 && b.len() > 5000, "{} + {} triangles", a.len(), b.len());
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let run = run_binning(&a, &b, root, params);
+    let config = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
+    let bound = run.cycles + 4 * (run.leaves.len() as u64 + run.entries) + 100;
+    let out = run_emitted(&config, &a, &b, root, params.max_leaf_level, bound, Simulator::Verilator).unwrap();
+    assert_bins_as(&out, &run);
+    eprintln!("{} + {} triangles: {} leaves, {} cells passed, {} clocks", a.len(), b.len(), run.leaves.len(), run.cells, run.cycles);
+}
+

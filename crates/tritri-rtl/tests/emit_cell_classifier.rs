@@ -1,17 +1,19 @@
-//! The emitted octree classifier step, its setup, the owner filter and the
-//! plane traversal:
+//! The emitted octree classifier step, its setup, the binning unit, the
+//! owner filter and the plane traversal:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
 //! tritri-cosim's tests/cell_classifier.rs, tests/triangle_setup.rs and
-//! tests/owner_filter.rs and tests/plane_traversal.rs.)
+//! tests/binning_unit.rs, tests/owner_filter.rs and tests/plane_traversal.rs.)
 
+use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::EmittedDesign;
+use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
 use tritri_rtl::tools::{run, IVERILOG};
 
 #[test]
@@ -19,6 +21,15 @@ fn every_grid_width_is_lint_clean() {
     for &g in &CLASSIFIER_GRID_WIDTHS {
         check(g, emit_cell_classifier(g).unwrap());
         check(g, emit_triangle_setup(g).unwrap());
+    }
+}
+
+#[test]
+fn the_binning_unit_is_lint_clean_at_every_grid() {
+    for &g in &BINNING_GRID_WIDTHS {
+        // Memories that fill their address bits and memories that do not.
+        let config = BinningUnitConfig { grid_bits: g, triangles: 1000, list_words: 4096, leaves: 300, log_depth: 8, log_pipelines: 1 };
+        check(g, emit_binning_unit(&config).unwrap());
     }
 }
 

@@ -95,7 +95,7 @@ pub struct LocalFrames {
 
 impl LocalFrames {
     /// The largest cell level a leaf may have.
-    fn max_leaf_level(&self) -> u32 {
+    pub fn max_leaf_level(&self) -> u32 {
         self.width - 2
     }
 
@@ -141,10 +141,6 @@ pub struct OctreeSchedule {
     /// Triangles binned: the entries the root starts with (A's and B's
     /// triangles that touch the root and fit a leaf).
     pub binned: u64,
-    /// The most entries (triangle in a cell, with its values) held at once
-    /// along the depth-first path of cells being decided: what a binning
-    /// unit that follows this plan must store.
-    pub peak_path_entries: u64,
     /// What the host decides on the grid ([`LocalFrames`]), as pairs of
     /// arrays, every pair of each: A's long triangles against all of B's,
     /// and A's binned triangles against B's long ones. Grid coordinates.
@@ -233,7 +229,6 @@ pub fn schedule(
     out.classifications = work.classifications;
     out.classify_cycles = work.classify_cycles;
     out.binned = (a.len() + b.len()) as u64;
-    out.peak_path_entries = work.peak_path_entries;
     for (index, (cell, level, la, lb)) in plan.leaves.into_iter().enumerate() {
         let start = (out.a.len(), out.b.len());
         for t in &la {
@@ -269,9 +264,6 @@ struct Work {
     cells: u64,
     classifications: u64,
     classify_cycles: u64,
-    /// Entries of the cells on the current path, and their maximum.
-    path_entries: u64,
-    peak_path_entries: u64,
 }
 
 struct Planner<'c> {
@@ -323,15 +315,12 @@ impl Planner<'_> {
         if !cell.splittable() || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len(), classify)) {
             return self.leaf(cell, level, &a, &b);
         }
-        // The cell's entries are classified, and held until it is decided.
+        // The cell's entries are classified.
         let entries = (a.len() + b.len()) as u64;
         work.cells += 1;
         work.classifications += entries;
         work.classify_cycles += classify;
-        work.path_entries += entries;
-        work.peak_path_entries = work.peak_path_entries.max(work.path_entries);
         let mut plan = self.split_or_keep(cell, level, a, b, slack, work);
-        work.path_entries -= entries;
         // Deciding the cell cost its classification, whatever was decided.
         plan.cost += classify;
         plan

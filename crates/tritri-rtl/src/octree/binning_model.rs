@@ -1,36 +1,23 @@
-//! Cycles and memory of a binning unit built around the classifier step
-//! ([`super::cell_classifier`]), following the broad phase's plan
-//! (`tritri_geom::scene::octree`) cell for cell. The classifier and the
-//! setup unit ([`super::triangle_setup`]: each triangle's gradients and
-//! intervals at the root, the multiplications) are built and
-//! co-simulated; the depth-first controller is modelled here, not built
-//! yet.
+//! The binning unit's cost formula: what a cell's pass costs
+//! ([`cell_cycles`]), which the broad phase's planner
+//! (`tritri_geom::scene::octree`) charges in its split rule, and the
+//! whole run's clocks from the plan's totals ([`binning_cycles`]).
 //!
-//! The unit works like this:
+//! The unit itself is [`super::binning_unit`], and its clock-exact model
+//! [`super::binning_machine`] (whose count adds the clocks this formula
+//! leaves out: the frame stack, the leaf-cost queries, the rollbacks). The
+//! formula stays for configurations the unit is not built for (a depth or
+//! pipeline count that is not a power of two, a grid other than 16, 24 or
+//! 32 bits), where `tritri sim` reports it instead.
 //!
-//! 1. The host streams each object's triangles once, one per clock; the
-//!    setup unit turns each into an entry of the root, which goes straight
-//!    on through the classifier (the root's pass is the stream itself).
-//! 2. A cell is decided by streaming its entries through the classifiers,
-//!    [`LANES_PER_OBJECT`] per clock and object (four classifiers; each
-//!    object's entries in two banks by index parity, as the system has one
-//!    memory per object): each comes out with its values over the cell and its
-//!    children mask, is stored for the cell, and counted per child and
-//!    object. After the last entry and the classifier's latency, one clock
-//!    decides: leaf, or split (the planner's rule on the counts).
-//! 3. Splitting visits each child with entries of both objects: its
-//!    entries are the parent's with the child's bit set, streamed again
-//!    with `descend` (an index list per child, written in step 2, saves
-//!    scanning the parent).
-//! 4. A leaf's triangle ids go to the system's write port; loading them is
-//!    the batch load the system's cycle model already counts.
-//!
-//! So binning takes `N + setup + Σ_cells (ceil(max(a, b) / 2) + latency
-//! + 1)` clocks, and the narrow phase follows (not overlapped: an upper
-//! bound).
+//! A pass streams a cell's lists through the classifiers,
+//! [`LANES_PER_OBJECT`] per clock and object, and after the last entry and
+//! the classifier's latency one clock decides: `ceil(max(a, b) / 2) +
+//! latency + 1`. The root's pass is the input stream, one triangle per
+//! clock. So binning takes `N + setup + Σ_cells (ceil(max(a, b) / 2) +
+//! latency + 1)` clocks.
 
-use super::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY, TAG_BITS};
-use super::value_bits;
+use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
 
 /// Clocks from a triangle into the setup unit to its root entry (the
 /// built unit's latency); paid once per run.
@@ -55,8 +42,6 @@ pub struct BinningWork {
     pub entries: u64,
     /// [`cell_cycles`] summed over the classified cells.
     pub cell_cycles: u64,
-    /// Most entries held at once along the depth-first path.
-    pub peak_path_entries: u64,
 }
 
 /// Clocks to classify one cell of `a` A-entries and `b` B-entries,
@@ -70,25 +55,6 @@ pub fn binning_cycles(work: &BinningWork) -> u64 {
     work.triangles + SETUP_LATENCY + work.cell_cycles
 }
 
-/// Bits of one stored entry: the thirteen values, the triangle id and the
-/// children mask (gradients and intervals stay in a per-triangle table).
-pub fn entry_bits(grid_bits: usize) -> u64 {
-    (AXES * value_bits(grid_bits) + TAG_BITS + 8) as u64
-}
-
-/// Bits of the per-triangle table: the vertices (the edge-axis gradients
-/// are their differences, wired; the axes' gradients are constants), the
-/// normal, and the triangle's interval along each function.
-pub fn triangle_record_bits(grid_bits: usize) -> u64 {
-    (9 * grid_bits + 3 * (2 * grid_bits + 3) + 2 * AXES * value_bits(grid_bits)) as u64
-}
-
-/// Memory the binning unit needs: the entries on the path at their peak
-/// plus the per-triangle table.
-pub fn binning_memory_bits(work: &BinningWork, grid_bits: usize) -> u64 {
-    work.peak_path_entries * entry_bits(grid_bits) + work.triangles * triangle_record_bits(grid_bits)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,8 +62,7 @@ mod tests {
     #[test]
     fn cycles_count_every_entry_and_each_cell_once() {
         assert_eq!(cell_cycles(40, 91), 46 + 6);
-        let work = BinningWork { triangles: 100, cells: 3, entries: 250, cell_cycles: 200, peak_path_entries: 180 };
+        let work = BinningWork { triangles: 100, cells: 3, entries: 250, cell_cycles: 200 };
         assert_eq!(binning_cycles(&work), 100 + SETUP_LATENCY + 200);
-        assert_eq!(entry_bits(24), 13 * 78 + 16 + 8);
     }
 }

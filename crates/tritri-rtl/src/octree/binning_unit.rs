@@ -17,16 +17,15 @@
 //!  counts ─► leaf costs (split rule) ─► decide ─► frames (stack) / leaves
 //! ```
 //!
-//! Four lanes: A0, A1, B0, B1. A lane is a triangle memory, a setup unit
-//! and a classifier step; the two lanes of an object read one list word
+//! Four lanes: A0, A1, B0, B1. A lane is a triangle memory and a setup
+//! unit with a classifier step ([`super::classify_lane`]); the two lanes of an object read one list word
 //! (two indices) per clock.
 
-use super::binning_machine::{IDENTITY_LIST, PASS_DRAIN};
-use super::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use super::binning_machine::{BinningParams, BinningRun, IDENTITY_LIST, PASS_DRAIN};
+use super::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY};
+use super::classify_lane::{ClassifyLane, LANE_LATENCY};
 use super::leaf_cost::{LeafCost, COUNT_BITS, LEAF_COST_LATENCY};
 use super::list_packer::{ListPacker, INDEX_BITS, LIST_ADDRESS_BITS, LIST_WORD_BITS};
-use super::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
-use crate::arith::delay_line::DelayLine;
 use crate::system::dual_port_ram::SimpleDualPortRam;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -35,14 +34,112 @@ use rust_hdl::widgets::prelude::DFF;
 pub const LEAF_ADDRESS_BITS: usize = 20;
 /// Bits of a frame memory address: the stack holds a frame per level.
 pub const FRAME_ADDRESS_BITS: usize = 6;
-/// Clocks from a lane's triangle memory output to its mask: setup and classifier.
-const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CELL_CLASSIFIER_LATENCY;
+/// Bits of a children memory address: a frame's eight children per level.
+pub const CHILD_ADDRESS_BITS: usize = FRAME_ADDRESS_BITS + 3;
 // The kernel counts clocks with literals: the drain's last clock is
-// PASS_DRAIN - 1 = 12, the cost queries' results come 4 clocks after them.
-const _: () = assert!(PASS_DRAIN == 2 + LANE_LATENCY as u64 + 1 && PASS_DRAIN == 13 && LEAF_COST_LATENCY == 4 && INDEX_BITS == 18 && COUNT_BITS == 20);
+// PASS_DRAIN - 1 = 12, the cost queries' results come 4 clocks after them;
+// memory addresses are cut to their widths with literals too.
+const _: () = assert!(FRAME_ADDRESS_BITS == 6 && CHILD_ADDRESS_BITS == 9 && PASS_DRAIN == 2 + LANE_LATENCY as u64 + 1 && PASS_DRAIN == 13 && LEAF_COST_LATENCY == 4 && INDEX_BITS == 18 && COUNT_BITS == 20);
 /// `binning_model::cell_cycles(0, 0)`: what the split rule charges a cell
 /// besides its entries.
 const CLASSIFY_BASE: u64 = CELL_CLASSIFIER_LATENCY as u64 + 1;
+
+/// What the unit is built for: its grid, its memories' sizes and its
+/// split rule (the system it feeds).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BinningUnitConfig {
+    /// Bits of a grid coordinate (16, 24 or 32, [`BINNING_GRID_WIDTHS`]).
+    pub grid_bits: usize,
+    /// Triangles per object: the depth of each lane's triangle memory.
+    pub triangles: usize,
+    /// Words (two indices each) of each of the sixteen list memories.
+    pub list_words: usize,
+    /// Leaf descriptors the leaf memory holds.
+    pub leaves: usize,
+    /// The system's memory depth is `2^log_depth` triangles per array.
+    pub log_depth: u32,
+    /// The system has `2^log_pipelines` pipelines.
+    pub log_pipelines: u32,
+}
+
+/// The grids the unit is built for (its setup's and classifier's widths).
+pub const BINNING_GRID_WIDTHS: [usize; 3] = [16, 24, 32];
+
+impl BinningUnitConfig {
+    /// Top module name, every build parameter in it:
+    /// `tritri_binning_g<G>_t<triangles>_w<list words>_l<leaves>_d<depth>_p<pipelines>`.
+    pub fn unit_name(&self) -> String {
+        format!(
+            "tritri_binning_g{}_t{}_w{}_l{}_d{}_p{}",
+            self.grid_bits,
+            self.triangles,
+            self.list_words,
+            self.leaves,
+            1u64 << self.log_depth,
+            1u64 << self.log_pipelines
+        )
+    }
+
+    /// Bits of every memory: four triangle memories of `9 G` bits a word,
+    /// sixteen list memories of two indices a word, the leaf memory, the
+    /// frame stack and the children's lists.
+    pub fn memory_bits(&self) -> u64 {
+        let triangles = 4 * self.triangles as u64 * (9 * self.grid_bits) as u64;
+        let lists = 16 * self.list_words as u64 * LIST_WORD_BITS as u64;
+        let leaves = self.leaves as u64 * CellLists::BITS as u64;
+        let frames = (1u64 << FRAME_ADDRESS_BITS) * Frame::BITS as u64;
+        let children = (1u64 << CHILD_ADDRESS_BITS) * ChildLists::BITS as u64;
+        triangles + lists + leaves + frames + children
+    }
+
+    /// A unit for a scene: a `grid_bits` grid, the system of `params`, and
+    /// memories just large enough for the model's `run` of the scene with
+    /// at most `triangles` per object.
+    pub fn sized_for(grid_bits: usize, params: BinningParams, triangles: usize, run: &BinningRun) -> Self {
+        BinningUnitConfig {
+            grid_bits,
+            triangles: triangles.max(1),
+            list_words: run.list_words.iter().flatten().max().copied().unwrap_or(1).max(1) as usize,
+            leaves: run.peak_leaves.max(1),
+            log_depth: params.log_depth,
+            log_pipelines: params.log_pipelines,
+        }
+    }
+
+    /// An error naming the parameter out of the unit's range, if any.
+    pub fn check(&self) -> Result<(), String> {
+        if !BINNING_GRID_WIDTHS.contains(&self.grid_bits) {
+            return Err(format!("the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {}", self.grid_bits));
+        }
+        let fits = |what: &str, n: usize, bits: usize| {
+            if n == 0 || n > 1 << bits {
+                Err(format!("{what} {n}: 1 to {} ({bits} address bits)", 1u64 << bits))
+            } else {
+                Ok(())
+            }
+        };
+        fits("triangles per object", self.triangles, INDEX_BITS)?;
+        fits("list words", self.list_words, LIST_ADDRESS_BITS)?;
+        fits("leaves", self.leaves, LEAF_ADDRESS_BITS)?;
+        Ok(())
+    }
+}
+
+/// Runs `work` on a thread with a stack large enough for the unit: its
+/// rust-hdl model (four setups, four classifiers, sixteen packers, the
+/// memories' ports) is built on the stack and outgrows a test thread's
+/// 2 MiB.
+pub fn on_unit_stack<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|scope| {
+        std::thread::Builder::new()
+            .name("binning-unit".into())
+            .stack_size(256 << 20)
+            .spawn_scoped(scope, work)
+            .expect("a thread for the binning unit")
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+    })
+}
 
 /// A cell and its two lists: the current cell, and a leaf.
 #[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
@@ -112,6 +209,57 @@ pub enum BinState {
     Done,
 }
 
+/// A cell's pass: `ceil(max(a, b) / 2)` list words per object and clock,
+/// and what the split rule charges for it, `binning_model::cell_cycles`.
+/// Combinational, and a block of its own: in the unit's one combinational
+/// block, a multiplexer read back through a continuous assignment would
+/// look like a loop to Verilator.
+#[derive(LogicBlock)]
+struct PassLength {
+    pub a_count: Signal<In, Bits<20>>,
+    pub b_count: Signal<In, Bits<20>>,
+    pub words: Signal<Out, Bits<20>>,
+    pub classify: Signal<Out, Bits<48>>,
+    classify_base: Constant<Bits<48>>,
+    count_up_a: Signal<Local, Bits<20>>,
+    count_up_b: Signal<Local, Bits<20>>,
+    words_a: Signal<Local, Bits<20>>,
+    words_b: Signal<Local, Bits<20>>,
+}
+
+impl Default for PassLength {
+    fn default() -> Self {
+        PassLength {
+            a_count: Default::default(),
+            b_count: Default::default(),
+            words: Default::default(),
+            classify: Default::default(),
+            classify_base: Constant::new(Bits::<48>::from(CLASSIFY_BASE)),
+            count_up_a: Default::default(),
+            count_up_b: Default::default(),
+            words_a: Default::default(),
+            words_b: Default::default(),
+        }
+    }
+}
+
+impl Logic for PassLength {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // A right shift stands alone in its statement: the emitted Verilog
+        // then needs no width casts.
+        self.count_up_a.next = self.a_count.val() + 1;
+        self.count_up_b.next = self.b_count.val() + 1;
+        self.words_a.next = self.count_up_a.val() >> 1;
+        self.words_b.next = self.count_up_b.val() >> 1;
+        self.words.next = self.words_a.val();
+        if self.words_b.val() > self.words_a.val() {
+            self.words.next = self.words_b.val();
+        }
+        self.classify.next = bit_cast::<48, 20>(self.words.val()) + self.classify_base.val();
+    }
+}
+
 #[derive(LogicBlock)]
 pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: usize> {
     pub clock: Signal<In, Clock>,
@@ -166,7 +314,7 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     top: DFF<Frame>,
     frame_count: DFF<Bits<7>>,
     frames: SimpleDualPortRam<Frame, FRAME_ADDRESS_BITS>,
-    children: SimpleDualPortRam<ChildLists, 9>,
+    children: SimpleDualPortRam<ChildLists, CHILD_ADDRESS_BITS>,
     leaf_count: DFF<Bits<LEAF_ADDRESS_BITS>>,
     leaves: SimpleDualPortRam<CellLists, LEAF_ADDRESS_BITS>,
     cost: LeafCost,
@@ -181,12 +329,11 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     // Lanes A0, A1, B0, B1: stage 1 (index), stage 2 (vertices).
     s1_root: DFF<Bit>,
     s1_valid: [DFF<Bit>; 4],
-    s1_root_index: [DFF<Bits<INDEX_BITS>>; 4],
+    /// The root pass's index per object (lanes A0 and B0 take the stream).
+    s1_root_index: [DFF<Bits<INDEX_BITS>>; 2],
     s2_valid: [DFF<Bit>; 4],
     s2_index: [DFF<Bits<INDEX_BITS>>; 4],
-    setup: [TriangleSetup<G, V, N>; 4],
-    classifier: [CellClassifier<V>; 4],
-    index_line: [DelayLine<Bits<INDEX_BITS>, LANE_LATENCY>; 4],
+    lane: [ClassifyLane<G, V, N, T>; 4],
     // Output.
     out_valid_q: DFF<Bit>,
     out_header_q: DFF<Bit>,
@@ -194,29 +341,27 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     out_index_q: DFF<Bits<INDEX_BITS>>,
     out_leaf: DFF<Bits<LEAF_ADDRESS_BITS>>,
     out_cell: DFF<CellLists>,
-    // Constants: octant numbers, field and vertex offsets in packed buses.
+    // Constants: octant numbers, the identity list, a cell's pass base cost.
     octant_id: [Constant<Bits<4>>; 8],
-    field_offset: [Constant<Bits<16>>; AXES],
-    vertex_offset: [Constant<Bits<16>>; 9],
     identity: Constant<Bits<4>>,
     classify_base: Constant<Bits<48>>,
+    pass_length: PassLength,
     // Combinational.
     advance_out: Signal<Local, Bit>,
     word_a: Signal<Local, Bits<LIST_WORD_BITS>>,
     word_b: Signal<Local, Bits<LIST_WORD_BITS>>,
     index1: [Signal<Local, Bits<INDEX_BITS>>; 4],
     accept: Signal<Local, Bit>,
-    words_a: Signal<Local, Bits<20>>,
-    words_b: Signal<Local, Bits<20>>,
     pass_words: Signal<Local, Bits<20>>,
-    larger: Signal<Local, Bits<20>>,
+    slot_up: Signal<Local, Bits<20>>,
+    next_word: Signal<Local, Bits<20>>,
     classify: Signal<Local, Bits<48>>,
     both: Signal<Local, Bit>,
     forced: Signal<Local, Bit>,
     improving: Signal<Local, Bit>,
     half: Signal<Local, Bits<32>>,
     child_data: Signal<Local, ChildLists>,
-    slot: Signal<Local, Bits<20>>,
+    slot: Signal<Local, Bits<INDEX_BITS>>,
     entry_a: Signal<Local, Bits<INDEX_BITS>>,
     entry_b: Signal<Local, Bits<INDEX_BITS>>,
 }
@@ -267,7 +412,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             top: Default::default(),
             frame_count: Default::default(),
             frames: SimpleDualPortRam::new(1 << FRAME_ADDRESS_BITS),
-            children: SimpleDualPortRam::new(1 << 9),
+            children: SimpleDualPortRam::new(1 << CHILD_ADDRESS_BITS),
             leaf_count: Default::default(),
             leaves: SimpleDualPortRam::new(leaves),
             cost: Default::default(),
@@ -283,9 +428,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             s1_root_index: Default::default(),
             s2_valid: Default::default(),
             s2_index: Default::default(),
-            setup: Default::default(),
-            classifier: Default::default(),
-            index_line: Default::default(),
+            lane: Default::default(),
             out_valid_q: Default::default(),
             out_header_q: Default::default(),
             out_object_q: Default::default(),
@@ -293,19 +436,17 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             out_leaf: Default::default(),
             out_cell: Default::default(),
             octant_id: std::array::from_fn(|o| Constant::new(Bits::<4>::from(o as u64))),
-            field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
-            vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
             identity: Constant::new(Bits::<4>::from(IDENTITY_LIST as u64)),
             classify_base: Constant::new(Bits::<48>::from(CLASSIFY_BASE)),
+            pass_length: Default::default(),
             advance_out: Default::default(),
             word_a: Default::default(),
             word_b: Default::default(),
             index1: Default::default(),
             accept: Default::default(),
-            words_a: Default::default(),
-            words_b: Default::default(),
             pass_words: Default::default(),
-            larger: Default::default(),
+            slot_up: Default::default(),
+            next_word: Default::default(),
             classify: Default::default(),
             both: Default::default(),
             forced: Default::default(),
@@ -363,8 +504,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             self.packer_b[o].clock.next = self.clock.val();
             self.packer_a[o].reset.next = self.reset.val();
             self.packer_b[o].reset.next = self.reset.val();
-            self.packer_a[o].begin.next = false;
-            self.packer_b[o].begin.next = false;
+            self.packer_a[o].new_list.next = false;
+            self.packer_b[o].new_list.next = false;
             self.packer_a[o].flush.next = false;
             self.packer_b[o].flush.next = false;
             self.list_a[o].write_enable.next = self.packer_a[o].write_enable.val();
@@ -378,9 +519,12 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             self.list_a[o].read_address.next = self.cur.q.val().a_start + self.counter.q.val();
             self.list_b[o].read_address.next = self.cur.q.val().b_start + self.counter.q.val();
         }
+        for o in 0..2 {
+            self.s1_root_index[o].clock.next = self.clock.val();
+            self.s1_root_index[o].d.next = self.s1_root_index[o].q.val();
+        }
         for l in 0..4 {
             self.s1_valid[l].clock.next = self.clock.val();
-            self.s1_root_index[l].clock.next = self.clock.val();
             self.s2_valid[l].clock.next = self.clock.val();
             self.s2_index[l].clock.next = self.clock.val();
             self.s1_valid[l].d.next = false;
@@ -414,74 +558,42 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.index1[3].next = self.word_b.val().get_bits::<INDEX_BITS>(18);
         if self.s1_root.q.val() {
             self.index1[0].next = self.s1_root_index[0].q.val();
-            self.index1[2].next = self.s1_root_index[2].q.val();
+            self.index1[2].next = self.s1_root_index[1].q.val();
         }
         for l in 0..4 {
             self.triangles[l].read_address.next = self.index1[l].val();
             self.s2_valid[l].d.next = self.s1_valid[l].q.val();
             self.s2_index[l].d.next = self.index1[l].val();
-            self.setup[l].clock.next = self.clock.val();
-            self.setup[l].reset.next = self.reset.val();
-            self.setup[l].advance.next = true;
-            self.setup[l].in_valid.next = self.s2_valid[l].q.val();
-            self.setup[l].in_tag.next = 0.into();
-            self.setup[l].in_x0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[0].val().index());
-            self.setup[l].in_y0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[1].val().index());
-            self.setup[l].in_z0.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[2].val().index());
-            self.setup[l].in_x1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[3].val().index());
-            self.setup[l].in_y1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[4].val().index());
-            self.setup[l].in_z1.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[5].val().index());
-            self.setup[l].in_x2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[6].val().index());
-            self.setup[l].in_y2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[7].val().index());
-            self.setup[l].in_z2.next = self.triangles[l].read_data.val().get_bits::<G>(self.vertex_offset[8].val().index());
-            self.setup[l].in_root_x.next = bit_cast::<G, 32>(self.cur.q.val().x);
-            self.setup[l].in_root_y.next = bit_cast::<G, 32>(self.cur.q.val().y);
-            self.setup[l].in_root_z.next = bit_cast::<G, 32>(self.cur.q.val().z);
-            self.classifier[l].clock.next = self.clock.val();
-            self.classifier[l].reset.next = self.reset.val();
-            self.classifier[l].advance.next = true;
-            self.classifier[l].in_valid.next = self.setup[l].out_valid.val();
-            self.classifier[l].in_tag.next = 0.into();
-            self.classifier[l].in_level.next = self.cur.q.val().level;
-            self.classifier[l].in_descend.next = false;
-            self.classifier[l].in_octant.next = 0.into();
-            for i in 0..13 {
-                self.classifier[l].in_at_lo[i].next = 0.into();
-                self.classifier[l].in_gradient_x[i].next = self.setup[l].out_gradient_x.val().get_bits::<V>(self.field_offset[i].val().index());
-                self.classifier[l].in_gradient_y[i].next = self.setup[l].out_gradient_y.val().get_bits::<V>(self.field_offset[i].val().index());
-                self.classifier[l].in_gradient_z[i].next = self.setup[l].out_gradient_z.val().get_bits::<V>(self.field_offset[i].val().index());
-                self.classifier[l].in_low[i].next = self.setup[l].out_low.val().get_bits::<V>(self.field_offset[i].val().index());
-                self.classifier[l].in_high[i].next = self.setup[l].out_high.val().get_bits::<V>(self.field_offset[i].val().index());
-            }
-            self.index_line[l].clock.next = self.clock.val();
-            self.index_line[l].advance.next = true;
-            self.index_line[l].d.next = self.s2_index[l].q.val();
+            self.lane[l].clock.next = self.clock.val();
+            self.lane[l].reset.next = self.reset.val();
+            self.lane[l].in_valid.next = self.s2_valid[l].q.val();
+            self.lane[l].in_index.next = self.s2_index[l].q.val();
+            self.lane[l].in_vertices.next = self.triangles[l].read_data.val();
+            self.lane[l].in_corner_x.next = bit_cast::<G, 32>(self.cur.q.val().x);
+            self.lane[l].in_corner_y.next = bit_cast::<G, 32>(self.cur.q.val().y);
+            self.lane[l].in_corner_z.next = bit_cast::<G, 32>(self.cur.q.val().z);
+            self.lane[l].in_level.next = self.cur.q.val().level;
         }
         // The masks into the packers: lane 0 before lane 1.
         for o in 0..8 {
-            self.packer_a[o].in0_valid.next = self.classifier[0].out_valid.val() & self.classifier[0].out_mask.val().get_bit(o);
-            self.packer_a[o].in0_index.next = self.index_line[0].q.val();
-            self.packer_a[o].in1_valid.next = self.classifier[1].out_valid.val() & self.classifier[1].out_mask.val().get_bit(o);
-            self.packer_a[o].in1_index.next = self.index_line[1].q.val();
-            self.packer_b[o].in0_valid.next = self.classifier[2].out_valid.val() & self.classifier[2].out_mask.val().get_bit(o);
-            self.packer_b[o].in0_index.next = self.index_line[2].q.val();
-            self.packer_b[o].in1_valid.next = self.classifier[3].out_valid.val() & self.classifier[3].out_mask.val().get_bit(o);
-            self.packer_b[o].in1_index.next = self.index_line[3].q.val();
+            self.packer_a[o].in0_valid.next = self.lane[0].out_valid.val() & self.lane[0].out_mask.val().get_bit(o);
+            self.packer_a[o].in0_index.next = self.lane[0].out_index.val();
+            self.packer_a[o].in1_valid.next = self.lane[1].out_valid.val() & self.lane[1].out_mask.val().get_bit(o);
+            self.packer_a[o].in1_index.next = self.lane[1].out_index.val();
+            self.packer_b[o].in0_valid.next = self.lane[2].out_valid.val() & self.lane[2].out_mask.val().get_bit(o);
+            self.packer_b[o].in0_index.next = self.lane[2].out_index.val();
+            self.packer_b[o].in1_valid.next = self.lane[3].out_valid.val() & self.lane[3].out_mask.val().get_bit(o);
+            self.packer_b[o].in1_index.next = self.lane[3].out_index.val();
         }
 
         // ---- The split rule's quantities for the current cell.
-        self.words_a.next = (self.cur.q.val().a_count + 1) >> 1;
-        self.words_b.next = (self.cur.q.val().b_count + 1) >> 1;
-        self.pass_words.next = self.words_a.val();
-        if self.words_b.val() > self.words_a.val() {
-            self.pass_words.next = self.words_b.val();
-        }
-        self.larger.next = self.cur.q.val().a_count;
-        if self.cur.q.val().b_count > self.cur.q.val().a_count {
-            self.larger.next = self.cur.q.val().b_count;
-        }
-        // binning_model::cell_cycles: ceil(max(a, b) / 2) + classifier latency + 1.
-        self.classify.next = bit_cast::<48, 20>((self.larger.val() + 1) >> 1) + self.classify_base.val();
+        self.pass_length.a_count.next = self.cur.q.val().a_count;
+        self.pass_length.b_count.next = self.cur.q.val().b_count;
+        self.pass_words.next = self.pass_length.words.val();
+        self.classify.next = self.pass_length.classify.val();
+        // The word holding the output's next index.
+        self.slot_up.next = self.counter.q.val() + 1;
+        self.next_word.next = self.slot_up.val() >> 1;
         self.both.next = (self.cur.q.val().a_count != 0) & (self.cur.q.val().b_count != 0);
         self.forced.next = self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
         self.improving.next = self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
@@ -500,20 +612,20 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.out_level.next = self.out_cell.q.val().level;
         self.out_count_a.next = self.out_cell.q.val().a_count;
         self.out_count_b.next = self.out_cell.q.val().b_count;
-        self.slot.next = self.counter.q.val();
+        self.slot.next = bit_cast::<INDEX_BITS, 20>(self.counter.q.val());
         self.entry_a.next = self.word_a.val().get_bits::<INDEX_BITS>(0);
         if self.slot.val().get_bit(0) {
             self.entry_a.next = self.word_a.val().get_bits::<INDEX_BITS>(18);
         }
         if self.out_cell.q.val().a_memory == self.identity.val() {
-            self.entry_a.next = bit_cast::<INDEX_BITS, 20>(self.slot.val());
+            self.entry_a.next = self.slot.val();
         }
         self.entry_b.next = self.word_b.val().get_bits::<INDEX_BITS>(0);
         if self.slot.val().get_bit(0) {
             self.entry_b.next = self.word_b.val().get_bits::<INDEX_BITS>(18);
         }
         if self.out_cell.q.val().b_memory == self.identity.val() {
-            self.entry_b.next = bit_cast::<INDEX_BITS, 20>(self.slot.val());
+            self.entry_b.next = self.slot.val();
         }
 
         self.in_ready.next = self.state.q.val() == BinState::Load;
@@ -548,8 +660,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.leaf_count.d.next = 0.into();
                     self.s1_root.d.next = true;
                     for o in 0..8 {
-                        self.packer_a[o].begin.next = true;
-                        self.packer_b[o].begin.next = true;
+                        self.packer_a[o].new_list.next = true;
+                        self.packer_b[o].new_list.next = true;
                     }
                     self.state.d.next = BinState::Load;
                 }
@@ -560,7 +672,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.triangles[2].write_enable.next = true;
                         self.triangles[3].write_enable.next = true;
                         self.s1_valid[2].d.next = true;
-                        self.s1_root_index[2].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
+                        self.s1_root_index[1].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
                         self.loaded_b.d.next = self.loaded_b.q.val() + 1;
                     } else {
                         self.triangles[0].write_enable.next = true;
@@ -734,8 +846,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.state.d.next = BinState::Return;
                 } else {
                     for o in 0..8 {
-                        self.packer_a[o].begin.next = true;
-                        self.packer_b[o].begin.next = true;
+                        self.packer_a[o].new_list.next = true;
+                        self.packer_b[o].new_list.next = true;
                     }
                     self.state.d.next = BinState::Pass;
                 }
@@ -820,7 +932,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.counter.d.next = self.counter.q.val() + 1;
                     for o in 0..8 {
                         self.list_a[o].read_enable.next = true;
-                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + ((self.counter.q.val() + 1) >> 1);
+                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + self.next_word.val();
                     }
                     if self.counter.q.val() + 1 == self.out_cell.q.val().a_count {
                         for o in 0..8 {
@@ -841,7 +953,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.counter.d.next = self.counter.q.val() + 1;
                     for o in 0..8 {
                         self.list_b[o].read_enable.next = true;
-                        self.list_b[o].read_address.next = self.out_cell.q.val().b_start + ((self.counter.q.val() + 1) >> 1);
+                        self.list_b[o].read_address.next = self.out_cell.q.val().b_start + self.next_word.val();
                     }
                     if self.counter.q.val() + 1 == self.out_cell.q.val().b_count {
                         self.out_leaf.d.next = self.out_leaf.q.val() + 1;

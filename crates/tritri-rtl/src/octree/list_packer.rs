@@ -27,7 +27,7 @@ pub struct ListPacker {
     /// Synchronous, active high: the memory is empty.
     pub reset: Signal<In, Bit>,
     /// A pass begins: the new list starts at the next free word, count 0.
-    pub begin: Signal<In, Bit>,
+    pub new_list: Signal<In, Bit>,
     /// The pass is over: write a waiting half word.
     pub flush: Signal<In, Bit>,
     pub in0_valid: Signal<In, Bit>,
@@ -95,7 +95,7 @@ impl Logic for ListPacker {
         } else if self.in0_valid.val() | self.in1_valid.val() {
             self.count_q.d.next = self.count_q.q.val() + 1;
         }
-        if self.begin.val() {
+        if self.new_list.val() {
             self.start_q.d.next = self.free.q.val();
             self.count_q.d.next = 0.into();
         }

@@ -10,8 +10,14 @@
 //!   functions relative to the root cell (the multiplications);
 //! * [`cell_classifier`]: thirteen axis steps side by side, one entry
 //!   (triangle in a cell) per clock, the children mask out;
-//! * [`binning_model`]: the cycles and memory of a binning unit around it
-//!   that follows the broad phase's plan (the controller modelled);
+//! * [`classify_lane`]: a setup and a classifier step, a triangle and a
+//!   cell in, the children it meets out;
+//! * [`binning_unit`]: the broad phase's binning unit: triangles streamed in
+//!   once, the common box subdivided depth first, the leaves streamed out;
+//!   [`binning_machine`] is its cycle-exact model, [`list_packer`] and
+//!   [`leaf_cost`] two of its parts (index lists two to a word, the split
+//!   rule's leaf cost); [`binning_model`] is the cost formula the planner
+//!   and the cycle model charge a cell's pass;
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -30,6 +36,7 @@ pub mod binning_machine;
 pub mod binning_model;
 pub mod binning_unit;
 pub mod cell_classifier;
+pub mod classify_lane;
 pub mod centre_test;
 pub mod leaf_cost;
 pub mod list_packer;

@@ -1,0 +1,123 @@
+//! One lane of the binning unit ([`super::binning_unit`]): a triangle's
+//! vertices and a cell in, the children of the cell the triangle meets out,
+//! one triangle per clock. The setup ([`super::triangle_setup`]) takes the
+//! cell's low corner as its root, so the classifier step
+//! ([`super::cell_classifier`]) starts every triangle at the cell itself
+//! with zero values there; an index rides alongside.
+
+use super::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use super::list_packer::INDEX_BITS;
+use super::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use rust_hdl::prelude::*;
+
+/// Clocks from a triangle in to its mask out: setup and classifier.
+pub const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CELL_CLASSIFIER_LATENCY;
+
+#[derive(LogicBlock)]
+pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T: usize> {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub in_valid: Signal<In, Bit>,
+    /// The triangle's index, carried to `out_index`.
+    pub in_index: Signal<In, Bits<INDEX_BITS>>,
+    /// `x0 y0 z0 x1 … z2` from bit 0 up, G bits each.
+    pub in_vertices: Signal<In, Bits<T>>,
+    /// The cell: its low corner and level (held for the triangle's
+    /// [`LANE_LATENCY`] clocks: the corner for setup's first stages, the
+    /// level until the classifier's).
+    pub in_corner_x: Signal<In, Bits<G>>,
+    pub in_corner_y: Signal<In, Bits<G>>,
+    pub in_corner_z: Signal<In, Bits<G>>,
+    pub in_level: Signal<In, Bits<6>>,
+    pub out_valid: Signal<Out, Bit>,
+    pub out_index: Signal<Out, Bits<INDEX_BITS>>,
+    /// Bit `o`: the triangle meets child `o` of the cell.
+    pub out_mask: Signal<Out, Bits<8>>,
+    setup: TriangleSetup<G, V, N>,
+    classifier: CellClassifier<V>,
+    index_line: DelayLine<Bits<INDEX_BITS>, LANE_LATENCY>,
+    // Where each vertex coordinate sits in `in_vertices`, each test
+    // function in the setup's packed outputs.
+    vertex_offset: [Constant<Bits<16>>; 9],
+    field_offset: [Constant<Bits<16>>; AXES],
+    /// The parts' outputs a lane does not use, folded into one bit whose
+    /// name tells Verilator's lint they are unused on purpose.
+    unused_outputs: Signal<Local, Bit>,
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Default for ClassifyLane<G, V, N, T> {
+    fn default() -> Self {
+        assert!(V == super::value_bits(G) && N == AXES * V && T == 9 * G, "classify lane for G = {G}");
+        ClassifyLane {
+            clock: Default::default(),
+            reset: Default::default(),
+            in_valid: Default::default(),
+            in_index: Default::default(),
+            in_vertices: Default::default(),
+            in_corner_x: Default::default(),
+            in_corner_y: Default::default(),
+            in_corner_z: Default::default(),
+            in_level: Default::default(),
+            out_valid: Default::default(),
+            out_index: Default::default(),
+            out_mask: Default::default(),
+            setup: Default::default(),
+            classifier: Default::default(),
+            index_line: Default::default(),
+            vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
+            field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
+            unused_outputs: Default::default(),
+        }
+    }
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for ClassifyLane<G, V, N, T> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.setup.clock.next = self.clock.val();
+        self.setup.reset.next = self.reset.val();
+        self.setup.advance.next = true;
+        self.setup.in_valid.next = self.in_valid.val();
+        self.setup.in_tag.next = 0.into();
+        self.setup.in_x0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[0].val().index());
+        self.setup.in_y0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[1].val().index());
+        self.setup.in_z0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[2].val().index());
+        self.setup.in_x1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[3].val().index());
+        self.setup.in_y1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[4].val().index());
+        self.setup.in_z1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[5].val().index());
+        self.setup.in_x2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[6].val().index());
+        self.setup.in_y2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[7].val().index());
+        self.setup.in_z2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[8].val().index());
+        self.setup.in_root_x.next = self.in_corner_x.val();
+        self.setup.in_root_y.next = self.in_corner_y.val();
+        self.setup.in_root_z.next = self.in_corner_z.val();
+        self.classifier.clock.next = self.clock.val();
+        self.classifier.reset.next = self.reset.val();
+        self.classifier.advance.next = true;
+        self.classifier.in_valid.next = self.setup.out_valid.val();
+        self.classifier.in_tag.next = 0.into();
+        self.classifier.in_level.next = self.in_level.val();
+        self.classifier.in_descend.next = false;
+        self.classifier.in_octant.next = 0.into();
+        // Relative to the cell's corner, every function is zero there.
+        for i in 0..13 {
+            self.classifier.in_at_lo[i].next = 0.into();
+            self.classifier.in_gradient_x[i].next = self.setup.out_gradient_x.val().get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_gradient_y[i].next = self.setup.out_gradient_y.val().get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_gradient_z[i].next = self.setup.out_gradient_z.val().get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_low[i].next = self.setup.out_low.val().get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_high[i].next = self.setup.out_high.val().get_bits::<V>(self.field_offset[i].val().index());
+        }
+        self.index_line.clock.next = self.clock.val();
+        self.index_line.advance.next = true;
+        self.index_line.d.next = self.in_index.val();
+        self.out_valid.next = self.classifier.out_valid.val();
+        self.out_index.next = self.index_line.q.val();
+        self.out_mask.next = self.classifier.out_mask.val();
+        self.unused_outputs.next = self.setup.out_tag.val().any() ^ self.classifier.out_tag.val().any() ^ self.classifier.out_at_lo[0].val().any() ^ self.classifier.out_at_lo[1].val().any() ^ self.classifier.out_at_lo[2].val().any() ^ self.classifier.out_at_lo[3].val().any() ^ self.classifier.out_at_lo[4].val().any() ^ self.classifier.out_at_lo[5].val().any() ^ self.classifier.out_at_lo[6].val().any() ^ self.classifier.out_at_lo[7].val().any() ^ self.classifier.out_at_lo[8].val().any() ^ self.classifier.out_at_lo[9].val().any() ^ self.classifier.out_at_lo[10].val().any() ^ self.classifier.out_at_lo[11].val().any() ^ self.classifier.out_at_lo[12].val().any();
+    }
+}
+
+// The loop over the test functions is written with a literal.
+const _: () = assert!(AXES == 13);
