@@ -9,8 +9,8 @@
 //! triangle, `1 object last x0 y0 z0 x1 y1 z1 x2 y2 z2` (coordinates as
 //! G-bit two's complement), each held until the unit takes it. Outputs,
 //! each with `edge`, the rising edge counted from reset: `H edge x y z
-//! level` a leaf's header, `E edge object index` an entry, `D edge` the
-//! first edge with `binned` high.
+//! level` a leaf's header, `E edge object index vertices` an entry, `D edge` the
+//! first edge with `binned` high, `F edge overflow` at `done`.
 
 use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
 use anyhow::{bail, Context as _};
@@ -40,6 +40,8 @@ pub struct StreamedLeaf {
 pub struct BinningOutput {
     pub leaves: Vec<StreamedLeaf>,
     pub cycles: u64,
+    /// The unit's `overflow` at `done`: a memory was too small.
+    pub overflow: bool,
 }
 
 /// The model's leaves as the unit streams them.
@@ -84,7 +86,7 @@ pub fn run_rusthdl(
         let mut out = BinningOutput::default();
         let mut binned_at = None;
         let mut current: Option<StreamedLeaf> = None;
-        let limit = 1_000_000_000u64;
+        let limit = 20_000_000u64;
         loop {
             uut.in_valid.next = next < stream.len();
             if let Some(&(object, t)) = stream.get(next) {
@@ -102,6 +104,7 @@ pub fn run_rusthdl(
                 binned_at = Some(clock);
             }
             if uut.done.val() {
+                out.overflow = uut.overflow.val();
                 break;
             }
             let taken = uut.in_valid.val() && uut.in_ready.val();
@@ -113,7 +116,11 @@ pub fn run_rusthdl(
                 } else {
                     let Some(leaf) = current.as_mut() else { bail!("an entry before the first header at clock {clock}") };
                     let index = uut.out_index.val().index() as u32;
-                    if uut.out_object.val() { leaf.b.push(index) } else { leaf.a.push(index) }
+                    let object = uut.out_object.val();
+                    let vertices = uut.out_vertices.val();
+                    let word: Vec<i64> = (0..9).map(|k| signed::<G>(vertices.get_bits::<G>(k * G).index() as u64)).collect();
+                    check_vertices(object, index, &word, a, b)?;
+                    if object { leaf.b.push(index) } else { leaf.a.push(index) }
                 }
             }
             clock_cycle(&mut uut, |u| &mut u.clock);
@@ -136,6 +143,30 @@ pub fn run_rusthdl(
         32 => run::<32, { value_bits(32) }, { AXES * value_bits(32) }, { 9 * 32 }>(config, a, b, root, max_leaf_level, reader_ready),
         g => bail!("the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {g}"),
     })
+}
+
+/// An entry's vertices must be the triangle streamed in at its index.
+fn check_vertices(object: bool, index: u32, vertices: &[i64], a: &[FixedTriangle], b: &[FixedTriangle]) -> anyhow::Result<()> {
+    let array = if object { b } else { a };
+    let Some(t) = array.get(index as usize) else { bail!("entry {index} of object {} is past its {} triangles", object as u8, array.len()) };
+    let streamed: Vec<i64> = t.iter().flatten().copied().collect();
+    if vertices != streamed {
+        bail!("entry {index} of object {}: vertices {vertices:?}, streamed {streamed:?}", object as u8);
+    }
+    Ok(())
+}
+
+/// A hex word of nine `G`-bit fields, field 0 in the low bits, as signed values.
+fn hex_fields(text: &str, grid_bits: usize) -> anyhow::Result<Vec<i64>> {
+    let digits: Vec<u8> = text.bytes().rev().map(|c| (c as char).to_digit(16).map(|d| d as u8)).collect::<Option<_>>()
+        .with_context(|| format!("`{text}` is not hex"))?;
+    let bit = |i: usize| digits.get(i / 4).is_some_and(|d| d >> (i % 4) & 1 == 1);
+    Ok((0..9)
+        .map(|k| {
+            let raw = (0..grid_bits).fold(0u64, |v, i| v | (bit(k * grid_bits + i) as u64) << i);
+            ((raw as i64) << (64 - grid_bits)) >> (64 - grid_bits)
+        })
+        .collect())
 }
 
 /// A `G`-bit two's complement value.
@@ -179,13 +210,13 @@ pub fn run_emitted(
         vectors.push('\n');
     }
     let (text, _) = run_on_vectors(&compiled, "binning-unit-run", &vectors, &[])?;
-    parse_outputs(&text, config.grid_bits)
+    parse_outputs(&text, config.grid_bits, a, b)
 }
 
 /// The testbench's output lines as leaves and cycles. The start line is
 /// offered before edge 0 and the first triangle at edge 1, the unit's
 /// clock 0: an output at edge `k` is the model's clock `k - 1`.
-fn parse_outputs(text: &str, grid_bits: usize) -> anyhow::Result<BinningOutput> {
+fn parse_outputs(text: &str, grid_bits: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> anyhow::Result<BinningOutput> {
     let mut out = BinningOutput::default();
     let mut current: Option<StreamedLeaf> = None;
     let mut binned = None;
@@ -205,10 +236,14 @@ fn parse_outputs(text: &str, grid_bits: usize) -> anyhow::Result<BinningOutput> 
             Some("E") => {
                 let Some(leaf) = current.as_mut() else { bail!("an entry before the first header: `{line}`") };
                 let index = number(3, 16)? as u32;
-                if number(2, 16)? == 1 { leaf.b.push(index) } else { leaf.a.push(index) }
+                let object = number(2, 16)? == 1;
+                let vertices = fields.get(4).with_context(|| format!("binning unit output line `{line}` has no vertices"))?;
+                check_vertices(object, index, &hex_fields(vertices, grid_bits)?, a, b)?;
+                if object { leaf.b.push(index) } else { leaf.a.push(index) }
             }
             Some("D") => binned = Some(number(1, 10)?),
-            _ => bail!("binning unit output line `{line}` is not H, E or D"),
+            Some("F") => out.overflow = number(2, 16)? == 1,
+            _ => bail!("binning unit output line `{line}` is not H, E, D or F"),
         }
     }
     out.leaves.extend(current.take());
@@ -223,6 +258,7 @@ fn parse_outputs(text: &str, grid_bits: usize) -> anyhow::Result<BinningOutput> 
 /// last triangle).
 fn testbench(top: &str, g: usize, drain: usize) -> String {
     let g1 = g - 1;
+    let t1 = 9 * g - 1;
     let body = format!(
         "\
     reg [3:0] kind = 4'd0;
@@ -232,8 +268,9 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;
     reg [63:0] edge_count = 64'd0;
     reg binned_seen = 1'b0;
-    wire in_ready, out_valid, out_header, out_object, binned, done;
+    wire in_ready, out_valid, out_header, out_object, binned, done, overflow;
     wire [17:0] out_index;
+    wire [{t1}:0] out_vertices;
     wire [{g1}:0] out_x, out_y, out_z;
     wire [5:0] out_level;
     wire [19:0] out_count_a, out_count_b;
@@ -244,9 +281,9 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
         .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
         .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
         .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),
-        .out_valid(out_valid), .out_ready(1'b1), .out_header(out_header), .out_object(out_object), .out_index(out_index),
+        .out_valid(out_valid), .out_ready(1'b1), .out_header(out_header), .out_object(out_object), .out_index(out_index), .out_vertices(out_vertices),
         .out_x(out_x), .out_y(out_y), .out_z(out_z), .out_level(out_level), .out_count_a(out_count_a), .out_count_b(out_count_b),
-        .binned(binned), .done(done)
+        .binned(binned), .done(done), .overflow(overflow)
     );
 
     always @(posedge clock) if (!reset) edge_count <= edge_count + 64'd1;
@@ -259,8 +296,9 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
             binned_seen = 1'b1;
         end
         if (!reset && out_valid && out_header) $fwrite(outputs, \"H %0d %h %h %h %h\\n\", edge_count, out_x, out_y, out_z, out_level);
-        if (!reset && out_valid && !out_header) $fwrite(outputs, \"E %0d %h %h\\n\", edge_count, out_object, out_index);
+        if (!reset && out_valid && !out_header) $fwrite(outputs, \"E %0d %h %h %h\\n\", edge_count, out_object, out_index, out_vertices);
         if (!reset && done) begin
+            $fwrite(outputs, \"F %0d %h\\n\", edge_count, overflow);
             $fclose(outputs);
             $finish;
         end

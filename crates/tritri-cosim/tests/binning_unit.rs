@@ -54,6 +54,7 @@ fn assert_bins_as(out: &BinningOutput, run: &BinningRun) {
         );
     }
     assert_eq!(out.cycles, run.cycles);
+    assert!(!out.overflow, "overflow raised with memories sized for the run");
 }
 
 const PARAMS: BinningParams = BinningParams { log_depth: 4, log_pipelines: 1, max_leaf_level: None };
@@ -72,6 +73,15 @@ fn rust_hdl_bins_as_the_model_leaf_for_leaf_and_clock_for_clock() {
     // first leaf leaves, so the same cycles too).
     let stalled = run_rusthdl(&config, &a, &b, root, None, &|clock| (clock * 7919) % 5 < 2).unwrap();
     assert_eq!(stalled, out);
+    // One word, one leaf or one triangle too few: the unit says so.
+    for small in [
+        BinningUnitConfig { list_words: config.list_words - 1, ..config },
+        BinningUnitConfig { leaves: config.leaves - 1, ..config },
+        BinningUnitConfig { triangles: config.triangles - 1, ..config },
+    ] {
+        let overflowed = run_rusthdl(&small, &a, &b, root, None, &|_| true).unwrap();
+        assert!(overflowed.overflow && overflowed.leaves.is_empty(), "{small:?}");
+    }
     eprintln!("{} leaves, {} frames at most, {} cells passed, {} clocks; {} + {} triangles", run.leaves.len(), run.peak_frames, run.cells, run.cycles, a.len(), b.len());
 }
 

@@ -62,10 +62,10 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
          (tritri_rtl::octree::binning_machine::run_binning), which co-simulation holds the unit to."
     ))
     .detail(&format!(
-        "Memories: {} bits in all (four triangle memories of {} words x {} bits, sixteen list memories of {} words \
-         x 36 bits, {} leaf descriptors, a frame stack of 64 levels). A scene that overflows a memory is binned \
-         wrongly: size them from the model's run (peak list words, peak leaves).",
-        config.memory_bits(),
+        "Memories: {:.2} Mbit in all (four triangle memories of {} words x {} bits, sixteen list memories of {} words \
+         x 36 bits, {} leaf descriptors, a frame stack of 64 levels). A scene that overflows one raises `overflow`; \
+         `tritri sim` sizes them for a scene.",
+        config.memory_bits() as f64 / 1e6,
         config.triangles,
         9 * g,
         config.list_words,
@@ -79,7 +79,7 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .parameter("PIPELINES", &format!("{pipelines}: the system's pipelines, for the split rule's leaf cost"))
     .port("clock", "Clock; every register updates on the rising edge.")
     .port("reset", "Synchronous reset, active high: back to Idle (the memories keep their words).")
-    .port("start", "One clock high while idle: a run begins at the root cell on root_*; the triangles follow.")
+    .port("start", "One clock high while idle: a run begins; the triangles follow. root_* and max_leaf_* are held from here to done.")
     .port("root_x", "Root cell's low corner, x (grid units, two's complement).")
     .port("root_y", "Root cell's low corner, y.")
     .port("root_z", "Root cell's low corner, z.")
@@ -90,12 +90,13 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .port("in_ready", "The unit takes it (transfer = in_valid & in_ready): high while loading.")
     .port("in_last", "The offered triangle is the run's last.")
     .port("in_object", "The offered triangle's object: 0 A, 1 B. Its index is its position in its object's stream.")
-    .port("in_vertices", &format!("The triangle's vertices, x0 y0 z0 x1 ... z2 from bit 0 up, {g} bits each, grid units relative to nothing (the root's corner is subtracted inside)."))
+    .port("in_vertices", &format!("The triangle's vertices, x0 y0 z0 x1 ... z2 from bit 0 up, {g} bits each, grid coordinates (the unit takes each cell's corner off itself)."))
     .port("out_valid", "A leaf word is offered: a header, then the leaf's A indices, then its B indices.")
     .port("out_ready", "The reader takes it (back-pressure: the stream holds while low).")
     .port("out_header", "The word is a leaf's header: out_x/y/z, out_level and the two counts are valid.")
     .port("out_object", "An index word's object: 0 A, 1 B.")
     .port("out_index", &format!("An index word's triangle: its position in its object's input stream ({INDEX_BITS} bits)."))
+    .port("out_vertices", "An entry: the triangle's vertices as streamed in (in_vertices' layout), from the object's first triangle memory.")
     .port("out_x", "Header: the leaf cell's low corner, x.")
     .port("out_y", "Header: low corner, y.")
     .port("out_z", "Header: low corner, z.")
@@ -104,6 +105,7 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .port("out_count_b", "Header: the B indices that follow them.")
     .port("binned", "Binning is over: the leaves are streaming out or are out.")
     .port("done", "Every leaf is out; the unit waits for reset.")
+    .port("overflow", "A memory was too small for this run (sticky until the next start): a triangle, list word or leaf past its memory's end was dropped; no leaf is streamed and done follows binned at once.")
     .throughput("one leaf word per clock out; two triangles per object and clock through a cell's pass.")
 }
 

@@ -290,6 +290,10 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     pub out_object: Signal<Out, Bit>,
     /// An entry: the triangle's index in its object's stream (from 0).
     pub out_index: Signal<Out, Bits<INDEX_BITS>>,
+    /// An entry: the triangle's vertices as they were streamed in (read
+    /// from the object's first lane's triangle memory, idle while leaves
+    /// stream out), so the collision system needs no copy of its own.
+    pub out_vertices: Signal<Out, Bits<T>>,
     /// A header: the leaf's cell and its arrays' sizes.
     pub out_x: Signal<Out, Bits<G>>,
     pub out_y: Signal<Out, Bits<G>>,
@@ -301,6 +305,15 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     pub binned: Signal<Out, Bit>,
     /// Every leaf is out.
     pub done: Signal<Out, Bit>,
+    /// A memory was too small for the run (sticky until the next start):
+    /// a triangle past `triangles`, a list word past `list_words` or a
+    /// leaf past `leaves` was dropped. The leaves would be wrong, so none
+    /// is streamed: `binned` and `done` come at once.
+    pub overflow: Signal<Out, Bit>,
+    overflow_q: DFF<Bit>,
+    triangle_limit: Constant<Bits<20>>,
+    list_limit: Constant<Bits<LIST_ADDRESS_BITS>>,
+    leaf_limit: Constant<Bits<LEAF_ADDRESS_BITS>>,
     state: DFF<BinState>,
     counter: DFF<Bits<20>>,
     loaded_a: DFF<Bits<20>>,
@@ -311,7 +324,7 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     cur_leaf_cost: DFF<Bits<48>>,
     children_cost: DFF<Bits<48>>,
     returned: DFF<Bits<48>>,
-    top: DFF<Frame>,
+    top_frame: DFF<Frame>,
     frame_count: DFF<Bits<7>>,
     frames: SimpleDualPortRam<Frame, FRAME_ADDRESS_BITS>,
     children: SimpleDualPortRam<ChildLists, CHILD_ADDRESS_BITS>,
@@ -391,6 +404,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             out_header: Default::default(),
             out_object: Default::default(),
             out_index: Default::default(),
+            out_vertices: Default::default(),
             out_x: Default::default(),
             out_y: Default::default(),
             out_z: Default::default(),
@@ -399,6 +413,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             out_count_b: Default::default(),
             binned: Default::default(),
             done: Default::default(),
+            overflow: Default::default(),
+            overflow_q: Default::default(),
+            triangle_limit: Constant::new(Bits::<20>::from(triangles as u64)),
+            list_limit: Constant::new(Bits::<LIST_ADDRESS_BITS>::from(list_words as u64)),
+            leaf_limit: Constant::new(Bits::<LEAF_ADDRESS_BITS>::from(leaves as u64)),
             state: Default::default(),
             counter: Default::default(),
             loaded_a: Default::default(),
@@ -409,7 +428,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             cur_leaf_cost: Default::default(),
             children_cost: Default::default(),
             returned: Default::default(),
-            top: Default::default(),
+            top_frame: Default::default(),
             frame_count: Default::default(),
             frames: SimpleDualPortRam::new(1 << FRAME_ADDRESS_BITS),
             children: SimpleDualPortRam::new(1 << CHILD_ADDRESS_BITS),
@@ -471,8 +490,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost, children_cost, returned, top, frame_count,
-            leaf_count, read_memory_a, read_memory_b, s1_root, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell
+            self, clock, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost, children_cost, returned, top_frame, frame_count,
+            leaf_count, read_memory_a, read_memory_b, s1_root, overflow_q, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell
         );
         self.frames.clock.next = self.clock.val();
         self.children.clock.next = self.clock.val();
@@ -482,14 +501,14 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         // ---- Defaults: no writes, no reads, no lane entry.
         self.frames.write_enable.next = false;
         self.frames.write_address.next = bit_cast::<6, 7>(self.frame_count.q.val() - 1);
-        self.frames.write_data.next = self.top.q.val();
+        self.frames.write_data.next = self.top_frame.q.val();
         self.frames.read_enable.next = false;
         self.frames.read_address.next = bit_cast::<6, 7>(self.frame_count.q.val() - 2);
         self.children.write_enable.next = false;
         self.children.write_address.next =
             (bit_cast::<9, 7>(self.frame_count.q.val()) << 3) | bit_cast::<9, 20>(self.counter.q.val() & 7);
         self.children.read_enable.next = false;
-        self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3) | bit_cast::<9, 4>(self.top.q.val().octant & 7);
+        self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3) | bit_cast::<9, 4>(self.top_frame.q.val().octant & 7);
         self.leaves.write_enable.next = false;
         self.leaves.write_address.next = self.leaf_count.q.val();
         self.leaves.write_data.next = self.cur.q.val();
@@ -597,7 +616,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.both.next = (self.cur.q.val().a_count != 0) & (self.cur.q.val().b_count != 0);
         self.forced.next = self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
         self.improving.next = self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
-        self.half.next = bits::<32>(1) << (self.top.q.val().level - 1);
+        self.half.next = bits::<32>(1) << (self.top_frame.q.val().level - 1);
         self.child_data.next = self.children.read_data.val();
 
         // ---- Output stream (stalls while a word waits).
@@ -606,6 +625,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.out_header.next = self.out_header_q.q.val();
         self.out_object.next = self.out_object_q.q.val();
         self.out_index.next = self.out_index_q.q.val();
+        self.out_vertices.next = self.triangles[0].read_data.val();
+        if self.out_object_q.q.val() {
+            self.out_vertices.next = self.triangles[2].read_data.val();
+        }
         self.out_x.next = bit_cast::<G, 32>(self.out_cell.q.val().x);
         self.out_y.next = bit_cast::<G, 32>(self.out_cell.q.val().y);
         self.out_z.next = bit_cast::<G, 32>(self.out_cell.q.val().z);
@@ -636,10 +659,27 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             | (self.state.q.val() == BinState::OutB)
             | (self.state.q.val() == BinState::Done);
         self.done.next = self.state.q.val() == BinState::Done;
+        // Overflow: a count past its memory (a write past the end happened),
+        // a list memory written past its end (its packer's registered count
+        // of words: the packers' combinational outputs feed back into this
+        // block, which Icarus evaluates as a loop).
+        self.overflow.next = self.overflow_q.q.val();
+        if (self.loaded_a.q.val() > self.triangle_limit.val())
+            | (self.loaded_b.q.val() > self.triangle_limit.val())
+            | (self.leaf_count.q.val() > self.leaf_limit.val())
+        {
+            self.overflow_q.d.next = true;
+        }
+        for o in 0..8 {
+            if (self.packer_a[o].used.val() > self.list_limit.val()) | (self.packer_b[o].used.val() > self.list_limit.val()) {
+                self.overflow_q.d.next = true;
+            }
+        }
 
         match self.state.q.val() {
             BinState::Idle => {
                 if self.start.val() {
+                    self.overflow_q.d.next = false;
                     // The root: its lists are the streams themselves.
                     self.cur.d.next.x = bit_cast::<32, G>(self.root_x.val());
                     self.cur.d.next.y = bit_cast::<32, G>(self.root_y.val());
@@ -763,26 +803,26 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     if self.frame_count.q.val() != 0 {
                         self.frames.write_enable.next = true;
                     }
-                    self.top.d.next.x = self.cur.q.val().x;
-                    self.top.d.next.y = self.cur.q.val().y;
-                    self.top.d.next.z = self.cur.q.val().z;
-                    self.top.d.next.level = self.cur.q.val().level;
-                    self.top.d.next.a_memory = self.cur.q.val().a_memory;
-                    self.top.d.next.a_start = self.cur.q.val().a_start;
-                    self.top.d.next.a_count = self.cur.q.val().a_count;
-                    self.top.d.next.b_memory = self.cur.q.val().b_memory;
-                    self.top.d.next.b_start = self.cur.q.val().b_start;
-                    self.top.d.next.b_count = self.cur.q.val().b_count;
-                    self.top.d.next.leaf_cost = self.cur_leaf_cost.q.val();
-                    self.top.d.next.classify = self.cur_classify.q.val();
-                    self.top.d.next.subtree = 0.into();
-                    self.top.d.next.slack_next = 2.into();
+                    self.top_frame.d.next.x = self.cur.q.val().x;
+                    self.top_frame.d.next.y = self.cur.q.val().y;
+                    self.top_frame.d.next.z = self.cur.q.val().z;
+                    self.top_frame.d.next.level = self.cur.q.val().level;
+                    self.top_frame.d.next.a_memory = self.cur.q.val().a_memory;
+                    self.top_frame.d.next.a_start = self.cur.q.val().a_start;
+                    self.top_frame.d.next.a_count = self.cur.q.val().a_count;
+                    self.top_frame.d.next.b_memory = self.cur.q.val().b_memory;
+                    self.top_frame.d.next.b_start = self.cur.q.val().b_start;
+                    self.top_frame.d.next.b_count = self.cur.q.val().b_count;
+                    self.top_frame.d.next.leaf_cost = self.cur_leaf_cost.q.val();
+                    self.top_frame.d.next.classify = self.cur_classify.q.val();
+                    self.top_frame.d.next.subtree = 0.into();
+                    self.top_frame.d.next.slack_next = 2.into();
                     if !self.improving.val() {
-                        self.top.d.next.slack_next = self.cur_slack.q.val() - 1;
+                        self.top_frame.d.next.slack_next = self.cur_slack.q.val() - 1;
                     }
-                    self.top.d.next.forced = self.forced.val();
-                    self.top.d.next.leaf_mark = self.leaf_count.q.val();
-                    self.top.d.next.octant = 0.into();
+                    self.top_frame.d.next.forced = self.forced.val();
+                    self.top_frame.d.next.leaf_mark = self.leaf_count.q.val();
+                    self.top_frame.d.next.octant = 0.into();
                     self.frame_count.d.next = self.frame_count.q.val() + 1;
                     self.state.d.next = BinState::Next;
                 }
@@ -793,28 +833,28 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             }
             BinState::Check => {
                 // The child: its cell, its lists in the octant's memories.
-                self.cur.d.next.x = self.top.q.val().x;
-                self.cur.d.next.y = self.top.q.val().y;
-                self.cur.d.next.z = self.top.q.val().z;
-                if self.top.q.val().octant.get_bit(0) {
-                    self.cur.d.next.x = self.top.q.val().x + self.half.val();
+                self.cur.d.next.x = self.top_frame.q.val().x;
+                self.cur.d.next.y = self.top_frame.q.val().y;
+                self.cur.d.next.z = self.top_frame.q.val().z;
+                if self.top_frame.q.val().octant.get_bit(0) {
+                    self.cur.d.next.x = self.top_frame.q.val().x + self.half.val();
                 }
-                if self.top.q.val().octant.get_bit(1) {
-                    self.cur.d.next.y = self.top.q.val().y + self.half.val();
+                if self.top_frame.q.val().octant.get_bit(1) {
+                    self.cur.d.next.y = self.top_frame.q.val().y + self.half.val();
                 }
-                if self.top.q.val().octant.get_bit(2) {
-                    self.cur.d.next.z = self.top.q.val().z + self.half.val();
+                if self.top_frame.q.val().octant.get_bit(2) {
+                    self.cur.d.next.z = self.top_frame.q.val().z + self.half.val();
                 }
-                self.cur.d.next.level = self.top.q.val().level - 1;
-                self.cur.d.next.a_memory = self.top.q.val().octant;
-                self.cur.d.next.b_memory = self.top.q.val().octant;
+                self.cur.d.next.level = self.top_frame.q.val().level - 1;
+                self.cur.d.next.a_memory = self.top_frame.q.val().octant;
+                self.cur.d.next.b_memory = self.top_frame.q.val().octant;
                 self.cur.d.next.a_start = self.child_data.val().a_start;
                 self.cur.d.next.a_count = self.child_data.val().a_count;
                 self.cur.d.next.b_start = self.child_data.val().b_start;
                 self.cur.d.next.b_count = self.child_data.val().b_count;
-                self.read_memory_a.d.next = self.top.q.val().octant;
-                self.read_memory_b.d.next = self.top.q.val().octant;
-                self.cur_slack.d.next = self.top.q.val().slack_next;
+                self.read_memory_a.d.next = self.top_frame.q.val().octant;
+                self.read_memory_b.d.next = self.top_frame.q.val().octant;
+                self.cur_slack.d.next = self.top_frame.q.val().slack_next;
                 self.cost.a.next = self.child_data.val().a_count;
                 self.cost.b.next = self.child_data.val().b_count;
                 self.counter.d.next = 0.into();
@@ -857,10 +897,16 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.counter.d.next = 0.into();
                     self.out_leaf.d.next = 0.into();
                     self.state.d.next = BinState::OutLeaf;
+                    // A memory overflowed: the leaves are wrong, none is
+                    // streamed (the root's own leaf may have been the last
+                    // write, not yet in `overflow_q`).
+                    if self.overflow_q.q.val() | (self.leaf_count.q.val() > self.leaf_limit.val()) {
+                        self.state.d.next = BinState::Done;
+                    }
                 } else {
-                    self.top.d.next.subtree = self.top.q.val().subtree + self.returned.q.val();
-                    self.top.d.next.octant = self.top.q.val().octant + 1;
-                    if self.top.q.val().octant == 7 {
+                    self.top_frame.d.next.subtree = self.top_frame.q.val().subtree + self.returned.q.val();
+                    self.top_frame.d.next.octant = self.top_frame.q.val().octant + 1;
+                    if self.top_frame.q.val().octant == 7 {
                         self.state.d.next = BinState::Finish;
                     } else {
                         self.state.d.next = BinState::Next;
@@ -868,24 +914,24 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::Finish => {
-                if !self.top.q.val().forced & (self.top.q.val().subtree >= self.top.q.val().leaf_cost) {
+                if !self.top_frame.q.val().forced & (self.top_frame.q.val().subtree >= self.top_frame.q.val().leaf_cost) {
                     // The subtree did not pay: its leaves are dropped, the cell is one.
                     self.leaves.write_enable.next = true;
-                    self.leaves.write_address.next = self.top.q.val().leaf_mark;
-                    self.leaves.write_data.next.x = self.top.q.val().x;
-                    self.leaves.write_data.next.y = self.top.q.val().y;
-                    self.leaves.write_data.next.z = self.top.q.val().z;
-                    self.leaves.write_data.next.level = self.top.q.val().level;
-                    self.leaves.write_data.next.a_memory = self.top.q.val().a_memory;
-                    self.leaves.write_data.next.a_start = self.top.q.val().a_start;
-                    self.leaves.write_data.next.a_count = self.top.q.val().a_count;
-                    self.leaves.write_data.next.b_memory = self.top.q.val().b_memory;
-                    self.leaves.write_data.next.b_start = self.top.q.val().b_start;
-                    self.leaves.write_data.next.b_count = self.top.q.val().b_count;
-                    self.leaf_count.d.next = self.top.q.val().leaf_mark + 1;
-                    self.returned.d.next = self.top.q.val().leaf_cost + self.top.q.val().classify;
+                    self.leaves.write_address.next = self.top_frame.q.val().leaf_mark;
+                    self.leaves.write_data.next.x = self.top_frame.q.val().x;
+                    self.leaves.write_data.next.y = self.top_frame.q.val().y;
+                    self.leaves.write_data.next.z = self.top_frame.q.val().z;
+                    self.leaves.write_data.next.level = self.top_frame.q.val().level;
+                    self.leaves.write_data.next.a_memory = self.top_frame.q.val().a_memory;
+                    self.leaves.write_data.next.a_start = self.top_frame.q.val().a_start;
+                    self.leaves.write_data.next.a_count = self.top_frame.q.val().a_count;
+                    self.leaves.write_data.next.b_memory = self.top_frame.q.val().b_memory;
+                    self.leaves.write_data.next.b_start = self.top_frame.q.val().b_start;
+                    self.leaves.write_data.next.b_count = self.top_frame.q.val().b_count;
+                    self.leaf_count.d.next = self.top_frame.q.val().leaf_mark + 1;
+                    self.returned.d.next = self.top_frame.q.val().leaf_cost + self.top_frame.q.val().classify;
                 } else {
-                    self.returned.d.next = self.top.q.val().subtree + self.top.q.val().classify;
+                    self.returned.d.next = self.top_frame.q.val().subtree + self.top_frame.q.val().classify;
                 }
                 // Pop: the frame below comes back from the memory.
                 self.frames.read_enable.next = true;
@@ -893,10 +939,12 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 self.state.d.next = BinState::PopWait;
             }
             BinState::PopWait => {
-                self.top.d.next = self.frames.read_data.val();
+                self.top_frame.d.next = self.frames.read_data.val();
                 self.state.d.next = BinState::Return;
             }
             BinState::OutLeaf => {
+                self.triangles[0].read_enable.next = false;
+                self.triangles[2].read_enable.next = false;
                 if self.advance_out.val() {
                     self.out_valid_q.d.next = false;
                     if self.out_leaf.q.val() == self.leaf_count.q.val() {
@@ -908,6 +956,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::OutHeader => {
+                self.triangles[0].read_enable.next = false;
+                self.triangles[2].read_enable.next = false;
                 if self.advance_out.val() {
                     self.out_cell.d.next = self.leaves.read_data.val();
                     self.out_valid_q.d.next = true;
@@ -924,6 +974,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::OutA => {
+                // The entry's vertices come out beside its index (a held
+                // read keeps them while the stream stalls).
+                self.triangles[0].read_enable.next = self.advance_out.val();
+                self.triangles[0].read_address.next = self.entry_a.val();
+                self.triangles[2].read_enable.next = false;
                 if self.advance_out.val() {
                     self.out_valid_q.d.next = true;
                     self.out_header_q.d.next = false;
@@ -945,6 +1000,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::OutB => {
+                self.triangles[0].read_enable.next = false;
+                self.triangles[2].read_enable.next = self.advance_out.val();
+                self.triangles[2].read_address.next = self.entry_b.val();
                 if self.advance_out.val() {
                     self.out_valid_q.d.next = true;
                     self.out_header_q.d.next = false;
@@ -962,6 +1020,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::Done => {
+                self.triangles[0].read_enable.next = false;
+                self.triangles[2].read_enable.next = false;
                 if self.advance_out.val() {
                     self.out_valid_q.d.next = false;
                 }

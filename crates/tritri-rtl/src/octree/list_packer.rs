@@ -40,6 +40,10 @@ pub struct ListPacker {
     /// The list of this pass: its first word and its entries so far.
     pub start: Signal<Out, Bits<LIST_ADDRESS_BITS>>,
     pub count: Signal<Out, Bits<20>>,
+    /// Words written since reset (the next free address): a register, so
+    /// that a reader may test it in a block that also drives this packer's
+    /// inputs (Icarus loops on a combinational path back into such a block).
+    pub used: Signal<Out, Bits<LIST_ADDRESS_BITS>>,
     free: DFF<Bits<LIST_ADDRESS_BITS>>,
     start_q: DFF<Bits<LIST_ADDRESS_BITS>>,
     count_q: DFF<Bits<20>>,
@@ -54,6 +58,7 @@ impl Logic for ListPacker {
         dff_setup!(self, clock, free, start_q, count_q, waiting, waiting_index);
         self.start.next = self.start_q.q.val();
         self.count.next = self.count_q.q.val();
+        self.used.next = self.free.q.val();
         self.write_address.next = self.free.q.val();
         self.write_enable.next = false;
         self.write_data.next = 0.into();
