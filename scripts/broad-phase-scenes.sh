@@ -8,10 +8,10 @@
 #
 # Times: software is the exact box sweep measured by `tritri sim` on this
 # machine (one thread); hardware is the system's cycle model at 100 MHz
-# (no post-route clock yet); "first in to last out" adds the binning unit
-# (classifier step and setup built and co-simulated, controller modelled;
-# see `tritri sim`'s report) and the owner filter's cycles, not overlapped
-# with the narrow phase.
+# (no post-route clock yet); "first in to last out" adds the binning unit's
+# cycles (its cycle-exact model, which its Verilog equals in co-simulation;
+# memories sized for the scene) and the owner filter's, not overlapped with
+# the narrow phase.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 m=build/meshes
@@ -30,8 +30,8 @@ scenes=(
 )
 
 field() { grep -m1 "$1" "$2" | sed -E "s/.*$3.*/\1/"; }
-echo "| scene | N1 x N2 | box-overlap pairs | flat: pairs tested | octree: pairs tested | / box-overlap | leaves, depth | intersecting | = flat | vs exact f64 | flat time | octree narrow phase | binning cycles | owner filter: hits / dropped / cycles | first in to last out | software | ratio (narrow) | ratio (first in to last out) |"
-echo "|---|---|---:|---:|---:|---:|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | N1 x N2 | box-overlap pairs | flat: pairs tested | octree: pairs tested | / box-overlap | leaves, depth | intersecting | = flat | vs exact f64 | flat time | octree narrow phase | binning cycles | binning memory | owner filter: hits / dropped / cycles | first in to last out | software | ratio (narrow) | ratio (first in to last out) |"
+echo "|---|---|---:|---:|---:|---:|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for entry in "${scenes[@]}"; do
   name=${entry%%|*}
   read -r -a args <<<"${entry#*|}"
@@ -54,8 +54,9 @@ for entry in "${scenes[@]}"; do
   software=$(field "^speed:" "$work/octree.log" 'one thread, triangles in memory\) ([0-9.]+ [a-z]+);.*')
   ratio=$(field "^speed:" "$work/octree.log" ': ([0-9.]+) x$')
   binning=$(field "^binning unit" "$work/octree.log" ': ([0-9]+) cycles;.*')
+  memory=$(field "^binning unit" "$work/octree.log" 'memories ([0-9.]+ Mbit).*')
   owner=$(grep -m1 "^owner filter" "$work/octree.log" | sed -E 's/.*: ([0-9]+) hits from the leaves, ([0-9]+) duplicates dropped, [0-9]+ pairs through; ([0-9]+) cycles.*/\1 \/ \2 \/ \3/')
-  whole=$(field "^speed, first triangle in" "$work/octree.log" 'cycles, not overlapped\): (.*) at [0-9.]+ MHz.*')
+  whole=$(field "^speed, first triangle in" "$work/octree.log" '\): (.*) at [0-9.]+ MHz.*')
   whole_ratio=$(field "^speed, first triangle in" "$work/octree.log" ', ([0-9.]+) x$')
-  echo "| $name | $n1 x $n2 | $box | $flat_tested | $tested | $per_box | $leaves, $depth | $hits | $same | $quant | $flat_time | $octree_time | $binning | $owner | $whole | $software | $ratio | $whole_ratio |"
+  echo "| $name | $n1 x $n2 | $box | $flat_tested | $tested | $per_box | $leaves, $depth | $hits | $same | $quant | $flat_time | $octree_time | $binning | $memory | $owner | $whole | $software | $ratio | $whole_ratio |"
 done

@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --broad-phase [the same] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -37,7 +37,12 @@
 //! binning unit for a `--width`-bit grid (each object's triangles in once,
 //! the leaves out; memories sized by `--triangles`, `--list-words` and
 //! `--leaves`, the split rule by the system's `--depth` and `--pipelines`),
-//! top `tritri_binning_g<G>_t<N>_w<N>_l<N>_d<D>_p<P>`. `--owner-filter` writes the filter that
+//! top `tritri_binning_g<G>_t<N>_w<N>_l<N>_d<D>_p<P>`. `--broad-phase`
+//! writes the broad-phase top: that binning unit on a 24-bit grid feeding
+//! the collision system of `--width` bits (24, or 16 with each leaf in a
+//! frame of its own), `--depth` and `--pipelines`, triangles in and each
+//! leaf's pairs out, top `tritri_broad_phase_g24_w<W>_p<P>_d<D>_t<N>[_local]`.
+//! `--owner-filter` writes the filter that
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
 //! `--plane-traversal` writes the octree engine's plane classification
@@ -57,6 +62,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
+use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
@@ -138,19 +144,25 @@ pub struct Args {
     /// --pipelines the system it feeds.
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill"])]
     binning_unit: bool,
-    /// With --binning-unit: triangles per object (1 to 262144).
-    #[arg(long, default_value_t = 8192, requires = "binning_unit",
-          value_parser = clap::value_parser!(u64).range(1..=1 << INDEX_BITS))]
-    triangles: u64,
-    /// With --binning-unit: words of each of the sixteen list memories, two
-    /// indices a word (1 to 1048576).
-    #[arg(long, default_value_t = 16384, requires = "binning_unit",
-          value_parser = clap::value_parser!(u64).range(1..=1 << LIST_ADDRESS_BITS))]
-    list_words: u64,
-    /// With --binning-unit: leaf descriptors (1 to 1048576).
-    #[arg(long, default_value_t = 4096, requires = "binning_unit",
-          value_parser = clap::value_parser!(u64).range(1..=1 << LEAF_ADDRESS_BITS))]
-    leaves: u64,
+    /// Emit the broad-phase top instead: the binning unit on a 24-bit grid
+    /// feeding the collision system (triangles in, each leaf's pairs out);
+    /// --width is the system's (24, or 16 with leaves in frames of their
+    /// own), --depth and --pipelines the system's, --triangles,
+    /// --list-words and --leaves the binning unit's memories.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "binning_unit"])]
+    broad_phase: bool,
+    /// With --binning-unit or --broad-phase: triangles per object (1 to
+    /// 262144) [default: 8192].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << INDEX_BITS))]
+    triangles: Option<u64>,
+    /// With --binning-unit or --broad-phase: words of each of the sixteen
+    /// list memories, two indices a word (1 to 1048576) [default: 16384].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << LIST_ADDRESS_BITS))]
+    list_words: Option<u64>,
+    /// With --binning-unit or --broad-phase: leaf descriptors (1 to
+    /// 1048576) [default: 4096].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << LEAF_ADDRESS_BITS))]
+    leaves: Option<u64>,
 }
 
 impl Args {
@@ -173,33 +185,53 @@ impl Args {
     fn binning_config(&self, grid_bits: usize) -> BinningUnitConfig {
         BinningUnitConfig {
             grid_bits,
-            triangles: self.triangles as usize,
-            list_words: self.list_words as usize,
-            leaves: self.leaves as usize,
+            triangles: self.triangles.unwrap_or(8192) as usize,
+            list_words: self.list_words.unwrap_or(16384) as usize,
+            leaves: self.leaves.unwrap_or(4096) as usize,
             log_depth: self.depth().trailing_zeros(),
             log_pipelines: self.pipelines().trailing_zeros(),
         }
     }
 
+    /// The broad-phase top's configuration for a `width`-bit system (with
+    /// --broad-phase): a 24-bit grid, local frames below 24 bits.
+    fn broad_phase_config(&self, width: usize) -> BroadPhaseConfig {
+        BroadPhaseConfig { unit: self.binning_config(BROAD_PHASE_GRID_BITS), system: self.system_config(width), local_frames: width < BROAD_PHASE_GRID_BITS }
+    }
+
     /// An error for options that do not go together, naming them.
     fn check_usage(&self) -> Result<(), String> {
-        if !(self.system || self.binning_unit) {
+        if !(self.system || self.binning_unit || self.broad_phase) {
             if self.pipelines.is_some() {
-                return Err("--pipelines applies to --system and --binning-unit".into());
+                return Err("--pipelines applies to --system, --binning-unit and --broad-phase".into());
             }
             if self.depth.is_some() {
-                return Err("--depth applies to --system and --binning-unit".into());
+                return Err("--depth applies to --system, --binning-unit and --broad-phase".into());
             }
         }
-        if self.binning_unit {
+        if !(self.binning_unit || self.broad_phase) {
+            for (given, name) in [(self.triangles.is_some(), "--triangles"), (self.list_words.is_some(), "--list-words"), (self.leaves.is_some(), "--leaves")] {
+                if given {
+                    return Err(format!("{name} applies to --binning-unit and --broad-phase"));
+                }
+            }
+        }
+        if self.broad_phase {
+            for &w in &self.width {
+                self.broad_phase_config(w).check().map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
+            }
+        }
+        if self.binning_unit || self.broad_phase {
             if !self.pipelines().is_power_of_two() {
                 return Err(format!("--pipelines {}: the binning unit's split rule takes a power of two", self.pipelines()));
             }
             if !self.depth().is_power_of_two() {
                 return Err(format!("--depth {}: the binning unit's split rule takes a power of two", self.depth()));
             }
-            for &w in &self.width {
-                self.binning_config(w).check().map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
+            if self.binning_unit {
+                for &w in &self.width {
+                    self.binning_config(w).check().map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
+                }
             }
         }
         Ok(())
@@ -223,6 +255,10 @@ impl Args {
             let config = self.binning_config(width);
             return emit_binning_unit(&config).with_context(|| format!("emitting {}", config.unit_name()));
         }
+        if self.broad_phase {
+            let config = self.broad_phase_config(width);
+            return emit_broad_phase_system(&config).with_context(|| format!("emitting {}", config.unit_name()));
+        }
         if self.owner_filter {
             return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
         }
@@ -241,7 +277,7 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.engine_unit()
+        self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.broad_phase || self.engine_unit()
     }
 
     /// The octree engine's units that take no width.
@@ -268,6 +304,8 @@ impl Args {
             owner_filter_unit_name(self.slots as usize)
         } else if self.binning_unit {
             self.binning_config(width).unit_name()
+        } else if self.broad_phase {
+            self.broad_phase_config(width).unit_name()
         } else if self.classifier {
             cell_classifier_unit_name(width)
         } else if self.setup {
@@ -302,7 +340,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit() || args.binning_unit || args.owner_filter || args.engine_unit(), check_width(w)) {
+        if let (false, Err(e)) = (args.octree_unit() || args.binning_unit || args.broad_phase || args.owner_filter || args.engine_unit(), check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

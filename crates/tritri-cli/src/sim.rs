@@ -61,6 +61,7 @@ use tritri_geom::scene::PreparedScene;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
 use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
+use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -314,18 +315,31 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(narrow)
         )?;
         if let Some(octree) = &scene.octree {
-            let binning = match scene_binning(&args, &scene) {
-                Ok(unit) => unit.run.cycles,
-                Err(_) => binning_cycles(&binning_work(octree)),
-            };
             let owner = run.owner.map_or(0, |o| o.cycles);
-            let whole = args.hardware.time_of(binning + cycles + owner);
+            let (whole, how) = match scene_binning(&args, &scene) {
+                // The broad-phase top: the leaves go from the binning unit
+                // into the system's banks as they stream (its cycle model,
+                // which co-simulation holds the emitted top to).
+                Ok(unit) if octree.oversized_leaves == 0 => {
+                    let top = broad_phase_cycles(args.hardware.system_config(), &unit.run);
+                    (top + owner, format!("binning and narrow phase in one top {top} + owner filter {owner} cycles, the filter not overlapped"))
+                }
+                Ok(unit) => {
+                    let binning = unit.run.cycles;
+                    (binning + cycles + owner, format!("binning {binning} + narrow phase {cycles} (leaves over the depth, tiled by the host) + owner filter {owner} cycles, not overlapped"))
+                }
+                Err(_) => {
+                    let binning = binning_cycles(&binning_work(octree));
+                    (binning + cycles + owner, format!("binning {binning} (cost formula) + narrow phase {cycles} + owner filter {owner} cycles, not overlapped"))
+                }
+            };
+            let whole_time = args.hardware.time_of(whole);
             writeln!(
                 report,
-                "speed, first triangle in to last pair out (binning {binning} + narrow phase {cycles} + owner filter {owner} cycles, not overlapped): {} at {} MHz, {:.1} x",
-                human(whole),
+                "speed, first triangle in to last pair out ({how}): {} at {} MHz, {:.1} x",
+                human(whole_time),
                 args.hardware.clock_mhz,
-                ratio(whole)
+                ratio(whole_time)
             )?;
         }
         writeln!(

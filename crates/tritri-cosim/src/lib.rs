@@ -20,6 +20,7 @@
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod binning_unit;
+pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod engine;
 pub mod owner_filter;

@@ -57,6 +57,7 @@ pub mod cell_classifier_unit;
 pub mod continuous_assigns;
 pub mod modules;
 pub mod binning_unit_unit;
+pub mod broad_phase_system_unit;
 pub mod owner_filter_unit;
 pub mod package;
 pub mod part_selects;

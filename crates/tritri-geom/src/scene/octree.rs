@@ -104,7 +104,7 @@ impl LocalFrames {
     /// touching the cell lies within `s/2 + e` of the centre, `e` its
     /// largest extent along an axis: it fits when
     /// `e <= 2^(W-1) - 1 - 2^(W-3)`.
-    fn fits_any_leaf(&self, t: &TaggedTriangle) -> bool {
+    pub fn fits_any_leaf(&self, t: &TaggedTriangle) -> bool {
         let limit = (1i64 << (self.width - 1)) - 1 - (1i64 << (self.width - 3));
         (0..3).all(|k| {
             let (lo, hi) = t.triangle.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));

@@ -456,11 +456,20 @@ fn module_heights(modules: &[Module]) -> HashMap<String, usize> {
     let children: HashMap<&str, Vec<&str>> = modules
         .iter()
         .map(|m| {
-            let kids = m
-                .tokens
-                .iter()
-                .filter(|t| t.kind == Kind::Identifier && t.text != m.name && names.contains(t.text.as_str()))
-                .map(|t| t.text.as_str())
+            // A child is a module name in instantiation position: followed
+            // by the instance's name. (A signal may share a module's name:
+            // the binning unit's register `top` inside the broad-phase top,
+            // itself `top` in rust-hdl's text.)
+            let significant: Vec<&Token> = m.tokens.iter().filter(|t| !matches!(t.kind, Kind::Whitespace | Kind::Comment)).collect();
+            let kids = significant
+                .windows(2)
+                .filter(|w| {
+                    w[0].kind == Kind::Identifier
+                        && w[0].text != m.name
+                        && names.contains(w[0].text.as_str())
+                        && matches!(w[1].kind, Kind::Identifier | Kind::EscapedIdentifier)
+                })
+                .map(|w| w[0].text.as_str())
                 .collect();
             (m.name.as_str(), kids)
         })

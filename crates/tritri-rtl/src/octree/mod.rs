@@ -18,6 +18,10 @@
 //!   [`leaf_cost`] two of its parts (index lists two to a word, the split
 //!   rule's leaf cost); [`binning_model`] is the cost formula the planner
 //!   and the cycle model charge a cell's pass;
+//! * [`leaf_batcher`]: the binning unit's leaf stream as the collision
+//!   system's batches (a leaf's frame, an end word per leaf);
+//!   [`broad_phase_system`]: the binning unit, the batcher and the system
+//!   in one top, triangles in, each leaf's pairs out;
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -35,9 +39,11 @@ pub mod axis_step;
 pub mod binning_machine;
 pub mod binning_model;
 pub mod binning_unit;
+pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod classify_lane;
 pub mod centre_test;
+pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_packer;
 pub mod octant_clipper;

@@ -101,6 +101,21 @@ pub fn pairs(batch: BatchSizes) -> u64 {
 /// is then a lower bound.
 pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool, reader: ReaderBehaviour) -> u64 {
     let _ = reader; // the always-ready reader never stalls the read side
+    recurrence(config, batches, overlap, 0, 0).max(0) as u64
+}
+
+/// [`system_cycles`] with the banks overlapped, for a writer whose first
+/// word can come at cycle `first` and which spends `gap` idle cycles
+/// between a batch's end word and the next batch's first triangle (the
+/// broad phase's leaf batcher: one, the clock of the leaf's header).
+/// Returns the cycle in which `done` rises, counted like `first`.
+pub fn streamed_system_cycles(config: SystemConfig, batches: &[BatchSizes], first: u64, gap: u64) -> u64 {
+    recurrence(config, batches, true, first as i64, gap as i64).max(0) as u64
+}
+
+/// The module's recurrence: `S_0 = first`, `S_k = C_{k-1} + 1 + gap` with
+/// overlap (else `D_{k-1} + 1`); returns `D`.
+fn recurrence(config: SystemConfig, batches: &[BatchSizes], overlap: bool, first: i64, gap: i64) -> i64 {
     let latency = config.pipeline_latency as i64;
     // Cycle indices; -1 stands for "before cycle 0".
     let mut commit_previous: i64 = -1; // C_{k-1}
@@ -110,7 +125,13 @@ pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool
     let mut last_stream_read: Option<i64> = None; // X
     let mut done = 0i64;
     for (k, &batch) in batches.iter().enumerate() {
-        let start = if overlap || k == 0 { commit_previous + 1 } else { done_previous + 1 };
+        let start = if k == 0 {
+            first
+        } else if overlap {
+            commit_previous + 1 + gap
+        } else {
+            done_previous + 1
+        };
         let first_write = start.max(release[k % 2] + 1);
         let commit = first_write + (batch.a + batch.b) as i64;
         let take = (commit + 1).max(release_previous + 1);
@@ -125,7 +146,7 @@ pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool
         done = (last_read + 1).max(last_stream_read.map_or(0, |x| x + latency + 2));
         done_previous = done;
     }
-    done.max(0) as u64
+    done
 }
 
 /// What one batch adds to a long run with the banks overlapped: in the

@@ -1,0 +1,269 @@
+//! Drives the broad-phase top ([`tritri_rtl::octree::broad_phase_system`]):
+//! a scene's arrays in, on the grid the binning unit was built for, each
+//! leaf's pairs out, with the clocks from the first triangle in to `done`.
+
+use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use anyhow::{bail, Context as _};
+use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
+use rust_hdl::prelude::*;
+use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::octree::cell::Cell;
+use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+use tritri_rtl::octree::binning_unit::{on_unit_stack, BinningUnitConfig};
+use tritri_rtl::octree::broad_phase_system::{BroadPhaseSystem, BROAD_PHASE_WIDTHS};
+use tritri_rtl::octree::cell_classifier::AXES;
+use tritri_rtl::octree::value_bits;
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+use tritri_rtl::system::SystemConfig;
+
+/// What a run of the top gives.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct BroadPhaseOutput {
+    /// Each leaf's pairs, in the order the system streams them: indices
+    /// into A's and B's arrays.
+    pub pairs: Vec<(u32, u32)>,
+    /// Clocks from the first triangle taken (clock 0) to `binned`.
+    pub binned_at: u64,
+    /// Clocks from the first triangle taken to `done`.
+    pub cycles: u64,
+    pub pairs_tested: u64,
+    pub overflow: bool,
+}
+
+/// The scene through the rust-hdl model of the top: the binning unit of
+/// `unit` (its grid, memories and split rule) feeding the system of
+/// `system`, the reader always ready.
+pub fn run_rusthdl(
+    unit: &BinningUnitConfig,
+    system: SystemConfig,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+    root: Cell,
+    max_leaf_level: Option<u32>,
+) -> anyhow::Result<BroadPhaseOutput> {
+    fn run<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>(
+        unit: &BinningUnitConfig,
+        system: SystemConfig,
+        a: &[FixedTriangle],
+        b: &[FixedTriangle],
+        root: Cell,
+        max_leaf_level: Option<u32>,
+    ) -> anyhow::Result<BroadPhaseOutput> {
+        let local_frames = max_leaf_level.is_some();
+        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, system, local_frames);
+        uut.connect_all();
+        reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
+        let g = |v: i64| -> Bits<G> { Bits::from((v as u64) & ((1u64 << G) - 1)) };
+        uut.root_x.next = g(root.lo[0]);
+        uut.root_y.next = g(root.lo[1]);
+        uut.root_z.next = g(root.lo[2]);
+        uut.root_level.next = (root.level as u64).into();
+        uut.max_leaf_enable.next = local_frames;
+        uut.max_leaf_level.next = (max_leaf_level.unwrap_or(0) as u64).into();
+        uut.out_ready.next = true;
+        uut.start.next = true;
+        clock_cycle(&mut uut, |u| &mut u.clock);
+        uut.start.next = false;
+        let stream: Vec<(bool, &FixedTriangle)> = a.iter().map(|t| (false, t)).chain(b.iter().map(|t| (true, t))).collect();
+        let mut out = BroadPhaseOutput::default();
+        let mut binned_at = None;
+        let mut next = 0;
+        let mut clock = 0u64;
+        let limit = 50_000_000u64;
+        loop {
+            uut.in_valid.next = next < stream.len();
+            if let Some(&(object, t)) = stream.get(next) {
+                uut.in_object.next = object;
+                uut.in_last.next = next + 1 == stream.len();
+                let mut word = Bits::<T>::default();
+                for (k, v) in t.iter().flatten().enumerate() {
+                    word.set_bits::<G>(k * G, g(*v));
+                }
+                uut.in_vertices.next = word;
+            }
+            settle(&mut uut);
+            if uut.binned.val() && binned_at.is_none() {
+                binned_at = Some(clock);
+            }
+            if uut.out_valid.val() {
+                out.pairs.push((uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32));
+            }
+            if uut.done.val() && next == stream.len() && binned_at.is_some() {
+                break;
+            }
+            let taken = uut.in_valid.val() && uut.in_ready.val();
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            if taken {
+                next += 1;
+            }
+            clock += 1;
+            if clock > limit {
+                bail!("the broad-phase top did not finish in {limit} clocks");
+            }
+        }
+        out.cycles = clock;
+        out.binned_at = binned_at.unwrap_or(clock);
+        out.overflow = uut.overflow.val();
+        out.pairs_tested = uut.pairs_tested.val().index() as u64;
+        // Pairs still in the result FIFO at `done`.
+        loop {
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            settle(&mut uut);
+            if !uut.out_valid.val() {
+                break;
+            }
+            out.pairs.push((uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32));
+        }
+        Ok(out)
+    }
+    if unit.grid_bits != 24 || !BROAD_PHASE_WIDTHS.contains(&(unit.grid_bits, system.coordinate_bits)) {
+        bail!("the broad-phase top is built for (grid, width) {BROAD_PHASE_WIDTHS:?}, not ({}, {})", unit.grid_bits, system.coordinate_bits);
+    }
+    const V24: usize = value_bits(24);
+    on_unit_stack(|| match system.coordinate_bits {
+        24 => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 24, { difference_bits(24) }, { cross_bits(24) }, { orient3d_bits(24) }>(
+            unit, system, a, b, root, max_leaf_level,
+        ),
+        _ => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 16, { difference_bits(16) }, { cross_bits(16) }, { orient3d_bits(16) }>(
+            unit, system, a, b, root, max_leaf_level,
+        ),
+    })
+}
+
+/// The scene through the emitted top built for `config` in `simulator`
+/// (the reader always ready). `clock_bound` bounds the clocks the run may
+/// take after its last triangle.
+pub fn run_emitted(
+    config: &BroadPhaseConfig,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+    root: Cell,
+    max_leaf_level: Option<u32>,
+    clock_bound: u64,
+    simulator: Simulator,
+) -> anyhow::Result<BroadPhaseOutput> {
+    let design = emit_broad_phase_system(config)?;
+    let g = config.unit.grid_bits;
+    let mut files = vec![("tb_broad_phase.sv".to_string(), testbench(&design.top, g, clock_bound as usize))];
+    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    let bench = Testbench { top: "tb_broad_phase".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
+    let compiled = compile(simulator, &bench)?;
+    let mask = |v: i64| (v as u64) & ((1u64 << g) - 1);
+    let mut vectors = format!(
+        "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
+        mask(root.lo[0]),
+        mask(root.lo[1]),
+        mask(root.lo[2]),
+        root.level,
+        max_leaf_level.is_some() as u8,
+        max_leaf_level.unwrap_or(0)
+    );
+    let total = a.len() + b.len();
+    for (k, (object, t)) in a.iter().map(|t| (0, t)).chain(b.iter().map(|t| (1, t))).enumerate() {
+        vectors += &format!("1 {object} {}", (k + 1 == total) as u8);
+        for v in t.iter().flatten() {
+            vectors += &format!(" {:x}", mask(*v));
+        }
+        vectors.push('\n');
+    }
+    let (text, _) = run_on_vectors(&compiled, "broad-phase-run", &vectors, &[])?;
+    parse_outputs(&text)
+}
+
+/// The testbench's lines: `P edge a b` a pair, `D edge` the first edge
+/// with `binned`, `F edge overflow pairs_tested` the first with `done`
+/// (the pairs left in the result FIFO follow). The first triangle is
+/// offered at edge 1, the top's clock 0.
+fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
+    let mut out = BroadPhaseOutput::default();
+    let mut finished = false;
+    for line in text.lines() {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let number = |k: usize, radix| -> anyhow::Result<u64> {
+            let s = fields.get(k).with_context(|| format!("broad-phase output line `{line}` has no field {k}"))?;
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
+        match fields.first().copied() {
+            Some("P") => out.pairs.push((number(2, 16)? as u32, number(3, 16)? as u32)),
+            Some("D") => out.binned_at = number(1, 10)?.saturating_sub(1),
+            Some("F") => {
+                out.cycles = number(1, 10)?.saturating_sub(1);
+                out.overflow = number(2, 16)? == 1;
+                out.pairs_tested = number(3, 16)?;
+                finished = true;
+            }
+            _ => bail!("broad-phase output line `{line}` is not P, D or F"),
+        }
+    }
+    if !finished {
+        bail!("the broad-phase top did not say done (the run hit its clock bound)");
+    }
+    Ok(out)
+}
+
+/// The testbench: the start line for one clock, each triangle held until
+/// taken, the reader always ready; every pair written with its edge; at
+/// `done` the result FIFO is drained and the run ends (or `drain` clocks
+/// after the last triangle).
+fn testbench(top: &str, g: usize, drain: usize) -> String {
+    let g1 = g - 1;
+    let body = format!(
+        "\
+    reg [3:0] kind = 4'd0;
+    // Scalars, not an array: Verilator's $fscanf does not fill array elements.
+    reg [31:0] f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10;
+    // The run's root and leaf limit, held from the start line to the end.
+    reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;
+    reg [63:0] edge_count = 64'd0;
+    reg binned_seen = 1'b0;
+    reg done_seen = 1'b0;
+    wire in_ready, out_valid, binned, done, overflow;
+    wire [31:0] out_index_a, out_index_b, pairs_tested, hits;
+    {top} dut (
+        .clock(clock), .reset(reset),
+        .start(in_valid && kind == 4'd0),
+        .root_x(held_x[{g1}:0]), .root_y(held_y[{g1}:0]), .root_z(held_z[{g1}:0]), .root_level(held_level[5:0]),
+        .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
+        .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
+        .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),
+        .out_valid(out_valid), .out_ready(1'b1), .out_index_a(out_index_a), .out_index_b(out_index_b),
+        .binned(binned), .done(done), .overflow(overflow), .pairs_tested(pairs_tested), .hits(hits)
+    );
+
+    always @(posedge clock) if (!reset) edge_count <= edge_count + 64'd1;
+
+    // Outputs are registered, stable at the falling edge; a word shown
+    // there leaves at the next rising edge, number edge_count.
+    always @(negedge clock) begin
+        if (!reset && binned && !binned_seen) begin
+            $fwrite(outputs, \"D %0d\\n\", edge_count);
+            binned_seen = 1'b1;
+        end
+        if (!reset && out_valid) $fwrite(outputs, \"P %0d %h %h\\n\", edge_count, out_index_a, out_index_b);
+        if (!reset && done && binned_seen && !done_seen) begin
+            $fwrite(outputs, \"F %0d %h %h\\n\", edge_count, overflow, pairs_tested);
+            done_seen = 1'b1;
+        end
+        if (done_seen && !out_valid) begin
+            $fclose(outputs);
+            $finish;
+        end
+    end
+"
+    );
+    vector_testbench(&VectorTestbench {
+        name: "tb_broad_phase",
+        body,
+        start: "        f0 = 0; f1 = 0; f2 = 0; f3 = 0; f4 = 0; f5 = 0; f6 = 0; f7 = 0; f8 = 0; f9 = 0; f10 = 0;\n        held_x = 0; held_y = 0; held_z = 0; held_level = 0; held_enable = 0; held_max = 0;".into(),
+        read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
+        // The start line: six fields, one clock. A triangle: eleven,
+        // offered until the top takes it.
+        fill: "            if (kind == 4'd0) r = $fscanf(vectors, \"%h %h %h %h %h %h\", held_x, held_y, held_z, held_level, held_enable, held_max);\n            \
+               else begin\n                \
+               r = $fscanf(vectors, \"%h %h %h %h %h %h %h %h %h %h %h\", f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10);\n                \
+               in_valid = 1'b1; while (!in_ready) @(negedge clock);\n            \
+               end"
+            .into(),
+        drain,
+    })
+}

@@ -1,0 +1,171 @@
+//! The broad-phase top, triangles in to pairs out in one design: the
+//! binning unit's leaves go straight into the collision system. In
+//! rust-hdl, its pairs are every leaf's fixed-point pairs (each pair once
+//! per leaf holding both triangles), their set is the flat system's, and
+//! its clocks from the first triangle in to `done` are the cycle model's
+//! (`broad_phase_cycles`: the binning unit's model, then the system's bank
+//! recurrence fed at the leaf stream's pace).
+
+use tritri_cosim::broad_phase_system::{run_emitted, run_rusthdl};
+use tritri_cosim::simulator::Simulator;
+use tritri_geom::builtin_scene::{sphere, torus};
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::reference::fixed_point_pairs;
+use tritri_geom::scene::octree::LocalFrames;
+use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneOptions, TaggedTriangle};
+use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::octree::binning_unit::BinningUnitConfig;
+use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
+use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::SystemConfig;
+
+fn objects(torus_segments: usize, sphere_segments: usize) -> (SceneObject, SceneObject) {
+    (
+        SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, torus_segments, torus_segments / 2)),
+        SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, sphere_segments, sphere_segments / 2)),
+    )
+}
+
+fn arrays(scene: &PreparedScene) -> (Vec<FixedTriangle>, Vec<FixedTriangle>) {
+    (scene.kept_a.iter().map(|t| t.triangle).collect(), scene.kept_b.iter().map(|t| t.triangle).collect())
+}
+
+/// Every leaf's intersecting pairs on the grid, as indices, sorted.
+fn leaf_pairs(run: &BinningRun, a: &[FixedTriangle], b: &[FixedTriangle]) -> Vec<(u32, u32)> {
+    let mut pairs: Vec<(u32, u32)> = run
+        .leaf_lists
+        .iter()
+        .flat_map(|(la, lb)| la.iter().flat_map(move |&i| lb.iter().map(move |&j| (i, j))))
+        .filter(|&(i, j)| intersects(&a[i as usize], &b[j as usize]))
+        .collect();
+    pairs.sort_unstable();
+    pairs
+}
+
+#[test]
+fn the_top_gives_every_leafs_pairs_at_the_cycle_models_clock_in_rust_hdl() {
+    let (torus, sphere) = objects(48, 32);
+    let depth = 16;
+    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let options = SceneOptions { width: 24, depth, split: true };
+    let scene = prepare_octree(&torus, &sphere, &options, &system, None).unwrap();
+    let (a, b) = arrays(&scene);
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let params = BinningParams { log_depth: 4, log_pipelines: 1, max_leaf_level: None };
+    let run = run_binning(&a, &b, root, params);
+    let unit = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
+
+    let out = run_rusthdl(&unit, system, &a, &b, root, None).unwrap();
+    assert!(!out.overflow);
+    let mut pairs = out.pairs.clone();
+    pairs.sort_unstable();
+    let expected = leaf_pairs(&run, &a, &b);
+    assert!(expected.len() > 100, "{} hits", expected.len());
+    assert_eq!(pairs, expected);
+    // Their set is the flat system's pairs.
+    let flat = prepare(&torus, &sphere, &options).unwrap();
+    let ids: std::collections::BTreeSet<(u32, u32)> = pairs.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
+    assert_eq!(ids, fixed_point_pairs(&flat.batches(), &|_| {}).into_iter().collect());
+    let tested: u64 = run.leaf_lists.iter().map(|(la, lb)| (la.len() * lb.len()) as u64).sum();
+    assert_eq!(out.pairs_tested, tested);
+    eprintln!(
+        "{} + {} triangles, {} leaves, {} pairs tested, {} hits, {} distinct pairs; binned at {} (model {}), done at {} (model {})",
+        a.len(),
+        b.len(),
+        run.leaves.len(),
+        out.pairs_tested,
+        pairs.len(),
+        ids.len(),
+        out.binned_at,
+        run.cycles,
+        out.cycles,
+        broad_phase_cycles(system, &run)
+    );
+    assert_eq!(out.binned_at, run.cycles);
+    assert_eq!(out.cycles, broad_phase_cycles(system, &run));
+}
+
+#[test]
+fn with_local_frames_the_top_keeps_the_fine_grids_pairs_in_rust_hdl() {
+    // An 18-bit grid on 16-bit pipelines: every leaf in a frame of its own
+    // (a finer torus, so that most of its triangles fit a leaf's window).
+    let (torus, sphere) = objects(128, 48);
+    let depth = 16;
+    let system = SystemConfig::new(16, 2, latency()).with_depth(depth);
+    let options = SceneOptions { width: 18, depth, split: true };
+    let frames = LocalFrames { width: 16 };
+    let scene = prepare_octree(&torus, &sphere, &options, &system, Some(frames)).unwrap();
+    // Triangles too long for a leaf's window would go to the host, not the top.
+    let binned = |kept: &[TaggedTriangle]| -> Vec<FixedTriangle> { kept.iter().filter(|t| frames.fits_any_leaf(t)).map(|t| t.triangle).collect() };
+    let (a, b) = (binned(&scene.kept_a), binned(&scene.kept_b));
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let params = BinningParams { log_depth: 4, log_pipelines: 1, max_leaf_level: Some(frames.max_leaf_level()) };
+    let run = run_binning(&a, &b, root, params);
+    let unit = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
+    let out = run_rusthdl(&unit, system, &a, &b, root, params.max_leaf_level).unwrap();
+    assert!(!out.overflow);
+    let mut pairs = out.pairs.clone();
+    pairs.sort_unstable();
+    assert_eq!(pairs, leaf_pairs(&run, &a, &b));
+    assert!(pairs.len() > 100, "{} hits", pairs.len());
+    eprintln!(
+        "local frames: {} + {} triangles binned, {} leaves, {} pairs tested, {} hits; binned at {}, done at {} (model {})",
+        a.len(),
+        b.len(),
+        run.leaves.len(),
+        out.pairs_tested,
+        pairs.len(),
+        out.binned_at,
+        out.cycles,
+        broad_phase_cycles(system, &run)
+    );
+    assert_eq!(out.binned_at, run.cycles);
+    assert_eq!(out.cycles, broad_phase_cycles(system, &run));
+}
+
+#[test]
+fn the_emitted_top_gives_the_models_pairs_and_clocks_on_a_large_scene_in_verilator() {
+    // Two dense spheres overlapping deeply: over 5,000 triangles of each
+    // in the common box, the system's default memory depth.
+    let a = SceneObject::from_triangles("sphere a", sphere([0.0, 0.0, 0.0], 1.0, 112, 56));
+    let b = SceneObject::from_triangles("sphere b", sphere([0.6, 0.2, 0.1], 0.9, 112, 56));
+    let depth = 256;
+    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let options = SceneOptions { width: 24, depth, split: true };
+    let scene = prepare_octree(&a, &b, &options, &system, None).unwrap();
+    let (ta, tb) = arrays(&scene);
+    assert!(ta.len() >= 5000 && tb.len() >= 5000, "{} + {}", ta.len(), tb.len());
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let params = BinningParams { log_depth: 8, log_pipelines: 1, max_leaf_level: None };
+    let run = run_binning(&ta, &tb, root, params);
+    let unit = BinningUnitConfig::sized_for(24, params, ta.len().max(tb.len()), &run);
+    let config = BroadPhaseConfig { unit, system, local_frames: false };
+    let model = broad_phase_cycles(system, &run);
+    let out = run_emitted(&config, &ta, &tb, root, None, model + 1000, Simulator::Verilator).unwrap();
+    assert!(!out.overflow);
+    let mut pairs = out.pairs.clone();
+    pairs.sort_unstable();
+    assert_eq!(pairs, leaf_pairs(&run, &ta, &tb));
+    let flat = prepare(&a, &b, &options).unwrap();
+    let ids: std::collections::BTreeSet<(u32, u32)> = pairs.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
+    assert_eq!(ids, fixed_point_pairs(&flat.batches(), &|_| {}).into_iter().collect());
+    assert!(ids.len() > 500, "{} pairs", ids.len());
+    let tested: u64 = run.leaf_lists.iter().map(|(la, lb)| (la.len() * lb.len()) as u64).sum();
+    assert_eq!(out.pairs_tested, tested);
+    eprintln!(
+        "{} + {} triangles: {} leaves, {} pairs tested (flat {}), {} hits, {} pairs; binned at {}, done at {} (model {model})",
+        ta.len(),
+        tb.len(),
+        run.leaves.len(),
+        tested,
+        flat.pairs_tested(),
+        pairs.len(),
+        ids.len(),
+        out.binned_at,
+        out.cycles
+    );
+    assert_eq!(out.binned_at, run.cycles);
+    assert_eq!(out.cycles, model);
+}

@@ -1,0 +1,231 @@
+//! The accelerator from triangles to pairs: the binning unit (the octree
+//! broad phase), the leaf batcher, and the collision system (the narrow
+//! phase), in one top. The host streams each object's triangles once, in
+//! grid coordinates, and reads back the intersecting pairs of every leaf.
+//!
+//! ```text
+//!  host triangles ─► binning unit ─► leaf stream ─► leaf batcher ─► collision system ─► pairs
+//!  (G-bit grid,      (octree, leaf   (header, A and  (frame offset,  (two banks, P        (index_a,
+//!   A's and B's)      lists)          B entries with   end word per    pipelines, result    index_b)
+//!                                     vertices)        leaf)           FIFO)
+//! ```
+//!
+//! A pair comes out once per leaf holding both of its triangles (the
+//! owner filter, [`super::owner_filter`], keeps one of them and is not in
+//! this top yet); its indices are the triangles' positions in their
+//! object's stream. The leaves reach the system as soon as the binning
+//! unit streams them: the banks let the system test one leaf while the
+//! next is written. The cycle count, first triangle in to `done`, is
+//! [`super::broad_phase_cycles`]. A leaf larger than the system's memory
+//! depth raises `overflow` (the split rule only makes one where triangles
+//! overlap over an area; the host route tiles it).
+
+use super::binning_machine::BinningRun;
+use super::binning_unit::BinningUnit;
+use super::leaf_batcher::{LeafBatcher, LEAF_BATCHER_LATENCY};
+use super::leaf_cost::COUNT_BITS;
+use crate::system::collision_system::CollisionSystem;
+use crate::system::cycle_model::{streamed_system_cycles, BatchSizes};
+use crate::system::{SystemConfig, COUNTER_BITS, ID_BITS};
+use rust_hdl::prelude::*;
+
+/// The grid and hardware widths the top is instantiated for: a `G`-bit
+/// grid on `W`-bit hardware (24 on 24, and 24 on 16 with local frames).
+pub const BROAD_PHASE_WIDTHS: [(usize, usize); 2] = [(24, 24), (24, 16)];
+
+#[derive(LogicBlock)]
+pub struct BroadPhaseSystem<
+    const G: usize,
+    const V: usize,
+    const N: usize,
+    const T: usize,
+    const W: usize,
+    const D: usize,
+    const C: usize,
+    const O: usize,
+> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high.
+    pub reset: Signal<In, Bit>,
+    /// One clock high while idle: a run begins; `root_*` and `max_leaf_*`
+    /// are held from here to `done`.
+    pub start: Signal<In, Bit>,
+    pub root_x: Signal<In, Bits<G>>,
+    pub root_y: Signal<In, Bits<G>>,
+    pub root_z: Signal<In, Bits<G>>,
+    pub root_level: Signal<In, Bits<6>>,
+    pub max_leaf_level: Signal<In, Bits<6>>,
+    pub max_leaf_enable: Signal<In, Bit>,
+    // Triangles in (valid/ready), the binning unit's.
+    pub in_valid: Signal<In, Bit>,
+    pub in_ready: Signal<Out, Bit>,
+    pub in_last: Signal<In, Bit>,
+    pub in_object: Signal<In, Bit>,
+    pub in_vertices: Signal<In, Bits<T>>,
+    // Pairs out (valid/ready), the system's.
+    pub out_valid: Signal<Out, Bit>,
+    pub out_ready: Signal<In, Bit>,
+    pub out_index_a: Signal<Out, Bits<ID_BITS>>,
+    pub out_index_b: Signal<Out, Bits<ID_BITS>>,
+    /// Binning is over: the leaves stream into the system.
+    pub binned: Signal<Out, Bit>,
+    /// Every leaf is tested and its pairs are in the result FIFO.
+    pub done: Signal<Out, Bit>,
+    /// A memory of the binning unit, or the system's memory depth, was too
+    /// small for this run (sticky).
+    pub overflow: Signal<Out, Bit>,
+    pub pairs_tested: Signal<Out, Bits<COUNTER_BITS>>,
+    pub hits: Signal<Out, Bits<COUNTER_BITS>>,
+    binning: BinningUnit<G, V, N, T>,
+    batcher: LeafBatcher<G, T, W>,
+    system: CollisionSystem<W, D, C, O>,
+    /// The system's outputs this top does not use, folded into one bit
+    /// whose name tells Verilator's lint they are unused on purpose.
+    unused_outputs: Signal<Local, Bit>,
+    _config: SystemConfig,
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>
+    BroadPhaseSystem<G, V, N, T, W, D, C, O>
+{
+    /// The top for a binning unit of `triangles` per object, `list_words`
+    /// per list memory and `leaves` descriptors, feeding the system of
+    /// `config` (whose width must be `W`); `local_frames` when `G > W`.
+    pub fn new(triangles: usize, list_words: usize, leaves: usize, config: SystemConfig, local_frames: bool) -> Self {
+        assert_eq!(config.coordinate_bits, W, "the system's width differs from the type's");
+        BroadPhaseSystem {
+            clock: Default::default(),
+            reset: Default::default(),
+            start: Default::default(),
+            root_x: Default::default(),
+            root_y: Default::default(),
+            root_z: Default::default(),
+            root_level: Default::default(),
+            max_leaf_level: Default::default(),
+            max_leaf_enable: Default::default(),
+            in_valid: Default::default(),
+            in_ready: Default::default(),
+            in_last: Default::default(),
+            in_object: Default::default(),
+            in_vertices: Default::default(),
+            out_valid: Default::default(),
+            out_ready: Default::default(),
+            out_index_a: Default::default(),
+            out_index_b: Default::default(),
+            binned: Default::default(),
+            done: Default::default(),
+            overflow: Default::default(),
+            pairs_tested: Default::default(),
+            hits: Default::default(),
+            binning: BinningUnit::new(triangles, list_words, leaves).with_system(log2(config.triangles_per_bank), log2(config.pipelines)),
+            batcher: LeafBatcher::new(local_frames),
+            system: CollisionSystem::with_pipelines(config),
+            unused_outputs: Default::default(),
+            _config: config,
+        }
+    }
+
+    pub fn system_config(&self) -> SystemConfig {
+        self._config
+    }
+}
+
+/// `n = 2^k`: `k` (the split rule is built for powers of two).
+fn log2(n: usize) -> u32 {
+    assert!(n.is_power_of_two(), "{n} is not a power of two");
+    n.trailing_zeros()
+}
+
+// The counts of a leaf header are COUNT_BITS wide on both sides.
+const _: () = assert!(COUNT_BITS == 20);
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for BroadPhaseSystem<G, V, N, T, W, D, C, O>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        // Host → binning unit.
+        self.binning.clock.next = self.clock.val();
+        self.binning.reset.next = self.reset.val();
+        self.binning.start.next = self.start.val();
+        self.binning.root_x.next = self.root_x.val();
+        self.binning.root_y.next = self.root_y.val();
+        self.binning.root_z.next = self.root_z.val();
+        self.binning.root_level.next = self.root_level.val();
+        self.binning.max_leaf_level.next = self.max_leaf_level.val();
+        self.binning.max_leaf_enable.next = self.max_leaf_enable.val();
+        self.binning.in_valid.next = self.in_valid.val();
+        self.in_ready.next = self.binning.in_ready.val();
+        self.binning.in_last.next = self.in_last.val();
+        self.binning.in_object.next = self.in_object.val();
+        self.binning.in_vertices.next = self.in_vertices.val();
+
+        // Leaf stream → batcher.
+        self.batcher.clock.next = self.clock.val();
+        self.batcher.reset.next = self.reset.val();
+        self.batcher.in_valid.next = self.binning.out_valid.val();
+        self.binning.out_ready.next = self.batcher.in_ready.val();
+        self.batcher.in_header.next = self.binning.out_header.val();
+        self.batcher.in_object.next = self.binning.out_object.val();
+        self.batcher.in_index.next = self.binning.out_index.val();
+        self.batcher.in_vertices.next = self.binning.out_vertices.val();
+        self.batcher.in_x.next = self.binning.out_x.val();
+        self.batcher.in_y.next = self.binning.out_y.val();
+        self.batcher.in_z.next = self.binning.out_z.val();
+        self.batcher.in_level.next = self.binning.out_level.val();
+        self.batcher.in_count_a.next = self.binning.out_count_a.val();
+        self.batcher.in_count_b.next = self.binning.out_count_b.val();
+
+        // Batches → system.
+        self.system.clock.next = self.clock.val();
+        self.system.reset.next = self.reset.val();
+        self.system.in_valid.next = self.batcher.out_valid.val();
+        self.batcher.out_ready.next = self.system.in_ready.val();
+        self.system.in_end.next = self.batcher.out_end.val();
+        self.system.in_object.next = self.batcher.out_object.val();
+        self.system.in_id.next = self.batcher.out_id.val();
+        self.system.in_x0.next = self.batcher.out_x0.val();
+        self.system.in_y0.next = self.batcher.out_y0.val();
+        self.system.in_z0.next = self.batcher.out_z0.val();
+        self.system.in_x1.next = self.batcher.out_x1.val();
+        self.system.in_y1.next = self.batcher.out_y1.val();
+        self.system.in_z1.next = self.batcher.out_z1.val();
+        self.system.in_x2.next = self.batcher.out_x2.val();
+        self.system.in_y2.next = self.batcher.out_y2.val();
+        self.system.in_z2.next = self.batcher.out_z2.val();
+
+        // System → host.
+        self.out_valid.next = self.system.out_valid.val();
+        self.system.out_ready.next = self.out_ready.val();
+        self.out_index_a.next = self.system.out_id_a.val();
+        self.out_index_b.next = self.system.out_id_b.val();
+        self.pairs_tested.next = self.system.pairs_tested.val();
+        self.hits.next = self.system.hits.val();
+
+        self.binned.next = self.binning.binned.val();
+        self.done.next = self.binning.done.val() & !self.batcher.busy.val() & self.system.done.val();
+        self.overflow.next = self.binning.overflow.val() | self.system.overflow.val();
+        self.unused_outputs.next = self.system.results_empty.val() ^ self.system.stall_cycles.val().any();
+    }
+}
+
+/// Clocks from `binned` to the first leaf's header on the leaf stream: the
+/// binning unit reads the leaf memory (OutLeaf, OutHeader).
+pub const FIRST_HEADER_DELAY: u64 = 2;
+
+/// The top's clocks from the first triangle in (clock 0) to `done`, the
+/// reader always ready: the binning unit's run (`run.cycles` to `binned`),
+/// the first header [`FIRST_HEADER_DELAY`] later, its first entry one
+/// clock after that and in the system one more ([`LEAF_BATCHER_LATENCY`]);
+/// from there the system's bank recurrence
+/// ([`streamed_system_cycles`]) with one idle clock between a leaf's end
+/// word and the next leaf's first triangle (the header's clock).
+pub fn broad_phase_cycles(config: SystemConfig, run: &BinningRun) -> u64 {
+    let sizes: Vec<BatchSizes> = run.leaves.iter().map(|l| BatchSizes { a: l.a.count as usize, b: l.b.count as usize }).collect();
+    let first_header = run.cycles + FIRST_HEADER_DELAY;
+    if sizes.is_empty() {
+        return first_header;
+    }
+    let first_write = first_header + 1 + LEAF_BATCHER_LATENCY as u64;
+    streamed_system_cycles(config, &sizes, first_write, 1)
+}
