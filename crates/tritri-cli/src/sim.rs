@@ -320,13 +320,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 // The broad-phase top: the leaves go from the binning unit
                 // into the system's banks as they stream (its cycle model,
                 // which co-simulation holds the emitted top to).
-                Ok(unit) if octree.oversized_leaves == 0 => {
+                Ok(unit) => {
                     let top = broad_phase_cycles(args.hardware.system_config(), &unit.run);
                     (top + owner, format!("binning and narrow phase in one top {top} + owner filter {owner} cycles, the filter not overlapped"))
-                }
-                Ok(unit) => {
-                    let binning = unit.run.cycles;
-                    (binning + cycles + owner, format!("binning {binning} + narrow phase {cycles} (leaves over the depth, tiled by the host) + owner filter {owner} cycles, not overlapped"))
                 }
                 Err(_) => {
                     let binning = binning_cycles(&binning_work(octree));

@@ -44,9 +44,17 @@ pub struct BinningOutput {
     pub overflow: bool,
 }
 
-/// The model's leaves as the unit streams them.
-pub fn expected_leaves(run: &BinningRun) -> Vec<StreamedLeaf> {
-    run.leaves.iter().zip(&run.leaf_lists).map(|(leaf, (a, b))| StreamedLeaf { cell: leaf.cell, a: a.clone(), b: b.clone() }).collect()
+/// The model's leaves as the unit streams them for a system of memory
+/// depth `depth`: a leaf larger than that as its tiles (every A tile with
+/// every B tile, as the host's `scene::tile` cuts it), each under a header.
+pub fn expected_leaves(run: &BinningRun, depth: usize) -> Vec<StreamedLeaf> {
+    run.leaves
+        .iter()
+        .zip(&run.leaf_lists)
+        .flat_map(|(leaf, (a, b))| {
+            a.chunks(depth).flat_map(move |ta| b.chunks(depth).map(move |tb| StreamedLeaf { cell: leaf.cell, a: ta.to_vec(), b: tb.to_vec() }))
+        })
+        .collect()
 }
 
 /// The scene through the rust-hdl model of the unit built for `config`;

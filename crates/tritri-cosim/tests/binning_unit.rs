@@ -41,8 +41,8 @@ fn model(scene: &PreparedScene, params: BinningParams) -> BinningRun {
 
 /// The unit's output equals the model's run: leaves (reported by the first
 /// that differs, not printed whole) and cycles.
-fn assert_bins_as(out: &BinningOutput, run: &BinningRun) {
-    let expected = expected_leaves(run);
+fn assert_bins_as(out: &BinningOutput, run: &BinningRun, depth: usize) {
+    let expected = expected_leaves(run, depth);
     let show = |l: Option<&StreamedLeaf>| l.map_or("none".to_string(), |l| format!("{:?} with {} + {} triangles", l.cell, l.a.len(), l.b.len()));
     if let Some(k) = (0..out.leaves.len().max(expected.len())).find(|&k| out.leaves.get(k) != expected.get(k)) {
         panic!(
@@ -68,7 +68,7 @@ fn rust_hdl_bins_as_the_model_leaf_for_leaf_and_clock_for_clock() {
     let config = BinningUnitConfig::sized_for(24, PARAMS, a.len().max(b.len()), &run);
     let root = scene.octree.as_ref().unwrap().root.unwrap();
     let out = run_rusthdl(&config, &a, &b, root, None, &|_| true).unwrap();
-    assert_bins_as(&out, &run);
+    assert_bins_as(&out, &run, 16);
     // A reader that stalls: the same leaves (binning is over before the
     // first leaf leaves, so the same cycles too).
     let stalled = run_rusthdl(&config, &a, &b, root, None, &|clock| (clock * 7919) % 5 < 2).unwrap();
@@ -93,7 +93,7 @@ fn the_emitted_unit_bins_as_the_model_in_icarus() {
     let config = BinningUnitConfig::sized_for(24, PARAMS, a.len().max(b.len()), &run);
     let bound = run.cycles + 4 * (run.leaves.len() as u64 + run.entries) + 100;
     let out = run_emitted(&config, &a, &b, scene.octree.as_ref().unwrap().root.unwrap(), None, bound, Simulator::Icarus).unwrap();
-    assert_bins_as(&out, &run);
+    assert_bins_as(&out, &run, 16);
 }
 
 #[test]
@@ -113,7 +113,27 @@ fn the_emitted_unit_bins_a_large_scene_as_the_model_in_verilator() {
     let config = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
     let bound = run.cycles + 4 * (run.leaves.len() as u64 + run.entries) + 100;
     let out = run_emitted(&config, &a, &b, root, params.max_leaf_level, bound, Simulator::Verilator).unwrap();
-    assert_bins_as(&out, &run);
+    assert_bins_as(&out, &run, 256);
     eprintln!("{} + {} triangles: {} leaves, {} cells passed, {} clocks", a.len(), b.len(), run.leaves.len(), run.cells, run.cycles);
 }
 
+
+#[test]
+fn leaves_over_the_depth_stream_as_tiles_in_rust_hdl() {
+    // At depth 4, triangles around a shared vertex stay together in every
+    // cell, so some leaves hold more than 4 of an object: each goes out as
+    // tiles (every A tile with every B tile), a reader stalling or not.
+    let params = BinningParams { log_depth: 2, log_pipelines: 1, max_leaf_level: None };
+    let scene = scene(4, 48, 32);
+    let run = model(&scene, params);
+    let over = run.leaves.iter().filter(|l| l.a.count > 4 || l.b.count > 4).count();
+    assert!(over > 5, "{over} leaves over the depth");
+    let (a, b) = arrays(&scene);
+    let config = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let out = run_rusthdl(&config, &a, &b, root, None, &|_| true).unwrap();
+    assert_bins_as(&out, &run, 4);
+    let stalled = run_rusthdl(&config, &a, &b, root, None, &|clock| (clock * 7919) % 3 == 0).unwrap();
+    assert_eq!(stalled, out);
+    eprintln!("{} leaves, {over} over the depth, {} tiles streamed", run.leaves.len(), out.leaves.len());
+}

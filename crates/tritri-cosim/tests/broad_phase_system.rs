@@ -17,7 +17,8 @@ use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneOptions, T
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
 use tritri_rtl::octree::binning_unit::BinningUnitConfig;
 use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
-use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
+use tritri_rtl::octree::broad_phase_system::{broad_phase_cycles, leaf_batches};
+use tritri_rtl::system::cycle_model::BatchSizes;
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
@@ -168,4 +169,28 @@ fn the_emitted_top_gives_the_models_pairs_and_clocks_on_a_large_scene_in_verilat
     );
     assert_eq!(out.binned_at, run.cycles);
     assert_eq!(out.cycles, model);
+}
+
+#[test]
+fn leaves_over_the_depth_reach_the_system_as_tiles_in_rust_hdl() {
+    // Depth 4: many leaves hold more triangles of an object than a bank.
+    let (torus, sphere) = objects(48, 32);
+    let depth = 4;
+    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let options = SceneOptions { width: 24, depth, split: true };
+    let scene = prepare_octree(&torus, &sphere, &options, &system, None).unwrap();
+    let (a, b) = arrays(&scene);
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let params = BinningParams { log_depth: 2, log_pipelines: 1, max_leaf_level: None };
+    let run = run_binning(&a, &b, root, params);
+    assert!(run.leaves.iter().filter(|l| l.a.count > 4 || l.b.count > 4).count() > 5);
+    let unit = BinningUnitConfig::sized_for(24, params, a.len().max(b.len()), &run);
+    let out = run_rusthdl(&unit, system, &a, &b, root, None).unwrap();
+    assert!(!out.overflow, "a tile over the system's depth");
+    let mut pairs = out.pairs.clone();
+    pairs.sort_unstable();
+    assert_eq!(pairs, leaf_pairs(&run, &a, &b));
+    // The tiles are the host's batches.
+    assert_eq!(leaf_batches(depth, &run), scene.batches().iter().map(BatchSizes::of).collect::<Vec<_>>());
+    assert_eq!(out.cycles, broad_phase_cycles(system, &run));
 }

@@ -93,7 +93,7 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .port("in_vertices", &format!("The triangle's vertices, x0 y0 z0 x1 ... z2 from bit 0 up, {g} bits each, grid coordinates (the unit takes each cell's corner off itself)."))
     .port("out_valid", "A leaf word is offered: a header, then the leaf's A indices, then its B indices.")
     .port("out_ready", "The reader takes it (back-pressure: the stream holds while low).")
-    .port("out_header", "The word is a leaf's header: out_x/y/z, out_level and the two counts are valid.")
+    .port("out_header", "The word is a leaf's header: out_x/y/z, out_level and the two counts are valid. A leaf with more triangles of one object than the system's depth comes as tiles (every A tile with every B tile), each under a header of its own.")
     .port("out_object", "An index word's object: 0 A, 1 B.")
     .port("out_index", &format!("An index word's triangle: its position in its object's input stream ({INDEX_BITS} bits)."))
     .port("out_vertices", "An entry: the triangle's vertices as streamed in (in_vertices' layout), from the object's first triangle memory.")

@@ -100,10 +100,9 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
          comes out once per leaf that holds both triangles; the owner filter (a unit of its own) keeps one."
     ))
     .detail(&format!(
-        "Memories: the binning unit's {:.2} Mbit and the system's two banks of {} triangles per object. A leaf of \
-         more than {} triangles of one object raises overflow.",
+        "Memories: the binning unit's {:.2} Mbit and the system's two banks of {} triangles per object. A leaf with \
+         more triangles of one object than that comes as tiles, each a batch.",
         config.unit.memory_bits() as f64 / 1e6,
-        config.system.triangles_per_bank,
         config.system.triangles_per_bank
     ))
     .port("clock", "Clock; every register updates on the rising edge.")

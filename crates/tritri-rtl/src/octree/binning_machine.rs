@@ -41,7 +41,10 @@
 //! * **Leaves** are `(cell, A list, B list)` descriptors in a leaf memory;
 //!   the lists stay where the passes wrote them. After the root's frame, the
 //!   unit streams the leaves out: each descriptor, then its A indices, then
-//!   its B indices (the batch load the system's cycle model counts).
+//!   its B indices (the batch load the system's cycle model counts); a
+//!   leaf with more triangles of one object than the system's depth D goes
+//!   out as tiles of at most D per object, every A tile with every B tile,
+//!   each under a header of its own.
 
 use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
 use super::leaf_cost::{leaf_cost, LEAF_COST_LATENCY};

@@ -204,6 +204,7 @@ pub enum BinState {
     PopWait,
     OutLeaf,
     OutHeader,
+    OutTile,
     OutA,
     OutB,
     Done,
@@ -354,6 +355,13 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     out_index_q: DFF<Bits<INDEX_BITS>>,
     out_leaf: DFF<Bits<LEAF_ADDRESS_BITS>>,
     out_cell: DFF<CellLists>,
+    /// The leaf's tile being streamed: its first A and B entries (a leaf
+    /// larger than the system's depth D goes out as tiles of at most D
+    /// triangles per object, every A tile with every B tile).
+    tile_a: DFF<Bits<20>>,
+    tile_b: DFF<Bits<20>>,
+    /// The system's memory depth D.
+    tile_depth: Constant<Bits<20>>,
     // Constants: octant numbers, the identity list, a cell's pass base cost.
     octant_id: [Constant<Bits<4>>; 8],
     identity: Constant<Bits<4>>,
@@ -377,6 +385,17 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     slot: Signal<Local, Bits<INDEX_BITS>>,
     entry_a: Signal<Local, Bits<INDEX_BITS>>,
     entry_b: Signal<Local, Bits<INDEX_BITS>>,
+    /// The current tile: its entries past its first, capped at D, and the
+    /// entry after its last.
+    rest_a: Signal<Local, Bits<20>>,
+    rest_b: Signal<Local, Bits<20>>,
+    tile_count_a: Signal<Local, Bits<20>>,
+    tile_count_b: Signal<Local, Bits<20>>,
+    tile_end_a: Signal<Local, Bits<20>>,
+    tile_end_b: Signal<Local, Bits<20>>,
+    /// The first word of the current tile's lists.
+    tile_word_a: Signal<Local, Bits<20>>,
+    tile_word_b: Signal<Local, Bits<20>>,
 }
 
 impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit<G, V, N, T> {
@@ -454,6 +473,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             out_index_q: Default::default(),
             out_leaf: Default::default(),
             out_cell: Default::default(),
+            tile_a: Default::default(),
+            tile_b: Default::default(),
+            tile_depth: Constant::new(Bits::<20>::from(256u64)),
             octant_id: std::array::from_fn(|o| Constant::new(Bits::<4>::from(o as u64))),
             identity: Constant::new(Bits::<4>::from(IDENTITY_LIST as u64)),
             classify_base: Constant::new(Bits::<48>::from(CLASSIFY_BASE)),
@@ -475,6 +497,14 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             slot: Default::default(),
             entry_a: Default::default(),
             entry_b: Default::default(),
+            rest_a: Default::default(),
+            rest_b: Default::default(),
+            tile_count_a: Default::default(),
+            tile_count_b: Default::default(),
+            tile_end_a: Default::default(),
+            tile_end_b: Default::default(),
+            tile_word_a: Default::default(),
+            tile_word_b: Default::default(),
         }
     }
 
@@ -482,6 +512,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
     /// `2^log_pipelines` pipelines (the default is the system's 256 and 2).
     pub fn with_system(mut self, log_depth: u32, log_pipelines: u32) -> Self {
         self.cost = LeafCost::new(log_depth, log_pipelines);
+        self.tile_depth = Constant::new(Bits::<20>::from(1u64 << log_depth));
         self
     }
 }
@@ -491,7 +522,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
     fn update(&mut self) {
         dff_setup!(
             self, clock, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost, children_cost, returned, top_frame, frame_count,
-            leaf_count, read_memory_a, read_memory_b, s1_root, overflow_q, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell
+            leaf_count, read_memory_a, read_memory_b, s1_root, overflow_q, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell,
+            tile_a, tile_b
         );
         self.frames.clock.next = self.clock.val();
         self.children.clock.next = self.clock.val();
@@ -633,8 +665,23 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.out_y.next = bit_cast::<G, 32>(self.out_cell.q.val().y);
         self.out_z.next = bit_cast::<G, 32>(self.out_cell.q.val().z);
         self.out_level.next = self.out_cell.q.val().level;
-        self.out_count_a.next = self.out_cell.q.val().a_count;
-        self.out_count_b.next = self.out_cell.q.val().b_count;
+        // The tile's sizes: min(D, count - first).
+        self.rest_a.next = self.out_cell.q.val().a_count - self.tile_a.q.val();
+        self.rest_b.next = self.out_cell.q.val().b_count - self.tile_b.q.val();
+        self.tile_count_a.next = self.rest_a.val();
+        if self.rest_a.val() > self.tile_depth.val() {
+            self.tile_count_a.next = self.tile_depth.val();
+        }
+        self.tile_count_b.next = self.rest_b.val();
+        if self.rest_b.val() > self.tile_depth.val() {
+            self.tile_count_b.next = self.tile_depth.val();
+        }
+        self.tile_end_a.next = self.tile_a.q.val() + self.tile_count_a.val();
+        self.tile_end_b.next = self.tile_b.q.val() + self.tile_count_b.val();
+        self.tile_word_a.next = self.tile_a.q.val() >> 1;
+        self.tile_word_b.next = self.tile_b.q.val() >> 1;
+        self.out_count_a.next = self.tile_count_a.val();
+        self.out_count_b.next = self.tile_count_b.val();
         self.slot.next = bit_cast::<INDEX_BITS, 20>(self.counter.q.val());
         self.entry_a.next = self.word_a.val().get_bits::<INDEX_BITS>(0);
         if self.slot.val().get_bit(0) {
@@ -655,6 +702,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.accept.next = self.in_valid.val() & self.in_ready.val();
         self.binned.next = (self.state.q.val() == BinState::OutLeaf)
             | (self.state.q.val() == BinState::OutHeader)
+            | (self.state.q.val() == BinState::OutTile)
             | (self.state.q.val() == BinState::OutA)
             | (self.state.q.val() == BinState::OutB)
             | (self.state.q.val() == BinState::Done);
@@ -970,6 +1018,24 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.list_a[o].read_address.next = self.leaves.read_data.val().a_start;
                     }
                     self.counter.d.next = 0.into();
+                    self.tile_a.d.next = 0.into();
+                    self.tile_b.d.next = 0.into();
+                    self.state.d.next = BinState::OutA;
+                }
+            }
+            BinState::OutTile => {
+                // The next tile of the same leaf: its header (the tile
+                // registers already hold its first entries), then its A list.
+                self.triangles[0].read_enable.next = false;
+                self.triangles[2].read_enable.next = false;
+                if self.advance_out.val() {
+                    self.out_valid_q.d.next = true;
+                    self.out_header_q.d.next = true;
+                    for o in 0..8 {
+                        self.list_a[o].read_enable.next = true;
+                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + self.tile_word_a.val();
+                    }
+                    self.counter.d.next = self.tile_a.q.val();
                     self.state.d.next = BinState::OutA;
                 }
             }
@@ -989,12 +1055,12 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.list_a[o].read_enable.next = true;
                         self.list_a[o].read_address.next = self.out_cell.q.val().a_start + self.next_word.val();
                     }
-                    if self.counter.q.val() + 1 == self.out_cell.q.val().a_count {
+                    if self.counter.q.val() + 1 == self.tile_end_a.val() {
                         for o in 0..8 {
                             self.list_b[o].read_enable.next = true;
-                            self.list_b[o].read_address.next = self.out_cell.q.val().b_start;
+                            self.list_b[o].read_address.next = self.out_cell.q.val().b_start + self.tile_word_b.val();
                         }
-                        self.counter.d.next = 0.into();
+                        self.counter.d.next = self.tile_b.q.val();
                         self.state.d.next = BinState::OutB;
                     }
                 }
@@ -1013,9 +1079,20 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.list_b[o].read_enable.next = true;
                         self.list_b[o].read_address.next = self.out_cell.q.val().b_start + self.next_word.val();
                     }
-                    if self.counter.q.val() + 1 == self.out_cell.q.val().b_count {
-                        self.out_leaf.d.next = self.out_leaf.q.val() + 1;
-                        self.state.d.next = BinState::OutLeaf;
+                    if self.counter.q.val() + 1 == self.tile_end_b.val() {
+                        if self.tile_end_b.val() != self.out_cell.q.val().b_count {
+                            // The next B tile with the same A tile.
+                            self.tile_b.d.next = self.tile_end_b.val();
+                            self.state.d.next = BinState::OutTile;
+                        } else if self.tile_end_a.val() != self.out_cell.q.val().a_count {
+                            // The next A tile, with B from its first tile.
+                            self.tile_a.d.next = self.tile_end_a.val();
+                            self.tile_b.d.next = 0.into();
+                            self.state.d.next = BinState::OutTile;
+                        } else {
+                            self.out_leaf.d.next = self.out_leaf.q.val() + 1;
+                            self.state.d.next = BinState::OutLeaf;
+                        }
                     }
                 }
             }

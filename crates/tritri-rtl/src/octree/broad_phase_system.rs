@@ -16,9 +16,9 @@
 //! object's stream. The leaves reach the system as soon as the binning
 //! unit streams them: the banks let the system test one leaf while the
 //! next is written. The cycle count, first triangle in to `done`, is
-//! [`super::broad_phase_cycles`]. A leaf larger than the system's memory
-//! depth raises `overflow` (the split rule only makes one where triangles
-//! overlap over an area; the host route tiles it).
+//! [`broad_phase_cycles`]. A leaf larger than the system's memory depth
+//! (the split rule makes one only where triangles overlap over an area)
+//! comes from the binning unit as tiles, each a batch.
 
 use super::binning_machine::BinningRun;
 use super::binning_unit::BinningUnit;
@@ -209,6 +209,18 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
     }
 }
 
+/// The batches the system gets: each leaf, or a leaf larger than `depth`
+/// as its tiles (every A tile of at most `depth` triangles with every B
+/// tile, as the host's `scene::tile` cuts it; the binning unit streams each
+/// tile under a header of its own).
+pub fn leaf_batches(depth: usize, run: &BinningRun) -> Vec<BatchSizes> {
+    let tiles = |n: usize| (0..n.div_ceil(depth)).map(move |t| depth.min(n - t * depth));
+    run.leaves
+        .iter()
+        .flat_map(|l| tiles(l.a.count as usize).flat_map(move |a| tiles(l.b.count as usize).map(move |b| BatchSizes { a, b })))
+        .collect()
+}
+
 /// Clocks from `binned` to the first leaf's header on the leaf stream: the
 /// binning unit reads the leaf memory (OutLeaf, OutHeader).
 pub const FIRST_HEADER_DELAY: u64 = 2;
@@ -221,7 +233,7 @@ pub const FIRST_HEADER_DELAY: u64 = 2;
 /// ([`streamed_system_cycles`]) with one idle clock between a leaf's end
 /// word and the next leaf's first triangle (the header's clock).
 pub fn broad_phase_cycles(config: SystemConfig, run: &BinningRun) -> u64 {
-    let sizes: Vec<BatchSizes> = run.leaves.iter().map(|l| BatchSizes { a: l.a.count as usize, b: l.b.count as usize }).collect();
+    let sizes = leaf_batches(config.triangles_per_bank, run);
     let first_header = run.cycles + FIRST_HEADER_DELAY;
     if sizes.is_empty() {
         return first_header;
