@@ -1,0 +1,76 @@
+//! The broad-phase top, emitted and run in Verilator on a real scene:
+//! CGAL's camel and elephant (19,536 and 5,558 triangles, from Debian's
+//! `libcgal-demo`, fetched by `scripts/fetch-meshes.sh`) posed in contact
+//! as `scripts/broad-phase-scenes.sh` poses them. The top's hits are every
+//! leaf's pairs on the grid, their set is the flat system's pairs, and its
+//! clocks from the first triangle in to `done` are its cycle model's.
+//!
+//! Run by `scripts/test-shared.sh` (cargo feature `shared-testdata`, as it
+//! fetches the meshes); a missing mesh is a failure, not a skip.
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use tritri_cosim::broad_phase_system::run_emitted;
+use tritri_cosim::simulator::Simulator;
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::scene::load::{load_object, Pose};
+use tritri_geom::scene::reference::fixed_point_pairs;
+use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
+use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
+use tritri_rtl::octree::binning_machine::{run_binning, BinningParams};
+use tritri_rtl::octree::binning_unit::BinningUnitConfig;
+use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::SystemConfig;
+
+fn mesh(name: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../build/meshes").join(name);
+    assert!(path.exists(), "{} missing: run bash scripts/fetch-meshes.sh", path.display());
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn the_emitted_top_on_camel_and_elephant_in_verilator() {
+    let a = load_object(&mesh("camel.off"), 0).unwrap();
+    let b = load_object(&mesh("elephant.off"), 0).unwrap().posed(&Pose::translation([0.3, 0.0, 0.0]));
+    let depth = 256;
+    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let options = SceneOptions { width: 24, depth, split: true };
+    let scene = prepare_octree(&a, &b, &options, &system, None).unwrap();
+    let ta: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
+    let tb: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
+    let root = scene.octree.as_ref().unwrap().root.unwrap();
+    let params = BinningParams { log_depth: 8, log_pipelines: 1, max_leaf_level: None };
+    let run = run_binning(&ta, &tb, root, params);
+    let unit = BinningUnitConfig::sized_for(24, params, ta.len().max(tb.len()), &run);
+    let model = broad_phase_cycles(system, &run);
+    let out = run_emitted(&BroadPhaseConfig { unit, system, local_frames: false }, &ta, &tb, root, None, model + 1000, Simulator::Verilator).unwrap();
+    assert!(!out.overflow);
+
+    let mut hits = out.pairs.clone();
+    hits.sort_unstable();
+    let mut expected: Vec<(u32, u32)> = run
+        .leaf_lists
+        .iter()
+        .flat_map(|(la, lb)| la.iter().flat_map(move |&i| lb.iter().map(move |&j| (i, j))))
+        .filter(|&(i, j)| intersects(&ta[i as usize], &tb[j as usize]))
+        .collect();
+    expected.sort_unstable();
+    assert_eq!(hits, expected);
+    let pairs: BTreeSet<(u32, u32)> = hits.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
+    let flat = prepare(&a, &b, &options).unwrap();
+    assert_eq!(pairs, fixed_point_pairs(&flat.batches(), &|_| {}).into_iter().collect());
+    eprintln!(
+        "camel x elephant: {} + {} triangles in the common box, {} leaves, {} pairs tested, {} hits, {} pairs; binned at {}, done at {} (model {model})",
+        ta.len(),
+        tb.len(),
+        run.leaves.len(),
+        out.pairs_tested,
+        hits.len(),
+        pairs.len(),
+        out.binned_at,
+        out.cycles
+    );
+    assert_eq!(out.binned_at, run.cycles);
+    assert_eq!(out.cycles, model);
+}
