@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --broad-phase [the same] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --broad-phase [the same, --slots N] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -126,11 +126,10 @@ pub struct Args {
     /// written into the voxel memory, a word per clock).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
     voxel_fill: bool,
-    /// With --owner-filter: words of each object's slot table, one per
-    /// triangle per leaf (1 to 16777216).
-    #[arg(long, default_value_t = 65536, requires = "owner_filter",
-          value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
-    slots: u64,
+    /// With --owner-filter or --broad-phase: words of each object's slot
+    /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
+    slots: Option<u64>,
     /// With --system or --binning-unit: pipelines working in parallel (1
     /// to 16; a power of two for the binning unit's split rule) [default: 2].
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
@@ -170,6 +169,10 @@ impl Args {
         self.pipelines.unwrap_or(2)
     }
 
+    fn slots(&self) -> usize {
+        self.slots.unwrap_or(65536) as usize
+    }
+
     fn depth(&self) -> u64 {
         self.depth.unwrap_or(DEFAULT_TRIANGLES_PER_BANK as u64)
     }
@@ -196,7 +199,12 @@ impl Args {
     /// The broad-phase top's configuration for a `width`-bit system (with
     /// --broad-phase): a 24-bit grid, local frames below 24 bits.
     fn broad_phase_config(&self, width: usize) -> BroadPhaseConfig {
-        BroadPhaseConfig { unit: self.binning_config(BROAD_PHASE_GRID_BITS), system: self.system_config(width), local_frames: width < BROAD_PHASE_GRID_BITS }
+        BroadPhaseConfig {
+            unit: self.binning_config(BROAD_PHASE_GRID_BITS),
+            system: self.system_config(width),
+            slots: self.slots(),
+            local_frames: width < BROAD_PHASE_GRID_BITS,
+        }
     }
 
     /// An error for options that do not go together, naming them.
@@ -215,6 +223,9 @@ impl Args {
                     return Err(format!("{name} applies to --binning-unit and --broad-phase"));
                 }
             }
+        }
+        if self.slots.is_some() && !(self.owner_filter || self.broad_phase) {
+            return Err("--slots applies to --owner-filter and --broad-phase".into());
         }
         if self.broad_phase {
             for &w in &self.width {
@@ -260,7 +271,7 @@ impl Args {
             return emit_broad_phase_system(&config).with_context(|| format!("emitting {}", config.unit_name()));
         }
         if self.owner_filter {
-            return emit_owner_filter(self.slots as usize).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots as usize)));
+            return emit_owner_filter(self.slots()).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots())));
         }
         if self.classifier {
             return emit_cell_classifier(width).with_context(|| format!("emitting the {width}-bit grid's classifier"));
@@ -301,7 +312,7 @@ impl Args {
         } else if self.voxel_fill {
             VOXEL_FILL_NAME.to_string()
         } else if self.owner_filter {
-            owner_filter_unit_name(self.slots as usize)
+            owner_filter_unit_name(self.slots())
         } else if self.binning_unit {
             self.binning_config(width).unit_name()
         } else if self.broad_phase {

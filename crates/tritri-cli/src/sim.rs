@@ -62,6 +62,8 @@ use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
 use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
 use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
+use tritri_cosim::broad_phase_system::top_model;
+use tritri_geom::scene::TaggedTriangle;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -315,16 +317,21 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(narrow)
         )?;
         if let Some(octree) = &scene.octree {
-            let owner = run.owner.map_or(0, |o| o.cycles);
             let (whole, how) = match scene_binning(&args, &scene) {
                 // The broad-phase top: the leaves go from the binning unit
-                // into the system's banks as they stream (its cycle model,
-                // which co-simulation holds the emitted top to).
+                // into the system's banks as they stream (its cycle model),
+                // and its owner filter decides the hits as they come; the
+                // filter's clocks for the hits back to back bound what it
+                // adds (co-simulation holds the emitted top within both).
                 Ok(unit) => {
-                    let top = broad_phase_cycles(args.hardware.system_config(), &unit.run);
-                    (top + owner, format!("binning and narrow phase in one top {top} + owner filter {owner} cycles, the filter not overlapped"))
+                    let config = args.hardware.system_config();
+                    let top = broad_phase_cycles(config, &unit.run);
+                    let arrays = |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
+                    let filter = top_model(&unit.run, config.triangles_per_bank, &arrays(&scene.kept_a), &arrays(&scene.kept_b)).filter_clocks;
+                    (top + filter, format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"))
                 }
                 Err(_) => {
+                    let owner = run.owner.map_or(0, |o| o.cycles);
                     let binning = binning_cycles(&binning_work(octree));
                     (binning + cycles + owner, format!("binning {binning} (cost formula) + narrow phase {cycles} + owner filter {owner} cycles, not overlapped"))
                 }

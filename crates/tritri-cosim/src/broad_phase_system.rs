@@ -6,51 +6,95 @@ use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Tes
 use anyhow::{bail, Context as _};
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use rust_hdl::prelude::*;
-use tritri_geom::fixed_point::FixedTriangle;
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_rtl::octree::binning_machine::BinningRun;
+use tritri_rtl::octree::owner_chain_filter::decide;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
-use tritri_rtl::octree::binning_unit::{on_unit_stack, BinningUnitConfig};
-use tritri_rtl::octree::broad_phase_system::{BroadPhaseSystem, BROAD_PHASE_WIDTHS};
+use tritri_rtl::octree::binning_unit::on_unit_stack;
+use tritri_rtl::octree::broad_phase_system::BroadPhaseSystem;
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
-use tritri_rtl::system::SystemConfig;
 
 /// What a run of the top gives.
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct BroadPhaseOutput {
-    /// Each leaf's pairs, in the order the system streams them: indices
-    /// into A's and B's arrays.
+    /// The intersecting pairs, each once, in the order the top streams
+    /// them: indices into A's and B's arrays.
     pub pairs: Vec<(u32, u32)>,
     /// Clocks from the first triangle taken (clock 0) to `binned`.
     pub binned_at: u64,
     /// Clocks from the first triangle taken to `done`.
     pub cycles: u64,
     pub pairs_tested: u64,
+    /// The system's hits, each once per leaf holding both triangles.
+    pub hits: u64,
     pub overflow: bool,
 }
 
-/// The scene through the rust-hdl model of the top: the binning unit of
-/// `unit` (its grid, memories and split rule) feeding the system of
-/// `system`, the reader always ready.
+/// What the top's models say of a run: the pairs the owner filter owns
+/// (sorted; each intersecting pair once), the system's hits, and the
+/// filter's clocks for the hits back to back (2 per hit, 1 per step back
+/// through an earlier leaf, 1 per pair out).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TopModel {
+    pub pairs: Vec<(u32, u32)>,
+    pub hits: usize,
+    pub filter_clocks: u64,
+}
+
+/// [`TopModel`] of the binning model's `run` on the arrays `a` and `b`
+/// for a system of memory depth `depth`: the entries as the top streams
+/// them (tiles of at most `depth`), the hits as slots, the owner filter's
+/// decisions ([`decide`]).
+pub fn top_model(run: &BinningRun, depth: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> TopModel {
+    let mut entries = Vec::new();
+    let mut hits = Vec::new();
+    let mut slots = [0u32, 0u32];
+    for (leaf, (la, lb)) in run.leaf_lists.iter().enumerate() {
+        for ta in la.chunks(depth) {
+            for tb in lb.chunks(depth) {
+                let first = slots;
+                entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
+                entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
+                slots[0] += ta.len() as u32;
+                slots[1] += tb.len() as u32;
+                for (x, &i) in ta.iter().enumerate() {
+                    for (y, &j) in tb.iter().enumerate() {
+                        if intersects(&a[i as usize], &b[j as usize]) {
+                            hits.push((first[0] + x as u32, first[1] + y as u32));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let decisions = decide(&entries, &hits);
+    let filter_clocks = decisions.iter().map(|(owned, steps)| 2 + steps + owned.is_some() as u64).sum();
+    let mut pairs: Vec<(u32, u32)> = decisions.into_iter().filter_map(|(owned, _)| owned).collect();
+    pairs.sort_unstable();
+    TopModel { pairs, hits: hits.len(), filter_clocks }
+}
+
+/// The scene through the rust-hdl model of the top built for `config`,
+/// the reader always ready.
 pub fn run_rusthdl(
-    unit: &BinningUnitConfig,
-    system: SystemConfig,
+    config: &BroadPhaseConfig,
     a: &[FixedTriangle],
     b: &[FixedTriangle],
     root: Cell,
     max_leaf_level: Option<u32>,
 ) -> anyhow::Result<BroadPhaseOutput> {
     fn run<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>(
-        unit: &BinningUnitConfig,
-        system: SystemConfig,
+        config: &BroadPhaseConfig,
         a: &[FixedTriangle],
         b: &[FixedTriangle],
         root: Cell,
         max_leaf_level: Option<u32>,
     ) -> anyhow::Result<BroadPhaseOutput> {
-        let local_frames = max_leaf_level.is_some();
-        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, system, local_frames);
+        let unit = &config.unit;
+        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
         let g = |v: i64| -> Bits<G> { Bits::from((v as u64) & ((1u64 << G) - 1)) };
@@ -58,7 +102,7 @@ pub fn run_rusthdl(
         uut.root_y.next = g(root.lo[1]);
         uut.root_z.next = g(root.lo[2]);
         uut.root_level.next = (root.level as u64).into();
-        uut.max_leaf_enable.next = local_frames;
+        uut.max_leaf_enable.next = max_leaf_level.is_some();
         uut.max_leaf_level.next = (max_leaf_level.unwrap_or(0) as u64).into();
         uut.out_ready.next = true;
         uut.start.next = true;
@@ -105,27 +149,27 @@ pub fn run_rusthdl(
         out.binned_at = binned_at.unwrap_or(clock);
         out.overflow = uut.overflow.val();
         out.pairs_tested = uut.pairs_tested.val().index() as u64;
-        // Pairs still in the result FIFO at `done`.
-        loop {
+        out.hits = uut.hits.val().index() as u64;
+        // `done` waits for the last pair to be taken: nothing may follow.
+        for _ in 0..8 {
             clock_cycle(&mut uut, |u| &mut u.clock);
             settle(&mut uut);
-            if !uut.out_valid.val() {
-                break;
+            if uut.out_valid.val() {
+                bail!("a pair after done, at clock {clock}");
             }
-            out.pairs.push((uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32));
         }
         Ok(out)
     }
-    if unit.grid_bits != 24 || !BROAD_PHASE_WIDTHS.contains(&(unit.grid_bits, system.coordinate_bits)) {
-        bail!("the broad-phase top is built for (grid, width) {BROAD_PHASE_WIDTHS:?}, not ({}, {})", unit.grid_bits, system.coordinate_bits);
+    if let Err(why) = config.check() {
+        bail!("{why}");
     }
     const V24: usize = value_bits(24);
-    on_unit_stack(|| match system.coordinate_bits {
+    on_unit_stack(|| match config.system.coordinate_bits {
         24 => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 24, { difference_bits(24) }, { cross_bits(24) }, { orient3d_bits(24) }>(
-            unit, system, a, b, root, max_leaf_level,
+            config, a, b, root, max_leaf_level,
         ),
         _ => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 16, { difference_bits(16) }, { cross_bits(16) }, { orient3d_bits(16) }>(
-            unit, system, a, b, root, max_leaf_level,
+            config, a, b, root, max_leaf_level,
         ),
     })
 }
@@ -171,8 +215,8 @@ pub fn run_emitted(
 }
 
 /// The testbench's lines: `P edge a b` a pair, `D edge` the first edge
-/// with `binned`, `F edge overflow pairs_tested` the first with `done`
-/// (the pairs left in the result FIFO follow). The first triangle is
+/// with `binned`, `F edge overflow pairs_tested hits` the first with
+/// `done`. The first triangle is
 /// offered at edge 1, the top's clock 0.
 fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
     let mut out = BroadPhaseOutput::default();
@@ -190,6 +234,7 @@ fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
                 out.cycles = number(1, 10)?.saturating_sub(1);
                 out.overflow = number(2, 16)? == 1;
                 out.pairs_tested = number(3, 16)?;
+                out.hits = number(4, 16)?;
                 finished = true;
             }
             _ => bail!("broad-phase output line `{line}` is not P, D or F"),
@@ -241,7 +286,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
         end
         if (!reset && out_valid) $fwrite(outputs, \"P %0d %h %h\\n\", edge_count, out_index_a, out_index_b);
         if (!reset && done && binned_seen && !done_seen) begin
-            $fwrite(outputs, \"F %0d %h %h\\n\", edge_count, overflow, pairs_tested);
+            $fwrite(outputs, \"F %0d %h %h %h\\n\", edge_count, overflow, pairs_tested, hits);
             done_seen = 1'b1;
         end
         if (done_seen && !out_valid) begin

@@ -1,16 +1,17 @@
 //! The broad-phase top, emitted and run in Verilator on a real scene:
 //! CGAL's camel and elephant (19,536 and 5,558 triangles, from Debian's
 //! `libcgal-demo`, fetched by `scripts/fetch-meshes.sh`) posed in contact
-//! as `scripts/broad-phase-scenes.sh` poses them. The top's hits are every
-//! leaf's pairs on the grid, their set is the flat system's pairs, and its
-//! clocks from the first triangle in to `done` are its cycle model's.
+//! as `scripts/broad-phase-scenes.sh` poses them. The top gives each pair
+//! once, the flat system's pairs; its hits are the leaves' pairs on the
+//! grid, `binned` comes at the binning unit's modelled clock and `done`
+//! after the system's modelled clock by at most the owner filter's clocks.
 //!
 //! Run by `scripts/test-shared.sh` (cargo feature `shared-testdata`, as it
 //! fetches the meshes); a missing mesh is a failure, not a skip.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
-use tritri_cosim::broad_phase_system::run_emitted;
+use tritri_cosim::broad_phase_system::{run_emitted, top_model};
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::scene::load::{load_object, Pose};
@@ -19,7 +20,7 @@ use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
 use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams};
 use tritri_rtl::octree::binning_unit::BinningUnitConfig;
-use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
+use tritri_rtl::octree::broad_phase_system::{broad_phase_cycles, stream_slots};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
@@ -43,12 +44,11 @@ fn the_emitted_top_on_camel_and_elephant_in_verilator() {
     let params = BinningParams { log_depth: 8, log_pipelines: 1, max_leaf_level: None };
     let run = run_binning(&ta, &tb, root, params);
     let unit = BinningUnitConfig::sized_for(24, params, ta.len().max(tb.len()), &run);
+    let slots = stream_slots(depth, &run).into_iter().max().unwrap().max(1);
     let model = broad_phase_cycles(system, &run);
-    let out = run_emitted(&BroadPhaseConfig { unit, system, local_frames: false }, &ta, &tb, root, None, model + 1000, Simulator::Verilator).unwrap();
+    let out = run_emitted(&BroadPhaseConfig { unit, system, slots, local_frames: false }, &ta, &tb, root, None, model + 100_000, Simulator::Verilator).unwrap();
     assert!(!out.overflow);
 
-    let mut hits = out.pairs.clone();
-    hits.sort_unstable();
     let mut expected: Vec<(u32, u32)> = run
         .leaf_lists
         .iter()
@@ -56,21 +56,28 @@ fn the_emitted_top_on_camel_and_elephant_in_verilator() {
         .filter(|&(i, j)| intersects(&ta[i as usize], &tb[j as usize]))
         .collect();
     expected.sort_unstable();
-    assert_eq!(hits, expected);
-    let pairs: BTreeSet<(u32, u32)> = hits.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
+    assert_eq!(out.hits as usize, expected.len());
+    expected.dedup();
+    let mut got = out.pairs.clone();
+    got.sort_unstable();
+    assert_eq!(got, expected, "each pair once");
+    let pairs: BTreeSet<(u32, u32)> = got.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
     let flat = prepare(&a, &b, &options).unwrap();
     assert_eq!(pairs, fixed_point_pairs(&flat.batches(), &|_| {}).into_iter().collect());
     eprintln!(
-        "camel x elephant: {} + {} triangles in the common box, {} leaves, {} pairs tested, {} hits, {} pairs; binned at {}, done at {} (model {model})",
+        "camel x elephant: {} + {} triangles in the common box, {} leaves, {} pairs tested, {} hits, {} pairs; binned at {}, done at {} (the system's model {model})",
         ta.len(),
         tb.len(),
         run.leaves.len(),
         out.pairs_tested,
-        hits.len(),
+        out.hits,
         pairs.len(),
         out.binned_at,
         out.cycles
     );
     assert_eq!(out.binned_at, run.cycles);
-    assert_eq!(out.cycles, model);
+    // The owner filter's pairs and, at most, its clocks after the system's.
+    let top = top_model(&run, depth, &ta, &tb);
+    assert_eq!(got, top.pairs);
+    assert!(out.cycles >= model && out.cycles <= model + top.filter_clocks, "{} clocks, the filter's {}", out.cycles, top.filter_clocks);
 }

@@ -1,5 +1,5 @@
 //! The emitted octree classifier step, its setup, the binning unit, the
-//! owner filter and the plane traversal:
+//! broad-phase top, the owner filter and the plane traversal:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
@@ -7,6 +7,9 @@
 //! tests/binning_unit.rs, tests/owner_filter.rs and tests/plane_traversal.rs.)
 
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
+use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::SystemConfig;
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
@@ -30,6 +33,15 @@ fn the_binning_unit_is_lint_clean_at_every_grid() {
         // Memories that fill their address bits and memories that do not.
         let config = BinningUnitConfig { grid_bits: g, triangles: 1000, list_words: 4096, leaves: 300, log_depth: 8, log_pipelines: 1 };
         check(g, emit_binning_unit(&config).unwrap());
+    }
+}
+
+#[test]
+fn the_broad_phase_top_is_lint_clean_at_both_widths() {
+    for w in [24, 16] {
+        let unit = BinningUnitConfig { grid_bits: 24, triangles: 1000, list_words: 4096, leaves: 300, log_depth: 6, log_pipelines: 1 };
+        let system = SystemConfig::new(w, 2, latency()).with_depth(64);
+        check(w, emit_broad_phase_system(&BroadPhaseConfig { unit, system, slots: 5000, local_frames: w < 24 }).unwrap());
     }
 }
 

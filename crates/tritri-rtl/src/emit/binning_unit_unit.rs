@@ -103,6 +103,7 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .port("out_level", "Header: the leaf cell's level.")
     .port("out_count_a", &format!("Header: the A indices that follow ({COUNT_BITS} bits)."))
     .port("out_count_b", "Header: the B indices that follow them.")
+    .port("out_leaf_number", "Header: the leaf's number in stream order, from 0 (the tiles of one leaf share it).")
     .port("binned", "Binning is over: the leaves are streaming out or are out.")
     .port("done", "Every leaf is out; the unit waits for reset.")
     .port("overflow", "A memory was too small for this run (sticky until the next start): a triangle, list word or leaf past its memory's end was dropped; no leaf is streamed and done follows binned at once.")

@@ -6,6 +6,7 @@ use super::{emit, EmittedDesign, UnitDescription};
 use crate::octree::binning_unit::{on_unit_stack, BinningUnitConfig};
 use crate::octree::broad_phase_system::{BroadPhaseSystem, BROAD_PHASE_WIDTHS, FIRST_HEADER_DELAY};
 use crate::octree::cell_classifier::AXES;
+use crate::octree::owner_chain_filter::CHAIN_SLOT_BITS;
 use crate::octree::value_bits;
 use crate::system::SystemConfig;
 use rust_hdl::prelude::*;
@@ -20,19 +21,23 @@ pub const BROAD_PHASE_GRID_BITS: usize = 24;
 pub struct BroadPhaseConfig {
     pub unit: BinningUnitConfig,
     pub system: SystemConfig,
+    /// The owner filter's table depth: entries streamed per object
+    /// (`broad_phase_system::stream_slots`).
+    pub slots: usize,
     pub local_frames: bool,
 }
 
 impl BroadPhaseConfig {
-    /// `tritri_broad_phase_g<G>_w<W>_p<P>_d<D>_t<triangles>[_local]`.
+    /// `tritri_broad_phase_g<G>_w<W>_p<P>_d<D>_t<triangles>_s<slots>[_local]`.
     pub fn unit_name(&self) -> String {
         format!(
-            "tritri_broad_phase_g{}_w{}_p{}_d{}_t{}{}",
+            "tritri_broad_phase_g{}_w{}_p{}_d{}_t{}_s{}{}",
             self.unit.grid_bits,
             self.system.coordinate_bits,
             self.system.pipelines,
             self.system.triangles_per_bank,
             self.unit.triangles,
+            self.slots,
             if self.local_frames { "_local" } else { "" }
         )
     }
@@ -40,6 +45,9 @@ impl BroadPhaseConfig {
     /// An error naming what the top is not built for, if anything.
     pub fn check(&self) -> Result<(), String> {
         self.unit.check()?;
+        if self.slots == 0 || self.slots > 1 << CHAIN_SLOT_BITS {
+            return Err(format!("slots {}: 1 to {} ({CHAIN_SLOT_BITS} address bits)", self.slots, 1u64 << CHAIN_SLOT_BITS));
+        }
         let widths = (self.unit.grid_bits, self.system.coordinate_bits);
         if !BROAD_PHASE_WIDTHS.contains(&widths) {
             return Err(format!("the broad-phase top is built for (grid, width) {BROAD_PHASE_WIDTHS:?}, not {widths:?}"));
@@ -64,7 +72,7 @@ pub fn raw_broad_phase_verilog(config: &BroadPhaseConfig) -> Result<String, Binn
         config: &BroadPhaseConfig,
     ) -> String {
         let unit = &config.unit;
-        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.system, config.local_frames);
+        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
         uut.connect_all();
         generate_verilog(&uut)
     }
@@ -83,7 +91,7 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
         &config.unit_name(),
         &format!(
             "Collision detection from triangles to pairs: the octree broad phase's binning unit on a {g}-bit grid, its \
-             leaves fed straight into the collision system ({w}-bit pipelines), each leaf's intersecting pairs out."
+             leaves fed straight into the collision system ({w}-bit pipelines), each intersecting pair out once."
         ),
     )
     .detail(
@@ -91,13 +99,15 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
          holding both objects and streams each leaf as a header and its A and B entries with their vertices; the \
          leaf batcher turns a leaf into one batch of the system (its triangles, then an end-of-batch word), taking \
          the cell's centre off every coordinate when leaves have frames of their own. The system tests every pair \
-         of a leaf while the next is written into its other bank.",
+         of a leaf while the next is written into its other bank. The owner filter lets each hit through only from \
+         the first leaf that holds both triangles, from tables written as the triangles load and the leaves stream.",
     )
     .detail(&format!(
         "Cycles from the first triangle in to done: the binning unit's (its clock-exact model), {FIRST_HEADER_DELAY} \
          to the first header, then the system's bank recurrence fed one word per clock with one idle clock per leaf \
-         (tritri_rtl::octree::broad_phase_system::broad_phase_cycles, which co-simulation holds the top to). A pair \
-         comes out once per leaf that holds both triangles; the owner filter (a unit of its own) keeps one."
+         (tritri_rtl::octree::broad_phase_system::broad_phase_cycles, which co-simulation holds the system's part \
+         to); the owner filter then takes 2 clocks per hit, plus one per step back through the triangles' earlier \
+         leaves, plus one per pair out."
     ))
     .detail(&format!(
         "Memories: the binning unit's {:.2} Mbit and the system's two banks of {} triangles per object. A leaf with \
@@ -119,15 +129,15 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
     .port("in_last", "The offered triangle is the run's last.")
     .port("in_object", "The offered triangle's object: 0 A, 1 B. Its index is its position in its object's stream.")
     .port("in_vertices", &format!("The triangle's vertices, x0 y0 z0 x1 ... z2 from bit 0 up, {g} bits each, grid coordinates."))
-    .port("out_valid", "A pair is offered.")
-    .port("out_ready", "The reader takes it (back-pressure: the result FIFO fills, then the pipelines hold).")
+    .port("out_valid", "An intersecting pair is offered, once per pair.")
+    .port("out_ready", "The reader takes it (back-pressure: the owner filter holds, the result FIFO fills, then the pipelines hold).")
     .port("out_index_a", "The pair's A triangle: its index in A's stream.")
     .port("out_index_b", "The pair's B triangle: its index in B's stream.")
     .port("binned", "Binning is over: the leaves are streaming into the system.")
-    .port("done", "Every leaf is tested and its pairs are in the result FIFO.")
+    .port("done", "Every leaf is tested, every hit decided and the last pair taken.")
     .port("overflow", "Sticky: a memory of the binning unit, or the system's memory depth, was too small for this run.")
     .port("pairs_tested", "Triangle pairs the pipelines have tested (32 bits).")
-    .port("hits", "Intersecting pairs found, each once per leaf holding it (32 bits).")
+    .port("hits", "Intersecting pairs the pipelines found, each once per leaf holding it, before the owner filter (32 bits).")
     .throughput("one triangle per clock in; per leaf of a and b triangles, a + b + 2 clocks of the leaf stream and the system's a + ceil(a / P) * b reads, overlapped.")
 }
 

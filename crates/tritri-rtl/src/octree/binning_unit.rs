@@ -302,6 +302,9 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     pub out_level: Signal<Out, Bits<6>>,
     pub out_count_a: Signal<Out, Bits<COUNT_BITS>>,
     pub out_count_b: Signal<Out, Bits<COUNT_BITS>>,
+    /// A header: the leaf's number in stream order, from 0 (the tiles of
+    /// a leaf share it).
+    pub out_leaf_number: Signal<Out, Bits<LEAF_ADDRESS_BITS>>,
     /// Binning is over (the leaves are being streamed out, or are out).
     pub binned: Signal<Out, Bit>,
     /// Every leaf is out.
@@ -430,6 +433,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
             out_level: Default::default(),
             out_count_a: Default::default(),
             out_count_b: Default::default(),
+            out_leaf_number: Default::default(),
             binned: Default::default(),
             done: Default::default(),
             overflow: Default::default(),
@@ -680,6 +684,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.tile_end_b.next = self.tile_b.q.val() + self.tile_count_b.val();
         self.tile_word_a.next = self.tile_a.q.val() >> 1;
         self.tile_word_b.next = self.tile_b.q.val() >> 1;
+        self.out_leaf_number.next = self.out_leaf.q.val();
         self.out_count_a.next = self.tile_count_a.val();
         self.out_count_b.next = self.tile_count_b.val();
         self.slot.next = bit_cast::<INDEX_BITS, 20>(self.counter.q.val());

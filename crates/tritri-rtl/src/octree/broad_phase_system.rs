@@ -4,16 +4,17 @@
 //! grid coordinates, and reads back the intersecting pairs of every leaf.
 //!
 //! ```text
-//!  host triangles ─► binning unit ─► leaf stream ─► leaf batcher ─► collision system ─► pairs
-//!  (G-bit grid,      (octree, leaf   (header, A and  (frame offset,  (two banks, P        (index_a,
-//!   A's and B's)      lists)          B entries with   end word per    pipelines, result    index_b)
-//!                                     vertices)        leaf)           FIFO)
+//!  host triangles ─► binning unit ─► leaf stream ─► leaf batcher ─► collision system ─► owner filter ─► pairs
+//!  (G-bit grid,      (octree, leaf   (header, A and  (frame offset,  (two banks, P        (each pair     (index_a,
+//!   A's and B's)      lists)          B entries with   slots, end      pipelines, result    from its first index_b)
+//!                                     vertices)        word per leaf)  FIFO; hits as slots) leaf)
 //! ```
 //!
-//! A pair comes out once per leaf holding both of its triangles (the
-//! owner filter, [`super::owner_filter`], keeps one of them and is not in
-//! this top yet); its indices are the triangles' positions in their
-//! object's stream. The leaves reach the system as soon as the binning
+//! Each intersecting pair comes out once, from the first leaf holding both
+//! triangles: the owner filter ([`super::owner_chain_filter`]) sits on the
+//! system's result stream, with tables the batcher's entries write as they
+//! stream. A pair's indices are the triangles' positions in their object's
+//! stream. The leaves reach the system as soon as the binning
 //! unit streams them: the banks let the system test one leaf while the
 //! next is written. The cycle count, first triangle in to `done`, is
 //! [`broad_phase_cycles`]. A leaf larger than the system's memory depth
@@ -24,6 +25,7 @@ use super::binning_machine::BinningRun;
 use super::binning_unit::BinningUnit;
 use super::leaf_batcher::{LeafBatcher, LEAF_BATCHER_LATENCY};
 use super::leaf_cost::COUNT_BITS;
+use super::owner_chain_filter::OwnerChainFilter;
 use crate::system::collision_system::CollisionSystem;
 use crate::system::cycle_model::{streamed_system_cycles, BatchSizes};
 use crate::system::{SystemConfig, COUNTER_BITS, ID_BITS};
@@ -69,16 +71,20 @@ pub struct BroadPhaseSystem<
     pub out_index_b: Signal<Out, Bits<ID_BITS>>,
     /// Binning is over: the leaves stream into the system.
     pub binned: Signal<Out, Bit>,
-    /// Every leaf is tested and its pairs are in the result FIFO.
+    /// Every leaf is tested and every hit decided; the last owned pair has
+    /// been taken.
     pub done: Signal<Out, Bit>,
     /// A memory of the binning unit, or the system's memory depth, was too
     /// small for this run (sticky).
     pub overflow: Signal<Out, Bit>,
     pub pairs_tested: Signal<Out, Bits<COUNTER_BITS>>,
+    /// Hits, each once per leaf holding both triangles (before the owner
+    /// filter).
     pub hits: Signal<Out, Bits<COUNTER_BITS>>,
     binning: BinningUnit<G, V, N, T>,
     batcher: LeafBatcher<G, T, W>,
     system: CollisionSystem<W, D, C, O>,
+    owner: OwnerChainFilter,
     /// The system's outputs this top does not use, folded into one bit
     /// whose name tells Verilator's lint they are unused on purpose.
     unused_outputs: Signal<Local, Bit>,
@@ -90,8 +96,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
 {
     /// The top for a binning unit of `triangles` per object, `list_words`
     /// per list memory and `leaves` descriptors, feeding the system of
-    /// `config` (whose width must be `W`); `local_frames` when `G > W`.
-    pub fn new(triangles: usize, list_words: usize, leaves: usize, config: SystemConfig, local_frames: bool) -> Self {
+    /// `config` (whose width must be `W`), whose hits the owner filter
+    /// decides with tables of `slots` entries per object ([`stream_slots`]);
+    /// `local_frames` when `G > W`.
+    pub fn new(triangles: usize, list_words: usize, leaves: usize, slots: usize, config: SystemConfig, local_frames: bool) -> Self {
         assert_eq!(config.coordinate_bits, W, "the system's width differs from the type's");
         BroadPhaseSystem {
             clock: Default::default(),
@@ -120,6 +128,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
             binning: BinningUnit::new(triangles, list_words, leaves).with_system(log2(config.triangles_per_bank), log2(config.pipelines)),
             batcher: LeafBatcher::new(local_frames),
             system: CollisionSystem::with_pipelines(config),
+            owner: OwnerChainFilter::new(triangles, slots),
             unused_outputs: Default::default(),
             _config: config,
         }
@@ -175,6 +184,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
         self.batcher.in_level.next = self.binning.out_level.val();
         self.batcher.in_count_a.next = self.binning.out_count_a.val();
         self.batcher.in_count_b.next = self.binning.out_count_b.val();
+        self.batcher.in_leaf_number.next = self.binning.out_leaf_number.val();
+        self.batcher.start.next = self.start.val();
 
         // Batches → system.
         self.system.clock.next = self.clock.val();
@@ -194,18 +205,38 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
         self.system.in_y2.next = self.batcher.out_y2.val();
         self.system.in_z2.next = self.batcher.out_z2.val();
 
-        // System → host.
-        self.out_valid.next = self.system.out_valid.val();
-        self.system.out_ready.next = self.out_ready.val();
-        self.out_index_a.next = self.system.out_id_a.val();
-        self.out_index_b.next = self.system.out_id_b.val();
+        // The owner filter: its tables written as triangles load and as
+        // entries stream; the system's hits (slots) in, owned pairs out.
+        self.owner.clock.next = self.clock.val();
+        self.owner.reset.next = self.reset.val();
+        self.owner.start.next = self.start.val();
+        self.owner.load_valid.next = self.in_valid.val() & self.binning.in_ready.val();
+        self.owner.load_object.next = self.in_object.val();
+        self.owner.entry_valid.next = self.batcher.entry_valid.val();
+        self.owner.entry_object.next = self.batcher.entry_object.val();
+        self.owner.entry_index.next = self.batcher.entry_index.val();
+        self.owner.entry_slot.next = self.batcher.entry_slot.val();
+        self.owner.entry_leaf.next = self.batcher.entry_leaf.val();
+        self.owner.in_valid.next = self.system.out_valid.val();
+        self.system.out_ready.next = self.owner.in_ready.val();
+        self.owner.in_slot_a.next = self.system.out_id_a.val();
+        self.owner.in_slot_b.next = self.system.out_id_b.val();
+        self.out_valid.next = self.owner.out_valid.val();
+        self.owner.out_ready.next = self.out_ready.val();
+        self.out_index_a.next = self.owner.out_index_a.val();
+        self.out_index_b.next = self.owner.out_index_b.val();
         self.pairs_tested.next = self.system.pairs_tested.val();
         self.hits.next = self.system.hits.val();
 
         self.binned.next = self.binning.binned.val();
-        self.done.next = self.binning.done.val() & !self.batcher.busy.val() & self.system.done.val();
+        self.done.next = self.binning.done.val()
+            & !self.batcher.busy.val()
+            & self.system.done.val()
+            & self.system.results_empty.val()
+            & !self.system.out_valid.val()
+            & self.owner.idle.val();
         self.overflow.next = self.binning.overflow.val() | self.system.overflow.val();
-        self.unused_outputs.next = self.system.results_empty.val() ^ self.system.stall_cycles.val().any();
+        self.unused_outputs.next = self.system.stall_cycles.val().any();
     }
 }
 
@@ -219,6 +250,15 @@ pub fn leaf_batches(depth: usize, run: &BinningRun) -> Vec<BatchSizes> {
         .iter()
         .flat_map(|l| tiles(l.a.count as usize).flat_map(move |a| tiles(l.b.count as usize).map(move |b| BatchSizes { a, b })))
         .collect()
+}
+
+/// Entries each object streams into the system (A's repeated for every
+/// B tile of a leaf, B's for every A tile): the owner filter's slots.
+pub fn stream_slots(depth: usize, run: &BinningRun) -> [usize; 2] {
+    run.leaves.iter().fold([0, 0], |[a, b], l| {
+        let (na, nb) = (l.a.count as usize, l.b.count as usize);
+        [a + na * nb.div_ceil(depth), b + nb * na.div_ceil(depth)]
+    })
 }
 
 /// Clocks from `binned` to the first leaf's header on the leaf stream: the

@@ -10,8 +10,10 @@
 //!   without, the grid's coordinates already fit `W` bits and nothing is
 //!   taken off.
 //!   The header itself gives the system no word.
-//! * An entry becomes a triangle word: its object, its index as the id,
-//!   its vertices in the leaf's frame.
+//! * An entry becomes a triangle word: its object, its *slot* as the id
+//!   (the entry's number among its object's entries this run), its
+//!   vertices in the leaf's frame; `entry_*` tells the owner filter
+//!   ([`super::owner_chain_filter`]) the slot's triangle and leaf.
 //! * After the leaf's last entry (the header's counts say which) the end
 //!   word follows, and the leaf stream waits meanwhile.
 //!
@@ -21,8 +23,10 @@
 //! words in `a + b + 2` clocks of the leaf stream (the header's clock is
 //! the gap), which is all the top's cycle model needs to know of it.
 
+use super::binning_unit::LEAF_ADDRESS_BITS;
 use super::leaf_cost::COUNT_BITS;
 use super::list_packer::INDEX_BITS;
+use super::owner_chain_filter::{CHAIN_LEAF_BITS, CHAIN_SLOT_BITS};
 use crate::system::ID_BITS;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -35,6 +39,8 @@ pub const LEAF_BATCHER_LATENCY: usize = 1;
 pub struct LeafBatcher<const G: usize, const T: usize, const W: usize> {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
+    /// One clock high as a run starts: slots count from 0 again.
+    pub start: Signal<In, Bit>,
     // The binning unit's leaf stream (its `out_*` ports).
     pub in_valid: Signal<In, Bit>,
     pub in_ready: Signal<Out, Bit>,
@@ -48,6 +54,7 @@ pub struct LeafBatcher<const G: usize, const T: usize, const W: usize> {
     pub in_level: Signal<In, Bits<6>>,
     pub in_count_a: Signal<In, Bits<COUNT_BITS>>,
     pub in_count_b: Signal<In, Bits<COUNT_BITS>>,
+    pub in_leaf_number: Signal<In, Bits<LEAF_ADDRESS_BITS>>,
     // The system's host stream (its `in_*` ports).
     pub out_valid: Signal<Out, Bit>,
     pub out_ready: Signal<In, Bit>,
@@ -65,6 +72,16 @@ pub struct LeafBatcher<const G: usize, const T: usize, const W: usize> {
     pub out_z2: Signal<Out, Bits<W>>,
     /// A word is held or an end word is due.
     pub busy: Signal<Out, Bit>,
+    /// An entry goes to the system this clock (into the register): its
+    /// object, triangle, slot and leaf, for the owner filter's tables.
+    pub entry_valid: Signal<Out, Bit>,
+    pub entry_object: Signal<Out, Bit>,
+    pub entry_index: Signal<Out, Bits<INDEX_BITS>>,
+    pub entry_slot: Signal<Out, Bits<CHAIN_SLOT_BITS>>,
+    pub entry_leaf: Signal<Out, Bits<CHAIN_LEAF_BITS>>,
+    /// Each object's next slot, and the current leaf's number.
+    slot_q: [DFF<Bits<CHAIN_SLOT_BITS>>; 2],
+    leaf_q: DFF<Bits<CHAIN_LEAF_BITS>>,
     valid_q: DFF<Bit>,
     end_q: DFF<Bit>,
     object_q: DFF<Bit>,
@@ -84,9 +101,10 @@ pub struct LeafBatcher<const G: usize, const T: usize, const W: usize> {
     side: Signal<Local, Bits<G>>,
     half: Signal<Local, Bits<G>>,
     difference: [Signal<Local, Bits<G>>; 9],
-    /// The offset's high bits and the coordinates' are dropped on purpose
-    /// (they are sign copies); folded here for Verilator's lint.
+    /// The coordinates' bits above `W` are dropped on purpose (sign copies:
+    /// a leaf's triangles fit its window); folded here for Verilator's lint.
     unused_high_bits: Signal<Local, Bit>,
+    high_bits: Constant<Bits<G>>,
 }
 
 impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
@@ -125,6 +143,15 @@ impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
             out_y2: Default::default(),
             out_z2: Default::default(),
             busy: Default::default(),
+            start: Default::default(),
+            in_leaf_number: Default::default(),
+            entry_valid: Default::default(),
+            entry_object: Default::default(),
+            entry_index: Default::default(),
+            entry_slot: Default::default(),
+            entry_leaf: Default::default(),
+            slot_q: Default::default(),
+            leaf_q: Default::default(),
             valid_q: Default::default(),
             end_q: Default::default(),
             object_q: Default::default(),
@@ -141,6 +168,7 @@ impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
             half: Default::default(),
             difference: Default::default(),
             unused_high_bits: Default::default(),
+            high_bits: Constant::new(Bits::<G>::from(((1u64 << G) - 1) & !((1u64 << W) - 1))),
         }
     }
 }
@@ -148,7 +176,11 @@ impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
 impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T, W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, valid_q, end_q, object_q, id_q, remaining_q, end_due_q);
+        dff_setup!(self, clock, valid_q, end_q, object_q, id_q, remaining_q, end_due_q, leaf_q);
+        for o in 0..2 {
+            self.slot_q[o].clock.next = self.clock.val();
+            self.slot_q[o].d.next = self.slot_q[o].q.val();
+        }
         for k in 0..9 {
             self.coordinate_q[k].clock.next = self.clock.val();
             self.coordinate_q[k].d.next = self.coordinate_q[k].q.val();
@@ -175,6 +207,26 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
         }
 
         self.take_entry.next = self.advance.val() & !self.end_due_q.q.val() & self.in_valid.val() & !self.in_header.val();
+        // Slots: the entry's number among its object's entries.
+        self.entry_valid.next = self.take_entry.val();
+        self.entry_object.next = self.in_object.val();
+        self.entry_index.next = self.in_index.val();
+        self.entry_slot.next = self.slot_q[0].q.val();
+        if self.in_object.val() {
+            self.entry_slot.next = self.slot_q[1].q.val();
+        }
+        self.entry_leaf.next = self.leaf_q.q.val();
+        if self.take_entry.val() & !self.in_object.val() {
+            self.slot_q[0].d.next = self.slot_q[0].q.val() + 1;
+        }
+        if self.take_entry.val() & self.in_object.val() {
+            self.slot_q[1].d.next = self.slot_q[1].q.val() + 1;
+        }
+        if self.start.val() {
+            self.slot_q[0].d.next = 0.into();
+            self.slot_q[1].d.next = 0.into();
+        }
+
         // (Written out: `bit_cast` takes no loop index inside `hdl_gen`.)
         if self.take_entry.val() {
             self.coordinate_q[0].d.next = bit_cast::<W, G>(self.difference[0].val());
@@ -195,6 +247,7 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
                 self.end_due_q.d.next = false;
             } else if self.in_valid.val() {
                 if self.in_header.val() {
+                    self.leaf_q.d.next = bit_cast::<CHAIN_LEAF_BITS, LEAF_ADDRESS_BITS>(self.in_leaf_number.val());
                     self.remaining_q.d.next = self.in_count_a.val() + self.in_count_b.val();
                     self.offset_q[0].d.next = 0.into();
                     self.offset_q[1].d.next = 0.into();
@@ -208,7 +261,7 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
                     self.valid_q.d.next = true;
                     self.end_q.d.next = false;
                     self.object_q.d.next = self.in_object.val();
-                    self.id_q.d.next = bit_cast::<ID_BITS, INDEX_BITS>(self.in_index.val());
+                    self.id_q.d.next = bit_cast::<ID_BITS, CHAIN_SLOT_BITS>(self.entry_slot.val());
                     self.remaining_q.d.next = self.remaining_q.q.val() - 1;
                     if self.remaining_q.q.val() == 1 {
                         self.end_due_q.d.next = true;
@@ -230,7 +283,15 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
         self.out_x2.next = self.coordinate_q[6].q.val();
         self.out_y2.next = self.coordinate_q[7].q.val();
         self.out_z2.next = self.coordinate_q[8].q.val();
-        self.unused_high_bits.next = false;
+        self.unused_high_bits.next = (self.difference[0].val() & self.high_bits.val()).any()
+            ^ (self.difference[1].val() & self.high_bits.val()).any()
+            ^ (self.difference[2].val() & self.high_bits.val()).any()
+            ^ (self.difference[3].val() & self.high_bits.val()).any()
+            ^ (self.difference[4].val() & self.high_bits.val()).any()
+            ^ (self.difference[5].val() & self.high_bits.val()).any()
+            ^ (self.difference[6].val() & self.high_bits.val()).any()
+            ^ (self.difference[7].val() & self.high_bits.val()).any()
+            ^ (self.difference[8].val() & self.high_bits.val()).any();
 
         if self.reset.val() {
             self.valid_q.d.next = false;

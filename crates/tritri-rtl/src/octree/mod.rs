@@ -47,6 +47,7 @@ pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_packer;
 pub mod octant_clipper;
+pub mod owner_chain_filter;
 pub mod owner_filter;
 pub mod plane_traversal;
 pub mod set_operation_unit;
