@@ -350,3 +350,65 @@ pub fn decide(entries: &[(bool, u32, u32)], hits: &[(u32, u32)]) -> Vec<(Option<
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::BTreeSet;
+
+    /// On random leaves, tiled as the binning unit streams them, the walk
+    /// keeps each pair exactly once, and from the first leaf holding both
+    /// triangles.
+    #[test]
+    fn each_pair_is_kept_once_from_its_first_leaf() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        for depth in [1usize, 3, 64] {
+            let leaves: Vec<(Vec<u32>, Vec<u32>)> = (0..40)
+                .map(|_| {
+                    let pick = |next: &mut dyn FnMut(u64) -> u64| -> Vec<u32> { (0..12).filter(|_| next(3) == 0).collect() };
+                    (pick(&mut next), pick(&mut next))
+                })
+                .filter(|(a, b): &(Vec<u32>, Vec<u32>)| !a.is_empty() && !b.is_empty())
+                .collect();
+            let touches = |i: u32, j: u32| (i * 7 + j * 3) % 4 == 0;
+            let (mut entries, mut hits, mut hit_leaves) = (Vec::new(), Vec::new(), Vec::new());
+            let mut slots = [0u32; 2];
+            for (leaf, (la, lb)) in leaves.iter().enumerate() {
+                for ta in la.chunks(depth) {
+                    for tb in lb.chunks(depth) {
+                        let first = slots;
+                        entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
+                        entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
+                        slots[0] += ta.len() as u32;
+                        slots[1] += tb.len() as u32;
+                        for (x, &i) in ta.iter().enumerate() {
+                            for (y, &j) in tb.iter().enumerate() {
+                                if touches(i, j) {
+                                    hits.push((first[0] + x as u32, first[1] + y as u32));
+                                    hit_leaves.push(leaf);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            let first_leaf = |i: u32, j: u32| leaves.iter().position(|(la, lb)| la.contains(&i) && lb.contains(&j)).unwrap();
+            let mut kept = BTreeSet::new();
+            for ((owned, _), leaf) in decide(&entries, &hits).into_iter().zip(&hit_leaves) {
+                if let Some((i, j)) = owned {
+                    assert!(kept.insert((i, j)), "depth {depth}: ({i}, {j}) kept twice");
+                    assert_eq!(*leaf, first_leaf(i, j), "depth {depth}: ({i}, {j}) kept from leaf {leaf}");
+                }
+            }
+            let all: BTreeSet<(u32, u32)> = leaves.iter().flat_map(|(la, lb)| la.iter().flat_map(move |&i| lb.iter().map(move |&j| (i, j)))).filter(|&(i, j)| touches(i, j)).collect();
+            assert_eq!(kept, all, "depth {depth}");
+            assert!(hits.len() > 2 * all.len(), "depth {depth}: {} hits, {} pairs", hits.len(), all.len());
+        }
+    }
+}
