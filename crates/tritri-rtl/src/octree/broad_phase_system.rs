@@ -1,7 +1,8 @@
 //! The accelerator from triangles to pairs: the binning unit (the octree
 //! broad phase), the leaf batcher, and the collision system (the narrow
-//! phase), in one top. The host streams each object's triangles once, in
-//! grid coordinates, and reads back the intersecting pairs of every leaf.
+//! phase) and an owner filter, in one top. The host streams each object's
+//! triangles once, in grid coordinates, and reads back each intersecting
+//! pair once.
 //!
 //! ```text
 //!  host triangles ─► binning unit ─► leaf stream ─► leaf batcher ─► collision system ─► owner filter ─► pairs
@@ -16,8 +17,9 @@
 //! stream. A pair's indices are the triangles' positions in their object's
 //! stream. The leaves reach the system as soon as the binning
 //! unit streams them: the banks let the system test one leaf while the
-//! next is written. The cycle count, first triangle in to `done`, is
-//! [`broad_phase_cycles`]. A leaf larger than the system's memory depth
+//! next is written. The cycles to the system's last verdict are
+//! [`broad_phase_cycles`]; the owner filter, deciding hits as they come,
+//! finishes at most its clocks for the hits back to back later. A leaf larger than the system's memory depth
 //! (the split rule makes one only where triangles overlap over an area)
 //! comes from the binning unit as tiles, each a batch.
 
@@ -64,7 +66,7 @@ pub struct BroadPhaseSystem<
     pub in_last: Signal<In, Bit>,
     pub in_object: Signal<In, Bit>,
     pub in_vertices: Signal<In, Bits<T>>,
-    // Pairs out (valid/ready), the system's.
+    // Pairs out (valid/ready), the owner filter's.
     pub out_valid: Signal<Out, Bit>,
     pub out_ready: Signal<In, Bit>,
     pub out_index_a: Signal<Out, Bits<ID_BITS>>,
@@ -74,8 +76,8 @@ pub struct BroadPhaseSystem<
     /// Every leaf is tested and every hit decided; the last owned pair has
     /// been taken.
     pub done: Signal<Out, Bit>,
-    /// A memory of the binning unit, or the system's memory depth, was too
-    /// small for this run (sticky).
+    /// A memory of the binning unit, the system's memory depth or the
+    /// owner filter's record tables were too small for this run (sticky).
     pub overflow: Signal<Out, Bit>,
     pub pairs_tested: Signal<Out, Bits<COUNTER_BITS>>,
     /// Hits, each once per leaf holding both triangles (before the owner
@@ -235,7 +237,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
             & self.system.results_empty.val()
             & !self.system.out_valid.val()
             & self.owner.idle.val();
-        self.overflow.next = self.binning.overflow.val() | self.system.overflow.val();
+        self.overflow.next = self.binning.overflow.val() | self.system.overflow.val() | self.owner.overflow.val();
         self.unused_outputs.next = self.system.stall_cycles.val().any();
     }
 }
@@ -265,8 +267,10 @@ pub fn stream_slots(depth: usize, run: &BinningRun) -> [usize; 2] {
 /// binning unit reads the leaf memory (OutLeaf, OutHeader).
 pub const FIRST_HEADER_DELAY: u64 = 2;
 
-/// The top's clocks from the first triangle in (clock 0) to `done`, the
-/// reader always ready: the binning unit's run (`run.cycles` to `binned`),
+/// The top's clocks from the first triangle in (clock 0) to the system's
+/// last verdict (its `done`; the top's `done` also waits for the owner
+/// filter, at most its clocks for the hits back to back), the reader
+/// always ready: the binning unit's run (`run.cycles` to `binned`),
 /// the first header [`FIRST_HEADER_DELAY`] later, its first entry one
 /// clock after that and in the system one more ([`LEAF_BATCHER_LATENCY`]);
 /// from there the system's bank recurrence

@@ -100,6 +100,12 @@ pub struct OwnerChainFilter {
     pub out_index_b: Signal<Out, Bits<ID_BITS>>,
     /// No hit in progress.
     pub idle: Signal<Out, Bit>,
+    /// An entry's slot was past the record tables' end (sticky until the
+    /// next start): its record is lost and decisions may be wrong.
+    pub overflow: Signal<Out, Bit>,
+    overflow_q: DFF<Bit>,
+    /// The record tables' depth, one past the last slot.
+    slot_limit: Constant<Bits<{ CHAIN_SLOT_BITS + 1 }>>,
     heads: [SimpleDualPortRam<ChainHead, INDEX_BITS>; 2],
     records: [SimpleDualPortRam<ChainRecord, CHAIN_SLOT_BITS>; 2],
     loaded: [DFF<Bits<INDEX_BITS>>; 2],
@@ -152,6 +158,9 @@ impl OwnerChainFilter {
             out_index_a: Default::default(),
             out_index_b: Default::default(),
             idle: Default::default(),
+            overflow: Default::default(),
+            overflow_q: Default::default(),
+            slot_limit: Constant::new(Bits::<{ CHAIN_SLOT_BITS + 1 }>::from(slots as u64)),
             heads: std::array::from_fn(|_| SimpleDualPortRam::new(triangles)),
             records: std::array::from_fn(|_| SimpleDualPortRam::new(slots)),
             loaded: Default::default(),
@@ -180,7 +189,11 @@ impl OwnerChainFilter {
 impl Logic for OwnerChainFilter {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, entry_q, entry_object_q, entry_index_q, entry_slot_q, entry_leaf_q, state, hit_leaf, index_a, index_b);
+        dff_setup!(self, clock, entry_q, entry_object_q, entry_index_q, entry_slot_q, entry_leaf_q, state, hit_leaf, index_a, index_b, overflow_q);
+        self.overflow.next = self.overflow_q.q.val();
+        if self.entry_valid.val() & (bit_cast::<{ CHAIN_SLOT_BITS + 1 }, CHAIN_SLOT_BITS>(self.entry_slot.val()) >= self.slot_limit.val()) {
+            self.overflow_q.d.next = true;
+        }
         self.cleared.next.slot = 0.into();
         self.cleared.next.valid = false;
         for o in 0..2 {
@@ -202,6 +215,7 @@ impl Logic for OwnerChainFilter {
         if self.start.val() {
             self.loaded[0].d.next = 0.into();
             self.loaded[1].d.next = 0.into();
+            self.overflow_q.d.next = false;
         }
         if self.load_valid.val() & !self.load_object.val() {
             self.heads[0].write_enable.next = true;
@@ -312,6 +326,7 @@ impl Logic for OwnerChainFilter {
         if self.reset.val() {
             self.state.d.next = ChainState::Idle;
             self.entry_q.d.next = false;
+            self.overflow_q.d.next = false;
         }
     }
 }
