@@ -20,6 +20,7 @@ use tritri_geom::octree::cell::Cell;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::octree::broad_phase_system::leaf_tiles;
 use tritri_rtl::octree::binning_unit::{on_unit_stack, BinningUnit, BinningUnitConfig, BINNING_GRID_WIDTHS};
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
@@ -48,13 +49,7 @@ pub struct BinningOutput {
 /// depth `depth`: a leaf larger than that as its tiles (every A tile with
 /// every B tile, as the host's `scene::tile` cuts it), each under a header.
 pub fn expected_leaves(run: &BinningRun, depth: usize) -> Vec<StreamedLeaf> {
-    run.leaves
-        .iter()
-        .zip(&run.leaf_lists)
-        .flat_map(|(leaf, (a, b))| {
-            a.chunks(depth).flat_map(move |ta| b.chunks(depth).map(move |tb| StreamedLeaf { cell: leaf.cell, a: ta.to_vec(), b: tb.to_vec() }))
-        })
-        .collect()
+    leaf_tiles(&run.leaf_lists, depth).map(|(leaf, a, b)| StreamedLeaf { cell: run.leaves[leaf].cell, a: a.to_vec(), b: b.to_vec() }).collect()
 }
 
 /// The scene through the rust-hdl model of the unit built for `config`;
@@ -78,7 +73,7 @@ pub fn run_rusthdl(
         let mut uut = BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves).with_system(config.log_depth, config.log_pipelines);
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
-        let g = |v: i64| -> Bits<G> { Bits::from((v as u64) & ((1u64 << G) - 1)) };
+        let g = grid_value::<G>;
         uut.root_x.next = g(root.lo[0]);
         uut.root_y.next = g(root.lo[1]);
         uut.root_z.next = g(root.lo[2]);
@@ -88,7 +83,7 @@ pub fn run_rusthdl(
         uut.start.next = true;
         clock_cycle(&mut uut, |u| &mut u.clock);
         uut.start.next = false;
-        let stream: Vec<(bool, &FixedTriangle)> = a.iter().map(|t| (false, t)).chain(b.iter().map(|t| (true, t))).collect();
+        let stream = triangle_stream(a, b);
         let mut clock = 0u64;
         let mut next = 0;
         let mut out = BinningOutput::default();
@@ -100,11 +95,7 @@ pub fn run_rusthdl(
             if let Some(&(object, t)) = stream.get(next) {
                 uut.in_object.next = object;
                 uut.in_last.next = next + 1 == stream.len();
-                let mut word = Bits::<T>::default();
-                for (k, v) in t.iter().flatten().enumerate() {
-                    word.set_bits::<G>(k * G, g(*v));
-                }
-                uut.in_vertices.next = word;
+                uut.in_vertices.next = vertices_word::<G, T>(t);
             }
             uut.out_ready.next = reader_ready(clock);
             settle(&mut uut);
@@ -199,24 +190,7 @@ pub fn run_emitted(
     files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
     let bench = Testbench { top: "tb_binning_unit".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
     let compiled = compile(simulator, &bench)?;
-    let mask = |v: i64| (v as u64) & ((1u64 << config.grid_bits) - 1);
-    let mut vectors = format!(
-        "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
-        mask(root.lo[0]),
-        mask(root.lo[1]),
-        mask(root.lo[2]),
-        root.level,
-        max_leaf_level.is_some() as u8,
-        max_leaf_level.unwrap_or(0)
-    );
-    let total = a.len() + b.len();
-    for (k, (object, t)) in a.iter().map(|t| (0, t)).chain(b.iter().map(|t| (1, t))).enumerate() {
-        vectors += &format!("1 {object} {}", (k + 1 == total) as u8);
-        for v in t.iter().flatten() {
-            vectors += &format!(" {:x}", mask(*v));
-        }
-        vectors.push('\n');
-    }
+    let vectors = input_vectors(config.grid_bits, a, b, root, max_leaf_level);
     let (text, _) = run_on_vectors(&compiled, "binning-unit-run", &vectors, &[])?;
     parse_outputs(&text, config.grid_bits, a, b)
 }
@@ -269,11 +243,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     let t1 = 9 * g - 1;
     let body = format!(
         "\
-    reg [3:0] kind = 4'd0;
-    // Scalars, not an array: Verilator's $fscanf does not fill array elements.
-    reg [31:0] f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10;
-    // The run's root and leaf limit, held from the start line to the end.
-    reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;
+{registers}
     reg [63:0] edge_count = 64'd0;
     reg binned_seen = 1'b0;
     wire in_ready, out_valid, out_header, out_object, binned, done, overflow;
@@ -284,11 +254,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     wire [19:0] out_count_a, out_count_b;
     {top} dut (
         .clock(clock), .reset(reset),
-        .start(in_valid && kind == 4'd0),
-        .root_x(held_x[{g1}:0]), .root_y(held_y[{g1}:0]), .root_z(held_z[{g1}:0]), .root_level(held_level[5:0]),
-        .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
-        .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
-        .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),
+{ports}
         .out_valid(out_valid), .out_ready(1'b1), .out_header(out_header), .out_object(out_object), .out_index(out_index), .out_vertices(out_vertices),
         .out_x(out_x), .out_y(out_y), .out_z(out_z), .out_level(out_level), .out_count_a(out_count_a), .out_count_b(out_count_b),
         .binned(binned), .done(done), .overflow(overflow)
@@ -311,10 +277,84 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
             $finish;
         end
     end
-"
+",
+        registers = INPUT_REGISTERS,
+        ports = input_ports(g),
     );
-    vector_testbench(&VectorTestbench {
-        name: "tb_binning_unit",
+    vector_testbench(&input_testbench("tb_binning_unit", body, drain))
+}
+
+// ---- The host's side of the binning unit's input ports, shared with the
+// broad-phase top, whose input ports are the unit's.
+
+/// Each object's triangles in the order the host streams them: A's, then
+/// B's (`true`).
+pub(crate) fn triangle_stream<'t>(a: &'t [FixedTriangle], b: &'t [FixedTriangle]) -> Vec<(bool, &'t FixedTriangle)> {
+    a.iter().map(|t| (false, t)).chain(b.iter().map(|t| (true, t))).collect()
+}
+
+/// `v` as a `G`-bit two's complement grid coordinate.
+pub(crate) fn grid_value<const G: usize>(v: i64) -> Bits<G> {
+    Bits::from((v as u64) & ((1u64 << G) - 1))
+}
+
+/// A triangle on `in_vertices`: `x0 y0 z0 x1 … z2` from bit 0 up.
+pub(crate) fn vertices_word<const G: usize, const T: usize>(t: &FixedTriangle) -> Bits<T> {
+    let mut word = Bits::<T>::default();
+    for (k, v) in t.iter().flatten().enumerate() {
+        word.set_bits::<G>(k * G, grid_value::<G>(*v));
+    }
+    word
+}
+
+/// The vector file of a run: the start line (root corner and level, leaf
+/// limit), then one line per triangle (object, last, nine coordinates).
+pub(crate) fn input_vectors(grid_bits: usize, a: &[FixedTriangle], b: &[FixedTriangle], root: Cell, max_leaf_level: Option<u32>) -> String {
+    let mask = |v: i64| (v as u64) & ((1u64 << grid_bits) - 1);
+    let mut vectors = format!(
+        "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
+        mask(root.lo[0]),
+        mask(root.lo[1]),
+        mask(root.lo[2]),
+        root.level,
+        max_leaf_level.is_some() as u8,
+        max_leaf_level.unwrap_or(0)
+    );
+    let stream = triangle_stream(a, b);
+    for (k, (object, t)) in stream.iter().enumerate() {
+        vectors += &format!("1 {} {}", *object as u8, (k + 1 == stream.len()) as u8);
+        for v in t.iter().flatten() {
+            vectors += &format!(" {:x}", mask(*v));
+        }
+        vectors.push('\n');
+    }
+    vectors
+}
+
+/// The testbench's registers for [`input_vectors`]' fields.
+pub(crate) const INPUT_REGISTERS: &str = "    reg [3:0] kind = 4'd0;
+    // Scalars, not an array: Verilator's $fscanf does not fill array elements.
+    reg [31:0] f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10;
+    // The run's root and leaf limit, held from the start line to the end.
+    reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;";
+
+/// The input ports' connections to those registers, for a `g`-bit grid.
+pub(crate) fn input_ports(g: usize) -> String {
+    let g1 = g - 1;
+    format!(
+        "        .start(in_valid && kind == 4'd0),
+        .root_x(held_x[{g1}:0]), .root_y(held_y[{g1}:0]), .root_z(held_z[{g1}:0]), .root_level(held_level[5:0]),
+        .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
+        .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
+        .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),"
+    )
+}
+
+/// The vector testbench's start, read and fill for [`input_vectors`]: the
+/// start line held for one clock, a triangle offered until taken.
+pub(crate) fn input_testbench(name: &'static str, body: String, drain: usize) -> VectorTestbench<'static> {
+    VectorTestbench {
+        name,
         body,
         start: "        f0 = 0; f1 = 0; f2 = 0; f3 = 0; f4 = 0; f5 = 0; f6 = 0; f7 = 0; f8 = 0; f9 = 0; f10 = 0;\n        held_x = 0; held_y = 0; held_z = 0; held_level = 0; held_enable = 0; held_max = 0;".into(),
         read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
@@ -327,7 +367,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
                end"
             .into(),
         drain,
-    })
+    }
 }
 
 /// The binning unit on a scene's broad phase: the unit built for it and

@@ -2,13 +2,14 @@
 //! a scene's arrays in, on the grid the binning unit was built for, each
 //! leaf's pairs out, with the clocks from the first triangle in to `done`.
 
-use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use crate::binning_unit::{grid_value, input_ports, input_testbench, input_vectors, triangle_stream, vertices_word, INPUT_REGISTERS};
+use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench};
 use anyhow::{bail, Context as _};
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_rtl::octree::binning_machine::BinningRun;
-use tritri_rtl::octree::owner_chain_filter::decide;
+use tritri_rtl::octree::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 use tritri_rtl::octree::binning_unit::on_unit_stack;
@@ -49,27 +50,7 @@ pub struct TopModel {
 /// them (tiles of at most `depth`), the hits as slots, the owner filter's
 /// decisions ([`decide`]).
 pub fn top_model(run: &BinningRun, depth: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> TopModel {
-    let mut entries = Vec::new();
-    let mut hits = Vec::new();
-    let mut slots = [0u32, 0u32];
-    for (leaf, (la, lb)) in run.leaf_lists.iter().enumerate() {
-        for ta in la.chunks(depth) {
-            for tb in lb.chunks(depth) {
-                let first = slots;
-                entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
-                entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
-                slots[0] += ta.len() as u32;
-                slots[1] += tb.len() as u32;
-                for (x, &i) in ta.iter().enumerate() {
-                    for (y, &j) in tb.iter().enumerate() {
-                        if intersects(&a[i as usize], &b[j as usize]) {
-                            hits.push((first[0] + x as u32, first[1] + y as u32));
-                        }
-                    }
-                }
-            }
-        }
-    }
+    let Streamed { entries, hits, .. } = streamed(&run.leaf_lists, depth, |i, j| intersects(&a[i as usize], &b[j as usize]));
     let decisions = decide(&entries, &hits);
     let filter_clocks = decisions.iter().map(|(owned, steps)| 2 + steps + owned.is_some() as u64).sum();
     let mut pairs: Vec<(u32, u32)> = decisions.into_iter().filter_map(|(owned, _)| owned).collect();
@@ -97,7 +78,7 @@ pub fn run_rusthdl(
         let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
-        let g = |v: i64| -> Bits<G> { Bits::from((v as u64) & ((1u64 << G) - 1)) };
+        let g = grid_value::<G>;
         uut.root_x.next = g(root.lo[0]);
         uut.root_y.next = g(root.lo[1]);
         uut.root_z.next = g(root.lo[2]);
@@ -108,7 +89,7 @@ pub fn run_rusthdl(
         uut.start.next = true;
         clock_cycle(&mut uut, |u| &mut u.clock);
         uut.start.next = false;
-        let stream: Vec<(bool, &FixedTriangle)> = a.iter().map(|t| (false, t)).chain(b.iter().map(|t| (true, t))).collect();
+        let stream = triangle_stream(a, b);
         let mut out = BroadPhaseOutput::default();
         let mut binned_at = None;
         let mut next = 0;
@@ -119,11 +100,7 @@ pub fn run_rusthdl(
             if let Some(&(object, t)) = stream.get(next) {
                 uut.in_object.next = object;
                 uut.in_last.next = next + 1 == stream.len();
-                let mut word = Bits::<T>::default();
-                for (k, v) in t.iter().flatten().enumerate() {
-                    word.set_bits::<G>(k * G, g(*v));
-                }
-                uut.in_vertices.next = word;
+                uut.in_vertices.next = vertices_word::<G, T>(t);
             }
             settle(&mut uut);
             if uut.binned.val() && binned_at.is_none() {
@@ -192,24 +169,7 @@ pub fn run_emitted(
     files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
     let bench = Testbench { top: "tb_broad_phase".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
     let compiled = compile(simulator, &bench)?;
-    let mask = |v: i64| (v as u64) & ((1u64 << g) - 1);
-    let mut vectors = format!(
-        "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
-        mask(root.lo[0]),
-        mask(root.lo[1]),
-        mask(root.lo[2]),
-        root.level,
-        max_leaf_level.is_some() as u8,
-        max_leaf_level.unwrap_or(0)
-    );
-    let total = a.len() + b.len();
-    for (k, (object, t)) in a.iter().map(|t| (0, t)).chain(b.iter().map(|t| (1, t))).enumerate() {
-        vectors += &format!("1 {object} {}", (k + 1 == total) as u8);
-        for v in t.iter().flatten() {
-            vectors += &format!(" {:x}", mask(*v));
-        }
-        vectors.push('\n');
-    }
+    let vectors = input_vectors(g, a, b, root, max_leaf_level);
     let (text, _) = run_on_vectors(&compiled, "broad-phase-run", &vectors, &[])?;
     parse_outputs(&text)
 }
@@ -251,14 +211,9 @@ fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
 /// `done` the result FIFO is drained and the run ends (or `drain` clocks
 /// after the last triangle).
 fn testbench(top: &str, g: usize, drain: usize) -> String {
-    let g1 = g - 1;
     let body = format!(
         "\
-    reg [3:0] kind = 4'd0;
-    // Scalars, not an array: Verilator's $fscanf does not fill array elements.
-    reg [31:0] f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10;
-    // The run's root and leaf limit, held from the start line to the end.
-    reg [31:0] held_x, held_y, held_z, held_level, held_enable, held_max;
+{registers}
     reg [63:0] edge_count = 64'd0;
     reg binned_seen = 1'b0;
     reg done_seen = 1'b0;
@@ -266,11 +221,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     wire [31:0] out_index_a, out_index_b, pairs_tested, hits;
     {top} dut (
         .clock(clock), .reset(reset),
-        .start(in_valid && kind == 4'd0),
-        .root_x(held_x[{g1}:0]), .root_y(held_y[{g1}:0]), .root_z(held_z[{g1}:0]), .root_level(held_level[5:0]),
-        .max_leaf_enable(held_enable[0]), .max_leaf_level(held_max[5:0]),
-        .in_valid(in_valid && kind == 4'd1), .in_ready(in_ready), .in_last(f1[0]), .in_object(f0[0]),
-        .in_vertices({{f10[{g1}:0], f9[{g1}:0], f8[{g1}:0], f7[{g1}:0], f6[{g1}:0], f5[{g1}:0], f4[{g1}:0], f3[{g1}:0], f2[{g1}:0]}}),
+{ports}
         .out_valid(out_valid), .out_ready(1'b1), .out_index_a(out_index_a), .out_index_b(out_index_b),
         .binned(binned), .done(done), .overflow(overflow), .pairs_tested(pairs_tested), .hits(hits)
     );
@@ -294,21 +245,9 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
             $finish;
         end
     end
-"
+",
+        registers = INPUT_REGISTERS,
+        ports = input_ports(g),
     );
-    vector_testbench(&VectorTestbench {
-        name: "tb_broad_phase",
-        body,
-        start: "        f0 = 0; f1 = 0; f2 = 0; f3 = 0; f4 = 0; f5 = 0; f6 = 0; f7 = 0; f8 = 0; f9 = 0; f10 = 0;\n        held_x = 0; held_y = 0; held_z = 0; held_level = 0; held_enable = 0; held_max = 0;".into(),
-        read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
-        // The start line: six fields, one clock. A triangle: eleven,
-        // offered until the top takes it.
-        fill: "            if (kind == 4'd0) r = $fscanf(vectors, \"%h %h %h %h %h %h\", held_x, held_y, held_z, held_level, held_enable, held_max);\n            \
-               else begin\n                \
-               r = $fscanf(vectors, \"%h %h %h %h %h %h %h %h %h %h %h\", f0, f1, f2, f3, f4, f5, f6, f7, f8, f9, f10);\n                \
-               in_valid = 1'b1; while (!in_ready) @(negedge clock);\n            \
-               end"
-            .into(),
-        drain,
-    })
+    vector_testbench(&input_testbench("tb_broad_phase", body, drain))
 }

@@ -38,8 +38,9 @@ fn arrays(scene: &PreparedScene) -> (Vec<FixedTriangle>, Vec<FixedTriangle>) {
 
 /// The top's output against its model: each pair once, the model's owned
 /// pairs, the system's hits; the clocks from the system's model on, with
-/// the filter's clocks at most added after it.
-fn assert_top_as_model(out: &BroadPhaseOutput, run: &BinningRun, system: SystemConfig, a: &[FixedTriangle], b: &[FixedTriangle]) -> (Vec<(u32, u32)>, usize) {
+/// the filter's clocks at most added after it. Prints the run's figures
+/// under `label`.
+fn assert_top_as_model(label: &str, out: &BroadPhaseOutput, run: &BinningRun, system: SystemConfig, a: &[FixedTriangle], b: &[FixedTriangle]) -> (Vec<(u32, u32)>, usize) {
     let TopModel { pairs: owned, hits, filter_clocks } = top_model(run, system.triangles_per_bank, a, b);
     let mut pairs = out.pairs.clone();
     pairs.sort_unstable();
@@ -50,6 +51,16 @@ fn assert_top_as_model(out: &BroadPhaseOutput, run: &BinningRun, system: SystemC
     assert_eq!(out.hits as usize, hits);
     let model = broad_phase_cycles(system, run);
     assert!(out.cycles >= model && out.cycles <= model + filter_clocks, "{} clocks, the system's model {model}, the filter's {filter_clocks}", out.cycles);
+    eprintln!(
+        "{label}: {} + {} triangles, {} leaves, {} pairs tested, {hits} hits, {} pairs; binned at {}, done at {} (the system's model {model})",
+        a.len(),
+        b.len(),
+        run.leaves.len(),
+        out.pairs_tested,
+        pairs.len(),
+        out.binned_at,
+        out.cycles
+    );
     (pairs, hits)
 }
 
@@ -87,7 +98,7 @@ fn the_top_gives_each_pair_once_in_rust_hdl() {
 
     let out = run_rusthdl(&config, &a, &b, root, None).unwrap();
     assert!(!out.overflow);
-    let (pairs, hits) = assert_top_as_model(&out, &run, system, &a, &b);
+    let (pairs, hits) = assert_top_as_model("torus x sphere", &out, &run, system, &a, &b);
     assert!(hits > pairs.len() && pairs.len() > 100, "{hits} hits, {} pairs", pairs.len());
     // One record too few for the filter: the top says so.
     assert!(run_rusthdl(&BroadPhaseConfig { slots: config.slots - 1, ..config }, &a, &b, root, None).unwrap().overflow);
@@ -98,17 +109,6 @@ fn the_top_gives_each_pair_once_in_rust_hdl() {
     let tested: u64 = run.leaf_lists.iter().map(|(la, lb)| (la.len() * lb.len()) as u64).sum();
     assert_eq!(out.pairs_tested, tested);
     assert_eq!(out.binned_at, run.cycles);
-    eprintln!(
-        "{} + {} triangles, {} leaves, {} pairs tested, {hits} hits, {} pairs; binned at {}, done at {} (the system's model {})",
-        a.len(),
-        b.len(),
-        run.leaves.len(),
-        out.pairs_tested,
-        pairs.len(),
-        out.binned_at,
-        out.cycles,
-        broad_phase_cycles(system, &run)
-    );
 }
 
 #[test]
@@ -130,20 +130,9 @@ fn with_local_frames_the_top_keeps_the_fine_grids_pairs_in_rust_hdl() {
     let config = top_for(&run, params, system, a.len().max(b.len()), true);
     let out = run_rusthdl(&config, &a, &b, root, params.max_leaf_level).unwrap();
     assert!(!out.overflow);
-    let (pairs, hits) = assert_top_as_model(&out, &run, system, &a, &b);
+    let (pairs, _) = assert_top_as_model("local frames", &out, &run, system, &a, &b);
     assert!(pairs.len() > 100, "{} pairs", pairs.len());
     assert_eq!(out.binned_at, run.cycles);
-    eprintln!(
-        "local frames: {} + {} triangles binned, {} leaves, {} pairs tested, {hits} hits, {} pairs; binned at {}, done at {} (the system's model {})",
-        a.len(),
-        b.len(),
-        run.leaves.len(),
-        out.pairs_tested,
-        pairs.len(),
-        out.binned_at,
-        out.cycles,
-        broad_phase_cycles(system, &run)
-    );
 }
 
 #[test]
@@ -163,7 +152,7 @@ fn leaves_over_the_depth_reach_the_system_as_tiles_in_rust_hdl() {
     let config = top_for(&run, params, system, a.len().max(b.len()), false);
     let out = run_rusthdl(&config, &a, &b, root, None).unwrap();
     assert!(!out.overflow, "a tile over the system's depth");
-    assert_top_as_model(&out, &run, system, &a, &b);
+    assert_top_as_model("tiles", &out, &run, system, &a, &b);
     // The tiles are the host's batches.
     assert_eq!(leaf_batches(depth, &run), scene.batches().iter().map(BatchSizes::of).collect::<Vec<_>>());
 }
@@ -187,7 +176,7 @@ fn the_emitted_top_gives_each_pair_once_on_a_large_scene_in_verilator() {
     let model = broad_phase_cycles(system, &run);
     let out = run_emitted(&config, &ta, &tb, root, None, model + 100_000, Simulator::Verilator).unwrap();
     assert!(!out.overflow);
-    let (pairs, hits) = assert_top_as_model(&out, &run, system, &ta, &tb);
+    let (pairs, _) = assert_top_as_model("two spheres", &out, &run, system, &ta, &tb);
     let flat = prepare(&a, &b, &options).unwrap();
     let ids: std::collections::BTreeSet<(u32, u32)> = pairs.iter().map(|&(i, j)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id)).collect();
     assert_eq!(ids, fixed_point_pairs(&flat.batches(), &|_| {}).into_iter().collect());
@@ -195,15 +184,5 @@ fn the_emitted_top_gives_each_pair_once_on_a_large_scene_in_verilator() {
     let tested: u64 = run.leaf_lists.iter().map(|(la, lb)| (la.len() * lb.len()) as u64).sum();
     assert_eq!(out.pairs_tested, tested);
     assert_eq!(out.binned_at, run.cycles);
-    eprintln!(
-        "{} + {} triangles: {} leaves, {} pairs tested (flat {}), {hits} hits, {} pairs; binned at {}, done at {} (the system's model {model})",
-        ta.len(),
-        tb.len(),
-        run.leaves.len(),
-        tested,
-        flat.pairs_tested(),
-        pairs.len(),
-        out.binned_at,
-        out.cycles
-    );
+    eprintln!("two spheres: the flat system tests {} pairs", flat.pairs_tested());
 }

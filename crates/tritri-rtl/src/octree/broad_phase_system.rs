@@ -242,16 +242,17 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
     }
 }
 
-/// The batches the system gets: each leaf, or a leaf larger than `depth`
-/// as its tiles (every A tile of at most `depth` triangles with every B
-/// tile, as the host's `scene::tile` cuts it; the binning unit streams each
-/// tile under a header of its own).
+/// The tiles the binning unit streams, in order, as `(leaf, A tile, B
+/// tile)`: each leaf whole, or a leaf with more than `depth` triangles of
+/// an object as every A tile of at most `depth` with every B tile (as the
+/// host's `scene::tile` cuts it), each under a header of its own.
+pub fn leaf_tiles(leaf_lists: &[(Vec<u32>, Vec<u32>)], depth: usize) -> impl Iterator<Item = (usize, &[u32], &[u32])> {
+    leaf_lists.iter().enumerate().flat_map(move |(leaf, (a, b))| a.chunks(depth).flat_map(move |ta| b.chunks(depth).map(move |tb| (leaf, ta, tb))))
+}
+
+/// The batches the system gets: [`leaf_tiles`]' sizes.
 pub fn leaf_batches(depth: usize, run: &BinningRun) -> Vec<BatchSizes> {
-    let tiles = |n: usize| (0..n.div_ceil(depth)).map(move |t| depth.min(n - t * depth));
-    run.leaves
-        .iter()
-        .flat_map(|l| tiles(l.a.count as usize).flat_map(move |a| tiles(l.b.count as usize).map(move |b| BatchSizes { a, b })))
-        .collect()
+    leaf_tiles(&run.leaf_lists, depth).map(|(_, a, b)| BatchSizes { a: a.len(), b: b.len() }).collect()
 }
 
 /// Entries each object streams into the system (A's repeated for every

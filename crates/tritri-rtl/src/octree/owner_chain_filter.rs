@@ -331,6 +331,39 @@ impl Logic for OwnerChainFilter {
     }
 }
 
+/// What the top streams for `leaf_lists` at memory depth `depth`: the
+/// entries in order, `(object, index, leaf)` (tiles as
+/// [`super::broad_phase_system::leaf_tiles`] cuts them), the system's hits
+/// as slots (the pairs of each tile that `touches`), and each hit's leaf.
+pub fn streamed(leaf_lists: &[(Vec<u32>, Vec<u32>)], depth: usize, touches: impl Fn(u32, u32) -> bool) -> Streamed {
+    let mut out = Streamed::default();
+    let mut slots = [0u32; 2];
+    for (leaf, ta, tb) in super::broad_phase_system::leaf_tiles(leaf_lists, depth) {
+        let first = slots;
+        out.entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
+        out.entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
+        slots[0] += ta.len() as u32;
+        slots[1] += tb.len() as u32;
+        for (x, &i) in ta.iter().enumerate() {
+            for (y, &j) in tb.iter().enumerate() {
+                if touches(i, j) {
+                    out.hits.push((first[0] + x as u32, first[1] + y as u32));
+                    out.hit_leaves.push(leaf);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// [`streamed`]'s result.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Streamed {
+    pub entries: Vec<(bool, u32, u32)>,
+    pub hits: Vec<(u32, u32)>,
+    pub hit_leaves: Vec<usize>,
+}
+
 /// The filter's decision on each hit, with the steps its walk makes: the
 /// model the co-simulation checks the unit's pairs against. `entries` are
 /// the stream's entries in order, `(object, index, leaf)`; `hits` the
@@ -392,27 +425,7 @@ mod tests {
                 .filter(|(a, b): &(Vec<u32>, Vec<u32>)| !a.is_empty() && !b.is_empty())
                 .collect();
             let touches = |i: u32, j: u32| (i * 7 + j * 3) % 4 == 0;
-            let (mut entries, mut hits, mut hit_leaves) = (Vec::new(), Vec::new(), Vec::new());
-            let mut slots = [0u32; 2];
-            for (leaf, (la, lb)) in leaves.iter().enumerate() {
-                for ta in la.chunks(depth) {
-                    for tb in lb.chunks(depth) {
-                        let first = slots;
-                        entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
-                        entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
-                        slots[0] += ta.len() as u32;
-                        slots[1] += tb.len() as u32;
-                        for (x, &i) in ta.iter().enumerate() {
-                            for (y, &j) in tb.iter().enumerate() {
-                                if touches(i, j) {
-                                    hits.push((first[0] + x as u32, first[1] + y as u32));
-                                    hit_leaves.push(leaf);
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+            let Streamed { entries, hits, hit_leaves } = streamed(&leaves, depth, touches);
             let first_leaf = |i: u32, j: u32| leaves.iter().position(|(la, lb)| la.contains(&i) && lb.contains(&j)).unwrap();
             let mut kept = BTreeSet::new();
             for ((owned, _), leaf) in decide(&entries, &hits).into_iter().zip(&hit_leaves) {
