@@ -227,11 +227,6 @@ impl Args {
         if self.slots.is_some() && !(self.owner_filter || self.broad_phase) {
             return Err("--slots applies to --owner-filter and --broad-phase".into());
         }
-        if self.broad_phase {
-            for &w in &self.width {
-                self.broad_phase_config(w).check().map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
-            }
-        }
         if self.binning_unit || self.broad_phase {
             if !self.pipelines().is_power_of_two() {
                 return Err(format!("--pipelines {}: the binning unit's split rule takes a power of two", self.pipelines()));
@@ -243,6 +238,11 @@ impl Args {
                 for &w in &self.width {
                     self.binning_config(w).check().map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
                 }
+            }
+        }
+        if self.broad_phase {
+            for &w in &self.width {
+                self.broad_phase_config(w).check().map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
             }
         }
         Ok(())

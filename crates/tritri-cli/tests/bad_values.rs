@@ -40,6 +40,9 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["gen", "--owner-filter", "--slots", "0"], "--slots"),
         (&["gen", "--owner-filter", "--slots", "16777217"], "--slots"),
         (&["gen", "--slots", "64"], "--owner-filter"),
+        (&["gen", "--broad-phase", "--depth", "3"], "--depth 3"),
+        (&["gen", "--broad-phase", "--width", "20"], "--width 20"),
+        (&["gen", "--triangles", "64"], "--broad-phase"),
         (&["gen", "--owner-filter", "--width", "16"], "--width"),
     ];
     for (args, option) in cases {
