@@ -5,7 +5,9 @@ every verdict against exact integer arithmetic (exact.py).
 Run with `make SIM=icarus` or `make SIM=verilator` (README.md).
 """
 
+import os
 import random
+import re
 
 import cocotb
 from cocotb.clock import Clock
@@ -13,7 +15,18 @@ from cocotb.triggers import ReadOnly, RisingEdge
 
 from exact import intersects
 
-LATENCY = 30  # the pipeline's README: "verdict after 30 clocks"
+
+def readme_latency(rtl_dir):
+    """The latency the emitted pipeline's README states ("verdict after N clocks")."""
+    path = os.path.join(rtl_dir, "README.md")
+    with open(path, encoding="utf-8") as f:
+        found = re.search(r"verdict after (\d+) clocks", f.read())
+    if not found:
+        raise ValueError(f"{path}: no 'verdict after N clocks' line")
+    return int(found.group(1))
+
+
+LATENCY = readme_latency(os.environ["RTL_DIR"])
 
 
 class PipelineDriver:

@@ -8,7 +8,7 @@ tritri_pipeline_w24_coplanar_orient.v
 tritri_pipeline_w24_coplanar_orientation.v
 tritri_pipeline_w24_decision.v
 tritri_pipeline_w24_degenerate_pair.v
-tritri_pipeline_w24_degenerate_to_decision.v
+tritri_pipeline_w24_degenerate_pair_to_decision.v
 tritri_pipeline_w24_degenerate_to_operands.v
 tritri_pipeline_w24_delay_w1.v
 tritri_pipeline_w24_delay_w2.v
@@ -40,7 +40,6 @@ tritri_pipeline_w24_orient3d.v
 tritri_pipeline_w24_orient3d_edge_ad_delay.v
 tritri_pipeline_w24_pair_valid.v
 tritri_pipeline_w24_plane_side.v
-tritri_pipeline_w24_record_bset.v
 tritri_pipeline_w24_record_id.v
 tritri_pipeline_w24_record_valid.v
 tritri_pipeline_w24_segment_ends_to_decision.v

@@ -653,6 +653,39 @@ module tritri_pipeline_w24_coplanar (
     wire  [48:0] sign_17_value;
     wire  sign_17_negative;
     wire  sign_17_zero;
+    reg  term_q_0_d;
+    wire  term_q_0_q;
+    wire  term_q_0_clock;
+    reg  term_q_1_d;
+    wire  term_q_1_q;
+    wire  term_q_1_clock;
+    reg  term_q_2_d;
+    wire  term_q_2_q;
+    wire  term_q_2_clock;
+    reg  term_q_3_d;
+    wire  term_q_3_q;
+    wire  term_q_3_clock;
+    reg  term_q_4_d;
+    wire  term_q_4_q;
+    wire  term_q_4_clock;
+    reg  term_q_5_d;
+    wire  term_q_5_q;
+    wire  term_q_5_clock;
+    reg  term_q_6_d;
+    wire  term_q_6_q;
+    wire  term_q_6_clock;
+    reg  term_q_7_d;
+    wire  term_q_7_q;
+    wire  term_q_7_clock;
+    reg  term_q_8_d;
+    wire  term_q_8_q;
+    wire  term_q_8_clock;
+    reg  term_q_9_d;
+    wire  term_q_9_q;
+    wire  term_q_9_clock;
+    reg  term_q_10_d;
+    wire  term_q_10_q;
+    wire  term_q_10_clock;
     reg  hit_q_d;
     wire  hit_q_q;
     wire  hit_q_clock;
@@ -1512,6 +1545,61 @@ module tritri_pipeline_w24_coplanar (
         .negative(sign_17_negative),
         .zero(sign_17_zero)
     );
+    tritri_pipeline_w24_dff_1 u_term_q_0(
+        .d(term_q_0_d),
+        .q(term_q_0_q),
+        .clock(term_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_1(
+        .d(term_q_1_d),
+        .q(term_q_1_q),
+        .clock(term_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_2(
+        .d(term_q_2_d),
+        .q(term_q_2_q),
+        .clock(term_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_3(
+        .d(term_q_3_d),
+        .q(term_q_3_q),
+        .clock(term_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_4(
+        .d(term_q_4_d),
+        .q(term_q_4_q),
+        .clock(term_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_5(
+        .d(term_q_5_d),
+        .q(term_q_5_q),
+        .clock(term_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_6(
+        .d(term_q_6_d),
+        .q(term_q_6_q),
+        .clock(term_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_7(
+        .d(term_q_7_d),
+        .q(term_q_7_q),
+        .clock(term_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_8(
+        .d(term_q_8_d),
+        .q(term_q_8_q),
+        .clock(term_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_9(
+        .d(term_q_9_d),
+        .q(term_q_9_q),
+        .clock(term_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_term_q_10(
+        .d(term_q_10_d),
+        .q(term_q_10_q),
+        .clock(term_q_10_clock)
+    );
     tritri_pipeline_w24_dff_1 u_hit_q(
         .d(hit_q_d),
         .q(hit_q_q),
@@ -1965,6 +2053,17 @@ module tritri_pipeline_w24_coplanar (
     assign on_edge_b_7_d = (~compare_5_less || ~compare_3_less) && (compare_5_less || compare_5_equal || compare_3_less || compare_3_equal) && (~compare_14_less || ~compare_12_less) && (compare_14_less || compare_14_equal || compare_12_less || compare_12_equal);
     assign on_edge_a_8_d = (compare_8_less || compare_8_equal || compare_2_less || compare_2_equal) && (~compare_8_less || ~compare_2_less) && (compare_17_less || compare_17_equal || compare_11_less || compare_11_equal) && (~compare_17_less || ~compare_11_less);
     assign on_edge_b_8_d = (~compare_8_less || ~compare_6_less) && (compare_8_less || compare_8_equal || compare_6_less || compare_6_equal) && (~compare_17_less || ~compare_15_less) && (compare_17_less || compare_17_equal || compare_15_less || compare_15_equal);
+    assign term_q_0_clock = clock;
+    assign term_q_1_clock = clock;
+    assign term_q_2_clock = clock;
+    assign term_q_3_clock = clock;
+    assign term_q_4_clock = clock;
+    assign term_q_5_clock = clock;
+    assign term_q_6_clock = clock;
+    assign term_q_7_clock = clock;
+    assign term_q_8_clock = clock;
+    assign term_q_9_clock = clock;
+    assign term_q_10_clock = clock;
     assign hit_q_clock = clock;
     assign hit = hit_q_q;
     always @(*) begin
@@ -2054,69 +2153,33 @@ module tritri_pipeline_w24_coplanar (
             orientation_2_d = t2_normal_negative_2;
             orientation_3_d = t2_normal_zero_2;
         end
+        term_q_0_d = term_q_0_q;
+        term_q_1_d = term_q_1_q;
+        term_q_2_d = term_q_2_q;
+        term_q_3_d = term_q_3_q;
+        term_q_4_d = term_q_4_q;
+        term_q_5_d = term_q_5_q;
+        term_q_6_d = term_q_6_q;
+        term_q_7_d = term_q_7_q;
+        term_q_8_d = term_q_8_q;
+        term_q_9_d = term_q_9_q;
+        term_q_10_d = term_q_10_q;
+        if (advance) begin
+            term_q_0_d = (((sign_0_negative && positive_1) || (positive_0 && sign_1_negative)) && ((sign_9_negative && positive_10) || (positive_9 && sign_10_negative))) || (sign_0_zero && on_edge_a_0_q) || (sign_1_zero && on_edge_a_1_q) || (sign_9_zero && on_edge_b_0_q) || (sign_10_zero && on_edge_b_1_q);
+            term_q_1_d = (((sign_1_negative && positive_2) || (positive_1 && sign_2_negative)) && ((sign_12_negative && positive_13) || (positive_12 && sign_13_negative))) || (sign_1_zero && on_edge_a_1_q) || (sign_2_zero && on_edge_a_2_q) || (sign_12_zero && on_edge_b_3_q) || (sign_13_zero && on_edge_b_4_q);
+            term_q_2_d = (((sign_2_negative && positive_0) || (positive_2 && sign_0_negative)) && ((sign_15_negative && positive_16) || (positive_15 && sign_16_negative))) || (sign_2_zero && on_edge_a_2_q) || (sign_0_zero && on_edge_a_0_q) || (sign_15_zero && on_edge_b_6_q) || (sign_16_zero && on_edge_b_7_q);
+            term_q_3_d = (((sign_3_negative && positive_4) || (positive_3 && sign_4_negative)) && ((sign_10_negative && positive_11) || (positive_10 && sign_11_negative))) || (sign_3_zero && on_edge_a_3_q) || (sign_4_zero && on_edge_a_4_q) || (sign_10_zero && on_edge_b_1_q) || (sign_11_zero && on_edge_b_2_q);
+            term_q_4_d = (((sign_4_negative && positive_5) || (positive_4 && sign_5_negative)) && ((sign_13_negative && positive_14) || (positive_13 && sign_14_negative))) || (sign_4_zero && on_edge_a_4_q) || (sign_5_zero && on_edge_a_5_q) || (sign_13_zero && on_edge_b_4_q) || (sign_14_zero && on_edge_b_5_q);
+            term_q_5_d = (((sign_5_negative && positive_3) || (positive_5 && sign_3_negative)) && ((sign_16_negative && positive_17) || (positive_16 && sign_17_negative))) || (sign_5_zero && on_edge_a_5_q) || (sign_3_zero && on_edge_a_3_q) || (sign_16_zero && on_edge_b_7_q) || (sign_17_zero && on_edge_b_8_q);
+            term_q_6_d = (((sign_6_negative && positive_7) || (positive_6 && sign_7_negative)) && ((sign_11_negative && positive_9) || (positive_11 && sign_9_negative))) || (sign_6_zero && on_edge_a_6_q) || (sign_7_zero && on_edge_a_7_q) || (sign_11_zero && on_edge_b_2_q) || (sign_9_zero && on_edge_b_0_q);
+            term_q_7_d = (((sign_7_negative && positive_8) || (positive_7 && sign_8_negative)) && ((sign_14_negative && positive_12) || (positive_14 && sign_12_negative))) || (sign_7_zero && on_edge_a_7_q) || (sign_8_zero && on_edge_a_8_q) || (sign_14_zero && on_edge_b_5_q) || (sign_12_zero && on_edge_b_3_q);
+            term_q_8_d = (((sign_8_negative && positive_6) || (positive_8 && sign_6_negative)) && ((sign_17_negative && positive_15) || (positive_17 && sign_15_negative))) || (sign_8_zero && on_edge_a_8_q) || (sign_6_zero && on_edge_a_6_q) || (sign_17_zero && on_edge_b_8_q) || (sign_15_zero && on_edge_b_6_q);
+            term_q_9_d = ~orientation_1_q && (sign_0_zero || (sign_0_negative == orientation_0_q)) && (sign_3_zero || (sign_3_negative == orientation_0_q)) && (sign_6_zero || (sign_6_negative == orientation_0_q));
+            term_q_10_d = ~orientation_3_q && (sign_9_zero || (positive_9 == orientation_2_q)) && (sign_12_zero || (positive_12 == orientation_2_q)) && (sign_15_zero || (positive_15 == orientation_2_q));
+        end
         hit_q_d = hit_q_q;
         if (advance) begin
-            hit_q_d = 1'h0;
-            if (((sign_0_negative && positive_1) || (positive_0 && sign_1_negative)) && ((sign_9_negative && positive_10) || (positive_9 && sign_10_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_0_zero && on_edge_a_0_q) || (sign_1_zero && on_edge_a_1_q) || (sign_9_zero && on_edge_b_0_q) || (sign_10_zero && on_edge_b_1_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_1_negative && positive_2) || (positive_1 && sign_2_negative)) && ((sign_12_negative && positive_13) || (positive_12 && sign_13_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_1_zero && on_edge_a_1_q) || (sign_2_zero && on_edge_a_2_q) || (sign_12_zero && on_edge_b_3_q) || (sign_13_zero && on_edge_b_4_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_2_negative && positive_0) || (positive_2 && sign_0_negative)) && ((sign_15_negative && positive_16) || (positive_15 && sign_16_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_2_zero && on_edge_a_2_q) || (sign_0_zero && on_edge_a_0_q) || (sign_15_zero && on_edge_b_6_q) || (sign_16_zero && on_edge_b_7_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_3_negative && positive_4) || (positive_3 && sign_4_negative)) && ((sign_10_negative && positive_11) || (positive_10 && sign_11_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_3_zero && on_edge_a_3_q) || (sign_4_zero && on_edge_a_4_q) || (sign_10_zero && on_edge_b_1_q) || (sign_11_zero && on_edge_b_2_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_4_negative && positive_5) || (positive_4 && sign_5_negative)) && ((sign_13_negative && positive_14) || (positive_13 && sign_14_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_4_zero && on_edge_a_4_q) || (sign_5_zero && on_edge_a_5_q) || (sign_13_zero && on_edge_b_4_q) || (sign_14_zero && on_edge_b_5_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_5_negative && positive_3) || (positive_5 && sign_3_negative)) && ((sign_16_negative && positive_17) || (positive_16 && sign_17_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_5_zero && on_edge_a_5_q) || (sign_3_zero && on_edge_a_3_q) || (sign_16_zero && on_edge_b_7_q) || (sign_17_zero && on_edge_b_8_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_6_negative && positive_7) || (positive_6 && sign_7_negative)) && ((sign_11_negative && positive_9) || (positive_11 && sign_9_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_6_zero && on_edge_a_6_q) || (sign_7_zero && on_edge_a_7_q) || (sign_11_zero && on_edge_b_2_q) || (sign_9_zero && on_edge_b_0_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_7_negative && positive_8) || (positive_7 && sign_8_negative)) && ((sign_14_negative && positive_12) || (positive_14 && sign_12_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_7_zero && on_edge_a_7_q) || (sign_8_zero && on_edge_a_8_q) || (sign_14_zero && on_edge_b_5_q) || (sign_12_zero && on_edge_b_3_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (((sign_8_negative && positive_6) || (positive_8 && sign_6_negative)) && ((sign_17_negative && positive_15) || (positive_17 && sign_15_negative))) begin
-                hit_q_d = 1'h1;
-            end
-            if ((sign_8_zero && on_edge_a_8_q) || (sign_6_zero && on_edge_a_6_q) || (sign_17_zero && on_edge_b_8_q) || (sign_15_zero && on_edge_b_6_q)) begin
-                hit_q_d = 1'h1;
-            end
-            if (~orientation_1_q && (sign_0_zero || (sign_0_negative == orientation_0_q)) && (sign_3_zero || (sign_3_negative == orientation_0_q)) && (sign_6_zero || (sign_6_negative == orientation_0_q))) begin
-                hit_q_d = 1'h1;
-            end
-            if (~orientation_3_q && (sign_9_zero || (positive_9 == orientation_2_q)) && (sign_12_zero || (positive_12 == orientation_2_q)) && (sign_15_zero || (positive_15 == orientation_2_q))) begin
-                hit_q_d = 1'h1;
-            end
+            hit_q_d = term_q_0_q || term_q_1_q || term_q_2_q || term_q_3_q || term_q_4_q || term_q_5_q || term_q_6_q || term_q_7_q || term_q_8_q || term_q_9_q || term_q_10_q;
         end
     end
 

@@ -27,13 +27,14 @@ module tritri_pipeline_w24_coplanar_orientation (
 );
 
     // Update code (custom)
-    // Delay line: 7 stage(s) of 1 bit(s).
+    // Delay line: 8 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
     reg stage_3_q;
     reg stage_4_q;
     reg stage_5_q;
+    reg stage_6_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -41,6 +42,7 @@ module tritri_pipeline_w24_coplanar_orientation (
         stage_3_q = 1'd0;
         stage_4_q = 1'd0;
         stage_5_q = 1'd0;
+        stage_6_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -51,7 +53,8 @@ module tritri_pipeline_w24_coplanar_orientation (
             stage_3_q <= stage_2_q;
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
-            q <= stage_5_q;
+            stage_6_q <= stage_5_q;
+            q <= stage_6_q;
         end
     end
 endmodule  // tritri_pipeline_w24_coplanar_orientation

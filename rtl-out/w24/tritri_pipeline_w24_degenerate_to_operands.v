@@ -2,8 +2,9 @@
 //
 // Filename:   tritri_pipeline_w24_degenerate_to_operands.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (2):
-//             degenerate_to_operands[0], degenerate_to_operands[1].
+// Purpose:    Part of tritri_pipeline_w24. Instances (3):
+//             degenerate_to_operands[0], degenerate_to_operands[1],
+//             record_bset.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -26,7 +27,7 @@ module tritri_pipeline_w24_degenerate_to_operands (
 );
 
     // Update code (custom)
-    // Delay line: 9 stage(s) of 1 bit(s).
+    // Delay line: 10 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -35,6 +36,7 @@ module tritri_pipeline_w24_degenerate_to_operands (
     reg stage_5_q;
     reg stage_6_q;
     reg stage_7_q;
+    reg stage_8_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -44,6 +46,7 @@ module tritri_pipeline_w24_degenerate_to_operands (
         stage_5_q = 1'd0;
         stage_6_q = 1'd0;
         stage_7_q = 1'd0;
+        stage_8_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -56,7 +59,8 @@ module tritri_pipeline_w24_degenerate_to_operands (
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
             stage_7_q <= stage_6_q;
-            q <= stage_7_q;
+            stage_8_q <= stage_7_q;
+            q <= stage_8_q;
         end
     end
 endmodule  // tritri_pipeline_w24_degenerate_to_operands

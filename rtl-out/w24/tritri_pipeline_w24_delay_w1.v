@@ -29,13 +29,16 @@ module tritri_pipeline_w24_delay_w1 (
 );
 
     // Update code (custom)
-    // Delay line: 1 stage(s) of 1 bit(s).
+    // Delay line: 2 stage(s) of 1 bit(s).
+    reg stage_0_q;
     initial begin
+        stage_0_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
-            q <= d;
+            stage_0_q <= d;
+            q <= stage_0_q;
         end
     end
 endmodule  // tritri_pipeline_w24_delay_w1

@@ -26,16 +26,20 @@ module tritri_pipeline_w24_delay_w2 (
 );
 
     // Update code (custom)
-    // Delay line: 5 stage(s) of 2 bit(s).
+    // Delay line: 7 stage(s) of 2 bit(s).
     reg [1:0] stage_0_q;
     reg [1:0] stage_1_q;
     reg [1:0] stage_2_q;
     reg [1:0] stage_3_q;
+    reg [1:0] stage_4_q;
+    reg [1:0] stage_5_q;
     initial begin
         stage_0_q = 2'd0;
         stage_1_q = 2'd0;
         stage_2_q = 2'd0;
         stage_3_q = 2'd0;
+        stage_4_q = 2'd0;
+        stage_5_q = 2'd0;
         q = 2'd0;
     end
     always @(posedge clock) begin
@@ -44,7 +48,9 @@ module tritri_pipeline_w24_delay_w2 (
             stage_1_q <= stage_0_q;
             stage_2_q <= stage_1_q;
             stage_3_q <= stage_2_q;
-            q <= stage_3_q;
+            stage_4_q <= stage_3_q;
+            stage_5_q <= stage_4_q;
+            q <= stage_5_q;
         end
     end
 endmodule  // tritri_pipeline_w24_delay_w2

@@ -37,6 +37,15 @@ module tritri_pipeline_w24_front_end_axis (
     reg  [48:0] magnitude_2_d;
     wire  [48:0] magnitude_2_q;
     wire  magnitude_2_clock;
+    reg  at_least_q_0_d;
+    wire  at_least_q_0_q;
+    wire  at_least_q_0_clock;
+    reg  at_least_q_1_d;
+    wire  at_least_q_1_q;
+    wire  at_least_q_1_clock;
+    reg  at_least_q_2_d;
+    wire  at_least_q_2_q;
+    wire  at_least_q_2_clock;
     reg  [1:0] axis_q_d;
     wire  [1:0] axis_q_q;
     wire  axis_q_clock;
@@ -57,6 +66,21 @@ module tritri_pipeline_w24_front_end_axis (
         .q(magnitude_2_q),
         .clock(magnitude_2_clock)
     );
+    tritri_pipeline_w24_dff_1 u_at_least_q_0(
+        .d(at_least_q_0_d),
+        .q(at_least_q_0_q),
+        .clock(at_least_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_at_least_q_1(
+        .d(at_least_q_1_d),
+        .q(at_least_q_1_q),
+        .clock(at_least_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_at_least_q_2(
+        .d(at_least_q_2_d),
+        .q(at_least_q_2_q),
+        .clock(at_least_q_2_clock)
+    );
     tritri_pipeline_w24_dff_2 u_axis_q(
         .d(axis_q_d),
         .q(axis_q_q),
@@ -67,6 +91,9 @@ module tritri_pipeline_w24_front_end_axis (
     assign magnitude_0_clock = clock;
     assign magnitude_1_clock = clock;
     assign magnitude_2_clock = clock;
+    assign at_least_q_0_clock = clock;
+    assign at_least_q_1_clock = clock;
+    assign at_least_q_2_clock = clock;
     assign axis_q_clock = clock;
     assign axis = axis_q_q;
     always @(*) begin
@@ -97,12 +124,20 @@ module tritri_pipeline_w24_front_end_axis (
                 magnitude_2_d = normal_2;
             end
         end
+        at_least_q_0_d = at_least_q_0_q;
+        at_least_q_1_d = at_least_q_1_q;
+        at_least_q_2_d = at_least_q_2_q;
+        if (advance) begin
+            at_least_q_0_d = magnitude_0_q >= magnitude_1_q;
+            at_least_q_1_d = magnitude_0_q >= magnitude_2_q;
+            at_least_q_2_d = magnitude_1_q >= magnitude_2_q;
+        end
         axis_q_d = axis_q_q;
         if (advance) begin
-            if ((magnitude_0_q >= magnitude_1_q) && (magnitude_0_q >= magnitude_2_q)) begin
+            if (at_least_q_0_q && at_least_q_1_q) begin
                 axis_q_d = 2'h0;
             end
-            else if (magnitude_1_q >= magnitude_2_q) begin
+            else if (at_least_q_2_q) begin
                 axis_q_d = 2'h1;
             end
             else begin

@@ -27,16 +27,19 @@ module tritri_pipeline_w24_front_end_normal_delay (
 );
 
     // Update code (custom)
-    // Delay line: 2 stage(s) of 49 bit(s).
+    // Delay line: 3 stage(s) of 49 bit(s).
     reg [48:0] stage_0_q;
+    reg [48:0] stage_1_q;
     initial begin
         stage_0_q = 49'd0;
+        stage_1_q = 49'd0;
         q = 49'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
             stage_0_q <= d;
-            q <= stage_0_q;
+            stage_1_q <= stage_0_q;
+            q <= stage_1_q;
         end
     end
 endmodule  // tritri_pipeline_w24_front_end_normal_delay

@@ -27,13 +27,15 @@ module tritri_pipeline_w24_front_end_vertex_delay (
 );
 
     // Update code (custom)
-    // Delay line: 7 stage(s) of 24 bit(s).
+    // Delay line: 9 stage(s) of 24 bit(s).
     reg [23:0] stage_0_q;
     reg [23:0] stage_1_q;
     reg [23:0] stage_2_q;
     reg [23:0] stage_3_q;
     reg [23:0] stage_4_q;
     reg [23:0] stage_5_q;
+    reg [23:0] stage_6_q;
+    reg [23:0] stage_7_q;
     initial begin
         stage_0_q = 24'd0;
         stage_1_q = 24'd0;
@@ -41,6 +43,8 @@ module tritri_pipeline_w24_front_end_vertex_delay (
         stage_3_q = 24'd0;
         stage_4_q = 24'd0;
         stage_5_q = 24'd0;
+        stage_6_q = 24'd0;
+        stage_7_q = 24'd0;
         q = 24'd0;
     end
     always @(posedge clock) begin
@@ -51,7 +55,9 @@ module tritri_pipeline_w24_front_end_vertex_delay (
             stage_3_q <= stage_2_q;
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
-            q <= stage_5_q;
+            stage_6_q <= stage_5_q;
+            stage_7_q <= stage_6_q;
+            q <= stage_7_q;
         end
     end
 endmodule  // tritri_pipeline_w24_front_end_vertex_delay

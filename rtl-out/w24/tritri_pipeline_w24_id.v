@@ -25,7 +25,7 @@ module tritri_pipeline_w24_id (
 );
 
     // Update code (custom)
-    // Delay line: 22 stage(s) of 32 bit(s).
+    // Delay line: 26 stage(s) of 32 bit(s).
     reg [31:0] stage_0_q;
     reg [31:0] stage_1_q;
     reg [31:0] stage_2_q;
@@ -47,6 +47,10 @@ module tritri_pipeline_w24_id (
     reg [31:0] stage_18_q;
     reg [31:0] stage_19_q;
     reg [31:0] stage_20_q;
+    reg [31:0] stage_21_q;
+    reg [31:0] stage_22_q;
+    reg [31:0] stage_23_q;
+    reg [31:0] stage_24_q;
     initial begin
         stage_0_q = 32'd0;
         stage_1_q = 32'd0;
@@ -69,6 +73,10 @@ module tritri_pipeline_w24_id (
         stage_18_q = 32'd0;
         stage_19_q = 32'd0;
         stage_20_q = 32'd0;
+        stage_21_q = 32'd0;
+        stage_22_q = 32'd0;
+        stage_23_q = 32'd0;
+        stage_24_q = 32'd0;
         q = 32'd0;
     end
     always @(posedge clock) begin
@@ -94,7 +102,11 @@ module tritri_pipeline_w24_id (
             stage_18_q <= stage_17_q;
             stage_19_q <= stage_18_q;
             stage_20_q <= stage_19_q;
-            q <= stage_20_q;
+            stage_21_q <= stage_20_q;
+            stage_22_q <= stage_21_q;
+            stage_23_q <= stage_22_q;
+            stage_24_q <= stage_23_q;
+            q <= stage_24_q;
         end
     end
 endmodule  // tritri_pipeline_w24_id

@@ -34,10 +34,12 @@ module tritri_pipeline_w24_multiplier_w74 (
     reg signed [24:0] a_q;
     reg signed [48:0] b_q;
     reg signed [73:0] m_q;
+    reg signed [73:0] p_q;
     initial begin
         a_q = 25'd0;
         b_q = 49'd0;
         m_q = 74'd0;
+        p_q = 74'd0;
         product = 74'd0;
     end
     always @(posedge clock) begin
@@ -45,7 +47,8 @@ module tritri_pipeline_w24_multiplier_w74 (
             a_q <= $signed(a);
             b_q <= $signed(b);
             m_q <= $signed({{24{a_q[24]}}, a_q}) * b_q;
-            product <= $unsigned(m_q);
+            p_q <= m_q;
+            product <= $unsigned(p_q);
         end
     end
 endmodule  // tritri_pipeline_w24_multiplier_w74

@@ -91,42 +91,78 @@ module tritri_pipeline_w24_operands (
 );
 
     // Stub signals
-    reg  [2:0] index_q_0_d;
-    wire  [2:0] index_q_0_q;
-    wire  index_q_0_clock;
-    reg  [2:0] index_q_1_d;
-    wire  [2:0] index_q_1_q;
-    wire  index_q_1_clock;
-    reg  [2:0] index_q_2_d;
-    wire  [2:0] index_q_2_q;
-    wire  index_q_2_clock;
-    reg  [2:0] index_q_3_d;
-    wire  [2:0] index_q_3_q;
-    wire  index_q_3_clock;
-    reg  [2:0] index_q_4_d;
-    wire  [2:0] index_q_4_q;
-    wire  index_q_4_clock;
-    reg  [2:0] index_q_5_d;
-    wire  [2:0] index_q_5_q;
-    wire  index_q_5_clock;
-    reg  [2:0] index_q_6_d;
-    wire  [2:0] index_q_6_q;
-    wire  index_q_6_clock;
-    reg  [2:0] index_q_7_d;
-    wire  [2:0] index_q_7_q;
-    wire  index_q_7_clock;
-    reg  [2:0] index_q_8_d;
-    wire  [2:0] index_q_8_q;
-    wire  index_q_8_clock;
-    reg  [2:0] index_q_9_d;
-    wire  [2:0] index_q_9_q;
-    wire  index_q_9_clock;
-    reg  [2:0] index_q_10_d;
-    wire  [2:0] index_q_10_q;
-    wire  index_q_10_clock;
-    reg  [2:0] index_q_11_d;
-    wire  [2:0] index_q_11_q;
-    wire  index_q_11_clock;
+    reg  [1:0] vertex_q_0_d;
+    wire  [1:0] vertex_q_0_q;
+    wire  vertex_q_0_clock;
+    reg  [1:0] vertex_q_1_d;
+    wire  [1:0] vertex_q_1_q;
+    wire  vertex_q_1_clock;
+    reg  [1:0] vertex_q_2_d;
+    wire  [1:0] vertex_q_2_q;
+    wire  vertex_q_2_clock;
+    reg  [1:0] vertex_q_3_d;
+    wire  [1:0] vertex_q_3_q;
+    wire  vertex_q_3_clock;
+    reg  [1:0] vertex_q_4_d;
+    wire  [1:0] vertex_q_4_q;
+    wire  vertex_q_4_clock;
+    reg  [1:0] vertex_q_5_d;
+    wire  [1:0] vertex_q_5_q;
+    wire  vertex_q_5_clock;
+    reg  [1:0] vertex_q_6_d;
+    wire  [1:0] vertex_q_6_q;
+    wire  vertex_q_6_clock;
+    reg  [1:0] vertex_q_7_d;
+    wire  [1:0] vertex_q_7_q;
+    wire  vertex_q_7_clock;
+    reg  [1:0] vertex_q_8_d;
+    wire  [1:0] vertex_q_8_q;
+    wire  vertex_q_8_clock;
+    reg  [1:0] vertex_q_9_d;
+    wire  [1:0] vertex_q_9_q;
+    wire  vertex_q_9_clock;
+    reg  [1:0] vertex_q_10_d;
+    wire  [1:0] vertex_q_10_q;
+    wire  vertex_q_10_clock;
+    reg  [1:0] vertex_q_11_d;
+    wire  [1:0] vertex_q_11_q;
+    wire  vertex_q_11_clock;
+    reg  from_t2_q_0_d;
+    wire  from_t2_q_0_q;
+    wire  from_t2_q_0_clock;
+    reg  from_t2_q_1_d;
+    wire  from_t2_q_1_q;
+    wire  from_t2_q_1_clock;
+    reg  from_t2_q_2_d;
+    wire  from_t2_q_2_q;
+    wire  from_t2_q_2_clock;
+    reg  from_t2_q_3_d;
+    wire  from_t2_q_3_q;
+    wire  from_t2_q_3_clock;
+    reg  from_t2_q_4_d;
+    wire  from_t2_q_4_q;
+    wire  from_t2_q_4_clock;
+    reg  from_t2_q_5_d;
+    wire  from_t2_q_5_q;
+    wire  from_t2_q_5_clock;
+    reg  from_t2_q_6_d;
+    wire  from_t2_q_6_q;
+    wire  from_t2_q_6_clock;
+    reg  from_t2_q_7_d;
+    wire  from_t2_q_7_q;
+    wire  from_t2_q_7_clock;
+    reg  from_t2_q_8_d;
+    wire  from_t2_q_8_q;
+    wire  from_t2_q_8_clock;
+    reg  from_t2_q_9_d;
+    wire  from_t2_q_9_q;
+    wire  from_t2_q_9_clock;
+    reg  from_t2_q_10_d;
+    wire  from_t2_q_10_q;
+    wire  from_t2_q_10_clock;
+    reg  from_t2_q_11_d;
+    wire  from_t2_q_11_q;
+    wire  from_t2_q_11_clock;
     wire  t1_delay_0_clock;
     wire  t1_delay_0_advance;
     wire  [23:0] t1_delay_0_d;
@@ -199,6 +235,258 @@ module tritri_pipeline_w24_operands (
     wire  t2_delay_8_advance;
     wire  [23:0] t2_delay_8_d;
     wire  [23:0] t2_delay_8_q;
+    reg  [23:0] t1_pick_q_0_d;
+    wire  [23:0] t1_pick_q_0_q;
+    wire  t1_pick_q_0_clock;
+    reg  [23:0] t1_pick_q_1_d;
+    wire  [23:0] t1_pick_q_1_q;
+    wire  t1_pick_q_1_clock;
+    reg  [23:0] t1_pick_q_2_d;
+    wire  [23:0] t1_pick_q_2_q;
+    wire  t1_pick_q_2_clock;
+    reg  [23:0] t1_pick_q_3_d;
+    wire  [23:0] t1_pick_q_3_q;
+    wire  t1_pick_q_3_clock;
+    reg  [23:0] t1_pick_q_4_d;
+    wire  [23:0] t1_pick_q_4_q;
+    wire  t1_pick_q_4_clock;
+    reg  [23:0] t1_pick_q_5_d;
+    wire  [23:0] t1_pick_q_5_q;
+    wire  t1_pick_q_5_clock;
+    reg  [23:0] t1_pick_q_6_d;
+    wire  [23:0] t1_pick_q_6_q;
+    wire  t1_pick_q_6_clock;
+    reg  [23:0] t1_pick_q_7_d;
+    wire  [23:0] t1_pick_q_7_q;
+    wire  t1_pick_q_7_clock;
+    reg  [23:0] t1_pick_q_8_d;
+    wire  [23:0] t1_pick_q_8_q;
+    wire  t1_pick_q_8_clock;
+    reg  [23:0] t1_pick_q_9_d;
+    wire  [23:0] t1_pick_q_9_q;
+    wire  t1_pick_q_9_clock;
+    reg  [23:0] t1_pick_q_10_d;
+    wire  [23:0] t1_pick_q_10_q;
+    wire  t1_pick_q_10_clock;
+    reg  [23:0] t1_pick_q_11_d;
+    wire  [23:0] t1_pick_q_11_q;
+    wire  t1_pick_q_11_clock;
+    reg  [23:0] t1_pick_q_12_d;
+    wire  [23:0] t1_pick_q_12_q;
+    wire  t1_pick_q_12_clock;
+    reg  [23:0] t1_pick_q_13_d;
+    wire  [23:0] t1_pick_q_13_q;
+    wire  t1_pick_q_13_clock;
+    reg  [23:0] t1_pick_q_14_d;
+    wire  [23:0] t1_pick_q_14_q;
+    wire  t1_pick_q_14_clock;
+    reg  [23:0] t1_pick_q_15_d;
+    wire  [23:0] t1_pick_q_15_q;
+    wire  t1_pick_q_15_clock;
+    reg  [23:0] t1_pick_q_16_d;
+    wire  [23:0] t1_pick_q_16_q;
+    wire  t1_pick_q_16_clock;
+    reg  [23:0] t1_pick_q_17_d;
+    wire  [23:0] t1_pick_q_17_q;
+    wire  t1_pick_q_17_clock;
+    reg  [23:0] t1_pick_q_18_d;
+    wire  [23:0] t1_pick_q_18_q;
+    wire  t1_pick_q_18_clock;
+    reg  [23:0] t1_pick_q_19_d;
+    wire  [23:0] t1_pick_q_19_q;
+    wire  t1_pick_q_19_clock;
+    reg  [23:0] t1_pick_q_20_d;
+    wire  [23:0] t1_pick_q_20_q;
+    wire  t1_pick_q_20_clock;
+    reg  [23:0] t1_pick_q_21_d;
+    wire  [23:0] t1_pick_q_21_q;
+    wire  t1_pick_q_21_clock;
+    reg  [23:0] t1_pick_q_22_d;
+    wire  [23:0] t1_pick_q_22_q;
+    wire  t1_pick_q_22_clock;
+    reg  [23:0] t1_pick_q_23_d;
+    wire  [23:0] t1_pick_q_23_q;
+    wire  t1_pick_q_23_clock;
+    reg  [23:0] t1_pick_q_24_d;
+    wire  [23:0] t1_pick_q_24_q;
+    wire  t1_pick_q_24_clock;
+    reg  [23:0] t1_pick_q_25_d;
+    wire  [23:0] t1_pick_q_25_q;
+    wire  t1_pick_q_25_clock;
+    reg  [23:0] t1_pick_q_26_d;
+    wire  [23:0] t1_pick_q_26_q;
+    wire  t1_pick_q_26_clock;
+    reg  [23:0] t1_pick_q_27_d;
+    wire  [23:0] t1_pick_q_27_q;
+    wire  t1_pick_q_27_clock;
+    reg  [23:0] t1_pick_q_28_d;
+    wire  [23:0] t1_pick_q_28_q;
+    wire  t1_pick_q_28_clock;
+    reg  [23:0] t1_pick_q_29_d;
+    wire  [23:0] t1_pick_q_29_q;
+    wire  t1_pick_q_29_clock;
+    reg  [23:0] t1_pick_q_30_d;
+    wire  [23:0] t1_pick_q_30_q;
+    wire  t1_pick_q_30_clock;
+    reg  [23:0] t1_pick_q_31_d;
+    wire  [23:0] t1_pick_q_31_q;
+    wire  t1_pick_q_31_clock;
+    reg  [23:0] t1_pick_q_32_d;
+    wire  [23:0] t1_pick_q_32_q;
+    wire  t1_pick_q_32_clock;
+    reg  [23:0] t1_pick_q_33_d;
+    wire  [23:0] t1_pick_q_33_q;
+    wire  t1_pick_q_33_clock;
+    reg  [23:0] t1_pick_q_34_d;
+    wire  [23:0] t1_pick_q_34_q;
+    wire  t1_pick_q_34_clock;
+    reg  [23:0] t1_pick_q_35_d;
+    wire  [23:0] t1_pick_q_35_q;
+    wire  t1_pick_q_35_clock;
+    reg  [23:0] t2_pick_q_0_d;
+    wire  [23:0] t2_pick_q_0_q;
+    wire  t2_pick_q_0_clock;
+    reg  [23:0] t2_pick_q_1_d;
+    wire  [23:0] t2_pick_q_1_q;
+    wire  t2_pick_q_1_clock;
+    reg  [23:0] t2_pick_q_2_d;
+    wire  [23:0] t2_pick_q_2_q;
+    wire  t2_pick_q_2_clock;
+    reg  [23:0] t2_pick_q_3_d;
+    wire  [23:0] t2_pick_q_3_q;
+    wire  t2_pick_q_3_clock;
+    reg  [23:0] t2_pick_q_4_d;
+    wire  [23:0] t2_pick_q_4_q;
+    wire  t2_pick_q_4_clock;
+    reg  [23:0] t2_pick_q_5_d;
+    wire  [23:0] t2_pick_q_5_q;
+    wire  t2_pick_q_5_clock;
+    reg  [23:0] t2_pick_q_6_d;
+    wire  [23:0] t2_pick_q_6_q;
+    wire  t2_pick_q_6_clock;
+    reg  [23:0] t2_pick_q_7_d;
+    wire  [23:0] t2_pick_q_7_q;
+    wire  t2_pick_q_7_clock;
+    reg  [23:0] t2_pick_q_8_d;
+    wire  [23:0] t2_pick_q_8_q;
+    wire  t2_pick_q_8_clock;
+    reg  [23:0] t2_pick_q_9_d;
+    wire  [23:0] t2_pick_q_9_q;
+    wire  t2_pick_q_9_clock;
+    reg  [23:0] t2_pick_q_10_d;
+    wire  [23:0] t2_pick_q_10_q;
+    wire  t2_pick_q_10_clock;
+    reg  [23:0] t2_pick_q_11_d;
+    wire  [23:0] t2_pick_q_11_q;
+    wire  t2_pick_q_11_clock;
+    reg  [23:0] t2_pick_q_12_d;
+    wire  [23:0] t2_pick_q_12_q;
+    wire  t2_pick_q_12_clock;
+    reg  [23:0] t2_pick_q_13_d;
+    wire  [23:0] t2_pick_q_13_q;
+    wire  t2_pick_q_13_clock;
+    reg  [23:0] t2_pick_q_14_d;
+    wire  [23:0] t2_pick_q_14_q;
+    wire  t2_pick_q_14_clock;
+    reg  [23:0] t2_pick_q_15_d;
+    wire  [23:0] t2_pick_q_15_q;
+    wire  t2_pick_q_15_clock;
+    reg  [23:0] t2_pick_q_16_d;
+    wire  [23:0] t2_pick_q_16_q;
+    wire  t2_pick_q_16_clock;
+    reg  [23:0] t2_pick_q_17_d;
+    wire  [23:0] t2_pick_q_17_q;
+    wire  t2_pick_q_17_clock;
+    reg  [23:0] t2_pick_q_18_d;
+    wire  [23:0] t2_pick_q_18_q;
+    wire  t2_pick_q_18_clock;
+    reg  [23:0] t2_pick_q_19_d;
+    wire  [23:0] t2_pick_q_19_q;
+    wire  t2_pick_q_19_clock;
+    reg  [23:0] t2_pick_q_20_d;
+    wire  [23:0] t2_pick_q_20_q;
+    wire  t2_pick_q_20_clock;
+    reg  [23:0] t2_pick_q_21_d;
+    wire  [23:0] t2_pick_q_21_q;
+    wire  t2_pick_q_21_clock;
+    reg  [23:0] t2_pick_q_22_d;
+    wire  [23:0] t2_pick_q_22_q;
+    wire  t2_pick_q_22_clock;
+    reg  [23:0] t2_pick_q_23_d;
+    wire  [23:0] t2_pick_q_23_q;
+    wire  t2_pick_q_23_clock;
+    reg  [23:0] t2_pick_q_24_d;
+    wire  [23:0] t2_pick_q_24_q;
+    wire  t2_pick_q_24_clock;
+    reg  [23:0] t2_pick_q_25_d;
+    wire  [23:0] t2_pick_q_25_q;
+    wire  t2_pick_q_25_clock;
+    reg  [23:0] t2_pick_q_26_d;
+    wire  [23:0] t2_pick_q_26_q;
+    wire  t2_pick_q_26_clock;
+    reg  [23:0] t2_pick_q_27_d;
+    wire  [23:0] t2_pick_q_27_q;
+    wire  t2_pick_q_27_clock;
+    reg  [23:0] t2_pick_q_28_d;
+    wire  [23:0] t2_pick_q_28_q;
+    wire  t2_pick_q_28_clock;
+    reg  [23:0] t2_pick_q_29_d;
+    wire  [23:0] t2_pick_q_29_q;
+    wire  t2_pick_q_29_clock;
+    reg  [23:0] t2_pick_q_30_d;
+    wire  [23:0] t2_pick_q_30_q;
+    wire  t2_pick_q_30_clock;
+    reg  [23:0] t2_pick_q_31_d;
+    wire  [23:0] t2_pick_q_31_q;
+    wire  t2_pick_q_31_clock;
+    reg  [23:0] t2_pick_q_32_d;
+    wire  [23:0] t2_pick_q_32_q;
+    wire  t2_pick_q_32_clock;
+    reg  [23:0] t2_pick_q_33_d;
+    wire  [23:0] t2_pick_q_33_q;
+    wire  t2_pick_q_33_clock;
+    reg  [23:0] t2_pick_q_34_d;
+    wire  [23:0] t2_pick_q_34_q;
+    wire  t2_pick_q_34_clock;
+    reg  [23:0] t2_pick_q_35_d;
+    wire  [23:0] t2_pick_q_35_q;
+    wire  t2_pick_q_35_clock;
+    reg  from_t2_2q_0_d;
+    wire  from_t2_2q_0_q;
+    wire  from_t2_2q_0_clock;
+    reg  from_t2_2q_1_d;
+    wire  from_t2_2q_1_q;
+    wire  from_t2_2q_1_clock;
+    reg  from_t2_2q_2_d;
+    wire  from_t2_2q_2_q;
+    wire  from_t2_2q_2_clock;
+    reg  from_t2_2q_3_d;
+    wire  from_t2_2q_3_q;
+    wire  from_t2_2q_3_clock;
+    reg  from_t2_2q_4_d;
+    wire  from_t2_2q_4_q;
+    wire  from_t2_2q_4_clock;
+    reg  from_t2_2q_5_d;
+    wire  from_t2_2q_5_q;
+    wire  from_t2_2q_5_clock;
+    reg  from_t2_2q_6_d;
+    wire  from_t2_2q_6_q;
+    wire  from_t2_2q_6_clock;
+    reg  from_t2_2q_7_d;
+    wire  from_t2_2q_7_q;
+    wire  from_t2_2q_7_clock;
+    reg  from_t2_2q_8_d;
+    wire  from_t2_2q_8_q;
+    wire  from_t2_2q_8_clock;
+    reg  from_t2_2q_9_d;
+    wire  from_t2_2q_9_q;
+    wire  from_t2_2q_9_clock;
+    reg  from_t2_2q_10_d;
+    wire  from_t2_2q_10_q;
+    wire  from_t2_2q_10_clock;
+    reg  from_t2_2q_11_d;
+    wire  from_t2_2q_11_q;
+    wire  from_t2_2q_11_clock;
     reg  [23:0] operands_q_0_d;
     wire  [23:0] operands_q_0_q;
     wire  operands_q_0_clock;
@@ -308,66 +596,140 @@ module tritri_pipeline_w24_operands (
     wire  [23:0] operands_q_35_q;
     wire  operands_q_35_clock;
 
+    // Local signals
+    reg  [2:0] index_0;
+    reg  [2:0] index_1;
+    reg  [2:0] index_2;
+    reg  [2:0] index_3;
+    reg  [2:0] index_4;
+    reg  [2:0] index_5;
+    reg  [2:0] index_6;
+    reg  [2:0] index_7;
+    reg  [2:0] index_8;
+    reg  [2:0] index_9;
+    reg  [2:0] index_10;
+    reg  [2:0] index_11;
+
     // Sub module instances
-    tritri_pipeline_w24_dff_3 u_index_q_0(
-        .d(index_q_0_d),
-        .q(index_q_0_q),
-        .clock(index_q_0_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_0(
+        .d(vertex_q_0_d),
+        .q(vertex_q_0_q),
+        .clock(vertex_q_0_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_1(
-        .d(index_q_1_d),
-        .q(index_q_1_q),
-        .clock(index_q_1_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_1(
+        .d(vertex_q_1_d),
+        .q(vertex_q_1_q),
+        .clock(vertex_q_1_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_2(
-        .d(index_q_2_d),
-        .q(index_q_2_q),
-        .clock(index_q_2_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_2(
+        .d(vertex_q_2_d),
+        .q(vertex_q_2_q),
+        .clock(vertex_q_2_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_3(
-        .d(index_q_3_d),
-        .q(index_q_3_q),
-        .clock(index_q_3_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_3(
+        .d(vertex_q_3_d),
+        .q(vertex_q_3_q),
+        .clock(vertex_q_3_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_4(
-        .d(index_q_4_d),
-        .q(index_q_4_q),
-        .clock(index_q_4_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_4(
+        .d(vertex_q_4_d),
+        .q(vertex_q_4_q),
+        .clock(vertex_q_4_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_5(
-        .d(index_q_5_d),
-        .q(index_q_5_q),
-        .clock(index_q_5_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_5(
+        .d(vertex_q_5_d),
+        .q(vertex_q_5_q),
+        .clock(vertex_q_5_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_6(
-        .d(index_q_6_d),
-        .q(index_q_6_q),
-        .clock(index_q_6_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_6(
+        .d(vertex_q_6_d),
+        .q(vertex_q_6_q),
+        .clock(vertex_q_6_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_7(
-        .d(index_q_7_d),
-        .q(index_q_7_q),
-        .clock(index_q_7_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_7(
+        .d(vertex_q_7_d),
+        .q(vertex_q_7_q),
+        .clock(vertex_q_7_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_8(
-        .d(index_q_8_d),
-        .q(index_q_8_q),
-        .clock(index_q_8_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_8(
+        .d(vertex_q_8_d),
+        .q(vertex_q_8_q),
+        .clock(vertex_q_8_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_9(
-        .d(index_q_9_d),
-        .q(index_q_9_q),
-        .clock(index_q_9_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_9(
+        .d(vertex_q_9_d),
+        .q(vertex_q_9_q),
+        .clock(vertex_q_9_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_10(
-        .d(index_q_10_d),
-        .q(index_q_10_q),
-        .clock(index_q_10_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_10(
+        .d(vertex_q_10_d),
+        .q(vertex_q_10_q),
+        .clock(vertex_q_10_clock)
     );
-    tritri_pipeline_w24_dff_3 u_index_q_11(
-        .d(index_q_11_d),
-        .q(index_q_11_q),
-        .clock(index_q_11_clock)
+    tritri_pipeline_w24_dff_2 u_vertex_q_11(
+        .d(vertex_q_11_d),
+        .q(vertex_q_11_q),
+        .clock(vertex_q_11_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_0(
+        .d(from_t2_q_0_d),
+        .q(from_t2_q_0_q),
+        .clock(from_t2_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_1(
+        .d(from_t2_q_1_d),
+        .q(from_t2_q_1_q),
+        .clock(from_t2_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_2(
+        .d(from_t2_q_2_d),
+        .q(from_t2_q_2_q),
+        .clock(from_t2_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_3(
+        .d(from_t2_q_3_d),
+        .q(from_t2_q_3_q),
+        .clock(from_t2_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_4(
+        .d(from_t2_q_4_d),
+        .q(from_t2_q_4_q),
+        .clock(from_t2_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_5(
+        .d(from_t2_q_5_d),
+        .q(from_t2_q_5_q),
+        .clock(from_t2_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_6(
+        .d(from_t2_q_6_d),
+        .q(from_t2_q_6_q),
+        .clock(from_t2_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_7(
+        .d(from_t2_q_7_d),
+        .q(from_t2_q_7_q),
+        .clock(from_t2_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_8(
+        .d(from_t2_q_8_d),
+        .q(from_t2_q_8_q),
+        .clock(from_t2_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_9(
+        .d(from_t2_q_9_d),
+        .q(from_t2_q_9_q),
+        .clock(from_t2_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_10(
+        .d(from_t2_q_10_d),
+        .q(from_t2_q_10_q),
+        .clock(from_t2_q_10_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_q_11(
+        .d(from_t2_q_11_d),
+        .q(from_t2_q_11_q),
+        .clock(from_t2_q_11_clock)
     );
     tritri_pipeline_w24_input_vertices u_t1_delay_0(
         .clock(t1_delay_0_clock),
@@ -476,6 +838,426 @@ module tritri_pipeline_w24_operands (
         .advance(t2_delay_8_advance),
         .d(t2_delay_8_d),
         .q(t2_delay_8_q)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_0(
+        .d(t1_pick_q_0_d),
+        .q(t1_pick_q_0_q),
+        .clock(t1_pick_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_1(
+        .d(t1_pick_q_1_d),
+        .q(t1_pick_q_1_q),
+        .clock(t1_pick_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_2(
+        .d(t1_pick_q_2_d),
+        .q(t1_pick_q_2_q),
+        .clock(t1_pick_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_3(
+        .d(t1_pick_q_3_d),
+        .q(t1_pick_q_3_q),
+        .clock(t1_pick_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_4(
+        .d(t1_pick_q_4_d),
+        .q(t1_pick_q_4_q),
+        .clock(t1_pick_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_5(
+        .d(t1_pick_q_5_d),
+        .q(t1_pick_q_5_q),
+        .clock(t1_pick_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_6(
+        .d(t1_pick_q_6_d),
+        .q(t1_pick_q_6_q),
+        .clock(t1_pick_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_7(
+        .d(t1_pick_q_7_d),
+        .q(t1_pick_q_7_q),
+        .clock(t1_pick_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_8(
+        .d(t1_pick_q_8_d),
+        .q(t1_pick_q_8_q),
+        .clock(t1_pick_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_9(
+        .d(t1_pick_q_9_d),
+        .q(t1_pick_q_9_q),
+        .clock(t1_pick_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_10(
+        .d(t1_pick_q_10_d),
+        .q(t1_pick_q_10_q),
+        .clock(t1_pick_q_10_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_11(
+        .d(t1_pick_q_11_d),
+        .q(t1_pick_q_11_q),
+        .clock(t1_pick_q_11_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_12(
+        .d(t1_pick_q_12_d),
+        .q(t1_pick_q_12_q),
+        .clock(t1_pick_q_12_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_13(
+        .d(t1_pick_q_13_d),
+        .q(t1_pick_q_13_q),
+        .clock(t1_pick_q_13_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_14(
+        .d(t1_pick_q_14_d),
+        .q(t1_pick_q_14_q),
+        .clock(t1_pick_q_14_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_15(
+        .d(t1_pick_q_15_d),
+        .q(t1_pick_q_15_q),
+        .clock(t1_pick_q_15_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_16(
+        .d(t1_pick_q_16_d),
+        .q(t1_pick_q_16_q),
+        .clock(t1_pick_q_16_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_17(
+        .d(t1_pick_q_17_d),
+        .q(t1_pick_q_17_q),
+        .clock(t1_pick_q_17_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_18(
+        .d(t1_pick_q_18_d),
+        .q(t1_pick_q_18_q),
+        .clock(t1_pick_q_18_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_19(
+        .d(t1_pick_q_19_d),
+        .q(t1_pick_q_19_q),
+        .clock(t1_pick_q_19_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_20(
+        .d(t1_pick_q_20_d),
+        .q(t1_pick_q_20_q),
+        .clock(t1_pick_q_20_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_21(
+        .d(t1_pick_q_21_d),
+        .q(t1_pick_q_21_q),
+        .clock(t1_pick_q_21_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_22(
+        .d(t1_pick_q_22_d),
+        .q(t1_pick_q_22_q),
+        .clock(t1_pick_q_22_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_23(
+        .d(t1_pick_q_23_d),
+        .q(t1_pick_q_23_q),
+        .clock(t1_pick_q_23_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_24(
+        .d(t1_pick_q_24_d),
+        .q(t1_pick_q_24_q),
+        .clock(t1_pick_q_24_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_25(
+        .d(t1_pick_q_25_d),
+        .q(t1_pick_q_25_q),
+        .clock(t1_pick_q_25_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_26(
+        .d(t1_pick_q_26_d),
+        .q(t1_pick_q_26_q),
+        .clock(t1_pick_q_26_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_27(
+        .d(t1_pick_q_27_d),
+        .q(t1_pick_q_27_q),
+        .clock(t1_pick_q_27_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_28(
+        .d(t1_pick_q_28_d),
+        .q(t1_pick_q_28_q),
+        .clock(t1_pick_q_28_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_29(
+        .d(t1_pick_q_29_d),
+        .q(t1_pick_q_29_q),
+        .clock(t1_pick_q_29_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_30(
+        .d(t1_pick_q_30_d),
+        .q(t1_pick_q_30_q),
+        .clock(t1_pick_q_30_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_31(
+        .d(t1_pick_q_31_d),
+        .q(t1_pick_q_31_q),
+        .clock(t1_pick_q_31_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_32(
+        .d(t1_pick_q_32_d),
+        .q(t1_pick_q_32_q),
+        .clock(t1_pick_q_32_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_33(
+        .d(t1_pick_q_33_d),
+        .q(t1_pick_q_33_q),
+        .clock(t1_pick_q_33_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_34(
+        .d(t1_pick_q_34_d),
+        .q(t1_pick_q_34_q),
+        .clock(t1_pick_q_34_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_pick_q_35(
+        .d(t1_pick_q_35_d),
+        .q(t1_pick_q_35_q),
+        .clock(t1_pick_q_35_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_0(
+        .d(t2_pick_q_0_d),
+        .q(t2_pick_q_0_q),
+        .clock(t2_pick_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_1(
+        .d(t2_pick_q_1_d),
+        .q(t2_pick_q_1_q),
+        .clock(t2_pick_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_2(
+        .d(t2_pick_q_2_d),
+        .q(t2_pick_q_2_q),
+        .clock(t2_pick_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_3(
+        .d(t2_pick_q_3_d),
+        .q(t2_pick_q_3_q),
+        .clock(t2_pick_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_4(
+        .d(t2_pick_q_4_d),
+        .q(t2_pick_q_4_q),
+        .clock(t2_pick_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_5(
+        .d(t2_pick_q_5_d),
+        .q(t2_pick_q_5_q),
+        .clock(t2_pick_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_6(
+        .d(t2_pick_q_6_d),
+        .q(t2_pick_q_6_q),
+        .clock(t2_pick_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_7(
+        .d(t2_pick_q_7_d),
+        .q(t2_pick_q_7_q),
+        .clock(t2_pick_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_8(
+        .d(t2_pick_q_8_d),
+        .q(t2_pick_q_8_q),
+        .clock(t2_pick_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_9(
+        .d(t2_pick_q_9_d),
+        .q(t2_pick_q_9_q),
+        .clock(t2_pick_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_10(
+        .d(t2_pick_q_10_d),
+        .q(t2_pick_q_10_q),
+        .clock(t2_pick_q_10_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_11(
+        .d(t2_pick_q_11_d),
+        .q(t2_pick_q_11_q),
+        .clock(t2_pick_q_11_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_12(
+        .d(t2_pick_q_12_d),
+        .q(t2_pick_q_12_q),
+        .clock(t2_pick_q_12_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_13(
+        .d(t2_pick_q_13_d),
+        .q(t2_pick_q_13_q),
+        .clock(t2_pick_q_13_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_14(
+        .d(t2_pick_q_14_d),
+        .q(t2_pick_q_14_q),
+        .clock(t2_pick_q_14_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_15(
+        .d(t2_pick_q_15_d),
+        .q(t2_pick_q_15_q),
+        .clock(t2_pick_q_15_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_16(
+        .d(t2_pick_q_16_d),
+        .q(t2_pick_q_16_q),
+        .clock(t2_pick_q_16_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_17(
+        .d(t2_pick_q_17_d),
+        .q(t2_pick_q_17_q),
+        .clock(t2_pick_q_17_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_18(
+        .d(t2_pick_q_18_d),
+        .q(t2_pick_q_18_q),
+        .clock(t2_pick_q_18_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_19(
+        .d(t2_pick_q_19_d),
+        .q(t2_pick_q_19_q),
+        .clock(t2_pick_q_19_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_20(
+        .d(t2_pick_q_20_d),
+        .q(t2_pick_q_20_q),
+        .clock(t2_pick_q_20_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_21(
+        .d(t2_pick_q_21_d),
+        .q(t2_pick_q_21_q),
+        .clock(t2_pick_q_21_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_22(
+        .d(t2_pick_q_22_d),
+        .q(t2_pick_q_22_q),
+        .clock(t2_pick_q_22_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_23(
+        .d(t2_pick_q_23_d),
+        .q(t2_pick_q_23_q),
+        .clock(t2_pick_q_23_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_24(
+        .d(t2_pick_q_24_d),
+        .q(t2_pick_q_24_q),
+        .clock(t2_pick_q_24_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_25(
+        .d(t2_pick_q_25_d),
+        .q(t2_pick_q_25_q),
+        .clock(t2_pick_q_25_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_26(
+        .d(t2_pick_q_26_d),
+        .q(t2_pick_q_26_q),
+        .clock(t2_pick_q_26_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_27(
+        .d(t2_pick_q_27_d),
+        .q(t2_pick_q_27_q),
+        .clock(t2_pick_q_27_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_28(
+        .d(t2_pick_q_28_d),
+        .q(t2_pick_q_28_q),
+        .clock(t2_pick_q_28_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_29(
+        .d(t2_pick_q_29_d),
+        .q(t2_pick_q_29_q),
+        .clock(t2_pick_q_29_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_30(
+        .d(t2_pick_q_30_d),
+        .q(t2_pick_q_30_q),
+        .clock(t2_pick_q_30_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_31(
+        .d(t2_pick_q_31_d),
+        .q(t2_pick_q_31_q),
+        .clock(t2_pick_q_31_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_32(
+        .d(t2_pick_q_32_d),
+        .q(t2_pick_q_32_q),
+        .clock(t2_pick_q_32_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_33(
+        .d(t2_pick_q_33_d),
+        .q(t2_pick_q_33_q),
+        .clock(t2_pick_q_33_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_34(
+        .d(t2_pick_q_34_d),
+        .q(t2_pick_q_34_q),
+        .clock(t2_pick_q_34_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_pick_q_35(
+        .d(t2_pick_q_35_d),
+        .q(t2_pick_q_35_q),
+        .clock(t2_pick_q_35_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_0(
+        .d(from_t2_2q_0_d),
+        .q(from_t2_2q_0_q),
+        .clock(from_t2_2q_0_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_1(
+        .d(from_t2_2q_1_d),
+        .q(from_t2_2q_1_q),
+        .clock(from_t2_2q_1_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_2(
+        .d(from_t2_2q_2_d),
+        .q(from_t2_2q_2_q),
+        .clock(from_t2_2q_2_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_3(
+        .d(from_t2_2q_3_d),
+        .q(from_t2_2q_3_q),
+        .clock(from_t2_2q_3_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_4(
+        .d(from_t2_2q_4_d),
+        .q(from_t2_2q_4_q),
+        .clock(from_t2_2q_4_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_5(
+        .d(from_t2_2q_5_d),
+        .q(from_t2_2q_5_q),
+        .clock(from_t2_2q_5_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_6(
+        .d(from_t2_2q_6_d),
+        .q(from_t2_2q_6_q),
+        .clock(from_t2_2q_6_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_7(
+        .d(from_t2_2q_7_d),
+        .q(from_t2_2q_7_q),
+        .clock(from_t2_2q_7_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_8(
+        .d(from_t2_2q_8_d),
+        .q(from_t2_2q_8_q),
+        .clock(from_t2_2q_8_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_9(
+        .d(from_t2_2q_9_d),
+        .q(from_t2_2q_9_q),
+        .clock(from_t2_2q_9_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_10(
+        .d(from_t2_2q_10_d),
+        .q(from_t2_2q_10_q),
+        .clock(from_t2_2q_10_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_from_t2_2q_11(
+        .d(from_t2_2q_11_d),
+        .q(from_t2_2q_11_q),
+        .clock(from_t2_2q_11_clock)
     );
     tritri_pipeline_w24_dff_24 u_operands_q_0(
         .d(operands_q_0_d),
@@ -659,18 +1441,42 @@ module tritri_pipeline_w24_operands (
     );
 
     // Update code
-    assign index_q_0_clock = clock;
-    assign index_q_1_clock = clock;
-    assign index_q_2_clock = clock;
-    assign index_q_3_clock = clock;
-    assign index_q_4_clock = clock;
-    assign index_q_5_clock = clock;
-    assign index_q_6_clock = clock;
-    assign index_q_7_clock = clock;
-    assign index_q_8_clock = clock;
-    assign index_q_9_clock = clock;
-    assign index_q_10_clock = clock;
-    assign index_q_11_clock = clock;
+    assign vertex_q_0_clock = clock;
+    assign from_t2_q_0_clock = clock;
+    assign from_t2_2q_0_clock = clock;
+    assign vertex_q_1_clock = clock;
+    assign from_t2_q_1_clock = clock;
+    assign from_t2_2q_1_clock = clock;
+    assign vertex_q_2_clock = clock;
+    assign from_t2_q_2_clock = clock;
+    assign from_t2_2q_2_clock = clock;
+    assign vertex_q_3_clock = clock;
+    assign from_t2_q_3_clock = clock;
+    assign from_t2_2q_3_clock = clock;
+    assign vertex_q_4_clock = clock;
+    assign from_t2_q_4_clock = clock;
+    assign from_t2_2q_4_clock = clock;
+    assign vertex_q_5_clock = clock;
+    assign from_t2_q_5_clock = clock;
+    assign from_t2_2q_5_clock = clock;
+    assign vertex_q_6_clock = clock;
+    assign from_t2_q_6_clock = clock;
+    assign from_t2_2q_6_clock = clock;
+    assign vertex_q_7_clock = clock;
+    assign from_t2_q_7_clock = clock;
+    assign from_t2_2q_7_clock = clock;
+    assign vertex_q_8_clock = clock;
+    assign from_t2_q_8_clock = clock;
+    assign from_t2_2q_8_clock = clock;
+    assign vertex_q_9_clock = clock;
+    assign from_t2_q_9_clock = clock;
+    assign from_t2_2q_9_clock = clock;
+    assign vertex_q_10_clock = clock;
+    assign from_t2_q_10_clock = clock;
+    assign from_t2_2q_10_clock = clock;
+    assign vertex_q_11_clock = clock;
+    assign from_t2_q_11_clock = clock;
+    assign from_t2_2q_11_clock = clock;
     assign t1_delay_0_clock = clock;
     assign t1_delay_0_advance = advance;
     assign t1_delay_0_d = t1_vertices_0;
@@ -725,903 +1531,1237 @@ module tritri_pipeline_w24_operands (
     assign t2_delay_8_clock = clock;
     assign t2_delay_8_advance = advance;
     assign t2_delay_8_d = t2_vertices_8;
+    assign t1_pick_q_0_clock = clock;
+    assign t2_pick_q_0_clock = clock;
     assign operands_q_0_clock = clock;
     assign operands_0 = operands_q_0_q;
+    assign t1_pick_q_1_clock = clock;
+    assign t2_pick_q_1_clock = clock;
     assign operands_q_1_clock = clock;
     assign operands_1 = operands_q_1_q;
+    assign t1_pick_q_2_clock = clock;
+    assign t2_pick_q_2_clock = clock;
     assign operands_q_2_clock = clock;
     assign operands_2 = operands_q_2_q;
+    assign t1_pick_q_3_clock = clock;
+    assign t2_pick_q_3_clock = clock;
     assign operands_q_3_clock = clock;
     assign operands_3 = operands_q_3_q;
+    assign t1_pick_q_4_clock = clock;
+    assign t2_pick_q_4_clock = clock;
     assign operands_q_4_clock = clock;
     assign operands_4 = operands_q_4_q;
+    assign t1_pick_q_5_clock = clock;
+    assign t2_pick_q_5_clock = clock;
     assign operands_q_5_clock = clock;
     assign operands_5 = operands_q_5_q;
+    assign t1_pick_q_6_clock = clock;
+    assign t2_pick_q_6_clock = clock;
     assign operands_q_6_clock = clock;
     assign operands_6 = operands_q_6_q;
+    assign t1_pick_q_7_clock = clock;
+    assign t2_pick_q_7_clock = clock;
     assign operands_q_7_clock = clock;
     assign operands_7 = operands_q_7_q;
+    assign t1_pick_q_8_clock = clock;
+    assign t2_pick_q_8_clock = clock;
     assign operands_q_8_clock = clock;
     assign operands_8 = operands_q_8_q;
+    assign t1_pick_q_9_clock = clock;
+    assign t2_pick_q_9_clock = clock;
     assign operands_q_9_clock = clock;
     assign operands_9 = operands_q_9_q;
+    assign t1_pick_q_10_clock = clock;
+    assign t2_pick_q_10_clock = clock;
     assign operands_q_10_clock = clock;
     assign operands_10 = operands_q_10_q;
+    assign t1_pick_q_11_clock = clock;
+    assign t2_pick_q_11_clock = clock;
     assign operands_q_11_clock = clock;
     assign operands_11 = operands_q_11_q;
+    assign t1_pick_q_12_clock = clock;
+    assign t2_pick_q_12_clock = clock;
     assign operands_q_12_clock = clock;
     assign operands_12 = operands_q_12_q;
+    assign t1_pick_q_13_clock = clock;
+    assign t2_pick_q_13_clock = clock;
     assign operands_q_13_clock = clock;
     assign operands_13 = operands_q_13_q;
+    assign t1_pick_q_14_clock = clock;
+    assign t2_pick_q_14_clock = clock;
     assign operands_q_14_clock = clock;
     assign operands_14 = operands_q_14_q;
+    assign t1_pick_q_15_clock = clock;
+    assign t2_pick_q_15_clock = clock;
     assign operands_q_15_clock = clock;
     assign operands_15 = operands_q_15_q;
+    assign t1_pick_q_16_clock = clock;
+    assign t2_pick_q_16_clock = clock;
     assign operands_q_16_clock = clock;
     assign operands_16 = operands_q_16_q;
+    assign t1_pick_q_17_clock = clock;
+    assign t2_pick_q_17_clock = clock;
     assign operands_q_17_clock = clock;
     assign operands_17 = operands_q_17_q;
+    assign t1_pick_q_18_clock = clock;
+    assign t2_pick_q_18_clock = clock;
     assign operands_q_18_clock = clock;
     assign operands_18 = operands_q_18_q;
+    assign t1_pick_q_19_clock = clock;
+    assign t2_pick_q_19_clock = clock;
     assign operands_q_19_clock = clock;
     assign operands_19 = operands_q_19_q;
+    assign t1_pick_q_20_clock = clock;
+    assign t2_pick_q_20_clock = clock;
     assign operands_q_20_clock = clock;
     assign operands_20 = operands_q_20_q;
+    assign t1_pick_q_21_clock = clock;
+    assign t2_pick_q_21_clock = clock;
     assign operands_q_21_clock = clock;
     assign operands_21 = operands_q_21_q;
+    assign t1_pick_q_22_clock = clock;
+    assign t2_pick_q_22_clock = clock;
     assign operands_q_22_clock = clock;
     assign operands_22 = operands_q_22_q;
+    assign t1_pick_q_23_clock = clock;
+    assign t2_pick_q_23_clock = clock;
     assign operands_q_23_clock = clock;
     assign operands_23 = operands_q_23_q;
+    assign t1_pick_q_24_clock = clock;
+    assign t2_pick_q_24_clock = clock;
     assign operands_q_24_clock = clock;
     assign operands_24 = operands_q_24_q;
+    assign t1_pick_q_25_clock = clock;
+    assign t2_pick_q_25_clock = clock;
     assign operands_q_25_clock = clock;
     assign operands_25 = operands_q_25_q;
+    assign t1_pick_q_26_clock = clock;
+    assign t2_pick_q_26_clock = clock;
     assign operands_q_26_clock = clock;
     assign operands_26 = operands_q_26_q;
+    assign t1_pick_q_27_clock = clock;
+    assign t2_pick_q_27_clock = clock;
     assign operands_q_27_clock = clock;
     assign operands_27 = operands_q_27_q;
+    assign t1_pick_q_28_clock = clock;
+    assign t2_pick_q_28_clock = clock;
     assign operands_q_28_clock = clock;
     assign operands_28 = operands_q_28_q;
+    assign t1_pick_q_29_clock = clock;
+    assign t2_pick_q_29_clock = clock;
     assign operands_q_29_clock = clock;
     assign operands_29 = operands_q_29_q;
+    assign t1_pick_q_30_clock = clock;
+    assign t2_pick_q_30_clock = clock;
     assign operands_q_30_clock = clock;
     assign operands_30 = operands_q_30_q;
+    assign t1_pick_q_31_clock = clock;
+    assign t2_pick_q_31_clock = clock;
     assign operands_q_31_clock = clock;
     assign operands_31 = operands_q_31_q;
+    assign t1_pick_q_32_clock = clock;
+    assign t2_pick_q_32_clock = clock;
     assign operands_q_32_clock = clock;
     assign operands_32 = operands_q_32_q;
+    assign t1_pick_q_33_clock = clock;
+    assign t2_pick_q_33_clock = clock;
     assign operands_q_33_clock = clock;
     assign operands_33 = operands_q_33_q;
+    assign t1_pick_q_34_clock = clock;
+    assign t2_pick_q_34_clock = clock;
     assign operands_q_34_clock = clock;
     assign operands_34 = operands_q_34_q;
+    assign t1_pick_q_35_clock = clock;
+    assign t2_pick_q_35_clock = clock;
     assign operands_q_35_clock = clock;
     assign operands_35 = operands_q_35_q;
     always @(*) begin
-        index_q_0_d = index_q_0_q;
-        index_q_1_d = index_q_1_q;
-        index_q_2_d = index_q_2_q;
-        index_q_3_d = index_q_3_q;
-        index_q_4_d = index_q_4_q;
-        index_q_5_d = index_q_5_q;
-        index_q_6_d = index_q_6_q;
-        index_q_7_d = index_q_7_q;
-        index_q_8_d = index_q_8_q;
-        index_q_9_d = index_q_9_q;
-        index_q_10_d = index_q_10_q;
-        index_q_11_d = index_q_11_q;
+        index_0 = 3'h0;
+        index_1 = 3'h0;
+        index_2 = 3'h0;
+        index_3 = 3'h0;
+        index_4 = 3'h0;
+        index_5 = 3'h0;
+        index_6 = 3'h0;
+        index_7 = 3'h0;
+        index_8 = 3'h0;
+        index_9 = 3'h0;
+        index_10 = 3'h0;
+        index_11 = 3'h0;
+        if (~t1_degenerate && ~t2_degenerate) begin
+            index_0 = overlap_first_0;
+            index_4 = overlap_second_0;
+            index_8 = 3'h0;
+            index_1 = overlap_first_1;
+            index_5 = overlap_second_1;
+            index_9 = 3'h0;
+            index_2 = overlap_first_2;
+            index_6 = overlap_second_2;
+            index_10 = 3'h0;
+            index_3 = overlap_first_3;
+            index_7 = overlap_second_3;
+            index_11 = 3'h0;
+        end
+        else if (t1_degenerate && ~t2_degenerate) begin
+            index_0 = {1'h0, t1_segment_low};
+            index_1 = {1'h0, t1_segment_high};
+            index_4 = {1'h0, t1_segment_low};
+            index_5 = {1'h0, t1_segment_high};
+            index_8 = {1'h0, t1_segment_low};
+            index_9 = {1'h0, t1_segment_high};
+            index_2 = 3'h3;
+            index_3 = 3'h4;
+            index_6 = 3'h4;
+            index_7 = 3'h5;
+            index_10 = 3'h5;
+            index_11 = 3'h3;
+        end
+        else if (~t1_degenerate && t2_degenerate) begin
+            index_0 = {1'h0, t2_segment_low} + 3'h3;
+            index_1 = {1'h0, t2_segment_high} + 3'h3;
+            index_4 = {1'h0, t2_segment_low} + 3'h3;
+            index_5 = {1'h0, t2_segment_high} + 3'h3;
+            index_8 = {1'h0, t2_segment_low} + 3'h3;
+            index_9 = {1'h0, t2_segment_high} + 3'h3;
+            index_2 = 3'h0;
+            index_3 = 3'h1;
+            index_6 = 3'h1;
+            index_7 = 3'h2;
+            index_10 = 3'h2;
+            index_11 = 3'h0;
+        end
+        else begin
+            index_0 = {1'h0, t1_segment_low};
+            index_1 = {1'h0, t1_segment_high};
+            index_2 = {1'h0, t2_segment_low} + 3'h3;
+            index_3 = {1'h0, t2_segment_high} + 3'h3;
+            index_4 = 3'h0;
+            index_5 = 3'h0;
+            index_6 = 3'h0;
+            index_7 = 3'h0;
+            index_8 = 3'h0;
+            index_9 = 3'h0;
+            index_10 = 3'h0;
+            index_11 = 3'h0;
+        end
+        vertex_q_0_d = vertex_q_0_q;
+        from_t2_q_0_d = from_t2_q_0_q;
+        from_t2_2q_0_d = from_t2_2q_0_q;
         if (advance) begin
-            if (~t1_degenerate && ~t2_degenerate) begin
-                index_q_0_d = overlap_first_0;
-                index_q_4_d = overlap_second_0;
-                index_q_8_d = 3'h0;
-                index_q_1_d = overlap_first_1;
-                index_q_5_d = overlap_second_1;
-                index_q_9_d = 3'h0;
-                index_q_2_d = overlap_first_2;
-                index_q_6_d = overlap_second_2;
-                index_q_10_d = 3'h0;
-                index_q_3_d = overlap_first_3;
-                index_q_7_d = overlap_second_3;
-                index_q_11_d = 3'h0;
+            if (index_0 == 3'h0 || index_0 == 3'h3) begin
+                vertex_q_0_d = 2'h0;
             end
-            else if (t1_degenerate && ~t2_degenerate) begin
-                index_q_0_d = {1'h0, t1_segment_low};
-                index_q_1_d = {1'h0, t1_segment_high};
-                index_q_4_d = {1'h0, t1_segment_low};
-                index_q_5_d = {1'h0, t1_segment_high};
-                index_q_8_d = {1'h0, t1_segment_low};
-                index_q_9_d = {1'h0, t1_segment_high};
-                index_q_2_d = 3'h3;
-                index_q_3_d = 3'h4;
-                index_q_6_d = 3'h4;
-                index_q_7_d = 3'h5;
-                index_q_10_d = 3'h5;
-                index_q_11_d = 3'h3;
-            end
-            else if (~t1_degenerate && t2_degenerate) begin
-                index_q_0_d = {1'h0, t2_segment_low} + 3'h3;
-                index_q_1_d = {1'h0, t2_segment_high} + 3'h3;
-                index_q_4_d = {1'h0, t2_segment_low} + 3'h3;
-                index_q_5_d = {1'h0, t2_segment_high} + 3'h3;
-                index_q_8_d = {1'h0, t2_segment_low} + 3'h3;
-                index_q_9_d = {1'h0, t2_segment_high} + 3'h3;
-                index_q_2_d = 3'h0;
-                index_q_3_d = 3'h1;
-                index_q_6_d = 3'h1;
-                index_q_7_d = 3'h2;
-                index_q_10_d = 3'h2;
-                index_q_11_d = 3'h0;
+            else if (index_0 == 3'h1 || index_0 == 3'h4) begin
+                vertex_q_0_d = 2'h1;
             end
             else begin
-                index_q_0_d = {1'h0, t1_segment_low};
-                index_q_1_d = {1'h0, t1_segment_high};
-                index_q_2_d = {1'h0, t2_segment_low} + 3'h3;
-                index_q_3_d = {1'h0, t2_segment_high} + 3'h3;
-                index_q_4_d = 3'h0;
-                index_q_5_d = 3'h0;
-                index_q_6_d = 3'h0;
-                index_q_7_d = 3'h0;
-                index_q_8_d = 3'h0;
-                index_q_9_d = 3'h0;
-                index_q_10_d = 3'h0;
-                index_q_11_d = 3'h0;
+                vertex_q_0_d = 2'h2;
             end
+            from_t2_q_0_d = index_0 == 3'h3 || index_0 == 3'h4 || index_0 == 3'h5;
+            from_t2_2q_0_d = from_t2_q_0_q;
         end
+        vertex_q_1_d = vertex_q_1_q;
+        from_t2_q_1_d = from_t2_q_1_q;
+        from_t2_2q_1_d = from_t2_2q_1_q;
+        if (advance) begin
+            if (index_1 == 3'h0 || index_1 == 3'h3) begin
+                vertex_q_1_d = 2'h0;
+            end
+            else if (index_1 == 3'h1 || index_1 == 3'h4) begin
+                vertex_q_1_d = 2'h1;
+            end
+            else begin
+                vertex_q_1_d = 2'h2;
+            end
+            from_t2_q_1_d = index_1 == 3'h3 || index_1 == 3'h4 || index_1 == 3'h5;
+            from_t2_2q_1_d = from_t2_q_1_q;
+        end
+        vertex_q_2_d = vertex_q_2_q;
+        from_t2_q_2_d = from_t2_q_2_q;
+        from_t2_2q_2_d = from_t2_2q_2_q;
+        if (advance) begin
+            if (index_2 == 3'h0 || index_2 == 3'h3) begin
+                vertex_q_2_d = 2'h0;
+            end
+            else if (index_2 == 3'h1 || index_2 == 3'h4) begin
+                vertex_q_2_d = 2'h1;
+            end
+            else begin
+                vertex_q_2_d = 2'h2;
+            end
+            from_t2_q_2_d = index_2 == 3'h3 || index_2 == 3'h4 || index_2 == 3'h5;
+            from_t2_2q_2_d = from_t2_q_2_q;
+        end
+        vertex_q_3_d = vertex_q_3_q;
+        from_t2_q_3_d = from_t2_q_3_q;
+        from_t2_2q_3_d = from_t2_2q_3_q;
+        if (advance) begin
+            if (index_3 == 3'h0 || index_3 == 3'h3) begin
+                vertex_q_3_d = 2'h0;
+            end
+            else if (index_3 == 3'h1 || index_3 == 3'h4) begin
+                vertex_q_3_d = 2'h1;
+            end
+            else begin
+                vertex_q_3_d = 2'h2;
+            end
+            from_t2_q_3_d = index_3 == 3'h3 || index_3 == 3'h4 || index_3 == 3'h5;
+            from_t2_2q_3_d = from_t2_q_3_q;
+        end
+        vertex_q_4_d = vertex_q_4_q;
+        from_t2_q_4_d = from_t2_q_4_q;
+        from_t2_2q_4_d = from_t2_2q_4_q;
+        if (advance) begin
+            if (index_4 == 3'h0 || index_4 == 3'h3) begin
+                vertex_q_4_d = 2'h0;
+            end
+            else if (index_4 == 3'h1 || index_4 == 3'h4) begin
+                vertex_q_4_d = 2'h1;
+            end
+            else begin
+                vertex_q_4_d = 2'h2;
+            end
+            from_t2_q_4_d = index_4 == 3'h3 || index_4 == 3'h4 || index_4 == 3'h5;
+            from_t2_2q_4_d = from_t2_q_4_q;
+        end
+        vertex_q_5_d = vertex_q_5_q;
+        from_t2_q_5_d = from_t2_q_5_q;
+        from_t2_2q_5_d = from_t2_2q_5_q;
+        if (advance) begin
+            if (index_5 == 3'h0 || index_5 == 3'h3) begin
+                vertex_q_5_d = 2'h0;
+            end
+            else if (index_5 == 3'h1 || index_5 == 3'h4) begin
+                vertex_q_5_d = 2'h1;
+            end
+            else begin
+                vertex_q_5_d = 2'h2;
+            end
+            from_t2_q_5_d = index_5 == 3'h3 || index_5 == 3'h4 || index_5 == 3'h5;
+            from_t2_2q_5_d = from_t2_q_5_q;
+        end
+        vertex_q_6_d = vertex_q_6_q;
+        from_t2_q_6_d = from_t2_q_6_q;
+        from_t2_2q_6_d = from_t2_2q_6_q;
+        if (advance) begin
+            if (index_6 == 3'h0 || index_6 == 3'h3) begin
+                vertex_q_6_d = 2'h0;
+            end
+            else if (index_6 == 3'h1 || index_6 == 3'h4) begin
+                vertex_q_6_d = 2'h1;
+            end
+            else begin
+                vertex_q_6_d = 2'h2;
+            end
+            from_t2_q_6_d = index_6 == 3'h3 || index_6 == 3'h4 || index_6 == 3'h5;
+            from_t2_2q_6_d = from_t2_q_6_q;
+        end
+        vertex_q_7_d = vertex_q_7_q;
+        from_t2_q_7_d = from_t2_q_7_q;
+        from_t2_2q_7_d = from_t2_2q_7_q;
+        if (advance) begin
+            if (index_7 == 3'h0 || index_7 == 3'h3) begin
+                vertex_q_7_d = 2'h0;
+            end
+            else if (index_7 == 3'h1 || index_7 == 3'h4) begin
+                vertex_q_7_d = 2'h1;
+            end
+            else begin
+                vertex_q_7_d = 2'h2;
+            end
+            from_t2_q_7_d = index_7 == 3'h3 || index_7 == 3'h4 || index_7 == 3'h5;
+            from_t2_2q_7_d = from_t2_q_7_q;
+        end
+        vertex_q_8_d = vertex_q_8_q;
+        from_t2_q_8_d = from_t2_q_8_q;
+        from_t2_2q_8_d = from_t2_2q_8_q;
+        if (advance) begin
+            if (index_8 == 3'h0 || index_8 == 3'h3) begin
+                vertex_q_8_d = 2'h0;
+            end
+            else if (index_8 == 3'h1 || index_8 == 3'h4) begin
+                vertex_q_8_d = 2'h1;
+            end
+            else begin
+                vertex_q_8_d = 2'h2;
+            end
+            from_t2_q_8_d = index_8 == 3'h3 || index_8 == 3'h4 || index_8 == 3'h5;
+            from_t2_2q_8_d = from_t2_q_8_q;
+        end
+        vertex_q_9_d = vertex_q_9_q;
+        from_t2_q_9_d = from_t2_q_9_q;
+        from_t2_2q_9_d = from_t2_2q_9_q;
+        if (advance) begin
+            if (index_9 == 3'h0 || index_9 == 3'h3) begin
+                vertex_q_9_d = 2'h0;
+            end
+            else if (index_9 == 3'h1 || index_9 == 3'h4) begin
+                vertex_q_9_d = 2'h1;
+            end
+            else begin
+                vertex_q_9_d = 2'h2;
+            end
+            from_t2_q_9_d = index_9 == 3'h3 || index_9 == 3'h4 || index_9 == 3'h5;
+            from_t2_2q_9_d = from_t2_q_9_q;
+        end
+        vertex_q_10_d = vertex_q_10_q;
+        from_t2_q_10_d = from_t2_q_10_q;
+        from_t2_2q_10_d = from_t2_2q_10_q;
+        if (advance) begin
+            if (index_10 == 3'h0 || index_10 == 3'h3) begin
+                vertex_q_10_d = 2'h0;
+            end
+            else if (index_10 == 3'h1 || index_10 == 3'h4) begin
+                vertex_q_10_d = 2'h1;
+            end
+            else begin
+                vertex_q_10_d = 2'h2;
+            end
+            from_t2_q_10_d = index_10 == 3'h3 || index_10 == 3'h4 || index_10 == 3'h5;
+            from_t2_2q_10_d = from_t2_q_10_q;
+        end
+        vertex_q_11_d = vertex_q_11_q;
+        from_t2_q_11_d = from_t2_q_11_q;
+        from_t2_2q_11_d = from_t2_2q_11_q;
+        if (advance) begin
+            if (index_11 == 3'h0 || index_11 == 3'h3) begin
+                vertex_q_11_d = 2'h0;
+            end
+            else if (index_11 == 3'h1 || index_11 == 3'h4) begin
+                vertex_q_11_d = 2'h1;
+            end
+            else begin
+                vertex_q_11_d = 2'h2;
+            end
+            from_t2_q_11_d = index_11 == 3'h3 || index_11 == 3'h4 || index_11 == 3'h5;
+            from_t2_2q_11_d = from_t2_q_11_q;
+        end
+        t1_pick_q_0_d = t1_pick_q_0_q;
+        t2_pick_q_0_d = t2_pick_q_0_q;
         operands_q_0_d = operands_q_0_q;
         if (advance) begin
-            if (index_q_0_q == 3'h0) begin
-                operands_q_0_d = t1_delay_0_q;
+            if (vertex_q_0_q == 2'h0) begin
+                t1_pick_q_0_d = t1_delay_0_q;
+                t2_pick_q_0_d = t2_delay_0_q;
             end
-            else if (index_q_0_q == 3'h1) begin
-                operands_q_0_d = t1_delay_3_q;
-            end
-            else if (index_q_0_q == 3'h2) begin
-                operands_q_0_d = t1_delay_6_q;
-            end
-            else if (index_q_0_q == 3'h3) begin
-                operands_q_0_d = t2_delay_0_q;
-            end
-            else if (index_q_0_q == 3'h4) begin
-                operands_q_0_d = t2_delay_3_q;
+            else if (vertex_q_0_q == 2'h1) begin
+                t1_pick_q_0_d = t1_delay_3_q;
+                t2_pick_q_0_d = t2_delay_3_q;
             end
             else begin
-                operands_q_0_d = t2_delay_6_q;
+                t1_pick_q_0_d = t1_delay_6_q;
+                t2_pick_q_0_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_0_q) begin
+                operands_q_0_d = t2_pick_q_0_q;
+            end
+            else begin
+                operands_q_0_d = t1_pick_q_0_q;
             end
         end
+        t1_pick_q_1_d = t1_pick_q_1_q;
+        t2_pick_q_1_d = t2_pick_q_1_q;
         operands_q_1_d = operands_q_1_q;
         if (advance) begin
-            if (index_q_0_q == 3'h0) begin
-                operands_q_1_d = t1_delay_1_q;
+            if (vertex_q_0_q == 2'h0) begin
+                t1_pick_q_1_d = t1_delay_1_q;
+                t2_pick_q_1_d = t2_delay_1_q;
             end
-            else if (index_q_0_q == 3'h1) begin
-                operands_q_1_d = t1_delay_4_q;
-            end
-            else if (index_q_0_q == 3'h2) begin
-                operands_q_1_d = t1_delay_7_q;
-            end
-            else if (index_q_0_q == 3'h3) begin
-                operands_q_1_d = t2_delay_1_q;
-            end
-            else if (index_q_0_q == 3'h4) begin
-                operands_q_1_d = t2_delay_4_q;
+            else if (vertex_q_0_q == 2'h1) begin
+                t1_pick_q_1_d = t1_delay_4_q;
+                t2_pick_q_1_d = t2_delay_4_q;
             end
             else begin
-                operands_q_1_d = t2_delay_7_q;
+                t1_pick_q_1_d = t1_delay_7_q;
+                t2_pick_q_1_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_0_q) begin
+                operands_q_1_d = t2_pick_q_1_q;
+            end
+            else begin
+                operands_q_1_d = t1_pick_q_1_q;
             end
         end
+        t1_pick_q_2_d = t1_pick_q_2_q;
+        t2_pick_q_2_d = t2_pick_q_2_q;
         operands_q_2_d = operands_q_2_q;
         if (advance) begin
-            if (index_q_0_q == 3'h0) begin
-                operands_q_2_d = t1_delay_2_q;
+            if (vertex_q_0_q == 2'h0) begin
+                t1_pick_q_2_d = t1_delay_2_q;
+                t2_pick_q_2_d = t2_delay_2_q;
             end
-            else if (index_q_0_q == 3'h1) begin
-                operands_q_2_d = t1_delay_5_q;
-            end
-            else if (index_q_0_q == 3'h2) begin
-                operands_q_2_d = t1_delay_8_q;
-            end
-            else if (index_q_0_q == 3'h3) begin
-                operands_q_2_d = t2_delay_2_q;
-            end
-            else if (index_q_0_q == 3'h4) begin
-                operands_q_2_d = t2_delay_5_q;
+            else if (vertex_q_0_q == 2'h1) begin
+                t1_pick_q_2_d = t1_delay_5_q;
+                t2_pick_q_2_d = t2_delay_5_q;
             end
             else begin
-                operands_q_2_d = t2_delay_8_q;
+                t1_pick_q_2_d = t1_delay_8_q;
+                t2_pick_q_2_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_0_q) begin
+                operands_q_2_d = t2_pick_q_2_q;
+            end
+            else begin
+                operands_q_2_d = t1_pick_q_2_q;
             end
         end
+        t1_pick_q_3_d = t1_pick_q_3_q;
+        t2_pick_q_3_d = t2_pick_q_3_q;
         operands_q_3_d = operands_q_3_q;
         if (advance) begin
-            if (index_q_1_q == 3'h0) begin
-                operands_q_3_d = t1_delay_0_q;
+            if (vertex_q_1_q == 2'h0) begin
+                t1_pick_q_3_d = t1_delay_0_q;
+                t2_pick_q_3_d = t2_delay_0_q;
             end
-            else if (index_q_1_q == 3'h1) begin
-                operands_q_3_d = t1_delay_3_q;
-            end
-            else if (index_q_1_q == 3'h2) begin
-                operands_q_3_d = t1_delay_6_q;
-            end
-            else if (index_q_1_q == 3'h3) begin
-                operands_q_3_d = t2_delay_0_q;
-            end
-            else if (index_q_1_q == 3'h4) begin
-                operands_q_3_d = t2_delay_3_q;
+            else if (vertex_q_1_q == 2'h1) begin
+                t1_pick_q_3_d = t1_delay_3_q;
+                t2_pick_q_3_d = t2_delay_3_q;
             end
             else begin
-                operands_q_3_d = t2_delay_6_q;
+                t1_pick_q_3_d = t1_delay_6_q;
+                t2_pick_q_3_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_1_q) begin
+                operands_q_3_d = t2_pick_q_3_q;
+            end
+            else begin
+                operands_q_3_d = t1_pick_q_3_q;
             end
         end
+        t1_pick_q_4_d = t1_pick_q_4_q;
+        t2_pick_q_4_d = t2_pick_q_4_q;
         operands_q_4_d = operands_q_4_q;
         if (advance) begin
-            if (index_q_1_q == 3'h0) begin
-                operands_q_4_d = t1_delay_1_q;
+            if (vertex_q_1_q == 2'h0) begin
+                t1_pick_q_4_d = t1_delay_1_q;
+                t2_pick_q_4_d = t2_delay_1_q;
             end
-            else if (index_q_1_q == 3'h1) begin
-                operands_q_4_d = t1_delay_4_q;
-            end
-            else if (index_q_1_q == 3'h2) begin
-                operands_q_4_d = t1_delay_7_q;
-            end
-            else if (index_q_1_q == 3'h3) begin
-                operands_q_4_d = t2_delay_1_q;
-            end
-            else if (index_q_1_q == 3'h4) begin
-                operands_q_4_d = t2_delay_4_q;
+            else if (vertex_q_1_q == 2'h1) begin
+                t1_pick_q_4_d = t1_delay_4_q;
+                t2_pick_q_4_d = t2_delay_4_q;
             end
             else begin
-                operands_q_4_d = t2_delay_7_q;
+                t1_pick_q_4_d = t1_delay_7_q;
+                t2_pick_q_4_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_1_q) begin
+                operands_q_4_d = t2_pick_q_4_q;
+            end
+            else begin
+                operands_q_4_d = t1_pick_q_4_q;
             end
         end
+        t1_pick_q_5_d = t1_pick_q_5_q;
+        t2_pick_q_5_d = t2_pick_q_5_q;
         operands_q_5_d = operands_q_5_q;
         if (advance) begin
-            if (index_q_1_q == 3'h0) begin
-                operands_q_5_d = t1_delay_2_q;
+            if (vertex_q_1_q == 2'h0) begin
+                t1_pick_q_5_d = t1_delay_2_q;
+                t2_pick_q_5_d = t2_delay_2_q;
             end
-            else if (index_q_1_q == 3'h1) begin
-                operands_q_5_d = t1_delay_5_q;
-            end
-            else if (index_q_1_q == 3'h2) begin
-                operands_q_5_d = t1_delay_8_q;
-            end
-            else if (index_q_1_q == 3'h3) begin
-                operands_q_5_d = t2_delay_2_q;
-            end
-            else if (index_q_1_q == 3'h4) begin
-                operands_q_5_d = t2_delay_5_q;
+            else if (vertex_q_1_q == 2'h1) begin
+                t1_pick_q_5_d = t1_delay_5_q;
+                t2_pick_q_5_d = t2_delay_5_q;
             end
             else begin
-                operands_q_5_d = t2_delay_8_q;
+                t1_pick_q_5_d = t1_delay_8_q;
+                t2_pick_q_5_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_1_q) begin
+                operands_q_5_d = t2_pick_q_5_q;
+            end
+            else begin
+                operands_q_5_d = t1_pick_q_5_q;
             end
         end
+        t1_pick_q_6_d = t1_pick_q_6_q;
+        t2_pick_q_6_d = t2_pick_q_6_q;
         operands_q_6_d = operands_q_6_q;
         if (advance) begin
-            if (index_q_2_q == 3'h0) begin
-                operands_q_6_d = t1_delay_0_q;
+            if (vertex_q_2_q == 2'h0) begin
+                t1_pick_q_6_d = t1_delay_0_q;
+                t2_pick_q_6_d = t2_delay_0_q;
             end
-            else if (index_q_2_q == 3'h1) begin
-                operands_q_6_d = t1_delay_3_q;
-            end
-            else if (index_q_2_q == 3'h2) begin
-                operands_q_6_d = t1_delay_6_q;
-            end
-            else if (index_q_2_q == 3'h3) begin
-                operands_q_6_d = t2_delay_0_q;
-            end
-            else if (index_q_2_q == 3'h4) begin
-                operands_q_6_d = t2_delay_3_q;
+            else if (vertex_q_2_q == 2'h1) begin
+                t1_pick_q_6_d = t1_delay_3_q;
+                t2_pick_q_6_d = t2_delay_3_q;
             end
             else begin
-                operands_q_6_d = t2_delay_6_q;
+                t1_pick_q_6_d = t1_delay_6_q;
+                t2_pick_q_6_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_2_q) begin
+                operands_q_6_d = t2_pick_q_6_q;
+            end
+            else begin
+                operands_q_6_d = t1_pick_q_6_q;
             end
         end
+        t1_pick_q_7_d = t1_pick_q_7_q;
+        t2_pick_q_7_d = t2_pick_q_7_q;
         operands_q_7_d = operands_q_7_q;
         if (advance) begin
-            if (index_q_2_q == 3'h0) begin
-                operands_q_7_d = t1_delay_1_q;
+            if (vertex_q_2_q == 2'h0) begin
+                t1_pick_q_7_d = t1_delay_1_q;
+                t2_pick_q_7_d = t2_delay_1_q;
             end
-            else if (index_q_2_q == 3'h1) begin
-                operands_q_7_d = t1_delay_4_q;
-            end
-            else if (index_q_2_q == 3'h2) begin
-                operands_q_7_d = t1_delay_7_q;
-            end
-            else if (index_q_2_q == 3'h3) begin
-                operands_q_7_d = t2_delay_1_q;
-            end
-            else if (index_q_2_q == 3'h4) begin
-                operands_q_7_d = t2_delay_4_q;
+            else if (vertex_q_2_q == 2'h1) begin
+                t1_pick_q_7_d = t1_delay_4_q;
+                t2_pick_q_7_d = t2_delay_4_q;
             end
             else begin
-                operands_q_7_d = t2_delay_7_q;
+                t1_pick_q_7_d = t1_delay_7_q;
+                t2_pick_q_7_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_2_q) begin
+                operands_q_7_d = t2_pick_q_7_q;
+            end
+            else begin
+                operands_q_7_d = t1_pick_q_7_q;
             end
         end
+        t1_pick_q_8_d = t1_pick_q_8_q;
+        t2_pick_q_8_d = t2_pick_q_8_q;
         operands_q_8_d = operands_q_8_q;
         if (advance) begin
-            if (index_q_2_q == 3'h0) begin
-                operands_q_8_d = t1_delay_2_q;
+            if (vertex_q_2_q == 2'h0) begin
+                t1_pick_q_8_d = t1_delay_2_q;
+                t2_pick_q_8_d = t2_delay_2_q;
             end
-            else if (index_q_2_q == 3'h1) begin
-                operands_q_8_d = t1_delay_5_q;
-            end
-            else if (index_q_2_q == 3'h2) begin
-                operands_q_8_d = t1_delay_8_q;
-            end
-            else if (index_q_2_q == 3'h3) begin
-                operands_q_8_d = t2_delay_2_q;
-            end
-            else if (index_q_2_q == 3'h4) begin
-                operands_q_8_d = t2_delay_5_q;
+            else if (vertex_q_2_q == 2'h1) begin
+                t1_pick_q_8_d = t1_delay_5_q;
+                t2_pick_q_8_d = t2_delay_5_q;
             end
             else begin
-                operands_q_8_d = t2_delay_8_q;
+                t1_pick_q_8_d = t1_delay_8_q;
+                t2_pick_q_8_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_2_q) begin
+                operands_q_8_d = t2_pick_q_8_q;
+            end
+            else begin
+                operands_q_8_d = t1_pick_q_8_q;
             end
         end
+        t1_pick_q_9_d = t1_pick_q_9_q;
+        t2_pick_q_9_d = t2_pick_q_9_q;
         operands_q_9_d = operands_q_9_q;
         if (advance) begin
-            if (index_q_3_q == 3'h0) begin
-                operands_q_9_d = t1_delay_0_q;
+            if (vertex_q_3_q == 2'h0) begin
+                t1_pick_q_9_d = t1_delay_0_q;
+                t2_pick_q_9_d = t2_delay_0_q;
             end
-            else if (index_q_3_q == 3'h1) begin
-                operands_q_9_d = t1_delay_3_q;
-            end
-            else if (index_q_3_q == 3'h2) begin
-                operands_q_9_d = t1_delay_6_q;
-            end
-            else if (index_q_3_q == 3'h3) begin
-                operands_q_9_d = t2_delay_0_q;
-            end
-            else if (index_q_3_q == 3'h4) begin
-                operands_q_9_d = t2_delay_3_q;
+            else if (vertex_q_3_q == 2'h1) begin
+                t1_pick_q_9_d = t1_delay_3_q;
+                t2_pick_q_9_d = t2_delay_3_q;
             end
             else begin
-                operands_q_9_d = t2_delay_6_q;
+                t1_pick_q_9_d = t1_delay_6_q;
+                t2_pick_q_9_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_3_q) begin
+                operands_q_9_d = t2_pick_q_9_q;
+            end
+            else begin
+                operands_q_9_d = t1_pick_q_9_q;
             end
         end
+        t1_pick_q_10_d = t1_pick_q_10_q;
+        t2_pick_q_10_d = t2_pick_q_10_q;
         operands_q_10_d = operands_q_10_q;
         if (advance) begin
-            if (index_q_3_q == 3'h0) begin
-                operands_q_10_d = t1_delay_1_q;
+            if (vertex_q_3_q == 2'h0) begin
+                t1_pick_q_10_d = t1_delay_1_q;
+                t2_pick_q_10_d = t2_delay_1_q;
             end
-            else if (index_q_3_q == 3'h1) begin
-                operands_q_10_d = t1_delay_4_q;
-            end
-            else if (index_q_3_q == 3'h2) begin
-                operands_q_10_d = t1_delay_7_q;
-            end
-            else if (index_q_3_q == 3'h3) begin
-                operands_q_10_d = t2_delay_1_q;
-            end
-            else if (index_q_3_q == 3'h4) begin
-                operands_q_10_d = t2_delay_4_q;
+            else if (vertex_q_3_q == 2'h1) begin
+                t1_pick_q_10_d = t1_delay_4_q;
+                t2_pick_q_10_d = t2_delay_4_q;
             end
             else begin
-                operands_q_10_d = t2_delay_7_q;
+                t1_pick_q_10_d = t1_delay_7_q;
+                t2_pick_q_10_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_3_q) begin
+                operands_q_10_d = t2_pick_q_10_q;
+            end
+            else begin
+                operands_q_10_d = t1_pick_q_10_q;
             end
         end
+        t1_pick_q_11_d = t1_pick_q_11_q;
+        t2_pick_q_11_d = t2_pick_q_11_q;
         operands_q_11_d = operands_q_11_q;
         if (advance) begin
-            if (index_q_3_q == 3'h0) begin
-                operands_q_11_d = t1_delay_2_q;
+            if (vertex_q_3_q == 2'h0) begin
+                t1_pick_q_11_d = t1_delay_2_q;
+                t2_pick_q_11_d = t2_delay_2_q;
             end
-            else if (index_q_3_q == 3'h1) begin
-                operands_q_11_d = t1_delay_5_q;
-            end
-            else if (index_q_3_q == 3'h2) begin
-                operands_q_11_d = t1_delay_8_q;
-            end
-            else if (index_q_3_q == 3'h3) begin
-                operands_q_11_d = t2_delay_2_q;
-            end
-            else if (index_q_3_q == 3'h4) begin
-                operands_q_11_d = t2_delay_5_q;
+            else if (vertex_q_3_q == 2'h1) begin
+                t1_pick_q_11_d = t1_delay_5_q;
+                t2_pick_q_11_d = t2_delay_5_q;
             end
             else begin
-                operands_q_11_d = t2_delay_8_q;
+                t1_pick_q_11_d = t1_delay_8_q;
+                t2_pick_q_11_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_3_q) begin
+                operands_q_11_d = t2_pick_q_11_q;
+            end
+            else begin
+                operands_q_11_d = t1_pick_q_11_q;
             end
         end
+        t1_pick_q_12_d = t1_pick_q_12_q;
+        t2_pick_q_12_d = t2_pick_q_12_q;
         operands_q_12_d = operands_q_12_q;
         if (advance) begin
-            if (index_q_4_q == 3'h0) begin
-                operands_q_12_d = t1_delay_0_q;
+            if (vertex_q_4_q == 2'h0) begin
+                t1_pick_q_12_d = t1_delay_0_q;
+                t2_pick_q_12_d = t2_delay_0_q;
             end
-            else if (index_q_4_q == 3'h1) begin
-                operands_q_12_d = t1_delay_3_q;
-            end
-            else if (index_q_4_q == 3'h2) begin
-                operands_q_12_d = t1_delay_6_q;
-            end
-            else if (index_q_4_q == 3'h3) begin
-                operands_q_12_d = t2_delay_0_q;
-            end
-            else if (index_q_4_q == 3'h4) begin
-                operands_q_12_d = t2_delay_3_q;
+            else if (vertex_q_4_q == 2'h1) begin
+                t1_pick_q_12_d = t1_delay_3_q;
+                t2_pick_q_12_d = t2_delay_3_q;
             end
             else begin
-                operands_q_12_d = t2_delay_6_q;
+                t1_pick_q_12_d = t1_delay_6_q;
+                t2_pick_q_12_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_4_q) begin
+                operands_q_12_d = t2_pick_q_12_q;
+            end
+            else begin
+                operands_q_12_d = t1_pick_q_12_q;
             end
         end
+        t1_pick_q_13_d = t1_pick_q_13_q;
+        t2_pick_q_13_d = t2_pick_q_13_q;
         operands_q_13_d = operands_q_13_q;
         if (advance) begin
-            if (index_q_4_q == 3'h0) begin
-                operands_q_13_d = t1_delay_1_q;
+            if (vertex_q_4_q == 2'h0) begin
+                t1_pick_q_13_d = t1_delay_1_q;
+                t2_pick_q_13_d = t2_delay_1_q;
             end
-            else if (index_q_4_q == 3'h1) begin
-                operands_q_13_d = t1_delay_4_q;
-            end
-            else if (index_q_4_q == 3'h2) begin
-                operands_q_13_d = t1_delay_7_q;
-            end
-            else if (index_q_4_q == 3'h3) begin
-                operands_q_13_d = t2_delay_1_q;
-            end
-            else if (index_q_4_q == 3'h4) begin
-                operands_q_13_d = t2_delay_4_q;
+            else if (vertex_q_4_q == 2'h1) begin
+                t1_pick_q_13_d = t1_delay_4_q;
+                t2_pick_q_13_d = t2_delay_4_q;
             end
             else begin
-                operands_q_13_d = t2_delay_7_q;
+                t1_pick_q_13_d = t1_delay_7_q;
+                t2_pick_q_13_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_4_q) begin
+                operands_q_13_d = t2_pick_q_13_q;
+            end
+            else begin
+                operands_q_13_d = t1_pick_q_13_q;
             end
         end
+        t1_pick_q_14_d = t1_pick_q_14_q;
+        t2_pick_q_14_d = t2_pick_q_14_q;
         operands_q_14_d = operands_q_14_q;
         if (advance) begin
-            if (index_q_4_q == 3'h0) begin
-                operands_q_14_d = t1_delay_2_q;
+            if (vertex_q_4_q == 2'h0) begin
+                t1_pick_q_14_d = t1_delay_2_q;
+                t2_pick_q_14_d = t2_delay_2_q;
             end
-            else if (index_q_4_q == 3'h1) begin
-                operands_q_14_d = t1_delay_5_q;
-            end
-            else if (index_q_4_q == 3'h2) begin
-                operands_q_14_d = t1_delay_8_q;
-            end
-            else if (index_q_4_q == 3'h3) begin
-                operands_q_14_d = t2_delay_2_q;
-            end
-            else if (index_q_4_q == 3'h4) begin
-                operands_q_14_d = t2_delay_5_q;
+            else if (vertex_q_4_q == 2'h1) begin
+                t1_pick_q_14_d = t1_delay_5_q;
+                t2_pick_q_14_d = t2_delay_5_q;
             end
             else begin
-                operands_q_14_d = t2_delay_8_q;
+                t1_pick_q_14_d = t1_delay_8_q;
+                t2_pick_q_14_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_4_q) begin
+                operands_q_14_d = t2_pick_q_14_q;
+            end
+            else begin
+                operands_q_14_d = t1_pick_q_14_q;
             end
         end
+        t1_pick_q_15_d = t1_pick_q_15_q;
+        t2_pick_q_15_d = t2_pick_q_15_q;
         operands_q_15_d = operands_q_15_q;
         if (advance) begin
-            if (index_q_5_q == 3'h0) begin
-                operands_q_15_d = t1_delay_0_q;
+            if (vertex_q_5_q == 2'h0) begin
+                t1_pick_q_15_d = t1_delay_0_q;
+                t2_pick_q_15_d = t2_delay_0_q;
             end
-            else if (index_q_5_q == 3'h1) begin
-                operands_q_15_d = t1_delay_3_q;
-            end
-            else if (index_q_5_q == 3'h2) begin
-                operands_q_15_d = t1_delay_6_q;
-            end
-            else if (index_q_5_q == 3'h3) begin
-                operands_q_15_d = t2_delay_0_q;
-            end
-            else if (index_q_5_q == 3'h4) begin
-                operands_q_15_d = t2_delay_3_q;
+            else if (vertex_q_5_q == 2'h1) begin
+                t1_pick_q_15_d = t1_delay_3_q;
+                t2_pick_q_15_d = t2_delay_3_q;
             end
             else begin
-                operands_q_15_d = t2_delay_6_q;
+                t1_pick_q_15_d = t1_delay_6_q;
+                t2_pick_q_15_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_5_q) begin
+                operands_q_15_d = t2_pick_q_15_q;
+            end
+            else begin
+                operands_q_15_d = t1_pick_q_15_q;
             end
         end
+        t1_pick_q_16_d = t1_pick_q_16_q;
+        t2_pick_q_16_d = t2_pick_q_16_q;
         operands_q_16_d = operands_q_16_q;
         if (advance) begin
-            if (index_q_5_q == 3'h0) begin
-                operands_q_16_d = t1_delay_1_q;
+            if (vertex_q_5_q == 2'h0) begin
+                t1_pick_q_16_d = t1_delay_1_q;
+                t2_pick_q_16_d = t2_delay_1_q;
             end
-            else if (index_q_5_q == 3'h1) begin
-                operands_q_16_d = t1_delay_4_q;
-            end
-            else if (index_q_5_q == 3'h2) begin
-                operands_q_16_d = t1_delay_7_q;
-            end
-            else if (index_q_5_q == 3'h3) begin
-                operands_q_16_d = t2_delay_1_q;
-            end
-            else if (index_q_5_q == 3'h4) begin
-                operands_q_16_d = t2_delay_4_q;
+            else if (vertex_q_5_q == 2'h1) begin
+                t1_pick_q_16_d = t1_delay_4_q;
+                t2_pick_q_16_d = t2_delay_4_q;
             end
             else begin
-                operands_q_16_d = t2_delay_7_q;
+                t1_pick_q_16_d = t1_delay_7_q;
+                t2_pick_q_16_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_5_q) begin
+                operands_q_16_d = t2_pick_q_16_q;
+            end
+            else begin
+                operands_q_16_d = t1_pick_q_16_q;
             end
         end
+        t1_pick_q_17_d = t1_pick_q_17_q;
+        t2_pick_q_17_d = t2_pick_q_17_q;
         operands_q_17_d = operands_q_17_q;
         if (advance) begin
-            if (index_q_5_q == 3'h0) begin
-                operands_q_17_d = t1_delay_2_q;
+            if (vertex_q_5_q == 2'h0) begin
+                t1_pick_q_17_d = t1_delay_2_q;
+                t2_pick_q_17_d = t2_delay_2_q;
             end
-            else if (index_q_5_q == 3'h1) begin
-                operands_q_17_d = t1_delay_5_q;
-            end
-            else if (index_q_5_q == 3'h2) begin
-                operands_q_17_d = t1_delay_8_q;
-            end
-            else if (index_q_5_q == 3'h3) begin
-                operands_q_17_d = t2_delay_2_q;
-            end
-            else if (index_q_5_q == 3'h4) begin
-                operands_q_17_d = t2_delay_5_q;
+            else if (vertex_q_5_q == 2'h1) begin
+                t1_pick_q_17_d = t1_delay_5_q;
+                t2_pick_q_17_d = t2_delay_5_q;
             end
             else begin
-                operands_q_17_d = t2_delay_8_q;
+                t1_pick_q_17_d = t1_delay_8_q;
+                t2_pick_q_17_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_5_q) begin
+                operands_q_17_d = t2_pick_q_17_q;
+            end
+            else begin
+                operands_q_17_d = t1_pick_q_17_q;
             end
         end
+        t1_pick_q_18_d = t1_pick_q_18_q;
+        t2_pick_q_18_d = t2_pick_q_18_q;
         operands_q_18_d = operands_q_18_q;
         if (advance) begin
-            if (index_q_6_q == 3'h0) begin
-                operands_q_18_d = t1_delay_0_q;
+            if (vertex_q_6_q == 2'h0) begin
+                t1_pick_q_18_d = t1_delay_0_q;
+                t2_pick_q_18_d = t2_delay_0_q;
             end
-            else if (index_q_6_q == 3'h1) begin
-                operands_q_18_d = t1_delay_3_q;
-            end
-            else if (index_q_6_q == 3'h2) begin
-                operands_q_18_d = t1_delay_6_q;
-            end
-            else if (index_q_6_q == 3'h3) begin
-                operands_q_18_d = t2_delay_0_q;
-            end
-            else if (index_q_6_q == 3'h4) begin
-                operands_q_18_d = t2_delay_3_q;
+            else if (vertex_q_6_q == 2'h1) begin
+                t1_pick_q_18_d = t1_delay_3_q;
+                t2_pick_q_18_d = t2_delay_3_q;
             end
             else begin
-                operands_q_18_d = t2_delay_6_q;
+                t1_pick_q_18_d = t1_delay_6_q;
+                t2_pick_q_18_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_6_q) begin
+                operands_q_18_d = t2_pick_q_18_q;
+            end
+            else begin
+                operands_q_18_d = t1_pick_q_18_q;
             end
         end
+        t1_pick_q_19_d = t1_pick_q_19_q;
+        t2_pick_q_19_d = t2_pick_q_19_q;
         operands_q_19_d = operands_q_19_q;
         if (advance) begin
-            if (index_q_6_q == 3'h0) begin
-                operands_q_19_d = t1_delay_1_q;
+            if (vertex_q_6_q == 2'h0) begin
+                t1_pick_q_19_d = t1_delay_1_q;
+                t2_pick_q_19_d = t2_delay_1_q;
             end
-            else if (index_q_6_q == 3'h1) begin
-                operands_q_19_d = t1_delay_4_q;
-            end
-            else if (index_q_6_q == 3'h2) begin
-                operands_q_19_d = t1_delay_7_q;
-            end
-            else if (index_q_6_q == 3'h3) begin
-                operands_q_19_d = t2_delay_1_q;
-            end
-            else if (index_q_6_q == 3'h4) begin
-                operands_q_19_d = t2_delay_4_q;
+            else if (vertex_q_6_q == 2'h1) begin
+                t1_pick_q_19_d = t1_delay_4_q;
+                t2_pick_q_19_d = t2_delay_4_q;
             end
             else begin
-                operands_q_19_d = t2_delay_7_q;
+                t1_pick_q_19_d = t1_delay_7_q;
+                t2_pick_q_19_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_6_q) begin
+                operands_q_19_d = t2_pick_q_19_q;
+            end
+            else begin
+                operands_q_19_d = t1_pick_q_19_q;
             end
         end
+        t1_pick_q_20_d = t1_pick_q_20_q;
+        t2_pick_q_20_d = t2_pick_q_20_q;
         operands_q_20_d = operands_q_20_q;
         if (advance) begin
-            if (index_q_6_q == 3'h0) begin
-                operands_q_20_d = t1_delay_2_q;
+            if (vertex_q_6_q == 2'h0) begin
+                t1_pick_q_20_d = t1_delay_2_q;
+                t2_pick_q_20_d = t2_delay_2_q;
             end
-            else if (index_q_6_q == 3'h1) begin
-                operands_q_20_d = t1_delay_5_q;
-            end
-            else if (index_q_6_q == 3'h2) begin
-                operands_q_20_d = t1_delay_8_q;
-            end
-            else if (index_q_6_q == 3'h3) begin
-                operands_q_20_d = t2_delay_2_q;
-            end
-            else if (index_q_6_q == 3'h4) begin
-                operands_q_20_d = t2_delay_5_q;
+            else if (vertex_q_6_q == 2'h1) begin
+                t1_pick_q_20_d = t1_delay_5_q;
+                t2_pick_q_20_d = t2_delay_5_q;
             end
             else begin
-                operands_q_20_d = t2_delay_8_q;
+                t1_pick_q_20_d = t1_delay_8_q;
+                t2_pick_q_20_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_6_q) begin
+                operands_q_20_d = t2_pick_q_20_q;
+            end
+            else begin
+                operands_q_20_d = t1_pick_q_20_q;
             end
         end
+        t1_pick_q_21_d = t1_pick_q_21_q;
+        t2_pick_q_21_d = t2_pick_q_21_q;
         operands_q_21_d = operands_q_21_q;
         if (advance) begin
-            if (index_q_7_q == 3'h0) begin
-                operands_q_21_d = t1_delay_0_q;
+            if (vertex_q_7_q == 2'h0) begin
+                t1_pick_q_21_d = t1_delay_0_q;
+                t2_pick_q_21_d = t2_delay_0_q;
             end
-            else if (index_q_7_q == 3'h1) begin
-                operands_q_21_d = t1_delay_3_q;
-            end
-            else if (index_q_7_q == 3'h2) begin
-                operands_q_21_d = t1_delay_6_q;
-            end
-            else if (index_q_7_q == 3'h3) begin
-                operands_q_21_d = t2_delay_0_q;
-            end
-            else if (index_q_7_q == 3'h4) begin
-                operands_q_21_d = t2_delay_3_q;
+            else if (vertex_q_7_q == 2'h1) begin
+                t1_pick_q_21_d = t1_delay_3_q;
+                t2_pick_q_21_d = t2_delay_3_q;
             end
             else begin
-                operands_q_21_d = t2_delay_6_q;
+                t1_pick_q_21_d = t1_delay_6_q;
+                t2_pick_q_21_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_7_q) begin
+                operands_q_21_d = t2_pick_q_21_q;
+            end
+            else begin
+                operands_q_21_d = t1_pick_q_21_q;
             end
         end
+        t1_pick_q_22_d = t1_pick_q_22_q;
+        t2_pick_q_22_d = t2_pick_q_22_q;
         operands_q_22_d = operands_q_22_q;
         if (advance) begin
-            if (index_q_7_q == 3'h0) begin
-                operands_q_22_d = t1_delay_1_q;
+            if (vertex_q_7_q == 2'h0) begin
+                t1_pick_q_22_d = t1_delay_1_q;
+                t2_pick_q_22_d = t2_delay_1_q;
             end
-            else if (index_q_7_q == 3'h1) begin
-                operands_q_22_d = t1_delay_4_q;
-            end
-            else if (index_q_7_q == 3'h2) begin
-                operands_q_22_d = t1_delay_7_q;
-            end
-            else if (index_q_7_q == 3'h3) begin
-                operands_q_22_d = t2_delay_1_q;
-            end
-            else if (index_q_7_q == 3'h4) begin
-                operands_q_22_d = t2_delay_4_q;
+            else if (vertex_q_7_q == 2'h1) begin
+                t1_pick_q_22_d = t1_delay_4_q;
+                t2_pick_q_22_d = t2_delay_4_q;
             end
             else begin
-                operands_q_22_d = t2_delay_7_q;
+                t1_pick_q_22_d = t1_delay_7_q;
+                t2_pick_q_22_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_7_q) begin
+                operands_q_22_d = t2_pick_q_22_q;
+            end
+            else begin
+                operands_q_22_d = t1_pick_q_22_q;
             end
         end
+        t1_pick_q_23_d = t1_pick_q_23_q;
+        t2_pick_q_23_d = t2_pick_q_23_q;
         operands_q_23_d = operands_q_23_q;
         if (advance) begin
-            if (index_q_7_q == 3'h0) begin
-                operands_q_23_d = t1_delay_2_q;
+            if (vertex_q_7_q == 2'h0) begin
+                t1_pick_q_23_d = t1_delay_2_q;
+                t2_pick_q_23_d = t2_delay_2_q;
             end
-            else if (index_q_7_q == 3'h1) begin
-                operands_q_23_d = t1_delay_5_q;
-            end
-            else if (index_q_7_q == 3'h2) begin
-                operands_q_23_d = t1_delay_8_q;
-            end
-            else if (index_q_7_q == 3'h3) begin
-                operands_q_23_d = t2_delay_2_q;
-            end
-            else if (index_q_7_q == 3'h4) begin
-                operands_q_23_d = t2_delay_5_q;
+            else if (vertex_q_7_q == 2'h1) begin
+                t1_pick_q_23_d = t1_delay_5_q;
+                t2_pick_q_23_d = t2_delay_5_q;
             end
             else begin
-                operands_q_23_d = t2_delay_8_q;
+                t1_pick_q_23_d = t1_delay_8_q;
+                t2_pick_q_23_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_7_q) begin
+                operands_q_23_d = t2_pick_q_23_q;
+            end
+            else begin
+                operands_q_23_d = t1_pick_q_23_q;
             end
         end
+        t1_pick_q_24_d = t1_pick_q_24_q;
+        t2_pick_q_24_d = t2_pick_q_24_q;
         operands_q_24_d = operands_q_24_q;
         if (advance) begin
-            if (index_q_8_q == 3'h0) begin
-                operands_q_24_d = t1_delay_0_q;
+            if (vertex_q_8_q == 2'h0) begin
+                t1_pick_q_24_d = t1_delay_0_q;
+                t2_pick_q_24_d = t2_delay_0_q;
             end
-            else if (index_q_8_q == 3'h1) begin
-                operands_q_24_d = t1_delay_3_q;
-            end
-            else if (index_q_8_q == 3'h2) begin
-                operands_q_24_d = t1_delay_6_q;
-            end
-            else if (index_q_8_q == 3'h3) begin
-                operands_q_24_d = t2_delay_0_q;
-            end
-            else if (index_q_8_q == 3'h4) begin
-                operands_q_24_d = t2_delay_3_q;
+            else if (vertex_q_8_q == 2'h1) begin
+                t1_pick_q_24_d = t1_delay_3_q;
+                t2_pick_q_24_d = t2_delay_3_q;
             end
             else begin
-                operands_q_24_d = t2_delay_6_q;
+                t1_pick_q_24_d = t1_delay_6_q;
+                t2_pick_q_24_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_8_q) begin
+                operands_q_24_d = t2_pick_q_24_q;
+            end
+            else begin
+                operands_q_24_d = t1_pick_q_24_q;
             end
         end
+        t1_pick_q_25_d = t1_pick_q_25_q;
+        t2_pick_q_25_d = t2_pick_q_25_q;
         operands_q_25_d = operands_q_25_q;
         if (advance) begin
-            if (index_q_8_q == 3'h0) begin
-                operands_q_25_d = t1_delay_1_q;
+            if (vertex_q_8_q == 2'h0) begin
+                t1_pick_q_25_d = t1_delay_1_q;
+                t2_pick_q_25_d = t2_delay_1_q;
             end
-            else if (index_q_8_q == 3'h1) begin
-                operands_q_25_d = t1_delay_4_q;
-            end
-            else if (index_q_8_q == 3'h2) begin
-                operands_q_25_d = t1_delay_7_q;
-            end
-            else if (index_q_8_q == 3'h3) begin
-                operands_q_25_d = t2_delay_1_q;
-            end
-            else if (index_q_8_q == 3'h4) begin
-                operands_q_25_d = t2_delay_4_q;
+            else if (vertex_q_8_q == 2'h1) begin
+                t1_pick_q_25_d = t1_delay_4_q;
+                t2_pick_q_25_d = t2_delay_4_q;
             end
             else begin
-                operands_q_25_d = t2_delay_7_q;
+                t1_pick_q_25_d = t1_delay_7_q;
+                t2_pick_q_25_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_8_q) begin
+                operands_q_25_d = t2_pick_q_25_q;
+            end
+            else begin
+                operands_q_25_d = t1_pick_q_25_q;
             end
         end
+        t1_pick_q_26_d = t1_pick_q_26_q;
+        t2_pick_q_26_d = t2_pick_q_26_q;
         operands_q_26_d = operands_q_26_q;
         if (advance) begin
-            if (index_q_8_q == 3'h0) begin
-                operands_q_26_d = t1_delay_2_q;
+            if (vertex_q_8_q == 2'h0) begin
+                t1_pick_q_26_d = t1_delay_2_q;
+                t2_pick_q_26_d = t2_delay_2_q;
             end
-            else if (index_q_8_q == 3'h1) begin
-                operands_q_26_d = t1_delay_5_q;
-            end
-            else if (index_q_8_q == 3'h2) begin
-                operands_q_26_d = t1_delay_8_q;
-            end
-            else if (index_q_8_q == 3'h3) begin
-                operands_q_26_d = t2_delay_2_q;
-            end
-            else if (index_q_8_q == 3'h4) begin
-                operands_q_26_d = t2_delay_5_q;
+            else if (vertex_q_8_q == 2'h1) begin
+                t1_pick_q_26_d = t1_delay_5_q;
+                t2_pick_q_26_d = t2_delay_5_q;
             end
             else begin
-                operands_q_26_d = t2_delay_8_q;
+                t1_pick_q_26_d = t1_delay_8_q;
+                t2_pick_q_26_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_8_q) begin
+                operands_q_26_d = t2_pick_q_26_q;
+            end
+            else begin
+                operands_q_26_d = t1_pick_q_26_q;
             end
         end
+        t1_pick_q_27_d = t1_pick_q_27_q;
+        t2_pick_q_27_d = t2_pick_q_27_q;
         operands_q_27_d = operands_q_27_q;
         if (advance) begin
-            if (index_q_9_q == 3'h0) begin
-                operands_q_27_d = t1_delay_0_q;
+            if (vertex_q_9_q == 2'h0) begin
+                t1_pick_q_27_d = t1_delay_0_q;
+                t2_pick_q_27_d = t2_delay_0_q;
             end
-            else if (index_q_9_q == 3'h1) begin
-                operands_q_27_d = t1_delay_3_q;
-            end
-            else if (index_q_9_q == 3'h2) begin
-                operands_q_27_d = t1_delay_6_q;
-            end
-            else if (index_q_9_q == 3'h3) begin
-                operands_q_27_d = t2_delay_0_q;
-            end
-            else if (index_q_9_q == 3'h4) begin
-                operands_q_27_d = t2_delay_3_q;
+            else if (vertex_q_9_q == 2'h1) begin
+                t1_pick_q_27_d = t1_delay_3_q;
+                t2_pick_q_27_d = t2_delay_3_q;
             end
             else begin
-                operands_q_27_d = t2_delay_6_q;
+                t1_pick_q_27_d = t1_delay_6_q;
+                t2_pick_q_27_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_9_q) begin
+                operands_q_27_d = t2_pick_q_27_q;
+            end
+            else begin
+                operands_q_27_d = t1_pick_q_27_q;
             end
         end
+        t1_pick_q_28_d = t1_pick_q_28_q;
+        t2_pick_q_28_d = t2_pick_q_28_q;
         operands_q_28_d = operands_q_28_q;
         if (advance) begin
-            if (index_q_9_q == 3'h0) begin
-                operands_q_28_d = t1_delay_1_q;
+            if (vertex_q_9_q == 2'h0) begin
+                t1_pick_q_28_d = t1_delay_1_q;
+                t2_pick_q_28_d = t2_delay_1_q;
             end
-            else if (index_q_9_q == 3'h1) begin
-                operands_q_28_d = t1_delay_4_q;
-            end
-            else if (index_q_9_q == 3'h2) begin
-                operands_q_28_d = t1_delay_7_q;
-            end
-            else if (index_q_9_q == 3'h3) begin
-                operands_q_28_d = t2_delay_1_q;
-            end
-            else if (index_q_9_q == 3'h4) begin
-                operands_q_28_d = t2_delay_4_q;
+            else if (vertex_q_9_q == 2'h1) begin
+                t1_pick_q_28_d = t1_delay_4_q;
+                t2_pick_q_28_d = t2_delay_4_q;
             end
             else begin
-                operands_q_28_d = t2_delay_7_q;
+                t1_pick_q_28_d = t1_delay_7_q;
+                t2_pick_q_28_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_9_q) begin
+                operands_q_28_d = t2_pick_q_28_q;
+            end
+            else begin
+                operands_q_28_d = t1_pick_q_28_q;
             end
         end
+        t1_pick_q_29_d = t1_pick_q_29_q;
+        t2_pick_q_29_d = t2_pick_q_29_q;
         operands_q_29_d = operands_q_29_q;
         if (advance) begin
-            if (index_q_9_q == 3'h0) begin
-                operands_q_29_d = t1_delay_2_q;
+            if (vertex_q_9_q == 2'h0) begin
+                t1_pick_q_29_d = t1_delay_2_q;
+                t2_pick_q_29_d = t2_delay_2_q;
             end
-            else if (index_q_9_q == 3'h1) begin
-                operands_q_29_d = t1_delay_5_q;
-            end
-            else if (index_q_9_q == 3'h2) begin
-                operands_q_29_d = t1_delay_8_q;
-            end
-            else if (index_q_9_q == 3'h3) begin
-                operands_q_29_d = t2_delay_2_q;
-            end
-            else if (index_q_9_q == 3'h4) begin
-                operands_q_29_d = t2_delay_5_q;
+            else if (vertex_q_9_q == 2'h1) begin
+                t1_pick_q_29_d = t1_delay_5_q;
+                t2_pick_q_29_d = t2_delay_5_q;
             end
             else begin
-                operands_q_29_d = t2_delay_8_q;
+                t1_pick_q_29_d = t1_delay_8_q;
+                t2_pick_q_29_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_9_q) begin
+                operands_q_29_d = t2_pick_q_29_q;
+            end
+            else begin
+                operands_q_29_d = t1_pick_q_29_q;
             end
         end
+        t1_pick_q_30_d = t1_pick_q_30_q;
+        t2_pick_q_30_d = t2_pick_q_30_q;
         operands_q_30_d = operands_q_30_q;
         if (advance) begin
-            if (index_q_10_q == 3'h0) begin
-                operands_q_30_d = t1_delay_0_q;
+            if (vertex_q_10_q == 2'h0) begin
+                t1_pick_q_30_d = t1_delay_0_q;
+                t2_pick_q_30_d = t2_delay_0_q;
             end
-            else if (index_q_10_q == 3'h1) begin
-                operands_q_30_d = t1_delay_3_q;
-            end
-            else if (index_q_10_q == 3'h2) begin
-                operands_q_30_d = t1_delay_6_q;
-            end
-            else if (index_q_10_q == 3'h3) begin
-                operands_q_30_d = t2_delay_0_q;
-            end
-            else if (index_q_10_q == 3'h4) begin
-                operands_q_30_d = t2_delay_3_q;
+            else if (vertex_q_10_q == 2'h1) begin
+                t1_pick_q_30_d = t1_delay_3_q;
+                t2_pick_q_30_d = t2_delay_3_q;
             end
             else begin
-                operands_q_30_d = t2_delay_6_q;
+                t1_pick_q_30_d = t1_delay_6_q;
+                t2_pick_q_30_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_10_q) begin
+                operands_q_30_d = t2_pick_q_30_q;
+            end
+            else begin
+                operands_q_30_d = t1_pick_q_30_q;
             end
         end
+        t1_pick_q_31_d = t1_pick_q_31_q;
+        t2_pick_q_31_d = t2_pick_q_31_q;
         operands_q_31_d = operands_q_31_q;
         if (advance) begin
-            if (index_q_10_q == 3'h0) begin
-                operands_q_31_d = t1_delay_1_q;
+            if (vertex_q_10_q == 2'h0) begin
+                t1_pick_q_31_d = t1_delay_1_q;
+                t2_pick_q_31_d = t2_delay_1_q;
             end
-            else if (index_q_10_q == 3'h1) begin
-                operands_q_31_d = t1_delay_4_q;
-            end
-            else if (index_q_10_q == 3'h2) begin
-                operands_q_31_d = t1_delay_7_q;
-            end
-            else if (index_q_10_q == 3'h3) begin
-                operands_q_31_d = t2_delay_1_q;
-            end
-            else if (index_q_10_q == 3'h4) begin
-                operands_q_31_d = t2_delay_4_q;
+            else if (vertex_q_10_q == 2'h1) begin
+                t1_pick_q_31_d = t1_delay_4_q;
+                t2_pick_q_31_d = t2_delay_4_q;
             end
             else begin
-                operands_q_31_d = t2_delay_7_q;
+                t1_pick_q_31_d = t1_delay_7_q;
+                t2_pick_q_31_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_10_q) begin
+                operands_q_31_d = t2_pick_q_31_q;
+            end
+            else begin
+                operands_q_31_d = t1_pick_q_31_q;
             end
         end
+        t1_pick_q_32_d = t1_pick_q_32_q;
+        t2_pick_q_32_d = t2_pick_q_32_q;
         operands_q_32_d = operands_q_32_q;
         if (advance) begin
-            if (index_q_10_q == 3'h0) begin
-                operands_q_32_d = t1_delay_2_q;
+            if (vertex_q_10_q == 2'h0) begin
+                t1_pick_q_32_d = t1_delay_2_q;
+                t2_pick_q_32_d = t2_delay_2_q;
             end
-            else if (index_q_10_q == 3'h1) begin
-                operands_q_32_d = t1_delay_5_q;
-            end
-            else if (index_q_10_q == 3'h2) begin
-                operands_q_32_d = t1_delay_8_q;
-            end
-            else if (index_q_10_q == 3'h3) begin
-                operands_q_32_d = t2_delay_2_q;
-            end
-            else if (index_q_10_q == 3'h4) begin
-                operands_q_32_d = t2_delay_5_q;
+            else if (vertex_q_10_q == 2'h1) begin
+                t1_pick_q_32_d = t1_delay_5_q;
+                t2_pick_q_32_d = t2_delay_5_q;
             end
             else begin
-                operands_q_32_d = t2_delay_8_q;
+                t1_pick_q_32_d = t1_delay_8_q;
+                t2_pick_q_32_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_10_q) begin
+                operands_q_32_d = t2_pick_q_32_q;
+            end
+            else begin
+                operands_q_32_d = t1_pick_q_32_q;
             end
         end
+        t1_pick_q_33_d = t1_pick_q_33_q;
+        t2_pick_q_33_d = t2_pick_q_33_q;
         operands_q_33_d = operands_q_33_q;
         if (advance) begin
-            if (index_q_11_q == 3'h0) begin
-                operands_q_33_d = t1_delay_0_q;
+            if (vertex_q_11_q == 2'h0) begin
+                t1_pick_q_33_d = t1_delay_0_q;
+                t2_pick_q_33_d = t2_delay_0_q;
             end
-            else if (index_q_11_q == 3'h1) begin
-                operands_q_33_d = t1_delay_3_q;
-            end
-            else if (index_q_11_q == 3'h2) begin
-                operands_q_33_d = t1_delay_6_q;
-            end
-            else if (index_q_11_q == 3'h3) begin
-                operands_q_33_d = t2_delay_0_q;
-            end
-            else if (index_q_11_q == 3'h4) begin
-                operands_q_33_d = t2_delay_3_q;
+            else if (vertex_q_11_q == 2'h1) begin
+                t1_pick_q_33_d = t1_delay_3_q;
+                t2_pick_q_33_d = t2_delay_3_q;
             end
             else begin
-                operands_q_33_d = t2_delay_6_q;
+                t1_pick_q_33_d = t1_delay_6_q;
+                t2_pick_q_33_d = t2_delay_6_q;
+            end
+            if (from_t2_2q_11_q) begin
+                operands_q_33_d = t2_pick_q_33_q;
+            end
+            else begin
+                operands_q_33_d = t1_pick_q_33_q;
             end
         end
+        t1_pick_q_34_d = t1_pick_q_34_q;
+        t2_pick_q_34_d = t2_pick_q_34_q;
         operands_q_34_d = operands_q_34_q;
         if (advance) begin
-            if (index_q_11_q == 3'h0) begin
-                operands_q_34_d = t1_delay_1_q;
+            if (vertex_q_11_q == 2'h0) begin
+                t1_pick_q_34_d = t1_delay_1_q;
+                t2_pick_q_34_d = t2_delay_1_q;
             end
-            else if (index_q_11_q == 3'h1) begin
-                operands_q_34_d = t1_delay_4_q;
-            end
-            else if (index_q_11_q == 3'h2) begin
-                operands_q_34_d = t1_delay_7_q;
-            end
-            else if (index_q_11_q == 3'h3) begin
-                operands_q_34_d = t2_delay_1_q;
-            end
-            else if (index_q_11_q == 3'h4) begin
-                operands_q_34_d = t2_delay_4_q;
+            else if (vertex_q_11_q == 2'h1) begin
+                t1_pick_q_34_d = t1_delay_4_q;
+                t2_pick_q_34_d = t2_delay_4_q;
             end
             else begin
-                operands_q_34_d = t2_delay_7_q;
+                t1_pick_q_34_d = t1_delay_7_q;
+                t2_pick_q_34_d = t2_delay_7_q;
+            end
+            if (from_t2_2q_11_q) begin
+                operands_q_34_d = t2_pick_q_34_q;
+            end
+            else begin
+                operands_q_34_d = t1_pick_q_34_q;
             end
         end
+        t1_pick_q_35_d = t1_pick_q_35_q;
+        t2_pick_q_35_d = t2_pick_q_35_q;
         operands_q_35_d = operands_q_35_q;
         if (advance) begin
-            if (index_q_11_q == 3'h0) begin
-                operands_q_35_d = t1_delay_2_q;
+            if (vertex_q_11_q == 2'h0) begin
+                t1_pick_q_35_d = t1_delay_2_q;
+                t2_pick_q_35_d = t2_delay_2_q;
             end
-            else if (index_q_11_q == 3'h1) begin
-                operands_q_35_d = t1_delay_5_q;
-            end
-            else if (index_q_11_q == 3'h2) begin
-                operands_q_35_d = t1_delay_8_q;
-            end
-            else if (index_q_11_q == 3'h3) begin
-                operands_q_35_d = t2_delay_2_q;
-            end
-            else if (index_q_11_q == 3'h4) begin
-                operands_q_35_d = t2_delay_5_q;
+            else if (vertex_q_11_q == 2'h1) begin
+                t1_pick_q_35_d = t1_delay_5_q;
+                t2_pick_q_35_d = t2_delay_5_q;
             end
             else begin
-                operands_q_35_d = t2_delay_8_q;
+                t1_pick_q_35_d = t1_delay_8_q;
+                t2_pick_q_35_d = t2_delay_8_q;
+            end
+            if (from_t2_2q_11_q) begin
+                operands_q_35_d = t2_pick_q_35_q;
+            end
+            else begin
+                operands_q_35_d = t1_pick_q_35_q;
             end
         end
     end

@@ -27,14 +27,16 @@ module tritri_pipeline_w24_orient3d_edge_ad_delay (
 );
 
     // Update code (custom)
-    // Delay line: 4 stage(s) of 25 bit(s).
+    // Delay line: 5 stage(s) of 25 bit(s).
     reg [24:0] stage_0_q;
     reg [24:0] stage_1_q;
     reg [24:0] stage_2_q;
+    reg [24:0] stage_3_q;
     initial begin
         stage_0_q = 25'd0;
         stage_1_q = 25'd0;
         stage_2_q = 25'd0;
+        stage_3_q = 25'd0;
         q = 25'd0;
     end
     always @(posedge clock) begin
@@ -42,7 +44,8 @@ module tritri_pipeline_w24_orient3d_edge_ad_delay (
             stage_0_q <= d;
             stage_1_q <= stage_0_q;
             stage_2_q <= stage_1_q;
-            q <= stage_2_q;
+            stage_3_q <= stage_2_q;
+            q <= stage_3_q;
         end
     end
 endmodule  // tritri_pipeline_w24_orient3d_edge_ad_delay

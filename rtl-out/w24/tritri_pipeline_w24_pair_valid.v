@@ -26,7 +26,7 @@ module tritri_pipeline_w24_pair_valid (
 );
 
     // Update code (custom)
-    // Delay line: 22 stage(s) of 1 bit(s).
+    // Delay line: 26 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -48,6 +48,10 @@ module tritri_pipeline_w24_pair_valid (
     reg stage_18_q;
     reg stage_19_q;
     reg stage_20_q;
+    reg stage_21_q;
+    reg stage_22_q;
+    reg stage_23_q;
+    reg stage_24_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -70,6 +74,10 @@ module tritri_pipeline_w24_pair_valid (
         stage_18_q = 1'd0;
         stage_19_q = 1'd0;
         stage_20_q = 1'd0;
+        stage_21_q = 1'd0;
+        stage_22_q = 1'd0;
+        stage_23_q = 1'd0;
+        stage_24_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -95,6 +103,10 @@ module tritri_pipeline_w24_pair_valid (
             stage_18_q <= 1'd0;
             stage_19_q <= 1'd0;
             stage_20_q <= 1'd0;
+            stage_21_q <= 1'd0;
+            stage_22_q <= 1'd0;
+            stage_23_q <= 1'd0;
+            stage_24_q <= 1'd0;
             q <= 1'd0;
         end else if (advance) begin
             stage_0_q <= d;
@@ -118,7 +130,11 @@ module tritri_pipeline_w24_pair_valid (
             stage_18_q <= stage_17_q;
             stage_19_q <= stage_18_q;
             stage_20_q <= stage_19_q;
-            q <= stage_20_q;
+            stage_21_q <= stage_20_q;
+            stage_22_q <= stage_21_q;
+            stage_23_q <= stage_22_q;
+            stage_24_q <= stage_23_q;
+            q <= stage_24_q;
         end
     end
 endmodule  // tritri_pipeline_w24_pair_valid

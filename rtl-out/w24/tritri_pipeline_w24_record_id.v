@@ -25,7 +25,7 @@ module tritri_pipeline_w24_record_id (
 );
 
     // Update code (custom)
-    // Delay line: 8 stage(s) of 32 bit(s).
+    // Delay line: 10 stage(s) of 32 bit(s).
     reg [31:0] stage_0_q;
     reg [31:0] stage_1_q;
     reg [31:0] stage_2_q;
@@ -33,6 +33,8 @@ module tritri_pipeline_w24_record_id (
     reg [31:0] stage_4_q;
     reg [31:0] stage_5_q;
     reg [31:0] stage_6_q;
+    reg [31:0] stage_7_q;
+    reg [31:0] stage_8_q;
     initial begin
         stage_0_q = 32'd0;
         stage_1_q = 32'd0;
@@ -41,6 +43,8 @@ module tritri_pipeline_w24_record_id (
         stage_4_q = 32'd0;
         stage_5_q = 32'd0;
         stage_6_q = 32'd0;
+        stage_7_q = 32'd0;
+        stage_8_q = 32'd0;
         q = 32'd0;
     end
     always @(posedge clock) begin
@@ -52,7 +56,9 @@ module tritri_pipeline_w24_record_id (
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
-            q <= stage_6_q;
+            stage_7_q <= stage_6_q;
+            stage_8_q <= stage_7_q;
+            q <= stage_8_q;
         end
     end
 endmodule  // tritri_pipeline_w24_record_id

@@ -26,7 +26,7 @@ module tritri_pipeline_w24_record_valid (
 );
 
     // Update code (custom)
-    // Delay line: 8 stage(s) of 1 bit(s).
+    // Delay line: 10 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -34,6 +34,8 @@ module tritri_pipeline_w24_record_valid (
     reg stage_4_q;
     reg stage_5_q;
     reg stage_6_q;
+    reg stage_7_q;
+    reg stage_8_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -42,6 +44,8 @@ module tritri_pipeline_w24_record_valid (
         stage_4_q = 1'd0;
         stage_5_q = 1'd0;
         stage_6_q = 1'd0;
+        stage_7_q = 1'd0;
+        stage_8_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -53,6 +57,8 @@ module tritri_pipeline_w24_record_valid (
             stage_4_q <= 1'd0;
             stage_5_q <= 1'd0;
             stage_6_q <= 1'd0;
+            stage_7_q <= 1'd0;
+            stage_8_q <= 1'd0;
             q <= 1'd0;
         end else if (advance) begin
             stage_0_q <= d;
@@ -62,7 +68,9 @@ module tritri_pipeline_w24_record_valid (
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
-            q <= stage_6_q;
+            stage_7_q <= stage_6_q;
+            stage_8_q <= stage_7_q;
+            q <= stage_8_q;
         end
     end
 endmodule  // tritri_pipeline_w24_record_valid

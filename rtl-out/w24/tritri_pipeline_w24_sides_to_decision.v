@@ -27,7 +27,7 @@ module tritri_pipeline_w24_sides_to_decision (
 );
 
     // Update code (custom)
-    // Delay line: 15 stage(s) of 1 bit(s).
+    // Delay line: 18 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -42,6 +42,9 @@ module tritri_pipeline_w24_sides_to_decision (
     reg stage_11_q;
     reg stage_12_q;
     reg stage_13_q;
+    reg stage_14_q;
+    reg stage_15_q;
+    reg stage_16_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -57,6 +60,9 @@ module tritri_pipeline_w24_sides_to_decision (
         stage_11_q = 1'd0;
         stage_12_q = 1'd0;
         stage_13_q = 1'd0;
+        stage_14_q = 1'd0;
+        stage_15_q = 1'd0;
+        stage_16_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -75,7 +81,10 @@ module tritri_pipeline_w24_sides_to_decision (
             stage_11_q <= stage_10_q;
             stage_12_q <= stage_11_q;
             stage_13_q <= stage_12_q;
-            q <= stage_13_q;
+            stage_14_q <= stage_13_q;
+            stage_15_q <= stage_14_q;
+            stage_16_q <= stage_15_q;
+            q <= stage_16_q;
         end
     end
 endmodule  // tritri_pipeline_w24_sides_to_decision

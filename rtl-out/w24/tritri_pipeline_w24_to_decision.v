@@ -2,8 +2,8 @@
 //
 // Filename:   tritri_pipeline_w24_to_decision.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (2): coplanar_to_decision,
-//             degenerate_pair_to_decision.
+// Purpose:    Part of tritri_pipeline_w24. Instances (3): coplanar_to_decision,
+//             degenerate_to_decision[0], degenerate_to_decision[1].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -26,7 +26,7 @@ module tritri_pipeline_w24_to_decision (
 );
 
     // Update code (custom)
-    // Delay line: 13 stage(s) of 1 bit(s).
+    // Delay line: 15 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -39,6 +39,8 @@ module tritri_pipeline_w24_to_decision (
     reg stage_9_q;
     reg stage_10_q;
     reg stage_11_q;
+    reg stage_12_q;
+    reg stage_13_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -52,6 +54,8 @@ module tritri_pipeline_w24_to_decision (
         stage_9_q = 1'd0;
         stage_10_q = 1'd0;
         stage_11_q = 1'd0;
+        stage_12_q = 1'd0;
+        stage_13_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -68,7 +72,9 @@ module tritri_pipeline_w24_to_decision (
             stage_9_q <= stage_8_q;
             stage_10_q <= stage_9_q;
             stage_11_q <= stage_10_q;
-            q <= stage_11_q;
+            stage_12_q <= stage_11_q;
+            stage_13_q <= stage_12_q;
+            q <= stage_13_q;
         end
     end
 endmodule  // tritri_pipeline_w24_to_decision

@@ -27,16 +27,18 @@ module tritri_pipeline_w24_within_segment (
 );
 
     // Update code (custom)
-    // Delay line: 5 stage(s) of 1 bit(s).
+    // Delay line: 6 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
     reg stage_3_q;
+    reg stage_4_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
         stage_2_q = 1'd0;
         stage_3_q = 1'd0;
+        stage_4_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -45,7 +47,8 @@ module tritri_pipeline_w24_within_segment (
             stage_1_q <= stage_0_q;
             stage_2_q <= stage_1_q;
             stage_3_q <= stage_2_q;
-            q <= stage_3_q;
+            stage_4_q <= stage_3_q;
+            q <= stage_4_q;
         end
     end
 endmodule  // tritri_pipeline_w24_within_segment

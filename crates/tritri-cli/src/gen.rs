@@ -23,6 +23,15 @@
 //! also written to `route_ecp5.md` (a whole pipeline takes tens of minutes
 //! to hours; a unit on its own, seconds to minutes).
 //!
+//! `--synth-top MODULE` places and routes one module of the emitted design
+//! instead of its top, for the critical path of one unit in minutes.
+//!
+//! `--dsp ecp5` (the default with `--synth ecp5`) writes each multiplier as
+//! Lattice MULT18X18D blocks with their input, pipeline and output
+//! registers, which Yosys does not infer, plus a simulation model of the
+//! primitive (`ecp5_mult18x18d_model.v`, skipped by synthesis); `--dsp
+//! inferred` (the default otherwise) leaves `a * b` to the flow.
+//!
 //! `--system` writes the whole bounding-volume-aware system instead (two-bank
 //! triangle memories, address generator, `--pipelines P` pipelines, result
 //! FIFO; `--depth D` triangles per array per bank), top
@@ -62,15 +71,17 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_rtl::configurations::check_width;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
-use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
+use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
-use tritri_rtl::emit::{emit_pipeline, pipeline_unit_name, EmittedDesign};
+use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
+use tritri_rtl::emit::pipeline_unit::emit_pipeline_with;
+use tritri_rtl::emit::{pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
-use tritri_rtl::system::system_unit::emit_system;
+use tritri_rtl::system::system_unit::emit_system_with;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
@@ -92,6 +103,19 @@ pub struct Args {
     /// Fmax, the critical path and LUT4 / FF / MULT18X18D / EBR.
     #[arg(long, num_args = 0..=1, default_missing_value = "all", value_parser = ["all", "xilinx", "generic", "ecp5"])]
     synth: Option<String>,
+    /// How the multipliers reach the DSP blocks: `inferred` (`a * b`
+    /// between registers, for any flow) or `ecp5` (Lattice MULT18X18D
+    /// instances with their input, pipeline and output registers, and a
+    /// simulation model of the primitive; widths up to 17) [default: ecp5
+    /// with --synth ecp5, inferred otherwise].
+    #[arg(long, value_parser = MultiplierMapping::NAMES)]
+    dsp: Option<String>,
+    /// With --synth ecp5: place and route this module of the emitted
+    /// design on its own instead of the top (a unit of the pipeline, such
+    /// as tritri_pipeline_w16_operands: minutes where the whole pipeline
+    /// takes hours).
+    #[arg(long, value_name = "MODULE")]
+    synth_top: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
     #[arg(long, conflicts_with_all = ["classifier", "setup"])]
@@ -207,8 +231,36 @@ impl Args {
         }
     }
 
+    /// The multipliers' mapping (`--dsp`, or the device of `--synth`).
+    fn multipliers(&self) -> MultiplierMapping {
+        match (&self.dsp, self.synth.as_deref()) {
+            (Some(name), _) => MultiplierMapping::parse(name).unwrap_or_default(),
+            (None, Some("ecp5")) => MultiplierMapping::Ecp5,
+            (None, _) => MultiplierMapping::Inferred,
+        }
+    }
+
+    /// Whether the unit has multipliers (`--dsp` applies).
+    fn has_multipliers(&self) -> bool {
+        !(self.classifier || self.setup || self.owner_filter || self.binning_unit || self.engine_unit())
+    }
+
     /// An error for options that do not go together, naming them.
     fn check_usage(&self) -> Result<(), String> {
+        if self.synth_top.is_some() && self.synth.as_deref() != Some("ecp5") {
+            return Err("--synth-top applies to --synth ecp5".into());
+        }
+        if self.dsp.is_some() && !self.has_multipliers() {
+            return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
+        }
+        if self.multipliers() == MultiplierMapping::Ecp5 {
+            if let Some(&w) = self.width.iter().find(|&&w| w > MAX_ECP5_DSP_WIDTH) {
+                let how = if self.dsp.is_some() { "--dsp ecp5" } else { "--synth ecp5 (which maps onto MULT18X18D blocks)" };
+                return Err(format!(
+                    "--width {w} with {how}: MULT18X18D mapping takes widths up to {MAX_ECP5_DSP_WIDTH} (add --dsp inferred to let Yosys map the products)"
+                ));
+            }
+        }
         if !(self.system || self.binning_unit || self.broad_phase) {
             if self.pipelines.is_some() {
                 return Err("--pipelines applies to --system, --binning-unit and --broad-phase".into());
@@ -268,7 +320,7 @@ impl Args {
         }
         if self.broad_phase {
             let config = self.broad_phase_config(width);
-            return emit_broad_phase_system(&config).with_context(|| format!("emitting {}", config.unit_name()));
+            return emit_broad_phase_system_with(&config, self.multipliers()).with_context(|| format!("emitting {}", config.unit_name()));
         }
         if self.owner_filter {
             return emit_owner_filter(self.slots()).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots())));
@@ -281,9 +333,9 @@ impl Args {
         }
         if self.system {
             let config = self.system_config(width);
-            return emit_system(config, PipelineKind::Real).with_context(|| format!("emitting {}", config.unit_name()));
+            return emit_system_with(config, PipelineKind::Real, self.multipliers()).with_context(|| format!("emitting {}", config.unit_name()));
         }
-        emit_pipeline(width).with_context(|| format!("emitting the {width}-bit pipeline"))
+        emit_pipeline_with(width, self.multipliers()).with_context(|| format!("emitting the {width}-bit pipeline"))
     }
 
     /// Everything but the pipeline goes into a directory named after its top.
@@ -370,8 +422,18 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             dir.display()
         );
         if args.synth.as_deref() == Some("ecp5") {
-            eprintln!("yosys synth_ecp5 and nextpnr-ecp5 (out of context, LFE5U-85F, speed 6) in {} ...", dir.display());
-            let report = route_ecp5(&dir, &design.top, &Ecp5Options::default()).with_context(|| format!("place and route of {}", design.top))?;
+            let top = args.synth_top.as_deref().unwrap_or(&design.top);
+            if !design.modules.iter().any(|m| m == top) {
+                let units: Vec<&str> = design.modules.iter().map(String::as_str).filter(|m| !m.contains("_dff_") && !m.contains("_delay")).take(12).collect();
+                eprintln!("error: --synth-top {top}: {} has no such module; it has {}, ...", design.top, units.join(", "));
+                return Ok(ExitCode::from(2));
+            }
+            eprintln!(
+                "yosys synth_ecp5 and nextpnr-ecp5 of {top} (out of context, LFE5U-85F, speed 6) in {} (progress: {}) ...",
+                dir.display(),
+                dir.join("route_ecp5.log").display()
+            );
+            let report = route_ecp5(&dir, top, &Ecp5Options::default()).with_context(|| format!("place and route of {top}"))?;
             std::fs::write(dir.join("route_ecp5.md"), route_table(std::slice::from_ref(&report)))?;
             routes.push(report);
         } else if let Some(which) = &args.synth {

@@ -61,6 +61,28 @@ fn unsupported_width_is_refused() {
     assert!(message.contains("width 23") && message.contains("24"), "{message}");
 }
 
+/// `--dsp ecp5` and `--synth-top`: bad values are named; a mapped W = 8
+/// pipeline carries the primitive's model in its file list.
+#[test]
+fn dsp_mapping_options_are_checked() {
+    let refused = |args: &[&str], expected: &[&str]| {
+        let out = tritri().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let message = String::from_utf8_lossy(&out.stderr);
+        assert!(expected.iter().all(|e| message.contains(e)), "{args:?}: {message}");
+    };
+    refused(&["gen", "--width", "24", "--dsp", "ecp5", "--out", "/nonexistent/x"], &["--width 24", "17"]);
+    refused(&["gen", "--width", "24", "--synth", "ecp5", "--out", "/nonexistent/x"], &["--width 24", "--dsp inferred"]);
+    refused(&["gen", "--plane-traversal", "--dsp", "ecp5", "--out", "/nonexistent/x"], &["--dsp applies"]);
+    refused(&["gen", "--width", "8", "--synth-top", "x", "--out", "/nonexistent/x"], &["--synth-top applies to --synth ecp5"]);
+    let dir = std::env::temp_dir().join(format!("tritri-gen-dsp-{}", std::process::id()));
+    let out = tritri().args(["gen", "--width", "8", "--dsp", "ecp5", "--out"]).arg(&dir).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let filelist = std::fs::read_to_string(dir.join("filelist.f")).unwrap();
+    assert_eq!(filelist.lines().next(), Some("ecp5_mult18x18d_model.v"), "the model comes first");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Several widths go to `<out>/w<W>`.
 #[test]
 fn several_widths_go_to_subdirectories() {

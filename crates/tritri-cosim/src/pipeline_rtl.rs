@@ -8,6 +8,7 @@ use crate::stream::{StreamResult, TriangleStream};
 use crate::vectors::{parse_outputs, vectors, vectors_for_schedule, TimedVerdict};
 use std::path::Path;
 use tritri_rtl::configurations::PipelineInput;
+use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::EmittedDesign;
 
 /// The testbench, compiled into the library so runs need no checkout.
@@ -57,21 +58,28 @@ pub struct RtlRun {
 
 /// The emitted `width`-bit pipeline as a DUT, emitted once per process.
 pub fn pipeline_dut(width: usize) -> anyhow::Result<std::sync::Arc<RtlDut>> {
+    pipeline_dut_with(width, MultiplierMapping::Inferred)
+}
+
+/// [`pipeline_dut`] with its multipliers mapped as `multipliers` says
+/// (with `Ecp5`, the MULT18X18D instances run on the primitive's model).
+pub fn pipeline_dut_with(width: usize, multipliers: MultiplierMapping) -> anyhow::Result<std::sync::Arc<RtlDut>> {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex, OnceLock};
-    static CACHE: OnceLock<Mutex<HashMap<usize, Arc<RtlDut>>>> = OnceLock::new();
+    type Cache = Mutex<HashMap<(usize, MultiplierMapping), Arc<RtlDut>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
-    if let Some(d) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&width) {
+    if let Some(d) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&(width, multipliers)) {
         return Ok(d.clone());
     }
-    let design = tritri_rtl::emit::emit_pipeline(width)?;
+    let design = tritri_rtl::emit::pipeline_unit::emit_pipeline_with(width, multipliers)?;
     let dut = Arc::new(RtlDut {
         design,
         width: width as u32,
         id_bits: tritri_rtl::pipeline::ID_BITS as u32,
         latency: tritri_rtl::pipeline::triangle_pipeline::latency() as u64,
     });
-    cache.lock().unwrap_or_else(|e| e.into_inner()).insert(width, dut.clone());
+    cache.lock().unwrap_or_else(|e| e.into_inner()).insert((width, multipliers), dut.clone());
     Ok(dut)
 }
 

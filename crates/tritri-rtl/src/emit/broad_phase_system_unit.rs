@@ -2,7 +2,8 @@
 //! its name, port meanings and timing.
 
 use super::binning_unit_unit::BinningEmitError;
-use super::{emit, EmittedDesign, UnitDescription};
+use super::dsp_mapping::MultiplierMapping;
+use super::{emit_with, EmitOptions, EmittedDesign, UnitDescription};
 use crate::octree::binning_unit::{on_unit_stack, BinningUnitConfig};
 use crate::octree::broad_phase_system::{BroadPhaseSystem, BROAD_PHASE_WIDTHS, FIRST_HEADER_DELAY};
 use crate::octree::cell_classifier::AXES;
@@ -143,8 +144,18 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
 
 /// The emitted top built for `config`.
 pub fn emit_broad_phase_system(config: &BroadPhaseConfig) -> Result<EmittedDesign, BinningEmitError> {
+    emit_broad_phase_system_with(config, MultiplierMapping::Inferred)
+}
+
+/// [`emit_broad_phase_system`] with the system's multipliers mapped as
+/// `multipliers` says (`tritri gen --broad-phase --dsp`).
+pub fn emit_broad_phase_system_with(
+    config: &BroadPhaseConfig,
+    multipliers: MultiplierMapping,
+) -> Result<EmittedDesign, BinningEmitError> {
     let raw = raw_broad_phase_verilog(config)?;
+    let options = EmitOptions { multipliers, ..EmitOptions::default() };
     // The passes recurse over the text's expressions, deeper here than a
     // test thread's stack allows.
-    Ok(on_unit_stack(|| emit(&raw, &broad_phase_system(config)))?)
+    Ok(on_unit_stack(|| emit_with(&raw, &broad_phase_system(config), options))?)
 }

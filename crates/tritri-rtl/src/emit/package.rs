@@ -165,14 +165,18 @@ pub fn module_file(module: &Module, unit: &UnitDescription, is_top: bool) -> Str
 }
 
 /// Every file of the emitted directory (see [`super::EmittedDesign::files`]).
-pub fn files(modules: &[Module], ports: &[Port], unit: &UnitDescription) -> Vec<EmittedFile> {
+/// `models` are simulation models of device primitives the modules
+/// instantiate (written as they are, listed first).
+pub fn files(modules: &[Module], ports: &[Port], unit: &UnitDescription, models: &[EmittedFile]) -> Vec<EmittedFile> {
     let mut files = Vec::new();
     for (k, m) in modules.iter().enumerate() {
         files.push(EmittedFile { path: format!("{}.v", m.name), contents: module_file(m, unit, k == 0) });
     }
+    files.extend(models.iter().cloned());
     // Children first, top last: the order tools that need definitions
     // before use expect.
-    let mut order: Vec<String> = modules.iter().skip(1).map(|m| format!("{}.v", m.name)).collect();
+    let mut order: Vec<String> = models.iter().map(|f| f.path.clone()).collect();
+    order.extend(modules.iter().skip(1).map(|m| format!("{}.v", m.name)));
     order.push(format!("{}.v", modules[0].name));
     files.push(EmittedFile { path: "filelist.f".into(), contents: order.join("\n") + "\n" });
     files.push(EmittedFile { path: format!("{}.core", unit.name), contents: fusesoc_core(&order, unit) });

@@ -2,7 +2,8 @@
 //! meanings, latency and throughput, around rust-hdl's Verilog from
 //! [`crate::raw_verilog`].
 
-use super::{emit, EmitError, EmittedDesign, UnitDescription};
+use super::dsp_mapping::MultiplierMapping;
+use super::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 use crate::configurations::{UnsupportedWidth, SUPPORTED_WIDTHS};
 use crate::pipeline::triangle_pipeline::latency;
 use crate::pipeline::ID_BITS;
@@ -79,7 +80,13 @@ pub enum PipelineEmitError {
 
 /// The emitted `width`-bit pipeline (what `tritri gen --width <W>` writes).
 pub fn emit_pipeline(width: usize) -> Result<EmittedDesign, PipelineEmitError> {
+    emit_pipeline_with(width, MultiplierMapping::Inferred)
+}
+
+/// [`emit_pipeline`] with its multipliers mapped as `multipliers` says
+/// (`tritri gen --dsp`).
+pub fn emit_pipeline_with(width: usize, multipliers: MultiplierMapping) -> Result<EmittedDesign, PipelineEmitError> {
     let unit = pipeline_unit(width)?;
     let raw = crate::raw_verilog(width)?;
-    Ok(emit(&raw, &unit)?)
+    Ok(emit_with(&raw, &unit, EmitOptions { multipliers, ..EmitOptions::default() })?)
 }

@@ -19,7 +19,9 @@
 //! projected coordinates.
 //!
 //! Stages: projection (1), differences and comparisons (1), orient2d (4),
-//! signs (1), decision (1).
+//! signs (1), decision (2: the eleven terms of `hulls_intersect_2d`, then
+//! their OR; in one stage, eighteen signs fanned into one register through
+//! five LUT levels, 129 MHz on ECP5).
 
 use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
@@ -30,9 +32,15 @@ use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
-pub const COPLANAR_TEST_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
+pub const COPLANAR_TEST_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + DECISION_STAGES;
+/// The decision's stages: the terms, then their OR.
+const DECISION_STAGES: usize = 2;
 const ON_EDGE_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
-const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - 1;
+/// The orientations are read where the terms are formed.
+const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - DECISION_STAGES;
+/// Terms of the decision: a crossing or touching per pair of edges (`3 e +
+/// f`), B_0 inside A, A_0 inside B.
+const TERMS: usize = 11;
 const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
 
 #[derive(LogicBlock, Default)]
@@ -68,6 +76,7 @@ pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
     orient: [CrossProduct2d<D, C>; 18],
     sign: [SignOf<C>; 18],
     positive: [Signal<Local, Bit>; 18],
+    term_q: [DFF<Bit>; TERMS],
     hit_q: DFF<Bit>,
 }
 
@@ -205,49 +214,55 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
                         || self.compare[9 + 3 * v + (e + 1) % 3].equal.val());
             }
         }
-        // Stage 8: the decision of hulls_intersect_2d.
-        dff_setup!(self, clock, hit_q);
+        // Stage 8: the terms of hulls_intersect_2d.
+        for i in 0..TERMS {
+            self.term_q[i].clock.next = self.clock.val();
+            self.term_q[i].d.next = self.term_q[i].q.val();
+        }
         if self.advance.val() {
-            self.hit_q.d.next = false;
             for e in 0..3 {
                 for f in 0..3 {
                     // Proper crossing: o1, o2 strictly opposite and o3, o4
-                    // strictly opposite (o3, o4 are both negated: same test).
-                    if ((self.sign[3 * e + f].negative.val() && self.positive[3 * e + (f + 1) % 3].val())
+                    // strictly opposite (o3, o4 are both negated: same test);
+                    // or touching: an end collinear with the other edge and
+                    // on it.
+                    self.term_q[3 * e + f].d.next = (((self.sign[3 * e + f].negative.val() && self.positive[3 * e + (f + 1) % 3].val())
                         || (self.positive[3 * e + f].val() && self.sign[3 * e + (f + 1) % 3].negative.val()))
                         && ((self.sign[9 + 3 * f + e].negative.val() && self.positive[9 + 3 * f + (e + 1) % 3].val())
-                            || (self.positive[9 + 3 * f + e].val() && self.sign[9 + 3 * f + (e + 1) % 3].negative.val()))
-                    {
-                        self.hit_q.d.next = true;
-                    }
-                    // Touching: an end collinear with the other edge and on it.
-                    if (self.sign[3 * e + f].zero.val() && self.on_edge_a[3 * e + f].q.val())
+                            || (self.positive[9 + 3 * f + e].val() && self.sign[9 + 3 * f + (e + 1) % 3].negative.val())))
+                        || (self.sign[3 * e + f].zero.val() && self.on_edge_a[3 * e + f].q.val())
                         || (self.sign[3 * e + (f + 1) % 3].zero.val() && self.on_edge_a[3 * e + (f + 1) % 3].q.val())
                         || (self.sign[9 + 3 * f + e].zero.val() && self.on_edge_b[3 * f + e].q.val())
-                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val() && self.on_edge_b[3 * f + (e + 1) % 3].q.val())
-                    {
-                        self.hit_q.d.next = true;
-                    }
+                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val() && self.on_edge_b[3 * f + (e + 1) % 3].q.val());
                 }
             }
             // B_0 inside A: A proper here, and B_0 on the inner side of (or
             // on) every edge.
-            if !self.orientation[1].q.val()
+            self.term_q[9].d.next = !self.orientation[1].q.val()
                 && (self.sign[0].zero.val() || (self.sign[0].negative.val() == self.orientation[0].q.val()))
                 && (self.sign[3].zero.val() || (self.sign[3].negative.val() == self.orientation[0].q.val()))
-                && (self.sign[6].zero.val() || (self.sign[6].negative.val() == self.orientation[0].q.val()))
-            {
-                self.hit_q.d.next = true;
-            }
+                && (self.sign[6].zero.val() || (self.sign[6].negative.val() == self.orientation[0].q.val()));
             // A_0 inside B (its orient2d values are negated: positive here
             // means negative there).
-            if !self.orientation[3].q.val()
+            self.term_q[10].d.next = !self.orientation[3].q.val()
                 && (self.sign[9].zero.val() || (self.positive[9].val() == self.orientation[2].q.val()))
                 && (self.sign[12].zero.val() || (self.positive[12].val() == self.orientation[2].q.val()))
-                && (self.sign[15].zero.val() || (self.positive[15].val() == self.orientation[2].q.val()))
-            {
-                self.hit_q.d.next = true;
-            }
+                && (self.sign[15].zero.val() || (self.positive[15].val() == self.orientation[2].q.val()));
+        }
+        // Stage 9: any term.
+        dff_setup!(self, clock, hit_q);
+        if self.advance.val() {
+            self.hit_q.d.next = self.term_q[0].q.val()
+                || self.term_q[1].q.val()
+                || self.term_q[2].q.val()
+                || self.term_q[3].q.val()
+                || self.term_q[4].q.val()
+                || self.term_q[5].q.val()
+                || self.term_q[6].q.val()
+                || self.term_q[7].q.val()
+                || self.term_q[8].q.val()
+                || self.term_q[9].q.val()
+                || self.term_q[10].q.val();
         }
         self.hit.next = self.hit_q.q.val();
     }

@@ -9,14 +9,20 @@
 //! * both degenerate: `[a, b, c, d]` of the two segments,
 //!   `degenerate_pair` in devillers_guigue.rs.
 //!
-//! Stages: index selection, then the vertex multiplexers.
+//! Stages: the index of each operand (0..2 a vertex of T1, 3..5 of T2),
+//! registered as its vertex number and its triangle; the vertex within
+//! each triangle (two 3:1 multiplexers per operand coordinate); the
+//! triangle (a 2:1 multiplexer). One 6:1 multiplexer stage, as before,
+//! limited the W = 16 pipeline to 92 MHz on ECP5: its select registers
+//! fanned out to 48 multiplexers of two LUT levels each, and routing took
+//! nine tenths of the path.
 
 use crate::arith::delay_line::DelayLine;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from the case and the indices to the operand points.
-pub const ORIENT3D_OPERANDS_LATENCY: usize = 2;
+pub const ORIENT3D_OPERANDS_LATENCY: usize = 3;
 
 #[derive(LogicBlock)]
 pub struct Orient3dOperands<const W: usize> {
@@ -35,9 +41,18 @@ pub struct Orient3dOperands<const W: usize> {
     pub t2_vertices: [Signal<In, Bits<W>>; 9],
     /// Unit `u`, operand `j` (a, b, c, d), coordinate `k` at `12 u + 3 j + k`.
     pub operands: [Signal<Out, Bits<W>>; 36],
-    index_q: [DFF<Bits<3>>; 12],
+    /// Operand `s`'s index this clock (0..2: T1's vertices, 3..5: T2's).
+    index: [Signal<Local, Bits<3>>; 12],
+    /// Stage 1: the index as a vertex number (0..2) and a triangle.
+    vertex_q: [DFF<Bits<2>>; 12],
+    from_t2_q: [DFF<Bit>; 12],
     t1_delay: [DelayLine<Bits<W>, 1>; 9],
     t2_delay: [DelayLine<Bits<W>, 1>; 9],
+    /// Stage 2: that vertex's coordinate in each triangle, and the triangle.
+    t1_pick_q: [DFF<Bits<W>>; 36],
+    t2_pick_q: [DFF<Bits<W>>; 36],
+    from_t2_2q: [DFF<Bit>; 12],
+    /// Stage 3: the operand.
     operands_q: [DFF<Bits<W>>; 36],
 }
 
@@ -57,9 +72,14 @@ impl<const W: usize> Default for Orient3dOperands<W> {
             t1_vertices: Default::default(),
             t2_vertices: Default::default(),
             operands: std::array::from_fn(|_| Default::default()),
-            index_q: Default::default(),
+            index: Default::default(),
+            vertex_q: Default::default(),
+            from_t2_q: Default::default(),
             t1_delay: Default::default(),
             t2_delay: Default::default(),
+            t1_pick_q: std::array::from_fn(|_| Default::default()),
+            t2_pick_q: std::array::from_fn(|_| Default::default()),
+            from_t2_2q: Default::default(),
             operands_q: std::array::from_fn(|_| Default::default()),
         }
     }
@@ -69,49 +89,65 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
     #[hdl_gen]
     fn update(&mut self) {
         for i in 0..12 {
-            self.index_q[i].clock.next = self.clock.val();
-            self.index_q[i].d.next = self.index_q[i].q.val();
+            self.index[i].next = 0.into();
         }
-        if self.advance.val() {
-            if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
-                for i in 0..4 {
-                    self.index_q[i].d.next = self.overlap_first[i].val();
-                    self.index_q[4 + i].d.next = self.overlap_second[i].val();
-                    self.index_q[8 + i].d.next = 0.into();
+        if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
+            for i in 0..4 {
+                self.index[i].next = self.overlap_first[i].val();
+                self.index[4 + i].next = self.overlap_second[i].val();
+                self.index[8 + i].next = 0.into();
+            }
+        } else if self.t1_degenerate.val() && !self.t2_degenerate.val() {
+            // Segment of T1 against the edges of T2.
+            for u in 0..3 {
+                self.index[4 * u].next = bit_cast::<3, 2>(self.t1_segment_low.val());
+                self.index[4 * u + 1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
+            }
+            self.index[2].next = 3.into();
+            self.index[3].next = 4.into();
+            self.index[6].next = 4.into();
+            self.index[7].next = 5.into();
+            self.index[10].next = 5.into();
+            self.index[11].next = 3.into();
+        } else if !self.t1_degenerate.val() && self.t2_degenerate.val() {
+            // Segment of T2 against the edges of T1.
+            for u in 0..3 {
+                self.index[4 * u].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
+                self.index[4 * u + 1].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
+            }
+            self.index[2].next = 0.into();
+            self.index[3].next = 1.into();
+            self.index[6].next = 1.into();
+            self.index[7].next = 2.into();
+            self.index[10].next = 2.into();
+            self.index[11].next = 0.into();
+        } else {
+            // Two segments: [a, b, c, d].
+            self.index[0].next = bit_cast::<3, 2>(self.t1_segment_low.val());
+            self.index[1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
+            self.index[2].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
+            self.index[3].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
+            for i in 4..12 {
+                self.index[i].next = 0.into();
+            }
+        }
+        for s in 0..12 {
+            self.vertex_q[s].clock.next = self.clock.val();
+            self.vertex_q[s].d.next = self.vertex_q[s].q.val();
+            self.from_t2_q[s].clock.next = self.clock.val();
+            self.from_t2_q[s].d.next = self.from_t2_q[s].q.val();
+            self.from_t2_2q[s].clock.next = self.clock.val();
+            self.from_t2_2q[s].d.next = self.from_t2_2q[s].q.val();
+            if self.advance.val() {
+                if self.index[s].val() == 0 || self.index[s].val() == 3 {
+                    self.vertex_q[s].d.next = 0.into();
+                } else if self.index[s].val() == 1 || self.index[s].val() == 4 {
+                    self.vertex_q[s].d.next = 1.into();
+                } else {
+                    self.vertex_q[s].d.next = 2.into();
                 }
-            } else if self.t1_degenerate.val() && !self.t2_degenerate.val() {
-                // Segment of T1 against the edges of T2.
-                for u in 0..3 {
-                    self.index_q[4 * u].d.next = bit_cast::<3, 2>(self.t1_segment_low.val());
-                    self.index_q[4 * u + 1].d.next = bit_cast::<3, 2>(self.t1_segment_high.val());
-                }
-                self.index_q[2].d.next = 3.into();
-                self.index_q[3].d.next = 4.into();
-                self.index_q[6].d.next = 4.into();
-                self.index_q[7].d.next = 5.into();
-                self.index_q[10].d.next = 5.into();
-                self.index_q[11].d.next = 3.into();
-            } else if !self.t1_degenerate.val() && self.t2_degenerate.val() {
-                // Segment of T2 against the edges of T1.
-                for u in 0..3 {
-                    self.index_q[4 * u].d.next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
-                    self.index_q[4 * u + 1].d.next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
-                }
-                self.index_q[2].d.next = 0.into();
-                self.index_q[3].d.next = 1.into();
-                self.index_q[6].d.next = 1.into();
-                self.index_q[7].d.next = 2.into();
-                self.index_q[10].d.next = 2.into();
-                self.index_q[11].d.next = 0.into();
-            } else {
-                // Two segments: [a, b, c, d].
-                self.index_q[0].d.next = bit_cast::<3, 2>(self.t1_segment_low.val());
-                self.index_q[1].d.next = bit_cast::<3, 2>(self.t1_segment_high.val());
-                self.index_q[2].d.next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
-                self.index_q[3].d.next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
-                for i in 4..12 {
-                    self.index_q[i].d.next = 0.into();
-                }
+                self.from_t2_q[s].d.next = self.index[s].val() == 3 || self.index[s].val() == 4 || self.index[s].val() == 5;
+                self.from_t2_2q[s].d.next = self.from_t2_q[s].q.val();
             }
         }
         for i in 0..9 {
@@ -124,21 +160,27 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
         }
         for s in 0..12 {
             for k in 0..3 {
+                self.t1_pick_q[3 * s + k].clock.next = self.clock.val();
+                self.t1_pick_q[3 * s + k].d.next = self.t1_pick_q[3 * s + k].q.val();
+                self.t2_pick_q[3 * s + k].clock.next = self.clock.val();
+                self.t2_pick_q[3 * s + k].d.next = self.t2_pick_q[3 * s + k].q.val();
                 self.operands_q[3 * s + k].clock.next = self.clock.val();
                 self.operands_q[3 * s + k].d.next = self.operands_q[3 * s + k].q.val();
                 if self.advance.val() {
-                    if self.index_q[s].q.val() == 0 {
-                        self.operands_q[3 * s + k].d.next = self.t1_delay[k].q.val();
-                    } else if self.index_q[s].q.val() == 1 {
-                        self.operands_q[3 * s + k].d.next = self.t1_delay[3 + k].q.val();
-                    } else if self.index_q[s].q.val() == 2 {
-                        self.operands_q[3 * s + k].d.next = self.t1_delay[6 + k].q.val();
-                    } else if self.index_q[s].q.val() == 3 {
-                        self.operands_q[3 * s + k].d.next = self.t2_delay[k].q.val();
-                    } else if self.index_q[s].q.val() == 4 {
-                        self.operands_q[3 * s + k].d.next = self.t2_delay[3 + k].q.val();
+                    if self.vertex_q[s].q.val() == 0 {
+                        self.t1_pick_q[3 * s + k].d.next = self.t1_delay[k].q.val();
+                        self.t2_pick_q[3 * s + k].d.next = self.t2_delay[k].q.val();
+                    } else if self.vertex_q[s].q.val() == 1 {
+                        self.t1_pick_q[3 * s + k].d.next = self.t1_delay[3 + k].q.val();
+                        self.t2_pick_q[3 * s + k].d.next = self.t2_delay[3 + k].q.val();
                     } else {
-                        self.operands_q[3 * s + k].d.next = self.t2_delay[6 + k].q.val();
+                        self.t1_pick_q[3 * s + k].d.next = self.t1_delay[6 + k].q.val();
+                        self.t2_pick_q[3 * s + k].d.next = self.t2_delay[6 + k].q.val();
+                    }
+                    if self.from_t2_2q[s].q.val() {
+                        self.operands_q[3 * s + k].d.next = self.t2_pick_q[3 * s + k].q.val();
+                    } else {
+                        self.operands_q[3 * s + k].d.next = self.t1_pick_q[3 * s + k].q.val();
                     }
                 }
                 self.operands[3 * s + k].next = self.operands_q[3 * s + k].q.val();

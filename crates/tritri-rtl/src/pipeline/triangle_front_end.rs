@@ -17,7 +17,7 @@ use rust_hdl::prelude::*;
 /// Clock edges from vertices to the triangle's record.
 pub const FRONT_END_LATENCY: usize = NORMAL_LATENCY + DOMINANT_AXIS_LATENCY;
 
-// The normal's signs come one stage after the normal; the axis two.
+// The normal's signs come one stage after the normal, the axis later.
 const _: () = assert!(SIGN_LATENCY < DOMINANT_AXIS_LATENCY);
 const _: () = assert!(SEGMENT_ENDS_LATENCY < FRONT_END_LATENCY);
 

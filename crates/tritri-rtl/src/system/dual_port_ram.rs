@@ -24,6 +24,10 @@ pub struct SimpleDualPortRam<T: Synth, const A: usize> {
     pub read_address: Signal<In, Bits<A>>,
     pub read_data: Signal<Out, T>,
     _memory: Vec<T>,
+    /// Ask synthesis for block RAM even where the memory is small enough
+    /// for distributed RAM (`ram_style = "block"`, read by Yosys and
+    /// Vivado).
+    _block_ram: bool,
 }
 
 impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
@@ -38,7 +42,15 @@ impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
             read_address: Default::default(),
             read_data: Default::default(),
             _memory: vec![T::default(); words],
+            _block_ram: false,
         }
+    }
+
+    /// [`Self::new`] in block RAM whatever its size: a block RAM's address
+    /// pins are a few loads, where a small memory in distributed RAM
+    /// spreads its read address over dozens of LUTs.
+    pub fn new_block_ram(words: usize) -> Self {
+        SimpleDualPortRam { _block_ram: true, ..Self::new(words) }
     }
 
     pub fn words(&self) -> usize {
@@ -91,7 +103,7 @@ impl<T: Synth, const A: usize> Logic for SimpleDualPortRam<T, A> {
             "\
 // Simple dual-port RAM: {words} words of {bits} bit(s), read-first,
 // registered read with enable (block RAM inference).
-reg {data_range}memory [0:{last}];
+{style}reg {data_range}memory [0:{last}];
 {unused}
 always @(posedge clock) begin
     if (write_enable) begin
@@ -104,6 +116,7 @@ end
 ",
             bits = T::BITS,
             last = words - 1,
+            style = if self._block_ram { "(* ram_style = \"block\" *) " } else { "" },
         ))
     }
 }

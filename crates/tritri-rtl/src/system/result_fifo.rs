@@ -4,12 +4,22 @@
 //! the `P` base ids, so `P` hits in one cycle cost one write and nothing
 //! has to be dropped or serialized on the pipelines' side.
 //!
-//! Columns are [`SimpleDualPortRam`]s sharing the pointers. The head is
+//! Columns are [`SimpleDualPortRam`]s sharing the pointers, in block RAM
+//! (see below). The head is
 //! shown first-word-fall-through: `head_valid` with the head word on
 //! `head_*`, removed by `pop`. Because the memory reads one cycle late, a
 //! word becomes readable two cycles after its write (`readable` counts the
 //! words written at least one edge before the read), while `full` counts
 //! every stored word: `write` must stay low while `full` is high.
+//!
+//! The read address is the next head, so `pop` reaches the memories'
+//! address through as little logic as possible: `head_valid` is a register
+//! (`readable != 0` of the next count) and the successor of the read
+//! pointer is kept ready in `read_pointer_next`. Deriving both from the
+//! counters in the same cycle put ten levels of logic before the
+//! distributed RAM, 88 MHz on ECP5; in distributed RAM, the read address
+//! fanned out to 56 LUT RAMs and their multiplexers (103 MHz), in block
+//! RAM to four.
 
 use super::dual_port_ram::SimpleDualPortRam;
 use super::{FIFO_POINTER_BITS, ID_BITS, MAX_PIPELINES};
@@ -41,10 +51,15 @@ pub struct ResultFifo {
     read_pointer: DFF<Bits<FIFO_POINTER_BITS>>,
     count: DFF<Bits<FIFO_POINTER_BITS>>,
     readable: DFF<Bits<FIFO_POINTER_BITS>>,
+    /// `readable != 0`, registered.
+    head_valid_q: DFF<Bit>,
+    /// The read pointer's successor (wrapping at the depth), registered.
+    read_pointer_next: DFF<Bits<FIFO_POINTER_BITS>>,
     wrote: DFF<Bit>,
     do_write: Signal<Local, Bit>,
     do_pop: Signal<Local, Bit>,
     next_read_pointer: Signal<Local, Bits<FIFO_POINTER_BITS>>,
+    next_readable: Signal<Local, Bits<FIFO_POINTER_BITS>>,
 }
 
 impl ResultFifo {
@@ -68,17 +83,20 @@ impl ResultFifo {
             head_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
             depth: Constant::new((depth as u64).to_bits()),
             last_address: Constant::new(((depth - 1) as u64).to_bits()),
-            mask_column: SimpleDualPortRam::new(depth),
-            stream_id_column: SimpleDualPortRam::new(depth),
-            base_id_columns: (0..pipelines).map(|_| SimpleDualPortRam::new(depth)).collect(),
+            mask_column: SimpleDualPortRam::new_block_ram(depth),
+            stream_id_column: SimpleDualPortRam::new_block_ram(depth),
+            base_id_columns: (0..pipelines).map(|_| SimpleDualPortRam::new_block_ram(depth)).collect(),
             write_pointer: Default::default(),
             read_pointer: Default::default(),
             count: Default::default(),
             readable: Default::default(),
+            head_valid_q: Default::default(),
+            read_pointer_next: Default::default(),
             wrote: Default::default(),
             do_write: Default::default(),
             do_pop: Default::default(),
             next_read_pointer: Default::default(),
+            next_readable: Default::default(),
         }
     }
 }
@@ -86,21 +104,24 @@ impl ResultFifo {
 impl Logic for ResultFifo {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, write_pointer, read_pointer, count, readable, wrote);
+        dff_setup!(self, clock, write_pointer, read_pointer, count, readable, head_valid_q, read_pointer_next, wrote);
         self.full.next = self.count.q.val() == self.depth.val();
         self.empty.next = self.count.q.val() == 0;
-        self.head_valid.next = self.readable.q.val() != 0;
+        self.head_valid.next = self.head_valid_q.q.val();
         self.do_write.next = self.write.val() & !self.full.val();
-        self.do_pop.next = self.pop.val() & self.head_valid.val();
+        self.do_pop.next = self.pop.val() & self.head_valid_q.q.val();
         self.next_read_pointer.next = self.read_pointer.q.val();
         if self.do_pop.val() {
-            if self.read_pointer.q.val() == self.last_address.val() {
-                self.next_read_pointer.next = 0.into();
-            } else {
-                self.next_read_pointer.next = self.read_pointer.q.val() + 1;
-            }
+            self.next_read_pointer.next = self.read_pointer_next.q.val();
         }
         self.read_pointer.d.next = self.next_read_pointer.val();
+        // The successor of the pointer the next cycle starts with (right
+        // from the first edge on, when no pop can have happened).
+        if self.next_read_pointer.val() == self.last_address.val() {
+            self.read_pointer_next.d.next = 0.into();
+        } else {
+            self.read_pointer_next.d.next = self.next_read_pointer.val() + 1;
+        }
         if self.do_write.val() {
             if self.write_pointer.q.val() == self.last_address.val() {
                 self.write_pointer.d.next = 0.into();
@@ -114,11 +135,22 @@ impl Logic for ResultFifo {
         if !self.do_write.val() & self.do_pop.val() {
             self.count.d.next = self.count.q.val() - 1;
         }
+        self.next_readable.next = self.readable.q.val();
         if self.wrote.q.val() & !self.do_pop.val() {
-            self.readable.d.next = self.readable.q.val() + 1;
+            self.next_readable.next = self.readable.q.val() + 1;
         }
         if !self.wrote.q.val() & self.do_pop.val() {
-            self.readable.d.next = self.readable.q.val() - 1;
+            self.next_readable.next = self.readable.q.val() - 1;
+        }
+        self.readable.d.next = self.next_readable.val();
+        // next_readable != 0, without waiting for its carry chain: one more
+        // word, one fewer (then at least two were readable), or as many.
+        self.head_valid_q.d.next = self.readable.q.val() != 0;
+        if self.wrote.q.val() & !self.do_pop.val() {
+            self.head_valid_q.d.next = true;
+        }
+        if !self.wrote.q.val() & self.do_pop.val() {
+            self.head_valid_q.d.next = self.readable.q.val() != 1;
         }
         self.wrote.d.next = self.do_write.val();
 
@@ -150,8 +182,10 @@ impl Logic for ResultFifo {
         if self.reset.val() {
             self.write_pointer.d.next = 0.into();
             self.read_pointer.d.next = 0.into();
+            self.read_pointer_next.d.next = 1.into();
             self.count.d.next = 0.into();
             self.readable.d.next = 0.into();
+            self.head_valid_q.d.next = false;
             self.wrote.d.next = false;
         }
     }

@@ -12,7 +12,8 @@
 
 use super::system_for_width::{system_for_config, PipelineKind, UnsupportedWidth};
 use super::SystemConfig;
-use crate::emit::{emit, EmitError, EmittedDesign, UnitDescription};
+use crate::emit::dsp_mapping::MultiplierMapping;
+use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 
 /// The top's name: [`SystemConfig::unit_name`], with `_stub` for stub pipelines.
 pub fn system_unit_name(config: SystemConfig, kind: PipelineKind) -> String {
@@ -107,7 +108,17 @@ pub enum SystemEmitError {
 
 /// The emitted Verilog directory of the system for `config`.
 pub fn emit_system(config: SystemConfig, kind: PipelineKind) -> Result<EmittedDesign, SystemEmitError> {
+    emit_system_with(config, kind, MultiplierMapping::Inferred)
+}
+
+/// [`emit_system`] with its multipliers mapped as `multipliers` says
+/// (`tritri gen --system --dsp`).
+pub fn emit_system_with(
+    config: SystemConfig,
+    kind: PipelineKind,
+    multipliers: MultiplierMapping,
+) -> Result<EmittedDesign, SystemEmitError> {
     let mut system = system_for_config(config, kind).map_err(SystemEmitError::Width)?;
     system.connect_all();
-    Ok(emit(&system.verilog(), &system_unit(config, kind))?)
+    Ok(emit_with(&system.verilog(), &system_unit(config, kind), EmitOptions { multipliers, ..EmitOptions::default() })?)
 }

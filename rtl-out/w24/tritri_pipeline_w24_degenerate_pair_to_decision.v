@@ -1,12 +1,9 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_record_bset.v
+// Filename:   tritri_pipeline_w24_degenerate_pair_to_decision.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instance: record_bset.
+// Purpose:    Part of tritri_pipeline_w24. Instance:
+//             degenerate_pair_to_decision.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -21,7 +18,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_record_bset (
+module tritri_pipeline_w24_degenerate_pair_to_decision (
     input wire clock,
     input wire advance,
     input wire d,
@@ -29,7 +26,7 @@ module tritri_pipeline_w24_record_bset (
 );
 
     // Update code (custom)
-    // Delay line: 8 stage(s) of 1 bit(s).
+    // Delay line: 16 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -37,6 +34,14 @@ module tritri_pipeline_w24_record_bset (
     reg stage_4_q;
     reg stage_5_q;
     reg stage_6_q;
+    reg stage_7_q;
+    reg stage_8_q;
+    reg stage_9_q;
+    reg stage_10_q;
+    reg stage_11_q;
+    reg stage_12_q;
+    reg stage_13_q;
+    reg stage_14_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -45,6 +50,14 @@ module tritri_pipeline_w24_record_bset (
         stage_4_q = 1'd0;
         stage_5_q = 1'd0;
         stage_6_q = 1'd0;
+        stage_7_q = 1'd0;
+        stage_8_q = 1'd0;
+        stage_9_q = 1'd0;
+        stage_10_q = 1'd0;
+        stage_11_q = 1'd0;
+        stage_12_q = 1'd0;
+        stage_13_q = 1'd0;
+        stage_14_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -56,9 +69,17 @@ module tritri_pipeline_w24_record_bset (
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
-            q <= stage_6_q;
+            stage_7_q <= stage_6_q;
+            stage_8_q <= stage_7_q;
+            stage_9_q <= stage_8_q;
+            stage_10_q <= stage_9_q;
+            stage_11_q <= stage_10_q;
+            stage_12_q <= stage_11_q;
+            stage_13_q <= stage_12_q;
+            stage_14_q <= stage_13_q;
+            q <= stage_14_q;
         end
     end
-endmodule  // tritri_pipeline_w24_record_bset
+endmodule  // tritri_pipeline_w24_degenerate_pair_to_decision
 
 `default_nettype wire
