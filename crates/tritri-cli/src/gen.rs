@@ -254,6 +254,9 @@ impl Args {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
         }
         if self.multipliers() == MultiplierMapping::Ecp5 {
+            if let Some(flow) = self.synth.as_deref().filter(|&s| s != "ecp5") {
+                return Err(format!("--dsp ecp5 with --synth {flow}: the multipliers are ECP5 primitives; synthesize them with --synth ecp5"));
+            }
             if let Some(&w) = self.width.iter().find(|&&w| w > MAX_ECP5_DSP_WIDTH) {
                 let how = if self.dsp.is_some() { "--dsp ecp5" } else { "--synth ecp5 (which maps onto MULT18X18D blocks)" };
                 return Err(format!(

@@ -75,11 +75,14 @@ fn dsp_mapping_options_are_checked() {
     refused(&["gen", "--width", "24", "--synth", "ecp5", "--out", "/nonexistent/x"], &["--width 24", "--dsp inferred"]);
     refused(&["gen", "--plane-traversal", "--dsp", "ecp5", "--out", "/nonexistent/x"], &["--dsp applies"]);
     refused(&["gen", "--width", "8", "--synth-top", "x", "--out", "/nonexistent/x"], &["--synth-top applies to --synth ecp5"]);
+    refused(&["gen", "--width", "8", "--dsp", "ecp5", "--synth", "xilinx", "--out", "/nonexistent/x"], &["--synth xilinx", "--synth ecp5"]);
     let dir = std::env::temp_dir().join(format!("tritri-gen-dsp-{}", std::process::id()));
     let out = tritri().args(["gen", "--width", "8", "--dsp", "ecp5", "--out"]).arg(&dir).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let filelist = std::fs::read_to_string(dir.join("filelist.f")).unwrap();
     assert_eq!(filelist.lines().next(), Some("ecp5_mult18x18d_model.v"), "the model comes first");
+    let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    assert!(readme.contains("`ecp5_mult18x18d_model.v`") && readme.contains("synth_ecp5"), "the README says what the model is");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -23,6 +23,9 @@
 //! * unconditional assignments of rust-hdl's combinational block written as
 //!   continuous `assign`s (see [`continuous_assigns`]), so that Verilator
 //!   sees no false combinational loop through the children;
+//! * on request, the multipliers on a device's DSP blocks with their
+//!   registers, and a simulation model of the primitive (see
+//!   [`dsp_mapping`]; `tritri gen --dsp ecp5`);
 //! * `filelist.f`, a FuseSoC CAPI2 `<unit>.core`, a `README.md` with the
 //!   port table, latency and throughput, and Yosys scripts
 //!   `synth_generic.ys` / `synth_xilinx.ys` (run by [`crate::synth`]).

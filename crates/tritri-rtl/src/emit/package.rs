@@ -199,7 +199,9 @@ fn fusesoc_core(order: &[String], unit: &UnitDescription) -> String {
     c.push_str("targets:\n");
     c.push_str(&format!("  default: &default\n    filesets: [rtl]\n    toplevel: {}\n\n", unit.name));
     c.push_str("  lint:\n    <<: *default\n    default_tool: verilator\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n\n");
-    c.push_str("  synth:\n    <<: *default\n    default_tool: yosys\n    tools:\n      yosys:\n        arch: xilinx\n");
+    // MULT18X18D instances (`--dsp ecp5`) synthesize for ECP5 only.
+    let arch = if order.iter().any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE) { "ecp5" } else { "xilinx" };
+    c.push_str(&format!("  synth:\n    <<: *default\n    default_tool: yosys\n    tools:\n      yosys:\n        arch: {arch}\n"));
     c
 }
 
@@ -256,7 +258,16 @@ fn readme(order: &[String], ports: &[Port], unit: &UnitDescription) -> String {
         order.len()
     ));
     r.push_str(&format!("- `{}.core`: FuseSoC (CAPI2) core, targets `default`, `lint`, `synth`.\n", unit.name));
-    r.push_str("- `synth_generic.ys`, `synth_xilinx.ys`: Yosys synthesis with a `stat` resource report.\n\n");
+    r.push_str("- `synth_generic.ys`, `synth_xilinx.ys`: Yosys synthesis with a `stat` resource report.\n");
+    if order.iter().any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE) {
+        r.push_str(&format!(
+            "- `{}`: a simulation model of Lattice's MULT18X18D, which the multipliers instantiate with their registers \
+             (`tritri gen --dsp ecp5`); Yosys skips it (`SYNTHESIS` is defined), so synthesize with an ECP5 flow \
+             (`synth_ecp5`), not the two scripts above.\n",
+            super::dsp_mapping::ECP5_MODEL_FILE
+        ));
+    }
+    r.push('\n');
     r.push_str("## Use\n\nFrom this directory:\n\n```sh\n");
     r.push_str(&format!("verilator --lint-only -Wall -f filelist.f --top-module {}\n", unit.name));
     r.push_str("iverilog -g2012 -c filelist.f -o /dev/null\n");
