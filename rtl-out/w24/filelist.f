@@ -6,9 +6,11 @@ tritri_pipeline_w24_component.v
 tritri_pipeline_w24_coplanar.v
 tritri_pipeline_w24_coplanar_orient.v
 tritri_pipeline_w24_coplanar_orientation.v
+tritri_pipeline_w24_coplanar_to_decision.v
 tritri_pipeline_w24_decision.v
 tritri_pipeline_w24_degenerate_pair.v
 tritri_pipeline_w24_degenerate_pair_to_decision.v
+tritri_pipeline_w24_degenerate_to_decision.v
 tritri_pipeline_w24_degenerate_to_operands.v
 tritri_pipeline_w24_delay_w1.v
 tritri_pipeline_w24_delay_w2.v
@@ -49,7 +51,6 @@ tritri_pipeline_w24_sign_table.v
 tritri_pipeline_w24_sign_w49.v
 tritri_pipeline_w24_sign_w74.v
 tritri_pipeline_w24_sum.v
-tritri_pipeline_w24_to_decision.v
 tritri_pipeline_w24_vertices_to_operands.v
 tritri_pipeline_w24_within_segment.v
 tritri_pipeline_w24.v

@@ -55,6 +55,99 @@ module tritri_pipeline_w24_coplanar (
 );
 
     // Stub signals
+    reg  [1:0] axis_q_d;
+    wire  [1:0] axis_q_q;
+    wire  axis_q_clock;
+    reg  [23:0] t1_q_0_d;
+    wire  [23:0] t1_q_0_q;
+    wire  t1_q_0_clock;
+    reg  [23:0] t1_q_1_d;
+    wire  [23:0] t1_q_1_q;
+    wire  t1_q_1_clock;
+    reg  [23:0] t1_q_2_d;
+    wire  [23:0] t1_q_2_q;
+    wire  t1_q_2_clock;
+    reg  [23:0] t1_q_3_d;
+    wire  [23:0] t1_q_3_q;
+    wire  t1_q_3_clock;
+    reg  [23:0] t1_q_4_d;
+    wire  [23:0] t1_q_4_q;
+    wire  t1_q_4_clock;
+    reg  [23:0] t1_q_5_d;
+    wire  [23:0] t1_q_5_q;
+    wire  t1_q_5_clock;
+    reg  [23:0] t1_q_6_d;
+    wire  [23:0] t1_q_6_q;
+    wire  t1_q_6_clock;
+    reg  [23:0] t1_q_7_d;
+    wire  [23:0] t1_q_7_q;
+    wire  t1_q_7_clock;
+    reg  [23:0] t1_q_8_d;
+    wire  [23:0] t1_q_8_q;
+    wire  t1_q_8_clock;
+    reg  [23:0] t2_q_0_d;
+    wire  [23:0] t2_q_0_q;
+    wire  t2_q_0_clock;
+    reg  [23:0] t2_q_1_d;
+    wire  [23:0] t2_q_1_q;
+    wire  t2_q_1_clock;
+    reg  [23:0] t2_q_2_d;
+    wire  [23:0] t2_q_2_q;
+    wire  t2_q_2_clock;
+    reg  [23:0] t2_q_3_d;
+    wire  [23:0] t2_q_3_q;
+    wire  t2_q_3_clock;
+    reg  [23:0] t2_q_4_d;
+    wire  [23:0] t2_q_4_q;
+    wire  t2_q_4_clock;
+    reg  [23:0] t2_q_5_d;
+    wire  [23:0] t2_q_5_q;
+    wire  t2_q_5_clock;
+    reg  [23:0] t2_q_6_d;
+    wire  [23:0] t2_q_6_q;
+    wire  t2_q_6_clock;
+    reg  [23:0] t2_q_7_d;
+    wire  [23:0] t2_q_7_q;
+    wire  t2_q_7_clock;
+    reg  [23:0] t2_q_8_d;
+    wire  [23:0] t2_q_8_q;
+    wire  t2_q_8_clock;
+    reg  normal_q_0_d;
+    wire  normal_q_0_q;
+    wire  normal_q_0_clock;
+    reg  normal_q_1_d;
+    wire  normal_q_1_q;
+    wire  normal_q_1_clock;
+    reg  normal_q_2_d;
+    wire  normal_q_2_q;
+    wire  normal_q_2_clock;
+    reg  normal_q_3_d;
+    wire  normal_q_3_q;
+    wire  normal_q_3_clock;
+    reg  normal_q_4_d;
+    wire  normal_q_4_q;
+    wire  normal_q_4_clock;
+    reg  normal_q_5_d;
+    wire  normal_q_5_q;
+    wire  normal_q_5_clock;
+    reg  normal_q_6_d;
+    wire  normal_q_6_q;
+    wire  normal_q_6_clock;
+    reg  normal_q_7_d;
+    wire  normal_q_7_q;
+    wire  normal_q_7_clock;
+    reg  normal_q_8_d;
+    wire  normal_q_8_q;
+    wire  normal_q_8_clock;
+    reg  normal_q_9_d;
+    wire  normal_q_9_q;
+    wire  normal_q_9_clock;
+    reg  normal_q_10_d;
+    wire  normal_q_10_q;
+    wire  normal_q_10_clock;
+    reg  normal_q_11_d;
+    wire  normal_q_11_q;
+    wire  normal_q_11_clock;
     reg  [23:0] projection_q_0_d;
     wire  [23:0] projection_q_0_q;
     wire  projection_q_0_clock;
@@ -711,6 +804,161 @@ module tritri_pipeline_w24_coplanar (
     wire  positive_17;
 
     // Sub module instances
+    tritri_pipeline_w24_dff_2 u_axis_q(
+        .d(axis_q_d),
+        .q(axis_q_q),
+        .clock(axis_q_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_0(
+        .d(t1_q_0_d),
+        .q(t1_q_0_q),
+        .clock(t1_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_1(
+        .d(t1_q_1_d),
+        .q(t1_q_1_q),
+        .clock(t1_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_2(
+        .d(t1_q_2_d),
+        .q(t1_q_2_q),
+        .clock(t1_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_3(
+        .d(t1_q_3_d),
+        .q(t1_q_3_q),
+        .clock(t1_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_4(
+        .d(t1_q_4_d),
+        .q(t1_q_4_q),
+        .clock(t1_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_5(
+        .d(t1_q_5_d),
+        .q(t1_q_5_q),
+        .clock(t1_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_6(
+        .d(t1_q_6_d),
+        .q(t1_q_6_q),
+        .clock(t1_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_7(
+        .d(t1_q_7_d),
+        .q(t1_q_7_q),
+        .clock(t1_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t1_q_8(
+        .d(t1_q_8_d),
+        .q(t1_q_8_q),
+        .clock(t1_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_0(
+        .d(t2_q_0_d),
+        .q(t2_q_0_q),
+        .clock(t2_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_1(
+        .d(t2_q_1_d),
+        .q(t2_q_1_q),
+        .clock(t2_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_2(
+        .d(t2_q_2_d),
+        .q(t2_q_2_q),
+        .clock(t2_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_3(
+        .d(t2_q_3_d),
+        .q(t2_q_3_q),
+        .clock(t2_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_4(
+        .d(t2_q_4_d),
+        .q(t2_q_4_q),
+        .clock(t2_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_5(
+        .d(t2_q_5_d),
+        .q(t2_q_5_q),
+        .clock(t2_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_6(
+        .d(t2_q_6_d),
+        .q(t2_q_6_q),
+        .clock(t2_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_7(
+        .d(t2_q_7_d),
+        .q(t2_q_7_q),
+        .clock(t2_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_24 u_t2_q_8(
+        .d(t2_q_8_d),
+        .q(t2_q_8_q),
+        .clock(t2_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_0(
+        .d(normal_q_0_d),
+        .q(normal_q_0_q),
+        .clock(normal_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_1(
+        .d(normal_q_1_d),
+        .q(normal_q_1_q),
+        .clock(normal_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_2(
+        .d(normal_q_2_d),
+        .q(normal_q_2_q),
+        .clock(normal_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_3(
+        .d(normal_q_3_d),
+        .q(normal_q_3_q),
+        .clock(normal_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_4(
+        .d(normal_q_4_d),
+        .q(normal_q_4_q),
+        .clock(normal_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_5(
+        .d(normal_q_5_d),
+        .q(normal_q_5_q),
+        .clock(normal_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_6(
+        .d(normal_q_6_d),
+        .q(normal_q_6_q),
+        .clock(normal_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_7(
+        .d(normal_q_7_d),
+        .q(normal_q_7_q),
+        .clock(normal_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_8(
+        .d(normal_q_8_d),
+        .q(normal_q_8_q),
+        .clock(normal_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_9(
+        .d(normal_q_9_d),
+        .q(normal_q_9_q),
+        .clock(normal_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_10(
+        .d(normal_q_10_d),
+        .q(normal_q_10_q),
+        .clock(normal_q_10_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_normal_q_11(
+        .d(normal_q_11_d),
+        .q(normal_q_11_q),
+        .clock(normal_q_11_clock)
+    );
     tritri_pipeline_w24_dff_24 u_projection_q_0(
         .d(projection_q_0_d),
         .q(projection_q_0_q),
@@ -1607,6 +1855,37 @@ module tritri_pipeline_w24_coplanar (
     );
 
     // Update code
+    assign axis_q_clock = clock;
+    assign t1_q_0_clock = clock;
+    assign t2_q_0_clock = clock;
+    assign t1_q_1_clock = clock;
+    assign t2_q_1_clock = clock;
+    assign t1_q_2_clock = clock;
+    assign t2_q_2_clock = clock;
+    assign t1_q_3_clock = clock;
+    assign t2_q_3_clock = clock;
+    assign t1_q_4_clock = clock;
+    assign t2_q_4_clock = clock;
+    assign t1_q_5_clock = clock;
+    assign t2_q_5_clock = clock;
+    assign t1_q_6_clock = clock;
+    assign t2_q_6_clock = clock;
+    assign t1_q_7_clock = clock;
+    assign t2_q_7_clock = clock;
+    assign t1_q_8_clock = clock;
+    assign t2_q_8_clock = clock;
+    assign normal_q_0_clock = clock;
+    assign normal_q_1_clock = clock;
+    assign normal_q_2_clock = clock;
+    assign normal_q_3_clock = clock;
+    assign normal_q_4_clock = clock;
+    assign normal_q_5_clock = clock;
+    assign normal_q_6_clock = clock;
+    assign normal_q_7_clock = clock;
+    assign normal_q_8_clock = clock;
+    assign normal_q_9_clock = clock;
+    assign normal_q_10_clock = clock;
+    assign normal_q_11_clock = clock;
     assign projection_q_0_clock = clock;
     assign projection_q_1_clock = clock;
     assign projection_q_2_clock = clock;
@@ -2067,6 +2346,70 @@ module tritri_pipeline_w24_coplanar (
     assign hit_q_clock = clock;
     assign hit = hit_q_q;
     always @(*) begin
+        axis_q_d = axis_q_q;
+        t1_q_0_d = t1_q_0_q;
+        t2_q_0_d = t2_q_0_q;
+        t1_q_1_d = t1_q_1_q;
+        t2_q_1_d = t2_q_1_q;
+        t1_q_2_d = t1_q_2_q;
+        t2_q_2_d = t2_q_2_q;
+        t1_q_3_d = t1_q_3_q;
+        t2_q_3_d = t2_q_3_q;
+        t1_q_4_d = t1_q_4_q;
+        t2_q_4_d = t2_q_4_q;
+        t1_q_5_d = t1_q_5_q;
+        t2_q_5_d = t2_q_5_q;
+        t1_q_6_d = t1_q_6_q;
+        t2_q_6_d = t2_q_6_q;
+        t1_q_7_d = t1_q_7_q;
+        t2_q_7_d = t2_q_7_q;
+        t1_q_8_d = t1_q_8_q;
+        t2_q_8_d = t2_q_8_q;
+        normal_q_0_d = normal_q_0_q;
+        normal_q_1_d = normal_q_1_q;
+        normal_q_2_d = normal_q_2_q;
+        normal_q_3_d = normal_q_3_q;
+        normal_q_4_d = normal_q_4_q;
+        normal_q_5_d = normal_q_5_q;
+        normal_q_6_d = normal_q_6_q;
+        normal_q_7_d = normal_q_7_q;
+        normal_q_8_d = normal_q_8_q;
+        normal_q_9_d = normal_q_9_q;
+        normal_q_10_d = normal_q_10_q;
+        normal_q_11_d = normal_q_11_q;
+        if (advance) begin
+            axis_q_d = axis;
+            t1_q_0_d = t1_vertices_0;
+            t2_q_0_d = t2_vertices_0;
+            t1_q_1_d = t1_vertices_1;
+            t2_q_1_d = t2_vertices_1;
+            t1_q_2_d = t1_vertices_2;
+            t2_q_2_d = t2_vertices_2;
+            t1_q_3_d = t1_vertices_3;
+            t2_q_3_d = t2_vertices_3;
+            t1_q_4_d = t1_vertices_4;
+            t2_q_4_d = t2_vertices_4;
+            t1_q_5_d = t1_vertices_5;
+            t2_q_5_d = t2_vertices_5;
+            t1_q_6_d = t1_vertices_6;
+            t2_q_6_d = t2_vertices_6;
+            t1_q_7_d = t1_vertices_7;
+            t2_q_7_d = t2_vertices_7;
+            t1_q_8_d = t1_vertices_8;
+            t2_q_8_d = t2_vertices_8;
+            normal_q_0_d = t1_normal_negative_0;
+            normal_q_3_d = t1_normal_zero_0;
+            normal_q_6_d = t2_normal_negative_0;
+            normal_q_9_d = t2_normal_zero_0;
+            normal_q_1_d = t1_normal_negative_1;
+            normal_q_4_d = t1_normal_zero_1;
+            normal_q_7_d = t2_normal_negative_1;
+            normal_q_10_d = t2_normal_zero_1;
+            normal_q_2_d = t1_normal_negative_2;
+            normal_q_5_d = t1_normal_zero_2;
+            normal_q_8_d = t2_normal_negative_2;
+            normal_q_11_d = t2_normal_zero_2;
+        end
         projection_q_0_d = projection_q_0_q;
         projection_q_1_d = projection_q_1_q;
         projection_q_2_d = projection_q_2_q;
@@ -2080,78 +2423,78 @@ module tritri_pipeline_w24_coplanar (
         projection_q_10_d = projection_q_10_q;
         projection_q_11_d = projection_q_11_q;
         if (advance) begin
-            if (axis == 2'h0) begin
-                projection_q_0_d = t1_vertices_1;
-                projection_q_1_d = t1_vertices_2;
-                projection_q_6_d = t2_vertices_1;
-                projection_q_7_d = t2_vertices_2;
+            if (axis_q_q == 2'h0) begin
+                projection_q_0_d = t1_q_1_q;
+                projection_q_1_d = t1_q_2_q;
+                projection_q_6_d = t2_q_1_q;
+                projection_q_7_d = t2_q_2_q;
             end
-            else if (axis == 2'h1) begin
-                projection_q_0_d = t1_vertices_2;
-                projection_q_1_d = t1_vertices_0;
-                projection_q_6_d = t2_vertices_2;
-                projection_q_7_d = t2_vertices_0;
-            end
-            else begin
-                projection_q_0_d = t1_vertices_0;
-                projection_q_1_d = t1_vertices_1;
-                projection_q_6_d = t2_vertices_0;
-                projection_q_7_d = t2_vertices_1;
-            end
-            if (axis == 2'h0) begin
-                projection_q_2_d = t1_vertices_4;
-                projection_q_3_d = t1_vertices_5;
-                projection_q_8_d = t2_vertices_4;
-                projection_q_9_d = t2_vertices_5;
-            end
-            else if (axis == 2'h1) begin
-                projection_q_2_d = t1_vertices_5;
-                projection_q_3_d = t1_vertices_3;
-                projection_q_8_d = t2_vertices_5;
-                projection_q_9_d = t2_vertices_3;
+            else if (axis_q_q == 2'h1) begin
+                projection_q_0_d = t1_q_2_q;
+                projection_q_1_d = t1_q_0_q;
+                projection_q_6_d = t2_q_2_q;
+                projection_q_7_d = t2_q_0_q;
             end
             else begin
-                projection_q_2_d = t1_vertices_3;
-                projection_q_3_d = t1_vertices_4;
-                projection_q_8_d = t2_vertices_3;
-                projection_q_9_d = t2_vertices_4;
+                projection_q_0_d = t1_q_0_q;
+                projection_q_1_d = t1_q_1_q;
+                projection_q_6_d = t2_q_0_q;
+                projection_q_7_d = t2_q_1_q;
             end
-            if (axis == 2'h0) begin
-                projection_q_4_d = t1_vertices_7;
-                projection_q_5_d = t1_vertices_8;
-                projection_q_10_d = t2_vertices_7;
-                projection_q_11_d = t2_vertices_8;
+            if (axis_q_q == 2'h0) begin
+                projection_q_2_d = t1_q_4_q;
+                projection_q_3_d = t1_q_5_q;
+                projection_q_8_d = t2_q_4_q;
+                projection_q_9_d = t2_q_5_q;
             end
-            else if (axis == 2'h1) begin
-                projection_q_4_d = t1_vertices_8;
-                projection_q_5_d = t1_vertices_6;
-                projection_q_10_d = t2_vertices_8;
-                projection_q_11_d = t2_vertices_6;
+            else if (axis_q_q == 2'h1) begin
+                projection_q_2_d = t1_q_5_q;
+                projection_q_3_d = t1_q_3_q;
+                projection_q_8_d = t2_q_5_q;
+                projection_q_9_d = t2_q_3_q;
             end
             else begin
-                projection_q_4_d = t1_vertices_6;
-                projection_q_5_d = t1_vertices_7;
-                projection_q_10_d = t2_vertices_6;
-                projection_q_11_d = t2_vertices_7;
+                projection_q_2_d = t1_q_3_q;
+                projection_q_3_d = t1_q_4_q;
+                projection_q_8_d = t2_q_3_q;
+                projection_q_9_d = t2_q_4_q;
+            end
+            if (axis_q_q == 2'h0) begin
+                projection_q_4_d = t1_q_7_q;
+                projection_q_5_d = t1_q_8_q;
+                projection_q_10_d = t2_q_7_q;
+                projection_q_11_d = t2_q_8_q;
+            end
+            else if (axis_q_q == 2'h1) begin
+                projection_q_4_d = t1_q_8_q;
+                projection_q_5_d = t1_q_6_q;
+                projection_q_10_d = t2_q_8_q;
+                projection_q_11_d = t2_q_6_q;
+            end
+            else begin
+                projection_q_4_d = t1_q_6_q;
+                projection_q_5_d = t1_q_7_q;
+                projection_q_10_d = t2_q_6_q;
+                projection_q_11_d = t2_q_7_q;
             end
         end
-        if (axis == 2'h0) begin
-            orientation_0_d = t1_normal_negative_0;
-            orientation_1_d = t1_normal_zero_0;
-            orientation_2_d = t2_normal_negative_0;
-            orientation_3_d = t2_normal_zero_0;
+        if (axis_q_q == 2'h0) begin
+            orientation_0_d = normal_q_0_q;
+            orientation_1_d = normal_q_3_q;
+            orientation_2_d = normal_q_6_q;
+            orientation_3_d = normal_q_9_q;
         end
-        else if (axis == 2'h1) begin
-            orientation_0_d = t1_normal_negative_1;
-            orientation_1_d = t1_normal_zero_1;
-            orientation_2_d = t2_normal_negative_1;
-            orientation_3_d = t2_normal_zero_1;
+        else if (axis_q_q == 2'h1) begin
+            orientation_0_d = normal_q_1_q;
+            orientation_1_d = normal_q_4_q;
+            orientation_2_d = normal_q_7_q;
+            orientation_3_d = normal_q_10_q;
         end
         else begin
-            orientation_0_d = t1_normal_negative_2;
-            orientation_1_d = t1_normal_zero_2;
-            orientation_2_d = t2_normal_negative_2;
-            orientation_3_d = t2_normal_zero_2;
+            orientation_0_d = normal_q_2_q;
+            orientation_1_d = normal_q_5_q;
+            orientation_2_d = normal_q_8_q;
+            orientation_3_d = normal_q_11_q;
         end
         term_q_0_d = term_q_0_q;
         term_q_1_d = term_q_1_q;

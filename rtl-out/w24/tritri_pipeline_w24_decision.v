@@ -50,6 +50,21 @@ module tritri_pipeline_w24_decision (
 );
 
     // Stub signals
+    reg  triangles_hit_q_d;
+    wire  triangles_hit_q_q;
+    wire  triangles_hit_q_clock;
+    reg  segment_hit_q_d;
+    wire  segment_hit_q_q;
+    wire  segment_hit_q_clock;
+    reg  degenerate_hit_q_d;
+    wire  degenerate_hit_q_q;
+    wire  degenerate_hit_q_clock;
+    reg  t1_degenerate_q_d;
+    wire  t1_degenerate_q_q;
+    wire  t1_degenerate_q_clock;
+    reg  t2_degenerate_q_d;
+    wire  t2_degenerate_q_q;
+    wire  t2_degenerate_q_clock;
     reg  hit_q_d;
     wire  hit_q_q;
     wire  hit_q_clock;
@@ -72,6 +87,31 @@ module tritri_pipeline_w24_decision (
     reg  segment_hit;
 
     // Sub module instances
+    tritri_pipeline_w24_dff_1 u_triangles_hit_q(
+        .d(triangles_hit_q_d),
+        .q(triangles_hit_q_q),
+        .clock(triangles_hit_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_segment_hit_q(
+        .d(segment_hit_q_d),
+        .q(segment_hit_q_q),
+        .clock(segment_hit_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_degenerate_hit_q(
+        .d(degenerate_hit_q_d),
+        .q(degenerate_hit_q_q),
+        .clock(degenerate_hit_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_t1_degenerate_q(
+        .d(t1_degenerate_q_d),
+        .q(t1_degenerate_q_q),
+        .clock(t1_degenerate_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_t2_degenerate_q(
+        .d(t2_degenerate_q_d),
+        .q(t2_degenerate_q_q),
+        .clock(t2_degenerate_q_clock)
+    );
     tritri_pipeline_w24_dff_1 u_hit_q(
         .d(hit_q_d),
         .q(hit_q_q),
@@ -88,6 +128,11 @@ module tritri_pipeline_w24_decision (
     assign t1_side_positive_2 = ~t1_side_negative_2 && ~t1_side_zero_2;
     assign t2_side_positive_2 = ~t2_side_negative_2 && ~t2_side_zero_2;
     assign orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
+    assign triangles_hit_q_clock = clock;
+    assign segment_hit_q_clock = clock;
+    assign degenerate_hit_q_clock = clock;
+    assign t1_degenerate_q_clock = clock;
+    assign t2_degenerate_q_clock = clock;
     assign hit_q_clock = clock;
     assign hit = hit_q_q;
     always @(*) begin
@@ -165,16 +210,26 @@ module tritri_pipeline_w24_decision (
         else begin
             segment_hit = ~((orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2));
         end
+        triangles_hit_q_d = triangles_hit_q_q;
+        segment_hit_q_d = segment_hit_q_q;
+        degenerate_hit_q_d = degenerate_hit_q_q;
+        t1_degenerate_q_d = t1_degenerate_q_q;
+        t2_degenerate_q_d = t2_degenerate_q_q;
         hit_q_d = hit_q_q;
         if (advance) begin
-            if (~t1_degenerate && ~t2_degenerate) begin
-                hit_q_d = triangles_hit;
+            triangles_hit_q_d = triangles_hit;
+            segment_hit_q_d = segment_hit;
+            degenerate_hit_q_d = orient_zero_0 && degenerate_pair_hit;
+            t1_degenerate_q_d = t1_degenerate;
+            t2_degenerate_q_d = t2_degenerate;
+            if (~t1_degenerate_q_q && ~t2_degenerate_q_q) begin
+                hit_q_d = triangles_hit_q_q;
             end
-            else if (t1_degenerate && t2_degenerate) begin
-                hit_q_d = orient_zero_0 && degenerate_pair_hit;
+            else if (t1_degenerate_q_q && t2_degenerate_q_q) begin
+                hit_q_d = degenerate_hit_q_q;
             end
             else begin
-                hit_q_d = segment_hit;
+                hit_q_d = segment_hit_q_q;
             end
         end
     end

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_24.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (141), for example: base.vertices_q[0], base.vertices_q[1],
+//             (159), for example: base.vertices_q[0], base.vertices_q[1],
 //             base.vertices_q[2], base.vertices_q[3].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)

@@ -25,7 +25,7 @@ module tritri_pipeline_w24_id (
 );
 
     // Update code (custom)
-    // Delay line: 26 stage(s) of 32 bit(s).
+    // Delay line: 27 stage(s) of 32 bit(s).
     reg [31:0] stage_0_q;
     reg [31:0] stage_1_q;
     reg [31:0] stage_2_q;
@@ -51,6 +51,7 @@ module tritri_pipeline_w24_id (
     reg [31:0] stage_22_q;
     reg [31:0] stage_23_q;
     reg [31:0] stage_24_q;
+    reg [31:0] stage_25_q;
     initial begin
         stage_0_q = 32'd0;
         stage_1_q = 32'd0;
@@ -77,6 +78,7 @@ module tritri_pipeline_w24_id (
         stage_22_q = 32'd0;
         stage_23_q = 32'd0;
         stage_24_q = 32'd0;
+        stage_25_q = 32'd0;
         q = 32'd0;
     end
     always @(posedge clock) begin
@@ -106,7 +108,8 @@ module tritri_pipeline_w24_id (
             stage_22_q <= stage_21_q;
             stage_23_q <= stage_22_q;
             stage_24_q <= stage_23_q;
-            q <= stage_24_q;
+            stage_25_q <= stage_24_q;
+            q <= stage_25_q;
         end
     end
 endmodule  // tritri_pipeline_w24_id

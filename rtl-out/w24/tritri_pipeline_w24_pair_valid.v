@@ -26,7 +26,7 @@ module tritri_pipeline_w24_pair_valid (
 );
 
     // Update code (custom)
-    // Delay line: 26 stage(s) of 1 bit(s).
+    // Delay line: 27 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -52,6 +52,7 @@ module tritri_pipeline_w24_pair_valid (
     reg stage_22_q;
     reg stage_23_q;
     reg stage_24_q;
+    reg stage_25_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -78,6 +79,7 @@ module tritri_pipeline_w24_pair_valid (
         stage_22_q = 1'd0;
         stage_23_q = 1'd0;
         stage_24_q = 1'd0;
+        stage_25_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -107,6 +109,7 @@ module tritri_pipeline_w24_pair_valid (
             stage_22_q <= 1'd0;
             stage_23_q <= 1'd0;
             stage_24_q <= 1'd0;
+            stage_25_q <= 1'd0;
             q <= 1'd0;
         end else if (advance) begin
             stage_0_q <= d;
@@ -134,7 +137,8 @@ module tritri_pipeline_w24_pair_valid (
             stage_22_q <= stage_21_q;
             stage_23_q <= stage_22_q;
             stage_24_q <= stage_23_q;
-            q <= stage_24_q;
+            stage_25_q <= stage_24_q;
+            q <= stage_25_q;
         end
     end
 endmodule  // tritri_pipeline_w24_pair_valid

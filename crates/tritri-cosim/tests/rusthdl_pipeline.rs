@@ -288,7 +288,7 @@ fn hard_case_suite_in_all_orderings_w32() {
 /// Measured cycles are `N1 + N1 N2 + L` (thesis, equation 3.2).
 #[test]
 fn cycles_are_n1_plus_n1_n2_plus_latency() {
-    assert_eq!(latency(), 36, "rtl-out/README.md and examples/cocotb/README.md state the latency");
+    assert_eq!(latency(), 37, "rtl-out/README.md and examples/cocotb/README.md state the latency");
     let mut pipeline = pipeline_for_width(24).unwrap();
     assert_eq!(pipeline.latency(), latency());
     let mut rng = ChaCha8Rng::seed_from_u64(5);

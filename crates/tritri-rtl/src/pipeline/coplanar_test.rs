@@ -18,7 +18,10 @@
 //! normal's `axis` component. Collinear touching is resolved by comparing
 //! projected coordinates.
 //!
-//! Stages: projection (1), differences and comparisons (1), orient2d (4),
+//! Stages: inputs (1: registered beside the unit, so that the dominant
+//! axis, which selects every projected coordinate, fans out from a
+//! register of its own and not from the base polygon's, 145 MHz at W = 8
+//! on ECP5), projection (1), differences and comparisons (1), orient2d (4),
 //! signs (1), decision (2: the eleven terms of `hulls_intersect_2d`, then
 //! their OR; in one stage, eighteen signs fanned into one register through
 //! five LUT levels, 129 MHz on ECP5).
@@ -32,12 +35,15 @@ use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
-pub const COPLANAR_TEST_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + DECISION_STAGES;
+pub const COPLANAR_TEST_LATENCY: usize =
+    INPUT_STAGES + 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + DECISION_STAGES;
+/// The inputs' register stage.
+const INPUT_STAGES: usize = 1;
 /// The decision's stages: the terms, then their OR.
 const DECISION_STAGES: usize = 2;
 const ON_EDGE_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
 /// The orientations are read where the terms are formed.
-const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - DECISION_STAGES;
+const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - DECISION_STAGES - INPUT_STAGES;
 /// Terms of the decision: a crossing or touching per pair of edges (`3 e +
 /// f`), B_0 inside A, A_0 inside B.
 const TERMS: usize = 11;
@@ -57,6 +63,12 @@ pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
     pub t2_normal_zero: [Signal<In, Bit>; 3],
     /// The closed projected hulls meet, `COPLANAR_TEST_LATENCY` edges later.
     pub hit: Signal<Out, Bit>,
+    /// Stage 0: the inputs.
+    axis_q: DFF<Bits<2>>,
+    t1_q: [DFF<Bits<W>>; 9],
+    t2_q: [DFF<Bits<W>>; 9],
+    /// T1's normal's negative and zero flags (`k`, `3 + k`), then T2's.
+    normal_q: [DFF<Bit>; 12],
     /// Projected coordinates `2 v + c` of vertex `v` (T1: 0..2, T2: 3..5).
     projection_q: [DFF<Bits<W>>; 12],
     /// Edge `e` of A (`2 e + c`) and of B.
@@ -83,6 +95,31 @@ pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
 impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
+        // Stage 0: the inputs.
+        dff_setup!(self, clock, axis_q);
+        for i in 0..9 {
+            self.t1_q[i].clock.next = self.clock.val();
+            self.t1_q[i].d.next = self.t1_q[i].q.val();
+            self.t2_q[i].clock.next = self.clock.val();
+            self.t2_q[i].d.next = self.t2_q[i].q.val();
+        }
+        for i in 0..12 {
+            self.normal_q[i].clock.next = self.clock.val();
+            self.normal_q[i].d.next = self.normal_q[i].q.val();
+        }
+        if self.advance.val() {
+            self.axis_q.d.next = self.axis.val();
+            for i in 0..9 {
+                self.t1_q[i].d.next = self.t1_vertices[i].val();
+                self.t2_q[i].d.next = self.t2_vertices[i].val();
+            }
+            for k in 0..3 {
+                self.normal_q[k].d.next = self.t1_normal_negative[k].val();
+                self.normal_q[3 + k].d.next = self.t1_normal_zero[k].val();
+                self.normal_q[6 + k].d.next = self.t2_normal_negative[k].val();
+                self.normal_q[9 + k].d.next = self.t2_normal_zero[k].val();
+            }
+        }
         // Stage 1: project, and pick the orientations.
         for i in 0..12 {
             self.projection_q[i].clock.next = self.clock.val();
@@ -90,21 +127,21 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
         }
         if self.advance.val() {
             for v in 0..3 {
-                if self.axis.val() == 0 {
-                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v + 1].val();
-                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v + 2].val();
-                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v + 1].val();
-                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v + 2].val();
-                } else if self.axis.val() == 1 {
-                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v + 2].val();
-                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v].val();
-                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v + 2].val();
-                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v].val();
+                if self.axis_q.q.val() == 0 {
+                    self.projection_q[2 * v].d.next = self.t1_q[3 * v + 1].q.val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_q[3 * v + 2].q.val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_q[3 * v + 1].q.val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_q[3 * v + 2].q.val();
+                } else if self.axis_q.q.val() == 1 {
+                    self.projection_q[2 * v].d.next = self.t1_q[3 * v + 2].q.val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_q[3 * v].q.val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_q[3 * v + 2].q.val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_q[3 * v].q.val();
                 } else {
-                    self.projection_q[2 * v].d.next = self.t1_vertices[3 * v].val();
-                    self.projection_q[2 * v + 1].d.next = self.t1_vertices[3 * v + 1].val();
-                    self.projection_q[6 + 2 * v].d.next = self.t2_vertices[3 * v].val();
-                    self.projection_q[7 + 2 * v].d.next = self.t2_vertices[3 * v + 1].val();
+                    self.projection_q[2 * v].d.next = self.t1_q[3 * v].q.val();
+                    self.projection_q[2 * v + 1].d.next = self.t1_q[3 * v + 1].q.val();
+                    self.projection_q[6 + 2 * v].d.next = self.t2_q[3 * v].q.val();
+                    self.projection_q[7 + 2 * v].d.next = self.t2_q[3 * v + 1].q.val();
                 }
             }
         }
@@ -112,21 +149,21 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
             self.orientation[i].clock.next = self.clock.val();
             self.orientation[i].advance.next = self.advance.val();
         }
-        if self.axis.val() == 0 {
-            self.orientation[0].d.next = self.t1_normal_negative[0].val();
-            self.orientation[1].d.next = self.t1_normal_zero[0].val();
-            self.orientation[2].d.next = self.t2_normal_negative[0].val();
-            self.orientation[3].d.next = self.t2_normal_zero[0].val();
-        } else if self.axis.val() == 1 {
-            self.orientation[0].d.next = self.t1_normal_negative[1].val();
-            self.orientation[1].d.next = self.t1_normal_zero[1].val();
-            self.orientation[2].d.next = self.t2_normal_negative[1].val();
-            self.orientation[3].d.next = self.t2_normal_zero[1].val();
+        if self.axis_q.q.val() == 0 {
+            self.orientation[0].d.next = self.normal_q[0].q.val();
+            self.orientation[1].d.next = self.normal_q[3].q.val();
+            self.orientation[2].d.next = self.normal_q[6].q.val();
+            self.orientation[3].d.next = self.normal_q[9].q.val();
+        } else if self.axis_q.q.val() == 1 {
+            self.orientation[0].d.next = self.normal_q[1].q.val();
+            self.orientation[1].d.next = self.normal_q[4].q.val();
+            self.orientation[2].d.next = self.normal_q[7].q.val();
+            self.orientation[3].d.next = self.normal_q[10].q.val();
         } else {
-            self.orientation[0].d.next = self.t1_normal_negative[2].val();
-            self.orientation[1].d.next = self.t1_normal_zero[2].val();
-            self.orientation[2].d.next = self.t2_normal_negative[2].val();
-            self.orientation[3].d.next = self.t2_normal_zero[2].val();
+            self.orientation[0].d.next = self.normal_q[2].q.val();
+            self.orientation[1].d.next = self.normal_q[5].q.val();
+            self.orientation[2].d.next = self.normal_q[8].q.val();
+            self.orientation[3].d.next = self.normal_q[11].q.val();
         }
         // Stage 2: edge vectors, offsets, coordinate comparisons.
         for i in 0..6 {

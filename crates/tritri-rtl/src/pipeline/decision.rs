@@ -15,13 +15,18 @@
 //!
 //! The signs of a degenerate triangle's segment ends against the other
 //! plane are the plane-side signs of the vertices at `segment_low` and
-//! `segment_high`. Registered output.
+//! `segment_high`.
+//!
+//! Two stages: the three cases' verdicts, registered with the case; then
+//! the case's verdict. In one stage, an orient3d sign reached the verdict
+//! register through five LUT levels, the W = 8 pipeline's critical path on
+//! ECP5 (144 MHz).
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
-pub const DECISION_LATENCY: usize = 1;
+pub const DECISION_LATENCY: usize = 2;
 
 #[derive(LogicBlock, Default)]
 pub struct Decision {
@@ -56,6 +61,12 @@ pub struct Decision {
     end_b_negative: Signal<Local, Bit>,
     end_b_zero: Signal<Local, Bit>,
     segment_hit: Signal<Local, Bit>,
+    /// Stage 1: each case's verdict, and the case.
+    triangles_hit_q: DFF<Bit>,
+    segment_hit_q: DFF<Bit>,
+    degenerate_hit_q: DFF<Bit>,
+    t1_degenerate_q: DFF<Bit>,
+    t2_degenerate_q: DFF<Bit>,
     hit_q: DFF<Bit>,
 }
 
@@ -122,14 +133,19 @@ impl Logic for Decision {
                 || self.orient_positive[2].val())
                 && (self.orient_negative[0].val() || self.orient_negative[1].val() || self.orient_negative[2].val()));
         }
-        dff_setup!(self, clock, hit_q);
+        dff_setup!(self, clock, triangles_hit_q, segment_hit_q, degenerate_hit_q, t1_degenerate_q, t2_degenerate_q, hit_q);
         if self.advance.val() {
-            if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
-                self.hit_q.d.next = self.triangles_hit.val();
-            } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
-                self.hit_q.d.next = self.orient_zero[0].val() && self.degenerate_pair_hit.val();
+            self.triangles_hit_q.d.next = self.triangles_hit.val();
+            self.segment_hit_q.d.next = self.segment_hit.val();
+            self.degenerate_hit_q.d.next = self.orient_zero[0].val() && self.degenerate_pair_hit.val();
+            self.t1_degenerate_q.d.next = self.t1_degenerate.val();
+            self.t2_degenerate_q.d.next = self.t2_degenerate.val();
+            if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
+                self.hit_q.d.next = self.triangles_hit_q.q.val();
+            } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {
+                self.hit_q.d.next = self.degenerate_hit_q.q.val();
             } else {
-                self.hit_q.d.next = self.segment_hit.val();
+                self.hit_q.d.next = self.segment_hit_q.q.val();
             }
         }
         self.hit.next = self.hit_q.q.val();

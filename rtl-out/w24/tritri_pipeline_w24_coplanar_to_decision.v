@@ -1,9 +1,8 @@
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_to_decision.v
+// Filename:   tritri_pipeline_w24_coplanar_to_decision.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (3): coplanar_to_decision,
-//             degenerate_to_decision[0], degenerate_to_decision[1].
+// Purpose:    Part of tritri_pipeline_w24. Instance: coplanar_to_decision.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -18,7 +17,7 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_to_decision (
+module tritri_pipeline_w24_coplanar_to_decision (
     input wire clock,
     input wire advance,
     input wire d,
@@ -26,7 +25,7 @@ module tritri_pipeline_w24_to_decision (
 );
 
     // Update code (custom)
-    // Delay line: 15 stage(s) of 1 bit(s).
+    // Delay line: 14 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -40,7 +39,6 @@ module tritri_pipeline_w24_to_decision (
     reg stage_10_q;
     reg stage_11_q;
     reg stage_12_q;
-    reg stage_13_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -55,7 +53,6 @@ module tritri_pipeline_w24_to_decision (
         stage_10_q = 1'd0;
         stage_11_q = 1'd0;
         stage_12_q = 1'd0;
-        stage_13_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -73,10 +70,9 @@ module tritri_pipeline_w24_to_decision (
             stage_10_q <= stage_9_q;
             stage_11_q <= stage_10_q;
             stage_12_q <= stage_11_q;
-            stage_13_q <= stage_12_q;
-            q <= stage_13_q;
+            q <= stage_12_q;
         end
     end
-endmodule  // tritri_pipeline_w24_to_decision
+endmodule  // tritri_pipeline_w24_coplanar_to_decision
 
 `default_nettype wire
