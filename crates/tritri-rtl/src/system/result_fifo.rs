@@ -5,8 +5,7 @@
 //! has to be dropped or serialized on the pipelines' side.
 //!
 //! Columns are [`SimpleDualPortRam`]s sharing the pointers, in block RAM
-//! (see below). The head is
-//! shown first-word-fall-through: `head_valid` with the head word on
+//! (see below). The head is shown first-word-fall-through: `head_valid` with the head word on
 //! `head_*`, removed by `pop`. Because the memory reads one cycle late, a
 //! word becomes readable two cycles after its write (`readable` counts the
 //! words written at least one edge before the read), while `full` counts
@@ -59,7 +58,6 @@ pub struct ResultFifo {
     do_write: Signal<Local, Bit>,
     do_pop: Signal<Local, Bit>,
     next_read_pointer: Signal<Local, Bits<FIFO_POINTER_BITS>>,
-    next_readable: Signal<Local, Bits<FIFO_POINTER_BITS>>,
 }
 
 impl ResultFifo {
@@ -96,7 +94,6 @@ impl ResultFifo {
             do_write: Default::default(),
             do_pop: Default::default(),
             next_read_pointer: Default::default(),
-            next_readable: Default::default(),
         }
     }
 }
@@ -135,15 +132,13 @@ impl Logic for ResultFifo {
         if !self.do_write.val() & self.do_pop.val() {
             self.count.d.next = self.count.q.val() - 1;
         }
-        self.next_readable.next = self.readable.q.val();
         if self.wrote.q.val() & !self.do_pop.val() {
-            self.next_readable.next = self.readable.q.val() + 1;
+            self.readable.d.next = self.readable.q.val() + 1;
         }
         if !self.wrote.q.val() & self.do_pop.val() {
-            self.next_readable.next = self.readable.q.val() - 1;
+            self.readable.d.next = self.readable.q.val() - 1;
         }
-        self.readable.d.next = self.next_readable.val();
-        // next_readable != 0, without waiting for its carry chain: one more
+        // The next readable != 0, without waiting for its carry chain: one more
         // word, one fewer (then at least two were readable), or as many.
         self.head_valid_q.d.next = self.readable.q.val() != 0;
         if self.wrote.q.val() & !self.do_pop.val() {
