@@ -61,6 +61,8 @@ module tb_collision_system #(
     reg out_ready = 1'b0;
     wire [ID_WIDTH-1:0] out_id_a;
     wire [ID_WIDTH-1:0] out_id_b;
+    wire out_hit;
+    wire out_certain;
     wire done;
     wire results_empty;
     wire overflow;
@@ -89,6 +91,8 @@ module tb_collision_system #(
         .out_ready(out_ready),
         .out_id_a(out_id_a),
         .out_id_b(out_id_b),
+        .out_hit(out_hit),
+        .out_certain(out_certain),
         .done(done),
         .results_empty(results_empty),
         .overflow(overflow),
@@ -194,7 +198,7 @@ module tb_collision_system #(
                 $fflush();
             end
             if (out_valid && out_ready) begin
-                $fdisplay(outputs_fd, "%0h %0h", out_id_a, out_id_b);
+                $fdisplay(outputs_fd, "%0h %0h %0d %0d", out_id_a, out_id_b, out_hit, out_certain);
                 pairs_seen = pairs_seen + 1;
             end
             if (input_done && !have_word && !done_seen && done) begin

@@ -47,6 +47,7 @@ module tb_triangle_pipeline #(
     reg [W-1:0] in_coordinate [0:8];
     wire out_valid;
     wire out_hit;
+    wire out_certain;
     wire [ID_WIDTH-1:0] out_base_id;
     wire [ID_WIDTH-1:0] out_stream_id;
 
@@ -68,6 +69,7 @@ module tb_triangle_pipeline #(
         .in_z2(in_coordinate[8]),
         .out_valid(out_valid),
         .out_hit(out_hit),
+        .out_certain(out_certain),
         .out_base_id(out_base_id),
         .out_stream_id(out_stream_id)
     );
@@ -180,7 +182,7 @@ module tb_triangle_pipeline #(
     always @(posedge clock) begin
         cycle = edge_count - RESET_CYCLES;
         if (cycle >= 0 && out_valid) begin
-            $fdisplay(outputs_fd, "%0d %0h %0h %0d", cycle, out_base_id, out_stream_id, out_hit);
+            $fdisplay(outputs_fd, "%0d %0h %0h %0d %0d", cycle, out_base_id, out_stream_id, out_hit, out_certain);
             verdicts_seen = verdicts_seen + 1;
             last_verdict_cycle = cycle;
         end

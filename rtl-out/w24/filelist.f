@@ -14,6 +14,7 @@ tritri_pipeline_w24_degenerate_to_decision.v
 tritri_pipeline_w24_degenerate_to_operands.v
 tritri_pipeline_w24_delay_w1.v
 tritri_pipeline_w24_delay_w2.v
+tritri_pipeline_w24_delay_w25.v
 tritri_pipeline_w24_dff_1.v
 tritri_pipeline_w24_dff_2.v
 tritri_pipeline_w24_dff_24.v
@@ -24,6 +25,7 @@ tritri_pipeline_w24_dff_49.v
 tritri_pipeline_w24_distance.v
 tritri_pipeline_w24_front_end.v
 tritri_pipeline_w24_front_end_axis.v
+tritri_pipeline_w24_front_end_edge_thermometer_delay.v
 tritri_pipeline_w24_front_end_ends.v
 tritri_pipeline_w24_front_end_normal_delay.v
 tritri_pipeline_w24_front_end_normal_unit.v
@@ -35,13 +37,17 @@ tritri_pipeline_w24_multiplier_w49.v
 tritri_pipeline_w24_multiplier_w74.v
 tritri_pipeline_w24_normal.v
 tritri_pipeline_w24_normal_delay.v
+tritri_pipeline_w24_offset_magnitude.v
 tritri_pipeline_w24_offset_w25.v
 tritri_pipeline_w24_offset_w25_2.v
 tritri_pipeline_w24_operands.v
 tritri_pipeline_w24_orient3d.v
-tritri_pipeline_w24_orient3d_edge_ad_delay.v
+tritri_pipeline_w24_orient3d_2.v
+tritri_pipeline_w24_orient3d_2_sign.v
+tritri_pipeline_w24_orient3d_thermometer_delay.v
 tritri_pipeline_w24_pair_valid.v
 tritri_pipeline_w24_plane_side.v
+tritri_pipeline_w24_plane_thermometer_delay.v
 tritri_pipeline_w24_record_id.v
 tritri_pipeline_w24_record_valid.v
 tritri_pipeline_w24_segment_ends_to_decision.v

@@ -52,6 +52,7 @@ module tritri_pipeline_w24 (
     input  wire [23:0] in_z2,
     output wire        out_valid,
     output wire        out_hit,
+    output wire        out_certain,
     output wire [31:0] out_base_id,
     output wire [31:0] out_stream_id
 );
@@ -139,6 +140,7 @@ module tritri_pipeline_w24 (
     wire  [1:0] front_end_dominant_axis;
     wire  [1:0] front_end_segment_low;
     wire  [1:0] front_end_segment_high;
+    wire  [24:0] front_end_edge_thermometer;
     wire  base_clock;
     wire  base_load;
     wire  [31:0] base_id_in;
@@ -164,6 +166,7 @@ module tritri_pipeline_w24 (
     wire  [1:0] base_dominant_axis_in;
     wire  [1:0] base_segment_low_in;
     wire  [1:0] base_segment_high_in;
+    wire  [24:0] base_edge_thermometer_in;
     wire  [31:0] base__id;
     wire  [23:0] base_vertices_0;
     wire  [23:0] base_vertices_1;
@@ -187,6 +190,7 @@ module tritri_pipeline_w24 (
     wire  [1:0] base_dominant_axis;
     wire  [1:0] base_segment_low;
     wire  [1:0] base_segment_high;
+    wire  [24:0] base_edge_thermometer;
     wire  pair_valid_clock;
     wire  pair_valid_reset;
     wire  pair_valid_advance;
@@ -208,6 +212,7 @@ module tritri_pipeline_w24 (
     wire  [48:0] plane_side_t1_plane_normal_0;
     wire  [48:0] plane_side_t1_plane_normal_1;
     wire  [48:0] plane_side_t1_plane_normal_2;
+    wire  [24:0] plane_side_t1_plane_thermometer;
     wire  [23:0] plane_side_t1_vertices_0;
     wire  [23:0] plane_side_t1_vertices_1;
     wire  [23:0] plane_side_t1_vertices_2;
@@ -223,6 +228,9 @@ module tritri_pipeline_w24 (
     wire  plane_side_t1_zero_0;
     wire  plane_side_t1_zero_1;
     wire  plane_side_t1_zero_2;
+    wire  plane_side_t1_certain_0;
+    wire  plane_side_t1_certain_1;
+    wire  plane_side_t1_certain_2;
     wire  plane_side_t2_clock;
     wire  plane_side_t2_advance;
     wire  [23:0] plane_side_t2_plane_point_0;
@@ -231,6 +239,7 @@ module tritri_pipeline_w24 (
     wire  [48:0] plane_side_t2_plane_normal_0;
     wire  [48:0] plane_side_t2_plane_normal_1;
     wire  [48:0] plane_side_t2_plane_normal_2;
+    wire  [24:0] plane_side_t2_plane_thermometer;
     wire  [23:0] plane_side_t2_vertices_0;
     wire  [23:0] plane_side_t2_vertices_1;
     wire  [23:0] plane_side_t2_vertices_2;
@@ -246,6 +255,9 @@ module tritri_pipeline_w24 (
     wire  plane_side_t2_zero_0;
     wire  plane_side_t2_zero_1;
     wire  plane_side_t2_zero_2;
+    wire  plane_side_t2_certain_0;
+    wire  plane_side_t2_certain_1;
+    wire  plane_side_t2_certain_2;
     wire  align_t1_clock;
     wire  align_t1_advance;
     wire  align_t1_t1_negative_0;
@@ -382,6 +394,7 @@ module tritri_pipeline_w24 (
     wire  [23:0] orient3d_0_d_2;
     wire  orient3d_0_negative;
     wire  orient3d_0_zero;
+    wire  orient3d_0_certain;
     wire  orient3d_1_clock;
     wire  orient3d_1_advance;
     wire  [23:0] orient3d_1_a_0;
@@ -398,6 +411,7 @@ module tritri_pipeline_w24 (
     wire  [23:0] orient3d_1_d_2;
     wire  orient3d_1_negative;
     wire  orient3d_1_zero;
+    wire  orient3d_1_certain;
     wire  orient3d_2_clock;
     wire  orient3d_2_advance;
     wire  [23:0] orient3d_2_a_0;
@@ -499,9 +513,18 @@ module tritri_pipeline_w24 (
     wire  decision_orient_zero_0;
     wire  decision_orient_zero_1;
     wire  decision_orient_zero_2;
+    wire  decision_t1_side_certain_0;
+    wire  decision_t1_side_certain_1;
+    wire  decision_t1_side_certain_2;
+    wire  decision_t2_side_certain_0;
+    wire  decision_t2_side_certain_1;
+    wire  decision_t2_side_certain_2;
+    wire  decision_orient_certain_0;
+    wire  decision_orient_certain_1;
     wire  decision_coplanar_hit;
     wire  decision_degenerate_pair_hit;
     wire  decision_hit;
+    wire  decision_certain;
     wire  t1_vertices_to_operands_0_clock;
     wire  t1_vertices_to_operands_0_advance;
     wire  [23:0] t1_vertices_to_operands_0_d;
@@ -670,6 +693,30 @@ module tritri_pipeline_w24 (
     wire  sides_to_decision_11_advance;
     wire  sides_to_decision_11_d;
     wire  sides_to_decision_11_q;
+    wire  sides_to_decision_12_clock;
+    wire  sides_to_decision_12_advance;
+    wire  sides_to_decision_12_d;
+    wire  sides_to_decision_12_q;
+    wire  sides_to_decision_13_clock;
+    wire  sides_to_decision_13_advance;
+    wire  sides_to_decision_13_d;
+    wire  sides_to_decision_13_q;
+    wire  sides_to_decision_14_clock;
+    wire  sides_to_decision_14_advance;
+    wire  sides_to_decision_14_d;
+    wire  sides_to_decision_14_q;
+    wire  sides_to_decision_15_clock;
+    wire  sides_to_decision_15_advance;
+    wire  sides_to_decision_15_d;
+    wire  sides_to_decision_15_q;
+    wire  sides_to_decision_16_clock;
+    wire  sides_to_decision_16_advance;
+    wire  sides_to_decision_16_d;
+    wire  sides_to_decision_16_q;
+    wire  sides_to_decision_17_clock;
+    wire  sides_to_decision_17_advance;
+    wire  sides_to_decision_17_d;
+    wire  sides_to_decision_17_q;
     wire  coplanar_to_decision_clock;
     wire  coplanar_to_decision_advance;
     wire  coplanar_to_decision_d;
@@ -786,7 +833,8 @@ module tritri_pipeline_w24 (
         .degenerate(front_end_degenerate),
         .dominant_axis(front_end_dominant_axis),
         .segment_low(front_end_segment_low),
-        .segment_high(front_end_segment_high)
+        .segment_high(front_end_segment_high),
+        .edge_thermometer(front_end_edge_thermometer)
     );
     tritri_pipeline_w24_base u_base(
         .clock(base_clock),
@@ -814,6 +862,7 @@ module tritri_pipeline_w24 (
         .dominant_axis_in(base_dominant_axis_in),
         .segment_low_in(base_segment_low_in),
         .segment_high_in(base_segment_high_in),
+        .edge_thermometer_in(base_edge_thermometer_in),
         .id(base__id),
         .vertices_0(base_vertices_0),
         .vertices_1(base_vertices_1),
@@ -836,7 +885,8 @@ module tritri_pipeline_w24 (
         .degenerate(base_degenerate),
         .dominant_axis(base_dominant_axis),
         .segment_low(base_segment_low),
-        .segment_high(base_segment_high)
+        .segment_high(base_segment_high),
+        .edge_thermometer(base_edge_thermometer)
     );
     tritri_pipeline_w24_pair_valid u_pair_valid(
         .clock(pair_valid_clock),
@@ -866,6 +916,7 @@ module tritri_pipeline_w24 (
         .plane_normal_0(plane_side_t1_plane_normal_0),
         .plane_normal_1(plane_side_t1_plane_normal_1),
         .plane_normal_2(plane_side_t1_plane_normal_2),
+        .plane_thermometer(plane_side_t1_plane_thermometer),
         .vertices_0(plane_side_t1_vertices_0),
         .vertices_1(plane_side_t1_vertices_1),
         .vertices_2(plane_side_t1_vertices_2),
@@ -880,7 +931,10 @@ module tritri_pipeline_w24 (
         .negative_2(plane_side_t1_negative_2),
         .zero_0(plane_side_t1_zero_0),
         .zero_1(plane_side_t1_zero_1),
-        .zero_2(plane_side_t1_zero_2)
+        .zero_2(plane_side_t1_zero_2),
+        .certain_0(plane_side_t1_certain_0),
+        .certain_1(plane_side_t1_certain_1),
+        .certain_2(plane_side_t1_certain_2)
     );
     tritri_pipeline_w24_plane_side u_plane_side_t2(
         .clock(plane_side_t2_clock),
@@ -891,6 +945,7 @@ module tritri_pipeline_w24 (
         .plane_normal_0(plane_side_t2_plane_normal_0),
         .plane_normal_1(plane_side_t2_plane_normal_1),
         .plane_normal_2(plane_side_t2_plane_normal_2),
+        .plane_thermometer(plane_side_t2_plane_thermometer),
         .vertices_0(plane_side_t2_vertices_0),
         .vertices_1(plane_side_t2_vertices_1),
         .vertices_2(plane_side_t2_vertices_2),
@@ -905,7 +960,10 @@ module tritri_pipeline_w24 (
         .negative_2(plane_side_t2_negative_2),
         .zero_0(plane_side_t2_zero_0),
         .zero_1(plane_side_t2_zero_1),
-        .zero_2(plane_side_t2_zero_2)
+        .zero_2(plane_side_t2_zero_2),
+        .certain_0(plane_side_t2_certain_0),
+        .certain_1(plane_side_t2_certain_1),
+        .certain_2(plane_side_t2_certain_2)
     );
     tritri_pipeline_w24_align_t1 u_align_t1(
         .clock(align_t1_clock),
@@ -1051,7 +1109,8 @@ module tritri_pipeline_w24 (
         .d_1(orient3d_0_d_1),
         .d_2(orient3d_0_d_2),
         .negative(orient3d_0_negative),
-        .zero(orient3d_0_zero)
+        .zero(orient3d_0_zero),
+        .certain(orient3d_0_certain)
     );
     tritri_pipeline_w24_orient3d u_orient3d_1(
         .clock(orient3d_1_clock),
@@ -1069,9 +1128,10 @@ module tritri_pipeline_w24 (
         .d_1(orient3d_1_d_1),
         .d_2(orient3d_1_d_2),
         .negative(orient3d_1_negative),
-        .zero(orient3d_1_zero)
+        .zero(orient3d_1_zero),
+        .certain(orient3d_1_certain)
     );
-    tritri_pipeline_w24_orient3d u_orient3d_2(
+    tritri_pipeline_w24_orient3d_2 u_orient3d_2(
         .clock(orient3d_2_clock),
         .advance(orient3d_2_advance),
         .a_0(orient3d_2_a_0),
@@ -1179,9 +1239,18 @@ module tritri_pipeline_w24 (
         .orient_zero_0(decision_orient_zero_0),
         .orient_zero_1(decision_orient_zero_1),
         .orient_zero_2(decision_orient_zero_2),
+        .t1_side_certain_0(decision_t1_side_certain_0),
+        .t1_side_certain_1(decision_t1_side_certain_1),
+        .t1_side_certain_2(decision_t1_side_certain_2),
+        .t2_side_certain_0(decision_t2_side_certain_0),
+        .t2_side_certain_1(decision_t2_side_certain_1),
+        .t2_side_certain_2(decision_t2_side_certain_2),
+        .orient_certain_0(decision_orient_certain_0),
+        .orient_certain_1(decision_orient_certain_1),
         .coplanar_hit(decision_coplanar_hit),
         .degenerate_pair_hit(decision_degenerate_pair_hit),
-        .hit(decision_hit)
+        .hit(decision_hit),
+        .certain(decision_certain)
     );
     tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_0(
         .clock(t1_vertices_to_operands_0_clock),
@@ -1435,6 +1504,42 @@ module tritri_pipeline_w24 (
         .d(sides_to_decision_11_d),
         .q(sides_to_decision_11_q)
     );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_12(
+        .clock(sides_to_decision_12_clock),
+        .advance(sides_to_decision_12_advance),
+        .d(sides_to_decision_12_d),
+        .q(sides_to_decision_12_q)
+    );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_13(
+        .clock(sides_to_decision_13_clock),
+        .advance(sides_to_decision_13_advance),
+        .d(sides_to_decision_13_d),
+        .q(sides_to_decision_13_q)
+    );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_14(
+        .clock(sides_to_decision_14_clock),
+        .advance(sides_to_decision_14_advance),
+        .d(sides_to_decision_14_d),
+        .q(sides_to_decision_14_q)
+    );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_15(
+        .clock(sides_to_decision_15_clock),
+        .advance(sides_to_decision_15_advance),
+        .d(sides_to_decision_15_d),
+        .q(sides_to_decision_15_q)
+    );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_16(
+        .clock(sides_to_decision_16_clock),
+        .advance(sides_to_decision_16_advance),
+        .d(sides_to_decision_16_d),
+        .q(sides_to_decision_16_q)
+    );
+    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_17(
+        .clock(sides_to_decision_17_clock),
+        .advance(sides_to_decision_17_advance),
+        .d(sides_to_decision_17_d),
+        .q(sides_to_decision_17_q)
+    );
     tritri_pipeline_w24_coplanar_to_decision u_coplanar_to_decision(
         .clock(coplanar_to_decision_clock),
         .advance(coplanar_to_decision_advance),
@@ -1596,6 +1701,18 @@ module tritri_pipeline_w24 (
     assign sides_to_decision_10_advance = advance;
     assign sides_to_decision_11_clock = clock;
     assign sides_to_decision_11_advance = advance;
+    assign sides_to_decision_12_clock = clock;
+    assign sides_to_decision_12_advance = advance;
+    assign sides_to_decision_13_clock = clock;
+    assign sides_to_decision_13_advance = advance;
+    assign sides_to_decision_14_clock = clock;
+    assign sides_to_decision_14_advance = advance;
+    assign sides_to_decision_15_clock = clock;
+    assign sides_to_decision_15_advance = advance;
+    assign sides_to_decision_16_clock = clock;
+    assign sides_to_decision_16_advance = advance;
+    assign sides_to_decision_17_clock = clock;
+    assign sides_to_decision_17_advance = advance;
     assign record_valid_d = in_valid;
     assign record_bset_d = in_bset;
     assign record_id_d = in_id;
@@ -1623,6 +1740,7 @@ module tritri_pipeline_w24 (
     assign base_dominant_axis_in = front_end_dominant_axis;
     assign base_segment_low_in = front_end_segment_low;
     assign base_segment_high_in = front_end_segment_high;
+    assign base_edge_thermometer_in = front_end_edge_thermometer;
     assign base_vertices_in_0 = front_end_vertices_0;
     assign base_vertices_in_1 = front_end_vertices_1;
     assign base_vertices_in_2 = front_end_vertices_2;
@@ -1662,6 +1780,8 @@ module tritri_pipeline_w24 (
     assign plane_side_t2_vertices_7 = front_end_vertices_7;
     assign plane_side_t1_vertices_8 = base_vertices_8;
     assign plane_side_t2_vertices_8 = front_end_vertices_8;
+    assign plane_side_t1_plane_thermometer = front_end_edge_thermometer;
+    assign plane_side_t2_plane_thermometer = base_edge_thermometer;
     assign plane_side_t1_plane_point_0 = front_end_vertices_0;
     assign plane_side_t1_plane_normal_0 = front_end_normal_0;
     assign plane_side_t2_plane_point_0 = base_vertices_0;
@@ -1852,26 +1972,38 @@ module tritri_pipeline_w24 (
     assign sides_to_decision_3_d = plane_side_t1_zero_0;
     assign sides_to_decision_6_d = plane_side_t2_negative_0;
     assign sides_to_decision_9_d = plane_side_t2_zero_0;
+    assign sides_to_decision_12_d = plane_side_t1_certain_0;
+    assign sides_to_decision_15_d = plane_side_t2_certain_0;
     assign decision_t1_side_negative_0 = sides_to_decision_0_q;
     assign decision_t1_side_zero_0 = sides_to_decision_3_q;
     assign decision_t2_side_negative_0 = sides_to_decision_6_q;
     assign decision_t2_side_zero_0 = sides_to_decision_9_q;
+    assign decision_t1_side_certain_0 = sides_to_decision_12_q;
+    assign decision_t2_side_certain_0 = sides_to_decision_15_q;
     assign sides_to_decision_1_d = plane_side_t1_negative_1;
     assign sides_to_decision_4_d = plane_side_t1_zero_1;
     assign sides_to_decision_7_d = plane_side_t2_negative_1;
     assign sides_to_decision_10_d = plane_side_t2_zero_1;
+    assign sides_to_decision_13_d = plane_side_t1_certain_1;
+    assign sides_to_decision_16_d = plane_side_t2_certain_1;
     assign decision_t1_side_negative_1 = sides_to_decision_1_q;
     assign decision_t1_side_zero_1 = sides_to_decision_4_q;
     assign decision_t2_side_negative_1 = sides_to_decision_7_q;
     assign decision_t2_side_zero_1 = sides_to_decision_10_q;
+    assign decision_t1_side_certain_1 = sides_to_decision_13_q;
+    assign decision_t2_side_certain_1 = sides_to_decision_16_q;
     assign sides_to_decision_2_d = plane_side_t1_negative_2;
     assign sides_to_decision_5_d = plane_side_t1_zero_2;
     assign sides_to_decision_8_d = plane_side_t2_negative_2;
     assign sides_to_decision_11_d = plane_side_t2_zero_2;
+    assign sides_to_decision_14_d = plane_side_t1_certain_2;
+    assign sides_to_decision_17_d = plane_side_t2_certain_2;
     assign decision_t1_side_negative_2 = sides_to_decision_2_q;
     assign decision_t1_side_zero_2 = sides_to_decision_5_q;
     assign decision_t2_side_negative_2 = sides_to_decision_8_q;
     assign decision_t2_side_zero_2 = sides_to_decision_11_q;
+    assign decision_t1_side_certain_2 = sides_to_decision_14_q;
+    assign decision_t2_side_certain_2 = sides_to_decision_17_q;
     assign coplanar_to_decision_d = coplanar__hit;
     assign degenerate_pair_to_decision_d = degenerate_pair__hit;
     assign decision_t1_degenerate = degenerate_to_decision_0_q;
@@ -1886,10 +2018,13 @@ module tritri_pipeline_w24 (
     assign decision_orient_zero_1 = orient3d_1_zero;
     assign decision_orient_negative_2 = orient3d_2_negative;
     assign decision_orient_zero_2 = orient3d_2_zero;
+    assign decision_orient_certain_0 = orient3d_0_certain;
+    assign decision_orient_certain_1 = orient3d_1_certain;
     assign decision_coplanar_hit = coplanar_to_decision_q;
     assign decision_degenerate_pair_hit = degenerate_pair_to_decision_q;
     assign out_valid = pair_valid_q;
     assign out_hit = decision_hit;
+    assign out_certain = decision_certain;
     assign out_base_id = base_id_q;
     assign out_stream_id = stream_id_q;
     always @(*) begin

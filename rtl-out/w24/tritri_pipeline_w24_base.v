@@ -43,6 +43,7 @@ module tritri_pipeline_w24_base (
     input  wire [1:0]  dominant_axis_in,
     input  wire [1:0]  segment_low_in,
     input  wire [1:0]  segment_high_in,
+    input  wire [24:0] edge_thermometer_in,
     output wire [31:0] id,
     output wire [23:0] vertices_0,
     output wire [23:0] vertices_1,
@@ -65,7 +66,8 @@ module tritri_pipeline_w24_base (
     output wire        degenerate,
     output wire [1:0]  dominant_axis,
     output wire [1:0]  segment_low,
-    output wire [1:0]  segment_high
+    output wire [1:0]  segment_high,
+    output wire [24:0] edge_thermometer
 );
 
     // Stub signals
@@ -138,6 +140,9 @@ module tritri_pipeline_w24_base (
     reg  [1:0] segment_high_q_d;
     wire  [1:0] segment_high_q_q;
     wire  segment_high_q_clock;
+    reg  [24:0] edge_thermometer_q_d;
+    wire  [24:0] edge_thermometer_q_q;
+    wire  edge_thermometer_q_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_32 u_id_q(
@@ -255,6 +260,11 @@ module tritri_pipeline_w24_base (
         .q(segment_high_q_q),
         .clock(segment_high_q_clock)
     );
+    tritri_pipeline_w24_dff_25 u_edge_thermometer_q(
+        .d(edge_thermometer_q_d),
+        .q(edge_thermometer_q_q),
+        .clock(edge_thermometer_q_clock)
+    );
 
     // Update code
     assign id_q_clock = clock;
@@ -262,6 +272,7 @@ module tritri_pipeline_w24_base (
     assign dominant_axis_q_clock = clock;
     assign segment_low_q_clock = clock;
     assign segment_high_q_clock = clock;
+    assign edge_thermometer_q_clock = clock;
     assign vertices_q_0_clock = clock;
     assign vertices_q_1_clock = clock;
     assign vertices_q_2_clock = clock;
@@ -285,6 +296,7 @@ module tritri_pipeline_w24_base (
     assign dominant_axis = dominant_axis_q_q;
     assign segment_low = segment_low_q_q;
     assign segment_high = segment_high_q_q;
+    assign edge_thermometer = edge_thermometer_q_q;
     assign vertices_0 = vertices_q_0_q;
     assign vertices_1 = vertices_q_1_q;
     assign vertices_2 = vertices_q_2_q;
@@ -309,6 +321,7 @@ module tritri_pipeline_w24_base (
         dominant_axis_q_d = dominant_axis_q_q;
         segment_low_q_d = segment_low_q_q;
         segment_high_q_d = segment_high_q_q;
+        edge_thermometer_q_d = edge_thermometer_q_q;
         vertices_q_0_d = vertices_q_0_q;
         vertices_q_1_d = vertices_q_1_q;
         vertices_q_2_d = vertices_q_2_q;
@@ -333,6 +346,7 @@ module tritri_pipeline_w24_base (
             dominant_axis_q_d = dominant_axis_in;
             segment_low_q_d = segment_low_in;
             segment_high_q_d = segment_high_in;
+            edge_thermometer_q_d = edge_thermometer_in;
             vertices_q_0_d = vertices_in_0;
             vertices_q_1_d = vertices_in_1;
             vertices_q_2_d = vertices_in_2;

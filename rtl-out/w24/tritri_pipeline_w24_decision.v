@@ -44,12 +44,30 @@ module tritri_pipeline_w24_decision (
     input  wire       orient_zero_0,
     input  wire       orient_zero_1,
     input  wire       orient_zero_2,
+    input  wire       t1_side_certain_0,
+    input  wire       t1_side_certain_1,
+    input  wire       t1_side_certain_2,
+    input  wire       t2_side_certain_0,
+    input  wire       t2_side_certain_1,
+    input  wire       t2_side_certain_2,
+    input  wire       orient_certain_0,
+    input  wire       orient_certain_1,
     input  wire       coplanar_hit,
     input  wire       degenerate_pair_hit,
-    output wire       hit
+    output wire       hit,
+    output wire       certain
 );
 
     // Stub signals
+    reg  rejected_certainly_q_d;
+    wire  rejected_certainly_q_q;
+    wire  rejected_certainly_q_clock;
+    reg  interval_certain_q_d;
+    wire  interval_certain_q_q;
+    wire  interval_certain_q_clock;
+    reg  certain_q_d;
+    wire  certain_q_q;
+    wire  certain_q_clock;
     reg  triangles_hit_q_d;
     wire  triangles_hit_q_q;
     wire  triangles_hit_q_clock;
@@ -85,8 +103,25 @@ module tritri_pipeline_w24_decision (
     reg  end_b_negative;
     reg  end_b_zero;
     reg  segment_hit;
+    wire  t1_sides_certain;
+    wire  t2_sides_certain;
 
     // Sub module instances
+    tritri_pipeline_w24_dff_1 u_rejected_certainly_q(
+        .d(rejected_certainly_q_d),
+        .q(rejected_certainly_q_q),
+        .clock(rejected_certainly_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_interval_certain_q(
+        .d(interval_certain_q_d),
+        .q(interval_certain_q_q),
+        .clock(interval_certain_q_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_certain_q(
+        .d(certain_q_d),
+        .q(certain_q_q),
+        .clock(certain_q_clock)
+    );
     tritri_pipeline_w24_dff_1 u_triangles_hit_q(
         .d(triangles_hit_q_d),
         .q(triangles_hit_q_q),
@@ -128,13 +163,19 @@ module tritri_pipeline_w24_decision (
     assign t1_side_positive_2 = ~t1_side_negative_2 && ~t1_side_zero_2;
     assign t2_side_positive_2 = ~t2_side_negative_2 && ~t2_side_zero_2;
     assign orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
+    assign t1_sides_certain = t1_side_certain_0 && t1_side_certain_1 && t1_side_certain_2;
+    assign t2_sides_certain = t2_side_certain_0 && t2_side_certain_1 && t2_side_certain_2;
     assign triangles_hit_q_clock = clock;
     assign segment_hit_q_clock = clock;
     assign degenerate_hit_q_clock = clock;
     assign t1_degenerate_q_clock = clock;
     assign t2_degenerate_q_clock = clock;
     assign hit_q_clock = clock;
+    assign rejected_certainly_q_clock = clock;
+    assign interval_certain_q_clock = clock;
+    assign certain_q_clock = clock;
     assign hit = hit_q_q;
+    assign certain = certain_q_q;
     always @(*) begin
         if ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2) || (t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)) begin
             triangles_hit = 1'h0;
@@ -216,12 +257,18 @@ module tritri_pipeline_w24_decision (
         t1_degenerate_q_d = t1_degenerate_q_q;
         t2_degenerate_q_d = t2_degenerate_q_q;
         hit_q_d = hit_q_q;
+        rejected_certainly_q_d = rejected_certainly_q_q;
+        interval_certain_q_d = interval_certain_q_q;
+        certain_q_d = certain_q_q;
         if (advance) begin
             triangles_hit_q_d = triangles_hit;
             segment_hit_q_d = segment_hit;
             degenerate_hit_q_d = orient_zero_0 && degenerate_pair_hit;
             t1_degenerate_q_d = t1_degenerate;
             t2_degenerate_q_d = t2_degenerate;
+            rejected_certainly_q_d = (t1_sides_certain && ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2))) || (t2_sides_certain && ((t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)));
+            interval_certain_q_d = t1_sides_certain && t2_sides_certain && ((orient_certain_0 && orient_certain_1) || (orient_certain_0 && orient_positive_0) || (orient_certain_1 && orient_positive_1));
+            certain_q_d = rejected_certainly_q_q || interval_certain_q_q;
             if (~t1_degenerate_q_q && ~t2_degenerate_q_q) begin
                 hit_q_d = triangles_hit_q_q;
             end

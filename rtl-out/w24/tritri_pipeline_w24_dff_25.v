@@ -3,9 +3,9 @@
 // Filename:   tritri_pipeline_w24_dff_25.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (99), for example: coplanar.edge_a[0].difference_q,
-//             coplanar.edge_a[1].difference_q, coplanar.edge_a[2].difference_q,
-//             coplanar.edge_a[3].difference_q.
+//             (100), for example: base.edge_thermometer_q,
+//             coplanar.edge_a[0].difference_q, coplanar.edge_a[1].difference_q,
+//             coplanar.edge_a[2].difference_q.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1

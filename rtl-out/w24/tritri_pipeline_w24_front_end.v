@@ -50,7 +50,8 @@ module tritri_pipeline_w24_front_end (
     output wire        degenerate,
     output wire [1:0]  dominant_axis,
     output wire [1:0]  segment_low,
-    output wire [1:0]  segment_high
+    output wire [1:0]  segment_high,
+    output wire [24:0] edge_thermometer
 );
 
     // Stub signals
@@ -68,6 +69,7 @@ module tritri_pipeline_w24_front_end (
     wire  [48:0] normal_unit_normal_0;
     wire  [48:0] normal_unit_normal_1;
     wire  [48:0] normal_unit_normal_2;
+    wire  [24:0] normal_unit_edge_thermometer;
     wire  normal_sign_0_clock;
     wire  normal_sign_0_advance;
     wire  [48:0] normal_sign_0_value;
@@ -182,6 +184,10 @@ module tritri_pipeline_w24_front_end (
     wire  segment_high_delay_advance;
     wire  [1:0] segment_high_delay_d;
     wire  [1:0] segment_high_delay_q;
+    wire  edge_thermometer_delay_clock;
+    wire  edge_thermometer_delay_advance;
+    wire  [24:0] edge_thermometer_delay_d;
+    wire  [24:0] edge_thermometer_delay_q;
 
     // Sub module instances
     tritri_pipeline_w24_front_end_normal_unit u_normal_unit(
@@ -198,7 +204,8 @@ module tritri_pipeline_w24_front_end (
         .vertices_8(normal_unit_vertices_8),
         .normal_0(normal_unit_normal_0),
         .normal_1(normal_unit_normal_1),
-        .normal_2(normal_unit_normal_2)
+        .normal_2(normal_unit_normal_2),
+        .edge_thermometer(normal_unit_edge_thermometer)
     );
     tritri_pipeline_w24_sign_w49 u_normal_sign_0(
         .clock(normal_sign_0_clock),
@@ -364,6 +371,12 @@ module tritri_pipeline_w24_front_end (
         .d(segment_high_delay_d),
         .q(segment_high_delay_q)
     );
+    tritri_pipeline_w24_front_end_edge_thermometer_delay u_edge_thermometer_delay(
+        .clock(edge_thermometer_delay_clock),
+        .advance(edge_thermometer_delay_advance),
+        .d(edge_thermometer_delay_d),
+        .q(edge_thermometer_delay_q)
+    );
 
     // Update code
     assign normal_unit_clock = clock;
@@ -376,6 +389,10 @@ module tritri_pipeline_w24_front_end (
     assign segment_low_delay_advance = advance;
     assign segment_high_delay_clock = clock;
     assign segment_high_delay_advance = advance;
+    assign edge_thermometer_delay_clock = clock;
+    assign edge_thermometer_delay_advance = advance;
+    assign edge_thermometer_delay_d = normal_unit_edge_thermometer;
+    assign edge_thermometer = edge_thermometer_delay_q;
     assign vertex_delay_0_clock = clock;
     assign vertex_delay_0_advance = advance;
     assign normal_unit_vertices_0 = vertices_in_0;

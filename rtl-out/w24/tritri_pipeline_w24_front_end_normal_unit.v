@@ -31,7 +31,8 @@ module tritri_pipeline_w24_front_end_normal_unit (
     input  wire [23:0] vertices_8,
     output wire [48:0] normal_0,
     output wire [48:0] normal_1,
-    output wire [48:0] normal_2
+    output wire [48:0] normal_2,
+    output wire [24:0] edge_thermometer
 );
 
     // Stub signals
@@ -68,6 +69,14 @@ module tritri_pipeline_w24_front_end_normal_unit (
     wire  [48:0] edge_cross_product_0;
     wire  [48:0] edge_cross_product_1;
     wire  [48:0] edge_cross_product_2;
+    wire  [24:0] magnitude_pq_value_0;
+    wire  [24:0] magnitude_pq_value_1;
+    wire  [24:0] magnitude_pq_value_2;
+    wire  [24:0] magnitude_pq_thermometer;
+    wire  [24:0] magnitude_pr_value_0;
+    wire  [24:0] magnitude_pr_value_1;
+    wire  [24:0] magnitude_pr_value_2;
+    wire  [24:0] magnitude_pr_thermometer;
 
     // Sub module instances
     tritri_pipeline_w24_offset_w25_2 u_edge_pq(
@@ -109,6 +118,18 @@ module tritri_pipeline_w24_front_end_normal_unit (
         .product_1(edge_cross_product_1),
         .product_2(edge_cross_product_2)
     );
+    tritri_pipeline_w24_offset_magnitude u_magnitude_pq(
+        .value_0(magnitude_pq_value_0),
+        .value_1(magnitude_pq_value_1),
+        .value_2(magnitude_pq_value_2),
+        .thermometer(magnitude_pq_thermometer)
+    );
+    tritri_pipeline_w24_offset_magnitude u_magnitude_pr(
+        .value_0(magnitude_pr_value_0),
+        .value_1(magnitude_pr_value_1),
+        .value_2(magnitude_pr_value_2),
+        .thermometer(magnitude_pr_thermometer)
+    );
 
     // Update code
     assign edge_pq_clock = clock;
@@ -124,6 +145,8 @@ module tritri_pipeline_w24_front_end_normal_unit (
     assign edge_cross_u_0 = edge_pq_difference_0;
     assign edge_cross_v_0 = edge_pr_difference_0;
     assign normal_0 = edge_cross_product_0;
+    assign magnitude_pq_value_0 = edge_pq_difference_0;
+    assign magnitude_pr_value_0 = edge_pr_difference_0;
     assign edge_pq_a_1 = vertices_4;
     assign edge_pq_b_1 = vertices_1;
     assign edge_pr_a_1 = vertices_7;
@@ -131,6 +154,8 @@ module tritri_pipeline_w24_front_end_normal_unit (
     assign edge_cross_u_1 = edge_pq_difference_1;
     assign edge_cross_v_1 = edge_pr_difference_1;
     assign normal_1 = edge_cross_product_1;
+    assign magnitude_pq_value_1 = edge_pq_difference_1;
+    assign magnitude_pr_value_1 = edge_pr_difference_1;
     assign edge_pq_a_2 = vertices_5;
     assign edge_pq_b_2 = vertices_2;
     assign edge_pr_a_2 = vertices_8;
@@ -138,6 +163,9 @@ module tritri_pipeline_w24_front_end_normal_unit (
     assign edge_cross_u_2 = edge_pq_difference_2;
     assign edge_cross_v_2 = edge_pr_difference_2;
     assign normal_2 = edge_cross_product_2;
+    assign magnitude_pq_value_2 = edge_pq_difference_2;
+    assign magnitude_pr_value_2 = edge_pr_difference_2;
+    assign edge_thermometer = magnitude_pq_thermometer | magnitude_pr_thermometer;
 
 endmodule  // tritri_pipeline_w24_front_end_normal_unit
 

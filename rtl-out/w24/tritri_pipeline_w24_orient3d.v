@@ -2,8 +2,8 @@
 //
 // Filename:   tritri_pipeline_w24_orient3d.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (3): orient3d_0,
-//             orient3d_1, orient3d_2.
+// Purpose:    Part of tritri_pipeline_w24. Instances (2): orient3d_0,
+//             orient3d_1.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -34,7 +34,8 @@ module tritri_pipeline_w24_orient3d (
     input  wire [23:0] d_1,
     input  wire [23:0] d_2,
     output wire        negative,
-    output wire        zero
+    output wire        zero,
+    output wire        certain
 );
 
     // Stub signals
@@ -103,11 +104,29 @@ module tritri_pipeline_w24_orient3d (
     wire  [48:0] determinant_v_1;
     wire  [48:0] determinant_v_2;
     wire  [73:0] determinant_product;
+    wire  [24:0] magnitude_ab_value_0;
+    wire  [24:0] magnitude_ab_value_1;
+    wire  [24:0] magnitude_ab_value_2;
+    wire  [24:0] magnitude_ab_thermometer;
+    wire  [24:0] magnitude_ac_value_0;
+    wire  [24:0] magnitude_ac_value_1;
+    wire  [24:0] magnitude_ac_value_2;
+    wire  [24:0] magnitude_ac_thermometer;
+    wire  [24:0] magnitude_ad_value_0;
+    wire  [24:0] magnitude_ad_value_1;
+    wire  [24:0] magnitude_ad_value_2;
+    wire  [24:0] magnitude_ad_thermometer;
+    wire  thermometer_delay_clock;
+    wire  thermometer_delay_advance;
+    wire  [24:0] thermometer_delay_d;
+    wire  [24:0] thermometer_delay_q;
     wire  sign_clock;
     wire  sign_advance;
     wire  [73:0] sign_value;
+    wire  [24:0] sign_thermometer;
     wire  sign_negative;
     wire  sign_zero;
+    wire  sign_certain;
 
     // Sub module instances
     tritri_pipeline_w24_offset_w25_2 u_edge_ab(
@@ -162,19 +181,19 @@ module tritri_pipeline_w24_orient3d (
         .product_1(normal_product_1),
         .product_2(normal_product_2)
     );
-    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_0(
+    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_0(
         .clock(edge_ad_delay_0_clock),
         .advance(edge_ad_delay_0_advance),
         .d(edge_ad_delay_0_d),
         .q(edge_ad_delay_0_q)
     );
-    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_1(
+    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_1(
         .clock(edge_ad_delay_1_clock),
         .advance(edge_ad_delay_1_advance),
         .d(edge_ad_delay_1_d),
         .q(edge_ad_delay_1_q)
     );
-    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_2(
+    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_2(
         .clock(edge_ad_delay_2_clock),
         .advance(edge_ad_delay_2_advance),
         .d(edge_ad_delay_2_d),
@@ -191,12 +210,38 @@ module tritri_pipeline_w24_orient3d (
         .v_2(determinant_v_2),
         .product(determinant_product)
     );
+    tritri_pipeline_w24_offset_magnitude u_magnitude_ab(
+        .value_0(magnitude_ab_value_0),
+        .value_1(magnitude_ab_value_1),
+        .value_2(magnitude_ab_value_2),
+        .thermometer(magnitude_ab_thermometer)
+    );
+    tritri_pipeline_w24_offset_magnitude u_magnitude_ac(
+        .value_0(magnitude_ac_value_0),
+        .value_1(magnitude_ac_value_1),
+        .value_2(magnitude_ac_value_2),
+        .thermometer(magnitude_ac_thermometer)
+    );
+    tritri_pipeline_w24_offset_magnitude u_magnitude_ad(
+        .value_0(magnitude_ad_value_0),
+        .value_1(magnitude_ad_value_1),
+        .value_2(magnitude_ad_value_2),
+        .thermometer(magnitude_ad_thermometer)
+    );
+    tritri_pipeline_w24_orient3d_thermometer_delay u_thermometer_delay(
+        .clock(thermometer_delay_clock),
+        .advance(thermometer_delay_advance),
+        .d(thermometer_delay_d),
+        .q(thermometer_delay_q)
+    );
     tritri_pipeline_w24_sign_w74 u_sign(
         .clock(sign_clock),
         .advance(sign_advance),
         .value(sign_value),
+        .thermometer(sign_thermometer),
         .negative(sign_negative),
-        .zero(sign_zero)
+        .zero(sign_zero),
+        .certain(sign_certain)
     );
 
     // Update code
@@ -218,6 +263,8 @@ module tritri_pipeline_w24_orient3d (
     assign determinant_advance = advance;
     assign sign_clock = clock;
     assign sign_advance = advance;
+    assign thermometer_delay_clock = clock;
+    assign thermometer_delay_advance = advance;
     assign edge_ab_a_0 = b_0;
     assign edge_ab_b_0 = a_0;
     assign edge_ac_a_0 = c_0;
@@ -227,6 +274,9 @@ module tritri_pipeline_w24_orient3d (
     assign normal_u_0 = edge_ab_difference_0;
     assign normal_v_0 = edge_ac_difference_0;
     assign determinant_v_0 = normal_product_0;
+    assign magnitude_ab_value_0 = edge_ab_difference_0;
+    assign magnitude_ac_value_0 = edge_ac_difference_0;
+    assign magnitude_ad_value_0 = edge_ad_difference_0;
     assign edge_ab_a_1 = b_1;
     assign edge_ab_b_1 = a_1;
     assign edge_ac_a_1 = c_1;
@@ -236,6 +286,9 @@ module tritri_pipeline_w24_orient3d (
     assign normal_u_1 = edge_ab_difference_1;
     assign normal_v_1 = edge_ac_difference_1;
     assign determinant_v_1 = normal_product_1;
+    assign magnitude_ab_value_1 = edge_ab_difference_1;
+    assign magnitude_ac_value_1 = edge_ac_difference_1;
+    assign magnitude_ad_value_1 = edge_ad_difference_1;
     assign edge_ab_a_2 = b_2;
     assign edge_ab_b_2 = a_2;
     assign edge_ac_a_2 = c_2;
@@ -245,6 +298,10 @@ module tritri_pipeline_w24_orient3d (
     assign normal_u_2 = edge_ab_difference_2;
     assign normal_v_2 = edge_ac_difference_2;
     assign determinant_v_2 = normal_product_2;
+    assign magnitude_ab_value_2 = edge_ab_difference_2;
+    assign magnitude_ac_value_2 = edge_ac_difference_2;
+    assign magnitude_ad_value_2 = edge_ad_difference_2;
+    assign thermometer_delay_d = magnitude_ab_thermometer | magnitude_ac_thermometer | magnitude_ad_thermometer;
     assign edge_ad_delay_0_d = edge_ad_difference_0;
     assign edge_ad_delay_1_d = edge_ad_difference_1;
     assign edge_ad_delay_2_d = edge_ad_difference_2;
@@ -252,8 +309,10 @@ module tritri_pipeline_w24_orient3d (
     assign determinant_u_1 = edge_ad_delay_1_q;
     assign determinant_u_2 = edge_ad_delay_2_q;
     assign sign_value = determinant_product;
+    assign sign_thermometer = thermometer_delay_q;
     assign negative = sign_negative;
     assign zero = sign_zero;
+    assign certain = sign_certain;
 
 endmodule  // tritri_pipeline_w24_orient3d
 

@@ -27,6 +27,7 @@ module tritri_pipeline_w24_plane_side (
     input  wire [48:0] plane_normal_0,
     input  wire [48:0] plane_normal_1,
     input  wire [48:0] plane_normal_2,
+    input  wire [24:0] plane_thermometer,
     input  wire [23:0] vertices_0,
     input  wire [23:0] vertices_1,
     input  wire [23:0] vertices_2,
@@ -41,7 +42,10 @@ module tritri_pipeline_w24_plane_side (
     output wire        negative_2,
     output wire        zero_0,
     output wire        zero_1,
-    output wire        zero_2
+    output wire        zero_2,
+    output wire        certain_0,
+    output wire        certain_1,
+    output wire        certain_2
 );
 
     // Stub signals
@@ -117,21 +121,55 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] distance_2_v_1;
     wire  [48:0] distance_2_v_2;
     wire  [73:0] distance_2_product;
+    wire  plane_thermometer_delay_clock;
+    wire  plane_thermometer_delay_advance;
+    wire  [24:0] plane_thermometer_delay_d;
+    wire  [24:0] plane_thermometer_delay_q;
+    wire  [24:0] offset_magnitude_0_value_0;
+    wire  [24:0] offset_magnitude_0_value_1;
+    wire  [24:0] offset_magnitude_0_value_2;
+    wire  [24:0] offset_magnitude_0_thermometer;
+    wire  [24:0] offset_magnitude_1_value_0;
+    wire  [24:0] offset_magnitude_1_value_1;
+    wire  [24:0] offset_magnitude_1_value_2;
+    wire  [24:0] offset_magnitude_1_thermometer;
+    wire  [24:0] offset_magnitude_2_value_0;
+    wire  [24:0] offset_magnitude_2_value_1;
+    wire  [24:0] offset_magnitude_2_value_2;
+    wire  [24:0] offset_magnitude_2_thermometer;
+    wire  thermometer_delay_0_clock;
+    wire  thermometer_delay_0_advance;
+    wire  [24:0] thermometer_delay_0_d;
+    wire  [24:0] thermometer_delay_0_q;
+    wire  thermometer_delay_1_clock;
+    wire  thermometer_delay_1_advance;
+    wire  [24:0] thermometer_delay_1_d;
+    wire  [24:0] thermometer_delay_1_q;
+    wire  thermometer_delay_2_clock;
+    wire  thermometer_delay_2_advance;
+    wire  [24:0] thermometer_delay_2_d;
+    wire  [24:0] thermometer_delay_2_q;
     wire  sign_0_clock;
     wire  sign_0_advance;
     wire  [73:0] sign_0_value;
+    wire  [24:0] sign_0_thermometer;
     wire  sign_0_negative;
     wire  sign_0_zero;
+    wire  sign_0_certain;
     wire  sign_1_clock;
     wire  sign_1_advance;
     wire  [73:0] sign_1_value;
+    wire  [24:0] sign_1_thermometer;
     wire  sign_1_negative;
     wire  sign_1_zero;
+    wire  sign_1_certain;
     wire  sign_2_clock;
     wire  sign_2_advance;
     wire  [73:0] sign_2_value;
+    wire  [24:0] sign_2_thermometer;
     wire  sign_2_negative;
     wire  sign_2_zero;
+    wire  sign_2_certain;
 
     // Sub module instances
     tritri_pipeline_w24_offset_w25_2 u_offset_0(
@@ -224,26 +262,74 @@ module tritri_pipeline_w24_plane_side (
         .v_2(distance_2_v_2),
         .product(distance_2_product)
     );
+    tritri_pipeline_w24_plane_thermometer_delay u_plane_thermometer_delay(
+        .clock(plane_thermometer_delay_clock),
+        .advance(plane_thermometer_delay_advance),
+        .d(plane_thermometer_delay_d),
+        .q(plane_thermometer_delay_q)
+    );
+    tritri_pipeline_w24_offset_magnitude u_offset_magnitude_0(
+        .value_0(offset_magnitude_0_value_0),
+        .value_1(offset_magnitude_0_value_1),
+        .value_2(offset_magnitude_0_value_2),
+        .thermometer(offset_magnitude_0_thermometer)
+    );
+    tritri_pipeline_w24_offset_magnitude u_offset_magnitude_1(
+        .value_0(offset_magnitude_1_value_0),
+        .value_1(offset_magnitude_1_value_1),
+        .value_2(offset_magnitude_1_value_2),
+        .thermometer(offset_magnitude_1_thermometer)
+    );
+    tritri_pipeline_w24_offset_magnitude u_offset_magnitude_2(
+        .value_0(offset_magnitude_2_value_0),
+        .value_1(offset_magnitude_2_value_1),
+        .value_2(offset_magnitude_2_value_2),
+        .thermometer(offset_magnitude_2_thermometer)
+    );
+    tritri_pipeline_w24_delay_w25 u_thermometer_delay_0(
+        .clock(thermometer_delay_0_clock),
+        .advance(thermometer_delay_0_advance),
+        .d(thermometer_delay_0_d),
+        .q(thermometer_delay_0_q)
+    );
+    tritri_pipeline_w24_delay_w25 u_thermometer_delay_1(
+        .clock(thermometer_delay_1_clock),
+        .advance(thermometer_delay_1_advance),
+        .d(thermometer_delay_1_d),
+        .q(thermometer_delay_1_q)
+    );
+    tritri_pipeline_w24_delay_w25 u_thermometer_delay_2(
+        .clock(thermometer_delay_2_clock),
+        .advance(thermometer_delay_2_advance),
+        .d(thermometer_delay_2_d),
+        .q(thermometer_delay_2_q)
+    );
     tritri_pipeline_w24_sign_w74 u_sign_0(
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
+        .thermometer(sign_0_thermometer),
         .negative(sign_0_negative),
-        .zero(sign_0_zero)
+        .zero(sign_0_zero),
+        .certain(sign_0_certain)
     );
     tritri_pipeline_w24_sign_w74 u_sign_1(
         .clock(sign_1_clock),
         .advance(sign_1_advance),
         .value(sign_1_value),
+        .thermometer(sign_1_thermometer),
         .negative(sign_1_negative),
-        .zero(sign_1_zero)
+        .zero(sign_1_zero),
+        .certain(sign_1_certain)
     );
     tritri_pipeline_w24_sign_w74 u_sign_2(
         .clock(sign_2_clock),
         .advance(sign_2_advance),
         .value(sign_2_value),
+        .thermometer(sign_2_thermometer),
         .negative(sign_2_negative),
-        .zero(sign_2_zero)
+        .zero(sign_2_zero),
+        .certain(sign_2_certain)
     );
 
     // Update code
@@ -259,6 +345,18 @@ module tritri_pipeline_w24_plane_side (
     assign distance_1_advance = advance;
     assign distance_2_clock = clock;
     assign distance_2_advance = advance;
+    assign plane_thermometer_delay_clock = clock;
+    assign plane_thermometer_delay_advance = advance;
+    assign plane_thermometer_delay_d = plane_thermometer;
+    assign offset_magnitude_0_value_0 = offset_0_difference_0;
+    assign offset_magnitude_1_value_0 = offset_1_difference_0;
+    assign offset_magnitude_2_value_0 = offset_2_difference_0;
+    assign offset_magnitude_0_value_1 = offset_0_difference_1;
+    assign offset_magnitude_1_value_1 = offset_1_difference_1;
+    assign offset_magnitude_2_value_1 = offset_2_difference_1;
+    assign offset_magnitude_0_value_2 = offset_0_difference_2;
+    assign offset_magnitude_1_value_2 = offset_1_difference_2;
+    assign offset_magnitude_2_value_2 = offset_2_difference_2;
     assign normal_delay_0_clock = clock;
     assign normal_delay_0_advance = advance;
     assign normal_delay_0_d = plane_normal_0;
@@ -313,12 +411,27 @@ module tritri_pipeline_w24_plane_side (
     assign sign_0_value = distance_0_product;
     assign sign_1_value = distance_1_product;
     assign sign_2_value = distance_2_product;
+    assign thermometer_delay_0_d = plane_thermometer_delay_q | offset_magnitude_0_thermometer;
+    assign thermometer_delay_1_d = plane_thermometer_delay_q | offset_magnitude_1_thermometer;
+    assign thermometer_delay_2_d = plane_thermometer_delay_q | offset_magnitude_2_thermometer;
+    assign thermometer_delay_0_clock = clock;
+    assign thermometer_delay_0_advance = advance;
+    assign sign_0_thermometer = thermometer_delay_0_q;
     assign negative_0 = sign_0_negative;
     assign zero_0 = sign_0_zero;
+    assign certain_0 = sign_0_certain;
+    assign thermometer_delay_1_clock = clock;
+    assign thermometer_delay_1_advance = advance;
+    assign sign_1_thermometer = thermometer_delay_1_q;
     assign negative_1 = sign_1_negative;
     assign zero_1 = sign_1_zero;
+    assign certain_1 = sign_1_certain;
+    assign thermometer_delay_2_clock = clock;
+    assign thermometer_delay_2_advance = advance;
+    assign sign_2_thermometer = thermometer_delay_2_q;
     assign negative_2 = sign_2_negative;
     assign zero_2 = sign_2_zero;
+    assign certain_2 = sign_2_certain;
 
 endmodule  // tritri_pipeline_w24_plane_side
 

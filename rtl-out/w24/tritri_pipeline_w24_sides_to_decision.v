@@ -2,7 +2,7 @@
 //
 // Filename:   tritri_pipeline_w24_sides_to_decision.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (12), for example:
+// Purpose:    Part of tritri_pipeline_w24. Instances (18), for example:
 //             sides_to_decision[0], sides_to_decision[1],
 //             sides_to_decision[10], sides_to_decision[11].
 //

@@ -2,9 +2,9 @@
 //
 // Filename:   tritri_pipeline_w24_sign_w74.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (9), for example:
-//             orient3d_0.sign, orient3d_1.sign, orient3d_2.sign,
-//             plane_side_t1.sign[0].
+// Purpose:    Part of tritri_pipeline_w24. Instances (8), for example:
+//             orient3d_0.sign, orient3d_1.sign, plane_side_t1.sign[0],
+//             plane_side_t1.sign[1].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -23,11 +23,21 @@ module tritri_pipeline_w24_sign_w74 (
     input  wire        clock,
     input  wire        advance,
     input  wire [73:0] value,
+    input  wire [24:0] thermometer,
     output wire        negative,
-    output wire        zero
+    output wire        zero,
+    output wire        certain
 );
 
     // Constant declarations
+    localparam  spread_mask_0 = 74'h3ff00000000ffffffff;
+    localparam  spread_mask_1 = 74'h3ff0000ffff0000ffff;
+    localparam  spread_mask_2 = 74'hff00ff00ff00ff00ff;
+    localparam  spread_mask_3 = 74'h30f0f0f0f0f0f0f0f0f;
+    localparam  spread_mask_4 = 74'h3333333333333333333;
+    localparam  spread_mask_5 = 74'h1555555555555555555;
+    localparam  low_five = 74'h1f;
+
     // Stub signals
     reg  negative_q_d;
     wire  negative_q_q;
@@ -35,6 +45,20 @@ module tritri_pipeline_w24_sign_w74 (
     reg  zero_q_d;
     wire  zero_q_q;
     wire  zero_q_clock;
+    reg  certain_q_d;
+    wire  certain_q_q;
+    wire  certain_q_clock;
+
+    // Local signals
+    wire  [73:0] spread_0;
+    wire  [73:0] spread_1;
+    wire  [73:0] spread_2;
+    wire  [73:0] spread_3;
+    wire  [73:0] spread_4;
+    wire  [73:0] spread_5;
+    wire  [73:0] spread_6;
+    wire  [73:0] mask;
+    reg  [73:0] magnitude;
 
     // Sub module instances
     tritri_pipeline_w24_dff_1 u_negative_q(
@@ -47,18 +71,41 @@ module tritri_pipeline_w24_sign_w74 (
         .q(zero_q_q),
         .clock(zero_q_clock)
     );
+    tritri_pipeline_w24_dff_1 u_certain_q(
+        .d(certain_q_d),
+        .q(certain_q_q),
+        .clock(certain_q_clock)
+    );
 
     // Update code
     assign negative_q_clock = clock;
     assign zero_q_clock = clock;
+    assign certain_q_clock = clock;
+    assign spread_0 = {49'h0, thermometer};
+    assign spread_1 = (spread_0 | (spread_0 << 32'h20)) & spread_mask_0;
+    assign spread_2 = (spread_1 | (spread_1 << 32'h10)) & spread_mask_1;
+    assign spread_3 = (spread_2 | (spread_2 << 32'h8)) & spread_mask_2;
+    assign spread_4 = (spread_3 | (spread_3 << 32'h4)) & spread_mask_3;
+    assign spread_5 = (spread_4 | (spread_4 << 32'h2)) & spread_mask_4;
+    assign spread_6 = (spread_5 | (spread_5 << 32'h1)) & spread_mask_5;
+    assign mask = ((spread_6 | (spread_6 << 32'h1)) << 32'h5) | low_five;
     assign negative = negative_q_q;
     assign zero = zero_q_q;
+    assign certain = certain_q_q;
     always @(*) begin
         negative_q_d = negative_q_q;
         zero_q_d = zero_q_q;
+        certain_q_d = certain_q_q;
+        if (value[73]) begin
+            magnitude = ~value;
+        end
+        else begin
+            magnitude = value;
+        end
         if (advance) begin
             negative_q_d = value[73];
             zero_q_d = ~|value;
+            certain_q_d = |(magnitude & ~mask);
         end
     end
 

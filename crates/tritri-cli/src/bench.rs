@@ -17,17 +17,27 @@
 //! Verilator's time excludes its C++ build (printed separately, 0 when the
 //! cached model is reused); Icarus's excludes its compile.
 //!
+//! Every verdict carries its certificate (`out_certain`), compared like the
+//! verdict. A second table audits the certificates against the exact
+//! verdicts on the original f64 coordinates: how many grid verdicts are
+//! wrong, how many are uncertain, and how many are certain *and* wrong,
+//! which must be none. An engine with no mismatch has the model's
+//! certificates, so the audit holds for it too.
+//!
 //! Exit status: 0 no mismatch; 1 a mismatch, a cycle count off the formula,
-//! or a tool failure; 2 bad usage (the message names the value).
+//! a certain verdict that is wrong, or a tool failure; 2 bad usage (the
+//! message names the value).
 
 use anyhow::Context;
 use std::process::ExitCode;
 use std::time::Instant;
 use tritri_cosim::engine::{run_pipeline, Engine};
-use tritri_cosim::stream::TriangleStream;
-use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_cosim::stream::{PairVerdict, TriangleStream};
+use tritri_geom::certificate::certified_intersects;
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
+use tritri_geom::{exact_f64, Triangle};
 use tritri_rtl::configurations::{check_width, PipelineInput};
 
 #[derive(clap::Args)]
@@ -66,8 +76,15 @@ impl Measurement {
     }
 }
 
-/// The stream of the benchmark at `width` (see the module docs).
-fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Result<TriangleStream> {
+/// The stream of the benchmark at `width` (see the module docs), and the
+/// f64 triangles its bases and streamed triangles were quantized from.
+struct BenchStream {
+    stream: TriangleStream,
+    bases: Vec<Triangle>,
+    streamed: Vec<Triangle>,
+}
+
+fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Result<BenchStream> {
     let n1 = bases.min(pairs);
     let n2 = pairs.div_ceil(n1);
     let count = n1.max(n2);
@@ -77,10 +94,32 @@ fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Re
     let half = count.div_ceil(2);
     let order: Vec<usize> = (0..count).map(|i| if i % 2 == 0 { i / 2 } else { half + i / 2 }).collect();
     let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32).context("fitting the frame")?;
-    let pick = |n: usize, second: bool| -> Vec<FixedTriangle> {
-        order.iter().take(n).map(|&i| frame.quantize(if second { &raw[i].t2 } else { &raw[i].t1 })).collect()
+    let originals = |n: usize, second: bool| -> Vec<Triangle> {
+        order.iter().take(n).map(|&i| if second { raw[i].t2 } else { raw[i].t1 }).collect()
     };
-    Ok(TriangleStream::from_triangles(&pick(n1, false), &pick(n2, true)))
+    let (bases, streamed) = (originals(n1, false), originals(n2, true));
+    let quantize = |ts: &[Triangle]| -> Vec<FixedTriangle> { ts.iter().map(|t| frame.quantize(t)).collect() };
+    let stream = TriangleStream::from_triangles(&quantize(&bases), &quantize(&streamed));
+    Ok(BenchStream { stream, bases, streamed })
+}
+
+/// What the certificates say against the exact verdicts on the originals.
+struct Audit {
+    pairs: usize,
+    wrong: usize,
+    uncertain: usize,
+    certain_and_wrong: usize,
+}
+
+fn audit(bench: &BenchStream, expected: &[PairVerdict]) -> Audit {
+    let mut a = Audit { pairs: expected.len(), wrong: 0, uncertain: 0, certain_and_wrong: 0 };
+    for v in expected {
+        let exact = exact_f64::intersects(&bench.bases[v.base_id as usize], &bench.streamed[v.stream_id as usize]);
+        a.wrong += (v.hit != exact) as usize;
+        a.uncertain += !v.certain as usize;
+        a.certain_and_wrong += (v.certain && v.hit != exact) as usize;
+    }
+    a
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
@@ -97,14 +136,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut failed = false;
     println!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rusthdl |");
     println!("|---:|---|---:|---:|---|---:|---:|---:|---:|");
+    let mut audits = Vec::new();
     for &width in &args.width {
-        let stream = stream_for(width, args.pairs, args.bases, args.seed)?;
+        let bench = stream_for(width, args.pairs, args.bases, args.seed)?;
+        let stream = &bench.stream;
         let latency = tritri_rtl::pipeline::triangle_pipeline::latency() as u64;
         let formula = stream.expected_cycles(latency);
 
         // Baseline: the fixed-point model, timed on its own.
         let started = Instant::now();
-        let expected = stream.expected(intersects);
+        let expected = stream.expected(certified_intersects);
         let model = Measurement {
             engine: "model",
             pairs: expected.len(),
@@ -113,6 +154,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             seconds: started.elapsed().as_secs_f64(),
             build_seconds: None,
         };
+        let audited = audit(&bench, &expected);
+        failed |= audited.certain_and_wrong != 0;
+        audits.push((width, audited));
         let mut rows = vec![model];
         let schedule: Vec<PipelineInput> = stream.schedule().collect();
         for &engine in args.engines.iter().filter(|&&e| e != Engine::Model) {
@@ -150,8 +194,23 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             );
         }
     }
+    println!();
+    println!("| W | pairs | grid verdicts wrong on the originals | uncertain (out_certain = 0) | certain and wrong |");
+    println!("|---:|---:|---:|---:|---:|");
+    for (width, a) in &audits {
+        let percent = |n: usize| 100.0 * n as f64 / a.pairs.max(1) as f64;
+        println!(
+            "| {width} | {} | {} ({:.3} %) | {} ({:.3} %) | {} |",
+            a.pairs,
+            a.wrong,
+            percent(a.wrong),
+            a.uncertain,
+            percent(a.uncertain),
+            a.certain_and_wrong
+        );
+    }
     if failed {
-        eprintln!("error: an engine disagreed with the model or with the cycle formula (see the table)");
+        eprintln!("error: an engine disagreed with the model or with the cycle formula, or a certain verdict is wrong (see the tables)");
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)

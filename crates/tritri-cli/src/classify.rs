@@ -6,7 +6,10 @@
 //! and the exit status is 2, so a partial answer is never mistaken for the
 //! file's.
 //! With `--arith fixed` the whole file is quantized into one W-bit frame,
-//! whose step is printed on stderr as a note.
+//! whose step is printed on stderr as a note. With `--certified` every
+//! verdict whose certificate (the pipeline's `out_certain`) is 0 is decided
+//! again with exact predicates on the file's coordinates, so the answer is
+//! the exact answer; a note says how many pairs went back to the host.
 
 use crate::input;
 use anyhow::Context;
@@ -16,6 +19,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_cosim::engine::{run_pipeline, Engine};
 use tritri_geom::arithmetic::{classify, Arithmetic, DEFAULT_WIDTH};
+use tritri_geom::certificate::{certified_intersects, recheck, CertifiedVerdict};
 use tritri_geom::scene::TaggedTriangle;
 use tritri_rtl::configurations::PipelineInput;
 
@@ -35,6 +39,10 @@ pub struct Args {
     /// signals, or of the emitted Verilog in Icarus or Verilator); keep the file small.
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
+    /// With `--arith fixed`: decide every uncertain verdict (`out_certain = 0`)
+    /// again on the original coordinates; the answer is then exact.
+    #[arg(long)]
+    certified: bool,
     /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}; `-` reads standard input.
     file: PathBuf,
 }
@@ -65,8 +73,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         (ArithName::F32, None) => Arithmetic::F32,
         (ArithName::Moller, None) => Arithmetic::Moller,
     };
-    if (args.engine != Engine::Model || args.vcd.is_some()) && !matches!(arith, Arithmetic::Fixed(_)) {
-        eprintln!("error: --engine and --vcd apply only to --arith fixed");
+    if (args.engine != Engine::Model || args.vcd.is_some() || args.certified) && !matches!(arith, Arithmetic::Fixed(_)) {
+        eprintln!("error: --engine, --vcd and --certified apply only to --arith fixed");
         return Ok(ExitCode::from(2));
     }
     if let (Arithmetic::Fixed(width), true) = (arith, args.engine.is_hardware()) {
@@ -86,9 +94,25 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     let pairs = loaded.good_pairs();
     let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
-    if let (Arithmetic::Fixed(width), Some(frame)) = (arith, result.frame) {
-        if args.engine != Engine::Model {
-            result.verdicts = run_engine(args.engine, width as usize, &frame, &pairs, args.vcd.as_deref())?;
+    let model_alone = args.engine == Engine::Model && !args.certified;
+    if let (Arithmetic::Fixed(width), Some(frame), false) = (arith, result.frame, model_alone) {
+        let grid: Vec<CertifiedVerdict> = if args.engine == Engine::Model {
+            pairs.iter().map(|p| certified_intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2))).collect()
+        } else {
+            run_engine(args.engine, width as usize, &frame, &pairs, args.vcd.as_deref())?
+        };
+        result.verdicts = grid.iter().map(|v| v.hit).collect();
+        if args.certified {
+            let run = recheck(&pairs, &grid);
+            eprintln!(
+                "note: {}: certified: {} of {} verdicts uncertain ({:.3} %), decided again on the original coordinates; {} of them changed",
+                args.file.display(),
+                run.uncertain,
+                pairs.len(),
+                100.0 * run.uncertain as f64 / pairs.len().max(1) as f64,
+                run.changed
+            );
+            result.verdicts = run.verdicts;
         }
     }
     if let Some(frame) = result.frame {
@@ -117,7 +141,7 @@ fn run_engine(
     frame: &tritri_geom::quantize::Frame,
     pairs: &[tritri_geom::TrianglePair],
     vcd: Option<&std::path::Path>,
-) -> anyhow::Result<Vec<bool>> {
+) -> anyhow::Result<Vec<CertifiedVerdict>> {
     let schedule: Vec<PipelineInput> = pairs
         .iter()
         .enumerate()
@@ -142,5 +166,5 @@ fn run_engine(
     for (i, v) in result.verdicts.iter().enumerate() {
         anyhow::ensure!(v.base_id == i as u32 && v.stream_id == i as u32, "verdict {i} carries ids ({}, {})", v.base_id, v.stream_id);
     }
-    Ok(result.verdicts.iter().map(|v| v.hit).collect())
+    Ok(result.verdicts.iter().map(|v| CertifiedVerdict { hit: v.hit, certain: v.certain }).collect())
 }

@@ -12,6 +12,12 @@
 //! and with the software box sweep's time. Prints a report (on stdout, or
 //! on stderr when the pairs go to stdout with `--out -`).
 //!
+//! Every pair whose verdict has no certificate (`out_certain = 0`,
+//! docs/certificates.md) is counted in the report. With `--certified`
+//! those pairs are decided again with exact predicates on the original
+//! coordinates, and the answer (what `--out` writes) is the grid's certain
+//! hits plus the uncertain pairs that intersect on the originals.
+//!
 //! `--out PAIRS` writes the intersecting pairs, one `i j` per line in
 //! ascending order: `i` indexes A's triangles and `j` B's, in file order
 //! with polygons split into fans (`--indices faces` reports face indices
@@ -83,6 +89,10 @@ pub struct Args {
     /// Skip the comparison with the exact models.
     #[arg(long)]
     no_compare: bool,
+    /// Decide every pair without a certificate (`out_certain = 0`) again on
+    /// the original coordinates; the answer written by --out is then that one.
+    #[arg(long)]
+    certified: bool,
     /// Refuse a cycle-by-cycle simulation (rusthdl, icarus, verilator) longer than
     /// this many system cycles [default: what the engine runs in about
     /// five minutes here]; the estimate is printed either way.
@@ -261,6 +271,24 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     writeln!(report, "intersecting pairs: {}", pairs.len())?;
+    writeln!(
+        report,
+        "certificates: {} pairs without one ({:.4} % of the {} pairs tested), intersecting on the grid or not",
+        run.uncertain.len(),
+        100.0 * run.uncertain.len() as f64 / scene.pairs_tested().max(1) as f64,
+        scene.pairs_tested()
+    )?;
+    let certified = args.certified.then(|| certify(pairs, &run.uncertain, &a, &b));
+    if let Some(c) = &certified {
+        writeln!(
+            report,
+            "certified: the {} pairs without a certificate decided again on the original coordinates ({} verdicts changed): {} intersecting pairs",
+            run.uncertain.len(),
+            c.changed,
+            c.pairs.len()
+        )?;
+    }
+    let pairs = certified.as_ref().map_or(pairs, |c| &c.pairs);
     let time = args.hardware.time_of(cycles);
     writeln!(
         report,
@@ -273,7 +301,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     write_pairs(output, args.indices, &a, &b, pairs)?;
 
     if !args.no_compare {
-        let (quantized, same) = check_quantized(&scene, pairs);
+        let (quantized, same) = check_quantized(&scene, &run.pairs);
         if same.is_empty() {
             writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
         } else {
@@ -353,9 +381,40 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             diff.extra.len(),
             examples(&diff)
         )?;
+        if let Some(c) = &certified {
+            let diff = PairDiff::between(&truth.pairs, &c.pairs);
+            writeln!(
+                report,
+                "certified answer: {} pairs missing, {} extra against exact f64{}",
+                diff.missing.len(),
+                diff.extra.len(),
+                examples(&diff)
+            )?;
+        }
     }
     report.flush()?;
     Ok(status)
+}
+
+/// The answer on the original coordinates: `grid`'s hits that carry a
+/// certificate, and the `uncertain` pairs that intersect on the originals.
+struct Certified {
+    pairs: PairSet,
+    /// Uncertain pairs whose verdict on the originals differs from the grid's.
+    changed: usize,
+}
+
+fn certify(grid: &PairSet, uncertain: &PairSet, a: &SceneObject, b: &SceneObject) -> Certified {
+    let mut pairs: PairSet = grid.difference(uncertain).copied().collect();
+    let mut changed = 0;
+    for &(i, j) in uncertain {
+        let exact = tritri_geom::exact_f64::intersects(&a.triangles[i as usize], &b.triangles[j as usize]);
+        changed += (exact != grid.contains(&(i, j))) as usize;
+        if exact {
+            pairs.insert((i, j));
+        }
+    }
+    Certified { pairs, changed }
 }
 
 fn scene_box(o: &SceneObject) -> Option<Aabb<f64>> {

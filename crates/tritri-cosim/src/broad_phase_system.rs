@@ -7,7 +7,8 @@ use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Tes
 use anyhow::{bail, Context as _};
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use rust_hdl::prelude::*;
-use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::certificate::certified_intersects;
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_rtl::octree::binning_machine::BinningRun;
 use tritri_rtl::octree::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_geom::octree::cell::Cell;
@@ -21,9 +22,11 @@ use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 /// What a run of the top gives.
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct BroadPhaseOutput {
-    /// The intersecting pairs, each once, in the order the top streams
-    /// them: indices into A's and B's arrays.
+    /// The intersecting pairs (`out_hit`), each once, in the order the top
+    /// streams them: indices into A's and B's arrays.
     pub pairs: Vec<(u32, u32)>,
+    /// The pairs without a certificate (`out_certain = 0`), each once.
+    pub uncertain: Vec<(u32, u32)>,
     /// Clocks from the first triangle taken (clock 0) to `binned`.
     pub binned_at: u64,
     /// Clocks from the first triangle taken to `done`.
@@ -35,27 +38,38 @@ pub struct BroadPhaseOutput {
 }
 
 /// What the top's models say of a run: the pairs the owner filter owns
-/// (sorted; each intersecting pair once), the system's hits, and the
-/// filter's clocks for the hits back to back (2 per hit, 1 per step back
-/// through an earlier leaf, 1 per pair out).
+/// (sorted; each intersecting pair once, each uncertain pair once), the
+/// system's hits, and the filter's clocks for the reported pairs back to
+/// back (2 per pair, 1 per step back through an earlier leaf, 1 per pair
+/// out).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TopModel {
     pub pairs: Vec<(u32, u32)>,
+    pub uncertain: Vec<(u32, u32)>,
     pub hits: usize,
     pub filter_clocks: u64,
 }
 
 /// [`TopModel`] of the binning model's `run` on the arrays `a` and `b`
 /// for a system of memory depth `depth`: the entries as the top streams
-/// them (tiles of at most `depth`), the hits as slots, the owner filter's
-/// decisions ([`decide`]).
+/// them (tiles of at most `depth`), the reported pairs (hits and pairs
+/// without a certificate) as slots, the owner filter's decisions
+/// ([`decide`]).
 pub fn top_model(run: &BinningRun, depth: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> TopModel {
-    let Streamed { entries, hits, .. } = streamed(&run.leaf_lists, depth, |i, j| intersects(&a[i as usize], &b[j as usize]));
-    let decisions = decide(&entries, &hits);
+    let verdict = |i: u32, j: u32| certified_intersects(&a[i as usize], &b[j as usize]);
+    let Streamed { entries, hits: reported, .. } = streamed(&run.leaf_lists, depth, |i, j| {
+        let v = verdict(i, j);
+        v.hit || !v.certain
+    });
+    let hits = streamed(&run.leaf_lists, depth, |i, j| verdict(i, j).hit).hits.len();
+    let decisions = decide(&entries, &reported);
     let filter_clocks = decisions.iter().map(|(owned, steps)| 2 + steps + owned.is_some() as u64).sum();
-    let mut pairs: Vec<(u32, u32)> = decisions.into_iter().filter_map(|(owned, _)| owned).collect();
+    let owned: Vec<(u32, u32)> = decisions.into_iter().filter_map(|(owned, _)| owned).collect();
+    let mut pairs: Vec<(u32, u32)> = owned.iter().copied().filter(|&(i, j)| verdict(i, j).hit).collect();
+    let mut uncertain: Vec<(u32, u32)> = owned.iter().copied().filter(|&(i, j)| !verdict(i, j).certain).collect();
     pairs.sort_unstable();
-    TopModel { pairs, hits: hits.len(), filter_clocks }
+    uncertain.sort_unstable();
+    TopModel { pairs, uncertain, hits, filter_clocks }
 }
 
 /// The scene through the rust-hdl model of the top built for `config`,
@@ -107,7 +121,8 @@ pub fn run_rusthdl(
                 binned_at = Some(clock);
             }
             if uut.out_valid.val() {
-                out.pairs.push((uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32));
+                let pair = (uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32);
+                out.record(pair, uut.out_hit.val(), uut.out_certain.val());
             }
             if uut.done.val() && next == stream.len() && binned_at.is_some() {
                 break;
@@ -174,7 +189,19 @@ pub fn run_emitted(
     parse_outputs(&text)
 }
 
-/// The testbench's lines: `P edge a b` a pair, `D edge` the first edge
+impl BroadPhaseOutput {
+    /// One pair of the top's output stream.
+    fn record(&mut self, pair: (u32, u32), hit: bool, certain: bool) {
+        if hit {
+            self.pairs.push(pair);
+        }
+        if !certain {
+            self.uncertain.push(pair);
+        }
+    }
+}
+
+/// The testbench's lines: `P edge a b hit certain` a pair, `D edge` the first edge
 /// with `binned`, `F edge overflow pairs_tested hits` the first with
 /// `done`. The first triangle is
 /// offered at edge 1, the top's clock 0.
@@ -188,7 +215,7 @@ fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
             u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
         };
         match fields.first().copied() {
-            Some("P") => out.pairs.push((number(2, 16)? as u32, number(3, 16)? as u32)),
+            Some("P") => out.record((number(2, 16)? as u32, number(3, 16)? as u32), number(4, 2)? == 1, number(5, 2)? == 1),
             Some("D") => out.binned_at = number(1, 10)?.saturating_sub(1),
             Some("F") => {
                 out.cycles = number(1, 10)?.saturating_sub(1);
@@ -217,12 +244,13 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     reg [63:0] edge_count = 64'd0;
     reg binned_seen = 1'b0;
     reg done_seen = 1'b0;
-    wire in_ready, out_valid, binned, done, overflow;
+    wire in_ready, out_valid, out_hit, out_certain, binned, done, overflow;
     wire [31:0] out_index_a, out_index_b, pairs_tested, hits;
     {top} dut (
         .clock(clock), .reset(reset),
 {ports}
         .out_valid(out_valid), .out_ready(1'b1), .out_index_a(out_index_a), .out_index_b(out_index_b),
+        .out_hit(out_hit), .out_certain(out_certain),
         .binned(binned), .done(done), .overflow(overflow), .pairs_tested(pairs_tested), .hits(hits)
     );
 
@@ -235,7 +263,7 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
             $fwrite(outputs, \"D %0d\\n\", edge_count);
             binned_seen = 1'b1;
         end
-        if (!reset && out_valid) $fwrite(outputs, \"P %0d %h %h\\n\", edge_count, out_index_a, out_index_b);
+        if (!reset && out_valid) $fwrite(outputs, \"P %0d %h %h %0d %0d\\n\", edge_count, out_index_a, out_index_b, out_hit, out_certain);
         if (!reset && done && binned_seen && !done_seen) begin
             $fwrite(outputs, \"F %0d %h %h %h\\n\", edge_count, overflow, pairs_tested, hits);
             done_seen = 1'b1;

@@ -30,7 +30,8 @@ use crate::system_harness::{run_system_reporting, PipelineKind, ReaderBehaviour,
 use crate::system_rtl::{run_system_rtl_with, SystemRunOptions};
 use std::path::Path;
 use std::time::Instant;
-use tritri_geom::fixed_point::{self, FixedTriangle};
+use tritri_geom::certificate::{certified_intersects, CertifiedVerdict};
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::PreparedScene;
@@ -169,8 +170,8 @@ fn model_result(schedule: &[PipelineInput], latency: u64) -> anyhow::Result<Stre
             continue;
         }
         let Some((base_id, b)) = base else { anyhow::bail!("streamed triangle {} before any base", c.id) };
-        let hit = fixed_point::intersects(&b, &triangle(c));
-        result.verdicts.push(PairVerdict { base_id, stream_id: c.id, hit });
+        let CertifiedVerdict { hit, certain } = certified_intersects(&b, &triangle(c));
+        result.verdicts.push(PairVerdict { base_id, stream_id: c.id, hit, certain });
         // Input cycles count from 1; the verdict appears `latency` later.
         result.cycles = k as u64 + 1 + latency;
     }
@@ -213,6 +214,10 @@ pub struct SceneRun {
     /// (`tritri_geom::scene::owner_slots`), which lets each pair through
     /// once, from its first leaf.
     pub pairs: PairSet,
+    /// The pairs whose verdict has no certificate (`out_certain = 0`),
+    /// intersecting on the grid or not, each once: what `--certified`
+    /// decides again on the original coordinates.
+    pub uncertain: PairSet,
     /// The owner filter's work (octree scenes).
     pub owner: Option<OwnerFiltering>,
     /// Cycles from the first host word to `done`: simulated by a hardware
@@ -278,8 +283,8 @@ pub fn run_scene_with(
     };
     let model_cycles = scene_cycles(config, &batches);
     // The system's hits in the order they leave it (ids, or slots).
-    let (hits, cycles, counters) = match engine {
-        Engine::Model => (owner_filter::hits(&batches, progress), model_cycles, None),
+    let (hits, uncertain, cycles, counters) = match engine {
+        Engine::Model => (owner_filter::hits(&batches, progress), owner_filter::uncertain(&batches), model_cycles, None),
         _ => {
             let result: SystemResult = match engine.simulator() {
                 None => run_system_reporting(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, progress)?,
@@ -294,7 +299,7 @@ pub fn run_scene_with(
                 stall_cycles: result.stall_cycles,
                 overflow: result.overflow,
             };
-            (result.pairs, result.cycles, Some(counters))
+            (result.pairs, result.uncertain, result.cycles, Some(counters))
         }
     };
     let (mut pairs, owner) = match &slots {
@@ -334,7 +339,14 @@ pub fn run_scene_with(
         None => (hits.into_iter().collect(), None),
     };
     pairs.extend(fixed_point_pairs(&scene.host_batches(), &|_| {}));
-    Ok(SceneRun { engine, pairs, owner, cycles, model_cycles, counters })
+    // Uncertain pairs by triangle ids (a pair in several leaves once), and
+    // the host's.
+    let mut uncertain: PairSet = match &slots {
+        Some(slots) => uncertain.into_iter().map(|(sa, sb)| slots.ids(sa, sb)).collect(),
+        None => uncertain.into_iter().collect(),
+    };
+    uncertain.extend(owner_filter::uncertain(&scene.host_batches()));
+    Ok(SceneRun { engine, pairs, uncertain, owner, cycles, model_cycles, counters })
 }
 
 /// The exact model on the scene's quantized coordinates (every batch and

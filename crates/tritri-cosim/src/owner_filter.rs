@@ -47,6 +47,23 @@ pub fn hits(batches: &[Batch], progress: &dyn Fn(u64)) -> Vec<(u32, u32)> {
     out
 }
 
+/// Every pair of `batches` whose verdict has no certificate
+/// (`tritri_geom::certificate::certain`), in the order of [`hits`]: the
+/// pairs the system reports besides its hits.
+pub fn uncertain(batches: &[Batch]) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for batch in batches {
+        for x in batch.a {
+            for y in batch.b {
+                if !tritri_geom::certificate::certain(&x.triangle, &y.triangle) {
+                    out.push((x.id, y.id));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// What the model says the filter does with `hits` offered back to back.
 pub fn expected(slots: &OwnerSlots, hits: &[(u32, u32)]) -> OwnerRun {
     model(slots, hits).0

@@ -178,7 +178,7 @@ pub fn run_schedule_on(
         clock(pipeline, &mut trace)?;
         let out = pipeline.output();
         if out.valid {
-            verdicts.push(PairVerdict { base_id: out.base_id, stream_id: out.stream_id, hit: out.hit });
+            verdicts.push(PairVerdict { base_id: out.base_id, stream_id: out.stream_id, hit: out.hit, certain: out.certain });
             last_output_cycle = cycle + 1;
         }
     }

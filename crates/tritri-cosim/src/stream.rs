@@ -11,6 +11,7 @@
 //! Every engine takes a [`TriangleStream`] and returns a [`StreamResult`];
 //! two engines agree when their results are equal.
 
+use tritri_geom::certificate::CertifiedVerdict;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::TaggedTriangle;
 use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
@@ -62,16 +63,14 @@ impl TriangleStream {
         }
     }
 
-    /// The expected verdicts, in output order, from a software model.
-    pub fn expected(&self, intersects: impl Fn(&FixedTriangle, &FixedTriangle) -> bool) -> Vec<PairVerdict> {
+    /// The expected verdicts, in output order, from a software model
+    /// (`tritri_geom::certificate::certified_intersects`: the verdict and
+    /// its certificate).
+    pub fn expected(&self, model: impl Fn(&FixedTriangle, &FixedTriangle) -> CertifiedVerdict) -> Vec<PairVerdict> {
         self.bases
             .iter()
             .flat_map(|b| {
-                self.streamed.iter().map(|s| PairVerdict {
-                    base_id: b.id,
-                    stream_id: s.id,
-                    hit: intersects(&b.triangle, &s.triangle),
-                })
+                self.streamed.iter().map(|s| PairVerdict::new(b.id, s.id, model(&b.triangle, &s.triangle)))
             })
             .collect::<Vec<_>>()
     }
@@ -103,7 +102,7 @@ pub fn all_orderings(t1: FixedTriangle, t2: FixedTriangle) -> Vec<PairGroup> {
 /// in the group, so a verdict names the pair it belongs to.
 pub fn group_schedule(
     groups: &[PairGroup],
-    model: impl Fn(&FixedTriangle, &FixedTriangle) -> bool,
+    model: impl Fn(&FixedTriangle, &FixedTriangle) -> CertifiedVerdict,
 ) -> (Vec<PipelineInput>, Vec<PairVerdict>) {
     let mut cycles = Vec::with_capacity(groups.iter().map(|(_, s)| 1 + s.len()).sum());
     let mut expected = Vec::with_capacity(cycles.capacity() - groups.len());
@@ -113,7 +112,7 @@ pub fn group_schedule(
         for (s, t) in streamed.iter().enumerate() {
             let stream_id = s as u32;
             cycles.push(PipelineInput::test(&TaggedTriangle { id: stream_id, triangle: *t }));
-            expected.push(PairVerdict { base_id, stream_id, hit: model(base, t) });
+            expected.push(PairVerdict::new(base_id, stream_id, model(base, t)));
         }
     }
     (cycles, expected)
@@ -125,6 +124,15 @@ pub struct PairVerdict {
     pub base_id: u32,
     pub stream_id: u32,
     pub hit: bool,
+    /// `out_certain`: the verdict is provably the verdict before quantization.
+    pub certain: bool,
+}
+
+impl PairVerdict {
+    /// The verdict of a model on (base, streamed).
+    pub fn new(base_id: u32, stream_id: u32, verdict: CertifiedVerdict) -> Self {
+        PairVerdict { base_id, stream_id, hit: verdict.hit, certain: verdict.certain }
+    }
 }
 
 /// What a run returns: every verdict in output order, and the cycle count.
@@ -178,7 +186,7 @@ mod tests {
         let pairs: std::collections::BTreeSet<_> =
             groups.iter().flat_map(|(b, s)| s.iter().map(move |t| (*b, *t))).collect();
         assert_eq!(pairs.len(), 72);
-        let (cycles, expected) = group_schedule(&groups, |a, _| a == &t1);
+        let (cycles, expected) = group_schedule(&groups, |a, _| CertifiedVerdict { hit: a == &t1, certain: true });
         assert_eq!(cycles.len(), 12 + 72);
         assert_eq!(cycles.iter().filter(|c| c.bset).count(), 12);
         assert_eq!(expected.iter().filter(|v| v.hit).count(), 6, "t1 in its own order is the base of one group");

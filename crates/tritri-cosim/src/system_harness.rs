@@ -30,8 +30,12 @@ pub use tritri_rtl::system::SystemConfig;
 /// What a run returns.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct SystemResult {
-    /// `(id_a, id_b)` in the order the result stream delivered them.
+    /// The intersecting pairs (`out_hit`), `(id_a, id_b)` in the order the
+    /// result stream delivered them.
     pub pairs: Vec<(u32, u32)>,
+    /// The pairs without a certificate (`out_certain = 0`), intersecting on
+    /// the grid or not, in the order delivered.
+    pub uncertain: Vec<(u32, u32)>,
     /// From the first write to `done` (module docs).
     pub cycles: u64,
     pub pairs_tested: u64,
@@ -39,6 +43,18 @@ pub struct SystemResult {
     pub stall_cycles: u64,
     /// The sticky overflow flag (an array exceeded the memory depth).
     pub overflow: bool,
+}
+
+impl SystemResult {
+    /// One pair of the result stream.
+    pub fn record(&mut self, id_a: u32, id_b: u32, hit: bool, certain: bool) {
+        if hit {
+            self.pairs.push((id_a, id_b));
+        }
+        if !certain {
+            self.uncertain.push((id_a, id_b));
+        }
+    }
 }
 
 /// One word of the host stream.
@@ -175,7 +191,7 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
         let out: HostOutputs = uut.outputs();
 
         if out.out_valid && inputs.out_ready {
-            result.pairs.push((out.out_id_a, out.out_id_b));
+            result.record(out.out_id_a, out.out_id_b, out.out_hit, out.out_certain);
         }
         if all_written && done_cycle.is_none() && out.done {
             done_cycle = Some(cycle);

@@ -75,12 +75,12 @@ pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
             continue;
         }
         let mut words = line.split_whitespace();
-        let mut id = || -> anyhow::Result<u32> {
-            let w = words.next().with_context(|| format!("line {}: `{line}` needs two ids", n + 1))?;
+        let mut field = || -> anyhow::Result<u32> {
+            let w = words.next().with_context(|| format!("line {}: `{line}` needs two ids, hit and certain", n + 1))?;
             Ok(u32::from_str_radix(w, 16)?)
         };
-        let pair = (id()?, id()?);
-        result.pairs.push(pair);
+        let (id_a, id_b, hit, certain) = (field()?, field()?, field()?, field()?);
+        result.record(id_a, id_b, hit != 0, certain != 0);
     }
     anyhow::ensure!(saw_cycles, "the testbench output has no `# cycles` line");
     Ok(result)

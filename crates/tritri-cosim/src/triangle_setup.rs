@@ -12,7 +12,7 @@ use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Tes
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_geom::octree::triangle_cell::{root_relative_axes, MAX_AXES};
+use tritri_geom::octree::triangle_cell::{root_relative_axes, BROAD_PHASE_MARGIN, MAX_AXES};
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::emit::cell_classifier_unit::CLASSIFIER_GRID_WIDTHS;
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
@@ -26,7 +26,7 @@ pub type SetupAnswer = (u16, [([i128; 3], i128, i128); MAX_AXES]);
 
 /// What the software model says for each triangle (tags `0..`).
 pub fn expected(triangles: &[FixedTriangle], root: [i64; 3]) -> Vec<SetupAnswer> {
-    triangles.iter().enumerate().map(|(i, t)| (i as u16, root_relative_axes(t, root))).collect()
+    triangles.iter().enumerate().map(|(i, t)| (i as u16, root_relative_axes(t, root, BROAD_PHASE_MARGIN))).collect()
 }
 
 /// The triangles through the rust-hdl model of the `grid_bits` setup, one

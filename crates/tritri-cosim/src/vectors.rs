@@ -78,7 +78,7 @@ pub fn expected_outputs(stream: &TriangleStream, expected: &[PairVerdict], laten
     for (k, v) in expected.iter().enumerate() {
         let (base, stream_index) = (k as u64 / n2.max(1), k as u64 % n2.max(1));
         let input_cycle = base * (n2 + 1) + 1 + stream_index;
-        let _ = writeln!(text, "{} {:x} {:x} {}", input_cycle + latency, v.base_id, v.stream_id, v.hit as u8);
+        let _ = writeln!(text, "{} {:x} {:x} {} {}", input_cycle + latency, v.base_id, v.stream_id, v.hit as u8, v.certain as u8);
     }
     let _ = writeln!(text, "# cycles {}", stream.expected_cycles(latency));
     text
@@ -86,7 +86,7 @@ pub fn expected_outputs(stream: &TriangleStream, expected: &[PairVerdict], laten
 
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum OutputError {
-    #[error("output line {line}: cannot read `{text}` (expected `cycle base_id stream_id hit`)")]
+    #[error("output line {line}: cannot read `{text}` (expected `cycle base_id stream_id hit certain`)")]
     Malformed { line: usize, text: String },
     #[error("the testbench timed out waiting for verdicts ({verdicts} received)")]
     Timeout { verdicts: usize },
@@ -121,18 +121,19 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
         }
         let bad = || OutputError::Malformed { line: i + 1, text: line.to_string() };
         let fields: Vec<&str> = line.split_whitespace().collect();
-        if fields.len() != 4 {
+        if fields.len() != 5 {
             return Err(bad());
         }
         let cycle = fields[0].parse().map_err(|_| bad())?;
         let base_id = u32::from_str_radix(fields[1], 16).map_err(|_| bad())?;
         let stream_id = u32::from_str_radix(fields[2], 16).map_err(|_| bad())?;
-        let hit = match fields[3] {
-            "0" => false,
-            "1" => true,
-            _ => return Err(bad()),
+        let flag = |field: &str| match field {
+            "0" => Ok(false),
+            "1" => Ok(true),
+            _ => Err(bad()),
         };
-        timed.push(TimedVerdict { cycle, verdict: PairVerdict { base_id, stream_id, hit } });
+        let (hit, certain) = (flag(fields[3])?, flag(fields[4])?);
+        timed.push(TimedVerdict { cycle, verdict: PairVerdict { base_id, stream_id, hit, certain } });
     }
     let cycles = cycles.ok_or(OutputError::Unfinished)?;
     let result = StreamResult { verdicts: timed.iter().map(|t| t.verdict).collect(), cycles };
@@ -142,6 +143,7 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tritri_geom::certificate::CertifiedVerdict;
 
     #[test]
     fn negative_coordinates_are_twos_complement() {
@@ -162,7 +164,7 @@ mod tests {
     fn expected_round_trips() {
         let t = [[0, 0, 0], [1, 0, 0], [0, 1, 0]];
         let s = TriangleStream::from_triangles(&[t, t], &[t, t, t]);
-        let expected = s.expected(|_, _| true);
+        let expected = s.expected(|_, _| CertifiedVerdict { hit: true, certain: false });
         let text = expected_outputs(&s, &expected, 5);
         let (result, timed) = parse_outputs(&text).unwrap();
         assert_eq!(result.verdicts, expected);
@@ -173,7 +175,7 @@ mod tests {
 
     #[test]
     fn unfinished_runs_are_errors() {
-        assert_eq!(parse_outputs("3 0 0 1\n"), Err(OutputError::Unfinished));
-        assert!(matches!(parse_outputs("3 0 0 1\n# timeout\n"), Err(OutputError::Timeout { verdicts: 1 })));
+        assert_eq!(parse_outputs("3 0 0 1 1\n"), Err(OutputError::Unfinished));
+        assert!(matches!(parse_outputs("3 0 0 1 0\n# timeout\n"), Err(OutputError::Timeout { verdicts: 1 })));
     }
 }

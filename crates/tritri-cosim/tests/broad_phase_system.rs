@@ -41,10 +41,13 @@ fn arrays(scene: &PreparedScene) -> (Vec<FixedTriangle>, Vec<FixedTriangle>) {
 /// the filter's clocks at most added after it. Prints the run's figures
 /// under `label`.
 fn assert_top_as_model(label: &str, out: &BroadPhaseOutput, run: &BinningRun, system: SystemConfig, a: &[FixedTriangle], b: &[FixedTriangle]) -> (Vec<(u32, u32)>, usize) {
-    let TopModel { pairs: owned, hits, filter_clocks } = top_model(run, system.triangles_per_bank, a, b);
+    let TopModel { pairs: owned, uncertain, hits, filter_clocks } = top_model(run, system.triangles_per_bank, a, b);
     let mut pairs = out.pairs.clone();
     pairs.sort_unstable();
     assert_eq!(pairs, owned);
+    let mut out_uncertain = out.uncertain.clone();
+    out_uncertain.sort_unstable();
+    assert_eq!(out_uncertain, uncertain, "the pairs without a certificate");
     let mut distinct = leaf_pairs(run, a, b);
     distinct.dedup();
     assert_eq!(pairs, distinct, "each pair once");
@@ -52,12 +55,13 @@ fn assert_top_as_model(label: &str, out: &BroadPhaseOutput, run: &BinningRun, sy
     let model = broad_phase_cycles(system, run);
     assert!(out.cycles >= model && out.cycles <= model + filter_clocks, "{} clocks, the system's model {model}, the filter's {filter_clocks}", out.cycles);
     eprintln!(
-        "{label}: {} + {} triangles, {} leaves, {} pairs tested, {hits} hits, {} pairs; binned at {}, done at {} (the system's model {model})",
+        "{label}: {} + {} triangles, {} leaves, {} pairs tested, {hits} hits, {} pairs, {} uncertain; binned at {}, done at {} (the system's model {model})",
         a.len(),
         b.len(),
         run.leaves.len(),
         out.pairs_tested,
         pairs.len(),
+        uncertain.len(),
         out.binned_at,
         out.cycles
     );

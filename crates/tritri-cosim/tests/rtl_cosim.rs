@@ -25,7 +25,8 @@ use tritri_cosim::simulator::Simulator;
 use tritri_cosim::stream::{group_schedule, StreamResult, TriangleStream};
 use tritri_geom::scene::TaggedTriangle;
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
-use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::certificate::certified_intersects;
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
 
@@ -62,7 +63,7 @@ fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
 }
 
 fn check(engine: &str, width: usize, stream: &TriangleStream, run: &RtlRun, latency: u64) {
-    let expected = stream.expected(intersects);
+    let expected = stream.expected(certified_intersects);
     let mismatches = run.result.mismatches(&expected);
     let hits = expected.iter().filter(|v| v.hit).count();
     let pairs = expected.len();
@@ -150,7 +151,7 @@ fn every_engine_of_the_route_gives_the_same_result() {
     let stream = mixed_stream(16, 3, 40, 5);
     let schedule: Vec<_> = stream.schedule().collect();
     let model = run_pipeline(Engine::Model, 16, &schedule, None).unwrap().result;
-    assert_eq!(model.verdicts, stream.expected(intersects));
+    assert_eq!(model.verdicts, stream.expected(certified_intersects));
     assert_eq!(model.cycles, stream.expected_cycles(tritri_rtl::pipeline::triangle_pipeline::latency() as u64));
     for engine in [Engine::Rusthdl, Engine::Icarus, Engine::Verilator] {
         let run = run_pipeline(engine, 16, &schedule, None).unwrap_or_else(|e| panic!("{}: {e:#}", engine.name()));
@@ -177,7 +178,7 @@ fn check_schedule(engine: &str, what: &str, result: &StreamResult, expected: &[t
 #[test]
 fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
     for width in [16, 24, 32] {
-        let (schedule, expected) = group_schedule(&hard_case_groups(width, 1), intersects);
+        let (schedule, expected) = group_schedule(&hard_case_groups(width, 1), certified_intersects);
         let result = run_schedule(Simulator::Verilator, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
         let what = format!("W={width} hard cases ({} x 72 orderings)", hard_case_count());
         check_schedule("verilator", &what, &result, &expected, schedule.len());
@@ -189,7 +190,7 @@ fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
 #[test]
 fn icarus_matches_fixed_point_model_on_the_hard_case_suite() {
     let width = 24;
-    let (schedule, expected) = group_schedule(&hard_case_groups(width, 16), intersects);
+    let (schedule, expected) = group_schedule(&hard_case_groups(width, 16), certified_intersects);
     let result = run_schedule(Simulator::Icarus, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
     check_schedule("icarus", "W=24 hard cases (every 16th x 72 orderings)", &result, &expected, schedule.len());
 }

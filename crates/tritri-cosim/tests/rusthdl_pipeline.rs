@@ -16,6 +16,7 @@ use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, TriangleStream};
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
 use tritri_geom::devillers_guigue::{shape, Shape};
+use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::{intersects, orient3d_value, FixedPoint, FixedTriangle};
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
@@ -60,7 +61,7 @@ impl Check {
                 *self.categories.entry(category(base, t)).or_default() += 1;
             }
         }
-        let (schedule, expected) = group_schedule(groups, intersects);
+        let (schedule, expected) = group_schedule(groups, certified_intersects);
         let result = run_schedule_on(pipeline, &schedule, &HarnessOptions::default()).expect("simulation run");
         assert_eq!(result.verdicts.len(), expected.len());
         for (v, e) in result.verdicts.iter().zip(&expected) {
@@ -299,7 +300,7 @@ fn cycles_are_n1_plus_n1_n2_plus_latency() {
         let schedule: Vec<_> = stream.schedule().collect();
         let result = run_schedule_on(pipeline.as_mut(), &schedule, &HarnessOptions::default()).unwrap();
         assert_eq!(result.cycles, (n1 + n1 * n2 + latency()) as u64, "N1 = {n1}, N2 = {n2}");
-        assert_eq!(result.mismatches(&stream.expected(intersects)), 0);
+        assert_eq!(result.mismatches(&stream.expected(certified_intersects)), 0);
     }
 }
 

@@ -14,6 +14,7 @@
 use std::path::PathBuf;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, PairVerdict, StreamResult};
+use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::quantize::quantize_pair;
 use tritri_geom::TrianglePair;
@@ -68,7 +69,7 @@ fn rusthdl_pipeline_equals_model_on_shared_cases() {
     for width in [8, 16, 24, 32] {
         let mut pipeline = pipeline_for_width(width).unwrap();
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
-            let (cycles, expected) = group_schedule(&groups, intersects);
+            let (cycles, expected) = group_schedule(&groups, certified_intersects);
             let result = run_schedule_on(pipeline.as_mut(), &cycles, &HarnessOptions::default()).unwrap();
             assert_equal("rust-hdl", what, width, &result, &expected);
         }
@@ -79,7 +80,7 @@ fn rusthdl_pipeline_equals_model_on_shared_cases() {
 fn verilator_equals_model_on_shared_cases() {
     for width in [8, 16, 24] {
         for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
-            let (cycles, expected) = group_schedule(&groups, intersects);
+            let (cycles, expected) = group_schedule(&groups, certified_intersects);
             let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Verilator, width, &cycles, None).unwrap().result;
             assert_equal("verilator", what, width, &result, &expected);
         }
@@ -89,7 +90,7 @@ fn verilator_equals_model_on_shared_cases() {
 #[test]
 fn icarus_equals_model_on_peer_cases() {
     let width = 24;
-    let (cycles, expected) = group_schedule(&peer_groups(width), intersects);
+    let (cycles, expected) = group_schedule(&peer_groups(width), certified_intersects);
     let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Icarus, width, &cycles, None).unwrap().result;
     assert_equal("icarus", "peer cases x 72", width, &result, &expected);
 }

@@ -14,7 +14,7 @@ use tritri_cosim::triangle_setup::{expected, run_emitted, run_rusthdl};
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
-use tritri_geom::octree::triangle_cell::TriangleCellTest;
+use tritri_geom::octree::triangle_cell::{TriangleCellTest, BROAD_PHASE_MARGIN};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, SceneOptions};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
@@ -76,7 +76,7 @@ fn setup_then_classifier_decide_as_the_software() {
     let entries: Vec<ClassifierEntry> =
         answers.iter().map(|&(tag, axes)| ClassifierEntry { tag, level: root.level, descend: None, at_lo: [0; 13], axes }).collect();
     let masks: Vec<u8> = classify(24, &entries).unwrap().iter().map(|a| a.mask).collect();
-    let want: Vec<u8> = triangles.iter().map(|t| TriangleCellTest::new(t).children_of_cell(&root)).collect();
+    let want: Vec<u8> = triangles.iter().map(|t| TriangleCellTest::widened(t, BROAD_PHASE_MARGIN).children_of_cell(&root)).collect();
     let met: u32 = want.iter().map(|m| m.count_ones()).sum();
     eprintln!("{} triangles at the root (level {}): {met} children met of {}", triangles.len(), root.level, 8 * triangles.len());
     assert!(met > 0 && (met as usize) < 8 * triangles.len());

@@ -86,6 +86,21 @@ pub fn triangle_touches_box(t: &FixedTriangle, b: &Aabb<i64>) -> bool {
     TriangleCellTest::new(t).touches_box(b)
 }
 
+/// Does the integer triangle grown by `margin` grid steps in every
+/// direction touch the box? Conservative (see
+/// [`TriangleCellTest::widened`]): never false when the grown triangle
+/// touches it.
+pub fn grown_triangle_touches_box(t: &FixedTriangle, margin: i128, b: &Aabb<i64>) -> bool {
+    TriangleCellTest::widened(t, margin).touches_box(b)
+}
+
+impl Aabb<i64> {
+    /// The box grown by `margin` on every side.
+    pub fn grown(&self, margin: i64) -> Aabb<i64> {
+        Aabb { lo: self.lo.map(|v| v - margin), hi: self.hi.map(|v| v + margin) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -19,6 +19,7 @@
 pub mod arithmetic;
 pub mod bezier;
 pub mod bounding_volume;
+pub mod certificate;
 pub mod builtin_scene;
 pub mod devillers_guigue;
 pub mod exact_big_integer;

@@ -60,6 +60,8 @@ pub fn flatten(t: &FixedTriangle) -> [i64; 9] {
 pub struct PipelineOutput {
     pub valid: bool,
     pub hit: bool,
+    /// The verdict is provably the verdict before quantization.
+    pub certain: bool,
     pub base_id: u32,
     pub stream_id: u32,
 }
@@ -162,6 +164,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSim
         PipelineOutput {
             valid: self.out_valid.val(),
             hit: self.out_hit.val(),
+            certain: self.out_certain.val(),
             base_id: self.out_base_id.val().to_u32(),
             stream_id: self.out_stream_id.val().to_u32(),
         }

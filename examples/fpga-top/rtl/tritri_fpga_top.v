@@ -32,7 +32,9 @@ module tritri_fpga_top #(
     output wire        s_ready,
     input  wire [31:0] s_data,
 
-    // Host words out: each intersecting pair as id_a, then id_b (m_last).
+    // Host words out: each reported pair as id_a, id_b, then its flags
+    // (m_last; bit 0 hit, bit 1 certain). Pairs without a certificate come
+    // out whatever their verdict: the host decides them again.
     output wire        m_valid,
     input  wire        m_ready,
     output wire [31:0] m_data,
@@ -70,7 +72,7 @@ module tritri_fpga_top #(
     );
 
     // The emitted system. Its triangle word: {end, object, id, x0 .. z2}.
-    wire        pair_valid, pair_ready;
+    wire        pair_valid, pair_ready, pair_hit, pair_certain;
     wire [31:0] pair_id_a, pair_id_b;
     wire        system_done, results_empty;
     `TRITRI_SYSTEM system (
@@ -88,6 +90,8 @@ module tritri_fpga_top #(
         .out_ready(pair_ready),
         .out_id_a(pair_id_a),
         .out_id_b(pair_id_b),
+        .out_hit(pair_hit),
+        .out_certain(pair_certain),
         .done(system_done),
         .results_empty(results_empty),
         .overflow(overflow),
@@ -99,10 +103,10 @@ module tritri_fpga_top #(
     // Pair FIFO: a slow host link does not stall the pipelines until both
     // this FIFO and the system's own result FIFO are full.
     wire        queued_valid, queued_ready;
-    wire [63:0] queued_pair;
-    tritri_sync_fifo #(.WIDTH(64), .LOG2_DEPTH(LOG2_PAIR_FIFO)) pair_fifo (
+    wire [65:0] queued_pair;
+    tritri_sync_fifo #(.WIDTH(66), .LOG2_DEPTH(LOG2_PAIR_FIFO)) pair_fifo (
         .clock(clock), .reset(reset),
-        .in_valid(pair_valid), .in_ready(pair_ready), .in_data({pair_id_a, pair_id_b}),
+        .in_valid(pair_valid), .in_ready(pair_ready), .in_data({pair_certain, pair_hit, pair_id_a, pair_id_b}),
         .out_valid(queued_valid), .out_ready(queued_ready), .out_data(queued_pair)
     );
 

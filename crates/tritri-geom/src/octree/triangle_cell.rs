@@ -29,6 +29,16 @@ use crate::fixed_point::FixedTriangle;
 /// The most test functions one triangle needs.
 pub const MAX_AXES: usize = 13;
 
+/// How far, in grid steps and in every direction, the broad phase grows a
+/// quantized triangle before classifying it ([`TriangleCellTest::widened`]).
+/// Quantization moves every point of a triangle by at most half a step
+/// (plus f64 rounding far below a step, docs/certificates.md), so two
+/// original triangles that touch at `p` have quantized images within half
+/// a step of `p`, and both meet the leaf holding `p` once grown by one step:
+/// the pair is tested and its verdict's certificate decides whether the
+/// host looks again. Exact voxelization uses [`TriangleCellTest::new`].
+pub const BROAD_PHASE_MARGIN: i128 = 1;
+
 /// One affine test function and the triangle's interval along it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 struct Axis {
@@ -67,6 +77,15 @@ impl CellValues {
 
 impl TriangleCellTest {
     pub fn new(t: &FixedTriangle) -> TriangleCellTest {
+        TriangleCellTest::widened(t, 0)
+    }
+
+    /// The test of the triangle grown by `margin` grid steps in every
+    /// direction (its Minkowski sum with the cube `[-margin, margin]^3`),
+    /// conservatively: each function's interval grows by `margin |g|_1`, so
+    /// a cell the grown triangle meets is never rejected (a cell may be
+    /// kept that only the grown intervals reach).
+    pub fn widened(t: &FixedTriangle, margin: i128) -> TriangleCellTest {
         let p = t.map(|v| v.map(i128::from));
         let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
@@ -82,8 +101,9 @@ impl TriangleCellTest {
                 return;
             }
             let projections = p.map(|v| gradient[0] * v[0] + gradient[1] * v[1] + gradient[2] * v[2]);
-            let low = projections.into_iter().min().unwrap_or(0);
-            let high = projections.into_iter().max().unwrap_or(0);
+            let grow = margin * gradient.iter().map(|g| g.abs()).sum::<i128>();
+            let low = projections.into_iter().min().unwrap_or(0) - grow;
+            let high = projections.into_iter().max().unwrap_or(0) + grow;
             test.axes[test.count] = Axis { gradient, low, high };
             test.count += 1;
         };
@@ -165,8 +185,10 @@ impl TriangleCellTest {
 /// `g · (p - lo)`, so every value at the root's low corner is zero and the
 /// classifier starts from nothing but the level. The masks are the same as
 /// [`TriangleCellTest`]'s, since moving a function by a constant moves the
-/// triangle's interval with it.
-pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3]) -> [([i128; 3], i128, i128); MAX_AXES] {
+/// triangle's interval with it. `margin` grows the triangle as
+/// [`TriangleCellTest::widened`] does (the hardware's is
+/// [`BROAD_PHASE_MARGIN`]).
+pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3], margin: i128) -> [([i128; 3], i128, i128); MAX_AXES] {
     let p = t.map(|v| [0, 1, 2].map(|k| v[k] as i128 - lo[k] as i128));
     let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
@@ -179,7 +201,8 @@ pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3]) -> [([i128; 3], i128,
     let mut axes = [([0i128; 3], 0i128, 0i128); MAX_AXES];
     for (axis, g) in axes.iter_mut().zip(gradients) {
         let projections = p.map(|v| g[0] * v[0] + g[1] * v[1] + g[2] * v[2]);
-        *axis = (g, projections.into_iter().min().unwrap_or(0), projections.into_iter().max().unwrap_or(0));
+        let grow = margin * g.iter().map(|x| x.abs()).sum::<i128>();
+        *axis = (g, projections.into_iter().min().unwrap_or(0) - grow, projections.into_iter().max().unwrap_or(0) + grow);
     }
     axes
 }
@@ -211,9 +234,9 @@ mod tests {
     fn root_relative_axes_decide_as_the_test_does() {
         let root = Cell { lo: [-8, -3, 5], level: 4 };
         let triangles = [[[-8, -3, 5], [8, 13, 21], [8, -3, 13]], [[0, 0, 9], [0, 0, 9], [0, 0, 9]], [[-3, 5, 100], [7, 1, -50], [2, 2, 2]], [[1, 1, 6], [3, 1, 6], [1, 3, 6]], [[2, 2, 7], [6, 6, 11], [4, 4, 9]]];
-        for t in triangles {
-            let test = TriangleCellTest::new(&t);
-            let axes = root_relative_axes(&t, root.lo);
+        for (t, margin) in triangles.iter().flat_map(|t| [(*t, 0), (*t, BROAD_PHASE_MARGIN)]) {
+            let test = TriangleCellTest::widened(&t, margin);
+            let axes = root_relative_axes(&t, root.lo, margin);
             for level in 0..=2 {
                 let side = 1i64 << level;
                 for i in 0..(16 / side) {
@@ -222,11 +245,33 @@ mod tests {
                             let cell = Cell { lo: [root.lo[0] + i * side, root.lo[1] + j * side, root.lo[2] + k * side], level: level as u32 };
                             let relative = Cell { lo: [0, 1, 2].map(|a| cell.lo[a] - root.lo[a]), level: cell.level };
                             let hardware = axes.iter().all(|&(g, low, high)| AffineOverBox::over_cell(g, &relative).meets(low, high));
-                            assert_eq!(hardware, test.touches_box(&cell.as_box()), "{t:?} {cell:?}");
+                            assert_eq!(hardware, test.touches_box(&cell.as_box()), "{t:?} {cell:?} margin {margin}");
                         }
                     }
                 }
             }
         }
+    }
+
+    /// The widened test keeps every cell that a point within one step of
+    /// the triangle lies in (here: cells touching the triangle's vertices
+    /// moved by one step), and keeps more cells than the exact test.
+    #[test]
+    fn widened_test_keeps_cells_within_a_step() {
+        let t = [[3, 3, 3], [9, 4, 3], [4, 9, 5]];
+        let (exact, widened) = (TriangleCellTest::new(&t), TriangleCellTest::widened(&t, BROAD_PHASE_MARGIN));
+        let mut extra = 0;
+        for x in -2..14 {
+            for y in -2..14 {
+                for z in -2..10 {
+                    let cell = Cell { lo: [x, y, z], level: 0 }.as_box();
+                    let near = t.iter().any(|v| (0..3).all(|k| v[k] + 1 >= cell.lo[k] && v[k] - 1 <= cell.hi[k]));
+                    assert!(!near || widened.touches_box(&cell), "{cell:?}");
+                    assert!(!exact.touches_box(&cell) || widened.touches_box(&cell));
+                    extra += (widened.touches_box(&cell) && !exact.touches_box(&cell)) as usize;
+                }
+            }
+        }
+        assert!(extra > 0);
     }
 }

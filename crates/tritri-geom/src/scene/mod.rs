@@ -7,8 +7,9 @@
 //!    conservative filter of [`triangle_box_overlap_conservative`]);
 //! 3. the kept triangles of *both* objects quantized into one W-bit frame
 //!    ([`Frame::fit`] over them);
-//! 4. the exact integer triangle–box test ([`triangle_touches_box`]) against
-//!    the integer common box, see [`prepare`] for why it loses no pair;
+//! 4. the integer triangle–box test against the integer common box, both
+//!    grown by one grid step ([`BROAD_PHASE_MARGIN`]), see [`prepare`] for
+//!    why it loses no pair that touches before or after quantization;
 //! 5. the arrays split into tiles of at most `D` triangles (the memory depth
 //!    of the generated hardware): one [`Batch`] per A-tile × B-tile, so every
 //!    pair of kept triangles is in exactly one batch.
@@ -30,7 +31,8 @@ pub mod octree;
 pub mod owner_slots;
 pub mod reference;
 
-use crate::bounding_volume::{triangle_box_overlap_conservative, triangle_touches_box, Aabb};
+use crate::bounding_volume::{grown_triangle_touches_box, triangle_box_overlap_conservative, Aabb};
+use crate::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use crate::fixed_point::FixedTriangle;
 use crate::quantize::{Frame, QuantizeError};
 use crate::triangle::Triangle;
@@ -186,12 +188,17 @@ impl PreparedScene {
 /// already posed).
 ///
 /// The integer box is the overlap of the integer AABBs of the quantized
-/// candidates of A and of B. No intersecting quantized pair is lost: if the
-/// quantized triangles `qa` and `qb` share a point `p`, then `p` lies in the
-/// box of `qa`, hence in the integer AABB of A's quantized candidates, and
-/// likewise in B's, so `p` is in their overlap; `p` is a point of `qa` and of
-/// `qb` in that box, so both touch it and the exact test keeps both. (If the
-/// integer AABBs do not overlap, no quantized pair intersects at all.)
+/// candidates of A and of B, each grown by one grid step
+/// ([`BROAD_PHASE_MARGIN`]); a triangle is kept when, grown by one step, it
+/// touches that box ([`grown_triangle_touches_box`]). No pair is lost that
+/// touches on the grid or on the original coordinates: if the original
+/// triangles meet at `p`, quantization moved each by at most half a step,
+/// so each quantized triangle has a point within half a step of `p`; that
+/// point lies in its object's integer AABB, so `p` lies in both grown
+/// AABBs, hence in the box, and both grown triangles contain `p`. (A pair
+/// that meets on the grid is the case of a `p` on both quantized
+/// triangles.) The octree's cells keep the same grown triangles
+/// ([`octree::schedule`]), so the pair shares the leaf holding `p`.
 /// A pair whose f64 triangles intersect is never dropped by the f64 filter
 /// either: the meeting point lies in both objects' boxes, so in the common
 /// BV, and the comparisons of the box filter are exact.
@@ -238,14 +245,16 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
     let qb = quantize(&scene.candidates_b, &b.triangles);
     scene.frame = Some(frame);
 
+    let margin = BROAD_PHASE_MARGIN as i64;
     let integer_box = match (Aabb::of_triangles(qa.iter().map(|t| &t.triangle)), Aabb::of_triangles(qb.iter().map(|t| &t.triangle))) {
-        (Some(x), Some(y)) => x.overlap(&y),
+        (Some(x), Some(y)) => x.grown(margin).overlap(&y.grown(margin)),
         _ => None,
     };
     scene.integer_box = integer_box;
     if let Some(ibox) = integer_box {
-        scene.kept_a = qa.into_iter().filter(|t| triangle_touches_box(&t.triangle, &ibox)).collect();
-        scene.kept_b = qb.into_iter().filter(|t| triangle_touches_box(&t.triangle, &ibox)).collect();
+        let near = |t: &TaggedTriangle| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &ibox);
+        scene.kept_a = qa.into_iter().filter(near).collect();
+        scene.kept_b = qb.into_iter().filter(near).collect();
     }
     let (ka, kb, depth) = (scene.kept_a.len(), scene.kept_b.len(), options.depth);
     if (ka > depth || kb > depth) && !options.split {

@@ -44,7 +44,7 @@
 use super::TaggedTriangle;
 use crate::bounding_volume::Aabb;
 use crate::octree::cell::Cell;
-use crate::octree::triangle_cell::{CellValues, TriangleCellTest};
+use crate::octree::triangle_cell::{CellValues, TriangleCellTest, BROAD_PHASE_MARGIN};
 use std::collections::HashMap;
 use std::ops::Range;
 
@@ -219,8 +219,8 @@ pub fn schedule(
         out.host_arrays.push((a.clone(), b_long));
     }
     let (a, b) = (&a[..], &b[..]);
-    let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
-    let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::new(&t.triangle)).collect();
+    let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN)).collect();
+    let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN)).collect();
     // The root's values take multiplications; every cell below, adds and shifts.
     let planner = Planner { memory_depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
     let mut work = Work::default();

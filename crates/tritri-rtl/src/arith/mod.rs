@@ -2,6 +2,7 @@
 //! registers its output and holds while `advance` is low.
 
 pub mod adder;
+pub mod certificate;
 pub mod compare;
 pub mod convert;
 pub mod cross_product;

@@ -52,6 +52,12 @@ pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> 
     .port("in_id", "Id of the triangle, returned as `out_base_id` or `out_stream_id`.")
     .port("out_valid", &format!("A verdict is on the outputs: the streamed triangle entered {l} clocks earlier."))
     .port("out_hit", "1 when the base and the streamed triangle intersect (touching counts).")
+    .port(
+        "out_certain",
+        "1 when `out_hit` is provably the verdict on the coordinates before quantization: no sign it rests on \
+         changes if every coordinate moves by half a grid step (docs/certificates.md). Coplanar and degenerate \
+         pairs are never certain; the host decides a pair with `out_certain = 0` again on its own coordinates.",
+    )
     .port("out_base_id", "Id of the base triangle of this verdict.")
     .port("out_stream_id", "Id of the streamed triangle of this verdict.")
     .latency(l)

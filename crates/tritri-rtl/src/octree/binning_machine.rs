@@ -50,7 +50,7 @@ use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
 use super::leaf_cost::{leaf_cost, LEAF_COST_LATENCY};
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
-use tritri_geom::octree::triangle_cell::TriangleCellTest;
+use tritri_geom::octree::triangle_cell::{TriangleCellTest, BROAD_PHASE_MARGIN};
 use tritri_geom::scene::octree::LOOKAHEAD;
 
 /// Clocks after a pass's last read until its lists and counts are final:
@@ -287,7 +287,7 @@ impl Machine<'_> {
 pub fn run_binning(a: &[FixedTriangle], b: &[FixedTriangle], root: Cell, params: BinningParams) -> BinningRun {
     let mut machine = Machine {
         params,
-        tests: [a.iter().map(TriangleCellTest::new).collect(), b.iter().map(TriangleCellTest::new).collect()],
+        tests: [a, b].map(|ts| ts.iter().map(|t| TriangleCellTest::widened(t, BROAD_PHASE_MARGIN)).collect()),
         _triangles: [a, b],
         memories: Default::default(),
         run: BinningRun::default(),

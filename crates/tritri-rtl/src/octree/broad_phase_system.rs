@@ -2,7 +2,7 @@
 //! broad phase), the leaf batcher, and the collision system (the narrow
 //! phase) and an owner filter, in one top. The host streams each object's
 //! triangles once, in grid coordinates, and reads back each intersecting
-//! pair once.
+//! pair once, and each pair whose verdict has no certificate.
 //!
 //! ```text
 //!  host triangles ─► binning unit ─► leaf stream ─► leaf batcher ─► collision system ─► owner filter ─► pairs
@@ -11,7 +11,8 @@
 //!                                     vertices)        word per leaf)  FIFO; hits as slots) leaf)
 //! ```
 //!
-//! Each intersecting pair comes out once, from the first leaf holding both
+//! Each reported pair (intersecting, or without a certificate: `out_hit`,
+//! `out_certain`) comes out once, from the first leaf holding both
 //! triangles: the owner filter ([`super::owner_chain_filter`]) sits on the
 //! system's result stream, with tables the batcher's entries write as they
 //! stream. A pair's indices are the triangles' positions in their object's
@@ -71,6 +72,10 @@ pub struct BroadPhaseSystem<
     pub out_ready: Signal<In, Bit>,
     pub out_index_a: Signal<Out, Bits<ID_BITS>>,
     pub out_index_b: Signal<Out, Bits<ID_BITS>>,
+    /// The pair's verdict on the grid and its certificate: pairs without one
+    /// come out whatever their verdict (docs/certificates.md).
+    pub out_hit: Signal<Out, Bit>,
+    pub out_certain: Signal<Out, Bit>,
     /// Binning is over: the leaves stream into the system.
     pub binned: Signal<Out, Bit>,
     /// Every leaf is tested and every hit decided; the last owned pair has
@@ -122,6 +127,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
             out_ready: Default::default(),
             out_index_a: Default::default(),
             out_index_b: Default::default(),
+            out_hit: Default::default(),
+            out_certain: Default::default(),
             binned: Default::default(),
             done: Default::default(),
             overflow: Default::default(),
@@ -223,10 +230,14 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
         self.system.out_ready.next = self.owner.in_ready.val();
         self.owner.in_slot_a.next = self.system.out_id_a.val();
         self.owner.in_slot_b.next = self.system.out_id_b.val();
+        self.owner.in_hit.next = self.system.out_hit.val();
+        self.owner.in_certain.next = self.system.out_certain.val();
         self.out_valid.next = self.owner.out_valid.val();
         self.owner.out_ready.next = self.out_ready.val();
         self.out_index_a.next = self.owner.out_index_a.val();
         self.out_index_b.next = self.owner.out_index_b.val();
+        self.out_hit.next = self.owner.out_hit.val();
+        self.out_certain.next = self.owner.out_certain.val();
         self.pairs_tested.next = self.system.pairs_tested.val();
         self.hits.next = self.system.hits.val();
 

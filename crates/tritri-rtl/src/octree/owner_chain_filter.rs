@@ -93,11 +93,16 @@ pub struct OwnerChainFilter {
     pub in_ready: Signal<Out, Bit>,
     pub in_slot_a: Signal<In, Bits<ID_BITS>>,
     pub in_slot_b: Signal<In, Bits<ID_BITS>>,
+    /// The pair's verdict and certificate, carried to `out_hit`, `out_certain`.
+    pub in_hit: Signal<In, Bit>,
+    pub in_certain: Signal<In, Bit>,
     /// Owned pairs (valid/ready): the two triangles' indices.
     pub out_valid: Signal<Out, Bit>,
     pub out_ready: Signal<In, Bit>,
     pub out_index_a: Signal<Out, Bits<ID_BITS>>,
     pub out_index_b: Signal<Out, Bits<ID_BITS>>,
+    pub out_hit: Signal<Out, Bit>,
+    pub out_certain: Signal<Out, Bit>,
     /// No hit in progress.
     pub idle: Signal<Out, Bit>,
     /// An entry's slot was past the record tables' end (sticky until the
@@ -119,6 +124,8 @@ pub struct OwnerChainFilter {
     hit_leaf: DFF<Bits<CHAIN_LEAF_BITS>>,
     index_a: DFF<Bits<INDEX_BITS>>,
     index_b: DFF<Bits<INDEX_BITS>>,
+    hit_q: DFF<Bit>,
+    certain_q: DFF<Bit>,
     // Combinational.
     record_a: Signal<Local, ChainRecord>,
     record_b: Signal<Local, ChainRecord>,
@@ -153,10 +160,14 @@ impl OwnerChainFilter {
             in_ready: Default::default(),
             in_slot_a: Default::default(),
             in_slot_b: Default::default(),
+            in_hit: Default::default(),
+            in_certain: Default::default(),
             out_valid: Default::default(),
             out_ready: Default::default(),
             out_index_a: Default::default(),
             out_index_b: Default::default(),
+            out_hit: Default::default(),
+            out_certain: Default::default(),
             idle: Default::default(),
             overflow: Default::default(),
             overflow_q: Default::default(),
@@ -173,6 +184,8 @@ impl OwnerChainFilter {
             hit_leaf: Default::default(),
             index_a: Default::default(),
             index_b: Default::default(),
+            hit_q: Default::default(),
+            certain_q: Default::default(),
             record_a: Default::default(),
             record_b: Default::default(),
             head: Default::default(),
@@ -189,7 +202,22 @@ impl OwnerChainFilter {
 impl Logic for OwnerChainFilter {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, entry_q, entry_object_q, entry_index_q, entry_slot_q, entry_leaf_q, state, hit_leaf, index_a, index_b, overflow_q);
+        dff_setup!(
+            self,
+            clock,
+            entry_q,
+            entry_object_q,
+            entry_index_q,
+            entry_slot_q,
+            entry_leaf_q,
+            state,
+            hit_leaf,
+            index_a,
+            index_b,
+            hit_q,
+            certain_q,
+            overflow_q
+        );
         self.overflow.next = self.overflow_q.q.val();
         if self.entry_valid.val() & (bit_cast::<{ CHAIN_SLOT_BITS + 1 }, CHAIN_SLOT_BITS>(self.entry_slot.val()) >= self.slot_limit.val()) {
             self.overflow_q.d.next = true;
@@ -275,6 +303,8 @@ impl Logic for OwnerChainFilter {
         self.out_valid.next = self.state.q.val() == ChainState::Emit;
         self.out_index_a.next = bit_cast::<ID_BITS, INDEX_BITS>(self.index_a.q.val());
         self.out_index_b.next = bit_cast::<ID_BITS, INDEX_BITS>(self.index_b.q.val());
+        self.out_hit.next = self.hit_q.q.val();
+        self.out_certain.next = self.certain_q.q.val();
         self.idle.next = self.state.q.val() == ChainState::Idle;
         self.unused_high_bits.next = self.in_slot_a.val().get_bits::<8>(24).any() ^ self.in_slot_b.val().get_bits::<8>(24).any();
 
@@ -285,6 +315,8 @@ impl Logic for OwnerChainFilter {
                 if self.in_valid.val() {
                     self.records[0].read_enable.next = true;
                     self.records[1].read_enable.next = true;
+                    self.hit_q.d.next = self.in_hit.val();
+                    self.certain_q.d.next = self.in_certain.val();
                     self.state.d.next = ChainState::First;
                 }
             }

@@ -23,9 +23,16 @@
 //! for the plane), against 90 for evaluating every function at every
 //! vertex and at the root.
 //!
+//! Every interval is then grown by `|g|_1` (one grid step in every
+//! direction, `tritri_geom::octree::triangle_cell::BROAD_PHASE_MARGIN`), so
+//! that two triangles that touch before quantization share a leaf: 1 for
+//! the axes, `|n_x| + |n_y| + |n_z|` for the plane, the two non-zero
+//! components' magnitudes of the edge's `e_j` for an edge function.
+//!
 //! Stages: relative coordinates and edges (1); products (2); the normal and
-//! the edge starts (3); the plane's products and the opposite ends (4);
-//! the plane's sum, minima and maxima into the output registers (5).
+//! the edge starts (3); the plane's products, the opposite ends and the
+//! margins (4); the plane's sum, minima and maxima, grown by the margins,
+//! into the output registers (5).
 //! `V`-bit two's complement throughout, `V = 3G + 6` ([`super::value_bits`]),
 //! which holds every value exactly.
 //!
@@ -34,6 +41,10 @@
 //! function `i`'s field is bits `[i V +: V]` of each bus.
 
 use super::cell_classifier::{AXES, TAG_BITS};
+use tritri_geom::octree::triangle_cell::BROAD_PHASE_MARGIN;
+
+// The Verilog grows each interval by |g|_1 itself: one step.
+const _: () = assert!(BROAD_PHASE_MARGIN == 1);
 use crate::arith::convert::{to_i128, wrap_i128};
 use rust_hdl::core::bitvec::BitVec;
 use rust_hdl::prelude::*;
@@ -133,20 +144,23 @@ pub fn edge_gradient(e: [i128; 3], k: usize) -> [i128; 3] {
     }
 }
 
-/// The thirteen `(gradient, low, high)` of a stage-4 record: what the
-/// output registers take.
+/// The thirteen `(gradient, low, high)` of a stage-4 record, each interval
+/// grown by `|g|_1`: what the output registers take.
 fn functions(s: &Stage, v: usize) -> [([i128; 3], i128, i128); AXES] {
+    let w = |x: i128| wrap_i128(x, v);
+    let l1 = |g: [i128; 3]| w(g.iter().map(|x| x.abs()).sum());
     let mut out = [([0i128; 3], 0i128, 0i128); AXES];
     for (k, f) in out.iter_mut().take(3).enumerate() {
         let coordinates = s.p.map(|p| p[k]);
         let unit = [0, 1, 2].map(|j| i128::from(j == k));
-        *f = (unit, coordinates.into_iter().min().unwrap_or(0), coordinates.into_iter().max().unwrap_or(0));
+        *f = (unit, w(coordinates.into_iter().min().unwrap_or(0) - 1), w(coordinates.into_iter().max().unwrap_or(0) + 1));
     }
-    out[3] = (s.normal, s.plane, s.plane);
+    out[3] = (s.normal, w(s.plane - l1(s.normal)), w(s.plane + l1(s.normal)));
     for j in 0..3 {
         for k in 0..3 {
             let (a, b) = (s.start[3 * j + k], s.opposite[3 * j + k]);
-            out[4 + 3 * j + k] = (edge_gradient(s.e[j], k).map(|g| wrap_i128(g, v)), a.min(b), a.max(b));
+            let g = edge_gradient(s.e[j], k).map(w);
+            out[4 + 3 * j + k] = (g, w(a.min(b) - l1(g)), w(a.max(b) + l1(g)));
         }
     }
     out
@@ -253,8 +267,8 @@ fn setup_verilog(g: usize, v: usize) -> String {
     line(regs([per(2, "na", 3), per(2, "nb", 3), per(2, "sa", 9), per(2, "sb", 9), coords(2, "p"), coords(2, "e")].concat()));
     line("// Stage 3: the normal and the edge starts.".into());
     line(regs([per(3, "n", 3), per(3, "s", 9), coords(3, "p"), coords(3, "e")].concat()));
-    line("// Stage 4: the plane's products, the opposite ends.".into());
-    line(regs([per(4, "pl", 3), per(4, "n", 3), per(4, "s", 9), per(4, "o", 9), coords(4, "p"), coords(4, "e")].concat()));
+    line("// Stage 4: the plane's products, the opposite ends, the margins |g|_1.".into());
+    line(regs([per(4, "pl", 3), per(4, "n", 3), per(4, "s", 9), per(4, "o", 9), per(4, "m", 10), coords(4, "p"), coords(4, "e")].concat()));
     line(format!("reg [{}:0] tag_1, tag_2, tag_3, tag_4;", TAG_BITS - 1));
     line("reg valid_1, valid_2, valid_3, valid_4;".into());
     line("always @(posedge clock) begin".into());
@@ -311,6 +325,16 @@ fn setup_verilog(g: usize, v: usize) -> String {
         line(format!("        s{i}_4 <= s{i}_3;"));
         line(format!("        o{i}_4 <= s{i}_3 - n{}_3;", i % 3));
     }
+    // Margins: m0 = |n|_1 (the plane); m(1 + 3j + k) = |e_j| over the two
+    // axes other than k (the edge function's gradient e_j x u_k).
+    let abs = |x: String| format!("(({x} < 0) ? -{x} : {x})");
+    line(format!("        m0_4 <= {} + {} + {};", abs("n0_3".into()), abs("n1_3".into()), abs("n2_3".into())));
+    for j in 0..3 {
+        for k in 0..3 {
+            let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
+            line(format!("        m{}_4 <= {} + {};", 1 + 3 * j + k, abs(format!("e{j}{a}_3")), abs(format!("e{j}{b}_3"))));
+        }
+    }
     pass(&mut line, 3, 4);
     // Stage 5: the packed outputs, function i at [i V +: V].
     let min = |a: &str, b: &str| format!("(({a} < {b}) ? {a} : {b})");
@@ -322,14 +346,14 @@ fn setup_verilog(g: usize, v: usize) -> String {
             g.push(format!("{v}'sd{}", u8::from(d == k)));
         }
         let (c0, c1, c2) = (format!("p0{c}_4"), format!("p1{c}_4"), format!("p2{c}_4"));
-        low.push(min(&min(&c0, &c1), &c2));
-        high.push(max(&max(&c0, &c1), &c2));
+        low.push(format!("{} - {v}'sd1", min(&min(&c0, &c1), &c2)));
+        high.push(format!("{} + {v}'sd1", max(&max(&c0, &c1), &c2)));
     }
     for (k, g) in gradient.iter_mut().enumerate() {
         g.push(format!("n{k}_4"));
     }
-    low.push("pl0_4 + pl1_4 + pl2_4".into());
-    high.push("pl0_4 + pl1_4 + pl2_4".into());
+    low.push("pl0_4 + pl1_4 + pl2_4 - m0_4".into());
+    high.push("pl0_4 + pl1_4 + pl2_4 + m0_4".into());
     for j in 0..3 {
         for k in 0..3 {
             let e = |c: usize| format!("e{j}{}_4", xyz[c]);
@@ -343,8 +367,8 @@ fn setup_verilog(g: usize, v: usize) -> String {
                 gradient[d].push(component);
             }
             let i = 3 * j + k;
-            low.push(min(&format!("s{i}_4"), &format!("o{i}_4")));
-            high.push(max(&format!("s{i}_4"), &format!("o{i}_4")));
+            low.push(format!("{} - m{}_4", min(&format!("s{i}_4"), &format!("o{i}_4")), i + 1));
+            high.push(format!("{} + m{}_4", max(&format!("s{i}_4"), &format!("o{i}_4")), i + 1));
         }
     }
     // Each field is a V-bit signed expression written into its slice.

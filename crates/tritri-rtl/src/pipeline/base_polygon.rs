@@ -12,7 +12,7 @@ use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 #[derive(LogicBlock, Default)]
-pub struct BasePolygon<const W: usize, const C: usize> {
+pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     pub clock: Signal<In, Clock>,
     pub load: Signal<In, Bit>,
     pub id_in: Signal<In, Bits<ID_BITS>>,
@@ -24,6 +24,8 @@ pub struct BasePolygon<const W: usize, const C: usize> {
     pub dominant_axis_in: Signal<In, Bits<2>>,
     pub segment_low_in: Signal<In, Bits<2>>,
     pub segment_high_in: Signal<In, Bits<2>>,
+    /// The thermometer of the edges' magnitudes (the certificates' `m`).
+    pub edge_thermometer_in: Signal<In, Bits<D>>,
     pub id: Signal<Out, Bits<ID_BITS>>,
     pub vertices: [Signal<Out, Bits<W>>; 9],
     pub normal: [Signal<Out, Bits<C>>; 3],
@@ -33,6 +35,7 @@ pub struct BasePolygon<const W: usize, const C: usize> {
     pub dominant_axis: Signal<Out, Bits<2>>,
     pub segment_low: Signal<Out, Bits<2>>,
     pub segment_high: Signal<Out, Bits<2>>,
+    pub edge_thermometer: Signal<Out, Bits<D>>,
     id_q: DFF<Bits<ID_BITS>>,
     vertices_q: [DFF<Bits<W>>; 9],
     normal_q: [DFF<Bits<C>>; 3],
@@ -42,12 +45,13 @@ pub struct BasePolygon<const W: usize, const C: usize> {
     dominant_axis_q: DFF<Bits<2>>,
     segment_low_q: DFF<Bits<2>>,
     segment_high_q: DFF<Bits<2>>,
+    edge_thermometer_q: DFF<Bits<D>>,
 }
 
-impl<const W: usize, const C: usize> Logic for BasePolygon<W, C> {
+impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, id_q, degenerate_q, dominant_axis_q, segment_low_q, segment_high_q);
+        dff_setup!(self, clock, id_q, degenerate_q, dominant_axis_q, segment_low_q, segment_high_q, edge_thermometer_q);
         for i in 0..9 {
             self.vertices_q[i].clock.next = self.clock.val();
             self.vertices_q[i].d.next = self.vertices_q[i].q.val();
@@ -66,6 +70,7 @@ impl<const W: usize, const C: usize> Logic for BasePolygon<W, C> {
             self.dominant_axis_q.d.next = self.dominant_axis_in.val();
             self.segment_low_q.d.next = self.segment_low_in.val();
             self.segment_high_q.d.next = self.segment_high_in.val();
+            self.edge_thermometer_q.d.next = self.edge_thermometer_in.val();
             for i in 0..9 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
             }
@@ -80,6 +85,7 @@ impl<const W: usize, const C: usize> Logic for BasePolygon<W, C> {
         self.dominant_axis.next = self.dominant_axis_q.q.val();
         self.segment_low.next = self.segment_low_q.q.val();
         self.segment_high.next = self.segment_high_q.q.val();
+        self.edge_thermometer.next = self.edge_thermometer_q.q.val();
         for i in 0..9 {
             self.vertices[i].next = self.vertices_q[i].q.val();
         }

@@ -17,6 +17,11 @@
 //! plane are the plane-side signs of the vertices at `segment_low` and
 //! `segment_high`.
 //!
+//! The certificate (`tritri_geom::certificate::certain`, whatever the
+//! case): a triangle's vertices certainly strictly on one side of the
+//! other's plane, or all six plane signs certain and step (7)'s two
+//! determinants certain or one of them certainly positive.
+//!
 //! Two stages: the three cases' verdicts, registered with the case; then
 //! the case's verdict. In one stage, an orient3d sign reached the verdict
 //! register through five LUT levels, the W = 8 pipeline's critical path on
@@ -47,9 +52,16 @@ pub struct Decision {
     /// Signs of the three shared orient3d units.
     pub orient_negative: [Signal<In, Bit>; 3],
     pub orient_zero: [Signal<In, Bit>; 3],
+    /// Certificates of the plane signs, and of orient3d units 0 and 1
+    /// (step (7); unit 2 serves degenerate pairs only, never certain).
+    pub t1_side_certain: [Signal<In, Bit>; 3],
+    pub t2_side_certain: [Signal<In, Bit>; 3],
+    pub orient_certain: [Signal<In, Bit>; 2],
     pub coplanar_hit: Signal<In, Bit>,
     pub degenerate_pair_hit: Signal<In, Bit>,
     pub hit: Signal<Out, Bit>,
+    /// The verdict is the verdict on the original coordinates.
+    pub certain: Signal<Out, Bit>,
     t1_side_positive: [Signal<Local, Bit>; 3],
     t2_side_positive: [Signal<Local, Bit>; 3],
     orient_positive: [Signal<Local, Bit>; 3],
@@ -61,6 +73,13 @@ pub struct Decision {
     end_b_negative: Signal<Local, Bit>,
     end_b_zero: Signal<Local, Bit>,
     segment_hit: Signal<Local, Bit>,
+    /// Every plane sign of T1 (of T2) is certain.
+    t1_sides_certain: Signal<Local, Bit>,
+    t2_sides_certain: Signal<Local, Bit>,
+    /// Stage 1: the certificate's rules 1 or 2, and rule 3; stage 2: either.
+    rejected_certainly_q: DFF<Bit>,
+    interval_certain_q: DFF<Bit>,
+    certain_q: DFF<Bit>,
     /// Stage 1: each case's verdict, and the case.
     triangles_hit_q: DFF<Bit>,
     segment_hit_q: DFF<Bit>,
@@ -133,13 +152,44 @@ impl Logic for Decision {
                 || self.orient_positive[2].val())
                 && (self.orient_negative[0].val() || self.orient_negative[1].val() || self.orient_negative[2].val()));
         }
-        dff_setup!(self, clock, triangles_hit_q, segment_hit_q, degenerate_hit_q, t1_degenerate_q, t2_degenerate_q, hit_q);
+        // The certificate's rules 1 and 2, and rule 3.
+        self.t1_sides_certain.next =
+            self.t1_side_certain[0].val() && self.t1_side_certain[1].val() && self.t1_side_certain[2].val();
+        self.t2_sides_certain.next =
+            self.t2_side_certain[0].val() && self.t2_side_certain[1].val() && self.t2_side_certain[2].val();
+        dff_setup!(
+            self,
+            clock,
+            triangles_hit_q,
+            segment_hit_q,
+            degenerate_hit_q,
+            t1_degenerate_q,
+            t2_degenerate_q,
+            hit_q,
+            rejected_certainly_q,
+            interval_certain_q,
+            certain_q
+        );
         if self.advance.val() {
             self.triangles_hit_q.d.next = self.triangles_hit.val();
             self.segment_hit_q.d.next = self.segment_hit.val();
             self.degenerate_hit_q.d.next = self.orient_zero[0].val() && self.degenerate_pair_hit.val();
             self.t1_degenerate_q.d.next = self.t1_degenerate.val();
             self.t2_degenerate_q.d.next = self.t2_degenerate.val();
+            self.rejected_certainly_q.d.next = (self.t1_sides_certain.val()
+                && ((self.t1_side_positive[0].val() && self.t1_side_positive[1].val() && self.t1_side_positive[2].val())
+                    || (self.t1_side_negative[0].val() && self.t1_side_negative[1].val() && self.t1_side_negative[2].val())))
+                || (self.t2_sides_certain.val()
+                    && ((self.t2_side_positive[0].val() && self.t2_side_positive[1].val() && self.t2_side_positive[2].val())
+                        || (self.t2_side_negative[0].val()
+                            && self.t2_side_negative[1].val()
+                            && self.t2_side_negative[2].val())));
+            self.interval_certain_q.d.next = self.t1_sides_certain.val()
+                && self.t2_sides_certain.val()
+                && ((self.orient_certain[0].val() && self.orient_certain[1].val())
+                    || (self.orient_certain[0].val() && self.orient_positive[0].val())
+                    || (self.orient_certain[1].val() && self.orient_positive[1].val()));
+            self.certain_q.d.next = self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
             if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
                 self.hit_q.d.next = self.triangles_hit_q.q.val();
             } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {
@@ -149,5 +199,6 @@ impl Logic for Decision {
             }
         }
         self.hit.next = self.hit_q.q.val();
+        self.certain.next = self.certain_q.q.val();
     }
 }

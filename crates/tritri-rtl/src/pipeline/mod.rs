@@ -4,6 +4,7 @@
 pub mod align_t1;
 pub mod align_t2;
 pub mod base_polygon;
+pub mod certified_orient3d;
 pub mod coplanar_test;
 pub mod decision;
 pub mod degenerate_pair;

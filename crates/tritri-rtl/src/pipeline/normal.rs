@@ -6,6 +6,7 @@
 //! base polygon keeps its own (thesis, "setting the base polygon").
 //! Software model: `tritri_geom::fixed_point::cross`.
 
+use crate::arith::certificate::MagnitudeThermometer;
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
@@ -21,9 +22,14 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     pub vertices: [Signal<In, Bits<W>>; 9],
     /// `(q - p) × (r - p)`, `NORMAL_LATENCY` enabled edges later.
     pub normal: [Signal<Out, Bits<C>>; 3],
+    /// The thermometer of the edges' magnitudes (`2^m - 1`, see
+    /// `arith::certificate`), `SUBTRACTOR_LATENCY` enabled edges later.
+    pub edge_thermometer: Signal<Out, Bits<D>>,
     edge_pq: VectorSubtractor<W, D>,
     edge_pr: VectorSubtractor<W, D>,
     edge_cross: CrossProduct<D, C>,
+    magnitude_pq: MagnitudeThermometer<D>,
+    magnitude_pr: MagnitudeThermometer<D>,
 }
 
 impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, C> {
@@ -43,6 +49,9 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
             self.edge_cross.u[k].next = self.edge_pq.difference[k].val();
             self.edge_cross.v[k].next = self.edge_pr.difference[k].val();
             self.normal[k].next = self.edge_cross.product[k].val();
+            self.magnitude_pq.value[k].next = self.edge_pq.difference[k].val();
+            self.magnitude_pr.value[k].next = self.edge_pr.difference[k].val();
         }
+        self.edge_thermometer.next = self.magnitude_pq.thermometer.val() | self.magnitude_pr.thermometer.val();
     }
 }

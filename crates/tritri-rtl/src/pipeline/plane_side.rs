@@ -4,16 +4,18 @@
 //! Thesis, steps (2) and (4) and figure 3.5 (the polygon/plane intersection
 //! test unit: three vector subtractions, three dot products with the normal,
 //! then the signs). The two instances run in parallel (thesis 3.4.1).
-//! Software model: `plane_side` in devillers_guigue.rs.
+//! Software model: `plane_side` in devillers_guigue.rs; the certificates
+//! are `tritri_geom::certificate::orient3d_certified` of each vertex (the
+//! plane's edge thermometer OR-ed with the offset's).
 
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from inputs to signs.
-pub const PLANE_SIDE_LATENCY: usize = SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + SIGN_LATENCY;
+pub const PLANE_SIDE_LATENCY: usize = SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -23,12 +25,16 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     pub plane_point: [Signal<In, Bits<W>>; 3],
     /// The plane's triangle's normal `(q - p) × (r - p)`.
     pub plane_normal: [Signal<In, Bits<C>>; 3],
+    /// The thermometer of the plane's triangle's edges, with its normal.
+    pub plane_thermometer: Signal<In, Bits<D>>,
     /// The three vertices to classify.
     pub vertices: [Signal<In, Bits<W>>; 9],
     /// Vertex `i` is strictly below the plane (`PLANE_SIDE_LATENCY` later).
     pub negative: [Signal<Out, Bit>; 3],
     /// Vertex `i` is on the plane.
     pub zero: [Signal<Out, Bit>; 3],
+    /// Vertex `i`'s sign holds for every move by half a grid step.
+    pub certain: [Signal<Out, Bit>; 3],
     // (rust-hdl's Verilog generator resolves one array index per name, so
     // units with array ports are separate fields rather than arrays.)
     offset_0: VectorSubtractor<W, D>,
@@ -38,7 +44,12 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
-    sign: [SignOf<O>; 3],
+    plane_thermometer_delay: DelayLine<Bits<D>, SUBTRACTOR_LATENCY>,
+    offset_magnitude_0: MagnitudeThermometer<D>,
+    offset_magnitude_1: MagnitudeThermometer<D>,
+    offset_magnitude_2: MagnitudeThermometer<D>,
+    thermometer_delay: [DelayLine<Bits<D>, DOT_PRODUCT_LATENCY>; 3],
+    sign: [CertainSign<O, D>; 3],
 }
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for PlaneSide<W, D, C, O> {
@@ -56,6 +67,14 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for P
         self.distance_1.advance.next = self.advance.val();
         self.distance_2.clock.next = self.clock.val();
         self.distance_2.advance.next = self.advance.val();
+        self.plane_thermometer_delay.clock.next = self.clock.val();
+        self.plane_thermometer_delay.advance.next = self.advance.val();
+        self.plane_thermometer_delay.d.next = self.plane_thermometer.val();
+        for k in 0..3 {
+            self.offset_magnitude_0.value[k].next = self.offset_0.difference[k].val();
+            self.offset_magnitude_1.value[k].next = self.offset_1.difference[k].val();
+            self.offset_magnitude_2.value[k].next = self.offset_2.difference[k].val();
+        }
         for k in 0..3 {
             self.normal_delay[k].clock.next = self.clock.val();
             self.normal_delay[k].advance.next = self.advance.val();
@@ -78,9 +97,16 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for P
         self.sign[0].value.next = self.distance_0.product.val();
         self.sign[1].value.next = self.distance_1.product.val();
         self.sign[2].value.next = self.distance_2.product.val();
+        self.thermometer_delay[0].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_0.thermometer.val();
+        self.thermometer_delay[1].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_1.thermometer.val();
+        self.thermometer_delay[2].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_2.thermometer.val();
         for v in 0..3 {
+            self.thermometer_delay[v].clock.next = self.clock.val();
+            self.thermometer_delay[v].advance.next = self.advance.val();
+            self.sign[v].thermometer.next = self.thermometer_delay[v].q.val();
             self.negative[v].next = self.sign[v].negative.val();
             self.zero[v].next = self.sign[v].zero.val();
+            self.certain[v].next = self.sign[v].certain.val();
         }
     }
 }

@@ -6,7 +6,8 @@
 //! with `in_bset = 1` becomes the base polygon T1 (it is not tested); every
 //! other valid triangle T2 is tested against the current base, and its
 //! verdict leaves `latency()` clocks later with `out_valid = 1`, `out_hit`,
-//! and both ids. `advance` is a global clock enable: when low, the whole
+//! `out_certain` (the verdict is provably the verdict on the coordinates
+//! before quantization, `tritri_geom::certificate`) and both ids. `advance` is a global clock enable: when low, the whole
 //! pipeline, base polygon included, holds (for back-pressure); `reset`
 //! (synchronous, active high) clears the valid bits only.
 //!
@@ -33,6 +34,7 @@ use super::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use super::decision::{Decision, DECISION_LATENCY};
 use super::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
 use super::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
+use super::certified_orient3d::CertifiedOrient3d;
 use super::orient3d::{Orient3d, ORIENT3D_LATENCY};
 use super::orient3d_operands::{Orient3dOperands, ORIENT3D_OPERANDS_LATENCY};
 use super::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
@@ -86,6 +88,9 @@ pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, cons
     pub in_z2: Signal<In, Bits<W>>,
     pub out_valid: Signal<Out, Bit>,
     pub out_hit: Signal<Out, Bit>,
+    /// 1 when no sign the verdict rests on can change if every coordinate
+    /// moves by half a grid step (`tritri_geom::certificate::certain`).
+    pub out_certain: Signal<Out, Bit>,
     pub out_base_id: Signal<Out, Bits<ID_BITS>>,
     pub out_stream_id: Signal<Out, Bits<ID_BITS>>,
     input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
@@ -93,7 +98,7 @@ pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, cons
     record_bset: DelayLine<Bit, RECORD_STAGE>,
     record_id: DelayLine<Bits<ID_BITS>, RECORD_STAGE>,
     front_end: TriangleFrontEnd<W, D, C>,
-    base: BasePolygon<W, C>,
+    base: BasePolygon<W, D, C>,
     pair_valid: ValidLine<PAIR_LATENCY>,
     base_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
     stream_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
@@ -105,8 +110,9 @@ pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, cons
     align_t2: AlignT2,
     interval_overlap: IntervalOverlap,
     operands: Orient3dOperands<W>,
-    orient3d_0: Orient3d<W, D, C, O>,
-    orient3d_1: Orient3d<W, D, C, O>,
+    /// Step (7)'s determinants, with certificates.
+    orient3d_0: CertifiedOrient3d<W, D, C, O>,
+    orient3d_1: CertifiedOrient3d<W, D, C, O>,
     orient3d_2: Orient3d<W, D, C, O>,
     coplanar: CoplanarTest<W, D, C>,
     degenerate_pair: DegeneratePair<W, D, C>,
@@ -120,8 +126,9 @@ pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, cons
     segment_ends_to_operands: [DelayLine<Bits<2>, OPERANDS_STAGE>; 4],
     degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE }>; 2],
     segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE }>; 4],
-    /// t1 negative, t1 zero, t2 negative, t2 zero at `3 j + vertex`.
-    sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 12],
+    /// t1 negative, t1 zero, t2 negative, t2 zero, t1 certain, t2 certain
+    /// at `3 j + vertex`.
+    sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 18],
     coplanar_to_decision: DelayLine<Bit, { DECISION_STAGE - COPLANAR_TEST_LATENCY }>,
     degenerate_pair_to_decision: DelayLine<Bit, { DECISION_STAGE - DEGENERATE_PAIR_LATENCY }>,
 }
@@ -207,7 +214,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
             self.segment_ends_to_decision[i].clock.next = self.clock.val();
             self.segment_ends_to_decision[i].advance.next = self.advance.val();
         }
-        for i in 0..12 {
+        for i in 0..18 {
             self.sides_to_decision[i].clock.next = self.clock.val();
             self.sides_to_decision[i].advance.next = self.advance.val();
         }
@@ -236,6 +243,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
         self.base.dominant_axis_in.next = self.front_end.dominant_axis.val();
         self.base.segment_low_in.next = self.front_end.segment_low.val();
         self.base.segment_high_in.next = self.front_end.segment_high.val();
+        self.base.edge_thermometer_in.next = self.front_end.edge_thermometer.val();
         for i in 0..9 {
             self.base.vertices_in[i].next = self.front_end.vertices[i].val();
         }
@@ -255,6 +263,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
             self.plane_side_t1.vertices[i].next = self.base.vertices[i].val();
             self.plane_side_t2.vertices[i].next = self.front_end.vertices[i].val();
         }
+        self.plane_side_t1.plane_thermometer.next = self.front_end.edge_thermometer.val();
+        self.plane_side_t2.plane_thermometer.next = self.base.edge_thermometer.val();
         for k in 0..3 {
             self.plane_side_t1.plane_point[k].next = self.front_end.vertices[k].val();
             self.plane_side_t1.plane_normal[k].next = self.front_end.normal[k].val();
@@ -352,10 +362,14 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
             self.sides_to_decision[3 + v].d.next = self.plane_side_t1.zero[v].val();
             self.sides_to_decision[6 + v].d.next = self.plane_side_t2.negative[v].val();
             self.sides_to_decision[9 + v].d.next = self.plane_side_t2.zero[v].val();
+            self.sides_to_decision[12 + v].d.next = self.plane_side_t1.certain[v].val();
+            self.sides_to_decision[15 + v].d.next = self.plane_side_t2.certain[v].val();
             self.decision.t1_side_negative[v].next = self.sides_to_decision[v].q.val();
             self.decision.t1_side_zero[v].next = self.sides_to_decision[3 + v].q.val();
             self.decision.t2_side_negative[v].next = self.sides_to_decision[6 + v].q.val();
             self.decision.t2_side_zero[v].next = self.sides_to_decision[9 + v].q.val();
+            self.decision.t1_side_certain[v].next = self.sides_to_decision[12 + v].q.val();
+            self.decision.t2_side_certain[v].next = self.sides_to_decision[15 + v].q.val();
         }
         self.coplanar_to_decision.d.next = self.coplanar.hit.val();
         self.degenerate_pair_to_decision.d.next = self.degenerate_pair.hit.val();
@@ -371,12 +385,15 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
         self.decision.orient_zero[1].next = self.orient3d_1.zero.val();
         self.decision.orient_negative[2].next = self.orient3d_2.negative.val();
         self.decision.orient_zero[2].next = self.orient3d_2.zero.val();
+        self.decision.orient_certain[0].next = self.orient3d_0.certain.val();
+        self.decision.orient_certain[1].next = self.orient3d_1.certain.val();
         self.decision.coplanar_hit.next = self.coplanar_to_decision.q.val();
         self.decision.degenerate_pair_hit.next = self.degenerate_pair_to_decision.q.val();
 
         // Outputs.
         self.out_valid.next = self.pair_valid.q.val();
         self.out_hit.next = self.decision.hit.val();
+        self.out_certain.next = self.decision.certain.val();
         self.out_base_id.next = self.base_id.q.val();
         self.out_stream_id.next = self.stream_id.q.val();
     }

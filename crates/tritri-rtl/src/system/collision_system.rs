@@ -13,7 +13,8 @@
 //! | `in_id` | in | the triangle's original id (32 bits) |
 //! | `in_x0 … in_z2` | in | its vertices, signed `W`-bit |
 //! | `out_valid`, `out_ready` | out, in | result stream handshake |
-//! | `out_id_a`, `out_id_b` | out | one intersecting pair per transfer |
+//! | `out_id_a`, `out_id_b` | out | one reported pair per transfer: a hit, or a verdict without a certificate |
+//! | `out_hit`, `out_certain` | out | its verdict on the grid, and whether that is provably the verdict before quantization |
 //! | `done` | out | every committed batch is tested and its hits are in the FIFO |
 //! | `results_empty` | out | the result FIFO holds nothing |
 //! | `overflow` | out | sticky: an array of a batch exceeded the memory depth |
@@ -23,6 +24,11 @@
 //! followed by one end-of-batch word; it may write the next batch at once
 //! (into the other bank, `in_ready` tells when that bank is free) and reads
 //! the pairs as they come. `busy` is `!done`.
+//!
+//! Every pair whose verdict has no certificate (`out_certain = 0`, see
+//! docs/certificates.md) is reported too, intersecting or not, so that the
+//! host can decide it again on its own coordinates; with `out_certain = 1`
+//! only hits are reported.
 //!
 //! The top is generated for a pipeline type by [`collision_system!`]
 //! (rust-hdl cannot reach fields of a generic type): [`CollisionSystem`]
@@ -35,7 +41,8 @@ use rust_hdl::prelude::*;
 
 /// Defines a system top `$name` whose pipelines are `$pipeline`, a type with
 /// the triangle pipeline's ports (`clock reset advance in_valid in_bset
-/// in_id in_x0 … in_z2 out_valid out_hit out_base_id out_stream_id`) and
+/// in_id in_x0 … in_z2 out_valid out_hit out_certain out_base_id
+/// out_stream_id`) and
 /// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
 ///
 /// ```text
@@ -69,6 +76,8 @@ macro_rules! collision_system {
             pub out_ready: Signal<In, Bit>,
             pub out_id_a: Signal<Out, Bits<{ $crate::system::ID_BITS }>>,
             pub out_id_b: Signal<Out, Bits<{ $crate::system::ID_BITS }>>,
+            pub out_hit: Signal<Out, Bit>,
+            pub out_certain: Signal<Out, Bit>,
             pub done: Signal<Out, Bit>,
             pub results_empty: Signal<Out, Bit>,
             pub overflow: Signal<Out, Bit>,
@@ -87,13 +96,18 @@ macro_rules! collision_system {
             advance: Signal<Local, Bit>,
             bus_id: Signal<Local, Bits<{ $crate::system::ID_BITS }>>,
             bus_coordinates: [Signal<Local, Bits<$w>>; 9],
+            /// Per lane: a verdict to report (a hit or uncertain), a hit, certain.
+            report_mask_chain: Vec<Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>>,
             hit_mask_chain: Vec<Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>>,
+            certain_mask_chain: Vec<Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>>,
             tested_chain: Vec<Signal<Local, Bits<{ $crate::system::LANE_BITS }>>>,
             hit_count_chain: Vec<Signal<Local, Bits<{ $crate::system::LANE_BITS }>>>,
+            report_mask: Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>,
             hit_mask: Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>,
+            certain_mask: Signal<Local, Bits<{ $crate::system::MAX_PIPELINES }>>,
             tested_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
             hit_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
-            any_hit: Signal<Local, Bit>,
+            any_report: Signal<Local, Bit>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
             /// whose name tells Verilator's lint (`--unused-regexp`, default
@@ -129,6 +143,8 @@ macro_rules! collision_system {
                     out_ready: Default::default(),
                     out_id_a: Default::default(),
                     out_id_b: Default::default(),
+                    out_hit: Default::default(),
+                    out_certain: Default::default(),
                     done: Default::default(),
                     results_empty: Default::default(),
                     overflow: Default::default(),
@@ -151,13 +167,17 @@ macro_rules! collision_system {
                     advance: Default::default(),
                     bus_id: Default::default(),
                     bus_coordinates: Default::default(),
+                    report_mask_chain: (0..=p).map(|_| Default::default()).collect(),
                     hit_mask_chain: (0..=p).map(|_| Default::default()).collect(),
+                    certain_mask_chain: (0..=p).map(|_| Default::default()).collect(),
                     tested_chain: (0..=p).map(|_| Default::default()).collect(),
                     hit_count_chain: (0..=p).map(|_| Default::default()).collect(),
+                    report_mask: Default::default(),
                     hit_mask: Default::default(),
+                    certain_mask: Default::default(),
                     tested_count: Default::default(),
                     hit_count: Default::default(),
-                    any_hit: Default::default(),
+                    any_report: Default::default(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -197,6 +217,8 @@ macro_rules! collision_system {
                     out_valid: self.out_valid.val(),
                     out_id_a: self.out_id_a.val().to_u64() as u32,
                     out_id_b: self.out_id_b.val().to_u64() as u32,
+                    out_hit: self.out_hit.val(),
+                    out_certain: self.out_certain.val(),
                     done: self.done.val(),
                     results_empty: self.results_empty.val(),
                     overflow: self.overflow.val(),
@@ -218,19 +240,30 @@ macro_rules! collision_system {
             fn update(&mut self) {
                 dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q);
 
-                // The pipelines' outputs (registers) first: the hit mask and the
+                // The pipelines' outputs (registers) first: the masks and the
                 // counts of this cycle's verdicts, then `advance`, which every
                 // register of the read side uses.
+                self.report_mask_chain[0].next = 0.into();
                 self.hit_mask_chain[0].next = 0.into();
+                self.certain_mask_chain[0].next = 0.into();
                 self.tested_chain[0].next = 0.into();
                 self.hit_count_chain[0].next = 0.into();
+                self.report_mask.next = 0.into();
                 self.hit_mask.next = 0.into();
+                self.certain_mask.next = 0.into();
                 self.tested_count.next = 0.into();
                 self.hit_count.next = 0.into();
                 for i in 0..self.pipelines.len() {
+                    self.report_mask_chain[i + 1].next = self.report_mask_chain[i].val().replace_bit(
+                        i,
+                        self.pipelines[i].out_valid.val()
+                            & (self.pipelines[i].out_hit.val() | !self.pipelines[i].out_certain.val()),
+                    );
                     self.hit_mask_chain[i + 1].next = self.hit_mask_chain[i]
                         .val()
                         .replace_bit(i, self.pipelines[i].out_valid.val() & self.pipelines[i].out_hit.val());
+                    self.certain_mask_chain[i + 1].next =
+                        self.certain_mask_chain[i].val().replace_bit(i, self.pipelines[i].out_certain.val());
                     self.tested_chain[i + 1].next = self.tested_chain[i].val();
                     if self.pipelines[i].out_valid.val() {
                         self.tested_chain[i + 1].next = self.tested_chain[i].val() + 1;
@@ -239,19 +272,21 @@ macro_rules! collision_system {
                     if self.pipelines[i].out_valid.val() & self.pipelines[i].out_hit.val() {
                         self.hit_count_chain[i + 1].next = self.hit_count_chain[i].val() + 1;
                     }
+                    self.report_mask.next = self.report_mask_chain[i + 1].val();
                     self.hit_mask.next = self.hit_mask_chain[i + 1].val();
+                    self.certain_mask.next = self.certain_mask_chain[i + 1].val();
                     self.tested_count.next = self.tested_chain[i + 1].val();
                     self.hit_count.next = self.hit_count_chain[i + 1].val();
                 }
                 // Back-pressure: hold everything on the read side while the
-                // pipelines' current output has a hit the FIFO cannot take.
-                self.any_hit.next = self.hit_mask.val().any();
+                // pipelines' current output has a pair the FIFO cannot take.
+                self.any_report.next = self.report_mask.val().any();
                 self.unused_stream_ids[0].next = false;
                 for i in 0..self.pipelines.len() {
                     self.unused_stream_ids[i + 1].next =
                         self.unused_stream_ids[i].val() ^ self.pipelines[i].out_stream_id.val().any();
                 }
-                self.advance.next = !(self.result_fifo.full.val() & self.any_hit.val());
+                self.advance.next = !(self.result_fifo.full.val() & self.any_report.val());
 
                 // Host stream → write side of the address generator and memories.
                 self.address_generator.clock.next = self.clock.val();
@@ -327,19 +362,25 @@ macro_rules! collision_system {
 
                 self.result_fifo.clock.next = self.clock.val();
                 self.result_fifo.reset.next = self.reset.val();
-                self.result_fifo.write.next = self.advance.val() & self.any_hit.val();
-                self.result_fifo.write_mask.next = self.hit_mask.val();
+                self.result_fifo.write.next = self.advance.val() & self.any_report.val();
+                self.result_fifo.write_mask.next = self.report_mask.val();
+                self.result_fifo.write_hit_mask.next = self.hit_mask.val();
+                self.result_fifo.write_certain_mask.next = self.certain_mask.val();
                 self.result_fifo.write_stream_id.next = self.pipelines[0].out_stream_id.val();
                 self.result_fifo.pop.next = self.pair_serializer.pop.val();
                 self.pair_serializer.clock.next = self.clock.val();
                 self.pair_serializer.reset.next = self.reset.val();
                 self.pair_serializer.head_valid.next = self.result_fifo.head_valid.val();
                 self.pair_serializer.head_mask.next = self.result_fifo.head_mask.val();
+                self.pair_serializer.head_hit_mask.next = self.result_fifo.head_hit_mask.val();
+                self.pair_serializer.head_certain_mask.next = self.result_fifo.head_certain_mask.val();
                 self.pair_serializer.head_stream_id.next = self.result_fifo.head_stream_id.val();
                 self.pair_serializer.out_ready.next = self.out_ready.val();
                 self.out_valid.next = self.pair_serializer.out_valid.val();
                 self.out_id_a.next = self.pair_serializer.out_id_a.val();
                 self.out_id_b.next = self.pair_serializer.out_id_b.val();
+                self.out_hit.next = self.pair_serializer.out_hit.val();
+                self.out_certain.next = self.pair_serializer.out_certain.val();
 
                 // Status and counters.
                 self.done.next = self.address_generator.done.val();

@@ -27,6 +27,9 @@ pub struct HostOutputs {
     pub out_valid: bool,
     pub out_id_a: u32,
     pub out_id_b: u32,
+    /// The reported pair's verdict on the grid, and its certificate.
+    pub out_hit: bool,
+    pub out_certain: bool,
     pub done: bool,
     pub results_empty: bool,
     pub overflow: bool,

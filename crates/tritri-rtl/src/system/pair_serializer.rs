@@ -1,6 +1,7 @@
-//! The pair serializer: turns the result FIFO's head word (a `P`-bit hit
-//! mask, `P` base ids, one streamed id) into one `(id_a, id_b)` transfer per
-//! cycle on a valid/ready stream.
+//! The pair serializer: turns the result FIFO's head word (a `P`-bit mask
+//! of the pairs it holds, their hit and certificate bits, `P` base ids, one
+//! streamed id) into one `(id_a, id_b, hit, certain)` transfer per cycle on
+//! a valid/ready stream.
 //!
 //! The pairs of a word leave highest pipeline first; `served` remembers the
 //! ones already sent, and the word is popped with its last pair. With a
@@ -16,6 +17,8 @@ pub struct PairSerializer {
     pub reset: Signal<In, Bit>,
     pub head_valid: Signal<In, Bit>,
     pub head_mask: Signal<In, Bits<MAX_PIPELINES>>,
+    pub head_hit_mask: Signal<In, Bits<MAX_PIPELINES>>,
+    pub head_certain_mask: Signal<In, Bits<MAX_PIPELINES>>,
     pub head_stream_id: Signal<In, Bits<ID_BITS>>,
     pub head_base_ids: Vec<Signal<In, Bits<ID_BITS>>>,
     pub pop: Signal<Out, Bit>,
@@ -23,6 +26,8 @@ pub struct PairSerializer {
     pub out_ready: Signal<In, Bit>,
     pub out_id_a: Signal<Out, Bits<ID_BITS>>,
     pub out_id_b: Signal<Out, Bits<ID_BITS>>,
+    pub out_hit: Signal<Out, Bit>,
+    pub out_certain: Signal<Out, Bit>,
     served: DFF<Bits<MAX_PIPELINES>>,
     pending: Signal<Local, Bits<MAX_PIPELINES>>,
     remaining: Signal<Local, Bits<MAX_PIPELINES>>,
@@ -38,6 +43,8 @@ impl PairSerializer {
             reset: Default::default(),
             head_valid: Default::default(),
             head_mask: Default::default(),
+            head_hit_mask: Default::default(),
+            head_certain_mask: Default::default(),
             head_stream_id: Default::default(),
             head_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
             pop: Default::default(),
@@ -45,6 +52,8 @@ impl PairSerializer {
             out_ready: Default::default(),
             out_id_a: Default::default(),
             out_id_b: Default::default(),
+            out_hit: Default::default(),
+            out_certain: Default::default(),
             served: Default::default(),
             pending: Default::default(),
             remaining: Default::default(),
@@ -74,6 +83,9 @@ impl Logic for PairSerializer {
                 self.out_id_a.next = self.head_base_ids[i].val();
             }
         }
+        // The selected pipeline's bit is the one `remaining` cleared.
+        self.out_hit.next = (self.head_hit_mask.val() & self.pending.val() & !self.remaining.val()).any();
+        self.out_certain.next = (self.head_certain_mask.val() & self.pending.val() & !self.remaining.val()).any();
         self.out_id_b.next = self.head_stream_id.val();
         self.out_valid.next = self.head_valid.val();
         self.transfer.next = self.head_valid.val() & self.out_ready.val();

@@ -1,8 +1,11 @@
 //! The result FIFO: one word per cycle in which at least one of the `P`
-//! pipelines reported a hit. A word is the `P`-bit hit mask, the streamed
-//! triangle's id (the same for every pipeline, since B is broadcast) and
-//! the `P` base ids, so `P` hits in one cycle cost one write and nothing
-//! has to be dropped or serialized on the pipelines' side.
+//! pipelines reported a pair (a hit, or a verdict without a certificate,
+//! which the host decides again). A word is the `P`-bit mask of those
+//! pairs, their `out_hit` and `out_certain` bits as two more masks, the
+//! streamed triangle's id (the same for every pipeline, since B is
+//! broadcast) and the `P` base ids, so `P` pairs in one cycle cost one
+//! write and nothing has to be dropped or serialized on the pipelines'
+//! side.
 //!
 //! Columns are [`SimpleDualPortRam`]s sharing the pointers, in block RAM
 //! (see below). The head is shown first-word-fall-through: `head_valid` with the head word on
@@ -31,6 +34,9 @@ pub struct ResultFifo {
     pub reset: Signal<In, Bit>,
     pub write: Signal<In, Bit>,
     pub write_mask: Signal<In, Bits<MAX_PIPELINES>>,
+    /// Of the word's pairs, those with `out_hit` and with `out_certain`.
+    pub write_hit_mask: Signal<In, Bits<MAX_PIPELINES>>,
+    pub write_certain_mask: Signal<In, Bits<MAX_PIPELINES>>,
     pub write_stream_id: Signal<In, Bits<ID_BITS>>,
     pub write_base_ids: Vec<Signal<In, Bits<ID_BITS>>>,
     pub full: Signal<Out, Bit>,
@@ -39,11 +45,15 @@ pub struct ResultFifo {
     pub pop: Signal<In, Bit>,
     pub head_valid: Signal<Out, Bit>,
     pub head_mask: Signal<Out, Bits<MAX_PIPELINES>>,
+    pub head_hit_mask: Signal<Out, Bits<MAX_PIPELINES>>,
+    pub head_certain_mask: Signal<Out, Bits<MAX_PIPELINES>>,
     pub head_stream_id: Signal<Out, Bits<ID_BITS>>,
     pub head_base_ids: Vec<Signal<Out, Bits<ID_BITS>>>,
     depth: Constant<Bits<FIFO_POINTER_BITS>>,
     last_address: Constant<Bits<FIFO_POINTER_BITS>>,
     mask_column: SimpleDualPortRam<Bits<MAX_PIPELINES>, FIFO_POINTER_BITS>,
+    hit_column: SimpleDualPortRam<Bits<MAX_PIPELINES>, FIFO_POINTER_BITS>,
+    certain_column: SimpleDualPortRam<Bits<MAX_PIPELINES>, FIFO_POINTER_BITS>,
     stream_id_column: SimpleDualPortRam<Bits<ID_BITS>, FIFO_POINTER_BITS>,
     base_id_columns: Vec<SimpleDualPortRam<Bits<ID_BITS>, FIFO_POINTER_BITS>>,
     write_pointer: DFF<Bits<FIFO_POINTER_BITS>>,
@@ -70,6 +80,8 @@ impl ResultFifo {
             reset: Default::default(),
             write: Default::default(),
             write_mask: Default::default(),
+            write_hit_mask: Default::default(),
+            write_certain_mask: Default::default(),
             write_stream_id: Default::default(),
             write_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
             full: Default::default(),
@@ -77,11 +89,15 @@ impl ResultFifo {
             pop: Default::default(),
             head_valid: Default::default(),
             head_mask: Default::default(),
+            head_hit_mask: Default::default(),
+            head_certain_mask: Default::default(),
             head_stream_id: Default::default(),
             head_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
             depth: Constant::new((depth as u64).to_bits()),
             last_address: Constant::new(((depth - 1) as u64).to_bits()),
             mask_column: SimpleDualPortRam::new_block_ram(depth),
+            hit_column: SimpleDualPortRam::new_block_ram(depth),
+            certain_column: SimpleDualPortRam::new_block_ram(depth),
             stream_id_column: SimpleDualPortRam::new_block_ram(depth),
             base_id_columns: (0..pipelines).map(|_| SimpleDualPortRam::new_block_ram(depth)).collect(),
             write_pointer: Default::default(),
@@ -157,6 +173,20 @@ impl Logic for ResultFifo {
         self.mask_column.read_enable.next = true;
         self.mask_column.read_address.next = self.next_read_pointer.val();
         self.head_mask.next = self.mask_column.read_data.val();
+        self.hit_column.clock.next = self.clock.val();
+        self.hit_column.write_enable.next = self.do_write.val();
+        self.hit_column.write_address.next = self.write_pointer.q.val();
+        self.hit_column.write_data.next = self.write_hit_mask.val();
+        self.hit_column.read_enable.next = true;
+        self.hit_column.read_address.next = self.next_read_pointer.val();
+        self.head_hit_mask.next = self.hit_column.read_data.val();
+        self.certain_column.clock.next = self.clock.val();
+        self.certain_column.write_enable.next = self.do_write.val();
+        self.certain_column.write_address.next = self.write_pointer.q.val();
+        self.certain_column.write_data.next = self.write_certain_mask.val();
+        self.certain_column.read_enable.next = true;
+        self.certain_column.read_address.next = self.next_read_pointer.val();
+        self.head_certain_mask.next = self.certain_column.read_data.val();
         self.stream_id_column.clock.next = self.clock.val();
         self.stream_id_column.write_enable.next = self.do_write.val();
         self.stream_id_column.write_address.next = self.write_pointer.q.val();

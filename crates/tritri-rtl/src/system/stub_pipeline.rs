@@ -7,10 +7,12 @@
 //! valid bits), `advance` (clock enable: when low everything holds),
 //! `in_valid`, `in_bset` (with `in_valid`: load the base polygon), `in_id`,
 //! `in_x0 … in_z2`; `out_valid` (one per tested pair, `L` cycles after its
-//! input), `out_hit`, `out_base_id`, `out_stream_id`.
+//! input), `out_hit`, `out_certain`, `out_base_id`, `out_stream_id`.
 //!
-//! Verdict: [`stub_hit`], which reads both ids and one coordinate of each
-//! triangle, so the id and coordinate paths from the memories are checked.
+//! Verdict: [`stub_hit`] and [`stub_certain`], which read both ids and one
+//! coordinate of each triangle, so the id and coordinate paths from the
+//! memories are checked, and some pairs are uncertain (reported to the host
+//! whatever their verdict).
 
 use super::ID_BITS;
 use rust_hdl::prelude::*;
@@ -18,13 +20,24 @@ use rust_hdl::prelude::*;
 /// The stub's verdict for base `(id, x0)` against streamed `(id, z2)`: the
 /// low two bits of `base_id ^ stream_id ^ base_x0 ^ stream_z2` are zero.
 pub fn stub_hit(base_id: u32, base_x0: i64, stream_id: u32, stream_z2: i64) -> bool {
-    (base_id as u64 ^ stream_id as u64 ^ base_x0 as u64 ^ stream_z2 as u64) & 3 == 0
+    stub_bits(base_id, base_x0, stream_id, stream_z2) & 3 == 0
+}
+
+/// The stub's certificate: bits 2 and 3 of the same value are not both one
+/// (a quarter of the pairs are uncertain).
+pub fn stub_certain(base_id: u32, base_x0: i64, stream_id: u32, stream_z2: i64) -> bool {
+    stub_bits(base_id, base_x0, stream_id, stream_z2) & 12 != 12
+}
+
+fn stub_bits(base_id: u32, base_x0: i64, stream_id: u32, stream_z2: i64) -> u64 {
+    base_id as u64 ^ stream_id as u64 ^ base_x0 as u64 ^ stream_z2 as u64
 }
 
 #[derive(Clone, Copy, Default, Debug)]
 struct Stage {
     valid: bool,
     hit: bool,
+    certain: bool,
     base_id: u64,
     stream_id: u64,
 }
@@ -48,6 +61,7 @@ pub struct StubPipeline<const W: usize> {
     pub in_z2: Signal<In, Bits<W>>,
     pub out_valid: Signal<Out, Bit>,
     pub out_hit: Signal<Out, Bit>,
+    pub out_certain: Signal<Out, Bit>,
     pub out_base_id: Signal<Out, Bits<ID_BITS>>,
     pub out_stream_id: Signal<Out, Bits<ID_BITS>>,
     _base_id: u64,
@@ -76,6 +90,7 @@ impl<const W: usize> StubPipeline<W> {
             in_z2: Default::default(),
             out_valid: Default::default(),
             out_hit: Default::default(),
+            out_certain: Default::default(),
             out_base_id: Default::default(),
             out_stream_id: Default::default(),
             _base_id: 0,
@@ -95,10 +110,11 @@ impl<const W: usize> Logic for StubPipeline<W> {
             if self.advance.val() {
                 let in_id = self.in_id.val().to_u64();
                 let in_z2 = self.in_z2.val().to_u64();
-                let hit = (self._base_id ^ in_id ^ self._base_x0 ^ in_z2) & 3 == 0;
+                let bits = self._base_id ^ in_id ^ self._base_x0 ^ in_z2;
                 let entering = Stage {
                     valid: self.in_valid.val() && !self.in_bset.val(),
-                    hit,
+                    hit: bits & 3 == 0,
+                    certain: bits & 12 != 12,
                     base_id: self._base_id,
                     stream_id: in_id,
                 };
@@ -115,6 +131,7 @@ impl<const W: usize> Logic for StubPipeline<W> {
             let last = *self._stages.last().unwrap();
             self.out_valid.next = last.valid;
             self.out_hit.next = last.hit;
+            self.out_certain.next = last.certain;
             self.out_base_id.next = last.base_id.to_bits();
             self.out_stream_id.next = last.stream_id.to_bits();
         }
@@ -123,6 +140,7 @@ impl<const W: usize> Logic for StubPipeline<W> {
     fn connect(&mut self) {
         self.out_valid.connect();
         self.out_hit.connect();
+        self.out_certain.connect();
         self.out_base_id.connect();
         self.out_stream_id.connect();
     }
@@ -132,14 +150,16 @@ impl<const W: usize> Logic for StubPipeline<W> {
         Verilog::Custom(format!(
             "\
 // Stub pipeline: latency {l}, verdict = low two bits of
-// base_id ^ stream_id ^ base_x0 ^ stream_z2 are zero.
+// base_id ^ stream_id ^ base_x0 ^ stream_z2 are zero, certain = bits 2
+// and 3 of it are not both one.
 reg [{id}:0] base_id_q;
 reg [{w}:0] base_x0_q;
 reg valid_q [0:{last}];
 reg hit_q [0:{last}];
+reg certain_q [0:{last}];
 reg [{id}:0] base_id_stage_q [0:{last}];
 reg [{id}:0] stream_id_stage_q [0:{last}];
-wire [1:0] verdict_bits = base_id_q[1:0] ^ in_id[1:0] ^ base_x0_q[1:0] ^ in_z2[1:0];
+wire [3:0] verdict_bits = base_id_q[3:0] ^ in_id[3:0] ^ base_x0_q[3:0] ^ in_z2[3:0];
 integer stage;
 
 always @(posedge clock) begin
@@ -149,12 +169,14 @@ always @(posedge clock) begin
             base_x0_q <= in_x0;
         end
         valid_q[0] <= in_valid && !in_bset;
-        hit_q[0] <= verdict_bits == 2'b00;
+        hit_q[0] <= verdict_bits[1:0] == 2'b00;
+        certain_q[0] <= verdict_bits[3:2] != 2'b11;
         base_id_stage_q[0] <= base_id_q;
         stream_id_stage_q[0] <= in_id;
         for (stage = 1; stage < {l}; stage = stage + 1) begin
             valid_q[stage] <= valid_q[stage - 1];
             hit_q[stage] <= hit_q[stage - 1];
+            certain_q[stage] <= certain_q[stage - 1];
             base_id_stage_q[stage] <= base_id_stage_q[stage - 1];
             stream_id_stage_q[stage] <= stream_id_stage_q[stage - 1];
         end
@@ -169,6 +191,7 @@ end
 always @(*) begin
     out_valid = valid_q[{last}];
     out_hit = hit_q[{last}];
+    out_certain = certain_q[{last}];
     out_base_id = base_id_stage_q[{last}];
     out_stream_id = stream_id_stage_q[{last}];
 end

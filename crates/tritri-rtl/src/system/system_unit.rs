@@ -63,7 +63,7 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
         config.pipelines,
         if config.pipelines == 1 { "" } else { "s" }
     ));
-    let ports: [(&str, String); 26] = [
+    let ports: [(&str, String); 28] = [
         ("clock", "clock".into()),
         ("reset", "synchronous active-high reset".into()),
         ("in_valid", "host triangle stream: a word is offered".into()),
@@ -80,10 +80,12 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
         ("in_x2", format!("vertex 2 x, signed {w}-bit")),
         ("in_y2", format!("vertex 2 y, signed {w}-bit")),
         ("in_z2", format!("vertex 2 z, signed {w}-bit")),
-        ("out_valid", "result stream: a pair is offered".into()),
+        ("out_valid", "result stream: a pair is offered (every hit, and every pair whose verdict has no certificate)".into()),
         ("out_ready", "result stream: the reader takes it".into()),
         ("out_id_a", "id of the pair's A triangle".into()),
         ("out_id_b", "id of the pair's B triangle".into()),
+        ("out_hit", "the pair intersects on the grid (touching counts)".into()),
+        ("out_certain", "the verdict is provably the verdict before quantization; with 0 the host decides the pair again on its own coordinates (docs/certificates.md)".into()),
         ("done", "every committed batch is tested and its hits are in the result FIFO (busy = !done)".into()),
         ("results_empty", "the result FIFO is empty".into()),
         ("overflow", "sticky: an array of a batch exceeded DEPTH (the excess was not stored)".into()),

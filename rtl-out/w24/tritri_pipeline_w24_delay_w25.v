@@ -1,12 +1,8 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_orient3d_edge_ad_delay.v
+// Filename:   tritri_pipeline_w24_delay_w25.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (9), for example:
+// Purpose:    Part of tritri_pipeline_w24. Instances (15), for example:
 //             orient3d_0.edge_ad_delay_0, orient3d_0.edge_ad_delay_1,
 //             orient3d_0.edge_ad_delay_2, orient3d_1.edge_ad_delay_0.
 //
@@ -23,7 +19,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_orient3d_edge_ad_delay (
+module tritri_pipeline_w24_delay_w25 (
     input  wire        clock,
     input  wire        advance,
     input  wire [24:0] d,
@@ -52,6 +48,6 @@ module tritri_pipeline_w24_orient3d_edge_ad_delay (
             q <= stage_3_q;
         end
     end
-endmodule  // tritri_pipeline_w24_orient3d_edge_ad_delay
+endmodule  // tritri_pipeline_w24_delay_w25
 
 `default_nettype wire

@@ -1,0 +1,108 @@
+//! [`super::orient3d::Orient3d`] with a certificate: the sign of
+//! `[a,b,c,d] = (d-a)·((b-a)×(c-a))` and whether it holds when every
+//! coordinate moves by half a grid step. Step (7)'s two determinants use it
+//! (units 0 and 1); unit 2 serves only degenerate pairs, which are never
+//! certain, and stays a plain [`super::orient3d::Orient3d`].
+//!
+//! Software model: `tritri_geom::certificate::orient3d_certified`.
+//!
+//! Stages: differences (1), cross product while `d-a` waits in a delay
+//! line, dot product, sign and certificate (1). The certificate
+//! (`tritri_geom::certificate::orient3d_certified`) is the thermometer of
+//! the nine differences, carried beside the products to the sign stage.
+
+use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
+use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY};
+use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from the four points to the sign and certificate: those of
+/// the plain unit, so that all three units line up.
+pub const CERTIFIED_ORIENT3D_LATENCY: usize =
+    SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
+const _: () = assert!(CERTIFIED_ORIENT3D_LATENCY == super::orient3d::ORIENT3D_LATENCY);
+
+#[derive(LogicBlock, Default)]
+pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub a: [Signal<In, Bits<W>>; 3],
+    pub b: [Signal<In, Bits<W>>; 3],
+    pub c: [Signal<In, Bits<W>>; 3],
+    pub d: [Signal<In, Bits<W>>; 3],
+    /// `[a,b,c,d] < 0`, `CERTIFIED_ORIENT3D_LATENCY` enabled edges later.
+    pub negative: Signal<Out, Bit>,
+    /// `[a,b,c,d] == 0`.
+    pub zero: Signal<Out, Bit>,
+    /// The sign holds for every move of the points by half a grid step.
+    pub certain: Signal<Out, Bit>,
+    edge_ab: VectorSubtractor<W, D>,
+    edge_ac: VectorSubtractor<W, D>,
+    edge_ad: VectorSubtractor<W, D>,
+    normal: CrossProduct<D, C>,
+    edge_ad_delay_0: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    edge_ad_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    edge_ad_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    determinant: DotProduct<D, C, O>,
+    magnitude_ab: MagnitudeThermometer<D>,
+    magnitude_ac: MagnitudeThermometer<D>,
+    magnitude_ad: MagnitudeThermometer<D>,
+    thermometer_delay: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY }>,
+    sign: CertainSign<O, D>,
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for CertifiedOrient3d<W, D, C, O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.edge_ab.clock.next = self.clock.val();
+        self.edge_ab.advance.next = self.advance.val();
+        self.edge_ac.clock.next = self.clock.val();
+        self.edge_ac.advance.next = self.advance.val();
+        self.edge_ad.clock.next = self.clock.val();
+        self.edge_ad.advance.next = self.advance.val();
+        self.normal.clock.next = self.clock.val();
+        self.normal.advance.next = self.advance.val();
+        self.edge_ad_delay_0.clock.next = self.clock.val();
+        self.edge_ad_delay_0.advance.next = self.advance.val();
+        self.edge_ad_delay_1.clock.next = self.clock.val();
+        self.edge_ad_delay_1.advance.next = self.advance.val();
+        self.edge_ad_delay_2.clock.next = self.clock.val();
+        self.edge_ad_delay_2.advance.next = self.advance.val();
+        self.determinant.clock.next = self.clock.val();
+        self.determinant.advance.next = self.advance.val();
+        self.sign.clock.next = self.clock.val();
+        self.sign.advance.next = self.advance.val();
+        self.thermometer_delay.clock.next = self.clock.val();
+        self.thermometer_delay.advance.next = self.advance.val();
+        for i in 0..3 {
+            self.edge_ab.a[i].next = self.b[i].val();
+            self.edge_ab.b[i].next = self.a[i].val();
+            self.edge_ac.a[i].next = self.c[i].val();
+            self.edge_ac.b[i].next = self.a[i].val();
+            self.edge_ad.a[i].next = self.d[i].val();
+            self.edge_ad.b[i].next = self.a[i].val();
+            self.normal.u[i].next = self.edge_ab.difference[i].val();
+            self.normal.v[i].next = self.edge_ac.difference[i].val();
+            self.determinant.v[i].next = self.normal.product[i].val();
+            self.magnitude_ab.value[i].next = self.edge_ab.difference[i].val();
+            self.magnitude_ac.value[i].next = self.edge_ac.difference[i].val();
+            self.magnitude_ad.value[i].next = self.edge_ad.difference[i].val();
+        }
+        self.thermometer_delay.d.next = self.magnitude_ab.thermometer.val()
+            | self.magnitude_ac.thermometer.val()
+            | self.magnitude_ad.thermometer.val();
+        self.edge_ad_delay_0.d.next = self.edge_ad.difference[0].val();
+        self.edge_ad_delay_1.d.next = self.edge_ad.difference[1].val();
+        self.edge_ad_delay_2.d.next = self.edge_ad.difference[2].val();
+        self.determinant.u[0].next = self.edge_ad_delay_0.q.val();
+        self.determinant.u[1].next = self.edge_ad_delay_1.q.val();
+        self.determinant.u[2].next = self.edge_ad_delay_2.q.val();
+        self.sign.value.next = self.determinant.product.val();
+        self.sign.thermometer.next = self.thermometer_delay.q.val();
+        self.negative.next = self.sign.negative.val();
+        self.zero.next = self.sign.zero.val();
+        self.certain.next = self.sign.certain.val();
+    }
+}
