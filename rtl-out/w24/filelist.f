@@ -9,12 +9,9 @@ tritri_pipeline_w24_coplanar_orientation.v
 tritri_pipeline_w24_coplanar_to_decision.v
 tritri_pipeline_w24_decision.v
 tritri_pipeline_w24_degenerate_pair.v
-tritri_pipeline_w24_degenerate_pair_to_decision.v
-tritri_pipeline_w24_degenerate_to_decision.v
 tritri_pipeline_w24_degenerate_to_operands.v
 tritri_pipeline_w24_delay_w1.v
 tritri_pipeline_w24_delay_w2.v
-tritri_pipeline_w24_delay_w25.v
 tritri_pipeline_w24_dff_1.v
 tritri_pipeline_w24_dff_2.v
 tritri_pipeline_w24_dff_24.v
@@ -44,10 +41,11 @@ tritri_pipeline_w24_operands.v
 tritri_pipeline_w24_orient3d.v
 tritri_pipeline_w24_orient3d_2.v
 tritri_pipeline_w24_orient3d_2_sign.v
+tritri_pipeline_w24_orient3d_edge_ad_delay.v
 tritri_pipeline_w24_orient3d_thermometer_delay.v
 tritri_pipeline_w24_pair_valid.v
 tritri_pipeline_w24_plane_side.v
-tritri_pipeline_w24_plane_thermometer_delay.v
+tritri_pipeline_w24_record_bset.v
 tritri_pipeline_w24_record_id.v
 tritri_pipeline_w24_record_valid.v
 tritri_pipeline_w24_segment_ends_to_decision.v
@@ -57,6 +55,8 @@ tritri_pipeline_w24_sign_table.v
 tritri_pipeline_w24_sign_w49.v
 tritri_pipeline_w24_sign_w74.v
 tritri_pipeline_w24_sum.v
+tritri_pipeline_w24_thermometer_delay.v
+tritri_pipeline_w24_to_decision.v
 tritri_pipeline_w24_vertices_to_operands.v
 tritri_pipeline_w24_within_segment.v
 tritri_pipeline_w24.v

@@ -788,7 +788,7 @@ module tritri_pipeline_w24 (
         .d(record_valid_d),
         .q(record_valid_q)
     );
-    tritri_pipeline_w24_degenerate_to_operands u_record_bset(
+    tritri_pipeline_w24_record_bset u_record_bset(
         .clock(record_bset_clock),
         .advance(record_bset_advance),
         .d(record_bset_d),
@@ -1396,13 +1396,13 @@ module tritri_pipeline_w24 (
         .d(segment_ends_to_operands_3_d),
         .q(segment_ends_to_operands_3_q)
     );
-    tritri_pipeline_w24_degenerate_to_decision u_degenerate_to_decision_0(
+    tritri_pipeline_w24_to_decision u_degenerate_to_decision_0(
         .clock(degenerate_to_decision_0_clock),
         .advance(degenerate_to_decision_0_advance),
         .d(degenerate_to_decision_0_d),
         .q(degenerate_to_decision_0_q)
     );
-    tritri_pipeline_w24_degenerate_to_decision u_degenerate_to_decision_1(
+    tritri_pipeline_w24_to_decision u_degenerate_to_decision_1(
         .clock(degenerate_to_decision_1_clock),
         .advance(degenerate_to_decision_1_advance),
         .d(degenerate_to_decision_1_d),
@@ -1546,7 +1546,7 @@ module tritri_pipeline_w24 (
         .d(coplanar_to_decision_d),
         .q(coplanar_to_decision_q)
     );
-    tritri_pipeline_w24_degenerate_pair_to_decision u_degenerate_pair_to_decision(
+    tritri_pipeline_w24_to_decision u_degenerate_pair_to_decision(
         .clock(degenerate_pair_to_decision_clock),
         .advance(degenerate_pair_to_decision_advance),
         .d(degenerate_pair_to_decision_d),

@@ -2,9 +2,8 @@
 //
 // Filename:   tritri_pipeline_w24_degenerate_to_operands.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (3):
-//             degenerate_to_operands[0], degenerate_to_operands[1],
-//             record_bset.
+// Purpose:    Part of tritri_pipeline_w24. Instances (2):
+//             degenerate_to_operands[0], degenerate_to_operands[1].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -27,7 +26,7 @@ module tritri_pipeline_w24_degenerate_to_operands (
 );
 
     // Update code (custom)
-    // Delay line: 10 stage(s) of 1 bit(s).
+    // Delay line: 9 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -36,7 +35,6 @@ module tritri_pipeline_w24_degenerate_to_operands (
     reg stage_5_q;
     reg stage_6_q;
     reg stage_7_q;
-    reg stage_8_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -46,7 +44,6 @@ module tritri_pipeline_w24_degenerate_to_operands (
         stage_5_q = 1'd0;
         stage_6_q = 1'd0;
         stage_7_q = 1'd0;
-        stage_8_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -59,8 +56,7 @@ module tritri_pipeline_w24_degenerate_to_operands (
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
             stage_7_q <= stage_6_q;
-            stage_8_q <= stage_7_q;
-            q <= stage_8_q;
+            q <= stage_7_q;
         end
     end
 endmodule  // tritri_pipeline_w24_degenerate_to_operands

@@ -26,22 +26,18 @@ module tritri_pipeline_w24_front_end_edge_thermometer_delay (
 );
 
     // Update code (custom)
-    // Delay line: 8 stage(s) of 25 bit(s).
+    // Delay line: 6 stage(s) of 25 bit(s).
     reg [24:0] stage_0_q;
     reg [24:0] stage_1_q;
     reg [24:0] stage_2_q;
     reg [24:0] stage_3_q;
     reg [24:0] stage_4_q;
-    reg [24:0] stage_5_q;
-    reg [24:0] stage_6_q;
     initial begin
         stage_0_q = 25'd0;
         stage_1_q = 25'd0;
         stage_2_q = 25'd0;
         stage_3_q = 25'd0;
         stage_4_q = 25'd0;
-        stage_5_q = 25'd0;
-        stage_6_q = 25'd0;
         q = 25'd0;
     end
     always @(posedge clock) begin
@@ -51,9 +47,7 @@ module tritri_pipeline_w24_front_end_edge_thermometer_delay (
             stage_2_q <= stage_1_q;
             stage_3_q <= stage_2_q;
             stage_4_q <= stage_3_q;
-            stage_5_q <= stage_4_q;
-            stage_6_q <= stage_5_q;
-            q <= stage_6_q;
+            q <= stage_4_q;
         end
     end
 endmodule  // tritri_pipeline_w24_front_end_edge_thermometer_delay

@@ -69,10 +69,14 @@ module tritri_pipeline_w24_front_end_normal_unit (
     wire  [48:0] edge_cross_product_0;
     wire  [48:0] edge_cross_product_1;
     wire  [48:0] edge_cross_product_2;
+    wire  magnitude_pq_clock;
+    wire  magnitude_pq_advance;
     wire  [24:0] magnitude_pq_value_0;
     wire  [24:0] magnitude_pq_value_1;
     wire  [24:0] magnitude_pq_value_2;
     wire  [24:0] magnitude_pq_thermometer;
+    wire  magnitude_pr_clock;
+    wire  magnitude_pr_advance;
     wire  [24:0] magnitude_pr_value_0;
     wire  [24:0] magnitude_pr_value_1;
     wire  [24:0] magnitude_pr_value_2;
@@ -119,12 +123,16 @@ module tritri_pipeline_w24_front_end_normal_unit (
         .product_2(edge_cross_product_2)
     );
     tritri_pipeline_w24_offset_magnitude u_magnitude_pq(
+        .clock(magnitude_pq_clock),
+        .advance(magnitude_pq_advance),
         .value_0(magnitude_pq_value_0),
         .value_1(magnitude_pq_value_1),
         .value_2(magnitude_pq_value_2),
         .thermometer(magnitude_pq_thermometer)
     );
     tritri_pipeline_w24_offset_magnitude u_magnitude_pr(
+        .clock(magnitude_pr_clock),
+        .advance(magnitude_pr_advance),
         .value_0(magnitude_pr_value_0),
         .value_1(magnitude_pr_value_1),
         .value_2(magnitude_pr_value_2),
@@ -138,6 +146,10 @@ module tritri_pipeline_w24_front_end_normal_unit (
     assign edge_pr_advance = advance;
     assign edge_cross_clock = clock;
     assign edge_cross_advance = advance;
+    assign magnitude_pq_clock = clock;
+    assign magnitude_pq_advance = advance;
+    assign magnitude_pr_clock = clock;
+    assign magnitude_pr_advance = advance;
     assign edge_pq_a_0 = vertices_3;
     assign edge_pq_b_0 = vertices_0;
     assign edge_pr_a_0 = vertices_6;

@@ -21,6 +21,8 @@
 `default_nettype none
 
 module tritri_pipeline_w24_offset_magnitude (
+    input  wire        clock,
+    input  wire        advance,
     input  wire [24:0] value_0,
     input  wire [24:0] value_1,
     input  wire [24:0] value_2,
@@ -29,6 +31,14 @@ module tritri_pipeline_w24_offset_magnitude (
 
     // Constant declarations
     localparam  one = 25'h1;
+
+    // Stub signals
+    reg  [24:0] magnitudes_q_d;
+    wire  [24:0] magnitudes_q_q;
+    wire  magnitudes_q_clock;
+    reg  [24:0] thermometer_q_d;
+    wire  [24:0] thermometer_q_q;
+    wire  thermometer_q_clock;
 
     // Local signals
     reg  [24:0] magnitude_0;
@@ -42,15 +52,29 @@ module tritri_pipeline_w24_offset_magnitude (
     wire  [24:0] smear_5;
     wire  [24:0] smear_6;
 
+    // Sub module instances
+    tritri_pipeline_w24_dff_25 u_magnitudes_q(
+        .d(magnitudes_q_d),
+        .q(magnitudes_q_q),
+        .clock(magnitudes_q_clock)
+    );
+    tritri_pipeline_w24_dff_25 u_thermometer_q(
+        .d(thermometer_q_d),
+        .q(thermometer_q_q),
+        .clock(thermometer_q_clock)
+    );
+
     // Update code
-    assign smear_0 = magnitude_0 | magnitude_1 | magnitude_2;
+    assign magnitudes_q_clock = clock;
+    assign thermometer_q_clock = clock;
+    assign smear_0 = magnitudes_q_q;
     assign smear_1 = smear_0 | (smear_0 >> 32'h1);
     assign smear_2 = smear_1 | (smear_1 >> 32'h2);
     assign smear_3 = smear_2 | (smear_2 >> 32'h4);
     assign smear_4 = smear_3 | (smear_3 >> 32'h8);
     assign smear_5 = smear_4 | (smear_4 >> 32'h10);
     assign smear_6 = smear_5 | (smear_5 >> 32'h20);
-    assign thermometer = smear_6 | one;
+    assign thermometer = thermometer_q_q;
     always @(*) begin
         if (value_0[24]) begin
             magnitude_0 = ~value_0;
@@ -69,6 +93,14 @@ module tritri_pipeline_w24_offset_magnitude (
         end
         else begin
             magnitude_2 = value_2;
+        end
+        magnitudes_q_d = magnitudes_q_q;
+        thermometer_q_d = thermometer_q_q;
+        if (advance) begin
+            magnitudes_q_d = magnitude_0 | magnitude_1 | magnitude_2;
+        end
+        if (advance) begin
+            thermometer_q_d = smear_6 | one;
         end
     end
 

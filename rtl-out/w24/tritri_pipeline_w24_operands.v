@@ -91,6 +91,45 @@ module tritri_pipeline_w24_operands (
 );
 
     // Stub signals
+    reg  [2:0] degenerate_index_q_0_d;
+    wire  [2:0] degenerate_index_q_0_q;
+    wire  degenerate_index_q_0_clock;
+    reg  [2:0] degenerate_index_q_1_d;
+    wire  [2:0] degenerate_index_q_1_q;
+    wire  degenerate_index_q_1_clock;
+    reg  [2:0] degenerate_index_q_2_d;
+    wire  [2:0] degenerate_index_q_2_q;
+    wire  degenerate_index_q_2_clock;
+    reg  [2:0] degenerate_index_q_3_d;
+    wire  [2:0] degenerate_index_q_3_q;
+    wire  degenerate_index_q_3_clock;
+    reg  [2:0] degenerate_index_q_4_d;
+    wire  [2:0] degenerate_index_q_4_q;
+    wire  degenerate_index_q_4_clock;
+    reg  [2:0] degenerate_index_q_5_d;
+    wire  [2:0] degenerate_index_q_5_q;
+    wire  degenerate_index_q_5_clock;
+    reg  [2:0] degenerate_index_q_6_d;
+    wire  [2:0] degenerate_index_q_6_q;
+    wire  degenerate_index_q_6_clock;
+    reg  [2:0] degenerate_index_q_7_d;
+    wire  [2:0] degenerate_index_q_7_q;
+    wire  degenerate_index_q_7_clock;
+    reg  [2:0] degenerate_index_q_8_d;
+    wire  [2:0] degenerate_index_q_8_q;
+    wire  degenerate_index_q_8_clock;
+    reg  [2:0] degenerate_index_q_9_d;
+    wire  [2:0] degenerate_index_q_9_q;
+    wire  degenerate_index_q_9_clock;
+    reg  [2:0] degenerate_index_q_10_d;
+    wire  [2:0] degenerate_index_q_10_q;
+    wire  degenerate_index_q_10_clock;
+    reg  [2:0] degenerate_index_q_11_d;
+    wire  [2:0] degenerate_index_q_11_q;
+    wire  degenerate_index_q_11_clock;
+    reg  proper_q_d;
+    wire  proper_q_q;
+    wire  proper_q_clock;
     reg  [1:0] vertex_q_0_d;
     wire  [1:0] vertex_q_0_q;
     wire  vertex_q_0_clock;
@@ -597,6 +636,18 @@ module tritri_pipeline_w24_operands (
     wire  operands_q_35_clock;
 
     // Local signals
+    reg  [2:0] degenerate_index_0;
+    reg  [2:0] degenerate_index_1;
+    reg  [2:0] degenerate_index_2;
+    reg  [2:0] degenerate_index_3;
+    reg  [2:0] degenerate_index_4;
+    reg  [2:0] degenerate_index_5;
+    reg  [2:0] degenerate_index_6;
+    reg  [2:0] degenerate_index_7;
+    reg  [2:0] degenerate_index_8;
+    reg  [2:0] degenerate_index_9;
+    reg  [2:0] degenerate_index_10;
+    reg  [2:0] degenerate_index_11;
     reg  [2:0] index_0;
     reg  [2:0] index_1;
     reg  [2:0] index_2;
@@ -611,6 +662,71 @@ module tritri_pipeline_w24_operands (
     reg  [2:0] index_11;
 
     // Sub module instances
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_0(
+        .d(degenerate_index_q_0_d),
+        .q(degenerate_index_q_0_q),
+        .clock(degenerate_index_q_0_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_1(
+        .d(degenerate_index_q_1_d),
+        .q(degenerate_index_q_1_q),
+        .clock(degenerate_index_q_1_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_2(
+        .d(degenerate_index_q_2_d),
+        .q(degenerate_index_q_2_q),
+        .clock(degenerate_index_q_2_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_3(
+        .d(degenerate_index_q_3_d),
+        .q(degenerate_index_q_3_q),
+        .clock(degenerate_index_q_3_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_4(
+        .d(degenerate_index_q_4_d),
+        .q(degenerate_index_q_4_q),
+        .clock(degenerate_index_q_4_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_5(
+        .d(degenerate_index_q_5_d),
+        .q(degenerate_index_q_5_q),
+        .clock(degenerate_index_q_5_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_6(
+        .d(degenerate_index_q_6_d),
+        .q(degenerate_index_q_6_q),
+        .clock(degenerate_index_q_6_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_7(
+        .d(degenerate_index_q_7_d),
+        .q(degenerate_index_q_7_q),
+        .clock(degenerate_index_q_7_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_8(
+        .d(degenerate_index_q_8_d),
+        .q(degenerate_index_q_8_q),
+        .clock(degenerate_index_q_8_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_9(
+        .d(degenerate_index_q_9_d),
+        .q(degenerate_index_q_9_q),
+        .clock(degenerate_index_q_9_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_10(
+        .d(degenerate_index_q_10_d),
+        .q(degenerate_index_q_10_q),
+        .clock(degenerate_index_q_10_clock)
+    );
+    tritri_pipeline_w24_dff_3 u_degenerate_index_q_11(
+        .d(degenerate_index_q_11_d),
+        .q(degenerate_index_q_11_q),
+        .clock(degenerate_index_q_11_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_proper_q(
+        .d(proper_q_d),
+        .q(proper_q_q),
+        .clock(proper_q_clock)
+    );
     tritri_pipeline_w24_dff_2 u_vertex_q_0(
         .d(vertex_q_0_d),
         .q(vertex_q_0_q),
@@ -1441,6 +1557,19 @@ module tritri_pipeline_w24_operands (
     );
 
     // Update code
+    assign proper_q_clock = clock;
+    assign degenerate_index_q_0_clock = clock;
+    assign degenerate_index_q_1_clock = clock;
+    assign degenerate_index_q_2_clock = clock;
+    assign degenerate_index_q_3_clock = clock;
+    assign degenerate_index_q_4_clock = clock;
+    assign degenerate_index_q_5_clock = clock;
+    assign degenerate_index_q_6_clock = clock;
+    assign degenerate_index_q_7_clock = clock;
+    assign degenerate_index_q_8_clock = clock;
+    assign degenerate_index_q_9_clock = clock;
+    assign degenerate_index_q_10_clock = clock;
+    assign degenerate_index_q_11_clock = clock;
     assign vertex_q_0_clock = clock;
     assign from_t2_q_0_clock = clock;
     assign from_t2_2q_0_clock = clock;
@@ -1676,19 +1805,117 @@ module tritri_pipeline_w24_operands (
     assign operands_q_35_clock = clock;
     assign operands_35 = operands_q_35_q;
     always @(*) begin
-        index_0 = 3'h0;
-        index_1 = 3'h0;
-        index_2 = 3'h0;
-        index_3 = 3'h0;
-        index_4 = 3'h0;
-        index_5 = 3'h0;
-        index_6 = 3'h0;
-        index_7 = 3'h0;
-        index_8 = 3'h0;
-        index_9 = 3'h0;
-        index_10 = 3'h0;
-        index_11 = 3'h0;
-        if (~t1_degenerate && ~t2_degenerate) begin
+        degenerate_index_0 = 3'h0;
+        degenerate_index_1 = 3'h0;
+        degenerate_index_2 = 3'h0;
+        degenerate_index_3 = 3'h0;
+        degenerate_index_4 = 3'h0;
+        degenerate_index_5 = 3'h0;
+        degenerate_index_6 = 3'h0;
+        degenerate_index_7 = 3'h0;
+        degenerate_index_8 = 3'h0;
+        degenerate_index_9 = 3'h0;
+        degenerate_index_10 = 3'h0;
+        degenerate_index_11 = 3'h0;
+        if (t1_degenerate && ~t2_degenerate) begin
+            degenerate_index_0 = {1'h0, t1_segment_low};
+            degenerate_index_1 = {1'h0, t1_segment_high};
+            degenerate_index_4 = {1'h0, t1_segment_low};
+            degenerate_index_5 = {1'h0, t1_segment_high};
+            degenerate_index_8 = {1'h0, t1_segment_low};
+            degenerate_index_9 = {1'h0, t1_segment_high};
+            degenerate_index_2 = 3'h3;
+            degenerate_index_3 = 3'h4;
+            degenerate_index_6 = 3'h4;
+            degenerate_index_7 = 3'h5;
+            degenerate_index_10 = 3'h5;
+            degenerate_index_11 = 3'h3;
+        end
+        else if (~t1_degenerate && t2_degenerate) begin
+            degenerate_index_0 = {1'h0, t2_segment_low} + 3'h3;
+            degenerate_index_1 = {1'h0, t2_segment_high} + 3'h3;
+            degenerate_index_4 = {1'h0, t2_segment_low} + 3'h3;
+            degenerate_index_5 = {1'h0, t2_segment_high} + 3'h3;
+            degenerate_index_8 = {1'h0, t2_segment_low} + 3'h3;
+            degenerate_index_9 = {1'h0, t2_segment_high} + 3'h3;
+            degenerate_index_2 = 3'h0;
+            degenerate_index_3 = 3'h1;
+            degenerate_index_6 = 3'h1;
+            degenerate_index_7 = 3'h2;
+            degenerate_index_10 = 3'h2;
+            degenerate_index_11 = 3'h0;
+        end
+        else if (t1_degenerate && t2_degenerate) begin
+            degenerate_index_0 = {1'h0, t1_segment_low};
+            degenerate_index_1 = {1'h0, t1_segment_high};
+            degenerate_index_2 = {1'h0, t2_segment_low} + 3'h3;
+            degenerate_index_3 = {1'h0, t2_segment_high} + 3'h3;
+        end
+        proper_q_d = proper_q_q;
+        if (advance) begin
+            proper_q_d = ~t1_degenerate && ~t2_degenerate;
+        end
+        degenerate_index_q_0_d = degenerate_index_q_0_q;
+        if (advance) begin
+            degenerate_index_q_0_d = degenerate_index_0;
+        end
+        index_0 = degenerate_index_q_0_q;
+        degenerate_index_q_1_d = degenerate_index_q_1_q;
+        if (advance) begin
+            degenerate_index_q_1_d = degenerate_index_1;
+        end
+        index_1 = degenerate_index_q_1_q;
+        degenerate_index_q_2_d = degenerate_index_q_2_q;
+        if (advance) begin
+            degenerate_index_q_2_d = degenerate_index_2;
+        end
+        index_2 = degenerate_index_q_2_q;
+        degenerate_index_q_3_d = degenerate_index_q_3_q;
+        if (advance) begin
+            degenerate_index_q_3_d = degenerate_index_3;
+        end
+        index_3 = degenerate_index_q_3_q;
+        degenerate_index_q_4_d = degenerate_index_q_4_q;
+        if (advance) begin
+            degenerate_index_q_4_d = degenerate_index_4;
+        end
+        index_4 = degenerate_index_q_4_q;
+        degenerate_index_q_5_d = degenerate_index_q_5_q;
+        if (advance) begin
+            degenerate_index_q_5_d = degenerate_index_5;
+        end
+        index_5 = degenerate_index_q_5_q;
+        degenerate_index_q_6_d = degenerate_index_q_6_q;
+        if (advance) begin
+            degenerate_index_q_6_d = degenerate_index_6;
+        end
+        index_6 = degenerate_index_q_6_q;
+        degenerate_index_q_7_d = degenerate_index_q_7_q;
+        if (advance) begin
+            degenerate_index_q_7_d = degenerate_index_7;
+        end
+        index_7 = degenerate_index_q_7_q;
+        degenerate_index_q_8_d = degenerate_index_q_8_q;
+        if (advance) begin
+            degenerate_index_q_8_d = degenerate_index_8;
+        end
+        index_8 = degenerate_index_q_8_q;
+        degenerate_index_q_9_d = degenerate_index_q_9_q;
+        if (advance) begin
+            degenerate_index_q_9_d = degenerate_index_9;
+        end
+        index_9 = degenerate_index_q_9_q;
+        degenerate_index_q_10_d = degenerate_index_q_10_q;
+        if (advance) begin
+            degenerate_index_q_10_d = degenerate_index_10;
+        end
+        index_10 = degenerate_index_q_10_q;
+        degenerate_index_q_11_d = degenerate_index_q_11_q;
+        if (advance) begin
+            degenerate_index_q_11_d = degenerate_index_11;
+        end
+        index_11 = degenerate_index_q_11_q;
+        if (proper_q_q) begin
             index_0 = overlap_first_0;
             index_4 = overlap_second_0;
             index_8 = 3'h0;
@@ -1700,48 +1927,6 @@ module tritri_pipeline_w24_operands (
             index_10 = 3'h0;
             index_3 = overlap_first_3;
             index_7 = overlap_second_3;
-            index_11 = 3'h0;
-        end
-        else if (t1_degenerate && ~t2_degenerate) begin
-            index_0 = {1'h0, t1_segment_low};
-            index_1 = {1'h0, t1_segment_high};
-            index_4 = {1'h0, t1_segment_low};
-            index_5 = {1'h0, t1_segment_high};
-            index_8 = {1'h0, t1_segment_low};
-            index_9 = {1'h0, t1_segment_high};
-            index_2 = 3'h3;
-            index_3 = 3'h4;
-            index_6 = 3'h4;
-            index_7 = 3'h5;
-            index_10 = 3'h5;
-            index_11 = 3'h3;
-        end
-        else if (~t1_degenerate && t2_degenerate) begin
-            index_0 = {1'h0, t2_segment_low} + 3'h3;
-            index_1 = {1'h0, t2_segment_high} + 3'h3;
-            index_4 = {1'h0, t2_segment_low} + 3'h3;
-            index_5 = {1'h0, t2_segment_high} + 3'h3;
-            index_8 = {1'h0, t2_segment_low} + 3'h3;
-            index_9 = {1'h0, t2_segment_high} + 3'h3;
-            index_2 = 3'h0;
-            index_3 = 3'h1;
-            index_6 = 3'h1;
-            index_7 = 3'h2;
-            index_10 = 3'h2;
-            index_11 = 3'h0;
-        end
-        else begin
-            index_0 = {1'h0, t1_segment_low};
-            index_1 = {1'h0, t1_segment_high};
-            index_2 = {1'h0, t2_segment_low} + 3'h3;
-            index_3 = {1'h0, t2_segment_high} + 3'h3;
-            index_4 = 3'h0;
-            index_5 = 3'h0;
-            index_6 = 3'h0;
-            index_7 = 3'h0;
-            index_8 = 3'h0;
-            index_9 = 3'h0;
-            index_10 = 3'h0;
             index_11 = 3'h0;
         end
         vertex_q_0_d = vertex_q_0_q;

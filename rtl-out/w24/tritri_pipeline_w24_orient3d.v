@@ -104,14 +104,20 @@ module tritri_pipeline_w24_orient3d (
     wire  [48:0] determinant_v_1;
     wire  [48:0] determinant_v_2;
     wire  [73:0] determinant_product;
+    wire  magnitude_ab_clock;
+    wire  magnitude_ab_advance;
     wire  [24:0] magnitude_ab_value_0;
     wire  [24:0] magnitude_ab_value_1;
     wire  [24:0] magnitude_ab_value_2;
     wire  [24:0] magnitude_ab_thermometer;
+    wire  magnitude_ac_clock;
+    wire  magnitude_ac_advance;
     wire  [24:0] magnitude_ac_value_0;
     wire  [24:0] magnitude_ac_value_1;
     wire  [24:0] magnitude_ac_value_2;
     wire  [24:0] magnitude_ac_thermometer;
+    wire  magnitude_ad_clock;
+    wire  magnitude_ad_advance;
     wire  [24:0] magnitude_ad_value_0;
     wire  [24:0] magnitude_ad_value_1;
     wire  [24:0] magnitude_ad_value_2;
@@ -181,19 +187,19 @@ module tritri_pipeline_w24_orient3d (
         .product_1(normal_product_1),
         .product_2(normal_product_2)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_0(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_0(
         .clock(edge_ad_delay_0_clock),
         .advance(edge_ad_delay_0_advance),
         .d(edge_ad_delay_0_d),
         .q(edge_ad_delay_0_q)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_1(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_1(
         .clock(edge_ad_delay_1_clock),
         .advance(edge_ad_delay_1_advance),
         .d(edge_ad_delay_1_d),
         .q(edge_ad_delay_1_q)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_2(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_2(
         .clock(edge_ad_delay_2_clock),
         .advance(edge_ad_delay_2_advance),
         .d(edge_ad_delay_2_d),
@@ -211,18 +217,24 @@ module tritri_pipeline_w24_orient3d (
         .product(determinant_product)
     );
     tritri_pipeline_w24_offset_magnitude u_magnitude_ab(
+        .clock(magnitude_ab_clock),
+        .advance(magnitude_ab_advance),
         .value_0(magnitude_ab_value_0),
         .value_1(magnitude_ab_value_1),
         .value_2(magnitude_ab_value_2),
         .thermometer(magnitude_ab_thermometer)
     );
     tritri_pipeline_w24_offset_magnitude u_magnitude_ac(
+        .clock(magnitude_ac_clock),
+        .advance(magnitude_ac_advance),
         .value_0(magnitude_ac_value_0),
         .value_1(magnitude_ac_value_1),
         .value_2(magnitude_ac_value_2),
         .thermometer(magnitude_ac_thermometer)
     );
     tritri_pipeline_w24_offset_magnitude u_magnitude_ad(
+        .clock(magnitude_ad_clock),
+        .advance(magnitude_ad_advance),
         .value_0(magnitude_ad_value_0),
         .value_1(magnitude_ad_value_1),
         .value_2(magnitude_ad_value_2),
@@ -265,6 +277,12 @@ module tritri_pipeline_w24_orient3d (
     assign sign_advance = advance;
     assign thermometer_delay_clock = clock;
     assign thermometer_delay_advance = advance;
+    assign magnitude_ab_clock = clock;
+    assign magnitude_ab_advance = advance;
+    assign magnitude_ac_clock = clock;
+    assign magnitude_ac_advance = advance;
+    assign magnitude_ad_clock = clock;
+    assign magnitude_ad_advance = advance;
     assign edge_ab_a_0 = b_0;
     assign edge_ab_b_0 = a_0;
     assign edge_ac_a_0 = c_0;

@@ -161,19 +161,19 @@ module tritri_pipeline_w24_orient3d_2 (
         .product_1(normal_product_1),
         .product_2(normal_product_2)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_0(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_0(
         .clock(edge_ad_delay_0_clock),
         .advance(edge_ad_delay_0_advance),
         .d(edge_ad_delay_0_d),
         .q(edge_ad_delay_0_q)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_1(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_1(
         .clock(edge_ad_delay_1_clock),
         .advance(edge_ad_delay_1_advance),
         .d(edge_ad_delay_1_d),
         .q(edge_ad_delay_1_q)
     );
-    tritri_pipeline_w24_delay_w25 u_edge_ad_delay_2(
+    tritri_pipeline_w24_orient3d_edge_ad_delay u_edge_ad_delay_2(
         .clock(edge_ad_delay_2_clock),
         .advance(edge_ad_delay_2_advance),
         .d(edge_ad_delay_2_d),

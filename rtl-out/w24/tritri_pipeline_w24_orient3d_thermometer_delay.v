@@ -26,7 +26,7 @@ module tritri_pipeline_w24_orient3d_thermometer_delay (
 );
 
     // Update code (custom)
-    // Delay line: 10 stage(s) of 25 bit(s).
+    // Delay line: 8 stage(s) of 25 bit(s).
     reg [24:0] stage_0_q;
     reg [24:0] stage_1_q;
     reg [24:0] stage_2_q;
@@ -34,8 +34,6 @@ module tritri_pipeline_w24_orient3d_thermometer_delay (
     reg [24:0] stage_4_q;
     reg [24:0] stage_5_q;
     reg [24:0] stage_6_q;
-    reg [24:0] stage_7_q;
-    reg [24:0] stage_8_q;
     initial begin
         stage_0_q = 25'd0;
         stage_1_q = 25'd0;
@@ -44,8 +42,6 @@ module tritri_pipeline_w24_orient3d_thermometer_delay (
         stage_4_q = 25'd0;
         stage_5_q = 25'd0;
         stage_6_q = 25'd0;
-        stage_7_q = 25'd0;
-        stage_8_q = 25'd0;
         q = 25'd0;
     end
     always @(posedge clock) begin
@@ -57,9 +53,7 @@ module tritri_pipeline_w24_orient3d_thermometer_delay (
             stage_4_q <= stage_3_q;
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
-            stage_7_q <= stage_6_q;
-            stage_8_q <= stage_7_q;
-            q <= stage_8_q;
+            q <= stage_6_q;
         end
     end
 endmodule  // tritri_pipeline_w24_orient3d_thermometer_delay

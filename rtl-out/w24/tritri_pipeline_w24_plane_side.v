@@ -125,14 +125,20 @@ module tritri_pipeline_w24_plane_side (
     wire  plane_thermometer_delay_advance;
     wire  [24:0] plane_thermometer_delay_d;
     wire  [24:0] plane_thermometer_delay_q;
+    wire  offset_magnitude_0_clock;
+    wire  offset_magnitude_0_advance;
     wire  [24:0] offset_magnitude_0_value_0;
     wire  [24:0] offset_magnitude_0_value_1;
     wire  [24:0] offset_magnitude_0_value_2;
     wire  [24:0] offset_magnitude_0_thermometer;
+    wire  offset_magnitude_1_clock;
+    wire  offset_magnitude_1_advance;
     wire  [24:0] offset_magnitude_1_value_0;
     wire  [24:0] offset_magnitude_1_value_1;
     wire  [24:0] offset_magnitude_1_value_2;
     wire  [24:0] offset_magnitude_1_thermometer;
+    wire  offset_magnitude_2_clock;
+    wire  offset_magnitude_2_advance;
     wire  [24:0] offset_magnitude_2_value_0;
     wire  [24:0] offset_magnitude_2_value_1;
     wire  [24:0] offset_magnitude_2_value_2;
@@ -262,43 +268,49 @@ module tritri_pipeline_w24_plane_side (
         .v_2(distance_2_v_2),
         .product(distance_2_product)
     );
-    tritri_pipeline_w24_plane_thermometer_delay u_plane_thermometer_delay(
+    tritri_pipeline_w24_thermometer_delay u_plane_thermometer_delay(
         .clock(plane_thermometer_delay_clock),
         .advance(plane_thermometer_delay_advance),
         .d(plane_thermometer_delay_d),
         .q(plane_thermometer_delay_q)
     );
     tritri_pipeline_w24_offset_magnitude u_offset_magnitude_0(
+        .clock(offset_magnitude_0_clock),
+        .advance(offset_magnitude_0_advance),
         .value_0(offset_magnitude_0_value_0),
         .value_1(offset_magnitude_0_value_1),
         .value_2(offset_magnitude_0_value_2),
         .thermometer(offset_magnitude_0_thermometer)
     );
     tritri_pipeline_w24_offset_magnitude u_offset_magnitude_1(
+        .clock(offset_magnitude_1_clock),
+        .advance(offset_magnitude_1_advance),
         .value_0(offset_magnitude_1_value_0),
         .value_1(offset_magnitude_1_value_1),
         .value_2(offset_magnitude_1_value_2),
         .thermometer(offset_magnitude_1_thermometer)
     );
     tritri_pipeline_w24_offset_magnitude u_offset_magnitude_2(
+        .clock(offset_magnitude_2_clock),
+        .advance(offset_magnitude_2_advance),
         .value_0(offset_magnitude_2_value_0),
         .value_1(offset_magnitude_2_value_1),
         .value_2(offset_magnitude_2_value_2),
         .thermometer(offset_magnitude_2_thermometer)
     );
-    tritri_pipeline_w24_delay_w25 u_thermometer_delay_0(
+    tritri_pipeline_w24_thermometer_delay u_thermometer_delay_0(
         .clock(thermometer_delay_0_clock),
         .advance(thermometer_delay_0_advance),
         .d(thermometer_delay_0_d),
         .q(thermometer_delay_0_q)
     );
-    tritri_pipeline_w24_delay_w25 u_thermometer_delay_1(
+    tritri_pipeline_w24_thermometer_delay u_thermometer_delay_1(
         .clock(thermometer_delay_1_clock),
         .advance(thermometer_delay_1_advance),
         .d(thermometer_delay_1_d),
         .q(thermometer_delay_1_q)
     );
-    tritri_pipeline_w24_delay_w25 u_thermometer_delay_2(
+    tritri_pipeline_w24_thermometer_delay u_thermometer_delay_2(
         .clock(thermometer_delay_2_clock),
         .advance(thermometer_delay_2_advance),
         .d(thermometer_delay_2_d),
@@ -348,6 +360,12 @@ module tritri_pipeline_w24_plane_side (
     assign plane_thermometer_delay_clock = clock;
     assign plane_thermometer_delay_advance = advance;
     assign plane_thermometer_delay_d = plane_thermometer;
+    assign offset_magnitude_0_clock = clock;
+    assign offset_magnitude_0_advance = advance;
+    assign offset_magnitude_1_clock = clock;
+    assign offset_magnitude_1_advance = advance;
+    assign offset_magnitude_2_clock = clock;
+    assign offset_magnitude_2_advance = advance;
     assign offset_magnitude_0_value_0 = offset_0_difference_0;
     assign offset_magnitude_1_value_0 = offset_1_difference_0;
     assign offset_magnitude_2_value_0 = offset_2_difference_0;

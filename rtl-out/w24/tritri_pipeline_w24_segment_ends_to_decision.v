@@ -27,7 +27,7 @@ module tritri_pipeline_w24_segment_ends_to_decision (
 );
 
     // Update code (custom)
-    // Delay line: 15 stage(s) of 2 bit(s).
+    // Delay line: 16 stage(s) of 2 bit(s).
     reg [1:0] stage_0_q;
     reg [1:0] stage_1_q;
     reg [1:0] stage_2_q;
@@ -42,6 +42,7 @@ module tritri_pipeline_w24_segment_ends_to_decision (
     reg [1:0] stage_11_q;
     reg [1:0] stage_12_q;
     reg [1:0] stage_13_q;
+    reg [1:0] stage_14_q;
     initial begin
         stage_0_q = 2'd0;
         stage_1_q = 2'd0;
@@ -57,6 +58,7 @@ module tritri_pipeline_w24_segment_ends_to_decision (
         stage_11_q = 2'd0;
         stage_12_q = 2'd0;
         stage_13_q = 2'd0;
+        stage_14_q = 2'd0;
         q = 2'd0;
     end
     always @(posedge clock) begin
@@ -75,7 +77,8 @@ module tritri_pipeline_w24_segment_ends_to_decision (
             stage_11_q <= stage_10_q;
             stage_12_q <= stage_11_q;
             stage_13_q <= stage_12_q;
-            q <= stage_13_q;
+            stage_14_q <= stage_13_q;
+            q <= stage_14_q;
         end
     end
 endmodule  // tritri_pipeline_w24_segment_ends_to_decision

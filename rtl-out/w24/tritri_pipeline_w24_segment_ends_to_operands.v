@@ -27,7 +27,7 @@ module tritri_pipeline_w24_segment_ends_to_operands (
 );
 
     // Update code (custom)
-    // Delay line: 10 stage(s) of 2 bit(s).
+    // Delay line: 9 stage(s) of 2 bit(s).
     reg [1:0] stage_0_q;
     reg [1:0] stage_1_q;
     reg [1:0] stage_2_q;
@@ -36,7 +36,6 @@ module tritri_pipeline_w24_segment_ends_to_operands (
     reg [1:0] stage_5_q;
     reg [1:0] stage_6_q;
     reg [1:0] stage_7_q;
-    reg [1:0] stage_8_q;
     initial begin
         stage_0_q = 2'd0;
         stage_1_q = 2'd0;
@@ -46,7 +45,6 @@ module tritri_pipeline_w24_segment_ends_to_operands (
         stage_5_q = 2'd0;
         stage_6_q = 2'd0;
         stage_7_q = 2'd0;
-        stage_8_q = 2'd0;
         q = 2'd0;
     end
     always @(posedge clock) begin
@@ -59,8 +57,7 @@ module tritri_pipeline_w24_segment_ends_to_operands (
             stage_5_q <= stage_4_q;
             stage_6_q <= stage_5_q;
             stage_7_q <= stage_6_q;
-            stage_8_q <= stage_7_q;
-            q <= stage_8_q;
+            q <= stage_7_q;
         end
     end
 endmodule  // tritri_pipeline_w24_segment_ends_to_operands

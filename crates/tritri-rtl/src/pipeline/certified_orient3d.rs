@@ -14,7 +14,7 @@
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY};
+use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
@@ -49,7 +49,7 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     magnitude_ab: MagnitudeThermometer<D>,
     magnitude_ac: MagnitudeThermometer<D>,
     magnitude_ad: MagnitudeThermometer<D>,
-    thermometer_delay: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY }>,
+    thermometer_delay: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>,
     sign: CertainSign<O, D>,
 }
 
@@ -76,6 +76,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for C
         self.sign.advance.next = self.advance.val();
         self.thermometer_delay.clock.next = self.clock.val();
         self.thermometer_delay.advance.next = self.advance.val();
+        self.magnitude_ab.clock.next = self.clock.val();
+        self.magnitude_ab.advance.next = self.advance.val();
+        self.magnitude_ac.clock.next = self.clock.val();
+        self.magnitude_ac.advance.next = self.advance.val();
+        self.magnitude_ad.clock.next = self.clock.val();
+        self.magnitude_ad.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();
             self.edge_ab.b[i].next = self.a[i].val();

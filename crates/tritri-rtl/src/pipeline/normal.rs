@@ -23,7 +23,8 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     /// `(q - p) × (r - p)`, `NORMAL_LATENCY` enabled edges later.
     pub normal: [Signal<Out, Bits<C>>; 3],
     /// The thermometer of the edges' magnitudes (`2^m - 1`, see
-    /// `arith::certificate`), `SUBTRACTOR_LATENCY` enabled edges later.
+    /// `arith::certificate`), `SUBTRACTOR_LATENCY +
+    /// MAGNITUDE_THERMOMETER_LATENCY` enabled edges later.
     pub edge_thermometer: Signal<Out, Bits<D>>,
     edge_pq: VectorSubtractor<W, D>,
     edge_pr: VectorSubtractor<W, D>,
@@ -41,6 +42,10 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
         self.edge_pr.advance.next = self.advance.val();
         self.edge_cross.clock.next = self.clock.val();
         self.edge_cross.advance.next = self.advance.val();
+        self.magnitude_pq.clock.next = self.clock.val();
+        self.magnitude_pq.advance.next = self.advance.val();
+        self.magnitude_pr.clock.next = self.clock.val();
+        self.magnitude_pr.advance.next = self.advance.val();
         for k in 0..3 {
             self.edge_pq.a[k].next = self.vertices[3 + k].val();
             self.edge_pq.b[k].next = self.vertices[k].val();

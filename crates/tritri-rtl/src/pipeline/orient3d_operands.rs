@@ -16,6 +16,13 @@
 //! limited the W = 16 pipeline to 92 MHz on ECP5: its select registers
 //! fanned out to 48 multiplexers of two LUT levels each, and routing took
 //! nine tenths of the path.
+//!
+//! The degenerate flags and segment ends come a clock before the overlap
+//! indices: the degenerate cases' indices and the case are registered
+//! then, so the first stage only picks step (7)'s indices or those. Decided
+//! with the indices, the case's four-way choice was the W = 8 pipeline's
+//! critical path on ECP5 with the certificates (143.1 MHz, five LUT
+//! levels).
 
 use crate::arith::delay_line::DelayLine;
 use rust_hdl::prelude::*;
@@ -28,6 +35,7 @@ pub const ORIENT3D_OPERANDS_LATENCY: usize = 3;
 pub struct Orient3dOperands<const W: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
+    /// The case and the segment ends: a clock before the overlap indices.
     pub t1_degenerate: Signal<In, Bit>,
     pub t2_degenerate: Signal<In, Bit>,
     pub t1_segment_low: Signal<In, Bits<2>>,
@@ -41,6 +49,11 @@ pub struct Orient3dOperands<const W: usize> {
     pub t2_vertices: [Signal<In, Bits<W>>; 9],
     /// Unit `u`, operand `j` (a, b, c, d), coordinate `k` at `12 u + 3 j + k`.
     pub operands: [Signal<Out, Bits<W>>; 36],
+    /// Operand `s`'s index in a degenerate case (from the flags and
+    /// segment ends), registered with whether both triangles are proper.
+    degenerate_index: [Signal<Local, Bits<3>>; 12],
+    degenerate_index_q: [DFF<Bits<3>>; 12],
+    proper_q: DFF<Bit>,
     /// Operand `s`'s index this clock (0..2: T1's vertices, 3..5: T2's).
     index: [Signal<Local, Bits<3>>; 12],
     /// Stage 1: the index as a vertex number (0..2) and a triangle.
@@ -72,6 +85,9 @@ impl<const W: usize> Default for Orient3dOperands<W> {
             t1_vertices: Default::default(),
             t2_vertices: Default::default(),
             operands: std::array::from_fn(|_| Default::default()),
+            degenerate_index: Default::default(),
+            degenerate_index_q: Default::default(),
+            proper_q: Default::default(),
             index: Default::default(),
             vertex_q: Default::default(),
             from_t2_q: Default::default(),
@@ -88,47 +104,58 @@ impl<const W: usize> Default for Orient3dOperands<W> {
 impl<const W: usize> Logic for Orient3dOperands<W> {
     #[hdl_gen]
     fn update(&mut self) {
+        // A clock early: the degenerate cases' indices and the case.
         for i in 0..12 {
-            self.index[i].next = 0.into();
+            self.degenerate_index[i].next = 0.into();
         }
-        if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
+        if self.t1_degenerate.val() && !self.t2_degenerate.val() {
+            // Segment of T1 against the edges of T2.
+            for u in 0..3 {
+                self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t1_segment_low.val());
+                self.degenerate_index[4 * u + 1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
+            }
+            self.degenerate_index[2].next = 3.into();
+            self.degenerate_index[3].next = 4.into();
+            self.degenerate_index[6].next = 4.into();
+            self.degenerate_index[7].next = 5.into();
+            self.degenerate_index[10].next = 5.into();
+            self.degenerate_index[11].next = 3.into();
+        } else if !self.t1_degenerate.val() && self.t2_degenerate.val() {
+            // Segment of T2 against the edges of T1.
+            for u in 0..3 {
+                self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
+                self.degenerate_index[4 * u + 1].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
+            }
+            self.degenerate_index[2].next = 0.into();
+            self.degenerate_index[3].next = 1.into();
+            self.degenerate_index[6].next = 1.into();
+            self.degenerate_index[7].next = 2.into();
+            self.degenerate_index[10].next = 2.into();
+            self.degenerate_index[11].next = 0.into();
+        } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
+            // Two segments: [a, b, c, d].
+            self.degenerate_index[0].next = bit_cast::<3, 2>(self.t1_segment_low.val());
+            self.degenerate_index[1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
+            self.degenerate_index[2].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
+            self.degenerate_index[3].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
+        }
+        dff_setup!(self, clock, proper_q);
+        if self.advance.val() {
+            self.proper_q.d.next = !self.t1_degenerate.val() && !self.t2_degenerate.val();
+        }
+        for i in 0..12 {
+            self.degenerate_index_q[i].clock.next = self.clock.val();
+            self.degenerate_index_q[i].d.next = self.degenerate_index_q[i].q.val();
+            if self.advance.val() {
+                self.degenerate_index_q[i].d.next = self.degenerate_index[i].val();
+            }
+            self.index[i].next = self.degenerate_index_q[i].q.val();
+        }
+        if self.proper_q.q.val() {
             for i in 0..4 {
                 self.index[i].next = self.overlap_first[i].val();
                 self.index[4 + i].next = self.overlap_second[i].val();
                 self.index[8 + i].next = 0.into();
-            }
-        } else if self.t1_degenerate.val() && !self.t2_degenerate.val() {
-            // Segment of T1 against the edges of T2.
-            for u in 0..3 {
-                self.index[4 * u].next = bit_cast::<3, 2>(self.t1_segment_low.val());
-                self.index[4 * u + 1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
-            }
-            self.index[2].next = 3.into();
-            self.index[3].next = 4.into();
-            self.index[6].next = 4.into();
-            self.index[7].next = 5.into();
-            self.index[10].next = 5.into();
-            self.index[11].next = 3.into();
-        } else if !self.t1_degenerate.val() && self.t2_degenerate.val() {
-            // Segment of T2 against the edges of T1.
-            for u in 0..3 {
-                self.index[4 * u].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
-                self.index[4 * u + 1].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
-            }
-            self.index[2].next = 0.into();
-            self.index[3].next = 1.into();
-            self.index[6].next = 1.into();
-            self.index[7].next = 2.into();
-            self.index[10].next = 2.into();
-            self.index[11].next = 0.into();
-        } else {
-            // Two segments: [a, b, c, d].
-            self.index[0].next = bit_cast::<3, 2>(self.t1_segment_low.val());
-            self.index[1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
-            self.index[2].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
-            self.index[3].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
-            for i in 4..12 {
-                self.index[i].next = 0.into();
             }
         }
         for s in 0..12 {

@@ -10,7 +10,7 @@
 
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY};
+use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
@@ -44,11 +44,11 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
-    plane_thermometer_delay: DelayLine<Bits<D>, SUBTRACTOR_LATENCY>,
+    plane_thermometer_delay: DelayLine<Bits<D>, { SUBTRACTOR_LATENCY + MAGNITUDE_THERMOMETER_LATENCY }>,
     offset_magnitude_0: MagnitudeThermometer<D>,
     offset_magnitude_1: MagnitudeThermometer<D>,
     offset_magnitude_2: MagnitudeThermometer<D>,
-    thermometer_delay: [DelayLine<Bits<D>, DOT_PRODUCT_LATENCY>; 3],
+    thermometer_delay: [DelayLine<Bits<D>, { DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>; 3],
     sign: [CertainSign<O, D>; 3],
 }
 
@@ -70,6 +70,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for P
         self.plane_thermometer_delay.clock.next = self.clock.val();
         self.plane_thermometer_delay.advance.next = self.advance.val();
         self.plane_thermometer_delay.d.next = self.plane_thermometer.val();
+        self.offset_magnitude_0.clock.next = self.clock.val();
+        self.offset_magnitude_0.advance.next = self.advance.val();
+        self.offset_magnitude_1.clock.next = self.clock.val();
+        self.offset_magnitude_1.advance.next = self.advance.val();
+        self.offset_magnitude_2.clock.next = self.clock.val();
+        self.offset_magnitude_2.advance.next = self.advance.val();
         for k in 0..3 {
             self.offset_magnitude_0.value[k].next = self.offset_0.difference[k].val();
             self.offset_magnitude_1.value[k].next = self.offset_1.difference[k].val();

@@ -13,6 +13,7 @@ use super::normal::{NormalUnit, NORMAL_LATENCY};
 use super::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use crate::arith::subtractor::SUBTRACTOR_LATENCY;
 use rust_hdl::prelude::*;
 
@@ -50,7 +51,7 @@ pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
     normal_zero_delay: [DelayLine<Bit, { DOMINANT_AXIS_LATENCY - SIGN_LATENCY }>; 3],
     segment_low_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
     segment_high_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
-    edge_thermometer_delay: DelayLine<Bits<D>, { FRONT_END_LATENCY - SUBTRACTOR_LATENCY }>,
+    edge_thermometer_delay: DelayLine<Bits<D>, { FRONT_END_LATENCY - SUBTRACTOR_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>,
 }
 
 impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<W, D, C> {

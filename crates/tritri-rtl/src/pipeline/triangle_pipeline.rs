@@ -120,12 +120,13 @@ pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, cons
     // Alignment of the operands of later stages:
     t1_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
     t2_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
-    /// t1 degenerate, t2 degenerate.
-    degenerate_to_operands: [DelayLine<Bit, OPERANDS_STAGE>; 2],
-    /// t1 low, t1 high, t2 low, t2 high.
-    segment_ends_to_operands: [DelayLine<Bits<2>, OPERANDS_STAGE>; 4],
-    degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE }>; 2],
-    segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE }>; 4],
+    /// t1 degenerate, t2 degenerate: to the operands a clock before the
+    /// overlap indices (the operands register the case).
+    degenerate_to_operands: [DelayLine<Bit, { OPERANDS_STAGE - 1 }>; 2],
+    /// t1 low, t1 high, t2 low, t2 high, likewise.
+    segment_ends_to_operands: [DelayLine<Bits<2>, { OPERANDS_STAGE - 1 }>; 4],
+    degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 2],
+    segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 4],
     /// t1 negative, t1 zero, t2 negative, t2 zero, t1 certain, t2 certain
     /// at `3 j + vertex`.
     sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 18],

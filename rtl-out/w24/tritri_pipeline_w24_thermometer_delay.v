@@ -1,14 +1,12 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_plane_thermometer_delay.v
+// Filename:   tritri_pipeline_w24_thermometer_delay.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (2):
+// Purpose:    Part of tritri_pipeline_w24. Instances (8), for example:
 //             plane_side_t1.plane_thermometer_delay,
-//             plane_side_t2.plane_thermometer_delay.
+//             plane_side_t1.thermometer_delay[0],
+//             plane_side_t1.thermometer_delay[1],
+//             plane_side_t1.thermometer_delay[2].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -23,7 +21,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_plane_thermometer_delay (
+module tritri_pipeline_w24_thermometer_delay (
     input  wire        clock,
     input  wire        advance,
     input  wire [24:0] d,
@@ -31,15 +29,21 @@ module tritri_pipeline_w24_plane_thermometer_delay (
 );
 
     // Update code (custom)
-    // Delay line: 1 stage(s) of 25 bit(s).
+    // Delay line: 3 stage(s) of 25 bit(s).
+    reg [24:0] stage_0_q;
+    reg [24:0] stage_1_q;
     initial begin
+        stage_0_q = 25'd0;
+        stage_1_q = 25'd0;
         q = 25'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
-            q <= d;
+            stage_0_q <= d;
+            stage_1_q <= stage_0_q;
+            q <= stage_1_q;
         end
     end
-endmodule  // tritri_pipeline_w24_plane_thermometer_delay
+endmodule  // tritri_pipeline_w24_thermometer_delay
 
 `default_nettype wire

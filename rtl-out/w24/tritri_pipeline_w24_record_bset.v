@@ -1,13 +1,8 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_degenerate_to_decision.v
+// Filename:   tritri_pipeline_w24_record_bset.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (2):
-//             degenerate_to_decision[0], degenerate_to_decision[1].
+// Purpose:    Part of tritri_pipeline_w24. Instance: record_bset.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -22,7 +17,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_degenerate_to_decision (
+module tritri_pipeline_w24_record_bset (
     input wire clock,
     input wire advance,
     input wire d,
@@ -30,7 +25,7 @@ module tritri_pipeline_w24_degenerate_to_decision (
 );
 
     // Update code (custom)
-    // Delay line: 15 stage(s) of 1 bit(s).
+    // Delay line: 10 stage(s) of 1 bit(s).
     reg stage_0_q;
     reg stage_1_q;
     reg stage_2_q;
@@ -40,11 +35,6 @@ module tritri_pipeline_w24_degenerate_to_decision (
     reg stage_6_q;
     reg stage_7_q;
     reg stage_8_q;
-    reg stage_9_q;
-    reg stage_10_q;
-    reg stage_11_q;
-    reg stage_12_q;
-    reg stage_13_q;
     initial begin
         stage_0_q = 1'd0;
         stage_1_q = 1'd0;
@@ -55,11 +45,6 @@ module tritri_pipeline_w24_degenerate_to_decision (
         stage_6_q = 1'd0;
         stage_7_q = 1'd0;
         stage_8_q = 1'd0;
-        stage_9_q = 1'd0;
-        stage_10_q = 1'd0;
-        stage_11_q = 1'd0;
-        stage_12_q = 1'd0;
-        stage_13_q = 1'd0;
         q = 1'd0;
     end
     always @(posedge clock) begin
@@ -73,14 +58,9 @@ module tritri_pipeline_w24_degenerate_to_decision (
             stage_6_q <= stage_5_q;
             stage_7_q <= stage_6_q;
             stage_8_q <= stage_7_q;
-            stage_9_q <= stage_8_q;
-            stage_10_q <= stage_9_q;
-            stage_11_q <= stage_10_q;
-            stage_12_q <= stage_11_q;
-            stage_13_q <= stage_12_q;
-            q <= stage_13_q;
+            q <= stage_8_q;
         end
     end
-endmodule  // tritri_pipeline_w24_degenerate_to_decision
+endmodule  // tritri_pipeline_w24_record_bset
 
 `default_nettype wire

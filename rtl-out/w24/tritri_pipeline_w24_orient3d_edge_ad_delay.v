@@ -1,10 +1,10 @@
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_plane_thermometer_delay.v
+// Filename:   tritri_pipeline_w24_orient3d_edge_ad_delay.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instances (2):
-//             plane_side_t1.plane_thermometer_delay,
-//             plane_side_t2.plane_thermometer_delay.
+// Purpose:    Part of tritri_pipeline_w24. Instances (9), for example:
+//             orient3d_0.edge_ad_delay_0, orient3d_0.edge_ad_delay_1,
+//             orient3d_0.edge_ad_delay_2, orient3d_1.edge_ad_delay_0.
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -19,7 +19,7 @@
 
 `default_nettype none
 
-module tritri_pipeline_w24_plane_thermometer_delay (
+module tritri_pipeline_w24_orient3d_edge_ad_delay (
     input  wire        clock,
     input  wire        advance,
     input  wire [24:0] d,
@@ -27,15 +27,27 @@ module tritri_pipeline_w24_plane_thermometer_delay (
 );
 
     // Update code (custom)
-    // Delay line: 1 stage(s) of 25 bit(s).
+    // Delay line: 5 stage(s) of 25 bit(s).
+    reg [24:0] stage_0_q;
+    reg [24:0] stage_1_q;
+    reg [24:0] stage_2_q;
+    reg [24:0] stage_3_q;
     initial begin
+        stage_0_q = 25'd0;
+        stage_1_q = 25'd0;
+        stage_2_q = 25'd0;
+        stage_3_q = 25'd0;
         q = 25'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
-            q <= d;
+            stage_0_q <= d;
+            stage_1_q <= stage_0_q;
+            stage_2_q <= stage_1_q;
+            stage_3_q <= stage_2_q;
+            q <= stage_3_q;
         end
     end
-endmodule  // tritri_pipeline_w24_plane_thermometer_delay
+endmodule  // tritri_pipeline_w24_orient3d_edge_ad_delay
 
 `default_nettype wire

@@ -1,13 +1,10 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_degenerate_pair_to_decision.v
+// Filename:   tritri_pipeline_w24_to_decision.v
 //
-// Purpose:    Part of tritri_pipeline_w24. Instance:
-//             degenerate_pair_to_decision.
+// Purpose:    Part of tritri_pipeline_w24. Instances (3):
+//             degenerate_pair_to_decision, degenerate_to_decision[0],
+//             degenerate_to_decision[1].
 //
 // Parameters: W = 24: coordinate width in bits (two's complement)
 //             D = 25: coordinate difference width, W + 1
@@ -22,7 +19,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_degenerate_pair_to_decision (
+module tritri_pipeline_w24_to_decision (
     input wire clock,
     input wire advance,
     input wire d,
@@ -84,6 +81,6 @@ module tritri_pipeline_w24_degenerate_pair_to_decision (
             q <= stage_14_q;
         end
     end
-endmodule  // tritri_pipeline_w24_degenerate_pair_to_decision
+endmodule  // tritri_pipeline_w24_to_decision
 
 `default_nettype wire

@@ -1,0 +1,73 @@
+//! `--certified`: `tritri classify` and `tritri sim` decide every verdict
+//! without a certificate again on the original coordinates, so their
+//! answer is the exact answer where the grid's is not.
+
+use std::process::{Command, Output};
+
+fn tritri(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// 4,000 pairs of small triangles in the unit cube (a fixed pseudo-random
+/// sequence), one per line.
+fn random_pair_file() -> std::path::PathBuf {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut text = String::new();
+    for _ in 0..4000 {
+        let centre = [next(), next(), next()];
+        for _ in 0..6 {
+            for c in centre {
+                text.push_str(&format!("{} ", c + 0.2 * (next() - 0.5)));
+            }
+        }
+        text.push('\n');
+    }
+    let dir = std::env::temp_dir().join(format!("tritri-certified-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("pairs.txt");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// At W = 8 the grid gets some verdicts wrong; the certified answer equals
+/// exact f64, and the note counts the pairs that went back to the host.
+#[test]
+fn classify_certified_is_exact_where_the_grid_is_not() {
+    let path = random_pair_file();
+    let file = path.to_str().unwrap();
+    let exact = tritri(&["classify", file]);
+    assert!(exact.status.success(), "{}", text(&exact.stderr));
+    let grid = tritri(&["classify", "--arith", "fixed", "--width", "8", file]);
+    assert_ne!(text(&grid.stdout), text(&exact.stdout), "W = 8 should get some verdicts wrong");
+    let certified = tritri(&["classify", "--arith", "fixed", "--width", "8", "--certified", file]);
+    assert!(certified.status.success(), "{}", text(&certified.stderr));
+    assert_eq!(text(&certified.stdout), text(&exact.stdout));
+    let note = text(&certified.stderr);
+    assert!(note.contains("certified:") && note.contains("verdicts uncertain"), "{note}");
+    // Only with --arith fixed.
+    let refused = tritri(&["classify", "--certified", file]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(text(&refused.stderr).contains("--certified"), "{}", text(&refused.stderr));
+}
+
+/// The built-in scene: the grid reports one pair too many against exact
+/// f64, the certified answer none.
+#[test]
+fn sim_certified_answer_equals_exact_f64_on_the_built_in_scene() {
+    let out = tritri(&["sim", "--certified"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    assert!(report.contains("certificates: 4 pairs without one"), "{report}");
+    assert!(report.contains("1 extra against exact f64"), "{report}");
+    assert!(report.contains("certified answer: 0 pairs missing, 0 extra against exact f64"), "{report}");
+}
