@@ -284,7 +284,10 @@ pub fn run_scene_with(
     let model_cycles = scene_cycles(config, &batches);
     // The system's hits in the order they leave it (ids, or slots).
     let (hits, uncertain, cycles, counters) = match engine {
-        Engine::Model => (owner_filter::hits(&batches, progress), owner_filter::uncertain(&batches), model_cycles, None),
+        Engine::Model => {
+            let (hits, uncertain) = owner_filter::reported(&batches, progress);
+            (hits, uncertain, model_cycles, None)
+        }
         _ => {
             let result: SystemResult = match engine.simulator() {
                 None => run_system_reporting(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, progress)?,
@@ -345,7 +348,7 @@ pub fn run_scene_with(
         Some(slots) => uncertain.into_iter().map(|(sa, sb)| slots.ids(sa, sb)).collect(),
         None => uncertain.into_iter().collect(),
     };
-    uncertain.extend(owner_filter::uncertain(&scene.host_batches()));
+    uncertain.extend(owner_filter::reported(&scene.host_batches(), &|_| {}).1);
     Ok(SceneRun { engine, pairs, uncertain, owner, cycles, model_cycles, counters })
 }
 

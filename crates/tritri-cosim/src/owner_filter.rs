@@ -13,7 +13,7 @@
 use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
-use tritri_geom::fixed_point;
+use tritri_geom::certificate::certified_intersects;
 use tritri_geom::scene::Batch;
 use tritri_geom::scene::owner_slots::{OwnerSlots, Slot};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
@@ -28,40 +28,28 @@ pub struct OwnerRun {
     pub edges: Vec<u64>,
 }
 
-/// Every hit of `batches` as `(id_a, id_b)` (slots, for the leaves'
-/// slotted batches), batch by batch, in the order the system tests them
-/// (A's triangles, then B's, within a batch); `progress` is told of each
-/// batch's pairs.
-pub fn hits(batches: &[Batch], progress: &dyn Fn(u64)) -> Vec<(u32, u32)> {
-    let mut out = Vec::new();
+/// What the system reports of `batches`, as `(id_a, id_b)` (slots, for the
+/// leaves' slotted batches), batch by batch, in the order the system tests
+/// them (A's triangles, then B's, within a batch): its hits, and the pairs
+/// whose verdict has no certificate (`tritri_geom::certificate`), one pass
+/// over the pairs for both; `progress` is told of each batch's pairs.
+pub fn reported(batches: &[Batch], progress: &dyn Fn(u64)) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let (mut hits, mut uncertain) = (Vec::new(), Vec::new());
     for batch in batches {
         for x in batch.a {
             for y in batch.b {
-                if fixed_point::intersects(&x.triangle, &y.triangle) {
-                    out.push((x.id, y.id));
+                let v = certified_intersects(&x.triangle, &y.triangle);
+                if v.hit {
+                    hits.push((x.id, y.id));
+                }
+                if !v.certain {
+                    uncertain.push((x.id, y.id));
                 }
             }
         }
         progress(batch.pairs());
     }
-    out
-}
-
-/// Every pair of `batches` whose verdict has no certificate
-/// (`tritri_geom::certificate::certain`), in the order of [`hits`]: the
-/// pairs the system reports besides its hits.
-pub fn uncertain(batches: &[Batch]) -> Vec<(u32, u32)> {
-    let mut out = Vec::new();
-    for batch in batches {
-        for x in batch.a {
-            for y in batch.b {
-                if !tritri_geom::certificate::certain(&x.triangle, &y.triangle) {
-                    out.push((x.id, y.id));
-                }
-            }
-        }
-    }
-    out
+    (hits, uncertain)
 }
 
 /// What the model says the filter does with `hits` offered back to back.
