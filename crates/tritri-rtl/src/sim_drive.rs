@@ -51,3 +51,44 @@ pub fn reset_one_clock<B: Block>(uut: &mut B, reset: fn(&mut B) -> &mut Signal<I
     clock_cycle(uut, clock);
     reset(uut).next = false;
 }
+
+/// Streams `vectors` through a unit, one per clock with `advance` high
+/// (`set` drives a vector's inputs), and checks that the outputs `get` reads
+/// `latency` clock edges later equal `model` of that vector, and that they
+/// are not already there one edge earlier (so `latency` is the unit's
+/// latency, not an upper bound). The unit's own test (one beside each unit)
+/// calls this with the unit's latency constant.
+pub fn assert_stream_matches<B: Block, V, O: PartialEq + std::fmt::Debug>(
+    uut: &mut B,
+    clock: fn(&mut B) -> &mut Signal<In, Clock>,
+    vectors: &[V],
+    latency: usize,
+    set: impl Fn(&mut B, &V),
+    get: impl Fn(&B) -> O,
+    model: impl Fn(&V) -> O,
+) where
+    V: std::fmt::Debug,
+{
+    assert!(latency >= 1 && !vectors.is_empty());
+    // outputs[k]: what the outputs show after clock edge k (0-based).
+    let mut outputs = Vec::new();
+    for k in 0..vectors.len() + latency {
+        if let Some(v) = vectors.get(k) {
+            set(uut, v);
+        }
+        // The inputs settle first: a unit alone may have logic between its
+        // inputs and its first registers (the pipeline's top registers
+        // its inputs, so `clock_cycle` alone serves it).
+        settle(uut);
+        clock_cycle(uut, clock);
+        outputs.push(get(uut));
+    }
+    let expected: Vec<O> = vectors.iter().map(&model).collect();
+    for (i, (v, e)) in vectors.iter().zip(&expected).enumerate() {
+        assert_eq!(&outputs[i + latency - 1], e, "vector {i}: {v:?}, {latency} edges after it entered");
+    }
+    if latency >= 2 {
+        let early = (0..vectors.len()).all(|i| outputs[i + latency - 2] == expected[i]);
+        assert!(!early, "every output is there after {} edges already: the latency is less than {latency}", latency - 1);
+    }
+}
