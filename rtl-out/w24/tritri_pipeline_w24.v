@@ -727,80 +727,80 @@ module tritri_pipeline_w24 (
     wire  degenerate_pair_to_decision_q;
 
     // Sub module instances
-    tritri_pipeline_w24_input_vertices u_input_vertices_0(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_0(
         .clock(input_vertices_0_clock),
         .advance(input_vertices_0_advance),
         .d(input_vertices_0_d),
         .q(input_vertices_0_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_1(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_1(
         .clock(input_vertices_1_clock),
         .advance(input_vertices_1_advance),
         .d(input_vertices_1_d),
         .q(input_vertices_1_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_2(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_2(
         .clock(input_vertices_2_clock),
         .advance(input_vertices_2_advance),
         .d(input_vertices_2_d),
         .q(input_vertices_2_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_3(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_3(
         .clock(input_vertices_3_clock),
         .advance(input_vertices_3_advance),
         .d(input_vertices_3_d),
         .q(input_vertices_3_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_4(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_4(
         .clock(input_vertices_4_clock),
         .advance(input_vertices_4_advance),
         .d(input_vertices_4_d),
         .q(input_vertices_4_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_5(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_5(
         .clock(input_vertices_5_clock),
         .advance(input_vertices_5_advance),
         .d(input_vertices_5_d),
         .q(input_vertices_5_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_6(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_6(
         .clock(input_vertices_6_clock),
         .advance(input_vertices_6_advance),
         .d(input_vertices_6_d),
         .q(input_vertices_6_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_7(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_7(
         .clock(input_vertices_7_clock),
         .advance(input_vertices_7_advance),
         .d(input_vertices_7_d),
         .q(input_vertices_7_q)
     );
-    tritri_pipeline_w24_input_vertices u_input_vertices_8(
+    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_8(
         .clock(input_vertices_8_clock),
         .advance(input_vertices_8_advance),
         .d(input_vertices_8_d),
         .q(input_vertices_8_q)
     );
-    tritri_pipeline_w24_record_valid u_record_valid(
+    tritri_pipeline_w24_valid_line_n10 u_record_valid(
         .clock(record_valid_clock),
         .reset(record_valid_reset),
         .advance(record_valid_advance),
         .d(record_valid_d),
         .q(record_valid_q)
     );
-    tritri_pipeline_w24_record_bset u_record_bset(
+    tritri_pipeline_w24_delay_line_w1_n10 u_record_bset(
         .clock(record_bset_clock),
         .advance(record_bset_advance),
         .d(record_bset_d),
         .q(record_bset_q)
     );
-    tritri_pipeline_w24_record_id u_record_id(
+    tritri_pipeline_w24_delay_line_w32_n10 u_record_id(
         .clock(record_id_clock),
         .advance(record_id_advance),
         .d(record_id_d),
         .q(record_id_q)
     );
-    tritri_pipeline_w24_front_end u_front_end(
+    tritri_pipeline_w24_triangle_front_end u_front_end(
         .clock(front_end_clock),
         .advance(front_end_advance),
         .vertices_in_0(front_end_vertices_in_0),
@@ -836,7 +836,7 @@ module tritri_pipeline_w24 (
         .segment_high(front_end_segment_high),
         .edge_thermometer(front_end_edge_thermometer)
     );
-    tritri_pipeline_w24_base u_base(
+    tritri_pipeline_w24_base_polygon u_base(
         .clock(base_clock),
         .load(base_load),
         .id_in(base_id_in),
@@ -888,20 +888,20 @@ module tritri_pipeline_w24 (
         .segment_high(base_segment_high),
         .edge_thermometer(base_edge_thermometer)
     );
-    tritri_pipeline_w24_pair_valid u_pair_valid(
+    tritri_pipeline_w24_valid_line_n27 u_pair_valid(
         .clock(pair_valid_clock),
         .reset(pair_valid_reset),
         .advance(pair_valid_advance),
         .d(pair_valid_d),
         .q(pair_valid_q)
     );
-    tritri_pipeline_w24_id u_base_id(
+    tritri_pipeline_w24_delay_line_w32_n27 u_base_id(
         .clock(base_id_clock),
         .advance(base_id_advance),
         .d(base_id_d),
         .q(base_id_q)
     );
-    tritri_pipeline_w24_id u_stream_id(
+    tritri_pipeline_w24_delay_line_w32_n27 u_stream_id(
         .clock(stream_id_clock),
         .advance(stream_id_advance),
         .d(stream_id_d),
@@ -1021,7 +1021,7 @@ module tritri_pipeline_w24 (
         .second_2(interval_overlap_second_2),
         .second_3(interval_overlap_second_3)
     );
-    tritri_pipeline_w24_operands u_operands(
+    tritri_pipeline_w24_orient3d_operands u_operands(
         .clock(operands_clock),
         .advance(operands_advance),
         .t1_degenerate(operands_t1_degenerate),
@@ -1093,7 +1093,7 @@ module tritri_pipeline_w24 (
         .operands_34(operands_operands_34),
         .operands_35(operands_operands_35)
     );
-    tritri_pipeline_w24_orient3d u_orient3d_0(
+    tritri_pipeline_w24_certified_orient3d u_orient3d_0(
         .clock(orient3d_0_clock),
         .advance(orient3d_0_advance),
         .a_0(orient3d_0_a_0),
@@ -1112,7 +1112,7 @@ module tritri_pipeline_w24 (
         .zero(orient3d_0_zero),
         .certain(orient3d_0_certain)
     );
-    tritri_pipeline_w24_orient3d u_orient3d_1(
+    tritri_pipeline_w24_certified_orient3d u_orient3d_1(
         .clock(orient3d_1_clock),
         .advance(orient3d_1_advance),
         .a_0(orient3d_1_a_0),
@@ -1131,7 +1131,7 @@ module tritri_pipeline_w24 (
         .zero(orient3d_1_zero),
         .certain(orient3d_1_certain)
     );
-    tritri_pipeline_w24_orient3d_2 u_orient3d_2(
+    tritri_pipeline_w24_orient3d u_orient3d_2(
         .clock(orient3d_2_clock),
         .advance(orient3d_2_advance),
         .a_0(orient3d_2_a_0),
@@ -1149,7 +1149,7 @@ module tritri_pipeline_w24 (
         .negative(orient3d_2_negative),
         .zero(orient3d_2_zero)
     );
-    tritri_pipeline_w24_coplanar u_coplanar(
+    tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
         .advance(coplanar_advance),
         .t1_vertices_0(coplanar_t1_vertices_0),
@@ -1252,301 +1252,301 @@ module tritri_pipeline_w24 (
         .hit(decision_hit),
         .certain(decision_certain)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_0(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_0(
         .clock(t1_vertices_to_operands_0_clock),
         .advance(t1_vertices_to_operands_0_advance),
         .d(t1_vertices_to_operands_0_d),
         .q(t1_vertices_to_operands_0_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_1(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_1(
         .clock(t1_vertices_to_operands_1_clock),
         .advance(t1_vertices_to_operands_1_advance),
         .d(t1_vertices_to_operands_1_d),
         .q(t1_vertices_to_operands_1_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_2(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_2(
         .clock(t1_vertices_to_operands_2_clock),
         .advance(t1_vertices_to_operands_2_advance),
         .d(t1_vertices_to_operands_2_d),
         .q(t1_vertices_to_operands_2_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_3(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_3(
         .clock(t1_vertices_to_operands_3_clock),
         .advance(t1_vertices_to_operands_3_advance),
         .d(t1_vertices_to_operands_3_d),
         .q(t1_vertices_to_operands_3_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_4(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_4(
         .clock(t1_vertices_to_operands_4_clock),
         .advance(t1_vertices_to_operands_4_advance),
         .d(t1_vertices_to_operands_4_d),
         .q(t1_vertices_to_operands_4_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_5(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_5(
         .clock(t1_vertices_to_operands_5_clock),
         .advance(t1_vertices_to_operands_5_advance),
         .d(t1_vertices_to_operands_5_d),
         .q(t1_vertices_to_operands_5_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_6(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_6(
         .clock(t1_vertices_to_operands_6_clock),
         .advance(t1_vertices_to_operands_6_advance),
         .d(t1_vertices_to_operands_6_d),
         .q(t1_vertices_to_operands_6_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_7(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_7(
         .clock(t1_vertices_to_operands_7_clock),
         .advance(t1_vertices_to_operands_7_advance),
         .d(t1_vertices_to_operands_7_d),
         .q(t1_vertices_to_operands_7_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t1_vertices_to_operands_8(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_8(
         .clock(t1_vertices_to_operands_8_clock),
         .advance(t1_vertices_to_operands_8_advance),
         .d(t1_vertices_to_operands_8_d),
         .q(t1_vertices_to_operands_8_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_0(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_0(
         .clock(t2_vertices_to_operands_0_clock),
         .advance(t2_vertices_to_operands_0_advance),
         .d(t2_vertices_to_operands_0_d),
         .q(t2_vertices_to_operands_0_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_1(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_1(
         .clock(t2_vertices_to_operands_1_clock),
         .advance(t2_vertices_to_operands_1_advance),
         .d(t2_vertices_to_operands_1_d),
         .q(t2_vertices_to_operands_1_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_2(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_2(
         .clock(t2_vertices_to_operands_2_clock),
         .advance(t2_vertices_to_operands_2_advance),
         .d(t2_vertices_to_operands_2_d),
         .q(t2_vertices_to_operands_2_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_3(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_3(
         .clock(t2_vertices_to_operands_3_clock),
         .advance(t2_vertices_to_operands_3_advance),
         .d(t2_vertices_to_operands_3_d),
         .q(t2_vertices_to_operands_3_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_4(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_4(
         .clock(t2_vertices_to_operands_4_clock),
         .advance(t2_vertices_to_operands_4_advance),
         .d(t2_vertices_to_operands_4_d),
         .q(t2_vertices_to_operands_4_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_5(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_5(
         .clock(t2_vertices_to_operands_5_clock),
         .advance(t2_vertices_to_operands_5_advance),
         .d(t2_vertices_to_operands_5_d),
         .q(t2_vertices_to_operands_5_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_6(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_6(
         .clock(t2_vertices_to_operands_6_clock),
         .advance(t2_vertices_to_operands_6_advance),
         .d(t2_vertices_to_operands_6_d),
         .q(t2_vertices_to_operands_6_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_7(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_7(
         .clock(t2_vertices_to_operands_7_clock),
         .advance(t2_vertices_to_operands_7_advance),
         .d(t2_vertices_to_operands_7_d),
         .q(t2_vertices_to_operands_7_q)
     );
-    tritri_pipeline_w24_vertices_to_operands u_t2_vertices_to_operands_8(
+    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_8(
         .clock(t2_vertices_to_operands_8_clock),
         .advance(t2_vertices_to_operands_8_advance),
         .d(t2_vertices_to_operands_8_d),
         .q(t2_vertices_to_operands_8_q)
     );
-    tritri_pipeline_w24_degenerate_to_operands u_degenerate_to_operands_0(
+    tritri_pipeline_w24_delay_line_w1_n9 u_degenerate_to_operands_0(
         .clock(degenerate_to_operands_0_clock),
         .advance(degenerate_to_operands_0_advance),
         .d(degenerate_to_operands_0_d),
         .q(degenerate_to_operands_0_q)
     );
-    tritri_pipeline_w24_degenerate_to_operands u_degenerate_to_operands_1(
+    tritri_pipeline_w24_delay_line_w1_n9 u_degenerate_to_operands_1(
         .clock(degenerate_to_operands_1_clock),
         .advance(degenerate_to_operands_1_advance),
         .d(degenerate_to_operands_1_d),
         .q(degenerate_to_operands_1_q)
     );
-    tritri_pipeline_w24_segment_ends_to_operands u_segment_ends_to_operands_0(
+    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_0(
         .clock(segment_ends_to_operands_0_clock),
         .advance(segment_ends_to_operands_0_advance),
         .d(segment_ends_to_operands_0_d),
         .q(segment_ends_to_operands_0_q)
     );
-    tritri_pipeline_w24_segment_ends_to_operands u_segment_ends_to_operands_1(
+    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_1(
         .clock(segment_ends_to_operands_1_clock),
         .advance(segment_ends_to_operands_1_advance),
         .d(segment_ends_to_operands_1_d),
         .q(segment_ends_to_operands_1_q)
     );
-    tritri_pipeline_w24_segment_ends_to_operands u_segment_ends_to_operands_2(
+    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_2(
         .clock(segment_ends_to_operands_2_clock),
         .advance(segment_ends_to_operands_2_advance),
         .d(segment_ends_to_operands_2_d),
         .q(segment_ends_to_operands_2_q)
     );
-    tritri_pipeline_w24_segment_ends_to_operands u_segment_ends_to_operands_3(
+    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_3(
         .clock(segment_ends_to_operands_3_clock),
         .advance(segment_ends_to_operands_3_advance),
         .d(segment_ends_to_operands_3_d),
         .q(segment_ends_to_operands_3_q)
     );
-    tritri_pipeline_w24_to_decision u_degenerate_to_decision_0(
+    tritri_pipeline_w24_delay_line_w1_n16 u_degenerate_to_decision_0(
         .clock(degenerate_to_decision_0_clock),
         .advance(degenerate_to_decision_0_advance),
         .d(degenerate_to_decision_0_d),
         .q(degenerate_to_decision_0_q)
     );
-    tritri_pipeline_w24_to_decision u_degenerate_to_decision_1(
+    tritri_pipeline_w24_delay_line_w1_n16 u_degenerate_to_decision_1(
         .clock(degenerate_to_decision_1_clock),
         .advance(degenerate_to_decision_1_advance),
         .d(degenerate_to_decision_1_d),
         .q(degenerate_to_decision_1_q)
     );
-    tritri_pipeline_w24_segment_ends_to_decision u_segment_ends_to_decision_0(
+    tritri_pipeline_w24_delay_line_w2_n16 u_segment_ends_to_decision_0(
         .clock(segment_ends_to_decision_0_clock),
         .advance(segment_ends_to_decision_0_advance),
         .d(segment_ends_to_decision_0_d),
         .q(segment_ends_to_decision_0_q)
     );
-    tritri_pipeline_w24_segment_ends_to_decision u_segment_ends_to_decision_1(
+    tritri_pipeline_w24_delay_line_w2_n16 u_segment_ends_to_decision_1(
         .clock(segment_ends_to_decision_1_clock),
         .advance(segment_ends_to_decision_1_advance),
         .d(segment_ends_to_decision_1_d),
         .q(segment_ends_to_decision_1_q)
     );
-    tritri_pipeline_w24_segment_ends_to_decision u_segment_ends_to_decision_2(
+    tritri_pipeline_w24_delay_line_w2_n16 u_segment_ends_to_decision_2(
         .clock(segment_ends_to_decision_2_clock),
         .advance(segment_ends_to_decision_2_advance),
         .d(segment_ends_to_decision_2_d),
         .q(segment_ends_to_decision_2_q)
     );
-    tritri_pipeline_w24_segment_ends_to_decision u_segment_ends_to_decision_3(
+    tritri_pipeline_w24_delay_line_w2_n16 u_segment_ends_to_decision_3(
         .clock(segment_ends_to_decision_3_clock),
         .advance(segment_ends_to_decision_3_advance),
         .d(segment_ends_to_decision_3_d),
         .q(segment_ends_to_decision_3_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_0(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_0(
         .clock(sides_to_decision_0_clock),
         .advance(sides_to_decision_0_advance),
         .d(sides_to_decision_0_d),
         .q(sides_to_decision_0_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_1(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_1(
         .clock(sides_to_decision_1_clock),
         .advance(sides_to_decision_1_advance),
         .d(sides_to_decision_1_d),
         .q(sides_to_decision_1_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_2(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_2(
         .clock(sides_to_decision_2_clock),
         .advance(sides_to_decision_2_advance),
         .d(sides_to_decision_2_d),
         .q(sides_to_decision_2_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_3(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_3(
         .clock(sides_to_decision_3_clock),
         .advance(sides_to_decision_3_advance),
         .d(sides_to_decision_3_d),
         .q(sides_to_decision_3_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_4(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_4(
         .clock(sides_to_decision_4_clock),
         .advance(sides_to_decision_4_advance),
         .d(sides_to_decision_4_d),
         .q(sides_to_decision_4_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_5(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_5(
         .clock(sides_to_decision_5_clock),
         .advance(sides_to_decision_5_advance),
         .d(sides_to_decision_5_d),
         .q(sides_to_decision_5_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_6(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_6(
         .clock(sides_to_decision_6_clock),
         .advance(sides_to_decision_6_advance),
         .d(sides_to_decision_6_d),
         .q(sides_to_decision_6_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_7(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_7(
         .clock(sides_to_decision_7_clock),
         .advance(sides_to_decision_7_advance),
         .d(sides_to_decision_7_d),
         .q(sides_to_decision_7_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_8(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_8(
         .clock(sides_to_decision_8_clock),
         .advance(sides_to_decision_8_advance),
         .d(sides_to_decision_8_d),
         .q(sides_to_decision_8_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_9(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_9(
         .clock(sides_to_decision_9_clock),
         .advance(sides_to_decision_9_advance),
         .d(sides_to_decision_9_d),
         .q(sides_to_decision_9_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_10(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_10(
         .clock(sides_to_decision_10_clock),
         .advance(sides_to_decision_10_advance),
         .d(sides_to_decision_10_d),
         .q(sides_to_decision_10_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_11(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_11(
         .clock(sides_to_decision_11_clock),
         .advance(sides_to_decision_11_advance),
         .d(sides_to_decision_11_d),
         .q(sides_to_decision_11_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_12(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_12(
         .clock(sides_to_decision_12_clock),
         .advance(sides_to_decision_12_advance),
         .d(sides_to_decision_12_d),
         .q(sides_to_decision_12_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_13(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_13(
         .clock(sides_to_decision_13_clock),
         .advance(sides_to_decision_13_advance),
         .d(sides_to_decision_13_d),
         .q(sides_to_decision_13_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_14(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_14(
         .clock(sides_to_decision_14_clock),
         .advance(sides_to_decision_14_advance),
         .d(sides_to_decision_14_d),
         .q(sides_to_decision_14_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_15(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_15(
         .clock(sides_to_decision_15_clock),
         .advance(sides_to_decision_15_advance),
         .d(sides_to_decision_15_d),
         .q(sides_to_decision_15_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_16(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_16(
         .clock(sides_to_decision_16_clock),
         .advance(sides_to_decision_16_advance),
         .d(sides_to_decision_16_d),
         .q(sides_to_decision_16_q)
     );
-    tritri_pipeline_w24_sides_to_decision u_sides_to_decision_17(
+    tritri_pipeline_w24_delay_line_w1_n18 u_sides_to_decision_17(
         .clock(sides_to_decision_17_clock),
         .advance(sides_to_decision_17_advance),
         .d(sides_to_decision_17_d),
         .q(sides_to_decision_17_q)
     );
-    tritri_pipeline_w24_coplanar_to_decision u_coplanar_to_decision(
+    tritri_pipeline_w24_delay_line_w1_n14 u_coplanar_to_decision(
         .clock(coplanar_to_decision_clock),
         .advance(coplanar_to_decision_advance),
         .d(coplanar_to_decision_d),
         .q(coplanar_to_decision_q)
     );
-    tritri_pipeline_w24_to_decision u_degenerate_pair_to_decision(
+    tritri_pipeline_w24_delay_line_w1_n16 u_degenerate_pair_to_decision(
         .clock(degenerate_pair_to_decision_clock),
         .advance(degenerate_pair_to_decision_advance),
         .d(degenerate_pair_to_decision_d),
@@ -1555,49 +1555,49 @@ module tritri_pipeline_w24 (
 
     // Update code
     assign record_valid_clock = clock;
-    assign record_valid_reset = reset;
-    assign record_valid_advance = advance;
     assign record_bset_clock = clock;
-    assign record_bset_advance = advance;
     assign record_id_clock = clock;
-    assign record_id_advance = advance;
     assign front_end_clock = clock;
-    assign front_end_advance = advance;
     assign base_clock = clock;
     assign pair_valid_clock = clock;
+    assign base_id_clock = clock;
+    assign stream_id_clock = clock;
+    assign plane_side_t1_clock = clock;
+    assign plane_side_t2_clock = clock;
+    assign align_t1_clock = clock;
+    assign align_t2_clock = clock;
+    assign interval_overlap_clock = clock;
+    assign operands_clock = clock;
+    assign orient3d_0_clock = clock;
+    assign orient3d_1_clock = clock;
+    assign orient3d_2_clock = clock;
+    assign coplanar_clock = clock;
+    assign degenerate_pair_clock = clock;
+    assign decision_clock = clock;
+    assign coplanar_to_decision_clock = clock;
+    assign degenerate_pair_to_decision_clock = clock;
+    assign record_valid_reset = reset;
+    assign record_valid_advance = advance;
+    assign record_bset_advance = advance;
+    assign record_id_advance = advance;
+    assign front_end_advance = advance;
     assign pair_valid_reset = reset;
     assign pair_valid_advance = advance;
-    assign base_id_clock = clock;
     assign base_id_advance = advance;
-    assign stream_id_clock = clock;
     assign stream_id_advance = advance;
-    assign plane_side_t1_clock = clock;
     assign plane_side_t1_advance = advance;
-    assign plane_side_t2_clock = clock;
     assign plane_side_t2_advance = advance;
-    assign align_t1_clock = clock;
     assign align_t1_advance = advance;
-    assign align_t2_clock = clock;
     assign align_t2_advance = advance;
-    assign interval_overlap_clock = clock;
     assign interval_overlap_advance = advance;
-    assign operands_clock = clock;
     assign operands_advance = advance;
-    assign orient3d_0_clock = clock;
     assign orient3d_0_advance = advance;
-    assign orient3d_1_clock = clock;
     assign orient3d_1_advance = advance;
-    assign orient3d_2_clock = clock;
     assign orient3d_2_advance = advance;
-    assign coplanar_clock = clock;
     assign coplanar_advance = advance;
-    assign degenerate_pair_clock = clock;
     assign degenerate_pair_advance = advance;
-    assign decision_clock = clock;
     assign decision_advance = advance;
-    assign coplanar_to_decision_clock = clock;
     assign coplanar_to_decision_advance = advance;
-    assign degenerate_pair_to_decision_clock = clock;
     assign degenerate_pair_to_decision_advance = advance;
     assign input_vertices_0_clock = clock;
     assign input_vertices_0_advance = advance;

@@ -112,7 +112,7 @@ pub struct Args {
     dsp: Option<String>,
     /// With --synth ecp5: place and route this module of the emitted
     /// design on its own instead of the top (a unit of the pipeline, such
-    /// as tritri_pipeline_w16_operands: minutes where the whole pipeline
+    /// as tritri_pipeline_w16_orient3d_operands: minutes where the whole pipeline
     /// takes hours).
     #[arg(long, value_name = "MODULE")]
     synth_top: Option<String>,

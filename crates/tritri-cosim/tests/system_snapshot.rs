@@ -17,7 +17,7 @@ fn emitted_system_w24_p2_d64() {
     assert_eq!(design.top, "tritri_system_w24_p2_d64");
     let system_module = |path: &str| {
         path == format!("{}.v", design.top)
-            || ["address_generator", "memory", "column", "result_fifo", "pair_serializer"]
+            || ["address_generator", "memory", "simple_dual_port_ram", "result_fifo", "pair_serializer"]
                 .iter()
                 .any(|part| path.contains(part))
     };
@@ -28,8 +28,8 @@ fn emitted_system_w24_p2_d64() {
     insta::assert_snapshot!(text);
 }
 
-/// `verilator --lint-only -Wall` prints nothing on the emitted system with
-/// 1, 2 and 4 pipelines, and Icarus compiles it.
+/// `verilator --lint-only -Wall` and `slang -Weverything` print nothing on
+/// the emitted system with 1, 2 and 4 pipelines, and Icarus compiles it.
 #[test]
 fn emitted_system_is_lint_clean() {
     use tritri_rtl::tools::{lint, run, IVERILOG};
@@ -41,6 +41,8 @@ fn emitted_system_is_lint_clean() {
         design.write_to(&dir).unwrap();
         let messages = lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
         assert!(messages.trim().is_empty(), "P={pipelines}: verilator said:\n{messages}");
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        assert!(messages.is_empty(), "P={pipelines}: slang -Weverything said:\n{messages}");
         run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
             .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
         std::fs::remove_dir_all(&dir).unwrap();

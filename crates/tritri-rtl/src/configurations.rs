@@ -87,8 +87,8 @@ pub trait PipelineSimulation {
     fn output(&self) -> PipelineOutput;
     /// The circuit, for probes (VCD).
     fn block(&self) -> &dyn Block;
-    /// rust-hdl's Verilog for this pipeline (top module `top`).
-    fn verilog(&self) -> String;
+    /// rust-hdl's Verilog for this pipeline (top module `top`) and its units.
+    fn raw_design(&self) -> crate::unit::RawDesign;
 }
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePipeline<W, D, C, O> {
@@ -172,8 +172,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSim
     fn block(&self) -> &dyn Block {
         self
     }
-    fn verilog(&self) -> String {
-        generate_verilog(self)
+    fn raw_design(&self) -> crate::unit::RawDesign {
+        crate::unit::RawDesign::of(self)
     }
 }
 
@@ -231,6 +231,6 @@ impl std::error::Error for UnsupportedWidth {}
 
 /// rust-hdl's generated Verilog for the pipeline top at `width` (top module
 /// `top`, submodules `top$child`): raw, before the emitter's clean-up.
-pub fn raw_verilog(width: usize) -> Result<String, UnsupportedWidth> {
-    Ok(pipeline_for_width(width)?.verilog())
+pub fn raw_design(width: usize) -> Result<crate::unit::RawDesign, UnsupportedWidth> {
+    Ok(pipeline_for_width(width)?.raw_design())
 }

@@ -33,6 +33,7 @@
 //! ```
 //! use rust_hdl::prelude::*;
 //! use tritri_rtl::emit::{emit, UnitDescription};
+//! use tritri_rtl::unit::{RawDesign, Unit};
 //!
 //! #[derive(LogicBlock, Default)]
 //! struct Inverter {
@@ -45,12 +46,13 @@
 //!         self.y.next = !self.a.val();
 //!     }
 //! }
+//! impl Unit for Inverter {}
 //! let mut uut = Inverter::default();
 //! uut.connect_all();
 //! let unit = UnitDescription::new("inverter", "Inverts a bit.")
 //!     .port("a", "input bit")
 //!     .port("y", "not a");
-//! let design = emit(&generate_verilog(&uut), &unit).unwrap();
+//! let design = emit(&RawDesign::of(&uut), &unit).unwrap();
 //! assert_eq!(design.top, "inverter");
 //! assert!(design.file("inverter.v").unwrap().contents.contains("`default_nettype none"));
 //! ```
@@ -74,6 +76,7 @@ pub mod widths;
 
 pub use pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
 
+use crate::unit::RawDesign;
 use std::path::Path;
 
 /// What the emitter needs to know about a unit besides its Verilog.
@@ -191,8 +194,8 @@ pub enum EmitError {
 }
 
 /// Post-processes rust-hdl's Verilog for `unit` (see the module docs).
-pub fn emit(rust_hdl_verilog: &str, unit: &UnitDescription) -> Result<EmittedDesign, EmitError> {
-    emit_with(rust_hdl_verilog, unit, EmitOptions::default())
+pub fn emit(raw: &RawDesign, unit: &UnitDescription) -> Result<EmittedDesign, EmitError> {
+    emit_with(raw, unit, EmitOptions::default())
 }
 
 /// Switches for [`emit_with`].
@@ -239,7 +242,7 @@ impl Default for EmitOptions {
 
 /// [`emit`] with options.
 pub fn emit_with(
-    rust_hdl_verilog: &str,
+    raw: &RawDesign,
     unit: &UnitDescription,
     options: EmitOptions,
 ) -> Result<EmittedDesign, EmitError> {
@@ -248,8 +251,8 @@ pub fn emit_with(
     if !valid_name {
         return Err(EmitError::BadUnitName(unit.name.clone()));
     }
-    let rust_hdl_verilog = part_selects::constant_part_selects(rust_hdl_verilog);
-    let mut modules = modules::normalize(&rust_hdl_verilog, &unit.name)?;
+    let rust_hdl_verilog = part_selects::constant_part_selects(&raw.verilog);
+    let mut modules = modules::normalize(&rust_hdl_verilog, &unit.name, &raw.units)?;
     if options.explicit_widths {
         for m in modules.iter_mut() {
             widths::fix_module(m);

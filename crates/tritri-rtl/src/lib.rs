@@ -1,4 +1,24 @@
-//! placeholder
+//! The hardware of tritri as rust-hdl units, their cycle and memory models,
+//! and the emitter that writes them out as reviewed Verilog packages.
+//!
+//! * [`arith`]: registered arithmetic primitives in exact widths
+//!   (subtractors, multipliers, cross and dot products, signs, the
+//!   certificates' thermometers, delay lines);
+//! * [`pipeline`]: the Devillers–Guigue pipeline, one unit per step of the
+//!   test, and its ports ([`pipeline::ports`]);
+//! * [`system`]: the thesis's bounding-volume system (memories, address
+//!   generator, P pipelines, result FIFO) and its cycle model;
+//! * [`octree`]: the octree engine's units and the octree broad phase's
+//!   binning unit, owner filter and broad-phase top;
+//! * [`configurations`]: the supported widths, one list, and the pipeline
+//!   instantiated at each;
+//! * [`mod@unit`]: what every unit tells the emitter (its type, latency and
+//!   sub-units); [`emit`]: rust-hdl's Verilog to a package an FPGA flow
+//!   takes (names, headers, widths, ANSI ports, README, FuseSoC core);
+//! * [`synth`], [`route`], [`tools`]: Yosys, nextpnr and the simulators;
+//! * [`sim_drive`]: direct drive of a rust-hdl simulation.
+//!
+//! docs/ARCHITECTURE.md puts each unit beside its software model and test.
 pub mod arith;
 pub mod pipeline;
 pub mod sim_drive;
@@ -6,7 +26,8 @@ pub mod emit;
 pub mod route;
 pub mod synth;
 pub mod tools;
+pub mod unit;
 pub mod system;
 pub mod octree;
 pub mod configurations;
-pub use configurations::raw_verilog;
+pub use configurations::raw_design;

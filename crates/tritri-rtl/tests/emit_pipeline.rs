@@ -23,8 +23,9 @@ fn write(design: &EmittedDesign, name: &str) -> std::path::PathBuf {
     dir
 }
 
-/// `verilator --lint-only -Wall` prints nothing and Icarus compiles, at
-/// every width; the emitted files never contain a lint_off pragma.
+/// `verilator --lint-only -Wall` and `slang -Weverything` print nothing and
+/// Icarus compiles, at every width; the emitted files never contain a
+/// lint_off pragma.
 #[test]
 fn every_width_is_lint_clean() {
     for &width in SUPPORTED_WIDTHS {
@@ -32,6 +33,8 @@ fn every_width_is_lint_clean() {
         let dir = write(&design, &format!("lint-w{width}"));
         let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
         assert!(messages.trim().is_empty(), "W={width}: verilator said:\n{messages}");
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
+        assert!(messages.is_empty(), "W={width}: slang -Weverything said:\n{messages}");
         run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
             .unwrap_or_else(|e| panic!("W={width}: {e}"));
         for f in design.verilog_files() {
@@ -129,11 +132,11 @@ fn emission_passes_are_formally_equivalent() {
     let raw_system = {
         let mut s = system_for_config(system, PipelineKind::Real).unwrap();
         s.connect_all();
-        s.verilog()
+        s.raw_design()
     };
     let cases = [
-        ("w8".to_string(), tritri_rtl::raw_verilog(8).unwrap(), pipeline_unit(8).unwrap()),
-        ("w24".to_string(), tritri_rtl::raw_verilog(24).unwrap(), pipeline_unit(24).unwrap()),
+        ("w8".to_string(), tritri_rtl::raw_design(8).unwrap(), pipeline_unit(8).unwrap()),
+        ("w24".to_string(), tritri_rtl::raw_design(24).unwrap(), pipeline_unit(24).unwrap()),
         ("system".to_string(), raw_system, system_unit(system, PipelineKind::Real)),
     ];
     for (width, raw, unit) in cases {

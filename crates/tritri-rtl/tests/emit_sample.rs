@@ -5,6 +5,7 @@
 use rust_hdl::prelude::*;
 use tritri_rtl::emit::{emit, EmittedDesign, UnitDescription};
 use tritri_rtl::tools::{run, IVERILOG};
+use tritri_rtl::unit::{RawDesign, Unit, UnitWalk};
 
 #[derive(LogicBlock, Default)]
 pub struct RegisteredAdder {
@@ -21,6 +22,12 @@ impl Logic for RegisteredAdder {
         dff_setup!(self, clock, sum_q);
         self.sum_q.d.next = bit_cast::<9, 8>(self.a.val()) + bit_cast::<9, 8>(self.b.val());
         self.sum.next = self.sum_q.q.val();
+    }
+}
+
+impl Unit for RegisteredAdder {
+    fn sub_units(&self, units: &mut UnitWalk) {
+        tritri_rtl::sub_units!(self, units, sum_q);
     }
 }
 
@@ -45,6 +52,12 @@ pub struct Sample {
     other_adder: RegisteredAdder,
     phase: DFF<Phase>,
     count: DFF<Bits<4>>,
+}
+
+impl Unit for Sample {
+    fn sub_units(&self, units: &mut UnitWalk) {
+        tritri_rtl::sub_units!(self, units, adder, other_adder, phase, count);
+    }
 }
 
 impl Default for Sample {
@@ -107,7 +120,7 @@ impl Logic for Sample {
 fn sample_design() -> EmittedDesign {
     let mut uut = Sample::default();
     uut.connect_all();
-    let raw = generate_verilog(&uut);
+    let raw = RawDesign::of(&uut);
     let unit = UnitDescription::new("tritri_sample_w8", "A sample design: two registered adders and a counter.")
         .parameter("W", "8, operand width")
         .port("clock", "clock, rising edge")

@@ -1,8 +1,9 @@
 //! The pipeline's geometric units alone, by direct drive against their
 //! software models in tritri-geom, each with its latency constant asserted
 //! (`sim_drive::assert_stream_matches`). W = 24 (D = 25, C = 49, O = 74).
-//! The whole pipeline's co-simulations (tritri-cosim) cover the control
-//! units (alignment, operand selection, the decision) in context.
+//! The operand selection (`orient3d_operands`), the base polygon, the
+//! front end and the decision are covered in context by the whole
+//! pipeline's co-simulations (tritri-cosim).
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -27,6 +27,10 @@ pub struct RegisteredDifference<const N: usize> {
     pub difference: Signal<Out, Bits<N>>,
 }
 
+impl<const N: usize> crate::unit::Unit for RegisteredDifference<N> {
+    const LATENCY: Option<usize> = Some(ADDER_LATENCY);
+}
+
 impl<const N: usize> Logic for RegisteredDifference<N> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
@@ -63,6 +67,10 @@ pub struct RegisteredSum3<const N: usize> {
     pub b: Signal<In, Bits<N>>,
     pub c: Signal<In, Bits<N>>,
     pub sum: Signal<Out, Bits<N>>,
+}
+
+impl<const N: usize> crate::unit::Unit for RegisteredSum3<N> {
+    const LATENCY: Option<usize> = Some(ADDER_LATENCY);
 }
 
 impl<const N: usize> Logic for RegisteredSum3<N> {

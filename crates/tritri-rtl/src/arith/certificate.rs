@@ -48,6 +48,13 @@ pub struct MagnitudeThermometer<const D: usize> {
     thermometer_q: DFF<Bits<D>>,
 }
 
+impl<const D: usize> crate::unit::Unit for MagnitudeThermometer<D> {
+    const LATENCY: Option<usize> = Some(MAGNITUDE_THERMOMETER_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, magnitudes_q, thermometer_q);
+    }
+}
+
 impl<const D: usize> Default for MagnitudeThermometer<D> {
     fn default() -> Self {
         assert!((2..=64).contains(&D));
@@ -122,6 +129,13 @@ pub struct CertainSign<const O: usize, const D: usize> {
     negative_q: DFF<Bit>,
     zero_q: DFF<Bit>,
     certain_q: DFF<Bit>,
+}
+
+impl<const O: usize, const D: usize> crate::unit::Unit for CertainSign<O, D> {
+    const LATENCY: Option<usize> = Some(CERTAIN_SIGN_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, negative_q, zero_q, certain_q);
+    }
 }
 
 /// Bits `i` with `i mod 2s < s`: where the expansion step by `s` keeps bits.

@@ -27,6 +27,13 @@ pub struct CoordinateCompare<const W: usize> {
     equal_q: DFF<Bit>,
 }
 
+impl<const W: usize> crate::unit::Unit for CoordinateCompare<W> {
+    const LATENCY: Option<usize> = Some(COMPARE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, less_q, equal_q);
+    }
+}
+
 impl<const W: usize> Default for CoordinateCompare<W> {
     fn default() -> Self {
         Self {

@@ -28,6 +28,13 @@ pub struct CrossProduct<const D: usize, const C: usize> {
     component: [RegisteredDifference<C>; 3],
 }
 
+impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct<D, C> {
+    const LATENCY: Option<usize> = Some(CROSS_PRODUCT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, multiplier, component);
+    }
+}
+
 impl<const D: usize, const C: usize> Default for CrossProduct<D, C> {
     fn default() -> Self {
         assert_eq!(C, 2 * D - 1, "a cross product of {D}-bit differences has {} bits", 2 * D - 1);
@@ -88,6 +95,13 @@ pub struct CrossProduct2d<const D: usize, const C: usize> {
     pub product: Signal<Out, Bits<C>>,
     multiplier: [Multiplier<D, D, C>; 2],
     difference: RegisteredDifference<C>,
+}
+
+impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct2d<D, C> {
+    const LATENCY: Option<usize> = Some(CROSS_PRODUCT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, multiplier, difference);
+    }
 }
 
 impl<const D: usize, const C: usize> Default for CrossProduct2d<D, C> {

@@ -20,6 +20,10 @@ pub struct DelayLine<T: Synth, const N: usize> {
     _stages: [T; N],
 }
 
+impl<T: Synth, const N: usize> crate::unit::Unit for DelayLine<T, N> {
+    const LATENCY: Option<usize> = Some(N);
+}
+
 impl<T: Synth, const N: usize> Default for DelayLine<T, N> {
     fn default() -> Self {
         assert!(N >= 1, "a delay line has at least one stage");

@@ -27,6 +27,13 @@ pub struct DotProduct<const D: usize, const C: usize, const O: usize> {
     sum: RegisteredSum3<O>,
 }
 
+impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit for DotProduct<D, C, O> {
+    const LATENCY: Option<usize> = Some(DOT_PRODUCT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, multiplier, sum);
+    }
+}
+
 impl<const D: usize, const C: usize, const O: usize> Default for DotProduct<D, C, O> {
     fn default() -> Self {
         assert!(O <= D + C, "a dot product of {D}-bit by {C}-bit vectors has at most {} bits", D + C);

@@ -47,6 +47,10 @@ pub struct Multiplier<const A: usize, const B: usize, const P: usize> {
     _p_q: i128,
 }
 
+impl<const A: usize, const B: usize, const P: usize> crate::unit::Unit for Multiplier<A, B, P> {
+    const LATENCY: Option<usize> = Some(MULTIPLIER_LATENCY);
+}
+
 impl<const A: usize, const B: usize, const P: usize> Default for Multiplier<A, B, P> {
     fn default() -> Self {
         assert!(P <= A + B && A + B <= 126, "multiplier {A} x {B} -> {P} bits is not supported");

@@ -22,6 +22,13 @@ pub struct SignOf<const N: usize> {
     zero_q: DFF<Bit>,
 }
 
+impl<const N: usize> crate::unit::Unit for SignOf<N> {
+    const LATENCY: Option<usize> = Some(SIGN_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, negative_q, zero_q);
+    }
+}
+
 impl<const N: usize> Default for SignOf<N> {
     fn default() -> Self {
         assert!((2..256).contains(&N));

@@ -32,6 +32,13 @@ pub struct VectorSubtractor<const W: usize, const D: usize> {
     difference_2: DFF<Bits<D>>,
 }
 
+impl<const W: usize, const D: usize> crate::unit::Unit for VectorSubtractor<W, D> {
+    const LATENCY: Option<usize> = Some(SUBTRACTOR_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, difference_0, difference_1, difference_2);
+    }
+}
+
 impl<const W: usize, const D: usize> Default for VectorSubtractor<W, D> {
     fn default() -> Self {
         assert_eq!(D, tritri_geom::widths::difference_bits(W), "a difference of {W}-bit values has {} bits", W + 1);
@@ -79,6 +86,13 @@ pub struct Subtractor<const W: usize, const D: usize> {
     pub difference: Signal<Out, Bits<D>>,
     sign_flip: Constant<Bits<W>>,
     difference_q: DFF<Bits<D>>,
+}
+
+impl<const W: usize, const D: usize> crate::unit::Unit for Subtractor<W, D> {
+    const LATENCY: Option<usize> = Some(SUBTRACTOR_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, difference_q);
+    }
 }
 
 impl<const W: usize, const D: usize> Default for Subtractor<W, D> {

@@ -16,6 +16,10 @@ pub struct ValidLine<const N: usize> {
     _stages: [bool; N],
 }
 
+impl<const N: usize> crate::unit::Unit for ValidLine<N> {
+    const LATENCY: Option<usize> = Some(N);
+}
+
 impl<const N: usize> Default for ValidLine<N> {
     fn default() -> Self {
         assert!(N >= 1, "a valid line has at least one stage");

@@ -19,13 +19,13 @@ pub enum BinningEmitError {
 }
 
 /// rust-hdl's Verilog of the unit built for `config`.
-pub fn raw_binning_unit_verilog(config: &BinningUnitConfig) -> Result<String, BinningEmitError> {
+pub fn raw_binning_unit_verilog(config: &BinningUnitConfig) -> Result<crate::unit::RawDesign, BinningEmitError> {
     config.check().map_err(BinningEmitError::Config)?;
-    fn raw<const G: usize, const V: usize, const N: usize, const T: usize>(config: &BinningUnitConfig) -> String {
+    fn raw<const G: usize, const V: usize, const N: usize, const T: usize>(config: &BinningUnitConfig) -> crate::unit::RawDesign {
         let mut uut = BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves)
             .with_system(config.log_depth, config.log_pipelines);
         uut.connect_all();
-        generate_verilog(&uut)
+        crate::unit::RawDesign::of(&uut)
     }
     Ok(on_unit_stack(|| match config.grid_bits {
         16 => raw::<16, { value_bits(16) }, { AXES * value_bits(16) }, { 9 * 16 }>(config),

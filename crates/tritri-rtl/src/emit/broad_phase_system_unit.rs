@@ -67,15 +67,15 @@ impl BroadPhaseConfig {
 }
 
 /// rust-hdl's Verilog of the top built for `config`.
-pub fn raw_broad_phase_verilog(config: &BroadPhaseConfig) -> Result<String, BinningEmitError> {
+pub fn raw_broad_phase_verilog(config: &BroadPhaseConfig) -> Result<crate::unit::RawDesign, BinningEmitError> {
     config.check().map_err(BinningEmitError::Config)?;
     fn raw<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>(
         config: &BroadPhaseConfig,
-    ) -> String {
+    ) -> crate::unit::RawDesign {
         let unit = &config.unit;
         let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
         uut.connect_all();
-        generate_verilog(&uut)
+        crate::unit::RawDesign::of(&uut)
     }
     const V24: usize = value_bits(24);
     Ok(on_unit_stack(|| match config.system.coordinate_bits {

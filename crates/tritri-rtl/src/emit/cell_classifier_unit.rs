@@ -28,11 +28,11 @@ pub enum ClassifierEmitError {
 }
 
 /// rust-hdl's Verilog of the classifier for `grid_bits`.
-pub fn raw_cell_classifier_verilog(grid_bits: usize) -> Result<String, UnsupportedGrid> {
-    fn raw<const V: usize>() -> String {
+pub fn raw_cell_classifier_verilog(grid_bits: usize) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
+    fn raw<const V: usize>() -> crate::unit::RawDesign {
         let mut uut = CellClassifier::<V>::default();
         uut.connect_all();
-        generate_verilog(&uut)
+        crate::unit::RawDesign::of(&uut)
     }
     match grid_bits {
         16 => Ok(raw::<{ value_bits(16) }>()),

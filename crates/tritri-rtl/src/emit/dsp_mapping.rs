@@ -109,6 +109,7 @@ mod tests {
             name: "tritri_pipeline_w24_multiplier_w74".into(),
             tokens: tokenize("module x ();\n    // Update code (custom)\n    // Registered signed multiplier 25 x 49 -> 74 bits\nendmodule"),
             instances: vec![],
+            unit: None,
         };
         let e = map_ecp5(&mut m).unwrap_err();
         assert_eq!((e.a, e.b), (25, 49));

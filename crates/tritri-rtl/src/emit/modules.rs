@@ -1,15 +1,20 @@
 //! Splitting rust-hdl's single Verilog string into modules, renaming them
-//! after the unit, and merging modules that rust-hdl printed once per
-//! instance although they are the same circuit.
+//! after their Rust unit type, and merging modules that rust-hdl printed
+//! once per instance although they are the same circuit.
 //!
 //! rust-hdl names every module after its instance path (`top$stage$reg`) and
 //! prints one module per instance, so a design with 300 registers of nine
 //! widths has 300 register modules. Identical modules (same text once their
 //! own name is blanked out) are merged into one, named after what they are:
-//! rust-hdl's `DFF` becomes `<unit>_dff_<bits>`; any other shared module is
-//! named after the last path segment its instances have in common.
+//! rust-hdl's `DFF` becomes `<top>_dff_<bits>`, any other module
+//! `<top>_<type>` after the Rust type at its instance paths
+//! ([`crate::unit`]): `tritri_pipeline_w24_orient3d`. Two circuits of one
+//! type are told apart by their widest port (`multiplier_w49`,
+//! `multiplier_w74`), else by the parameters they differ in
+//! (`delay_line_n3`, `delay_line_n4`).
 
 use super::tokens::{tokenize, untokenize, Kind, Token};
+use crate::unit::{UnitInfo, UnitMap};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 /// One `module ... endmodule`, as tokens.
@@ -19,6 +24,9 @@ pub struct Module {
     pub tokens: Vec<Token>,
     /// rust-hdl instance paths (`top$a$b`) this module stands for.
     pub instances: Vec<String>,
+    /// The Rust unit type of those instances (none for the top, whose
+    /// emitter description says what it is, and for black boxes).
+    pub unit: Option<UnitInfo>,
 }
 
 impl Module {
@@ -35,6 +43,8 @@ pub enum ModuleError {
     Unterminated(String),
     #[error("in module `{module}`, `{first}` and `{second}` would both be renamed `{renamed}`")]
     NameCollision { module: String, first: String, second: String, renamed: String },
+    #[error("no unit is recorded at `{0}`: list the field in its parent's `Unit::sub_units`")]
+    UnknownUnit(String),
 }
 
 /// The modules of `verilog` in order of appearance; text between modules
@@ -65,7 +75,7 @@ pub fn split_modules(verilog: &str) -> Result<Vec<Module>, ModuleError> {
             let end = (i..tokens.len())
                 .find(|&k| tokens[k].kind == Kind::Identifier && tokens[k].text == "endmodule")
                 .ok_or_else(|| ModuleError::Unterminated(name.clone()))?;
-            modules.push(Module { instances: vec![name.clone()], name, tokens: tokens[start..=end].to_vec() });
+            modules.push(Module { instances: vec![name.clone()], name, tokens: tokens[start..=end].to_vec(), unit: None });
             i = end + 1;
         } else {
             i += 1;
@@ -153,12 +163,48 @@ pub fn rename_identifiers(module: &mut Module, renamed: &HashMap<String, String>
     Ok(())
 }
 
+/// A register field named `x_q` (the lowRISC name of a register's output)
+/// would come out as `x_q_q`, `x_q_d` and `x_q_clock`: rust-hdl names the
+/// nets of instance `x_q` after its ports. They become `x_q`, `x_d` and
+/// `x_clock`, and the instance `u_x_q`. `registers` are the names of the
+/// register modules. A register whose new names are taken keeps rust-hdl's.
+pub fn name_register_nets(module: &mut Module, registers: &BTreeSet<String>) {
+    let taken: BTreeSet<String> =
+        module.tokens.iter().filter(|t| t.kind == Kind::Identifier).map(|t| t.text.clone()).collect();
+    let significant: Vec<usize> =
+        module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
+    let mut renamed: HashMap<String, String> = HashMap::new();
+    for w in significant.windows(3) {
+        let (kind, instance, open) = (&module.tokens[w[0]], &module.tokens[w[1]], &module.tokens[w[2]]);
+        if kind.kind != Kind::Identifier || !registers.contains(&kind.text) || !open.is("(") {
+            continue;
+        }
+        let Some(stem) = instance.text.strip_suffix("_q") else { continue };
+        let new: Vec<(String, String)> = vec![
+            (instance.text.clone(), format!("u_{}", instance.text)),
+            (format!("{}$q", instance.text), instance.text.clone()),
+            (format!("{}$d", instance.text), format!("{stem}_d")),
+            (format!("{}$clock", instance.text), format!("{stem}_clock")),
+        ];
+        // `x_q` itself is taken by the instance, which is renamed.
+        if new.iter().filter(|(_, to)| *to != instance.text).all(|(_, to)| !taken.contains(to)) {
+            renamed.extend(new);
+        }
+    }
+    for token in module.tokens.iter_mut().filter(|t| t.kind == Kind::Identifier) {
+        if let Some(n) = renamed.get(&token.text) {
+            token.text = n.clone();
+        }
+    }
+}
+
 /// Instance names get the prefix `u_` (lowRISC style). rust-hdl names an
 /// instance after its field, which is often also the name of one of the
 /// child's ports (`axis`), and Verilator warns that the port hides the
 /// instance (VARHIDDEN). Instances are referred to only where they are
 /// declared (rust-hdl connects them through stub nets), so the rename is
-/// local. A name already taken keeps its original.
+/// local. A name already taken keeps its original; a name that already has
+/// the prefix ([`name_register_nets`]) keeps it once.
 pub fn prefix_instance_names(module: &mut Module, module_names: &BTreeSet<String>) {
     let taken: BTreeSet<String> =
         module.tokens.iter().filter(|t| t.kind == Kind::Identifier).map(|t| t.text.clone()).collect();
@@ -173,7 +219,7 @@ pub fn prefix_instance_names(module: &mut Module, module_names: &BTreeSet<String
             && open.is("(")
         {
             let new = format!("u_{}", instance.text);
-            if !taken.contains(&new) {
+            if !instance.text.starts_with("u_") && !taken.contains(&new) {
                 module.tokens[w[1]].text = new;
             }
         }
@@ -286,7 +332,7 @@ pub fn dff_module(name: &str, bits: usize, signed: bool) -> Module {
          initial q = {bits}'d0;\n\n    \
          always @(posedge clock) begin\n        q <= d;\n    end\n\nendmodule"
     );
-    Module { name: name.to_string(), tokens: tokenize(&text), instances: Vec::new() }
+    Module { name: name.to_string(), tokens: tokenize(&text), instances: Vec::new(), unit: None }
 }
 
 /// The text of `module` with its own name blanked out: two modules with the
@@ -302,8 +348,9 @@ fn structure_key(module: &Module) -> String {
 
 /// Splits, renames and merges: the result has the top first (named `unit`),
 /// then the other modules by name, no `$` in any identifier, and no two
-/// modules with the same text.
-pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> {
+/// modules with the same text. `units` gives the Rust type at each instance
+/// path.
+pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Module>, ModuleError> {
     let mut modules = split_modules(verilog)?;
     // Merge identical modules bottom-up: a parent's text names its children,
     // so children are merged (and renamed in the parents) first. Modules are
@@ -315,6 +362,7 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
     // are chosen once every group is known, so that two groups that would
     // get the same name are told apart the same way.
     let mut desired: BTreeMap<String, (String, Option<(usize, bool)>)> = BTreeMap::new();
+    let mut unit_of: HashMap<String, UnitInfo> = HashMap::new();
     let mut group_count = 0;
     for level in 0..=max_height {
         // Group this level's modules by structure.
@@ -330,15 +378,15 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
         for group in group_list {
             let members: Vec<&str> = group.iter().map(|&i| modules[i].name.as_str()).collect();
             let dff = rust_hdl_dff_shape(&modules[group[0]]);
+            let info = units.get(members[0]).ok_or_else(|| ModuleError::UnknownUnit(members[0].to_string()))?;
             let name = if let Some((bits, signed)) = dff {
                 format!("{unit}_dff_{}{bits}", if signed { "signed_" } else { "" })
-            } else if group.len() == 1 {
-                path_name(unit, members[0])
             } else {
-                shared_name(unit, &members)
+                format!("{unit}_{}", info.module_stem())
             };
             let placeholder = format!("group${group_count}");
             group_count += 1;
+            unit_of.insert(placeholder.clone(), info.clone());
             desired.insert(placeholder.clone(), (name, dff));
             for m in &members {
                 renames.insert(m.to_string(), placeholder.clone());
@@ -369,7 +417,8 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
     // Final names. Registers of one width share one name by construction
     // (enum registers differ only in their labels, dropped by dff_module).
     // Other names wanted by several groups get the width of the group's
-    // widest port (`multiplier_w49`, `multiplier_w74`), then a number.
+    // widest port (`multiplier_w49`, `multiplier_w74`) where that tells them
+    // apart, else the parameters they differ in, then a number.
     let mut wanted: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for (placeholder, (name, dff)) in &desired {
         if dff.is_none() {
@@ -393,8 +442,16 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
         }
     }
     for (name, placeholders) in &wanted {
-        for p in placeholders {
-            let mut candidate = if placeholders.len() == 1 { name.clone() } else { format!("{name}_w{}", widest(p)) };
+        let widths: BTreeSet<usize> = placeholders.iter().map(|p| widest(p)).collect();
+        let infos: Vec<&UnitInfo> = placeholders.iter().map(|p| &unit_of[p]).collect();
+        for (p, info) in placeholders.iter().zip(&infos) {
+            let mut candidate = if placeholders.len() == 1 {
+                name.clone()
+            } else if widths.len() == placeholders.len() {
+                format!("{name}_w{}", widest(p))
+            } else {
+                format!("{name}{}", parameter_suffix(info, &infos))
+            };
             if taken.contains(&candidate) {
                 let stem = candidate.clone();
                 candidate = (2..).map(|k| format!("{stem}_{k}")).find(|n| !taken.contains(n)).unwrap();
@@ -409,6 +466,7 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
                 t.text = n.clone();
             }
         }
+        m.unit = unit_of.get(&m.name).cloned();
         if let Some(n) = final_names.get(&m.name) {
             m.name = n.clone();
         }
@@ -428,12 +486,17 @@ pub fn normalize(verilog: &str, unit: &str) -> Result<Vec<Module>, ModuleError> 
     for m in &modules {
         names.insert(m.name.clone(), path_name(unit, &m.name));
     }
+    let mut registers: BTreeSet<String> = BTreeSet::new();
     for m in modules.iter_mut() {
         if let Some((bits, signed)) = rust_hdl_dff_shape(m) {
             let instances = std::mem::take(&mut m.instances);
             *m = dff_module(&m.name, bits, signed);
             m.instances = instances;
+            registers.insert(m.name.clone());
         }
+    }
+    for m in modules.iter_mut() {
+        name_register_nets(m, &registers);
     }
     let renamed = identifier_names(&modules, &names);
     let mut result = Vec::new();
@@ -492,75 +555,28 @@ fn module_heights(modules: &[Module]) -> HashMap<String, usize> {
     memo
 }
 
-/// A path segment without array indices or a trailing `_<number>`
-/// (`orient3d_1` → `orient3d`).
-fn normalized_segment(segment: &str) -> &str {
-    match segment.rsplit_once('_') {
-        Some((stem, n)) if !stem.is_empty() && !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()) => stem,
-        _ => segment,
-    }
-}
-
-/// The name of a module shared by several instance paths: the path segments
-/// they all end with (`orient3d_k.determinant.multiplier[j]` →
-/// `orient3d_determinant_multiplier`); else the words their last segments
-/// end with (`t1_vertices_to_operands`, `t2_vertices_to_operands` →
-/// `vertices_to_operands`) or begin with; else the most frequent last segment.
-fn shared_name(unit: &str, members: &[&str]) -> String {
-    let segments: Vec<Vec<&str>> = members
-        .iter()
-        .map(|m| {
-            m.split('$')
-                .skip(1)
-                .filter(|s| !s.chars().all(|c| c.is_ascii_digit()))
-                .map(normalized_segment)
-                .collect()
-        })
-        .collect();
-    let mut common: Vec<&str> = Vec::new();
-    for k in 1.. {
-        let last: Vec<Option<&&str>> = segments.iter().map(|s| s.len().checked_sub(k).and_then(|i| s.get(i))).collect();
-        match last[0] {
-            Some(seg) if last.iter().all(|l| *l == Some(seg)) => common.insert(0, seg),
-            _ => break,
+/// `_n4` for a `DelayLine<Bits<25>, 4>` among delay lines of other lengths:
+/// the parameters in which `info` differs from any of `group`, a number as
+/// its name and value (`n4`, `depth512`), a signal type as its width
+/// (`w25`), another type by its name (`cell_lists`).
+fn parameter_suffix(info: &UnitInfo, group: &[&UnitInfo]) -> String {
+    let mut suffix = String::new();
+    for (i, (name, value)) in info.parameters.iter().enumerate() {
+        if group.iter().all(|g| g.parameters.get(i).map(|(_, v)| v) == Some(value)) {
+            continue;
         }
+        let bits = value.strip_prefix("Bits<").or_else(|| value.strip_prefix("Signed<"));
+        let part = match bits {
+            // A signal type is named by its width, as ports are.
+            Some(bits) => format!("w{}", bits.trim_end_matches('>')),
+            None if value == "bool" => "w1".to_string(),
+            None if value.starts_with(|c: char| c.is_ascii_digit()) => format!("{}{value}", name.to_ascii_lowercase()),
+            None => UnitInfo { type_name: value.clone(), parameters: Vec::new(), latency: None }.module_stem(),
+        };
+        suffix.push('_');
+        suffix.push_str(&part);
     }
-    if !common.is_empty() {
-        return format!("{unit}_{}", common.join("_"));
-    }
-    let lasts: Vec<&str> = segments.iter().filter_map(|s| s.last().copied()).collect();
-    let words: Vec<Vec<&str>> = lasts.iter().map(|l| l.split('_').collect()).collect();
-    let mut suffix: Vec<&str> = Vec::new();
-    for k in 1.. {
-        let w: Vec<Option<&&str>> = words.iter().map(|s| s.len().checked_sub(k).and_then(|i| s.get(i))).collect();
-        match w[0] {
-            Some(word) if w.iter().all(|x| *x == Some(word)) => suffix.insert(0, word),
-            _ => break,
-        }
-    }
-    if !suffix.is_empty() {
-        return format!("{unit}_{}", suffix.join("_"));
-    }
-    // ... or begin with (`plane_side_t1`, `plane_side_t2` → `plane_side`).
-    let mut prefix: Vec<&str> = Vec::new();
-    for k in 0.. {
-        let w: Vec<Option<&&str>> = words.iter().map(|s| s.get(k)).collect();
-        match w[0] {
-            Some(word) if w.iter().all(|x| *x == Some(word)) => prefix.push(word),
-            _ => break,
-        }
-    }
-    if !prefix.is_empty() {
-        return format!("{unit}_{}", prefix.join("_"));
-    }
-    let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
-    for l in &lasts {
-        *counts.entry(l).or_default() += 1;
-    }
-    match counts.iter().max_by_key(|(name, n)| (**n, std::cmp::Reverse(**name))) {
-        Some((name, _)) => format!("{unit}_{name}"),
-        None => path_name(unit, members[0]),
-    }
+    suffix
 }
 
 #[cfg(test)]
@@ -568,6 +584,12 @@ mod tests {
     use super::*;
 
     const SAMPLE: &str = "\n\nmodule top(clock,a$x,y);\n    input wire clock;\n    input wire [7:0] a$x;\n    output reg [8:0] y;\n    wire [8:0] r$q;\n    top$r r(\n.clock(clock),\n.d(r$d),\n.q(r$q)\n);\nendmodule // top\n\n\nmodule top$r(d,q,clock);\n    \n    // Module arguments\n    input wire  [8:0] d;\n    output reg  [8:0] q;\n    input wire  clock;\n    \n    // Update code (custom)\n    initial begin\n       q = 9'h0;\n    end\n    \n    always @(posedge clock) begin\n       q <= d;\n    end\n          \nendmodule // top$r\n";
+
+    /// The sample's units: its register at `top$<name>`.
+    fn register_at(name: &str) -> UnitMap {
+        let info = UnitInfo::of(&rust_hdl::prelude::DFF::<rust_hdl::prelude::Bits<9>>::default());
+        UnitMap::from([(format!("top${name}"), info)])
+    }
 
     /// The sample splits into its two modules, the register is recognized.
     #[test]
@@ -581,7 +603,7 @@ mod tests {
     /// Renaming leaves no `$` and names the register by its width.
     #[test]
     fn normalize_renames_everything() {
-        let modules = normalize(SAMPLE, "unit_w8").unwrap();
+        let modules = normalize(SAMPLE, "unit_w8", &register_at("r")).unwrap();
         let names: Vec<_> = modules.iter().map(|m| m.name.clone()).collect();
         assert_eq!(names, vec!["unit_w8", "unit_w8_dff_9"]);
         for m in &modules {
@@ -596,20 +618,25 @@ mod tests {
     #[test]
     fn collisions_use_double_underscore_or_are_refused() {
         let text = "module top(a$b, a_b);\ninput wire a$b;\noutput wire a_b;\nendmodule\n";
-        let m = normalize(text, "u").unwrap();
+        let m = normalize(text, "u", &UnitMap::new()).unwrap();
         assert!(m[0].text().contains("input wire a__b;"), "{}", m[0].text());
         let text = "module top(a$b, a_b, a__b);\ninput wire a$b;\noutput wire a_b;\noutput wire a__b;\nendmodule\n";
-        assert!(matches!(normalize(text, "u"), Err(ModuleError::NameCollision { .. })));
+        assert!(matches!(normalize(text, "u", &UnitMap::new()), Err(ModuleError::NameCollision { .. })));
     }
 
+    /// A register field `r_q` gives nets `r_q` and `r_d`, not `r_q_q` and
+    /// `r_q_d`; a register whose new names are taken keeps rust-hdl's.
     #[test]
-    fn shared_names() {
-        assert_eq!(shared_name("u", &["top$a$mul", "top$b$mul"]), "u_mul");
-        assert_eq!(shared_name("u", &["top$a$x$0", "top$b$x$1"]), "u_x");
-        assert_eq!(shared_name("u", &["top$o_0$det$m$0", "top$o_1$det$m$1"]), "u_o_det_m");
-        assert_eq!(shared_name("u", &["top$orient3d_0", "top$orient3d_1"]), "u_orient3d");
-        assert_eq!(shared_name("u", &["top$t1_to_ops$0", "top$t2_to_ops$3"]), "u_to_ops");
-        assert_eq!(shared_name("u", &["top$edge_a", "top$x$difference", "top$y$difference"]), "u_difference");
-        assert_eq!(shared_name("u", &["top$plane_side_t1", "top$plane_side_t2"]), "u_plane_side");
+    fn register_outputs_are_named_q_once() {
+        let text = SAMPLE.replace("r$", "r_q$").replace(" r(", " r_q(");
+        let modules = normalize(&text, "unit_w8", &register_at("r")).unwrap();
+        let top = modules[0].text();
+        assert!(top.contains("unit_w8_dff_9 u_r_q("), "{top}");
+        assert!(top.contains(".d(r_d)") && top.contains(".q(r_q)"), "{top}");
+        assert!(!top.contains("r_q_q") && !top.contains("r_q_d"), "{top}");
+        let taken = text.replace("output reg [8:0] y;", "output reg [8:0] y;\n    wire r_d;");
+        let top = normalize(&taken, "unit_w8", &register_at("r")).unwrap()[0].text();
+        assert!(top.contains(".q(r_q_q)"), "{top}");
     }
+
 }

@@ -15,10 +15,10 @@ pub fn owner_filter_unit_name(slots: usize) -> String {
 pub const MAX_SLOTS: usize = 1 << SLOT_BITS;
 
 /// rust-hdl's Verilog of the filter with `slots` words per table.
-pub fn raw_owner_filter_verilog(slots: usize) -> String {
+pub fn raw_owner_filter_verilog(slots: usize) -> crate::unit::RawDesign {
     let mut uut = OwnerFilter::new(slots, slots);
     uut.connect_all();
-    generate_verilog(&uut)
+    crate::unit::RawDesign::of(&uut)
 }
 
 /// The description of the filter for the emitter.

@@ -58,14 +58,31 @@ fn dotted_path(path: &str) -> String {
 const RULE: &str = "////////////////////////////////////////////////////////////////////////////////";
 
 fn wrap_comment(text: &str, first_prefix: &str, prefix: &str, width: usize) -> String {
+    // Headers are ASCII, as the Verilog around them: the units' docs write
+    // products and dashes as in print.
+    let text = text.replace('·', ".").replace('×', " x ").replace(['–', '—'], "-").replace('→', "->");
     let mut lines = Vec::new();
     let mut line = first_prefix.to_string();
     let mut empty = true;
     for word in text.split_whitespace() {
         if !empty && line.len() + 1 + word.len() > width {
+            // A comment line that begins with `verilator` is a Verilator
+            // directive: such a word takes the one before it along.
+            let carried = match line.rsplit_once(' ') {
+                Some((rest, last)) if word.to_ascii_lowercase().starts_with("verilator") && rest.len() > prefix.len() => {
+                    let last = last.to_string();
+                    line.truncate(rest.len());
+                    Some(last)
+                }
+                _ => None,
+            };
             lines.push(line);
             line = prefix.to_string();
             empty = true;
+            if let Some(last) = carried {
+                line.push_str(&last);
+                empty = false;
+            }
         }
         if !empty {
             line.push(' ');
@@ -88,10 +105,10 @@ fn purpose(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
     }
     let register = rust_hdl_dff_shape(module).is_some()
         || (module.name.starts_with(&format!("{}_dff_", unit.name)) && module.text().contains("q <= d;"));
-    let kind = if register {
-        "A D flip-flop register (rust-hdl's DFF) without reset.".to_string()
-    } else {
-        format!("Part of {}.", unit.name)
+    let kind = match module.unit.as_ref().and_then(|u| u.doc()) {
+        _ if register => "A D flip-flop register (rust-hdl's DFF) without reset.".to_string(),
+        Some(doc) => format!("{} Part of {}.", doc.purpose, unit.name),
+        None => format!("Part of {}.", unit.name),
     };
     let count = module.instances.len();
     let shown: Vec<String> = module.instances.iter().take(4).map(|p| dotted_path(p)).collect();
@@ -111,21 +128,29 @@ fn header(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
     h.push_str(&format!("// Filename:   {}.v\n//\n", module.name));
     h.push_str(&wrap_comment(&purpose(module, unit, is_top), "// Purpose:    ", "//             ", 80));
     h.push_str("//\n");
-    if !unit.parameters.is_empty() {
-        let mut first = true;
-        for (name, meaning) in &unit.parameters {
-            let lead = if first { "// Parameters: " } else { "//             " };
-            h.push_str(&wrap_comment(&format!("{name} = {meaning}"), lead, "//               ", 80));
-            first = false;
-        }
-        h.push_str("//\n");
-    }
     if is_top {
+        if !unit.parameters.is_empty() {
+            let mut first = true;
+            for (name, meaning) in &unit.parameters {
+                let lead = if first { "// Parameters: " } else { "//             " };
+                h.push_str(&wrap_comment(&format!("{name} = {meaning}"), lead, "//               ", 80));
+                first = false;
+            }
+            h.push_str("//\n");
+        }
         if let Some(l) = unit.latency {
             h.push_str(&format!("// Latency:    {l} clock cycles\n"));
         }
         if !unit.throughput.is_empty() {
             h.push_str(&wrap_comment(&unit.throughput, "// Throughput: ", "//             ", 80));
+        }
+        h.push_str("//\n");
+    } else if let Some(u) = &module.unit {
+        // The unit's Rust type with its parameters' values: the
+        // description this module was generated from.
+        h.push_str(&wrap_comment(&u.signature(), "// Rust unit:  ", "//             ", 80));
+        if let Some(l) = u.latency {
+            h.push_str(&format!("// Latency:    {l} clock cycle{}\n", if l == 1 { "" } else { "s" }));
         }
         h.push_str("//\n");
     }
@@ -294,5 +319,18 @@ mod tests {
         let text = wrap_comment(&"word ".repeat(40), "// Purpose:    ", "//             ", 80);
         assert!(text.lines().all(|l| l.len() <= 80), "{text}");
         assert!(text.lines().skip(1).all(|l| l.starts_with("//             ")));
+    }
+
+    /// No line of a header begins with `verilator` (a directive to Verilator).
+    #[test]
+    fn no_line_begins_with_verilator() {
+        for n in 0..20 {
+            let text = format!("{}would look like a loop to Verilator. Part of x.", "ab ".repeat(n));
+            let wrapped = wrap_comment(&text, "// Purpose:    ", "//             ", 40);
+            for line in wrapped.lines() {
+                let words = line.trim_start_matches('/').trim_start();
+                assert!(!words.to_ascii_lowercase().starts_with("verilator"), "{wrapped}");
+            }
+        }
     }
 }

@@ -1,10 +1,11 @@
 //! The emitted configuration of the triangle pipeline: its name, port
 //! meanings, latency and throughput, around rust-hdl's Verilog from
-//! [`crate::raw_verilog`].
+//! [`crate::raw_design`].
 
 use super::dsp_mapping::MultiplierMapping;
 use super::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 use crate::configurations::{UnsupportedWidth, SUPPORTED_WIDTHS};
+use crate::pipeline::ports::port_descriptions;
 use crate::pipeline::triangle_pipeline::latency;
 use crate::pipeline::ID_BITS;
 use tritri_geom::widths::FixedWidths;
@@ -44,34 +45,13 @@ pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> 
     .parameter("C", &format!("{}: cross-product and orient2d width, 2W + 1", w.cross))
     .parameter("O", &format!("{}: orient3d width, 3W + 2", w.orient3d))
     .parameter("ID", &format!("{ID_BITS}: triangle id width"))
-    .port("clock", "Clock; every register updates on the rising edge.")
-    .port("reset", "Synchronous reset, active high: clears the valid bits (the datapath has no reset).")
-    .port("advance", "Clock enable: while low, every register, the base polygon included, holds (back-pressure).")
-    .port("in_valid", "A triangle is on the input bus this cycle.")
-    .port("in_bset", "With `in_valid`: load this triangle as the base polygon T1 instead of testing it.")
-    .port("in_id", "Id of the triangle, returned as `out_base_id` or `out_stream_id`.")
-    .port("out_valid", &format!("A verdict is on the outputs: the streamed triangle entered {l} clocks earlier."))
-    .port("out_hit", "1 when the base and the streamed triangle intersect (touching counts).")
-    .port(
-        "out_certain",
-        "1 when `out_hit` is provably the verdict on the coordinates before quantization: no sign it rests on \
-         changes if every coordinate moves by half a grid step (docs/certificates.md). Coplanar and degenerate \
-         pairs are never certain; the host decides a pair with `out_certain = 0` again on its own coordinates.",
-    )
-    .port("out_base_id", "Id of the base triangle of this verdict.")
-    .port("out_stream_id", "Id of the streamed triangle of this verdict.")
     .latency(l)
     .throughput(&format!(
         "one triangle pair per clock while `advance` is high; N1 bases against N2 streamed triangles take \
          N1 + N1*N2 + {l} clocks (thesis, equation 3.2)."
     ));
-    for vertex in 0..3 {
-        for axis in ["x", "y", "z"] {
-            unit = unit.port(
-                &format!("in_{axis}{vertex}"),
-                &format!("Coordinate {axis} of vertex {vertex}, W-bit two's complement."),
-            );
-        }
+    for (name, meaning) in port_descriptions(latency()) {
+        unit = unit.port(&name, &meaning);
     }
     Ok(unit)
 }
@@ -93,6 +73,6 @@ pub fn emit_pipeline(width: usize) -> Result<EmittedDesign, PipelineEmitError> {
 /// (`tritri gen --dsp`).
 pub fn emit_pipeline_with(width: usize, multipliers: MultiplierMapping) -> Result<EmittedDesign, PipelineEmitError> {
     let unit = pipeline_unit(width)?;
-    let raw = crate::raw_verilog(width)?;
+    let raw = crate::raw_design(width)?;
     Ok(emit_with(&raw, &unit, EmitOptions { multipliers, ..EmitOptions::default() })?)
 }

@@ -43,10 +43,10 @@ impl PlaneInputs {
 }
 
 /// rust-hdl's Verilog of the traversal.
-pub fn raw_plane_traversal_verilog() -> String {
+pub fn raw_plane_traversal_verilog() -> crate::unit::RawDesign {
     let mut uut = PlaneTraversal::default();
     uut.connect_all();
-    generate_verilog(&uut)
+    crate::unit::RawDesign::of(&uut)
 }
 
 pub fn plane_traversal_unit() -> UnitDescription {

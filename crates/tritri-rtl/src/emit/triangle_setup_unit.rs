@@ -23,11 +23,11 @@ pub enum SetupEmitError {
 
 /// rust-hdl's Verilog of the setup for `grid_bits` (the grids the
 /// classifier is emitted for).
-pub fn raw_triangle_setup_verilog(grid_bits: usize) -> Result<String, UnsupportedGrid> {
-    fn raw<const G: usize, const V: usize, const N: usize>() -> String {
+pub fn raw_triangle_setup_verilog(grid_bits: usize) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
+    fn raw<const G: usize, const V: usize, const N: usize>() -> crate::unit::RawDesign {
         let mut uut = TriangleSetup::<G, V, N>::default();
         uut.connect_all();
-        generate_verilog(&uut)
+        crate::unit::RawDesign::of(&uut)
     }
     match grid_bits {
         16 => Ok(raw::<16, { value_bits(16) }, { AXES * value_bits(16) }>()),

@@ -45,7 +45,7 @@ pub fn voxel_fill_unit() -> UnitDescription {
 pub fn emit_voxel_fill() -> Result<EmittedDesign, EmitError> {
     let mut uut = VoxelFill::default();
     uut.connect_all();
-    emit(&generate_verilog(&uut), &voxel_fill_unit())
+    emit(&crate::unit::RawDesign::of(&uut), &voxel_fill_unit())
 }
 
 pub fn set_operation_unit() -> UnitDescription {
@@ -99,11 +99,11 @@ pub fn octant_clipper_unit() -> UnitDescription {
 pub fn emit_set_operation() -> Result<EmittedDesign, EmitError> {
     let mut uut = SetOperationUnit::default();
     uut.connect_all();
-    emit(&generate_verilog(&uut), &set_operation_unit())
+    emit(&crate::unit::RawDesign::of(&uut), &set_operation_unit())
 }
 
 pub fn emit_octant_clipper() -> Result<EmittedDesign, EmitError> {
     let mut uut = OctantClipper::default();
     uut.connect_all();
-    emit(&generate_verilog(&uut), &octant_clipper_unit())
+    emit(&crate::unit::RawDesign::of(&uut), &octant_clipper_unit())
 }

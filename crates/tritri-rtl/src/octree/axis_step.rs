@@ -57,6 +57,10 @@ pub struct AxisStep<const V: usize> {
     _s3: Stage3,
 }
 
+impl<const V: usize> crate::unit::Unit for AxisStep<V> {
+    const LATENCY: Option<usize> = Some(AXIS_STEP_LATENCY);
+}
+
 #[derive(Clone, Copy, Default)]
 struct Stage1 {
     q: [i128; 3],

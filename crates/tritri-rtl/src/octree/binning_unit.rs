@@ -228,6 +228,8 @@ struct PassLength {
     words_b: Signal<Local, Bits<20>>,
 }
 
+impl crate::unit::Unit for PassLength {}
+
 impl Default for PassLength {
     fn default() -> Self {
         PassLength {
@@ -401,6 +403,20 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     tile_word_b: Signal<Local, Bits<20>>,
 }
 
+impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit for BinningUnit<G, V, N, T> {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            overflow_q, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost,
+            children_cost, returned, top_frame, frame_count, frames, children, leaf_count, leaves, cost,
+            triangles, list_a, list_b, packer_a, packer_b, read_memory_a, read_memory_b, s1_root, s1_valid,
+            s1_root_index, s2_valid, s2_index, lane, out_valid_q, out_header_q, out_object_q, out_index_q,
+            out_leaf, out_cell, tile_a, tile_b, pass_length
+        );
+    }
+}
+
 impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit<G, V, N, T> {
     /// A unit for up to `triangles` per object, `list_words` words per list
     /// memory and `leaves` leaf descriptors.
@@ -529,10 +545,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             leaf_count, read_memory_a, read_memory_b, s1_root, overflow_q, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell,
             tile_a, tile_b
         );
-        self.frames.clock.next = self.clock.val();
-        self.children.clock.next = self.clock.val();
-        self.leaves.clock.next = self.clock.val();
-        self.cost.clock.next = self.clock.val();
+        clock!(self, clock, frames, children, leaves, cost);
 
         // ---- Defaults: no writes, no reads, no lane entry.
         self.frames.write_enable.next = false;
@@ -543,6 +556,12 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.children.write_enable.next = false;
         self.children.write_address.next =
             (bit_cast::<9, 7>(self.frame_count.q.val()) << 3) | bit_cast::<9, 20>(self.counter.q.val() & 7);
+        // (A value in every state, so that the lists' word is no latch; it
+        // is written only from Costs.)
+        self.children.write_data.next.a_start = self.packer_a[0].start.val();
+        self.children.write_data.next.a_count = self.packer_a[0].count.val();
+        self.children.write_data.next.b_start = self.packer_b[0].start.val();
+        self.children.write_data.next.b_count = self.packer_b[0].count.val();
         self.children.read_enable.next = false;
         self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3) | bit_cast::<9, 4>(self.top_frame.q.val().octant & 7);
         self.leaves.write_enable.next = false;

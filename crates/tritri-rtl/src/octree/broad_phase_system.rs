@@ -99,6 +99,14 @@ pub struct BroadPhaseSystem<
 }
 
 impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>
+    crate::unit::Unit for BroadPhaseSystem<G, V, N, T, W, D, C, O>
+{
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, binning, batcher, system, owner);
+    }
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>
     BroadPhaseSystem<G, V, N, T, W, D, C, O>
 {
     /// The top for a binning unit of `triangles` per object, `list_words`
@@ -163,7 +171,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
     #[hdl_gen]
     fn update(&mut self) {
         // Host → binning unit.
-        self.binning.clock.next = self.clock.val();
+        clock!(self, clock, binning, batcher, system, owner);
         self.binning.reset.next = self.reset.val();
         self.binning.start.next = self.start.val();
         self.binning.root_x.next = self.root_x.val();
@@ -179,7 +187,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
         self.binning.in_vertices.next = self.in_vertices.val();
 
         // Leaf stream → batcher.
-        self.batcher.clock.next = self.clock.val();
         self.batcher.reset.next = self.reset.val();
         self.batcher.in_valid.next = self.binning.out_valid.val();
         self.binning.out_ready.next = self.batcher.in_ready.val();
@@ -197,7 +204,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
         self.batcher.start.next = self.start.val();
 
         // Batches → system.
-        self.system.clock.next = self.clock.val();
         self.system.reset.next = self.reset.val();
         self.system.in_valid.next = self.batcher.out_valid.val();
         self.batcher.out_ready.next = self.system.in_ready.val();
@@ -216,7 +222,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
 
         // The owner filter: its tables written as triangles load and as
         // entries stream; the system's hits (slots) in, owned pairs out.
-        self.owner.clock.next = self.clock.val();
         self.owner.reset.next = self.reset.val();
         self.owner.start.next = self.start.val();
         self.owner.load_valid.next = self.in_valid.val() & self.binning.in_ready.val();

@@ -60,15 +60,21 @@ pub struct CellClassifier<const V: usize> {
     valid: ValidLine<CELL_CLASSIFIER_LATENCY>,
 }
 
+impl<const V: usize> crate::unit::Unit for CellClassifier<V> {
+    const LATENCY: Option<usize> = Some(CELL_CLASSIFIER_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, axis, mask_q, value_q, tag, valid);
+    }
+}
+
 impl<const V: usize> Logic for CellClassifier<V> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, mask_q);
-        self.tag.clock.next = self.clock.val();
+        clock!(self, clock, tag, valid);
         self.tag.advance.next = self.advance.val();
         self.tag.d.next = self.in_tag.val();
         self.out_tag.next = self.tag.q.val();
-        self.valid.clock.next = self.clock.val();
         self.valid.reset.next = self.reset.val();
         self.valid.advance.next = self.advance.val();
         self.valid.d.next = self.in_valid.val();

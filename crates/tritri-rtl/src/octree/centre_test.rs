@@ -29,6 +29,8 @@ pub struct CentreTest<const V: usize> {
     _thresholds: [i128; 8],
 }
 
+impl<const V: usize> crate::unit::Unit for CentreTest<V> {}
+
 impl<const V: usize> Default for CentreTest<V> {
     fn default() -> Self {
         assert!((8..=127).contains(&V), "centre test of {V} bits is not supported");

@@ -46,6 +46,13 @@ pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T:
     unused_outputs: Signal<Local, Bit>,
 }
 
+impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit for ClassifyLane<G, V, N, T> {
+    const LATENCY: Option<usize> = Some(LANE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, setup, classifier, index_line);
+    }
+}
+
 impl<const G: usize, const V: usize, const N: usize, const T: usize> Default for ClassifyLane<G, V, N, T> {
     fn default() -> Self {
         assert!(V == super::value_bits(G) && N == AXES * V && T == 9 * G, "classify lane for G = {G}");
@@ -75,7 +82,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default for
 impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for ClassifyLane<G, V, N, T> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.setup.clock.next = self.clock.val();
+        clock!(self, clock, setup, classifier, index_line);
         self.setup.reset.next = self.reset.val();
         self.setup.advance.next = true;
         self.setup.in_valid.next = self.in_valid.val();
@@ -92,7 +99,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for C
         self.setup.in_root_x.next = self.in_corner_x.val();
         self.setup.in_root_y.next = self.in_corner_y.val();
         self.setup.in_root_z.next = self.in_corner_z.val();
-        self.classifier.clock.next = self.clock.val();
         self.classifier.reset.next = self.reset.val();
         self.classifier.advance.next = true;
         self.classifier.in_valid.next = self.setup.out_valid.val();
@@ -109,7 +115,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for C
             self.classifier.in_low[i].next = self.setup.out_low.val().get_bits::<V>(self.field_offset[i].val().index());
             self.classifier.in_high[i].next = self.setup.out_high.val().get_bits::<V>(self.field_offset[i].val().index());
         }
-        self.index_line.clock.next = self.clock.val();
         self.index_line.advance.next = true;
         self.index_line.d.next = self.in_index.val();
         self.out_valid.next = self.classifier.out_valid.val();

@@ -107,6 +107,17 @@ pub struct LeafBatcher<const G: usize, const T: usize, const W: usize> {
     high_bits: Constant<Bits<G>>,
 }
 
+impl<const G: usize, const T: usize, const W: usize> crate::unit::Unit for LeafBatcher<G, T, W> {
+    const LATENCY: Option<usize> = Some(LEAF_BATCHER_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            slot_q, leaf_q, valid_q, end_q, object_q, id_q, coordinate_q, offset_q, remaining_q, end_due_q
+        );
+    }
+}
+
 impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
     /// A batcher from a `G`-bit grid to `W`-bit hardware. Without
     /// `local_frames` the grid's coordinates must fit `W` bits (the host

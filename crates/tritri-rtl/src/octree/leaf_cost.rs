@@ -60,6 +60,10 @@ pub struct LeafCost {
     _queries: [(u64, u64); LEAF_COST_LATENCY],
 }
 
+impl crate::unit::Unit for LeafCost {
+    const LATENCY: Option<usize> = Some(LEAF_COST_LATENCY);
+}
+
 impl LeafCost {
     /// For memory depth `2^log_depth` (1 to 2^16) and `2^log_pipelines`
     /// pipelines (1 to 16).

@@ -52,6 +52,12 @@ pub struct ListPacker {
     first: Signal<Local, Bits<INDEX_BITS>>,
 }
 
+impl crate::unit::Unit for ListPacker {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, free, start_q, count_q, waiting, waiting_index);
+    }
+}
+
 impl Logic for ListPacker {
     #[hdl_gen]
     fn update(&mut self) {

@@ -142,6 +142,17 @@ pub struct OwnerChainFilter {
     unused_high_bits: Signal<Local, Bit>,
 }
 
+impl crate::unit::Unit for OwnerChainFilter {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            overflow_q, heads, records, loaded, entry_q, entry_object_q, entry_index_q, entry_slot_q,
+            entry_leaf_q, state, hit_leaf, index_a, index_b, hit_q, certain_q
+        );
+    }
+}
+
 impl OwnerChainFilter {
     /// Tables for `triangles` per object and `slots` entries per object.
     pub fn new(triangles: usize, slots: usize) -> Self {

@@ -95,6 +95,12 @@ pub struct OwnerFilter {
     take: Signal<Local, Bit>,
 }
 
+impl crate::unit::Unit for OwnerFilter {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, table_a, table_b, state, slot_a, slot_b, leaf, id_a, id_b);
+    }
+}
+
 impl OwnerFilter {
     /// A filter whose tables hold `slots_a` and `slots_b` words.
     pub fn new(slots_a: usize, slots_b: usize) -> Self {
@@ -145,11 +151,10 @@ impl Logic for OwnerFilter {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, state, slot_a, slot_b, leaf, id_a, id_b);
-        self.table_a.clock.next = self.clock.val();
+        clock!(self, clock, table_a, table_b);
         self.table_a.write_enable.next = self.write_a_enable.val();
         self.table_a.write_address.next = self.write_a_slot.val();
         self.table_a.write_data.next = self.write_a_word.val();
-        self.table_b.clock.next = self.clock.val();
         self.table_b.write_enable.next = self.write_b_enable.val();
         self.table_b.write_address.next = self.write_b_slot.val();
         self.table_b.write_data.next = self.write_b_word.val();

@@ -147,6 +147,18 @@ pub struct PlaneTraversal {
     pushed: Signal<Local, StackEntry>,
 }
 
+impl crate::unit::Unit for PlaneTraversal {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid, crossing_q, below_q,
+            value_q, stack, top, top_valid, refill, depth, in_flight, start_pending, out_valid_q, out_x_q,
+            out_y_q, out_z_q, out_level_q, out_full_q, out_crossed_q
+        );
+    }
+}
+
 impl Default for PlaneTraversal {
     fn default() -> Self {
         PlaneTraversal {
@@ -256,9 +268,7 @@ impl Logic for PlaneTraversal {
         self.half.next = bits::<11>(1) << (self.top.q.val().level - 1);
         self.issue.next = self.start_pending.q.val() | self.top_valid.q.val();
 
-        self.crossing.clock.next = self.clock.val();
-        self.below.clock.next = self.clock.val();
-        self.centre.clock.next = self.clock.val();
+        clock!(self, clock, crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid, stack);
         self.crossing.advance.next = self.advance.val();
         self.below.advance.next = self.advance.val();
         self.centre.advance.next = self.advance.val();
@@ -277,11 +287,6 @@ impl Logic for PlaneTraversal {
         self.centre.gradient_z.next = self.gradient_z.val();
         self.centre.offset.next = self.centre_offset.val();
         self.centre.value.next = self.crossing.value.val();
-        self.cell_x.clock.next = self.clock.val();
-        self.cell_y.clock.next = self.clock.val();
-        self.cell_z.clock.next = self.clock.val();
-        self.cell_level.clock.next = self.clock.val();
-        self.cell_valid.clock.next = self.clock.val();
         self.cell_x.advance.next = self.advance.val();
         self.cell_y.advance.next = self.advance.val();
         self.cell_z.advance.next = self.advance.val();
@@ -348,7 +353,6 @@ impl Logic for PlaneTraversal {
         self.pushed.next.mask = self.crossing_q.q.val();
 
         // The stack.
-        self.stack.clock.next = self.clock.val();
         self.stack.write_enable.next = false;
         self.stack.write_address.next = bit_cast::<8, 9>(self.depth.q.val());
         self.stack.write_data.next = self.top.q.val();

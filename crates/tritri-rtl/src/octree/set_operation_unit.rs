@@ -34,6 +34,12 @@ pub struct SetOperationUnit {
     word_q: DFF<Bits<64>>,
 }
 
+impl crate::unit::Unit for SetOperationUnit {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, valid_q, word_q);
+    }
+}
+
 impl Logic for SetOperationUnit {
     #[hdl_gen]
     fn update(&mut self) {

@@ -85,6 +85,10 @@ pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
     _stages: [Stage; TRIANGLE_SETUP_LATENCY],
 }
 
+impl<const G: usize, const V: usize, const N: usize> crate::unit::Unit for TriangleSetup<G, V, N> {
+    const LATENCY: Option<usize> = Some(TRIANGLE_SETUP_LATENCY);
+}
+
 /// What one pipeline stage holds (the model keeps every stage's values in
 /// one shape; each stage fills the fields it has computed).
 #[derive(Clone, Copy, Default)]

@@ -72,6 +72,16 @@ pub struct VoxelFill {
     sent: Signal<Local, Bit>,
 }
 
+impl crate::unit::Unit for VoxelFill {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            active, cell_x, cell_y, cell_z, child_level, remaining, dy, dz, word, last_word
+        );
+    }
+}
+
 impl Logic for VoxelFill {
     #[hdl_gen]
     fn update(&mut self) {

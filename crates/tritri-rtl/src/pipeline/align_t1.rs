@@ -30,6 +30,8 @@ pub struct AlignmentTable {
     pub swap: Signal<Out, Bit>,
 }
 
+impl crate::unit::Unit for AlignmentTable {}
+
 impl Logic for AlignmentTable {
     #[hdl_gen]
     fn update(&mut self) {
@@ -117,6 +119,17 @@ pub struct AlignT1 {
     t2_swap_q: DFF<Bit>,
     t2_aligned_negative_q: [DFF<Bit>; 3],
     t2_aligned_zero_q: [DFF<Bit>; 3],
+}
+
+impl crate::unit::Unit for AlignT1 {
+    const LATENCY: Option<usize> = Some(ALIGN_T1_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            sign_table, t1_rotation_q, t2_swap_q, t2_aligned_negative_q, t2_aligned_zero_q
+        );
+    }
 }
 
 impl Logic for AlignT1 {

@@ -36,6 +36,13 @@ pub struct AlignT2 {
     t1_swap_q: DFF<Bit>,
 }
 
+impl crate::unit::Unit for AlignT2 {
+    const LATENCY: Option<usize> = Some(ALIGN_T2_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, sign_table, t1_rotation_q, t2_swap_q, t2_rotation_q, t1_swap_q);
+    }
+}
+
 impl Logic for AlignT2 {
     #[hdl_gen]
     fn update(&mut self) {

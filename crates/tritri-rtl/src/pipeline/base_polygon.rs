@@ -48,6 +48,17 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     edge_thermometer_q: DFF<Bits<D>>,
 }
 
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BasePolygon<W, D, C> {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            id_q, vertices_q, normal_q, normal_negative_q, normal_zero_q, degenerate_q, dominant_axis_q,
+            segment_low_q, segment_high_q, edge_thermometer_q
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {

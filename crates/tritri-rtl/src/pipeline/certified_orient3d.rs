@@ -53,34 +53,50 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     sign: CertainSign<O, D>,
 }
 
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for CertifiedOrient3d<W, D, C, O> {
+    const LATENCY: Option<usize> = Some(CERTIFIED_ORIENT3D_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            edge_ab, edge_ac, edge_ad, normal, edge_ad_delay_0, edge_ad_delay_1, edge_ad_delay_2,
+            determinant, magnitude_ab, magnitude_ac, magnitude_ad, thermometer_delay, sign
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for CertifiedOrient3d<W, D, C, O> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.edge_ab.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            edge_ab,
+            edge_ac,
+            edge_ad,
+            normal,
+            edge_ad_delay_0,
+            edge_ad_delay_1,
+            edge_ad_delay_2,
+            determinant,
+            sign,
+            thermometer_delay,
+            magnitude_ab,
+            magnitude_ac,
+            magnitude_ad
+        );
         self.edge_ab.advance.next = self.advance.val();
-        self.edge_ac.clock.next = self.clock.val();
         self.edge_ac.advance.next = self.advance.val();
-        self.edge_ad.clock.next = self.clock.val();
         self.edge_ad.advance.next = self.advance.val();
-        self.normal.clock.next = self.clock.val();
         self.normal.advance.next = self.advance.val();
-        self.edge_ad_delay_0.clock.next = self.clock.val();
         self.edge_ad_delay_0.advance.next = self.advance.val();
-        self.edge_ad_delay_1.clock.next = self.clock.val();
         self.edge_ad_delay_1.advance.next = self.advance.val();
-        self.edge_ad_delay_2.clock.next = self.clock.val();
         self.edge_ad_delay_2.advance.next = self.advance.val();
-        self.determinant.clock.next = self.clock.val();
         self.determinant.advance.next = self.advance.val();
-        self.sign.clock.next = self.clock.val();
         self.sign.advance.next = self.advance.val();
-        self.thermometer_delay.clock.next = self.clock.val();
         self.thermometer_delay.advance.next = self.advance.val();
-        self.magnitude_ab.clock.next = self.clock.val();
         self.magnitude_ab.advance.next = self.advance.val();
-        self.magnitude_ac.clock.next = self.clock.val();
         self.magnitude_ac.advance.next = self.advance.val();
-        self.magnitude_ad.clock.next = self.clock.val();
         self.magnitude_ad.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();

@@ -92,6 +92,18 @@ pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
     hit_q: DFF<Bit>,
 }
 
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for CoplanarTest<W, D, C> {
+    const LATENCY: Option<usize> = Some(COPLANAR_TEST_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            axis_q, t1_q, t2_q, normal_q, projection_q, edge_a, edge_b, offset, compare, on_edge_a,
+            on_edge_b, orientation, orient, sign, term_q, hit_q
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {

@@ -1,5 +1,8 @@
-//! The verdict of a pair, from signs only (docs/ARCHITECTURE.md, conventions), mirroring the
-//! control flow of `intersects` in devillers_guigue.rs:
+//! The verdict of a pair and its certificate, from signs only
+//! (docs/ARCHITECTURE.md, conventions), mirroring the control flow of
+//! `intersects` in devillers_guigue.rs.
+//!
+//! The cases:
 //!
 //! * both triangles proper (`triangles_intersect`): no if either
 //!   triangle's vertices are all strictly on one side of the other's plane
@@ -87,6 +90,18 @@ pub struct Decision {
     t1_degenerate_q: DFF<Bit>,
     t2_degenerate_q: DFF<Bit>,
     hit_q: DFF<Bit>,
+}
+
+impl crate::unit::Unit for Decision {
+    const LATENCY: Option<usize> = Some(DECISION_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            rejected_certainly_q, interval_certain_q, certain_q, triangles_hit_q, segment_hit_q,
+            degenerate_hit_q, t1_degenerate_q, t2_degenerate_q, hit_q
+        );
+    }
 }
 
 impl Logic for Decision {

@@ -65,6 +65,18 @@ pub struct DegeneratePair<const W: usize, const D: usize, const C: usize> {
     hit_q: DFF<Bit>,
 }
 
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for DegeneratePair<W, D, C> {
+    const LATENCY: Option<usize> = Some(DEGENERATE_PAIR_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            ends_q, edge_ab, offset_ac, offset_ad, edge_cd, offset_ca, offset_cb, orient_abc, orient_abd,
+            orient_cda, orient_cdb, sign, compare, within_segment, hit_q
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
@@ -106,25 +118,29 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
             }
         }
         // Stage 2: differences and comparisons.
-        self.edge_ab.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            edge_ab,
+            offset_ac,
+            offset_ad,
+            edge_cd,
+            offset_ca,
+            offset_cb,
+            orient_abc,
+            orient_abd,
+            orient_cda,
+            orient_cdb
+        );
         self.edge_ab.advance.next = self.advance.val();
-        self.offset_ac.clock.next = self.clock.val();
         self.offset_ac.advance.next = self.advance.val();
-        self.offset_ad.clock.next = self.clock.val();
         self.offset_ad.advance.next = self.advance.val();
-        self.edge_cd.clock.next = self.clock.val();
         self.edge_cd.advance.next = self.advance.val();
-        self.offset_ca.clock.next = self.clock.val();
         self.offset_ca.advance.next = self.advance.val();
-        self.offset_cb.clock.next = self.clock.val();
         self.offset_cb.advance.next = self.advance.val();
-        self.orient_abc.clock.next = self.clock.val();
         self.orient_abc.advance.next = self.advance.val();
-        self.orient_abd.clock.next = self.clock.val();
         self.orient_abd.advance.next = self.advance.val();
-        self.orient_cda.clock.next = self.clock.val();
         self.orient_cda.advance.next = self.advance.val();
-        self.orient_cdb.clock.next = self.clock.val();
         self.orient_cdb.advance.next = self.advance.val();
         for k in 0..3 {
             // a = ends 0..2, b = 3..5, c = 6..8, d = 9..11.

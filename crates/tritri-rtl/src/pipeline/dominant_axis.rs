@@ -30,6 +30,13 @@ pub struct DominantAxis<const C: usize> {
     axis_q: DFF<Bits<2>>,
 }
 
+impl<const C: usize> crate::unit::Unit for DominantAxis<C> {
+    const LATENCY: Option<usize> = Some(DOMINANT_AXIS_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, magnitude, at_least_q, axis_q);
+    }
+}
+
 impl<const C: usize> Default for DominantAxis<C> {
     fn default() -> Self {
         Self {

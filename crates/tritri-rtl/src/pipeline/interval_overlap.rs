@@ -43,6 +43,13 @@ pub struct IntervalOverlap {
     second_q: [DFF<Bits<3>>; 4],
 }
 
+impl crate::unit::Unit for IntervalOverlap {
+    const LATENCY: Option<usize> = Some(INTERVAL_OVERLAP_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, first_q, second_q);
+    }
+}
+
 impl Logic for IntervalOverlap {
     #[hdl_gen]
     fn update(&mut self) {

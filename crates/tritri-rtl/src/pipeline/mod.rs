@@ -14,6 +14,7 @@ pub mod normal;
 pub mod orient3d;
 pub mod orient3d_operands;
 pub mod plane_side;
+pub mod ports;
 pub mod segment_ends;
 pub mod triangle_front_end;
 pub mod triangle_pipeline;

@@ -33,18 +33,21 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     magnitude_pr: MagnitudeThermometer<D>,
 }
 
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for NormalUnit<W, D, C> {
+    const LATENCY: Option<usize> = Some(NORMAL_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, edge_pq, edge_pr, edge_cross, magnitude_pq, magnitude_pr);
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.edge_pq.clock.next = self.clock.val();
+        clock!(self, clock, edge_pq, edge_pr, edge_cross, magnitude_pq, magnitude_pr);
         self.edge_pq.advance.next = self.advance.val();
-        self.edge_pr.clock.next = self.clock.val();
         self.edge_pr.advance.next = self.advance.val();
-        self.edge_cross.clock.next = self.clock.val();
         self.edge_cross.advance.next = self.advance.val();
-        self.magnitude_pq.clock.next = self.clock.val();
         self.magnitude_pq.advance.next = self.advance.val();
-        self.magnitude_pr.clock.next = self.clock.val();
         self.magnitude_pr.advance.next = self.advance.val();
         for k in 0..3 {
             self.edge_pq.a[k].next = self.vertices[3 + k].val();

@@ -43,26 +43,42 @@ pub struct Orient3d<const W: usize, const D: usize, const C: usize, const O: usi
     sign: SignOf<O>,
 }
 
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for Orient3d<W, D, C, O> {
+    const LATENCY: Option<usize> = Some(ORIENT3D_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            edge_ab, edge_ac, edge_ad, normal, edge_ad_delay_0, edge_ad_delay_1, edge_ad_delay_2,
+            determinant, sign
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for Orient3d<W, D, C, O> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.edge_ab.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            edge_ab,
+            edge_ac,
+            edge_ad,
+            normal,
+            edge_ad_delay_0,
+            edge_ad_delay_1,
+            edge_ad_delay_2,
+            determinant,
+            sign
+        );
         self.edge_ab.advance.next = self.advance.val();
-        self.edge_ac.clock.next = self.clock.val();
         self.edge_ac.advance.next = self.advance.val();
-        self.edge_ad.clock.next = self.clock.val();
         self.edge_ad.advance.next = self.advance.val();
-        self.normal.clock.next = self.clock.val();
         self.normal.advance.next = self.advance.val();
-        self.edge_ad_delay_0.clock.next = self.clock.val();
         self.edge_ad_delay_0.advance.next = self.advance.val();
-        self.edge_ad_delay_1.clock.next = self.clock.val();
         self.edge_ad_delay_1.advance.next = self.advance.val();
-        self.edge_ad_delay_2.clock.next = self.clock.val();
         self.edge_ad_delay_2.advance.next = self.advance.val();
-        self.determinant.clock.next = self.clock.val();
         self.determinant.advance.next = self.advance.val();
-        self.sign.clock.next = self.clock.val();
         self.sign.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();

@@ -69,6 +69,18 @@ pub struct Orient3dOperands<const W: usize> {
     operands_q: [DFF<Bits<W>>; 36],
 }
 
+impl<const W: usize> crate::unit::Unit for Orient3dOperands<W> {
+    const LATENCY: Option<usize> = Some(ORIENT3D_OPERANDS_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            degenerate_index_q, proper_q, vertex_q, from_t2_q, t1_delay, t2_delay, t1_pick_q, t2_pick_q,
+            from_t2_2q, operands_q
+        );
+    }
+}
+
 impl<const W: usize> Default for Orient3dOperands<W> {
     fn default() -> Self {
         Self {

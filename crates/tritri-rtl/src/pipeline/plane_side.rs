@@ -52,29 +52,46 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     sign: [CertainSign<O, D>; 3],
 }
 
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for PlaneSide<W, D, C, O> {
+    const LATENCY: Option<usize> = Some(PLANE_SIDE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            offset_0, offset_1, offset_2, normal_delay, distance_0, distance_1, distance_2,
+            plane_thermometer_delay, offset_magnitude_0, offset_magnitude_1, offset_magnitude_2,
+            thermometer_delay, sign
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for PlaneSide<W, D, C, O> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.offset_0.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            offset_0,
+            offset_1,
+            offset_2,
+            distance_0,
+            distance_1,
+            distance_2,
+            plane_thermometer_delay,
+            offset_magnitude_0,
+            offset_magnitude_1,
+            offset_magnitude_2
+        );
         self.offset_0.advance.next = self.advance.val();
-        self.offset_1.clock.next = self.clock.val();
         self.offset_1.advance.next = self.advance.val();
-        self.offset_2.clock.next = self.clock.val();
         self.offset_2.advance.next = self.advance.val();
-        self.distance_0.clock.next = self.clock.val();
         self.distance_0.advance.next = self.advance.val();
-        self.distance_1.clock.next = self.clock.val();
         self.distance_1.advance.next = self.advance.val();
-        self.distance_2.clock.next = self.clock.val();
         self.distance_2.advance.next = self.advance.val();
-        self.plane_thermometer_delay.clock.next = self.clock.val();
         self.plane_thermometer_delay.advance.next = self.advance.val();
         self.plane_thermometer_delay.d.next = self.plane_thermometer.val();
-        self.offset_magnitude_0.clock.next = self.clock.val();
         self.offset_magnitude_0.advance.next = self.advance.val();
-        self.offset_magnitude_1.clock.next = self.clock.val();
         self.offset_magnitude_1.advance.next = self.advance.val();
-        self.offset_magnitude_2.clock.next = self.clock.val();
         self.offset_magnitude_2.advance.next = self.advance.val();
         for k in 0..3 {
             self.offset_magnitude_0.value[k].next = self.offset_0.difference[k].val();

@@ -36,6 +36,13 @@ pub struct SegmentEnds<const W: usize> {
     high_q: DFF<Bits<2>>,
 }
 
+impl<const W: usize> crate::unit::Unit for SegmentEnds<W> {
+    const LATENCY: Option<usize> = Some(SEGMENT_ENDS_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, compare, low_q, high_q);
+    }
+}
+
 impl<const W: usize> Logic for SegmentEnds<W> {
     #[hdl_gen]
     fn update(&mut self) {

@@ -54,20 +54,27 @@ pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
     edge_thermometer_delay: DelayLine<Bits<D>, { FRONT_END_LATENCY - SUBTRACTOR_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>,
 }
 
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for TriangleFrontEnd<W, D, C> {
+    const LATENCY: Option<usize> = Some(FRONT_END_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            normal_unit, normal_sign, axis, ends, vertex_delay, normal_delay, normal_negative_delay,
+            normal_zero_delay, segment_low_delay, segment_high_delay, edge_thermometer_delay
+        );
+    }
+}
+
 impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.normal_unit.clock.next = self.clock.val();
+        clock!(self, clock, normal_unit, axis, ends, segment_low_delay, segment_high_delay, edge_thermometer_delay);
         self.normal_unit.advance.next = self.advance.val();
-        self.axis.clock.next = self.clock.val();
         self.axis.advance.next = self.advance.val();
-        self.ends.clock.next = self.clock.val();
         self.ends.advance.next = self.advance.val();
-        self.segment_low_delay.clock.next = self.clock.val();
         self.segment_low_delay.advance.next = self.advance.val();
-        self.segment_high_delay.clock.next = self.clock.val();
         self.segment_high_delay.advance.next = self.advance.val();
-        self.edge_thermometer_delay.clock.next = self.clock.val();
         self.edge_thermometer_delay.advance.next = self.advance.val();
         self.edge_thermometer_delay.d.next = self.normal_unit.edge_thermometer.val();
         self.edge_thermometer.next = self.edge_thermometer_delay.q.val();

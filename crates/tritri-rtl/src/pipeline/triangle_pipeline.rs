@@ -65,73 +65,66 @@ pub const fn latency() -> usize {
     TRIANGLE_PIPELINE_LATENCY
 }
 
-#[derive(LogicBlock, Default)]
-pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, const O: usize> {
-    pub clock: Signal<In, Clock>,
-    /// Synchronous, active high: clears the valid bits.
-    pub reset: Signal<In, Bit>,
-    /// Clock enable: when low every register holds.
-    pub advance: Signal<In, Bit>,
-    pub in_valid: Signal<In, Bit>,
-    /// Load this triangle as the base polygon instead of testing it.
-    pub in_bset: Signal<In, Bit>,
-    pub in_id: Signal<In, Bits<ID_BITS>>,
-    /// Vertices `(x0, y0, z0)`, `(x1, y1, z1)`, `(x2, y2, z2)`, W-bit two's complement.
-    pub in_x0: Signal<In, Bits<W>>,
-    pub in_y0: Signal<In, Bits<W>>,
-    pub in_z0: Signal<In, Bits<W>>,
-    pub in_x1: Signal<In, Bits<W>>,
-    pub in_y1: Signal<In, Bits<W>>,
-    pub in_z1: Signal<In, Bits<W>>,
-    pub in_x2: Signal<In, Bits<W>>,
-    pub in_y2: Signal<In, Bits<W>>,
-    pub in_z2: Signal<In, Bits<W>>,
-    pub out_valid: Signal<Out, Bit>,
-    pub out_hit: Signal<Out, Bit>,
-    /// 1 when no sign the verdict rests on can change if every coordinate
-    /// moves by half a grid step (`tritri_geom::certificate::certain`).
-    pub out_certain: Signal<Out, Bit>,
-    pub out_base_id: Signal<Out, Bits<ID_BITS>>,
-    pub out_stream_id: Signal<Out, Bits<ID_BITS>>,
-    input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
-    record_valid: ValidLine<RECORD_STAGE>,
-    record_bset: DelayLine<Bit, RECORD_STAGE>,
-    record_id: DelayLine<Bits<ID_BITS>, RECORD_STAGE>,
-    front_end: TriangleFrontEnd<W, D, C>,
-    base: BasePolygon<W, D, C>,
-    pair_valid: ValidLine<PAIR_LATENCY>,
-    base_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
-    stream_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
-    /// Steps (1)-(2): T1 (base) against the plane of T2 (streamed).
-    plane_side_t1: PlaneSide<W, D, C, O>,
-    /// Steps (3)-(4): T2 against the plane of T1, in parallel.
-    plane_side_t2: PlaneSide<W, D, C, O>,
-    align_t1: AlignT1,
-    align_t2: AlignT2,
-    interval_overlap: IntervalOverlap,
-    operands: Orient3dOperands<W>,
-    /// Step (7)'s determinants, with certificates.
-    orient3d_0: CertifiedOrient3d<W, D, C, O>,
-    orient3d_1: CertifiedOrient3d<W, D, C, O>,
-    orient3d_2: Orient3d<W, D, C, O>,
-    coplanar: CoplanarTest<W, D, C>,
-    degenerate_pair: DegeneratePair<W, D, C>,
-    decision: Decision,
-    // Alignment of the operands of later stages:
-    t1_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
-    t2_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
-    /// t1 degenerate, t2 degenerate: to the operands a clock before the
-    /// overlap indices (the operands register the case).
-    degenerate_to_operands: [DelayLine<Bit, { OPERANDS_STAGE - 1 }>; 2],
-    /// t1 low, t1 high, t2 low, t2 high, likewise.
-    segment_ends_to_operands: [DelayLine<Bits<2>, { OPERANDS_STAGE - 1 }>; 4],
-    degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 2],
-    segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 4],
-    /// t1 negative, t1 zero, t2 negative, t2 zero, t1 certain, t2 certain
-    /// at `3 j + vertex`.
-    sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 18],
-    coplanar_to_decision: DelayLine<Bit, { DECISION_STAGE - COPLANAR_TEST_LATENCY }>,
-    degenerate_pair_to_decision: DelayLine<Bit, { DECISION_STAGE - DEGENERATE_PAIR_LATENCY }>,
+crate::pipeline_ports! {
+    // The ports: crate::pipeline::ports.
+    #[derive(LogicBlock, Default)]
+    pub struct TrianglePipeline<const W: usize, const D: usize, const C: usize, const O: usize> {
+        input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
+        record_valid: ValidLine<RECORD_STAGE>,
+        record_bset: DelayLine<Bit, RECORD_STAGE>,
+        record_id: DelayLine<Bits<ID_BITS>, RECORD_STAGE>,
+        front_end: TriangleFrontEnd<W, D, C>,
+        base: BasePolygon<W, D, C>,
+        pair_valid: ValidLine<PAIR_LATENCY>,
+        base_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
+        stream_id: DelayLine<Bits<ID_BITS>, PAIR_LATENCY>,
+        /// Steps (1)-(2): T1 (base) against the plane of T2 (streamed).
+        plane_side_t1: PlaneSide<W, D, C, O>,
+        /// Steps (3)-(4): T2 against the plane of T1, in parallel.
+        plane_side_t2: PlaneSide<W, D, C, O>,
+        align_t1: AlignT1,
+        align_t2: AlignT2,
+        interval_overlap: IntervalOverlap,
+        operands: Orient3dOperands<W>,
+        /// Step (7)'s determinants, with certificates.
+        orient3d_0: CertifiedOrient3d<W, D, C, O>,
+        orient3d_1: CertifiedOrient3d<W, D, C, O>,
+        orient3d_2: Orient3d<W, D, C, O>,
+        coplanar: CoplanarTest<W, D, C>,
+        degenerate_pair: DegeneratePair<W, D, C>,
+        decision: Decision,
+        // Alignment of the operands of later stages:
+        t1_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
+        t2_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
+        /// t1 degenerate, t2 degenerate: to the operands a clock before the
+        /// overlap indices (the operands register the case).
+        degenerate_to_operands: [DelayLine<Bit, { OPERANDS_STAGE - 1 }>; 2],
+        /// t1 low, t1 high, t2 low, t2 high, likewise.
+        segment_ends_to_operands: [DelayLine<Bits<2>, { OPERANDS_STAGE - 1 }>; 4],
+        degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 2],
+        segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 4],
+        /// t1 negative, t1 zero, t2 negative, t2 zero, t1 certain, t2 certain
+        /// at `3 j + vertex`.
+        sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 18],
+        coplanar_to_decision: DelayLine<Bit, { DECISION_STAGE - COPLANAR_TEST_LATENCY }>,
+        degenerate_pair_to_decision: DelayLine<Bit, { DECISION_STAGE - DEGENERATE_PAIR_LATENCY }>,
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for TrianglePipeline<W, D, C, O> {
+    const LATENCY: Option<usize> = Some(TRIANGLE_PIPELINE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            input_vertices, record_valid, record_bset, record_id, front_end, base, pair_valid, base_id,
+            stream_id, plane_side_t1, plane_side_t2, align_t1, align_t2, interval_overlap, operands,
+            orient3d_0, orient3d_1, orient3d_2, coplanar, degenerate_pair, decision,
+            t1_vertices_to_operands, t2_vertices_to_operands, degenerate_to_operands,
+            segment_ends_to_operands, degenerate_to_decision, segment_ends_to_decision, sides_to_decision,
+            coplanar_to_decision, degenerate_pair_to_decision
+        );
+    }
 }
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePipeline<W, D, C, O> {
@@ -150,50 +143,54 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
     #[hdl_gen]
     fn update(&mut self) {
         // Clock and clock enable to every unit.
-        self.record_valid.clock.next = self.clock.val();
+        clock!(
+            self,
+            clock,
+            record_valid,
+            record_bset,
+            record_id,
+            front_end,
+            base,
+            pair_valid,
+            base_id,
+            stream_id,
+            plane_side_t1,
+            plane_side_t2,
+            align_t1,
+            align_t2,
+            interval_overlap,
+            operands,
+            orient3d_0,
+            orient3d_1,
+            orient3d_2,
+            coplanar,
+            degenerate_pair,
+            decision,
+            coplanar_to_decision,
+            degenerate_pair_to_decision
+        );
         self.record_valid.reset.next = self.reset.val();
         self.record_valid.advance.next = self.advance.val();
-        self.record_bset.clock.next = self.clock.val();
         self.record_bset.advance.next = self.advance.val();
-        self.record_id.clock.next = self.clock.val();
         self.record_id.advance.next = self.advance.val();
-        self.front_end.clock.next = self.clock.val();
         self.front_end.advance.next = self.advance.val();
-        self.base.clock.next = self.clock.val();
-        self.pair_valid.clock.next = self.clock.val();
         self.pair_valid.reset.next = self.reset.val();
         self.pair_valid.advance.next = self.advance.val();
-        self.base_id.clock.next = self.clock.val();
         self.base_id.advance.next = self.advance.val();
-        self.stream_id.clock.next = self.clock.val();
         self.stream_id.advance.next = self.advance.val();
-        self.plane_side_t1.clock.next = self.clock.val();
         self.plane_side_t1.advance.next = self.advance.val();
-        self.plane_side_t2.clock.next = self.clock.val();
         self.plane_side_t2.advance.next = self.advance.val();
-        self.align_t1.clock.next = self.clock.val();
         self.align_t1.advance.next = self.advance.val();
-        self.align_t2.clock.next = self.clock.val();
         self.align_t2.advance.next = self.advance.val();
-        self.interval_overlap.clock.next = self.clock.val();
         self.interval_overlap.advance.next = self.advance.val();
-        self.operands.clock.next = self.clock.val();
         self.operands.advance.next = self.advance.val();
-        self.orient3d_0.clock.next = self.clock.val();
         self.orient3d_0.advance.next = self.advance.val();
-        self.orient3d_1.clock.next = self.clock.val();
         self.orient3d_1.advance.next = self.advance.val();
-        self.orient3d_2.clock.next = self.clock.val();
         self.orient3d_2.advance.next = self.advance.val();
-        self.coplanar.clock.next = self.clock.val();
         self.coplanar.advance.next = self.advance.val();
-        self.degenerate_pair.clock.next = self.clock.val();
         self.degenerate_pair.advance.next = self.advance.val();
-        self.decision.clock.next = self.clock.val();
         self.decision.advance.next = self.advance.val();
-        self.coplanar_to_decision.clock.next = self.clock.val();
         self.coplanar_to_decision.advance.next = self.advance.val();
-        self.degenerate_pair_to_decision.clock.next = self.clock.val();
         self.degenerate_pair_to_decision.advance.next = self.advance.val();
         for i in 0..9 {
             self.input_vertices[i].clock.next = self.clock.val();

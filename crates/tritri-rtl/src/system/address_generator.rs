@@ -130,6 +130,18 @@ pub struct AddressGenerator {
     release_bank: Signal<Local, Bit>,
 }
 
+impl crate::unit::Unit for AddressGenerator {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            write_bank, a_write_pointer, b_write_pointer, overflow_q, a_write_count, b_write_count,
+            bank_full, a_bank_count, b_bank_count, bank_empty, read_state, read_bank, a_read_pointer,
+            a_left, b_read_pointer, b_count, b_left, lane, lane_active, lane_valid_q, bset_q, flight
+        );
+    }
+}
+
 impl AddressGenerator {
     /// `pipelines` pipelines of latency `pipeline_latency`, memories of
     /// `triangles_per_bank` triangles per array per bank.

@@ -30,10 +30,10 @@
 //! host can decide it again on its own coordinates; with `out_certain = 1`
 //! only hits are reported.
 //!
-//! The top is generated for a pipeline type by [`collision_system!`]
+//! The top is generated for a pipeline type by [`collision_system!`](crate::collision_system)
 //! (rust-hdl cannot reach fields of a generic type): [`CollisionSystem`]
 //! uses the real [`TrianglePipeline`], [`StubCollisionSystem`] the
-//! [`StubPipeline`](super::stub_pipeline::StubPipeline).
+//! [`StubPipeline`].
 
 use super::stub_pipeline::StubPipeline;
 use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
@@ -188,6 +188,24 @@ macro_rules! collision_system {
             }
         }
 
+        impl<$(const $param: usize),*> $crate::unit::Unit for $name<$($param),*> {
+            fn sub_units(&self, units: &mut $crate::unit::UnitWalk) {
+                $crate::sub_units!(
+                    self,
+                    units,
+                    address_generator,
+                    memory_a,
+                    memory_b,
+                    pipelines,
+                    result_fifo,
+                    pair_serializer,
+                    pairs_tested_q,
+                    hits_q,
+                    stall_cycles_q
+                );
+            }
+        }
+
         impl<$(const $param: usize),*> $crate::system::host_ports::HostPorts for $name<$($param),*> {
             fn clock_signal(&mut self) -> &mut Signal<In, Clock> {
                 &mut self.clock
@@ -230,8 +248,8 @@ macro_rules! collision_system {
             fn system_config(&self) -> $crate::system::SystemConfig {
                 self._config
             }
-            fn verilog(&self) -> String {
-                generate_verilog(self)
+            fn raw_design(&self) -> $crate::unit::RawDesign {
+                $crate::unit::RawDesign::of(self)
             }
         }
 
@@ -289,20 +307,18 @@ macro_rules! collision_system {
                 self.advance.next = !(self.result_fifo.full.val() & self.any_report.val());
 
                 // Host stream → write side of the address generator and memories.
-                self.address_generator.clock.next = self.clock.val();
+                clock!(self, clock, address_generator, memory_a, memory_b, result_fifo, pair_serializer);
                 self.address_generator.reset.next = self.reset.val();
                 self.address_generator.advance.next = self.advance.val();
                 self.address_generator.in_valid.next = self.in_valid.val();
                 self.address_generator.in_end.next = self.in_end.val();
                 self.address_generator.in_object.next = self.in_object.val();
                 self.in_ready.next = self.address_generator.in_ready.val();
-                self.memory_a.clock.next = self.clock.val();
                 self.memory_a.write_enable.next = self.address_generator.a_write_enable.val();
                 self.memory_a.write_address.next = self.address_generator.a_write_address.val();
                 self.memory_a.write_id.next = self.in_id.val();
                 self.memory_a.read_enable.next = self.advance.val();
                 self.memory_a.read_address.next = self.address_generator.a_read_address.val();
-                self.memory_b.clock.next = self.clock.val();
                 self.memory_b.write_enable.next = self.address_generator.b_write_enable.val();
                 self.memory_b.write_address.next = self.address_generator.b_write_address.val();
                 self.memory_b.write_id.next = self.in_id.val();
@@ -360,7 +376,6 @@ macro_rules! collision_system {
                     self.pair_serializer.head_base_ids[i].next = self.result_fifo.head_base_ids[i].val();
                 }
 
-                self.result_fifo.clock.next = self.clock.val();
                 self.result_fifo.reset.next = self.reset.val();
                 self.result_fifo.write.next = self.advance.val() & self.any_report.val();
                 self.result_fifo.write_mask.next = self.report_mask.val();
@@ -368,7 +383,6 @@ macro_rules! collision_system {
                 self.result_fifo.write_certain_mask.next = self.certain_mask.val();
                 self.result_fifo.write_stream_id.next = self.pipelines[0].out_stream_id.val();
                 self.result_fifo.pop.next = self.pair_serializer.pop.val();
-                self.pair_serializer.clock.next = self.clock.val();
                 self.pair_serializer.reset.next = self.reset.val();
                 self.pair_serializer.head_valid.next = self.result_fifo.head_valid.val();
                 self.pair_serializer.head_mask.next = self.result_fifo.head_mask.val();

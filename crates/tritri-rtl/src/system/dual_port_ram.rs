@@ -30,6 +30,12 @@ pub struct SimpleDualPortRam<T: Synth, const A: usize> {
     _block_ram: bool,
 }
 
+impl<T: Synth, const A: usize> crate::unit::Unit for SimpleDualPortRam<T, A> {
+    fn settings(&self) -> Vec<(&'static str, String)> {
+        vec![("depth", self.words().to_string())]
+    }
+}
+
 impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
     pub fn new(words: usize) -> Self {
         assert!(words >= 1 && words <= 1 << A, "a RAM of {words} words needs more than {A} address bits");

@@ -44,8 +44,8 @@ pub trait HostPorts: Block {
     fn set_inputs(&mut self, inputs: &HostInputs);
     fn outputs(&self) -> HostOutputs;
     fn system_config(&self) -> SystemConfig;
-    /// rust-hdl's Verilog of the whole system (top module `top`).
-    fn verilog(&self) -> String;
+    /// rust-hdl's Verilog of the whole system (top module `top`) and its units.
+    fn raw_design(&self) -> crate::unit::RawDesign;
 }
 
 /// `v` as an `N`-bit two's-complement vector (wraps modulo `2^N`).

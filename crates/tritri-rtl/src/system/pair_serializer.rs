@@ -35,6 +35,12 @@ pub struct PairSerializer {
     transfer: Signal<Local, Bit>,
 }
 
+impl crate::unit::Unit for PairSerializer {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, served);
+    }
+}
+
 impl PairSerializer {
     pub fn new(pipelines: usize) -> Self {
         assert!((1..=MAX_PIPELINES).contains(&pipelines));

@@ -70,6 +70,17 @@ pub struct ResultFifo {
     next_read_pointer: Signal<Local, Bits<FIFO_POINTER_BITS>>,
 }
 
+impl crate::unit::Unit for ResultFifo {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            mask_column, hit_column, certain_column, stream_id_column, base_id_columns, write_pointer,
+            read_pointer, count, readable, head_valid_q, read_pointer_next, wrote
+        );
+    }
+}
+
 impl ResultFifo {
     /// `depth` words of `pipelines` lanes each.
     pub fn new(pipelines: usize, depth: usize) -> Self {
@@ -166,28 +177,25 @@ impl Logic for ResultFifo {
         self.wrote.d.next = self.do_write.val();
 
         // The columns: written at the write pointer, read at the next head.
-        self.mask_column.clock.next = self.clock.val();
+        clock!(self, clock, mask_column, hit_column, certain_column, stream_id_column);
         self.mask_column.write_enable.next = self.do_write.val();
         self.mask_column.write_address.next = self.write_pointer.q.val();
         self.mask_column.write_data.next = self.write_mask.val();
         self.mask_column.read_enable.next = true;
         self.mask_column.read_address.next = self.next_read_pointer.val();
         self.head_mask.next = self.mask_column.read_data.val();
-        self.hit_column.clock.next = self.clock.val();
         self.hit_column.write_enable.next = self.do_write.val();
         self.hit_column.write_address.next = self.write_pointer.q.val();
         self.hit_column.write_data.next = self.write_hit_mask.val();
         self.hit_column.read_enable.next = true;
         self.hit_column.read_address.next = self.next_read_pointer.val();
         self.head_hit_mask.next = self.hit_column.read_data.val();
-        self.certain_column.clock.next = self.clock.val();
         self.certain_column.write_enable.next = self.do_write.val();
         self.certain_column.write_address.next = self.write_pointer.q.val();
         self.certain_column.write_data.next = self.write_certain_mask.val();
         self.certain_column.read_enable.next = true;
         self.certain_column.read_address.next = self.next_read_pointer.val();
         self.head_certain_mask.next = self.certain_column.read_data.val();
-        self.stream_id_column.clock.next = self.clock.val();
         self.stream_id_column.write_enable.next = self.do_write.val();
         self.stream_id_column.write_address.next = self.write_pointer.q.val();
         self.stream_id_column.write_data.next = self.write_stream_id.val();

@@ -3,11 +3,8 @@
 //! memories, the address generator and the result path can be tested (and
 //! their cycle counts checked) without the cost of the real arithmetic.
 //!
-//! Ports (as the real pipeline): `clock`, `reset` (synchronous, clears the
-//! valid bits), `advance` (clock enable: when low everything holds),
-//! `in_valid`, `in_bset` (with `in_valid`: load the base polygon), `in_id`,
-//! `in_x0 … in_z2`; `out_valid` (one per tested pair, `L` cycles after its
-//! input), `out_hit`, `out_certain`, `out_base_id`, `out_stream_id`.
+//! Ports: the real pipeline's ([`crate::pipeline::ports`]); `out_valid`
+//! comes `L` cycles after its input.
 //!
 //! Verdict: [`stub_hit`] and [`stub_certain`], which read both ids and one
 //! coordinate of each triangle, so the id and coordinate paths from the
@@ -42,61 +39,21 @@ struct Stage {
     stream_id: u64,
 }
 
-#[derive(LogicBlock)]
-pub struct StubPipeline<const W: usize> {
-    pub clock: Signal<In, Clock>,
-    pub reset: Signal<In, Bit>,
-    pub advance: Signal<In, Bit>,
-    pub in_valid: Signal<In, Bit>,
-    pub in_bset: Signal<In, Bit>,
-    pub in_id: Signal<In, Bits<ID_BITS>>,
-    pub in_x0: Signal<In, Bits<W>>,
-    pub in_y0: Signal<In, Bits<W>>,
-    pub in_z0: Signal<In, Bits<W>>,
-    pub in_x1: Signal<In, Bits<W>>,
-    pub in_y1: Signal<In, Bits<W>>,
-    pub in_z1: Signal<In, Bits<W>>,
-    pub in_x2: Signal<In, Bits<W>>,
-    pub in_y2: Signal<In, Bits<W>>,
-    pub in_z2: Signal<In, Bits<W>>,
-    pub out_valid: Signal<Out, Bit>,
-    pub out_hit: Signal<Out, Bit>,
-    pub out_certain: Signal<Out, Bit>,
-    pub out_base_id: Signal<Out, Bits<ID_BITS>>,
-    pub out_stream_id: Signal<Out, Bits<ID_BITS>>,
-    _base_id: u64,
-    _base_x0: u64,
-    _stages: Vec<Stage>,
+crate::pipeline_ports! {
+    #[derive(LogicBlock, Default)]
+    pub struct StubPipeline<const W: usize> {
+        _base_id: u64,
+        _base_x0: u64,
+        _stages: Vec<Stage>,
+    }
 }
+
+impl<const W: usize> crate::unit::Unit for StubPipeline<W> {}
 
 impl<const W: usize> StubPipeline<W> {
     pub fn new(latency: usize) -> Self {
         assert!(latency >= 1);
-        StubPipeline {
-            clock: Default::default(),
-            reset: Default::default(),
-            advance: Default::default(),
-            in_valid: Default::default(),
-            in_bset: Default::default(),
-            in_id: Default::default(),
-            in_x0: Default::default(),
-            in_y0: Default::default(),
-            in_z0: Default::default(),
-            in_x1: Default::default(),
-            in_y1: Default::default(),
-            in_z1: Default::default(),
-            in_x2: Default::default(),
-            in_y2: Default::default(),
-            in_z2: Default::default(),
-            out_valid: Default::default(),
-            out_hit: Default::default(),
-            out_certain: Default::default(),
-            out_base_id: Default::default(),
-            out_stream_id: Default::default(),
-            _base_id: 0,
-            _base_x0: 0,
-            _stages: vec![Stage::default(); latency],
-        }
+        StubPipeline { _stages: vec![Stage::default(); latency], ..Default::default() }
     }
 
     pub fn latency(&self) -> usize {

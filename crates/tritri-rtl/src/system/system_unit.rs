@@ -122,5 +122,5 @@ pub fn emit_system_with(
 ) -> Result<EmittedDesign, SystemEmitError> {
     let mut system = system_for_config(config, kind).map_err(SystemEmitError::Width)?;
     system.connect_all();
-    Ok(emit_with(&system.verilog(), &system_unit(config, kind), EmitOptions { multipliers, ..EmitOptions::default() })?)
+    Ok(emit_with(&system.raw_design(), &system_unit(config, kind), EmitOptions { multipliers, ..EmitOptions::default() })?)
 }

@@ -28,6 +28,12 @@ pub struct TriangleMemory<const W: usize> {
     coordinate_columns: [SimpleDualPortRam<Bits<W>, ADDRESS_BITS>; 9],
 }
 
+impl<const W: usize> crate::unit::Unit for TriangleMemory<W> {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, id_column, coordinate_columns);
+    }
+}
+
 impl<const W: usize> TriangleMemory<W> {
     /// A memory of two banks of `triangles_per_bank` triangles each.
     pub fn new(triangles_per_bank: usize) -> Self {
