@@ -80,8 +80,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --eye and --target are the same point");
         return Ok(ExitCode::from(2));
     }
-    let views = plan(&patches, a.eye, a.near);
-    let camera = Camera { eye: a.eye, target: a.target, up: [0.0, 0.0, 1.0], fov_degrees: 40.0 };
+    let views = plan(&patches, a.eye.into(), a.near);
+    let camera = Camera { eye: a.eye.into(), target: a.target.into(), up: [0.0, 0.0, 1.0].into(), fov_degrees: 40.0 };
     let mut canvas = Canvas::new(a.size, a.size, camera);
     let mut triangles = 0usize;
     let mut per_level = [0usize; 4];

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, PairVerdict, StreamResult};
 use tritri_geom::certificate::certified_intersects;
-use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::quantize::quantize_pair;
 use tritri_geom::TrianglePair;
 use tritri_rtl::configurations::pipeline_for_width;

@@ -28,7 +28,7 @@ fn teapot() -> Vec<BezierPatch> {
 
 /// Culling, levels and tessellation: the triangles drawn.
 fn adaptive(patches: &[BezierPatch]) -> usize {
-    plan(patches, EYE, NEAR).iter().zip(patches).filter(|(view, _)| !view.culled).map(|(view, patch)| patch.tessellate(view.samples).len()).sum()
+    plan(patches, EYE.into(), NEAR).iter().zip(patches).filter(|(view, _)| !view.culled).map(|(view, patch)| patch.tessellate(view.samples).len()).sum()
 }
 
 /// Every patch at 20 x 20.

@@ -37,7 +37,6 @@ pub mod raster;
 pub mod scene;
 pub mod sign;
 pub mod triangle;
-mod vector;
 pub mod widths;
 
 pub use triangle::{Point, Triangle, TrianglePair};

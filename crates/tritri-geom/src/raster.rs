@@ -3,8 +3,8 @@
 //! Bezier tessellations and scenes. Voxel models have their own ray caster
 //! (`octree::render`).
 
-use crate::triangle::{Point, Triangle};
-use crate::vector::{cross, dot, normalized};
+use crate::triangle::Triangle;
+use nalgebra::{Point3, Vector3};
 
 /// An 8-bit RGB picture, rows from the top.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -30,9 +30,9 @@ impl Image {
 /// with a vertical field of view of `fov_degrees`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
-    pub eye: Point,
-    pub target: Point,
-    pub up: Point,
+    pub eye: Point3<f64>,
+    pub target: Point3<f64>,
+    pub up: Vector3<f64>,
     pub fov_degrees: f64,
 }
 
@@ -41,20 +41,20 @@ pub struct Canvas {
     pub image: Image,
     depth: Vec<f64>,
     camera: Camera,
-    forward: Point,
-    right: Point,
-    up: Point,
+    forward: Vector3<f64>,
+    right: Vector3<f64>,
+    up: Vector3<f64>,
     focal: f64,
 }
 
 impl Canvas {
     pub fn new(width: u32, height: u32, camera: Camera) -> Canvas {
-        let forward = normalized([0, 1, 2].map(|k| camera.target[k] - camera.eye[k]));
-        let mut right = normalized(cross(forward, camera.up));
-        if dot(right, right) == 0.0 {
-            right = normalized(cross(forward, [1.0, 0.0, 0.0]));
+        let forward = unit(camera.target - camera.eye);
+        let mut right = unit(forward.cross(&camera.up));
+        if right == Vector3::zeros() {
+            right = unit(forward.cross(&Vector3::x()));
         }
-        let up = cross(right, forward);
+        let up = right.cross(&forward);
         let focal = 0.5 * height as f64 / (0.5 * camera.fov_degrees.to_radians()).tan();
         Canvas {
             image: Image::background(width, height),
@@ -68,28 +68,29 @@ impl Canvas {
     }
 
     /// Screen position (x right, y down, pixels) and depth along the view.
-    fn project(&self, p: Point) -> Option<(f64, f64, f64)> {
-        let d = [0, 1, 2].map(|k| p[k] - self.camera.eye[k]);
-        let z = dot(d, self.forward);
+    fn project(&self, p: Point3<f64>) -> Option<(f64, f64, f64)> {
+        let d = p - self.camera.eye;
+        let z = d.dot(&self.forward);
         if z <= 1e-9 {
             return None;
         }
-        let x = 0.5 * self.image.width as f64 + self.focal * dot(d, self.right) / z;
-        let y = 0.5 * self.image.height as f64 - self.focal * dot(d, self.up) / z;
+        let x = 0.5 * self.image.width as f64 + self.focal * d.dot(&self.right) / z;
+        let y = 0.5 * self.image.height as f64 - self.focal * d.dot(&self.up) / z;
         Some((x, y, z))
     }
 
     /// Draws a triangle in `colour`, shaded by the angle between its normal
     /// and the view (both sides lit; back sides darker).
     pub fn triangle(&mut self, t: &Triangle, colour: [u8; 3]) {
-        let n = normalized(cross([0, 1, 2].map(|k| t[1][k] - t[0][k]), [0, 1, 2].map(|k| t[2][k] - t[0][k])));
-        let to_eye = normalized([0, 1, 2].map(|k| self.camera.eye[k] - t[0][k]));
-        let light = normalized([0, 1, 2].map(|k| to_eye[k] + 0.5 * self.up[k] - 0.3 * self.right[k]));
-        let facing = dot(n, to_eye);
-        let lambert = if facing >= 0.0 { dot(n, light).abs() } else { 0.5 * dot(n, light).abs() };
+        let [p, q, r] = t.map(Point3::from);
+        let n = unit((q - p).cross(&(r - p)));
+        let to_eye = unit(self.camera.eye - p);
+        let light = unit(to_eye + 0.5 * self.up - 0.3 * self.right);
+        let facing = n.dot(&to_eye);
+        let lambert = if facing >= 0.0 { n.dot(&light).abs() } else { 0.5 * n.dot(&light).abs() };
         let shade = 0.3 + 0.7 * lambert;
         let colour = colour.map(|c| (c as f64 * shade).round().clamp(0.0, 255.0) as u8);
-        let (Some(a), Some(b), Some(c)) = (self.project(t[0]), self.project(t[1]), self.project(t[2])) else { return };
+        let (Some(a), Some(b), Some(c)) = (self.project(p), self.project(q), self.project(r)) else { return };
         let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
         if area.abs() < 1e-12 {
             return;
@@ -123,7 +124,7 @@ impl Canvas {
     /// Draws a line segment (1 pixel) where it is not behind a drawn
     /// surface (a depth test with a 1 % allowance, so lines on a surface
     /// show).
-    pub fn line(&mut self, a: Point, b: Point, colour: [u8; 3]) {
+    pub fn line(&mut self, a: Point3<f64>, b: Point3<f64>, colour: [u8; 3]) {
         let (Some(p), Some(q)) = (self.project(a), self.project(b)) else { return };
         let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).max(1);
         for s in 0..=steps {
@@ -141,6 +142,12 @@ impl Canvas {
     }
 }
 
+/// `v / |v|`; the zero vector stays zero (a degenerate triangle's normal,
+/// an up vector along the view).
+pub(crate) fn unit(v: Vector3<f64>) -> Vector3<f64> {
+    v.try_normalize(0.0).unwrap_or(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -149,7 +156,7 @@ mod tests {
     /// one hides it; one behind the camera draws nothing.
     #[test]
     fn the_nearer_triangle_wins() {
-        let camera = Camera { eye: [0.0, 0.0, 5.0], target: [0.0; 3], up: [0.0, 1.0, 0.0], fov_degrees: 40.0 };
+        let camera = Camera { eye: Point3::new(0.0, 0.0, 5.0), target: Point3::origin(), up: Vector3::y(), fov_degrees: 40.0 };
         let mut canvas = Canvas::new(64, 64, camera);
         let background = canvas.image.pixels[32 * 64 + 32];
         canvas.triangle(&[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]], [200, 0, 0]);

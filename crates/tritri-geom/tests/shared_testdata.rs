@@ -374,7 +374,8 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
     use tritri_geom::bezier::subdivide::subdivide;
     let (patches, turned) = oriented_outwards(&read_bpt(&testdata().join("teapot.bpt")).unwrap());
     assert!(turned, "the teapot's d_u x d_v points inwards");
-    let eyes = [[10.0, 0.0, 1.5], [-10.0, 3.0, 1.5], [0.0, -8.0, 6.0], [0.0, 0.0, -6.0], [0.0, 0.0, 1.0], [2.0, 2.0, 8.0], [4.0, -4.0, 0.5], [-1.0, 0.5, 2.0]];
+    let eyes = [[10.0, 0.0, 1.5], [-10.0, 3.0, 1.5], [0.0, -8.0, 6.0], [0.0, 0.0, -6.0], [0.0, 0.0, 1.0], [2.0, 2.0, 8.0], [4.0, -4.0, 0.5], [-1.0, 0.5, 2.0]]
+        .map(nalgebra::Point3::from);
     let m = 16;
     for times in 0..=4 {
         let level = subdivide(&patches, times);
@@ -383,7 +384,7 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
         let (mut inward_culled, mut inward_wrong) = (0, 0);
         for (index, p) in level.iter().enumerate() {
             let Some(cone) = NormalCone::of(p) else { continue };
-            let samples: Vec<([f64; 3], [f64; 3])> = (0..=m)
+            let samples: Vec<(nalgebra::Point3<f64>, nalgebra::Vector3<f64>)> = (0..=m)
                 .flat_map(|i| (0..=m).map(move |j| (i as f64 / m as f64, j as f64 / m as f64)))
                 .filter_map(|(u, v)| p.normal(u, v).map(|n| (p.evaluate(u, v), n)))
                 .collect();
@@ -391,7 +392,7 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
                 assert!(cone.contains(*n, 1e-9), "{} patches, patch {index}: a normal outside the cone", level.len());
             }
             for eye in eyes {
-                let faces_eye = samples.iter().any(|(q, n)| (0..3).map(|k| n[k] * (q[k] - eye[k])).sum::<f64>() < 0.0);
+                let faces_eye = samples.iter().any(|(q, n)| n.dot(&(q - eye)) < 0.0);
                 if back_facing(&cone, p, eye) {
                     culled += 1;
                     assert!(!faces_eye, "{} patches, patch {index}: culled from {eye:?} with a point facing the eye", level.len());
@@ -401,8 +402,8 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
                     paper_wrong += faces_eye as usize;
                 }
                 // Facing the eye with the normals turned round too.
-                let faces_eye_inward = samples.iter().any(|(q, n)| (0..3).map(|k| n[k] * (q[k] - eye[k])).sum::<f64>() > 0.0);
-                let inward = NormalCone { axis: cone.axis.map(|c| -c), ..cone };
+                let faces_eye_inward = samples.iter().any(|(q, n)| n.dot(&(q - eye)) > 0.0);
+                let inward = NormalCone { axis: -cone.axis, ..cone };
                 if paper_back_facing(&inward, p, eye) {
                     inward_culled += 1;
                     inward_wrong += faces_eye_inward as usize;

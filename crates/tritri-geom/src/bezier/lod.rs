@@ -10,7 +10,7 @@
 //! P_{i+1,j} - P_{i,j+1} + P_{i,j}|`, `|S_vv|` likewise: each derivative is
 //! a Bernstein combination of those differences, whose weights sum to 1.
 
-use crate::vector::length;
+use nalgebra::{Point3, Vector3};
 use super::BezierPatch;
 
 /// The paper's samples per side, by distance: 5, 10, 15, 20.
@@ -29,8 +29,8 @@ pub fn distance_level(distance: f64, near: f64) -> usize {
 pub fn second_derivative_bounds(patch: &BezierPatch) -> [f64; 3] {
     let p = &patch.net;
     let (mut uu, mut uv, mut vv) = (0.0f64, 0.0f64, 0.0f64);
-    let comb = |a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], wa: f64, wb: f64, wc: f64, wd: f64| {
-        length([0, 1, 2].map(|k| wa * a[k] + wb * b[k] + wc * c[k] + wd * d[k]))
+    let comb = |a: Point3<f64>, b: Point3<f64>, c: Point3<f64>, d: Point3<f64>, wa: f64, wb: f64, wc: f64, wd: f64| {
+        Vector3::from([0, 1, 2].map(|k| wa * a[k] + wb * b[k] + wc * c[k] + wd * d[k])).norm()
     };
     for i in 0..4 {
         for j in 0..4 {
@@ -68,7 +68,6 @@ pub fn error_level(patch: &BezierPatch, tolerance: f64, max: usize) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use crate::vector::sub;
     use super::super::tests::wavy_patch;
     use super::*;
 
@@ -96,12 +95,12 @@ mod tests {
                             let (s, t) = (a as f64 / m as f64, b as f64 / m as f64);
                             // The point of the cell's two triangles over (s, t).
                             let flat = if t <= s {
-                                [0, 1, 2].map(|k| c00[k] + s * (c10[k] - c00[k]) + t * (c11[k] - c10[k]))
+                                c00 + s * (c10 - c00) + t * (c11 - c10)
                             } else {
-                                [0, 1, 2].map(|k| c00[k] + t * (c01[k] - c00[k]) + s * (c11[k] - c01[k]))
+                                c00 + t * (c01 - c00) + s * (c11 - c01)
                             };
                             let on = p.evaluate((ci as f64 + s) / n as f64, (cj as f64 + t) / n as f64);
-                            worst = worst.max(length(sub(on, flat)));
+                            worst = worst.max((on - flat).norm());
                         }
                     }
                 }

@@ -15,7 +15,8 @@
 //! `.bpt` format: the patch count, then per patch a line `3 3` (the degrees)
 //! and 16 lines `x y z`, the control net row by row.
 
-use crate::triangle::{Point, Triangle};
+use crate::triangle::Triangle;
+use nalgebra::{Point3, Vector3};
 use std::path::Path;
 
 pub mod cone;
@@ -27,7 +28,7 @@ pub mod view;
 /// One bicubic patch: control points `net[row][column]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BezierPatch {
-    pub net: [[Point; 4]; 4],
+    pub net: [[Point3<f64>; 4]; 4],
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -46,26 +47,25 @@ fn bernstein(t: f64) -> [f64; 4] {
 
 impl BezierPatch {
     /// The surface point at parameters `(u, v)` in `[0, 1]^2` (u along rows).
-    pub fn evaluate(&self, u: f64, v: f64) -> Point {
+    pub fn evaluate(&self, u: f64, v: f64) -> Point3<f64> {
         let (bu, bv) = (bernstein(u), bernstein(v));
-        let mut p = [0.0; 3];
+        let mut p = Vector3::zeros();
         for (i, row) in self.net.iter().enumerate() {
             for (j, c) in row.iter().enumerate() {
-                for k in 0..3 {
-                    p[k] += bu[i] * bv[j] * c[k];
-                }
+                p += bu[i] * bv[j] * c.coords;
             }
         }
-        p
+        Point3::from(p)
     }
 
     /// `n x n` quads of samples, two triangles each. Triangles with two
     /// identical vertices (where a row of the net collapses to a point, as on
     /// the teapot's lid and bottom) are left out: they add no surface.
+    /// Triangles are the collision system's plain coordinate arrays.
     pub fn tessellate(&self, n: usize) -> Vec<Triangle> {
         let n = n.max(1);
-        let sample = |i: usize, j: usize| self.evaluate(i as f64 / n as f64, j as f64 / n as f64);
-        let grid: Vec<Vec<Point>> = (0..=n).map(|i| (0..=n).map(|j| sample(i, j)).collect()).collect();
+        let sample = |i: usize, j: usize| self.evaluate(i as f64 / n as f64, j as f64 / n as f64).into();
+        let grid: Vec<Vec<[f64; 3]>> = (0..=n).map(|i| (0..=n).map(|j| sample(i, j)).collect()).collect();
         let mut out = Vec::with_capacity(2 * n * n);
         for i in 0..n {
             for j in 0..n {
@@ -134,7 +134,7 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
         if degrees.split_whitespace().collect::<Vec<_>>() != ["3", "3"] {
             return Err((line, format!("only bicubic patches (`3 3`) are supported, found `{degrees}`")));
         }
-        let mut net = [[[0.0; 3]; 4]; 4];
+        let mut net = [[Point3::origin(); 4]; 4];
         for row in net.iter_mut() {
             for point in row.iter_mut() {
                 let (line, xyz) = next("a control point")?;
@@ -162,21 +162,21 @@ pub(crate) mod tests {
 
     /// A curved, twisted patch for the submodules' tests.
     pub(crate) fn wavy_patch() -> BezierPatch {
-        let mut net = [[[0.0; 3]; 4]; 4];
+        let mut net = [[Point3::origin(); 4]; 4];
         for i in 0..4 {
             for j in 0..4 {
                 let (x, y) = (i as f64, j as f64);
-                net[i][j] = [x + 0.3 * y, y - 0.2 * x, (x * 1.3).sin() + 0.5 * (y * 0.9).cos() + 0.1 * x * y];
+                net[i][j] = Point3::new(x + 0.3 * y, y - 0.2 * x, (x * 1.3).sin() + 0.5 * (y * 0.9).cos() + 0.1 * x * y);
             }
         }
         BezierPatch { net }
     }
 
     fn flat_patch() -> BezierPatch {
-        let mut net = [[[0.0; 3]; 4]; 4];
+        let mut net = [[Point3::origin(); 4]; 4];
         for i in 0..4 {
             for j in 0..4 {
-                net[i][j] = [i as f64, j as f64, 0.0];
+                net[i][j] = Point3::new(i as f64, j as f64, 0.0);
             }
         }
         BezierPatch { net }
@@ -185,15 +185,15 @@ pub(crate) mod tests {
     #[test]
     fn corners_interpolate_the_net() {
         let p = flat_patch();
-        assert_eq!(p.evaluate(0.0, 0.0), [0.0, 0.0, 0.0]);
-        assert_eq!(p.evaluate(1.0, 1.0), [3.0, 3.0, 0.0]);
-        assert_eq!(p.evaluate(0.5, 0.5), [1.5, 1.5, 0.0]);
+        assert_eq!(p.evaluate(0.0, 0.0), Point3::new(0.0, 0.0, 0.0));
+        assert_eq!(p.evaluate(1.0, 1.0), Point3::new(3.0, 3.0, 0.0));
+        assert_eq!(p.evaluate(0.5, 0.5), Point3::new(1.5, 1.5, 0.0));
     }
 
     #[test]
     fn collapsed_row_gives_no_zero_area_triangles() {
         let mut p = flat_patch();
-        p.net[0] = [[0.0, 0.0, 0.0]; 4];
+        p.net[0] = [Point3::origin(); 4];
         let tris = p.tessellate(4);
         assert_eq!(tris.len(), 2 * 16 - 4, "one triangle per quad of the collapsed row is dropped");
         assert!(tris.iter().all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));

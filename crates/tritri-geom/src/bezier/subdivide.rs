@@ -3,14 +3,14 @@
 //! 64 to 512 (`bezier_lod_gpu.txt`, section 4).
 
 use super::BezierPatch;
-use crate::triangle::Point;
+use nalgebra::Point3;
 
-fn mid(a: Point, b: Point) -> Point {
-    [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])]
+fn mid(a: Point3<f64>, b: Point3<f64>) -> Point3<f64> {
+    Point3::from(0.5 * (a.coords + b.coords))
 }
 
 /// A cubic cut at `t = 1/2`: the control points of both halves.
-fn split_cubic(b: [Point; 4]) -> ([Point; 4], [Point; 4]) {
+fn split_cubic(b: [Point3<f64>; 4]) -> ([Point3<f64>; 4], [Point3<f64>; 4]) {
     let l1 = [mid(b[0], b[1]), mid(b[1], b[2]), mid(b[2], b[3])];
     let l2 = [mid(l1[0], l1[1]), mid(l1[1], l1[2])];
     let m = mid(l2[0], l2[1]);
@@ -61,7 +61,6 @@ pub fn subdivide(patches: &[BezierPatch], times: u32) -> Vec<BezierPatch> {
 
 #[cfg(test)]
 mod tests {
-    use crate::vector::{length, sub};
     use super::super::tests::wavy_patch;
     use super::*;
 
@@ -72,10 +71,10 @@ mod tests {
         let p = wavy_patch();
         let ((ua, ub), (va, vb)) = (p.split_u(), p.split_v());
         for (s, t) in [(0.0, 0.3), (0.25, 0.75), (1.0, 1.0), (0.6, 0.1)] {
-            assert!(length(sub(ua.evaluate(s, t), p.evaluate(s / 2.0, t))) < 1e-12);
-            assert!(length(sub(ub.evaluate(s, t), p.evaluate(0.5 + s / 2.0, t))) < 1e-12);
-            assert!(length(sub(va.evaluate(t, s), p.evaluate(t, s / 2.0))) < 1e-12);
-            assert!(length(sub(vb.evaluate(t, s), p.evaluate(t, 0.5 + s / 2.0))) < 1e-12);
+            assert!((ua.evaluate(s, t) - p.evaluate(s / 2.0, t)).norm() < 1e-12);
+            assert!((ub.evaluate(s, t) - p.evaluate(0.5 + s / 2.0, t)).norm() < 1e-12);
+            assert!((va.evaluate(t, s) - p.evaluate(t, s / 2.0)).norm() < 1e-12);
+            assert!((vb.evaluate(t, s) - p.evaluate(t, 0.5 + s / 2.0)).norm() < 1e-12);
         }
         assert_eq!(subdivide(&[p], 4).len(), 16);
     }

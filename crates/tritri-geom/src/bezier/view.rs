@@ -5,10 +5,9 @@
 //! eye.
 
 use super::cone::{back_facing, may_hold_silhouette, NormalCone};
-use crate::vector::{length, sub};
 use super::lod::{distance_level, DISTANCE_LEVELS};
 use super::BezierPatch;
-use crate::triangle::Point;
+use nalgebra::{Point3, Vector3};
 
 /// One patch's treatment.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,14 +19,12 @@ pub struct PatchView {
 }
 
 /// The centre of the net's control points.
-fn centre(patch: &BezierPatch) -> Point {
-    let mut c = [0.0; 3];
+fn centre(patch: &BezierPatch) -> Point3<f64> {
+    let mut c = Vector3::zeros();
     for p in patch.net.iter().flatten() {
-        for k in 0..3 {
-            c[k] += p[k] / 16.0;
-        }
+        c += p.coords / 16.0;
     }
-    c
+    Point3::from(c)
 }
 
 /// The treatment of every patch seen from `eye`; `near` is the distance
@@ -35,11 +32,11 @@ fn centre(patch: &BezierPatch) -> Point {
 /// takes the next finer level than its distance gives (20 stays 20); a
 /// patch without a cone (no normal anywhere) is drawn at its distance
 /// level.
-pub fn plan(patches: &[BezierPatch], eye: Point, near: f64) -> Vec<PatchView> {
+pub fn plan(patches: &[BezierPatch], eye: Point3<f64>, near: f64) -> Vec<PatchView> {
     patches
         .iter()
         .map(|p| {
-            let samples = distance_level(length(sub(centre(p), eye)), near);
+            let samples = distance_level((centre(p) - eye).norm(), near);
             match NormalCone::of(p) {
                 Some(cone) if back_facing(&cone, p, eye) => PatchView { culled: true, silhouette: false, samples: 0 },
                 Some(cone) if may_hold_silhouette(&cone, p, eye) => {
@@ -63,8 +60,8 @@ mod tests {
         let cone = NormalCone::of(&p).unwrap();
         let c = centre(&p);
         // The normals point towards an eye in front, away from one behind.
-        let behind = [0, 1, 2].map(|k| c[k] - 50.0 * cone.axis[k]);
-        let in_front = [0, 1, 2].map(|k| c[k] + 50.0 * cone.axis[k]);
+        let behind = c - 50.0 * cone.axis;
+        let in_front = c + 50.0 * cone.axis;
         assert_eq!(plan(&[p], behind, 1.0)[0], PatchView { culled: true, silhouette: false, samples: 0 });
         let front = plan(&[p], in_front, 1.0)[0];
         assert!(!front.culled && front.samples == 5);

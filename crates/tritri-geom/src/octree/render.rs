@@ -11,14 +11,14 @@
 //! three face orientations stay apart even under the same light.
 
 use super::voxels::VoxelGrid;
-use crate::vector::{add_scaled, cross, dot, normalized};
+use nalgebra::{Point3, Vector3};
 pub use crate::raster::Image;
 
 /// Where the picture is taken from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct View {
     /// From the grid's centre towards the eye.
-    pub eye: [f64; 3],
+    pub eye: Vector3<f64>,
     /// Pixels on a side (the picture is square).
     pub size: u32,
     /// The axis that points up in the picture (0, 1 or 2: x, y or z).
@@ -27,11 +27,9 @@ pub struct View {
 
 impl Default for View {
     fn default() -> View {
-        View { eye: [1.0, 0.7, 1.6], size: 512, up: 1 }
+        View { eye: Vector3::new(1.0, 0.7, 1.6), size: 512, up: 1 }
     }
 }
-
-type V3 = [f64; 3];
 
 /// The box `[lo, hi]` (voxel corners) around the occupied voxels.
 fn occupied_box(grid: &VoxelGrid) -> Option<([f64; 3], [f64; 3])> {
@@ -55,16 +53,16 @@ fn occupied_box(grid: &VoxelGrid) -> Option<([f64; 3], [f64; 3])> {
 /// The picture of the model. `eye` must not be the zero vector.
 pub fn render(grid: &VoxelGrid, view: &View) -> Image {
     let (lo, hi) = occupied_box(grid).unwrap_or(([0.0; 3], [grid.side() as f64; 3]));
-    let forward = normalized(view.eye.map(|c| -c));
-    let mut up_hint = [0.0; 3];
+    let forward = -view.eye.normalize();
+    let mut up_hint = Vector3::zeros();
     up_hint[view.up.min(2)] = 1.0;
-    if dot(forward, up_hint).abs() > 0.99 {
-        up_hint = [up_hint[2], up_hint[0], up_hint[1]];
+    if forward.dot(&up_hint).abs() > 0.99 {
+        up_hint = Vector3::new(up_hint[2], up_hint[0], up_hint[1]);
     }
-    let right = normalized(cross(forward, up_hint));
-    let up = cross(right, forward);
-    let light = normalized(add_scaled(add_scaled(forward.map(|c| -c), up, 0.8), right, -0.5));
-    let centre = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
+    let right = forward.cross(&up_hint).normalize();
+    let up = right.cross(&forward);
+    let light = (-forward + 0.8 * up - 0.5 * right).normalize();
+    let centre = Point3::from([0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0));
     // A margin of 4 % around the box's bounding sphere.
     let radius = 1.04 * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt() / 2.0;
     let size = view.size.max(1);
@@ -74,12 +72,12 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
         for px in 0..size {
             let x = ((px as f64 + 0.5) / size as f64 * 2.0 - 1.0) * radius;
             let y = (1.0 - (py as f64 + 0.5) / size as f64 * 2.0) * radius;
-            let origin = add_scaled(add_scaled(add_scaled(centre, right, x), up, y), forward, -2.0 * radius);
+            let origin = centre + x * right + y * up - 2.0 * radius * forward;
             let colour = match first_hit(grid, origin, forward) {
                 Some((t, axis)) => {
-                    let mut normal = [0.0; 3];
+                    let mut normal = Vector3::zeros();
                     normal[axis] = -forward[axis].signum();
-                    let lambert = dot(normal, light).max(0.0);
+                    let lambert = normal.dot(&light).max(0.0);
                     // Depth from the front of the bounding sphere, 0 to 1.
                     let depth = ((t - radius) / (2.0 * radius)).clamp(0.0, 1.0);
                     let tint = [[0.93, 0.78, 0.62], [0.80, 0.84, 0.93], [0.95, 0.92, 0.85]][axis];
@@ -96,7 +94,7 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
 
 /// The distance along the ray to the first occupied voxel and the axis of
 /// the face it enters through.
-fn first_hit(grid: &VoxelGrid, origin: V3, dir: V3) -> Option<(f64, usize)> {
+fn first_hit(grid: &VoxelGrid, origin: Point3<f64>, dir: Vector3<f64>) -> Option<(f64, usize)> {
     let n = grid.side() as f64;
     // Clip the ray to the grid's box (slabs).
     let (mut t_in, mut t_out, mut axis_in) = (0.0f64, f64::INFINITY, 0usize);
@@ -119,7 +117,7 @@ fn first_hit(grid: &VoxelGrid, origin: V3, dir: V3) -> Option<(f64, usize)> {
         return None;
     }
     let side = grid.side() as i64;
-    let entry = add_scaled(origin, dir, t_in);
+    let entry = origin + t_in * dir;
     let mut cell = [0, 1, 2].map(|k| {
         // Nudged inward along the ray, so a ray entering on a face starts
         // in the voxel behind it.
@@ -161,13 +159,13 @@ mod tests {
     fn a_voxel_shows_the_face_towards_the_eye() {
         let mut g = VoxelGrid::empty(3);
         g.fill_cube([2, 2, 2], 2);
-        let image = render(&g, &View { eye: [1.0, 0.0, 0.0], size: 64, up: 2 });
+        let image = render(&g, &View { eye: Vector3::new(1.0, 0.0, 0.0), size: 64, up: 2 });
         let centre = image.pixels[32 * 64 + 32];
         let corner = image.pixels[0];
         assert_ne!(centre, corner);
         // The x-face tint: red above blue.
         assert!(centre[0] > centre[2], "{centre:?}");
-        let empty = render(&VoxelGrid::empty(3), &View { eye: [1.0, 0.0, 0.0], size: 64, up: 2 });
+        let empty = render(&VoxelGrid::empty(3), &View { eye: Vector3::new(1.0, 0.0, 0.0), size: 64, up: 2 });
         assert_eq!(empty.pixels[32 * 64 + 32], empty.pixels[32 * 64 + 1]);
     }
 }
