@@ -68,6 +68,7 @@ pub mod owner_filter_unit;
 pub mod package;
 pub mod part_selects;
 pub mod plane_traversal_unit;
+pub mod statements;
 pub mod voxel_units;
 pub mod pipeline_unit;
 pub mod tokens;

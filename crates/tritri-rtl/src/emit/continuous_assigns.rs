@@ -21,6 +21,7 @@
 //! exactly a continuous one.
 
 use super::modules::Module;
+use super::statements::statement_end;
 use super::tokens::{tokenize, Kind, Token};
 
 /// Words (non-trivia tokens) of a module with their token positions.
@@ -30,6 +31,9 @@ struct Words {
 }
 
 impl Words {
+    fn texts(&self) -> Vec<&str> {
+        self.texts.iter().map(String::as_str).collect()
+    }
     fn of(module: &Module) -> Self {
         let positions: Vec<usize> =
             module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
@@ -41,42 +45,6 @@ impl Words {
     }
     fn len(&self) -> usize {
         self.texts.len()
-    }
-}
-
-/// Index of the word closing the construct opened at `open`
-/// (`begin`/`end`, `case`/`endcase`, `(`/`)`).
-fn matching(words: &Words, open: usize, opener: &str, closer: &str) -> Option<usize> {
-    let mut depth = 0usize;
-    for k in open..words.len() {
-        let w = words.get(k)?;
-        if w == opener || (opener == "case" && (w == "casez" || w == "casex")) {
-            depth += 1;
-        } else if w == closer {
-            depth -= 1;
-            if depth == 0 {
-                return Some(k);
-            }
-        }
-    }
-    None
-}
-
-/// Index just past the statement that starts at word `k`.
-fn skip_statement(words: &Words, k: usize) -> Option<usize> {
-    match words.get(k)? {
-        "begin" => Some(matching(words, k, "begin", "end")? + 1),
-        "case" | "casez" | "casex" => Some(matching(words, k, "case", "endcase")? + 1),
-        "if" => {
-            let close = matching(words, k + 1, "(", ")")?;
-            let after = skip_statement(words, close + 1)?;
-            if words.get(after) == Some("else") {
-                skip_statement(words, after + 1)
-            } else {
-                Some(after)
-            }
-        }
-        _ => (k..words.len()).find(|&j| words.get(j) == Some(";")).map(|j| j + 1),
     }
 }
 
@@ -111,6 +79,7 @@ fn declaration_reg(words: &Words, name: &str, before: usize) -> Option<usize> {
 /// Applies the pass to a module (see the module docs).
 pub fn continuous_assigns(module: &mut Module) {
     let words = Words::of(module);
+    let texts = words.texts();
     // (word of `always`, first moved statement word, end of statement) and
     // the `reg` keywords to turn into `wire`.
     let mut moved: Vec<(usize, usize, usize)> = Vec::new();
@@ -125,11 +94,12 @@ pub fn continuous_assigns(module: &mut Module) {
             continue;
         }
         let always = k;
-        let Some(end) = matching(&words, k + 5, "begin", "end") else { return };
+        // The block's `end`: its `begin ... end` is one statement.
+        let Some(end) = statement_end(&texts, k + 5).map(|after| after - 1) else { return };
         let mut statement = k + 6;
         let mut kept = 0;
         while statement < end {
-            let Some(next) = skip_statement(&words, statement) else { return };
+            let Some(next) = statement_end(&texts, statement) else { return };
             let target = words.get(statement).unwrap_or_default();
             let simple = words.positions.get(statement).is_some_and(|&p| module.tokens[p].kind == Kind::Identifier)
                 && words.get(statement + 1) == Some("=");

@@ -3,6 +3,7 @@
 //! every `case`.
 
 use super::*;
+use crate::emit::statements::Span;
 
 /// A `case` of rust-hdl's combinational code without a `default` gets an
 /// empty one (`default: ;`): the same circuit (every signal it assigns was

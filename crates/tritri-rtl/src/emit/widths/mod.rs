@@ -31,13 +31,14 @@ use std::collections::HashMap;
 mod expression;
 mod lint_fixes;
 mod printer;
-mod statements;
+mod rewrite;
 mod typing;
 
 use expression::*;
 use lint_fixes::*;
 use printer::*;
-use statements::*;
+use crate::emit::statements::StatementParser;
+use rewrite::*;
 use typing::*;
 
 
@@ -108,6 +109,7 @@ pub fn fix_module(module: &mut Module) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::emit::statements::Span;
 
     fn decls() -> Declarations {
         let mut d = Declarations::new();

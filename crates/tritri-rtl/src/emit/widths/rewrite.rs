@@ -1,7 +1,9 @@
-//! The statement walker: the declarations of a module, and the spans of
-//! rust-hdl's `always @(*)` blocks whose expressions the pass re-prints.
+//! The declarations of a module, and the re-printing of one statement span
+//! of rust-hdl's `always @(*)` blocks (the spans come from
+//! [`crate::emit::statements`]).
 
 use super::*;
+use crate::emit::statements::Span;
 
 /// The declared width of every net, variable, port and localparam of a module.
 pub fn declarations(words: &[&str]) -> Declarations {
@@ -60,99 +62,6 @@ pub fn declarations(words: &[&str]) -> Declarations {
         }
     }
     decls
-}
-
-pub(super) enum Span {
-    /// `if (` cond `)` or `case (` subject `)`: self-determined.
-    SelfDetermined(usize, usize),
-    /// lhs `=` rhs `;`: lhs words, rhs words.
-    Assignment((usize, usize), (usize, usize)),
-    /// A case label (words) and the case subject (words).
-    CaseLabel((usize, usize), (usize, usize)),
-}
-
-pub(super) struct StatementParser<'a> {
-    pub(super) words: &'a [&'a str],
-    pub(super) position: usize,
-    pub(super) spans: Vec<Span>,
-}
-
-impl StatementParser<'_> {
-    fn peek(&self) -> Option<&str> {
-        self.words.get(self.position).copied()
-    }
-
-    /// Index of the `)` matching the `(` at `open`.
-    fn matching(&self, open: usize) -> Option<usize> {
-        let mut depth = 0;
-        for k in open..self.words.len() {
-            match self.words[k] {
-                "(" => depth += 1,
-                ")" => {
-                    depth -= 1;
-                    if depth == 0 {
-                        return Some(k);
-                    }
-                }
-                _ => {}
-            }
-        }
-        None
-    }
-
-    pub(super) fn statement(&mut self) -> Option<()> {
-        match self.peek()? {
-            "begin" => {
-                self.position += 1;
-                while self.peek()? != "end" {
-                    self.statement()?;
-                }
-                self.position += 1;
-            }
-            "if" => {
-                let open = self.position + 1;
-                (self.words.get(open) == Some(&"(")).then_some(())?;
-                let close = self.matching(open)?;
-                self.spans.push(Span::SelfDetermined(open + 1, close));
-                self.position = close + 1;
-                self.statement()?;
-                if self.peek() == Some("else") {
-                    self.position += 1;
-                    self.statement()?;
-                }
-            }
-            "case" => {
-                let open = self.position + 1;
-                (self.words.get(open) == Some(&"(")).then_some(())?;
-                let close = self.matching(open)?;
-                self.spans.push(Span::SelfDetermined(open + 1, close));
-                self.position = close + 1;
-                while self.peek()? != "endcase" {
-                    // Labels up to `:`.
-                    let label = self.position;
-                    while self.peek()? != ":" {
-                        self.position += 1;
-                    }
-                    if self.words[label] != "default" {
-                        self.spans.push(Span::CaseLabel((label, self.position), (open + 1, close)));
-                    }
-                    self.position += 1;
-                    self.statement()?;
-                }
-                self.position += 1;
-            }
-            ";" => self.position += 1,
-            _ => {
-                let start = self.position;
-                let equals = (start..self.words.len()).find(|&k| self.words[k] == "=" || self.words[k] == ";")?;
-                (self.words[equals] == "=").then_some(())?;
-                let end = (equals..self.words.len()).find(|&k| self.words[k] == ";")?;
-                self.spans.push(Span::Assignment((start, equals), (equals + 1, end)));
-                self.position = end + 1;
-            }
-        }
-        Some(())
-    }
 }
 
 /// Rewrites the expressions of one statement span; `None` leaves it as is.
