@@ -1,9 +1,10 @@
 //! The pipeline's geometric units alone, by direct drive against their
 //! software models in tritri-geom, each with its latency constant asserted
 //! (`sim_drive::assert_stream_matches`). W = 24 (D = 25, C = 49, O = 74).
-//! The operand selection (`orient3d_operands`), the base polygon, the
-//! front end and the decision are covered in context by the whole
-//! pipeline's co-simulations (tritri-cosim).
+//! The operand selection (`orient3d_operands`) and the decision, whose
+//! model is the control flow of `fixed_point::intersects` itself, are
+//! covered in context by the whole pipeline's co-simulations
+//! (tritri-cosim).
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -17,6 +18,8 @@ use tritri_rtl::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::arith::subtractor::SUBTRACTOR_LATENCY;
 use tritri_rtl::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
+use tritri_rtl::pipeline::base_polygon::BasePolygon;
+use tritri_rtl::pipeline::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
 use tritri_rtl::pipeline::align_t2::{AlignT2, ALIGN_T2_LATENCY};
 use tritri_rtl::pipeline::certified_orient3d::{CertifiedOrient3d, CERTIFIED_ORIENT3D_LATENCY};
 use tritri_rtl::pipeline::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
@@ -438,5 +441,102 @@ fn interval_overlap_names_the_models_determinants() {
             let [p2, q2, r2v] = rotate(t2, *r2);
             ([q1, p2, p1, q2], [p1, p2, r1v, r2v])
         },
+    );
+}
+
+/// Random triangles, and degenerate ones (collinear vertices, repeated
+/// vertices, points) whose segment ends matter.
+fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut out = triangles(seed);
+    for k in 0..VECTORS {
+        let o = point(&mut rng, 2);
+        let d: [i64; 3] = std::array::from_fn(|_| rng.gen_range(-2..3));
+        let s = [rng.gen_range(-3..4), rng.gen_range(-3..4), if k % 4 == 0 { 0 } else { rng.gen_range(-3..4) }];
+        out.push(s.map(|s| std::array::from_fn(|i| o[i] + s * d[i])));
+    }
+    out
+}
+
+/// The front end: the vertices, the normal and its signs, the degenerate
+/// flag, the dominant axis, the segment ends and the edge thermometer of
+/// each triangle, all `FRONT_END_LATENCY` clocks later.
+#[test]
+fn front_end_describes_each_triangle() {
+    type Description = ([i128; 9], [i128; 3], [(bool, bool); 3], bool, usize, (usize, usize), u64);
+    let mut uut = TriangleFrontEnd::<24, 25, 49>::default();
+    uut.connect_all();
+    uut.advance.next = true;
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &triangles_and_degenerate_ones(11),
+        FRONT_END_LATENCY,
+        |u, t| set_vertices(&mut u.vertices_in, t),
+        |u| -> Description {
+            (
+                u.vertices.each_ref().map(|v| to_i128(v.val())),
+                u.normal.each_ref().map(|n| to_i128(n.val())),
+                std::array::from_fn(|k| (u.normal_negative[k].val(), u.normal_zero[k].val())),
+                u.degenerate.val(),
+                u.dominant_axis.val().to_u64() as usize,
+                (u.segment_low.val().to_u64() as usize, u.segment_high.val().to_u64() as usize),
+                u.edge_thermometer.val().to_u64(),
+            )
+        },
+        |t| -> Description {
+            let n = normal(t);
+            (
+                std::array::from_fn(|k| t[k / 3][k % 3] as i128),
+                n,
+                n.map(|c| (c < 0, c == 0)),
+                n == [0, 0, 0],
+                FixedPoint::dominant_normal_axis(t[0], t[1], t[2]),
+                lexicographic_ends(t),
+                edge_thermometer(t),
+            )
+        },
+    );
+}
+
+/// The base polygon latches a record on `load` and holds it otherwise.
+#[test]
+fn base_polygon_holds_the_last_loaded_record() {
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let records: Vec<(u32, FixedTriangle)> = triangles(13).into_iter().map(|t| (rng.gen(), t)).collect();
+    // (load, offered record, the record held after the clock)
+    let mut held = records[0];
+    let vectors: Vec<(bool, (u32, FixedTriangle), (u32, FixedTriangle))> = records
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let load = k == 0 || rng.gen_bool(0.2);
+            if load {
+                held = *r;
+            }
+            (load, *r, held)
+        })
+        .collect();
+    let mut uut = BasePolygon::<24, 25, 49>::default();
+    uut.connect_all();
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &vectors,
+        1,
+        |u, (load, (id, t), _)| {
+            u.load.next = *load;
+            u.id_in.next = (*id as u64).into();
+            set_vertices(&mut u.vertices_in, t);
+            for (k, c) in normal(t).iter().enumerate() {
+                u.normal_in[k].next = from_i128(*c);
+            }
+            u.edge_thermometer_in.next = edge_thermometer(t).into();
+        },
+        |u| {
+            let t: FixedTriangle = std::array::from_fn(|v| std::array::from_fn(|i| to_i128(u.vertices[3 * v + i].val()) as i64));
+            (u.id.val().to_u64() as u32, t, u.normal.each_ref().map(|n| to_i128(n.val())), u.edge_thermometer.val().to_u64())
+        },
+        |(_, _, (id, t))| (*id, *t, normal(t), edge_thermometer(t)),
     );
 }
