@@ -38,7 +38,7 @@ use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
 use tritri_geom::{exact_f64, Triangle};
-use tritri_rtl::configurations::{check_width, PipelineInput};
+use tritri_rtl::pipeline::pipeline_for_width::{check_width, PipelineInput};
 
 #[derive(clap::Args)]
 pub struct Args {

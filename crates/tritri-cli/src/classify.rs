@@ -21,7 +21,7 @@ use tritri_cosim::engine::{run_pipeline, Engine};
 use tritri_geom::arithmetic::{classify, Arithmetic, DEFAULT_WIDTH};
 use tritri_geom::certificate::{certified_intersects, recheck, CertifiedVerdict};
 use tritri_geom::scene::TaggedTriangle;
-use tritri_rtl::configurations::PipelineInput;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -78,7 +78,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     if let (Arithmetic::Fixed(width), true) = (arith, args.engine.is_hardware()) {
-        if let Err(e) = tritri_rtl::configurations::check_width(width as usize) {
+        if let Err(e) = tritri_rtl::pipeline::pipeline_for_width::check_width(width as usize) {
             eprintln!("error: --width {width} --engine {}: {e} (the model takes 8 to 32)", args.engine.name());
             return Ok(ExitCode::from(2));
         }

@@ -69,7 +69,7 @@
 use anyhow::Context;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use tritri_rtl::configurations::check_width;
+use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
@@ -78,7 +78,7 @@ use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERS
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
-use tritri_rtl::emit::pipeline_unit::emit_pipeline_with;
+use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with;
 use tritri_rtl::emit::{pipeline_unit_name, EmittedDesign};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system_with;

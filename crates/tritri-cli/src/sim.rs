@@ -50,7 +50,7 @@
 
 use crate::output_file::OutputFile;
 use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
-use tritri_rtl::configurations::check_width;
+use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use clap::ValueEnum;
 use crate::progress::Progress;
 use std::collections::BTreeSet;

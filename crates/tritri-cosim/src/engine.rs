@@ -35,7 +35,7 @@ use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::PreparedScene;
-use tritri_rtl::configurations::{pipeline_for_width, PipelineInput};
+use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;

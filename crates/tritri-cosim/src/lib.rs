@@ -9,7 +9,7 @@
 //! * The pipeline: [`rusthdl_harness`] drives the rust-hdl pipeline
 //!   directly; [`pipeline_rtl`] runs its emitted Verilog with
 //!   `testbenches/tb_triangle_pipeline.sv` on vector files ([`vectors`]).
-//!   Both take a schedule of `tritri_rtl::configurations::PipelineInput`s
+//!   Both take a schedule of `tritri_rtl::pipeline::pipeline_for_width::PipelineInput`s
 //!   (or a [`stream::TriangleStream`]) and return a
 //!   [`stream::StreamResult`], so results compare with `==`.
 //! * The system: [`system_harness`] (rust-hdl) and [`system_rtl`] (emitted

@@ -7,7 +7,7 @@ use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
 use crate::stream::{StreamResult, TriangleStream};
 use crate::vectors::{parse_outputs, vectors, vectors_for_schedule, TimedVerdict};
 use std::path::Path;
-use tritri_rtl::configurations::PipelineInput;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::EmittedDesign;
 
@@ -72,7 +72,7 @@ pub fn pipeline_dut_with(width: usize, multipliers: MultiplierMapping) -> anyhow
     if let Some(d) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&(width, multipliers)) {
         return Ok(d.clone());
     }
-    let design = tritri_rtl::emit::pipeline_unit::emit_pipeline_with(width, multipliers)?;
+    let design = tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with(width, multipliers)?;
     let dut = Arc::new(RtlDut {
         design,
         width: width as u32,

@@ -22,7 +22,7 @@ use crate::stream::{PairVerdict, StreamResult, TriangleStream};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_rtl::configurations::{pipeline_for_width, PipelineInput, PipelineSimulation};
+use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput, PipelineSimulation};
 
 /// Options of a run.
 #[derive(Clone, Debug, Default)]

@@ -15,7 +15,7 @@ use tritri_geom::certificate::CertifiedVerdict;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::TaggedTriangle;
 use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
-use tritri_rtl::configurations::PipelineInput;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 
 /// The work of one run: every base triangle against every streamed triangle.
 #[derive(Clone, Debug, PartialEq, Eq)]

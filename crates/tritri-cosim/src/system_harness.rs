@@ -72,7 +72,7 @@ pub fn host_words(batch: &Batch) -> Vec<HostWord> {
         end: false,
         object_b,
         id: t.id,
-        coordinates: tritri_rtl::configurations::flatten(&t.triangle),
+        coordinates: tritri_rtl::pipeline::pipeline_for_width::flatten(&t.triangle),
     };
     let mut words: Vec<HostWord> = batch.a.iter().map(|t| word(t, false)).collect();
     words.extend(batch.b.iter().map(|t| word(t, true)));

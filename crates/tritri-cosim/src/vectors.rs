@@ -11,7 +11,7 @@
 //! cycle in decimal, the ids in hex, `hit` 0 or 1; then `# cycles N`.
 
 use crate::stream::{PairVerdict, StreamResult, TriangleStream};
-use tritri_rtl::configurations::PipelineInput;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 use std::fmt::Write as _;
 
 /// Hex digits for `bits` bits.

@@ -20,7 +20,7 @@ use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::{intersects, orient3d_value, FixedPoint, FixedTriangle};
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
-use tritri_rtl::configurations::{pipeline_for_width, PipelineInput, PipelineSimulation};
+use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput, PipelineSimulation};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 
 fn env_usize(name: &str, default: usize) -> usize {
@@ -405,5 +405,5 @@ fn vcd_trace_of_a_small_run() {
 }
 
 fn flatten(t: &FixedTriangle) -> [i64; 9] {
-    tritri_rtl::configurations::flatten(t)
+    tritri_rtl::pipeline::pipeline_for_width::flatten(t)
 }

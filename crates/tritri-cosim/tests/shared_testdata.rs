@@ -18,7 +18,7 @@ use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::quantize::quantize_pair;
 use tritri_geom::TrianglePair;
-use tritri_rtl::configurations::pipeline_for_width;
+use tritri_rtl::pipeline::pipeline_for_width::pipeline_for_width;
 
 fn read_pairs(name: &str) -> Vec<TrianglePair> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata");

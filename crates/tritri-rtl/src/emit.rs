@@ -70,12 +70,11 @@ pub mod part_selects;
 pub mod plane_traversal_unit;
 pub mod statements;
 pub mod voxel_units;
-pub mod pipeline_unit;
 pub mod tokens;
 pub mod triangle_setup_unit;
 pub mod widths;
 
-pub use pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
+pub use crate::pipeline::pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
 
 use crate::unit::RawDesign;
 use std::path::Path;

@@ -5,13 +5,15 @@
 //!   (subtractors, multipliers, cross and dot products, signs, the
 //!   certificates' thermometers, delay lines);
 //! * [`pipeline`]: the Devillers–Guigue pipeline, one unit per step of the
-//!   test, and its ports ([`pipeline::ports`]);
+//!   test, its ports ([`pipeline::ports`]), the supported widths (one
+//!   list) and the pipeline instantiated at each
+//!   ([`pipeline::pipeline_for_width`]), and its emitter description
+//!   ([`pipeline::pipeline_unit`]); the system's are beside it in
+//!   [`system`];
 //! * [`system`]: the thesis's bounding-volume system (memories, address
 //!   generator, P pipelines, result FIFO) and its cycle model;
 //! * [`octree`]: the octree engine's units and the octree broad phase's
 //!   binning unit, owner filter and broad-phase top;
-//! * [`configurations`]: the supported widths, one list, and the pipeline
-//!   instantiated at each;
 //! * [`mod@unit`]: what every unit tells the emitter (its type, latency and
 //!   sub-units); [`emit`]: rust-hdl's Verilog to a package an FPGA flow
 //!   takes (names, headers, widths, ANSI ports, README, FuseSoC core);
@@ -29,5 +31,4 @@ pub mod tools;
 pub mod unit;
 pub mod system;
 pub mod octree;
-pub mod configurations;
-pub use configurations::raw_design;
+pub use pipeline::pipeline_for_width::raw_design;

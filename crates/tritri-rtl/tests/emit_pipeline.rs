@@ -5,7 +5,7 @@
 //!
 //! A missing tool fails the test with the package to install.
 
-use tritri_rtl::configurations::SUPPORTED_WIDTHS;
+use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
 use tritri_rtl::emit::{emit_pipeline, EmittedDesign};
 use tritri_rtl::synth::{synthesize, Target};
 use tritri_rtl::tools::{run, IVERILOG};

@@ -6,7 +6,7 @@
 
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
-use tritri_rtl::emit::pipeline_unit::emit_pipeline_with;
+use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with;
 use tritri_rtl::route::{route_ecp5, Ecp5Options};
 
 #[test]

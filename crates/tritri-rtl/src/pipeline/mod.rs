@@ -13,6 +13,8 @@ pub mod interval_overlap;
 pub mod normal;
 pub mod orient3d;
 pub mod orient3d_operands;
+pub mod pipeline_for_width;
+pub mod pipeline_unit;
 pub mod plane_side;
 pub mod ports;
 pub mod segment_ends;

@@ -1,5 +1,5 @@
 //! The concrete system tops, one per supported coordinate width, and
-//! run-time selection among them (as [`crate::configurations`] does for the
+//! run-time selection among them (as [`crate::pipeline::pipeline_for_width`] does for the
 //! pipeline alone).
 //!
 //! ```
@@ -13,7 +13,7 @@
 use super::collision_system::{CollisionSystem, StubCollisionSystem};
 use super::host_ports::HostPorts;
 use super::SystemConfig;
-pub use crate::configurations::UnsupportedWidth;
+pub use crate::pipeline::pipeline_for_width::UnsupportedWidth;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 
 /// Which pipelines the system holds.
@@ -42,4 +42,4 @@ macro_rules! system_widths {
     };
 }
 
-crate::configurations::for_supported_widths!(system_widths);
+crate::pipeline::pipeline_for_width::for_supported_widths!(system_widths);

@@ -2,9 +2,9 @@
 //! meanings, latency and throughput, around rust-hdl's Verilog from
 //! [`crate::raw_design`].
 
-use super::dsp_mapping::MultiplierMapping;
-use super::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
-use crate::configurations::{UnsupportedWidth, SUPPORTED_WIDTHS};
+use crate::emit::dsp_mapping::MultiplierMapping;
+use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
+use crate::pipeline::pipeline_for_width::{UnsupportedWidth, SUPPORTED_WIDTHS};
 use crate::pipeline::ports::port_descriptions;
 use crate::pipeline::triangle_pipeline::latency;
 use crate::pipeline::ID_BITS;

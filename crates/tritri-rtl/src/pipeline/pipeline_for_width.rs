@@ -7,7 +7,7 @@
 //! [`TrianglePipeline::new`] checks them again.
 //!
 //! ```
-//! use tritri_rtl::configurations::{pipeline_for_width, SUPPORTED_WIDTHS};
+//! use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, SUPPORTED_WIDTHS};
 //! assert!(SUPPORTED_WIDTHS.contains(&24));
 //! let p = pipeline_for_width(24).unwrap();
 //! assert_eq!(p.width(), 24);
