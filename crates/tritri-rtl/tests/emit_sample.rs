@@ -173,8 +173,9 @@ fn one_module_per_file_with_nettype_guards() {
     }
 }
 
-/// The top is named after the unit, children after the unit plus what they
-/// are; registers of the same shape share one module.
+/// The top is named after the unit, children after the unit plus their
+/// Rust type (`RegisteredAdder`, whatever the fields holding it are
+/// called); registers of the same shape share one module.
 #[test]
 fn module_names() {
     let design = sample_design();
@@ -182,7 +183,9 @@ fn module_names() {
     assert!(design.modules.iter().all(|m| m.starts_with("tritri_sample_w8")));
     assert!(design.modules.contains(&"tritri_sample_w8_dff_9".to_string()), "{:?}", design.modules);
     // Instances carry the u_ prefix.
-    assert!(design.file("tritri_sample_w8.v").unwrap().contents.contains("tritri_sample_w8_adder u_adder("));
+    let top = &design.file("tritri_sample_w8.v").unwrap().contents;
+    assert!(top.contains("tritri_sample_w8_registered_adder u_adder("), "{top}");
+    assert!(top.contains("tritri_sample_w8_registered_adder u_other_adder("), "{top}");
     // adder and other_adder are the same circuit.
     let adders: Vec<_> = design.modules.iter().filter(|m| m.contains("adder")).collect();
     assert_eq!(adders.len(), 1, "{:?}", design.modules);
