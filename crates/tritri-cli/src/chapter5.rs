@@ -97,7 +97,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     };
 
     println!(
-        "chapter 5: A = {} ({} triangles), B = {} ({} triangles) slid along {:?}; W = {}, P = {}, D = {}, {} MHz, latency {}",
+        "chapter 5: A = {} ({} triangles), B = {} ({} triangles) slid along {:?}; W = {}, P = {}, depth {}, {} MHz, latency {}",
         a.name,
         a.triangles.len(),
         b.name,

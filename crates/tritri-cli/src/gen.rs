@@ -1,4 +1,4 @@
-//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth D] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth D] | --broad-phase [the same, --slots N] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
+//! `tritri gen [--width W]... [--out DIR] [--synth] [--system [--pipelines P] [--depth N] | --classifier | --setup | --binning-unit [--triangles N] [--list-words N] [--leaves N] [--pipelines P] [--depth N] | --broad-phase [the same, --slots N] | --owner-filter [--slots N] | --plane-traversal | --set-operation | --octant-clipper | --voxel-fill]`
 //!
 //! Writes the synthesizable Verilog of the triangle pipeline (or, with
 //! `--system`, of the whole system, see below) for each
@@ -34,8 +34,8 @@
 //!
 //! `--system` writes the whole bounding-volume-aware system instead (two-bank
 //! triangle memories, address generator, `--pipelines P` pipelines, result
-//! FIFO; `--depth D` triangles per array per bank), top
-//! `tritri_system_w<W>_p<P>_d<D>`, by default into `rtl-out/<top>`.
+//! FIFO; `--depth N` triangles per array per bank), top
+//! `tritri_system_w<W>_p<P>_d<N>`, by default into `rtl-out/<top>`.
 //!
 //! `--classifier` writes the octree engine's triangle classifier step (the
 //! broad phase's binning unit, `docs/broad-phase.md`) for a `--width`-bit
@@ -46,11 +46,11 @@
 //! binning unit for a `--width`-bit grid (each object's triangles in once,
 //! the leaves out; memories sized by `--triangles`, `--list-words` and
 //! `--leaves`, the split rule by the system's `--depth` and `--pipelines`),
-//! top `tritri_binning_g<G>_t<N>_w<N>_l<N>_d<D>_p<P>`. `--broad-phase`
+//! top `tritri_binning_g<G>_t<N>_w<N>_l<N>_d<depth>_p<P>`. `--broad-phase`
 //! writes the broad-phase top: that binning unit on a 24-bit grid feeding
 //! the collision system of `--width` bits (24, or 16 with each leaf in a
 //! frame of its own), `--depth` and `--pipelines`, triangles in and each
-//! leaf's pairs out, top `tritri_broad_phase_g24_w<W>_p<P>_d<D>_t<N>[_local]`.
+//! leaf's pairs out, top `tritri_broad_phase_g24_w<W>_p<P>_d<depth>_t<N>[_local]`.
 //! `--owner-filter` writes the filter that
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.

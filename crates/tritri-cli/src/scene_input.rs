@@ -62,7 +62,7 @@ pub struct HardwareArgs {
     /// Pipelines working in parallel (1 to 16).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
     pub pipelines: u32,
-    /// Memory depth D: triangles per array per bank (1 to 32767); longer
+    /// Memory depth: triangles per array per bank (1 to 32767); longer
     /// arrays are split into tiles.
     #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64,
           value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]

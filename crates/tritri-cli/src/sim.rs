@@ -1,5 +1,5 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
-//! [--width W] [--pipelines P] [--depth D] [--broad-phase octree|flat]
+//! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
 //! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
 //! [--clock-mhz F] [--out PAIRS]`
 //!
@@ -103,7 +103,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     vcd: Option<String>,
     /// The longest run --vcd records (every signal and memory word: the
-    /// file grows by about 55 kB per cycle at W = 24, P = 2, D = 256).
+    /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
     #[arg(long, value_name = "N", default_value_t = 10_000)]
     vcd_max_cycles: u64,
 }
@@ -115,7 +115,7 @@ const DEFAULT_MAX_SECONDS: f64 = 300.0;
 const VECTOR_BYTES_PER_TRIANGLE: u64 = 90;
 
 /// Bytes of the system's waveform per cycle (measured in Verilator: the
-/// built-in scene, W = 24, P = 2, D = 256, 72.3 MB for 1,316 cycles).
+/// built-in scene, W = 24, P = 2, depth 256, 72.3 MB for 1,316 cycles).
 const VCD_BYTES_PER_CYCLE: u64 = 55_000;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -454,11 +454,11 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
     }
     let t = scene.tiling;
     if scene.octree.is_some() {
-        writeln!(report, "memories: depth D = {}: {} batches (one per leaf, tiled where a leaf exceeds D)", t.depth, scene.batches().len())?;
+        writeln!(report, "memories: depth {}: {} batches (one per leaf, tiled where a leaf exceeds the depth)", t.depth, scene.batches().len())?;
     } else if t.is_split() {
         writeln!(
             report,
-            "memories: depth D = {}: arrays of {} and {} triangles split into {} x {} tiles = {} batches",
+            "memories: depth {}: arrays of {} and {} triangles split into {} x {} tiles = {} batches",
             t.depth,
             scene.kept_a.len(),
             scene.kept_b.len(),
@@ -467,7 +467,7 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             scene.batches().len()
         )?;
     } else {
-        writeln!(report, "memories: depth D = {}: {} batch, no split", t.depth, scene.batches().len())?;
+        writeln!(report, "memories: depth {}: {} batch, no split", t.depth, scene.batches().len())?;
     }
     if let Some(octree) = &scene.octree {
         writeln!(

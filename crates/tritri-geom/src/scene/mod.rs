@@ -67,7 +67,7 @@ impl Batch<'_> {
 pub struct SceneOptions {
     /// Coordinate width W.
     pub width: u32,
-    /// Memory depth D: the most triangles one array memory holds.
+    /// Memory depth: the most triangles one array memory holds.
     pub depth: usize,
     /// Split arrays longer than `depth` into tiles; if false, refuse them.
     pub split: bool,
@@ -81,7 +81,7 @@ pub enum SceneError {
     #[error("memory depth must be at least 1")]
     ZeroDepth,
     #[error(
-        "the arrays in the common BV hold {kept_a} (A) and {kept_b} (B) triangles, more than the memory depth D = {depth}; \
+        "the arrays in the common BV hold {kept_a} (A) and {kept_b} (B) triangles, more than the memory depth {depth}; \
          allow splitting into tiles (drop --no-split) or generate hardware with --depth {needed}"
     )]
     ExceedsDepth { kept_a: usize, kept_b: usize, depth: usize, needed: usize },

@@ -29,7 +29,7 @@ pub struct BroadPhaseConfig {
 }
 
 impl BroadPhaseConfig {
-    /// `tritri_broad_phase_g<G>_w<W>_p<P>_d<D>_t<triangles>_s<slots>[_local]`.
+    /// `tritri_broad_phase_g<G>_w<W>_p<P>_d<depth>_t<triangles>_s<slots>[_local]`.
     pub fn unit_name(&self) -> String {
         format!(
             "tritri_broad_phase_g{}_w{}_p{}_d{}_t{}_s{}{}",

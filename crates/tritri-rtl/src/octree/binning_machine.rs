@@ -42,8 +42,8 @@
 //!   the lists stay where the passes wrote them. After the root's frame, the
 //!   unit streams the leaves out: each descriptor, then its A indices, then
 //!   its B indices (the batch load the system's cycle model counts); a
-//!   leaf with more triangles of one object than the system's depth D goes
-//!   out as tiles of at most D per object, every A tile with every B tile,
+//!   leaf with more triangles of one object than the system's memory depth goes
+//!   out as tiles of at most the depth per object, every A tile with every B tile,
 //!   each under a header of its own.
 
 use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
@@ -67,7 +67,7 @@ pub const IDENTITY_LIST: u8 = 8;
 /// The split rule's parameters, as the system is built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BinningParams {
-    /// The system's memory depth `D = 2^log_depth` triangles per array.
+    /// The system's memory depth `depth 2^log_depth` triangles per array.
     pub log_depth: u32,
     /// `P = 2^log_pipelines` pipelines.
     pub log_pipelines: u32,

@@ -361,11 +361,11 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     out_leaf: DFF<Bits<LEAF_ADDRESS_BITS>>,
     out_cell: DFF<CellLists>,
     /// The leaf's tile being streamed: its first A and B entries (a leaf
-    /// larger than the system's depth D goes out as tiles of at most D
-    /// triangles per object, every A tile with every B tile).
+    /// larger than the system's memory depth goes out as tiles of at most
+    /// the depth in triangles per object, every A tile with every B tile).
     tile_a: DFF<Bits<20>>,
     tile_b: DFF<Bits<20>>,
-    /// The system's memory depth D.
+    /// The system's memory depth.
     tile_depth: Constant<Bits<20>>,
     // Constants: octant numbers, the identity list, a cell's pass base cost.
     octant_id: [Constant<Bits<4>>; 8],
@@ -390,7 +390,7 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     slot: Signal<Local, Bits<INDEX_BITS>>,
     entry_a: Signal<Local, Bits<INDEX_BITS>>,
     entry_b: Signal<Local, Bits<INDEX_BITS>>,
-    /// The current tile: its entries past its first, capped at D, and the
+    /// The current tile: its entries past its first, capped at the depth, and the
     /// entry after its last.
     rest_a: Signal<Local, Bits<20>>,
     rest_b: Signal<Local, Bits<20>>,
@@ -688,7 +688,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.out_y.next = bit_cast::<G, 32>(self.out_cell.q.val().y);
         self.out_z.next = bit_cast::<G, 32>(self.out_cell.q.val().z);
         self.out_level.next = self.out_cell.q.val().level;
-        // The tile's sizes: min(D, count - first).
+        // The tile's sizes: min(depth, count - first).
         self.rest_a.next = self.out_cell.q.val().a_count - self.tile_a.q.val();
         self.rest_b.next = self.out_cell.q.val().b_count - self.tile_b.q.val();
         self.tile_count_a.next = self.rest_a.val();

@@ -82,7 +82,7 @@ impl LeafCost {
 }
 
 impl Default for LeafCost {
-    /// D = 256, P = 2 (the system's defaults).
+    /// depth 256, P = 2 (the system's defaults).
     fn default() -> Self {
         LeafCost::new(8, 1)
     }
