@@ -148,13 +148,14 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
     assert!(std::fs::read_to_string(&faces).unwrap().lines().all(|l| l.split(' ').next().unwrap().parse::<u32>().unwrap() <= 4));
 }
 
-/// With --no-split, arrays deeper than D are an error naming the sizes.
+/// With --no-split, arrays deeper than the memory depth are an error naming
+/// the sizes and the depth.
 #[test]
 fn no_split_error_names_the_sizes() {
     let out = tritri(&["sim", "--broad-phase", "flat", "--depth", "100", "--no-split"]);
     assert_eq!(out.status.code(), Some(2));
     let err = text(&out.stderr);
-    assert!(err.contains("(A)") && err.contains("(B)") && err.contains("D = 100"), "{err}");
+    assert!(err.contains("(A)") && err.contains("(B)") && err.contains("memory depth 100"), "{err}");
 }
 
 /// A pose that is not six (or three) numbers is refused by the parser.
