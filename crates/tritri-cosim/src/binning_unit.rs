@@ -394,7 +394,7 @@ pub fn bin_scene(
     max_leaf_level: Option<u32>,
 ) -> Result<SceneBinning, String> {
     if !depth.is_power_of_two() || !pipelines.is_power_of_two() {
-        return Err(format!("its split rule takes a power-of-two depth and pipeline count, not D = {depth}, P = {pipelines}"));
+        return Err(format!("its split rule takes a power-of-two depth and pipeline count, not depth {depth}, P = {pipelines}"));
     }
     if !BINNING_GRID_WIDTHS.contains(&grid_bits) {
         return Err(format!("it is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {grid_bits}"));

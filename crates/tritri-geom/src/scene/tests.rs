@@ -142,7 +142,7 @@ fn no_split_refuses_arrays_deeper_than_the_memory() {
     let err = prepare(&a, &b, &SceneOptions { width: 16, depth: 4, split: false }).unwrap_err();
     assert_eq!(err, SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth: 4, needed: ka.max(kb) });
     let text = err.to_string();
-    assert!(text.contains(&format!("{ka} (A)")) && text.contains("D = 4"), "{text}");
+    assert!(text.contains(&format!("{ka} (A)")) && text.contains("memory depth 4"), "{text}");
 }
 
 /// The filters lose nothing, on random small scenes at coarse and fine

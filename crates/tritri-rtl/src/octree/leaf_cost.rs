@@ -114,7 +114,7 @@ impl Logic for LeafCost {
         let k = COST_BITS;
         let text = format!(
             "\
-// Leaf cost for D = {depth}, P = {p}: f(x, y) = 1 + x + ceil(x / P) * y per tile pair.
+// Leaf cost for depth D = {depth}, P = {p}: f(x, y) = 1 + x + ceil(x / P) * y per tile pair.
 localparam [{k1}:0] F_DD = {k}'d{f_dd};      // f(D, D)
 localparam [{k1}:0] PER_GROUP = {k}'d{per_group}; // ceil(D / P)
 // Stage 1: quotients, remainders, ceil(ra / P).
