@@ -16,9 +16,15 @@ pub(crate) struct StatementParser<'a> {
     pub(crate) words: &'a [&'a str],
     pub(crate) position: usize,
     pub(crate) spans: Vec<Span>,
+    /// The `endcase` of every `case` without a `default` label.
+    pub(crate) cases_without_default: Vec<usize>,
 }
 
-impl StatementParser<'_> {
+impl<'a> StatementParser<'a> {
+    pub(crate) fn new(words: &'a [&'a str], position: usize) -> Self {
+        StatementParser { words, position, spans: Vec::new(), cases_without_default: Vec::new() }
+    }
+
     fn peek(&self) -> Option<&str> {
         self.words.get(self.position).copied()
     }
@@ -68,17 +74,23 @@ impl StatementParser<'_> {
                 let close = self.matching(open)?;
                 self.spans.push(Span::SelfDetermined(open + 1, close));
                 self.position = close + 1;
+                let mut default = false;
                 while self.peek()? != "endcase" {
                     // Labels up to `:`.
                     let label = self.position;
                     while self.peek()? != ":" {
                         self.position += 1;
                     }
-                    if self.words[label] != "default" {
+                    if self.words[label] == "default" {
+                        default = true;
+                    } else {
                         self.spans.push(Span::CaseLabel((label, self.position), (open + 1, close)));
                     }
                     self.position += 1;
                     self.statement()?;
+                }
+                if !default {
+                    self.cases_without_default.push(self.position);
                 }
                 self.position += 1;
             }
@@ -99,7 +111,7 @@ impl StatementParser<'_> {
 
 /// Index just past the statement that starts at word `start`.
 pub(crate) fn statement_end(words: &[&str], start: usize) -> Option<usize> {
-    let mut parser = StatementParser { words, position: start, spans: Vec::new() };
+    let mut parser = StatementParser::new(words, start);
     parser.statement()?;
     Some(parser.position)
 }

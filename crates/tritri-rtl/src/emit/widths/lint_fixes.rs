@@ -5,45 +5,17 @@
 use super::*;
 use crate::emit::statements::Span;
 
-/// A `case` of rust-hdl's combinational code without a `default` gets an
-/// empty one (`default: ;`): the same circuit (every signal it assigns was
-/// given a value before the `case`), and a `case` that says it covers the
-/// rest, as lint tools ask (slang's -Wcase-default).
-pub(super) fn add_case_defaults(module: &mut Module) {
-    // (index of the `case` token, a `default` seen at this level)
-    let mut open: Vec<(usize, bool)> = Vec::new();
-    let mut inserts: Vec<(usize, String)> = Vec::new();
-    let mut custom = false;
-    for (i, token) in module.tokens.iter().enumerate() {
-        if token.kind == Kind::Comment && token.text.contains("Update code (custom)") {
-            custom = true;
-        }
-        if token.kind != Kind::Identifier || custom {
-            continue;
-        }
-        match token.text.as_str() {
-            "case" | "casez" | "casex" => open.push((i, false)),
-            "default" => {
-                if let Some(top) = open.last_mut() {
-                    top.1 = true;
-                }
-            }
-            "endcase" => {
-                if let Some((_, false)) = open.pop() {
-                    // Indent as the `endcase` line, one level in.
-                    let indent = match module.tokens.get(i.wrapping_sub(1)) {
-                        Some(t) if t.kind == Kind::Whitespace => t.text.rsplit('\n').next().unwrap_or("").to_string(),
-                        _ => String::new(),
-                    };
-                    inserts.push((i, format!("    default: ;\n{indent}")));
-                }
-            }
-            _ => {}
-        }
-    }
-    for (i, text) in inserts.into_iter().rev() {
-        module.tokens.insert(i, Token::new(Kind::Whitespace, text));
-    }
+/// The text that replaces the `endcase` token at `endcase` of a `case`
+/// without a `default`: an empty `default: ;` before it, one level in.
+/// The same circuit (every signal the `case` assigns was given a value
+/// before it), and a `case` that says it covers the rest, as lint tools
+/// ask (slang's -Wcase-default).
+pub(super) fn case_default(module: &Module, endcase: usize) -> String {
+    let indent = match module.tokens.get(endcase.wrapping_sub(1)) {
+        Some(t) if t.kind == Kind::Whitespace => t.text.rsplit('\n').next().unwrap_or(""),
+        _ => "",
+    };
+    format!("    default: ;\n{indent}endcase")
 }
 
 /// rust-hdl declares enum labels as unsized `localparam Label = 2;` (32-bit

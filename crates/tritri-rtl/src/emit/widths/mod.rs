@@ -58,7 +58,7 @@ pub fn fix_module(module: &mut Module) {
     };
     let first = positions.iter().position(|&p| p > generated).unwrap_or(words.len());
     let mut decls = decls;
-    let mut parser = StatementParser { words: &words, position: first, spans: Vec::new() };
+    let mut parser = StatementParser::new(&words, first);
     let mut replacements: Vec<(usize, usize, String)> = Vec::new();
     while parser.position < words.len() {
         if words[parser.position] == "always"
@@ -85,6 +85,9 @@ pub fn fix_module(module: &mut Module) {
             replacements.extend(r);
         }
     }
+    for &endcase in &parser.cases_without_default {
+        replacements.push((endcase, endcase + 1, case_default(module, positions[endcase])));
+    }
     // Apply from the end so earlier token positions stay valid.
     replacements.sort_by_key(|r| std::cmp::Reverse(r.0));
     for (a, b, text) in replacements {
@@ -103,7 +106,6 @@ pub fn fix_module(module: &mut Module) {
     let text = module.text();
     module.tokens = tokenize(&text);
     remove_unused_localparams(module);
-    add_case_defaults(module);
 }
 
 #[cfg(test)]
