@@ -362,7 +362,6 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
     // are chosen once every group is known, so that two groups that would
     // get the same name are told apart the same way.
     let mut desired: BTreeMap<String, (String, Option<(usize, bool)>)> = BTreeMap::new();
-    let mut unit_of: HashMap<String, UnitInfo> = HashMap::new();
     let mut group_count = 0;
     for level in 0..=max_height {
         // Group this level's modules by structure.
@@ -376,9 +375,9 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
         group_list.sort_by_key(|g| modules[g[0]].name.clone());
         let mut renames: HashMap<String, String> = HashMap::new();
         for group in group_list {
-            let members: Vec<&str> = group.iter().map(|&i| modules[i].name.as_str()).collect();
+            let members: Vec<String> = group.iter().map(|&i| modules[i].name.clone()).collect();
             let dff = rust_hdl_dff_shape(&modules[group[0]]);
-            let info = units.get(members[0]).ok_or_else(|| ModuleError::UnknownUnit(members[0].to_string()))?;
+            let info = units.get(&members[0]).ok_or_else(|| ModuleError::UnknownUnit(members[0].clone()))?.clone();
             let name = if let Some((bits, signed)) = dff {
                 format!("{unit}_dff_{}{bits}", if signed { "signed_" } else { "" })
             } else {
@@ -386,8 +385,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
             };
             let placeholder = format!("group${group_count}");
             group_count += 1;
-            unit_of.insert(placeholder.clone(), info.clone());
             desired.insert(placeholder.clone(), (name, dff));
+            for &i in &group {
+                modules[i].unit = Some(info.clone());
+            }
             for m in &members {
                 renames.insert(m.to_string(), placeholder.clone());
             }
@@ -425,12 +426,9 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
             wanted.entry(name.clone()).or_default().push(placeholder.clone());
         }
     }
+    let module = |placeholder: &str| modules.iter().find(|m| m.name == placeholder);
     let widest = |placeholder: &str| {
-        modules
-            .iter()
-            .find(|m| m.name == placeholder)
-            .map(|m| super::package::top_ports(m).iter().map(|p| p.bits).max().unwrap_or(1))
-            .unwrap_or(1)
+        module(placeholder).map(|m| super::package::top_ports(m).iter().map(|p| p.bits).max().unwrap_or(1)).unwrap_or(1)
     };
     let mut final_names: HashMap<String, String> = HashMap::new();
     let mut taken: BTreeSet<String> = BTreeSet::new();
@@ -443,7 +441,7 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
     }
     for (name, placeholders) in &wanted {
         let widths: BTreeSet<usize> = placeholders.iter().map(|p| widest(p)).collect();
-        let infos: Vec<&UnitInfo> = placeholders.iter().map(|p| &unit_of[p]).collect();
+        let infos: Vec<&UnitInfo> = placeholders.iter().filter_map(|p| module(p)?.unit.as_ref()).collect();
         for (p, info) in placeholders.iter().zip(&infos) {
             let mut candidate = if placeholders.len() == 1 {
                 name.clone()
@@ -466,7 +464,6 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
                 t.text = n.clone();
             }
         }
-        m.unit = unit_of.get(&m.name).cloned();
         if let Some(n) = final_names.get(&m.name) {
             m.name = n.clone();
         }
