@@ -280,12 +280,13 @@ fn coplanar_test_is_the_closed_2d_test() {
         |u, (t1, t2)| {
             set_vertices(&mut u.t1_vertices, t1);
             set_vertices(&mut u.t2_vertices, t2);
-            u.axis.next = (dominant_axis(normal(t1).map(|c| c.unsigned_abs())) as u64).into();
+            let (n1, n2) = (normal(t1), normal(t2));
+            u.axis.next = (dominant_axis(n1.map(|c| c.unsigned_abs())) as u64).into();
             for k in 0..3 {
-                u.t1_normal_negative[k].next = normal(t1)[k] < 0;
-                u.t1_normal_zero[k].next = normal(t1)[k] == 0;
-                u.t2_normal_negative[k].next = normal(t2)[k] < 0;
-                u.t2_normal_zero[k].next = normal(t2)[k] == 0;
+                u.t1_normal_negative[k].next = n1[k] < 0;
+                u.t1_normal_zero[k].next = n1[k] == 0;
+                u.t2_normal_negative[k].next = n2[k] < 0;
+                u.t2_normal_zero[k].next = n2[k] == 0;
             }
         },
         |u| u.hit.val(),
@@ -299,12 +300,7 @@ fn coplanar_test_is_the_closed_2d_test() {
 #[test]
 fn degenerate_pair_is_the_three_projection_segment_test() {
     let mut rng = ChaCha8Rng::seed_from_u64(9);
-    let mut collinear = |o: FixedPoint3, d: [i64; 3]| -> FixedTriangle {
-        std::array::from_fn(|_| {
-            let s = rng.gen_range(-3..4);
-            std::array::from_fn(|k| o[k] + s * d[k])
-        })
-    };
+    let mut collinear = |o: FixedPoint3, d: [i64; 3]| on_line(o, d, std::array::from_fn(|_| rng.gen_range(-3..4)));
     let mut vectors = Vec::new();
     let mut rng2 = ChaCha8Rng::seed_from_u64(10);
     for k in 0..VECTORS {
@@ -444,6 +440,11 @@ fn interval_overlap_names_the_models_determinants() {
     );
 }
 
+/// The degenerate triangle `o + s_k d`, `k = 0, 1, 2`.
+fn on_line(o: FixedPoint3, d: [i64; 3], steps: [i64; 3]) -> FixedTriangle {
+    steps.map(|s| std::array::from_fn(|i| o[i] + s * d[i]))
+}
+
 /// Random triangles, and degenerate ones (collinear vertices, repeated
 /// vertices, points) whose segment ends matter.
 fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
@@ -453,7 +454,7 @@ fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
         let o = point(&mut rng, 2);
         let d: [i64; 3] = std::array::from_fn(|_| rng.gen_range(-2..3));
         let s = [rng.gen_range(-3..4), rng.gen_range(-3..4), if k % 4 == 0 { 0 } else { rng.gen_range(-3..4) }];
-        out.push(s.map(|s| std::array::from_fn(|i| o[i] + s * d[i])));
+        out.push(on_line(o, d, s));
     }
     out
 }
