@@ -15,6 +15,14 @@
 //! quantized pairs, the part the hardware replaces. `÷f64` divides by the
 //! f64 row's ns/pair.
 //!
+//! For fixed point, `uncert` counts the verdicts without a certificate
+//! (`docs/certificates.md`: a sign on the decision path could change when
+//! the coordinates move by half a grid step), which the host decides again
+//! on the original coordinates; `recheck` is that host work, the exact
+//! predicates on the uncertain pairs alone, in ns per pair of the batch.
+//! With it the answer is exact: a certified answer that differs from the
+//! exact one is a bug (exit status 1), like a `grid` disagreement.
+//!
 //! For fixed point, `grid` counts the pairs where it disagrees with the
 //! exact model run on the same quantized coordinates; anything but 0 is a
 //! bug (exit status 1). Its `wrong` columns are therefore quantization
@@ -36,6 +44,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 use tritri_geom::arithmetic::{classify, quantize_pairs, Arithmetic};
+use tritri_geom::certificate::{certified_intersects, recheck, CertifiedVerdict};
 use tritri_geom::{exact_f64, fixed_point, hard_cases, TrianglePair};
 
 #[derive(clap::Args)]
@@ -54,32 +63,41 @@ pub struct Args {
     files: Vec<String>,
 }
 
-struct Batch {
-    name: String,
-    pairs: Vec<TrianglePair>,
+/// A named set of pairs evaluated together (one fixed-point frame).
+pub struct Batch {
+    pub name: String,
+    pub pairs: Vec<TrianglePair>,
 }
 
 #[derive(Serialize, Clone)]
-struct Row {
-    arithmetic: String,
-    wrong: usize,
-    false_positives: usize,
-    false_negatives: usize,
-    ns_per_pair: f64,
+pub struct Row {
+    pub arithmetic: String,
+    pub wrong: usize,
+    pub false_positives: usize,
+    pub false_negatives: usize,
+    pub ns_per_pair: f64,
     /// Fixed point only: the integer test on pre-quantized pairs.
-    kernel_ns_per_pair: Option<f64>,
+    pub kernel_ns_per_pair: Option<f64>,
     /// Fixed point only: disagreements with exact on the quantized pairs (must be 0).
-    grid_exact_disagreements: Option<usize>,
+    pub grid_exact_disagreements: Option<usize>,
+    /// Fixed point only: verdicts without a certificate (`out_certain = 0`).
+    pub uncertain: Option<usize>,
+    /// Fixed point only: the host's exact re-check of the uncertain pairs,
+    /// in ns per pair of the batch.
+    pub recheck_ns_per_pair: Option<f64>,
+    /// Fixed point only: certified answers (certain grid verdicts, the rest
+    /// re-checked) that differ from the exact one (must be 0).
+    pub certified_wrong: Option<usize>,
     /// Fixed point only: the grid step h of the batch's frame.
-    step: Option<f64>,
+    pub step: Option<f64>,
 }
 
 #[derive(Serialize)]
-struct BatchReport {
-    name: String,
-    pairs: usize,
-    exact_intersecting: usize,
-    rows: Vec<Row>,
+pub struct BatchReport {
+    pub name: String,
+    pub pairs: usize,
+    pub exact_intersecting: usize,
+    pub rows: Vec<Row>,
 }
 
 #[derive(Serialize)]
@@ -125,6 +143,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     let total = total(&reports, &arithmetics);
     let grid_bugs: usize = total.rows.iter().filter_map(|r| r.grid_exact_disagreements).sum();
+    let certificate_bugs: usize = total.rows.iter().filter_map(|r| r.certified_wrong).sum();
     if args.json {
         let report = Report { batches: reports, total };
         println!("{}", serde_json::to_string_pretty(&report)?);
@@ -136,11 +155,15 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: fixed point disagrees with the exact model on the quantized coordinates for {grid_bugs} pairs: a bug");
         return Ok(ExitCode::from(1));
     }
+    if certificate_bugs > 0 {
+        eprintln!("error: {certificate_bugs} certified verdicts differ from the exact ones: a certificate was given where a sign could change (a bug)");
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
 }
 
 /// `hard` (every category, one batch each) or `hard/<category>`.
-fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
+pub fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
     let (suite, only) = match selector.split_once('/') {
         Some((s, c)) => (s, Some(c)),
         None => (selector, None),
@@ -163,7 +186,8 @@ fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
     Ok(by_category.into_iter().map(|(c, pairs)| Batch { name: format!("@hard/{c}"), pairs }).collect())
 }
 
-fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> anyhow::Result<BatchReport> {
+/// Every arithmetic's errors and speed on one batch.
+pub fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> anyhow::Result<BatchReport> {
     let pairs = &batch.pairs;
     let exact = classify(Arithmetic::Exact, pairs)?.verdicts;
     let mut rows = Vec::new();
@@ -174,6 +198,7 @@ fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> an
             let _ = black_box(classify(arith, black_box(pairs)).map(|c| c.verdicts));
         });
         let (mut kernel_ns_per_pair, mut grid_exact_disagreements) = (None, None);
+        let (mut uncertain, mut recheck_ns_per_pair, mut certified_wrong) = (None, None, None);
         if let Arithmetic::Fixed(width) = arith {
             let (_, quantized) = quantize_pairs(pairs, width)?;
             kernel_ns_per_pair = Some(time_per_pair(pairs.len(), min_time, || {
@@ -184,6 +209,17 @@ fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> an
             let as_f64 = |t: &fixed_point::FixedTriangle| t.map(|p| p.map(|c| c as f64));
             let on_grid = quantized.iter().map(|q| exact_f64::intersects(&as_f64(&q[0]), &as_f64(&q[1])));
             grid_exact_disagreements = Some(on_grid.zip(&c.verdicts).filter(|(a, b)| a != *b).count());
+            let grid: Vec<CertifiedVerdict> = quantized.iter().map(|q| certified_intersects(&q[0], &q[1])).collect();
+            let run = recheck(pairs, &grid);
+            let doubtful: Vec<&TrianglePair> = pairs.iter().zip(&grid).filter(|(_, v)| !v.certain).map(|(p, _)| p).collect();
+            uncertain = Some(run.uncertain);
+            let (extra, missing) = compare(&run.verdicts, &exact);
+            certified_wrong = Some(extra + missing);
+            recheck_ns_per_pair = Some(
+                time_per_pair(pairs.len(), min_time, || {
+                    black_box(doubtful.iter().map(|p| exact_f64::intersects(&p.t1, &p.t2)).collect::<Vec<_>>());
+                }),
+            );
         }
         rows.push(Row {
             arithmetic: arith.to_string(),
@@ -193,6 +229,9 @@ fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> an
             ns_per_pair,
             kernel_ns_per_pair,
             grid_exact_disagreements,
+            uncertain,
+            recheck_ns_per_pair,
+            certified_wrong,
             step: c.frame.map(|f| f.step),
         });
     }
@@ -238,7 +277,7 @@ fn time_per_pair(n: usize, min_time: Duration, mut run: impl FnMut()) -> f64 {
 }
 
 /// Sums over batches; times are weighted by the batches' pair counts.
-fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
+pub fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
     let pairs: usize = reports.iter().map(|r| r.pairs).sum();
     let weighted = |f: &dyn Fn(&BatchReport) -> Option<f64>| -> Option<f64> {
         if pairs == 0 {
@@ -254,6 +293,7 @@ fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
         .iter()
         .enumerate()
         .map(|(i, a)| {
+            let fixed = matches!(a, Arithmetic::Fixed(_));
             let sum = |f: &dyn Fn(&Row) -> usize| reports.iter().map(|r| f(&r.rows[i])).sum::<usize>();
             Row {
                 arithmetic: a.to_string(),
@@ -262,8 +302,10 @@ fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
                 false_negatives: sum(&|r| r.false_negatives),
                 ns_per_pair: weighted(&|r| Some(r.rows[i].ns_per_pair)).unwrap_or(0.0),
                 kernel_ns_per_pair: weighted(&|r| r.rows[i].kernel_ns_per_pair),
-                grid_exact_disagreements: matches!(a, Arithmetic::Fixed(_))
-                    .then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
+                grid_exact_disagreements: fixed.then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
+                uncertain: fixed.then(|| sum(&|r| r.uncertain.unwrap_or(0))),
+                recheck_ns_per_pair: weighted(&|r| r.rows[i].recheck_ns_per_pair),
+                certified_wrong: fixed.then(|| sum(&|r| r.certified_wrong.unwrap_or(0))),
                 step: None,
             }
         })
@@ -279,15 +321,15 @@ fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport {
 fn print_table(r: &BatchReport) {
     println!("{}: {} pairs, {} intersect (exact)", r.name, r.pairs, r.exact_intersecting);
     println!(
-        "  {:<10} {:>6} {:>7} {:>7} {:>9} {:>6} {:>9} {:>5} {:>10}",
-        "arithmetic", "wrong", "false+", "false-", "ns/pair", "÷f64", "kernel", "grid", "step h"
+        "  {:<10} {:>6} {:>7} {:>7} {:>9} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
+        "arithmetic", "wrong", "false+", "false-", "ns/pair", "÷f64", "kernel", "grid", "uncert", "recheck", "step h"
     );
     let f64_ns = r.rows.iter().find(|row| row.arithmetic == "f64").map(|row| row.ns_per_pair);
     let dash = || "-".to_string();
     for row in &r.rows {
         let ratio = f64_ns.filter(|&f| f > 0.0).map(|f| format!("{:.2}", row.ns_per_pair / f)).unwrap_or_else(dash);
         println!(
-            "  {:<10} {:>6} {:>7} {:>7} {:>9.1} {:>6} {:>9} {:>5} {:>10}",
+            "  {:<10} {:>6} {:>7} {:>7} {:>9.1} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
             row.arithmetic,
             row.wrong,
             row.false_positives,
@@ -296,6 +338,8 @@ fn print_table(r: &BatchReport) {
             ratio,
             row.kernel_ns_per_pair.map(|k| format!("{k:.1}")).unwrap_or_else(dash),
             row.grid_exact_disagreements.map(|g| g.to_string()).unwrap_or_else(dash),
+            row.uncertain.map(|u| u.to_string()).unwrap_or_else(dash),
+            row.recheck_ns_per_pair.map(|k| format!("{k:.1}")).unwrap_or_else(dash),
             row.step.map(|s| format!("{s:.2e}")).unwrap_or_else(dash),
         );
     }

@@ -22,6 +22,7 @@ mod model_files;
 mod octree;
 mod output_file;
 mod progress;
+mod report;
 mod chapter5;
 mod scene_input;
 mod sim;
@@ -52,6 +53,8 @@ enum Command {
     Chapter5(chapter5::Args),
     /// Write the pipeline's (or with --system the whole system's) Verilog: one module per file, filelist, FuseSoC core, README; --synth runs Yosys.
     Gen(gen::Args),
+    /// Speed against error: one HTML page (plots and tables), JSON and CSV, per coordinate width, on pair files and a scene.
+    Report(report::Args),
     /// Co-simulation throughput: the same pairs through the model, rust-hdl, Verilator and Icarus, with mismatches.
     Bench(bench::Args),
     /// Voxelize a mesh, surface or solid, exactly: write an octree (.oct), .binvox, .vox, its boundary (.obj) or a render (.png).
@@ -127,6 +130,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Chapter5(args) => chapter5::run(args),
         Command::Gen(args) => gen::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Report(args) => report::run(args),
         Command::Voxelize(args) => voxelize::run(args),
         Command::Bezier(args) => bezier::run(args),
         Command::Octree(args) => octree::run(args),

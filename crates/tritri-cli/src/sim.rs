@@ -59,7 +59,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_cosim::engine::{check_quantized, run_scene_with, Engine};
+use tritri_cosim::engine::{check_quantized, run_scene_with, Engine, SceneRun};
 use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
 use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
 use tritri_geom::scene::octree::OctreeSchedule;
@@ -344,30 +344,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             args.hardware.clock_mhz,
             ratio(narrow)
         )?;
-        if let Some(octree) = &scene.octree {
-            let (whole, how) = match scene_binning(&args, &scene) {
-                // The broad-phase top: the leaves go from the binning unit
-                // into the system's banks as they stream (its cycle model),
-                // and its owner filter decides the hits as they come; the
-                // filter's clocks for the hits back to back bound what it
-                // adds (co-simulation holds the emitted top within both).
-                Ok(unit) => {
-                    let config = args.hardware.system_config();
-                    let top = broad_phase_cycles(config, &unit.run);
-                    let arrays = |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
-                    let filter = top_model(&unit.run, config.triangles_per_bank, &arrays(&scene.kept_a), &arrays(&scene.kept_b)).filter_clocks;
-                    (top + filter, format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"))
-                }
-                Err(_) => {
-                    let owner = run.owner.map_or(0, |o| o.cycles);
-                    let binning = binning_cycles(&binning_work(octree));
-                    (binning + cycles + owner, format!("binning {binning} (cost formula) + narrow phase {cycles} + owner filter {owner} cycles, not overlapped"))
-                }
-            };
+        if let Some((whole, how)) = first_in_to_last_out(&args.hardware, &scene, &run, cycles) {
             let whole_time = args.hardware.time_of(whole);
             writeln!(
                 report,
-                "speed, first triangle in to last pair out ({how}): {} at {} MHz, {:.1} x",
+                "speed, first triangle in to last pair out: {whole} cycles ({how}), {} at {} MHz, {:.1} x",
                 human(whole_time),
                 args.hardware.clock_mhz,
                 ratio(whole_time)
@@ -398,13 +379,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 
 /// The answer on the original coordinates: `grid`'s hits that carry a
 /// certificate, and the `uncertain` pairs that intersect on the originals.
-struct Certified {
-    pairs: PairSet,
+pub struct Certified {
+    pub pairs: PairSet,
     /// Uncertain pairs whose verdict on the originals differs from the grid's.
-    changed: usize,
+    pub changed: usize,
 }
 
-fn certify(grid: &PairSet, uncertain: &PairSet, a: &SceneObject, b: &SceneObject) -> Certified {
+pub fn certify(grid: &PairSet, uncertain: &PairSet, a: &SceneObject, b: &SceneObject) -> Certified {
     let mut pairs: PairSet = grid.difference(uncertain).copied().collect();
     let mut changed = 0;
     for &(i, j) in uncertain {
@@ -481,7 +462,7 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             octree.b.len(),
             if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }
         )?;
-        match scene_binning(args, scene) {
+        match scene_binning(&args.hardware, scene) {
             Ok(SceneBinning { config, run }) => writeln!(
                 report,
                 "binning unit (built; its cycle-exact model here, equal to its Verilog in co-simulation): {} triangles in, {} cell passes over {} entries, {} leaves (the planner's), at most {} frames deep: {} cycles; memories {:.2} Mbit for {} triangles per object, {} list words, {} leaves (tritri gen --binning-unit --width {} --triangles {} --list-words {} --leaves {} --depth {} --pipelines {})",
@@ -527,10 +508,34 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
     Ok(())
 }
 
+/// Cycles from the first triangle in to the last pair out with the octree
+/// broad phase (`None` for the flat one), and how they were counted.
+pub fn first_in_to_last_out(hardware: &HardwareArgs, scene: &PreparedScene, run: &SceneRun, cycles: u64) -> Option<(u64, String)> {
+    let octree = scene.octree.as_ref()?;
+    Some(match scene_binning(hardware, scene) {
+        // The broad-phase top: the leaves go from the binning unit into the
+        // system's banks as they stream (its cycle model), and its owner
+        // filter decides the hits as they come; the filter's clocks for
+        // the hits back to back bound what it adds (co-simulation holds the
+        // emitted top within both).
+        Ok(unit) => {
+            let config = hardware.system_config();
+            let top = broad_phase_cycles(config, &unit.run);
+            let arrays = |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
+            let filter = top_model(&unit.run, config.triangles_per_bank, &arrays(&scene.kept_a), &arrays(&scene.kept_b)).filter_clocks;
+            (top + filter, format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"))
+        }
+        Err(_) => {
+            let owner = run.owner.map_or(0, |o| o.cycles);
+            let binning = binning_cycles(&binning_work(octree));
+            (binning + cycles + owner, format!("binning {binning} (cost formula) + narrow phase {cycles} + owner filter {owner} cycles, not overlapped"))
+        }
+    })
+}
+
 /// The binning unit on the scene's broad phase (the cycle-exact model of
 /// the unit built for it), or why the unit does not apply.
-fn scene_binning(args: &Args, scene: &PreparedScene) -> Result<SceneBinning, String> {
-    let hardware = &args.hardware;
+pub fn scene_binning(hardware: &HardwareArgs, scene: &PreparedScene) -> Result<SceneBinning, String> {
     let max_leaf_level = hardware.local_frames().map(|l| l.max_leaf_level());
     bin_scene(scene, hardware.grid_bits() as usize, hardware.depth as usize, hardware.pipelines as usize, max_leaf_level)
 }

@@ -18,6 +18,7 @@
 //!   sub-units); [`emit`]: rust-hdl's Verilog to a package an FPGA flow
 //!   takes (names, headers, widths, ANSI ports, README, FuseSoC core);
 //! * [`synth`], [`route`], [`tools`]: Yosys, nextpnr and the simulators;
+//!   [`measured`]: what they measured, kept for reports;
 //! * [`sim_drive`]: direct drive of a rust-hdl simulation.
 //!
 //! docs/ARCHITECTURE.md puts each unit beside its software model and test.
@@ -25,6 +26,7 @@ pub mod arith;
 pub mod pipeline;
 pub mod sim_drive;
 pub mod emit;
+pub mod measured;
 pub mod route;
 pub mod synth;
 pub mod tools;

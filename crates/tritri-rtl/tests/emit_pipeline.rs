@@ -79,6 +79,40 @@ fn published_row(unit: &str) -> Vec<String> {
     row.split('|').map(|c| c.trim().to_string()).filter(|c| !c.is_empty()).collect()
 }
 
+/// rtl-out/measurements.json (what `tritri report` reads) says what
+/// rtl-out/README.md's tables say, row for row, and holds every row of
+/// them: one set of measurements in two forms.
+#[test]
+fn measurements_file_is_the_readme_tables() {
+    let kept = tritri_rtl::measured::Measurements::committed();
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../rtl-out/README.md");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let rows: Vec<Vec<String>> = text
+        .lines()
+        .filter(|l| l.starts_with("| tritri_"))
+        .map(|l| l.split('|').map(|c| c.trim().to_string()).filter(|c| !c.is_empty()).collect())
+        .collect();
+    let (mut xilinx, mut ecp5) = (0, 0);
+    for row in &rows {
+        let n = |i: usize| row[i].parse::<u64>().unwrap_or_else(|_| panic!("{row:?}: column {i}"));
+        if row.len() == 9 && row[6].starts_with('`') {
+            let r = kept.ecp5(&row[0]).unwrap_or_else(|| panic!("measurements.json has no ECP5 row for {}", row[0]));
+            assert_eq!((format!("{:.1}", r.fmax_mhz), r.lut4, r.ff, r.mult18x18d, r.ebr), (row[1].clone(), n(2), n(3), n(4), n(5)), "{}", row[0]);
+            ecp5 += 1;
+        } else if row.len() == 7 {
+            let r = kept.xilinx(&row[0]).unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
+            assert_eq!((r.generic_cells, r.lut, r.ff, r.dsp48e1, r.carry4, r.srl), (Some(n(1)), n(2), n(3), n(4), n(5), n(6)), "{}", row[0]);
+            xilinx += 1;
+        } else if row.len() == 8 && row[6].contains('+') {
+            let r = kept.xilinx(&row[0]).unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
+            let ram = format!("{} + {}", r.ramb36.unwrap_or(0), r.ramb18.unwrap_or(0));
+            assert_eq!((r.lut, r.ff, r.dsp48e1, r.carry4, r.srl, ram, r.distributed_ram), (n(1), n(2), n(3), n(4), n(5), row[6].clone(), Some(n(7))), "{}", row[0]);
+            xilinx += 1;
+        }
+    }
+    assert_eq!((xilinx, ecp5), (kept.xilinx.len(), kept.ecp5.len()), "every measured row is in the README, and no other");
+}
+
 /// Yosys: `synth_xilinx` at W = 24 and generic `synth` at W = 8 both finish
 /// with a `stat` report, and their counts are the ones published in
 /// rtl-out/README.md's resource table (so the table is what its command
@@ -94,6 +128,13 @@ fn yosys_synthesizes_to_the_published_resources() {
     let measured =
         [xilinx.luts(), xilinx.flip_flops(), xilinx.dsps(), xilinx.carry_chains(), xilinx.shift_registers()].map(|n| n.to_string());
     assert_eq!(row[2..7], measured, "W=24 synth_xilinx: LUT FF DSP48E1 CARRY4 SRL; regenerate the table in rtl-out/README.md");
+    let kept = tritri_rtl::measured::Measurements::committed();
+    let kept = kept.xilinx(&design.top).expect("rtl-out/measurements.json has the W = 24 pipeline");
+    assert_eq!(
+        [kept.lut, kept.ff, kept.dsp48e1, kept.carry4, kept.srl],
+        [xilinx.luts(), xilinx.flip_flops(), xilinx.dsps(), xilinx.carry_chains(), xilinx.shift_registers()],
+        "W=24 synth_xilinx against rtl-out/measurements.json"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 
     let design = emit_pipeline(8).unwrap();

@@ -1,0 +1,133 @@
+//! The report's scene: `tritri sim`'s figures (model engine, octree broad
+//! phase) at each width, from the same code.
+
+use super::WidthRow;
+use crate::scene_input::{BroadPhase, HardwareArgs, SceneArgs};
+use crate::sim::{certify, first_in_to_last_out};
+use anyhow::bail;
+use serde::Serialize;
+use std::time::Instant;
+use tritri_cosim::engine::{check_quantized, run_scene_with, Engine};
+use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff};
+use tritri_rtl::system::DEFAULT_TRIANGLES_PER_BANK;
+
+/// The clock of a width without a post-route figure (the thesis's).
+pub const ASSUMED_CLOCK_MHZ: f64 = 100.0;
+
+#[derive(Serialize)]
+pub struct SceneSection {
+    pub a: String,
+    pub b: String,
+    pub pose_b: String,
+    pub triangles_a: usize,
+    pub triangles_b: usize,
+    /// Pairs that intersect, exact f64 on the original coordinates.
+    pub exact_pairs: usize,
+    /// The software box sweep with exact predicates, one thread, timed once.
+    pub software_seconds: f64,
+    pub rows: Vec<SceneRow>,
+}
+
+/// `tritri sim --scene A B --width W --pipelines P` in the model.
+#[derive(Serialize, Clone)]
+pub struct SceneRow {
+    pub width: u32,
+    /// The system's pipelines.
+    pub pipelines: u32,
+    pub pairs_tested: u64,
+    /// Octree leaves holding both objects, and cells classified.
+    pub leaves: usize,
+    pub cells: u64,
+    /// The narrow phase's cycles (`sim`'s `cycles:`), and first triangle in
+    /// to last pair out (`sim`'s `speed, first triangle in ...`).
+    pub cycles: u64,
+    pub whole_cycles: u64,
+    pub clock_mhz: f64,
+    /// `post-route` (ECP5) or `assumed`.
+    pub clock: String,
+    pub whole_seconds: f64,
+    /// Software time over `whole_seconds`.
+    pub speedup: f64,
+    /// Intersecting pairs on the grid.
+    pub intersecting: usize,
+    pub uncertain: usize,
+    /// The grid's answer against exact f64 on the originals.
+    pub missing: usize,
+    pub extra: usize,
+    /// The certified answer (uncertain pairs decided again) against it.
+    pub certified_missing: usize,
+    pub certified_extra: usize,
+}
+
+pub fn measure(a: &SceneObject, b: &SceneObject, args: &SceneArgs, widths: &[u32], pipelines: u32, rows: &[WidthRow]) -> anyhow::Result<SceneSection> {
+    eprintln!("report: scene {} x {}: exact f64 on the originals", a.name, b.name);
+    let started = Instant::now();
+    let truth = exact_f64_pairs(&a.triangles, &b.triangles);
+    let software_seconds = started.elapsed().as_secs_f64();
+    let mut out = Vec::new();
+    for &width in widths {
+        eprintln!("report: scene at W = {width}");
+        // Where W was routed, the system has the pipelines that fit the
+        // device at its clock; elsewhere P at the assumed clock.
+        let row = rows.iter().find(|r| r.width == width);
+        let routed = row.and_then(|r| r.ecp5.as_ref()).map(|r| r.fmax_mhz);
+        let hardware = HardwareArgs {
+            width,
+            pipelines: row.and_then(|r| r.ecp5_pipelines).unwrap_or(pipelines),
+            depth: DEFAULT_TRIANGLES_PER_BANK as u64,
+            no_split: false,
+            clock_mhz: routed.unwrap_or(ASSUMED_CLOCK_MHZ),
+            broad_phase: BroadPhase::Octree,
+            grid_bits: None,
+        };
+        let scene = hardware.prepare(a, b)?;
+        let config = hardware.system_config();
+        let run = run_scene_with(Engine::Model, &scene, config, &|_| {}, None)?;
+        let (quantized, same) = check_quantized(&scene, &run.pairs);
+        if !same.is_empty() {
+            bail!("W = {width}: the model differs from the exact model on the quantized coordinates (a bug)");
+        }
+        let whole_cycles = first_in_to_last_out(&hardware, &scene, &run, run.cycles).map_or(run.cycles, |(c, _)| c);
+        let whole_seconds = hardware.time_of(whole_cycles).as_secs_f64();
+        let diff = PairDiff::between(&truth.pairs, &quantized);
+        let certified = certify(&run.pairs, &run.uncertain, a, b);
+        let certified_diff = PairDiff::between(&truth.pairs, &certified.pairs);
+        out.push(SceneRow {
+            width,
+            pipelines: hardware.pipelines,
+            pairs_tested: scene.pairs_tested(),
+            leaves: scene.octree.as_ref().map_or(0, |o| o.leaves.len()),
+            cells: scene.octree.as_ref().map_or(0, |o| o.cells_visited as u64),
+            cycles: run.cycles,
+            whole_cycles,
+            clock_mhz: hardware.clock_mhz,
+            clock: if routed.is_some() { "post-route".into() } else { "assumed".into() },
+            whole_seconds,
+            speedup: software_seconds / whole_seconds.max(f64::MIN_POSITIVE),
+            intersecting: run.pairs.len(),
+            uncertain: run.uncertain.len(),
+            missing: diff.missing.len(),
+            extra: diff.extra.len(),
+            certified_missing: certified_diff.missing.len(),
+            certified_extra: certified_diff.extra.len(),
+        });
+    }
+    Ok(SceneSection {
+        a: a.name.clone(),
+        b: b.name.clone(),
+        pose_b: args.pose_b.unwrap_or_default().to_string(),
+        triangles_a: a.triangles.len(),
+        triangles_b: b.triangles.len(),
+        exact_pairs: truth.pairs.len(),
+        software_seconds,
+        rows: out,
+    })
+}
+
+impl SceneRow {
+    /// Seconds of `whole_cycles` at `mhz`.
+    pub fn cycles_at(&self, mhz: f64) -> f64 {
+        self.whole_cycles as f64 / (mhz * 1e6)
+    }
+}
