@@ -1,7 +1,7 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
 //! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
 //! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
-//! [--clock-mhz F] [--out PAIRS]`
+//! [--clock-mhz F] [--out PAIRS] [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]`
 //!
 //! Runs the whole bounding-volume-aware system on two objects (without
 //! `--scene`, the built-in torus and sphere): common BV, the arrays of
@@ -17,6 +17,10 @@
 //! those pairs are decided again with exact predicates on the original
 //! coordinates, and the answer (what `--out` writes) is the grid's certain
 //! hits plus the uncertain pairs that intersect on the originals.
+//!
+//! `--png FILE` renders both objects from the direction `--eye` (from the
+//! scene's centre; `--up` names the axis pointing up) with the triangles
+//! of the answer's pairs highlighted: A's in red, B's in magenta.
 //!
 //! `--out PAIRS` writes the intersecting pairs, one `i j` per line in
 //! ascending order: `i` indexes A's triangles and `j` B's, in file order
@@ -48,7 +52,10 @@
 //! above `--max-cycles`, the arrays exceed D with `--no-split`, or bad
 //! usage; 130 / 143 interrupted (simulators stopped, temporaries removed).
 
+use crate::model_files::write_png;
 use crate::output_file::OutputFile;
+use crate::voxelize::ViewArgs;
+use tritri_geom::scene::render::render_pairs;
 use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use clap::ValueEnum;
@@ -102,6 +109,12 @@ pub struct Args {
     /// icarus or verilator, for runs of at most --vcd-max-cycles cycles.
     #[arg(long, value_name = "FILE")]
     vcd: Option<String>,
+    /// Render both objects with the triangles of the intersecting pairs
+    /// highlighted (A's red, B's magenta) to this PNG.
+    #[arg(long, value_name = "FILE")]
+    png: Option<String>,
+    #[command(flatten)]
+    view: ViewArgs,
     /// The longest run --vcd records (every signal and memory word: the
     /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
     #[arg(long, value_name = "N", default_value_t = 10_000)]
@@ -157,6 +170,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
+    let png = match args.png.as_deref().map(reserve_png).transpose() {
+        Ok(png) => png,
+        Err(e) => {
+            eprintln!("error: --png: {e:#}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     if args.vcd.as_deref() == Some("-") {
         eprintln!("error: --vcd -: a waveform goes to a file, not to standard output");
         return Ok(ExitCode::from(2));
@@ -187,6 +207,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let Some(common) = scene.common else {
         writeln!(report, "no overlap: the bounding boxes of A and B do not meet, so no triangle pair can intersect; zero pairs tested")?;
         write_pairs(output, args.indices, &a, &b, &PairSet::new())?;
+        write_render(png, &args, &a, &b, &PairSet::new(), &mut report)?;
         return Ok(ExitCode::SUCCESS);
     };
     let host_time = started.elapsed();
@@ -299,6 +320,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         human(time)
     )?;
     write_pairs(output, args.indices, &a, &b, pairs)?;
+    write_render(png, &args, &a, &b, pairs, &mut report)?;
 
     if !args.no_compare {
         let (quantized, same) = check_quantized(&scene, &run.pairs);
@@ -588,6 +610,23 @@ fn write_pairs(output: Option<OutputFile>, indices: Indices, a: &SceneObject, b:
         }
         Ok(())
     })
+}
+
+/// The render's file, checked before any work: `.png`, not `-`, writable.
+fn reserve_png(path: &str) -> anyhow::Result<OutputFile> {
+    if path == "-" || !path.to_ascii_lowercase().ends_with(".png") {
+        anyhow::bail!("{path}: the render is written to a .png file");
+    }
+    OutputFile::reserve(path)
+}
+
+/// Renders the scene with `pairs` highlighted into the reserved file.
+fn write_render(png: Option<OutputFile>, args: &Args, a: &SceneObject, b: &SceneObject, pairs: &PairSet, report: &mut dyn Write) -> anyhow::Result<()> {
+    let Some(png) = png else { return Ok(()) };
+    let image = render_pairs(&a.triangles, &b.triangles, pairs, &args.view.view());
+    png.commit(|w| write_png(&image, w))?;
+    writeln!(report, "render: {} ({} pairs highlighted: A's triangles red, B's magenta)", args.png.as_deref().unwrap_or(""), pairs.len())?;
+    Ok(())
 }
 
 /// What a cycle-by-cycle run will take, before it starts.

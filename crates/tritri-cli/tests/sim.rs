@@ -236,3 +236,23 @@ fn local_frames_give_the_answer_of_the_finer_grid() {
         assert!(text(&o.stderr).contains("--grid-bits"), "{}", text(&o.stderr));
     }
 }
+
+/// `--png`: the render is a PNG of the asked size with the contact in the
+/// hit colours; a name that is not .png, or `-`, is refused before any
+/// work (status 2, the option named).
+#[test]
+fn png_renders_the_contact() {
+    let png = scratch_path("scene.png");
+    let out = tritri(&["sim", "--png", png.to_str().unwrap(), "--size", "128", "--up", "z"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(text(&out.stdout).contains("render:") && text(&out.stdout).contains("114 pairs highlighted"), "{}", text(&out.stdout));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!((u32::from_be_bytes(bytes[16..20].try_into().unwrap()), u32::from_be_bytes(bytes[20..24].try_into().unwrap())), (128, 128));
+    for bad in ["scene.jpg", "-"] {
+        let out = tritri(&["sim", "--png", bad]);
+        assert_eq!(out.status.code(), Some(2), "{bad}");
+        assert!(text(&out.stderr).contains("--png") && text(&out.stderr).contains(".png"), "{}", text(&out.stderr));
+        assert!(!text(&out.stdout).contains("pairs tested"), "{bad}: refused before any work");
+    }
+}

@@ -125,6 +125,16 @@ impl Canvas {
     /// surface (a depth test with a 1 % allowance, so lines on a surface
     /// show).
     pub fn line(&mut self, a: Point3<f64>, b: Point3<f64>, colour: [u8; 3]) {
+        self.segment(a, b, colour, true)
+    }
+
+    /// Draws a line segment over everything drawn so far (what is hidden
+    /// shows through, as in an X-ray).
+    pub fn line_through(&mut self, a: Point3<f64>, b: Point3<f64>, colour: [u8; 3]) {
+        self.segment(a, b, colour, false)
+    }
+
+    fn segment(&mut self, a: Point3<f64>, b: Point3<f64>, colour: [u8; 3], depth_test: bool) {
         let (Some(p), Some(q)) = (self.project(a), self.project(b)) else { return };
         let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).max(1);
         for s in 0..=steps {
@@ -134,7 +144,7 @@ impl Canvas {
             let z = 1.0 / ((1.0 - t) / p.2 + t / q.2);
             if x >= 0.0 && y >= 0.0 && (x as u32) < self.image.width && (y as u32) < self.image.height {
                 let i = (y as u32 * self.image.width + x as u32) as usize;
-                if z <= self.depth[i] * 1.01 {
+                if !depth_test || z <= self.depth[i] * 1.01 {
                     self.image.pixels[i] = colour;
                 }
             }

@@ -30,6 +30,7 @@ pub mod load;
 pub mod octree;
 pub mod owner_slots;
 pub mod reference;
+pub mod render;
 
 use crate::bounding_volume::{grown_triangle_touches_box, triangle_box_overlap_conservative, Aabb};
 use crate::octree::triangle_cell::BROAD_PHASE_MARGIN;
