@@ -63,11 +63,25 @@
 //! children written into the voxel memory a word per clock), top
 //! `tritri_voxel_fill`.
 //!
+//! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
+//! sizes the system for a scene and an error budget instead: it runs the
+//! scene in the bit-exact model at every width, takes the cheapest width
+//! (multipliers per pipeline on the device) that sends at most RATE of the
+//! pairs back to the host, P and the memory depth from the cycle model
+//! within the device's measured budget, and writes the system with the
+//! reasons in its README (`gen/for_scene.rs`). A budget that nothing on the
+//! device meets is an error (status 2) naming the best there is.
+//!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
 
+mod for_scene;
+
+use crate::scene_input::SceneArgs;
 use anyhow::Context;
 use std::path::PathBuf;
+use tritri_geom::scene::load::Pose;
+use tritri_rtl::measured::{device, DEVICES};
 use std::process::ExitCode;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
@@ -186,9 +200,52 @@ pub struct Args {
     /// 1048576) [default: 4096].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << LEAF_ADDRESS_BITS))]
     leaves: Option<u64>,
+    /// Size the system for this scene (objects A and B as `tritri sim`
+    /// takes them) and an error budget: W, P, the memory depth and the
+    /// grid, from measured figures, with the reasons in its README.
+    #[arg(long, num_args = 2, value_names = ["A", "B"], conflicts_with_all = ["width", "system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "binning_unit", "broad_phase", "pipelines", "depth", "synth"])]
+    for_scene: Option<Vec<String>>,
+    /// With --for-scene: pose of B, tx,ty,tz[,rx,ry,rz] (as in `tritri sim`).
+    #[arg(long, allow_hyphen_values = true, value_name = "TX,TY,TZ,RX,RY,RZ", requires = "for_scene")]
+    pose_b: Option<Pose>,
+    /// With --for-scene: uniform scale of B about its origin, before the pose.
+    #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = crate::input::parse_scale)]
+    scale_b: f64,
+    /// With --for-scene: the largest share of the pairs tested that may go
+    /// back to the host (verdicts without a certificate, and pairs too long
+    /// for a leaf's local frame), from 0 to 1 [default: 0.001, 0.1 %].
+    #[arg(long, value_name = "RATE", value_parser = parse_rate, requires = "for_scene")]
+    max_uncertain: Option<f64>,
+    /// With --for-scene: the device whose resources bound the design
+    /// (ecp5-85: LFE5U-85F, post-route figures at W = 8 and 12;
+    /// artix7-200t: XC7A200T, Yosys synth_xilinx figures at every width).
+    #[arg(long, value_name = "NAME", default_value = "artix7-200t", value_parser = parse_device)]
+    device: String,
+}
+
+/// A rate from 0 to 1.
+fn parse_rate(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.0..=1.0).contains(&v) => Ok(v),
+        _ => Err(format!("`{s}` is not a rate from 0 to 1 (0.001 is 0.1 %)")),
+    }
+}
+
+/// A device of `tritri_rtl::measured::DEVICES`.
+fn parse_device(s: &str) -> Result<String, String> {
+    match device(s) {
+        Some(d) => Ok(d.name.to_string()),
+        None => Err(format!("unknown device `{s}`: known are {}", DEVICES.iter().map(|d| d.name).collect::<Vec<_>>().join(", "))),
+    }
 }
 
 impl Args {
+    /// The scene of `--for-scene`, as `sim` takes one.
+    fn for_scene(&self) -> Option<SceneArgs> {
+        let objects = self.for_scene.clone()?;
+        Some(SceneArgs { scene: Some(objects), pose_b: self.pose_b, scale_b: self.scale_b, subdivide: 0, tessellation: 8 })
+    }
+
     fn pipelines(&self) -> u32 {
         self.pipelines.unwrap_or(2)
     }
@@ -399,6 +456,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if let Err(e) = args.check_usage() {
         eprintln!("error: {e}");
         return Ok(ExitCode::from(2));
+    }
+    if let Some(scene) = args.for_scene() {
+        let device = device(&args.device).expect("checked by parse_device");
+        let request = for_scene::Request { scene: &scene, max_uncertain: args.max_uncertain.unwrap_or(0.001), device, out: args.out.clone() };
+        return for_scene::run(request);
     }
     for &w in &args.width {
         if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {

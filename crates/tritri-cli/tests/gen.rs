@@ -181,3 +181,44 @@ fn system_is_emitted_with_its_parameters() {
     let refused = tritri().args(["gen", "--pipelines", "2"]).output().unwrap();
     assert_eq!(refused.status.code(), Some(2), "--pipelines without --system");
 }
+
+/// `--for-scene`: on the built-in scene with a 0.5 % budget the cheapest
+/// width that meets it is W = 24 (W = 20 sends 2 % back: its coplanar
+/// contacts lose their certificates), two pipelines fit the Artix-7 200T
+/// and four do not; the README says so and gives the Verilator command.
+/// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named.
+#[test]
+fn for_scene_sizes_the_system_and_says_why() {
+    let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--max-uncertain", "0.005", "--out"]).arg(&out).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    for needle in [
+        "**Chosen: W = 24, P = 2, memory depth",
+        "*Why not one bit fewer:*",
+        "the closest, W = 20 (276 multipliers per pipeline)",
+        "*Why not one more pipeline:* P = 4 does not fit",
+        "| W = 24 (chosen) | 330 |",
+        "--width 24 --pipelines 2 --depth",
+        "--engine verilator --certified",
+    ] {
+        assert!(readme.contains(needle), "README lacks `{needle}`:\n{readme}");
+    }
+    assert!(std::fs::read_dir(&out).unwrap().any(|e| e.unwrap().file_name().to_string_lossy().starts_with("tritri_system_w24_p2_d")));
+    std::fs::remove_dir_all(&out).unwrap();
+
+    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--device", "ecp5-85", "--out"]).arg(&out).output().unwrap();
+    assert_eq!(run.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("--max-uncertain 0.001") && err.contains("the best there is W = 12"), "{err}");
+    assert!(!out.exists(), "nothing written");
+
+    for (flag, value, says) in [("--device", "virtex", "unknown device `virtex`"), ("--max-uncertain", "2", "`2` is not a rate")] {
+        let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", flag, value]).output().unwrap();
+        assert_eq!(run.status.code(), Some(2), "{flag} {value}");
+        assert!(String::from_utf8_lossy(&run.stderr).contains(says), "{}", String::from_utf8_lossy(&run.stderr));
+    }
+    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--width", "16"]).output().unwrap();
+    assert_eq!(run.status.code(), Some(2), "--width conflicts with --for-scene");
+}

@@ -39,7 +39,7 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
         assert!(out_dir.join(file).is_file(), "{file} missing");
     }
     let html = std::fs::read_to_string(out_dir.join("report.html")).unwrap();
-    assert_eq!(html.matches("<svg").count(), 5, "errors, cost, speed, Pareto and scene plots");
+    assert_eq!(html.matches("<svg").count(), 6, "errors, cost, speed, Pareto, the scene's time and its errors");
     let report: Value = serde_json::from_str(&std::fs::read_to_string(out_dir.join("report.json")).unwrap()).unwrap();
 
     // Errors: eval's JSON on the same batches, count for count.

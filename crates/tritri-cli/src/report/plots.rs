@@ -66,9 +66,9 @@ fn width_plot(
         for (label, value, colour) in references {
             let colour = *colour;
             chart
-                .draw_series(LineSeries::new(vec![(range.start, *value), (range.end, *value)], colour.stroke_width(1)))?
+                .draw_series(LineSeries::new(vec![(range.start, *value), (range.end, *value)], colour.stroke_width(3)))?
                 .label(label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(1)));
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
         }
         for s in series {
             let colour = s.colour;
@@ -211,7 +211,25 @@ pub fn scene(scene: &SceneSection, rows: &[WidthRow]) -> anyhow::Result<String> 
         Series { label: "hardware at the post-route Fmax".into(), colour: COLOURS[0], points: routed },
         Series { label: format!("hardware at {} MHz", super::scene::ASSUMED_CLOCK_MHZ), colour: COLOURS[1], points: assumed },
     ];
-    let software = vec![("software: box sweep + exact predicates, one thread".to_string(), 1e3 * scene.software_seconds, RGBColor(120, 120, 120))];
+    let software = vec![("software: box sweep + exact predicates, one thread".to_string(), 1e3 * scene.software_seconds, RGBColor(90, 90, 90))];
     let floor = 10f64.powf((scene.rows.iter().map(|r| 1e3 * r.whole_seconds).fold(f64::INFINITY, f64::min).min(1e3 * scene.software_seconds)).log10().floor() - 1.0);
     width_plot(&format!("{} x {}: first triangle in to last pair out", scene.a, scene.b), "ms", &chosen, &series, floor, &software, SeriesLabelPosition::UpperLeft)
+}
+
+/// The scene's error against W: verdicts without a certificate, and the
+/// grid's pairs missing or extra against exact f64 on the originals, as
+/// shares of the pairs tested.
+pub fn scene_errors(scene: &SceneSection, rows: &[WidthRow]) -> anyhow::Result<String> {
+    let chosen: Vec<WidthRow> = rows.iter().filter(|r| scene.rows.iter().any(|s| s.width == r.width)).cloned().collect();
+    let share = |f: &dyn Fn(&super::scene::SceneRow) -> usize| -> Vec<(u32, f64)> {
+        scene.rows.iter().map(|r| (r.width, 100.0 * f(r) as f64 / r.pairs_tested.max(1) as f64)).collect()
+    };
+    let series = [
+        Series { label: "uncertain (host re-checks)".into(), colour: COLOURS[1], points: share(&|r| r.uncertain) },
+        Series { label: "missing, no certificates".into(), colour: COLOURS[4], points: share(&|r| r.missing) },
+        Series { label: "extra, no certificates".into(), colour: COLOURS[3], points: share(&|r| r.extra) },
+        Series { label: "wrong with certificates".into(), colour: COLOURS[2], points: share(&|r| r.certified_missing + r.certified_extra) },
+    ];
+    let floor = 10f64.powf((100.0 / scene.rows.iter().map(|r| r.pairs_tested).max().unwrap_or(1).max(1) as f64).log10().floor() - 1.0);
+    width_plot(&format!("{} x {}: error against W", scene.a, scene.b), "% of the pairs tested", &chosen, &series, floor, &[], SeriesLabelPosition::UpperRight)
 }
