@@ -292,12 +292,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     writeln!(report, "intersecting pairs: {}", pairs.len())?;
+    // Pairs too long for a leaf's local frame are decided by the host on
+    // the grid, with certificates too.
+    let decided = scene.pairs_tested() + scene.host_pairs();
     writeln!(
         report,
-        "certificates: {} pairs without one ({:.4} % of the {} pairs tested), intersecting on the grid or not",
+        "certificates: {} pairs without one ({:.4} % of the {} pairs decided{}), intersecting on the grid or not",
         run.uncertain.len(),
-        100.0 * run.uncertain.len() as f64 / scene.pairs_tested().max(1) as f64,
-        scene.pairs_tested()
+        100.0 * run.uncertain.len() as f64 / decided.max(1) as f64,
+        decided,
+        if scene.host_pairs() > 0 { format!(": {} in leaves, {} by the host", scene.pairs_tested(), scene.host_pairs()) } else { String::new() }
     )?;
     let certified = args.certified.then(|| certify(pairs, &run.uncertain, &a, &b));
     if let Some(c) = &certified {

@@ -21,8 +21,11 @@
 //! "why not one more pipeline". The memory depth is the power of two from
 //! 64 to 1024 with the fewest cycles (the smaller one when within 1 %).
 //!
-//! The chosen configuration is run once more in the model to measure what
-//! the README states.
+//! A candidate is run in the model only where it could be chosen: a width
+//! not measured on the device's flow is not, and neither is one whose host
+//! pairs alone (local frames) already exceed the budget (its share is then
+//! given as a lower bound). The chosen configuration is run once more in
+//! the model to measure what the README states.
 
 use crate::scene_input::{BroadPhase, HardwareArgs, SceneArgs};
 use anyhow::Context;
@@ -72,7 +75,10 @@ struct Candidate {
     /// `None`: not measured on the device's flow.
     measured: bool,
     pairs_tested: u64,
-    uncertain: u64,
+    /// Verdicts without a certificate in the leaves; `None` where the
+    /// model was not run (the host pairs alone exceed the budget, or the
+    /// width is not measured on the device's flow).
+    uncertain: Option<u64>,
     host_pairs: u64,
 }
 
@@ -80,7 +86,13 @@ impl Candidate {
     /// Of every pair the hardware or the host decides, those the host
     /// decides (a host pair without a certificate is counted once).
     fn host_share(&self) -> f64 {
-        (self.uncertain + self.host_pairs) as f64 / (self.pairs_tested + self.host_pairs).max(1) as f64
+        (self.uncertain.unwrap_or(0) + self.host_pairs) as f64 / (self.pairs_tested + self.host_pairs).max(1) as f64
+    }
+
+    /// The host's share, `>=` where the model was not run.
+    fn share_text(&self) -> String {
+        let bound = if self.uncertain.is_some() { "" } else { ">= " };
+        format!("{bound}{:.4} %", 100.0 * self.host_share())
     }
 
     fn name(&self) -> String {
@@ -131,23 +143,23 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     for &w in SUPPORTED_WIDTHS {
         let w = w as u32;
         for grid_bits in if w < LOCAL_GRID_BITS { vec![w, LOCAL_GRID_BITS] } else { vec![w] } {
-            candidates.push(measure(&a, &b, w, grid_bits, &measurements, device)?);
+            candidates.push(measure(&a, &b, w, grid_bits, &measurements, device, request.max_uncertain)?);
         }
     }
     // Cheapest first: multipliers per pipeline, then LUTs, then the
     // coarser grid.
     candidates.sort_by_key(|c| (!c.measured, c.multipliers, c.luts, c.grid_bits));
     let fits = |c: &Candidate| c.measured && c.multipliers <= device.dsps && c.luts + control_luts(&measurements) <= device.luts;
-    let chosen = candidates.iter().position(|c| fits(c) && c.host_share() <= request.max_uncertain);
+    let chosen = candidates.iter().position(|c| fits(c) && c.uncertain.is_some() && c.host_share() <= request.max_uncertain);
     let Some(chosen) = chosen else {
         let best = candidates.iter().filter(|c| fits(c)).min_by(|x, y| x.host_share().total_cmp(&y.host_share()));
         match best {
             Some(best) => eprintln!(
-                "error: --max-uncertain {}: no configuration on {} keeps the host's share of the pairs that low; the best there is {} ({:.4} % of {} pairs back to the host, {} multipliers per pipeline)",
+                "error: --max-uncertain {}: no configuration on {} keeps the host's share of the pairs that low; the best there is {} ({} of {} pairs back to the host, {} multipliers per pipeline)",
                 request.max_uncertain,
                 device.name,
                 best.name(),
-                100.0 * best.host_share(),
+                best.share_text(),
                 best.pairs_tested + best.host_pairs,
                 best.multipliers
             ),
@@ -161,7 +173,7 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     let scene = hardware.prepare(&a, &b)?;
     let run = run_scene_with(Engine::Model, &scene, hardware.system_config(), &|_| {}, None)?;
     let measured =
-        Candidate { pairs_tested: scene.pairs_tested(), uncertain: uncertain_in_leaves(&scene, &run.uncertain), host_pairs: scene.host_pairs(), ..candidate.clone() };
+        Candidate { pairs_tested: scene.pairs_tested(), uncertain: Some(uncertain_in_leaves(&scene, &run.uncertain)), host_pairs: scene.host_pairs(), ..candidate.clone() };
 
     let config = hardware.system_config();
     let mut design = emit_system_with(config, PipelineKind::Real, MultiplierMapping::Inferred).with_context(|| format!("emitting {}", config.unit_name()))?;
@@ -197,21 +209,24 @@ fn uncertain_in_leaves(scene: &PreparedScene, uncertain: &PairSet) -> u64 {
     uncertain.iter().filter(|p| !host.contains(p)).count() as u64
 }
 
-/// `w` on the device's flow, and the scene in the model at P = 2, depth 256.
-fn measure(a: &SceneObject, b: &SceneObject, width: u32, grid_bits: u32, m: &Measurements, device: &Device) -> anyhow::Result<Candidate> {
+/// `w` on the device's flow, and the scene in the model at P = 2, depth
+/// 256 (not run where it cannot be chosen: module docs).
+fn measure(a: &SceneObject, b: &SceneObject, width: u32, grid_bits: u32, m: &Measurements, device: &Device, budget: f64) -> anyhow::Result<Candidate> {
     let unit = format!("tritri_pipeline_w{width}");
     let (multipliers, luts, measured) = match device.flow {
         "ecp5" => m.ecp5(&unit).map_or((0, 0, false), |r| (r.mult18x18d, r.lut4, true)),
         _ => m.xilinx(&unit).map_or((0, 0, false), |r| (r.dsp48e1, r.lut, true)),
     };
-    let mut c = Candidate { width, grid_bits, multipliers, luts, measured, pairs_tested: 0, uncertain: 0, host_pairs: 0 };
+    let mut c = Candidate { width, grid_bits, multipliers, luts, measured, pairs_tested: 0, uncertain: None, host_pairs: 0 };
     let hardware = hardware(&c, 2, 256);
     let scene = hardware.prepare(a, b)?;
-    let run = run_scene_with(Engine::Model, &scene, hardware.system_config(), &|_| {}, None)?;
     c.pairs_tested = scene.pairs_tested();
-    c.uncertain = uncertain_in_leaves(&scene, &run.uncertain);
     c.host_pairs = scene.host_pairs();
-    eprintln!("for-scene: {}: {:.4} % of {} pairs to the host", c.name(), 100.0 * c.host_share(), c.pairs_tested + c.host_pairs);
+    if measured && c.host_share() <= budget {
+        let run = run_scene_with(Engine::Model, &scene, hardware.system_config(), &|_| {}, None)?;
+        c.uncertain = Some(uncertain_in_leaves(&scene, &run.uncertain));
+    }
+    eprintln!("for-scene: {}: {} of {} pairs to the host", c.name(), c.share_text(), c.pairs_tested + c.host_pairs);
     Ok(c)
 }
 
@@ -294,10 +309,10 @@ fn explain(
     let _ = match fewer {
         Some(x) => writeln!(
             s,
-            "*Why not one bit fewer:* every configuration with fewer multipliers sends more back to the host than the budget allows; the closest, {} ({} multipliers per pipeline), sends {:.4} %.\n",
+            "*Why not one bit fewer:* every configuration with fewer multipliers sends more back to the host than the budget allows; the closest, {} ({} multipliers per pipeline), sends {}.\n",
             x.name(),
             x.multipliers,
-            100.0 * x.host_share()
+            x.share_text()
         ),
         None => writeln!(s, "*Why not one bit fewer:* no cheaper configuration is measured on {}.\n", device.flow),
     };
@@ -320,17 +335,17 @@ fn explain(
         if x.measured {
             let _ = writeln!(
                 s,
-                "| {}{mark} | {} | {} | {} | {} | {} | {:.4} % |",
+                "| {}{mark} | {} | {} | {} | {} | {} | {} |",
                 x.name(),
                 x.multipliers,
                 x.luts,
                 x.pairs_tested,
-                x.uncertain,
+                x.uncertain.map_or("not run".into(), |u| u.to_string()),
                 x.host_pairs,
-                100.0 * x.host_share()
+                x.share_text()
             );
         } else {
-            let _ = writeln!(s, "| {} | not measured on {} | - | {} | {} | {} | {:.4} % |", x.name(), device.flow, x.pairs_tested, x.uncertain, x.host_pairs, 100.0 * x.host_share());
+            let _ = writeln!(s, "| {} | not measured on {} | - | {} | not run | {} | - |", x.name(), device.flow, x.pairs_tested, x.host_pairs);
         }
     }
     let _ = writeln!(s, "\n| P | narrow-phase cycles (best depth) | fits |\n|---:|---:|---|");
