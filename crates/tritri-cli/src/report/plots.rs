@@ -33,6 +33,20 @@ fn decades(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f64
     floor..10f64.powf(hi.log10().floor() + 1.0)
 }
 
+/// The legend goes to the half of the plot with fewer points: the bottom
+/// when most values sit in the upper half of the log axis.
+fn legend_corner(series: &[Series], references: &[(String, f64, RGBColor)], range: &std::ops::Range<f64>) -> SeriesLabelPosition {
+    let (lo, hi) = (range.start.log10(), range.end.log10());
+    let height = |v: f64| (v.max(range.start).log10() - lo) / (hi - lo).max(f64::MIN_POSITIVE);
+    let heights: Vec<f64> = series.iter().flat_map(|s| s.points.iter().map(|p| height(p.1))).chain(references.iter().map(|r| height(r.1))).collect();
+    let upper = heights.iter().filter(|&&h| h > 0.5).count();
+    if 2 * upper > heights.len() {
+        SeriesLabelPosition::LowerRight
+    } else {
+        SeriesLabelPosition::UpperRight
+    }
+}
+
 /// A log-scale plot of `series` over the widths; zeros sit at `floor`.
 fn width_plot(
     title: &str,
@@ -41,19 +55,21 @@ fn width_plot(
     series: &[Series],
     floor: f64,
     references: &[(String, f64, RGBColor)],
-    legend: SeriesLabelPosition,
 ) -> anyhow::Result<String> {
     let mut svg = String::new();
+    let range = decades(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).chain(references.iter().map(|r| r.1)), floor);
+    let legend = legend_corner(series, references, &range);
+    // A decade of headroom keeps an upper legend off the highest line.
+    let range = if matches!(legend, SeriesLabelPosition::UpperRight) { range.start..range.end * 10.0 } else { range };
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE)?;
-        let values = series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).chain(references.iter().map(|r| r.1));
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 18))
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(70)
-            .build_cartesian_2d(width_range(rows), decades(values, floor).log_scale())?;
+            .build_cartesian_2d(width_range(rows), range.log_scale())?;
         chart
             .configure_mesh()
             .x_desc("coordinate width W (bits)")
@@ -88,6 +104,16 @@ fn width_plot(
 
 const COLOURS: [RGBColor; 6] = [RED, BLUE, RGBColor(0, 140, 0), MAGENTA, RGBColor(200, 120, 0), BLACK];
 
+/// The software baselines' lines, by arithmetic (exact, f64, f32, Möller).
+fn baseline_colour(arithmetic: &str) -> RGBColor {
+    match arithmetic {
+        "f64" => RGBColor(0, 150, 150),
+        "f32" => RGBColor(170, 110, 0),
+        "moller" => RGBColor(90, 0, 160),
+        _ => RGBColor(120, 120, 120),
+    }
+}
+
 /// Error against W: wrong verdicts without certificates and their split,
 /// and the verdicts the certificates leave to the host.
 pub fn errors(report: &Report) -> anyhow::Result<Option<String>> {
@@ -109,10 +135,10 @@ pub fn errors(report: &Report) -> anyhow::Result<Option<String>> {
         .baselines
         .iter()
         .filter(|b| b.wrong > 0)
-        .map(|b| (format!("{} wrong", b.arithmetic), 100.0 * b.wrong as f64 / rows[0].pairs.max(1) as f64, RGBColor(150, 150, 150)))
+        .map(|b| (format!("{} wrong", b.arithmetic), 100.0 * b.wrong as f64 / rows[0].pairs.max(1) as f64, baseline_colour(&b.arithmetic)))
         .collect();
     let owned: Vec<WidthRow> = rows.into_iter().cloned().collect();
-    Ok(Some(width_plot("Error against W", "% of pairs", &owned, &series, floor, &references, SeriesLabelPosition::UpperRight)?))
+    Ok(Some(width_plot("Error against W", "% of pairs", &owned, &series, floor, &references)?))
 }
 
 /// Hardware cost against W: Xilinx 7-series and ECP5 resources.
@@ -129,7 +155,7 @@ pub fn cost(report: &Report) -> anyhow::Result<Option<String>> {
         Series { label: "SRL (xc7)".into(), colour: COLOURS[4], points: of(&|r| Some(r.xilinx.as_ref()?.srl)) },
         Series { label: "MULT18X18D (ECP5)".into(), colour: COLOURS[3], points: of(&|r| Some(r.ecp5.as_ref()?.mult18x18d)) },
     ];
-    Ok(Some(width_plot("Hardware cost of one pipeline against W", "cells", &rows, &series, 10.0, &[], SeriesLabelPosition::LowerRight)?))
+    Ok(Some(width_plot("Hardware cost of one pipeline against W", "cells", &rows, &series, 10.0, &[])?))
 }
 
 /// Speed against W: the routed pipelines' pairs/s, and the software
@@ -145,15 +171,13 @@ pub fn speed(report: &Report) -> anyhow::Result<Option<String>> {
         Series { label: "hardware: post-route Fmax x the pipelines that fit (ECP5-85)".into(), colour: COLOURS[0], points: hardware },
         Series { label: "fixed-point kernel in software, one thread".into(), colour: COLOURS[1], points: software },
     ];
-    let colours = [RGBColor(120, 120, 120), RGBColor(0, 150, 150), RGBColor(170, 110, 0), RGBColor(90, 0, 160)];
     let references: Vec<(String, f64, RGBColor)> = report
         .baselines
         .iter()
         .filter(|b| b.ns_per_pair > 0.0)
-        .zip(colours)
-        .map(|(b, c)| (format!("{} in software", b.arithmetic), 1e9 / b.ns_per_pair, c))
+        .map(|b| (format!("{} in software", b.arithmetic), 1e9 / b.ns_per_pair, baseline_colour(&b.arithmetic)))
         .collect();
-    Ok(Some(width_plot("Speed against W", "pairs per second", &rows, &series, 1e4, &references, SeriesLabelPosition::LowerRight)?))
+    Ok(Some(width_plot("Speed against W", "pairs per second", &rows, &series, 1e4, &references)?))
 }
 
 /// Throughput per multiplier against wrong verdicts, the routed widths;
@@ -213,7 +237,7 @@ pub fn scene(scene: &SceneSection, rows: &[WidthRow]) -> anyhow::Result<String> 
     ];
     let software = vec![("software: box sweep + exact predicates, one thread".to_string(), 1e3 * scene.software_seconds, RGBColor(90, 90, 90))];
     let floor = 10f64.powf((scene.rows.iter().map(|r| 1e3 * r.whole_seconds).fold(f64::INFINITY, f64::min).min(1e3 * scene.software_seconds)).log10().floor() - 1.0);
-    width_plot(&format!("{} x {}: first triangle in to last pair out", scene.a, scene.b), "ms", &chosen, &series, floor, &software, SeriesLabelPosition::UpperLeft)
+    width_plot(&format!("{} x {}: first triangle in to last pair out", scene.a, scene.b), "ms", &chosen, &series, floor, &software)
 }
 
 /// The scene's error against W: verdicts without a certificate, and the
@@ -231,5 +255,5 @@ pub fn scene_errors(scene: &SceneSection, rows: &[WidthRow]) -> anyhow::Result<S
         Series { label: "wrong with certificates".into(), colour: COLOURS[2], points: share(&|r| r.certified_missing + r.certified_extra) },
     ];
     let floor = 10f64.powf((100.0 / scene.rows.iter().map(|r| r.pairs_tested).max().unwrap_or(1).max(1) as f64).log10().floor() - 1.0);
-    width_plot(&format!("{} x {}: error against W", scene.a, scene.b), "% of the pairs tested", &chosen, &series, floor, &[], SeriesLabelPosition::UpperRight)
+    width_plot(&format!("{} x {}: error against W", scene.a, scene.b), "% of the pairs tested", &chosen, &series, floor, &[])
 }
