@@ -243,7 +243,7 @@ impl Args {
     /// The scene of `--for-scene`, as `sim` takes one.
     fn for_scene(&self) -> Option<SceneArgs> {
         let objects = self.for_scene.clone()?;
-        Some(SceneArgs { scene: Some(objects), pose_b: self.pose_b, scale_b: self.scale_b, subdivide: 0, tessellation: 8 })
+        Some(SceneArgs { scene: Some(objects), pose_b: self.pose_b, scale_b: self.scale_b, subdivide: 0, tessellation: 8, tolerance: None })
     }
 
     fn pipelines(&self) -> u32 {

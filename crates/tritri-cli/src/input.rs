@@ -58,6 +58,14 @@ pub fn parse_width(s: &str) -> Result<u32, String> {
     Ok(w)
 }
 
+/// A tolerance: a finite distance > 0.
+pub fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("`{s}` is not a tolerance (a finite distance greater than 0)")),
+    }
+}
+
 /// A scale factor: a finite number > 0.
 pub fn parse_scale(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

@@ -4,6 +4,9 @@
 use crate::input;
 use std::time::Duration;
 use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_geom::bezier::query::{patches_box, tessellate_for_query, MAX_SPLITS};
+use tritri_geom::bezier::{read_bpt, BezierPatch};
+use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
 use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError};
@@ -34,23 +37,108 @@ pub struct SceneArgs {
     /// patch (1 to 256: the teapot's 32 patches at 256 are 4.2 M triangles).
     #[arg(long, default_value_t = 8, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_TESSELLATION))]
     pub tessellation: u64,
+    /// Tessellate `.bpt` objects for the query instead of uniformly: only
+    /// the patches (cut into quarters up to 4 times) whose control nets
+    /// can meet the other object, each at the fewest samples per side that
+    /// keep it within this distance of the surface (mesh units, after
+    /// --scale-b).
+    #[arg(long, value_name = "T", allow_negative_numbers = true, value_parser = input::parse_tolerance)]
+    pub tolerance: Option<f64>,
 }
 
 impl SceneArgs {
     /// Loads A and B (B posed); `default` names the objects when `--scene`
     /// is not given.
     pub fn load(&self, default: [&str; 2]) -> Result<(SceneObject, SceneObject), LoadError> {
+        self.load_with_notes(default).map(|(a, b, _)| (a, b))
+    }
+
+    /// [`Self::load`], and a line per `.bpt` object tessellated for the
+    /// query (`--tolerance`) saying what it took.
+    pub fn load_with_notes(&self, default: [&str; 2]) -> Result<(SceneObject, SceneObject, Vec<String>), LoadError> {
         let names: Vec<&str> = match &self.scene {
             Some(v) => v.iter().map(String::as_str).collect(),
             None => default.to_vec(),
         };
-        let a = load_object(names[0], self.tessellation as usize)?.subdivided(self.subdivide);
-        let b = load_object(names[1], self.tessellation as usize)?.subdivided(self.subdivide);
+        let Some(tolerance) = self.tolerance else {
+            let a = load_object(names[0], self.tessellation as usize)?.subdivided(self.subdivide);
+            let b = self.placed(load_object(names[1], self.tessellation as usize)?).subdivided(self.subdivide);
+            return Ok((a, b, Vec::new()));
+        };
+        // The query's region is the overlap of conservative boxes: a patch
+        // set's control nets, a mesh's triangles.
+        let shape = |name: &str, is_b: bool| -> Result<Shape, LoadError> {
+            Ok(match is_bpt(name) {
+                true => {
+                    let patches = read_bpt(std::path::Path::new(name))?;
+                    Shape::Patches(if is_b { patches.iter().map(|p| self.placed_patch(p)).collect() } else { patches })
+                }
+                false => {
+                    let object = load_object(name, self.tessellation as usize)?;
+                    Shape::Mesh(if is_b { self.placed(object) } else { object })
+                }
+            })
+        };
+        let (a, b) = (shape(names[0], false)?, shape(names[1], true)?);
+        let region = a.bounds().zip(b.bounds()).and_then(|(x, y)| x.overlap(&y));
+        let mut notes = Vec::new();
+        let mut object = |name: &str, shape: Shape| match shape {
+            Shape::Mesh(object) => object.subdivided(self.subdivide),
+            Shape::Patches(patches) => {
+                let q = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
+                notes.push(format!(
+                    "tessellation for the query: {name}: {} of {} patches can meet the other object, cut into {} pieces: {} triangles within {tolerance} of the surface, against {} for every patch at {} samples a side (the same tolerance)",
+                    q.patches_kept,
+                    patches.len(),
+                    q.pieces,
+                    q.triangles.len(),
+                    q.uniform_triangles,
+                    q.uniform_samples
+                ));
+                SceneObject { name: name.to_string(), triangles: q.triangles, face_of: q.face_of }.subdivided(self.subdivide)
+            }
+        };
+        let a = object(names[0], a);
+        let b = object(names[1], b);
+        Ok((a, b, notes))
+    }
+
+    /// Object B scaled and posed.
+    fn placed(&self, b: SceneObject) -> SceneObject {
         let b = if self.scale_b == 1.0 { b } else { b.scaled(self.scale_b) };
         let pose = self.pose_b.unwrap_or_default();
-        let b = if pose.is_identity() { b } else { b.posed(&pose) };
-        Ok((a, b))
+        if pose.is_identity() {
+            b
+        } else {
+            b.posed(&pose)
+        }
     }
+
+    /// A patch of B scaled and posed (control points move with the surface).
+    fn placed_patch(&self, patch: &BezierPatch) -> BezierPatch {
+        let motion = self.pose_b.unwrap_or_default().isometry();
+        BezierPatch { net: patch.net.map(|row| row.map(|p| motion.transform_point(&(p * self.scale_b)))) }
+    }
+}
+
+/// An object before tessellation.
+enum Shape {
+    Mesh(SceneObject),
+    Patches(Vec<BezierPatch>),
+}
+
+impl Shape {
+    /// A box holding every triangle the object can become.
+    fn bounds(&self) -> Option<Aabb<f64>> {
+        match self {
+            Shape::Mesh(object) => Aabb::of_triangles(&object.triangles),
+            Shape::Patches(patches) => patches_box(patches),
+        }
+    }
+}
+
+fn is_bpt(name: &str) -> bool {
+    std::path::Path::new(name).extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("bpt"))
 }
 
 /// The generated hardware.

@@ -181,7 +181,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --vcd -: a waveform goes to a file, not to standard output");
         return Ok(ExitCode::from(2));
     }
-    let (a, b) = match args.scene.load(DEFAULT_SCENE) {
+    let (a, b, notes) = match args.scene.load_with_notes(DEFAULT_SCENE) {
         Ok(objects) => objects,
         Err(e) => {
             eprintln!("error: {e}");
@@ -192,6 +192,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut report: Box<dyn Write> = if pairs_to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
     let pose = args.scene.pose_b.unwrap_or_default();
     writeln!(report, "scene: A = {} ({} triangles), B = {} ({} triangles), pose of B = {pose}", a.name, a.triangles.len(), b.name, b.triangles.len())?;
+    for note in notes {
+        writeln!(report, "{note}")?;
+    }
     writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
     writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
 

@@ -256,3 +256,33 @@ fn png_renders_the_contact() {
         assert!(!text(&out.stdout).contains("pairs tested"), "{bad}: refused before any work");
     }
 }
+
+/// `--tolerance`: a wavy patch 3 units wide cut by the built-in sphere
+/// (0.8 across): only pieces near the sphere become triangles, fewer than
+/// the whole patch at the same tolerance, and the contact is found; a
+/// tolerance that is not a positive number is refused (status 2).
+#[test]
+fn tolerance_tessellates_only_what_the_query_needs() {
+    let mut bpt = String::from("1\n3 3\n");
+    for i in 0..4 {
+        for j in 0..4 {
+            bpt.push_str(&format!("{} {} {}\n", i as f64, j as f64 - 1.5, 0.5 + 0.05 * ((i + j) % 2) as f64));
+        }
+    }
+    let patch = scratch("wavy.bpt", &bpt);
+    let out = tritri(&["sim", "--scene", patch.to_str().unwrap(), "@sphere", "--tolerance", "0.001"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    let note = report.lines().find(|l| l.starts_with("tessellation for the query:")).unwrap_or_else(|| panic!("{report}"));
+    let numbers: Vec<u64> = note.split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
+    // "... 1 of 1 patches ..., cut into P pieces: T triangles within 0.001 ..., against U for every patch at N samples a side"
+    let (pieces, triangles, uniform) = (numbers[2], numbers[3], numbers[numbers.len() - 2]);
+    assert!(pieces > 1 && triangles > 0 && triangles * 4 < uniform, "{note}");
+    let hits: u64 = report.lines().find_map(|l| l.strip_prefix("intersecting pairs: ")).and_then(|n| n.trim().parse().ok()).unwrap();
+    assert!(hits > 0, "{report}");
+    for bad in ["0", "-1", "x"] {
+        let out = tritri(&["sim", "--scene", patch.to_str().unwrap(), "@sphere", "--tolerance", bad]);
+        assert_eq!(out.status.code(), Some(2), "--tolerance {bad}");
+        assert!(text(&out.stderr).contains("--tolerance"), "{}", text(&out.stderr));
+    }
+}

@@ -417,3 +417,44 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
         assert!(culled > 0, "the conservative test should cull something");
     }
 }
+
+/// Tessellation driven by a query (`bezier::query`): against a sphere
+/// pressed into the teapot at several places, every patch the query leaves
+/// out, tessellated in full at the same tolerance, meets none of the
+/// sphere's triangles (exact predicates), so nothing left out could have
+/// been a contact; the kept pieces give fewer triangles than the whole
+/// teapot at that tolerance, and contacts are found.
+#[test]
+fn teapot_patches_left_out_touch_nothing() {
+    use tritri_geom::bezier::lod::error_level;
+    use tritri_geom::bezier::query::{net_box, patches_box, tessellate_for_query, MAX_SAMPLES, MAX_SPLITS};
+    use tritri_geom::bezier::read_bpt;
+    use tritri_geom::bounding_volume::Aabb;
+    use tritri_geom::scene::load::{load_object, Pose};
+    use tritri_geom::scene::reference::exact_f64_pairs;
+
+    let patches = read_bpt(&testdata().join("teapot.bpt")).unwrap();
+    let tolerance = 0.01;
+    // The built-in sphere, 0.6 across, centred at the origin.
+    let sphere = load_object("@sphere", 8).unwrap();
+    let bounds = Aabb::of_triangles(&sphere.triangles).unwrap();
+    let centre_of = [0, 1, 2].map(|k| -(bounds.lo[k] + bounds.hi[k]) / 2.0);
+    let sphere = sphere.posed(&Pose { translation: centre_of, rotation_degrees: [0.0; 3] }).scaled(0.6 / bounds.extent());
+    let mut contacts = 0;
+    // The body's side, the handle, the lid's knob, the spout's tip, the base.
+    for (i, centre) in [[1.45, 0.0, 1.2], [-2.6, 0.0, 1.9], [0.0, 0.0, 3.1], [3.1, 0.0, 2.3], [0.0, 1.2, 0.1]].iter().enumerate() {
+        let sphere = sphere.posed(&Pose { translation: *centre, rotation_degrees: [0.0, 20.0 * i as f64, 0.0] });
+        let region = patches_box(&patches).and_then(|p| p.overlap(&Aabb::of_triangles(&sphere.triangles).unwrap()));
+        let kept = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
+        let kept_patches: std::collections::BTreeSet<usize> = kept.face_of.iter().copied().collect();
+        for (index, patch) in patches.iter().enumerate().filter(|(index, _)| !kept_patches.contains(index)) {
+            let whole = patch.tessellate(error_level(patch, tolerance, MAX_SAMPLES));
+            let hits = exact_f64_pairs(&whole, &sphere.triangles).pairs;
+            assert!(hits.is_empty(), "sphere at {centre:?}: patch {index} was left out but meets the sphere ({} pairs); its net's box {:?}", hits.len(), net_box(patch));
+        }
+        let found = exact_f64_pairs(&kept.triangles, &sphere.triangles).pairs.len();
+        contacts += (found > 0) as usize;
+        assert!(kept.triangles.len() < kept.uniform_triangles, "sphere at {centre:?}: {} triangles kept of {}", kept.triangles.len(), kept.uniform_triangles);
+    }
+    assert!(contacts >= 4, "the spheres touch the teapot: {contacts} of 5 placements found contacts");
+}

@@ -10,7 +10,9 @@
 //!   and silhouette tests and their conservative forms;
 //! * [`lod`]: the paper's distance levels and an error-driven level;
 //! * [`view`]: each patch's treatment for one eye (culled, silhouette,
-//!   samples).
+//!   samples);
+//! * [`query`]: tessellation driven by a collision query (only the pieces
+//!   that can touch, each as fine as the tolerance asks).
 //!
 //! `.bpt` format: the patch count, then per patch a line `3 3` (the degrees)
 //! and 16 lines `x y z`, the control net row by row.
@@ -22,6 +24,7 @@ use std::path::Path;
 pub mod cone;
 pub mod evaluate;
 pub mod lod;
+pub mod query;
 pub mod subdivide;
 pub mod view;
 

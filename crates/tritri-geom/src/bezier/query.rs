@@ -1,0 +1,141 @@
+//! Tessellation driven by a collision query ("model only what a scene
+//! needs"): only the parts of the patches that can touch the other object
+//! become triangles, each only as fine as the query's tolerance asks.
+//!
+//! A patch lies in the convex hull of its control net, so in the net's
+//! box; so does every tessellation of it (its triangles are convex
+//! combinations of surface points). A patch whose net's box misses the
+//! *region* (the box where the two objects can meet: the overlap of their
+//! conservative boxes) has no triangle that can touch the other object and
+//! is left out. A patch that meets the region without lying inside it is
+//! cut in four by De Casteljau, up to [`MAX_SPLITS`] times, and each quarter
+//! is judged again, so a large patch with a small contact yields triangles
+//! near the contact only. Each kept piece is tessellated at the fewest
+//! samples per side whose deviation bound ([`super::lod::error_level`]) is
+//! within the tolerance.
+//!
+//! What is left out cannot intersect the other object
+//! (`teapot_patches_left_out_touch_nothing` in `tests/shared_testdata.rs`
+//! checks it on the teapot against spheres).
+
+use super::lod::error_level;
+use super::BezierPatch;
+use crate::bounding_volume::Aabb;
+use crate::triangle::Triangle;
+
+/// Cuts into quarters at most this many times per patch.
+pub const MAX_SPLITS: u32 = 4;
+
+/// Most samples per side of one piece.
+pub const MAX_SAMPLES: usize = 256;
+
+/// An object's patches tessellated for one query.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QueryTessellation {
+    pub triangles: Vec<Triangle>,
+    /// The patch (index in the file) each triangle comes from.
+    pub face_of: Vec<usize>,
+    /// Patches with at least one piece kept, and the pieces tessellated.
+    pub patches_kept: usize,
+    pub pieces: usize,
+    /// Samples per side that every patch needs for the tolerance when all
+    /// are tessellated alike, and the triangles that uniform tessellation
+    /// of every patch gives.
+    pub uniform_samples: usize,
+    pub uniform_triangles: usize,
+}
+
+/// The box of a patch's control net.
+pub fn net_box(patch: &BezierPatch) -> Aabb<f64> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in patch.net.iter().flatten() {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    Aabb { lo, hi }
+}
+
+/// The box of every patch's net (`None` for no patches).
+pub fn patches_box(patches: &[BezierPatch]) -> Option<Aabb<f64>> {
+    let boxes: Vec<Aabb<f64>> = patches.iter().map(net_box).collect();
+    let first = *boxes.first()?;
+    Some(boxes.iter().fold(first, |a, b| Aabb { lo: [0, 1, 2].map(|k| a.lo[k].min(b.lo[k])), hi: [0, 1, 2].map(|k| a.hi[k].max(b.hi[k])) }))
+}
+
+fn inside(inner: &Aabb<f64>, outer: &Aabb<f64>) -> bool {
+    (0..3).all(|k| outer.lo[k] <= inner.lo[k] && inner.hi[k] <= outer.hi[k])
+}
+
+/// The patches tessellated for a query over `region` to within `tolerance`
+/// (module docs); `None` for the region: nothing can touch.
+pub fn tessellate_for_query(patches: &[BezierPatch], region: Option<&Aabb<f64>>, tolerance: f64, max_splits: u32) -> QueryTessellation {
+    let uniform_samples = patches.iter().map(|p| error_level(p, tolerance, MAX_SAMPLES)).max().unwrap_or(1);
+    let uniform_triangles = patches.iter().map(|p| p.tessellate(uniform_samples).len()).sum();
+    let mut out = QueryTessellation { triangles: Vec::new(), face_of: Vec::new(), patches_kept: 0, pieces: 0, uniform_samples, uniform_triangles };
+    let Some(region) = region else { return out };
+    for (index, patch) in patches.iter().enumerate() {
+        let mut pieces = vec![(*patch, 0)];
+        let mut kept = false;
+        while let Some((piece, splits)) = pieces.pop() {
+            let bounds = net_box(&piece);
+            if bounds.overlap(region).is_none() {
+                continue;
+            }
+            if splits < max_splits && !inside(&bounds, region) {
+                let (a, b) = piece.split_u();
+                for half in [a, b] {
+                    let (c, d) = half.split_v();
+                    pieces.push((c, splits + 1));
+                    pieces.push((d, splits + 1));
+                }
+                continue;
+            }
+            let triangles = piece.tessellate(error_level(&piece, tolerance, MAX_SAMPLES));
+            out.face_of.extend(std::iter::repeat_n(index, triangles.len()));
+            out.triangles.extend(triangles);
+            out.pieces += 1;
+            kept = true;
+        }
+        out.patches_kept += kept as usize;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::lod::deviation_bound;
+    use super::super::tests::wavy_patch;
+    use super::*;
+
+    /// A region around everything keeps every patch whole (no cut), at the
+    /// error level; a region beside the patch keeps nothing; a small region
+    /// at a corner keeps a few quarters and fewer triangles than the whole.
+    #[test]
+    fn only_what_meets_the_region_is_tessellated() {
+        let patch = wavy_patch();
+        let whole = net_box(&patch);
+        let tolerance = 1e-3 * whole.extent();
+        let all = tessellate_for_query(&[patch], Some(&whole.expanded(1.0)), tolerance, MAX_SPLITS);
+        let n = error_level(&patch, tolerance, MAX_SAMPLES);
+        assert_eq!((all.patches_kept, all.pieces, all.triangles.len()), (1, 1, patch.tessellate(n).len()));
+        assert_eq!((all.uniform_samples, all.uniform_triangles), (n, all.triangles.len()));
+        assert!(deviation_bound(&patch, n) <= tolerance);
+
+        let beside = Aabb { lo: whole.hi.map(|c| c + 1.0), hi: whole.hi.map(|c| c + 2.0) };
+        let none = tessellate_for_query(&[patch], Some(&beside), tolerance, MAX_SPLITS);
+        assert_eq!((none.patches_kept, none.triangles.len()), (0, 0));
+        assert!(tessellate_for_query(&[patch], None, tolerance, MAX_SPLITS).triangles.is_empty());
+
+        // A small box around the surface's corner S(0, 0) = net[0][0].
+        let c = patch.net[0][0];
+        let corner = Aabb { lo: [0, 1, 2].map(|k| c[k] - 0.05 * whole.extent()), hi: [0, 1, 2].map(|k| c[k] + 0.05 * whole.extent()) };
+        let some = tessellate_for_query(&[patch], Some(&corner), tolerance, MAX_SPLITS);
+        assert_eq!(some.patches_kept, 1);
+        assert!(some.pieces >= 1 && some.pieces < 4usize.pow(MAX_SPLITS), "{}", some.pieces);
+        assert!(!some.triangles.is_empty() && some.triangles.len() < all.triangles.len() / 4, "{} of {}", some.triangles.len(), all.triangles.len());
+        assert!(some.face_of.iter().all(|&f| f == 0));
+    }
+}
