@@ -12,6 +12,13 @@
 //! and with the software box sweep's time. Prints a report (on stdout, or
 //! on stderr when the pairs go to stdout with `--out -`).
 //!
+//! `--broad-phase-top` (with a hardware engine) runs the broad-phase top
+//! instead: the binning unit, the system and the owner filter in one
+//! emitted design, each object's triangles in once and each pair out once
+//! (`tritri gen --broad-phase`), held to its models (pairs; `done` between
+//! the binning unit and system's cycle model and that plus the owner
+//! filter's clocks). W = 24, or W = 16 with `--grid-bits 24`.
+//!
 //! Every pair whose verdict has no certificate (`out_certain = 0`,
 //! docs/certificates.md) is counted in the report. With `--certified`
 //! those pairs are decided again with exact predicates on the original
@@ -75,7 +82,7 @@ use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
 use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
 use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
-use tritri_cosim::broad_phase_system::top_model;
+use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
 use tritri_geom::scene::TaggedTriangle;
 
 #[derive(clap::Args)]
@@ -115,6 +122,12 @@ pub struct Args {
     png: Option<String>,
     #[command(flatten)]
     view: ViewArgs,
+    /// With a hardware engine: run the broad-phase top (binning unit,
+    /// system and owner filter: triangles in, each pair out once) on the
+    /// scene instead of the system fed by the host's octree; W = 24, or
+    /// W = 16 with --grid-bits 24.
+    #[arg(long)]
+    broad_phase_top: bool,
     /// The longest run --vcd records (every signal and memory word: the
     /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
     #[arg(long, value_name = "N", default_value_t = 10_000)]
@@ -150,6 +163,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     if let (true, Err(e)) = (args.engine.is_hardware(), check_width(args.hardware.width as usize)) {
         eprintln!("error: --width {} --engine {}: {e} (the model takes 8 to 32)", args.hardware.width, args.engine.name());
+        return Ok(ExitCode::from(2));
+    }
+    if args.broad_phase_top && (!args.engine.is_hardware() || args.vcd.is_some() || args.hardware.broad_phase != crate::scene_input::BroadPhase::Octree) {
+        eprintln!("error: --broad-phase-top runs the emitted top: it needs --engine rusthdl, icarus or verilator, the octree broad phase, and no --vcd");
         return Ok(ExitCode::from(2));
     }
     if args.vcd.is_some() && args.engine.simulator().is_none() {
@@ -248,7 +265,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     } else {
         Progress::new(pairs_tested, args.engine.progress_unit(), PROGRESS_THRESHOLD)
     };
-    let run = run_scene_with(args.engine, &scene, config, &|n| progress.inc(n), vcd.as_ref().and_then(OutputFile::temporary));
+    let run = if args.broad_phase_top {
+        run_on_top(&args, &scene, &mut report, &mut status)
+    } else {
+        run_scene_with(args.engine, &scene, config, &|n| progress.inc(n), vcd.as_ref().and_then(OutputFile::temporary))
+    };
     progress.finish();
     let run = match run {
         Ok(run) => run,
@@ -373,7 +394,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             args.hardware.clock_mhz,
             ratio(narrow)
         )?;
-        if let Some((whole, how)) = first_in_to_last_out(&args.hardware, &scene, &run, cycles) {
+        let whole = match args.broad_phase_top {
+            true => Some((cycles, format!("simulated: the broad-phase top in {}", args.engine.name()))),
+            false => first_in_to_last_out(&args.hardware, &scene, &run, cycles),
+        };
+        if let Some((whole, how)) = whole {
             let whole_time = args.hardware.time_of(whole);
             writeln!(
                 report,
@@ -616,6 +641,43 @@ fn write_pairs(output: Option<OutputFile>, indices: Indices, a: &SceneObject, b:
             writeln!(w, "{i} {j}")?;
         }
         Ok(())
+    })
+}
+
+/// The scene through the broad-phase top on the chosen engine, as a
+/// [`SceneRun`]; what the top's models say is reported, and a fault sets
+/// `status` to 1.
+fn run_on_top(args: &Args, scene: &PreparedScene, report: &mut dyn Write, status: &mut ExitCode) -> anyhow::Result<SceneRun> {
+    let max_leaf_level = args.hardware.local_frames().map(|l| l.max_leaf_level());
+    let config = args.hardware.system_config();
+    let top = run_scene_on_top(scene, config, args.hardware.grid_bits() as usize, max_leaf_level, args.engine.simulator())?;
+    writeln!(
+        report,
+        "broad-phase top {} in {}: {} pairs tested, {} hits, {} pairs out once each, {} without a certificate; binned at clock {}, done at {} (its models: {} to {}){}",
+        top.config.unit_name(),
+        args.engine.name(),
+        top.output.pairs_tested,
+        top.output.hits,
+        top.pairs.len(),
+        top.uncertain.len(),
+        top.output.binned_at,
+        top.output.cycles,
+        top.model_cycles,
+        top.model_cycles + top.model.filter_clocks,
+        if top.faults().is_empty() { "; its pairs equal its model's".to_string() } else { String::new() }
+    )?;
+    for fault in top.faults() {
+        writeln!(report, "broad-phase top: {fault}")?;
+        *status = ExitCode::from(1);
+    }
+    Ok(SceneRun {
+        engine: args.engine,
+        pairs: top.pairs,
+        uncertain: top.uncertain,
+        owner: None,
+        cycles: top.output.cycles,
+        model_cycles: top.model_cycles,
+        counters: None,
     })
 }
 

@@ -283,3 +283,79 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
     );
     vector_testbench(&input_testbench("tb_broad_phase", body, drain))
 }
+
+/// A prepared octree scene through the broad-phase top: what it reported,
+/// in the objects' triangle ids, beside what its models say.
+#[derive(Clone, Debug)]
+pub struct TopSceneRun {
+    /// The top's intersecting pairs and pairs without a certificate.
+    pub pairs: tritri_geom::scene::reference::PairSet,
+    pub uncertain: tritri_geom::scene::reference::PairSet,
+    /// What the top's counters and flags said.
+    pub output: BroadPhaseOutput,
+    /// The owner filter's pairs by the model (sorted, array indices).
+    pub model: TopModel,
+    /// The binning unit and system's cycle model: `done` comes at least
+    /// this many clocks after the first triangle, and at most
+    /// `model.filter_clocks` more.
+    pub model_cycles: u64,
+    /// The top's build parameters.
+    pub config: BroadPhaseConfig,
+}
+
+impl TopSceneRun {
+    /// What says the top is wrong: its pairs against its model's, `done`
+    /// outside the models' window, the overflow flag (each a bug).
+    pub fn faults(&self) -> Vec<String> {
+        let mut faults = Vec::new();
+        let mut got = self.output.pairs.clone();
+        got.sort_unstable();
+        if got != self.model.pairs {
+            faults.push(format!("the top's {} pairs differ from its model's {} (a bug)", got.len(), self.model.pairs.len()));
+        }
+        let (lo, hi) = (self.model_cycles, self.model_cycles + self.model.filter_clocks);
+        if !(lo..=hi).contains(&self.output.cycles) {
+            faults.push(format!("done after {} clocks, outside the models' {lo} to {hi} (a bug)", self.output.cycles));
+        }
+        if self.output.overflow {
+            faults.push("OVERFLOW flag set (a memory of the top was too small: a bug in its sizing)".into());
+        }
+        faults
+    }
+}
+
+/// Runs `scene` (prepared with the octree broad phase on a grid the binning
+/// unit is built for) through the broad-phase top sized for it, in
+/// rust-hdl (`simulator` `None`) or in the emitted Verilog; `system` is the
+/// collision system it feeds, `max_leaf_level` the local frames' bound.
+pub fn run_scene_on_top(
+    scene: &tritri_geom::scene::PreparedScene,
+    system: tritri_rtl::system::SystemConfig,
+    grid_bits: usize,
+    max_leaf_level: Option<u32>,
+    simulator: Option<Simulator>,
+) -> anyhow::Result<TopSceneRun> {
+    let binning = crate::binning_unit::bin_scene(scene, grid_bits, system.triangles_per_bank, system.pipelines, max_leaf_level)
+        .map_err(|why| anyhow::anyhow!("the broad-phase top does not apply: {why}"))?;
+    let root = scene.octree.as_ref().and_then(|o| o.root).context("the scene has no octree root")?;
+    let a: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
+    let b: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
+    let slots = tritri_rtl::octree::broad_phase_system::stream_slots(system.triangles_per_bank, &binning.run).into_iter().max().unwrap_or(1).max(1);
+    let config = BroadPhaseConfig { unit: binning.config, system, slots, local_frames: max_leaf_level.is_some() };
+    config.check().map_err(|why| anyhow::anyhow!("the broad-phase top cannot be built for this scene: {why}"))?;
+    let model_cycles = tritri_rtl::octree::broad_phase_system::broad_phase_cycles(system, &binning.run);
+    let model = top_model(&binning.run, system.triangles_per_bank, &a, &b);
+    let output = match simulator {
+        None => run_rusthdl(&config, &a, &b, root, max_leaf_level)?,
+        Some(simulator) => run_emitted(&config, &a, &b, root, max_leaf_level, model_cycles + model.filter_clocks + 1_000, simulator)?,
+    };
+    let ids = |&(i, j): &(u32, u32)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id);
+    Ok(TopSceneRun {
+        pairs: output.pairs.iter().map(ids).collect(),
+        uncertain: output.uncertain.iter().map(ids).collect(),
+        output,
+        model,
+        model_cycles,
+        config,
+    })
+}
