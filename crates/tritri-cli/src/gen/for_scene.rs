@@ -6,8 +6,9 @@
 //! in accuracy is the share of the pairs tested that goes back to the
 //! host: the verdicts without a certificate, plus, with leaves in local
 //! frames, the pairs whose triangles do not fit a leaf's window. Each
-//! width W (and, below 24 bits, W in 24-bit-grid local frames: the same
-//! multipliers, a finer step) is run in the bit-exact model on the scene;
+//! width W, on its own grid and on grids 2, 4 and 8 bits finer (and 24)
+//! with the leaves in W-bit local frames (the same multipliers, a finer
+//! step), is run in the bit-exact model on the scene;
 //! the cheapest that keeps the host's share at or below `--max-uncertain`
 //! wins, cheapest meaning fewest multipliers per pipeline on the device,
 //! then fewest LUTs. The candidate just below it in cost is the answer to
@@ -46,8 +47,18 @@ use tritri_rtl::system::cycle_model::scene_cycles;
 /// Another doubling of P must save at least this share of the cycles.
 pub const MIN_GAIN: f64 = 0.10;
 
-/// The grid of local frames (the broad-phase top's).
+/// The grid of the broad-phase top's local frames.
 const LOCAL_GRID_BITS: u32 = 24;
+
+/// The grids tried for a W-bit system: W itself, and finer grids with
+/// leaves in W-bit local frames (2, 4 and 8 bits finer, and the
+/// broad-phase top's 24), up to 32 bits.
+fn grids_for(width: u32) -> Vec<u32> {
+    let mut grids: Vec<u32> = [width, width + 2, width + 4, width + 8, LOCAL_GRID_BITS].into_iter().filter(|&g| g >= width && g <= 32).collect();
+    grids.sort_unstable();
+    grids.dedup();
+    grids
+}
 
 /// Memory depths tried.
 const DEPTHS: [u64; 5] = [64, 128, 256, 512, 1024];
@@ -97,7 +108,7 @@ impl Candidate {
 
     fn name(&self) -> String {
         if self.grid_bits > self.width {
-            format!("W = {} in {}-bit local frames", self.width, self.grid_bits)
+            format!("W = {} in local frames of a {}-bit grid", self.width, self.grid_bits)
         } else {
             format!("W = {}", self.width)
         }
@@ -142,7 +153,7 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     let mut candidates = Vec::new();
     for &w in SUPPORTED_WIDTHS {
         let w = w as u32;
-        for grid_bits in if w < LOCAL_GRID_BITS { vec![w, LOCAL_GRID_BITS] } else { vec![w] } {
+        for grid_bits in grids_for(w) {
             candidates.push(measure(&a, &b, w, grid_bits, &measurements, device, request.max_uncertain)?);
         }
     }
@@ -330,7 +341,10 @@ fn explain(
     };
     let _ = writeln!(s, "| configuration | multipliers / pipeline | LUT / pipeline | pairs in leaves | uncertain in leaves | host pairs (too long for a leaf's frame) | back to the host |");
     let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
-    for (i, x) in candidates.iter().enumerate() {
+    // Local frames whose host pairs alone exceed the budget are counted,
+    // not listed.
+    let hopeless = |x: &Candidate| x.measured && x.uncertain.is_none() && x.grid_bits > x.width;
+    for (i, x) in candidates.iter().enumerate().filter(|(_, x)| !hopeless(x)) {
         let mark = if i == chosen { " (chosen)" } else { "" };
         if x.measured {
             let _ = writeln!(
@@ -347,6 +361,10 @@ fn explain(
         } else {
             let _ = writeln!(s, "| {} | not measured on {} | - | {} | not run | {} | - |", x.name(), device.flow, x.pairs_tested, x.host_pairs);
         }
+    }
+    let left_out = candidates.iter().filter(|x| hopeless(x)).count();
+    if left_out > 0 {
+        let _ = writeln!(s, "\nNot listed: {left_out} configurations in local frames whose pairs too long for a leaf's frame alone exceed the budget.");
     }
     let _ = writeln!(s, "\n| P | narrow-phase cycles (best depth) | fits |\n|---:|---:|---|");
     for (p, cycles, fits) in &sizing.tried {
