@@ -24,6 +24,7 @@ pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod engine;
 pub mod owner_filter;
+pub mod patch_tessellator;
 pub mod plane_traversal;
 pub mod pipeline_rtl;
 pub mod rusthdl_harness;

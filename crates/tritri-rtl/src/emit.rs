@@ -67,6 +67,7 @@ pub mod broad_phase_system_unit;
 pub mod owner_filter_unit;
 pub mod package;
 pub mod part_selects;
+pub mod patch_tessellator_unit;
 pub mod plane_traversal_unit;
 pub mod statements;
 pub mod voxel_units;

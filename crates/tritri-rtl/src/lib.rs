@@ -13,7 +13,8 @@
 //! * [`system`]: the thesis's bounding-volume system (memories, address
 //!   generator, P pipelines, result FIFO) and its cycle model;
 //! * [`octree`]: the octree engine's units and the octree broad phase's
-//!   binning unit, owner filter and broad-phase top;
+//!   binning unit, owner filter and broad-phase top; [`bezier`]: the
+//!   patch tessellation unit;
 //! * [`mod@unit`]: what every unit tells the emitter (its type, latency and
 //!   sub-units); [`emit`]: rust-hdl's Verilog to a package an FPGA flow
 //!   takes (names, headers, widths, ANSI ports, README, FuseSoC core);
@@ -33,4 +34,5 @@ pub mod tools;
 pub mod unit;
 pub mod system;
 pub mod octree;
+pub mod bezier;
 pub use pipeline::pipeline_for_width::raw_design;

@@ -61,6 +61,15 @@ fn the_octree_engines_units_are_lint_clean() {
     check(0, emit_voxel_fill().unwrap());
 }
 
+/// The Bezier system's patch tessellator, at every (W, K) it is built for.
+#[test]
+fn the_patch_tessellator_is_lint_clean() {
+    use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, TESSELLATOR_CONFIGURATIONS};
+    for (w, k) in TESSELLATOR_CONFIGURATIONS {
+        check(w, emit_patch_tessellator(w, k).unwrap());
+    }
+}
+
 fn check(g: usize, design: EmittedDesign) {
     {
         let dir = std::env::temp_dir().join(format!("tritri-emit-{}-{}", design.top, std::process::id()));

@@ -11,6 +11,8 @@
 //! * [`lod`]: the paper's distance levels and an error-driven level;
 //! * [`view`]: each patch's treatment for one eye (culled, silhouette,
 //!   samples);
+//! * [`fixed`]: a patch on the collision grid tessellated exactly in fixed
+//!   point, the hardware tessellation unit's model;
 //! * [`query`]: tessellation driven by a collision query (only the pieces
 //!   that can touch, each as fine as the tolerance asks).
 //!
@@ -23,6 +25,7 @@ use std::path::Path;
 
 pub mod cone;
 pub mod evaluate;
+pub mod fixed;
 pub mod lod;
 pub mod query;
 pub mod subdivide;
