@@ -1,3 +1,7 @@
+//! `tritri bezier tessellate`: the patches on a W-bit grid through the
+//! patch tessellation unit (forward differences, one vertex per clock) or
+//! its exact fixed-point model, the error against the f64 patches.
+//!
 //! `tritri bezier render`: Bezier patches drawn the way
 //! `bezier_lod_gpu.txt` displays them: back-facing patches culled by their
 //! cone of normals, patches that may hold a silhouette refined, the rest
@@ -13,6 +17,11 @@ use tritri_geom::bezier::subdivide::subdivide;
 use tritri_geom::bezier::view::plan;
 use tritri_geom::bezier::{oriented_outwards, read_bpt, BezierPatch};
 use tritri_geom::raster::{Camera, Canvas};
+use tritri_cosim::engine::Engine;
+use tritri_cosim::patch_tessellator::{run_emitted, run_rusthdl};
+use tritri_geom::bezier::fixed::{fixed_grid, max_error_in_steps, FixedNet, PatchFrame};
+use tritri_rtl::bezier::patch_tessellator::tessellation_clocks;
+use tritri_rtl::emit::patch_tessellator_unit::TESSELLATOR_CONFIGURATIONS;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -24,6 +33,29 @@ pub struct Args {
 enum BezierCommand {
     /// Render the patches of a .bpt file with the paper's level of detail.
     Render(RenderArgs),
+    /// Tessellate the patches on a W-bit grid, 2^K steps a side, in the
+    /// hardware tessellation unit or its fixed-point model; report the
+    /// error against the f64 patches and the clocks.
+    Tessellate(TessellateArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct TessellateArgs {
+    /// The patches (.bpt).
+    file: String,
+    /// Bits of a grid coordinate (16 or 24).
+    #[arg(long, default_value_t = 16)]
+    width: usize,
+    /// 2^K steps a side (3 or 4).
+    #[arg(long, default_value_t = 3, value_name = "K")]
+    steps: usize,
+    /// Cut every patch in two this many times first (0 to 6).
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    subdivide: u32,
+    /// What tessellates: the exact fixed-point model, or the unit in
+    /// rust-hdl, Icarus or Verilator (checked against the model).
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
 }
 
 #[derive(clap::Args, Debug)]
@@ -56,7 +88,10 @@ struct RenderArgs {
 const LEVEL_COLOURS: [[u8; 3]; 4] = [[90, 140, 230], [110, 200, 120], [235, 210, 90], [240, 150, 70]];
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
-    let BezierCommand::Render(a) = args.command;
+    let a = match args.command {
+        BezierCommand::Render(a) => a,
+        BezierCommand::Tessellate(t) => return tessellate(t),
+    };
     if !a.png.to_ascii_lowercase().ends_with(".png") {
         eprintln!("error: --png {}: the render is written as .png", a.png);
         return Ok(ExitCode::from(2));
@@ -133,4 +168,79 @@ fn outline(canvas: &mut Canvas, patch: &BezierPatch, colour: [u8; 3]) {
             canvas.line(patch.evaluate(u0, v0), patch.evaluate(u1, v1), colour);
         }
     }
+}
+
+/// `tritri bezier tessellate`.
+fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
+    if !TESSELLATOR_CONFIGURATIONS.contains(&(a.width, a.steps)) {
+        eprintln!("error: --width {} --steps {}: the tessellation unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}", a.width, a.steps);
+        return Ok(ExitCode::from(2));
+    }
+    let patches = match read_bpt(std::path::Path::new(&a.file)) {
+        Ok(p) => subdivide(&p, a.subdivide),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let frame = PatchFrame::fit(&patches, a.width as u32);
+    let nets: Vec<FixedNet> = patches.iter().map(|p| frame.quantize(p)).collect();
+    let k = a.steps;
+    let side = (1usize << k) + 1;
+    let model: Vec<Vec<[i64; 3]>> = nets.iter().map(|net| fixed_grid(net, k as u32)).collect();
+    let formula = patches.len() as u64 * tessellation_clocks(k as u32);
+    let mut status = ExitCode::SUCCESS;
+    let clocks = match a.engine {
+        Engine::Model => formula,
+        engine => {
+            let runs = match engine.simulator() {
+                None => run_rusthdl(a.width, k, &nets, &|_| true),
+                Some(simulator) => run_emitted(a.width, k, &nets, simulator)?,
+            };
+            let wrong = runs
+                .iter()
+                .zip(&model)
+                .filter(|(run, want)| run.vertices.len() != want.len() || run.vertices.iter().zip(want.iter()).any(|(got, w)| got.2 != *w))
+                .count();
+            let clocks: u64 = runs.iter().map(|r| r.clocks).sum();
+            println!(
+                "engine: {}: {} of {} patches differ from the fixed-point model; {clocks} clocks (formula: {formula})",
+                engine.name(),
+                wrong,
+                patches.len()
+            );
+            if wrong > 0 || clocks != formula {
+                status = ExitCode::from(1);
+            }
+            clocks
+        }
+    };
+    let worst = patches.iter().map(|p| max_error_in_steps(p, &frame, k as u32)).fold(0.0, f64::max);
+    let triangles: usize = model.iter().map(|grid| assembled_triangles(grid, side)).sum();
+    println!(
+        "{}: {} patches at {} steps a side on a {}-bit grid (step {:.3e}): {} vertices, {triangles} triangles (degenerate ones left out)",
+        a.file,
+        patches.len(),
+        1 << k,
+        a.width,
+        frame.step,
+        patches.len() * side * side
+    );
+    println!("error against the f64 patches: at most {worst:.3} grid steps per coordinate ({:.3e} in the file's units; the bound is 1 step)", worst * frame.step);
+    println!("clocks: {clocks}, one vertex per clock after 2 a patch; {:.2} us at an assumed 100 MHz", clocks as f64 / 100.0);
+    Ok(status)
+}
+
+/// Triangles of one patch's vertex grid, two per cell as in
+/// `BezierPatch::tessellate`, those with two equal vertices left out.
+fn assembled_triangles(grid: &[[i64; 3]], side: usize) -> usize {
+    let at = |i: usize, j: usize| grid[i * side + j];
+    let mut count = 0;
+    for i in 0..side - 1 {
+        for j in 0..side - 1 {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            count += [[a, b, c], [a, c, d]].iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0]).count();
+        }
+    }
+    count
 }

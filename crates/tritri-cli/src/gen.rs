@@ -61,7 +61,10 @@
 //! clipping unit (one octant per clock against a box), top
 //! `tritri_octant_clipper`; `--voxel-fill` its memory side (cells'
 //! children written into the voxel memory a word per clock), top
-//! `tritri_voxel_fill`.
+//! `tritri_voxel_fill`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
+//! writes the Bezier system's patch tessellation unit (forward
+//! differences, one vertex per clock), top
+//! `tritri_patch_tessellator_w<W>_k<K>`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -88,6 +91,7 @@ use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
 use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
+use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS};
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
@@ -160,6 +164,14 @@ pub struct Args {
     /// against a box).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "width"])]
     octant_clipper: bool,
+    /// Emit the Bezier system's patch tessellation unit instead (a patch
+    /// on the grid, forward differences, one vertex per clock); --width is
+    /// the coordinates' (16 or 24), --steps the log2 of the steps a side.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase"])]
+    patch_tessellator: bool,
+    /// With --patch-tessellator: 2^K steps a side (3 or 4) [default: 3].
+    #[arg(long, value_name = "K", requires = "patch_tessellator")]
+    steps: Option<usize>,
     /// Emit the octree engine's voxel fill instead (cells' children
     /// written into the voxel memory, a word per clock).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
@@ -299,7 +311,7 @@ impl Args {
 
     /// Whether the unit has multipliers (`--dsp` applies).
     fn has_multipliers(&self) -> bool {
-        !(self.classifier || self.setup || self.owner_filter || self.binning_unit || self.engine_unit())
+        !(self.classifier || self.setup || self.owner_filter || self.binning_unit || self.patch_tessellator || self.engine_unit())
     }
 
     /// An error for options that do not go together, naming them.
@@ -362,6 +374,10 @@ impl Args {
 
     /// The design for `width`: the pipeline, or the system with --system.
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
+        if self.patch_tessellator {
+            let k = self.steps.unwrap_or(3);
+            return emit_patch_tessellator(width, k).with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
+        }
         if self.plane_traversal {
             return emit_plane_traversal().with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
         }
@@ -400,7 +416,7 @@ impl Args {
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.broad_phase || self.engine_unit()
+        self.patch_tessellator || self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.broad_phase || self.engine_unit()
     }
 
     /// The octree engine's units that take no width.
@@ -415,7 +431,9 @@ impl Args {
 
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
-        if self.plane_traversal {
+        if self.patch_tessellator {
+            patch_tessellator_unit_name(width, self.steps.unwrap_or(3))
+        } else if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
         } else if self.set_operation {
             SET_OPERATION_NAME.to_string()
@@ -463,12 +481,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return for_scene::run(request);
     }
     for &w in &args.width {
+        if args.patch_tessellator && !TESSELLATOR_CONFIGURATIONS.contains(&(w, args.steps.unwrap_or(3))) {
+            eprintln!("error: --patch-tessellator --width {w} --steps {}: the unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}", args.steps.unwrap_or(3));
+            return Ok(ExitCode::from(2));
+        }
         if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
             let unit = if args.setup { "--setup" } else { "--classifier" };
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.octree_unit() || args.binning_unit || args.broad_phase || args.owner_filter || args.engine_unit(), check_width(w)) {
+        if let (false, Err(e)) = (args.patch_tessellator || args.octree_unit() || args.binning_unit || args.broad_phase || args.owner_filter || args.engine_unit(), check_width(w)) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }

@@ -50,3 +50,26 @@ fn render_culls_what_faces_away_and_refuses_bad_input() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// `tritri bezier tessellate`: two squares through the tessellation unit
+/// in Verilator equal its fixed-point model, in the formula's clocks, with
+/// the error within a grid step; a width the unit is not built for is
+/// refused (status 2).
+#[test]
+fn tessellate_runs_the_unit_and_reports_the_error() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bezier-cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("squares-tessellate.bpt");
+    std::fs::write(&file, two_squares()).unwrap();
+    let out = tritri(&["bezier", "tessellate", file.to_str().unwrap(), "--engine", "verilator"]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in ["engine: verilator: 0 of 2 patches differ from the fixed-point model; 166 clocks (formula: 166)", "2 patches at 8 steps a side", "162 vertices, 256 triangles"] {
+        assert!(text.contains(needle), "no `{needle}` in:\n{text}");
+    }
+    let steps: f64 = text.split("at most ").nth(1).and_then(|t| t.split_whitespace().next()).and_then(|n| n.parse().ok()).unwrap();
+    assert!(steps <= 1.0, "{text}");
+    let out = tritri(&["bezier", "tessellate", file.to_str().unwrap(), "--width", "20"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--width 20"));
+}
