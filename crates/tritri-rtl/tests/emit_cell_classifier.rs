@@ -61,6 +61,15 @@ fn the_octree_engines_units_are_lint_clean() {
     check(0, emit_voxel_fill().unwrap());
 }
 
+/// The emitted patch tessellator at W = 16, K = 3, for review: any change
+/// to its Verilog shows up here.
+#[test]
+fn patch_tessellator_snapshot() {
+    let design = tritri_rtl::emit::patch_tessellator_unit::emit_patch_tessellator(16, 3).unwrap();
+    assert_eq!(design.modules, vec!["tritri_patch_tessellator_w16_k3".to_string()]);
+    insta::assert_snapshot!(design.verilog_files().next().unwrap().contents.clone());
+}
+
 /// The Bezier system's patch tessellator, at every (W, K) it is built for.
 #[test]
 fn the_patch_tessellator_is_lint_clean() {
