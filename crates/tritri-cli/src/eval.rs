@@ -109,30 +109,10 @@ struct Report {
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let arithmetics = Arithmetic::all(&args.widths)?;
     let min_time = Duration::from_millis(args.min_time_ms);
-    let mut input_errors = 0;
-    let mut batches = Vec::new();
-    for name in &args.files {
-        if let Some(selector) = name.strip_prefix('@') {
-            match suite_batches(selector) {
-                Ok(b) => batches.extend(b),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return Ok(ExitCode::from(2));
-                }
-            }
-            continue;
-        }
-        let loaded = input::load(Path::new(name));
-        input_errors += loaded.errors;
-        if loaded.file.is_some() {
-            batches.push(Batch { name: name.clone(), pairs: loaded.good_pairs() });
-        }
-    }
-    // A table or a total over part of the input would read as the whole.
-    if input_errors > 0 {
-        eprintln!("error: nothing evaluated: {input_errors} record(s) or file(s) could not be read");
-        return Ok(ExitCode::from(2));
-    }
+    let batches = match load_batches(&args.files, "evaluated") {
+        Ok(b) => b,
+        Err(code) => return Ok(code),
+    };
 
     let mut reports = Vec::new();
     for batch in &batches {
@@ -162,8 +142,39 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The pair files and `@hard` suites named, one batch each. A record or
+/// file that cannot be read stops everything (status 2, each one named,
+/// then "nothing {done}"): a figure over part of the input would read as
+/// the whole.
+pub fn load_batches(files: &[String], done: &str) -> Result<Vec<Batch>, ExitCode> {
+    let mut errors = 0;
+    let mut batches = Vec::new();
+    for name in files {
+        if let Some(selector) = name.strip_prefix('@') {
+            match suite_batches(selector) {
+                Ok(b) => batches.extend(b),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return Err(ExitCode::from(2));
+                }
+            }
+            continue;
+        }
+        let loaded = input::load(Path::new(name));
+        errors += loaded.errors;
+        if loaded.file.is_some() {
+            batches.push(Batch { name: name.clone(), pairs: loaded.good_pairs() });
+        }
+    }
+    if errors > 0 {
+        eprintln!("error: nothing {done}: {errors} record(s) or file(s) could not be read");
+        return Err(ExitCode::from(2));
+    }
+    Ok(batches)
+}
+
 /// `hard` (every category, one batch each) or `hard/<category>`.
-pub fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
+fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
     let (suite, only) = match selector.split_once('/') {
         Some((s, c)) => (s, Some(c)),
         None => (selector, None),

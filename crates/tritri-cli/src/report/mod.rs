@@ -154,7 +154,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --out {}: exists and is not a directory", args.out.display());
         return Ok(ExitCode::from(2));
     }
-    let batches = match load_batches(&args.files) {
+    let batches = match eval::load_batches(&args.files, "reported") {
         Ok(b) => b,
         Err(code) => return Ok(code),
     };
@@ -198,35 +198,6 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The pair files as `eval` reads them; a bad record stops the report
-/// (status 2), as in `eval`.
-fn load_batches(files: &[String]) -> Result<Vec<Batch>, ExitCode> {
-    let mut batches = Vec::new();
-    let mut errors = 0;
-    for name in files {
-        if let Some(selector) = name.strip_prefix('@') {
-            match eval::suite_batches(selector) {
-                Ok(b) => batches.extend(b),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return Err(ExitCode::from(2));
-                }
-            }
-            continue;
-        }
-        let loaded = input::load(Path::new(name));
-        errors += loaded.errors;
-        if loaded.file.is_some() {
-            batches.push(Batch { name: name.clone(), pairs: loaded.good_pairs() });
-        }
-    }
-    if errors > 0 {
-        eprintln!("error: nothing reported: {errors} record(s) or file(s) could not be read");
-        return Err(ExitCode::from(2));
-    }
-    Ok(batches)
 }
 
 /// `tritri eval` on the batches, every arithmetic.

@@ -60,15 +60,8 @@ impl BezierPatch {
 
     /// The diagonal of the net's bounding box (a length scale).
     pub fn size(&self) -> f64 {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in self.net.iter().flatten() {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        (Vector3::from(hi) - Vector3::from(lo)).norm()
+        let bounds = super::query::net_box(self);
+        (Vector3::from(bounds.hi) - Vector3::from(bounds.lo)).norm()
     }
 
     /// `S` on the `(n + 1)^2` grid `u = i / n`, `v = j / n` (`[i][j]`), by

@@ -20,7 +20,9 @@
 //! step more: every vertex is within one grid step, per coordinate, of the
 //! f64 surface point at the same parameters.
 
+use super::query::patches_box;
 use super::BezierPatch;
+use crate::bounding_volume::Aabb;
 
 /// A patch's control points on the grid, `net[row][column][axis]`.
 pub type FixedNet = [[[i64; 3]; 4]; 4];
@@ -66,13 +68,7 @@ impl PatchFrame {
     /// The frame that puts `patches`' control points on a `width`-bit
     /// signed grid, centred, with a bit of margin.
     pub fn fit(patches: &[BezierPatch], width: u32) -> PatchFrame {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in patches.iter().flat_map(|p| p.net.iter().flatten()) {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
+        let Aabb { lo, hi } = patches_box(patches).unwrap_or(Aabb { lo: [0.0; 3], hi: [0.0; 3] });
         let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
         let origin = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
         // Half the range less a margin of two steps for the rounding.
