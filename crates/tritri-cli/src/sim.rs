@@ -1,7 +1,12 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
 //! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
 //! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
-//! [--clock-mhz F] [--out PAIRS] [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]`
+//! [--clock-mhz F] [--out PAIRS] [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]
+//! [--tolerance T] [--broad-phase-top] [--certified]`
+//!
+//! `--tolerance T` tessellates `.bpt` objects for the query
+//! (`tritri_geom::bezier::query`): only the patches that can meet the
+//! other object, each as finely as `T` asks.
 //!
 //! Runs the whole bounding-volume-aware system on two objects (without
 //! `--scene`, the built-in torus and sphere): common BV, the arrays of

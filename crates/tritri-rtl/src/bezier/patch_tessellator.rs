@@ -334,8 +334,7 @@ always @(posedge clock) begin
                 busy_q <= 1'b0; valid_q <= 1'b0;
             end else begin
                 // The next row's setup, with the last vertex of this one
-                // (written out again: Verilator drops non-blocking
-                // assignments made inside a task).
+                // (the first row's statements, written out again).
 {row_block_inner}                i_q <= i_q + 8'd1; j_q <= 8'd0;
             end
         end else begin
