@@ -56,9 +56,14 @@ impl Measurements {
         serde_json::from_str(COMMITTED).expect("rtl-out/measurements.json is checked by the test `measurements_parse`")
     }
 
-    /// Measurements from a file of the same shape (a user's own runs).
-    pub fn parse(json: &str) -> Result<Measurements, serde_json::Error> {
-        serde_json::from_str(json)
+    /// Measurements from a file of the same shape (a user's own runs);
+    /// every post-route clock must be a positive number of MHz.
+    pub fn parse(json: &str) -> Result<Measurements, String> {
+        let m: Measurements = serde_json::from_str(json).map_err(|e| e.to_string())?;
+        if let Some(r) = m.ecp5.iter().find(|r| !(r.fmax_mhz.is_finite() && r.fmax_mhz > 0.0)) {
+            return Err(format!("{}: fmax_mhz {} is not a positive clock", r.unit, r.fmax_mhz));
+        }
+        Ok(m)
     }
 
     /// The Xilinx row of `unit`.
@@ -106,6 +111,9 @@ mod tests {
     #[test]
     fn measurements_parse() {
         let m = Measurements::committed();
+        assert_eq!(Measurements::parse(COMMITTED), Ok(m.clone()));
+        let stopped = COMMITTED.replacen("\"fmax_mhz\": 149.3", "\"fmax_mhz\": 0.0", 1);
+        assert!(Measurements::parse(&stopped).unwrap_err().contains("tritri_pipeline_w8: fmax_mhz 0 is not a positive clock"));
         assert!(m.xilinx("tritri_pipeline_w24").is_some());
         assert!(m.ecp5("tritri_pipeline_w8").is_some());
     }

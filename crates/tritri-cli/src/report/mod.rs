@@ -13,7 +13,7 @@
 //!   pipeline was routed, from `rtl-out/measurements.json` (what `tritri gen
 //!   --synth` printed; built in, or `--measurements FILE`), so a report
 //!   never re-routes;
-//! - **speed**: pairs/s at Fmax x P (P at most what fits the ECP5-85's 156
+//! - **speed**: pairs/s at Fmax x P (P at most what fits the ECP5-85's
 //!   multipliers), pairs/s per multiplier, and the
 //!   widths on the Pareto front of throughput per multiplier against error;
 //!   the software baselines (f64 and f32 Devillers–Guigue, Möller) timed on
@@ -43,10 +43,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Duration;
 use tritri_geom::arithmetic::Arithmetic;
-use tritri_rtl::measured::{Device, Ecp5Row, Measurements, XilinxRow, DEVICES};
+use tritri_rtl::measured::{device, Device, Ecp5Row, Measurements, XilinxRow};
 
 /// The device the ECP5 figures were routed for.
-const ECP5: Device = DEVICES[0];
+pub fn ecp5_device() -> &'static Device {
+    device("ecp5-85").expect("the device table has the ECP5-85")
+}
 
 pub use scene::SceneSection;
 
@@ -113,7 +115,8 @@ pub struct WidthRow {
     pub xilinx: Option<XilinxRow>,
     /// `tritri_pipeline_w<W>` placed and routed on ECP5, where measured.
     pub ecp5: Option<Ecp5Row>,
-    /// Pipelines of this width that fit the ECP5-85's multipliers, at most P.
+    /// Pipelines of this width that fit the ECP5-85's multipliers, at most
+    /// P (`None` when not one fits).
     pub ecp5_pipelines: Option<u32>,
     /// Fmax x those pipelines (one pair per clock each), at the post-route clock.
     pub pairs_per_second: Option<f64>,
@@ -138,7 +141,7 @@ impl WidthRow {
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let (measurements, source) = match &args.measurements {
         None => (Measurements::committed(), "rtl-out/measurements.json (built in)".to_string()),
-        Some(path) => match std::fs::read_to_string(path).map_err(anyhow::Error::from).and_then(|t| Ok(Measurements::parse(&t)?)) {
+        Some(path) => match std::fs::read_to_string(path).map_err(anyhow::Error::from).and_then(|t| Measurements::parse(&t).map_err(anyhow::Error::msg)) {
             Ok(m) => (m, path.display().to_string()),
             Err(e) => {
                 eprintln!("error: --measurements {}: {e}", path.display());
@@ -219,7 +222,8 @@ fn width_rows(widths: &[u32], errors: Option<&Errors>, measurements: &Measuremen
         .map(|&width| {
             let unit = format!("tritri_pipeline_w{width}");
             let ecp5 = measurements.ecp5(&unit).cloned();
-            let fitting = ecp5.as_ref().map(|r| pipelines.min((ECP5.dsps / r.mult18x18d.max(1)) as u32));
+            // A width whose pipeline does not fit the device has no throughput.
+            let fitting = ecp5.as_ref().map(|r| pipelines.min((ecp5_device().dsps / r.mult18x18d.max(1)) as u32)).filter(|&p| p >= 1);
             let pairs_per_second = ecp5.as_ref().zip(fitting).map(|(r, p)| r.fmax_mhz * 1e6 * p as f64);
             WidthRow {
                 width,

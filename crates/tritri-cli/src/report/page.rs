@@ -234,11 +234,13 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
     let mut html = format!(
         "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>tritri: speed against error</title><style>{STYLE}</style></head><body>\
          <h1>tritri: speed against error</h1><p class=\"note\"><code>{}</code><br>Hardware figures: {} (measured {}); \
-         hardware speed is one pair per clock per pipeline, at the ECP5 post-route Fmax where the pipeline was routed,          with P = {} pipelines or as many as fit the ECP5-85's 156 multipliers.</p>",
+         hardware speed is one pair per clock per pipeline, at the ECP5 post-route Fmax where the pipeline was routed,          with P = {} pipelines or as many as fit the {}'s {} multipliers.</p>",
         escape(&report.command),
         escape(&report.measurements),
         escape(&report.measured),
-        report.pipelines
+        report.pipelines,
+        super::ecp5_device().part,
+        super::ecp5_device().dsps
     );
     let section = |html: &mut String, title: &str, plot: Option<String>, table: Option<&Table>, note: &str| {
         let table = table.filter(|t| !t.rows.is_empty());
