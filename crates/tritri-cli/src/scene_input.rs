@@ -12,7 +12,7 @@ use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError};
 
 /// Most samples per side of a Bezier patch.
-pub const MAX_TESSELLATION: u64 = 256;
+pub const MAX_TESSELLATION: u64 = tritri_geom::bezier::MAX_SAMPLES as u64;
 
 /// The two objects and the pose of B.
 #[derive(clap::Args, Clone, Debug)]

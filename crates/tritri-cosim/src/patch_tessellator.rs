@@ -16,7 +16,7 @@ use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::bezier::fixed::FixedNet;
 use tritri_rtl::arith::convert::{from_i128, to_i128};
-use tritri_rtl::bezier::patch_tessellator::{net_bits, value_bits, PatchTessellator};
+use tritri_rtl::bezier::patch_tessellator::{net_bits, PatchTessellator};
 use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, patch_tessellator_unit_name};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
@@ -78,13 +78,7 @@ pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet], ready: &dyn Fn(u64) ->
         }
         runs
     }
-    match (w, k) {
-        (16, 3) => one::<16, 3, { value_bits(16, 3) }, { net_bits(16) }>(nets, ready),
-        (16, 4) => one::<16, 4, { value_bits(16, 4) }, { net_bits(16) }>(nets, ready),
-        (24, 3) => one::<24, 3, { value_bits(24, 3) }, { net_bits(24) }>(nets, ready),
-        (24, 4) => one::<24, 4, { value_bits(24, 4) }, { net_bits(24) }>(nets, ready),
-        _ => panic!("no patch tessellator at W = {w}, K = {k}"),
-    }
+    tritri_rtl::with_patch_tessellator!(w, k, one(nets, ready)).unwrap_or_else(|| panic!("no patch tessellator at W = {w}, K = {k}"))
 }
 
 /// Patches through the emitted unit in `simulator`, the reader always ready.

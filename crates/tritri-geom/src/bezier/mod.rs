@@ -31,6 +31,10 @@ pub mod query;
 pub mod subdivide;
 pub mod view;
 
+/// Most samples per side of a patch (or of a piece of one) that the
+/// tessellations take: the teapot's 32 patches at 256 are 4.2 M triangles.
+pub const MAX_SAMPLES: usize = 256;
+
 /// One bicubic patch: control points `net[row][column]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BezierPatch {

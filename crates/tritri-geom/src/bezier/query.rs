@@ -26,8 +26,7 @@ use crate::triangle::Triangle;
 /// Cuts into quarters at most this many times per patch.
 pub const MAX_SPLITS: u32 = 4;
 
-/// Most samples per side of one piece.
-pub const MAX_SAMPLES: usize = 256;
+pub use super::MAX_SAMPLES;
 
 /// An object's patches tessellated for one query.
 #[derive(Clone, Debug, PartialEq)]
@@ -60,9 +59,7 @@ pub fn net_box(patch: &BezierPatch) -> Aabb<f64> {
 
 /// The box of every patch's net (`None` for no patches).
 pub fn patches_box(patches: &[BezierPatch]) -> Option<Aabb<f64>> {
-    let boxes: Vec<Aabb<f64>> = patches.iter().map(net_box).collect();
-    let first = *boxes.first()?;
-    Some(boxes.iter().fold(first, |a, b| Aabb { lo: [0, 1, 2].map(|k| a.lo[k].min(b.lo[k])), hi: [0, 1, 2].map(|k| a.hi[k].max(b.hi[k])) }))
+    patches.iter().map(net_box).reduce(|a, b| Aabb { lo: [0, 1, 2].map(|k| a.lo[k].min(b.lo[k])), hi: [0, 1, 2].map(|k| a.hi[k].max(b.hi[k])) })
 }
 
 fn inside(inner: &Aabb<f64>, outer: &Aabb<f64>) -> bool {

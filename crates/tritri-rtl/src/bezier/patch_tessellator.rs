@@ -47,6 +47,27 @@ pub const fn value_bits(w: usize, k: usize) -> usize {
     6 * k + w
 }
 
+/// (W, K) the unit is built for: coordinate bits and `log2` of the steps
+/// a side. [`with_patch_tessellator!`] dispatches on the same list.
+pub const TESSELLATOR_CONFIGURATIONS: [(usize, usize); 4] = [(16, 3), (16, 4), (24, 3), (24, 4)];
+
+/// `$run::<W, K, V, N>($args...)` for the unit built for `($w, $k)`, as
+/// `Some`, or `None` for a configuration it is not built for: the one
+/// place that turns [`TESSELLATOR_CONFIGURATIONS`] into const parameters.
+#[macro_export]
+macro_rules! with_patch_tessellator {
+    ($w:expr, $k:expr, $run:ident($($arg:expr),*)) => {{
+        use $crate::bezier::patch_tessellator::{net_bits, value_bits};
+        match ($w, $k) {
+            (16, 3) => Some($run::<16, 3, { value_bits(16, 3) }, { net_bits(16) }>($($arg),*)),
+            (16, 4) => Some($run::<16, 4, { value_bits(16, 4) }, { net_bits(16) }>($($arg),*)),
+            (24, 3) => Some($run::<24, 3, { value_bits(24, 3) }, { net_bits(24) }>($($arg),*)),
+            (24, 4) => Some($run::<24, 4, { value_bits(24, 4) }, { net_bits(24) }>($($arg),*)),
+            _ => None,
+        }
+    }};
+}
+
 /// Coordinates of a net: 16 control points, 3 each.
 pub const NET_COORDINATES: usize = 48;
 
@@ -142,10 +163,12 @@ impl<const W: usize, const K: usize, const V: usize, const N: usize> PatchTessel
         1 << K
     }
 
-    /// The vertex coordinate of a row value: rounded, back to two's complement.
+    /// The vertex coordinate of a row value, as the Verilog forms it:
+    /// rounded half up (the bits from 6K up, plus bit 6K - 1), back to
+    /// two's complement.
     fn vertex(g: i128) -> Bits<W> {
-        let half = 1i128 << (6 * K - 1);
-        let rounded = (wrap_i128(g + half, V) as u128 & ((1u128 << V) - 1)) >> (6 * K);
+        let bits = g as u128 & ((1u128 << V) - 1);
+        let rounded = (bits >> (6 * K)) + (bits >> (6 * K - 1) & 1);
         from_i128::<W>((rounded as i128) ^ (1i128 << (W - 1)))
     }
 
@@ -344,4 +367,26 @@ always @(posedge clock) begin
 end
 "
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parameters<const W: usize, const K: usize, const V: usize, const N: usize>() -> (usize, usize) {
+        (W, K)
+    }
+
+    /// The dispatch builds exactly the listed configurations, each with its
+    /// own parameters.
+    #[test]
+    fn dispatch_is_the_configuration_list() {
+        for w in 8..=32 {
+            for k in 0..=8 {
+                let built = crate::with_patch_tessellator!(w, k, parameters());
+                assert_eq!(built.is_some(), TESSELLATOR_CONFIGURATIONS.contains(&(w, k)), "W = {w}, K = {k}");
+                assert!(built.is_none_or(|p| p == (w, k)));
+            }
+        }
+    }
 }

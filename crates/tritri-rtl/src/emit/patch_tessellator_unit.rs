@@ -3,10 +3,8 @@
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
 use crate::bezier::patch_tessellator::{net_bits, tessellation_clocks, value_bits, PatchTessellator};
+pub use crate::bezier::patch_tessellator::TESSELLATOR_CONFIGURATIONS;
 use rust_hdl::prelude::*;
-
-/// (W, K) the unit is built for: coordinate bits and `log2` of the steps a side.
-pub const TESSELLATOR_CONFIGURATIONS: [(usize, usize); 4] = [(16, 3), (16, 4), (24, 3), (24, 4)];
 
 /// `tritri_patch_tessellator_w<W>_k<K>`.
 pub fn patch_tessellator_unit_name(w: usize, k: usize) -> String {
@@ -56,11 +54,6 @@ pub fn emit_patch_tessellator(w: usize, k: usize) -> Result<EmittedDesign, EmitE
         uut.connect_all();
         emit(&crate::unit::RawDesign::of(&uut), &patch_tessellator_unit(W, K))
     }
-    match (w, k) {
-        (16, 3) => one::<16, 3, { value_bits(16, 3) }, { net_bits(16) }>(),
-        (16, 4) => one::<16, 4, { value_bits(16, 4) }, { net_bits(16) }>(),
-        (24, 3) => one::<24, 3, { value_bits(24, 3) }, { net_bits(24) }>(),
-        (24, 4) => one::<24, 4, { value_bits(24, 4) }, { net_bits(24) }>(),
-        _ => panic!("the patch tessellator is built for {TESSELLATOR_CONFIGURATIONS:?}, not W = {w}, K = {k}"),
-    }
+    crate::with_patch_tessellator!(w, k, one())
+        .unwrap_or_else(|| panic!("the patch tessellator is built for {TESSELLATOR_CONFIGURATIONS:?}, not W = {w}, K = {k}"))
 }
