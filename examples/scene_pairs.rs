@@ -31,7 +31,11 @@ fn main() -> anyhow::Result<()> {
 
     // The hardware: 24-bit coordinates, 2 pipelines, 256 triangles per array.
     let config = SystemConfig::new(24, 2, latency()).with_depth(256);
-    let options = SceneOptions { width: 24, depth: 256, split: true };
+    let options = SceneOptions {
+        width: 24,
+        depth: 256,
+        split: true,
+    };
     // The octree broad phase, its splits costed by the system's cycle model.
     let scene = prepare_octree(&a, &b, &options, &config, None)?;
     let model = run_scene(Engine::Model, &scene, config, &|_| {})?;
@@ -47,15 +51,29 @@ fn main() -> anyhow::Result<()> {
 
     // The same scene through the rust-hdl simulation of the system.
     let hardware = run_scene(Engine::Rusthdl, &scene, config, &|_| {})?;
-    println!("rust-hdl: {} pairs in {} cycles", hardware.pairs.len(), hardware.cycles);
+    println!(
+        "rust-hdl: {} pairs in {} cycles",
+        hardware.pairs.len(),
+        hardware.cycles
+    );
     for (i, j) in hardware.pairs.iter().take(5) {
         println!("  A's triangle {i} meets B's triangle {j}");
     }
-    anyhow::ensure!(hardware.pairs == model.pairs, "the hardware's pairs differ from the model's");
-    anyhow::ensure!(hardware.faults().is_empty(), "the hardware: {}", hardware.faults().join("; "));
+    anyhow::ensure!(
+        hardware.pairs == model.pairs,
+        "the hardware's pairs differ from the model's"
+    );
+    anyhow::ensure!(
+        hardware.faults().is_empty(),
+        "the hardware: {}",
+        hardware.faults().join("; ")
+    );
     // An exact model on the same integer coordinates must agree too.
     let (_, diff) = check_quantized(&scene, &hardware.pairs);
-    anyhow::ensure!(diff.is_empty(), "the hardware differs from the exact model: {diff:?}");
+    anyhow::ensure!(
+        diff.is_empty(),
+        "the hardware differs from the exact model: {diff:?}"
+    );
     println!("the hardware agrees with the models, pair for pair and cycle for cycle");
     Ok(())
 }

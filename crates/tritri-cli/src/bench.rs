@@ -52,7 +52,12 @@ pub struct Args {
     #[arg(long, default_value_t = 50)]
     bases: usize,
     /// Engines to run, the model always first as the baseline.
-    #[arg(long, value_enum, value_delimiter = ',', default_value = "rusthdl,verilator,icarus")]
+    #[arg(
+        long,
+        value_enum,
+        value_delimiter = ',',
+        default_value = "rusthdl,verilator,icarus"
+    )]
     engines: Vec<Engine>,
     /// Seed of the random triangles.
     #[arg(long, default_value_t = 2005)]
@@ -92,15 +97,27 @@ fn stream_for(width: usize, pairs: usize, bases: usize, seed: u64) -> anyhow::Re
     raw.extend(random_near_degenerate_pairs(count / 2, seed + 1));
     // Interleave uniform and near-degenerate triangles so both kinds are bases.
     let half = count.div_ceil(2);
-    let order: Vec<usize> = (0..count).map(|i| if i % 2 == 0 { i / 2 } else { half + i / 2 }).collect();
-    let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32).context("fitting the frame")?;
+    let order: Vec<usize> = (0..count)
+        .map(|i| if i % 2 == 0 { i / 2 } else { half + i / 2 })
+        .collect();
+    let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32)
+        .context("fitting the frame")?;
     let originals = |n: usize, second: bool| -> Vec<Triangle> {
-        order.iter().take(n).map(|&i| if second { raw[i].t2 } else { raw[i].t1 }).collect()
+        order
+            .iter()
+            .take(n)
+            .map(|&i| if second { raw[i].t2 } else { raw[i].t1 })
+            .collect()
     };
     let (bases, streamed) = (originals(n1, false), originals(n2, true));
-    let quantize = |ts: &[Triangle]| -> Vec<FixedTriangle> { ts.iter().map(|t| frame.quantize(t)).collect() };
+    let quantize =
+        |ts: &[Triangle]| -> Vec<FixedTriangle> { ts.iter().map(|t| frame.quantize(t)).collect() };
     let stream = TriangleStream::from_triangles(&quantize(&bases), &quantize(&streamed));
-    Ok(BenchStream { stream, bases, streamed })
+    Ok(BenchStream {
+        stream,
+        bases,
+        streamed,
+    })
 }
 
 /// What the certificates say against the exact verdicts on the originals.
@@ -112,9 +129,17 @@ struct Audit {
 }
 
 fn audit(bench: &BenchStream, expected: &[PairVerdict]) -> Audit {
-    let mut a = Audit { pairs: expected.len(), wrong: 0, uncertain: 0, certain_and_wrong: 0 };
+    let mut a = Audit {
+        pairs: expected.len(),
+        wrong: 0,
+        uncertain: 0,
+        certain_and_wrong: 0,
+    };
     for v in expected {
-        let exact = exact_f64::intersects(&bench.bases[v.base_id as usize], &bench.streamed[v.stream_id as usize]);
+        let exact = exact_f64::intersects(
+            &bench.bases[v.base_id as usize],
+            &bench.streamed[v.stream_id as usize],
+        );
         a.wrong += (v.hit != exact) as usize;
         a.uncertain += !v.certain as usize;
         a.certain_and_wrong += (v.certain && v.hit != exact) as usize;
@@ -130,7 +155,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     if args.pairs == 0 || args.bases == 0 {
-        eprintln!("error: --pairs {} --bases {}: both must be at least 1", args.pairs, args.bases);
+        eprintln!(
+            "error: --pairs {} --bases {}: both must be at least 1",
+            args.pairs, args.bases
+        );
         return Ok(ExitCode::from(2));
     }
     let mut failed = false;
@@ -160,8 +188,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let mut rows = vec![model];
         let schedule: Vec<PipelineInput> = stream.schedule().collect();
         for &engine in args.engines.iter().filter(|&&e| e != Engine::Model) {
-            eprintln!("W = {width}: {} pairs through {} ...", expected.len(), engine.name());
-            let run = run_pipeline(engine, width, &schedule, None).with_context(|| format!("running {}", engine.name()))?;
+            eprintln!(
+                "W = {width}: {} pairs through {} ...",
+                expected.len(),
+                engine.name()
+            );
+            let run = run_pipeline(engine, width, &schedule, None)
+                .with_context(|| format!("running {}", engine.name()))?;
             rows.push(Measurement {
                 engine: engine.name(),
                 pairs: run.result.verdicts.len(),
@@ -171,7 +204,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 build_seconds: engine.simulator().map(|_| run.build_seconds),
             });
         }
-        let reference = rows.iter().find(|m| m.engine == Engine::Rusthdl.name()).map(Measurement::pairs_per_second);
+        let reference = rows
+            .iter()
+            .find(|m| m.engine == Engine::Rusthdl.name())
+            .map(Measurement::pairs_per_second);
         for m in &rows {
             let cycles = match m.cycles {
                 Some(c) if c == formula => format!("{c} (= formula)"),

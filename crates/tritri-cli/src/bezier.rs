@@ -13,13 +13,13 @@ use crate::model_files::write_png;
 use crate::output_file::OutputFile;
 use clap::Subcommand;
 use std::process::ExitCode;
+use tritri_cosim::engine::Engine;
+use tritri_cosim::patch_tessellator::{run_emitted, run_rusthdl};
+use tritri_geom::bezier::fixed::{fixed_grid, max_error_in_steps, FixedNet, PatchFrame};
 use tritri_geom::bezier::subdivide::subdivide;
 use tritri_geom::bezier::view::plan;
 use tritri_geom::bezier::{oriented_outwards, read_bpt, BezierPatch};
 use tritri_geom::raster::{Camera, Canvas};
-use tritri_cosim::engine::Engine;
-use tritri_cosim::patch_tessellator::{run_emitted, run_rusthdl};
-use tritri_geom::bezier::fixed::{fixed_grid, max_error_in_steps, FixedNet, PatchFrame};
 use tritri_rtl::bezier::patch_tessellator::tessellation_clocks;
 use tritri_rtl::emit::patch_tessellator_unit::TESSELLATOR_CONFIGURATIONS;
 
@@ -85,7 +85,12 @@ struct RenderArgs {
 }
 
 /// Colours of the four levels, coarse to fine.
-const LEVEL_COLOURS: [[u8; 3]; 4] = [[90, 140, 230], [110, 200, 120], [235, 210, 90], [240, 150, 70]];
+const LEVEL_COLOURS: [[u8; 3]; 4] = [
+    [90, 140, 230],
+    [110, 200, 120],
+    [235, 210, 90],
+    [240, 150, 70],
+];
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let a = match args.command {
@@ -116,7 +121,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     let views = plan(&patches, a.eye.into(), a.near);
-    let camera = Camera { eye: a.eye.into(), target: a.target.into(), up: [0.0, 0.0, 1.0].into(), fov_degrees: 40.0 };
+    let camera = Camera {
+        eye: a.eye.into(),
+        target: a.target.into(),
+        up: [0.0, 0.0, 1.0].into(),
+        fov_degrees: 40.0,
+    };
     let mut canvas = Canvas::new(a.size, a.size, camera);
     let mut triangles = 0usize;
     let mut per_level = [0usize; 4];
@@ -124,7 +134,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         if view.culled {
             continue;
         }
-        let level = tritri_geom::bezier::lod::DISTANCE_LEVELS.iter().position(|&l| l == view.samples).unwrap_or(0);
+        let level = tritri_geom::bezier::lod::DISTANCE_LEVELS
+            .iter()
+            .position(|&l| l == view.samples)
+            .unwrap_or(0);
         per_level[level] += 1;
         for t in patch.tessellate(view.samples) {
             canvas.triangle(&t, LEVEL_COLOURS[level]);
@@ -138,7 +151,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     let culled = views.iter().filter(|v| v.culled).count();
     let silhouettes = views.iter().filter(|v| v.silhouette).count();
-    let uniform = patches.iter().map(|p| p.tessellate(20).len()).sum::<usize>();
+    let uniform = patches
+        .iter()
+        .map(|p| p.tessellate(20).len())
+        .sum::<usize>();
     println!(
         "{}: {} patches from eye {:?}: {culled} culled (back-facing by their cone of normals), {silhouettes} may hold a silhouette (refined, outlined in red); \
          samples per side 5 / 10 / 15 / 20: {} / {} / {} / {} patches; {triangles} triangles against {uniform} for every patch at 20{}",
@@ -160,7 +176,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 /// The patch's four boundary curves as lines.
 fn outline(canvas: &mut Canvas, patch: &BezierPatch, colour: [u8; 3]) {
     let steps = 16;
-    let edges: [Box<dyn Fn(f64) -> (f64, f64)>; 4] = [Box::new(|t| (t, 0.0)), Box::new(|t| (t, 1.0)), Box::new(|t| (0.0, t)), Box::new(|t| (1.0, t))];
+    let edges: [Box<dyn Fn(f64) -> (f64, f64)>; 4] = [
+        Box::new(|t| (t, 0.0)),
+        Box::new(|t| (t, 1.0)),
+        Box::new(|t| (0.0, t)),
+        Box::new(|t| (1.0, t)),
+    ];
     for edge in &edges {
         for s in 0..steps {
             let (u0, v0) = edge(s as f64 / steps as f64);
@@ -200,7 +221,14 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
             let wrong = runs
                 .iter()
                 .zip(&model)
-                .filter(|(run, want)| run.vertices.len() != want.len() || run.vertices.iter().zip(want.iter()).any(|(got, w)| got.2 != *w))
+                .filter(|(run, want)| {
+                    run.vertices.len() != want.len()
+                        || run
+                            .vertices
+                            .iter()
+                            .zip(want.iter())
+                            .any(|(got, w)| got.2 != *w)
+                })
                 .count();
             let clocks: u64 = runs.iter().map(|r| r.clocks).sum();
             println!(
@@ -215,8 +243,14 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
             clocks
         }
     };
-    let worst = patches.iter().map(|p| max_error_in_steps(p, &frame, k as u32)).fold(0.0, f64::max);
-    let triangles: usize = model.iter().map(|grid| assembled_triangles(grid, side)).sum();
+    let worst = patches
+        .iter()
+        .map(|p| max_error_in_steps(p, &frame, k as u32))
+        .fold(0.0, f64::max);
+    let triangles: usize = model
+        .iter()
+        .map(|grid| assembled_triangles(grid, side))
+        .sum();
     println!(
         "{}: {} patches at {} steps a side on a {}-bit grid (step {:.3e}): {} vertices, {triangles} triangles (degenerate ones left out)",
         a.file,
@@ -227,7 +261,10 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
         patches.len() * side * side
     );
     println!("error against the f64 patches: at most {worst:.3} grid steps per coordinate ({:.3e} in the file's units; the bound is 1 step)", worst * frame.step);
-    println!("clocks: {clocks}, one vertex per clock after 2 a patch; {:.2} us at an assumed 100 MHz", clocks as f64 / 100.0);
+    println!(
+        "clocks: {clocks}, one vertex per clock after 2 a patch; {:.2} us at an assumed 100 MHz",
+        clocks as f64 / 100.0
+    );
     Ok(status)
 }
 
@@ -239,7 +276,10 @@ fn assembled_triangles(grid: &[[i64; 3]], side: usize) -> usize {
     for i in 0..side - 1 {
         for j in 0..side - 1 {
             let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-            count += [[a, b, c], [a, c, d]].iter().filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0]).count();
+            count += [[a, b, c], [a, c, d]]
+                .iter()
+                .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+                .count();
         }
     }
     count

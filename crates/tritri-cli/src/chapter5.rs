@@ -64,7 +64,11 @@ enum Axis {
 pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@torus"];
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
-    if args.hardware.grid_bits.is_some_and(|g| g != args.hardware.width) {
+    if args
+        .hardware
+        .grid_bits
+        .is_some_and(|g| g != args.hardware.width)
+    {
         eprintln!("error: --grid-bits: chapter5 compares the flat system, which sends the whole box in one W-bit frame; use it with tritri sim");
         return Ok(ExitCode::from(2));
     }
@@ -75,16 +79,23 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let (Some(box_a), Some(box_b)) = (Aabb::of_triangles(&a.triangles), Aabb::of_triangles(&b.triangles)) else {
+    let (Some(box_a), Some(box_b)) = (
+        Aabb::of_triangles(&a.triangles),
+        Aabb::of_triangles(&b.triangles),
+    ) else {
         anyhow::bail!("both objects need at least one triangle");
     };
-    let options = SceneOptions { split: true, ..args.hardware.scene_options() };
+    let options = SceneOptions {
+        split: true,
+        ..args.hardware.scene_options()
+    };
     let config = args.hardware.system_config();
     let axis = args.axis as usize;
     let centre = |b: &Aabb<f64>| [0, 1, 2].map(|k| (b.lo[k] + b.hi[k]) / 2.0);
     let (ca, cb) = (centre(&box_a), centre(&box_b));
     // Past this offset the boxes are apart along the axis: no triangle in the BV.
-    let apart = (box_a.hi[axis] - box_a.lo[axis] + box_b.hi[axis] - box_b.lo[axis]) / 2.0 * 1.01 + f64::MIN_POSITIVE;
+    let apart = (box_a.hi[axis] - box_a.lo[axis] + box_b.hi[axis] - box_b.lo[axis]) / 2.0 * 1.01
+        + f64::MIN_POSITIVE;
     let place = |offset: f64| {
         let mut t = [0, 1, 2].map(|k| ca[k] - cb[k]);
         t[axis] += offset;
@@ -135,14 +146,21 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let batches = scene.batches();
         let cycles = scene_cycles(config, &batches);
         let hw = args.hardware.time_of(cycles);
-        let exact = time(|| exact_f64_pairs(&a.triangles, &b_placed.triangles).pairs.len());
+        let exact = time(|| {
+            exact_f64_pairs(&a.triangles, &b_placed.triangles)
+                .pairs
+                .len()
+        });
         let published = time(|| {
             let mut hits = 0usize;
             for batch in &batches {
                 for x in batch.a {
                     let tx = &a.triangles[x.id as usize];
                     for y in batch.b {
-                        hits += published_float::intersects_f64(black_box(tx), &b_placed.triangles[y.id as usize]) as usize;
+                        hits += published_float::intersects_f64(
+                            black_box(tx),
+                            &b_placed.triangles[y.id as usize],
+                        ) as usize;
                     }
                 }
             }
@@ -153,16 +171,27 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             for batch in &batches {
                 for x in batch.a {
                     for y in batch.b {
-                        hits += fixed_point::intersects(black_box(&x.triangle), &y.triangle) as usize;
+                        hits +=
+                            fixed_point::intersects(black_box(&x.triangle), &y.triangle) as usize;
                     }
                 }
             }
             hits
         });
-        let ratio_to = |sw: Duration, hw: Duration| if hw.is_zero() { "-".to_string() } else { format!("{:.1}", sw.as_secs_f64() / hw.as_secs_f64()) };
+        let ratio_to = |sw: Duration, hw: Duration| {
+            if hw.is_zero() {
+                "-".to_string()
+            } else {
+                format!("{:.1}", sw.as_secs_f64() / hw.as_secs_f64())
+            }
+        };
         let ratio = |sw: Duration| ratio_to(sw, hw);
-        let octree = args.hardware.prepare_with(BroadPhase::Octree, &a, &b_placed)?;
-        let octree_hw = args.hardware.time_of(scene_cycles(config, &octree.batches()));
+        let octree = args
+            .hardware
+            .prepare_with(BroadPhase::Octree, &a, &b_placed)?;
+        let octree_hw = args
+            .hardware
+            .time_of(scene_cycles(config, &octree.batches()));
         println!(
             "| {target} % | {} + {} = {:.1} %{} | {:.4} | {} | {:.2} % | {cycles} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             scene.kept_a.len(),

@@ -73,13 +73,18 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         (ArithName::F32, None) => Arithmetic::F32,
         (ArithName::Moller, None) => Arithmetic::Moller,
     };
-    if (args.engine != Engine::Model || args.vcd.is_some() || args.certified) && !matches!(arith, Arithmetic::Fixed(_)) {
+    if (args.engine != Engine::Model || args.vcd.is_some() || args.certified)
+        && !matches!(arith, Arithmetic::Fixed(_))
+    {
         eprintln!("error: --engine, --vcd and --certified apply only to --arith fixed");
         return Ok(ExitCode::from(2));
     }
     if let (Arithmetic::Fixed(width), true) = (arith, args.engine.is_hardware()) {
         if let Err(e) = tritri_rtl::pipeline::pipeline_for_width::check_width(width as usize) {
-            eprintln!("error: --width {width} --engine {}: {e} (the model takes 8 to 32)", args.engine.name());
+            eprintln!(
+                "error: --width {width} --engine {}: {e} (the model takes 8 to 32)",
+                args.engine.name()
+            );
             return Ok(ExitCode::from(2));
         }
     }
@@ -89,7 +94,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     let loaded = input::load(&args.file);
     if loaded.errors > 0 {
-        eprintln!("error: {}: no verdicts: {} record(s) could not be read", args.file.display(), loaded.errors);
+        eprintln!(
+            "error: {}: no verdicts: {} record(s) could not be read",
+            args.file.display(),
+            loaded.errors
+        );
         return Ok(ExitCode::from(2));
     }
     let pairs = loaded.good_pairs();
@@ -97,9 +106,18 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let model_alone = args.engine == Engine::Model && !args.certified;
     if let (Arithmetic::Fixed(width), Some(frame), false) = (arith, result.frame, model_alone) {
         let grid: Vec<CertifiedVerdict> = if args.engine == Engine::Model {
-            pairs.iter().map(|p| certified_intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2))).collect()
+            pairs
+                .iter()
+                .map(|p| certified_intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2)))
+                .collect()
         } else {
-            run_engine(args.engine, width as usize, &frame, &pairs, args.vcd.as_deref())?
+            run_engine(
+                args.engine,
+                width as usize,
+                &frame,
+                &pairs,
+                args.vcd.as_deref(),
+            )?
         };
         result.verdicts = grid.iter().map(|v| v.hit).collect();
         if args.certified {
@@ -148,8 +166,14 @@ fn run_engine(
         .flat_map(|(i, p)| {
             let id = i as u32;
             [
-                PipelineInput::load_base(&TaggedTriangle { id, triangle: frame.quantize(&p.t1) }),
-                PipelineInput::test(&TaggedTriangle { id, triangle: frame.quantize(&p.t2) }),
+                PipelineInput::load_base(&TaggedTriangle {
+                    id,
+                    triangle: frame.quantize(&p.t1),
+                }),
+                PipelineInput::test(&TaggedTriangle {
+                    id,
+                    triangle: frame.quantize(&p.t2),
+                }),
             ]
         })
         .collect();
@@ -160,11 +184,32 @@ fn run_engine(
     }
     let result = run_pipeline(engine, width, &schedule, vcd)?.result;
     if let Some(path) = vcd {
-        anyhow::ensure!(path.is_file(), "the simulation wrote no waveform to {}", path.display());
+        anyhow::ensure!(
+            path.is_file(),
+            "the simulation wrote no waveform to {}",
+            path.display()
+        );
     }
-    anyhow::ensure!(result.verdicts.len() == pairs.len(), "the engine returned {} verdicts for {} pairs", result.verdicts.len(), pairs.len());
+    anyhow::ensure!(
+        result.verdicts.len() == pairs.len(),
+        "the engine returned {} verdicts for {} pairs",
+        result.verdicts.len(),
+        pairs.len()
+    );
     for (i, v) in result.verdicts.iter().enumerate() {
-        anyhow::ensure!(v.base_id == i as u32 && v.stream_id == i as u32, "verdict {i} carries ids ({}, {})", v.base_id, v.stream_id);
+        anyhow::ensure!(
+            v.base_id == i as u32 && v.stream_id == i as u32,
+            "verdict {i} carries ids ({}, {})",
+            v.base_id,
+            v.stream_id
+        );
     }
-    Ok(result.verdicts.iter().map(|v| CertifiedVerdict { hit: v.hit, certain: v.certain }).collect())
+    Ok(result
+        .verdicts
+        .iter()
+        .map(|v| CertifiedVerdict {
+            hit: v.hit,
+            certain: v.certain,
+        })
+        .collect())
 }

@@ -27,7 +27,10 @@ pub struct Args {
 }
 
 /// Runs each step as if typed after `tritri`; stops at the first failure.
-pub fn run(args: Args, dispatch: impl Fn(Vec<String>) -> anyhow::Result<ExitCode>) -> anyhow::Result<ExitCode> {
+pub fn run(
+    args: Args,
+    dispatch: impl Fn(Vec<String>) -> anyhow::Result<ExitCode>,
+) -> anyhow::Result<ExitCode> {
     let out = args.out.display().to_string();
     let mut steps = vec![
         format!("gen --width 24 --out {out}/rtl"),
@@ -35,7 +38,9 @@ pub fn run(args: Args, dispatch: impl Fn(Vec<String>) -> anyhow::Result<ExitCode
         format!("sim --width 24 --pipelines 2 --engine model --out {out}/pairs_model.txt"),
     ];
     if !args.no_verilator {
-        steps.push(format!("sim --width 24 --pipelines 2 --engine verilator --out {out}/pairs_verilator.txt"));
+        steps.push(format!(
+            "sim --width 24 --pipelines 2 --engine verilator --out {out}/pairs_verilator.txt"
+        ));
     }
     for step in &steps {
         eprintln!("\n$ tritri {step}");
@@ -46,13 +51,19 @@ pub fn run(args: Args, dispatch: impl Fn(Vec<String>) -> anyhow::Result<ExitCode
         }
     }
     if !args.no_verilator {
-        let read = |name: &str| std::fs::read_to_string(args.out.join(name)).map_err(|e| anyhow::anyhow!("{out}/{name}: {e}"));
+        let read = |name: &str| {
+            std::fs::read_to_string(args.out.join(name))
+                .map_err(|e| anyhow::anyhow!("{out}/{name}: {e}"))
+        };
         let (model, verilator) = (read("pairs_model.txt")?, read("pairs_verilator.txt")?);
         if model != verilator {
             eprintln!("demo: the Verilator pairs differ from the model's");
             return Ok(ExitCode::from(1));
         }
-        eprintln!("\ndemo: Verilator and the bit-exact model give the same {} pairs", model.lines().count());
+        eprintln!(
+            "\ndemo: Verilator and the bit-exact model give the same {} pairs",
+            model.lines().count()
+        );
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -122,10 +122,17 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     let total = total(&reports, &arithmetics);
-    let grid_bugs: usize = total.rows.iter().filter_map(|r| r.grid_exact_disagreements).sum();
+    let grid_bugs: usize = total
+        .rows
+        .iter()
+        .filter_map(|r| r.grid_exact_disagreements)
+        .sum();
     let certificate_bugs: usize = total.rows.iter().filter_map(|r| r.certified_wrong).sum();
     if args.json {
-        let report = Report { batches: reports, total };
+        let report = Report {
+            batches: reports,
+            total,
+        };
         println!("{}", serde_json::to_string_pretty(&report)?);
     } else if reports.len() > 1 {
         print_table(&total);
@@ -163,7 +170,10 @@ pub fn load_batches(files: &[String], done: &str) -> Result<Vec<Batch>, ExitCode
         let loaded = input::load(Path::new(name));
         errors += loaded.errors;
         if loaded.file.is_some() {
-            batches.push(Batch { name: name.clone(), pairs: loaded.good_pairs() });
+            batches.push(Batch {
+                name: name.clone(),
+                pairs: loaded.good_pairs(),
+            });
         }
     }
     if errors > 0 {
@@ -190,15 +200,28 @@ fn suite_batches(selector: &str) -> anyhow::Result<Vec<Batch>> {
     if let Some(c) = only {
         if !by_category.contains_key(c) {
             let known: Vec<_> = by_category.keys().cloned().collect();
-            bail!("unknown hard-case category `{c}`: known are {}", known.join(", "));
+            bail!(
+                "unknown hard-case category `{c}`: known are {}",
+                known.join(", ")
+            );
         }
         by_category.retain(|k, _| k == c);
     }
-    Ok(by_category.into_iter().map(|(c, pairs)| Batch { name: format!("@hard/{c}"), pairs }).collect())
+    Ok(by_category
+        .into_iter()
+        .map(|(c, pairs)| Batch {
+            name: format!("@hard/{c}"),
+            pairs,
+        })
+        .collect())
 }
 
 /// Every arithmetic's errors and speed on one batch.
-pub fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -> anyhow::Result<BatchReport> {
+pub fn evaluate(
+    batch: &Batch,
+    arithmetics: &[Arithmetic],
+    min_time: Duration,
+) -> anyhow::Result<BatchReport> {
     let pairs = &batch.pairs;
     let exact = classify(Arithmetic::Exact, pairs)?.verdicts;
     let mut rows = Vec::new();
@@ -214,23 +237,40 @@ pub fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -
             let (_, quantized) = quantize_pairs(pairs, width)?;
             kernel_ns_per_pair = Some(time_per_pair(pairs.len(), min_time, || {
                 black_box(
-                    black_box(&quantized).iter().map(|q| fixed_point::intersects(&q[0], &q[1])).collect::<Vec<_>>(),
+                    black_box(&quantized)
+                        .iter()
+                        .map(|q| fixed_point::intersects(&q[0], &q[1]))
+                        .collect::<Vec<_>>(),
                 );
             }));
             let as_f64 = |t: &fixed_point::FixedTriangle| t.map(|p| p.map(|c| c as f64));
-            let on_grid = quantized.iter().map(|q| exact_f64::intersects(&as_f64(&q[0]), &as_f64(&q[1])));
-            grid_exact_disagreements = Some(on_grid.zip(&c.verdicts).filter(|(a, b)| a != *b).count());
-            let grid: Vec<CertifiedVerdict> = quantized.iter().map(|q| certified_intersects(&q[0], &q[1])).collect();
+            let on_grid = quantized
+                .iter()
+                .map(|q| exact_f64::intersects(&as_f64(&q[0]), &as_f64(&q[1])));
+            grid_exact_disagreements =
+                Some(on_grid.zip(&c.verdicts).filter(|(a, b)| a != *b).count());
+            let grid: Vec<CertifiedVerdict> = quantized
+                .iter()
+                .map(|q| certified_intersects(&q[0], &q[1]))
+                .collect();
             let run = recheck(pairs, &grid);
-            let doubtful: Vec<&TrianglePair> = pairs.iter().zip(&grid).filter(|(_, v)| !v.certain).map(|(p, _)| p).collect();
+            let doubtful: Vec<&TrianglePair> = pairs
+                .iter()
+                .zip(&grid)
+                .filter(|(_, v)| !v.certain)
+                .map(|(p, _)| p)
+                .collect();
             uncertain = Some(run.uncertain);
             let (extra, missing) = compare(&run.verdicts, &exact);
             certified_wrong = Some(extra + missing);
-            recheck_ns_per_pair = Some(
-                time_per_pair(pairs.len(), min_time, || {
-                    black_box(doubtful.iter().map(|p| exact_f64::intersects(&p.t1, &p.t2)).collect::<Vec<_>>());
-                }),
-            );
+            recheck_ns_per_pair = Some(time_per_pair(pairs.len(), min_time, || {
+                black_box(
+                    doubtful
+                        .iter()
+                        .map(|p| exact_f64::intersects(&p.t1, &p.t2))
+                        .collect::<Vec<_>>(),
+                );
+            }));
         }
         rows.push(Row {
             arithmetic: arith.to_string(),
@@ -256,8 +296,16 @@ pub fn evaluate(batch: &Batch, arithmetics: &[Arithmetic], min_time: Duration) -
 
 /// (false positives, false negatives) of `verdicts` against `exact`.
 fn compare(verdicts: &[bool], exact: &[bool]) -> (usize, usize) {
-    let fp = verdicts.iter().zip(exact).filter(|&(&v, &e)| v && !e).count();
-    let fn_ = verdicts.iter().zip(exact).filter(|&(&v, &e)| !v && e).count();
+    let fp = verdicts
+        .iter()
+        .zip(exact)
+        .filter(|&(&v, &e)| v && !e)
+        .count();
+    let fn_ = verdicts
+        .iter()
+        .zip(exact)
+        .filter(|&(&v, &e)| !v && e)
+        .count();
     (fp, fn_)
 }
 
@@ -305,7 +353,8 @@ pub fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport
         .enumerate()
         .map(|(i, a)| {
             let fixed = matches!(a, Arithmetic::Fixed(_));
-            let sum = |f: &dyn Fn(&Row) -> usize| reports.iter().map(|r| f(&r.rows[i])).sum::<usize>();
+            let sum =
+                |f: &dyn Fn(&Row) -> usize| reports.iter().map(|r| f(&r.rows[i])).sum::<usize>();
             Row {
                 arithmetic: a.to_string(),
                 wrong: sum(&|r| r.wrong),
@@ -313,7 +362,8 @@ pub fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport
                 false_negatives: sum(&|r| r.false_negatives),
                 ns_per_pair: weighted(&|r| Some(r.rows[i].ns_per_pair)).unwrap_or(0.0),
                 kernel_ns_per_pair: weighted(&|r| r.rows[i].kernel_ns_per_pair),
-                grid_exact_disagreements: fixed.then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
+                grid_exact_disagreements: fixed
+                    .then(|| sum(&|r| r.grid_exact_disagreements.unwrap_or(0))),
                 uncertain: fixed.then(|| sum(&|r| r.uncertain.unwrap_or(0))),
                 recheck_ns_per_pair: weighted(&|r| r.rows[i].recheck_ns_per_pair),
                 certified_wrong: fixed.then(|| sum(&|r| r.certified_wrong.unwrap_or(0))),
@@ -330,15 +380,35 @@ pub fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport
 }
 
 fn print_table(r: &BatchReport) {
-    println!("{}: {} pairs, {} intersect (exact)", r.name, r.pairs, r.exact_intersecting);
+    println!(
+        "{}: {} pairs, {} intersect (exact)",
+        r.name, r.pairs, r.exact_intersecting
+    );
     println!(
         "  {:<10} {:>6} {:>7} {:>7} {:>9} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
-        "arithmetic", "wrong", "false+", "false-", "ns/pair", "÷f64", "kernel", "grid", "uncert", "recheck", "step h"
+        "arithmetic",
+        "wrong",
+        "false+",
+        "false-",
+        "ns/pair",
+        "÷f64",
+        "kernel",
+        "grid",
+        "uncert",
+        "recheck",
+        "step h"
     );
-    let f64_ns = r.rows.iter().find(|row| row.arithmetic == "f64").map(|row| row.ns_per_pair);
+    let f64_ns = r
+        .rows
+        .iter()
+        .find(|row| row.arithmetic == "f64")
+        .map(|row| row.ns_per_pair);
     let dash = || "-".to_string();
     for row in &r.rows {
-        let ratio = f64_ns.filter(|&f| f > 0.0).map(|f| format!("{:.2}", row.ns_per_pair / f)).unwrap_or_else(dash);
+        let ratio = f64_ns
+            .filter(|&f| f > 0.0)
+            .map(|f| format!("{:.2}", row.ns_per_pair / f))
+            .unwrap_or_else(dash);
         println!(
             "  {:<10} {:>6} {:>7} {:>7} {:>9.1} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
             row.arithmetic,
@@ -347,10 +417,16 @@ fn print_table(r: &BatchReport) {
             row.false_negatives,
             row.ns_per_pair,
             ratio,
-            row.kernel_ns_per_pair.map(|k| format!("{k:.1}")).unwrap_or_else(dash),
-            row.grid_exact_disagreements.map(|g| g.to_string()).unwrap_or_else(dash),
+            row.kernel_ns_per_pair
+                .map(|k| format!("{k:.1}"))
+                .unwrap_or_else(dash),
+            row.grid_exact_disagreements
+                .map(|g| g.to_string())
+                .unwrap_or_else(dash),
             row.uncertain.map(|u| u.to_string()).unwrap_or_else(dash),
-            row.recheck_ns_per_pair.map(|k| format!("{k:.1}")).unwrap_or_else(dash),
+            row.recheck_ns_per_pair
+                .map(|k| format!("{k:.1}"))
+                .unwrap_or_else(dash),
             row.step.map(|s| format!("{s:.2e}")).unwrap_or_else(dash),
         );
     }

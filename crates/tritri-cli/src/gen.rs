@@ -61,7 +61,9 @@
 //! clipping unit (one octant per clock against a box), top
 //! `tritri_octant_clipper`; `--voxel-fill` its memory side (cells'
 //! children written into the voxel memory a word per clock), top
-//! `tritri_voxel_fill`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
+//! `tritri_voxel_fill`; `--triangle-voxelizer` its surface voxelization
+//! (triangles in, the voxels each meets out), top
+//! `tritri_triangle_voxelizer`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
 //! `tritri_patch_tessellator_w<W>_k<K>`.
@@ -83,28 +85,40 @@ mod for_scene;
 use crate::scene_input::SceneArgs;
 use anyhow::Context;
 use std::path::PathBuf;
-use tritri_geom::scene::load::Pose;
-use tritri_rtl::measured::{device, DEVICES};
 use std::process::ExitCode;
-use tritri_rtl::pipeline::pipeline_for_width::check_width;
+use tritri_geom::scene::load::Pose;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
-use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS};
-use tritri_rtl::emit::cell_classifier_unit::{cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
-use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
-use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS};
-use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
-use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
-use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
+use tritri_rtl::emit::broad_phase_system_unit::{
+    emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS,
+};
+use tritri_rtl::emit::cell_classifier_unit::{
+    cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS,
+};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
-use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with;
+use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
+use tritri_rtl::emit::patch_tessellator_unit::{
+    emit_patch_tessellator, patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS,
+};
+use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
+use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
+use tritri_rtl::emit::triangle_voxelizer_unit::{emit_triangle_voxelizer, TRIANGLE_VOXELIZER_NAME};
+use tritri_rtl::emit::voxel_units::{
+    emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME,
+    SET_OPERATION_NAME, VOXEL_FILL_NAME,
+};
 use tritri_rtl::emit::{pipeline_unit_name, EmittedDesign};
-use tritri_rtl::system::system_for_width::PipelineKind;
-use tritri_rtl::system::system_unit::emit_system_with;
+use tritri_rtl::measured::{device, DEVICES};
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
-use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
+use tritri_rtl::pipeline::pipeline_for_width::check_width;
+use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with;
 use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::emit_system_with;
+use tritri_rtl::system::{
+    SystemConfig, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES, MAX_TRIANGLES_PER_BANK,
+};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -176,6 +190,10 @@ pub struct Args {
     /// written into the voxel memory, a word per clock).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
     voxel_fill: bool,
+    /// Emit the octree engine's surface voxelization instead (triangles
+    /// in, the voxels each meets out; grids up to 1024^3).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "width"])]
+    triangle_voxelizer: bool,
     /// With --owner-filter or --broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
@@ -218,7 +236,12 @@ pub struct Args {
     #[arg(long, num_args = 2, value_names = ["A", "B"], conflicts_with_all = ["width", "system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "binning_unit", "broad_phase", "pipelines", "depth", "synth"])]
     for_scene: Option<Vec<String>>,
     /// With --for-scene: pose of B, tx,ty,tz[,rx,ry,rz] (as in `tritri sim`).
-    #[arg(long, allow_hyphen_values = true, value_name = "TX,TY,TZ,RX,RY,RZ", requires = "for_scene")]
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_name = "TX,TY,TZ,RX,RY,RZ",
+        requires = "for_scene"
+    )]
     pose_b: Option<Pose>,
     /// With --for-scene: uniform scale of B about its origin, before the pose.
     #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = crate::input::parse_scale)]
@@ -247,7 +270,14 @@ fn parse_rate(s: &str) -> Result<f64, String> {
 fn parse_device(s: &str) -> Result<String, String> {
     match device(s) {
         Some(d) => Ok(d.name.to_string()),
-        None => Err(format!("unknown device `{s}`: known are {}", DEVICES.iter().map(|d| d.name).collect::<Vec<_>>().join(", "))),
+        None => Err(format!(
+            "unknown device `{s}`: known are {}",
+            DEVICES
+                .iter()
+                .map(|d| d.name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
     }
 }
 
@@ -255,7 +285,14 @@ impl Args {
     /// The scene of `--for-scene`, as `sim` takes one.
     fn for_scene(&self) -> Option<SceneArgs> {
         let objects = self.for_scene.clone()?;
-        Some(SceneArgs { scene: Some(objects), pose_b: self.pose_b, scale_b: self.scale_b, subdivide: 0, tessellation: 8, tolerance: None })
+        Some(SceneArgs {
+            scene: Some(objects),
+            pose_b: self.pose_b,
+            scale_b: self.scale_b,
+            subdivide: 0,
+            tessellation: 8,
+            tolerance: None,
+        })
     }
 
     fn pipelines(&self) -> u32 {
@@ -273,7 +310,8 @@ impl Args {
     /// The system configuration at `width` (with --system).
     fn system_config(&self, width: usize) -> SystemConfig {
         let latency = tritri_rtl::pipeline::triangle_pipeline::latency();
-        SystemConfig::new(width, self.pipelines() as usize, latency).with_depth(self.depth() as usize)
+        SystemConfig::new(width, self.pipelines() as usize, latency)
+            .with_depth(self.depth() as usize)
     }
 
     /// The binning unit's configuration for a `grid_bits`-bit grid (with
@@ -311,7 +349,12 @@ impl Args {
 
     /// Whether the unit has multipliers (`--dsp` applies).
     fn has_multipliers(&self) -> bool {
-        !(self.classifier || self.setup || self.owner_filter || self.binning_unit || self.patch_tessellator || self.engine_unit())
+        !(self.classifier
+            || self.setup
+            || self.owner_filter
+            || self.binning_unit
+            || self.patch_tessellator
+            || self.engine_unit())
     }
 
     /// An error for options that do not go together, naming them.
@@ -327,7 +370,11 @@ impl Args {
                 return Err(format!("--dsp ecp5 with --synth {flow}: the multipliers are ECP5 primitives; synthesize them with --synth ecp5"));
             }
             if let Some(&w) = self.width.iter().find(|&&w| w > MAX_ECP5_DSP_WIDTH) {
-                let how = if self.dsp.is_some() { "--dsp ecp5" } else { "--synth ecp5 (which maps onto MULT18X18D blocks)" };
+                let how = if self.dsp.is_some() {
+                    "--dsp ecp5"
+                } else {
+                    "--synth ecp5 (which maps onto MULT18X18D blocks)"
+                };
                 return Err(format!(
                     "--width {w} with {how}: MULT18X18D mapping takes widths up to {MAX_ECP5_DSP_WIDTH} (add --dsp inferred to let Yosys map the products)"
                 ));
@@ -335,16 +382,24 @@ impl Args {
         }
         if !(self.system || self.binning_unit || self.broad_phase) {
             if self.pipelines.is_some() {
-                return Err("--pipelines applies to --system, --binning-unit and --broad-phase".into());
+                return Err(
+                    "--pipelines applies to --system, --binning-unit and --broad-phase".into(),
+                );
             }
             if self.depth.is_some() {
                 return Err("--depth applies to --system, --binning-unit and --broad-phase".into());
             }
         }
         if !(self.binning_unit || self.broad_phase) {
-            for (given, name) in [(self.triangles.is_some(), "--triangles"), (self.list_words.is_some(), "--list-words"), (self.leaves.is_some(), "--leaves")] {
+            for (given, name) in [
+                (self.triangles.is_some(), "--triangles"),
+                (self.list_words.is_some(), "--list-words"),
+                (self.leaves.is_some(), "--leaves"),
+            ] {
                 if given {
-                    return Err(format!("{name} applies to --binning-unit and --broad-phase"));
+                    return Err(format!(
+                        "{name} applies to --binning-unit and --broad-phase"
+                    ));
                 }
             }
         }
@@ -353,20 +408,30 @@ impl Args {
         }
         if self.binning_unit || self.broad_phase {
             if !self.pipelines().is_power_of_two() {
-                return Err(format!("--pipelines {}: the binning unit's split rule takes a power of two", self.pipelines()));
+                return Err(format!(
+                    "--pipelines {}: the binning unit's split rule takes a power of two",
+                    self.pipelines()
+                ));
             }
             if !self.depth().is_power_of_two() {
-                return Err(format!("--depth {}: the binning unit's split rule takes a power of two", self.depth()));
+                return Err(format!(
+                    "--depth {}: the binning unit's split rule takes a power of two",
+                    self.depth()
+                ));
             }
             if self.binning_unit {
                 for &w in &self.width {
-                    self.binning_config(w).check().map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
+                    self.binning_config(w)
+                        .check()
+                        .map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
                 }
             }
         }
         if self.broad_phase {
             for &w in &self.width {
-                self.broad_phase_config(w).check().map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
+                self.broad_phase_config(w)
+                    .check()
+                    .map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
             }
         }
         Ok(())
@@ -376,52 +441,77 @@ impl Args {
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
         if self.patch_tessellator {
             let k = self.steps.unwrap_or(3);
-            return emit_patch_tessellator(width, k).with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
+            return emit_patch_tessellator(width, k)
+                .with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
         }
         if self.plane_traversal {
-            return emit_plane_traversal().with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
+            return emit_plane_traversal()
+                .with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
         }
         if self.set_operation {
             return emit_set_operation().with_context(|| format!("emitting {SET_OPERATION_NAME}"));
         }
         if self.octant_clipper {
-            return emit_octant_clipper().with_context(|| format!("emitting {OCTANT_CLIPPER_NAME}"));
+            return emit_octant_clipper()
+                .with_context(|| format!("emitting {OCTANT_CLIPPER_NAME}"));
         }
         if self.voxel_fill {
             return emit_voxel_fill().with_context(|| format!("emitting {VOXEL_FILL_NAME}"));
         }
+        if self.triangle_voxelizer {
+            return emit_triangle_voxelizer()
+                .with_context(|| format!("emitting {TRIANGLE_VOXELIZER_NAME}"));
+        }
         if self.binning_unit {
             let config = self.binning_config(width);
-            return emit_binning_unit(&config).with_context(|| format!("emitting {}", config.unit_name()));
+            return emit_binning_unit(&config)
+                .with_context(|| format!("emitting {}", config.unit_name()));
         }
         if self.broad_phase {
             let config = self.broad_phase_config(width);
-            return emit_broad_phase_system_with(&config, self.multipliers()).with_context(|| format!("emitting {}", config.unit_name()));
+            return emit_broad_phase_system_with(&config, self.multipliers())
+                .with_context(|| format!("emitting {}", config.unit_name()));
         }
         if self.owner_filter {
-            return emit_owner_filter(self.slots()).with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots())));
+            return emit_owner_filter(self.slots())
+                .with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots())));
         }
         if self.classifier {
-            return emit_cell_classifier(width).with_context(|| format!("emitting the {width}-bit grid's classifier"));
+            return emit_cell_classifier(width)
+                .with_context(|| format!("emitting the {width}-bit grid's classifier"));
         }
         if self.setup {
-            return emit_triangle_setup(width).with_context(|| format!("emitting the {width}-bit grid's setup"));
+            return emit_triangle_setup(width)
+                .with_context(|| format!("emitting the {width}-bit grid's setup"));
         }
         if self.system {
             let config = self.system_config(width);
-            return emit_system_with(config, PipelineKind::Real, self.multipliers()).with_context(|| format!("emitting {}", config.unit_name()));
+            return emit_system_with(config, PipelineKind::Real, self.multipliers())
+                .with_context(|| format!("emitting {}", config.unit_name()));
         }
-        emit_pipeline_with(width, self.multipliers()).with_context(|| format!("emitting the {width}-bit pipeline"))
+        emit_pipeline_with(width, self.multipliers())
+            .with_context(|| format!("emitting the {width}-bit pipeline"))
     }
 
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
-        self.patch_tessellator || self.system || self.classifier || self.setup || self.owner_filter || self.binning_unit || self.broad_phase || self.engine_unit()
+        self.patch_tessellator
+            || self.system
+            || self.classifier
+            || self.setup
+            || self.owner_filter
+            || self.binning_unit
+            || self.broad_phase
+            || self.engine_unit()
     }
 
     /// The octree engine's units that take no width.
     fn engine_unit(&self) -> bool {
-        self.plane_traversal || self.set_operation || self.octant_clipper || self.voxel_fill
+        self.plane_traversal
+            || self.set_operation
+            || self.octant_clipper
+            || self.voxel_fill
+            || self.triangle_voxelizer
     }
 
     /// The grid-width units of the octree engine.
@@ -441,6 +531,8 @@ impl Args {
             OCTANT_CLIPPER_NAME.to_string()
         } else if self.voxel_fill {
             VOXEL_FILL_NAME.to_string()
+        } else if self.triangle_voxelizer {
+            TRIANGLE_VOXELIZER_NAME.to_string()
         } else if self.owner_filter {
             owner_filter_unit_name(self.slots())
         } else if self.binning_unit {
@@ -477,20 +569,39 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     if let Some(scene) = args.for_scene() {
         let device = device(&args.device).expect("checked by parse_device");
-        let request = for_scene::Request { scene: &scene, max_uncertain: args.max_uncertain.unwrap_or(0.001), device, out: args.out.clone() };
+        let request = for_scene::Request {
+            scene: &scene,
+            max_uncertain: args.max_uncertain.unwrap_or(0.001),
+            device,
+            out: args.out.clone(),
+        };
         return for_scene::run(request);
     }
     for &w in &args.width {
-        if args.patch_tessellator && !TESSELLATOR_CONFIGURATIONS.contains(&(w, args.steps.unwrap_or(3))) {
+        if args.patch_tessellator
+            && !TESSELLATOR_CONFIGURATIONS.contains(&(w, args.steps.unwrap_or(3)))
+        {
             eprintln!("error: --patch-tessellator --width {w} --steps {}: the unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}", args.steps.unwrap_or(3));
             return Ok(ExitCode::from(2));
         }
         if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
-            let unit = if args.setup { "--setup" } else { "--classifier" };
+            let unit = if args.setup {
+                "--setup"
+            } else {
+                "--classifier"
+            };
             eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
             return Ok(ExitCode::from(2));
         }
-        if let (false, Err(e)) = (args.patch_tessellator || args.octree_unit() || args.binning_unit || args.broad_phase || args.owner_filter || args.engine_unit(), check_width(w)) {
+        if let (false, Err(e)) = (
+            args.patch_tessellator
+                || args.octree_unit()
+                || args.binning_unit
+                || args.broad_phase
+                || args.owner_filter
+                || args.engine_unit(),
+            check_width(w),
+        ) {
             eprintln!("error: --width {w}: {e}");
             return Ok(ExitCode::from(2));
         }
@@ -500,7 +611,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for &w in &args.width {
         let dir = out_dir(&args, w);
         let design = args.emit(w)?;
-        design.write_to(&dir).with_context(|| format!("writing {}", dir.display()))?;
+        design
+            .write_to(&dir)
+            .with_context(|| format!("writing {}", dir.display()))?;
         eprintln!(
             "wrote {} ({} modules, {} files) to {}",
             design.top,
@@ -511,8 +624,18 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         if args.synth.as_deref() == Some("ecp5") {
             let top = args.synth_top.as_deref().unwrap_or(&design.top);
             if !design.modules.iter().any(|m| m == top) {
-                let units: Vec<&str> = design.modules.iter().map(String::as_str).filter(|m| !m.contains("_dff_") && !m.contains("_delay")).take(12).collect();
-                eprintln!("error: --synth-top {top}: {} has no such module; it has {}, ...", design.top, units.join(", "));
+                let units: Vec<&str> = design
+                    .modules
+                    .iter()
+                    .map(String::as_str)
+                    .filter(|m| !m.contains("_dff_") && !m.contains("_delay"))
+                    .take(12)
+                    .collect();
+                eprintln!(
+                    "error: --synth-top {top}: {} has no such module; it has {}, ...",
+                    design.top,
+                    units.join(", ")
+                );
                 return Ok(ExitCode::from(2));
             }
             eprintln!(
@@ -520,11 +643,19 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 dir.display(),
                 dir.join("route_ecp5.log").display()
             );
-            let report = route_ecp5(&dir, top, &Ecp5Options::default()).with_context(|| format!("place and route of {top}"))?;
-            std::fs::write(dir.join("route_ecp5.md"), route_table(std::slice::from_ref(&report)))?;
+            let report = route_ecp5(&dir, top, &Ecp5Options::default())
+                .with_context(|| format!("place and route of {top}"))?;
+            std::fs::write(
+                dir.join("route_ecp5.md"),
+                route_table(std::slice::from_ref(&report)),
+            )?;
             routes.push(report);
         } else if let Some(which) = &args.synth {
-            let mut row = ResourceRow { unit: args.unit_name(w), generic: None, xilinx: None };
+            let mut row = ResourceRow {
+                unit: args.unit_name(w),
+                generic: None,
+                xilinx: None,
+            };
             if which == "all" || which == "xilinx" {
                 eprintln!("yosys synth_xilinx in {} ...", dir.display());
                 row.xilinx = Some(synthesize(&dir, Target::Xilinx)?);
@@ -533,7 +664,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 eprintln!("yosys synth (generic) in {} ...", dir.display());
                 row.generic = Some(synthesize(&dir, Target::Generic)?);
             }
-            std::fs::write(dir.join("resources.md"), resource_table(std::slice::from_ref(&row)))?;
+            std::fs::write(
+                dir.join("resources.md"),
+                resource_table(std::slice::from_ref(&row)),
+            )?;
             rows.push(row);
         }
     }

@@ -16,7 +16,10 @@ pub struct Loaded {
 
 impl Loaded {
     pub fn good_pairs(&self) -> Vec<TrianglePair> {
-        self.file.as_ref().map(PairsFile::good_pairs).unwrap_or_default()
+        self.file
+            .as_ref()
+            .map(PairsFile::good_pairs)
+            .unwrap_or_default()
     }
 }
 
@@ -40,11 +43,17 @@ pub fn load(path: &Path) -> Loaded {
                 eprintln!("error: {e}");
                 errors += 1;
             }
-            Loaded { file: Some(file), errors }
+            Loaded {
+                file: Some(file),
+                errors,
+            }
         }
         Err(e) => {
             eprintln!("error: {e}");
-            Loaded { file: None, errors: 1 }
+            Loaded {
+                file: None,
+                errors: 1,
+            }
         }
     }
 }
@@ -52,8 +61,9 @@ pub fn load(path: &Path) -> Loaded {
 /// clap value parser for a coordinate width: names the value when it is
 /// out of range.
 pub fn parse_width(s: &str) -> Result<u32, String> {
-    let w: u32 =
-        s.trim().parse().map_err(|_| format!("`{s}` is not a width (an integer from {MIN_WIDTH} to {MAX_WIDTH})"))?;
+    let w: u32 = s.trim().parse().map_err(|_| {
+        format!("`{s}` is not a width (an integer from {MIN_WIDTH} to {MAX_WIDTH})")
+    })?;
     FixedWidths::new(w).map_err(|e| e.to_string())?;
     Ok(w)
 }
@@ -62,7 +72,9 @@ pub fn parse_width(s: &str) -> Result<u32, String> {
 pub fn parse_tolerance(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("`{s}` is not a tolerance (a finite distance greater than 0)")),
+        _ => Err(format!(
+            "`{s}` is not a tolerance (a finite distance greater than 0)"
+        )),
     }
 }
 
@@ -70,7 +82,9 @@ pub fn parse_tolerance(s: &str) -> Result<f64, String> {
 pub fn parse_scale(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-        _ => Err(format!("`{s}` is not a scale factor (a finite number greater than 0)")),
+        _ => Err(format!(
+            "`{s}` is not a scale factor (a finite number greater than 0)"
+        )),
     }
 }
 
@@ -79,7 +93,9 @@ pub fn parse_scale(s: &str) -> Result<f64, String> {
 pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if (0.001..=100_000.0).contains(&v) => Ok(v),
-        _ => Err(format!("`{s}` is not a clock frequency in MHz (a number from 0.001 to 100000)")),
+        _ => Err(format!(
+            "`{s}` is not a clock frequency in MHz (a number from 0.001 to 100000)"
+        )),
     }
 }
 
@@ -93,7 +109,10 @@ pub fn parse_percentage(s: &str) -> Result<f64, String> {
 
 /// A voxel grid's resolution: a power of two from 2 to 1024.
 pub fn parse_resolution(s: &str) -> Result<u64, String> {
-    let n: u64 = s.trim().parse().map_err(|_| format!("`{s}` is not a resolution (a power of two from 2 to 1024)"))?;
+    let n: u64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a resolution (a power of two from 2 to 1024)"))?;
     tritri_geom::octree::voxelize::level_of_resolution(n).map_err(|e| e.to_string())?;
     Ok(n)
 }
@@ -104,8 +123,16 @@ fn parse_list<T: std::str::FromStr, const N: usize>(s: &str, what: &str) -> Resu
     if fields.len() != N {
         return Err(format!("`{s}` is not {what} ({N} comma-separated numbers)"));
     }
-    let values: Vec<T> = fields.iter().map(|f| f.parse::<T>().map_err(|_| format!("`{f}` in `{s}` is not a number ({what})"))).collect::<Result<_, _>>()?;
-    values.try_into().map_err(|_| format!("`{s}` is not {what}"))
+    let values: Vec<T> = fields
+        .iter()
+        .map(|f| {
+            f.parse::<T>()
+                .map_err(|_| format!("`{f}` in `{s}` is not a number ({what})"))
+        })
+        .collect::<Result<_, _>>()?;
+    values
+        .try_into()
+        .map_err(|_| format!("`{s}` is not {what}"))
 }
 
 /// A point `x,y,z`: three finite numbers.
@@ -131,7 +158,9 @@ pub fn parse_eye(s: &str) -> Result<[f64; 3], String> {
 pub fn parse_normal(s: &str) -> Result<[i64; 3], String> {
     let v: [i64; 3] = parse_list(s, "an integer normal a,b,c")?;
     if v == [0; 3] || v.iter().any(|c| c.unsigned_abs() > 1 << 20) {
-        return Err(format!("`{s}` is not a plane normal (integers up to 2^20 in size, not all 0)"));
+        return Err(format!(
+            "`{s}` is not a plane normal (integers up to 2^20 in size, not all 0)"
+        ));
     }
     Ok(v)
 }
@@ -140,7 +169,9 @@ pub fn parse_normal(s: &str) -> Result<[i64; 3], String> {
 pub fn parse_voxel_box(s: &str) -> Result<[i64; 6], String> {
     let v: [i64; 6] = parse_list(s, "a voxel box x0,y0,z0,x1,y1,z1")?;
     if (0..3).any(|k| v[k] >= v[k + 3]) || v.iter().any(|c| c.unsigned_abs() > 1 << 20) {
-        return Err(format!("`{s}` is not a voxel box (x0 < x1, y0 < y1, z0 < z1, each at most 2^20 in size)"));
+        return Err(format!(
+            "`{s}` is not a voxel box (x0 < x1, y0 < y1, z0 < z1, each at most 2^20 in size)"
+        ));
     }
     Ok(v)
 }

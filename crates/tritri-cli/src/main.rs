@@ -13,6 +13,7 @@ use std::process::ExitCode;
 
 mod bench;
 mod bezier;
+mod chapter5;
 mod classify;
 mod demo;
 mod eval;
@@ -23,7 +24,6 @@ mod octree;
 mod output_file;
 mod progress;
 mod report;
-mod chapter5;
 mod scene_input;
 mod sim;
 mod voxelize;
@@ -114,7 +114,11 @@ fn clean_up_on_interrupt() {
                 return;
             }
             let (groups, temporaries) = tritri_rtl::tools::interrupt::clean_up();
-            let name = if signal == libc::SIGINT { "SIGINT" } else { "SIGTERM" };
+            let name = if signal == libc::SIGINT {
+                "SIGINT"
+            } else {
+                "SIGTERM"
+            };
             eprintln!("\ntritri: {name}: stopped {groups} running tool(s), removed {temporaries} temporary file(s) and directory(ies)");
             std::process::exit(128 + signal);
         });

@@ -27,14 +27,19 @@ const VOX_MAX_SIDE: usize = 256;
 
 impl ModelFormat {
     pub fn of(path: &str) -> anyhow::Result<ModelFormat> {
-        let ext = Path::new(path).extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let ext = Path::new(path)
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
         Ok(match ext.as_deref() {
             Some("oct") => ModelFormat::Octree,
             Some("binvox") => ModelFormat::Binvox,
             Some("vox") => ModelFormat::MagicaVoxel,
             Some("obj") => ModelFormat::BoundaryObj,
             Some("png") => ModelFormat::Png,
-            _ => anyhow::bail!("{path}: unknown model format (expected .oct, .binvox, .vox, .obj or .png)"),
+            _ => anyhow::bail!(
+                "{path}: unknown model format (expected .oct, .binvox, .vox, .obj or .png)"
+            ),
         })
     }
 }
@@ -57,15 +62,29 @@ impl ModelOutput {
         if path == "-" {
             anyhow::bail!("models are written to files, not standard output (`-`)");
         }
-        Ok(ModelOutput { path: path.to_string(), format, file: OutputFile::reserve(path)? })
+        Ok(ModelOutput {
+            path: path.to_string(),
+            format,
+            file: OutputFile::reserve(path)?,
+        })
     }
 
     /// Writes the model; returns the file's size in bytes.
-    pub fn write(self, tree: &Octree, grid: &VoxelGrid, placement: &Placement, view: &View) -> anyhow::Result<u64> {
+    pub fn write(
+        self,
+        tree: &Octree,
+        grid: &VoxelGrid,
+        placement: &Placement,
+        view: &View,
+    ) -> anyhow::Result<u64> {
         let ModelOutput { path, format, file } = self;
         match format {
             ModelFormat::Octree => {
-                let bytes = OctreeFile { tree: tree.clone(), placement: *placement }.to_bytes();
+                let bytes = OctreeFile {
+                    tree: tree.clone(),
+                    placement: *placement,
+                }
+                .to_bytes();
                 file.commit(|w| w.write_all(&bytes))?;
             }
             ModelFormat::Binvox => file.commit(|w| write_binvox(grid, placement, w))?,
@@ -101,7 +120,9 @@ pub fn write_png(image: &Image, out: &mut dyn std::io::Write) -> std::io::Result
     encoder.set_depth(png::BitDepth::Eight);
     let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
     let data: Vec<u8> = image.pixels.iter().flatten().copied().collect();
-    writer.write_image_data(&data).map_err(std::io::Error::other)?;
+    writer
+        .write_image_data(&data)
+        .map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
 }
 
@@ -113,12 +134,21 @@ fn magica_voxel(grid: &VoxelGrid) -> dot_vox::DotVoxData {
         for y in 0..n {
             for x in 0..n {
                 if grid.get([x, y, z]) {
-                    voxels.push(dot_vox::Voxel { x: x as u8, y: y as u8, z: z as u8, i: 0 });
+                    voxels.push(dot_vox::Voxel {
+                        x: x as u8,
+                        y: y as u8,
+                        z: z as u8,
+                        i: 0,
+                    });
                 }
             }
         }
     }
-    let size = dot_vox::Size { x: n as u32, y: n as u32, z: n as u32 };
+    let size = dot_vox::Size {
+        x: n as u32,
+        y: n as u32,
+        z: n as u32,
+    };
     dot_vox::DotVoxData {
         version: 150,
         index_map: Vec::new(),

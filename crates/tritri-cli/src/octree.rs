@@ -8,14 +8,14 @@ use crate::voxelize::ViewArgs;
 use clap::Subcommand;
 use std::process::ExitCode;
 use std::time::Instant;
+use tritri_cosim::engine::Engine;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::clip::{clip, clip_logged};
-use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 use tritri_geom::octree::plane::classify_plane;
 use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
-use tritri_cosim::engine::Engine;
 use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
+use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -149,7 +149,10 @@ fn bad(e: anyhow::Error) -> anyhow::Result<ExitCode> {
 
 /// Reserves every output for a grid of `side`.
 fn reserve(paths: &[String], side: usize) -> anyhow::Result<Vec<ModelOutput>> {
-    paths.iter().map(|p| ModelOutput::reserve(p, side)).collect()
+    paths
+        .iter()
+        .map(|p| ModelOutput::reserve(p, side))
+        .collect()
 }
 
 /// Reads a model and reserves its outputs (errors: bad input).
@@ -176,7 +179,11 @@ fn write_all(outputs: Vec<ModelOutput>, model: &OctreeFile, view: &ViewArgs) -> 
 
 fn describe(name: &str, model: &OctreeFile) {
     let n = 1u64 << model.tree.level();
-    println!("{name}: {n}^3 grid, {} voxels, {} octree nodes", model.tree.voxel_count(), model.tree.nodes().len());
+    println!(
+        "{name}: {n}^3 grid, {} voxels, {} octree nodes",
+        model.tree.voxel_count(),
+        model.tree.nodes().len()
+    );
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
@@ -199,7 +206,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
         Operation::Render(a) => {
             if !a.png.to_ascii_lowercase().ends_with(".png") {
-                return bad(anyhow::anyhow!("--png {}: the render is written as .png", a.png));
+                return bad(anyhow::anyhow!(
+                    "--png {}: the render is written as .png",
+                    a.png
+                ));
             }
             let (model, outputs) = match open(&a.model, std::slice::from_ref(&a.png)) {
                 Ok(x) => x,
@@ -215,7 +225,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 /// the voxel fill, the memory checked against the model's voxels.
 fn fill_in_hardware(model: &OctreeFile, hardware: &HardwareArgs) -> anyhow::Result<()> {
     let level = model.tree.level();
-    anyhow::ensure!(level >= 1, "the voxel fill needs a grid of at least 2^3 voxels");
+    anyhow::ensure!(
+        level >= 1,
+        "the voxel fill needs a grid of at least 2^3 voxels"
+    );
     let records = model.tree.fill_records();
     let started = Instant::now();
     let run = match hardware.engine.simulator() {
@@ -277,8 +290,13 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
     let hardware = tritri_cosim::plane_traversal::run(a.engine, level, a.normal, a.offset)?;
     let simulated = started.elapsed();
-    let agrees = hardware.crossed_voxels() == c.crossed_voxels && hardware.half_space(level) == c.half_space.to_voxels();
-    anyhow::ensure!(agrees, "the plane traversal in {} differs from the software model (a bug)", a.engine.name());
+    let agrees = hardware.crossed_voxels() == c.crossed_voxels
+        && hardware.half_space(level) == c.half_space.to_voxels();
+    anyhow::ensure!(
+        agrees,
+        "the plane traversal in {} differs from the software model (a bug)",
+        a.engine.name()
+    );
     let words = hardware.fill_words(64);
     println!(
         "hardware ({}): {} cells classified, {} records, {} cycles = {:.3} ms at {} MHz{}; the same half-space and crossed voxels as the model; \
@@ -296,10 +314,20 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         Some(m) => {
             describe(a.model.as_deref().unwrap_or(""), &m);
             let cut = m.tree.combine(SetOperation::Intersection, &c.half_space);
-            println!("cut: {} voxels kept of {}", cut.voxel_count(), m.tree.voxel_count());
-            OctreeFile { tree: cut, placement: m.placement }
+            println!(
+                "cut: {} voxels kept of {}",
+                cut.voxel_count(),
+                m.tree.voxel_count()
+            );
+            OctreeFile {
+                tree: cut,
+                placement: m.placement,
+            }
         }
-        None => OctreeFile { tree: c.half_space, placement: Placement::default() },
+        None => OctreeFile {
+            tree: c.half_space,
+            placement: Placement::default(),
+        },
     };
     write_all(outputs, &result, &a.outputs.view)?;
     Ok(ExitCode::SUCCESS)
@@ -345,9 +373,16 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         let started = Instant::now();
         let classes = match a.hardware.engine.simulator() {
             None => tritri_cosim::voxel_units::clip_rusthdl(lo, hi, &cells)?,
-            Some(simulator) => tritri_cosim::voxel_units::clip_emitted(&[(lo, hi, &cells)], simulator)?.remove(0),
+            Some(simulator) => {
+                tritri_cosim::voxel_units::clip_emitted(&[(lo, hi, &cells)], simulator)?.remove(0)
+            }
         };
-        let wrong = classes.iter().zip(&octants).filter(|(h, (_, m))| *h != m).count() + octants.len().abs_diff(classes.len());
+        let wrong = classes
+            .iter()
+            .zip(&octants)
+            .filter(|(h, (_, m))| *h != m)
+            .count()
+            + octants.len().abs_diff(classes.len());
         anyhow::ensure!(wrong == 0, "the octant clipper in {} classified {wrong} octants differently from the model (a bug)", a.hardware.engine.name());
         let clock = a.hardware.clock_mhz.unwrap_or(CLIPPER_CLOCK_MHZ);
         let cycles = cells.len() as u64 + CLIPPER_LATENCY as u64;
@@ -360,7 +395,14 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
             started.elapsed().as_secs_f64()
         );
     }
-    write_all(outputs, &OctreeFile { tree: clipped, placement: model.placement }, &a.outputs.view)?;
+    write_all(
+        outputs,
+        &OctreeFile {
+            tree: clipped,
+            placement: model.placement,
+        },
+        &a.outputs.view,
+    )?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -379,7 +421,10 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
         ));
     }
     if ma.placement != mb.placement {
-        eprintln!("warning: {} and {} are placed differently; the result keeps {}'s placement", a.a, a.b, a.a);
+        eprintln!(
+            "warning: {} and {} are placed differently; the result keeps {}'s placement",
+            a.a, a.b, a.a
+        );
     }
     let outputs = match reserve(&a.outputs.out, 1 << ma.tree.level()) {
         Ok(o) => o,
@@ -390,14 +435,23 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
     let started = Instant::now();
     let result = ma.tree.combine(op, &mb.tree);
     let took = started.elapsed();
-    println!("{op:?}: {} voxels, {} octree nodes, {:.3} ms (on the trees, no voxels expanded)", result.voxel_count(), result.nodes().len(), took.as_secs_f64() * 1e3);
+    println!(
+        "{op:?}: {} voxels, {} octree nodes, {:.3} ms (on the trees, no voxels expanded)",
+        result.voxel_count(),
+        result.nodes().len(),
+        took.as_secs_f64() * 1e3
+    );
     if a.hardware.engine != Engine::Model {
         // The unit streams both voxel memories a word per clock.
         let (va, vb) = (ma.tree.to_voxels(), mb.tree.to_voxels());
         let started = Instant::now();
         let words = match a.hardware.engine.simulator() {
             None => tritri_cosim::voxel_units::set_operation_rusthdl(op, va.words(), vb.words()).0,
-            Some(simulator) => tritri_cosim::voxel_units::set_operations_emitted(&[(op, va.words(), vb.words())], simulator)?.remove(0),
+            Some(simulator) => tritri_cosim::voxel_units::set_operations_emitted(
+                &[(op, va.words(), vb.words())],
+                simulator,
+            )?
+            .remove(0),
         };
         anyhow::ensure!(
             words.as_slice() == result.to_voxels().words(),
@@ -414,6 +468,13 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
             started.elapsed().as_secs_f64()
         );
     }
-    write_all(outputs, &OctreeFile { tree: result, placement: ma.placement }, &a.outputs.view)?;
+    write_all(
+        outputs,
+        &OctreeFile {
+            tree: result,
+            placement: ma.placement,
+        },
+        &a.outputs.view,
+    )?;
     Ok(ExitCode::SUCCESS)
 }

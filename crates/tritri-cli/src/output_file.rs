@@ -13,7 +13,10 @@ use tritri_rtl::tools::interrupt;
 /// A destination and its reserved temporary, or standard output (`-`).
 pub enum OutputFile {
     Stdout,
-    File { destination: PathBuf, temporary: PathBuf },
+    File {
+        destination: PathBuf,
+        temporary: PathBuf,
+    },
 }
 
 impl OutputFile {
@@ -26,26 +29,43 @@ impl OutputFile {
         if destination.is_dir() {
             anyhow::bail!("cannot write {path}: it is a directory");
         }
-        let name = destination.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let name = destination
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
         let temporary = destination.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
         std::fs::File::create(&temporary).with_context(|| format!("cannot write {path}"))?;
         interrupt::register_temporary(&temporary);
-        Ok(OutputFile::File { destination, temporary })
+        Ok(OutputFile::File {
+            destination,
+            temporary,
+        })
     }
 
     /// Writes the contents with `fill` and puts the file in place.
-    pub fn commit(self, fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>) -> anyhow::Result<()> {
+    pub fn commit(
+        self,
+        fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+    ) -> anyhow::Result<()> {
         match &self {
             OutputFile::Stdout => {
                 let mut w = BufWriter::new(std::io::stdout().lock());
                 fill(&mut w)?;
                 w.flush()?;
             }
-            OutputFile::File { destination, temporary } => {
-                let mut w = BufWriter::new(std::fs::File::create(temporary).with_context(|| format!("cannot write {}", destination.display()))?);
+            OutputFile::File {
+                destination,
+                temporary,
+            } => {
+                let mut w = BufWriter::new(
+                    std::fs::File::create(temporary)
+                        .with_context(|| format!("cannot write {}", destination.display()))?,
+                );
                 fill(&mut w).with_context(|| format!("writing {}", destination.display()))?;
-                w.flush().with_context(|| format!("writing {}", destination.display()))?;
-                std::fs::rename(temporary, destination).with_context(|| format!("cannot write {}", destination.display()))?;
+                w.flush()
+                    .with_context(|| format!("writing {}", destination.display()))?;
+                std::fs::rename(temporary, destination)
+                    .with_context(|| format!("cannot write {}", destination.display()))?;
                 interrupt::unregister_temporary(temporary);
             }
         }
@@ -63,9 +83,18 @@ impl OutputFile {
 
     /// Puts the temporary a tool has filled in place; returns its size.
     pub fn commit_written(self) -> anyhow::Result<u64> {
-        let OutputFile::File { destination, temporary } = &self else { return Ok(0) };
-        let size = std::fs::metadata(temporary).with_context(|| format!("{} was not written", destination.display()))?.len();
-        std::fs::rename(temporary, destination).with_context(|| format!("cannot write {}", destination.display()))?;
+        let OutputFile::File {
+            destination,
+            temporary,
+        } = &self
+        else {
+            return Ok(0);
+        };
+        let size = std::fs::metadata(temporary)
+            .with_context(|| format!("{} was not written", destination.display()))?
+            .len();
+        std::fs::rename(temporary, destination)
+            .with_context(|| format!("cannot write {}", destination.display()))?;
         interrupt::unregister_temporary(temporary);
         Ok(size)
     }

@@ -33,12 +33,25 @@ impl Progress {
     /// `threshold`.
     pub fn new(total: u64, unit: &'static str, threshold: u64) -> Progress {
         if total < threshold || total == 0 {
-            return Progress { bar: ProgressBar::hidden(), plain: None };
+            return Progress {
+                bar: ProgressBar::hidden(),
+                plain: None,
+            };
         }
         if !std::io::stderr().is_terminal() {
             let now = Instant::now();
-            let plain = Plain { total, unit, done: AtomicU64::new(0), started: now, last: Mutex::new(now), first: Mutex::new(None) };
-            return Progress { bar: ProgressBar::hidden(), plain: Some(plain) };
+            let plain = Plain {
+                total,
+                unit,
+                done: AtomicU64::new(0),
+                started: now,
+                last: Mutex::new(now),
+                first: Mutex::new(None),
+            };
+            return Progress {
+                bar: ProgressBar::hidden(),
+                plain: Some(plain),
+            };
         }
         let bar = ProgressBar::new(total);
         if let Ok(style) = ProgressStyle::with_template(&format!("{{spinner}} {unit} [{{bar:40}}] {{human_pos}}/{{human_len}} ({{percent}} %, eta {{eta}})")) {
@@ -56,14 +69,20 @@ impl Progress {
             Ok(mut first) => *first.get_or_insert((done, Instant::now())),
             Err(_) => return,
         };
-        let Ok(mut last) = plain.last.try_lock() else { return };
+        let Ok(mut last) = plain.last.try_lock() else {
+            return;
+        };
         if last.elapsed() < PLAIN_PERIOD {
             return;
         }
         *last = Instant::now();
         let fraction = (done as f64 / plain.total as f64).min(1.0);
         let rate = (done - first.0) as f64 / first.1.elapsed().as_secs_f64();
-        let eta = if rate > 0.0 { format!("{:.0} s", plain.total.saturating_sub(done) as f64 / rate) } else { "unknown".into() };
+        let eta = if rate > 0.0 {
+            format!("{:.0} s", plain.total.saturating_sub(done) as f64 / rate)
+        } else {
+            "unknown".into()
+        };
         eprintln!(
             "progress: {:.0} % ({done} of {} {}), {:.0} s so far, eta {eta}",
             100.0 * fraction,

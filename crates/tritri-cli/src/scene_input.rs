@@ -3,13 +3,15 @@
 
 use crate::input;
 use std::time::Duration;
-use tritri_rtl::system::{SystemConfig, MAX_TRIANGLES_PER_BANK, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES};
 use tritri_geom::bezier::query::{patches_box, tessellate_for_query, MAX_SPLITS};
 use tritri_geom::bezier::{read_bpt, BezierPatch};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
 use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError};
+use tritri_rtl::system::{
+    SystemConfig, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES, MAX_TRIANGLES_PER_BANK,
+};
 
 /// Most samples per side of a Bezier patch.
 pub const MAX_TESSELLATION: u64 = tritri_geom::bezier::MAX_SAMPLES as u64;
@@ -55,14 +57,19 @@ impl SceneArgs {
 
     /// [`Self::load`], and a line per `.bpt` object tessellated for the
     /// query (`--tolerance`) saying what it took.
-    pub fn load_with_notes(&self, default: [&str; 2]) -> Result<(SceneObject, SceneObject, Vec<String>), LoadError> {
+    pub fn load_with_notes(
+        &self,
+        default: [&str; 2],
+    ) -> Result<(SceneObject, SceneObject, Vec<String>), LoadError> {
         let names: Vec<&str> = match &self.scene {
             Some(v) => v.iter().map(String::as_str).collect(),
             None => default.to_vec(),
         };
         let Some(tolerance) = self.tolerance else {
             let a = load_object(names[0], self.tessellation as usize)?.subdivided(self.subdivide);
-            let b = self.placed(load_object(names[1], self.tessellation as usize)?).subdivided(self.subdivide);
+            let b = self
+                .placed(load_object(names[1], self.tessellation as usize)?)
+                .subdivided(self.subdivide);
             return Ok((a, b, Vec::new()));
         };
         // The query's region is the overlap of conservative boxes: a patch
@@ -71,7 +78,11 @@ impl SceneArgs {
             Ok(match is_bpt(name) {
                 true => {
                     let patches = read_bpt(std::path::Path::new(name))?;
-                    Shape::Patches(if is_b { patches.iter().map(|p| self.placed_patch(p)).collect() } else { patches })
+                    Shape::Patches(if is_b {
+                        patches.iter().map(|p| self.placed_patch(p)).collect()
+                    } else {
+                        patches
+                    })
                 }
                 false => {
                     let object = load_object(name, self.tessellation as usize)?;
@@ -95,7 +106,12 @@ impl SceneArgs {
                     q.uniform_triangles,
                     q.uniform_samples
                 ));
-                SceneObject { name: name.to_string(), triangles: q.triangles, face_of: q.face_of }.subdivided(self.subdivide)
+                SceneObject {
+                    name: name.to_string(),
+                    triangles: q.triangles,
+                    face_of: q.face_of,
+                }
+                .subdivided(self.subdivide)
             }
         };
         let a = object(names[0], a);
@@ -105,7 +121,11 @@ impl SceneArgs {
 
     /// Object B scaled and posed.
     fn placed(&self, b: SceneObject) -> SceneObject {
-        let b = if self.scale_b == 1.0 { b } else { b.scaled(self.scale_b) };
+        let b = if self.scale_b == 1.0 {
+            b
+        } else {
+            b.scaled(self.scale_b)
+        };
         let pose = self.pose_b.unwrap_or_default();
         if pose.is_identity() {
             b
@@ -117,7 +137,11 @@ impl SceneArgs {
     /// A patch of B scaled and posed (control points move with the surface).
     fn placed_patch(&self, patch: &BezierPatch) -> BezierPatch {
         let motion = self.pose_b.unwrap_or_default().isometry();
-        BezierPatch { net: patch.net.map(|row| row.map(|p| motion.transform_point(&(p * self.scale_b)))) }
+        BezierPatch {
+            net: patch
+                .net
+                .map(|row| row.map(|p| motion.transform_point(&(p * self.scale_b)))),
+        }
     }
 }
 
@@ -138,7 +162,10 @@ impl Shape {
 }
 
 fn is_bpt(name: &str) -> bool {
-    std::path::Path::new(name).extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("bpt"))
+    std::path::Path::new(name)
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("bpt"))
 }
 
 /// The generated hardware.
@@ -184,7 +211,11 @@ pub enum BroadPhase {
 
 impl HardwareArgs {
     pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
-        tritri_geom::scene::SceneOptions { width: self.grid_bits(), depth: self.depth as usize, split: !self.no_split }
+        tritri_geom::scene::SceneOptions {
+            width: self.grid_bits(),
+            depth: self.depth as usize,
+            split: !self.no_split,
+        }
     }
 
     /// The grid's width G (W unless `--grid-bits` says more).
@@ -214,10 +245,21 @@ impl HardwareArgs {
         self.prepare_with(self.broad_phase, a, b)
     }
 
-    pub fn prepare_with(&self, broad_phase: BroadPhase, a: &SceneObject, b: &SceneObject) -> Result<PreparedScene, SceneError> {
+    pub fn prepare_with(
+        &self,
+        broad_phase: BroadPhase,
+        a: &SceneObject,
+        b: &SceneObject,
+    ) -> Result<PreparedScene, SceneError> {
         match broad_phase {
             BroadPhase::Flat => prepare(a, b, &self.scene_options()),
-            BroadPhase::Octree => prepare_octree(a, b, &self.scene_options(), &self.system_config(), self.local_frames()),
+            BroadPhase::Octree => prepare_octree(
+                a,
+                b,
+                &self.scene_options(),
+                &self.system_config(),
+                self.local_frames(),
+            ),
         }
     }
 
@@ -234,8 +276,12 @@ pub fn pipeline_latency() -> u64 {
 impl HardwareArgs {
     /// The generator parameters of the system these options describe.
     pub fn system_config(&self) -> SystemConfig {
-        SystemConfig::new(self.width as usize, self.pipelines as usize, pipeline_latency() as usize)
-            .with_depth(self.depth as usize)
+        SystemConfig::new(
+            self.width as usize,
+            self.pipelines as usize,
+            pipeline_latency() as usize,
+        )
+        .with_depth(self.depth as usize)
     }
 }
 

@@ -66,29 +66,29 @@
 
 use crate::model_files::write_png;
 use crate::output_file::OutputFile;
-use crate::voxelize::ViewArgs;
-use tritri_geom::scene::render::render_pairs;
-use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
-use tritri_rtl::pipeline::pipeline_for_width::check_width;
-use clap::ValueEnum;
 use crate::progress::Progress;
+use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
+use crate::voxelize::ViewArgs;
+use clap::ValueEnum;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::process::ExitCode;
 use std::time::Instant;
+use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
+use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
+use tritri_cosim::engine::{check_quantized, run_scene_with, Engine, SceneRun};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_cosim::engine::{check_quantized, run_scene_with, Engine, SceneRun};
-use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
-use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
 use tritri_geom::scene::octree::OctreeSchedule;
+use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
+use tritri_geom::scene::render::render_pairs;
 use tritri_geom::scene::PreparedScene;
-use tritri_rtl::system::cycle_model::scene_cycles;
-use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
+use tritri_geom::scene::TaggedTriangle;
 use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
 use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
-use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
-use tritri_geom::scene::TaggedTriangle;
+use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
+use tritri_rtl::pipeline::pipeline_for_width::check_width;
+use tritri_rtl::system::cycle_model::scene_cycles;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -166,11 +166,22 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: {e}");
         return Ok(ExitCode::from(2));
     }
-    if let (true, Err(e)) = (args.engine.is_hardware(), check_width(args.hardware.width as usize)) {
-        eprintln!("error: --width {} --engine {}: {e} (the model takes 8 to 32)", args.hardware.width, args.engine.name());
+    if let (true, Err(e)) = (
+        args.engine.is_hardware(),
+        check_width(args.hardware.width as usize),
+    ) {
+        eprintln!(
+            "error: --width {} --engine {}: {e} (the model takes 8 to 32)",
+            args.hardware.width,
+            args.engine.name()
+        );
         return Ok(ExitCode::from(2));
     }
-    if args.broad_phase_top && (!args.engine.is_hardware() || args.vcd.is_some() || args.hardware.broad_phase != crate::scene_input::BroadPhase::Octree) {
+    if args.broad_phase_top
+        && (!args.engine.is_hardware()
+            || args.vcd.is_some()
+            || args.hardware.broad_phase != crate::scene_input::BroadPhase::Octree)
+    {
         eprintln!("error: --broad-phase-top runs the emitted top: it needs --engine rusthdl, icarus or verilator, the octree broad phase, and no --vcd");
         return Ok(ExitCode::from(2));
     }
@@ -185,7 +196,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let vcd = match args.vcd.as_deref().filter(|p| *p != "-").map(OutputFile::reserve).transpose() {
+    let vcd = match args
+        .vcd
+        .as_deref()
+        .filter(|p| *p != "-")
+        .map(OutputFile::reserve)
+        .transpose()
+    {
         Ok(vcd) => vcd,
         Err(e) => {
             eprintln!("error: --vcd: {e:#}");
@@ -211,9 +228,20 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     };
     let pairs_to_stdout = args.out.as_deref() == Some("-");
-    let mut report: Box<dyn Write> = if pairs_to_stdout { Box::new(std::io::stderr()) } else { Box::new(std::io::stdout()) };
+    let mut report: Box<dyn Write> = if pairs_to_stdout {
+        Box::new(std::io::stderr())
+    } else {
+        Box::new(std::io::stdout())
+    };
     let pose = args.scene.pose_b.unwrap_or_default();
-    writeln!(report, "scene: A = {} ({} triangles), B = {} ({} triangles), pose of B = {pose}", a.name, a.triangles.len(), b.name, b.triangles.len())?;
+    writeln!(
+        report,
+        "scene: A = {} ({} triangles), B = {} ({} triangles), pose of B = {pose}",
+        a.name,
+        a.triangles.len(),
+        b.name,
+        b.triangles.len()
+    )?;
     for note in notes {
         writeln!(report, "{note}")?;
     }
@@ -237,14 +265,26 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     };
     let host_time = started.elapsed();
     print_filter(&mut report, &args, &scene, &common)?;
-    writeln!(report, "host: common box, quantization and broad phase in software took {} (this machine)", human(host_time))?;
+    writeln!(
+        report,
+        "host: common box, quantization and broad phase in software took {} (this machine)",
+        human(host_time)
+    )?;
 
     let pairs_tested = scene.pairs_tested();
     let mut status = ExitCode::SUCCESS;
     let config = args.hardware.system_config();
-    let model_cycles = if args.engine.is_hardware() { scene_cycles(config, &scene.batches()) } else { 0 };
+    let model_cycles = if args.engine.is_hardware() {
+        scene_cycles(config, &scene.batches())
+    } else {
+        0
+    };
     if args.engine.is_hardware() {
-        writeln!(report, "estimate: {}", estimate(args.engine, model_cycles, &scene))?;
+        writeln!(
+            report,
+            "estimate: {}",
+            estimate(args.engine, model_cycles, &scene)
+        )?;
         if vcd.is_some() && model_cycles > args.vcd_max_cycles {
             eprintln!(
                 "error: --vcd: {model_cycles} cycles is above --vcd-max-cycles {} (the waveform would be about {:.0} MB); raise the limit or record a smaller scene",
@@ -253,9 +293,15 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             );
             return Ok(ExitCode::from(2));
         }
-        let limit = args.max_cycles.unwrap_or_else(|| (DEFAULT_MAX_SECONDS * args.engine.system_cycles_per_second().unwrap_or(0.0)) as u64);
+        let limit = args.max_cycles.unwrap_or_else(|| {
+            (DEFAULT_MAX_SECONDS * args.engine.system_cycles_per_second().unwrap_or(0.0)) as u64
+        });
         if model_cycles > limit {
-            let why = if args.max_cycles.is_some() { String::new() } else { format!(" (the default: about {DEFAULT_MAX_SECONDS} s of simulation)") };
+            let why = if args.max_cycles.is_some() {
+                String::new()
+            } else {
+                format!(" (the default: about {DEFAULT_MAX_SECONDS} s of simulation)")
+            };
             eprintln!(
                 "error: --engine {}: {model_cycles} cycles is above --max-cycles {limit}{why}; raise the limit to run it, or use --engine model (the same pairs and cycle count, bit-exact)",
                 args.engine.name(),
@@ -268,12 +314,22 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let threshold = (5.0 * args.engine.system_cycles_per_second().unwrap_or(0.0)) as u64;
         Progress::new(model_cycles, args.engine.progress_unit(), threshold)
     } else {
-        Progress::new(pairs_tested, args.engine.progress_unit(), PROGRESS_THRESHOLD)
+        Progress::new(
+            pairs_tested,
+            args.engine.progress_unit(),
+            PROGRESS_THRESHOLD,
+        )
     };
     let run = if args.broad_phase_top {
         run_on_top(&args, &scene, &mut report, &mut status)
     } else {
-        run_scene_with(args.engine, &scene, config, &|n| progress.inc(n), vcd.as_ref().and_then(OutputFile::temporary))
+        run_scene_with(
+            args.engine,
+            &scene,
+            config,
+            &|n| progress.inc(n),
+            vcd.as_ref().and_then(OutputFile::temporary),
+        )
     };
     progress.finish();
     let run = match run {
@@ -287,7 +343,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     writeln!(report, "engine: {}", args.engine.describe())?;
     if let (Some(vcd), Some(path)) = (vcd, &args.vcd) {
         let size = vcd.commit_written()?;
-        writeln!(report, "waveform: {path} ({:.1} MB, {cycles} cycles)", size as f64 / 1e6)?;
+        writeln!(
+            report,
+            "waveform: {path} ({:.1} MB, {cycles} cycles)",
+            size as f64 / 1e6
+        )?;
     }
     if let Some(c) = run.counters {
         let mut notes = format!(
@@ -313,7 +373,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             (owner.slots.0 + owner.slots.1) as f64 * SLOT_WORD_BITS as f64 / 1e6,
             if args.engine.is_hardware() { format!("; simulated in {}: equal to its model", args.engine.name()) } else { String::new() }
         )?;
-        for fault in run.faults().into_iter().filter(|f| f.contains("owner filter")) {
+        for fault in run
+            .faults()
+            .into_iter()
+            .filter(|f| f.contains("owner filter"))
+        {
             if run.counters.is_none() {
                 writeln!(report, "owner filter: {fault}")?;
                 status = ExitCode::from(1);
@@ -332,7 +396,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         decided,
         if scene.host_pairs() > 0 { format!(": {} in leaves, {} by the host", scene.pairs_tested(), scene.host_pairs()) } else { String::new() }
     )?;
-    let certified = args.certified.then(|| certify(pairs, &run.uncertain, &a, &b));
+    let certified = args
+        .certified
+        .then(|| certify(pairs, &run.uncertain, &a, &b));
     if let Some(c) = &certified {
         writeln!(
             report,
@@ -358,7 +424,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if !args.no_compare {
         let (quantized, same) = check_quantized(&scene, &run.pairs);
         if same.is_empty() {
-            writeln!(report, "check: engine = exact model on the quantized coordinates ({} pairs): equal", quantized.len())?;
+            writeln!(
+                report,
+                "check: engine = exact model on the quantized coordinates ({} pairs): equal",
+                quantized.len()
+            )?;
         } else {
             writeln!(
                 report,
@@ -389,7 +459,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             truth.pairs_decided,
             scene.pairs_tested() as f64 / scene.all_pairs().max(1) as f64
         )?;
-        let ratio = |hardware: std::time::Duration| software.as_secs_f64() / hardware.as_secs_f64().max(f64::MIN_POSITIVE);
+        let ratio = |hardware: std::time::Duration| {
+            software.as_secs_f64() / hardware.as_secs_f64().max(f64::MIN_POSITIVE)
+        };
         let narrow = args.hardware.time_of(cycles);
         writeln!(
             report,
@@ -400,7 +472,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             ratio(narrow)
         )?;
         let whole = match args.broad_phase_top {
-            true => Some((cycles, format!("simulated: the broad-phase top in {}", args.engine.name()))),
+            true => Some((
+                cycles,
+                format!("simulated: the broad-phase top in {}", args.engine.name()),
+            )),
             false => first_in_to_last_out(&args.hardware, &scene, &run, cycles),
         };
         if let Some((whole, how)) = whole {
@@ -448,7 +523,8 @@ pub fn certify(grid: &PairSet, uncertain: &PairSet, a: &SceneObject, b: &SceneOb
     let mut pairs: PairSet = grid.difference(uncertain).copied().collect();
     let mut changed = 0;
     for &(i, j) in uncertain {
-        let exact = tritri_geom::exact_f64::intersects(&a.triangles[i as usize], &b.triangles[j as usize]);
+        let exact =
+            tritri_geom::exact_f64::intersects(&a.triangles[i as usize], &b.triangles[j as usize]);
         changed += (exact != grid.contains(&(i, j))) as usize;
         if exact {
             pairs.insert((i, j));
@@ -464,11 +540,19 @@ fn scene_box(o: &SceneObject) -> Option<Aabb<f64>> {
 fn show_box(b: &Option<Aabb<f64>>) -> String {
     match b {
         None => "empty".into(),
-        Some(b) => format!("[{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]", b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]),
+        Some(b) => format!(
+            "[{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]",
+            b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]
+        ),
     }
 }
 
-fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, common: &Aabb<f64>) -> anyhow::Result<()> {
+fn print_filter(
+    report: &mut dyn Write,
+    args: &Args,
+    scene: &PreparedScene,
+    common: &Aabb<f64>,
+) -> anyhow::Result<()> {
     writeln!(report, "common BV: {}", show_box(&Some(*common)))?;
     writeln!(
         report,
@@ -482,7 +566,13 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
         100.0 * scene.fraction_in_common_bv()
     )?;
     if let Some(frame) = scene.frame {
-        writeln!(report, "frame: {} bits, step h = {:e}, centre {:?}", args.hardware.grid_bits(), frame.step, frame.centre)?;
+        writeln!(
+            report,
+            "frame: {} bits, step h = {:e}, centre {:?}",
+            args.hardware.grid_bits(),
+            frame.step,
+            frame.centre
+        )?;
         if let Some(local) = args.hardware.local_frames() {
             writeln!(
                 report,
@@ -494,7 +584,12 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
     }
     let t = scene.tiling;
     if scene.octree.is_some() {
-        writeln!(report, "memories: depth {}: {} batches (one per leaf, tiled where a leaf exceeds the depth)", t.depth, scene.batches().len())?;
+        writeln!(
+            report,
+            "memories: depth {}: {} batches (one per leaf, tiled where a leaf exceeds the depth)",
+            t.depth,
+            scene.batches().len()
+        )?;
     } else if t.is_split() {
         writeln!(
             report,
@@ -507,7 +602,12 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
             scene.batches().len()
         )?;
     } else {
-        writeln!(report, "memories: depth {}: {} batch, no split", t.depth, scene.batches().len())?;
+        writeln!(
+            report,
+            "memories: depth {}: {} batch, no split",
+            t.depth,
+            scene.batches().len()
+        )?;
     }
     if let Some(octree) = &scene.octree {
         writeln!(
@@ -569,7 +669,12 @@ fn print_filter(report: &mut dyn Write, args: &Args, scene: &PreparedScene, comm
 
 /// Cycles from the first triangle in to the last pair out with the octree
 /// broad phase (`None` for the flat one), and how they were counted.
-pub fn first_in_to_last_out(hardware: &HardwareArgs, scene: &PreparedScene, run: &SceneRun, cycles: u64) -> Option<(u64, String)> {
+pub fn first_in_to_last_out(
+    hardware: &HardwareArgs,
+    scene: &PreparedScene,
+    run: &SceneRun,
+    cycles: u64,
+) -> Option<(u64, String)> {
     let octree = scene.octree.as_ref()?;
     Some(match scene_binning(hardware, scene) {
         // The broad-phase top: the leaves go from the binning unit into the
@@ -580,8 +685,15 @@ pub fn first_in_to_last_out(hardware: &HardwareArgs, scene: &PreparedScene, run:
         Ok(unit) => {
             let config = hardware.system_config();
             let top = broad_phase_cycles(config, &unit.run);
-            let arrays = |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
-            let filter = top_model(&unit.run, config.triangles_per_bank, &arrays(&scene.kept_a), &arrays(&scene.kept_b)).filter_clocks;
+            let arrays =
+                |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
+            let filter = top_model(
+                &unit.run,
+                config.triangles_per_bank,
+                &arrays(&scene.kept_a),
+                &arrays(&scene.kept_b),
+            )
+            .filter_clocks;
             (top + filter, format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"))
         }
         Err(_) => {
@@ -594,9 +706,18 @@ pub fn first_in_to_last_out(hardware: &HardwareArgs, scene: &PreparedScene, run:
 
 /// The binning unit on the scene's broad phase (the cycle-exact model of
 /// the unit built for it), or why the unit does not apply.
-pub fn scene_binning(hardware: &HardwareArgs, scene: &PreparedScene) -> Result<SceneBinning, String> {
+pub fn scene_binning(
+    hardware: &HardwareArgs,
+    scene: &PreparedScene,
+) -> Result<SceneBinning, String> {
     let max_leaf_level = hardware.local_frames().map(|l| l.max_leaf_level());
-    bin_scene(scene, hardware.grid_bits() as usize, hardware.depth as usize, hardware.pipelines as usize, max_leaf_level)
+    bin_scene(
+        scene,
+        hardware.grid_bits() as usize,
+        hardware.depth as usize,
+        hardware.pipelines as usize,
+        max_leaf_level,
+    )
 }
 
 /// What the broad phase's plan asks of the binning unit (its cost formula,
@@ -623,23 +744,43 @@ fn examples(diff: &PairDiff) -> String {
         return String::new();
     }
     let show = |what: &str, v: &[(u32, u32)]| {
-        let listed: Vec<String> = v.iter().take(5).map(|(i, j)| format!("({i} {j})")).collect();
+        let listed: Vec<String> = v
+            .iter()
+            .take(5)
+            .map(|(i, j)| format!("({i} {j})"))
+            .collect();
         if listed.is_empty() {
             String::new()
         } else {
             format!("; {what} e.g. {}", listed.join(" "))
         }
     };
-    format!("{}{}", show("missing", &diff.missing), show("extra", &diff.extra))
+    format!(
+        "{}{}",
+        show("missing", &diff.missing),
+        show("extra", &diff.extra)
+    )
 }
 
 /// A spinner while a hardware simulation runs (they report no progress).
 /// Writes the pairs into the output reserved before the run.
-fn write_pairs(output: Option<OutputFile>, indices: Indices, a: &SceneObject, b: &SceneObject, pairs: &PairSet) -> anyhow::Result<()> {
+fn write_pairs(
+    output: Option<OutputFile>,
+    indices: Indices,
+    a: &SceneObject,
+    b: &SceneObject,
+    pairs: &PairSet,
+) -> anyhow::Result<()> {
     let Some(output) = output else { return Ok(()) };
     let pairs: BTreeSet<(usize, usize)> = match indices {
-        Indices::Triangles => pairs.iter().map(|&(i, j)| (i as usize, j as usize)).collect(),
-        Indices::Faces => pairs.iter().map(|&(i, j)| (a.face_of[i as usize], b.face_of[j as usize])).collect(),
+        Indices::Triangles => pairs
+            .iter()
+            .map(|&(i, j)| (i as usize, j as usize))
+            .collect(),
+        Indices::Faces => pairs
+            .iter()
+            .map(|&(i, j)| (a.face_of[i as usize], b.face_of[j as usize]))
+            .collect(),
     };
     output.commit(|w| {
         for (i, j) in pairs {
@@ -652,10 +793,21 @@ fn write_pairs(output: Option<OutputFile>, indices: Indices, a: &SceneObject, b:
 /// The scene through the broad-phase top on the chosen engine, as a
 /// [`SceneRun`]; what the top's models say is reported, and a fault sets
 /// `status` to 1.
-fn run_on_top(args: &Args, scene: &PreparedScene, report: &mut dyn Write, status: &mut ExitCode) -> anyhow::Result<SceneRun> {
+fn run_on_top(
+    args: &Args,
+    scene: &PreparedScene,
+    report: &mut dyn Write,
+    status: &mut ExitCode,
+) -> anyhow::Result<SceneRun> {
     let max_leaf_level = args.hardware.local_frames().map(|l| l.max_leaf_level());
     let config = args.hardware.system_config();
-    let top = run_scene_on_top(scene, config, args.hardware.grid_bits() as usize, max_leaf_level, args.engine.simulator())?;
+    let top = run_scene_on_top(
+        scene,
+        config,
+        args.hardware.grid_bits() as usize,
+        max_leaf_level,
+        args.engine.simulator(),
+    )?;
     writeln!(
         report,
         "broad-phase top {} in {}: {} pairs tested, {} hits, {} pairs out once each, {} without a certificate; binned at clock {}, done at {} (its models: {} to {}){}",
@@ -695,20 +847,41 @@ fn reserve_png(path: &str) -> anyhow::Result<OutputFile> {
 }
 
 /// Renders the scene with `pairs` highlighted into the reserved file.
-fn write_render(png: Option<OutputFile>, args: &Args, a: &SceneObject, b: &SceneObject, pairs: &PairSet, report: &mut dyn Write) -> anyhow::Result<()> {
+fn write_render(
+    png: Option<OutputFile>,
+    args: &Args,
+    a: &SceneObject,
+    b: &SceneObject,
+    pairs: &PairSet,
+    report: &mut dyn Write,
+) -> anyhow::Result<()> {
     let Some(png) = png else { return Ok(()) };
     let image = render_pairs(&a.triangles, &b.triangles, pairs, &args.view.view());
     png.commit(|w| write_png(&image, w))?;
-    writeln!(report, "render: {} ({} pairs highlighted: A's triangles red, B's magenta)", args.png.as_deref().unwrap_or(""), pairs.len())?;
+    writeln!(
+        report,
+        "render: {} ({} pairs highlighted: A's triangles red, B's magenta)",
+        args.png.as_deref().unwrap_or(""),
+        pairs.len()
+    )?;
     Ok(())
 }
 
 /// What a cycle-by-cycle run will take, before it starts.
 fn estimate(engine: Engine, cycles: u64, scene: &PreparedScene) -> String {
-    let seconds = engine.system_cycles_per_second().map_or(0.0, |rate| cycles as f64 / rate);
-    let triangles: u64 = scene.batches().iter().map(|b| (b.a.len() + b.b.len()) as u64).sum();
+    let seconds = engine
+        .system_cycles_per_second()
+        .map_or(0.0, |rate| cycles as f64 / rate);
+    let triangles: u64 = scene
+        .batches()
+        .iter()
+        .map(|b| (b.a.len() + b.b.len()) as u64)
+        .sum();
     let disk = match engine.simulator() {
-        Some(_) => format!(", vectors about {:.1} MB streamed through a pipe (not stored)", (triangles * VECTOR_BYTES_PER_TRIANGLE) as f64 / 1e6),
+        Some(_) => format!(
+            ", vectors about {:.1} MB streamed through a pipe (not stored)",
+            (triangles * VECTOR_BYTES_PER_TRIANGLE) as f64 / 1e6
+        ),
         None => String::new(),
     };
     format!(

@@ -61,7 +61,11 @@ pub enum UpAxis {
 
 impl ViewArgs {
     pub fn view(&self) -> View {
-        View { eye: self.eye.into(), size: self.size, up: self.up as usize }
+        View {
+            eye: self.eye.into(),
+            size: self.size,
+            up: self.up as usize,
+        }
     }
 }
 

@@ -6,7 +6,10 @@ use std::io::Read;
 use std::process::{Command, Output, Stdio};
 
 fn tritri(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(args)
+        .output()
+        .expect("run tritri")
 }
 
 #[test]
@@ -23,20 +26,60 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["sim", "--clock-mhz", "inf"], "--clock-mhz"),
         (&["chapter5", "--clock-mhz", "0"], "--clock-mhz"),
         (&["sim", "--depth", "32768"], "--depth"),
-        (&["gen", "--system", "--depth", "32768", "--out", out_dir], "--depth"),
+        (
+            &["gen", "--system", "--depth", "32768", "--out", out_dir],
+            "--depth",
+        ),
         (&["sim", "--scale-b", "0"], "--scale-b"),
         (&["sim", "--subdivide", "9"], "--subdivide"),
         (&["sim", "--grid-bits", "40"], "--grid-bits"),
         (&["sim", "--tessellation", "0"], "--tessellation"),
         (&["chapter5", "--fractions", "0"], "--fractions"),
         (&["sim", "--tessellation", "100000"], "--tessellation"),
-        (&["sim", "--width", "10", "--engine", "verilator"], "--width 10 --engine verilator"),
-        (&["sim", "--out", "/nonexistent-directory/pairs.txt"], "--out"),
-        (&["sim", "--engine", "rusthdl", "--broad-phase", "flat", "--max-cycles", "1000"], "--max-cycles"),
+        (
+            &["sim", "--width", "10", "--engine", "verilator"],
+            "--width 10 --engine verilator",
+        ),
+        (
+            &["sim", "--out", "/nonexistent-directory/pairs.txt"],
+            "--out",
+        ),
+        (
+            &[
+                "sim",
+                "--engine",
+                "rusthdl",
+                "--broad-phase",
+                "flat",
+                "--max-cycles",
+                "1000",
+            ],
+            "--max-cycles",
+        ),
         (&["sim", "--vcd", "wave.vcd"], "--vcd"),
-        (&["sim", "--engine", "icarus", "--vcd", "/nonexistent-directory/wave.vcd"], "--vcd"),
+        (
+            &[
+                "sim",
+                "--engine",
+                "icarus",
+                "--vcd",
+                "/nonexistent-directory/wave.vcd",
+            ],
+            "--vcd",
+        ),
         (&["sim", "--engine", "icarus", "--vcd", "-"], "--vcd"),
-        (&["sim", "--engine", "verilator", "--vcd", out_vcd, "--vcd-max-cycles", "100"], "--vcd-max-cycles 100"),
+        (
+            &[
+                "sim",
+                "--engine",
+                "verilator",
+                "--vcd",
+                out_vcd,
+                "--vcd-max-cycles",
+                "100",
+            ],
+            "--vcd-max-cycles 100",
+        ),
         (&["gen", "--owner-filter", "--slots", "0"], "--slots"),
         (&["gen", "--owner-filter", "--slots", "16777217"], "--slots"),
         (&["gen", "--slots", "64"], "--owner-filter"),
@@ -58,8 +101,19 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
 #[test]
 fn largest_depth_generates() {
     let out_dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("largest-depth-gen");
-    let out = tritri(&["gen", "--system", "--depth", "32767", "--out", out_dir.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tritri(&[
+        "gen",
+        "--system",
+        "--depth",
+        "32767",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 /// `tritri eval @hard | head -c 1` and `tritri chapter5 | head -c 1`: no
@@ -78,7 +132,11 @@ fn closed_pipe_ends_quietly() {
         // The read end is dropped here: the next write gets SIGPIPE.
         let out = child.wait_with_output().unwrap();
         assert_ne!(out.status.code(), Some(101), "{args:?}");
-        assert!(out.stderr.is_empty(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.stderr.is_empty(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
 }
 
@@ -91,12 +149,29 @@ fn empty_mesh_is_an_error_and_leaves_no_output() {
     std::fs::write(&mesh, "OFF\n0 0 0\n").unwrap();
     let pairs = dir.join("pairs.txt");
     let _ = std::fs::remove_file(&pairs);
-    let out = tritri(&["sim", "--scene", mesh.to_str().unwrap(), "@sphere", "--out", pairs.to_str().unwrap()]);
+    let out = tritri(&[
+        "sim",
+        "--scene",
+        mesh.to_str().unwrap(),
+        "@sphere",
+        "--out",
+        pairs.to_str().unwrap(),
+    ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("empty.off") && err.contains("no triangles"), "{err}");
-    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
-    assert_eq!(left, [std::ffi::OsString::from("empty.off")], "no pairs file and no temporary");
+    assert!(
+        err.contains("empty.off") && err.contains("no triangles"),
+        "{err}"
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(
+        left,
+        [std::ffi::OsString::from("empty.off")],
+        "no pairs file and no temporary"
+    );
 }
 
 /// A request far above `--max-cycles` is refused at once, before any
@@ -104,13 +179,31 @@ fn empty_mesh_is_an_error_and_leaves_no_output() {
 #[test]
 fn long_simulation_is_refused_in_under_a_second() {
     let started = std::time::Instant::now();
-    let out = tritri(&["sim", "--engine", "verilator", "--broad-phase", "flat", "--subdivide", "4"]);
+    let out = tritri(&[
+        "sim",
+        "--engine",
+        "verilator",
+        "--broad-phase",
+        "flat",
+        "--subdivide",
+        "4",
+    ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     // 969,418,088 + the pipeline's latency (the demo scene's flat estimate).
     let expected = 969_418_088 + tritri_rtl::pipeline::triangle_pipeline::latency() as u64;
-    assert!(err.contains(&format!("{expected} cycles is above --max-cycles")), "{err}");
-    assert!(String::from_utf8_lossy(&out.stdout).contains("estimate: "), "the estimate is printed");
+    assert!(
+        err.contains(&format!("{expected} cycles is above --max-cycles")),
+        "{err}"
+    );
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("estimate: "),
+        "the estimate is printed"
+    );
     // Generous against a loaded machine; the point is: no simulation ran.
-    assert!(started.elapsed() < std::time::Duration::from_secs(20), "{:?}", started.elapsed());
+    assert!(
+        started.elapsed() < std::time::Duration::from_secs(20),
+        "{:?}",
+        started.elapsed()
+    );
 }

@@ -12,9 +12,16 @@ fn tritri() -> Command {
 /// 0 mismatches and the formula's cycle count.
 #[test]
 fn small_bench_agrees_everywhere() {
-    let out = tritri().args(["bench", "--width", "16", "--pairs", "300", "--bases", "7"]).output().unwrap();
+    let out = tritri()
+        .args(["bench", "--width", "16", "--pairs", "300", "--bases", "7"])
+        .output()
+        .unwrap();
     let table = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{table}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{table}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for engine in ["model", "rusthdl", "verilator", "icarus"] {
         let row = table
             .lines()
@@ -25,7 +32,14 @@ fn small_bench_agrees_everywhere() {
         assert_eq!(cells[3], "301", "{row}");
         assert_eq!(cells[4], "0", "{row}");
         if engine != "model" {
-            assert_eq!(cells[5], format!("{} (= formula)", 7 + 301 + tritri_rtl::pipeline::triangle_pipeline::latency()), "{row}");
+            assert_eq!(
+                cells[5],
+                format!(
+                    "{} (= formula)",
+                    7 + 301 + tritri_rtl::pipeline::triangle_pipeline::latency()
+                ),
+                "{row}"
+            );
         }
         assert!(cells[8].parse::<f64>().unwrap() > 0.0, "{row}");
     }

@@ -5,7 +5,10 @@
 use std::process::{Command, Output};
 
 fn tritri(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(args)
+        .output()
+        .expect("run tritri")
 }
 
 /// Two patches of a flat square, one facing up, one (the same square with
@@ -32,17 +35,39 @@ fn render_culls_what_faces_away_and_refuses_bad_input() {
     std::fs::write(&bpt, two_squares()).unwrap();
     let png = dir.join("squares.png");
     let (bpt, png) = (bpt.to_str().unwrap(), png.to_str().unwrap());
-    let out = tritri(&["bezier", "render", bpt, "--eye", "3,1.5,10", "--target", "3,1.5,0", "--png", png, "--size", "64"]);
+    let out = tritri(&[
+        "bezier", "render", bpt, "--eye", "3,1.5,10", "--target", "3,1.5,0", "--png", png,
+        "--size", "64",
+    ]);
     let text = String::from_utf8_lossy(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // Seen from above, the square whose d_u x d_v points down is culled.
-    assert!(text.contains("2 patches") && text.contains("1 culled"), "{text}");
+    assert!(
+        text.contains("2 patches") && text.contains("1 culled"),
+        "{text}"
+    );
     assert!(std::fs::metadata(png).unwrap().len() > 100);
     for (args, needle) in [
-        (vec!["bezier", "render", "missing.bpt", "--png", png], "missing.bpt"),
+        (
+            vec!["bezier", "render", "missing.bpt", "--png", png],
+            "missing.bpt",
+        ),
         (vec!["bezier", "render", bpt, "--png", "out.jpg"], "--png"),
-        (vec!["bezier", "render", bpt, "--png", png, "--eye", "1,1,1", "--target", "1,1,1"], "same point"),
-        (vec!["bezier", "render", bpt, "--png", png, "--subdivide", "9"], "--subdivide"),
+        (
+            vec![
+                "bezier", "render", bpt, "--png", png, "--eye", "1,1,1", "--target", "1,1,1",
+            ],
+            "same point",
+        ),
+        (
+            vec!["bezier", "render", bpt, "--png", png, "--subdivide", "9"],
+            "--subdivide",
+        ),
     ] {
         let out = tritri(&args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -61,15 +86,37 @@ fn tessellate_runs_the_unit_and_reports_the_error() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("squares-tessellate.bpt");
     std::fs::write(&file, two_squares()).unwrap();
-    let out = tritri(&["bezier", "tessellate", file.to_str().unwrap(), "--engine", "verilator"]);
-    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tritri(&[
+        "bezier",
+        "tessellate",
+        file.to_str().unwrap(),
+        "--engine",
+        "verilator",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
     for needle in ["engine: verilator: 0 of 2 patches differ from the fixed-point model; 166 clocks (formula: 166)", "2 patches at 8 steps a side", "162 vertices, 256 triangles"] {
         assert!(text.contains(needle), "no `{needle}` in:\n{text}");
     }
-    let steps: f64 = text.split("at most ").nth(1).and_then(|t| t.split_whitespace().next()).and_then(|n| n.parse().ok()).unwrap();
+    let steps: f64 = text
+        .split("at most ")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap();
     assert!(steps <= 1.0, "{text}");
-    let out = tritri(&["bezier", "tessellate", file.to_str().unwrap(), "--width", "20"]);
+    let out = tritri(&[
+        "bezier",
+        "tessellate",
+        file.to_str().unwrap(),
+        "--width",
+        "20",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--width 20"));
 }

@@ -5,7 +5,10 @@
 use std::process::{Command, Output};
 
 fn tritri(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(args)
+        .output()
+        .expect("run tritri")
 }
 
 fn text(bytes: &[u8]) -> String {
@@ -48,16 +51,35 @@ fn classify_certified_is_exact_where_the_grid_is_not() {
     let exact = tritri(&["classify", file]);
     assert!(exact.status.success(), "{}", text(&exact.stderr));
     let grid = tritri(&["classify", "--arith", "fixed", "--width", "8", file]);
-    assert_ne!(text(&grid.stdout), text(&exact.stdout), "W = 8 should get some verdicts wrong");
-    let certified = tritri(&["classify", "--arith", "fixed", "--width", "8", "--certified", file]);
+    assert_ne!(
+        text(&grid.stdout),
+        text(&exact.stdout),
+        "W = 8 should get some verdicts wrong"
+    );
+    let certified = tritri(&[
+        "classify",
+        "--arith",
+        "fixed",
+        "--width",
+        "8",
+        "--certified",
+        file,
+    ]);
     assert!(certified.status.success(), "{}", text(&certified.stderr));
     assert_eq!(text(&certified.stdout), text(&exact.stdout));
     let note = text(&certified.stderr);
-    assert!(note.contains("certified:") && note.contains("verdicts uncertain"), "{note}");
+    assert!(
+        note.contains("certified:") && note.contains("verdicts uncertain"),
+        "{note}"
+    );
     // Only with --arith fixed.
     let refused = tritri(&["classify", "--certified", file]);
     assert_eq!(refused.status.code(), Some(2));
-    assert!(text(&refused.stderr).contains("--certified"), "{}", text(&refused.stderr));
+    assert!(
+        text(&refused.stderr).contains("--certified"),
+        "{}",
+        text(&refused.stderr)
+    );
 }
 
 /// The built-in scene: the grid reports one pair too many against exact
@@ -67,7 +89,13 @@ fn sim_certified_answer_equals_exact_f64_on_the_built_in_scene() {
     let out = tritri(&["sim", "--certified"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    assert!(report.contains("certificates: 4 pairs without one"), "{report}");
+    assert!(
+        report.contains("certificates: 4 pairs without one"),
+        "{report}"
+    );
     assert!(report.contains("1 extra against exact f64"), "{report}");
-    assert!(report.contains("certified answer: 0 pairs missing, 0 extra against exact f64"), "{report}");
+    assert!(
+        report.contains("certified answer: 0 pairs missing, 0 extra against exact f64"),
+        "{report}"
+    );
 }

@@ -25,7 +25,11 @@ fn is_synthesis_report(name: &str) -> bool {
 fn rtl_out_w24_is_what_gen_writes() {
     let out = std::env::temp_dir().join(format!("tritri-gen-test-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status = tritri().args(["gen", "--width", "24", "--out"]).arg(&out).status().unwrap();
+    let status = tritri()
+        .args(["gen", "--width", "24", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
     let committed = repository().join("rtl-out/w24");
     let names = |dir: &Path| {
@@ -55,10 +59,22 @@ fn rtl_out_w24_is_what_gen_writes() {
 /// and the supported ones.
 #[test]
 fn unsupported_width_is_refused() {
-    let out = tritri().args(["gen", "--width", "23", "--out", "/nonexistent/never-written"]).output().unwrap();
+    let out = tritri()
+        .args([
+            "gen",
+            "--width",
+            "23",
+            "--out",
+            "/nonexistent/never-written",
+        ])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let message = String::from_utf8_lossy(&out.stderr);
-    assert!(message.contains("width 23") && message.contains("24"), "{message}");
+    assert!(
+        message.contains("width 23") && message.contains("24"),
+        "{message}"
+    );
 }
 
 /// `--dsp ecp5` and `--synth-top`: bad values are named; a mapped W = 8
@@ -69,20 +85,94 @@ fn dsp_mapping_options_are_checked() {
         let out = tritri().args(args).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         let message = String::from_utf8_lossy(&out.stderr);
-        assert!(expected.iter().all(|e| message.contains(e)), "{args:?}: {message}");
+        assert!(
+            expected.iter().all(|e| message.contains(e)),
+            "{args:?}: {message}"
+        );
     };
-    refused(&["gen", "--width", "24", "--dsp", "ecp5", "--out", "/nonexistent/x"], &["--width 24", "17"]);
-    refused(&["gen", "--width", "24", "--synth", "ecp5", "--out", "/nonexistent/x"], &["--width 24", "--dsp inferred"]);
-    refused(&["gen", "--plane-traversal", "--dsp", "ecp5", "--out", "/nonexistent/x"], &["--dsp applies"]);
-    refused(&["gen", "--width", "8", "--synth-top", "x", "--out", "/nonexistent/x"], &["--synth-top applies to --synth ecp5"]);
-    refused(&["gen", "--width", "8", "--dsp", "ecp5", "--synth", "xilinx", "--out", "/nonexistent/x"], &["--synth xilinx", "--synth ecp5"]);
+    refused(
+        &[
+            "gen",
+            "--width",
+            "24",
+            "--dsp",
+            "ecp5",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--width 24", "17"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "24",
+            "--synth",
+            "ecp5",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--width 24", "--dsp inferred"],
+    );
+    refused(
+        &[
+            "gen",
+            "--plane-traversal",
+            "--dsp",
+            "ecp5",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--dsp applies"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--synth-top",
+            "x",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--synth-top applies to --synth ecp5"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--dsp",
+            "ecp5",
+            "--synth",
+            "xilinx",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--synth xilinx", "--synth ecp5"],
+    );
     let dir = std::env::temp_dir().join(format!("tritri-gen-dsp-{}", std::process::id()));
-    let out = tritri().args(["gen", "--width", "8", "--dsp", "ecp5", "--out"]).arg(&dir).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = tritri()
+        .args(["gen", "--width", "8", "--dsp", "ecp5", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let filelist = std::fs::read_to_string(dir.join("filelist.f")).unwrap();
-    assert_eq!(filelist.lines().next(), Some("ecp5_mult18x18d_model.v"), "the model comes first");
+    assert_eq!(
+        filelist.lines().next(),
+        Some("ecp5_mult18x18d_model.v"),
+        "the model comes first"
+    );
     let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
-    assert!(readme.contains("`ecp5_mult18x18d_model.v`") && readme.contains("synth_ecp5"), "the README says what the model is");
+    assert!(
+        readme.contains("`ecp5_mult18x18d_model.v`") && readme.contains("synth_ecp5"),
+        "the README says what the model is"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -91,7 +181,11 @@ fn dsp_mapping_options_are_checked() {
 fn several_widths_go_to_subdirectories() {
     let out = std::env::temp_dir().join(format!("tritri-gen-multi-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status = tritri().args(["gen", "--width", "8,16", "--out"]).arg(&out).status().unwrap();
+    let status = tritri()
+        .args(["gen", "--width", "8,16", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
     assert!(out.join("w8/tritri_pipeline_w8.v").is_file());
     assert!(out.join("w16/tritri_pipeline_w16.v").is_file());
@@ -105,15 +199,36 @@ fn several_widths_go_to_subdirectories() {
 fn classifier_is_emitted_for_its_grid_widths() {
     let out = std::env::temp_dir().join(format!("tritri-gen-classifier-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status = tritri().args(["gen", "--classifier", "--width", "16,32", "--out"]).arg(&out).status().unwrap();
+    let status = tritri()
+        .args(["gen", "--classifier", "--width", "16,32", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
     for g in [16, 32] {
-        let top = out.join(format!("tritri_cell_classifier_g{g}/tritri_cell_classifier_g{g}.v"));
-        let text = std::fs::read_to_string(&top).unwrap_or_else(|e| panic!("{}: {e}", top.display()));
-        assert!(text.contains(&format!("V = {}: value width, 3G + 6", 3 * g + 6)), "{}", top.display());
+        let top = out.join(format!(
+            "tritri_cell_classifier_g{g}/tritri_cell_classifier_g{g}.v"
+        ));
+        let text =
+            std::fs::read_to_string(&top).unwrap_or_else(|e| panic!("{}: {e}", top.display()));
+        assert!(
+            text.contains(&format!("V = {}: value width, 3G + 6", 3 * g + 6)),
+            "{}",
+            top.display()
+        );
     }
     std::fs::remove_dir_all(&out).unwrap();
-    let refused = tritri().args(["gen", "--classifier", "--width", "20", "--out", "/nonexistent/never-written"]).output().unwrap();
+    let refused = tritri()
+        .args([
+            "gen",
+            "--classifier",
+            "--width",
+            "20",
+            "--out",
+            "/nonexistent/never-written",
+        ])
+        .output()
+        .unwrap();
     assert_eq!(refused.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--classifier --width 20"));
 }
@@ -123,12 +238,19 @@ fn classifier_is_emitted_for_its_grid_widths() {
 fn setup_is_emitted_for_its_grid_widths() {
     let out = std::env::temp_dir().join(format!("tritri-gen-setup-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status = tritri().args(["gen", "--setup", "--width", "24", "--out"]).arg(&out).status().unwrap();
+    let status = tritri()
+        .args(["gen", "--setup", "--width", "24", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
     let text = std::fs::read_to_string(out.join("tritri_triangle_setup_g24.v")).unwrap();
     assert!(text.contains("Latency:    5 clock cycles"), "{text}");
     std::fs::remove_dir_all(&out).unwrap();
-    let refused = tritri().args(["gen", "--setup", "--width", "20"]).output().unwrap();
+    let refused = tritri()
+        .args(["gen", "--setup", "--width", "20"])
+        .output()
+        .unwrap();
     assert_eq!(refused.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--setup --width 20"));
 }
@@ -147,7 +269,10 @@ fn missing_yosys_is_named() {
         .unwrap();
     assert_eq!(result.status.code(), Some(1));
     let message = String::from_utf8_lossy(&result.stderr);
-    assert!(message.contains("`yosys` was not found") && message.contains("apt-get install yosys"), "{message}");
+    assert!(
+        message.contains("`yosys` was not found") && message.contains("apt-get install yosys"),
+        "{message}"
+    );
     let _ = std::fs::remove_dir_all(&out);
     let _ = std::fs::remove_dir_all(&empty);
 }
@@ -157,7 +282,8 @@ fn missing_yosys_is_named() {
 #[test]
 fn committed_rtl_out_is_lint_clean() {
     let dir = repository().join("rtl-out/w24");
-    let messages = tritri_rtl::tools::lint(&dir, "tritri_pipeline_w24").unwrap_or_else(|e| panic!("{e}"));
+    let messages =
+        tritri_rtl::tools::lint(&dir, "tritri_pipeline_w24").unwrap_or_else(|e| panic!("{e}"));
     assert!(messages.trim().is_empty(), "verilator said:\n{messages}");
 }
 
@@ -167,19 +293,42 @@ fn committed_rtl_out_is_lint_clean() {
 fn system_is_emitted_with_its_parameters() {
     let out = std::env::temp_dir().join(format!("tritri-gen-system-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let status =
-        tritri().args(["gen", "--system", "--width", "8", "--pipelines", "4", "--depth", "32", "--out"]).arg(&out).status().unwrap();
+    let status = tritri()
+        .args([
+            "gen",
+            "--system",
+            "--width",
+            "8",
+            "--pipelines",
+            "4",
+            "--depth",
+            "32",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
     assert!(out.join("tritri_system_w8_p4_d32.v").is_file());
     let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
-    assert!(readme.contains("| `out_id_a` |") && readme.contains("4: pipelines in parallel"), "{readme}");
+    assert!(
+        readme.contains("| `out_id_a` |") && readme.contains("4: pipelines in parallel"),
+        "{readme}"
+    );
     std::fs::remove_dir_all(&out).unwrap();
 
-    let refused = tritri().args(["gen", "--system", "--pipelines", "17"]).output().unwrap();
+    let refused = tritri()
+        .args(["gen", "--system", "--pipelines", "17"])
+        .output()
+        .unwrap();
     assert_eq!(refused.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("17"));
     let refused = tritri().args(["gen", "--pipelines", "2"]).output().unwrap();
-    assert_eq!(refused.status.code(), Some(2), "--pipelines without --system");
+    assert_eq!(
+        refused.status.code(),
+        Some(2),
+        "--pipelines without --system"
+    );
 }
 
 /// `--for-scene`: on the built-in scene with a 0.5 % budget the cheapest
@@ -191,8 +340,24 @@ fn system_is_emitted_with_its_parameters() {
 fn for_scene_sizes_the_system_and_says_why() {
     let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--max-uncertain", "0.005", "--out"]).arg(&out).output().unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let run = tritri()
+        .args([
+            "gen",
+            "--for-scene",
+            "@torus",
+            "@sphere",
+            "--max-uncertain",
+            "0.005",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
     for needle in [
         "**Chosen: W = 24, P = 2, memory depth",
@@ -203,22 +368,61 @@ fn for_scene_sizes_the_system_and_says_why() {
         "--width 24 --pipelines 2 --depth",
         "--engine verilator --certified",
     ] {
-        assert!(readme.contains(needle), "README lacks `{needle}`:\n{readme}");
+        assert!(
+            readme.contains(needle),
+            "README lacks `{needle}`:\n{readme}"
+        );
     }
-    assert!(std::fs::read_dir(&out).unwrap().any(|e| e.unwrap().file_name().to_string_lossy().starts_with("tritri_system_w24_p2_d")));
+    assert!(std::fs::read_dir(&out).unwrap().any(|e| e
+        .unwrap()
+        .file_name()
+        .to_string_lossy()
+        .starts_with("tritri_system_w24_p2_d")));
     std::fs::remove_dir_all(&out).unwrap();
 
-    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--device", "ecp5-85", "--out"]).arg(&out).output().unwrap();
+    let run = tritri()
+        .args([
+            "gen",
+            "--for-scene",
+            "@torus",
+            "@sphere",
+            "--device",
+            "ecp5-85",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
     assert_eq!(run.status.code(), Some(2));
     let err = String::from_utf8_lossy(&run.stderr);
-    assert!(err.contains("--max-uncertain 0.001") && err.contains("the best there is W = 12"), "{err}");
+    assert!(
+        err.contains("--max-uncertain 0.001") && err.contains("the best there is W = 12"),
+        "{err}"
+    );
     assert!(!out.exists(), "nothing written");
 
-    for (flag, value, says) in [("--device", "virtex", "unknown device `virtex`"), ("--max-uncertain", "2", "`2` is not a rate")] {
-        let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", flag, value]).output().unwrap();
+    for (flag, value, says) in [
+        ("--device", "virtex", "unknown device `virtex`"),
+        ("--max-uncertain", "2", "`2` is not a rate"),
+    ] {
+        let run = tritri()
+            .args(["gen", "--for-scene", "@torus", "@sphere", flag, value])
+            .output()
+            .unwrap();
         assert_eq!(run.status.code(), Some(2), "{flag} {value}");
-        assert!(String::from_utf8_lossy(&run.stderr).contains(says), "{}", String::from_utf8_lossy(&run.stderr));
+        assert!(
+            String::from_utf8_lossy(&run.stderr).contains(says),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
     }
-    let run = tritri().args(["gen", "--for-scene", "@torus", "@sphere", "--width", "16"]).output().unwrap();
-    assert_eq!(run.status.code(), Some(2), "--width conflicts with --for-scene");
+    let run = tritri()
+        .args(["gen", "--for-scene", "@torus", "@sphere", "--width", "16"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        run.status.code(),
+        Some(2),
+        "--width conflicts with --for-scene"
+    );
 }

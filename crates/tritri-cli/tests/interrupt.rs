@@ -11,13 +11,19 @@ use std::time::{Duration, Instant};
 fn processes() -> Vec<(i32, i32, i32)> {
     let mut out = Vec::new();
     for entry in std::fs::read_dir("/proc").unwrap().flatten() {
-        let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else { continue };
+        let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else {
+            continue;
+        };
         // pid (comm) state ppid pgrp ...; comm may hold spaces.
-        let Some(close) = stat.rfind(')') else { continue };
+        let Some(close) = stat.rfind(')') else {
+            continue;
+        };
         let fields: Vec<&str> = stat[close + 2..].split_whitespace().collect();
-        let (Ok(pid), Some(Ok(ppid)), Some(Ok(pgrp))) =
-            (stat.split_whitespace().next().unwrap_or("").parse(), fields.get(1).map(|f| f.parse()), fields.get(2).map(|f| f.parse()))
-        else {
+        let (Ok(pid), Some(Ok(ppid)), Some(Ok(pgrp))) = (
+            stat.split_whitespace().next().unwrap_or("").parse(),
+            fields.get(1).map(|f| f.parse()),
+            fields.get(2).map(|f| f.parse()),
+        ) else {
             continue;
         };
         if fields.first() != Some(&"Z") {
@@ -29,7 +35,11 @@ fn processes() -> Vec<(i32, i32, i32)> {
 
 /// Process groups of the running children of `parent`.
 fn child_groups(parent: i32) -> Vec<i32> {
-    processes().into_iter().filter(|p| p.1 == parent).map(|p| p.2).collect()
+    processes()
+        .into_iter()
+        .filter(|p| p.1 == parent)
+        .map(|p| p.2)
+        .collect()
 }
 
 fn start(tmp: &Path, cache: Option<&Path>) -> Child {
@@ -40,7 +50,16 @@ fn start(tmp: &Path, cache: Option<&Path>) -> Child {
     command
         // Long enough in Verilator to be caught running (about 780,000
         // pairs), or caught building if the model is not cached yet.
-        .args(["sim", "--engine", "verilator", "--broad-phase", "flat", "--subdivide", "1", "--no-compare"])
+        .args([
+            "sim",
+            "--engine",
+            "verilator",
+            "--broad-phase",
+            "flat",
+            "--subdivide",
+            "1",
+            "--no-compare",
+        ])
         .env("TMPDIR", tmp)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -64,8 +83,14 @@ fn interrupt_and_check(signal: i32, name: &str, empty_cache: bool) {
         if !groups.is_empty() {
             break groups;
         }
-        assert!(child.try_wait().unwrap().is_none(), "{name}: tritri ended before starting a tool");
-        assert!(Instant::now() < deadline, "{name}: no tool started within 10 minutes");
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "{name}: tritri ended before starting a tool"
+        );
+        assert!(
+            Instant::now() < deadline,
+            "{name}: no tool started within 10 minutes"
+        );
         std::thread::sleep(Duration::from_millis(20));
     };
     // SAFETY: sends a signal to our own child.
@@ -77,18 +102,29 @@ fn interrupt_and_check(signal: i32, name: &str, empty_cache: bool) {
     assert_eq!(out.status.code(), Some(128 + signal), "{name}: {err}");
     // (A short tool such as `verilator --version` may end between seeing it
     // and the signal, so the count is not asserted; what is left is.)
-    assert!(err.contains(&format!("tritri: {name}: stopped ")), "{name}: {err}");
+    assert!(
+        err.contains(&format!("tritri: {name}: stopped ")),
+        "{name}: {err}"
+    );
     // Killed groups vanish once reaped (by init, their parent is gone).
     let deadline = Instant::now() + Duration::from_secs(10);
     while processes().iter().any(|p| groups.contains(&p.2)) {
-        assert!(Instant::now() < deadline, "{name}: processes of groups {groups:?} still run");
+        assert!(
+            Instant::now() < deadline,
+            "{name}: processes of groups {groups:?} still run"
+        );
         std::thread::sleep(Duration::from_millis(20));
     }
-    let left: Vec<_> = std::fs::read_dir(&tmp).unwrap().map(|e| e.unwrap().path()).collect();
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
     assert!(left.is_empty(), "{name}: left behind: {left:?}");
     if empty_cache {
         // An interrupted build publishes nothing.
-        let cached = std::fs::read_dir(cache.join("verilator")).map(|d| d.count()).unwrap_or(0);
+        let cached = std::fs::read_dir(cache.join("verilator"))
+            .map(|d| d.count())
+            .unwrap_or(0);
         assert_eq!(cached, 0, "{name}: an interrupted build was cached");
     }
 }

@@ -7,7 +7,10 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn tritri(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(args)
+        .output()
+        .expect("run tritri")
 }
 
 fn text(bytes: &[u8]) -> String {
@@ -15,38 +18,87 @@ fn text(bytes: &[u8]) -> String {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("report-tests").join(name);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join("report-tests")
+        .join(name);
     let _ = std::fs::remove_dir_all(&dir);
     dir
 }
 
 /// The number after `label` in `line` (digits, no separators).
 fn number_after(output: &str, label: &str) -> u64 {
-    let start = output.find(label).unwrap_or_else(|| panic!("no `{label}` in:\n{output}")) + label.len();
-    let digits: String = output[start..].trim_start().chars().take_while(|c| c.is_ascii_digit()).collect();
-    digits.parse().unwrap_or_else(|_| panic!("no number after `{label}` in:\n{output}"))
+    let start = output
+        .find(label)
+        .unwrap_or_else(|| panic!("no `{label}` in:\n{output}"))
+        + label.len();
+    let digits: String = output[start..]
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_digit())
+        .collect();
+    digits
+        .parse()
+        .unwrap_or_else(|_| panic!("no number after `{label}` in:\n{output}"))
 }
 
 #[test]
 fn report_agrees_with_eval_sim_and_the_measurements() {
     let out_dir = scratch("hard-and-scene");
     let out = tritri(&[
-        "report", "--min-time-ms", "1", "--widths", "8,16", "@hard/coplanar_integer_plane", "@hard/near_miss", "--scene", "@torus", "@sphere", "--out",
+        "report",
+        "--min-time-ms",
+        "1",
+        "--widths",
+        "8,16",
+        "@hard/coplanar_integer_plane",
+        "@hard/near_miss",
+        "--scene",
+        "@torus",
+        "@sphere",
+        "--out",
         out_dir.to_str().unwrap(),
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
-    for file in ["report.html", "report.json", "widths.csv", "errors.csv", "scene.csv"] {
+    for file in [
+        "report.html",
+        "report.json",
+        "widths.csv",
+        "errors.csv",
+        "scene.csv",
+    ] {
         assert!(out_dir.join(file).is_file(), "{file} missing");
     }
     let html = std::fs::read_to_string(out_dir.join("report.html")).unwrap();
-    assert_eq!(html.matches("<svg").count(), 6, "errors, cost, speed, Pareto, the scene's time and its errors");
-    let report: Value = serde_json::from_str(&std::fs::read_to_string(out_dir.join("report.json")).unwrap()).unwrap();
+    assert_eq!(
+        html.matches("<svg").count(),
+        6,
+        "errors, cost, speed, Pareto, the scene's time and its errors"
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("report.json")).unwrap())
+            .unwrap();
 
     // Errors: eval's JSON on the same batches, count for count.
-    let eval = tritri(&["eval", "--json", "--min-time-ms", "1", "--widths", "8,16", "@hard/coplanar_integer_plane", "@hard/near_miss"]);
+    let eval = tritri(&[
+        "eval",
+        "--json",
+        "--min-time-ms",
+        "1",
+        "--widths",
+        "8,16",
+        "@hard/coplanar_integer_plane",
+        "@hard/near_miss",
+    ]);
     assert_eq!(eval.status.code(), Some(0), "{}", text(&eval.stderr));
     let eval: Value = serde_json::from_slice(&eval.stdout).unwrap();
-    let counts = ["wrong", "false_positives", "false_negatives", "grid_exact_disagreements", "uncertain", "certified_wrong"];
+    let counts = [
+        "wrong",
+        "false_positives",
+        "false_negatives",
+        "grid_exact_disagreements",
+        "uncertain",
+        "certified_wrong",
+    ];
     let batches = |v: &Value| -> Vec<Value> {
         let mut all = v["batches"].as_array().unwrap().clone();
         all.push(v["total"].clone());
@@ -55,8 +107,16 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
     let (ours, theirs) = (batches(&report["errors"]), batches(&eval));
     assert_eq!(ours.len(), theirs.len());
     for (a, b) in ours.iter().zip(&theirs) {
-        assert_eq!((&a["name"], &a["pairs"], &a["exact_intersecting"]), (&b["name"], &b["pairs"], &b["exact_intersecting"]));
-        for (ra, rb) in a["rows"].as_array().unwrap().iter().zip(b["rows"].as_array().unwrap()) {
+        assert_eq!(
+            (&a["name"], &a["pairs"], &a["exact_intersecting"]),
+            (&b["name"], &b["pairs"], &b["exact_intersecting"])
+        );
+        for (ra, rb) in a["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(b["rows"].as_array().unwrap())
+        {
             assert_eq!(ra["arithmetic"], rb["arithmetic"]);
             for c in counts {
                 assert_eq!(ra[c], rb[c], "{} {} {c}", a["name"], ra["arithmetic"]);
@@ -65,7 +125,10 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
     }
     let fixed8 = report["widths"][0]["error"].clone();
     assert_eq!(fixed8["arithmetic"], "fixed8");
-    assert!(fixed8["wrong"].as_u64().unwrap() > 0 && fixed8["uncertain"].as_u64().unwrap() > 0, "hard cases at W = 8: {fixed8}");
+    assert!(
+        fixed8["wrong"].as_u64().unwrap() > 0 && fixed8["uncertain"].as_u64().unwrap() > 0,
+        "hard cases at W = 8: {fixed8}"
+    );
 
     // Hardware: the measurements `gen --synth` printed (rtl-out/measurements.json,
     // itself held to rtl-out/README.md and to a synthesis run by tritri-rtl's tests).
@@ -73,33 +136,89 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
     for row in report["widths"].as_array().unwrap() {
         let unit = format!("tritri_pipeline_w{}", row["width"]);
         let x = kept.xilinx(&unit).unwrap();
-        assert_eq!((row["xilinx"]["lut"].as_u64(), row["xilinx"]["dsp48e1"].as_u64()), (Some(x.lut), Some(x.dsp48e1)), "{unit}");
+        assert_eq!(
+            (
+                row["xilinx"]["lut"].as_u64(),
+                row["xilinx"]["dsp48e1"].as_u64()
+            ),
+            (Some(x.lut), Some(x.dsp48e1)),
+            "{unit}"
+        );
         match kept.ecp5(&unit) {
             Some(e) => {
                 assert_eq!(row["ecp5"]["fmax_mhz"].as_f64(), Some(e.fmax_mhz), "{unit}");
                 let p = row["ecp5_pipelines"].as_u64().unwrap();
-                assert!(p >= 1 && p * e.mult18x18d <= 156, "{unit}: {p} pipelines on the ECP5-85");
-                assert_eq!(row["pairs_per_second"].as_f64(), Some(e.fmax_mhz * 1e6 * p as f64));
+                assert!(
+                    p >= 1 && p * e.mult18x18d <= 156,
+                    "{unit}: {p} pipelines on the ECP5-85"
+                );
+                assert_eq!(
+                    row["pairs_per_second"].as_f64(),
+                    Some(e.fmax_mhz * 1e6 * p as f64)
+                );
             }
-            None => assert!(row["ecp5"].is_null() && row["pairs_per_second"].is_null(), "{unit}"),
+            None => assert!(
+                row["ecp5"].is_null() && row["pairs_per_second"].is_null(),
+                "{unit}"
+            ),
         }
     }
 
     // The scene: `tritri sim` with the same width, pipelines and clock.
     for row in report["scene"]["rows"].as_array().unwrap() {
-        let (w, p, clock) = (row["width"].to_string(), row["pipelines"].to_string(), row["clock_mhz"].as_f64().unwrap().to_string());
-        let sim = tritri(&["sim", "--width", &w, "--pipelines", &p, "--clock-mhz", &clock]);
+        let (w, p, clock) = (
+            row["width"].to_string(),
+            row["pipelines"].to_string(),
+            row["clock_mhz"].as_f64().unwrap().to_string(),
+        );
+        let sim = tritri(&[
+            "sim",
+            "--width",
+            &w,
+            "--pipelines",
+            &p,
+            "--clock-mhz",
+            &clock,
+        ]);
         assert_eq!(sim.status.code(), Some(0), "{}", text(&sim.stderr));
         let sim = text(&sim.stdout);
         let field = |name: &str| row[name].as_u64().unwrap();
-        assert_eq!(field("pairs_tested"), number_after(&sim, "pairs tested:"), "W = {w}");
-        assert_eq!(field("leaves"), number_after(&sim, "classified,"), "W = {w}: leaves");
-        assert_eq!(field("intersecting"), number_after(&sim, "intersecting pairs:"), "W = {w}");
-        assert_eq!(field("uncertain"), number_after(&sim, "certificates:"), "W = {w}");
+        assert_eq!(
+            field("pairs_tested"),
+            number_after(&sim, "pairs tested:"),
+            "W = {w}"
+        );
+        assert_eq!(
+            field("leaves"),
+            number_after(&sim, "classified,"),
+            "W = {w}: leaves"
+        );
+        assert_eq!(
+            field("intersecting"),
+            number_after(&sim, "intersecting pairs:"),
+            "W = {w}"
+        );
+        assert_eq!(
+            field("uncertain"),
+            number_after(&sim, "certificates:"),
+            "W = {w}"
+        );
         assert_eq!(field("cycles"), number_after(&sim, "\ncycles:"), "W = {w}");
-        assert_eq!(field("whole_cycles"), number_after(&sim, "first triangle in to last pair out:"), "W = {w}");
-        assert_eq!(field("missing"), number_after(&sim, "bits):"), "W = {w}: missing");
-        assert_eq!(field("extra"), number_after(&sim, "pairs missing,"), "W = {w}: extra");
+        assert_eq!(
+            field("whole_cycles"),
+            number_after(&sim, "first triangle in to last pair out:"),
+            "W = {w}"
+        );
+        assert_eq!(
+            field("missing"),
+            number_after(&sim, "bits):"),
+            "W = {w}: missing"
+        );
+        assert_eq!(
+            field("extra"),
+            number_after(&sim, "pairs missing,"),
+            "W = {w}: extra"
+        );
     }
 }
 
@@ -110,23 +229,54 @@ fn report_refuses_bad_input() {
     let dir = scratch("bad");
     let out = tritri(&["report", "--out", dir.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("nothing to report on"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("nothing to report on"),
+        "{}",
+        text(&out.stderr)
+    );
 
     std::fs::create_dir_all(&dir).unwrap();
     let bad = dir.join("bad.txt");
     std::fs::write(&bad, "0 0 0 1 0 0 0 1 0  5 5 5 6 5 5 5 6 nan\n").unwrap();
-    let out = tritri(&["report", bad.to_str().unwrap(), "--out", dir.join("r").to_str().unwrap()]);
+    let out = tritri(&[
+        "report",
+        bad.to_str().unwrap(),
+        "--out",
+        dir.join("r").to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("bad.txt:1:"), "{}", text(&out.stderr));
-    assert!(!dir.join("r").join("report.html").exists(), "nothing written");
+    assert!(
+        text(&out.stderr).contains("bad.txt:1:"),
+        "{}",
+        text(&out.stderr)
+    );
+    assert!(
+        !dir.join("r").join("report.html").exists(),
+        "nothing written"
+    );
 
     let out = tritri(&["report", "@hard/near_miss", "--out", bad.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("--out") && text(&out.stderr).contains("not a directory"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("--out") && text(&out.stderr).contains("not a directory"),
+        "{}",
+        text(&out.stderr)
+    );
 
-    let out = tritri(&["report", "@hard/near_miss", "--measurements", bad.to_str().unwrap(), "--out", dir.join("r").to_str().unwrap()]);
+    let out = tritri(&[
+        "report",
+        "@hard/near_miss",
+        "--measurements",
+        bad.to_str().unwrap(),
+        "--out",
+        dir.join("r").to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("--measurements") && text(&out.stderr).contains("bad.txt"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("--measurements") && text(&out.stderr).contains("bad.txt"),
+        "{}",
+        text(&out.stderr)
+    );
 
     let out = tritri(&["report", "@nope", "--out", dir.join("r").to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));

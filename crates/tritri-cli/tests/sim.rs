@@ -5,7 +5,10 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn tritri(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tritri")).args(args).output().expect("run tritri")
+    Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(args)
+        .output()
+        .expect("run tritri")
 }
 
 fn text(bytes: &[u8]) -> String {
@@ -33,12 +36,19 @@ fn unparsable_scene_file_names_file_and_line() {
     let out = tritri(&["sim", "--scene", bad.to_str().unwrap(), "@sphere"]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
     let err = text(&out.stderr);
-    assert!(err.contains("bad.obj:3:") && err.contains("`x` is not a number"), "{err}");
+    assert!(
+        err.contains("bad.obj:3:") && err.contains("`x` is not a number"),
+        "{err}"
+    );
 
     let bad_off = scratch("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
     let out = tritri(&["sim", "--scene", "@torus", bad_off.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("bad.off:6:"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("bad.off:6:"),
+        "{}",
+        text(&out.stderr)
+    );
 
     let missing = tritri(&["sim", "--scene", "/nonexistent/a.ply", "@sphere"]);
     assert_eq!(missing.status.code(), Some(2));
@@ -50,10 +60,19 @@ fn unparsable_scene_file_names_file_and_line() {
 #[test]
 fn no_overlap_says_so_and_writes_no_pairs() {
     let pairs = scratch_path("none.txt");
-    let out = tritri(&["sim", "--pose-b", "10,0,0", "--out", pairs.to_str().unwrap()]);
+    let out = tritri(&[
+        "sim",
+        "--pose-b",
+        "10,0,0",
+        "--out",
+        pairs.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    assert!(report.contains("no overlap") && report.contains("zero pairs"), "{report}");
+    assert!(
+        report.contains("no overlap") && report.contains("zero pairs"),
+        "{report}"
+    );
     assert_eq!(std::fs::read_to_string(&pairs).unwrap(), "");
 }
 
@@ -64,7 +83,17 @@ fn sim_alone_runs_the_default_scene() {
     let out = tritri(&["sim"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    for needle in ["@torus (2304 triangles)", "@sphere (960 triangles)", "pairs tested:", "of N1*N2 = 2211840", "cycles:", "time at 100 MHz", ": equal", "quantization error (grid of 24 bits)", "broad phase: octree"] {
+    for needle in [
+        "@torus (2304 triangles)",
+        "@sphere (960 triangles)",
+        "pairs tested:",
+        "of N1*N2 = 2211840",
+        "cycles:",
+        "time at 100 MHz",
+        ": equal",
+        "quantization error (grid of 24 bits)",
+        "broad phase: octree",
+    ] {
         assert!(report.contains(needle), "missing `{needle}` in:\n{report}");
     }
 }
@@ -74,24 +103,58 @@ fn sim_alone_runs_the_default_scene() {
 #[test]
 fn octree_gives_the_flat_pairs_with_less_work() {
     let run = |broad_phase: &str, out: &PathBuf| {
-        let o = tritri(&["sim", "--broad-phase", broad_phase, "--out", out.to_str().unwrap()]);
+        let o = tritri(&[
+            "sim",
+            "--broad-phase",
+            broad_phase,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
         assert!(o.status.success(), "{}", text(&o.stderr));
         text(&o.stdout)
     };
-    let (flat_pairs, octree_pairs) = (scratch_path("flat_default.txt"), scratch_path("octree_default.txt"));
+    let (flat_pairs, octree_pairs) = (
+        scratch_path("flat_default.txt"),
+        scratch_path("octree_default.txt"),
+    );
     let (flat, octree) = (run("flat", &flat_pairs), run("octree", &octree_pairs));
-    assert_eq!(std::fs::read_to_string(&flat_pairs).unwrap(), std::fs::read_to_string(&octree_pairs).unwrap());
+    assert_eq!(
+        std::fs::read_to_string(&flat_pairs).unwrap(),
+        std::fs::read_to_string(&octree_pairs).unwrap()
+    );
     let number_after = |report: &str, key: &str| -> u64 {
-        let rest = &report[report.find(key).unwrap_or_else(|| panic!("no `{key}` in {report}")) + key.len()..];
-        rest.split(|c: char| !c.is_ascii_digit()).find(|s| !s.is_empty()).unwrap().parse().unwrap()
+        let rest = &report[report
+            .find(key)
+            .unwrap_or_else(|| panic!("no `{key}` in {report}"))
+            + key.len()..];
+        rest.split(|c: char| !c.is_ascii_digit())
+            .find(|s| !s.is_empty())
+            .unwrap()
+            .parse()
+            .unwrap()
     };
-    let (flat_tested, octree_tested) = (number_after(&flat, "pairs tested: "), number_after(&octree, "pairs tested: "));
-    let (flat_cycles, octree_cycles) = (number_after(&flat, "cycles: "), number_after(&octree, "cycles: "));
-    assert!(octree_tested * 20 < flat_tested, "{octree_tested} vs {flat_tested}");
-    assert!(octree_cycles * 10 < flat_cycles, "{octree_cycles} vs {flat_cycles}");
+    let (flat_tested, octree_tested) = (
+        number_after(&flat, "pairs tested: "),
+        number_after(&octree, "pairs tested: "),
+    );
+    let (flat_cycles, octree_cycles) = (
+        number_after(&flat, "cycles: "),
+        number_after(&octree, "cycles: "),
+    );
+    assert!(
+        octree_tested * 20 < flat_tested,
+        "{octree_tested} vs {flat_tested}"
+    );
+    assert!(
+        octree_cycles * 10 < flat_cycles,
+        "{octree_cycles} vs {flat_cycles}"
+    );
     // Work within 4 x the pairs whose triangle boxes overlap (3.4 x here:
     // the split rule also counts the binning unit's classifications).
-    assert!(octree_tested <= 4 * number_after(&octree, "box-overlap pairs ("), "{octree}");
+    assert!(
+        octree_tested <= 4 * number_after(&octree, "box-overlap pairs ("),
+        "{octree}"
+    );
     // The whole run is the broad-phase top's cycles (binning, then the
     // leaves through the system's banks) and, at most, its owner filter's;
     // the filter drops the duplicates the leaves found, leaving each pair
@@ -99,10 +162,23 @@ fn octree_gives_the_flat_pairs_with_less_work() {
     let binning = number_after(&octree, "frames deep: ");
     let top = number_after(&octree, "the broad-phase top: binning and narrow phase ");
     let top_filter = number_after(&octree, "+ its owner filter at most ");
-    assert!(binning > 0 && top > binning && top > octree_cycles && top_filter > 0, "{octree}");
+    assert!(
+        binning > 0 && top > binning && top > octree_cycles && top_filter > 0,
+        "{octree}"
+    );
     let filter = number_after(&octree, "pairs through; ");
-    let (hits, pairs) = (number_after(&octree, "owner filter (hardware rule"), number_after(&octree, "intersecting pairs: "));
-    assert!(hits > pairs && octree.contains(&format!("{} duplicates dropped, {pairs} pairs through", hits - pairs)), "{octree}");
+    let (hits, pairs) = (
+        number_after(&octree, "owner filter (hardware rule"),
+        number_after(&octree, "intersecting pairs: "),
+    );
+    assert!(
+        hits > pairs
+            && octree.contains(&format!(
+                "{} duplicates dropped, {pairs} pairs through",
+                hits - pairs
+            )),
+        "{octree}"
+    );
     assert!(filter >= 2 * hits, "{octree}");
 }
 
@@ -115,47 +191,119 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
         "a.off",
         "OFF\n7 5 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 0\n1 1 0\n-1 -1 0.5\n2 2 0.5\n3 0 1 2\n3 3 3 3\n3 0 4 4\n3 5 6 6\n4 0 1 4 2\n",
     );
-    let b = scratch("b.obj", "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n");
+    let b = scratch(
+        "b.obj",
+        "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n",
+    );
     let (one, tiles) = (scratch_path("one.txt"), scratch_path("tiles.txt"));
     let run = |depth: &str, out: &PathBuf| {
-        tritri(&["sim", "--broad-phase", "flat", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", out.to_str().unwrap()])
+        tritri(&[
+            "sim",
+            "--broad-phase",
+            "flat",
+            "--scene",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--depth",
+            depth,
+            "--out",
+            out.to_str().unwrap(),
+        ])
     };
     let r1 = run("100", &one);
     assert!(r1.status.success(), "{}", text(&r1.stderr));
     let r2 = run("2", &tiles);
     assert!(r2.status.success(), "{}", text(&r2.stderr));
-    assert!(text(&r2.stdout).contains("split into"), "{}", text(&r2.stdout));
+    assert!(
+        text(&r2.stdout).contains("split into"),
+        "{}",
+        text(&r2.stdout)
+    );
     let pairs = std::fs::read_to_string(&one).unwrap();
     assert_eq!(pairs, std::fs::read_to_string(&tiles).unwrap());
-    assert!(pairs.lines().all(|l| l.split(' ').count() == 2 && l.split(' ').all(|n| n.parse::<u32>().is_ok())), "{pairs}");
+    assert!(
+        pairs
+            .lines()
+            .all(|l| l.split(' ').count() == 2 && l.split(' ').all(|n| n.parse::<u32>().is_ok())),
+        "{pairs}"
+    );
     // The point (0.5,0.5,0) is A's triangle 1 and B's triangle 1, and lies on B's vertical triangle 0.
-    assert!(pairs.lines().any(|l| l == "1 1") && pairs.lines().any(|l| l == "1 0"), "{pairs}");
+    assert!(
+        pairs.lines().any(|l| l == "1 1") && pairs.lines().any(|l| l == "1 0"),
+        "{pairs}"
+    );
     assert!(pairs.lines().count() >= 4, "{pairs}");
-    assert!(text(&r1.stdout).contains("0 pairs missing, 0 extra"), "{}", text(&r1.stdout));
+    assert!(
+        text(&r1.stdout).contains("0 pairs missing, 0 extra"),
+        "{}",
+        text(&r1.stdout)
+    );
     // The octree broad phase, with memories of 2 and of 100, reports the same pairs.
     for depth in ["2", "100"] {
         let octree = scratch_path(&format!("octree{depth}.txt"));
-        let r = tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", depth, "--out", octree.to_str().unwrap()]);
+        let r = tritri(&[
+            "sim",
+            "--scene",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--depth",
+            depth,
+            "--out",
+            octree.to_str().unwrap(),
+        ]);
         assert!(r.status.success(), "{}", text(&r.stderr));
-        assert!(text(&r.stdout).contains("broad phase: octree"), "{}", text(&r.stdout));
-        assert_eq!(pairs, std::fs::read_to_string(&octree).unwrap(), "octree, depth {depth}");
+        assert!(
+            text(&r.stdout).contains("broad phase: octree"),
+            "{}",
+            text(&r.stdout)
+        );
+        assert_eq!(
+            pairs,
+            std::fs::read_to_string(&octree).unwrap(),
+            "octree, depth {depth}"
+        );
     }
 
     // Face indices: the quad (face 4) is triangles 4 and 5.
     let faces = scratch_path("faces.txt");
-    let r3 = tritri(&["sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--indices", "faces", "--out", faces.to_str().unwrap()]);
+    let r3 = tritri(&[
+        "sim",
+        "--scene",
+        a.to_str().unwrap(),
+        b.to_str().unwrap(),
+        "--indices",
+        "faces",
+        "--out",
+        faces.to_str().unwrap(),
+    ]);
     assert!(r3.status.success());
-    assert!(std::fs::read_to_string(&faces).unwrap().lines().all(|l| l.split(' ').next().unwrap().parse::<u32>().unwrap() <= 4));
+    assert!(std::fs::read_to_string(&faces).unwrap().lines().all(|l| l
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse::<u32>()
+        .unwrap()
+        <= 4));
 }
 
 /// With --no-split, arrays deeper than the memory depth are an error naming
 /// the sizes and the depth.
 #[test]
 fn no_split_error_names_the_sizes() {
-    let out = tritri(&["sim", "--broad-phase", "flat", "--depth", "100", "--no-split"]);
+    let out = tritri(&[
+        "sim",
+        "--broad-phase",
+        "flat",
+        "--depth",
+        "100",
+        "--no-split",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     let err = text(&out.stderr);
-    assert!(err.contains("(A)") && err.contains("(B)") && err.contains("memory depth 100"), "{err}");
+    assert!(
+        err.contains("(A)") && err.contains("(B)") && err.contains("memory depth 100"),
+        "{err}"
+    );
 }
 
 /// A pose that is not six (or three) numbers is refused by the parser.
@@ -163,9 +311,15 @@ fn no_split_error_names_the_sizes() {
 fn bad_pose_is_refused() {
     let out = tritri(&["sim", "--pose-b", "1,2"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("bad pose"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("bad pose"),
+        "{}",
+        text(&out.stderr)
+    );
     // Negative numbers are values, not flags.
-    assert!(tritri(&["sim", "--pose-b", "-0.1,0,0,0,0,-45"]).status.success());
+    assert!(tritri(&["sim", "--pose-b", "-0.1,0,0,0,0,-45"])
+        .status
+        .success());
 }
 
 /// Pairs to stdout with `--out -`, the report then goes to stderr.
@@ -174,7 +328,10 @@ fn pairs_to_stdout_send_the_report_to_stderr() {
     let out = tritri(&["sim", "--out", "-"]);
     assert!(out.status.success());
     let stdout = text(&out.stdout);
-    assert!(stdout.lines().count() > 10 && stdout.lines().all(|l| l.split(' ').count() == 2), "{stdout}");
+    assert!(
+        stdout.lines().count() > 10 && stdout.lines().all(|l| l.split(' ').count() == 2),
+        "{stdout}"
+    );
     assert!(text(&out.stderr).contains("pairs tested:"));
 }
 
@@ -182,13 +339,32 @@ fn pairs_to_stdout_send_the_report_to_stderr() {
 /// above the target.
 #[test]
 fn chapter5_prints_one_row_per_share() {
-    let out = tritri(&["chapter5", "--scene", "@sphere", "@sphere", "--fractions", "25,50"]);
+    let out = tritri(&[
+        "chapter5",
+        "--scene",
+        "@sphere",
+        "@sphere",
+        "--fractions",
+        "25,50",
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    let rows: Vec<&str> = report.lines().filter(|l| l.starts_with("| 25 %") || l.starts_with("| 50 %")).collect();
+    let rows: Vec<&str> = report
+        .lines()
+        .filter(|l| l.starts_with("| 25 %") || l.starts_with("| 50 %"))
+        .collect();
     assert_eq!(rows.len(), 2, "{report}");
     for (row, target) in rows.iter().zip([25.0, 50.0]) {
-        let share: f64 = row.split('=').nth(1).unwrap().trim().split(' ').next().unwrap().parse().unwrap();
+        let share: f64 = row
+            .split('=')
+            .nth(1)
+            .unwrap()
+            .trim()
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
         assert!(share >= target && share < target + 10.0, "{row}");
     }
 }
@@ -198,18 +374,36 @@ fn chapter5_prints_one_row_per_share() {
 /// triangles (several batches through the two banks).
 #[test]
 fn rusthdl_engine_agrees_with_the_model() {
-    let a = scratch("ra.off", "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 0\n1 1 0\n3 0 1 2\n3 3 3 3\n3 0 4 4\n4 0 1 4 2\n");
-    let b = scratch("rb.obj", "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n");
+    let a = scratch(
+        "ra.off",
+        "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0.5 0.5 0\n1 1 0\n3 0 1 2\n3 3 3 3\n3 0 4 4\n4 0 1 4 2\n",
+    );
+    let b = scratch(
+        "rb.obj",
+        "v 0.2 0.2 -1\nv 0.2 0.2 1\nv 0.9 0.9 0.5\nv 0.5 0.5 0\nf 1 2 3\nf 4 4 4\nf 1 2 2\n",
+    );
     let (model, hdl) = (scratch_path("model.txt"), scratch_path("hdl.txt"));
     let run = |engine: &str, out: &PathBuf| {
         let o = tritri(&[
-            "sim", "--scene", a.to_str().unwrap(), b.to_str().unwrap(), "--depth", "2", "--engine", engine, "--out",
+            "sim",
+            "--scene",
+            a.to_str().unwrap(),
+            b.to_str().unwrap(),
+            "--depth",
+            "2",
+            "--engine",
+            engine,
+            "--out",
             out.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{engine}: {}", text(&o.stderr));
         let report = text(&o.stdout);
         assert!(report.contains(": equal"), "{report}");
-        report.lines().find(|l| l.starts_with("cycles:")).unwrap().to_string()
+        report
+            .lines()
+            .find(|l| l.starts_with("cycles:"))
+            .unwrap()
+            .to_string()
     };
     let (cycles_model, cycles_hdl) = (run("model", &model), run("rusthdl", &hdl));
     assert_eq!(cycles_model, cycles_hdl);
@@ -224,16 +418,54 @@ fn rusthdl_engine_agrees_with_the_model() {
 #[test]
 fn local_frames_give_the_answer_of_the_finer_grid() {
     let (local, flat) = (scratch_path("local.txt"), scratch_path("flat20.txt"));
-    let o = tritri(&["sim", "--width", "16", "--grid-bits", "20", "--out", local.to_str().unwrap()]);
+    let o = tritri(&[
+        "sim",
+        "--width",
+        "16",
+        "--grid-bits",
+        "20",
+        "--out",
+        local.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
-    assert!(text(&o.stdout).contains("local frames: leaves go to the 16-bit hardware"), "{}", text(&o.stdout));
-    let o = tritri(&["sim", "--broad-phase", "flat", "--width", "20", "--out", flat.to_str().unwrap()]);
+    assert!(
+        text(&o.stdout).contains("local frames: leaves go to the 16-bit hardware"),
+        "{}",
+        text(&o.stdout)
+    );
+    let o = tritri(&[
+        "sim",
+        "--broad-phase",
+        "flat",
+        "--width",
+        "20",
+        "--out",
+        flat.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
-    assert_eq!(std::fs::read_to_string(&local).unwrap(), std::fs::read_to_string(&flat).unwrap());
-    for bad in [&["sim", "--width", "24", "--grid-bits", "16"][..], &["sim", "--broad-phase", "flat", "--width", "16", "--grid-bits", "20"]] {
+    assert_eq!(
+        std::fs::read_to_string(&local).unwrap(),
+        std::fs::read_to_string(&flat).unwrap()
+    );
+    for bad in [
+        &["sim", "--width", "24", "--grid-bits", "16"][..],
+        &[
+            "sim",
+            "--broad-phase",
+            "flat",
+            "--width",
+            "16",
+            "--grid-bits",
+            "20",
+        ],
+    ] {
         let o = tritri(bad);
         assert_eq!(o.status.code(), Some(2), "{bad:?}");
-        assert!(text(&o.stderr).contains("--grid-bits"), "{}", text(&o.stderr));
+        assert!(
+            text(&o.stderr).contains("--grid-bits"),
+            "{}",
+            text(&o.stderr)
+        );
     }
 }
 
@@ -243,17 +475,43 @@ fn local_frames_give_the_answer_of_the_finer_grid() {
 #[test]
 fn png_renders_the_contact() {
     let png = scratch_path("scene.png");
-    let out = tritri(&["sim", "--png", png.to_str().unwrap(), "--size", "128", "--up", "z"]);
+    let out = tritri(&[
+        "sim",
+        "--png",
+        png.to_str().unwrap(),
+        "--size",
+        "128",
+        "--up",
+        "z",
+    ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
-    assert!(text(&out.stdout).contains("render:") && text(&out.stdout).contains("114 pairs highlighted"), "{}", text(&out.stdout));
+    assert!(
+        text(&out.stdout).contains("render:")
+            && text(&out.stdout).contains("114 pairs highlighted"),
+        "{}",
+        text(&out.stdout)
+    );
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
-    assert_eq!((u32::from_be_bytes(bytes[16..20].try_into().unwrap()), u32::from_be_bytes(bytes[20..24].try_into().unwrap())), (128, 128));
+    assert_eq!(
+        (
+            u32::from_be_bytes(bytes[16..20].try_into().unwrap()),
+            u32::from_be_bytes(bytes[20..24].try_into().unwrap())
+        ),
+        (128, 128)
+    );
     for bad in ["scene.jpg", "-"] {
         let out = tritri(&["sim", "--png", bad]);
         assert_eq!(out.status.code(), Some(2), "{bad}");
-        assert!(text(&out.stderr).contains("--png") && text(&out.stderr).contains(".png"), "{}", text(&out.stderr));
-        assert!(!text(&out.stdout).contains("pairs tested"), "{bad}: refused before any work");
+        assert!(
+            text(&out.stderr).contains("--png") && text(&out.stderr).contains(".png"),
+            "{}",
+            text(&out.stderr)
+        );
+        assert!(
+            !text(&out.stdout).contains("pairs tested"),
+            "{bad}: refused before any work"
+        );
     }
 }
 
@@ -266,24 +524,60 @@ fn tolerance_tessellates_only_what_the_query_needs() {
     let mut bpt = String::from("1\n3 3\n");
     for i in 0..4 {
         for j in 0..4 {
-            bpt.push_str(&format!("{} {} {}\n", i as f64, j as f64 - 1.5, 0.5 + 0.05 * ((i + j) % 2) as f64));
+            bpt.push_str(&format!(
+                "{} {} {}\n",
+                i as f64,
+                j as f64 - 1.5,
+                0.5 + 0.05 * ((i + j) % 2) as f64
+            ));
         }
     }
     let patch = scratch("wavy.bpt", &bpt);
-    let out = tritri(&["sim", "--scene", patch.to_str().unwrap(), "@sphere", "--tolerance", "0.001"]);
+    let out = tritri(&[
+        "sim",
+        "--scene",
+        patch.to_str().unwrap(),
+        "@sphere",
+        "--tolerance",
+        "0.001",
+    ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let report = text(&out.stdout);
-    let note = report.lines().find(|l| l.starts_with("tessellation for the query:")).unwrap_or_else(|| panic!("{report}"));
-    let numbers: Vec<u64> = note.split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
+    let note = report
+        .lines()
+        .find(|l| l.starts_with("tessellation for the query:"))
+        .unwrap_or_else(|| panic!("{report}"));
+    let numbers: Vec<u64> = note
+        .split(|c: char| !c.is_ascii_digit())
+        .filter_map(|w| w.parse().ok())
+        .collect();
     // "... 1 of 1 patches ..., cut into P pieces: T triangles within 0.001 ..., against U for every patch at N samples a side"
     let (pieces, triangles, uniform) = (numbers[2], numbers[3], numbers[numbers.len() - 2]);
-    assert!(pieces > 1 && triangles > 0 && triangles * 4 < uniform, "{note}");
-    let hits: u64 = report.lines().find_map(|l| l.strip_prefix("intersecting pairs: ")).and_then(|n| n.trim().parse().ok()).unwrap();
+    assert!(
+        pieces > 1 && triangles > 0 && triangles * 4 < uniform,
+        "{note}"
+    );
+    let hits: u64 = report
+        .lines()
+        .find_map(|l| l.strip_prefix("intersecting pairs: "))
+        .and_then(|n| n.trim().parse().ok())
+        .unwrap();
     assert!(hits > 0, "{report}");
     for bad in ["0", "-1", "x"] {
-        let out = tritri(&["sim", "--scene", patch.to_str().unwrap(), "@sphere", "--tolerance", bad]);
+        let out = tritri(&[
+            "sim",
+            "--scene",
+            patch.to_str().unwrap(),
+            "@sphere",
+            "--tolerance",
+            bad,
+        ]);
         assert_eq!(out.status.code(), Some(2), "--tolerance {bad}");
-        assert!(text(&out.stderr).contains("--tolerance"), "{}", text(&out.stderr));
+        assert!(
+            text(&out.stderr).contains("--tolerance"),
+            "{}",
+            text(&out.stderr)
+        );
     }
 }
 
@@ -294,8 +588,20 @@ fn tolerance_tessellates_only_what_the_query_needs() {
 /// is refused (status 2).
 #[test]
 fn broad_phase_top_runs_from_the_command_line() {
-    let out = tritri(&["sim", "--broad-phase-top", "--engine", "verilator", "--certified"]);
-    assert_eq!(out.status.code(), Some(0), "{}{}", text(&out.stdout), text(&out.stderr));
+    let out = tritri(&[
+        "sim",
+        "--broad-phase-top",
+        "--engine",
+        "verilator",
+        "--certified",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}{}",
+        text(&out.stdout),
+        text(&out.stderr)
+    );
     let report = text(&out.stdout);
     for needle in [
         "broad-phase top tritri_broad_phase_g24_w24_p2_d256",
@@ -308,5 +614,9 @@ fn broad_phase_top_runs_from_the_command_line() {
     }
     let out = tritri(&["sim", "--broad-phase-top"]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("--broad-phase-top"), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("--broad-phase-top"),
+        "{}",
+        text(&out.stderr)
+    );
 }

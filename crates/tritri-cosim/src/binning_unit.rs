@@ -12,16 +12,20 @@
 //! level` a leaf's header, `E edge object index vertices` an entry, `D edge` the
 //! first edge with `binned` high, `F edge overflow` at `done`.
 
-use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use crate::simulator::{
+    compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
+};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
-use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_geom::scene::PreparedScene;
+use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::octree::binning_unit::{
+    on_unit_stack, BinningUnit, BinningUnitConfig, BINNING_GRID_WIDTHS,
+};
 use tritri_rtl::octree::broad_phase_system::leaf_tiles;
-use tritri_rtl::octree::binning_unit::{on_unit_stack, BinningUnit, BinningUnitConfig, BINNING_GRID_WIDTHS};
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -49,7 +53,13 @@ pub struct BinningOutput {
 /// depth `depth`: a leaf larger than that as its tiles (every A tile with
 /// every B tile, as the host's `scene::tile` cuts it), each under a header.
 pub fn expected_leaves(run: &BinningRun, depth: usize) -> Vec<StreamedLeaf> {
-    leaf_tiles(&run.leaf_lists, depth).map(|(leaf, a, b)| StreamedLeaf { cell: run.leaves[leaf].cell, a: a.to_vec(), b: b.to_vec() }).collect()
+    leaf_tiles(&run.leaf_lists, depth)
+        .map(|(leaf, a, b)| StreamedLeaf {
+            cell: run.leaves[leaf].cell,
+            a: a.to_vec(),
+            b: b.to_vec(),
+        })
+        .collect()
 }
 
 /// The scene through the rust-hdl model of the unit built for `config`;
@@ -70,7 +80,9 @@ pub fn run_rusthdl(
         max_leaf_level: Option<u32>,
         reader_ready: &dyn Fn(u64) -> bool,
     ) -> anyhow::Result<BinningOutput> {
-        let mut uut = BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves).with_system(config.log_depth, config.log_pipelines);
+        let mut uut =
+            BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves)
+                .with_system(config.log_depth, config.log_pipelines);
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
         let g = grid_value::<G>;
@@ -110,16 +122,35 @@ pub fn run_rusthdl(
             if uut.out_valid.val() && uut.out_ready.val() {
                 if uut.out_header.val() {
                     out.leaves.extend(current.take());
-                    let lo = [signed::<G>(uut.out_x.val().index() as u64), signed::<G>(uut.out_y.val().index() as u64), signed::<G>(uut.out_z.val().index() as u64)];
-                    current = Some(StreamedLeaf { cell: Cell { lo, level: uut.out_level.val().index() as u32 }, a: Vec::new(), b: Vec::new() });
+                    let lo = [
+                        signed::<G>(uut.out_x.val().index() as u64),
+                        signed::<G>(uut.out_y.val().index() as u64),
+                        signed::<G>(uut.out_z.val().index() as u64),
+                    ];
+                    current = Some(StreamedLeaf {
+                        cell: Cell {
+                            lo,
+                            level: uut.out_level.val().index() as u32,
+                        },
+                        a: Vec::new(),
+                        b: Vec::new(),
+                    });
                 } else {
-                    let Some(leaf) = current.as_mut() else { bail!("an entry before the first header at clock {clock}") };
+                    let Some(leaf) = current.as_mut() else {
+                        bail!("an entry before the first header at clock {clock}")
+                    };
                     let index = uut.out_index.val().index() as u32;
                     let object = uut.out_object.val();
                     let vertices = uut.out_vertices.val();
-                    let word: Vec<i64> = (0..9).map(|k| signed::<G>(vertices.get_bits::<G>(k * G).index() as u64)).collect();
+                    let word: Vec<i64> = (0..9)
+                        .map(|k| signed::<G>(vertices.get_bits::<G>(k * G).index() as u64))
+                        .collect();
                     check_vertices(object, index, &word, a, b)?;
-                    if object { leaf.b.push(index) } else { leaf.a.push(index) }
+                    if object {
+                        leaf.b.push(index)
+                    } else {
+                        leaf.a.push(index)
+                    }
                 }
             }
             clock_cycle(&mut uut, |u| &mut u.clock);
@@ -137,27 +168,67 @@ pub fn run_rusthdl(
         Ok(out)
     }
     on_unit_stack(|| match config.grid_bits {
-        16 => run::<16, { value_bits(16) }, { AXES * value_bits(16) }, { 9 * 16 }>(config, a, b, root, max_leaf_level, reader_ready),
-        24 => run::<24, { value_bits(24) }, { AXES * value_bits(24) }, { 9 * 24 }>(config, a, b, root, max_leaf_level, reader_ready),
-        32 => run::<32, { value_bits(32) }, { AXES * value_bits(32) }, { 9 * 32 }>(config, a, b, root, max_leaf_level, reader_ready),
+        16 => run::<16, { value_bits(16) }, { AXES * value_bits(16) }, { 9 * 16 }>(
+            config,
+            a,
+            b,
+            root,
+            max_leaf_level,
+            reader_ready,
+        ),
+        24 => run::<24, { value_bits(24) }, { AXES * value_bits(24) }, { 9 * 24 }>(
+            config,
+            a,
+            b,
+            root,
+            max_leaf_level,
+            reader_ready,
+        ),
+        32 => run::<32, { value_bits(32) }, { AXES * value_bits(32) }, { 9 * 32 }>(
+            config,
+            a,
+            b,
+            root,
+            max_leaf_level,
+            reader_ready,
+        ),
         g => bail!("the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {g}"),
     })
 }
 
 /// An entry's vertices must be the triangle streamed in at its index.
-fn check_vertices(object: bool, index: u32, vertices: &[i64], a: &[FixedTriangle], b: &[FixedTriangle]) -> anyhow::Result<()> {
+fn check_vertices(
+    object: bool,
+    index: u32,
+    vertices: &[i64],
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+) -> anyhow::Result<()> {
     let array = if object { b } else { a };
-    let Some(t) = array.get(index as usize) else { bail!("entry {index} of object {} is past its {} triangles", object as u8, array.len()) };
+    let Some(t) = array.get(index as usize) else {
+        bail!(
+            "entry {index} of object {} is past its {} triangles",
+            object as u8,
+            array.len()
+        )
+    };
     let streamed: Vec<i64> = t.iter().flatten().copied().collect();
     if vertices != streamed {
-        bail!("entry {index} of object {}: vertices {vertices:?}, streamed {streamed:?}", object as u8);
+        bail!(
+            "entry {index} of object {}: vertices {vertices:?}, streamed {streamed:?}",
+            object as u8
+        );
     }
     Ok(())
 }
 
 /// A hex word of nine `G`-bit fields, field 0 in the low bits, as signed values.
 fn hex_fields(text: &str, grid_bits: usize) -> anyhow::Result<Vec<i64>> {
-    let digits: Vec<u8> = text.bytes().rev().map(|c| (c as char).to_digit(16).map(|d| d as u8)).collect::<Option<_>>()
+    let digits: Vec<u8> = text
+        .bytes()
+        .rev()
+        .map(|c| (c as char).to_digit(16).map(|d| d as u8))
+        .collect::<Option<_>>()
         .with_context(|| format!("`{text}` is not hex"))?;
     let bit = |i: usize| digits.get(i / 4).is_some_and(|d| d >> (i % 4) & 1 == 1);
     Ok((0..9)
@@ -186,9 +257,23 @@ pub fn run_emitted(
     simulator: Simulator,
 ) -> anyhow::Result<BinningOutput> {
     let design = emit_binning_unit(config)?;
-    let mut files = vec![("tb_binning_unit.sv".to_string(), testbench(&design.top, config.grid_bits, clock_bound as usize))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_binning_unit".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
+    let mut files = vec![(
+        "tb_binning_unit.sv".to_string(),
+        testbench(&design.top, config.grid_bits, clock_bound as usize),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_binning_unit".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 1,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let vectors = input_vectors(config.grid_bits, a, b, root, max_leaf_level);
     let (text, _) = run_on_vectors(&compiled, "binning-unit-run", &vectors, &[])?;
@@ -198,30 +283,56 @@ pub fn run_emitted(
 /// The testbench's output lines as leaves and cycles. The start line is
 /// offered before edge 0 and the first triangle at edge 1, the unit's
 /// clock 0: an output at edge `k` is the model's clock `k - 1`.
-fn parse_outputs(text: &str, grid_bits: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> anyhow::Result<BinningOutput> {
+fn parse_outputs(
+    text: &str,
+    grid_bits: usize,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+) -> anyhow::Result<BinningOutput> {
     let mut out = BinningOutput::default();
     let mut current: Option<StreamedLeaf> = None;
     let mut binned = None;
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         let number = |k: usize, radix| -> anyhow::Result<u64> {
-            let s = fields.get(k).with_context(|| format!("binning unit output line `{line}` has no field {k}"))?;
+            let s = fields
+                .get(k)
+                .with_context(|| format!("binning unit output line `{line}` has no field {k}"))?;
             u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
         };
         let coordinate = |v: u64| ((v as i64) << (64 - grid_bits)) >> (64 - grid_bits);
         match fields.first().copied() {
             Some("H") => {
                 out.leaves.extend(current.take());
-                let lo = [coordinate(number(2, 16)?), coordinate(number(3, 16)?), coordinate(number(4, 16)?)];
-                current = Some(StreamedLeaf { cell: Cell { lo, level: number(5, 16)? as u32 }, a: Vec::new(), b: Vec::new() });
+                let lo = [
+                    coordinate(number(2, 16)?),
+                    coordinate(number(3, 16)?),
+                    coordinate(number(4, 16)?),
+                ];
+                current = Some(StreamedLeaf {
+                    cell: Cell {
+                        lo,
+                        level: number(5, 16)? as u32,
+                    },
+                    a: Vec::new(),
+                    b: Vec::new(),
+                });
             }
             Some("E") => {
-                let Some(leaf) = current.as_mut() else { bail!("an entry before the first header: `{line}`") };
+                let Some(leaf) = current.as_mut() else {
+                    bail!("an entry before the first header: `{line}`")
+                };
                 let index = number(3, 16)? as u32;
                 let object = number(2, 16)? == 1;
-                let vertices = fields.get(4).with_context(|| format!("binning unit output line `{line}` has no vertices"))?;
+                let vertices = fields.get(4).with_context(|| {
+                    format!("binning unit output line `{line}` has no vertices")
+                })?;
                 check_vertices(object, index, &hex_fields(vertices, grid_bits)?, a, b)?;
-                if object { leaf.b.push(index) } else { leaf.a.push(index) }
+                if object {
+                    leaf.b.push(index)
+                } else {
+                    leaf.a.push(index)
+                }
             }
             Some("D") => binned = Some(number(1, 10)?),
             Some("F") => out.overflow = number(2, 16)? == 1,
@@ -229,8 +340,12 @@ fn parse_outputs(text: &str, grid_bits: usize, a: &[FixedTriangle], b: &[FixedTr
         }
     }
     out.leaves.extend(current.take());
-    let Some(edge) = binned else { bail!("the emitted binning unit never raised `binned`") };
-    out.cycles = edge.checked_sub(1).context("`binned` at edge 0, before the first triangle")?;
+    let Some(edge) = binned else {
+        bail!("the emitted binning unit never raised `binned`")
+    };
+    out.cycles = edge
+        .checked_sub(1)
+        .context("`binned` at edge 0, before the first triangle")?;
     Ok(out)
 }
 
@@ -289,8 +404,14 @@ fn testbench(top: &str, g: usize, drain: usize) -> String {
 
 /// Each object's triangles in the order the host streams them: A's, then
 /// B's (`true`).
-pub(crate) fn triangle_stream<'t>(a: &'t [FixedTriangle], b: &'t [FixedTriangle]) -> Vec<(bool, &'t FixedTriangle)> {
-    a.iter().map(|t| (false, t)).chain(b.iter().map(|t| (true, t))).collect()
+pub(crate) fn triangle_stream<'t>(
+    a: &'t [FixedTriangle],
+    b: &'t [FixedTriangle],
+) -> Vec<(bool, &'t FixedTriangle)> {
+    a.iter()
+        .map(|t| (false, t))
+        .chain(b.iter().map(|t| (true, t)))
+        .collect()
 }
 
 /// `v` as a `G`-bit two's complement grid coordinate.
@@ -309,7 +430,13 @@ pub(crate) fn vertices_word<const G: usize, const T: usize>(t: &FixedTriangle) -
 
 /// The vector file of a run: the start line (root corner and level, leaf
 /// limit), then one line per triangle (object, last, nine coordinates).
-pub(crate) fn input_vectors(grid_bits: usize, a: &[FixedTriangle], b: &[FixedTriangle], root: Cell, max_leaf_level: Option<u32>) -> String {
+pub(crate) fn input_vectors(
+    grid_bits: usize,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+    root: Cell,
+    max_leaf_level: Option<u32>,
+) -> String {
     let mask = |v: i64| (v as u64) & ((1u64 << grid_bits) - 1);
     let mut vectors = format!(
         "0 {:x} {:x} {:x} {:x} {:x} {:x}\n",
@@ -352,7 +479,11 @@ pub(crate) fn input_ports(g: usize) -> String {
 
 /// The vector testbench's start, read and fill for [`input_vectors`]: the
 /// start line held for one clock, a triangle offered until taken.
-pub(crate) fn input_testbench(name: &'static str, body: String, drain: usize) -> VectorTestbench<'static> {
+pub(crate) fn input_testbench(
+    name: &'static str,
+    body: String,
+    drain: usize,
+) -> VectorTestbench<'static> {
     VectorTestbench {
         name,
         body,
@@ -397,20 +528,39 @@ pub fn bin_scene(
         return Err(format!("its split rule takes a power-of-two depth and pipeline count, not depth {depth}, P = {pipelines}"));
     }
     if !BINNING_GRID_WIDTHS.contains(&grid_bits) {
-        return Err(format!("it is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {grid_bits}"));
+        return Err(format!(
+            "it is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {grid_bits}"
+        ));
     }
-    let Some(octree) = &scene.octree else { return Err("the scene has no octree broad phase".into()) };
+    let Some(octree) = &scene.octree else {
+        return Err("the scene has no octree broad phase".into());
+    };
     if !octree.host_arrays.is_empty() {
         return Err("some triangles are too long for a leaf's window and go to the host".into());
     }
-    let Some(root) = octree.root else { return Err("the common box is empty".into()) };
-    let params = BinningParams { log_depth: depth.trailing_zeros(), log_pipelines: pipelines.trailing_zeros(), max_leaf_level };
+    let Some(root) = octree.root else {
+        return Err("the common box is empty".into());
+    };
+    let params = BinningParams {
+        log_depth: depth.trailing_zeros(),
+        log_pipelines: pipelines.trailing_zeros(),
+        max_leaf_level,
+    };
     let a: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
     let b: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
     let run = run_binning(&a, &b, root, params);
     let planned: Vec<Cell> = octree.leaves.iter().map(|l| l.cell).collect();
-    if run.leaves.iter().map(|l| l.cell).ne(planned.iter().copied()) {
-        return Err(format!("its {} leaves differ from the planner's {} (a bug)", run.leaves.len(), planned.len()));
+    if run
+        .leaves
+        .iter()
+        .map(|l| l.cell)
+        .ne(planned.iter().copied())
+    {
+        return Err(format!(
+            "its {} leaves differ from the planner's {} (a bug)",
+            run.leaves.len(),
+            planned.len()
+        ));
     }
     let config = BinningUnitConfig::sized_for(grid_bits, params, a.len().max(b.len()), &run);
     config.check()?;

@@ -2,20 +2,23 @@
 //! a scene's arrays in, on the grid the binning unit was built for, each
 //! leaf's pairs out, with the clocks from the first triangle in to `done`.
 
-use crate::binning_unit::{grid_value, input_ports, input_testbench, input_vectors, triangle_stream, vertices_word, INPUT_REGISTERS};
+use crate::binning_unit::{
+    grid_value, input_ports, input_testbench, input_vectors, triangle_stream, vertices_word,
+    INPUT_REGISTERS,
+};
 use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench};
 use anyhow::{bail, Context as _};
-use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use rust_hdl::prelude::*;
 use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_rtl::octree::binning_machine::BinningRun;
-use tritri_rtl::octree::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
+use tritri_rtl::octree::binning_machine::BinningRun;
 use tritri_rtl::octree::binning_unit::on_unit_stack;
 use tritri_rtl::octree::broad_phase_system::BroadPhaseSystem;
 use tritri_rtl::octree::cell_classifier::AXES;
+use tritri_rtl::octree::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
@@ -55,25 +58,53 @@ pub struct TopModel {
 /// them (tiles of at most `depth`), the reported pairs (hits and pairs
 /// without a certificate) as slots, the owner filter's decisions
 /// ([`decide`]).
-pub fn top_model(run: &BinningRun, depth: usize, a: &[FixedTriangle], b: &[FixedTriangle]) -> TopModel {
+pub fn top_model(
+    run: &BinningRun,
+    depth: usize,
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+) -> TopModel {
     let verdict = |i: u32, j: u32| certified_intersects(&a[i as usize], &b[j as usize]);
     // The system's hit counter counts every tested pair that hits, in
     // every leaf: counted in the same pass that finds the reported pairs.
     let hits = std::cell::Cell::new(0usize);
-    let Streamed { entries, hits: reported, .. } = streamed(&run.leaf_lists, depth, |i, j| {
+    let Streamed {
+        entries,
+        hits: reported,
+        ..
+    } = streamed(&run.leaf_lists, depth, |i, j| {
         let v = verdict(i, j);
         hits.set(hits.get() + v.hit as usize);
         v.hit || !v.certain
     });
     let hits = hits.get();
     let decisions = decide(&entries, &reported);
-    let filter_clocks = decisions.iter().map(|(owned, steps)| 2 + steps + owned.is_some() as u64).sum();
-    let owned: Vec<(u32, u32)> = decisions.into_iter().filter_map(|(owned, _)| owned).collect();
-    let mut pairs: Vec<(u32, u32)> = owned.iter().copied().filter(|&(i, j)| verdict(i, j).hit).collect();
-    let mut uncertain: Vec<(u32, u32)> = owned.iter().copied().filter(|&(i, j)| !verdict(i, j).certain).collect();
+    let filter_clocks = decisions
+        .iter()
+        .map(|(owned, steps)| 2 + steps + owned.is_some() as u64)
+        .sum();
+    let owned: Vec<(u32, u32)> = decisions
+        .into_iter()
+        .filter_map(|(owned, _)| owned)
+        .collect();
+    let mut pairs: Vec<(u32, u32)> = owned
+        .iter()
+        .copied()
+        .filter(|&(i, j)| verdict(i, j).hit)
+        .collect();
+    let mut uncertain: Vec<(u32, u32)> = owned
+        .iter()
+        .copied()
+        .filter(|&(i, j)| !verdict(i, j).certain)
+        .collect();
     pairs.sort_unstable();
     uncertain.sort_unstable();
-    TopModel { pairs, uncertain, hits, filter_clocks }
+    TopModel {
+        pairs,
+        uncertain,
+        hits,
+        filter_clocks,
+    }
 }
 
 /// The scene through the rust-hdl model of the top built for `config`,
@@ -85,7 +116,16 @@ pub fn run_rusthdl(
     root: Cell,
     max_leaf_level: Option<u32>,
 ) -> anyhow::Result<BroadPhaseOutput> {
-    fn run<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>(
+    fn run<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
         config: &BroadPhaseConfig,
         a: &[FixedTriangle],
         b: &[FixedTriangle],
@@ -93,7 +133,14 @@ pub fn run_rusthdl(
         max_leaf_level: Option<u32>,
     ) -> anyhow::Result<BroadPhaseOutput> {
         let unit = &config.unit;
-        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
+        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(
+            unit.triangles,
+            unit.list_words,
+            unit.leaves,
+            config.slots,
+            config.system,
+            config.local_frames,
+        );
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
         let g = grid_value::<G>;
@@ -125,7 +172,10 @@ pub fn run_rusthdl(
                 binned_at = Some(clock);
             }
             if uut.out_valid.val() {
-                let pair = (uut.out_index_a.val().index() as u32, uut.out_index_b.val().index() as u32);
+                let pair = (
+                    uut.out_index_a.val().index() as u32,
+                    uut.out_index_b.val().index() as u32,
+                );
                 out.record(pair, uut.out_hit.val(), uut.out_certain.val());
             }
             if uut.done.val() && next == stream.len() && binned_at.is_some() {
@@ -161,12 +211,26 @@ pub fn run_rusthdl(
     }
     const V24: usize = value_bits(24);
     on_unit_stack(|| match config.system.coordinate_bits {
-        24 => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 24, { difference_bits(24) }, { cross_bits(24) }, { orient3d_bits(24) }>(
-            config, a, b, root, max_leaf_level,
-        ),
-        _ => run::<24, V24, { AXES * V24 }, { 9 * 24 }, 16, { difference_bits(16) }, { cross_bits(16) }, { orient3d_bits(16) }>(
-            config, a, b, root, max_leaf_level,
-        ),
+        24 => run::<
+            24,
+            V24,
+            { AXES * V24 },
+            { 9 * 24 },
+            24,
+            { difference_bits(24) },
+            { cross_bits(24) },
+            { orient3d_bits(24) },
+        >(config, a, b, root, max_leaf_level),
+        _ => run::<
+            24,
+            V24,
+            { AXES * V24 },
+            { 9 * 24 },
+            16,
+            { difference_bits(16) },
+            { cross_bits(16) },
+            { orient3d_bits(16) },
+        >(config, a, b, root, max_leaf_level),
     })
 }
 
@@ -184,9 +248,23 @@ pub fn run_emitted(
 ) -> anyhow::Result<BroadPhaseOutput> {
     let design = emit_broad_phase_system(config)?;
     let g = config.unit.grid_bits;
-    let mut files = vec![("tb_broad_phase.sv".to_string(), testbench(&design.top, g, clock_bound as usize))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_broad_phase".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
+    let mut files = vec![(
+        "tb_broad_phase.sv".to_string(),
+        testbench(&design.top, g, clock_bound as usize),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_broad_phase".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 1,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let vectors = input_vectors(g, a, b, root, max_leaf_level);
     let (text, _) = run_on_vectors(&compiled, "broad-phase-run", &vectors, &[])?;
@@ -215,11 +293,17 @@ fn parse_outputs(text: &str) -> anyhow::Result<BroadPhaseOutput> {
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         let number = |k: usize, radix| -> anyhow::Result<u64> {
-            let s = fields.get(k).with_context(|| format!("broad-phase output line `{line}` has no field {k}"))?;
+            let s = fields
+                .get(k)
+                .with_context(|| format!("broad-phase output line `{line}` has no field {k}"))?;
             u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
         };
         match fields.first().copied() {
-            Some("P") => out.record((number(2, 16)? as u32, number(3, 16)? as u32), number(4, 2)? == 1, number(5, 2)? == 1),
+            Some("P") => out.record(
+                (number(2, 16)? as u32, number(3, 16)? as u32),
+                number(4, 2)? == 1,
+                number(5, 2)? == 1,
+            ),
             Some("D") => out.binned_at = number(1, 10)?.saturating_sub(1),
             Some("F") => {
                 out.cycles = number(1, 10)?.saturating_sub(1);
@@ -311,14 +395,26 @@ impl TopSceneRun {
         let mut got = self.output.pairs.clone();
         got.sort_unstable();
         if got != self.model.pairs {
-            faults.push(format!("the top's {} pairs differ from its model's {} (a bug)", got.len(), self.model.pairs.len()));
+            faults.push(format!(
+                "the top's {} pairs differ from its model's {} (a bug)",
+                got.len(),
+                self.model.pairs.len()
+            ));
         }
-        let (lo, hi) = (self.model_cycles, self.model_cycles + self.model.filter_clocks);
+        let (lo, hi) = (
+            self.model_cycles,
+            self.model_cycles + self.model.filter_clocks,
+        );
         if !(lo..=hi).contains(&self.output.cycles) {
-            faults.push(format!("done after {} clocks, outside the models' {lo} to {hi} (a bug)", self.output.cycles));
+            faults.push(format!(
+                "done after {} clocks, outside the models' {lo} to {hi} (a bug)",
+                self.output.cycles
+            ));
         }
         if self.output.overflow {
-            faults.push("OVERFLOW flag set (a memory of the top was too small: a bug in its sizing)".into());
+            faults.push(
+                "OVERFLOW flag set (a memory of the top was too small: a bug in its sizing)".into(),
+            );
         }
         faults
     }
@@ -335,19 +431,52 @@ pub fn run_scene_on_top(
     max_leaf_level: Option<u32>,
     simulator: Option<Simulator>,
 ) -> anyhow::Result<TopSceneRun> {
-    let binning = crate::binning_unit::bin_scene(scene, grid_bits, system.triangles_per_bank, system.pipelines, max_leaf_level)
-        .map_err(|why| anyhow::anyhow!("the broad-phase top does not apply: {why}"))?;
-    let root = scene.octree.as_ref().and_then(|o| o.root).context("the scene has no octree root")?;
+    let binning = crate::binning_unit::bin_scene(
+        scene,
+        grid_bits,
+        system.triangles_per_bank,
+        system.pipelines,
+        max_leaf_level,
+    )
+    .map_err(|why| anyhow::anyhow!("the broad-phase top does not apply: {why}"))?;
+    let root = scene
+        .octree
+        .as_ref()
+        .and_then(|o| o.root)
+        .context("the scene has no octree root")?;
     let a: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
     let b: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
-    let slots = tritri_rtl::octree::broad_phase_system::stream_slots(system.triangles_per_bank, &binning.run).into_iter().max().unwrap_or(1).max(1);
-    let config = BroadPhaseConfig { unit: binning.config, system, slots, local_frames: max_leaf_level.is_some() };
-    config.check().map_err(|why| anyhow::anyhow!("the broad-phase top cannot be built for this scene: {why}"))?;
-    let model_cycles = tritri_rtl::octree::broad_phase_system::broad_phase_cycles(system, &binning.run);
+    let slots = tritri_rtl::octree::broad_phase_system::stream_slots(
+        system.triangles_per_bank,
+        &binning.run,
+    )
+    .into_iter()
+    .max()
+    .unwrap_or(1)
+    .max(1);
+    let config = BroadPhaseConfig {
+        unit: binning.config,
+        system,
+        slots,
+        local_frames: max_leaf_level.is_some(),
+    };
+    config.check().map_err(|why| {
+        anyhow::anyhow!("the broad-phase top cannot be built for this scene: {why}")
+    })?;
+    let model_cycles =
+        tritri_rtl::octree::broad_phase_system::broad_phase_cycles(system, &binning.run);
     let model = top_model(&binning.run, system.triangles_per_bank, &a, &b);
     let output = match simulator {
         None => run_rusthdl(&config, &a, &b, root, max_leaf_level)?,
-        Some(simulator) => run_emitted(&config, &a, &b, root, max_leaf_level, model_cycles + model.filter_clocks + 1_000, simulator)?,
+        Some(simulator) => run_emitted(
+            &config,
+            &a,
+            &b,
+            root,
+            max_leaf_level,
+            model_cycles + model.filter_clocks + 1_000,
+            simulator,
+        )?,
     };
     let ids = |&(i, j): &(u32, u32)| (scene.kept_a[i as usize].id, scene.kept_b[j as usize].id);
     Ok(TopSceneRun {

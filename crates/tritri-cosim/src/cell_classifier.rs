@@ -49,9 +49,18 @@ fn classified(test: &TriangleCellTest, values: &CellValues, descend: Option<u8>)
 
 /// The software classifier's answer: the values over the classified cell
 /// and its children mask.
-pub fn expected_answer(test: &TriangleCellTest, values: &CellValues, descend: Option<u8>, tag: u16) -> ClassifierAnswer {
+pub fn expected_answer(
+    test: &TriangleCellTest,
+    values: &CellValues,
+    descend: Option<u8>,
+    tag: u16,
+) -> ClassifierAnswer {
     let cell = classified(test, values, descend);
-    ClassifierAnswer { tag, mask: test.children_touched(&cell), at_lo: cell.at_lo() }
+    ClassifierAnswer {
+        tag,
+        mask: test.children_touched(&cell),
+        at_lo: cell.at_lo(),
+    }
 }
 
 /// Entries with their software answers, as a binning pass meets them: each
@@ -59,7 +68,12 @@ pub fn expected_answer(test: &TriangleCellTest, values: &CellValues, descend: Op
 /// below the root; and, so that misses are exercised as often as hits, one
 /// descent per cell into a child it does not meet (while the answer counts
 /// stay below `limit`).
-pub fn harvest(triangles: &[[[i64; 3]; 3]], root: Cell, levels: u32, limit: usize) -> Vec<(ClassifierEntry, ClassifierAnswer)> {
+pub fn harvest(
+    triangles: &[[[i64; 3]; 3]],
+    root: Cell,
+    levels: u32,
+    limit: usize,
+) -> Vec<(ClassifierEntry, ClassifierAnswer)> {
     let mut out = Vec::new();
     for t in triangles {
         let test = TriangleCellTest::new(t);
@@ -72,7 +86,16 @@ pub fn harvest(triangles: &[[[i64; 3]; 3]], root: Cell, levels: u32, limit: usiz
             let tag = out.len() as u16;
             let answer = expected_answer(&test, &values, descend, tag);
             let level = values.level() - descend.map_or(0, |_| 1);
-            out.push((ClassifierEntry { tag, level, descend, at_lo: values.at_lo(), axes }, answer));
+            out.push((
+                ClassifierEntry {
+                    tag,
+                    level,
+                    descend,
+                    at_lo: values.at_lo(),
+                    axes,
+                },
+                answer,
+            ));
             let cell = classified(&test, &values, descend);
             if depth < levels && cell.level() >= 2 {
                 for o in (0..8u8).filter(|o| answer.mask >> o & 1 == 1) {
@@ -88,7 +111,10 @@ pub fn harvest(triangles: &[[[i64; 3]; 3]], root: Cell, levels: u32, limit: usiz
 }
 
 /// Runs the entries through the rust-hdl model of the `grid_bits` classifier.
-pub fn run_rusthdl(grid_bits: usize, entries: &[ClassifierEntry]) -> anyhow::Result<Vec<ClassifierAnswer>> {
+pub fn run_rusthdl(
+    grid_bits: usize,
+    entries: &[ClassifierEntry],
+) -> anyhow::Result<Vec<ClassifierAnswer>> {
     match grid_bits {
         16 => Ok(run_rusthdl_v::<{ value_bits(16) }>(entries)),
         24 => Ok(run_rusthdl_v::<{ value_bits(24) }>(entries)),
@@ -134,12 +160,30 @@ fn run_rusthdl_v<const V: usize>(entries: &[ClassifierEntry]) -> Vec<ClassifierA
 }
 
 /// Runs the entries through the emitted `grid_bits` classifier.
-pub fn run_emitted(grid_bits: usize, entries: &[ClassifierEntry], simulator: Simulator) -> anyhow::Result<Vec<ClassifierAnswer>> {
+pub fn run_emitted(
+    grid_bits: usize,
+    entries: &[ClassifierEntry],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<ClassifierAnswer>> {
     let design = emit_cell_classifier(grid_bits)?;
     let v = value_bits(grid_bits);
-    let mut files = vec![("tb_cell_classifier.sv".to_string(), testbench(&design.top, v))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_cell_classifier".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    let mut files = vec![(
+        "tb_cell_classifier.sv".to_string(),
+        testbench(&design.top, v),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_cell_classifier".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 2,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let (text, _) = run_on_vectors(&compiled, "classifier-run", &vector_text(entries, v), &[])?;
     text.lines().map(|line| parse_answer(line, v)).collect()
@@ -152,7 +196,12 @@ fn hex(value: i128, bits: usize) -> String {
 fn vector_text(entries: &[ClassifierEntry], v: usize) -> String {
     let mut text = String::new();
     for e in entries {
-        let mut fields = vec![format!("{:x}", e.tag), format!("{:x}", e.level), format!("{}", e.descend.is_some() as u8), format!("{}", e.descend.unwrap_or(0))];
+        let mut fields = vec![
+            format!("{:x}", e.tag),
+            format!("{:x}", e.level),
+            format!("{}", e.descend.is_some() as u8),
+            format!("{}", e.descend.unwrap_or(0)),
+        ];
         fields.extend(e.at_lo.iter().map(|x| hex(*x, v)));
         for k in 0..3 {
             fields.extend(e.axes.iter().map(|a| hex(a.0[k], v)));
@@ -168,15 +217,31 @@ fn vector_text(entries: &[ClassifierEntry], v: usize) -> String {
 fn parse_answer(line: &str, v: usize) -> anyhow::Result<ClassifierAnswer> {
     let fields: Vec<&str> = line.split_whitespace().collect();
     if fields.len() != 2 + AXES {
-        bail!("classifier output line `{line}` has {} fields, not {}", fields.len(), 2 + AXES);
+        bail!(
+            "classifier output line `{line}` has {} fields, not {}",
+            fields.len(),
+            2 + AXES
+        );
     }
-    let number = |s: &str| u128::from_str_radix(s, 16).with_context(|| format!("`{s}` in `{line}` is not hexadecimal"));
-    let signed = |u: u128| if u >> (v - 1) & 1 == 1 { u as i128 - (1i128 << v) } else { u as i128 };
+    let number = |s: &str| {
+        u128::from_str_radix(s, 16).with_context(|| format!("`{s}` in `{line}` is not hexadecimal"))
+    };
+    let signed = |u: u128| {
+        if u >> (v - 1) & 1 == 1 {
+            u as i128 - (1i128 << v)
+        } else {
+            u as i128
+        }
+    };
     let mut at_lo = [0i128; MAX_AXES];
     for (i, s) in fields[2..].iter().enumerate() {
         at_lo[i] = signed(number(s)?);
     }
-    Ok(ClassifierAnswer { tag: number(fields[0])? as u16, mask: number(fields[1])? as u8, at_lo })
+    Ok(ClassifierAnswer {
+        tag: number(fields[0])? as u16,
+        mask: number(fields[1])? as u8,
+        at_lo,
+    })
 }
 
 /// The testbench: reads one entry per line, drives it for one clock, and
@@ -184,12 +249,21 @@ fn parse_answer(line: &str, v: usize) -> anyhow::Result<ClassifierAnswer> {
 fn testbench(top: &str, v: usize) -> String {
     let mut ports = String::new();
     for i in 0..AXES {
-        for (port, array) in [("in_at_lo", "at_lo"), ("in_gradient_x", "gx"), ("in_gradient_y", "gy"), ("in_gradient_z", "gz"), ("in_low", "low"), ("in_high", "high")] {
+        for (port, array) in [
+            ("in_at_lo", "at_lo"),
+            ("in_gradient_x", "gx"),
+            ("in_gradient_y", "gy"),
+            ("in_gradient_z", "gz"),
+            ("in_low", "low"),
+            ("in_high", "high"),
+        ] {
             ports += &format!("        .{port}_{i}({array}[{i}]),\n");
         }
         ports += &format!("        .out_at_lo_{i}(out_at_lo_{i}),\n");
     }
-    let out_wires: String = (0..AXES).map(|i| format!("    wire [V-1:0] out_at_lo_{i};\n")).collect();
+    let out_wires: String = (0..AXES)
+        .map(|i| format!("    wire [V-1:0] out_at_lo_{i};\n"))
+        .collect();
     let out_format = " %h".repeat(AXES);
     let out_args: String = (0..AXES).map(|i| format!(", out_at_lo_{i}")).collect();
     let body = format!(
@@ -233,7 +307,9 @@ fn testbench(top: &str, v: usize) -> String {
     end
 "
     );
-    let read_array = |array: &str| format!("            for (i = 0; i < AXES; i = i + 1) begin r = $fscanf(vectors, \"%h\", field); {array}[i] = field; end\n");
+    let read_array = |array: &str| {
+        format!("            for (i = 0; i < AXES; i = i + 1) begin r = $fscanf(vectors, \"%h\", field); {array}[i] = field; end\n")
+    };
     vector_testbench(&VectorTestbench {
         name: "tb_cell_classifier",
         body,

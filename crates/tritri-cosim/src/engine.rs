@@ -32,8 +32,8 @@ use std::path::Path;
 use std::time::Instant;
 use tritri_geom::certificate::{certified_intersects, CertifiedVerdict};
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_geom::scene::owner_slots::OwnerSlots;
+use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
@@ -132,26 +132,45 @@ pub struct PipelineRun {
 /// hardware engine writes the waveform there (the model has none: an
 /// error). The model's cycle count is what the hardware's must be: the
 /// last tested cycle plus the latency.
-pub fn run_pipeline(engine: Engine, width: usize, schedule: &[PipelineInput], vcd: Option<&Path>) -> anyhow::Result<PipelineRun> {
+pub fn run_pipeline(
+    engine: Engine,
+    width: usize,
+    schedule: &[PipelineInput],
+    vcd: Option<&Path>,
+) -> anyhow::Result<PipelineRun> {
     let started = Instant::now();
     // Dispatched on the simulator, as `run_scene` does: the emitted
     // Verilog's two engines share one runner.
     match (engine, engine.simulator()) {
         (_, Some(simulator)) => {
             let run = pipeline_rtl::run_schedule(simulator, width, schedule, vcd)?;
-            Ok(PipelineRun { result: run.result, build_seconds: run.build_seconds, simulate_seconds: run.simulate_seconds })
+            Ok(PipelineRun {
+                result: run.result,
+                build_seconds: run.build_seconds,
+                simulate_seconds: run.simulate_seconds,
+            })
         }
         (Engine::Model, None) => {
             anyhow::ensure!(vcd.is_none(), "the model has no waveform; choose a hardware engine (rusthdl, icarus or verilator)");
             let result = model_result(schedule, latency() as u64)?;
-            Ok(PipelineRun { result, build_seconds: 0.0, simulate_seconds: started.elapsed().as_secs_f64() })
+            Ok(PipelineRun {
+                result,
+                build_seconds: 0.0,
+                simulate_seconds: started.elapsed().as_secs_f64(),
+            })
         }
         (_, None) => {
             // Rusthdl: the rust-hdl pipeline, driven directly.
             let mut pipeline = pipeline_for_width(width)?;
-            let options = HarnessOptions { vcd: vcd.map(Into::into) };
+            let options = HarnessOptions {
+                vcd: vcd.map(Into::into),
+            };
             let result = run_schedule_on(pipeline.as_mut(), schedule, &options)?;
-            Ok(PipelineRun { result, build_seconds: 0.0, simulate_seconds: started.elapsed().as_secs_f64() })
+            Ok(PipelineRun {
+                result,
+                build_seconds: 0.0,
+                simulate_seconds: started.elapsed().as_secs_f64(),
+            })
         }
     }
 }
@@ -169,9 +188,16 @@ fn model_result(schedule: &[PipelineInput], latency: u64) -> anyhow::Result<Stre
             base = Some((c.id, triangle(c)));
             continue;
         }
-        let Some((base_id, b)) = base else { anyhow::bail!("streamed triangle {} before any base", c.id) };
+        let Some((base_id, b)) = base else {
+            anyhow::bail!("streamed triangle {} before any base", c.id)
+        };
         let CertifiedVerdict { hit, certain } = certified_intersects(&b, &triangle(c));
-        result.verdicts.push(PairVerdict { base_id, stream_id: c.id, hit, certain });
+        result.verdicts.push(PairVerdict {
+            base_id,
+            stream_id: c.id,
+            hit,
+            certain,
+        });
         // Input cycles count from 1; the verdict appears `latency` later.
         result.cycles = k as u64 + 1 + latency;
     }
@@ -240,12 +266,19 @@ impl SceneRun {
                 faults.push("OVERFLOW flag set (an array exceeded the memory depth)".to_string());
             }
             if c.stall_cycles == 0 && self.cycles != self.model_cycles {
-                faults.push(format!("{} cycles simulated, the cycle model says {} (a bug)", self.cycles, self.model_cycles));
+                faults.push(format!(
+                    "{} cycles simulated, the cycle model says {} (a bug)",
+                    self.cycles, self.model_cycles
+                ));
             }
         }
         if let Some(owner) = self.owner {
             if owner.pairs > self.pairs.len() as u64 {
-                faults.push(format!("the owner filter let {} pairs through for {} distinct pairs (a bug)", owner.pairs, self.pairs.len()));
+                faults.push(format!(
+                    "the owner filter let {} pairs through for {} distinct pairs (a bug)",
+                    owner.pairs,
+                    self.pairs.len()
+                ));
             }
         }
         faults
@@ -258,7 +291,12 @@ impl SceneRun {
 /// arrays carry slots and the hits go through the owner filter's rule.
 /// `progress` is told of work done as it is done: pairs for the model,
 /// simulated cycles for a hardware engine ([`Engine::progress_unit`]).
-pub fn run_scene(engine: Engine, scene: &PreparedScene, config: SystemConfig, progress: &(dyn Fn(u64) + Sync)) -> anyhow::Result<SceneRun> {
+pub fn run_scene(
+    engine: Engine,
+    scene: &PreparedScene,
+    config: SystemConfig,
+    progress: &(dyn Fn(u64) + Sync),
+) -> anyhow::Result<SceneRun> {
     run_scene_with(engine, scene, config, progress, None)
 }
 
@@ -271,7 +309,11 @@ pub fn run_scene_with(
     progress: &(dyn Fn(u64) + Sync),
     vcd: Option<&Path>,
 ) -> anyhow::Result<SceneRun> {
-    anyhow::ensure!(vcd.is_none() || engine.simulator().is_some(), "a waveform needs --engine icarus or verilator, not {}", engine.name());
+    anyhow::ensure!(
+        vcd.is_none() || engine.simulator().is_some(),
+        "a waveform needs --engine icarus or verilator, not {}",
+        engine.name()
+    );
     let slots = scene.octree.as_ref().map(OwnerSlots::of);
     let slotted = match (&scene.octree, &slots) {
         (Some(octree), Some(slots)) => Some(slots.slotted(octree)),
@@ -290,10 +332,28 @@ pub fn run_scene_with(
         }
         _ => {
             let result: SystemResult = match engine.simulator() {
-                None => run_system_reporting(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, progress)?,
+                None => run_system_reporting(
+                    config,
+                    PipelineKind::Real,
+                    &batches,
+                    true,
+                    ReaderBehaviour::AlwaysReady,
+                    progress,
+                )?,
                 Some(simulator) => {
-                    let options = SystemRunOptions { progress: Some(progress), vcd };
-                    run_system_rtl_with(simulator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady, options)?
+                    let options = SystemRunOptions {
+                        progress: Some(progress),
+                        vcd,
+                    };
+                    run_system_rtl_with(
+                        simulator,
+                        config,
+                        PipelineKind::Real,
+                        &batches,
+                        true,
+                        ReaderBehaviour::AlwaysReady,
+                        options,
+                    )?
                 }
             };
             let counters = HardwareCounters {
@@ -302,7 +362,12 @@ pub fn run_scene_with(
                 stall_cycles: result.stall_cycles,
                 overflow: result.overflow,
             };
-            (result.pairs, result.uncertain, result.cycles, Some(counters))
+            (
+                result.pairs,
+                result.uncertain,
+                result.cycles,
+                Some(counters),
+            )
         }
     };
     let (mut pairs, owner) = match &slots {
@@ -311,7 +376,10 @@ pub fn run_scene_with(
             // the filter on the same hits, which must agree with it.
             // A slot outside the tables would be a fault of the system's
             // simulation; say so rather than index past them.
-            if let Some(&(sa, sb)) = hits.iter().find(|&&(sa, sb)| sa as usize >= slots.a.len() || sb as usize >= slots.b.len()) {
+            if let Some(&(sa, sb)) = hits
+                .iter()
+                .find(|&&(sa, sb)| sa as usize >= slots.a.len() || sb as usize >= slots.b.len())
+            {
                 anyhow::bail!("the {} system returned the hit ({sa}, {sb}) outside the slot tables ({} and {} slots; a bug)", engine.name(), slots.a.len(), slots.b.len());
             }
             let (model, busy) = owner_filter::model(slots, &hits);
@@ -345,11 +413,22 @@ pub fn run_scene_with(
     // Uncertain pairs by triangle ids (a pair in several leaves once), and
     // the host's.
     let mut uncertain: PairSet = match &slots {
-        Some(slots) => uncertain.into_iter().map(|(sa, sb)| slots.ids(sa, sb)).collect(),
+        Some(slots) => uncertain
+            .into_iter()
+            .map(|(sa, sb)| slots.ids(sa, sb))
+            .collect(),
         None => uncertain.into_iter().collect(),
     };
     uncertain.extend(owner_filter::reported(&scene.host_batches(), &|_| {}).1);
-    Ok(SceneRun { engine, pairs, uncertain, owner, cycles, model_cycles, counters })
+    Ok(SceneRun {
+        engine,
+        pairs,
+        uncertain,
+        owner,
+        cycles,
+        model_cycles,
+        counters,
+    })
 }
 
 /// The exact model on the scene's quantized coordinates (every batch and
@@ -372,14 +451,35 @@ mod tests {
     /// tested cycle plus the latency, bubbles counted.
     #[test]
     fn the_model_answers_a_schedule_like_the_pipeline() {
-        let t = TaggedTriangle { id: 4, triangle: [[0, 0, 0], [10, 0, 0], [0, 10, 0]] };
-        let through = TaggedTriangle { id: 9, triangle: [[1, 1, -5], [1, 1, 5], [3, 2, 5]] };
-        let far = TaggedTriangle { id: 11, triangle: [[50, 50, 50], [60, 50, 50], [50, 60, 50]] };
-        let schedule = [PipelineInput::load_base(&t), PipelineInput::test(&through), PipelineInput::idle(), PipelineInput::test(&far)];
+        let t = TaggedTriangle {
+            id: 4,
+            triangle: [[0, 0, 0], [10, 0, 0], [0, 10, 0]],
+        };
+        let through = TaggedTriangle {
+            id: 9,
+            triangle: [[1, 1, -5], [1, 1, 5], [3, 2, 5]],
+        };
+        let far = TaggedTriangle {
+            id: 11,
+            triangle: [[50, 50, 50], [60, 50, 50], [50, 60, 50]],
+        };
+        let schedule = [
+            PipelineInput::load_base(&t),
+            PipelineInput::test(&through),
+            PipelineInput::idle(),
+            PipelineInput::test(&far),
+        ];
         let result = model_result(&schedule, 30).unwrap();
-        let hits: Vec<(u32, u32, bool)> = result.verdicts.iter().map(|v| (v.base_id, v.stream_id, v.hit)).collect();
+        let hits: Vec<(u32, u32, bool)> = result
+            .verdicts
+            .iter()
+            .map(|v| (v.base_id, v.stream_id, v.hit))
+            .collect();
         assert_eq!(hits, vec![(4, 9, true), (4, 11, false)]);
         assert_eq!(result.cycles, 4 + 30);
-        assert!(model_result(&schedule[1..], 30).is_err(), "a test before any base is an error");
+        assert!(
+            model_result(&schedule[1..], 30).is_err(),
+            "a test before any base is an error"
+        );
     }
 }

@@ -16,7 +16,7 @@
 //!   Verilog with `testbenches/tb_collision_system.sv`) take the same
 //!   batches and return the same [`system_harness::SystemResult`].
 //! * The octree classifier and its setup: [`cell_classifier`],
-//!   [`triangle_setup`].
+//!   [`triangle_setup`]; surface voxelization: [`triangle_voxelizer`].
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod binning_unit;
@@ -25,8 +25,8 @@ pub mod cell_classifier;
 pub mod engine;
 pub mod owner_filter;
 pub mod patch_tessellator;
-pub mod plane_traversal;
 pub mod pipeline_rtl;
+pub mod plane_traversal;
 pub mod rusthdl_harness;
 pub mod simulator;
 pub mod stream;
@@ -34,6 +34,7 @@ pub mod suites;
 pub mod system_harness;
 pub mod system_rtl;
 pub mod triangle_setup;
+pub mod triangle_voxelizer;
 pub mod vectors;
 pub mod voxel_fill;
 pub mod voxel_units;

@@ -10,12 +10,14 @@
 //! pair, `edge id_a id_b`, `edge` the rising edge (counted from reset) at
 //! which it left.
 
-use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use crate::simulator::{
+    compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
+};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::certificate::certified_intersects;
-use tritri_geom::scene::Batch;
 use tritri_geom::scene::owner_slots::{OwnerSlots, Slot};
+use tritri_geom::scene::Batch;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::octree::owner_filter::{pair_cycles, slot_word, OwnerFilter, SLOT_BITS};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -77,7 +79,11 @@ fn word(slot: &Slot) -> Bits<{ tritri_rtl::octree::owner_filter::SLOT_WORD_BITS 
 
 /// The hits through the rust-hdl model; the reader is ready in cycles
 /// where `reader_ready(edge)` is true (always, for cycles to compare).
-pub fn run_rusthdl(slots: &OwnerSlots, hits: &[(u32, u32)], reader_ready: impl Fn(u64) -> bool) -> OwnerRun {
+pub fn run_rusthdl(
+    slots: &OwnerSlots,
+    hits: &[(u32, u32)],
+    reader_ready: impl Fn(u64) -> bool,
+) -> OwnerRun {
     let mut uut = OwnerFilter::new(slots.a.len().max(1), slots.b.len().max(1));
     uut.connect_all();
     reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
@@ -111,7 +117,10 @@ pub fn run_rusthdl(slots: &OwnerSlots, hits: &[(u32, u32)], reader_ready: impl F
         settle(&mut uut);
         let taken = uut.in_valid.val() && uut.in_ready.val();
         if uut.out_valid.val() && uut.out_ready.val() {
-            run.pairs.push((uut.out_id_a.val().index() as u32, uut.out_id_b.val().index() as u32));
+            run.pairs.push((
+                uut.out_id_a.val().index() as u32,
+                uut.out_id_b.val().index() as u32,
+            ));
             run.edges.push(edge);
         }
         clock_cycle(&mut uut, |u| &mut u.clock);
@@ -124,19 +133,44 @@ pub fn run_rusthdl(slots: &OwnerSlots, hits: &[(u32, u32)], reader_ready: impl F
 }
 
 /// The hits through the emitted filter in `simulator` (reader always ready).
-pub fn run_emitted(slots: &OwnerSlots, hits: &[(u32, u32)], simulator: Simulator) -> anyhow::Result<OwnerRun> {
+pub fn run_emitted(
+    slots: &OwnerSlots,
+    hits: &[(u32, u32)],
+    simulator: Simulator,
+) -> anyhow::Result<OwnerRun> {
     let size = slots.a.len().max(slots.b.len()).max(1);
     let design = emit_owner_filter(size)?;
     // After the last hit: its comparisons, Head and Emit, and a margin.
-    let longest = hits.iter().map(|&(sa, sb)| slots.decide(sa, sb).comparisons).max().unwrap_or(0) as usize;
-    let mut files = vec![("tb_owner_filter.sv".to_string(), testbench(&design.top, longest + 8))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_owner_filter".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    let longest = hits
+        .iter()
+        .map(|&(sa, sb)| slots.decide(sa, sb).comparisons)
+        .max()
+        .unwrap_or(0) as usize;
+    let mut files = vec![(
+        "tb_owner_filter.sv".to_string(),
+        testbench(&design.top, longest + 8),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_owner_filter".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 2,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let mut vectors = String::new();
     for (kind, table) in [(0, &slots.a), (1, &slots.b)] {
         for (k, slot) in table.iter().enumerate() {
-            vectors += &format!("{kind} {k:x} {:x} {:x} {:x}\n", slot.id, slot.leaf, slot.first);
+            vectors += &format!(
+                "{kind} {k:x} {:x} {:x} {:x}\n",
+                slot.id, slot.leaf, slot.first
+            );
         }
     }
     for (sa, sb) in hits {
@@ -149,12 +183,21 @@ pub fn run_emitted(slots: &OwnerSlots, hits: &[(u32, u32)], simulator: Simulator
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         if fields.len() != 3 {
-            bail!("owner filter output line `{line}` has {} fields, not 3", fields.len());
+            bail!(
+                "owner filter output line `{line}` has {} fields, not 3",
+                fields.len()
+            );
         }
-        let number = |s: &str, radix| u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"));
+        let number = |s: &str, radix| {
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
         let edge = number(fields[0], 10)?;
-        run.edges.push(edge.checked_sub(first_hit_edge).with_context(|| format!("a pair left at edge {edge}, before the first hit"))?);
-        run.pairs.push((number(fields[1], 16)? as u32, number(fields[2], 16)? as u32));
+        run.edges.push(
+            edge.checked_sub(first_hit_edge)
+                .with_context(|| format!("a pair left at edge {edge}, before the first hit"))?,
+        );
+        run.pairs
+            .push((number(fields[1], 16)? as u32, number(fields[2], 16)? as u32));
     }
     Ok(run)
 }

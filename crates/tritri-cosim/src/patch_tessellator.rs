@@ -17,7 +17,9 @@ use rust_hdl::prelude::*;
 use tritri_geom::bezier::fixed::FixedNet;
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::bezier::patch_tessellator::{net_bits, PatchTessellator};
-use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, patch_tessellator_unit_name};
+use tritri_rtl::emit::patch_tessellator_unit::{
+    emit_patch_tessellator, patch_tessellator_unit_name,
+};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// One patch's run: its vertices in order (row `i`, column `j`, point),
@@ -33,13 +35,24 @@ pub struct TessellationRun {
 
 /// The net's coordinates in port order.
 fn coordinates(net: &FixedNet) -> Vec<i64> {
-    net.iter().flatten().flat_map(|p| p.iter().copied()).collect()
+    net.iter()
+        .flatten()
+        .flat_map(|p| p.iter().copied())
+        .collect()
 }
 
 /// Patches through the rust-hdl model of the unit at `(w, k)`; the reader
 /// is ready at edges where `ready(edge)` is true.
-pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet], ready: &dyn Fn(u64) -> bool) -> Vec<TessellationRun> {
-    fn one<const W: usize, const K: usize, const V: usize, const N: usize>(nets: &[FixedNet], ready: &dyn Fn(u64) -> bool) -> Vec<TessellationRun> {
+pub fn run_rusthdl(
+    w: usize,
+    k: usize,
+    nets: &[FixedNet],
+    ready: &dyn Fn(u64) -> bool,
+) -> Vec<TessellationRun> {
+    fn one<const W: usize, const K: usize, const V: usize, const N: usize>(
+        nets: &[FixedNet],
+        ready: &dyn Fn(u64) -> bool,
+    ) -> Vec<TessellationRun> {
         let mut uut = PatchTessellator::<W, K, V, N>::default();
         uut.connect_all();
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
@@ -54,7 +67,10 @@ pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet], ready: &dyn Fn(u64) ->
             settle(&mut uut);
             clock_cycle(&mut uut, |u| &mut u.clock);
             uut.start.next = false;
-            let mut run = TessellationRun { last_flag_right: true, ..Default::default() };
+            let mut run = TessellationRun {
+                last_flag_right: true,
+                ..Default::default()
+            };
             let mut edge = 1u64;
             let side = (1u64 << K) + 1;
             loop {
@@ -64,8 +80,13 @@ pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet], ready: &dyn Fn(u64) ->
                     break;
                 }
                 if uut.out_valid.val() && uut.out_ready.val() {
-                    let point = [uut.out_x.val(), uut.out_y.val(), uut.out_z.val()].map(|c| to_i128(c) as i64);
-                    run.vertices.push((uut.out_i.val().index() as u64, uut.out_j.val().index() as u64, point));
+                    let point = [uut.out_x.val(), uut.out_y.val(), uut.out_z.val()]
+                        .map(|c| to_i128(c) as i64);
+                    run.vertices.push((
+                        uut.out_i.val().index() as u64,
+                        uut.out_j.val().index() as u64,
+                        point,
+                    ));
                     run.edges.push(edge);
                     let last = run.vertices.len() as u64 == side * side;
                     run.last_flag_right &= uut.out_last.val() == last;
@@ -78,47 +99,97 @@ pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet], ready: &dyn Fn(u64) ->
         }
         runs
     }
-    tritri_rtl::with_patch_tessellator!(w, k, one(nets, ready)).unwrap_or_else(|| panic!("no patch tessellator at W = {w}, K = {k}"))
+    tritri_rtl::with_patch_tessellator!(w, k, one(nets, ready))
+        .unwrap_or_else(|| panic!("no patch tessellator at W = {w}, K = {k}"))
 }
 
 /// Patches through the emitted unit in `simulator`, the reader always ready.
-pub fn run_emitted(w: usize, k: usize, nets: &[FixedNet], simulator: Simulator) -> anyhow::Result<Vec<TessellationRun>> {
+pub fn run_emitted(
+    w: usize,
+    k: usize,
+    nets: &[FixedNet],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<TessellationRun>> {
     let design = emit_patch_tessellator(w, k)?;
     let mut files = vec![("tb_patch_tessellator.sv".to_string(), testbench(w, k))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_patch_tessellator".into(), files, defines: vec![], parameters: vec![], c_optimization: 1, trace: false };
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_patch_tessellator".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 1,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let mask = (1u128 << w) - 1;
     let vectors: String = nets
         .iter()
-        .map(|net| coordinates(net).iter().map(|&c| format!("{:x}", c as i128 as u128 & mask)).collect::<Vec<_>>().join(" ") + "\n")
+        .map(|net| {
+            coordinates(net)
+                .iter()
+                .map(|&c| format!("{:x}", c as i128 as u128 & mask))
+                .collect::<Vec<_>>()
+                .join(" ")
+                + "\n"
+        })
         .collect();
     let (text, _) = run_on_vectors(&compiled, "patch-tessellator-run", &vectors, &[])?;
     let side = (1u64 << k) + 1;
     let signed = |s: &str| -> anyhow::Result<i64> {
         let u = u128::from_str_radix(s, 16).with_context(|| format!("`{s}`"))?;
-        Ok(if u >> (w - 1) & 1 == 1 { (u as i128 - (1i128 << w)) as i64 } else { u as i64 })
+        Ok(if u >> (w - 1) & 1 == 1 {
+            (u as i128 - (1i128 << w)) as i64
+        } else {
+            u as i64
+        })
     };
     let mut runs = Vec::new();
-    let mut run = TessellationRun { last_flag_right: true, ..Default::default() };
+    let mut run = TessellationRun {
+        last_flag_right: true,
+        ..Default::default()
+    };
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
-        let number = |s: &str, radix| u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"));
+        let number = |s: &str, radix| {
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
         match fields.as_slice() {
             ["done", clocks] => {
                 run.clocks = number(clocks, 10)?;
-                runs.push(std::mem::replace(&mut run, TessellationRun { last_flag_right: true, ..Default::default() }));
+                runs.push(std::mem::replace(
+                    &mut run,
+                    TessellationRun {
+                        last_flag_right: true,
+                        ..Default::default()
+                    },
+                ));
             }
             [edge, i, j, x, y, z, last] => {
-                run.vertices.push((number(i, 16)?, number(j, 16)?, [signed(x)?, signed(y)?, signed(z)?]));
+                run.vertices.push((
+                    number(i, 16)?,
+                    number(j, 16)?,
+                    [signed(x)?, signed(y)?, signed(z)?],
+                ));
                 run.edges.push(number(edge, 10)?);
-                run.last_flag_right &= (number(last, 2)? == 1) == (run.vertices.len() as u64 == side * side);
+                run.last_flag_right &=
+                    (number(last, 2)? == 1) == (run.vertices.len() as u64 == side * side);
             }
-            _ => bail!("patch tessellator output line `{line}` is neither a vertex nor `done CLOCKS`"),
+            _ => bail!(
+                "patch tessellator output line `{line}` is neither a vertex nor `done CLOCKS`"
+            ),
         }
     }
     if runs.len() != nets.len() {
-        bail!("the patch tessellator finished {} of {} patches", runs.len(), nets.len());
+        bail!(
+            "the patch tessellator finished {} of {} patches",
+            runs.len(),
+            nets.len()
+        );
     }
     Ok(runs)
 }
@@ -130,7 +201,11 @@ fn testbench(w: usize, k: usize) -> String {
     let top = patch_tessellator_unit_name(w, k);
     let n = net_bits(w);
     let w1 = w - 1;
-    let packed = (0..48).rev().map(|m| format!("c[{m}]")).collect::<Vec<_>>().join(", ");
+    let packed = (0..48)
+        .rev()
+        .map(|m| format!("c[{m}]"))
+        .collect::<Vec<_>>()
+        .join(", ");
     format!(
         "\
 // Generated by tritri-cosim: the patch tessellator, one patch per vector line.

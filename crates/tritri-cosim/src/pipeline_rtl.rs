@@ -7,9 +7,9 @@ use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
 use crate::stream::{StreamResult, TriangleStream};
 use crate::vectors::{parse_outputs, vectors, vectors_for_schedule, TimedVerdict};
 use std::path::Path;
-use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::EmittedDesign;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 
 /// The testbench, compiled into the library so runs need no checkout.
 pub const TESTBENCH: &str = include_str!("../../../testbenches/tb_triangle_pipeline.sv");
@@ -32,12 +32,19 @@ impl RtlDut {
     /// The testbench around this pipeline.
     pub fn testbench(&self, trace: bool) -> Testbench {
         let mut files = vec![(format!("{TESTBENCH_TOP}.sv"), TESTBENCH.to_string())];
-        files.extend(self.design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+        files.extend(
+            self.design
+                .verilog_files()
+                .map(|f| (f.path.clone(), f.contents.clone())),
+        );
         Testbench {
             top: TESTBENCH_TOP.into(),
             files,
             defines: vec![format!("TRITRI_DUT={}", self.design.top)],
-            parameters: vec![("W".into(), self.width.to_string()), ("ID_WIDTH".into(), self.id_bits.to_string())],
+            parameters: vec![
+                ("W".into(), self.width.to_string()),
+                ("ID_WIDTH".into(), self.id_bits.to_string()),
+            ],
             c_optimization: 2,
             trace,
         }
@@ -63,13 +70,20 @@ pub fn pipeline_dut(width: usize) -> anyhow::Result<std::sync::Arc<RtlDut>> {
 
 /// [`pipeline_dut`] with its multipliers mapped as `multipliers` says
 /// (with `Ecp5`, the MULT18X18D instances run on the primitive's model).
-pub fn pipeline_dut_with(width: usize, multipliers: MultiplierMapping) -> anyhow::Result<std::sync::Arc<RtlDut>> {
+pub fn pipeline_dut_with(
+    width: usize,
+    multipliers: MultiplierMapping,
+) -> anyhow::Result<std::sync::Arc<RtlDut>> {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex, OnceLock};
     type Cache = Mutex<HashMap<(usize, MultiplierMapping), Arc<RtlDut>>>;
     static CACHE: OnceLock<Cache> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
-    if let Some(d) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&(width, multipliers)) {
+    if let Some(d) = cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get(&(width, multipliers))
+    {
         return Ok(d.clone());
     }
     let design = tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with(width, multipliers)?;
@@ -79,27 +93,62 @@ pub fn pipeline_dut_with(width: usize, multipliers: MultiplierMapping) -> anyhow
         id_bits: tritri_rtl::pipeline::ID_BITS as u32,
         latency: tritri_rtl::pipeline::triangle_pipeline::latency() as u64,
     });
-    cache.lock().unwrap_or_else(|e| e.into_inner()).insert((width, multipliers), dut.clone());
+    cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert((width, multipliers), dut.clone());
     Ok(dut)
 }
 
 /// Runs `stream` on `dut` in `simulator`.
-pub fn run_stream(simulator: Simulator, dut: &RtlDut, stream: &TriangleStream) -> anyhow::Result<RtlRun> {
-    run_vectors(simulator, dut, &vectors(stream, dut.width, dut.id_bits), None)
+pub fn run_stream(
+    simulator: Simulator,
+    dut: &RtlDut,
+    stream: &TriangleStream,
+) -> anyhow::Result<RtlRun> {
+    run_vectors(
+        simulator,
+        dut,
+        &vectors(stream, dut.width, dut.id_bits),
+        None,
+    )
 }
 
 /// Runs an arbitrary schedule of input cycles on the emitted `width`-bit
 /// pipeline (see `rusthdl_harness::run_schedule_on`); with `vcd`, writes the
 /// waveform of every signal there.
-pub fn run_schedule(simulator: Simulator, width: usize, schedule: &[PipelineInput], vcd: Option<&Path>) -> anyhow::Result<RtlRun> {
+pub fn run_schedule(
+    simulator: Simulator,
+    width: usize,
+    schedule: &[PipelineInput],
+    vcd: Option<&Path>,
+) -> anyhow::Result<RtlRun> {
     let dut = pipeline_dut(width)?;
-    run_vectors(simulator, &dut, &vectors_for_schedule(schedule, dut.width, dut.id_bits), vcd)
+    run_vectors(
+        simulator,
+        &dut,
+        &vectors_for_schedule(schedule, dut.width, dut.id_bits),
+        vcd,
+    )
 }
 
-fn run_vectors(simulator: Simulator, dut: &RtlDut, vector_text: &str, vcd: Option<&Path>) -> anyhow::Result<RtlRun> {
+fn run_vectors(
+    simulator: Simulator,
+    dut: &RtlDut,
+    vector_text: &str,
+    vcd: Option<&Path>,
+) -> anyhow::Result<RtlRun> {
     let compiled = compile(simulator, &dut.testbench(vcd.is_some()))?;
-    let extra: Vec<String> = vcd.map(|path| format!("+vcd={}", path.display())).into_iter().collect();
+    let extra: Vec<String> = vcd
+        .map(|path| format!("+vcd={}", path.display()))
+        .into_iter()
+        .collect();
     let (text, simulate_seconds) = run_on_vectors(&compiled, "pipeline-run", vector_text, &extra)?;
     let (result, timed) = parse_outputs(&text)?;
-    Ok(RtlRun { result, timed, build_seconds: compiled.build_seconds, simulate_seconds })
+    Ok(RtlRun {
+        result,
+        timed,
+        build_seconds: compiled.build_seconds,
+        simulate_seconds,
+    })
 }

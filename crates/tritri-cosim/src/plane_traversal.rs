@@ -14,14 +14,21 @@ use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::octree::plane::{TraversalRecord, TraversalRun};
 use tritri_rtl::arith::convert::{from_i128, to_i128};
-use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PlaneInputs, PLANE_TRAVERSAL_NAME};
+use tritri_rtl::emit::plane_traversal_unit::{
+    emit_plane_traversal, PlaneInputs, PLANE_TRAVERSAL_NAME,
+};
 use tritri_rtl::octree::plane_traversal::{PlaneTraversal, PLANE_VALUE_BITS};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// What a hardware run reports: the records with their edges, and the
 /// edges it was busy (`cells` is the cycle model's only).
 fn record(x: u64, y: u64, z: u64, level: u64, full: u64, crossed: u64) -> TraversalRecord {
-    TraversalRecord { lo: [x as i64, y as i64, z as i64], level: level as u32, full: full as u8, crossed: crossed as u8 }
+    TraversalRecord {
+        lo: [x as i64, y as i64, z as i64],
+        level: level as u32,
+        full: full as u8,
+        crossed: crossed as u8,
+    }
 }
 
 /// One plane through the rust-hdl model; the reader is ready at edges
@@ -72,37 +79,83 @@ pub fn run_rusthdl(plane: &PlaneInputs, reader_ready: impl Fn(u64) -> bool) -> T
 
 /// Planes through the emitted traversal in `simulator`, the reader always
 /// ready.
-pub fn run_emitted(planes: &[PlaneInputs], simulator: Simulator) -> anyhow::Result<Vec<TraversalRun>> {
+pub fn run_emitted(
+    planes: &[PlaneInputs],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<TraversalRun>> {
     let design = emit_plane_traversal()?;
     let mut files = vec![("tb_plane_traversal.sv".to_string(), testbench())];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_plane_traversal".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_plane_traversal".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 2,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
-    let hex = |x: i64| format!("{:x}", to_i128(from_i128::<PLANE_VALUE_BITS>(x as i128)) as u128 & ((1u128 << PLANE_VALUE_BITS) - 1));
+    let hex = |x: i64| {
+        format!(
+            "{:x}",
+            to_i128(from_i128::<PLANE_VALUE_BITS>(x as i128)) as u128
+                & ((1u128 << PLANE_VALUE_BITS) - 1)
+        )
+    };
     let vectors: String = planes
         .iter()
-        .map(|p| format!("{:x} {} {} {} {} {} {}\n", p.level, hex(p.gradient[0]), hex(p.gradient[1]), hex(p.gradient[2]), hex(p.d), hex(p.root_min), hex(p.centre_offset)))
+        .map(|p| {
+            format!(
+                "{:x} {} {} {} {} {} {}\n",
+                p.level,
+                hex(p.gradient[0]),
+                hex(p.gradient[1]),
+                hex(p.gradient[2]),
+                hex(p.d),
+                hex(p.root_min),
+                hex(p.centre_offset)
+            )
+        })
         .collect();
     let (text, _) = run_on_vectors(&compiled, "plane-traversal-run", &vectors, &[])?;
     let mut runs = Vec::new();
     let mut run = TraversalRun::default();
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
-        let number = |s: &str, radix| u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"));
+        let number = |s: &str, radix| {
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
         match fields.as_slice() {
             ["done", cycles] => {
                 run.cycles = number(cycles, 10)?;
                 runs.push(std::mem::take(&mut run));
             }
             [edge, x, y, z, level, full, crossed] => {
-                run.records.push(record(number(x, 16)?, number(y, 16)?, number(z, 16)?, number(level, 16)?, number(full, 16)?, number(crossed, 16)?));
+                run.records.push(record(
+                    number(x, 16)?,
+                    number(y, 16)?,
+                    number(z, 16)?,
+                    number(level, 16)?,
+                    number(full, 16)?,
+                    number(crossed, 16)?,
+                ));
                 run.edges.push(number(edge, 10)?);
             }
-            _ => bail!("plane traversal output line `{line}` is neither a record nor `done CYCLES`"),
+            _ => {
+                bail!("plane traversal output line `{line}` is neither a record nor `done CYCLES`")
+            }
         }
     }
     if runs.len() != planes.len() {
-        bail!("the plane traversal finished {} of {} planes", runs.len(), planes.len());
+        bail!(
+            "the plane traversal finished {} of {} planes",
+            runs.len(),
+            planes.len()
+        );
     }
     Ok(runs)
 }
@@ -165,13 +218,22 @@ endmodule
 
 /// One plane through `engine`: the cycle model, the rust-hdl model or the
 /// emitted Verilog (the reader always ready).
-pub fn run(engine: crate::engine::Engine, level: u32, normal: [i64; 3], d: i64) -> anyhow::Result<TraversalRun> {
+pub fn run(
+    engine: crate::engine::Engine,
+    level: u32,
+    normal: [i64; 3],
+    d: i64,
+) -> anyhow::Result<TraversalRun> {
     let plane = PlaneInputs::new(level, normal, d).map_err(anyhow::Error::msg)?;
     let model = tritri_geom::octree::plane::traversal_schedule(level, normal, plane.d);
     // The RAM has no overflow check: the cycle model says first whether the
     // plane fits (the most seen on 512^3 and 1024^3 planes is 42 entries).
     let capacity = 1usize << tritri_rtl::octree::plane_traversal::STACK_ADDRESS_BITS;
-    anyhow::ensure!(model.stack_depth < capacity, "the plane needs {} stack entries, more than the traversal's {capacity}", model.stack_depth);
+    anyhow::ensure!(
+        model.stack_depth < capacity,
+        "the plane needs {} stack entries, more than the traversal's {capacity}",
+        model.stack_depth
+    );
     Ok(match (engine, engine.simulator()) {
         (crate::engine::Engine::Model, _) => model,
         (_, None) => run_rusthdl(&plane, |_| true),

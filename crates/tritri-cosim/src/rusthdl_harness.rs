@@ -22,7 +22,9 @@ use crate::stream::{PairVerdict, StreamResult, TriangleStream};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput, PipelineSimulation};
+use tritri_rtl::pipeline::pipeline_for_width::{
+    pipeline_for_width, PipelineInput, PipelineSimulation,
+};
 
 /// Options of a run.
 #[derive(Clone, Debug, Default)]
@@ -41,18 +43,38 @@ pub struct RunResult {
 
 impl From<StreamResult> for RunResult {
     fn from(r: StreamResult) -> Self {
-        RunResult { pairs: r.verdicts.iter().map(|v| (v.base_id, v.stream_id, v.hit)).collect(), cycles: r.cycles }
+        RunResult {
+            pairs: r
+                .verdicts
+                .iter()
+                .map(|v| (v.base_id, v.stream_id, v.hit))
+                .collect(),
+            cycles: r.cycles,
+        }
     }
 }
 
 /// Runs `bases` (each loaded once with `bset`) against `streamed` on the
 /// `width`-bit pipeline.
-pub fn run_pairs(width: usize, bases: &[(u32, FixedTriangle)], streamed: &[(u32, FixedTriangle)]) -> Result<RunResult> {
-    Ok(run_stream(width, &TriangleStream::from_tagged(bases, streamed), &HarnessOptions::default())?.into())
+pub fn run_pairs(
+    width: usize,
+    bases: &[(u32, FixedTriangle)],
+    streamed: &[(u32, FixedTriangle)],
+) -> Result<RunResult> {
+    Ok(run_stream(
+        width,
+        &TriangleStream::from_tagged(bases, streamed),
+        &HarnessOptions::default(),
+    )?
+    .into())
 }
 
 /// Runs `stream` on a fresh `width`-bit pipeline.
-pub fn run_stream(width: usize, stream: &TriangleStream, options: &HarnessOptions) -> Result<StreamResult> {
+pub fn run_stream(
+    width: usize,
+    stream: &TriangleStream,
+    options: &HarnessOptions,
+) -> Result<StreamResult> {
     let mut pipeline = pipeline_for_width(width)?;
     run_stream_on(pipeline.as_mut(), stream, options)
 }
@@ -68,8 +90,12 @@ impl Trace {
         let probe = match path {
             None => None,
             Some(p) => {
-                let file = std::fs::File::create(p).with_context(|| format!("creating VCD file {}", p.display()))?;
-                let probe = rust_hdl::prelude::write_vcd_header(std::io::BufWriter::new(file), pipeline.block());
+                let file = std::fs::File::create(p)
+                    .with_context(|| format!("creating VCD file {}", p.display()))?;
+                let probe = rust_hdl::prelude::write_vcd_header(
+                    std::io::BufWriter::new(file),
+                    pipeline.block(),
+                );
                 Some(rust_hdl::prelude::write_vcd_dump(probe, pipeline.block()))
             }
         };
@@ -178,19 +204,36 @@ pub fn run_schedule_on(
         clock(pipeline, &mut trace)?;
         let out = pipeline.output();
         if out.valid {
-            verdicts.push(PairVerdict { base_id: out.base_id, stream_id: out.stream_id, hit: out.hit, certain: out.certain });
+            verdicts.push(PairVerdict {
+                base_id: out.base_id,
+                stream_id: out.stream_id,
+                hit: out.hit,
+                certain: out.certain,
+            });
             last_output_cycle = cycle + 1;
         }
     }
     trace.finish()?;
     if verdicts.len() != expected_ids.len() {
-        bail!("{} verdicts, expected {}", verdicts.len(), expected_ids.len());
+        bail!(
+            "{} verdicts, expected {}",
+            verdicts.len(),
+            expected_ids.len()
+        );
     }
     for (i, (&(b, s), v)) in expected_ids.iter().zip(&verdicts).enumerate() {
         if (v.base_id, v.stream_id) != (b, s) {
-            bail!("verdict {i} carries ids ({}, {}), expected ({b}, {s})", v.base_id, v.stream_id);
+            bail!(
+                "verdict {i} carries ids ({}, {}), expected ({b}, {s})",
+                v.base_id,
+                v.stream_id
+            );
         }
     }
-    let cycles = if expected_ids.is_empty() { input_cycles } else { last_output_cycle };
+    let cycles = if expected_ids.is_empty() {
+        input_cycles
+    } else {
+        last_output_cycle
+    };
     Ok(StreamResult { verdicts, cycles })
 }

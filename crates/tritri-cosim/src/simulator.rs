@@ -28,7 +28,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
-use tritri_rtl::tools::{block_sigpipe_in_this_thread, make_fifo, release_fifo_writer, run, run_with_lines, IVERILOG, VERILATOR, VVP};
+use tritri_rtl::tools::{
+    block_sigpipe_in_this_thread, make_fifo, release_fifo_writer, run, run_with_lines, IVERILOG,
+    VERILATOR, VVP,
+};
 
 /// Which simulator runs emitted Verilog.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -83,7 +86,11 @@ impl Compiled {
 
     /// [`Compiled::run`], and `on_line` sees each line the testbench
     /// prints as it prints it.
-    pub fn run_with_lines(&self, plusargs: &[String], on_line: &mut dyn FnMut(&str)) -> anyhow::Result<Output> {
+    pub fn run_with_lines(
+        &self,
+        plusargs: &[String],
+        on_line: &mut dyn FnMut(&str),
+    ) -> anyhow::Result<Output> {
         let mut command = match self.simulator {
             Simulator::Icarus => {
                 let mut c = Command::new(VVP.locate()?);
@@ -119,31 +126,76 @@ fn compile_icarus(testbench: &Testbench) -> anyhow::Result<Compiled> {
     let iverilog = IVERILOG.locate()?;
     VVP.locate()?;
     let work = WorkDir::new("icarus").context("creating the Icarus work directory")?;
-    let sources = testbench.write_into(&work.path).context("writing the Verilog sources")?;
+    let sources = testbench
+        .write_into(&work.path)
+        .context("writing the Verilog sources")?;
     let started = Instant::now();
     let image = work.join("tb.vvp");
     let mut command = Command::new(iverilog);
-    command.arg("-g2012").arg("-o").arg(&image).arg("-s").arg(&testbench.top);
+    command
+        .arg("-g2012")
+        .arg("-o")
+        .arg(&image)
+        .arg("-s")
+        .arg(&testbench.top);
     command.args(testbench.defines.iter().map(|d| format!("-D{d}")));
-    command.args(testbench.parameters.iter().map(|(k, v)| format!("-P{}.{k}={v}", testbench.top)));
+    command.args(
+        testbench
+            .parameters
+            .iter()
+            .map(|(k, v)| format!("-P{}.{k}={v}", testbench.top)),
+    );
     command.args(testbench.trace_define()).args(&sources);
     run(&mut command).context("compiling in Icarus")?;
-    Ok(Compiled { simulator: Simulator::Icarus, image, build_seconds: started.elapsed().as_secs_f64(), _work: Some(work) })
+    Ok(Compiled {
+        simulator: Simulator::Icarus,
+        image,
+        build_seconds: started.elapsed().as_secs_f64(),
+        _work: Some(work),
+    })
 }
 
 fn compile_verilator(testbench: &Testbench) -> anyhow::Result<Compiled> {
     VERILATOR.locate()?;
-    let version = String::from_utf8_lossy(&run(VERILATOR.command()?.arg("--version"))?.stdout).trim().to_string();
-    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get()).to_string();
-    let mut flags: Vec<String> = ["--binary", "-j", &jobs, "--top-module", &testbench.top, "-Mdir", "obj", "-Wno-fatal"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+    let version = String::from_utf8_lossy(&run(VERILATOR.command()?.arg("--version"))?.stdout)
+        .trim()
+        .to_string();
+    let jobs = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .to_string();
+    let mut flags: Vec<String> = [
+        "--binary",
+        "-j",
+        &jobs,
+        "--top-module",
+        &testbench.top,
+        "-Mdir",
+        "obj",
+        "-Wno-fatal",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     // Optimize the model for run time: the build is cached.
-    flags.extend(["-O3", "--x-assign", "fast", "--x-initial", "fast", "-CFLAGS"].map(String::from));
+    flags.extend(
+        [
+            "-O3",
+            "--x-assign",
+            "fast",
+            "--x-initial",
+            "fast",
+            "-CFLAGS",
+        ]
+        .map(String::from),
+    );
     flags.push(format!("-O{}", testbench.c_optimization));
     flags.extend(testbench.defines.iter().map(|d| format!("-D{d}")));
-    flags.extend(testbench.parameters.iter().map(|(k, v)| format!("-G{k}={v}")));
+    flags.extend(
+        testbench
+            .parameters
+            .iter()
+            .map(|(k, v)| format!("-G{k}={v}")),
+    );
     if testbench.trace {
         flags.extend(["--trace", "-DTRITRI_VCD"].map(String::from));
     }
@@ -153,25 +205,46 @@ fn compile_verilator(testbench: &Testbench) -> anyhow::Result<Compiled> {
     for (name, contents) in &testbench.files {
         parts.extend([name.as_str(), contents.as_str()]);
     }
-    let key = format!("{}-{:016x}{}", testbench.top, fingerprint(parts), if testbench.trace { "-vcd" } else { "" });
+    let key = format!(
+        "{}-{:016x}{}",
+        testbench.top,
+        fingerprint(parts),
+        if testbench.trace { "-vcd" } else { "" }
+    );
     let dir = cache_root().join("verilator").join(&key);
     let exe_name = format!("V{}", testbench.top);
     let exe = dir.join(&exe_name);
     if exe.is_file() {
-        return Ok(Compiled { simulator: Simulator::Verilator, image: exe, build_seconds: 0.0, _work: None });
+        return Ok(Compiled {
+            simulator: Simulator::Verilator,
+            image: exe,
+            build_seconds: 0.0,
+            _work: None,
+        });
     }
 
     let started = Instant::now();
-    std::fs::create_dir_all(cache_root().join("verilator")).context("creating the Verilator cache directory")?;
+    std::fs::create_dir_all(cache_root().join("verilator"))
+        .context("creating the Verilator cache directory")?;
     let staging = WorkDir::new(&format!("verilator-build-{key}"))?;
-    let sources = testbench.write_into(&staging.path).context("writing the Verilog sources")?;
+    let sources = testbench
+        .write_into(&staging.path)
+        .context("writing the Verilog sources")?;
     let mut command = VERILATOR.command()?;
     // The compiler's temporary files go into the staging directory too, so
     // an interrupted build leaves nothing behind.
-    command.current_dir(&staging.path).env("TMPDIR", &staging.path).args(&flags).args(&sources);
+    command
+        .current_dir(&staging.path)
+        .env("TMPDIR", &staging.path)
+        .args(&flags)
+        .args(&sources);
     run(&mut command).context("building the Verilator model")?;
     let built = staging.path.join("obj").join(&exe_name);
-    anyhow::ensure!(built.is_file(), "verilator --binary did not produce {}", built.display());
+    anyhow::ensure!(
+        built.is_file(),
+        "verilator --binary did not produce {}",
+        built.display()
+    );
     // Publish: copy the executable into a fresh directory, then rename it
     // into place; if someone else published the same key first, theirs is
     // as good.
@@ -182,8 +255,17 @@ fn compile_verilator(testbench: &Testbench) -> anyhow::Result<Compiled> {
     if std::fs::rename(&publish, &dir).is_err() {
         let _ = std::fs::remove_dir_all(&publish);
     }
-    anyhow::ensure!(exe.is_file(), "the Verilator cache entry {} is incomplete", dir.display());
-    Ok(Compiled { simulator: Simulator::Verilator, image: exe, build_seconds: started.elapsed().as_secs_f64(), _work: None })
+    anyhow::ensure!(
+        exe.is_file(),
+        "the Verilator cache entry {} is incomplete",
+        dir.display()
+    );
+    Ok(Compiled {
+        simulator: Simulator::Verilator,
+        image: exe,
+        build_seconds: started.elapsed().as_secs_f64(),
+        _work: None,
+    })
 }
 
 /// The cache root (see the module docs).
@@ -222,7 +304,11 @@ pub struct WorkDir {
 impl WorkDir {
     pub fn new(label: &str) -> std::io::Result<Self> {
         static COUNTER: AtomicU64 = AtomicU64::new(0);
-        let path = std::env::temp_dir().join(format!("tritri-{label}-{}-{}", std::process::id(), COUNTER.fetch_add(1, Ordering::Relaxed)));
+        let path = std::env::temp_dir().join(format!(
+            "tritri-{label}-{}-{}",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
         let _ = std::fs::remove_dir_all(&path);
         std::fs::create_dir_all(&path)?;
         tritri_rtl::tools::interrupt::register_temporary(&path);
@@ -247,8 +333,19 @@ impl Drop for WorkDir {
 
 /// Runs `compiled` on a vector file and returns the output file's text:
 /// both files live in a work directory of their own for the run.
-pub fn run_on_vectors(compiled: &Compiled, label: &str, vectors: &str, extra: &[String]) -> anyhow::Result<(String, f64)> {
-    run_on_vector_stream(compiled, label, &mut |out| out.write_all(vectors.as_bytes()), extra, &mut |_| {})
+pub fn run_on_vectors(
+    compiled: &Compiled,
+    label: &str,
+    vectors: &str,
+    extra: &[String],
+) -> anyhow::Result<(String, f64)> {
+    run_on_vector_stream(
+        compiled,
+        label,
+        &mut |out| out.write_all(vectors.as_bytes()),
+        extra,
+        &mut |_| {},
+    )
 }
 
 /// Runs `compiled` on the vectors `write` produces and returns the output
@@ -266,15 +363,24 @@ pub fn run_on_vector_stream(
 ) -> anyhow::Result<(String, f64)> {
     let work = WorkDir::new(label)?;
     let (vectors_path, outputs_path) = (work.join("vectors.fifo"), work.join("outputs.txt"));
-    make_fifo(&vectors_path).with_context(|| format!("creating the named pipe {}", vectors_path.display()))?;
-    let mut plusargs = vec![format!("+vectors={}", vectors_path.display()), format!("+outputs={}", outputs_path.display())];
+    make_fifo(&vectors_path)
+        .with_context(|| format!("creating the named pipe {}", vectors_path.display()))?;
+    let mut plusargs = vec![
+        format!("+vectors={}", vectors_path.display()),
+        format!("+outputs={}", outputs_path.display()),
+    ];
     plusargs.extend_from_slice(extra);
     let started = Instant::now();
     let (output, written) = std::thread::scope(|scope| {
         let writer = scope.spawn(|| -> std::io::Result<()> {
             block_sigpipe_in_this_thread();
             // Opening blocks until the simulator opens the pipe to read.
-            let mut out = std::io::BufWriter::with_capacity(1 << 16, std::fs::OpenOptions::new().write(true).open(&vectors_path)?);
+            let mut out = std::io::BufWriter::with_capacity(
+                1 << 16,
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(&vectors_path)?,
+            );
             write(&mut out)?;
             out.flush()
         });
@@ -285,13 +391,19 @@ pub fn run_on_vector_stream(
             // releases a writer blocked in `open`, whose writes then fail.
             release_fifo_writer(&vectors_path);
         }
-        let written = writer.join().unwrap_or_else(|_| Err(std::io::Error::other("the vector writer panicked")));
+        let written = writer
+            .join()
+            .unwrap_or_else(|_| Err(std::io::Error::other("the vector writer panicked")));
         (output, written)
     });
     let output = output?;
     let seconds = started.elapsed().as_secs_f64();
-    let text = std::fs::read_to_string(&outputs_path)
-        .with_context(|| format!("the testbench wrote no outputs; the simulator said:\n{}", String::from_utf8_lossy(&output.stdout)))?;
+    let text = std::fs::read_to_string(&outputs_path).with_context(|| {
+        format!(
+            "the testbench wrote no outputs; the simulator said:\n{}",
+            String::from_utf8_lossy(&output.stdout)
+        )
+    })?;
     written.with_context(|| format!("writing the vectors into {}", vectors_path.display()))?;
     Ok((text, seconds))
 }
@@ -330,7 +442,14 @@ pub const OPEN_VECTOR_FILES: &str = "        if (!$value$plusargs(\"vectors=%s\"
 
 /// The Verilog of `parts` (see [`VectorTestbench`]).
 pub fn vector_testbench(parts: &VectorTestbench) -> String {
-    let VectorTestbench { name, body, start, read, fill, drain } = parts;
+    let VectorTestbench {
+        name,
+        body,
+        start,
+        read,
+        fill,
+        drain,
+    } = parts;
     let open_files = OPEN_VECTOR_FILES;
     format!(
         "\

@@ -30,21 +30,38 @@ impl TriangleStream {
     /// Pairs the lists up with ids `0..` in their order.
     pub fn from_triangles(bases: &[FixedTriangle], streamed: &[FixedTriangle]) -> Self {
         let tag = |ts: &[FixedTriangle]| {
-            ts.iter().enumerate().map(|(i, t)| TaggedTriangle { id: i as u32, triangle: *t }).collect()
+            ts.iter()
+                .enumerate()
+                .map(|(i, t)| TaggedTriangle {
+                    id: i as u32,
+                    triangle: *t,
+                })
+                .collect()
         };
-        TriangleStream { bases: tag(bases), streamed: tag(streamed) }
+        TriangleStream {
+            bases: tag(bases),
+            streamed: tag(streamed),
+        }
     }
 
     /// `(id, triangle)` lists as a stream.
     pub fn from_tagged(bases: &[(u32, FixedTriangle)], streamed: &[(u32, FixedTriangle)]) -> Self {
-        let tag = |ts: &[(u32, FixedTriangle)]| ts.iter().map(|&(id, triangle)| TaggedTriangle { id, triangle }).collect();
-        TriangleStream { bases: tag(bases), streamed: tag(streamed) }
+        let tag = |ts: &[(u32, FixedTriangle)]| {
+            ts.iter()
+                .map(|&(id, triangle)| TaggedTriangle { id, triangle })
+                .collect()
+        };
+        TriangleStream {
+            bases: tag(bases),
+            streamed: tag(streamed),
+        }
     }
 
     /// The input cycles, in order: per base one `bset` cycle, then the stream.
     pub fn schedule(&self) -> impl Iterator<Item = PipelineInput> + '_ {
         self.bases.iter().flat_map(move |b| {
-            std::iter::once(PipelineInput::load_base(b)).chain(self.streamed.iter().map(PipelineInput::test))
+            std::iter::once(PipelineInput::load_base(b))
+                .chain(self.streamed.iter().map(PipelineInput::test))
         })
     }
 
@@ -66,11 +83,16 @@ impl TriangleStream {
     /// The expected verdicts, in output order, from a software model
     /// (`tritri_geom::certificate::certified_intersects`: the verdict and
     /// its certificate).
-    pub fn expected(&self, model: impl Fn(&FixedTriangle, &FixedTriangle) -> CertifiedVerdict) -> Vec<PairVerdict> {
+    pub fn expected(
+        &self,
+        model: impl Fn(&FixedTriangle, &FixedTriangle) -> CertifiedVerdict,
+    ) -> Vec<PairVerdict> {
         self.bases
             .iter()
             .flat_map(|b| {
-                self.streamed.iter().map(|s| PairVerdict::new(b.id, s.id, model(&b.triangle, &s.triangle)))
+                self.streamed
+                    .iter()
+                    .map(|s| PairVerdict::new(b.id, s.id, model(&b.triangle, &s.triangle)))
             })
             .collect::<Vec<_>>()
     }
@@ -90,7 +112,10 @@ pub fn all_orderings(t1: FixedTriangle, t2: FixedTriangle) -> Vec<PairGroup> {
     let mut groups = Vec::with_capacity(12);
     for (a, b) in [(t1, t2), (t2, t1)] {
         for p in VERTEX_PERMUTATIONS {
-            groups.push((permute(a, p), VERTEX_PERMUTATIONS.iter().map(|&q| permute(b, q)).collect()));
+            groups.push((
+                permute(a, p),
+                VERTEX_PERMUTATIONS.iter().map(|&q| permute(b, q)).collect(),
+            ));
         }
     }
     groups
@@ -108,10 +133,16 @@ pub fn group_schedule(
     let mut expected = Vec::with_capacity(cycles.capacity() - groups.len());
     for (g, (base, streamed)) in groups.iter().enumerate() {
         let base_id = g as u32;
-        cycles.push(PipelineInput::load_base(&TaggedTriangle { id: base_id, triangle: *base }));
+        cycles.push(PipelineInput::load_base(&TaggedTriangle {
+            id: base_id,
+            triangle: *base,
+        }));
         for (s, t) in streamed.iter().enumerate() {
             let stream_id = s as u32;
-            cycles.push(PipelineInput::test(&TaggedTriangle { id: stream_id, triangle: *t }));
+            cycles.push(PipelineInput::test(&TaggedTriangle {
+                id: stream_id,
+                triangle: *t,
+            }));
             expected.push(PairVerdict::new(base_id, stream_id, model(base, t)));
         }
     }
@@ -131,7 +162,12 @@ pub struct PairVerdict {
 impl PairVerdict {
     /// The verdict of a model on (base, streamed).
     pub fn new(base_id: u32, stream_id: u32, verdict: CertifiedVerdict) -> Self {
-        PairVerdict { base_id, stream_id, hit: verdict.hit, certain: verdict.certain }
+        PairVerdict {
+            base_id,
+            stream_id,
+            hit: verdict.hit,
+            certain: verdict.certain,
+        }
     }
 }
 
@@ -147,13 +183,21 @@ pub struct StreamResult {
 impl StreamResult {
     /// The intersecting pairs `(base_id, stream_id)`.
     pub fn hits(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
-        self.verdicts.iter().filter(|v| v.hit).map(|v| (v.base_id, v.stream_id))
+        self.verdicts
+            .iter()
+            .filter(|v| v.hit)
+            .map(|v| (v.base_id, v.stream_id))
     }
 
     /// Verdicts that differ from `expected`, position by position (a length
     /// difference counts every missing or extra verdict).
     pub fn mismatches(&self, expected: &[PairVerdict]) -> usize {
-        let common = self.verdicts.iter().zip(expected).filter(|(a, b)| a != b).count();
+        let common = self
+            .verdicts
+            .iter()
+            .zip(expected)
+            .filter(|(a, b)| a != b)
+            .count();
         common + self.verdicts.len().abs_diff(expected.len())
     }
 }
@@ -170,7 +214,16 @@ mod tests {
         let cycles: Vec<_> = s.schedule().map(|c| (c.bset, c.id)).collect();
         assert_eq!(
             cycles,
-            vec![(true, 0), (false, 0), (false, 1), (false, 2), (true, 1), (false, 0), (false, 1), (false, 2)]
+            vec![
+                (true, 0),
+                (false, 0),
+                (false, 1),
+                (false, 2),
+                (true, 1),
+                (false, 0),
+                (false, 1),
+                (false, 2)
+            ]
         );
         assert_eq!(s.input_cycles(), 8);
         assert_eq!(s.expected_cycles(30), 38);
@@ -183,13 +236,22 @@ mod tests {
         let t1 = [[0, 0, 0], [1, 0, 0], [0, 1, 0]];
         let t2 = [[5, 5, 5], [6, 5, 5], [5, 7, 5]];
         let groups = all_orderings(t1, t2);
-        let pairs: std::collections::BTreeSet<_> =
-            groups.iter().flat_map(|(b, s)| s.iter().map(move |t| (*b, *t))).collect();
+        let pairs: std::collections::BTreeSet<_> = groups
+            .iter()
+            .flat_map(|(b, s)| s.iter().map(move |t| (*b, *t)))
+            .collect();
         assert_eq!(pairs.len(), 72);
-        let (cycles, expected) = group_schedule(&groups, |a, _| CertifiedVerdict { hit: a == &t1, certain: true });
+        let (cycles, expected) = group_schedule(&groups, |a, _| CertifiedVerdict {
+            hit: a == &t1,
+            certain: true,
+        });
         assert_eq!(cycles.len(), 12 + 72);
         assert_eq!(cycles.iter().filter(|c| c.bset).count(), 12);
-        assert_eq!(expected.iter().filter(|v| v.hit).count(), 6, "t1 in its own order is the base of one group");
+        assert_eq!(
+            expected.iter().filter(|v| v.hit).count(),
+            6,
+            "t1 in its own order is the base of one group"
+        );
         assert_eq!((expected[7].base_id, expected[7].stream_id), (1, 1));
     }
 }

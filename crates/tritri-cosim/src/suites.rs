@@ -15,7 +15,8 @@ pub fn hard_case_groups(width: u32, every: usize) -> Vec<PairGroup> {
         .iter()
         .step_by(every.max(1))
         .flat_map(|case| {
-            let (t1, t2) = quantize_pair(&case.pair, width).expect("the hard cases have finite coordinates");
+            let (t1, t2) =
+                quantize_pair(&case.pair, width).expect("the hard cases have finite coordinates");
             all_orderings(t1, t2)
         })
         .collect()

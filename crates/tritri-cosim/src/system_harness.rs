@@ -17,14 +17,14 @@
 //! in which `done` is high (as [`system_cycles`] predicts); the run goes on
 //! until the result FIFO is empty, so every pair is collected.
 
-use rust_hdl::prelude::*;
-use tritri_rtl::sim_drive::MAX_DELTA_CYCLES;
-pub use tritri_rtl::system::system_for_width::PipelineKind;
-use tritri_rtl::system::system_for_width::system_for_config;
-pub use tritri_geom::scene::{Batch, TaggedTriangle};
 pub use crate::system_rtl::PROGRESS_PERIOD;
+use rust_hdl::prelude::*;
+pub use tritri_geom::scene::{Batch, TaggedTriangle};
+use tritri_rtl::sim_drive::MAX_DELTA_CYCLES;
 pub use tritri_rtl::system::cycle_model::{system_cycles, BatchSizes, ReaderBehaviour};
 use tritri_rtl::system::host_ports::{HostInputs, HostOutputs, HostPorts};
+use tritri_rtl::system::system_for_width::system_for_config;
+pub use tritri_rtl::system::system_for_width::PipelineKind;
 pub use tritri_rtl::system::SystemConfig;
 
 /// What a run returns.
@@ -76,7 +76,12 @@ pub fn host_words(batch: &Batch) -> Vec<HostWord> {
     };
     let mut words: Vec<HostWord> = batch.a.iter().map(|t| word(t, false)).collect();
     words.extend(batch.b.iter().map(|t| word(t, true)));
-    words.push(HostWord { end: true, object_b: false, id: 0, coordinates: [0; 9] });
+    words.push(HostWord {
+        end: true,
+        object_b: false,
+        id: 0,
+        coordinates: [0; 9],
+    });
     words
 }
 
@@ -101,7 +106,11 @@ pub const RESET_CYCLES: u64 = 2;
 /// overlapping each batch's writes with the previous batch's tests.
 /// `config.pipeline_latency` must be the pipeline's latency
 /// (`tritri_rtl::pipeline::triangle_pipeline::latency()`).
-pub fn run_system(config: SystemConfig, batches: &[Batch], reader: ReaderBehaviour) -> anyhow::Result<SystemResult> {
+pub fn run_system(
+    config: SystemConfig,
+    batches: &[Batch],
+    reader: ReaderBehaviour,
+) -> anyhow::Result<SystemResult> {
     run_system_with(config, PipelineKind::Real, batches, true, reader)
 }
 
@@ -131,8 +140,14 @@ pub fn run_system_reporting(
 }
 
 /// Runs the batches through a system with stub pipelines.
-pub fn run_stub_system(config: SystemConfig, batches: &[Batch], overlap: bool, reader: ReaderBehaviour) -> SystemResult {
-    run_system_with(config, PipelineKind::Stub, batches, overlap, reader).expect("a supported width")
+pub fn run_stub_system(
+    config: SystemConfig,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+) -> SystemResult {
+    run_system_with(config, PipelineKind::Stub, batches, overlap, reader)
+        .expect("a supported width")
 }
 
 /// Runs the batches through `uut` (connected or not) and collects the
@@ -157,7 +172,10 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
             }
         + 10_000;
 
-    let mut inputs = HostInputs { reset: true, ..Default::default() };
+    let mut inputs = HostInputs {
+        reset: true,
+        ..Default::default()
+    };
     for _ in 0..RESET_CYCLES {
         uut.set_inputs(&inputs);
         settle(uut);
@@ -172,7 +190,11 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
     let mut cycle = 0u64;
     loop {
         let all_written = batch == words.len();
-        let word = if all_written || waiting_for_done { None } else { Some(words[batch][position]) };
+        let word = if all_written || waiting_for_done {
+            None
+        } else {
+            Some(words[batch][position])
+        };
         inputs.in_valid = word.is_some();
         if let Some(w) = word {
             inputs.in_end = w.end;
@@ -223,7 +245,10 @@ pub fn run_system_on<S: HostPorts + ?Sized>(
         if cycle % PROGRESS_PERIOD == 0 {
             progress(PROGRESS_PERIOD);
         }
-        anyhow::ensure!(cycle < budget, "the system did not finish within {budget} cycles (a bug)");
+        anyhow::ensure!(
+            cycle < budget,
+            "the system did not finish within {budget} cycles (a bug)"
+        );
     }
 }
 

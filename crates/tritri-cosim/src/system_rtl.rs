@@ -32,11 +32,25 @@ pub const SYSTEM_TESTBENCH: &str = include_str!("../../../testbenches/tb_collisi
 pub const SYSTEM_TESTBENCH_TOP: &str = "tb_collision_system";
 
 /// Writes the vectors of `batches` (module docs) to `out`, word by word.
-pub fn write_system_vectors(out: &mut dyn Write, batches: &[Batch], width: usize) -> std::io::Result<()> {
-    let mask = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
+pub fn write_system_vectors(
+    out: &mut dyn Write,
+    batches: &[Batch],
+    width: usize,
+) -> std::io::Result<()> {
+    let mask = if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
     for batch in batches {
         for word in host_words(batch) {
-            let kind = if word.end { 2 } else if word.object_b { 1 } else { 0 };
+            let kind = if word.end {
+                2
+            } else if word.object_b {
+                1
+            } else {
+                0
+            };
             write!(out, "{kind} {:x}", word.id)?;
             for c in word.coordinates {
                 write!(out, " {:x}", (c as u64) & mask)?;
@@ -60,7 +74,10 @@ pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
             let mut words = rest.split_whitespace();
             let key = words.next().unwrap_or("");
             anyhow::ensure!(key != "timeout", "the testbench timed out");
-            let value: u64 = words.next().with_context(|| format!("line {}: `{line}`", n + 1))?.parse()?;
+            let value: u64 = words
+                .next()
+                .with_context(|| format!("line {}: `{line}`", n + 1))?
+                .parse()?;
             match key {
                 "cycles" => {
                     result.cycles = value;
@@ -76,7 +93,9 @@ pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
         }
         let mut words = line.split_whitespace();
         let mut field = || -> anyhow::Result<u32> {
-            let w = words.next().with_context(|| format!("line {}: `{line}` needs two ids, hit and certain", n + 1))?;
+            let w = words.next().with_context(|| {
+                format!("line {}: `{line}` needs two ids, hit and certain", n + 1)
+            })?;
             Ok(u32::from_str_radix(w, 16)?)
         };
         let (id_a, id_b, hit, certain) = (field()?, field()?, field()?, field()?);
@@ -89,8 +108,15 @@ pub fn parse_system_outputs(text: &str) -> anyhow::Result<SystemResult> {
 /// The testbench around the emitted system `design` of `width`-bit
 /// coordinates; `trace`: built to dump a waveform (`+vcd=FILE`).
 pub fn system_testbench(design: &EmittedDesign, width: usize, trace: bool) -> Testbench {
-    let mut files = vec![(format!("{SYSTEM_TESTBENCH_TOP}.sv"), SYSTEM_TESTBENCH.to_string())];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
+    let mut files = vec![(
+        format!("{SYSTEM_TESTBENCH_TOP}.sv"),
+        SYSTEM_TESTBENCH.to_string(),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
     Testbench {
         top: SYSTEM_TESTBENCH_TOP.into(),
         files,
@@ -128,7 +154,10 @@ pub fn run_compiled_system(
         ReaderBehaviour::AlwaysReady => 1,
         ReaderBehaviour::OneIn(k) => k.max(1),
     };
-    let mut extra = vec![format!("+overlap={}", overlap as u8), format!("+reader_period={period}")];
+    let mut extra = vec![
+        format!("+overlap={}", overlap as u8),
+        format!("+reader_period={period}"),
+    ];
     if options.progress.is_some() {
         extra.push(format!("+progress={PROGRESS_PERIOD}"));
     }
@@ -137,7 +166,11 @@ pub fn run_compiled_system(
     }
     let mut reported = 0u64;
     let mut on_line = |line: &str| {
-        if let (Some(progress), Some(cycle)) = (options.progress, line.strip_prefix("# progress ").and_then(|c| c.trim().parse::<u64>().ok())) {
+        if let (Some(progress), Some(cycle)) = (
+            options.progress,
+            line.strip_prefix("# progress ")
+                .and_then(|c| c.trim().parse::<u64>().ok()),
+        ) {
             progress(cycle.saturating_sub(reported));
             reported = reported.max(cycle);
         }
@@ -157,7 +190,15 @@ pub fn run_system_rtl(
     overlap: bool,
     reader: ReaderBehaviour,
 ) -> anyhow::Result<SystemResult> {
-    run_system_rtl_with(simulator, config, kind, batches, overlap, reader, SystemRunOptions::default())
+    run_system_rtl_with(
+        simulator,
+        config,
+        kind,
+        batches,
+        overlap,
+        reader,
+        SystemRunOptions::default(),
+    )
 }
 
 /// [`run_system_rtl`] with progress reports or a waveform.
@@ -171,6 +212,16 @@ pub fn run_system_rtl_with(
     options: SystemRunOptions,
 ) -> anyhow::Result<SystemResult> {
     let design = emit_system(config, kind)?;
-    let compiled = compile(simulator, &system_testbench(&design, config.coordinate_bits, options.vcd.is_some()))?;
-    run_compiled_system(&compiled, config.coordinate_bits, batches, overlap, reader, options)
+    let compiled = compile(
+        simulator,
+        &system_testbench(&design, config.coordinate_bits, options.vcd.is_some()),
+    )?;
+    run_compiled_system(
+        &compiled,
+        config.coordinate_bits,
+        batches,
+        overlap,
+        reader,
+        options,
+    )
 }

@@ -8,7 +8,9 @@
 //! triangle, `tag` then the five packed buses (gradient x, y, z, low,
 //! high) in hex.
 
-use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use crate::simulator::{
+    compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
+};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
@@ -24,18 +26,49 @@ use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock};
 /// One triangle's functions, `(gradient, low, high)` in the fixed order.
 pub type SetupAnswer = (u16, [([i128; 3], i128, i128); MAX_AXES]);
 
+/// The margin the setup grows the triangles by: one step when `grow` is
+/// high (the broad phase), none for voxelization.
+fn margin(grow: bool) -> i128 {
+    if grow {
+        BROAD_PHASE_MARGIN
+    } else {
+        0
+    }
+}
+
 /// What the software model says for each triangle (tags `0..`).
-pub fn expected(triangles: &[FixedTriangle], root: [i64; 3]) -> Vec<SetupAnswer> {
-    triangles.iter().enumerate().map(|(i, t)| (i as u16, root_relative_axes(t, root, BROAD_PHASE_MARGIN))).collect()
+pub fn expected(triangles: &[FixedTriangle], root: [i64; 3], grow: bool) -> Vec<SetupAnswer> {
+    triangles
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (i as u16, root_relative_axes(t, root, margin(grow))))
+        .collect()
 }
 
 /// The triangles through the rust-hdl model of the `grid_bits` setup, one
 /// per clock.
-pub fn run_rusthdl(grid_bits: usize, triangles: &[FixedTriangle], root: [i64; 3]) -> anyhow::Result<Vec<SetupAnswer>> {
+pub fn run_rusthdl(
+    grid_bits: usize,
+    triangles: &[FixedTriangle],
+    root: [i64; 3],
+    grow: bool,
+) -> anyhow::Result<Vec<SetupAnswer>> {
     match grid_bits {
-        16 => Ok(run_rusthdl_g::<16, { value_bits(16) }, { AXES * value_bits(16) }>(triangles, root)),
-        24 => Ok(run_rusthdl_g::<24, { value_bits(24) }, { AXES * value_bits(24) }>(triangles, root)),
-        32 => Ok(run_rusthdl_g::<32, { value_bits(32) }, { AXES * value_bits(32) }>(triangles, root)),
+        16 => Ok(run_rusthdl_g::<
+            16,
+            { value_bits(16) },
+            { AXES * value_bits(16) },
+        >(triangles, root, grow)),
+        24 => Ok(run_rusthdl_g::<
+            24,
+            { value_bits(24) },
+            { AXES * value_bits(24) },
+        >(triangles, root, grow)),
+        32 => Ok(run_rusthdl_g::<
+            32,
+            { value_bits(32) },
+            { AXES * value_bits(32) },
+        >(triangles, root, grow)),
         g => bail!("no setup for a {g}-bit grid (have {CLASSIFIER_GRID_WIDTHS:?})"),
     }
 }
@@ -44,10 +77,15 @@ fn unpack<const N: usize, const V: usize>(bus: Bits<N>) -> [i128; AXES] {
     std::array::from_fn(|i| to_i128(bus.get_bits::<V>(i * V)))
 }
 
-fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[FixedTriangle], root: [i64; 3]) -> Vec<SetupAnswer> {
+fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(
+    triangles: &[FixedTriangle],
+    root: [i64; 3],
+    grow: bool,
+) -> Vec<SetupAnswer> {
     let mut uut = TriangleSetup::<G, V, N>::default();
     uut.connect_all();
     uut.advance.next = true;
+    uut.grow.next = grow;
     reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let g = |x: i64| from_i128::<G>(x as i128);
     uut.in_root_x.next = g(root[0]);
@@ -55,12 +93,25 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[Fi
     uut.in_root_z.next = g(root[2]);
     let mut answers = Vec::new();
     let idle = std::iter::repeat_n(None, TRIANGLE_SETUP_LATENCY + 1);
-    for (tag, t) in triangles.iter().enumerate().map(Some).chain(idle).map(|x| x.map_or((0, None), |(i, t)| (i, Some(t)))) {
+    for (tag, t) in triangles
+        .iter()
+        .enumerate()
+        .map(Some)
+        .chain(idle)
+        .map(|x| x.map_or((0, None), |(i, t)| (i, Some(t))))
+    {
         uut.in_valid.next = t.is_some();
         uut.in_tag.next = (tag as u64).into();
         if let Some(t) = t {
             let inputs = [
-                &mut uut.in_x0, &mut uut.in_y0, &mut uut.in_z0, &mut uut.in_x1, &mut uut.in_y1, &mut uut.in_z1, &mut uut.in_x2, &mut uut.in_y2,
+                &mut uut.in_x0,
+                &mut uut.in_y0,
+                &mut uut.in_z0,
+                &mut uut.in_x1,
+                &mut uut.in_y1,
+                &mut uut.in_z1,
+                &mut uut.in_x2,
+                &mut uut.in_y2,
                 &mut uut.in_z2,
             ];
             for (signal, value) in inputs.into_iter().zip(t.iter().flatten()) {
@@ -69,8 +120,15 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[Fi
         }
         clock_cycle(&mut uut, |u| &mut u.clock);
         if uut.out_valid.val() {
-            let (gx, gy, gz) = (unpack::<N, V>(uut.out_gradient_x.val()), unpack::<N, V>(uut.out_gradient_y.val()), unpack::<N, V>(uut.out_gradient_z.val()));
-            let (low, high) = (unpack::<N, V>(uut.out_low.val()), unpack::<N, V>(uut.out_high.val()));
+            let (gx, gy, gz) = (
+                unpack::<N, V>(uut.out_gradient_x.val()),
+                unpack::<N, V>(uut.out_gradient_y.val()),
+                unpack::<N, V>(uut.out_gradient_z.val()),
+            );
+            let (low, high) = (
+                unpack::<N, V>(uut.out_low.val()),
+                unpack::<N, V>(uut.out_high.val()),
+            );
             let axes = std::array::from_fn(|i| ([gx[i], gy[i], gz[i]], low[i], high[i]));
             answers.push((uut.out_tag.val().index() as u16, axes));
         }
@@ -79,18 +137,40 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(triangles: &[Fi
 }
 
 /// The triangles through the emitted `grid_bits` setup.
-pub fn run_emitted(grid_bits: usize, triangles: &[FixedTriangle], root: [i64; 3], simulator: Simulator) -> anyhow::Result<Vec<SetupAnswer>> {
+pub fn run_emitted(
+    grid_bits: usize,
+    triangles: &[FixedTriangle],
+    root: [i64; 3],
+    grow: bool,
+    simulator: Simulator,
+) -> anyhow::Result<Vec<SetupAnswer>> {
     let design = emit_triangle_setup(grid_bits)?;
     let v = value_bits(grid_bits);
-    let mut files = vec![("tb_triangle_setup.sv".to_string(), testbench(&design.top, grid_bits, v))];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let bench = Testbench { top: "tb_triangle_setup".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false };
+    let mut files = vec![(
+        "tb_triangle_setup.sv".to_string(),
+        testbench(&design.top, grid_bits, v),
+    )];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_triangle_setup".into(),
+        files,
+        defines: vec![],
+        parameters: vec![("GROW".into(), u8::from(grow).to_string())],
+        c_optimization: 2,
+        trace: false,
+    };
     let compiled = compile(simulator, &bench)?;
     let mask = (1u64 << grid_bits) - 1;
     let hex = |x: i64| format!("{:x}", (x as u64) & mask);
     let mut vectors = String::new();
     for (tag, t) in triangles.iter().enumerate() {
-        let fields: Vec<String> = std::iter::once(format!("{tag:x}")).chain(t.iter().flatten().chain(&root).map(|&x| hex(x))).collect();
+        let fields: Vec<String> = std::iter::once(format!("{tag:x}"))
+            .chain(t.iter().flatten().chain(&root).map(|&x| hex(x)))
+            .collect();
         vectors += &fields.join(" ");
         vectors.push('\n');
     }
@@ -101,12 +181,23 @@ pub fn run_emitted(grid_bits: usize, triangles: &[FixedTriangle], root: [i64; 3]
 fn parse_answer(line: &str, v: usize) -> anyhow::Result<SetupAnswer> {
     let fields: Vec<&str> = line.split_whitespace().collect();
     if fields.len() != 6 {
-        bail!("setup output line `{line}` has {} fields, not 6", fields.len());
+        bail!(
+            "setup output line `{line}` has {} fields, not 6",
+            fields.len()
+        );
     }
-    let tag = u16::from_str_radix(fields[0], 16).with_context(|| format!("tag `{}` in `{line}`", fields[0]))?;
+    let tag = u16::from_str_radix(fields[0], 16)
+        .with_context(|| format!("tag `{}` in `{line}`", fields[0]))?;
     // A bus is AXES * V bits of hex, most significant first.
     let bus = |s: &str| -> anyhow::Result<[i128; AXES]> {
-        let digits: Vec<u8> = s.chars().map(|c| c.to_digit(16).map(|d| d as u8).with_context(|| format!("`{s}` is not hexadecimal"))).collect::<anyhow::Result<_>>()?;
+        let digits: Vec<u8> = s
+            .chars()
+            .map(|c| {
+                c.to_digit(16)
+                    .map(|d| d as u8)
+                    .with_context(|| format!("`{s}` is not hexadecimal"))
+            })
+            .collect::<anyhow::Result<_>>()?;
         let bit = |k: usize| -> bool {
             let (digit, within) = (k / 4, k % 4);
             digit < digits.len() && digits[digits.len() - 1 - digit] >> within & 1 == 1
@@ -120,8 +211,17 @@ fn parse_answer(line: &str, v: usize) -> anyhow::Result<SetupAnswer> {
             }
         }))
     };
-    let (gx, gy, gz, low, high) = (bus(fields[1])?, bus(fields[2])?, bus(fields[3])?, bus(fields[4])?, bus(fields[5])?);
-    Ok((tag, std::array::from_fn(|i| ([gx[i], gy[i], gz[i]], low[i], high[i]))))
+    let (gx, gy, gz, low, high) = (
+        bus(fields[1])?,
+        bus(fields[2])?,
+        bus(fields[3])?,
+        bus(fields[4])?,
+        bus(fields[5])?,
+    );
+    Ok((
+        tag,
+        std::array::from_fn(|i| ([gx[i], gy[i], gz[i]], low[i], high[i])),
+    ))
 }
 
 /// The testbench: reads one triangle per line, drives it for one clock,
@@ -130,6 +230,7 @@ fn testbench(top: &str, g: usize, v: usize) -> String {
     let (g1, n1) = (g - 1, AXES * v - 1);
     let body = format!(
         "\
+    parameter GROW = 1;
     reg [15:0] tag = 16'd0;
     reg [{g1}:0] c [0:11];
     reg [{g1}:0] field;
@@ -139,7 +240,7 @@ fn testbench(top: &str, g: usize, v: usize) -> String {
     {top} dut (
         .clock(clock), .reset(reset), .advance(advance), .in_valid(in_valid), .in_tag(tag),
         .in_x0(c[0]), .in_y0(c[1]), .in_z0(c[2]), .in_x1(c[3]), .in_y1(c[4]), .in_z1(c[5]),
-        .in_x2(c[6]), .in_y2(c[7]), .in_z2(c[8]), .in_root_x(c[9]), .in_root_y(c[10]), .in_root_z(c[11]),
+        .in_x2(c[6]), .in_y2(c[7]), .in_z2(c[8]), .in_root_x(c[9]), .in_root_y(c[10]), .in_root_z(c[11]), .grow(GROW != 0),
         .out_valid(out_valid), .out_tag(out_tag),
         .out_gradient_x(gx), .out_gradient_y(gy), .out_gradient_z(gz), .out_low(low), .out_high(high)
     );

@@ -11,8 +11,8 @@
 //! cycle in decimal, the ids in hex, `hit` 0 or 1; then `# cycles N`.
 
 use crate::stream::{PairVerdict, StreamResult, TriangleStream};
-use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 use std::fmt::Write as _;
+use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
 
 /// Hex digits for `bits` bits.
 fn digits(bits: u32) -> usize {
@@ -21,7 +21,11 @@ fn digits(bits: u32) -> usize {
 
 /// `v` as a `bits`-bit two's-complement hex number, zero-padded.
 pub fn hex_twos_complement(v: i64, bits: u32) -> String {
-    let mask = if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };
+    let mask = if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    };
     format!("{:0width$x}", (v as u64) & mask, width = digits(bits))
 }
 
@@ -43,7 +47,8 @@ pub fn vector_line(c: &PipelineInput, width: u32, id_bits: u32) -> String {
 
 /// The whole vector file for `stream`, with a comment header.
 pub fn vectors(stream: &TriangleStream, width: u32, id_bits: u32) -> String {
-    let mut text = String::with_capacity((stream.input_cycles() as usize + 4) * (12 + 10 * digits(width)));
+    let mut text =
+        String::with_capacity((stream.input_cycles() as usize + 4) * (12 + 10 * digits(width)));
     let _ = writeln!(
         text,
         "# tritri vectors: W={width} ID_WIDTH={id_bits} N1={} N2={} (testbenches/README.md)",
@@ -61,7 +66,12 @@ pub fn vectors_for_schedule(schedule: &[PipelineInput], width: u32, id_bits: u32
     schedule_vectors(text, schedule.iter().copied(), width, id_bits)
 }
 
-fn schedule_vectors(mut text: String, schedule: impl Iterator<Item = PipelineInput>, width: u32, id_bits: u32) -> String {
+fn schedule_vectors(
+    mut text: String,
+    schedule: impl Iterator<Item = PipelineInput>,
+    width: u32,
+    id_bits: u32,
+) -> String {
     text.push_str("# valid bset id x0 y0 z0 x1 y1 z1 x2 y2 z2\n");
     for c in schedule {
         text.push_str(&vector_line(&c, width, id_bits));
@@ -78,7 +88,15 @@ pub fn expected_outputs(stream: &TriangleStream, expected: &[PairVerdict], laten
     for (k, v) in expected.iter().enumerate() {
         let (base, stream_index) = (k as u64 / n2.max(1), k as u64 % n2.max(1));
         let input_cycle = base * (n2 + 1) + 1 + stream_index;
-        let _ = writeln!(text, "{} {:x} {:x} {} {}", input_cycle + latency, v.base_id, v.stream_id, v.hit as u8, v.certain as u8);
+        let _ = writeln!(
+            text,
+            "{} {:x} {:x} {} {}",
+            input_cycle + latency,
+            v.base_id,
+            v.stream_id,
+            v.hit as u8,
+            v.certain as u8
+        );
     }
     let _ = writeln!(text, "# cycles {}", stream.expected_cycles(latency));
     text
@@ -86,7 +104,9 @@ pub fn expected_outputs(stream: &TriangleStream, expected: &[PairVerdict], laten
 
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum OutputError {
-    #[error("output line {line}: cannot read `{text}` (expected `cycle base_id stream_id hit certain`)")]
+    #[error(
+        "output line {line}: cannot read `{text}` (expected `cycle base_id stream_id hit certain`)"
+    )]
     Malformed { line: usize, text: String },
     #[error("the testbench timed out waiting for verdicts ({verdicts} received)")]
     Timeout { verdicts: usize },
@@ -113,13 +133,21 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
         if let Some(rest) = line.strip_prefix('#') {
             let rest = rest.trim();
             if let Some(n) = rest.strip_prefix("cycles") {
-                cycles = Some(n.trim().parse().map_err(|_| OutputError::Malformed { line: i + 1, text: line.into() })?);
+                cycles = Some(n.trim().parse().map_err(|_| OutputError::Malformed {
+                    line: i + 1,
+                    text: line.into(),
+                })?);
             } else if rest.starts_with("timeout") {
-                return Err(OutputError::Timeout { verdicts: timed.len() });
+                return Err(OutputError::Timeout {
+                    verdicts: timed.len(),
+                });
             }
             continue;
         }
-        let bad = || OutputError::Malformed { line: i + 1, text: line.to_string() };
+        let bad = || OutputError::Malformed {
+            line: i + 1,
+            text: line.to_string(),
+        };
         let fields: Vec<&str> = line.split_whitespace().collect();
         if fields.len() != 5 {
             return Err(bad());
@@ -133,10 +161,21 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
             _ => Err(bad()),
         };
         let (hit, certain) = (flag(fields[3])?, flag(fields[4])?);
-        timed.push(TimedVerdict { cycle, verdict: PairVerdict { base_id, stream_id, hit, certain } });
+        timed.push(TimedVerdict {
+            cycle,
+            verdict: PairVerdict {
+                base_id,
+                stream_id,
+                hit,
+                certain,
+            },
+        });
     }
     let cycles = cycles.ok_or(OutputError::Unfinished)?;
-    let result = StreamResult { verdicts: timed.iter().map(|t| t.verdict).collect(), cycles };
+    let result = StreamResult {
+        verdicts: timed.iter().map(|t| t.verdict).collect(),
+        cycles,
+    };
     Ok((result, timed))
 }
 
@@ -155,8 +194,16 @@ mod tests {
 
     #[test]
     fn vector_lines() {
-        let c = PipelineInput { valid: true, bset: false, id: 0x2a, vertices: [-1, 0, 1, 2, 3, 4, 5, 6, -8] };
-        assert_eq!(vector_line(&c, 8, 32), "1 0 0000002a ff 00 01 02 03 04 05 06 f8");
+        let c = PipelineInput {
+            valid: true,
+            bset: false,
+            id: 0x2a,
+            vertices: [-1, 0, 1, 2, 3, 4, 5, 6, -8],
+        };
+        assert_eq!(
+            vector_line(&c, 8, 32),
+            "1 0 0000002a ff 00 01 02 03 04 05 06 f8"
+        );
     }
 
     /// The expected file parses back into the same verdicts and cycle count.
@@ -164,7 +211,10 @@ mod tests {
     fn expected_round_trips() {
         let t = [[0, 0, 0], [1, 0, 0], [0, 1, 0]];
         let s = TriangleStream::from_triangles(&[t, t], &[t, t, t]);
-        let expected = s.expected(|_, _| CertifiedVerdict { hit: true, certain: false });
+        let expected = s.expected(|_, _| CertifiedVerdict {
+            hit: true,
+            certain: false,
+        });
         let text = expected_outputs(&s, &expected, 5);
         let (result, timed) = parse_outputs(&text).unwrap();
         assert_eq!(result.verdicts, expected);
@@ -176,6 +226,9 @@ mod tests {
     #[test]
     fn unfinished_runs_are_errors() {
         assert_eq!(parse_outputs("3 0 0 1 1\n"), Err(OutputError::Unfinished));
-        assert!(matches!(parse_outputs("3 0 0 1 0\n# timeout\n"), Err(OutputError::Timeout { verdicts: 1 })));
+        assert!(matches!(
+            parse_outputs("3 0 0 1 0\n# timeout\n"),
+            Err(OutputError::Timeout { verdicts: 1 })
+        ));
     }
 }

@@ -34,7 +34,11 @@ pub fn fill_rusthdl(level: u32, records: &[TraversalRecord]) -> anyhow::Result<F
     reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     uut.level.next = (level as u64).into();
     uut.write_ready.next = true;
-    let mut run = FillRun { words: memory(level), writes: 0, last_edge: 0 };
+    let mut run = FillRun {
+        words: memory(level),
+        writes: 0,
+        last_edge: 0,
+    };
     let c = |v: i64| -> Bits<11> { (v as u64).into() };
     let (mut next, mut edge) = (0usize, 0u64);
     let limit = 16 + 2 * records.len() as u64 + (1u64 << (3 * level));
@@ -51,10 +55,16 @@ pub fn fill_rusthdl(level: u32, records: &[TraversalRecord]) -> anyhow::Result<F
         if next >= records.len() && !uut.write_valid.val() {
             break;
         }
-        anyhow::ensure!(edge < limit, "the fill unit did not finish in {limit} clocks");
+        anyhow::ensure!(
+            edge < limit,
+            "the fill unit did not finish in {limit} clocks"
+        );
         if uut.write_valid.val() {
             let address = uut.write_address.val().index();
-            let word = run.words.get_mut(address).with_context(|| format!("a write to word {address}, past the memory"))?;
+            let word = run
+                .words
+                .get_mut(address)
+                .with_context(|| format!("a write to word {address}, past the memory"))?;
             *word |= uut.write_mask.val().to_u64();
             run.writes += 1;
             run.last_edge = edge;
@@ -69,7 +79,11 @@ pub fn fill_rusthdl(level: u32, records: &[TraversalRecord]) -> anyhow::Result<F
 }
 
 /// The records through the emitted unit in `simulator`.
-pub fn fill_emitted(level: u32, records: &[TraversalRecord], simulator: Simulator) -> anyhow::Result<FillRun> {
+pub fn fill_emitted(
+    level: u32,
+    records: &[TraversalRecord],
+    simulator: Simulator,
+) -> anyhow::Result<FillRun> {
     let design = emit_voxel_fill()?;
     let open_files = crate::simulator::OPEN_VECTOR_FILES;
     let bench = format!(
@@ -125,18 +139,50 @@ endmodule
 "
     );
     let mut files = vec![("tb_voxel_fill.sv".to_string(), bench)];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    let compiled = compile(simulator, &Testbench { top: "tb_voxel_fill".into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false })?;
-    let vectors: String = records.iter().map(|r| format!("{:x} {:x} {:x} {:x} {:x}\n", r.lo[0], r.lo[1], r.lo[2], r.level, r.full)).collect();
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let compiled = compile(
+        simulator,
+        &Testbench {
+            top: "tb_voxel_fill".into(),
+            files,
+            defines: vec![],
+            parameters: vec![],
+            c_optimization: 2,
+            trace: false,
+        },
+    )?;
+    let vectors: String = records
+        .iter()
+        .map(|r| {
+            format!(
+                "{:x} {:x} {:x} {:x} {:x}\n",
+                r.lo[0], r.lo[1], r.lo[2], r.level, r.full
+            )
+        })
+        .collect();
     let (text, _) = run_on_vectors(&compiled, "voxel-fill-run", &vectors, &[])?;
-    let mut run = FillRun { words: memory(level), writes: 0, last_edge: 0 };
+    let mut run = FillRun {
+        words: memory(level),
+        writes: 0,
+        last_edge: 0,
+    };
     for line in text.lines() {
         let f: Vec<&str> = line.split_whitespace().collect();
-        anyhow::ensure!(f.len() == 3, "fill output line `{line}` has {} fields, not 3", f.len());
+        anyhow::ensure!(
+            f.len() == 3,
+            "fill output line `{line}` has {} fields, not 3",
+            f.len()
+        );
         let edge: u64 = f[0].parse().with_context(|| format!("`{line}`"))?;
         let address = usize::from_str_radix(f[1], 16).with_context(|| format!("`{line}`"))?;
         let mask = u64::from_str_radix(f[2], 16).with_context(|| format!("`{line}`"))?;
-        *run.words.get_mut(address).with_context(|| format!("a write to word {address}, past the memory"))? |= mask;
+        *run.words
+            .get_mut(address)
+            .with_context(|| format!("a write to word {address}, past the memory"))? |= mask;
         run.writes += 1;
         run.last_edge = edge;
     }

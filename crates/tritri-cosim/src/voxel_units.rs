@@ -7,16 +7,24 @@
 //! result word per line. Clipping: vectors `lo_x lo_y lo_z hi_x hi_y hi_z x
 //! y z level` (hex), one octant per clock; outputs one class per line.
 
-use crate::simulator::{compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench};
+use crate::simulator::{
+    compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
+};
 use anyhow::Context as _;
 use rust_hdl::prelude::*;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::clip::Side;
 use tritri_geom::octree::tree::SetOperation;
-use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME};
+use tritri_rtl::emit::voxel_units::{
+    emit_octant_clipper, emit_set_operation, OCTANT_CLIPPER_NAME, SET_OPERATION_NAME,
+};
 use tritri_rtl::emit::EmittedDesign;
-use tritri_rtl::octree::octant_clipper::{OctantClipper, CLASS_CROSSING, CLASS_INSIDE, CLASS_OUTSIDE};
-use tritri_rtl::octree::set_operation_unit::{SetOperationUnit, OP_DIFFERENCE, OP_INTERSECTION, OP_UNION};
+use tritri_rtl::octree::octant_clipper::{
+    OctantClipper, CLASS_CROSSING, CLASS_INSIDE, CLASS_OUTSIDE,
+};
+use tritri_rtl::octree::set_operation_unit::{
+    SetOperationUnit, OP_DIFFERENCE, OP_INTERSECTION, OP_UNION,
+};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 fn op_code(op: SetOperation) -> u64 {
@@ -66,14 +74,36 @@ pub fn set_operation_rusthdl(op: SetOperation, a: &[u64], b: &[u64]) -> (Vec<u64
     (out, edge)
 }
 
-fn compiled(design: &EmittedDesign, testbench: String, top: &str, simulator: Simulator) -> anyhow::Result<crate::simulator::Compiled> {
+fn compiled(
+    design: &EmittedDesign,
+    testbench: String,
+    top: &str,
+    simulator: Simulator,
+) -> anyhow::Result<crate::simulator::Compiled> {
     let mut files = vec![(format!("{top}.sv"), testbench)];
-    files.extend(design.verilog_files().map(|f| (f.path.clone(), f.contents.clone())));
-    compile(simulator, &Testbench { top: top.into(), files, defines: vec![], parameters: vec![], c_optimization: 2, trace: false })
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    compile(
+        simulator,
+        &Testbench {
+            top: top.into(),
+            files,
+            defines: vec![],
+            parameters: vec![],
+            c_optimization: 2,
+            trace: false,
+        },
+    )
 }
 
 /// Several set operations through the emitted unit in one simulation.
-pub fn set_operations_emitted(jobs: &[(SetOperation, &[u64], &[u64])], simulator: Simulator) -> anyhow::Result<Vec<Vec<u64>>> {
+pub fn set_operations_emitted(
+    jobs: &[(SetOperation, &[u64], &[u64])],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<Vec<u64>>> {
     let design = emit_set_operation()?;
     let body = format!(
         "\
@@ -104,12 +134,20 @@ pub fn set_operations_emitted(jobs: &[(SetOperation, &[u64], &[u64])], simulator
         }
     }
     let (text, _) = run_on_vectors(&compiled, "set-operation-run", &vectors, &[])?;
-    let words: Vec<u64> = text.lines().map(|l| u64::from_str_radix(l.trim(), 16).with_context(|| format!("output `{l}`"))).collect::<Result<_, _>>()?;
+    let words: Vec<u64> = text
+        .lines()
+        .map(|l| u64::from_str_radix(l.trim(), 16).with_context(|| format!("output `{l}`")))
+        .collect::<Result<_, _>>()?;
     let mut out = Vec::new();
     let mut at = 0;
     for (_, a, _) in jobs {
         let end = at + a.len();
-        anyhow::ensure!(end <= words.len(), "the unit gave {} words for {} in", words.len(), jobs.iter().map(|j| j.1.len()).sum::<usize>());
+        anyhow::ensure!(
+            end <= words.len(),
+            "the unit gave {} words for {} in",
+            words.len(),
+            jobs.iter().map(|j| j.1.len()).sum::<usize>()
+        );
         out.push(words[at..end].to_vec());
         at = end;
     }
@@ -147,7 +185,10 @@ pub fn clip_rusthdl(lo: [i64; 3], hi: [i64; 3], octants: &[Cell]) -> anyhow::Res
 }
 
 /// Boxes and their octants through the emitted clipper in one simulation.
-pub fn clip_emitted(jobs: &[([i64; 3], [i64; 3], &[Cell])], simulator: Simulator) -> anyhow::Result<Vec<Vec<Side>>> {
+pub fn clip_emitted(
+    jobs: &[([i64; 3], [i64; 3], &[Cell])],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<Vec<Side>>> {
     let design = emit_octant_clipper()?;
     let body = format!(
         "\
@@ -178,11 +219,26 @@ pub fn clip_emitted(jobs: &[([i64; 3], [i64; 3], &[Cell])], simulator: Simulator
     for (lo, hi, octants) in jobs {
         let vectors: String = octants
             .iter()
-            .map(|o| format!("{:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x}\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], o.lo[0], o.lo[1], o.lo[2], o.level))
+            .map(|o| {
+                format!(
+                    "{:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x} {:x}\n",
+                    lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], o.lo[0], o.lo[1], o.lo[2], o.level
+                )
+            })
             .collect();
         let (text, _) = run_on_vectors(&compiled, "octant-clipper-run", &vectors, &[])?;
-        let classes: Vec<Side> = text.lines().map(|l| side_of(u64::from_str_radix(l.trim(), 16).with_context(|| format!("output `{l}`"))?)).collect::<anyhow::Result<_>>()?;
-        anyhow::ensure!(classes.len() == octants.len(), "the clipper gave {} classes for {} octants", classes.len(), octants.len());
+        let classes: Vec<Side> = text
+            .lines()
+            .map(|l| {
+                side_of(u64::from_str_radix(l.trim(), 16).with_context(|| format!("output `{l}`"))?)
+            })
+            .collect::<anyhow::Result<_>>()?;
+        anyhow::ensure!(
+            classes.len() == octants.len(),
+            "the clipper gave {} classes for {} octants",
+            classes.len(),
+            octants.len()
+        );
         out.push(classes);
     }
     Ok(out)

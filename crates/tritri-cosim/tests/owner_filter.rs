@@ -21,7 +21,18 @@ fn scene() -> PreparedScene {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
     let config = SystemConfig::new(24, 2, latency()).with_depth(16);
-    prepare_octree(&a, &b, &SceneOptions { width: 24, depth: 16, split: true }, &config, None).unwrap()
+    prepare_octree(
+        &a,
+        &b,
+        &SceneOptions {
+            width: 24,
+            depth: 16,
+            split: true,
+        },
+        &config,
+        None,
+    )
+    .unwrap()
 }
 
 /// The scene's slot tables and its hits in leaf order, as slots.
@@ -58,11 +69,22 @@ fn each_pair_leaves_once_in_rust_hdl_icarus_and_verilator() {
         model.pairs.len(),
         model.edges.last()
     );
-    assert!(dropped > 50 && merged > dropped, "the scene must exercise the merge: {merged} merged, {dropped} dropped");
+    assert!(
+        dropped > 50 && merged > dropped,
+        "the scene must exercise the merge: {merged} merged, {dropped} dropped"
+    );
 
     assert_eq!(run_rusthdl(&slots, &hits, |_| true), model, "rust-hdl");
-    assert_eq!(run_emitted(&slots, &hits, Simulator::Icarus).unwrap(), model, "Icarus");
-    assert_eq!(run_emitted(&slots, &hits, Simulator::Verilator).unwrap(), model, "Verilator");
+    assert_eq!(
+        run_emitted(&slots, &hits, Simulator::Icarus).unwrap(),
+        model,
+        "Icarus"
+    );
+    assert_eq!(
+        run_emitted(&slots, &hits, Simulator::Verilator).unwrap(),
+        model,
+        "Verilator"
+    );
 }
 
 /// A reader that is ready one cycle in three changes when pairs leave, not

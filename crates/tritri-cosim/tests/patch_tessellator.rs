@@ -17,11 +17,19 @@ use tritri_rtl::bezier::patch_tessellator::tessellation_clocks;
 fn nets(w: usize, count: usize, seed: u64) -> Vec<FixedNet> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let limit = (1i64 << (w - 1)) - 1;
-    let mut out: Vec<FixedNet> = (0..count).map(|_| std::array::from_fn(|_| std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-limit - 1..=limit))))).collect();
+    let mut out: Vec<FixedNet> = (0..count)
+        .map(|_| {
+            std::array::from_fn(|_| {
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-limit - 1..=limit)))
+            })
+        })
+        .collect();
     let mut collapsed = out[0];
     collapsed[0] = [collapsed[0][0]; 4];
     out.push(collapsed);
-    out.push(std::array::from_fn(|a| std::array::from_fn(|b| [a as i64 * 1000 - 1500, b as i64 * 700, (a + b) as i64 - 3])));
+    out.push(std::array::from_fn(|a| {
+        std::array::from_fn(|b| [a as i64 * 1000 - 1500, b as i64 * 700, (a + b) as i64 - 3])
+    }));
     out.push([[[0; 3]; 4]; 4]);
     out.push([[[-limit - 1; 3]; 4]; 4]);
     out.push([[[limit; 3]; 4]; 4]);
@@ -31,8 +39,11 @@ fn nets(w: usize, count: usize, seed: u64) -> Vec<FixedNet> {
 fn check(runs: &[TessellationRun], nets: &[FixedNet], k: usize, what: &str) {
     let n = 1u64 << k;
     for (run, net) in runs.iter().zip(nets) {
-        let want: Vec<(u64, u64, [i64; 3])> =
-            fixed_grid(net, k as u32).into_iter().enumerate().map(|(m, p)| (m as u64 / (n + 1), m as u64 % (n + 1), p)).collect();
+        let want: Vec<(u64, u64, [i64; 3])> = fixed_grid(net, k as u32)
+            .into_iter()
+            .enumerate()
+            .map(|(m, p)| (m as u64 / (n + 1), m as u64 % (n + 1), p))
+            .collect();
         assert_eq!(run.vertices, want, "{what}: net {net:?}");
         assert!(run.last_flag_right, "{what}: out_last");
     }
@@ -45,24 +56,41 @@ fn rusthdl_equals_the_fixed_point_model() {
         let always = run_rusthdl(w, k, &nets, &|_| true);
         check(&always, &nets, k, "rust-hdl");
         for run in &always {
-            assert_eq!(run.clocks, tessellation_clocks(k as u32), "W = {w}, K = {k}: clocks");
+            assert_eq!(
+                run.clocks,
+                tessellation_clocks(k as u32),
+                "W = {w}, K = {k}: clocks"
+            );
             // Back to back: the first vertex at edge 2, then one per clock.
             assert!(run.edges.windows(2).all(|e| e[1] == e[0] + 1) && run.edges[0] == 2);
         }
         let stalled = run_rusthdl(w, k, &nets, &|edge| edge % 3 != 1);
-        check(&stalled, &nets, k, "rust-hdl, a reader ready two clocks in three");
+        check(
+            &stalled,
+            &nets,
+            k,
+            "rust-hdl, a reader ready two clocks in three",
+        );
     }
 }
 
 #[test]
 fn the_emitted_unit_equals_the_model_in_verilator_and_icarus() {
-    for (w, k, simulator) in [(16, 3, Simulator::Verilator), (24, 4, Simulator::Verilator), (16, 3, Simulator::Icarus)] {
+    for (w, k, simulator) in [
+        (16, 3, Simulator::Verilator),
+        (24, 4, Simulator::Verilator),
+        (16, 3, Simulator::Icarus),
+    ] {
         let nets = nets(w, 6, 100 + w as u64);
         let runs = run_emitted(w, k, &nets, simulator).unwrap();
         check(&runs, &nets, k, &format!("{simulator:?}"));
         let model = run_rusthdl(w, k, &nets, &|_| true);
         for (hdl, ours) in runs.iter().zip(&model) {
-            assert_eq!((hdl.clocks, &hdl.edges), (ours.clocks, &ours.edges), "{simulator:?}: the same edges as rust-hdl");
+            assert_eq!(
+                (hdl.clocks, &hdl.edges),
+                (ours.clocks, &ours.edges),
+                "{simulator:?}: the same edges as rust-hdl"
+            );
         }
     }
 }

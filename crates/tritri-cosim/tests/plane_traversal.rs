@@ -16,7 +16,14 @@ use tritri_rtl::octree::plane_traversal::STACK_ADDRESS_BITS;
 
 fn planes(count: usize, seed: u64) -> Vec<(u32, [i64; 3], i64)> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut out = vec![(4, [0, 0, 1], 8), (4, [1, 1, 1], 24), (5, [3, -5, 7], 40), (4, [1, 0, 0], -3), (4, [2, 2, 2], 1000), (6, [-7, 3, 11], 100)];
+    let mut out = vec![
+        (4, [0, 0, 1], 8),
+        (4, [1, 1, 1], 24),
+        (5, [3, -5, 7], 40),
+        (4, [1, 0, 0], -3),
+        (4, [2, 2, 2], 1000),
+        (6, [-7, 3, 11], 100),
+    ];
     while out.len() < count {
         let level = rng.gen_range(3..=5);
         let n = 1i64 << level;
@@ -31,14 +38,21 @@ fn planes(count: usize, seed: u64) -> Vec<(u32, [i64; 3], i64)> {
 fn rusthdl_equals_the_cycle_model_and_the_software_model() {
     for (level, normal, d) in planes(40, 1995) {
         let model = traversal_schedule(level, normal, d);
-        assert!(model.stack_depth < 1 << STACK_ADDRESS_BITS, "the stack's RAM holds the traversal");
+        assert!(
+            model.stack_depth < 1 << STACK_ADDRESS_BITS,
+            "the stack's RAM holds the traversal"
+        );
         let plane = PlaneInputs::new(level, normal, d).unwrap();
         let hardware = run_rusthdl(&plane, |_| true);
         assert_eq!(hardware.records, model.records, "{level} {normal:?} {d}");
         assert_eq!(hardware.edges, model.edges, "{level} {normal:?} {d}");
         assert_eq!(hardware.cycles, model.cycles, "{level} {normal:?} {d}");
         let software = classify_plane(level, normal, d);
-        assert_eq!(model.half_space(level), software.half_space.to_voxels(), "{level} {normal:?} {d}");
+        assert_eq!(
+            model.half_space(level),
+            software.half_space.to_voxels(),
+            "{level} {normal:?} {d}"
+        );
         assert_eq!(model.crossed_voxels(), software.crossed_voxels);
         // A reader ready one edge in three: the same records, later.
         let mut stalled = run_rusthdl(&plane, |e| e % 3 == 2);
@@ -53,14 +67,26 @@ fn rusthdl_equals_the_cycle_model_and_the_software_model() {
 #[test]
 fn emitted_verilog_equals_the_cycle_model() {
     let planes = planes(12, 512);
-    let inputs: Vec<PlaneInputs> = planes.iter().map(|&(l, n, d)| PlaneInputs::new(l, n, d).unwrap()).collect();
+    let inputs: Vec<PlaneInputs> = planes
+        .iter()
+        .map(|&(l, n, d)| PlaneInputs::new(l, n, d).unwrap())
+        .collect();
     for simulator in [Simulator::Icarus, Simulator::Verilator] {
         let runs = run_emitted(&inputs, simulator).unwrap();
         for ((level, normal, d), run) in planes.iter().zip(runs) {
             let model = traversal_schedule(*level, *normal, *d);
-            assert_eq!(run.records, model.records, "{simulator:?} {level} {normal:?} {d}");
-            assert_eq!(run.edges, model.edges, "{simulator:?} {level} {normal:?} {d}");
-            assert_eq!(run.cycles, model.cycles, "{simulator:?} {level} {normal:?} {d}");
+            assert_eq!(
+                run.records, model.records,
+                "{simulator:?} {level} {normal:?} {d}"
+            );
+            assert_eq!(
+                run.edges, model.edges,
+                "{simulator:?} {level} {normal:?} {d}"
+            );
+            assert_eq!(
+                run.cycles, model.cycles,
+                "{simulator:?} {level} {normal:?} {d}"
+            );
         }
     }
 }
@@ -72,20 +98,37 @@ fn emitted_verilog_equals_the_cycle_model() {
 #[test]
 fn the_voxel_fill_writes_the_half_space_a_word_per_clock() {
     use tritri_cosim::voxel_fill::{fill_emitted, fill_rusthdl};
-    let cases = [(4, [1, 2, 3], 40), (6, [3, -5, 7], 100), (7, [0, 0, 1], 64), (7, [1, 1, 1], 150), (3, [2, 2, 2], 1000)];
+    let cases = [
+        (4, [1, 2, 3], 40),
+        (6, [3, -5, 7], 100),
+        (7, [0, 0, 1], 64),
+        (7, [1, 1, 1], 150),
+        (3, [2, 2, 2], 1000),
+    ];
     for (level, normal, d) in cases {
         let model = traversal_schedule(level, normal, d);
         let expected = classify_plane(level, normal, d).half_space.to_voxels();
         // Records without a child to fill, before the last that has one.
         let last_full = model.records.iter().rposition(|r| r.full != 0).unwrap_or(0);
-        let empty_records = model.records[..last_full].iter().filter(|r| r.full == 0).count() as u64;
+        let empty_records = model.records[..last_full]
+            .iter()
+            .filter(|r| r.full == 0)
+            .count() as u64;
         let run = fill_rusthdl(level, &model.records).unwrap();
         assert_eq!(run.words, expected.words(), "{level} {normal:?} {d}");
         assert_eq!(run.writes, model.fill_words(64), "{level} {normal:?} {d}");
-        assert_eq!(run.last_edge, run.writes + empty_records, "{level} {normal:?} {d}: one write per clock");
+        assert_eq!(
+            run.last_edge,
+            run.writes + empty_records,
+            "{level} {normal:?} {d}: one write per clock"
+        );
         for simulator in [Simulator::Icarus, Simulator::Verilator] {
             let emitted = fill_emitted(level, &model.records, simulator).unwrap();
-            assert_eq!((emitted.words.as_slice(), emitted.writes), (expected.words(), run.writes), "{simulator:?} {level} {normal:?} {d}");
+            assert_eq!(
+                (emitted.words.as_slice(), emitted.writes),
+                (expected.words(), run.writes),
+                "{simulator:?} {level} {normal:?} {d}"
+            );
         }
     }
 }

@@ -19,19 +19,24 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 use tritri_cosim::engine::{run_pipeline, Engine};
-use tritri_cosim::pipeline_rtl::{pipeline_dut, pipeline_dut_with, run_schedule, run_stream, RtlRun};
-use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, ECP5_MODEL_FILE};
+use tritri_cosim::pipeline_rtl::{
+    pipeline_dut, pipeline_dut_with, run_schedule, run_stream, RtlRun,
+};
 use tritri_cosim::simulator::Simulator;
 use tritri_cosim::stream::{group_schedule, StreamResult, TriangleStream};
-use tritri_geom::scene::TaggedTriangle;
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
 use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
+use tritri_geom::scene::TaggedTriangle;
+use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, ECP5_MODEL_FILE};
 
 fn env_usize(name: &str, default: usize) -> usize {
-    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }
 
 fn random_triangle(rng: &mut ChaCha8Rng, lo: i64, hi: i64) -> FixedTriangle {
@@ -42,7 +47,10 @@ fn random_triangle(rng: &mut ChaCha8Rng, lo: i64, hi: i64) -> FixedTriangle {
 fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     // Random and near-degenerate f64 pairs, quantized into one frame.
-    let pairs: Vec<_> = random_pairs(n1 + n2, seed).into_iter().chain(random_near_degenerate_pairs(n1 + n2, seed + 1)).collect();
+    let pairs: Vec<_> = random_pairs(n1 + n2, seed)
+        .into_iter()
+        .chain(random_near_degenerate_pairs(n1 + n2, seed + 1))
+        .collect();
     let all: Vec<_> = pairs.iter().flat_map(|p| [p.t1, p.t2]).collect();
     let frame = Frame::fit(all.iter(), width).unwrap();
     let quantized: Vec<FixedTriangle> = all.iter().map(|t| frame.quantize(t)).collect();
@@ -56,9 +64,19 @@ fn mixed_stream(width: u32, n1: usize, n2: usize, seed: u64) -> TriangleStream {
             _ => [0; 3].map(|_| [0; 3].map(|_| extremes[rng.gen_range(0..extremes.len())])),
         }
     };
-    let bases = (0..n1).map(|k| TaggedTriangle { id: 1000 + k as u32, triangle: pick(k, &mut rng) }).collect();
+    let bases = (0..n1)
+        .map(|k| TaggedTriangle {
+            id: 1000 + k as u32,
+            triangle: pick(k, &mut rng),
+        })
+        .collect();
     // Stream ids near the top of the 32-bit range: the id path is checked too.
-    let streamed = (0..n2).map(|k| TaggedTriangle { id: u32::MAX - k as u32, triangle: pick(k, &mut rng) }).collect();
+    let streamed = (0..n2)
+        .map(|k| TaggedTriangle {
+            id: u32::MAX - k as u32,
+            triangle: pick(k, &mut rng),
+        })
+        .collect();
     TriangleStream { bases, streamed }
 }
 
@@ -76,18 +94,33 @@ fn check(engine: &str, width: usize, stream: &TriangleStream, run: &RtlRun, late
         run.simulate_seconds,
         pairs as f64 / run.simulate_seconds
     );
-    assert_eq!(run.result.verdicts.len(), pairs, "{engine}: one verdict per pair");
+    assert_eq!(
+        run.result.verdicts.len(),
+        pairs,
+        "{engine}: one verdict per pair"
+    );
     if let Some(k) = (0..pairs).find(|&k| run.result.verdicts[k] != expected[k]) {
-        panic!("{engine} W={width}: first mismatch at output {k}: {:?}, expected {:?}", run.result.verdicts[k], expected[k]);
+        panic!(
+            "{engine} W={width}: first mismatch at output {k}: {:?}, expected {:?}",
+            run.result.verdicts[k], expected[k]
+        );
     }
     assert_eq!(mismatches, 0);
-    assert_eq!(run.result.cycles, stream.expected_cycles(latency), "{engine}: N1 + N1 N2 + L cycles");
+    assert_eq!(
+        run.result.cycles,
+        stream.expected_cycles(latency),
+        "{engine}: N1 + N1 N2 + L cycles"
+    );
     // Every verdict leaves exactly L cycles after its triangle entered.
     let n2 = stream.streamed.len() as u64;
     for (k, t) in run.timed.iter().enumerate() {
         let k = k as u64;
         let entered = (k / n2) * (n2 + 1) + 1 + k % n2;
-        assert_eq!(t.cycle, entered + latency, "{engine}: verdict {k} leaves L cycles after its input");
+        assert_eq!(
+            t.cycle,
+            entered + latency,
+            "{engine}: verdict {k} leaves L cycles after its input"
+        );
     }
 }
 
@@ -112,12 +145,16 @@ fn verilator_matches_fixed_point_model() {
         let dut = pipeline_dut(width).unwrap();
         let n1 = 20;
         let stream = mixed_stream(width as u32, n1, (total / n1).max(1), seed);
-        let run = run_stream(Simulator::Verilator, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+        let run =
+            run_stream(Simulator::Verilator, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
         check("verilator", width, &stream, &run, dut.latency);
         let started = Instant::now();
         let small = mixed_stream(width as u32, 2, 50, seed + 10);
         let again = run_stream(Simulator::Verilator, &dut, &small).unwrap();
-        assert_eq!(again.build_seconds, 0.0, "the second run uses the cached model");
+        assert_eq!(
+            again.build_seconds, 0.0,
+            "the second run uses the cached model"
+        );
         check("verilator (cached)", width, &small, &again, dut.latency);
         eprintln!("cached run: {:.2} s", started.elapsed().as_secs_f64());
     }
@@ -130,17 +167,35 @@ fn verilator_matches_fixed_point_model() {
 #[test]
 fn ecp5_dsp_mapping_matches_fixed_point_model() {
     let total = env_usize("TRITRI_RTL_PAIRS", 100_000);
-    for (simulator, width, pairs, seed) in
-        [(Simulator::Verilator, 16usize, total, 21u64), (Simulator::Verilator, 8, total / 4, 22), (Simulator::Icarus, 12, total / 20, 23)]
-    {
+    for (simulator, width, pairs, seed) in [
+        (Simulator::Verilator, 16usize, total, 21u64),
+        (Simulator::Verilator, 8, total / 4, 22),
+        (Simulator::Icarus, 12, total / 20, 23),
+    ] {
         let dut = pipeline_dut_with(width, MultiplierMapping::Ecp5).unwrap();
-        assert!(dut.design.file(ECP5_MODEL_FILE).is_some(), "the primitive's model is emitted");
-        let instances = dut.design.verilog_files().map(|f| f.contents.matches("MULT18X18D #(").count()).sum::<usize>();
-        assert!(instances >= 1, "W={width}: the multipliers instantiate MULT18X18D");
+        assert!(
+            dut.design.file(ECP5_MODEL_FILE).is_some(),
+            "the primitive's model is emitted"
+        );
+        let instances = dut
+            .design
+            .verilog_files()
+            .map(|f| f.contents.matches("MULT18X18D #(").count())
+            .sum::<usize>();
+        assert!(
+            instances >= 1,
+            "W={width}: the multipliers instantiate MULT18X18D"
+        );
         let n1 = 20;
         let stream = mixed_stream(width as u32, n1, (pairs / n1).max(1), seed);
         let run = run_stream(simulator, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
-        check(&format!("{simulator:?} (--dsp ecp5)"), width, &stream, &run, dut.latency);
+        check(
+            &format!("{simulator:?} (--dsp ecp5)"),
+            width,
+            &stream,
+            &run,
+            dut.latency,
+        );
     }
 }
 
@@ -150,27 +205,51 @@ fn ecp5_dsp_mapping_matches_fixed_point_model() {
 fn every_engine_of_the_route_gives_the_same_result() {
     let stream = mixed_stream(16, 3, 40, 5);
     let schedule: Vec<_> = stream.schedule().collect();
-    let model = run_pipeline(Engine::Model, 16, &schedule, None).unwrap().result;
+    let model = run_pipeline(Engine::Model, 16, &schedule, None)
+        .unwrap()
+        .result;
     assert_eq!(model.verdicts, stream.expected(certified_intersects));
-    assert_eq!(model.cycles, stream.expected_cycles(tritri_rtl::pipeline::triangle_pipeline::latency() as u64));
+    assert_eq!(
+        model.cycles,
+        stream.expected_cycles(tritri_rtl::pipeline::triangle_pipeline::latency() as u64)
+    );
     for engine in [Engine::Rusthdl, Engine::Icarus, Engine::Verilator] {
-        let run = run_pipeline(engine, 16, &schedule, None).unwrap_or_else(|e| panic!("{}: {e:#}", engine.name()));
+        let run = run_pipeline(engine, 16, &schedule, None)
+            .unwrap_or_else(|e| panic!("{}: {e:#}", engine.name()));
         assert_eq!(run.result, model, "{}", engine.name());
     }
 }
 
 /// Checks a run of a group schedule: every verdict (ids included) equals the
 /// model's, and the run takes one cycle per input plus the latency.
-fn check_schedule(engine: &str, what: &str, result: &StreamResult, expected: &[tritri_cosim::stream::PairVerdict], inputs: usize) {
+fn check_schedule(
+    engine: &str,
+    what: &str,
+    result: &StreamResult,
+    expected: &[tritri_cosim::stream::PairVerdict],
+    inputs: usize,
+) {
     let latency = tritri_rtl::pipeline::triangle_pipeline::latency() as u64;
     let mismatches = result.mismatches(expected);
     let hits = expected.iter().filter(|v| v.hit).count();
-    eprintln!("{engine} {what}: {} pairs ({hits} hits), {mismatches} mismatches, {} cycles", expected.len(), result.cycles);
+    eprintln!(
+        "{engine} {what}: {} pairs ({hits} hits), {mismatches} mismatches, {} cycles",
+        expected.len(),
+        result.cycles
+    );
     if let Some(k) = (0..expected.len()).find(|&k| result.verdicts.get(k) != Some(&expected[k])) {
-        panic!("{engine} {what}: first mismatch at output {k}: {:?}, expected {:?}", result.verdicts.get(k), expected[k]);
+        panic!(
+            "{engine} {what}: first mismatch at output {k}: {:?}, expected {:?}",
+            result.verdicts.get(k),
+            expected[k]
+        );
     }
     assert_eq!(mismatches, 0, "{engine} {what}: extra verdicts");
-    assert_eq!(result.cycles, inputs as u64 + latency, "{engine} {what}: one cycle per input plus the latency");
+    assert_eq!(
+        result.cycles,
+        inputs as u64 + latency,
+        "{engine} {what}: one cycle per input plus the latency"
+    );
 }
 
 /// The whole hard-case suite in all 72 orderings (340,128 pairs a width) in
@@ -178,9 +257,15 @@ fn check_schedule(engine: &str, what: &str, result: &StreamResult, expected: &[t
 #[test]
 fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
     for width in [16, 24, 32] {
-        let (schedule, expected) = group_schedule(&hard_case_groups(width, 1), certified_intersects);
-        let result = run_schedule(Simulator::Verilator, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
-        let what = format!("W={width} hard cases ({} x 72 orderings)", hard_case_count());
+        let (schedule, expected) =
+            group_schedule(&hard_case_groups(width, 1), certified_intersects);
+        let result = run_schedule(Simulator::Verilator, width as usize, &schedule, None)
+            .map(|r| r.result)
+            .unwrap_or_else(|e| panic!("{e:#}"));
+        let what = format!(
+            "W={width} hard cases ({} x 72 orderings)",
+            hard_case_count()
+        );
         check_schedule("verilator", &what, &result, &expected, schedule.len());
     }
 }
@@ -191,6 +276,14 @@ fn verilator_matches_fixed_point_model_on_the_hard_case_suite() {
 fn icarus_matches_fixed_point_model_on_the_hard_case_suite() {
     let width = 24;
     let (schedule, expected) = group_schedule(&hard_case_groups(width, 16), certified_intersects);
-    let result = run_schedule(Simulator::Icarus, width as usize, &schedule, None).map(|r| r.result).unwrap_or_else(|e| panic!("{e:#}"));
-    check_schedule("icarus", "W=24 hard cases (every 16th x 72 orderings)", &result, &expected, schedule.len());
+    let result = run_schedule(Simulator::Icarus, width as usize, &schedule, None)
+        .map(|r| r.result)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    check_schedule(
+        "icarus",
+        "W=24 hard cases (every 16th x 72 orderings)",
+        &result,
+        &expected,
+        schedule.len(),
+    );
 }

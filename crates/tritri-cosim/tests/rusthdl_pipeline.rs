@@ -15,16 +15,21 @@ use std::collections::BTreeMap;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
 use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, TriangleStream};
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
-use tritri_geom::devillers_guigue::{shape, Shape};
 use tritri_geom::certificate::certified_intersects;
+use tritri_geom::devillers_guigue::{shape, Shape};
 use tritri_geom::fixed_point::{intersects, orient3d_value, FixedPoint, FixedTriangle};
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
-use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput, PipelineSimulation};
+use tritri_rtl::pipeline::pipeline_for_width::{
+    pipeline_for_width, PipelineInput, PipelineSimulation,
+};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 
 fn env_usize(name: &str, default: usize) -> usize {
-    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
 }
 
 /// Which branch of the algorithm a pair exercises (for coverage reports).
@@ -62,10 +67,15 @@ impl Check {
             }
         }
         let (schedule, expected) = group_schedule(groups, certified_intersects);
-        let result = run_schedule_on(pipeline, &schedule, &HarnessOptions::default()).expect("simulation run");
+        let result = run_schedule_on(pipeline, &schedule, &HarnessOptions::default())
+            .expect("simulation run");
         assert_eq!(result.verdicts.len(), expected.len());
         for (v, e) in result.verdicts.iter().zip(&expected) {
-            assert_eq!((v.base_id, v.stream_id), (e.base_id, e.stream_id), "pair ids");
+            assert_eq!(
+                (v.base_id, v.stream_id),
+                (e.base_id, e.stream_id),
+                "pair ids"
+            );
             self.pairs += 1;
             self.hits += e.hit as usize;
             if v.hit != e.hit {
@@ -73,7 +83,10 @@ impl Check {
                 if self.failures.len() < 10 {
                     let (base, streamed) = &groups[e.base_id as usize];
                     let t = streamed[e.stream_id as usize];
-                    self.failures.push(format!("{base:?} vs {t:?}: model {}, rust-hdl {}", e.hit, v.hit));
+                    self.failures.push(format!(
+                        "{base:?} vs {t:?}: model {}, rust-hdl {}",
+                        e.hit, v.hit
+                    ));
                 }
             }
         }
@@ -84,7 +97,12 @@ impl Check {
             "{what}: {} pairs, {} hits, {} mismatches, by case {:?}",
             self.pairs, self.hits, self.mismatches, self.categories
         );
-        assert!(self.mismatches == 0, "{what}: {} mismatches, e.g.\n{}", self.mismatches, self.failures.join("\n"));
+        assert!(
+            self.mismatches == 0,
+            "{what}: {} mismatches, e.g.\n{}",
+            self.mismatches,
+            self.failures.join("\n")
+        );
     }
 }
 
@@ -97,7 +115,14 @@ fn random_triangle(rng: &mut ChaCha8Rng, lo: i64, hi: i64) -> FixedTriangle {
 fn small_integer_groups(seed: u64, range: i64, bases: usize, streamed: usize) -> Vec<PairGroup> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..bases)
-        .map(|_| (random_triangle(&mut rng, -range, range), (0..streamed).map(|_| random_triangle(&mut rng, -range, range)).collect()))
+        .map(|_| {
+            (
+                random_triangle(&mut rng, -range, range),
+                (0..streamed)
+                    .map(|_| random_triangle(&mut rng, -range, range))
+                    .collect(),
+            )
+        })
         .collect()
 }
 
@@ -108,8 +133,17 @@ fn extreme_groups(width: usize, seed: u64, bases: usize, streamed: usize) -> Vec
     let min = -(1i64 << (width - 1));
     let values = [min, max, 0, 1, -1, min + 1, max - 1, max / 2, min / 2];
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let pick = |rng: &mut ChaCha8Rng| [0; 3].map(|_| [0; 3].map(|_| values[rng.gen_range(0..values.len())]));
-    (0..bases).map(|_| (pick(&mut rng), (0..streamed).map(|_| pick(&mut rng)).collect())).collect()
+    let pick = |rng: &mut ChaCha8Rng| {
+        [0; 3].map(|_| [0; 3].map(|_| values[rng.gen_range(0..values.len())]))
+    };
+    (0..bases)
+        .map(|_| {
+            (
+                pick(&mut rng),
+                (0..streamed).map(|_| pick(&mut rng)).collect(),
+            )
+        })
+        .collect()
 }
 
 /// Triangles on one integer plane per group, `h = a u + b v + c` with the
@@ -119,7 +153,12 @@ fn coplanar_integer_groups(seed: u64, bases: usize, streamed: usize) -> Vec<Pair
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     (0..bases)
         .map(|_| {
-            let (a, b, c, h) = (rng.gen_range(-2..=2), rng.gen_range(-2..=2), rng.gen_range(-2..=2), rng.gen_range(0..3));
+            let (a, b, c, h) = (
+                rng.gen_range(-2..=2),
+                rng.gen_range(-2..=2),
+                rng.gen_range(-2..=2),
+                rng.gen_range(0..3),
+            );
             let on_plane = |rng: &mut ChaCha8Rng| -> FixedTriangle {
                 [0; 3].map(|_| {
                     let (u, v) = (rng.gen_range(-3i64..=3), rng.gen_range(-3i64..=3));
@@ -142,52 +181,208 @@ fn hand_made_cases() -> Vec<(&'static str, FixedTriangle, FixedTriangle)> {
     vec![
         ("general crossing", t, [[1, 1, -4], [1, 1, 4], [5, 1, 4]]),
         ("general apart", t, [[1, 1, 1], [1, 1, 4], [5, 1, 4]]),
-        ("vertex on the other's interior", t, [[1, 1, 0], [1, 1, 4], [5, 1, 4]]),
-        ("vertex touching vertex", t, [[8, 0, 0], [9, 0, 4], [9, 3, 4]]),
-        ("edge crossing edge", t, [[4, -1, -2], [4, 2, 2], [4, -3, 2]]),
-        ("planes meet, intervals disjoint", t, [[9, 9, -3], [9, 12, 3], [12, 9, 3]]),
-        ("intervals touch at a point", t, [[4, 4, -2], [4, 4, 2], [8, 8, 0]]),
-        ("coplanar overlapping", t, [[2, 2, 0], [10, 2, 0], [2, 10, 0]]),
+        (
+            "vertex on the other's interior",
+            t,
+            [[1, 1, 0], [1, 1, 4], [5, 1, 4]],
+        ),
+        (
+            "vertex touching vertex",
+            t,
+            [[8, 0, 0], [9, 0, 4], [9, 3, 4]],
+        ),
+        (
+            "edge crossing edge",
+            t,
+            [[4, -1, -2], [4, 2, 2], [4, -3, 2]],
+        ),
+        (
+            "planes meet, intervals disjoint",
+            t,
+            [[9, 9, -3], [9, 12, 3], [12, 9, 3]],
+        ),
+        (
+            "intervals touch at a point",
+            t,
+            [[4, 4, -2], [4, 4, 2], [8, 8, 0]],
+        ),
+        (
+            "coplanar overlapping",
+            t,
+            [[2, 2, 0], [10, 2, 0], [2, 10, 0]],
+        ),
         ("coplanar contained", t, [[1, 1, 0], [2, 1, 0], [1, 2, 0]]),
-        ("coplanar containing", t, [[-4, -4, 0], [20, -4, 0], [-4, 20, 0]]),
-        ("coplanar sharing an edge", t, [[8, 0, 0], [0, 8, 0], [8, 8, 0]]),
-        ("coplanar touching at a vertex", t, [[8, 0, 0], [12, 0, 0], [12, 4, 0]]),
-        ("coplanar vertex on an edge", t, [[4, 4, 0], [8, 8, 0], [12, 2, 0]]),
+        (
+            "coplanar containing",
+            t,
+            [[-4, -4, 0], [20, -4, 0], [-4, 20, 0]],
+        ),
+        (
+            "coplanar sharing an edge",
+            t,
+            [[8, 0, 0], [0, 8, 0], [8, 8, 0]],
+        ),
+        (
+            "coplanar touching at a vertex",
+            t,
+            [[8, 0, 0], [12, 0, 0], [12, 4, 0]],
+        ),
+        (
+            "coplanar vertex on an edge",
+            t,
+            [[4, 4, 0], [8, 8, 0], [12, 2, 0]],
+        ),
         ("coplanar apart", t, [[5, 5, 0], [9, 5, 0], [5, 9, 0]]),
-        ("coplanar collinear edges apart", t, [[9, 0, 0], [12, 0, 0], [10, -3, 0]]),
-        ("coplanar collinear edges overlapping", t, [[4, 0, 0], [12, 0, 0], [10, -3, 0]]),
-        ("coplanar tilted", [[0, 0, 0], [6, 0, 3], [0, 6, 3]], [[2, 2, 2], [6, 6, 6], [-2, 4, 1]]),
-        ("segment through the interior", t, [[2, 2, -3], [2, 2, 3], [2, 2, 0]]),
+        (
+            "coplanar collinear edges apart",
+            t,
+            [[9, 0, 0], [12, 0, 0], [10, -3, 0]],
+        ),
+        (
+            "coplanar collinear edges overlapping",
+            t,
+            [[4, 0, 0], [12, 0, 0], [10, -3, 0]],
+        ),
+        (
+            "coplanar tilted",
+            [[0, 0, 0], [6, 0, 3], [0, 6, 3]],
+            [[2, 2, 2], [6, 6, 6], [-2, 4, 1]],
+        ),
+        (
+            "segment through the interior",
+            t,
+            [[2, 2, -3], [2, 2, 3], [2, 2, 0]],
+        ),
         ("segment missing", t, [[9, 9, -3], [9, 9, 3], [9, 9, 1]]),
-        ("segment ending on the plane inside", t, [[2, 2, 0], [2, 2, 3], [2, 2, 6]]),
-        ("segment ending on the plane outside", t, [[9, 9, 0], [9, 9, 3], [9, 9, 6]]),
-        ("segment above the plane", t, [[2, 2, 1], [2, 2, 3], [2, 2, 2]]),
-        ("segment in the plane crossing", t, [[-2, 2, 0], [10, 2, 0], [4, 2, 0]]),
-        ("segment in the plane inside", t, [[1, 1, 0], [3, 1, 0], [2, 1, 0]]),
-        ("segment in the plane apart", t, [[9, 9, 0], [12, 9, 0], [10, 9, 0]]),
-        ("segment in the plane touching a vertex", t, [[8, 0, 0], [12, 0, 0], [10, 0, 0]]),
-        ("segment with a repeated vertex", t, [[2, 2, -3], [2, 2, -3], [2, 2, 3]]),
-        ("segment through an edge", t, [[4, -2, 2], [4, 2, -2], [4, 0, 0]]),
-        ("segment through a vertex", t, [[-1, -1, -1], [1, 1, 1], [0, 0, 0]]),
+        (
+            "segment ending on the plane inside",
+            t,
+            [[2, 2, 0], [2, 2, 3], [2, 2, 6]],
+        ),
+        (
+            "segment ending on the plane outside",
+            t,
+            [[9, 9, 0], [9, 9, 3], [9, 9, 6]],
+        ),
+        (
+            "segment above the plane",
+            t,
+            [[2, 2, 1], [2, 2, 3], [2, 2, 2]],
+        ),
+        (
+            "segment in the plane crossing",
+            t,
+            [[-2, 2, 0], [10, 2, 0], [4, 2, 0]],
+        ),
+        (
+            "segment in the plane inside",
+            t,
+            [[1, 1, 0], [3, 1, 0], [2, 1, 0]],
+        ),
+        (
+            "segment in the plane apart",
+            t,
+            [[9, 9, 0], [12, 9, 0], [10, 9, 0]],
+        ),
+        (
+            "segment in the plane touching a vertex",
+            t,
+            [[8, 0, 0], [12, 0, 0], [10, 0, 0]],
+        ),
+        (
+            "segment with a repeated vertex",
+            t,
+            [[2, 2, -3], [2, 2, -3], [2, 2, 3]],
+        ),
+        (
+            "segment through an edge",
+            t,
+            [[4, -2, 2], [4, 2, -2], [4, 0, 0]],
+        ),
+        (
+            "segment through a vertex",
+            t,
+            [[-1, -1, -1], [1, 1, 1], [0, 0, 0]],
+        ),
         ("point inside", t, [[2, 2, 0], [2, 2, 0], [2, 2, 0]]),
         ("point on an edge", t, [[4, 0, 0], [4, 0, 0], [4, 0, 0]]),
         ("point at a vertex", t, [[8, 0, 0], [8, 0, 0], [8, 0, 0]]),
-        ("point outside in the plane", t, [[9, 9, 0], [9, 9, 0], [9, 9, 0]]),
+        (
+            "point outside in the plane",
+            t,
+            [[9, 9, 0], [9, 9, 0], [9, 9, 0]],
+        ),
         ("point off the plane", t, [[2, 2, 1], [2, 2, 1], [2, 2, 1]]),
-        ("segments crossing", [[0, 0, 0], [4, 4, 0], [2, 2, 0]], [[0, 4, 0], [4, 0, 0], [1, 3, 0]]),
-        ("segments skew", [[0, 0, 0], [4, 4, 0], [2, 2, 0]], [[0, 4, 1], [4, 0, 1], [1, 3, 1]]),
-        ("segments parallel", [[0, 0, 0], [4, 4, 0], [2, 2, 0]], [[1, 0, 0], [5, 4, 0], [3, 2, 0]]),
-        ("segments collinear overlapping", [[0, 0, 0], [4, 4, 4], [2, 2, 2]], [[3, 3, 3], [6, 6, 6], [5, 5, 5]]),
-        ("segments collinear touching", [[0, 0, 0], [4, 4, 4], [2, 2, 2]], [[4, 4, 4], [6, 6, 6], [5, 5, 5]]),
-        ("segments collinear apart", [[0, 0, 0], [4, 4, 4], [2, 2, 2]], [[5, 5, 5], [6, 6, 6], [7, 7, 7]]),
-        ("segments meeting at an end", [[0, 0, 0], [4, 0, 0], [2, 0, 0]], [[4, 0, 0], [4, 5, 2], [4, 5, 2]]),
-        ("segment T-junction", [[0, 0, 0], [4, 0, 0], [2, 0, 0]], [[2, 0, 0], [2, 3, 0], [2, 1, 0]]),
-        ("segments coplanar, projections cross in one axis only", [[0, 0, 0], [2, 2, 2], [1, 1, 1]], [[0, 2, 0], [2, 0, 2], [1, 1, 1]]),
-        ("segments, crossing in x-y only", [[0, 0, 0], [2, 2, 0], [1, 1, 0]], [[0, 2, 5], [2, 0, 5], [1, 1, 5]]),
-        ("point on a segment", [[0, 0, 0], [4, 4, 4], [2, 2, 2]], [[1, 1, 1], [1, 1, 1], [1, 1, 1]]),
-        ("point off a segment", [[0, 0, 0], [4, 4, 4], [2, 2, 2]], [[1, 1, 2], [1, 1, 2], [1, 1, 2]]),
-        ("points equal", [[3, 1, 2], [3, 1, 2], [3, 1, 2]], [[3, 1, 2], [3, 1, 2], [3, 1, 2]]),
-        ("points apart", [[3, 1, 2], [3, 1, 2], [3, 1, 2]], [[3, 1, 3], [3, 1, 3], [3, 1, 3]]),
+        (
+            "segments crossing",
+            [[0, 0, 0], [4, 4, 0], [2, 2, 0]],
+            [[0, 4, 0], [4, 0, 0], [1, 3, 0]],
+        ),
+        (
+            "segments skew",
+            [[0, 0, 0], [4, 4, 0], [2, 2, 0]],
+            [[0, 4, 1], [4, 0, 1], [1, 3, 1]],
+        ),
+        (
+            "segments parallel",
+            [[0, 0, 0], [4, 4, 0], [2, 2, 0]],
+            [[1, 0, 0], [5, 4, 0], [3, 2, 0]],
+        ),
+        (
+            "segments collinear overlapping",
+            [[0, 0, 0], [4, 4, 4], [2, 2, 2]],
+            [[3, 3, 3], [6, 6, 6], [5, 5, 5]],
+        ),
+        (
+            "segments collinear touching",
+            [[0, 0, 0], [4, 4, 4], [2, 2, 2]],
+            [[4, 4, 4], [6, 6, 6], [5, 5, 5]],
+        ),
+        (
+            "segments collinear apart",
+            [[0, 0, 0], [4, 4, 4], [2, 2, 2]],
+            [[5, 5, 5], [6, 6, 6], [7, 7, 7]],
+        ),
+        (
+            "segments meeting at an end",
+            [[0, 0, 0], [4, 0, 0], [2, 0, 0]],
+            [[4, 0, 0], [4, 5, 2], [4, 5, 2]],
+        ),
+        (
+            "segment T-junction",
+            [[0, 0, 0], [4, 0, 0], [2, 0, 0]],
+            [[2, 0, 0], [2, 3, 0], [2, 1, 0]],
+        ),
+        (
+            "segments coplanar, projections cross in one axis only",
+            [[0, 0, 0], [2, 2, 2], [1, 1, 1]],
+            [[0, 2, 0], [2, 0, 2], [1, 1, 1]],
+        ),
+        (
+            "segments, crossing in x-y only",
+            [[0, 0, 0], [2, 2, 0], [1, 1, 0]],
+            [[0, 2, 5], [2, 0, 5], [1, 1, 5]],
+        ),
+        (
+            "point on a segment",
+            [[0, 0, 0], [4, 4, 4], [2, 2, 2]],
+            [[1, 1, 1], [1, 1, 1], [1, 1, 1]],
+        ),
+        (
+            "point off a segment",
+            [[0, 0, 0], [4, 4, 4], [2, 2, 2]],
+            [[1, 1, 2], [1, 1, 2], [1, 1, 2]],
+        ),
+        (
+            "points equal",
+            [[3, 1, 2], [3, 1, 2], [3, 1, 2]],
+            [[3, 1, 2], [3, 1, 2], [3, 1, 2]],
+        ),
+        (
+            "points apart",
+            [[3, 1, 2], [3, 1, 2], [3, 1, 2]],
+            [[3, 1, 3], [3, 1, 3], [3, 1, 3]],
+        ),
     ]
 }
 
@@ -214,11 +409,19 @@ fn small_coplanar_and_extreme_integer_triangles() {
         let mut pipeline = pipeline_for_width(width).unwrap();
         let mut check = Check::default();
         for (seed, range) in [(1, 1), (2, 2), (3, 3)] {
-            check.run(pipeline.as_mut(), &small_integer_groups(seed + width as u64, range, 8, 250));
+            check.run(
+                pipeline.as_mut(),
+                &small_integer_groups(seed + width as u64, range, 8, 250),
+            );
         }
-        check.run(pipeline.as_mut(), &coplanar_integer_groups(40 + width as u64, 8, 250));
+        check.run(
+            pipeline.as_mut(),
+            &coplanar_integer_groups(40 + width as u64, 8, 250),
+        );
         check.run(pipeline.as_mut(), &extreme_groups(width, 7, 8, 250));
-        check.report_and_assert(&format!("small, coplanar and extreme integers, W = {width}"));
+        check.report_and_assert(&format!(
+            "small, coplanar and extreme integers, W = {width}"
+        ));
     }
 }
 
@@ -229,13 +432,23 @@ fn quantized_random(width: usize) {
     let mut pipeline = pipeline_for_width(width).unwrap();
     let mut check = Check::default();
     let start = std::time::Instant::now();
-    for raw in [random_pairs(pairs / 40 + 1, 11), random_near_degenerate_pairs(pairs / 40 + 1, 12)] {
+    for raw in [
+        random_pairs(pairs / 40 + 1, 11),
+        random_near_degenerate_pairs(pairs / 40 + 1, 12),
+    ] {
         let frame = Frame::fit(raw.iter().flat_map(|p| [&p.t1, &p.t2]), width as u32).unwrap();
         let n1 = 20;
         let groups: Vec<_> = raw
             .iter()
             .take(n1)
-            .map(|b| (frame.quantize(&b.t1), raw.iter().map(|p| frame.quantize(&p.t2)).collect::<Vec<_>>()))
+            .map(|b| {
+                (
+                    frame.quantize(&b.t1),
+                    raw.iter()
+                        .map(|p| frame.quantize(&p.t2))
+                        .collect::<Vec<_>>(),
+                )
+            })
             .collect();
         check.run(pipeline.as_mut(), &groups);
     }
@@ -267,8 +480,15 @@ fn hard_case_suite_in_all_orderings(width: usize) {
     let mut pipeline = pipeline_for_width(width).unwrap();
     let mut check = Check::default();
     check.run(pipeline.as_mut(), &hard_case_groups(width as u32, step));
-    let which = if step == 1 { "all".to_string() } else { format!("every {step}-th of") };
-    check.report_and_assert(&format!("hard cases ({which} {}) x 72 orderings, W = {width}", hard_case_count()));
+    let which = if step == 1 {
+        "all".to_string()
+    } else {
+        format!("every {step}-th of")
+    };
+    check.report_and_assert(&format!(
+        "hard cases ({which} {}) x 72 orderings, W = {width}",
+        hard_case_count()
+    ));
 }
 
 #[test]
@@ -289,17 +509,30 @@ fn hard_case_suite_in_all_orderings_w32() {
 /// Measured cycles are `N1 + N1 N2 + L` (thesis, equation 3.2).
 #[test]
 fn cycles_are_n1_plus_n1_n2_plus_latency() {
-    assert_eq!(latency(), 37, "rtl-out/README.md and examples/cocotb/README.md state the latency");
+    assert_eq!(
+        latency(),
+        37,
+        "rtl-out/README.md and examples/cocotb/README.md state the latency"
+    );
     let mut pipeline = pipeline_for_width(24).unwrap();
     assert_eq!(pipeline.latency(), latency());
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     for (n1, n2) in [(1, 1), (1, 2), (2, 3), (5, 17), (3, 40)] {
-        let bases: Vec<_> = (0..n1).map(|_| random_triangle(&mut rng, -1000, 1000)).collect();
-        let streamed: Vec<_> = (0..n2).map(|_| random_triangle(&mut rng, -1000, 1000)).collect();
+        let bases: Vec<_> = (0..n1)
+            .map(|_| random_triangle(&mut rng, -1000, 1000))
+            .collect();
+        let streamed: Vec<_> = (0..n2)
+            .map(|_| random_triangle(&mut rng, -1000, 1000))
+            .collect();
         let stream = TriangleStream::from_triangles(&bases, &streamed);
         let schedule: Vec<_> = stream.schedule().collect();
-        let result = run_schedule_on(pipeline.as_mut(), &schedule, &HarnessOptions::default()).unwrap();
-        assert_eq!(result.cycles, (n1 + n1 * n2 + latency()) as u64, "N1 = {n1}, N2 = {n2}");
+        let result =
+            run_schedule_on(pipeline.as_mut(), &schedule, &HarnessOptions::default()).unwrap();
+        assert_eq!(
+            result.cycles,
+            (n1 + n1 * n2 + latency()) as u64,
+            "N1 = {n1}, N2 = {n2}"
+        );
         assert_eq!(result.mismatches(&stream.expected(certified_intersects)), 0);
     }
 }
@@ -314,9 +547,19 @@ fn advance_low_holds_everything() {
     let mut schedule = Vec::new();
     let mut expected = Vec::new();
     for (g, (base, streamed)) in groups.iter().enumerate() {
-        schedule.push(PipelineInput { valid: true, bset: true, id: g as u32, vertices: flatten(base) });
+        schedule.push(PipelineInput {
+            valid: true,
+            bset: true,
+            id: g as u32,
+            vertices: flatten(base),
+        });
         for (s, t) in streamed.iter().enumerate() {
-            schedule.push(PipelineInput { valid: true, bset: false, id: s as u32, vertices: flatten(t) });
+            schedule.push(PipelineInput {
+                valid: true,
+                bset: false,
+                id: s as u32,
+                vertices: flatten(t),
+            });
             expected.push((g as u32, s as u32, intersects(base, t)));
         }
     }
@@ -338,7 +581,12 @@ fn advance_low_holds_everything() {
         let input = if advance {
             schedule.get(next).copied().unwrap_or_default()
         } else {
-            PipelineInput { valid: rng.gen(), bset: rng.gen(), id: rng.gen(), vertices: [rng.gen_range(-9..9); 9] }
+            PipelineInput {
+                valid: rng.gen(),
+                bset: rng.gen(),
+                id: rng.gen(),
+                vertices: [rng.gen_range(-9..9); 9],
+            }
         };
         p.set_input(&input);
         p.clock_cycle();
@@ -368,10 +616,20 @@ fn reset_clears_valid_bits() {
     let mut pipeline = pipeline_for_width(16).unwrap();
     let p = pipeline.as_mut();
     let t = [[0, 0, 0], [8, 0, 0], [0, 8, 0]];
-    p.set_input(&PipelineInput { valid: true, bset: true, id: 1, vertices: flatten(&t) });
+    p.set_input(&PipelineInput {
+        valid: true,
+        bset: true,
+        id: 1,
+        vertices: flatten(&t),
+    });
     p.clock_cycle();
     for i in 0..10 {
-        p.set_input(&PipelineInput { valid: true, bset: false, id: i, vertices: flatten(&t) });
+        p.set_input(&PipelineInput {
+            valid: true,
+            bset: false,
+            id: i,
+            vertices: flatten(&t),
+        });
         p.clock_cycle();
     }
     p.set_input(&PipelineInput::default());
@@ -394,9 +652,14 @@ fn vcd_trace_of_a_small_run() {
     let path = std::env::temp_dir().join(format!("tritri_rusthdl_{}.vcd", std::process::id()));
     let t = [[0, 0, 0], [8, 0, 0], [0, 8, 0]];
     let stream = TriangleStream::from_triangles(&[t], &[t, [[9, 9, 9], [9, 9, 10], [9, 10, 9]]]);
-    let options = HarnessOptions { vcd: Some(path.clone()) };
+    let options = HarnessOptions {
+        vcd: Some(path.clone()),
+    };
     let result = tritri_cosim::rusthdl_harness::run_stream(16, &stream, &options).unwrap();
-    assert_eq!(result.verdicts.iter().map(|v| v.hit).collect::<Vec<_>>(), vec![true, false]);
+    assert_eq!(
+        result.verdicts.iter().map(|v| v.hit).collect::<Vec<_>>(),
+        vec![true, false]
+    );
     assert_eq!(result.cycles, 3 + latency() as u64);
     let vcd = std::fs::read_to_string(&path).unwrap();
     std::fs::remove_file(&path).ok();

@@ -22,7 +22,11 @@ use tritri_rtl::pipeline::pipeline_for_width::pipeline_for_width;
 
 fn read_pairs(name: &str) -> Vec<TrianglePair> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata");
-    assert!(dir.is_dir(), "the external test data directory {} is missing", dir.display());
+    assert!(
+        dir.is_dir(),
+        "the external test data directory {} is missing",
+        dir.display()
+    );
     let file = tritri_geom::pairs_io::read_pairs(dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(file.errors().count(), 0, "{name}: unreadable records");
     file.good_pairs()
@@ -35,10 +39,13 @@ fn quantized(pair: &TrianglePair, width: usize) -> (FixedTriangle, FixedTriangle
 fn peer_groups(width: usize) -> Vec<PairGroup> {
     let pairs = read_pairs("peer_cases.json");
     assert_eq!(pairs.len(), 147);
-    pairs.iter().flat_map(|p| {
-        let (a, b) = quantized(p, width);
-        all_orderings(a, b)
-    }).collect()
+    pairs
+        .iter()
+        .flat_map(|p| {
+            let (a, b) = quantized(p, width);
+            all_orderings(a, b)
+        })
+        .collect()
 }
 
 fn shen_groups(width: usize) -> Vec<PairGroup> {
@@ -55,22 +62,50 @@ fn shen_groups(width: usize) -> Vec<PairGroup> {
 }
 
 /// Verdicts, ids included, equal the model's, output by output.
-fn assert_equal(engine: &str, what: &str, width: usize, result: &StreamResult, expected: &[PairVerdict]) {
-    assert_eq!(result.verdicts.len(), expected.len(), "{engine} W={width} {what}: verdict count");
-    let wrong: Vec<usize> =
-        result.verdicts.iter().zip(expected).enumerate().filter(|(_, (v, e))| v != e).map(|(i, _)| i).collect();
+fn assert_equal(
+    engine: &str,
+    what: &str,
+    width: usize,
+    result: &StreamResult,
+    expected: &[PairVerdict],
+) {
+    assert_eq!(
+        result.verdicts.len(),
+        expected.len(),
+        "{engine} W={width} {what}: verdict count"
+    );
+    let wrong: Vec<usize> = result
+        .verdicts
+        .iter()
+        .zip(expected)
+        .enumerate()
+        .filter(|(_, (v, e))| v != e)
+        .map(|(i, _)| i)
+        .collect();
     let hits = expected.iter().filter(|v| v.hit).count();
-    eprintln!("{engine} W={width} {what}: {} pairs ({hits} hits), {} mismatches", expected.len(), wrong.len());
-    assert!(wrong.is_empty(), "{engine} W={width} {what}: mismatches at outputs {:?}", &wrong[..wrong.len().min(10)]);
+    eprintln!(
+        "{engine} W={width} {what}: {} pairs ({hits} hits), {} mismatches",
+        expected.len(),
+        wrong.len()
+    );
+    assert!(
+        wrong.is_empty(),
+        "{engine} W={width} {what}: mismatches at outputs {:?}",
+        &wrong[..wrong.len().min(10)]
+    );
 }
 
 #[test]
 fn rusthdl_pipeline_equals_model_on_shared_cases() {
     for width in [8, 16, 24, 32] {
         let mut pipeline = pipeline_for_width(width).unwrap();
-        for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
+        for (what, groups) in [
+            ("peer cases x 72", peer_groups(width)),
+            ("Shen pairs", shen_groups(width)),
+        ] {
             let (cycles, expected) = group_schedule(&groups, certified_intersects);
-            let result = run_schedule_on(pipeline.as_mut(), &cycles, &HarnessOptions::default()).unwrap();
+            let result =
+                run_schedule_on(pipeline.as_mut(), &cycles, &HarnessOptions::default()).unwrap();
             assert_equal("rust-hdl", what, width, &result, &expected);
         }
     }
@@ -79,9 +114,19 @@ fn rusthdl_pipeline_equals_model_on_shared_cases() {
 #[test]
 fn verilator_equals_model_on_shared_cases() {
     for width in [8, 16, 24] {
-        for (what, groups) in [("peer cases x 72", peer_groups(width)), ("Shen pairs", shen_groups(width))] {
+        for (what, groups) in [
+            ("peer cases x 72", peer_groups(width)),
+            ("Shen pairs", shen_groups(width)),
+        ] {
             let (cycles, expected) = group_schedule(&groups, certified_intersects);
-            let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Verilator, width, &cycles, None).unwrap().result;
+            let result = tritri_cosim::pipeline_rtl::run_schedule(
+                tritri_cosim::simulator::Simulator::Verilator,
+                width,
+                &cycles,
+                None,
+            )
+            .unwrap()
+            .result;
             assert_equal("verilator", what, width, &result, &expected);
         }
     }
@@ -91,6 +136,13 @@ fn verilator_equals_model_on_shared_cases() {
 fn icarus_equals_model_on_peer_cases() {
     let width = 24;
     let (cycles, expected) = group_schedule(&peer_groups(width), certified_intersects);
-    let result = tritri_cosim::pipeline_rtl::run_schedule(tritri_cosim::simulator::Simulator::Icarus, width, &cycles, None).unwrap().result;
+    let result = tritri_cosim::pipeline_rtl::run_schedule(
+        tritri_cosim::simulator::Simulator::Icarus,
+        width,
+        &cycles,
+        None,
+    )
+    .unwrap()
+    .result;
     assert_equal("icarus", "peer cases x 72", width, &result, &expected);
 }

@@ -15,11 +15,15 @@ fn tiny_fifo_slow_reader_loses_nothing() {
     let mut rng = system_common::rng(7);
     let arrays = system_common::random_arrays(&mut rng, &[(6, 8), (5, 7), (8, 3)], 24, 100);
     let batches = system_common::batches(&arrays);
-    let expected = pairs_where(&batches, |a, b| stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2]));
+    let expected = pairs_where(&batches, |a, b| {
+        stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2])
+    });
     let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
     for p in [1, 2, 4] {
         for overlap in [false, true] {
-            let config = SystemConfig::new(24, p, 6).with_depth(8).with_result_fifo_depth(2);
+            let config = SystemConfig::new(24, p, 6)
+                .with_depth(8)
+                .with_result_fifo_depth(2);
             let r = run_stub_system(config, &batches, overlap, ReaderBehaviour::OneIn(7));
             let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
             let model = system_cycles(config, &sizes, overlap, ReaderBehaviour::AlwaysReady);
@@ -48,13 +52,27 @@ fn tiny_fifo_slow_reader_loses_nothing() {
 fn tiny_fifo_slow_reader_loses_nothing_with_real_pipelines() {
     let (a, b) = system_common::small_scene(24, 12, 6);
     let batches = tritri_geom::scene::tile(&a, &b, 8);
-    let expected = pairs_where(&batches, |x, y| tritri_geom::fixed_point::intersects(&x.triangle, &y.triangle));
+    let expected = pairs_where(&batches, |x, y| {
+        tritri_geom::fixed_point::intersects(&x.triangle, &y.triangle)
+    });
     let config = SystemConfig::new(24, 4, tritri_rtl::pipeline::triangle_pipeline::latency())
         .with_depth(8)
         .with_result_fifo_depth(2);
-    let r = run_system_with(config, PipelineKind::Real, &batches, true, ReaderBehaviour::OneIn(7)).unwrap();
+    let r = run_system_with(
+        config,
+        PipelineKind::Real,
+        &batches,
+        true,
+        ReaderBehaviour::OneIn(7),
+    )
+    .unwrap();
     let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
-    eprintln!("real P=4: pairs {} (expected {}), missing {missing}, extra {extra}, stalls {}", r.pairs.len(), expected.len(), r.stall_cycles);
+    eprintln!(
+        "real P=4: pairs {} (expected {}), missing {missing}, extra {extra}, stalls {}",
+        r.pairs.len(),
+        expected.len(),
+        r.stall_cycles
+    );
     assert_eq!((missing, extra), (0, 0));
     assert!(r.stall_cycles > 0);
 }

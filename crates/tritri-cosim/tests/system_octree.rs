@@ -6,10 +6,10 @@
 //! rust-hdl and Verilator runs are identical word for word, and the cycle
 //! count is the system's cycle model over the leaf batches.
 
-use tritri_cosim::system_harness::{run_system, ReaderBehaviour};
 use tritri_cosim::simulator::Simulator;
-use tritri_cosim::system_rtl::run_system_rtl;
 use tritri_cosim::system_harness::PipelineKind;
+use tritri_cosim::system_harness::{run_system, ReaderBehaviour};
+use tritri_cosim::system_rtl::run_system_rtl;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{fixed_point_pairs, PairSet};
@@ -22,21 +22,43 @@ use tritri_rtl::system::SystemConfig;
 fn octree_leaves_through_rust_hdl_and_verilator_give_the_flat_pairs() {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 96, 32));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 64, 48));
-    assert!(a.triangles.len() >= 5000 && b.triangles.len() >= 5000, "{} {}", a.triangles.len(), b.triangles.len());
+    assert!(
+        a.triangles.len() >= 5000 && b.triangles.len() >= 5000,
+        "{} {}",
+        a.triangles.len(),
+        b.triangles.len()
+    );
     let config = SystemConfig::new(24, 2, latency()).with_depth(64);
-    let options = SceneOptions { width: 24, depth: 64, split: true };
+    let options = SceneOptions {
+        width: 24,
+        depth: 64,
+        split: true,
+    };
     let flat = prepare(&a, &b, &options).unwrap();
     let scene = prepare_octree(&a, &b, &options, &config, None).unwrap();
     let expected = fixed_point_pairs(&flat.batches(), &|_| {});
     assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), expected);
     assert!(expected.len() > 100, "{} pairs", expected.len());
-    assert!(scene.pairs_tested() * 100 < flat.pairs_tested(), "{} vs {}", scene.pairs_tested(), flat.pairs_tested());
+    assert!(
+        scene.pairs_tested() * 100 < flat.pairs_tested(),
+        "{} vs {}",
+        scene.pairs_tested(),
+        flat.pairs_tested()
+    );
 
     let batches = scene.batches();
     let model_cycles = scene_cycles(config, &batches);
 
     let hdl = run_system(config, &batches, ReaderBehaviour::AlwaysReady).unwrap();
-    let rtl = run_system_rtl(Simulator::Verilator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady).unwrap();
+    let rtl = run_system_rtl(
+        Simulator::Verilator,
+        config,
+        PipelineKind::Real,
+        &batches,
+        true,
+        ReaderBehaviour::AlwaysReady,
+    )
+    .unwrap();
     eprintln!(
         "octree: {} leaves' batches, {} pairs tested (flat {}), {} pairs, cycles {} (model {model_cycles})",
         batches.len(),

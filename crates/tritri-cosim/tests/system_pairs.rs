@@ -11,8 +11,8 @@ mod system_common;
 
 use std::time::Instant;
 use tritri_cosim::system_harness::*;
-use tritri_geom::scene::reference::{pairs_where, PairDiff};
 use tritri_geom::fixed_point::intersects;
+use tritri_geom::scene::reference::{pairs_where, PairDiff};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 
 #[test]
@@ -32,10 +32,18 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
     assert!(!expected.is_empty());
     for p in [1, 2, 4] {
         for overlap in [false, true] {
-            let config = SystemConfig::new(24, p, latency()).with_depth(8).with_result_fifo_depth(16);
+            let config = SystemConfig::new(24, p, latency())
+                .with_depth(8)
+                .with_result_fifo_depth(16);
             let started = Instant::now();
-            let r = run_system_with(config, PipelineKind::Real, &batches, overlap, ReaderBehaviour::AlwaysReady)
-                .unwrap();
+            let r = run_system_with(
+                config,
+                PipelineKind::Real,
+                &batches,
+                overlap,
+                ReaderBehaviour::AlwaysReady,
+            )
+            .unwrap();
             let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
             let model = system_cycles(config, &sizes, overlap, ReaderBehaviour::AlwaysReady);
             eprintln!(
@@ -47,7 +55,10 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
                 started.elapsed().as_secs_f64()
             );
             assert_eq!((missing, extra), (0, 0));
-            assert_eq!((r.hits as usize, r.pairs_tested, r.stall_cycles), (expected.len(), tested, 0));
+            assert_eq!(
+                (r.hits as usize, r.pairs_tested, r.stall_cycles),
+                (expected.len(), tested, 0)
+            );
             assert_eq!(r.cycles, model);
         }
     }

@@ -12,14 +12,22 @@ use tritri_rtl::system::SystemConfig;
 
 #[test]
 fn emitted_system_w24_p2_d64() {
-    let config = SystemConfig::new(24, 2, latency()).with_depth(64).with_result_fifo_depth(8);
+    let config = SystemConfig::new(24, 2, latency())
+        .with_depth(64)
+        .with_result_fifo_depth(8);
     let design = emit_system(config, PipelineKind::Real).unwrap();
     assert_eq!(design.top, "tritri_system_w24_p2_d64");
     let system_module = |path: &str| {
         path == format!("{}.v", design.top)
-            || ["address_generator", "memory", "simple_dual_port_ram", "result_fifo", "pair_serializer"]
-                .iter()
-                .any(|part| path.contains(part))
+            || [
+                "address_generator",
+                "memory",
+                "simple_dual_port_ram",
+                "result_fifo",
+                "pair_serializer",
+            ]
+            .iter()
+            .any(|part| path.contains(part))
     };
     let mut text = format!("// modules: {}\n", design.modules.join(" "));
     for f in design.verilog_files().filter(|f| system_module(&f.path)) {
@@ -36,15 +44,31 @@ fn emitted_system_is_lint_clean() {
     for pipelines in [1, 2, 4] {
         let config = SystemConfig::new(8, pipelines, latency()).with_depth(16);
         let design = emit_system(config, PipelineKind::Real).unwrap();
-        let dir = std::env::temp_dir().join(format!("tritri-system-lint-{}-{pipelines}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!(
+            "tritri-system-lint-{}-{pipelines}",
+            std::process::id()
+        ));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
         let messages = lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
-        assert!(messages.trim().is_empty(), "P={pipelines}: verilator said:\n{messages}");
-        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
-        assert!(messages.is_empty(), "P={pipelines}: slang -Weverything said:\n{messages}");
-        run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
+        assert!(
+            messages.trim().is_empty(),
+            "P={pipelines}: verilator said:\n{messages}"
+        );
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
             .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        assert!(
+            messages.is_empty(),
+            "P={pipelines}: slang -Weverything said:\n{messages}"
+        );
+        run(IVERILOG.command().unwrap().current_dir(&dir).args([
+            "-g2012",
+            "-o",
+            "/dev/null",
+            "-c",
+            "filelist.f",
+        ]))
+        .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

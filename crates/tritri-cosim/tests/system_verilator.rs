@@ -8,8 +8,8 @@
 mod system_common;
 
 use std::time::Instant;
-use tritri_cosim::system_harness::*;
 use tritri_cosim::simulator::Simulator;
+use tritri_cosim::system_harness::*;
 use tritri_cosim::system_rtl::run_system_rtl;
 use tritri_geom::certificate::certain;
 use tritri_geom::fixed_point::intersects;
@@ -24,16 +24,38 @@ fn stub_system_verilator_matches_rust_hdl() {
     let mut rng = system_common::rng(11);
     let arrays = system_common::random_arrays(&mut rng, &[(5, 4), (0, 3), (6, 7), (3, 3)], 24, 100);
     let batches = system_common::batches(&arrays);
-    let expected = pairs_where(&batches, |a, b| stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2]));
-    let uncertain = pairs_where(&batches, |a, b| !stub_certain(a.id, a.triangle[0][0], b.id, b.triangle[2][2]));
+    let expected = pairs_where(&batches, |a, b| {
+        stub_hit(a.id, a.triangle[0][0], b.id, b.triangle[2][2])
+    });
+    let uncertain = pairs_where(&batches, |a, b| {
+        !stub_certain(a.id, a.triangle[0][0], b.id, b.triangle[2][2])
+    });
     assert!(!uncertain.is_empty());
-    let config = SystemConfig::new(24, 2, 4).with_depth(8).with_result_fifo_depth(2);
-    for (overlap, reader) in [(true, ReaderBehaviour::AlwaysReady), (false, ReaderBehaviour::OneIn(7))] {
+    let config = SystemConfig::new(24, 2, 4)
+        .with_depth(8)
+        .with_result_fifo_depth(2);
+    for (overlap, reader) in [
+        (true, ReaderBehaviour::AlwaysReady),
+        (false, ReaderBehaviour::OneIn(7)),
+    ] {
         let hdl = run_stub_system(config, &batches, overlap, reader);
-        let rtl = run_system_rtl(Simulator::Verilator, config, PipelineKind::Stub, &batches, overlap, reader).unwrap();
+        let rtl = run_system_rtl(
+            Simulator::Verilator,
+            config,
+            PipelineKind::Stub,
+            &batches,
+            overlap,
+            reader,
+        )
+        .unwrap();
         eprintln!(
             "stub P=2 overlap={overlap} {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {}",
-            rtl.pairs.len(), hdl.pairs.len(), rtl.cycles, hdl.cycles, rtl.stall_cycles, hdl.stall_cycles
+            rtl.pairs.len(),
+            hdl.pairs.len(),
+            rtl.cycles,
+            hdl.cycles,
+            rtl.stall_cycles,
+            hdl.stall_cycles
         );
         assert!(PairDiff::between(&expected, &hdl.pairs).is_empty());
         assert!(PairDiff::between(&uncertain, &hdl.uncertain).is_empty());
@@ -48,12 +70,29 @@ fn system_verilator_matches_rust_hdl_on_a_small_scene() {
     let batches = tritri_geom::scene::tile(&a, &b, 16);
     let expected = pairs_where(&batches, |x, y| intersects(&x.triangle, &y.triangle));
     let uncertain = pairs_where(&batches, |x, y| !certain(&x.triangle, &y.triangle));
-    let config = SystemConfig::new(24, 2, latency()).with_depth(16).with_result_fifo_depth(4);
+    let config = SystemConfig::new(24, 2, latency())
+        .with_depth(16)
+        .with_result_fifo_depth(4);
     let started = Instant::now();
-    let hdl = run_system_with(config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady).unwrap();
+    let hdl = run_system_with(
+        config,
+        PipelineKind::Real,
+        &batches,
+        true,
+        ReaderBehaviour::AlwaysReady,
+    )
+    .unwrap();
     let hdl_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
-    let rtl = run_system_rtl(Simulator::Verilator, config, PipelineKind::Real, &batches, true, ReaderBehaviour::AlwaysReady).unwrap();
+    let rtl = run_system_rtl(
+        Simulator::Verilator,
+        config,
+        PipelineKind::Real,
+        &batches,
+        true,
+        ReaderBehaviour::AlwaysReady,
+    )
+    .unwrap();
     eprintln!(
         "real P=2: {} batches, pairs {} (expected {}), uncertain {} (expected {}), cycles {} / {}, rust-hdl {hdl_seconds:.1} s, verilator (with build) {:.1} s",
         batches.len(), rtl.pairs.len(), expected.len(), rtl.uncertain.len(), uncertain.len(), rtl.cycles, hdl.cycles, started.elapsed().as_secs_f64()

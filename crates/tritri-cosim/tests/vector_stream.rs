@@ -61,15 +61,21 @@ fn every_line_arrives_and_progress_is_seen_as_it_is_printed() {
         let compiled = compile(simulator, &bench()).unwrap();
         // 300,000 lines: more than a pipe holds many times over.
         let n = 300_000u64;
-        let mut write = |out: &mut dyn std::io::Write| (0..n).try_for_each(|k| writeln!(out, "{k:x}"));
+        let mut write =
+            |out: &mut dyn std::io::Write| (0..n).try_for_each(|k| writeln!(out, "{k:x}"));
         let reports = AtomicU64::new(0);
         let mut on_line = |line: &str| {
             if line.starts_with("# progress ") {
                 reports.fetch_add(1, Ordering::Relaxed);
             }
         };
-        let (text, _) = run_on_vector_stream(&compiled, "stream-test", &mut write, &[], &mut on_line).unwrap();
-        assert_eq!(text.trim(), format!("{n} {}", n * (n - 1) / 2), "{simulator:?}");
+        let (text, _) =
+            run_on_vector_stream(&compiled, "stream-test", &mut write, &[], &mut on_line).unwrap();
+        assert_eq!(
+            text.trim(),
+            format!("{n} {}", n * (n - 1) / 2),
+            "{simulator:?}"
+        );
         assert_eq!(reports.load(Ordering::Relaxed), n / 1000, "{simulator:?}");
     }
 }
@@ -80,10 +86,25 @@ fn a_testbench_that_stops_early_or_never_reads_ends_the_run() {
         let compiled = compile(simulator, &bench()).unwrap();
         for plusarg in ["+stop=10", "+never"] {
             let started = Instant::now();
-            let mut write = |out: &mut dyn std::io::Write| (0..1_000_000u64).try_for_each(|k| writeln!(out, "{k:x}"));
-            let result = run_on_vector_stream(&compiled, "stream-test", &mut write, &[plusarg.to_string()], &mut |_| {});
-            assert!(result.is_err(), "{simulator:?} {plusarg}: the vectors were not all read, yet {result:?}");
-            assert!(started.elapsed().as_secs() < 60, "{simulator:?} {plusarg}: took {:?}", started.elapsed());
+            let mut write = |out: &mut dyn std::io::Write| {
+                (0..1_000_000u64).try_for_each(|k| writeln!(out, "{k:x}"))
+            };
+            let result = run_on_vector_stream(
+                &compiled,
+                "stream-test",
+                &mut write,
+                &[plusarg.to_string()],
+                &mut |_| {},
+            );
+            assert!(
+                result.is_err(),
+                "{simulator:?} {plusarg}: the vectors were not all read, yet {result:?}"
+            );
+            assert!(
+                started.elapsed().as_secs() < 60,
+                "{simulator:?} {plusarg}: took {:?}",
+                started.elapsed()
+            );
         }
     }
 }

@@ -10,7 +10,9 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tritri_cosim::simulator::Simulator;
-use tritri_cosim::voxel_units::{clip_emitted, clip_rusthdl, set_operation_rusthdl, set_operations_emitted};
+use tritri_cosim::voxel_units::{
+    clip_emitted, clip_rusthdl, set_operation_rusthdl, set_operations_emitted,
+};
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::clip::classify;
 use tritri_geom::octree::tree::{Octree, SetOperation};
@@ -41,7 +43,11 @@ fn set_operations_in_hardware_equal_the_model_and_obey_the_laws() {
         g.fill_cube([0; 3], LEVEL);
         g
     };
-    let ops = [SetOperation::Union, SetOperation::Intersection, SetOperation::Difference];
+    let ops = [
+        SetOperation::Union,
+        SetOperation::Intersection,
+        SetOperation::Difference,
+    ];
     for round in 0..6 {
         let (a, b) = (random_grid(&mut rng), random_grid(&mut rng));
         let mut jobs: Vec<(SetOperation, &[u64], &[u64])> = Vec::new();
@@ -55,7 +61,11 @@ fn set_operations_in_hardware_equal_the_model_and_obey_the_laws() {
             .iter()
             .map(|&(op, x, y)| {
                 let (words, edges) = set_operation_rusthdl(op, x, y);
-                assert_eq!(edges, x.len() as u64 + 1, "one word per clock, one clock of latency");
+                assert_eq!(
+                    edges,
+                    x.len() as u64 + 1,
+                    "one word per clock, one clock of latency"
+                );
                 words
             })
             .collect();
@@ -64,16 +74,24 @@ fn set_operations_in_hardware_equal_the_model_and_obey_the_laws() {
             assert_eq!(grid(rusthdl[k].clone()), expected, "round {round} job {k}");
         }
         for simulator in [Simulator::Icarus, Simulator::Verilator] {
-            assert_eq!(set_operations_emitted(&jobs, simulator).unwrap(), rusthdl, "{simulator:?} round {round}");
+            assert_eq!(
+                set_operations_emitted(&jobs, simulator).unwrap(),
+                rusthdl,
+                "{simulator:?} round {round}"
+            );
         }
         // The laws, on the hardware's results.
-        let [union, union_ba, inter, inter_ba, diff, _, not_a, not_b] = [0, 1, 2, 3, 4, 5, 6, 7].map(|k| grid(rusthdl[k].clone()));
+        let [union, union_ba, inter, inter_ba, diff, _, not_a, not_b] =
+            [0, 1, 2, 3, 4, 5, 6, 7].map(|k| grid(rusthdl[k].clone()));
         assert_eq!(union, union_ba);
         assert_eq!(inter, inter_ba);
-        let within = |x: &VoxelGrid, y: &VoxelGrid| x.combine(SetOperation::Difference, y).count() == 0;
+        let within =
+            |x: &VoxelGrid, y: &VoxelGrid| x.combine(SetOperation::Difference, y).count() == 0;
         assert!(within(&inter, &a) && within(&a, &union) && within(&diff, &a));
-        let (not_union, _) = set_operation_rusthdl(SetOperation::Difference, full.words(), union.words());
-        let (both_not, _) = set_operation_rusthdl(SetOperation::Intersection, not_a.words(), not_b.words());
+        let (not_union, _) =
+            set_operation_rusthdl(SetOperation::Difference, full.words(), union.words());
+        let (both_not, _) =
+            set_operation_rusthdl(SetOperation::Intersection, not_a.words(), not_b.words());
         assert_eq!(not_union, both_not, "De Morgan, round {round}");
         for g in [&union, &inter, &diff] {
             assert_eq!(&Octree::from_voxels(g).to_voxels(), g, "octree round trip");
@@ -85,23 +103,38 @@ fn set_operations_in_hardware_equal_the_model_and_obey_the_laws() {
 fn the_clipper_classifies_octants_as_the_model() {
     let mut rng = ChaCha8Rng::seed_from_u64(4);
     let n = 1i64 << 9;
-    let boxes = [([100, 100, 100], [400, 300, 350]), ([0, 0, 0], [512, 512, 512]), ([3, 0, 500], [4, 512, 512]), ([256, 256, 256], [257, 257, 257])];
+    let boxes = [
+        ([100, 100, 100], [400, 300, 350]),
+        ([0, 0, 0], [512, 512, 512]),
+        ([3, 0, 500], [4, 512, 512]),
+        ([256, 256, 256], [257, 257, 257]),
+    ];
     let mut jobs = Vec::new();
     for (lo, hi) in boxes {
         let octants: Vec<Cell> = (0..400)
             .map(|_| {
                 let level = rng.gen_range(0..=9u32);
                 let side = 1i64 << level;
-                Cell { lo: [0; 3].map(|_: i64| rng.gen_range(0..n / side) * side), level }
+                Cell {
+                    lo: [0; 3].map(|_: i64| rng.gen_range(0..n / side) * side),
+                    level,
+                }
             })
             .collect();
         jobs.push((lo, hi, octants));
     }
-    let emitted_jobs: Vec<([i64; 3], [i64; 3], &[Cell])> = jobs.iter().map(|(lo, hi, o)| (*lo, *hi, o.as_slice())).collect();
+    let emitted_jobs: Vec<([i64; 3], [i64; 3], &[Cell])> = jobs
+        .iter()
+        .map(|(lo, hi, o)| (*lo, *hi, o.as_slice()))
+        .collect();
     let verilator = clip_emitted(&emitted_jobs, Simulator::Verilator).unwrap();
     for ((lo, hi, octants), from_verilator) in jobs.iter().zip(verilator) {
         let expected: Vec<_> = octants.iter().map(|o| classify(o, *lo, *hi)).collect();
-        assert_eq!(clip_rusthdl(*lo, *hi, octants).unwrap(), expected, "{lo:?} {hi:?}");
+        assert_eq!(
+            clip_rusthdl(*lo, *hi, octants).unwrap(),
+            expected,
+            "{lo:?} {hi:?}"
+        );
         assert_eq!(from_verilator, expected, "Verilator {lo:?} {hi:?}");
     }
 }

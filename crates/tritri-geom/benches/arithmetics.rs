@@ -34,7 +34,10 @@ fn shen_pairs() -> Vec<TrianglePair> {
 
 fn bench_set(c: &mut Criterion, group_name: &str, pairs: &[TrianglePair]) {
     let mut group = c.benchmark_group(group_name);
-    group.sample_size(20).measurement_time(Duration::from_secs(2)).warm_up_time(Duration::from_millis(500));
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(2))
+        .warm_up_time(Duration::from_millis(500));
     group.throughput(Throughput::Elements(pairs.len() as u64));
     for arith in Arithmetic::all(&[16, 24, 32]).unwrap() {
         group.bench_with_input(BenchmarkId::from_parameter(arith), pairs, |b, pairs| {
@@ -42,9 +45,18 @@ fn bench_set(c: &mut Criterion, group_name: &str, pairs: &[TrianglePair]) {
         });
     }
     let (_, quantized) = quantize_pairs(pairs, 24).unwrap();
-    group.bench_with_input(BenchmarkId::from_parameter("fixed24-kernel"), &quantized, |b, q| {
-        b.iter(|| black_box(q).iter().map(|p| fixed_point::intersects(&p[0], &p[1])).collect::<Vec<_>>())
-    });
+    group.bench_with_input(
+        BenchmarkId::from_parameter("fixed24-kernel"),
+        &quantized,
+        |b, q| {
+            b.iter(|| {
+                black_box(q)
+                    .iter()
+                    .map(|p| fixed_point::intersects(&p[0], &p[1]))
+                    .collect::<Vec<_>>()
+            })
+        },
+    );
     group.finish();
 }
 

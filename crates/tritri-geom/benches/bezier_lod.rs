@@ -21,14 +21,25 @@ const EYE: [f64; 3] = [7.0, -10.0, 6.0];
 const NEAR: f64 = 4.0;
 
 fn teapot() -> Vec<BezierPatch> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata/teapot.bpt");
-    let patches = read_bpt(&path).unwrap_or_else(|e| panic!("{}: {e} (the bench reads the shared test data)", path.display()));
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata/teapot.bpt");
+    let patches = read_bpt(&path).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e} (the bench reads the shared test data)",
+            path.display()
+        )
+    });
     oriented_outwards(&patches).0
 }
 
 /// Culling, levels and tessellation: the triangles drawn.
 fn adaptive(patches: &[BezierPatch]) -> usize {
-    plan(patches, EYE.into(), NEAR).iter().zip(patches).filter(|(view, _)| !view.culled).map(|(view, patch)| patch.tessellate(view.samples).len()).sum()
+    plan(patches, EYE.into(), NEAR)
+        .iter()
+        .zip(patches)
+        .filter(|(view, _)| !view.culled)
+        .map(|(view, patch)| patch.tessellate(view.samples).len())
+        .sum()
 }
 
 /// Every patch at 20 x 20.
@@ -43,9 +54,17 @@ fn teapot_lod(c: &mut Criterion) {
     for times in 0..=4 {
         let patches = subdivide(&base, times);
         let n = patches.len();
-        eprintln!("{n} patches: adaptive draws {} triangles, uniform 20 x 20 {}", adaptive(&patches), uniform(&patches));
-        group.bench_with_input(BenchmarkId::new("adaptive", n), &patches, |b, p| b.iter(|| adaptive(black_box(p))));
-        group.bench_with_input(BenchmarkId::new("uniform_20", n), &patches, |b, p| b.iter(|| uniform(black_box(p))));
+        eprintln!(
+            "{n} patches: adaptive draws {} triangles, uniform 20 x 20 {}",
+            adaptive(&patches),
+            uniform(&patches)
+        );
+        group.bench_with_input(BenchmarkId::new("adaptive", n), &patches, |b, p| {
+            b.iter(|| adaptive(black_box(p)))
+        });
+        group.bench_with_input(BenchmarkId::new("uniform_20", n), &patches, |b, p| {
+            b.iter(|| uniform(black_box(p)))
+        });
     }
     group.finish();
 }

@@ -62,7 +62,12 @@ impl Arithmetic {
     /// Exact, f64, f32, Möller, then fixed at each width: what `tritri eval`
     /// runs.
     pub fn all(widths: &[u32]) -> Result<Vec<Arithmetic>, WidthOutOfRange> {
-        let mut v = vec![Arithmetic::Exact, Arithmetic::F64, Arithmetic::F32, Arithmetic::Moller];
+        let mut v = vec![
+            Arithmetic::Exact,
+            Arithmetic::F64,
+            Arithmetic::F32,
+            Arithmetic::Moller,
+        ];
         for &w in widths {
             v.push(Arithmetic::fixed(w)?);
         }
@@ -112,7 +117,9 @@ impl FromStr for Arithmetic {
             return Err(ParseArithmeticError::Unknown(s.to_string()));
         };
         let digits = rest.strip_prefix([':', '-', '=']).unwrap_or(rest);
-        let width: u32 = digits.parse().map_err(|_| ParseArithmeticError::BadWidth(s.to_string()))?;
+        let width: u32 = digits
+            .parse()
+            .map_err(|_| ParseArithmeticError::BadWidth(s.to_string()))?;
         Ok(Arithmetic::fixed(width)?)
     }
 }
@@ -136,25 +143,41 @@ pub enum ClassifyError {
 }
 
 /// Decides every pair with `arith`. See the module documentation for the rules.
-pub fn classify(arith: Arithmetic, pairs: &[TrianglePair]) -> Result<Classification, ClassifyError> {
+pub fn classify(
+    arith: Arithmetic,
+    pairs: &[TrianglePair],
+) -> Result<Classification, ClassifyError> {
     if !matches!(arith, Arithmetic::Fixed(_)) {
         // (Frame::fit checks it for Fixed.)
         check_finite(pairs)?;
     }
     Ok(match arith {
-        Arithmetic::Exact => Classification { verdicts: verdicts_of(pairs, exact_f64::intersects), frame: None },
-        Arithmetic::F64 => {
-            Classification { verdicts: verdicts_of(pairs, published_float::intersects_f64), frame: None }
-        }
-        Arithmetic::F32 => {
-            Classification { verdicts: verdicts_of(pairs, published_float::intersects_f32), frame: None }
-        }
-        Arithmetic::Moller => Classification { verdicts: verdicts_of(pairs, moller::intersects), frame: None },
+        Arithmetic::Exact => Classification {
+            verdicts: verdicts_of(pairs, exact_f64::intersects),
+            frame: None,
+        },
+        Arithmetic::F64 => Classification {
+            verdicts: verdicts_of(pairs, published_float::intersects_f64),
+            frame: None,
+        },
+        Arithmetic::F32 => Classification {
+            verdicts: verdicts_of(pairs, published_float::intersects_f32),
+            frame: None,
+        },
+        Arithmetic::Moller => Classification {
+            verdicts: verdicts_of(pairs, moller::intersects),
+            frame: None,
+        },
         Arithmetic::Fixed(width) => {
             let frame = fit_frame(pairs, width)?;
-            let verdicts =
-                pairs.iter().map(|p| fixed_point::intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2))).collect();
-            Classification { verdicts, frame: Some(frame) }
+            let verdicts = pairs
+                .iter()
+                .map(|p| fixed_point::intersects(&frame.quantize(&p.t1), &frame.quantize(&p.t2)))
+                .collect();
+            Classification {
+                verdicts,
+                frame: Some(frame),
+            }
         }
     })
 }
@@ -162,7 +185,10 @@ pub fn classify(arith: Arithmetic, pairs: &[TrianglePair]) -> Result<Classificat
 /// Generic over the test (a distinct type per function), so that each
 /// arithmetic's loop is its own function with its test inlined.
 #[inline(never)]
-fn verdicts_of<F: Fn(&crate::Triangle, &crate::Triangle) -> bool>(pairs: &[TrianglePair], test: F) -> Vec<bool> {
+fn verdicts_of<F: Fn(&crate::Triangle, &crate::Triangle) -> bool>(
+    pairs: &[TrianglePair],
+    test: F,
+) -> Vec<bool> {
     pairs.iter().map(|p| test(&p.t1, &p.t2)).collect()
 }
 
@@ -170,14 +196,23 @@ fn verdicts_of<F: Fn(&crate::Triangle, &crate::Triangle) -> bool>(pairs: &[Trian
 pub fn fit_frame(pairs: &[TrianglePair], width: u32) -> Result<Frame, ClassifyError> {
     Frame::fit(pairs.iter().flat_map(|p| [&p.t1, &p.t2]), width).map_err(|e| match e {
         QuantizeError::Width(w) => ClassifyError::Width(w),
-        QuantizeError::NotFinite { triangle, value } => ClassifyError::NotFinite { pair: triangle / 2, value },
+        QuantizeError::NotFinite { triangle, value } => ClassifyError::NotFinite {
+            pair: triangle / 2,
+            value,
+        },
     })
 }
 
 /// The batch quantized into its one frame, as `[t1, t2]` per pair.
-pub fn quantize_pairs(pairs: &[TrianglePair], width: u32) -> Result<(Frame, Vec<[FixedTriangle; 2]>), ClassifyError> {
+pub fn quantize_pairs(
+    pairs: &[TrianglePair],
+    width: u32,
+) -> Result<(Frame, Vec<[FixedTriangle; 2]>), ClassifyError> {
     let frame = fit_frame(pairs, width)?;
-    let q = pairs.iter().map(|p| [frame.quantize(&p.t1), frame.quantize(&p.t2)]).collect();
+    let q = pairs
+        .iter()
+        .map(|p| [frame.quantize(&p.t1), frame.quantize(&p.t2)])
+        .collect();
     Ok((frame, q))
 }
 
@@ -215,10 +250,23 @@ mod tests {
 
     #[test]
     fn bad_names_and_widths_are_named_in_the_error() {
-        assert_eq!("fixed40".parse::<Arithmetic>(), Err(ParseArithmeticError::Width(WidthOutOfRange(40))));
-        assert!("fixed40".parse::<Arithmetic>().unwrap_err().to_string().contains("40"));
-        assert_eq!("fixedx".parse::<Arithmetic>(), Err(ParseArithmeticError::BadWidth("fixedx".into())));
-        assert_eq!("f16".parse::<Arithmetic>(), Err(ParseArithmeticError::Unknown("f16".into())));
+        assert_eq!(
+            "fixed40".parse::<Arithmetic>(),
+            Err(ParseArithmeticError::Width(WidthOutOfRange(40)))
+        );
+        assert!("fixed40"
+            .parse::<Arithmetic>()
+            .unwrap_err()
+            .to_string()
+            .contains("40"));
+        assert_eq!(
+            "fixedx".parse::<Arithmetic>(),
+            Err(ParseArithmeticError::BadWidth("fixedx".into()))
+        );
+        assert_eq!(
+            "f16".parse::<Arithmetic>(),
+            Err(ParseArithmeticError::Unknown("f16".into()))
+        );
         assert_eq!(Arithmetic::fixed(7), Err(WidthOutOfRange(7)));
     }
 
@@ -244,7 +292,11 @@ mod tests {
         let t: crate::Triangle = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let far = t.map(|p| p.map(|c| c + 1000.0));
         let one = classify(Arithmetic::Fixed(16), &[TrianglePair::new(t, t)]).unwrap();
-        let two = classify(Arithmetic::Fixed(16), &[TrianglePair::new(t, t), TrianglePair::new(far, far)]).unwrap();
+        let two = classify(
+            Arithmetic::Fixed(16),
+            &[TrianglePair::new(t, t), TrianglePair::new(far, far)],
+        )
+        .unwrap();
         assert!(two.frame.unwrap().step > 500.0 * one.frame.unwrap().step);
         assert_eq!(two.verdicts, vec![true, true]);
     }

@@ -25,7 +25,10 @@ impl<T: Copy + PartialOrd> Aabb<T> {
     {
         let mut it = triangles.into_iter().flat_map(|t| t.iter());
         let first = *it.next()?;
-        let mut b = Aabb { lo: first, hi: first };
+        let mut b = Aabb {
+            lo: first,
+            hi: first,
+        };
         for p in it {
             for k in 0..3 {
                 if p[k] < b.lo[k] {
@@ -61,7 +64,10 @@ impl<T: Copy + PartialOrd> Aabb<T> {
 impl Aabb<f64> {
     /// The box grown by `margin` on every side.
     pub fn expanded(&self, margin: f64) -> Aabb<f64> {
-        Aabb { lo: self.lo.map(|v| v - margin), hi: self.hi.map(|v| v + margin) }
+        Aabb {
+            lo: self.lo.map(|v| v - margin),
+            hi: self.hi.map(|v| v + margin),
+        }
     }
 
     /// Largest side length.
@@ -97,7 +103,10 @@ pub fn grown_triangle_touches_box(t: &FixedTriangle, margin: i128, b: &Aabb<i64>
 impl Aabb<i64> {
     /// The box grown by `margin` on every side.
     pub fn grown(&self, margin: i64) -> Aabb<i64> {
-        Aabb { lo: self.lo.map(|v| v - margin), hi: self.hi.map(|v| v + margin) }
+        Aabb {
+            lo: self.lo.map(|v| v - margin),
+            hi: self.hi.map(|v| v + margin),
+        }
     }
 }
 
@@ -106,37 +115,79 @@ mod tests {
     use super::*;
 
     fn unit_box() -> Aabb<i64> {
-        Aabb { lo: [0, 0, 0], hi: [10, 10, 10] }
+        Aabb {
+            lo: [0, 0, 0],
+            hi: [10, 10, 10],
+        }
     }
 
     #[test]
     fn overlap_of_boxes_is_their_intersection_or_none() {
-        let a = Aabb { lo: [0.0, 0.0, 0.0], hi: [2.0, 2.0, 2.0] };
-        let b = Aabb { lo: [1.0, -1.0, 2.0], hi: [3.0, 1.0, 5.0] };
-        assert_eq!(a.overlap(&b), Some(Aabb { lo: [1.0, 0.0, 2.0], hi: [2.0, 1.0, 2.0] }));
-        let c = Aabb { lo: [2.5, 0.0, 0.0], hi: [3.0, 1.0, 1.0] };
+        let a = Aabb {
+            lo: [0.0, 0.0, 0.0],
+            hi: [2.0, 2.0, 2.0],
+        };
+        let b = Aabb {
+            lo: [1.0, -1.0, 2.0],
+            hi: [3.0, 1.0, 5.0],
+        };
+        assert_eq!(
+            a.overlap(&b),
+            Some(Aabb {
+                lo: [1.0, 0.0, 2.0],
+                hi: [2.0, 1.0, 2.0]
+            })
+        );
+        let c = Aabb {
+            lo: [2.5, 0.0, 0.0],
+            hi: [3.0, 1.0, 1.0],
+        };
         assert_eq!(a.overlap(&c), None);
     }
 
     #[test]
     fn triangle_touching_a_box_face_counts() {
-        assert!(triangle_touches_box(&[[10, 0, 0], [20, 0, 0], [20, 5, 5]], &unit_box()));
-        assert!(!triangle_touches_box(&[[11, 0, 0], [20, 0, 0], [20, 5, 5]], &unit_box()));
+        assert!(triangle_touches_box(
+            &[[10, 0, 0], [20, 0, 0], [20, 5, 5]],
+            &unit_box()
+        ));
+        assert!(!triangle_touches_box(
+            &[[11, 0, 0], [20, 0, 0], [20, 5, 5]],
+            &unit_box()
+        ));
     }
 
     #[test]
     fn triangle_cutting_a_corner_whose_box_overlaps_is_decided_by_its_plane() {
         // The plane x + y + z = 31 passes the corner (10,10,10) at distance; x+y+z = 30 touches it.
-        assert!(!triangle_touches_box(&[[31, 0, 0], [0, 31, 0], [0, 0, 31]], &unit_box()));
-        assert!(triangle_touches_box(&[[30, 0, 0], [0, 30, 0], [0, 0, 30]], &unit_box()));
+        assert!(!triangle_touches_box(
+            &[[31, 0, 0], [0, 31, 0], [0, 0, 31]],
+            &unit_box()
+        ));
+        assert!(triangle_touches_box(
+            &[[30, 0, 0], [0, 30, 0], [0, 0, 30]],
+            &unit_box()
+        ));
     }
 
     #[test]
     fn degenerate_triangles_are_segments_and_points() {
-        assert!(triangle_touches_box(&[[5, 5, 5], [5, 5, 5], [5, 5, 5]], &unit_box()));
-        assert!(!triangle_touches_box(&[[5, 5, 11], [5, 5, 11], [5, 5, 11]], &unit_box()));
+        assert!(triangle_touches_box(
+            &[[5, 5, 5], [5, 5, 5], [5, 5, 5]],
+            &unit_box()
+        ));
+        assert!(!triangle_touches_box(
+            &[[5, 5, 11], [5, 5, 11], [5, 5, 11]],
+            &unit_box()
+        ));
         // A segment passing beside an edge of the box: x + y = 21 misses, x + y = 20 touches.
-        assert!(!triangle_touches_box(&[[21, 0, 5], [0, 21, 5], [0, 21, 5]], &unit_box()));
-        assert!(triangle_touches_box(&[[20, 0, 5], [0, 20, 5], [10, 10, 5]], &unit_box()));
+        assert!(!triangle_touches_box(
+            &[[21, 0, 5], [0, 21, 5], [0, 21, 5]],
+            &unit_box()
+        ));
+        assert!(triangle_touches_box(
+            &[[20, 0, 5], [0, 20, 5], [10, 10, 5]],
+            &unit_box()
+        ));
     }
 }

@@ -23,7 +23,11 @@ pub fn torus(centre: Point, big: f64, small: f64, nu: usize, nv: usize) -> Vec<T
     periodic_surface(nu, nv, |u, v| {
         let (a, b) = (TAU * u, TAU * v);
         let r = big + small * b.cos();
-        [centre[0] + r * a.cos(), centre[1] + r * a.sin(), centre[2] + small * b.sin()]
+        [
+            centre[0] + r * a.cos(),
+            centre[1] + r * a.sin(),
+            centre[2] + small * b.sin(),
+        ]
     })
 }
 
@@ -31,19 +35,35 @@ pub fn torus(centre: Point, big: f64, small: f64, nu: usize, nv: usize) -> Vec<T
 /// latitudes strictly inside (0, pi) and closing them with fans.
 pub fn sphere(centre: Point, radius: f64, nu: usize, nv: usize) -> Vec<Triangle> {
     let point = |lat: f64, lon: f64| {
-        [centre[0] + radius * lat.sin() * lon.cos(), centre[1] + radius * lat.sin() * lon.sin(), centre[2] + radius * lat.cos()]
+        [
+            centre[0] + radius * lat.sin() * lon.cos(),
+            centre[1] + radius * lat.sin() * lon.sin(),
+            centre[2] + radius * lat.cos(),
+        ]
     };
     let lat = |i: usize| std::f64::consts::PI * i as f64 / nv as f64;
     let lon = |j: usize| TAU * (j % nu) as f64 / nu as f64;
-    let (north, south) = ([centre[0], centre[1], centre[2] + radius], [centre[0], centre[1], centre[2] - radius]);
+    let (north, south) = (
+        [centre[0], centre[1], centre[2] + radius],
+        [centre[0], centre[1], centre[2] - radius],
+    );
     let mut out = Vec::new();
     for j in 0..nu {
         out.push([north, point(lat(1), lon(j)), point(lat(1), lon(j + 1))]);
-        out.push([south, point(lat(nv - 1), lon(j + 1)), point(lat(nv - 1), lon(j))]);
+        out.push([
+            south,
+            point(lat(nv - 1), lon(j + 1)),
+            point(lat(nv - 1), lon(j)),
+        ]);
     }
     for i in 1..nv - 1 {
         for j in 0..nu {
-            let (a, b, c, d) = (point(lat(i), lon(j)), point(lat(i + 1), lon(j)), point(lat(i + 1), lon(j + 1)), point(lat(i), lon(j + 1)));
+            let (a, b, c, d) = (
+                point(lat(i), lon(j)),
+                point(lat(i + 1), lon(j)),
+                point(lat(i + 1), lon(j + 1)),
+                point(lat(i), lon(j + 1)),
+            );
             out.push([a, b, c]);
             out.push([a, c, d]);
         }
@@ -69,7 +89,14 @@ mod tests {
         let (a, b) = default_scene();
         assert_eq!(a.len(), 2 * 48 * 24);
         assert_eq!(b.len(), 2 * 32 * 15);
-        let hits = a.iter().flat_map(|ta| b.iter().map(move |tb| (ta, tb))).filter(|(ta, tb)| exact_f64::intersects(ta, tb)).count();
-        assert!(hits > 10, "the sphere must cut the torus's tube: {hits} intersecting pairs");
+        let hits = a
+            .iter()
+            .flat_map(|ta| b.iter().map(move |tb| (ta, tb)))
+            .filter(|(ta, tb)| exact_f64::intersects(ta, tb))
+            .count();
+        assert!(
+            hits > 10,
+            "the sphere must cut the torus's tube: {hits} intersecting pairs"
+        );
     }
 }

@@ -81,7 +81,9 @@ pub fn magnitude_bits(x: i64) -> u32 {
 /// magnitude among `entries`, at least 1.
 #[inline]
 pub fn entry_bits(entries: &[i64]) -> u32 {
-    entries.iter().fold(1, |bits, &x| bits.max(magnitude_bits(x)))
+    entries
+        .iter()
+        .fold(1, |bits, &x| bits.max(magnitude_bits(x)))
 }
 
 /// `(P ^ (P >> 127)) >> (2m + 5) != 0`: the determinant is clear of every
@@ -92,16 +94,30 @@ pub fn clears_threshold(value: i128, m: u32) -> bool {
 }
 
 /// The sign of `[a,b,c,d]` and whether it is certain.
-pub fn orient3d_certified(a: FixedPoint3, b: FixedPoint3, c: FixedPoint3, d: FixedPoint3) -> (Sign, bool) {
+pub fn orient3d_certified(
+    a: FixedPoint3,
+    b: FixedPoint3,
+    c: FixedPoint3,
+    d: FixedPoint3,
+) -> (Sign, bool) {
     let value = orient3d_value(a, b, c, d);
-    let entries: Vec<i64> = [b, c, d].iter().flat_map(|p| (0..3).map(move |k| p[k] - a[k])).collect();
-    (Sign::of_i128(value), clears_threshold(value, entry_bits(&entries)))
+    let entries: Vec<i64> = [b, c, d]
+        .iter()
+        .flat_map(|p| (0..3).map(move |k| p[k] - a[k]))
+        .collect();
+    (
+        Sign::of_i128(value),
+        clears_threshold(value, entry_bits(&entries)),
+    )
 }
 
 /// Signs of `t`'s vertices against `plane`'s plane, and their certainty.
 fn plane_side(plane: &FixedTriangle, t: &FixedTriangle) -> ([Sign; 3], bool) {
     let s = t.map(|v| orient3d_certified(plane[0], plane[1], plane[2], v));
-    (s.map(|(sign, _)| sign), s.iter().all(|&(_, certain)| certain))
+    (
+        s.map(|(sign, _)| sign),
+        s.iter().all(|&(_, certain)| certain),
+    )
 }
 
 fn strictly_one_side(s: [Sign; 3]) -> bool {
@@ -137,7 +153,10 @@ pub fn certain(t1: &FixedTriangle, t2: &FixedTriangle) -> bool {
 
 /// The grid verdict with its certificate.
 pub fn certified_intersects(t1: &FixedTriangle, t2: &FixedTriangle) -> CertifiedVerdict {
-    CertifiedVerdict { hit: crate::fixed_point::intersects(t1, t2), certain: certain(t1, t2) }
+    CertifiedVerdict {
+        hit: crate::fixed_point::intersects(t1, t2),
+        certain: certain(t1, t2),
+    }
 }
 
 /// The answer on the original coordinates from grid verdicts and their
@@ -157,7 +176,10 @@ pub struct CertifiedRun {
 /// original coordinates (`crate::exact_f64`); `grid[i]` belongs to `pairs[i]`.
 pub fn recheck(pairs: &[crate::TrianglePair], grid: &[CertifiedVerdict]) -> CertifiedRun {
     assert_eq!(pairs.len(), grid.len(), "one grid verdict per pair");
-    let mut run = CertifiedRun { verdicts: Vec::with_capacity(pairs.len()), ..Default::default() };
+    let mut run = CertifiedRun {
+        verdicts: Vec::with_capacity(pairs.len()),
+        ..Default::default()
+    };
     for (pair, v) in pairs.iter().zip(grid) {
         if v.certain {
             run.verdicts.push(v.hit);
@@ -182,7 +204,10 @@ mod tests {
         for x in -70i64..=70 {
             let bits = magnitude_bits(x);
             assert!(x.unsigned_abs() <= 1 << bits, "{x}");
-            assert!(bits == 0 || x.unsigned_abs() >= 1 << (bits - 1), "{x}: not tight");
+            assert!(
+                bits == 0 || x.unsigned_abs() >= 1 << (bits - 1),
+                "{x}: not tight"
+            );
         }
         assert_eq!(magnitude_bits(-4), 2);
         assert_eq!(magnitude_bits(4), 3);
@@ -220,7 +245,10 @@ mod tests {
                 assert_eq!(v.hit, truth, "certain but wrong: {pair:?}");
             }
         }
-        assert!(wrong > 500, "the test should see wrong grid verdicts ({wrong})");
+        assert!(
+            wrong > 500,
+            "the test should see wrong grid verdicts ({wrong})"
+        );
         // About 9 % at W = 8 (88 % of the random pairs at W = 12, all at 24).
         assert!(certain_count > 1_500, "{certain_count} certain of 20000");
     }
@@ -232,6 +260,9 @@ mod tests {
         let t2 = [[1, 1, 0], [500, 1, 0], [1, 500, 0]];
         assert!(!certain(&t1, &t2));
         let far = [[1, 1, 10_000], [5000, 1, 10_000], [1, 5000, 12_000]];
-        assert!(certain(&t1, &far), "a triangle high above the other's plane");
+        assert!(
+            certain(&t1, &far),
+            "a triangle high above the other's plane"
+        );
     }
 }

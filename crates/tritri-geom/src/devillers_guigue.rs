@@ -84,7 +84,11 @@ fn plane_side<K: ExactKernel>(plane: [K::Point; 3], t: [K::Point; 3]) -> [Sign; 
     let [p, q, r] = plane;
     // Written out (not `t.map`) so that the three calls inline side by side
     // and the plane's normal is computed once.
-    [K::orient3d(p, q, r, t[0]), K::orient3d(p, q, r, t[1]), K::orient3d(p, q, r, t[2])]
+    [
+        K::orient3d(p, q, r, t[0]),
+        K::orient3d(p, q, r, t[1]),
+        K::orient3d(p, q, r, t[2]),
+    ]
 }
 
 fn all_strictly_same_side(s: [Sign; 3]) -> bool {
@@ -120,7 +124,12 @@ pub fn triangles_intersect<K: ExactKernel>(t1: [K::Point; 3], t2: [K::Point; 3])
 /// T2 and T2's signs permuted alike. This is the sign table of the reference
 /// C code (`tri_tri_overlap_test_3d`), decided on signs only.
 #[inline(always)]
-pub fn align_t1<P: Copy>(t1: [P; 3], t2: [P; 3], d1: [Sign; 3], d2: [Sign; 3]) -> ([P; 3], [P; 3], [Sign; 3]) {
+pub fn align_t1<P: Copy>(
+    t1: [P; 3],
+    t2: [P; 3],
+    d1: [Sign; 3],
+    d2: [Sign; 3],
+) -> ([P; 3], [P; 3], [Sign; 3]) {
     use Sign::*;
     let [p1, q1, r1] = t1;
     let [p2, q2, r2] = t2;
@@ -168,7 +177,9 @@ pub fn align_t2<P: Copy>(t2: [P; 3], d2: [Sign; 3]) -> AlignedT2<P> {
         (Zero, Positive, Negative | Zero) => ([q2, r2, p2], false),
         (Zero, Zero, Positive) => ([r2, p2, q2], false),
         (Zero, Zero, Negative) => ([r2, p2, q2], true),
-        (Zero, Zero, Zero) => unreachable!("T1 is not coplanar with T2, so T2 is not on T1's plane"),
+        (Zero, Zero, Zero) => {
+            unreachable!("T1 is not coplanar with T2, so T2 is not on T1's plane")
+        }
     };
     AlignedT2 { t2, swap_t1 }
 }
@@ -222,7 +233,11 @@ pub fn segment_triangle<K: ExactKernel>(a: K::Point, b: K::Point, t: [K::Point; 
     // The segment crosses the plane at exactly one point, which lies in the
     // closed triangle iff the line ab passes on the same side of all three
     // edges (zero allowed: through an edge or a vertex).
-    let s = [K::orient3d(a, b, p, q), K::orient3d(a, b, q, r), K::orient3d(a, b, r, p)];
+    let s = [
+        K::orient3d(a, b, p, q),
+        K::orient3d(a, b, q, r),
+        K::orient3d(a, b, r, p),
+    ];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
@@ -270,15 +285,25 @@ fn point_in_triangle_2d<K: ExactKernel>(axis: usize, x: K::Point, t: &[K::Point]
     if orientation.is_zero() {
         return false;
     }
-    [K::orient2d(axis, a, b, x), K::orient2d(axis, b, c, x), K::orient2d(axis, c, a, x)]
-        .iter()
-        .all(|&s| s.is_zero() || s == orientation)
+    [
+        K::orient2d(axis, a, b, x),
+        K::orient2d(axis, b, c, x),
+        K::orient2d(axis, c, a, x),
+    ]
+    .iter()
+    .all(|&s| s.is_zero() || s == orientation)
 }
 
 /// Closed segments `[a,b]` and `[c,d]` in the projection dropping `axis`
 /// (zero-length segments allowed), the classic orientation test with the
 /// collinear cases resolved by coordinate comparisons.
-fn segments_intersect_2d<K: ExactKernel>(axis: usize, a: K::Point, b: K::Point, c: K::Point, d: K::Point) -> bool {
+fn segments_intersect_2d<K: ExactKernel>(
+    axis: usize,
+    a: K::Point,
+    b: K::Point,
+    c: K::Point,
+    d: K::Point,
+) -> bool {
     let o1 = K::orient2d(axis, a, b, c);
     let o2 = K::orient2d(axis, a, b, d);
     let o3 = K::orient2d(axis, c, d, a);
@@ -297,8 +322,10 @@ fn segments_intersect_2d<K: ExactKernel>(axis: usize, a: K::Point, b: K::Point, 
 /// segment's bounding box there?
 fn on_segment_2d<K: ExactKernel>(axis: usize, a: K::Point, b: K::Point, x: K::Point) -> bool {
     [(axis + 1) % 3, (axis + 2) % 3].iter().all(|&k| {
-        let lo_ok = K::compare_coordinate(k, a, x).is_le() || K::compare_coordinate(k, b, x).is_le();
-        let hi_ok = K::compare_coordinate(k, a, x).is_ge() || K::compare_coordinate(k, b, x).is_ge();
+        let lo_ok =
+            K::compare_coordinate(k, a, x).is_le() || K::compare_coordinate(k, b, x).is_le();
+        let hi_ok =
+            K::compare_coordinate(k, a, x).is_ge() || K::compare_coordinate(k, b, x).is_ge();
         lo_ok && hi_ok
     })
 }

@@ -29,7 +29,11 @@ pub struct ExactF64;
 
 #[inline]
 fn c3(p: Point) -> Coord3D<f64> {
-    Coord3D { x: p[0], y: p[1], z: p[2] }
+    Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    }
 }
 
 #[inline(always)]
@@ -83,8 +87,19 @@ impl ExactKernel for ExactF64 {
         // (d-a)·((b-a)×(c-a)) so that, inlined, the three calls against one
         // plane share the normal and its partial permanents.
         let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
-        let products = [u[1] * v[2], u[2] * v[1], u[2] * v[0], u[0] * v[2], u[0] * v[1], u[1] * v[0]];
-        let normal = [products[0] - products[1], products[2] - products[3], products[4] - products[5]];
+        let products = [
+            u[1] * v[2],
+            u[2] * v[1],
+            u[2] * v[0],
+            u[0] * v[2],
+            u[0] * v[1],
+            u[1] * v[0],
+        ];
+        let normal = [
+            products[0] - products[1],
+            products[2] - products[3],
+            products[4] - products[5],
+        ];
         let det = w[0] * normal[0] + w[1] * normal[1] + w[2] * normal[2];
         let permanent = w[0].abs() * (products[0].abs() + products[1].abs())
             + w[1].abs() * (products[2].abs() + products[3].abs())
@@ -123,7 +138,11 @@ impl ExactKernel for ExactF64 {
         // plane, which is all the coplanar test needs.)
         let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
         let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
         (0..3)
             .filter(|&k| !Self::orient2d(k, a, b, c).is_zero())
             .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()).then(j.cmp(&i)))
@@ -162,10 +181,13 @@ mod filter_tests {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let mut degenerate = 0;
         let mut robust_checked = 0;
-        for scale in [1e-310, 1e-300, 1e-200, 1e-150, 1e-5, 1.0, 1e6, 1e150, 1e200, 1e300] {
+        for scale in [
+            1e-310, 1e-300, 1e-200, 1e-150, 1e-5, 1.0, 1e6, 1e150, 1e200, 1e300,
+        ] {
             for _ in 0..14_000 {
                 let offset = if rng.gen_bool(0.3) { 1e3 * scale } else { 0.0 };
-                let mut p = || -> Point { [0; 3].map(|_| offset + scale * rng.gen_range(-1.0..1.0)) };
+                let mut p =
+                    || -> Point { [0; 3].map(|_| offset + scale * rng.gen_range(-1.0..1.0)) };
                 let (mut a, mut b, mut c) = (p(), p(), p());
                 let (s, t): (f64, f64) = (rng.gen_range(-1.0..2.0), rng.gen_range(-1.0..2.0));
                 let mut d = [0, 1, 2].map(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
@@ -179,13 +201,22 @@ mod filter_tests {
                     let (gs, gt) = (rng.gen_range(-2..=2), rng.gen_range(-2..=2));
                     let on_grid = |v: [i64; 3]| v.map(|x| x as f64 * unit);
                     (a, b, c) = (on_grid(ga), on_grid(gb), on_grid(gc));
-                    d = on_grid([0, 1, 2].map(|k| ga[k] + gs * (gb[k] - ga[k]) + gt * (gc[k] - ga[k])));
+                    d = on_grid(
+                        [0, 1, 2].map(|k| ga[k] + gs * (gb[k] - ga[k]) + gt * (gc[k] - ga[k])),
+                    );
                 }
                 let want = exact_big_integer::orient3d(a, b, c, d);
-                assert_eq!(ExactF64::orient3d(a, b, c, d), want, "{a:?} {b:?} {c:?} {d:?}");
+                assert_eq!(
+                    ExactF64::orient3d(a, b, c, d),
+                    want,
+                    "{a:?} {b:?} {c:?} {d:?}"
+                );
                 degenerate += usize::from(want.is_zero());
                 if within_robust_range(&[a, b, c, d]) {
-                    assert_eq!(Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip(), want);
+                    assert_eq!(
+                        Sign::of_f64(robust::orient3d(c3(a), c3(b), c3(c), c3(d))).flip(),
+                        want
+                    );
                     robust_checked += 1;
                 }
                 // Nearly collinear in the projection dropping `axis`.
@@ -193,7 +224,11 @@ mod filter_tests {
                 e[k] = nudge(e[k], rng.gen_range(-3..=3));
                 for axis in 0..3 {
                     let want = exact_big_integer::orient2d(axis, a, b, e);
-                    assert_eq!(ExactF64::orient2d(axis, a, b, e), want, "{a:?} {b:?} {e:?} axis {axis}");
+                    assert_eq!(
+                        ExactF64::orient2d(axis, a, b, e),
+                        want,
+                        "{a:?} {b:?} {e:?} axis {axis}"
+                    );
                     degenerate += usize::from(want.is_zero());
                     if within_robust_range(&[a, b, e]) {
                         let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
@@ -203,8 +238,14 @@ mod filter_tests {
                 }
             }
         }
-        assert!(degenerate > 0, "the test must reach exactly degenerate configurations");
-        assert!(robust_checked > 10_000, "and compare robust with the exact signs inside its range");
+        assert!(
+            degenerate > 0,
+            "the test must reach exactly degenerate configurations"
+        );
+        assert!(
+            robust_checked > 10_000,
+            "and compare robust with the exact signs inside its range"
+        );
     }
 }
 
@@ -234,7 +275,14 @@ mod range_tests {
         let big = [[-max, -max, 0.0], [max, -max, 0.0], [0.0, max, 0.0]];
         let needle = [[0.0, 0.0, -5e-324], [0.0, 0.0, 5e-324], [0.0, 0.0, 5e-324]];
         assert!(intersects(&big, &needle), "a segment through the plane");
-        let above = [[0.0, 0.0, 5e-324], [1e-300, 0.0, 5e-324], [0.0, 1e-300, 1e-323]];
-        assert!(!intersects(&big, &above), "a tiny triangle just above the plane");
+        let above = [
+            [0.0, 0.0, 5e-324],
+            [1e-300, 0.0, 5e-324],
+            [0.0, 1e-300, 1e-323],
+        ];
+        assert!(
+            !intersects(&big, &above),
+            "a tiny triangle just above the plane"
+        );
     }
 }

@@ -48,7 +48,11 @@ fn sub(a: FixedPoint3, b: FixedPoint3) -> [i64; 3] {
 #[inline]
 pub fn cross(u: [i64; 3], v: [i64; 3]) -> [i128; 3] {
     let m = |a: i64, b: i64| a as i128 * b as i128;
-    [m(u[1], v[2]) - m(u[2], v[1]), m(u[2], v[0]) - m(u[0], v[2]), m(u[0], v[1]) - m(u[1], v[0])]
+    [
+        m(u[1], v[2]) - m(u[2], v[1]),
+        m(u[2], v[0]) - m(u[0], v[2]),
+        m(u[0], v[1]) - m(u[1], v[0]),
+    ]
 }
 
 /// `[a,b,c,d] = (d-a)·((b-a)×(c-a))`, exactly.
@@ -98,7 +102,11 @@ impl ExactKernel for FixedPoint {
 #[inline(always)]
 fn cross_narrow(u: [i64; 3], v: [i64; 3]) -> [i64; 3] {
     debug_assert!(u.iter().chain(&v).all(|d| d.unsigned_abs() < 1 << 31));
-    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
 }
 
 impl ExactKernel for FixedPointNarrow {
@@ -109,7 +117,9 @@ impl ExactKernel for FixedPointNarrow {
         let n = cross_narrow(sub(b, a), sub(c, a));
         let w = sub(d, a);
         // Each term is below 2^32 * 2^63: the sum of three fits in i128.
-        Sign::of_i128(w[0] as i128 * n[0] as i128 + w[1] as i128 * n[1] as i128 + w[2] as i128 * n[2] as i128)
+        Sign::of_i128(
+            w[0] as i128 * n[0] as i128 + w[1] as i128 * n[1] as i128 + w[2] as i128 * n[2] as i128,
+        )
     }
 
     #[inline(always)]
@@ -208,8 +218,14 @@ mod tests {
         assert!(!fits_narrow(&[a, b, c], &[a, b, c]));
         let (nlo, nhi) = ([NARROW_MIN; 3], [NARROW_MAX; 3]);
         assert!(fits_narrow(&[nlo, nhi, nlo], &[nhi, nhi, nlo]));
-        assert!(!fits_narrow(&[nlo, nhi, nlo], &[nhi, [0, NARROW_MIN - 1, 0], nlo]));
-        assert!(!fits_narrow(&[nlo, nhi, nlo], &[nhi, [0, 0, NARROW_MAX + 1], nlo]));
+        assert!(!fits_narrow(
+            &[nlo, nhi, nlo],
+            &[nhi, [0, NARROW_MIN - 1, 0], nlo]
+        ));
+        assert!(!fits_narrow(
+            &[nlo, nhi, nlo],
+            &[nhi, [0, 0, NARROW_MAX + 1], nlo]
+        ));
     }
 
     /// Both kernels give the same verdict on random small-lattice pairs
@@ -219,7 +235,9 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         for shift in [0, 20, 27] {
             for _ in 0..3000 {
-                let mut t = || -> FixedTriangle { [0; 3].map(|_| [0; 3].map(|_| rng.gen_range(-3i64..=3) << shift)) };
+                let mut t = || -> FixedTriangle {
+                    [0; 3].map(|_| [0; 3].map(|_| rng.gen_range(-3i64..=3) << shift))
+                };
                 let (t1, t2) = (t(), t());
                 assert_eq!(
                     devillers_guigue::intersects::<FixedPointNarrow>(t1, t2),

@@ -47,7 +47,10 @@ pub struct HardCase {
 
 impl HardCase {
     fn new(name: String, t1: Triangle, t2: Triangle) -> Self {
-        HardCase { name, pair: TrianglePair::new(t1, t2) }
+        HardCase {
+            name,
+            pair: TrianglePair::new(t1, t2),
+        }
     }
 }
 
@@ -83,7 +86,9 @@ pub fn coplanar_lattice_pairs(n: usize, seed: u64) -> Vec<TrianglePair> {
 /// (about a quarter of them intersect).
 pub fn random_pairs(n: usize, seed: u64) -> Vec<TrianglePair> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..n).map(|_| TrianglePair::new(unit_cube_triangle(&mut rng), unit_cube_triangle(&mut rng))).collect()
+    (0..n)
+        .map(|_| TrianglePair::new(unit_cube_triangle(&mut rng), unit_cube_triangle(&mut rng)))
+        .collect()
 }
 
 /// Random pairs in the unit cube that are near-degenerate by construction:
@@ -100,7 +105,10 @@ pub fn random_near_degenerate_pairs(n: usize, seed: u64) -> Vec<TrianglePair> {
             2 => {
                 let t1 = unit_cube_triangle(&mut rng);
                 let shared = t1[rng.gen_range(0..3)];
-                TrianglePair::new(t1, [shared, unit_cube_point(&mut rng), unit_cube_point(&mut rng)])
+                TrianglePair::new(
+                    t1,
+                    [shared, unit_cube_point(&mut rng), unit_cube_point(&mut rng)],
+                )
             }
             3 => {
                 let t1 = unit_cube_triangle(&mut rng);
@@ -115,7 +123,10 @@ pub fn random_near_degenerate_pairs(n: usize, seed: u64) -> Vec<TrianglePair> {
                     plane.point(i, j)
                 });
                 let scaled = |k: usize| lattice_to_point(p[k], 1.0 / 32.0);
-                TrianglePair::new([scaled(0), scaled(1), scaled(2)], [scaled(3), scaled(4), scaled(5)])
+                TrianglePair::new(
+                    [scaled(0), scaled(1), scaled(2)],
+                    [scaled(3), scaled(4), scaled(5)],
+                )
             }
             _ => {
                 let case = vertex_on_plane_case(&mut rng, 0);
@@ -138,7 +149,13 @@ pub fn random_near_degenerate_pairs(n: usize, seed: u64) -> Vec<TrianglePair> {
 /// inexact decimals.
 pub fn coplanar_axis_plane(count: usize, seed: u64) -> Vec<HardCase> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let scales = [("1", 1.0), ("0.1", 0.1), ("2^-20", 2f64.powi(-20)), ("1000", 1000.0), ("sqrt3", 3f64.sqrt())];
+    let scales = [
+        ("1", 1.0),
+        ("0.1", 0.1),
+        ("2^-20", 2f64.powi(-20)),
+        ("1000", 1000.0),
+        ("sqrt3", 3f64.sqrt()),
+    ];
     (0..count)
         .map(|k| {
             let axis = k % 3;
@@ -157,7 +174,10 @@ pub fn coplanar_axis_plane(count: usize, seed: u64) -> Vec<HardCase> {
             };
             let t1 = [vertex(), vertex(), vertex()];
             let t2 = [vertex(), vertex(), vertex()];
-            let name = format!("coplanar_axis_plane/axis={}/scale={scale_name}#{k}", ["x", "y", "z"][axis]);
+            let name = format!(
+                "coplanar_axis_plane/axis={}/scale={scale_name}#{k}",
+                ["x", "y", "z"][axis]
+            );
             HardCase::new(name, t1, t2)
         })
         .collect()
@@ -170,12 +190,24 @@ pub fn coplanar_integer_plane(count: usize, seed: u64) -> Vec<HardCase> {
     (0..count)
         .map(|k| {
             let plane = LatticePlane::random(&mut rng, 3, 5);
-            let (scale_name, scale) = [("1", 1.0), ("2^-10", 2f64.powi(-10)), ("2^20", 2f64.powi(20))][k % 3];
-            let mut vertex = || lattice_to_point(plane.point(rng.gen_range(-3..=3), rng.gen_range(-3..=3)), scale);
+            let (scale_name, scale) = [
+                ("1", 1.0),
+                ("2^-10", 2f64.powi(-10)),
+                ("2^20", 2f64.powi(20)),
+            ][k % 3];
+            let mut vertex = || {
+                lattice_to_point(
+                    plane.point(rng.gen_range(-3..=3), rng.gen_range(-3..=3)),
+                    scale,
+                )
+            };
             let t1 = [vertex(), vertex(), vertex()];
             let t2 = [vertex(), vertex(), vertex()];
             let n = plane.normal();
-            let name = format!("coplanar_integer_plane/normal=({},{},{})/scale={scale_name}#{k}", n[0], n[1], n[2]);
+            let name = format!(
+                "coplanar_integer_plane/normal=({},{},{})/scale={scale_name}#{k}",
+                n[0], n[1], n[2]
+            );
             HardCase::new(name, t1, t2)
         })
         .collect()
@@ -187,7 +219,9 @@ pub fn coplanar_integer_plane(count: usize, seed: u64) -> Vec<HardCase> {
 /// or all coordinates.
 pub fn vertex_on_plane(count: usize, seed: u64) -> Vec<HardCase> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..count).map(|k| vertex_on_plane_case(&mut rng, k)).collect()
+    (0..count)
+        .map(|k| vertex_on_plane_case(&mut rng, k))
+        .collect()
 }
 
 fn vertex_on_plane_case(rng: &mut ChaCha8Rng, k: usize) -> HardCase {
@@ -219,10 +253,18 @@ fn vertex_on_plane_case(rng: &mut ChaCha8Rng, k: usize) -> HardCase {
             *x = nudge(*x, ulps);
         }
     }
-    let t1 = [moved, lattice_to_point(second, 1.0), lattice_to_point(above, 1.0)];
+    let t1 = [
+        moved,
+        lattice_to_point(second, 1.0),
+        lattice_to_point(above, 1.0),
+    ];
     let t2 = t2.map(|q| lattice_to_point(q, 1.0));
     let touching = if whole_edge { "edge" } else { "vertex" };
-    let moved_what = if all_coordinates { "xyz".to_string() } else { ["x", "y", "z"][axis].to_string() };
+    let moved_what = if all_coordinates {
+        "xyz".to_string()
+    } else {
+        ["x", "y", "z"][axis].to_string()
+    };
     let name = format!("vertex_on_plane/{touching}/at={place}/ulps={ulps}/moved={moved_what}#{k}");
     HardCase::new(name, t1, t2)
 }
@@ -235,11 +277,20 @@ pub fn shared_vertex(count: usize, seed: u64) -> Vec<HardCase> {
         .map(|k| {
             let (t1, t2, kind) = if k % 2 == 0 {
                 let t1 = unit_cube_triangle(&mut rng);
-                let t2 = [t1[rng.gen_range(0..3)], unit_cube_point(&mut rng), unit_cube_point(&mut rng)];
+                let t2 = [
+                    t1[rng.gen_range(0..3)],
+                    unit_cube_point(&mut rng),
+                    unit_cube_point(&mut rng),
+                ];
                 (t1, t2, "general")
             } else {
                 let plane = LatticePlane::random(&mut rng, 3, 5);
-                let mut v = || lattice_to_point(plane.point(rng.gen_range(-3..=3), rng.gen_range(-3..=3)), 1.0);
+                let mut v = || {
+                    lattice_to_point(
+                        plane.point(rng.gen_range(-3..=3), rng.gen_range(-3..=3)),
+                        1.0,
+                    )
+                };
                 let t1 = [v(), v(), v()];
                 let t2 = [t1[k % 3], v(), v()];
                 (t1, t2, "coplanar")
@@ -260,7 +311,11 @@ pub fn shared_edge(count: usize, seed: u64) -> Vec<HardCase> {
                 0 => {
                     let t1 = unit_cube_triangle(&mut rng);
                     let i = rng.gen_range(0..3);
-                    (t1, [t1[(i + 1) % 3], t1[i], unit_cube_point(&mut rng)], "general")
+                    (
+                        t1,
+                        [t1[(i + 1) % 3], t1[i], unit_cube_point(&mut rng)],
+                        "general",
+                    )
                 }
                 side => {
                     let plane = LatticePlane::random(&mut rng, 3, 5);
@@ -268,11 +323,23 @@ pub fn shared_edge(count: usize, seed: u64) -> Vec<HardCase> {
                     // j < 0 (opposite) or both j > 0 (same side).
                     let a = rng.gen_range(1..=3);
                     let j1 = rng.gen_range(1..=3);
-                    let j2 = if side == 1 { -rng.gen_range(1..=3) } else { rng.gen_range(1..=3) };
+                    let j2 = if side == 1 {
+                        -rng.gen_range(1..=3)
+                    } else {
+                        rng.gen_range(1..=3)
+                    };
                     let v = |i, j| lattice_to_point(plane.point(i, j), 1.0);
                     let t1 = [v(0, 0), v(a, 0), v(rng.gen_range(-2..=4), j1)];
                     let t2 = [v(a, 0), v(0, 0), v(rng.gen_range(-2..=4), j2)];
-                    (t1, t2, if side == 1 { "coplanar_opposite_sides" } else { "coplanar_same_side" })
+                    (
+                        t1,
+                        t2,
+                        if side == 1 {
+                            "coplanar_opposite_sides"
+                        } else {
+                            "coplanar_same_side"
+                        },
+                    )
                 }
             };
             HardCase::new(format!("shared_edge/{kind}#{k}"), t1, t2)
@@ -297,23 +364,41 @@ pub fn collinear_edges(count: usize, seed: u64) -> Vec<HardCase> {
             let origin = lattice_vector(&mut rng, 5);
             let direction = nonzero_lattice_vector(&mut rng, 3);
             let (layout, (t0, t1), (s0, s1)) = layouts[k % layouts.len()];
-            let on_line = |t: i64| lattice_to_point(lattice_add(origin, lattice_scale(direction, t)), 1.0);
+            let on_line =
+                |t: i64| lattice_to_point(lattice_add(origin, lattice_scale(direction, t)), 1.0);
             let w1 = off_line_vector(&mut rng, direction, 3);
             let (w2, third) = match rng.gen_range(0..3) {
                 0 => (off_line_vector(&mut rng, direction, 3), "general"),
                 1 => (
-                    lattice_add(lattice_scale(w1, -1), lattice_scale(direction, rng.gen_range(-2..=2))),
+                    lattice_add(
+                        lattice_scale(w1, -1),
+                        lattice_scale(direction, rng.gen_range(-2..=2)),
+                    ),
                     "coplanar_opposite",
                 ),
-                _ => (lattice_add(w1, lattice_scale(direction, rng.gen_range(-2..=2))), "coplanar_same_side"),
+                _ => (
+                    lattice_add(w1, lattice_scale(direction, rng.gen_range(-2..=2))),
+                    "coplanar_same_side",
+                ),
             };
-            let tri1 = [on_line(t0), on_line(t1), lattice_to_point(lattice_add(origin, w1), 1.0)];
+            let tri1 = [
+                on_line(t0),
+                on_line(t1),
+                lattice_to_point(lattice_add(origin, w1), 1.0),
+            ];
             let tri2 = [
                 on_line(s0),
-                lattice_to_point(lattice_add(lattice_add(origin, lattice_scale(direction, s0)), w2), 1.0),
+                lattice_to_point(
+                    lattice_add(lattice_add(origin, lattice_scale(direction, s0)), w2),
+                    1.0,
+                ),
                 on_line(s1),
             ];
-            HardCase::new(format!("collinear_edges/{layout}/third={third}#{k}"), tri1, tri2)
+            HardCase::new(
+                format!("collinear_edges/{layout}/third={third}#{k}"),
+                tri1,
+                tri2,
+            )
         })
         .collect()
 }
@@ -324,15 +409,24 @@ pub fn collinear_edges(count: usize, seed: u64) -> Vec<HardCase> {
 /// triangle through the same point, or a random triangle.
 pub fn needles_and_slivers(count: usize, seed: u64) -> Vec<HardCase> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let sizes =
-        [("1e-6", Some(1e-6)), ("1e-9", Some(1e-9)), ("1e-12", Some(1e-12)), ("1e-15", Some(1e-15)), ("ulps", None)];
+    let sizes = [
+        ("1e-6", Some(1e-6)),
+        ("1e-9", Some(1e-9)),
+        ("1e-12", Some(1e-12)),
+        ("1e-15", Some(1e-15)),
+        ("ulps", None),
+    ];
     (0..count)
         .map(|k| {
             let needle = k % 2 == 0;
             let (size_name, size) = sizes[(k / 2) % sizes.len()];
             let a = unit_cube_point(&mut rng);
             let b = unit_cube_point(&mut rng);
-            let base = if needle { b } else { [0, 1, 2].map(|i| a[i] + (b[i] - a[i]) / 2.0) };
+            let base = if needle {
+                b
+            } else {
+                [0, 1, 2].map(|i| a[i] + (b[i] - a[i]) / 2.0)
+            };
             let w = [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0));
             let c = match size {
                 Some(s) => [0, 1, 2].map(|i| base[i] + s * w[i]),
@@ -346,13 +440,24 @@ pub fn needles_and_slivers(count: usize, seed: u64) -> Vec<HardCase> {
                 0 => {
                     let r1 = [0, 1, 2].map(|_| rng.gen_range(-0.5..0.5));
                     let r2 = [0, 1, 2].map(|_| rng.gen_range(-0.5..0.5));
-                    ([add3(m, r1), add3(m, r2), [0, 1, 2].map(|i| m[i] - r1[i] - r2[i])], "large_through")
+                    (
+                        [
+                            add3(m, r1),
+                            add3(m, r2),
+                            [0, 1, 2].map(|i| m[i] - r1[i] - r2[i]),
+                        ],
+                        "large_through",
+                    )
                 }
                 1 => {
                     let d = [0, 1, 2].map(|_| rng.gen_range(-0.5..0.5));
                     let e = [0, 1, 2].map(|_| rng.gen_range(-1e-9..1e-9));
                     (
-                        [add3(m, d), [0, 1, 2].map(|i| m[i] - d[i]), [0, 1, 2].map(|i| m[i] - d[i] + e[i])],
+                        [
+                            add3(m, d),
+                            [0, 1, 2].map(|i| m[i] - d[i]),
+                            [0, 1, 2].map(|i| m[i] - d[i] + e[i]),
+                        ],
                         "thin_through",
                     )
                 }
@@ -401,8 +506,11 @@ pub fn near_miss(repeats: usize, seed: u64) -> Vec<HardCase> {
                             [[-1.0, -1.0, 0.0], [2.0, -1.0, 0.0], [-1.0, 2.0, 0.0]],
                         ),
                     };
-                    let name =
-                        |frame: &str| format!("near_miss/kind={kind}/gap=1e-{exponent}/side={side}/frame={frame}#{r}");
+                    let name = |frame: &str| {
+                        format!(
+                            "near_miss/kind={kind}/gap=1e-{exponent}/side={side}/frame={frame}#{r}"
+                        )
+                    };
                     cases.push(HardCase::new(name("axis"), t1, t2));
                     let motion = RigidMotion::random(&mut rng);
                     cases.push(HardCase::new(
@@ -428,21 +536,33 @@ pub fn large_offsets(repeats: usize, seed: u64) -> Vec<HardCase> {
     for r in 0..repeats as u64 {
         let s = seed.wrapping_mul(1000).wrapping_add(r);
         let mut these = Vec::new();
-        these.extend(near_miss(1, s).into_iter().filter(|c| c.name.contains("gap=1e-3/")));
+        these.extend(
+            near_miss(1, s)
+                .into_iter()
+                .filter(|c| c.name.contains("gap=1e-3/")),
+        );
         these.extend(shared_edge(3, s));
         these.extend(coplanar_integer_plane(1, s));
-        these.extend(collinear_edges(5, s).into_iter().filter(|c| c.name.contains("touching_end")));
+        these.extend(
+            collinear_edges(5, s)
+                .into_iter()
+                .filter(|c| c.name.contains("touching_end")),
+        );
         these.push(vertex_on_plane_case(&mut rng, r as usize));
         // The base generators number from 0 in every repeat: name the repeat.
-        bases.extend(these.into_iter().map(|c| HardCase { name: format!("repeat={r}/base={}", c.name), ..c }));
+        bases.extend(these.into_iter().map(|c| HardCase {
+            name: format!("repeat={r}/base={}", c.name),
+            ..c
+        }));
     }
     let mut cases = Vec::new();
     for base in &bases {
         for exponent in 5..=9 {
             let o = 10f64.powi(exponent);
-            for (offset_name, offset) in
-                [(format!("1e{exponent}"), [o, o, o]), (format!("1e{exponent}*(1,-1/3,2)"), [o, -o / 3.0, 2.0 * o])]
-            {
+            for (offset_name, offset) in [
+                (format!("1e{exponent}"), [o, o, o]),
+                (format!("1e{exponent}*(1,-1/3,2)"), [o, -o / 3.0, 2.0 * o]),
+            ] {
                 let shift = |t: Triangle| t.map(|p| [0, 1, 2].map(|i| p[i] + offset[i]));
                 cases.push(HardCase::new(
                     format!("large_offsets/offset={offset_name}/{}", base.name),
@@ -476,10 +596,16 @@ pub fn degenerate(repeats: usize, seed: u64) -> Vec<HardCase> {
 /// as `(x, d)` in plane or lattice coordinates.
 fn segment_vs_triangle(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) {
     let plane = LatticePlane::random(rng, 3, 5);
-    let t = [plane.point(0, 0), plane.point(4, 0), plane.point(0, 4)].map(|p| lattice_to_point(p, 1.0));
+    let t =
+        [plane.point(0, 0), plane.point(4, 0), plane.point(0, 4)].map(|p| lattice_to_point(p, 1.0));
     let w = plane.off_plane_vector(rng, 3);
     let minus = |p: [i64; 3], v: [i64; 3]| lattice_add(p, lattice_scale(v, -1));
-    let in_plane = |i0, j0, i1, j1| (plane.point(i0, j0), lattice_sub(plane.point(i1, j1), plane.point(i0, j0)));
+    let in_plane = |i0, j0, i1, j1| {
+        (
+            plane.point(i0, j0),
+            lattice_sub(plane.point(i1, j1), plane.point(i0, j0)),
+        )
+    };
     let layouts: Vec<(&str, Segment)> = vec![
         ("crossing_interior", (minus(plane.point(1, 1), w), w)),
         ("crossing_edge", (minus(plane.point(2, 0), w), w)),
@@ -497,7 +623,11 @@ fn segment_vs_triangle(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>
     for (layout, (x, d)) in layouts {
         let form = rng.gen_range(0..4);
         let seg = segment_triangle_form(x, d, form);
-        cases.push(HardCase::new(format!("degenerate/segment_vs_triangle/{layout}/form={form}#{r}"), seg, t));
+        cases.push(HardCase::new(
+            format!("degenerate/segment_vs_triangle/{layout}/form={form}#{r}"),
+            seg,
+            t,
+        ));
     }
 }
 
@@ -513,12 +643,24 @@ fn segment_vs_segment(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>)
         ("crossing", (minus(p, w1), w1), (minus(p, w2), w2)),
         ("t_junction", (p, w1), (minus(p, w2), w2)),
         ("shared_end", (p, w1), (p, w2)),
-        ("skew", (minus(p, w1), w1), (minus(lattice_add(p, n), w2), w2)),
-        ("coplanar_apart", (minus(p, w1), w1), (minus(at(p, 3), w2), w2)),
+        (
+            "skew",
+            (minus(p, w1), w1),
+            (minus(lattice_add(p, n), w2), w2),
+        ),
+        (
+            "coplanar_apart",
+            (minus(p, w1), w1),
+            (minus(at(p, 3), w2), w2),
+        ),
         ("collinear_overlapping", (minus(p, w1), w1), (p, w1)),
         ("collinear_touching", (minus(p, w1), w1), (at(p, 1), w1)),
         ("collinear_apart", (minus(p, w1), w1), (at(p, 2), w1)),
-        ("parallel", (minus(p, w1), w1), (minus(lattice_add(p, w2), w1), w1)),
+        (
+            "parallel",
+            (minus(p, w1), w1),
+            (minus(lattice_add(p, w2), w1), w1),
+        ),
     ];
     for (layout, (x1, d1), (x2, d2)) in layouts {
         let (f1, f2) = (rng.gen_range(0..4), rng.gen_range(0..4));
@@ -532,7 +674,8 @@ fn segment_vs_segment(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>)
 
 fn point_vs_triangle(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) {
     let plane = LatticePlane::random(rng, 3, 5);
-    let t = [plane.point(0, 0), plane.point(4, 0), plane.point(0, 4)].map(|p| lattice_to_point(p, 1.0));
+    let t =
+        [plane.point(0, 0), plane.point(4, 0), plane.point(0, 4)].map(|p| lattice_to_point(p, 1.0));
     let w = plane.off_plane_vector(rng, 3);
     let inside = lattice_to_point(plane.point(1, 1), 1.0);
     let places = [
@@ -541,12 +684,22 @@ fn point_vs_triangle(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) 
         ("on_hypotenuse", lattice_to_point(plane.point(1, 3), 1.0)),
         ("on_vertex", lattice_to_point(plane.point(0, 4), 1.0)),
         ("coplanar_outside", lattice_to_point(plane.point(3, 2), 1.0)),
-        ("above", lattice_to_point(lattice_add(plane.point(1, 1), w), 1.0)),
+        (
+            "above",
+            lattice_to_point(lattice_add(plane.point(1, 1), w), 1.0),
+        ),
         ("inside_moved_1ulp", inside.map(|x| nudge(x, 1))),
-        ("vertex_moved_1ulp", lattice_to_point(plane.point(0, 4), 1.0).map(|x| nudge(x, -1))),
+        (
+            "vertex_moved_1ulp",
+            lattice_to_point(plane.point(0, 4), 1.0).map(|x| nudge(x, -1)),
+        ),
     ];
     for (place, q) in places {
-        cases.push(HardCase::new(format!("degenerate/point_vs_triangle/{place}#{r}"), [q, q, q], t));
+        cases.push(HardCase::new(
+            format!("degenerate/point_vs_triangle/{place}#{r}"),
+            [q, q, q],
+            t,
+        ));
     }
 }
 
@@ -563,10 +716,18 @@ fn point_vs_segment(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) {
     ];
     for (place, q) in places {
         let q = lattice_to_point(q, 1.0);
-        cases.push(HardCase::new(format!("degenerate/point_vs_segment/{place}#{r}"), [q, q, q], seg));
+        cases.push(HardCase::new(
+            format!("degenerate/point_vs_segment/{place}#{r}"),
+            [q, q, q],
+            seg,
+        ));
     }
     let q = lattice_to_point(p, 1.0).map(|x| nudge(x, 1));
-    cases.push(HardCase::new(format!("degenerate/point_vs_segment/interior_moved_1ulp#{r}"), [q, q, q], seg));
+    cases.push(HardCase::new(
+        format!("degenerate/point_vs_segment/interior_moved_1ulp#{r}"),
+        [q, q, q],
+        seg,
+    ));
 }
 
 fn point_vs_point(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) {
@@ -576,10 +737,18 @@ fn point_vs_point(rng: &mut ChaCha8Rng, r: usize, cases: &mut Vec<HardCase>) {
     q[axis] = nudge(q[axis], 1);
     let far = unit_cube_point(rng);
     for (place, other) in [("equal", p), ("one_ulp_apart", q), ("apart", far)] {
-        cases.push(HardCase::new(format!("degenerate/point_vs_point/{place}#{r}"), [p, p, p], [other, other, other]));
+        cases.push(HardCase::new(
+            format!("degenerate/point_vs_point/{place}#{r}"),
+            [p, p, p],
+            [other, other, other],
+        ));
     }
     // A point against a segment of a triangle's three vertices listed with a repeat.
-    cases.push(HardCase::new(format!("degenerate/point_vs_point/repeated_vertex_segment#{r}"), [p, p, p], [p, far, p]));
+    cases.push(HardCase::new(
+        format!("degenerate/point_vs_point/repeated_vertex_segment#{r}"),
+        [p, p, p],
+        [p, far, p],
+    ));
 }
 
 /// The segment `x .. x + 2d` as a degenerate triangle, in one of four vertex
@@ -615,7 +784,11 @@ fn unit_cube_point(rng: &mut ChaCha8Rng) -> Point {
 }
 
 fn unit_cube_triangle(rng: &mut ChaCha8Rng) -> Triangle {
-    [unit_cube_point(rng), unit_cube_point(rng), unit_cube_point(rng)]
+    [
+        unit_cube_point(rng),
+        unit_cube_point(rng),
+        unit_cube_point(rng),
+    ]
 }
 
 /// Six coordinates-on-a-grid vertices: `k / cells` for `k` in `0..=cells`.
@@ -670,7 +843,11 @@ fn lattice_scale(a: LatticeVector, k: i64) -> LatticeVector {
 }
 
 fn lattice_cross(u: LatticeVector, v: LatticeVector) -> LatticeVector {
-    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
 }
 
 fn lattice_dot(u: LatticeVector, v: LatticeVector) -> i64 {
@@ -700,7 +877,10 @@ impl LatticePlane {
     }
 
     fn point(&self, i: i64, j: i64) -> LatticeVector {
-        lattice_add(self.origin, lattice_add(lattice_scale(self.u, i), lattice_scale(self.v, j)))
+        lattice_add(
+            self.origin,
+            lattice_add(lattice_scale(self.u, i), lattice_scale(self.v, j)),
+        )
     }
 
     fn normal(&self) -> LatticeVector {
@@ -739,9 +919,21 @@ impl RigidMotion {
         };
         let [w, x, y, z] = q;
         let rotation = [
-            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
-            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
-            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+            [
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+            ],
+            [
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+            ],
+            [
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            ],
         ];
         RigidMotion {
             rotation,
@@ -752,7 +944,9 @@ impl RigidMotion {
 
     fn apply(&self, p: Point) -> Point {
         let m = &self.rotation;
-        [0, 1, 2].map(|i| self.scale * (m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2]) + self.translation[i])
+        [0, 1, 2].map(|i| {
+            self.scale * (m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2]) + self.translation[i]
+        })
     }
 }
 

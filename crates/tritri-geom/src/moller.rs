@@ -30,7 +30,11 @@ fn sub(a: V3, b: V3) -> V3 {
 
 #[inline(always)]
 fn cross(a: V3, b: V3) -> V3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 #[inline(always)]
@@ -48,14 +52,29 @@ pub fn intersects(t1: &Triangle, t2: &Triangle) -> bool {
 /// The result of the macro `NEWCOMPUTE_INTERVALS`: `(A, B, C, X0, X1)`, or
 /// the coplanar case.
 enum Interval {
-    Projected { a: f64, b: f64, c: f64, x0: f64, x1: f64 },
+    Projected {
+        a: f64,
+        b: f64,
+        c: f64,
+        x0: f64,
+        x1: f64,
+    },
     Coplanar,
 }
 
 /// The macro `NEWCOMPUTE_INTERVALS(VV0,VV1,VV2,D0,D1,D2,D0D1,D0D2,...)`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn new_compute_intervals(vv0: f64, vv1: f64, vv2: f64, d0: f64, d1: f64, d2: f64, d0d1: f64, d0d2: f64) -> Interval {
+fn new_compute_intervals(
+    vv0: f64,
+    vv1: f64,
+    vv2: f64,
+    d0: f64,
+    d1: f64,
+    d2: f64,
+    d0d1: f64,
+    d0d2: f64,
+) -> Interval {
     let (a, b, c, x0, x1);
     if d0d1 > 0.0 {
         // D0, D1 on the same side, D2 on the other or on the plane.
@@ -141,14 +160,16 @@ pub fn no_div_tri_tri_isect(v0: V3, v1: V3, v2: V3, u0: V3, u1: V3, u2: V3) -> b
     let (vp0, vp1, vp2) = (v0[index], v1[index], v2[index]);
     let (up0, up1, up2) = (u0[index], u1[index], u2[index]);
 
-    let (a, b, c, x0, x1) = match new_compute_intervals(vp0, vp1, vp2, dv0, dv1, dv2, dv0dv1, dv0dv2) {
-        Interval::Projected { a, b, c, x0, x1 } => (a, b, c, x0, x1),
-        Interval::Coplanar => return coplanar_tri_tri(n1, v0, v1, v2, u0, u1, u2),
-    };
-    let (d, e, f, y0, y1) = match new_compute_intervals(up0, up1, up2, du0, du1, du2, du0du1, du0du2) {
-        Interval::Projected { a, b, c, x0, x1 } => (a, b, c, x0, x1),
-        Interval::Coplanar => return coplanar_tri_tri(n1, v0, v1, v2, u0, u1, u2),
-    };
+    let (a, b, c, x0, x1) =
+        match new_compute_intervals(vp0, vp1, vp2, dv0, dv1, dv2, dv0dv1, dv0dv2) {
+            Interval::Projected { a, b, c, x0, x1 } => (a, b, c, x0, x1),
+            Interval::Coplanar => return coplanar_tri_tri(n1, v0, v1, v2, u0, u1, u2),
+        };
+    let (d, e, f, y0, y1) =
+        match new_compute_intervals(up0, up1, up2, du0, du1, du2, du0du1, du0du2) {
+            Interval::Projected { a, b, c, x0, x1 } => (a, b, c, x0, x1),
+            Interval::Coplanar => return coplanar_tri_tri(n1, v0, v1, v2, u0, u1, u2),
+        };
 
     let xx = x0 * x1;
     let yy = y0 * y1;
@@ -290,6 +311,9 @@ mod tests {
         let a: Triangle = [[0.0, 0.0, 0.0], [1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0]];
         let b: Triangle = [[0.0, 0.0, 1e-7], [1e-6, 0.0, 1e-7], [0.0, 1e-6, 1e-7]];
         assert!(!exact_f64::intersects(&a, &b));
-        assert!(intersects(&a, &b), "Möller's epsilon test treats these as coplanar");
+        assert!(
+            intersects(&a, &b),
+            "Möller's epsilon test treats these as coplanar"
+        );
     }
 }

@@ -73,7 +73,10 @@ pub enum RecordErrorKind {
     #[error("missing field `{field}`")]
     MissingField { field: &'static str },
     #[error("`{field}` must be 3 vertices of 3 numbers each: {problem}")]
-    BadTriangle { field: &'static str, problem: String },
+    BadTriangle {
+        field: &'static str,
+        problem: String,
+    },
 }
 
 /// One bad record: where and what.
@@ -95,9 +98,17 @@ pub struct Record {
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
     #[error("{file}: cannot read: {source}")]
-    Io { file: String, source: std::io::Error },
+    Io {
+        file: String,
+        source: std::io::Error,
+    },
     #[error("{file}:{line}:{column}: malformed JSON: {message}")]
-    MalformedJson { file: String, line: usize, column: usize, message: String },
+    MalformedJson {
+        file: String,
+        line: usize,
+        column: usize,
+        message: String,
+    },
     #[error("{file}: the JSON document must be an array of objects with `t1` and `t2`")]
     NotAnArray { file: String },
 }
@@ -112,7 +123,10 @@ pub struct PairsFile {
 impl PairsFile {
     /// The pairs that were read, in file order.
     pub fn good_pairs(&self) -> Vec<TrianglePair> {
-        self.records.iter().filter_map(|r| r.pair.as_ref().ok().copied()).collect()
+        self.records
+            .iter()
+            .filter_map(|r| r.pair.as_ref().ok().copied())
+            .collect()
     }
 
     /// The records that could not be read, in file order.
@@ -125,7 +139,10 @@ impl PairsFile {
 pub fn read_pairs(path: impl AsRef<Path>) -> Result<PairsFile, FileError> {
     let path = path.as_ref();
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io { file: file.clone(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+        file: file.clone(),
+        source,
+    })?;
     let records = parse_pairs(&file, &text)?;
     Ok(PairsFile { file, records })
 }
@@ -146,8 +163,15 @@ fn parse_text(file: &str, text: &str) -> Vec<Record> {
         if trimmed.is_empty() || trimmed.starts_with('#') {
             continue;
         }
-        let location = Location { file: file.to_string(), line: i + 1, index: None };
-        let pair = parse_text_line(trimmed).map_err(|kind| RecordError { location: location.clone(), kind });
+        let location = Location {
+            file: file.to_string(),
+            line: i + 1,
+            index: None,
+        };
+        let pair = parse_text_line(trimmed).map_err(|kind| RecordError {
+            location: location.clone(),
+            kind,
+        });
         records.push(Record { location, pair });
     }
     records
@@ -159,19 +183,30 @@ fn parse_text_line(line: &str) -> Result<TrianglePair, RecordErrorKind> {
     // Report a bad token before a bad count: "1 2 x" is better told as `x`.
     for (k, token) in tokens.iter().enumerate() {
         let position = k + 1;
-        let v: f64 = token.parse().map_err(|_| RecordErrorKind::NotANumber { position, token: token.to_string() })?;
+        let v: f64 = token.parse().map_err(|_| RecordErrorKind::NotANumber {
+            position,
+            token: token.to_string(),
+        })?;
         if !v.is_finite() {
-            return Err(RecordErrorKind::NotFinite { position, token: token.to_string() });
+            return Err(RecordErrorKind::NotFinite {
+                position,
+                token: token.to_string(),
+            });
         }
         if k < 18 {
             values[k] = v;
         }
     }
     if tokens.len() != 18 {
-        return Err(RecordErrorKind::WrongCount { found: tokens.len() });
+        return Err(RecordErrorKind::WrongCount {
+            found: tokens.len(),
+        });
     }
     let point = |k: usize| [values[3 * k], values[3 * k + 1], values[3 * k + 2]];
-    Ok(TrianglePair::new([point(0), point(1), point(2)], [point(3), point(4), point(5)]))
+    Ok(TrianglePair::new(
+        [point(0), point(1), point(2)],
+        [point(3), point(4), point(5)],
+    ))
 }
 
 fn parse_json(file: &str, text: &str) -> Result<Vec<Record>, FileError> {
@@ -182,16 +217,24 @@ fn parse_json(file: &str, text: &str) -> Result<Vec<Record>, FileError> {
         message: strip_position(&e.to_string()),
     })?;
     let Value::Array(items) = doc else {
-        return Err(FileError::NotAnArray { file: file.to_string() });
+        return Err(FileError::NotAnArray {
+            file: file.to_string(),
+        });
     };
     let lines = top_level_element_lines(text);
     Ok(items
         .iter()
         .enumerate()
         .map(|(i, item)| {
-            let location =
-                Location { file: file.to_string(), line: lines.get(i).copied().unwrap_or(1), index: Some(i) };
-            let pair = json_pair(item).map_err(|kind| RecordError { location: location.clone(), kind });
+            let location = Location {
+                file: file.to_string(),
+                line: lines.get(i).copied().unwrap_or(1),
+                index: Some(i),
+            };
+            let pair = json_pair(item).map_err(|kind| RecordError {
+                location: location.clone(),
+                kind,
+            });
             Record { location, pair }
         })
         .collect())
@@ -210,25 +253,33 @@ fn json_pair(item: &Value) -> Result<TrianglePair, RecordErrorKind> {
         return Err(RecordErrorKind::NotAnObject);
     };
     let triangle = |field: &'static str| -> Result<Triangle, RecordErrorKind> {
-        let v = map.get(field).ok_or(RecordErrorKind::MissingField { field })?;
+        let v = map
+            .get(field)
+            .ok_or(RecordErrorKind::MissingField { field })?;
         json_triangle(v).map_err(|problem| RecordErrorKind::BadTriangle { field, problem })
     };
     Ok(TrianglePair::new(triangle("t1")?, triangle("t2")?))
 }
 
 fn json_triangle(v: &Value) -> Result<Triangle, String> {
-    let vertices = v.as_array().ok_or_else(|| format!("found {}", describe(v)))?;
+    let vertices = v
+        .as_array()
+        .ok_or_else(|| format!("found {}", describe(v)))?;
     if vertices.len() != 3 {
         return Err(format!("found {} vertices", vertices.len()));
     }
     let mut t = [[0.0; 3]; 3];
     for (i, vertex) in vertices.iter().enumerate() {
-        let coords = vertex.as_array().ok_or_else(|| format!("vertex {i} is {}", describe(vertex)))?;
+        let coords = vertex
+            .as_array()
+            .ok_or_else(|| format!("vertex {i} is {}", describe(vertex)))?;
         if coords.len() != 3 {
             return Err(format!("vertex {i} has {} coordinates", coords.len()));
         }
         for (k, c) in coords.iter().enumerate() {
-            let x = c.as_f64().ok_or_else(|| format!("vertex {i} coordinate {k} is {}", describe(c)))?;
+            let x = c
+                .as_f64()
+                .ok_or_else(|| format!("vertex {i} coordinate {k} is {}", describe(c)))?;
             if !x.is_finite() {
                 return Err(format!("vertex {i} coordinate {k} is not finite"));
             }
@@ -302,9 +353,14 @@ mod tests {
 
     #[test]
     fn text_lines_give_pairs_in_order_skipping_comments_and_blanks() {
-        let text = format!("# header\n\n  {GOOD}\n   # indented comment\n0 0 0 1 0 0 0 1 0 0 0 0 0 0 1 2 2 2\n");
+        let text = format!(
+            "# header\n\n  {GOOD}\n   # indented comment\n0 0 0 1 0 0 0 1 0 0 0 0 0 0 1 2 2 2\n"
+        );
         let records = parse_pairs("f.txt", &text).unwrap();
-        assert_eq!(records.iter().map(|r| r.location.line).collect::<Vec<_>>(), vec![3, 5]);
+        assert_eq!(
+            records.iter().map(|r| r.location.line).collect::<Vec<_>>(),
+            vec![3, 5]
+        );
         let p = records[1].pair.as_ref().unwrap();
         assert_eq!(p.t1, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]);
         assert_eq!(p.t2, [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [2.0, 2.0, 2.0]]);
@@ -314,13 +370,22 @@ mod tests {
     fn wrong_count_names_file_line_and_count() {
         let e = text_error(&format!("{GOOD} 5"));
         assert_eq!(e.kind, RecordErrorKind::WrongCount { found: 19 });
-        assert_eq!(e.to_string(), "f.txt:1: expected 18 numbers (x y z of 6 vertices), found 19");
+        assert_eq!(
+            e.to_string(),
+            "f.txt:1: expected 18 numbers (x y z of 6 vertices), found 19"
+        );
     }
 
     #[test]
     fn non_number_is_named() {
         let e = text_error(&GOOD.replacen("1", "1,5", 1));
-        assert_eq!(e.kind, RecordErrorKind::NotANumber { position: 4, token: "1,5".into() });
+        assert_eq!(
+            e.kind,
+            RecordErrorKind::NotANumber {
+                position: 4,
+                token: "1,5".into()
+            }
+        );
         assert_eq!(e.to_string(), "f.txt:1: number 4 `1,5` is not a number");
     }
 
@@ -328,7 +393,14 @@ mod tests {
     fn nan_and_infinity_are_refused() {
         for bad in ["nan", "NaN", "inf", "-inf", "infinity", "1e999"] {
             let e = text_error(&GOOD.replacen("0", bad, 1));
-            assert_eq!(e.kind, RecordErrorKind::NotFinite { position: 1, token: bad.into() }, "{bad}");
+            assert_eq!(
+                e.kind,
+                RecordErrorKind::NotFinite {
+                    position: 1,
+                    token: bad.into()
+                },
+                "{bad}"
+            );
         }
     }
 
@@ -339,7 +411,10 @@ mod tests {
         assert_eq!(records.len(), 3);
         assert!(records[0].pair.is_ok() && records[2].pair.is_ok());
         assert_eq!(records[1].pair.as_ref().unwrap_err().location.line, 2);
-        let file = PairsFile { file: "f.txt".into(), records };
+        let file = PairsFile {
+            file: "f.txt".into(),
+            records,
+        };
         assert_eq!(file.good_pairs().len(), 2);
         assert_eq!(file.errors().count(), 1);
     }
@@ -371,14 +446,39 @@ mod tests {
     fn json_errors_name_index_and_line() {
         let r = json_errors();
         let e = r[1].pair.as_ref().unwrap_err();
-        assert_eq!(e.location, Location { file: "p.json".into(), line: 3, index: Some(1) });
-        assert_eq!(e.to_string(), "p.json:3: element [1]: `t2` must be 3 vertices of 3 numbers each: found 2 vertices");
+        assert_eq!(
+            e.location,
+            Location {
+                file: "p.json".into(),
+                line: 3,
+                index: Some(1)
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "p.json:3: element [1]: `t2` must be 3 vertices of 3 numbers each: found 2 vertices"
+        );
         let e = r[2].pair.as_ref().unwrap_err();
         assert_eq!(e.location.line, 5);
-        assert!(e.to_string().contains("vertex 1 coordinate 2 is the string \"1\""), "{e}");
-        assert_eq!(r[3].pair.as_ref().unwrap_err().kind, RecordErrorKind::MissingField { field: "t1" });
-        assert_eq!(r[4].pair.as_ref().unwrap_err().kind, RecordErrorKind::NotAnObject);
-        assert!(r[5].pair.as_ref().unwrap_err().to_string().contains("vertex 2 has 2 coordinates"));
+        assert!(
+            e.to_string()
+                .contains("vertex 1 coordinate 2 is the string \"1\""),
+            "{e}"
+        );
+        assert_eq!(
+            r[3].pair.as_ref().unwrap_err().kind,
+            RecordErrorKind::MissingField { field: "t1" }
+        );
+        assert_eq!(
+            r[4].pair.as_ref().unwrap_err().kind,
+            RecordErrorKind::NotAnObject
+        );
+        assert!(r[5]
+            .pair
+            .as_ref()
+            .unwrap_err()
+            .to_string()
+            .contains("vertex 2 has 2 coordinates"));
     }
 
     #[test]
@@ -396,7 +496,10 @@ mod tests {
 
     #[test]
     fn json_overflowing_number_is_refused() {
-        let e = parse_pairs("p.json", r#"[{"t1": [[1e999,0,0],[1,0,0],[0,1,0]], "t2": [[0,0,0],[0,0,1],[1,1,1]]}]"#);
+        let e = parse_pairs(
+            "p.json",
+            r#"[{"t1": [[1e999,0,0],[1,0,0],[0,1,0]], "t2": [[0,0,0],[0,0,1],[1,1,1]]}]"#,
+        );
         // serde_json refuses out-of-range numbers while parsing.
         assert!(matches!(e, Err(FileError::MalformedJson { .. })), "{e:?}");
     }
@@ -404,6 +507,10 @@ mod tests {
     #[test]
     fn missing_file_is_named() {
         let e = read_pairs("/nonexistent/pairs.txt").unwrap_err();
-        assert!(e.to_string().starts_with("/nonexistent/pairs.txt: cannot read"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("/nonexistent/pairs.txt: cannot read"),
+            "{e}"
+        );
     }
 }

@@ -26,7 +26,13 @@ use std::ops::{Add, Mul, Neg, Sub};
 
 /// The floating-point operations the published code uses.
 pub trait Float:
-    Copy + PartialOrd + Debug + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
+    Copy
+    + PartialOrd
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Neg<Output = Self>
 {
     const ZERO: Self;
     /// Rounds an f64 to this type (round to nearest).
@@ -59,7 +65,11 @@ fn sub<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
 
 #[inline(always)]
 fn cross<F: Float>(a: V3<F>, b: V3<F>) -> V3<F> {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 #[inline(always)]
@@ -92,7 +102,14 @@ pub fn intersects_f32(t1: &Triangle, t2: &Triangle) -> bool {
 /// `tri_tri_overlap_test_3d(p1,q1,r1,p2,q2,r2)`: 1 if the closed triangles
 /// overlap (in exact arithmetic; here in `F`).
 #[inline]
-pub fn tri_tri_overlap_test_3d<F: Float>(p1: V3<F>, q1: V3<F>, r1: V3<F>, p2: V3<F>, q2: V3<F>, r2: V3<F>) -> bool {
+pub fn tri_tri_overlap_test_3d<F: Float>(
+    p1: V3<F>,
+    q1: V3<F>,
+    r1: V3<F>,
+    p2: V3<F>,
+    q2: V3<F>,
+    r2: V3<F>,
+) -> bool {
     let zero = F::ZERO;
 
     // Distance signs of p1, q1, r1 to the plane of (p2, q2, r2).
@@ -210,7 +227,14 @@ fn tri_tri_3d<F: Float>(
 
 /// The macro `CHECK_MIN_MAX`: the two interval determinants.
 #[inline(always)]
-fn check_min_max<F: Float>(p1: V3<F>, q1: V3<F>, r1: V3<F>, p2: V3<F>, q2: V3<F>, r2: V3<F>) -> bool {
+fn check_min_max<F: Float>(
+    p1: V3<F>,
+    q1: V3<F>,
+    r1: V3<F>,
+    p2: V3<F>,
+    q2: V3<F>,
+    r2: V3<F>,
+) -> bool {
     let zero = F::ZERO;
     let n1 = cross(sub(p2, q1), sub(p1, q1));
     if dot(sub(q2, q1), n1) > zero {
@@ -246,7 +270,11 @@ pub fn coplanar_tri_tri3d<F: Float>(
         (0, 1, false) // Project onto plane XY.
     };
     let proj = |v: V3<F>| [v[i], v[j]];
-    let (p1, q1, p2, q2) = if swap { (q1, p1, q2, p2) } else { (p1, q1, p2, q2) };
+    let (p1, q1, p2, q2) = if swap {
+        (q1, p1, q2, p2)
+    } else {
+        (p1, q1, p2, q2)
+    };
     tri_tri_overlap_test_2d(proj(p1), proj(q1), proj(r1), proj(p2), proj(q2), proj(r2))
 }
 
@@ -257,7 +285,14 @@ fn orient_2d<F: Float>(a: V2<F>, b: V2<F>, c: V2<F>) -> F {
 }
 
 /// The macro `INTERSECTION_TEST_VERTEX`.
-fn intersection_test_vertex<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>, q2: V2<F>, r2: V2<F>) -> bool {
+fn intersection_test_vertex<F: Float>(
+    p1: V2<F>,
+    q1: V2<F>,
+    r1: V2<F>,
+    p2: V2<F>,
+    q2: V2<F>,
+    r2: V2<F>,
+) -> bool {
     let zero = F::ZERO;
     if orient_2d(r2, p2, q1) >= zero {
         if orient_2d(r2, q2, q1) <= zero {
@@ -291,7 +326,14 @@ fn intersection_test_vertex<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>
 }
 
 /// The macro `INTERSECTION_TEST_EDGE`.
-fn intersection_test_edge<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>, _q2: V2<F>, r2: V2<F>) -> bool {
+fn intersection_test_edge<F: Float>(
+    p1: V2<F>,
+    q1: V2<F>,
+    r1: V2<F>,
+    p2: V2<F>,
+    _q2: V2<F>,
+    r2: V2<F>,
+) -> bool {
     let zero = F::ZERO;
     if orient_2d(r2, p2, q1) >= zero {
         if orient_2d(p1, p2, q1) >= zero {
@@ -313,7 +355,14 @@ fn intersection_test_edge<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>, 
 }
 
 /// `ccw_tri_tri_intersection_2d`: both triangles counter-clockwise.
-fn ccw_tri_tri_intersection_2d<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>, q2: V2<F>, r2: V2<F>) -> bool {
+fn ccw_tri_tri_intersection_2d<F: Float>(
+    p1: V2<F>,
+    q1: V2<F>,
+    r1: V2<F>,
+    p2: V2<F>,
+    q2: V2<F>,
+    r2: V2<F>,
+) -> bool {
     let zero = F::ZERO;
     if orient_2d(p2, q2, p1) >= zero {
         if orient_2d(q2, r2, p1) >= zero {
@@ -339,7 +388,14 @@ fn ccw_tri_tri_intersection_2d<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2
 }
 
 /// `tri_tri_overlap_test_2d`: orients both triangles counter-clockwise.
-pub fn tri_tri_overlap_test_2d<F: Float>(p1: V2<F>, q1: V2<F>, r1: V2<F>, p2: V2<F>, q2: V2<F>, r2: V2<F>) -> bool {
+pub fn tri_tri_overlap_test_2d<F: Float>(
+    p1: V2<F>,
+    q1: V2<F>,
+    r1: V2<F>,
+    p2: V2<F>,
+    q2: V2<F>,
+    r2: V2<F>,
+) -> bool {
     let zero = F::ZERO;
     if orient_2d(p1, q1, r1) < zero {
         if orient_2d(p2, q2, r2) < zero {
@@ -387,16 +443,28 @@ mod tests {
     /// deciding on signs removes.
     #[test]
     fn product_of_distances_underflows() {
-        let a: Triangle =
-            [[0.393902, 0.191015, 0.232398], [0.344035, 0.238807, 0.87286], [0.576037, 0.440291, 0.781701]];
-        let b: Triangle =
-            [[0.423536, 0.603717, 0.931516], [0.316111, 0.654317, 0.545549], [0.913968, 0.933531, 0.035066]];
+        let a: Triangle = [
+            [0.393902, 0.191015, 0.232398],
+            [0.344035, 0.238807, 0.87286],
+            [0.576037, 0.440291, 0.781701],
+        ];
+        let b: Triangle = [
+            [0.423536, 0.603717, 0.931516],
+            [0.316111, 0.654317, 0.545549],
+            [0.913968, 0.933531, 0.035066],
+        ];
         assert!(!exact_f64::intersects(&a, &b));
-        assert!(!intersects_f64(&a, &b), "unscaled, the published code is right");
+        assert!(
+            !intersects_f64(&a, &b),
+            "unscaled, the published code is right"
+        );
         let s = 2f64.powi(-200);
         let scale = |t: Triangle| t.map(|p| p.map(|c| c * s));
         let (a, b) = (scale(a), scale(b));
         assert!(!exact_f64::intersects(&a, &b));
-        assert!(intersects_f64(&a, &b), "the published code is expected to fail here");
+        assert!(
+            intersects_f64(&a, &b),
+            "the published code is expected to fail here"
+        );
     }
 }

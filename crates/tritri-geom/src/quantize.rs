@@ -42,7 +42,10 @@ pub enum QuantizeError {
 
 impl Frame {
     /// The frame that holds every vertex of `triangles` at width `width`.
-    pub fn fit<'a>(triangles: impl IntoIterator<Item = &'a Triangle>, width: u32) -> Result<Frame, QuantizeError> {
+    pub fn fit<'a>(
+        triangles: impl IntoIterator<Item = &'a Triangle>,
+        width: u32,
+    ) -> Result<Frame, QuantizeError> {
         let widths = FixedWidths::new(width)?;
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
@@ -59,13 +62,22 @@ impl Frame {
                 }
             }
             if !finite {
-                let value = t.iter().flatten().copied().find(|v| !v.is_finite()).unwrap_or(f64::NAN);
+                let value = t
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .find(|v| !v.is_finite())
+                    .unwrap_or(f64::NAN);
                 return Err(QuantizeError::NotFinite { triangle: i, value });
             }
         }
         if lo[0] > hi[0] {
             // No triangles: any frame will do.
-            return Ok(Frame { widths, centre: [0.0; 3], step: 1.0 });
+            return Ok(Frame {
+                widths,
+                centre: [0.0; 3],
+                step: 1.0,
+            });
         }
         // A batch with coordinates of both signs near ±1e308 spans more than
         // f64::MAX: `hi - lo` overflows to infinity, its halves do not (and
@@ -73,7 +85,11 @@ impl Frame {
         // quotient).
         let centre = [0, 1, 2].map(|k| {
             let span = hi[k] - lo[k];
-            if span.is_finite() { lo[k] + span / 2.0 } else { lo[k] / 2.0 + hi[k] / 2.0 }
+            if span.is_finite() {
+                lo[k] + span / 2.0
+            } else {
+                lo[k] / 2.0 + hi[k] / 2.0
+            }
         });
         let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         // 2^W - 4 steps across the extent leave more than one unit of margin
@@ -82,27 +98,40 @@ impl Frame {
         let extent_per_step = if extent.is_finite() {
             extent / steps
         } else {
-            (0..3).map(|k| hi[k] / 2.0 - lo[k] / 2.0).fold(0.0, f64::max) / (steps / 2.0)
+            (0..3)
+                .map(|k| hi[k] / 2.0 - lo[k] / 2.0)
+                .fold(0.0, f64::max)
+                / (steps / 2.0)
         };
         // The centre is off by up to half an ulp of the largest magnitude M
         // present: a step of at least 2·EPSILON·M keeps that under a quarter
         // step, inside the margin, even when the extent is only a few ulps
         // wide (e.g. 1e9 and its next f64). A normal, not subnormal, step
         // keeps the division accurate for tiny extents.
-        let magnitude = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).fold(0.0, f64::max);
+        let magnitude = (0..3)
+            .map(|k| lo[k].abs().max(hi[k].abs()))
+            .fold(0.0, f64::max);
         let step = if extent > 0.0 {
-            extent_per_step.max(2.0 * f64::EPSILON * magnitude).max(f64::MIN_POSITIVE)
+            extent_per_step
+                .max(2.0 * f64::EPSILON * magnitude)
+                .max(f64::MIN_POSITIVE)
         } else {
             1.0
         };
-        Ok(Frame { widths, centre, step })
+        Ok(Frame {
+            widths,
+            centre,
+            step,
+        })
     }
 
     /// The integer grid point nearest to `p`.
     #[inline]
     pub fn quantize_point(&self, p: Point) -> FixedPoint3 {
         let q = [0, 1, 2].map(|k| round_half_away_from_zero((p[k] - self.centre[k]) / self.step));
-        debug_assert!(q.iter().all(|&v| v >= self.widths.min_coordinate() && v <= self.widths.max_coordinate()));
+        debug_assert!(q
+            .iter()
+            .all(|&v| v >= self.widths.min_coordinate() && v <= self.widths.max_coordinate()));
         q
     }
 
@@ -129,7 +158,10 @@ impl Frame {
 /// A pair quantized in a frame of its own (the frame that fits just its six
 /// vertices), so it keeps as much of its geometry as `width` bits allow: how
 /// the tests and the hard-case vectors quantize single cases.
-pub fn quantize_pair(pair: &TrianglePair, width: u32) -> Result<(FixedTriangle, FixedTriangle), QuantizeError> {
+pub fn quantize_pair(
+    pair: &TrianglePair,
+    width: u32,
+) -> Result<(FixedTriangle, FixedTriangle), QuantizeError> {
     let frame = Frame::fit([&pair.t1, &pair.t2], width)?;
     Ok((frame.quantize(&pair.t1), frame.quantize(&pair.t2)))
 }
@@ -142,8 +174,26 @@ mod rounding_tests {
     /// the neighbours of every half-integer and the largest magnitudes used.
     #[test]
     fn agrees_with_f64_round() {
-        let mut xs = vec![0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, 0.49999999999999994, -0.49999999999999994];
-        for k in [1.0f64, 3.0, 1e3, 4503599627370495.0, 4503599627370496.0, 9007199254740993.0, 2f64.powi(61)] {
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            0.49999999999999994,
+            -0.49999999999999994,
+        ];
+        for k in [
+            1.0f64,
+            3.0,
+            1e3,
+            4503599627370495.0,
+            4503599627370496.0,
+            9007199254740993.0,
+            2f64.powi(61),
+        ] {
             for base in [k, k + 0.5, k - 0.5] {
                 let mut v = base;
                 for _ in 0..3 {
@@ -165,7 +215,11 @@ mod rounding_tests {
             state ^= state << 17;
             let magnitude = 2f64.powi((state % 63) as i32);
             let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
-            xs.push(if state & 1 == 0 { unit * magnitude } else { -unit * magnitude });
+            xs.push(if state & 1 == 0 {
+                unit * magnitude
+            } else {
+                -unit * magnitude
+            });
         }
         for x in xs {
             assert_eq!(round_half_away_from_zero(x), x.round() as i64, "{x:e}");

@@ -22,7 +22,11 @@ impl Image {
             let g = (236.0 - 24.0 * y as f64 / height.max(1) as f64) as u8;
             pixels.extend(std::iter::repeat([g, g, g.saturating_add(6)]).take(width as usize));
         }
-        Image { width, height, pixels }
+        Image {
+            width,
+            height,
+            pixels,
+        }
     }
 }
 
@@ -87,10 +91,17 @@ impl Canvas {
         let to_eye = unit(self.camera.eye - p);
         let light = unit(to_eye + 0.5 * self.up - 0.3 * self.right);
         let facing = n.dot(&to_eye);
-        let lambert = if facing >= 0.0 { n.dot(&light).abs() } else { 0.5 * n.dot(&light).abs() };
+        let lambert = if facing >= 0.0 {
+            n.dot(&light).abs()
+        } else {
+            0.5 * n.dot(&light).abs()
+        };
         let shade = 0.3 + 0.7 * lambert;
         let colour = colour.map(|c| (c as f64 * shade).round().clamp(0.0, 255.0) as u8);
-        let (Some(a), Some(b), Some(c)) = (self.project(p), self.project(q), self.project(r)) else { return };
+        let (Some(a), Some(b), Some(c)) = (self.project(p), self.project(q), self.project(r))
+        else {
+            return;
+        };
         let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
         if area.abs() < 1e-12 {
             return;
@@ -135,14 +146,20 @@ impl Canvas {
     }
 
     fn segment(&mut self, a: Point3<f64>, b: Point3<f64>, colour: [u8; 3], depth_test: bool) {
-        let (Some(p), Some(q)) = (self.project(a), self.project(b)) else { return };
+        let (Some(p), Some(q)) = (self.project(a), self.project(b)) else {
+            return;
+        };
         let steps = ((q.0 - p.0).abs().max((q.1 - p.1).abs()).ceil() as usize).max(1);
         for s in 0..=steps {
             let t = s as f64 / steps as f64;
             let (x, y) = (p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1));
             // 1/z is linear along the screen-space segment.
             let z = 1.0 / ((1.0 - t) / p.2 + t / q.2);
-            if x >= 0.0 && y >= 0.0 && (x as u32) < self.image.width && (y as u32) < self.image.height {
+            if x >= 0.0
+                && y >= 0.0
+                && (x as u32) < self.image.width
+                && (y as u32) < self.image.height
+            {
                 let i = (y as u32 * self.image.width + x as u32) as usize;
                 if !depth_test || z <= self.depth[i] * 1.01 {
                     self.image.pixels[i] = colour;
@@ -166,17 +183,40 @@ mod tests {
     /// one hides it; one behind the camera draws nothing.
     #[test]
     fn the_nearer_triangle_wins() {
-        let camera = Camera { eye: Point3::new(0.0, 0.0, 5.0), target: Point3::origin(), up: Vector3::y(), fov_degrees: 40.0 };
+        let camera = Camera {
+            eye: Point3::new(0.0, 0.0, 5.0),
+            target: Point3::origin(),
+            up: Vector3::y(),
+            fov_degrees: 40.0,
+        };
         let mut canvas = Canvas::new(64, 64, camera);
         let background = canvas.image.pixels[32 * 64 + 32];
-        canvas.triangle(&[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]], [200, 0, 0]);
+        canvas.triangle(
+            &[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0]],
+            [200, 0, 0],
+        );
         let red = canvas.image.pixels[32 * 64 + 32];
         assert!(red[0] > 0 && red[1] == 0 && red != background);
-        canvas.triangle(&[[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 1.0]], [0, 200, 0]);
+        canvas.triangle(
+            &[[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 1.0]],
+            [0, 200, 0],
+        );
         assert!(canvas.image.pixels[32 * 64 + 32][1] > 0);
-        canvas.triangle(&[[-1.0, -1.0, -0.5], [1.0, -1.0, -0.5], [0.0, 1.0, -0.5]], [0, 0, 200]);
-        assert!(canvas.image.pixels[32 * 64 + 32][2] == 0, "hidden behind the green one");
-        canvas.triangle(&[[-1.0, -1.0, 9.0], [1.0, -1.0, 9.0], [0.0, 1.0, 9.0]], [0, 0, 200]);
-        assert!(canvas.image.pixels[32 * 64 + 32][2] == 0, "behind the camera");
+        canvas.triangle(
+            &[[-1.0, -1.0, -0.5], [1.0, -1.0, -0.5], [0.0, 1.0, -0.5]],
+            [0, 0, 200],
+        );
+        assert!(
+            canvas.image.pixels[32 * 64 + 32][2] == 0,
+            "hidden behind the green one"
+        );
+        canvas.triangle(
+            &[[-1.0, -1.0, 9.0], [1.0, -1.0, 9.0], [0.0, 1.0, 9.0]],
+            [0, 0, 200],
+        );
+        assert!(
+            canvas.image.pixels[32 * 64 + 32][2] == 0,
+            "behind the camera"
+        );
     }
 }

@@ -17,7 +17,10 @@ impl TrianglePair {
         TrianglePair { t1, t2 }
     }
     pub fn swapped(&self) -> Self {
-        TrianglePair { t1: self.t2, t2: self.t1 }
+        TrianglePair {
+            t1: self.t2,
+            t2: self.t1,
+        }
     }
     /// Every coordinate of both triangles, in file order.
     pub fn coordinates(&self) -> impl Iterator<Item = f64> + '_ {
@@ -26,7 +29,14 @@ impl TrianglePair {
 }
 
 /// The six permutations of three vertices.
-pub const VERTEX_PERMUTATIONS: [[usize; 3]; 6] = [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]];
+pub const VERTEX_PERMUTATIONS: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [0, 2, 1],
+    [2, 1, 0],
+    [1, 0, 2],
+];
 
 /// Reorders a triangle's vertices.
 pub fn permute<P: Copy>(t: [P; 3], perm: [usize; 3]) -> [P; 3] {

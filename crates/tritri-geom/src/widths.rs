@@ -51,7 +51,9 @@ pub struct FixedWidths {
 
 /// Error for a width outside `MIN_WIDTH..=MAX_WIDTH`.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("coordinate width {0} is out of range: supported widths are {MIN_WIDTH} to {MAX_WIDTH} bits")]
+#[error(
+    "coordinate width {0} is out of range: supported widths are {MIN_WIDTH} to {MAX_WIDTH} bits"
+)]
 pub struct WidthOutOfRange(pub u32);
 
 impl FixedWidths {
@@ -92,7 +94,11 @@ mod tests {
     fn thesis_width_24_gives_25_49_74() {
         let w = FixedWidths::new(24).unwrap();
         assert_eq!((w.difference, w.cross, w.orient3d), (25, 49, 74));
-        assert_eq!(w.triangle_bits(), 216, "the thesis's bus carries 216 bits per triangle");
+        assert_eq!(
+            w.triangle_bits(),
+            216,
+            "the thesis's bus carries 216 bits per triangle"
+        );
     }
 
     #[test]
@@ -109,7 +115,8 @@ mod tests {
         for w in MIN_WIDTH..=MAX_WIDTH {
             let f = FixedWidths::new(w).unwrap();
             let m = (1i128 << w) - 1;
-            let fits = |v: i128, bits: u32| v < (1i128 << (bits - 1)) && -v >= -(1i128 << (bits - 1));
+            let fits =
+                |v: i128, bits: u32| v < (1i128 << (bits - 1)) && -v >= -(1i128 << (bits - 1));
             assert!(fits(m, f.difference));
             assert!(!fits(m, f.difference - 1));
             assert!(fits(m * m, f.cross));

@@ -18,7 +18,10 @@ fn certain_verdicts_are_exact_on_the_hard_case_suite_in_all_orderings() {
     let mut by_category: BTreeMap<String, Vec<TrianglePair>> = BTreeMap::new();
     for case in hard_case_suite() {
         let category = case.name.split(['/', '#']).next().unwrap_or("").to_string();
-        by_category.entry(category).or_default().extend(all_orderings(&case.pair));
+        by_category
+            .entry(category)
+            .or_default()
+            .extend(all_orderings(&case.pair));
     }
     for width in [8, 12, 16, 24] {
         let (mut pairs, mut certain, mut grid_wrong) = (0, 0, 0);
@@ -31,11 +34,17 @@ fn certain_verdicts_are_exact_on_the_hard_case_suite_in_all_orderings() {
                 grid_wrong += (v.hit != exact) as usize;
                 if v.certain {
                     certain += 1;
-                    assert_eq!(v.hit, exact, "W = {width}, {category}: a certain verdict is wrong: {pair:?}");
+                    assert_eq!(
+                        v.hit, exact,
+                        "W = {width}, {category}: a certain verdict is wrong: {pair:?}"
+                    );
                 }
             }
         }
         eprintln!("W = {width}: {pairs} pairs, {grid_wrong} grid verdicts wrong, {certain} certain (all right)");
-        assert!(grid_wrong > 0, "W = {width}: the suite should trip the grid");
+        assert!(
+            grid_wrong > 0,
+            "W = {width}: the suite should trip the grid"
+        );
     }
 }

@@ -12,7 +12,9 @@ use num_rational::BigRational;
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use support::{failures, Timer};
-use tritri_geom::hard_cases::{hard_case_suite, random_near_degenerate_pairs, random_pairs, HardCase};
+use tritri_geom::hard_cases::{
+    hard_case_suite, random_near_degenerate_pairs, random_pairs, HardCase,
+};
 use tritri_geom::triangle::all_orderings;
 use tritri_geom::{exact_f64, TrianglePair};
 
@@ -27,7 +29,13 @@ fn oracle(p: &TrianglePair) -> bool {
 fn report_pairs(what: &str, pairs: &[TrianglePair], bad: &[usize]) {
     for &i in bad.iter().take(10) {
         let p = &pairs[i];
-        eprintln!("  {what} #{i}: t1 = {:?}, t2 = {:?}: model {}, oracle {}", p.t1, p.t2, model(p), oracle(p));
+        eprintln!(
+            "  {what} #{i}: t1 = {:?}, t2 = {:?}: model {}, oracle {}",
+            p.t1,
+            p.t2,
+            model(p),
+            oracle(p)
+        );
     }
 }
 
@@ -35,14 +43,33 @@ fn report_pairs(what: &str, pairs: &[TrianglePair], bad: &[usize]) {
 /// exact rational value of the f64, subnormals and signed zeros included.
 #[test]
 fn oracle_decomposes_f64_exactly() {
-    let mut values =
-        vec![0.0, -0.0, 1.0, -1.0, 0.1, 1e-310, -5e-324, f64::MIN_POSITIVE, f64::MAX, -f64::MAX, 1e9 + 0.5];
-    values.extend(random_pairs(200, 99).iter().flat_map(|p| p.coordinates().collect::<Vec<_>>()));
+    let mut values = vec![
+        0.0,
+        -0.0,
+        1.0,
+        -1.0,
+        0.1,
+        1e-310,
+        -5e-324,
+        f64::MIN_POSITIVE,
+        f64::MAX,
+        -f64::MAX,
+        1e9 + 0.5,
+    ];
+    values.extend(
+        random_pairs(200, 99)
+            .iter()
+            .flat_map(|p| p.coordinates().collect::<Vec<_>>()),
+    );
     for x in values {
         let (m, e) = oracle::decompose(x);
         let two = BigRational::from_integer(BigInt::from(2));
         let value = BigRational::from_integer(BigInt::from(m)) * num_traits::pow::Pow::pow(&two, e);
-        assert_eq!(value, BigRational::from_float(x).unwrap(), "decompose({x:e}) = {m} * 2^{e}");
+        assert_eq!(
+            value,
+            BigRational::from_float(x).unwrap(),
+            "decompose({x:e}) = {m} * 2^{e}"
+        );
     }
 }
 
@@ -52,23 +79,67 @@ fn oracle_answers_hand_made_cases() {
     let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
     let cases: Vec<(&str, [[f64; 3]; 3], bool)> = vec![
         ("identical", t, true),
-        ("shared vertex, other plane", [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [-1.0, -1.0, 1.0]], true),
-        ("above", [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]], false),
-        ("piercing", [[0.2, 0.2, -1.0], [0.2, 0.2, 1.0], [0.3, 0.25, 1.0]], true),
-        ("coplanar, beyond hypotenuse", [[1.0, 1.0, 0.0], [2.0, 1.0, 0.0], [1.0, 2.0, 0.0]], false),
-        ("coplanar, touching hypotenuse", [[0.5, 0.5, 0.0], [2.0, 1.0, 0.0], [1.0, 2.0, 0.0]], true),
-        ("edge touching an edge from above", [[0.5, -1.0, 0.0], [0.5, 1.0, 0.0], [0.5, 0.0, 1.0]], true),
-        ("edge passing over an edge", [[0.5, -1.0, 1e-300], [0.5, 1.0, 1e-300], [0.5, 0.0, 1.0]], false),
+        (
+            "shared vertex, other plane",
+            [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [-1.0, -1.0, 1.0]],
+            true,
+        ),
+        (
+            "above",
+            [[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
+            false,
+        ),
+        (
+            "piercing",
+            [[0.2, 0.2, -1.0], [0.2, 0.2, 1.0], [0.3, 0.25, 1.0]],
+            true,
+        ),
+        (
+            "coplanar, beyond hypotenuse",
+            [[1.0, 1.0, 0.0], [2.0, 1.0, 0.0], [1.0, 2.0, 0.0]],
+            false,
+        ),
+        (
+            "coplanar, touching hypotenuse",
+            [[0.5, 0.5, 0.0], [2.0, 1.0, 0.0], [1.0, 2.0, 0.0]],
+            true,
+        ),
+        (
+            "edge touching an edge from above",
+            [[0.5, -1.0, 0.0], [0.5, 1.0, 0.0], [0.5, 0.0, 1.0]],
+            true,
+        ),
+        (
+            "edge passing over an edge",
+            [[0.5, -1.0, 1e-300], [0.5, 1.0, 1e-300], [0.5, 0.0, 1.0]],
+            false,
+        ),
         ("point inside", [[0.25, 0.25, 0.0]; 3], true),
         ("point 1 ulp above", [[0.25, 0.25, 5e-324]; 3], false),
-        ("segment through the hypotenuse", [[0.5, 0.5, -1.0], [0.5, 0.5, 1.0], [0.5, 0.5, 0.0]], true),
-        ("segment along the x axis beyond", [[2.0, 0.0, 0.0], [3.0, 0.0, 0.0], [2.5, 0.0, 0.0]], false),
-        ("segment overlapping an edge", [[-1.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.0, 0.0]], true),
+        (
+            "segment through the hypotenuse",
+            [[0.5, 0.5, -1.0], [0.5, 0.5, 1.0], [0.5, 0.5, 0.0]],
+            true,
+        ),
+        (
+            "segment along the x axis beyond",
+            [[2.0, 0.0, 0.0], [3.0, 0.0, 0.0], [2.5, 0.0, 0.0]],
+            false,
+        ),
+        (
+            "segment overlapping an edge",
+            [[-1.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.0, 0.0]],
+            true,
+        ),
     ];
     for (name, other, expected) in cases {
         for (a, b) in [(t, other), (other, t)] {
             assert_eq!(oracle::intersects(&a, &b), expected, "{name}");
-            assert_eq!(oracle::intersects_exact_only(&a, &b), expected, "{name} (no filter)");
+            assert_eq!(
+                oracle::intersects_exact_only(&a, &b),
+                expected,
+                "{name} (no filter)"
+            );
         }
     }
     let p = [[1.0, 2.0, 3.0]; 3];
@@ -77,7 +148,11 @@ fn oracle_answers_hand_made_cases() {
     assert!(!oracle::intersects(&p, &q));
     let s1 = [[0.0, 0.0, 0.0], [2.0, 2.0, 2.0], [0.0, 0.0, 0.0]];
     let s2 = [[0.0, 2.0, 0.0], [2.0, 0.0, 2.0], [1.0, 1.0, 1.0]];
-    let s3 = [[0.0, 2.0, 0.0], [2.0, 0.0, 2.0f64.next_up()], [2.0, 0.0, 2.0f64.next_up()]];
+    let s3 = [
+        [0.0, 2.0, 0.0],
+        [2.0, 0.0, 2.0f64.next_up()],
+        [2.0, 0.0, 2.0f64.next_up()],
+    ];
     assert!(oracle::intersects(&s1, &s2), "crossing segments");
     assert!(!oracle::intersects(&s1, &s3), "skew by one ulp");
 }
@@ -116,9 +191,13 @@ fn oracle_filter_agrees_with_unfiltered_oracle() {
 #[test]
 fn exact_model_equals_oracle_on_a_million_random_pairs() {
     let mut total_bad = 0;
-    for (kind, pairs) in
-        [("uniform", random_pairs(500_000, 2024)), ("near-degenerate", random_near_degenerate_pairs(500_000, 2025))]
-    {
+    for (kind, pairs) in [
+        ("uniform", random_pairs(500_000, 2024)),
+        (
+            "near-degenerate",
+            random_near_degenerate_pairs(500_000, 2025),
+        ),
+    ] {
         let timer = Timer::start();
         let needed_exact = AtomicUsize::new(0);
         let bad = failures(&pairs, |p| {
@@ -140,7 +219,10 @@ fn exact_model_equals_oracle_on_a_million_random_pairs() {
         report_pairs(kind, &pairs, &bad);
         total_bad += bad.len();
     }
-    assert_eq!(total_bad, 0, "disagreements between the exact model and the oracle");
+    assert_eq!(
+        total_bad, 0,
+        "disagreements between the exact model and the oracle"
+    );
 }
 
 fn category(case: &HardCase) -> String {
@@ -178,8 +260,15 @@ fn exact_model_equals_oracle_on_hard_cases_in_all_orderings() {
     }
     for &i in bad.iter().take(20) {
         let c = &cases[i];
-        let wrong = all_orderings(&c.pair).filter(|p| model(p) != oracle(&c.pair)).count();
-        eprintln!("  {}: oracle {}, model wrong in {wrong} of 72: {:?}", c.name, oracle(&c.pair), c.pair);
+        let wrong = all_orderings(&c.pair)
+            .filter(|p| model(p) != oracle(&c.pair))
+            .count();
+        eprintln!(
+            "  {}: oracle {}, model wrong in {wrong} of 72: {:?}",
+            c.name,
+            oracle(&c.pair),
+            c.pair
+        );
     }
     assert!(bad.is_empty(), "{} hard cases disagree", bad.len());
 }
@@ -219,7 +308,12 @@ fn exact_model_equals_oracle_at_extreme_magnitudes() {
     let mut base: Vec<TrianglePair> = hard_case_suite().iter().map(|c| c.pair).collect();
     base.extend(random_pairs(1_000, 31));
     base.extend(random_near_degenerate_pairs(1_000, 32));
-    let scale_pair = |p: &TrianglePair, s: f64| TrianglePair::new(p.t1.map(|v| v.map(|x| x * s)), p.t2.map(|v| v.map(|x| x * s)));
+    let scale_pair = |p: &TrianglePair, s: f64| {
+        TrianglePair::new(
+            p.t1.map(|v| v.map(|x| x * s)),
+            p.t2.map(|v| v.map(|x| x * s)),
+        )
+    };
     let mut pairs = Vec::new();
     let mut unscaled_answer = Vec::new();
     for exponent in [-1070, -1000, -700, -400, 300, 600, 900, 1000, 1020] {
@@ -227,7 +321,10 @@ fn exact_model_equals_oracle_at_extreme_magnitudes() {
         for p in &base {
             let q = scale_pair(p, s);
             // Scaling is exact when every coordinate comes back.
-            let exact_scaling = q.coordinates().zip(p.coordinates()).all(|(a, b)| a.is_finite() && a / s == b);
+            let exact_scaling = q
+                .coordinates()
+                .zip(p.coordinates())
+                .all(|(a, b)| a.is_finite() && a / s == b);
             if q.coordinates().all(f64::is_finite) {
                 pairs.push(q);
                 unscaled_answer.push(exact_scaling.then(|| model(p)));
@@ -240,16 +337,26 @@ fn exact_model_equals_oracle_at_extreme_magnitudes() {
     let max = f64::MAX;
     for p in base.iter().take(2_000) {
         let far = |t: tritri_geom::Triangle, side: f64| {
-            t.map(|v| [side * max * (0.5 + 0.25 * v[0].clamp(0.0, 1.0)), v[1].clamp(-1.0, 1.0) * 1e300, v[2].clamp(-1.0, 1.0) * 1e300])
+            t.map(|v| {
+                [
+                    side * max * (0.5 + 0.25 * v[0].clamp(0.0, 1.0)),
+                    v[1].clamp(-1.0, 1.0) * 1e300,
+                    v[2].clamp(-1.0, 1.0) * 1e300,
+                ]
+            })
         };
         pairs.push(TrianglePair::new(far(p.t1, -1.0), far(p.t2, 1.0)));
         unscaled_answer.push(Some(false));
-        let full = |t: tritri_geom::Triangle| t.map(|v| v.map(|x| (x.clamp(-1.0, 1.0) - 0.5) * (max / 2.0)));
+        let full = |t: tritri_geom::Triangle| {
+            t.map(|v| v.map(|x| (x.clamp(-1.0, 1.0) - 0.5) * (max / 2.0)))
+        };
         pairs.push(TrianglePair::new(full(p.t1), full(p.t2)));
         unscaled_answer.push(None);
     }
     let bad = failures(&pairs, |p| model(p) == oracle(p));
-    let lost = (0..pairs.len()).filter(|&i| unscaled_answer[i].is_some_and(|a| oracle(&pairs[i]) != a)).count();
+    let lost = (0..pairs.len())
+        .filter(|&i| unscaled_answer[i].is_some_and(|a| oracle(&pairs[i]) != a))
+        .count();
     eprintln!(
         "exact model vs oracle at extreme magnitudes: {} pairs, {} disagreements, {lost} exactly scaled pairs whose \
          answer changed, {:.1} s",
@@ -258,6 +365,10 @@ fn exact_model_equals_oracle_at_extreme_magnitudes() {
         timer.seconds()
     );
     report_pairs("extreme", &pairs, &bad);
-    assert!(bad.is_empty(), "{} disagreements at extreme magnitudes", bad.len());
+    assert!(
+        bad.is_empty(),
+        "{} disagreements at extreme magnitudes",
+        bad.len()
+    );
     assert_eq!(lost, 0, "scaling by a power of two changed an exact answer");
 }

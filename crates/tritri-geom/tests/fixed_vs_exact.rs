@@ -53,8 +53,13 @@ fn verdict_changed(pair: &TrianglePair, width: u32) -> bool {
 /// On 1,000,000 random pairs (half uniform, half near-degenerate), at each width.
 #[test]
 fn fixed_point_equals_exact_on_quantized_random_pairs() {
-    let sets =
-        [("uniform", random_pairs(500_000, 2024)), ("near-degenerate", random_near_degenerate_pairs(500_000, 2025))];
+    let sets = [
+        ("uniform", random_pairs(500_000, 2024)),
+        (
+            "near-degenerate",
+            random_near_degenerate_pairs(500_000, 2025),
+        ),
+    ];
     let mut total_bad = 0;
     for width in WIDTHS {
         for (kind, pairs) in &sets {
@@ -89,7 +94,8 @@ fn fixed_point_equals_exact_on_quantized_hard_cases_in_all_orderings() {
             let (q1, q2) = quantized(&case.pair, width);
             let integer_pair = TrianglePair::new(as_f64(&q1), as_f64(&q2));
             let all_agree = all_orderings(&integer_pair).all(|p| {
-                fixed_point::intersects(&as_integers(&p.t1), &as_integers(&p.t2)) == exact_f64::intersects(&p.t1, &p.t2)
+                fixed_point::intersects(&as_integers(&p.t1), &as_integers(&p.t2))
+                    == exact_f64::intersects(&p.t1, &p.t2)
             });
             all_agree
         });

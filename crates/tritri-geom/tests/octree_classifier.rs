@@ -15,7 +15,10 @@ use tritri_geom::octree::triangle_cell::TriangleCellTest;
 #[test]
 fn classifier_equals_the_oracle_on_every_cell_of_small_octrees() {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
-    let root = Cell { lo: [0, 0, 0], level: 3 };
+    let root = Cell {
+        lo: [0, 0, 0],
+        level: 3,
+    };
     let mut checked = 0u64;
     let mut touching = 0u64;
     for _ in 0..400 {
@@ -32,7 +35,11 @@ fn classifier_equals_the_oracle_on_every_cell_of_small_octrees() {
         while let Some((cell, values)) = stack.pop() {
             let expected = oracle::triangle_touches_box(&t, &cell.as_box());
             assert_eq!(test.touches(&values), expected, "{t:?} in {cell:?}");
-            assert_eq!(test.touches_box(&cell.as_box()), expected, "{t:?} in {cell:?} (direct)");
+            assert_eq!(
+                test.touches_box(&cell.as_box()),
+                expected,
+                "{t:?} in {cell:?} (direct)"
+            );
             checked += 1;
             touching += expected as u64;
             if cell.splittable() {
@@ -46,5 +53,8 @@ fn classifier_equals_the_oracle_on_every_cell_of_small_octrees() {
         }
     }
     assert_eq!(checked, 400 * (1 + 8 + 64 + 512));
-    assert!(touching > checked / 20 && touching < checked / 2, "{touching} of {checked}");
+    assert!(
+        touching > checked / 20 && touching < checked / 2,
+        "{touching} of {checked}"
+    );
 }

@@ -27,7 +27,11 @@ fn rational(x: f64) -> BigRational {
 /// error in steps.
 fn check_batch(name: &str, triangles: &[Triangle], width: u32) -> f64 {
     let frame = Frame::fit(triangles, width).unwrap_or_else(|e| panic!("{name}: W={width}: {e}"));
-    assert!(frame.step.is_finite() && frame.step > 0.0, "{name}: W={width}: step {}", frame.step);
+    assert!(
+        frame.step.is_finite() && frame.step > 0.0,
+        "{name}: W={width}: step {}",
+        frame.step
+    );
     let (lo, hi) = (frame.widths.min_coordinate(), frame.widths.max_coordinate());
     let step = rational(frame.step);
     let slack = rational(0.5 + 2f64.powi(width as i32 - 52));
@@ -42,7 +46,8 @@ fn check_batch(name: &str, triangles: &[Triangle], width: u32) -> f64 {
                     p[k],
                     qp[k]
                 );
-                let stands_for = rational(frame.centre[k]) + BigRational::from_integer(BigInt::from(qp[k])) * &step;
+                let stands_for = rational(frame.centre[k])
+                    + BigRational::from_integer(BigInt::from(qp[k])) * &step;
                 let error = (rational(p[k]) - stands_for).abs();
                 let in_steps = &error / &step;
                 assert!(
@@ -60,11 +65,15 @@ fn check_batch(name: &str, triangles: &[Triangle], width: u32) -> f64 {
 }
 
 fn unit_triangles(rng: &mut ChaCha8Rng, n: usize) -> Vec<Triangle> {
-    (0..n).map(|_| [0, 1, 2].map(|_| [rng.gen::<f64>(), rng.gen::<f64>(), rng.gen::<f64>()])).collect()
+    (0..n)
+        .map(|_| [0, 1, 2].map(|_| [rng.gen::<f64>(), rng.gen::<f64>(), rng.gen::<f64>()]))
+        .collect()
 }
 
 fn transformed(ts: &[Triangle], scale: f64, offset: [f64; 3]) -> Vec<Triangle> {
-    ts.iter().map(|t| t.map(|p| [0, 1, 2].map(|k| p[k] * scale + offset[k]))).collect()
+    ts.iter()
+        .map(|t| t.map(|p| [0, 1, 2].map(|k| p[k] * scale + offset[k])))
+        .collect()
 }
 
 /// Extreme batches: name and triangles.
@@ -81,36 +90,59 @@ fn extreme_batches() -> Vec<(String, Vec<Triangle>)> {
         }
     }
     for scale in [1e-12, 1e-100, 1e-300, 1e-305] {
-        batches.push((format!("tiny extent {scale:e} at the origin"), transformed(&base, scale, [0.0; 3])));
+        batches.push((
+            format!("tiny extent {scale:e} at the origin"),
+            transformed(&base, scale, [0.0; 3]),
+        ));
     }
     for scale in [1e100, 1e300] {
-        batches.push((format!("huge extent {scale:e}"), transformed(&base, scale, [0.0; 3])));
+        batches.push((
+            format!("huge extent {scale:e}"),
+            transformed(&base, scale, [0.0; 3]),
+        ));
     }
     // Extents beyond f64::MAX: `hi - lo` itself overflows.
     let max = f64::MAX;
     batches.push((
         "extent beyond f64::MAX".into(),
-        vec![[[-max, -1e308, 0.0], [max, 1e308, 1.0], [0.0, 0.0, -max]], [[1e300, -1e300, max]; 3]],
+        vec![
+            [[-max, -1e308, 0.0], [max, 1e308, 1.0], [0.0, 0.0, -max]],
+            [[1e300, -1e300, max]; 3],
+        ],
     ));
-    batches.push(("two points at -f64::MAX and f64::MAX".into(), vec![[[-max; 3]; 3], [[max; 3]; 3]]));
+    batches.push((
+        "two points at -f64::MAX and f64::MAX".into(),
+        vec![[[-max; 3]; 3], [[max; 3]; 3]],
+    ));
     let p = [1e9 + 0.25, -3.5, 7.0];
     batches.push(("single point".into(), vec![[p, p, p]]));
     batches.push(("single point at the origin".into(), vec![[[0.0; 3]; 3]]));
-    batches.push(("two points one ulp apart".into(), vec![[p, p, p], [[p[0].next_up(), p[1], p[2]]; 3]]));
+    batches.push((
+        "two points one ulp apart".into(),
+        vec![[p, p, p], [[p[0].next_up(), p[1], p[2]]; 3]],
+    ));
     batches.push((
         "flat in z".into(),
-        transformed(&base, 1.0, [0.0; 3]).into_iter().map(|t| t.map(|q| [q[0], q[1], 2.0])).collect(),
+        transformed(&base, 1.0, [0.0; 3])
+            .into_iter()
+            .map(|t| t.map(|q| [q[0], q[1], 2.0]))
+            .collect(),
     ));
     batches.push((
         "mixed magnitudes".into(),
         vec![
-            [[1e-300, 0.0, 0.0], [1.0, 1e-300, -1e-300], [0.5, 0.5, 1e-200]],
+            [
+                [1e-300, 0.0, 0.0],
+                [1.0, 1e-300, -1e-300],
+                [0.5, 0.5, 1e-200],
+            ],
             [[-1.0, 0.25, 1.0], [1e-20, 1e-10, 0.0], [0.0, 0.0, 0.0]],
         ],
     ));
     for _ in 0..50 {
         let scale = 10f64.powi(rng.gen_range(-250..250));
-        let offset = [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0) * 10f64.powi(rng.gen_range(-250..250)));
+        let offset =
+            [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0) * 10f64.powi(rng.gen_range(-250..250)));
         let n = rng.gen_range(1..10);
         batches.push((
             format!("random scale {scale:e}, offset {offset:?}"),
@@ -148,9 +180,16 @@ fn the_frame_uses_the_range() {
     let triangles = unit_triangles(&mut rng, 20);
     for width in MIN_WIDTH..=MAX_WIDTH {
         let frame = Frame::fit(&triangles, width).unwrap();
-        let q: Vec<i64> = triangles.iter().flat_map(|t| frame.quantize(t)).flatten().collect();
+        let q: Vec<i64> = triangles
+            .iter()
+            .flat_map(|t| frame.quantize(t))
+            .flatten()
+            .collect();
         let (lo, hi) = (*q.iter().min().unwrap(), *q.iter().max().unwrap());
         let max = frame.widths.max_coordinate();
-        assert!(hi >= max - 2 || lo <= -max + 2, "W={width}: quantized range [{lo}, {hi}] of [-{max}, {max}]");
+        assert!(
+            hi >= max - 2 || lo <= -max + 2,
+            "W={width}: quantized range [{lo}, {hi}] of [-{max}, {max}]"
+        );
     }
 }

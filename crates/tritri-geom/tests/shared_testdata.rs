@@ -49,7 +49,10 @@ struct PeerCase {
 /// parsed with `str::parse` (serde_json's default float parsing is not
 /// guaranteed to be correctly rounded).
 fn triangle_after(text: &str, key: &str, at: usize) -> (Triangle, usize) {
-    let start = at + text[at..].find(key).unwrap_or_else(|| panic!("{key} not found"));
+    let start = at
+        + text[at..]
+            .find(key)
+            .unwrap_or_else(|| panic!("{key} not found"));
     let open = start + text[start..].find('[').unwrap();
     let mut depth = 0;
     let mut end = open;
@@ -69,7 +72,10 @@ fn triangle_after(text: &str, key: &str, at: usize) -> (Triangle, usize) {
     let numbers: Vec<f64> = text[open..end]
         .split(|c: char| c == '[' || c == ']' || c == ',' || c.is_whitespace())
         .filter(|s| !s.is_empty())
-        .map(|s| s.parse().unwrap_or_else(|e| panic!("bad number {s:?}: {e}")))
+        .map(|s| {
+            s.parse()
+                .unwrap_or_else(|e| panic!("bad number {s:?}: {e}"))
+        })
         .collect();
     assert_eq!(numbers.len(), 9, "a triangle has nine coordinates");
     let p = |i: usize| [numbers[3 * i], numbers[3 * i + 1], numbers[3 * i + 2]];
@@ -78,7 +84,8 @@ fn triangle_after(text: &str, key: &str, at: usize) -> (Triangle, usize) {
 
 fn peer_cases() -> Vec<PeerCase> {
     let text = read("peer_cases.json");
-    let records: Vec<serde_json::Value> = serde_json::from_str(&text).expect("peer_cases.json is a JSON array");
+    let records: Vec<serde_json::Value> =
+        serde_json::from_str(&text).expect("peer_cases.json is a JSON array");
     let mut at = 0;
     let cases: Vec<PeerCase> = records
         .iter()
@@ -96,9 +103,15 @@ fn peer_cases() -> Vec<PeerCase> {
                     .collect()
             };
             let close = |a: &[f64], t: &Triangle| {
-                a.iter().zip(t.iter().flatten()).all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs().max(1.0))
+                a.iter()
+                    .zip(t.iter().flatten())
+                    .all(|(x, y)| (x - y).abs() <= 1e-12 * y.abs().max(1.0))
             };
-            let name = format!("{} / {}", r["src"].as_str().unwrap_or("?"), r["name"].as_str().unwrap_or("?"));
+            let name = format!(
+                "{} / {}",
+                r["src"].as_str().unwrap_or("?"),
+                r["name"].as_str().unwrap_or("?")
+            );
             assert!(
                 close(&from_json("t1"), &t1) && close(&from_json("t2"), &t2),
                 "{name}: text and JSON coordinates differ"
@@ -119,7 +132,10 @@ fn shen(name: &str) -> Vec<TrianglePair> {
         .lines()
         .filter(|l| !l.trim().is_empty())
         .map(|line| {
-            let v: Vec<f64> = line.split_whitespace().map(|s| s.parse().expect("a number")).collect();
+            let v: Vec<f64> = line
+                .split_whitespace()
+                .map(|s| s.parse().expect("a number"))
+                .collect();
             assert_eq!(v.len(), 18, "{name}: 18 numbers per line");
             let p = |i: usize| [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
             TrianglePair::new([p(0), p(1), p(2)], [p(3), p(4), p(5)])
@@ -147,7 +163,8 @@ fn fixed_agrees(pair: &TrianglePair, width: u32, orderings: bool) -> bool {
     let (q1, q2) = quantized(pair, width);
     let integer_pair = TrianglePair::new(as_f64(&q1), as_f64(&q2));
     let check = |p: &TrianglePair| {
-        fixed_point::intersects(&as_integers(&p.t1), &as_integers(&p.t2)) == exact_f64::intersects(&p.t1, &p.t2)
+        fixed_point::intersects(&as_integers(&p.t1), &as_integers(&p.t2))
+            == exact_f64::intersects(&p.t1, &p.t2)
     };
     if orderings {
         let all = all_orderings(&integer_pair).all(|p| check(&p));
@@ -166,9 +183,12 @@ fn peer_cases_exact_model_and_oracle_match_exact_closed_f64() {
     let mut model_wrong = 0;
     let mut oracle_wrong = 0;
     for case in &cases {
-        let m =
-            all_orderings(&case.pair).filter(|p| exact_f64::intersects(&p.t1, &p.t2) != case.exact_closed_f64).count();
-        let o = all_orderings(&case.pair).filter(|p| oracle::intersects(&p.t1, &p.t2) != case.exact_closed_f64).count();
+        let m = all_orderings(&case.pair)
+            .filter(|p| exact_f64::intersects(&p.t1, &p.t2) != case.exact_closed_f64)
+            .count();
+        let o = all_orderings(&case.pair)
+            .filter(|p| oracle::intersects(&p.t1, &p.t2) != case.exact_closed_f64)
+            .count();
         if m + o > 0 {
             eprintln!(
                 "  {}: expected {}, model wrong in {m}/72, oracle wrong in {o}/72",
@@ -224,7 +244,10 @@ fn peer_cases_fixed_point_equals_exact_on_quantized() {
 fn shen_pairs_exact_model_and_oracle_match_file_membership() {
     let timer = Timer::start();
     let mut total_bad = 0;
-    for (file, expected) in [("shen_intersected.txt", true), ("shen_separated.txt", false)] {
+    for (file, expected) in [
+        ("shen_intersected.txt", true),
+        ("shen_separated.txt", false),
+    ] {
         let pairs = shen(file);
         let model_bad = failures(&pairs, |p| exact_f64::intersects(&p.t1, &p.t2) == expected);
         let oracle_bad = failures(&pairs, |p| oracle::intersects(&p.t1, &p.t2) == expected);
@@ -249,7 +272,10 @@ fn shen_pairs_exact_model_and_oracle_match_file_membership() {
 fn shen_pairs_fixed_point_equals_exact_on_quantized() {
     let mut pairs = shen("shen_intersected.txt");
     let separated = shen("shen_separated.txt");
-    let expected: Vec<bool> = (0..pairs.len()).map(|_| true).chain(separated.iter().map(|_| false)).collect();
+    let expected: Vec<bool> = (0..pairs.len())
+        .map(|_| true)
+        .chain(separated.iter().map(|_| false))
+        .collect();
     pairs.extend(separated);
     let mut total_bad = 0;
     for width in [8, 24, 32] {
@@ -284,7 +310,9 @@ fn shen_pairs_fixed_point_equals_exact_on_quantized() {
 fn teapot_scene_flows_through_filters_and_tiles() {
     use tritri_geom::scene::load::{load_object, Pose};
     use tritri_geom::scene::octree::BatchCost;
-    use tritri_geom::scene::reference::{exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs};
+    use tritri_geom::scene::reference::{
+        exact_f64_pairs, fixed_point_pairs, quantized_exact_pairs,
+    };
     use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
     /// The system's overlapped batch cost at P = 2 (the hardware crate's
     /// cycle model, restated for this crate's tests).
@@ -296,27 +324,108 @@ fn teapot_scene_flows_through_filters_and_tiles() {
     }
     let path = testdata().join("teapot.bpt");
     let teapot = load_object(path.to_str().unwrap(), 6).unwrap();
-    assert_eq!(teapot.triangles.len(), 2272, "32 patches x 72 triangles, less those with coincident vertices");
-    let posed = teapot.posed(&Pose { translation: [0.5, 0.3, 1.0], rotation_degrees: [0.0, 0.0, 40.0] });
+    assert_eq!(
+        teapot.triangles.len(),
+        2272,
+        "32 patches x 72 triangles, less those with coincident vertices"
+    );
+    let posed = teapot.posed(&Pose {
+        translation: [0.5, 0.3, 1.0],
+        rotation_degrees: [0.0, 0.0, 40.0],
+    });
     let truth = exact_f64_pairs(&teapot.triangles, &posed.triangles).pairs;
     for width in [8, 16, 24] {
-        let tiled = prepare(&teapot, &posed, &SceneOptions { width, depth: 64, split: true }).unwrap();
-        let untiled = prepare(&teapot, &posed, &SceneOptions { width, depth: 1 << 15, split: true }).unwrap();
+        let tiled = prepare(
+            &teapot,
+            &posed,
+            &SceneOptions {
+                width,
+                depth: 64,
+                split: true,
+            },
+        )
+        .unwrap();
+        let untiled = prepare(
+            &teapot,
+            &posed,
+            &SceneOptions {
+                width,
+                depth: 1 << 15,
+                split: true,
+            },
+        )
+        .unwrap();
         let found = fixed_point_pairs(&tiled.batches(), &|_| {});
-        assert_eq!(found, quantized_exact_pairs(&tiled.batches()), "W = {width}");
-        assert_eq!(found, fixed_point_pairs(&untiled.batches(), &|_| {}), "W = {width}");
-        let octree = prepare_octree(&teapot, &posed, &SceneOptions { width, depth: 64, split: true }, &Cycles, None).unwrap();
-        assert_eq!(fixed_point_pairs(&octree.batches(), &|_| {}), found, "octree, W = {width}");
+        assert_eq!(
+            found,
+            quantized_exact_pairs(&tiled.batches()),
+            "W = {width}"
+        );
+        assert_eq!(
+            found,
+            fixed_point_pairs(&untiled.batches(), &|_| {}),
+            "W = {width}"
+        );
+        let octree = prepare_octree(
+            &teapot,
+            &posed,
+            &SceneOptions {
+                width,
+                depth: 64,
+                split: true,
+            },
+            &Cycles,
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            fixed_point_pairs(&octree.batches(), &|_| {}),
+            found,
+            "octree, W = {width}"
+        );
         for (i, j) in &truth {
-            assert!(tiled.candidates_a.binary_search(i).is_ok() && tiled.candidates_b.binary_search(j).is_ok());
+            assert!(
+                tiled.candidates_a.binary_search(i).is_ok()
+                    && tiled.candidates_b.binary_search(j).is_ok()
+            );
         }
-        eprintln!("teapot W = {width}: {} pairs tested of {}, {} hits, {} exact f64", tiled.pairs_tested(), tiled.all_pairs(), found.len(), truth.len());
+        eprintln!(
+            "teapot W = {width}: {} pairs tested of {}, {} hits, {} exact f64",
+            tiled.pairs_tested(),
+            tiled.all_pairs(),
+            found.len(),
+            truth.len()
+        );
     }
-    let itself = prepare(&teapot, &teapot, &SceneOptions { width: 8, depth: 256, split: true }).unwrap();
+    let itself = prepare(
+        &teapot,
+        &teapot,
+        &SceneOptions {
+            width: 8,
+            depth: 256,
+            split: true,
+        },
+    )
+    .unwrap();
     let found = fixed_point_pairs(&itself.batches(), &|_| {});
     assert!((0..teapot.triangles.len() as u32).all(|i| found.contains(&(i, i))));
-    let octree = prepare_octree(&teapot, &teapot, &SceneOptions { width: 8, depth: 256, split: true }, &Cycles, None).unwrap();
-    assert_eq!(fixed_point_pairs(&octree.batches(), &|_| {}), found, "octree, teapot against itself");
+    let octree = prepare_octree(
+        &teapot,
+        &teapot,
+        &SceneOptions {
+            width: 8,
+            depth: 256,
+            split: true,
+        },
+        &Cycles,
+        None,
+    )
+    .unwrap();
+    assert_eq!(
+        fixed_point_pairs(&octree.batches(), &|_| {}),
+        found,
+        "octree, teapot against itself"
+    );
 }
 
 /// Fidelity of `published_float` (our translation of Guigue and
@@ -370,12 +479,21 @@ fn wrong_as_often_as_the_c_code_on_peer_cases() {
 #[test]
 fn teapot_normal_cones_hold_every_sampled_normal() {
     use tritri_geom::bezier::cone::{back_facing, paper_back_facing, NormalCone};
-    use tritri_geom::bezier::{oriented_outwards, read_bpt};
     use tritri_geom::bezier::subdivide::subdivide;
+    use tritri_geom::bezier::{oriented_outwards, read_bpt};
     let (patches, turned) = oriented_outwards(&read_bpt(&testdata().join("teapot.bpt")).unwrap());
     assert!(turned, "the teapot's d_u x d_v points inwards");
-    let eyes = [[10.0, 0.0, 1.5], [-10.0, 3.0, 1.5], [0.0, -8.0, 6.0], [0.0, 0.0, -6.0], [0.0, 0.0, 1.0], [2.0, 2.0, 8.0], [4.0, -4.0, 0.5], [-1.0, 0.5, 2.0]]
-        .map(nalgebra::Point3::from);
+    let eyes = [
+        [10.0, 0.0, 1.5],
+        [-10.0, 3.0, 1.5],
+        [0.0, -8.0, 6.0],
+        [0.0, 0.0, -6.0],
+        [0.0, 0.0, 1.0],
+        [2.0, 2.0, 8.0],
+        [4.0, -4.0, 0.5],
+        [-1.0, 0.5, 2.0],
+    ]
+    .map(nalgebra::Point3::from);
     let m = 16;
     for times in 0..=4 {
         let level = subdivide(&patches, times);
@@ -383,13 +501,19 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
         // The paper's test read with inward normals (the cone turned round).
         let (mut inward_culled, mut inward_wrong) = (0, 0);
         for (index, p) in level.iter().enumerate() {
-            let Some(cone) = NormalCone::of(p) else { continue };
+            let Some(cone) = NormalCone::of(p) else {
+                continue;
+            };
             let samples: Vec<(nalgebra::Point3<f64>, nalgebra::Vector3<f64>)> = (0..=m)
                 .flat_map(|i| (0..=m).map(move |j| (i as f64 / m as f64, j as f64 / m as f64)))
                 .filter_map(|(u, v)| p.normal(u, v).map(|n| (p.evaluate(u, v), n)))
                 .collect();
             for (_, n) in &samples {
-                assert!(cone.contains(*n, 1e-9), "{} patches, patch {index}: a normal outside the cone", level.len());
+                assert!(
+                    cone.contains(*n, 1e-9),
+                    "{} patches, patch {index}: a normal outside the cone",
+                    level.len()
+                );
             }
             for eye in eyes {
                 let faces_eye = samples.iter().any(|(q, n)| n.dot(&(q - eye)) < 0.0);
@@ -403,7 +527,10 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
                 }
                 // Facing the eye with the normals turned round too.
                 let faces_eye_inward = samples.iter().any(|(q, n)| n.dot(&(q - eye)) > 0.0);
-                let inward = NormalCone { axis: -cone.axis, ..cone };
+                let inward = NormalCone {
+                    axis: -cone.axis,
+                    ..cone
+                };
                 if paper_back_facing(&inward, p, eye) {
                     inward_culled += 1;
                     inward_wrong += faces_eye_inward as usize;
@@ -427,7 +554,9 @@ fn teapot_normal_cones_hold_every_sampled_normal() {
 #[test]
 fn teapot_patches_left_out_touch_nothing() {
     use tritri_geom::bezier::lod::error_level;
-    use tritri_geom::bezier::query::{net_box, patches_box, tessellate_for_query, MAX_SAMPLES, MAX_SPLITS};
+    use tritri_geom::bezier::query::{
+        net_box, patches_box, tessellate_for_query, MAX_SAMPLES, MAX_SPLITS,
+    };
     use tritri_geom::bezier::read_bpt;
     use tritri_geom::bounding_volume::Aabb;
     use tritri_geom::scene::load::{load_object, Pose};
@@ -439,22 +568,55 @@ fn teapot_patches_left_out_touch_nothing() {
     let sphere = load_object("@sphere", 8).unwrap();
     let bounds = Aabb::of_triangles(&sphere.triangles).unwrap();
     let centre_of = [0, 1, 2].map(|k| -(bounds.lo[k] + bounds.hi[k]) / 2.0);
-    let sphere = sphere.posed(&Pose { translation: centre_of, rotation_degrees: [0.0; 3] }).scaled(0.6 / bounds.extent());
+    let sphere = sphere
+        .posed(&Pose {
+            translation: centre_of,
+            rotation_degrees: [0.0; 3],
+        })
+        .scaled(0.6 / bounds.extent());
     let mut contacts = 0;
     // The body's side, the handle, the lid's knob, the spout's tip, the base.
-    for (i, centre) in [[1.45, 0.0, 1.2], [-2.6, 0.0, 1.9], [0.0, 0.0, 3.1], [3.1, 0.0, 2.3], [0.0, 1.2, 0.1]].iter().enumerate() {
-        let sphere = sphere.posed(&Pose { translation: *centre, rotation_degrees: [0.0, 20.0 * i as f64, 0.0] });
-        let region = patches_box(&patches).and_then(|p| p.overlap(&Aabb::of_triangles(&sphere.triangles).unwrap()));
+    for (i, centre) in [
+        [1.45, 0.0, 1.2],
+        [-2.6, 0.0, 1.9],
+        [0.0, 0.0, 3.1],
+        [3.1, 0.0, 2.3],
+        [0.0, 1.2, 0.1],
+    ]
+    .iter()
+    .enumerate()
+    {
+        let sphere = sphere.posed(&Pose {
+            translation: *centre,
+            rotation_degrees: [0.0, 20.0 * i as f64, 0.0],
+        });
+        let region = patches_box(&patches)
+            .and_then(|p| p.overlap(&Aabb::of_triangles(&sphere.triangles).unwrap()));
         let kept = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
-        let kept_patches: std::collections::BTreeSet<usize> = kept.face_of.iter().copied().collect();
-        for (index, patch) in patches.iter().enumerate().filter(|(index, _)| !kept_patches.contains(index)) {
+        let kept_patches: std::collections::BTreeSet<usize> =
+            kept.face_of.iter().copied().collect();
+        for (index, patch) in patches
+            .iter()
+            .enumerate()
+            .filter(|(index, _)| !kept_patches.contains(index))
+        {
             let whole = patch.tessellate(error_level(patch, tolerance, MAX_SAMPLES));
             let hits = exact_f64_pairs(&whole, &sphere.triangles).pairs;
             assert!(hits.is_empty(), "sphere at {centre:?}: patch {index} was left out but meets the sphere ({} pairs); its net's box {:?}", hits.len(), net_box(patch));
         }
-        let found = exact_f64_pairs(&kept.triangles, &sphere.triangles).pairs.len();
+        let found = exact_f64_pairs(&kept.triangles, &sphere.triangles)
+            .pairs
+            .len();
         contacts += (found > 0) as usize;
-        assert!(kept.triangles.len() < kept.uniform_triangles, "sphere at {centre:?}: {} triangles kept of {}", kept.triangles.len(), kept.uniform_triangles);
+        assert!(
+            kept.triangles.len() < kept.uniform_triangles,
+            "sphere at {centre:?}: {} triangles kept of {}",
+            kept.triangles.len(),
+            kept.uniform_triangles
+        );
     }
-    assert!(contacts >= 4, "the spheres touch the teapot: {contacts} of 5 placements found contacts");
+    assert!(
+        contacts >= 4,
+        "the spheres touch the teapot: {contacts} of 5 placements found contacts"
+    );
 }

@@ -24,7 +24,10 @@ fn quantized(spec: &PathBuf, level: u32) -> (Vec<FixedTriangle>, VoxelFrame) {
     assert!(spec.exists(), "{} is missing: run bash scripts/fetch-meshes.sh (CGAL meshes) or check ../shared/testdata (teapot)", spec.display());
     let object = load_object(spec.to_str().unwrap(), 8).unwrap();
     let frame = VoxelFrame::fit(&object.triangles, level).unwrap();
-    (object.triangles.iter().map(|t| frame.quantize(t)).collect(), frame)
+    (
+        object.triangles.iter().map(|t| frame.quantize(t)).collect(),
+        frame,
+    )
 }
 
 /// Compares the model's surface with the oracle's, split over the cores.
@@ -41,9 +44,18 @@ fn check_surface(mesh: &[FixedTriangle], level: u32, name: &str) -> usize {
     let mut expected = parts.into_inner().unwrap();
     expected.sort_unstable();
     expected.dedup();
-    let missing = expected.iter().filter(|v| model.binary_search(v).is_err()).count();
-    let extra = model.iter().filter(|v| expected.binary_search(v).is_err()).count();
-    println!("{name} at {n}^3: surface {} voxels, {missing} missing, {extra} extra", model.len());
+    let missing = expected
+        .iter()
+        .filter(|v| model.binary_search(v).is_err())
+        .count();
+    let extra = model
+        .iter()
+        .filter(|v| expected.binary_search(v).is_err())
+        .count();
+    println!(
+        "{name} at {n}^3: surface {} voxels, {missing} missing, {extra} extra",
+        model.len()
+    );
     assert_eq!((missing, extra), (0, 0), "{name} surface at {n}^3");
     model.len()
 }
@@ -52,9 +64,18 @@ fn check_solid(mesh: &[FixedTriangle], frame: &VoxelFrame, name: &str) -> usize 
     let model = oracle::voxels::voxels_of(&voxelize::solid(mesh, frame, &mut |_| {}).unwrap());
     let n = 1i64 << frame.level;
     let expected = oracle::voxels::solid_by_columns(mesh, n, S);
-    let missing = expected.iter().filter(|v| model.binary_search(v).is_err()).count();
-    let extra = model.iter().filter(|v| expected.binary_search(v).is_err()).count();
-    println!("{name} at {n}^3: solid {} voxels, {missing} missing, {extra} extra", model.len());
+    let missing = expected
+        .iter()
+        .filter(|v| model.binary_search(v).is_err())
+        .count();
+    let extra = model
+        .iter()
+        .filter(|v| expected.binary_search(v).is_err())
+        .count();
+    println!(
+        "{name} at {n}^3: solid {} voxels, {missing} missing, {extra} extra",
+        model.len()
+    );
     assert_eq!((missing, extra), (0, 0), "{name} solid at {n}^3");
     model.len()
 }
@@ -80,9 +101,16 @@ fn teapot_surface_equals_the_oracle() {
         let zero_area = mesh.iter().filter(|t| {
             let d = |a: [i64; 3], b: [i64; 3]| [0, 1, 2].map(|k| (b[k] - a[k]) as i128);
             let (u, v) = (d(t[0], t[1]), d(t[0], t[2]));
-            [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]] == [0; 3]
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ] == [0; 3]
         });
-        assert!(zero_area.count() > 0, "the collapsed patch corners give zero-area triangles");
+        assert!(
+            zero_area.count() > 0,
+            "the collapsed patch corners give zero-area triangles"
+        );
         check_surface(&mesh, level, "teapot");
     }
 }

@@ -21,17 +21,35 @@ fn sorted(mut v: Vec<[i64; 3]>) -> Vec<[i64; 3]> {
 /// solid's voxel count.
 fn check(mesh: &[FixedTriangle], level: u32, what: &str) -> u64 {
     let n = 1i64 << level;
-    let frame = VoxelFrame { level, origin: [0.0; 3], voxel_size: 1.0 };
+    let frame = VoxelFrame {
+        level,
+        origin: [0.0; 3],
+        voxel_size: 1.0,
+    };
     let surface = voxelize::surface(mesh, level, &mut |_| {});
-    assert_eq!(sorted(oracle::voxels::voxels_of(&surface)), oracle::voxels::surface(mesh, n, S), "surface of {what}");
-    let solid = voxelize::solid(mesh, &frame, &mut |_| {}).unwrap_or_else(|e| panic!("{what}: {e}"));
-    assert_eq!(sorted(oracle::voxels::voxels_of(&solid)), sorted(oracle::voxels::solid(mesh, n, S)), "solid of {what}");
+    assert_eq!(
+        sorted(oracle::voxels::voxels_of(&surface)),
+        oracle::voxels::surface(mesh, n, S),
+        "surface of {what}"
+    );
+    let solid =
+        voxelize::solid(mesh, &frame, &mut |_| {}).unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert_eq!(
+        sorted(oracle::voxels::voxels_of(&solid)),
+        sorted(oracle::voxels::solid(mesh, n, S)),
+        "solid of {what}"
+    );
     solid.count()
 }
 
 /// The four faces of a tetrahedron, outward or not (parity does not care).
 fn tetrahedron(v: [[i64; 3]; 4]) -> Vec<FixedTriangle> {
-    vec![[v[0], v[1], v[2]], [v[0], v[3], v[1]], [v[1], v[3], v[2]], [v[2], v[3], v[0]]]
+    vec![
+        [v[0], v[1], v[2]],
+        [v[0], v[3], v[1]],
+        [v[1], v[3], v[2]],
+        [v[2], v[3], v[0]],
+    ]
 }
 
 /// The eight faces of an octahedron with its vertices `r` from `c` along
@@ -73,10 +91,22 @@ fn random_tetrahedra_on_the_half_voxel_lattice() {
 #[test]
 fn octahedra_with_vertices_on_centre_lines() {
     let level = 3;
-    for centre in [[4 * S + S / 2; 3], [4 * S; 3], [4 * S, 4 * S + S / 2, 3 * S], [S / 2, S / 2, S / 2]] {
+    for centre in [
+        [4 * S + S / 2; 3],
+        [4 * S; 3],
+        [4 * S, 4 * S + S / 2, 3 * S],
+        [S / 2, S / 2, S / 2],
+    ] {
         for r in [S / 2, S, 3 * S / 2, 2 * S, 3 * S] {
-            let mesh: Vec<FixedTriangle> = octahedron(centre, r).into_iter().map(|t| t.map(|p| p.map(|c| c.clamp(0, 8 * S)))).collect();
-            check(&mesh, level, &format!("octahedron at {centre:?} radius {r}"));
+            let mesh: Vec<FixedTriangle> = octahedron(centre, r)
+                .into_iter()
+                .map(|t| t.map(|p| p.map(|c| c.clamp(0, 8 * S))))
+                .collect();
+            check(
+                &mesh,
+                level,
+                &format!("octahedron at {centre:?} radius {r}"),
+            );
         }
     }
 }
@@ -87,12 +117,21 @@ fn octahedra_with_vertices_on_centre_lines() {
 #[test]
 fn degenerate_triangles_in_closed_meshes() {
     let level = 3;
-    let v = [[S / 2, S / 2, S / 2], [7 * S + S / 2, S / 2, S / 2], [S / 2, 7 * S + S / 2, S / 2], [S / 2, S / 2, 7 * S + S / 2]];
+    let v = [
+        [S / 2, S / 2, S / 2],
+        [7 * S + S / 2, S / 2, S / 2],
+        [S / 2, 7 * S + S / 2, S / 2],
+        [S / 2, S / 2, 7 * S + S / 2],
+    ];
     let mut mesh = tetrahedron(v);
     let mid = [4 * S, S / 2, S / 2];
     mesh.push([v[0], mid, v[1]]);
     mesh.push([v[1], mid, v[0]]);
     mesh.push([[2 * S + S / 2; 3]; 3]);
-    mesh.push([[S / 2, 3 * S + S / 2, S / 2], [S / 2, 5 * S + S / 2, S / 2], [S / 2, 3 * S + S / 2, S / 2]]);
+    mesh.push([
+        [S / 2, 3 * S + S / 2, S / 2],
+        [S / 2, 5 * S + S / 2, S / 2],
+        [S / 2, 3 * S + S / 2, S / 2],
+    ]);
     check(&mesh, level, "tetrahedron with slivers");
 }

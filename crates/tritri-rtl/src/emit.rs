@@ -58,24 +58,27 @@
 //! ```
 
 pub mod ansi_ports;
+pub mod binning_unit_unit;
+pub mod broad_phase_system_unit;
 pub mod cell_classifier_unit;
 pub mod continuous_assigns;
 pub mod dsp_mapping;
 pub mod modules;
-pub mod binning_unit_unit;
-pub mod broad_phase_system_unit;
 pub mod owner_filter_unit;
 pub mod package;
 pub mod part_selects;
 pub mod patch_tessellator_unit;
 pub mod plane_traversal_unit;
 pub mod statements;
-pub mod voxel_units;
 pub mod tokens;
 pub mod triangle_setup_unit;
+pub mod triangle_voxelizer_unit;
+pub mod voxel_units;
 pub mod widths;
 
-pub use crate::pipeline::pipeline_unit::{emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError};
+pub use crate::pipeline::pipeline_unit::{
+    emit_pipeline, pipeline_unit, pipeline_unit_name, PipelineEmitError,
+};
 
 use crate::unit::RawDesign;
 use std::path::Path;
@@ -120,7 +123,8 @@ impl UnitDescription {
         self
     }
     pub fn parameter(mut self, name: &str, meaning: &str) -> Self {
-        self.parameters.push((name.to_string(), meaning.to_string()));
+        self.parameters
+            .push((name.to_string(), meaning.to_string()));
         self
     }
     pub fn port(mut self, name: &str, meaning: &str) -> Self {
@@ -247,8 +251,15 @@ pub fn emit_with(
     unit: &UnitDescription,
     options: EmitOptions,
 ) -> Result<EmittedDesign, EmitError> {
-    let valid_name = unit.name.chars().next().is_some_and(|c| c.is_ascii_lowercase())
-        && unit.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+    let valid_name = unit
+        .name
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_lowercase())
+        && unit
+            .name
+            .chars()
+            .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
     if !valid_name {
         return Err(EmitError::BadUnitName(unit.name.clone()));
     }
@@ -294,7 +305,12 @@ pub fn emit_with(
         }
     }
     let files = package::files(&modules, &ports, unit, &models);
-    Ok(EmittedDesign { top: unit.name.clone(), modules: modules.iter().map(|m| m.name.clone()).collect(), ports, files })
+    Ok(EmittedDesign {
+        top: unit.name.clone(),
+        modules: modules.iter().map(|m| m.name.clone()).collect(),
+        ports,
+        files,
+    })
 }
 
 impl EmittedDesign {

@@ -24,15 +24,15 @@
 //!
 //! docs/ARCHITECTURE.md puts each unit beside its software model and test.
 pub mod arith;
-pub mod pipeline;
-pub mod sim_drive;
+pub mod bezier;
 pub mod emit;
 pub mod measured;
+pub mod octree;
+pub mod pipeline;
 pub mod route;
+pub mod sim_drive;
 pub mod synth;
+pub mod system;
 pub mod tools;
 pub mod unit;
-pub mod system;
-pub mod octree;
-pub mod bezier;
 pub use pipeline::pipeline_for_width::raw_design;

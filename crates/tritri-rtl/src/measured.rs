@@ -53,15 +53,23 @@ pub struct Ecp5Row {
 impl Measurements {
     /// The measurements built into the program.
     pub fn committed() -> Measurements {
-        serde_json::from_str(COMMITTED).expect("rtl-out/measurements.json is checked by the test `measurements_parse`")
+        serde_json::from_str(COMMITTED)
+            .expect("rtl-out/measurements.json is checked by the test `measurements_parse`")
     }
 
     /// Measurements from a file of the same shape (a user's own runs);
     /// every post-route clock must be a positive number of MHz.
     pub fn parse(json: &str) -> Result<Measurements, String> {
         let m: Measurements = serde_json::from_str(json).map_err(|e| e.to_string())?;
-        if let Some(r) = m.ecp5.iter().find(|r| !(r.fmax_mhz.is_finite() && r.fmax_mhz > 0.0)) {
-            return Err(format!("{}: fmax_mhz {} is not a positive clock", r.unit, r.fmax_mhz));
+        if let Some(r) = m
+            .ecp5
+            .iter()
+            .find(|r| !(r.fmax_mhz.is_finite() && r.fmax_mhz > 0.0))
+        {
+            return Err(format!(
+                "{}: fmax_mhz {} is not a positive clock",
+                r.unit, r.fmax_mhz
+            ));
         }
         Ok(m)
     }
@@ -95,8 +103,24 @@ pub struct Device {
 
 /// The devices `tritri` sizes designs for (vendors' data sheets).
 pub const DEVICES: [Device; 2] = [
-    Device { name: "ecp5-85", part: "LFE5U-85F", flow: "ecp5", luts: 83_640, flip_flops: 83_640, dsps: 156, block_rams_18k: 208 },
-    Device { name: "artix7-200t", part: "XC7A200T", flow: "xilinx", luts: 133_800, flip_flops: 267_600, dsps: 740, block_rams_18k: 730 },
+    Device {
+        name: "ecp5-85",
+        part: "LFE5U-85F",
+        flow: "ecp5",
+        luts: 83_640,
+        flip_flops: 83_640,
+        dsps: 156,
+        block_rams_18k: 208,
+    },
+    Device {
+        name: "artix7-200t",
+        part: "XC7A200T",
+        flow: "xilinx",
+        luts: 133_800,
+        flip_flops: 267_600,
+        dsps: 740,
+        block_rams_18k: 730,
+    },
 ];
 
 /// The device called `name`.
@@ -113,7 +137,9 @@ mod tests {
         let m = Measurements::committed();
         assert_eq!(Measurements::parse(COMMITTED), Ok(m.clone()));
         let stopped = COMMITTED.replacen("\"fmax_mhz\": 149.3", "\"fmax_mhz\": 0.0", 1);
-        assert!(Measurements::parse(&stopped).unwrap_err().contains("tritri_pipeline_w8: fmax_mhz 0 is not a positive clock"));
+        assert!(Measurements::parse(&stopped)
+            .unwrap_err()
+            .contains("tritri_pipeline_w8: fmax_mhz 0 is not a positive clock"));
         assert!(m.xilinx("tritri_pipeline_w24").is_some());
         assert!(m.ecp5("tritri_pipeline_w8").is_some());
     }

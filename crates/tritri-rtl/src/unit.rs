@@ -87,14 +87,30 @@ pub struct UnitInfo {
 impl UnitInfo {
     pub fn of<T: Unit>(unit: &T) -> UnitInfo {
         let (type_name, arguments) = parse_type_name(std::any::type_name::<T>());
-        let names = UNIT_DOCS.iter().find(|d| d.name == type_name).map(|d| d.parameters).unwrap_or(&[]);
+        let names = UNIT_DOCS
+            .iter()
+            .find(|d| d.name == type_name)
+            .map(|d| d.parameters)
+            .unwrap_or(&[]);
         let mut parameters: Vec<(String, String)> = arguments
             .into_iter()
             .enumerate()
-            .map(|(i, value)| (names.get(i).map(|n| n.to_string()).unwrap_or_else(|| format!("P{i}")), value))
+            .map(|(i, value)| {
+                (
+                    names
+                        .get(i)
+                        .map(|n| n.to_string())
+                        .unwrap_or_else(|| format!("P{i}")),
+                    value,
+                )
+            })
             .collect();
         parameters.extend(unit.settings().into_iter().map(|(n, v)| (n.to_string(), v)));
-        UnitInfo { type_name, parameters, latency: T::LATENCY }
+        UnitInfo {
+            type_name,
+            parameters,
+            latency: T::LATENCY,
+        }
     }
 
     /// The module name stem: `Orient3d` → `orient3d`, `DelayLine` →
@@ -122,8 +138,16 @@ impl UnitInfo {
     /// `Orient3d<W = 24, D = 25, C = 49, O = 74>`, `SimpleDualPortRam<T =
     /// Bits<32>, A = 16>, depth = 512`.
     pub fn signature(&self) -> String {
-        let generics = self.doc().map_or(0, |d| d.parameters.len()).min(self.parameters.len());
-        let list = |ps: &[(String, String)]| ps.iter().map(|(n, v)| format!("{n} = {v}")).collect::<Vec<_>>().join(", ");
+        let generics = self
+            .doc()
+            .map_or(0, |d| d.parameters.len())
+            .min(self.parameters.len());
+        let list = |ps: &[(String, String)]| {
+            ps.iter()
+                .map(|(n, v)| format!("{n} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
         let mut text = self.type_name.clone();
         if generics > 0 {
             text.push_str(&format!("<{}>", list(&self.parameters[..generics])));
@@ -222,13 +246,19 @@ pub struct RawDesign {
 impl RawDesign {
     /// `top` (connected) printed by rust-hdl and walked.
     pub fn of<T: Block + Unit>(top: &T) -> RawDesign {
-        RawDesign { verilog: generate_verilog(top), units: unit_map(top) }
+        RawDesign {
+            verilog: generate_verilog(top),
+            units: unit_map(top),
+        }
     }
 }
 
 /// The units of `top`, the top itself at `top`.
 pub fn unit_map<T: Unit>(top: &T) -> UnitMap {
-    let mut walk = UnitWalk { path: Vec::new(), units: UnitMap::new() };
+    let mut walk = UnitWalk {
+        path: Vec::new(),
+        units: UnitMap::new(),
+    };
     top.record("top", &mut walk);
     walk.units
 }
@@ -239,12 +269,21 @@ mod tests {
 
     #[test]
     fn type_names() {
-        let (name, args) = parse_type_name("tritri_rtl::arith::delay_line::DelayLine<rust_hdl_core::bits::Bits<25>, 4>");
+        let (name, args) = parse_type_name(
+            "tritri_rtl::arith::delay_line::DelayLine<rust_hdl_core::bits::Bits<25>, 4>",
+        );
         assert_eq!(name, "DelayLine");
         assert_eq!(args, vec!["Bits<25>", "4"]);
-        let info = UnitInfo { type_name: "CrossProduct2d".into(), parameters: vec![], latency: None };
+        let info = UnitInfo {
+            type_name: "CrossProduct2d".into(),
+            parameters: vec![],
+            latency: None,
+        };
         assert_eq!(info.module_stem(), "cross_product2d");
-        assert_eq!(parse_type_name("a::Decision"), ("Decision".to_string(), vec![]));
+        assert_eq!(
+            parse_type_name("a::Decision"),
+            ("Decision".to_string(), vec![])
+        );
     }
 
     /// Every unit type has a doc, and its parameters are named.
@@ -252,7 +291,11 @@ mod tests {
     fn docs_are_collected() {
         let orient = UNIT_DOCS.iter().find(|d| d.name == "Orient3d").unwrap();
         assert_eq!(orient.parameters, &["W", "D", "C", "O"]);
-        assert!(orient.purpose.starts_with("Orientation determinant"), "{}", orient.purpose);
+        assert!(
+            orient.purpose.starts_with("Orientation determinant"),
+            "{}",
+            orient.purpose
+        );
         let delay = UNIT_DOCS.iter().find(|d| d.name == "DelayLine").unwrap();
         assert_eq!(delay.parameters, &["T", "N"]);
     }

@@ -29,7 +29,13 @@ fn values(rng: &mut ChaCha8Rng, bits: u32, n: usize) -> Vec<i128> {
     (0..n)
         .map(|k| match k % 3 {
             0 => rng.gen_range(-lim..lim),
-            1 => if rng.gen_bool(0.5) { -lim } else { lim - 1 },
+            1 => {
+                if rng.gen_bool(0.5) {
+                    -lim
+                } else {
+                    lim - 1
+                }
+            }
             _ => rng.gen_range(-2..3),
         })
         .collect()
@@ -56,7 +62,9 @@ fn narrow(v: [i128; 3]) -> [i64; 3] {
 fn tuples<const K: usize>(seed: u64, bits: u32) -> Vec<[i128; K]> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let columns: Vec<Vec<i128>> = (0..K).map(|_| values(&mut rng, bits, VECTORS)).collect();
-    (0..VECTORS).map(|i| std::array::from_fn(|k| columns[k][(i + 7 * k) % VECTORS])).collect()
+    (0..VECTORS)
+        .map(|i| std::array::from_fn(|k| columns[k][(i + 7 * k) % VECTORS]))
+        .collect()
 }
 
 #[test]
@@ -160,8 +168,10 @@ fn dot_product_is_exact() {
     let mut uut = DotProduct::<25, 49, 74>::default();
     uut.connect_all();
     uut.advance.next = true;
-    let vectors: Vec<([i128; 3], [i128; 3])> =
-        edge_vectors(7).into_iter().map(|[e1, e2, e3]| (e3, cross(narrow(e1), narrow(e2)))).collect();
+    let vectors: Vec<([i128; 3], [i128; 3])> = edge_vectors(7)
+        .into_iter()
+        .map(|[e1, e2, e3]| (e3, cross(narrow(e1), narrow(e2))))
+        .collect();
     assert_stream_matches(
         &mut uut,
         |u| &mut u.clock,
@@ -253,7 +263,15 @@ fn delay_lines_delay_by_their_length_and_hold() {
     uut.connect_all();
     uut.advance.next = true;
     let words = tuples::<1>(13, 24);
-    assert_stream_matches(&mut uut, |u| &mut u.clock, &words, 5, |u, [w]| u.d.next = from_i128(*w), |u| to_i128(u.q.val()), |[w]| *w);
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &words,
+        5,
+        |u, [w]| u.d.next = from_i128(*w),
+        |u| to_i128(u.q.val()),
+        |[w]| *w,
+    );
     // Held: with `advance` low, the output and the line do not move.
     let before = uut.q.val();
     uut.advance.next = false;
@@ -267,7 +285,15 @@ fn delay_lines_delay_by_their_length_and_hold() {
     uut.connect_all();
     uut.advance.next = true;
     let bits: Vec<bool> = (0..VECTORS).map(|k| (k * 7 + k / 3) % 5 < 2).collect();
-    assert_stream_matches(&mut uut, |u| &mut u.clock, &bits, 5, |u, b| u.d.next = *b, |u| u.q.val(), |b| *b);
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &bits,
+        5,
+        |u, b| u.d.next = *b,
+        |u| u.q.val(),
+        |b| *b,
+    );
     for _ in 0..5 {
         uut.d.next = true;
         clock_cycle(&mut uut, |u| &mut u.clock);

@@ -1,22 +1,24 @@
 //! The emitted octree classifier step, its setup, the binning unit, the
-//! broad-phase top, the owner filter and the plane traversal:
+//! broad-phase top, the owner filter, the plane traversal and the triangle voxelizer:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
 //! tritri-cosim's tests/cell_classifier.rs, tests/triangle_setup.rs and
-//! tests/binning_unit.rs, tests/owner_filter.rs and tests/plane_traversal.rs.)
+//! tests/binning_unit.rs, tests/owner_filter.rs, tests/plane_traversal.rs and
+//! tests/triangle_voxelizer.rs.)
 
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
-use tritri_rtl::system::SystemConfig;
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
-use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
+use tritri_rtl::emit::triangle_voxelizer_unit::emit_triangle_voxelizer;
+use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
 
 #[test]
@@ -31,7 +33,14 @@ fn every_grid_width_is_lint_clean() {
 fn the_binning_unit_is_lint_clean_at_every_grid() {
     for &g in &BINNING_GRID_WIDTHS {
         // Memories that fill their address bits and memories that do not.
-        let config = BinningUnitConfig { grid_bits: g, triangles: 1000, list_words: 4096, leaves: 300, log_depth: 8, log_pipelines: 1 };
+        let config = BinningUnitConfig {
+            grid_bits: g,
+            triangles: 1000,
+            list_words: 4096,
+            leaves: 300,
+            log_depth: 8,
+            log_pipelines: 1,
+        };
         check(g, emit_binning_unit(&config).unwrap());
     }
 }
@@ -39,9 +48,25 @@ fn the_binning_unit_is_lint_clean_at_every_grid() {
 #[test]
 fn the_broad_phase_top_is_lint_clean_at_both_widths() {
     for w in [24, 16] {
-        let unit = BinningUnitConfig { grid_bits: 24, triangles: 1000, list_words: 4096, leaves: 300, log_depth: 6, log_pipelines: 1 };
+        let unit = BinningUnitConfig {
+            grid_bits: 24,
+            triangles: 1000,
+            list_words: 4096,
+            leaves: 300,
+            log_depth: 6,
+            log_pipelines: 1,
+        };
         let system = SystemConfig::new(w, 2, latency()).with_depth(64);
-        check(w, emit_broad_phase_system(&BroadPhaseConfig { unit, system, slots: 5000, local_frames: w < 24 }).unwrap());
+        check(
+            w,
+            emit_broad_phase_system(&BroadPhaseConfig {
+                unit,
+                system,
+                slots: 5000,
+                local_frames: w < 24,
+            })
+            .unwrap(),
+        );
     }
 }
 
@@ -59,6 +84,7 @@ fn the_octree_engines_units_are_lint_clean() {
     check(0, emit_set_operation().unwrap());
     check(0, emit_octant_clipper().unwrap());
     check(0, emit_voxel_fill().unwrap());
+    check(0, emit_triangle_voxelizer().unwrap());
 }
 
 /// The emitted patch tessellator at W = 16, K = 3, for review: any change
@@ -66,14 +92,19 @@ fn the_octree_engines_units_are_lint_clean() {
 #[test]
 fn patch_tessellator_snapshot() {
     let design = tritri_rtl::emit::patch_tessellator_unit::emit_patch_tessellator(16, 3).unwrap();
-    assert_eq!(design.modules, vec!["tritri_patch_tessellator_w16_k3".to_string()]);
+    assert_eq!(
+        design.modules,
+        vec!["tritri_patch_tessellator_w16_k3".to_string()]
+    );
     insta::assert_snapshot!(design.verilog_files().next().unwrap().contents.clone());
 }
 
 /// The Bezier system's patch tessellator, at every (W, K) it is built for.
 #[test]
 fn the_patch_tessellator_is_lint_clean() {
-    use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_tessellator, TESSELLATOR_CONFIGURATIONS};
+    use tritri_rtl::emit::patch_tessellator_unit::{
+        emit_patch_tessellator, TESSELLATOR_CONFIGURATIONS,
+    };
     for (w, k) in TESSELLATOR_CONFIGURATIONS {
         check(w, emit_patch_tessellator(w, k).unwrap());
     }
@@ -81,18 +112,37 @@ fn the_patch_tessellator_is_lint_clean() {
 
 fn check(g: usize, design: EmittedDesign) {
     {
-        let dir = std::env::temp_dir().join(format!("tritri-emit-{}-{}", design.top, std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("tritri-emit-{}-{}", design.top, std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
-        let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
-        assert!(messages.trim().is_empty(), "G={g}: verilator said:\n{messages}");
-        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
-        assert!(messages.is_empty(), "G={g}: slang said:\n{messages}");
-        run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
+        let messages =
+            tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("G={g}: {e}"));
+        assert!(
+            messages.trim().is_empty(),
+            "G={g}: verilator said:\n{messages}"
+        );
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
             .unwrap_or_else(|e| panic!("G={g}: {e}"));
+        assert!(messages.is_empty(), "G={g}: slang said:\n{messages}");
+        run(IVERILOG.command().unwrap().current_dir(&dir).args([
+            "-g2012",
+            "-o",
+            "/dev/null",
+            "-c",
+            "filelist.f",
+        ]))
+        .unwrap_or_else(|e| panic!("G={g}: {e}"));
         for f in design.verilog_files() {
             assert!(f.path.starts_with(&design.top), "{}", f.path);
-            assert!(!f.contents.replace("$signed", "").replace("$unsigned", "").contains('$'), "{}: a `$` is left", f.path);
+            assert!(
+                !f.contents
+                    .replace("$signed", "")
+                    .replace("$unsigned", "")
+                    .contains('$'),
+                "{}: a `$` is left",
+                f.path
+            );
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }

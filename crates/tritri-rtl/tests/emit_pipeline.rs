@@ -5,13 +5,16 @@
 //!
 //! A missing tool fails the test with the package to install.
 
-use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
 use tritri_rtl::emit::{emit_pipeline, EmittedDesign};
+use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
 use tritri_rtl::synth::{synthesize, Target};
 use tritri_rtl::tools::{run, IVERILOG};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("tritri-emit-pipeline-{}-{name}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "tritri-emit-pipeline-{}-{name}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -31,14 +34,32 @@ fn every_width_is_lint_clean() {
     for &width in SUPPORTED_WIDTHS {
         let design = emit_pipeline(width).unwrap();
         let dir = write(&design, &format!("lint-w{width}"));
-        let messages = tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
-        assert!(messages.trim().is_empty(), "W={width}: verilator said:\n{messages}");
-        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
-        assert!(messages.is_empty(), "W={width}: slang -Weverything said:\n{messages}");
-        run(IVERILOG.command().unwrap().current_dir(&dir).args(["-g2012", "-o", "/dev/null", "-c", "filelist.f"]))
+        let messages =
+            tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
+        assert!(
+            messages.trim().is_empty(),
+            "W={width}: verilator said:\n{messages}"
+        );
+        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
             .unwrap_or_else(|e| panic!("W={width}: {e}"));
+        assert!(
+            messages.is_empty(),
+            "W={width}: slang -Weverything said:\n{messages}"
+        );
+        run(IVERILOG.command().unwrap().current_dir(&dir).args([
+            "-g2012",
+            "-o",
+            "/dev/null",
+            "-c",
+            "filelist.f",
+        ]))
+        .unwrap_or_else(|e| panic!("W={width}: {e}"));
         for f in design.verilog_files() {
-            assert!(!f.contents.contains("lint_off"), "{}: no lint_off pragma is needed", f.path);
+            assert!(
+                !f.contents.contains("lint_off"),
+                "{}: no lint_off pragma is needed",
+                f.path
+            );
         }
         std::fs::remove_dir_all(&dir).unwrap();
     }
@@ -56,15 +77,37 @@ fn emitted_files_follow_the_conventions() {
         assert!(name.starts_with("tritri_pipeline_w24"), "{name}");
         let stripped = f.contents.replace("$signed", "").replace("$unsigned", "");
         assert!(!stripped.contains('$'), "{}: a `$` is left", f.path);
-        assert_eq!(f.contents.lines().filter(|l| l.starts_with("module ")).count(), 1, "{}", f.path);
-        assert!(f.contents.contains(&format!("\nmodule {name}")), "{}", f.path);
-        assert!(f.contents.contains("`default_nettype none") && f.contents.trim_end().ends_with("`default_nettype wire"));
+        assert_eq!(
+            f.contents
+                .lines()
+                .filter(|l| l.starts_with("module "))
+                .count(),
+            1,
+            "{}",
+            f.path
+        );
+        assert!(
+            f.contents.contains(&format!("\nmodule {name}")),
+            "{}",
+            f.path
+        );
+        assert!(
+            f.contents.contains("`default_nettype none")
+                && f.contents.trim_end().ends_with("`default_nettype wire")
+        );
     }
     let readme = &design.file("README.md").unwrap().contents;
     for p in &design.ports {
-        assert!(readme.contains(&format!("| `{}` | {} | {} |", p.name, p.direction, p.bits)), "{}", p.name);
+        assert!(
+            readme.contains(&format!("| `{}` | {} | {} |", p.name, p.direction, p.bits)),
+            "{}",
+            p.name
+        );
     }
-    assert!(readme.contains(&format!("Latency: {} clock cycles", tritri_rtl::pipeline::triangle_pipeline::latency())));
+    assert!(readme.contains(&format!(
+        "Latency: {} clock cycles",
+        tritri_rtl::pipeline::triangle_pipeline::latency()
+    )));
 }
 
 /// The row of `unit` in the resource table of rtl-out/README.md, split
@@ -76,7 +119,10 @@ fn published_row(unit: &str) -> Vec<String> {
         .lines()
         .find(|l| l.starts_with(&format!("| {unit} |")))
         .unwrap_or_else(|| panic!("{}: no resource-table row for {unit}", path.display()));
-    row.split('|').map(|c| c.trim().to_string()).filter(|c| !c.is_empty()).collect()
+    row.split('|')
+        .map(|c| c.trim().to_string())
+        .filter(|c| !c.is_empty())
+        .collect()
 }
 
 /// rtl-out/measurements.json (what `tritri report` reads) says what
@@ -90,27 +136,75 @@ fn measurements_file_is_the_readme_tables() {
     let rows: Vec<Vec<String>> = text
         .lines()
         .filter(|l| l.starts_with("| tritri_"))
-        .map(|l| l.split('|').map(|c| c.trim().to_string()).filter(|c| !c.is_empty()).collect())
+        .map(|l| {
+            l.split('|')
+                .map(|c| c.trim().to_string())
+                .filter(|c| !c.is_empty())
+                .collect()
+        })
         .collect();
     let (mut xilinx, mut ecp5) = (0, 0);
     for row in &rows {
-        let n = |i: usize| row[i].parse::<u64>().unwrap_or_else(|_| panic!("{row:?}: column {i}"));
+        let n = |i: usize| {
+            row[i]
+                .parse::<u64>()
+                .unwrap_or_else(|_| panic!("{row:?}: column {i}"))
+        };
         if row.len() == 9 && row[6].starts_with('`') {
-            let r = kept.ecp5(&row[0]).unwrap_or_else(|| panic!("measurements.json has no ECP5 row for {}", row[0]));
-            assert_eq!((format!("{:.1}", r.fmax_mhz), r.lut4, r.ff, r.mult18x18d, r.ebr), (row[1].clone(), n(2), n(3), n(4), n(5)), "{}", row[0]);
+            let r = kept
+                .ecp5(&row[0])
+                .unwrap_or_else(|| panic!("measurements.json has no ECP5 row for {}", row[0]));
+            assert_eq!(
+                (
+                    format!("{:.1}", r.fmax_mhz),
+                    r.lut4,
+                    r.ff,
+                    r.mult18x18d,
+                    r.ebr
+                ),
+                (row[1].clone(), n(2), n(3), n(4), n(5)),
+                "{}",
+                row[0]
+            );
             ecp5 += 1;
         } else if row.len() == 7 {
-            let r = kept.xilinx(&row[0]).unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
-            assert_eq!((r.generic_cells, r.lut, r.ff, r.dsp48e1, r.carry4, r.srl), (Some(n(1)), n(2), n(3), n(4), n(5), n(6)), "{}", row[0]);
+            let r = kept
+                .xilinx(&row[0])
+                .unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
+            assert_eq!(
+                (r.generic_cells, r.lut, r.ff, r.dsp48e1, r.carry4, r.srl),
+                (Some(n(1)), n(2), n(3), n(4), n(5), n(6)),
+                "{}",
+                row[0]
+            );
             xilinx += 1;
         } else if row.len() == 8 && row[6].contains('+') {
-            let r = kept.xilinx(&row[0]).unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
+            let r = kept
+                .xilinx(&row[0])
+                .unwrap_or_else(|| panic!("measurements.json has no Xilinx row for {}", row[0]));
             let ram = format!("{} + {}", r.ramb36.unwrap_or(0), r.ramb18.unwrap_or(0));
-            assert_eq!((r.lut, r.ff, r.dsp48e1, r.carry4, r.srl, ram, r.distributed_ram), (n(1), n(2), n(3), n(4), n(5), row[6].clone(), Some(n(7))), "{}", row[0]);
+            assert_eq!(
+                (
+                    r.lut,
+                    r.ff,
+                    r.dsp48e1,
+                    r.carry4,
+                    r.srl,
+                    ram,
+                    r.distributed_ram
+                ),
+                (n(1), n(2), n(3), n(4), n(5), row[6].clone(), Some(n(7))),
+                "{}",
+                row[0]
+            );
             xilinx += 1;
         }
     }
-    assert_eq!((xilinx, ecp5), (kept.xilinx.len(), kept.ecp5.len()), "every measured row is in the README, and no other");
+    assert_eq!(
+        (xilinx, ecp5),
+        (kept.xilinx.len(), kept.ecp5.len()),
+        "every measured row is in the README, and no other"
+    );
 }
 
 /// Yosys: `synth_xilinx` at W = 24 and generic `synth` at W = 8 both finish
@@ -125,14 +219,32 @@ fn yosys_synthesizes_to_the_published_resources() {
     let xilinx = synthesize(&dir, Target::Xilinx).unwrap();
     assert!(xilinx.luts() > 0 && xilinx.flip_flops() > 0 && xilinx.dsps() > 0);
     let row = published_row(&design.top);
-    let measured =
-        [xilinx.luts(), xilinx.flip_flops(), xilinx.dsps(), xilinx.carry_chains(), xilinx.shift_registers()].map(|n| n.to_string());
-    assert_eq!(row[2..7], measured, "W=24 synth_xilinx: LUT FF DSP48E1 CARRY4 SRL; regenerate the table in rtl-out/README.md");
+    let measured = [
+        xilinx.luts(),
+        xilinx.flip_flops(),
+        xilinx.dsps(),
+        xilinx.carry_chains(),
+        xilinx.shift_registers(),
+    ]
+    .map(|n| n.to_string());
+    assert_eq!(
+        row[2..7],
+        measured,
+        "W=24 synth_xilinx: LUT FF DSP48E1 CARRY4 SRL; regenerate the table in rtl-out/README.md"
+    );
     let kept = tritri_rtl::measured::Measurements::committed();
-    let kept = kept.xilinx(&design.top).expect("rtl-out/measurements.json has the W = 24 pipeline");
+    let kept = kept
+        .xilinx(&design.top)
+        .expect("rtl-out/measurements.json has the W = 24 pipeline");
     assert_eq!(
         [kept.lut, kept.ff, kept.dsp48e1, kept.carry4, kept.srl],
-        [xilinx.luts(), xilinx.flip_flops(), xilinx.dsps(), xilinx.carry_chains(), xilinx.shift_registers()],
+        [
+            xilinx.luts(),
+            xilinx.flip_flops(),
+            xilinx.dsps(),
+            xilinx.carry_chains(),
+            xilinx.shift_registers()
+        ],
         "W=24 synth_xilinx against rtl-out/measurements.json"
     );
     std::fs::remove_dir_all(&dir).unwrap();
@@ -141,7 +253,11 @@ fn yosys_synthesizes_to_the_published_resources() {
     let dir = write(&design, "synth-w8");
     let generic = synthesize(&dir, Target::Generic).unwrap();
     assert!(generic.cells > 0 && generic.flip_flops() > 0);
-    assert_eq!(published_row(&design.top)[1], generic.cells.to_string(), "W=8 generic cells");
+    assert_eq!(
+        published_row(&design.top)[1],
+        generic.cells.to_string(),
+        "W=8 generic cells"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -169,16 +285,29 @@ fn emission_passes_are_formally_equivalent() {
     use tritri_rtl::system::system_for_width::{system_for_config, PipelineKind};
     use tritri_rtl::system::system_unit::system_unit;
     use tritri_rtl::system::SystemConfig;
-    let system = SystemConfig::new(8, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(16);
+    let system =
+        SystemConfig::new(8, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(16);
     let raw_system = {
         let mut s = system_for_config(system, PipelineKind::Real).unwrap();
         s.connect_all();
         s.raw_design()
     };
     let cases = [
-        ("w8".to_string(), tritri_rtl::raw_design(8).unwrap(), pipeline_unit(8).unwrap()),
-        ("w24".to_string(), tritri_rtl::raw_design(24).unwrap(), pipeline_unit(24).unwrap()),
-        ("system".to_string(), raw_system, system_unit(system, PipelineKind::Real)),
+        (
+            "w8".to_string(),
+            tritri_rtl::raw_design(8).unwrap(),
+            pipeline_unit(8).unwrap(),
+        ),
+        (
+            "w24".to_string(),
+            tritri_rtl::raw_design(24).unwrap(),
+            pipeline_unit(24).unwrap(),
+        ),
+        (
+            "system".to_string(),
+            raw_system,
+            system_unit(system, PipelineKind::Real),
+        ),
     ];
     for (width, raw, unit) in cases {
         let gold = emit_with(&raw, &unit, EmitOptions::no_rewrites()).unwrap();
@@ -196,8 +325,12 @@ fn emission_passes_are_formally_equivalent() {
                 continue;
             }
             changed += 1;
-            let others: Vec<String> =
-                gate.modules.iter().filter(|m| *m != module).map(|m| format!("gate/{m}.v")).collect();
+            let others: Vec<String> = gate
+                .modules
+                .iter()
+                .filter(|m| *m != module)
+                .map(|m| format!("gate/{m}.v"))
+                .collect();
             let script = format!(
                 "read_verilog -lib {}\nread_verilog gold/{file}\nproc\nmemory\nrename {module} gold\n\
                  read_verilog gate/{file}\nproc\nmemory\nrename {module} gate\nequiv_make gold gate equiv\n\
@@ -206,7 +339,11 @@ fn emission_passes_are_formally_equivalent() {
             );
             std::fs::write(dir.join("equiv.ys"), script).unwrap();
             tritri_rtl::tools::run(
-                tritri_rtl::tools::YOSYS.command().unwrap().current_dir(&dir).args(["-q", "equiv.ys"]),
+                tritri_rtl::tools::YOSYS
+                    .command()
+                    .unwrap()
+                    .current_dir(&dir)
+                    .args(["-q", "equiv.ys"]),
             )
             .unwrap_or_else(|e| panic!("{width}, module {module}: {e}"));
         }

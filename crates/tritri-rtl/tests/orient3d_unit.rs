@@ -38,7 +38,13 @@ fn orient3d_sign_matches_software_at_w24() {
             for c in q.iter_mut() {
                 *c = match n % 3 {
                     0 => rng.gen_range(-lim..lim),
-                    1 => if rng.gen_bool(0.5) { -lim } else { lim - 1 },
+                    1 => {
+                        if rng.gen_bool(0.5) {
+                            -lim
+                        } else {
+                            lim - 1
+                        }
+                    }
                     _ => rng.gen_range(-2..2),
                 };
             }

@@ -18,17 +18,17 @@ use tritri_rtl::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::arith::subtractor::SUBTRACTOR_LATENCY;
 use tritri_rtl::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
-use tritri_rtl::pipeline::base_polygon::BasePolygon;
-use tritri_rtl::pipeline::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
 use tritri_rtl::pipeline::align_t2::{AlignT2, ALIGN_T2_LATENCY};
+use tritri_rtl::pipeline::base_polygon::BasePolygon;
 use tritri_rtl::pipeline::certified_orient3d::{CertifiedOrient3d, CERTIFIED_ORIENT3D_LATENCY};
 use tritri_rtl::pipeline::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use tritri_rtl::pipeline::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
-use tritri_rtl::pipeline::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
 use tritri_rtl::pipeline::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
+use tritri_rtl::pipeline::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
 use tritri_rtl::pipeline::normal::{NormalUnit, NORMAL_LATENCY};
 use tritri_rtl::pipeline::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
 use tritri_rtl::pipeline::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
+use tritri_rtl::pipeline::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
 use tritri_rtl::sim_drive::assert_stream_matches;
 
 const VECTORS: usize = 300;
@@ -38,14 +38,22 @@ const LIMIT: i64 = 1 << 23;
 fn point(rng: &mut ChaCha8Rng, kind: usize) -> FixedPoint3 {
     std::array::from_fn(|_| match kind % 3 {
         0 => rng.gen_range(-LIMIT..LIMIT),
-        1 => if rng.gen_bool(0.5) { -LIMIT } else { LIMIT - 1 },
+        1 => {
+            if rng.gen_bool(0.5) {
+                -LIMIT
+            } else {
+                LIMIT - 1
+            }
+        }
         _ => rng.gen_range(-3..4),
     })
 }
 
 fn triangles(seed: u64) -> Vec<FixedTriangle> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..VECTORS).map(|k| std::array::from_fn(|_| point(&mut rng, k))).collect()
+    (0..VECTORS)
+        .map(|k| std::array::from_fn(|_| point(&mut rng, k)))
+        .collect()
 }
 
 /// Triangles in one lattice plane `o + a u + b v` (small `a`, `b`), so that
@@ -75,7 +83,10 @@ fn set_vertices<const W: usize>(signals: &mut [Signal<In, Bits<W>>; 9], t: &Fixe
 
 fn edges(t: &FixedTriangle) -> ([i64; 3], [i64; 3]) {
     let [p, q, r] = *t;
-    (std::array::from_fn(|k| q[k] - p[k]), std::array::from_fn(|k| r[k] - p[k]))
+    (
+        std::array::from_fn(|k| q[k] - p[k]),
+        std::array::from_fn(|k| r[k] - p[k]),
+    )
 }
 
 fn normal(t: &FixedTriangle) -> [i128; 3] {
@@ -160,8 +171,9 @@ fn dominant_axis_is_the_largest_component_ties_low() {
 fn segment_ends_are_the_lexicographic_extremes_first_index_on_ties() {
     let mut rng = ChaCha8Rng::seed_from_u64(4);
     // Small coordinates: many equal coordinates and equal vertices.
-    let vectors: Vec<FixedTriangle> =
-        (0..VECTORS).map(|_| std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-1..2)))).collect();
+    let vectors: Vec<FixedTriangle> = (0..VECTORS)
+        .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-1..2))))
+        .collect();
     let mut uut = SegmentEnds::<24>::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -171,7 +183,12 @@ fn segment_ends_are_the_lexicographic_extremes_first_index_on_ties() {
         &vectors,
         SEGMENT_ENDS_LATENCY,
         |u, t| set_vertices(&mut u.vertices, t),
-        |u| (u.low.val().to_u64() as usize, u.high.val().to_u64() as usize),
+        |u| {
+            (
+                u.low.val().to_u64() as usize,
+                u.high.val().to_u64() as usize,
+            )
+        },
         lexicographic_ends,
     );
 }
@@ -192,7 +209,11 @@ fn plane_side_signs_and_certificates() {
                 let p = plane[rng.gen_range(0..3)];
                 std::array::from_fn(|i| (p[i] + rng.gen_range(-2..3)).clamp(-LIMIT, LIMIT - 1))
             };
-            let t = if k % 2 == 0 { std::array::from_fn(|_| near(&mut rng)) } else { std::array::from_fn(|_| point(&mut rng, k)) };
+            let t = if k % 2 == 0 {
+                std::array::from_fn(|_| near(&mut rng))
+            } else {
+                std::array::from_fn(|_| point(&mut rng, k))
+            };
             (*plane, t)
         })
         .collect();
@@ -216,7 +237,11 @@ fn plane_side_signs_and_certificates() {
             u.plane_thermometer.next = edge_thermometer(plane).into();
             set_vertices(&mut u.vertices, t);
         },
-        |u| std::array::from_fn::<_, 3, _>(|k| (u.negative[k].val(), u.zero[k].val(), u.certain[k].val())),
+        |u| {
+            std::array::from_fn::<_, 3, _>(|k| {
+                (u.negative[k].val(), u.zero[k].val(), u.certain[k].val())
+            })
+        },
         |(plane, t)| {
             t.map(|v| {
                 let (sign, certain) = orient3d_certified(plane[0], plane[1], plane[2], v);
@@ -233,7 +258,11 @@ fn certified_orient3d_is_the_models_sign_and_certificate() {
         .map(|k| {
             let [a, b, c] = [point(&mut rng, k), point(&mut rng, k), point(&mut rng, k)];
             // d on or next to the plane of a, b, c half the time.
-            let d = if k % 2 == 0 { std::array::from_fn(|i| (b[i] + rng.gen_range(-1..2)).clamp(-LIMIT, LIMIT - 1)) } else { point(&mut rng, k) };
+            let d = if k % 2 == 0 {
+                std::array::from_fn(|i| (b[i] + rng.gen_range(-1..2)).clamp(-LIMIT, LIMIT - 1))
+            } else {
+                point(&mut rng, k)
+            };
             [a, b, c, d]
         })
         .collect();
@@ -265,10 +294,19 @@ fn certified_orient3d_is_the_models_sign_and_certificate() {
 /// `coplanar_triangles`.
 #[test]
 fn coplanar_test_is_the_closed_2d_test() {
-    let vectors: Vec<(FixedTriangle, FixedTriangle)> =
-        coplanar_pairs(8).into_iter().filter(|(t1, _)| normal(t1) != [0, 0, 0]).collect();
-    let hits = vectors.iter().filter(|(t1, t2)| coplanar_triangles::<FixedPoint>(*t1, *t2)).count();
-    assert!(hits > vectors.len() / 5 && hits < vectors.len() * 4 / 5, "{hits} hits of {}", vectors.len());
+    let vectors: Vec<(FixedTriangle, FixedTriangle)> = coplanar_pairs(8)
+        .into_iter()
+        .filter(|(t1, _)| normal(t1) != [0, 0, 0])
+        .collect();
+    let hits = vectors
+        .iter()
+        .filter(|(t1, t2)| coplanar_triangles::<FixedPoint>(*t1, *t2))
+        .count();
+    assert!(
+        hits > vectors.len() / 5 && hits < vectors.len() * 4 / 5,
+        "{hits} hits of {}",
+        vectors.len()
+    );
     let mut uut = CoplanarTest::<24, 25, 49>::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -300,14 +338,19 @@ fn coplanar_test_is_the_closed_2d_test() {
 #[test]
 fn degenerate_pair_is_the_three_projection_segment_test() {
     let mut rng = ChaCha8Rng::seed_from_u64(9);
-    let mut collinear = |o: FixedPoint3, d: [i64; 3]| on_line(o, d, std::array::from_fn(|_| rng.gen_range(-3..4)));
+    let mut collinear =
+        |o: FixedPoint3, d: [i64; 3]| on_line(o, d, std::array::from_fn(|_| rng.gen_range(-3..4)));
     let mut vectors = Vec::new();
     let mut rng2 = ChaCha8Rng::seed_from_u64(10);
     for k in 0..VECTORS {
         let o = point(&mut rng2, 2);
         let d1: [i64; 3] = std::array::from_fn(|_| rng2.gen_range(-2..3));
         // The second segment on the same line, a crossing line or anywhere.
-        let d2: [i64; 3] = if k % 3 == 0 { d1 } else { std::array::from_fn(|_| rng2.gen_range(-2..3)) };
+        let d2: [i64; 3] = if k % 3 == 0 {
+            d1
+        } else {
+            std::array::from_fn(|_| rng2.gen_range(-2..3))
+        };
         vectors.push((collinear(o, d1), collinear(o, d2)));
     }
     let model = |(t1, t2): &(FixedTriangle, FixedTriangle)| {
@@ -315,7 +358,11 @@ fn degenerate_pair_is_the_three_projection_segment_test() {
         (0..3).all(|axis| hulls_intersect_2d::<FixedPoint>(axis, &[t1[a], t1[b]], &[t2[c], t2[d]]))
     };
     let hits = vectors.iter().filter(|v| model(v)).count();
-    assert!(hits > 20 && hits < vectors.len() - 20, "{hits} hits of {}", vectors.len());
+    assert!(
+        hits > 20 && hits < vectors.len() - 20,
+        "{hits} hits of {}",
+        vectors.len()
+    );
     let mut uut = DegeneratePair::<24, 25, 49>::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -343,8 +390,12 @@ fn degenerate_pair_is_the_three_projection_segment_test() {
 /// triangle strictly on one side is rejected before), 24 of 27.
 fn sign_triples() -> Vec<[Sign; 3]> {
     let signs = [Sign::Negative, Sign::Zero, Sign::Positive];
-    let all: Vec<[Sign; 3]> = (0..27).map(|k| [signs[k % 3], signs[k / 3 % 3], signs[k / 9]]).collect();
-    all.into_iter().filter(|s| !(s[0] == s[1] && s[1] == s[2])).collect()
+    let all: Vec<[Sign; 3]> = (0..27)
+        .map(|k| [signs[k % 3], signs[k / 3 % 3], signs[k / 9]])
+        .collect();
+    all.into_iter()
+        .filter(|s| !(s[0] == s[1] && s[1] == s[2]))
+        .collect()
 }
 
 fn set_signs(negative: &mut [Signal<In, Bit>; 3], zero: &mut [Signal<In, Bit>; 3], s: &[Sign; 3]) {
@@ -358,8 +409,10 @@ fn set_signs(negative: &mut [Signal<In, Bit>; 3], zero: &mut [Signal<In, Bit>; 3
 /// vertices (T1 = 0, 1, 2; T2 = 3, 4, 5), for every pair of sign triples.
 #[test]
 fn alignment_units_follow_the_models_sign_tables() {
-    let vectors: Vec<([Sign; 3], [Sign; 3])> =
-        sign_triples().into_iter().flat_map(|d1| sign_triples().into_iter().map(move |d2| (d1, d2))).collect();
+    let vectors: Vec<([Sign; 3], [Sign; 3])> = sign_triples()
+        .into_iter()
+        .flat_map(|d1| sign_triples().into_iter().map(move |d2| (d1, d2)))
+        .collect();
     let mut uut = AlignT1::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -373,17 +426,30 @@ fn alignment_units_follow_the_models_sign_tables() {
             set_signs(&mut u.t2_negative, &mut u.t2_zero, d2);
         },
         |u| {
-            let aligned = std::array::from_fn::<_, 3, _>(|k| (u.t2_aligned_negative[k].val(), u.t2_aligned_zero[k].val()));
-            (u.t1_rotation.val().to_u64() as usize, u.t2_swap.val(), aligned)
+            let aligned = std::array::from_fn::<_, 3, _>(|k| {
+                (u.t2_aligned_negative[k].val(), u.t2_aligned_zero[k].val())
+            });
+            (
+                u.t1_rotation.val().to_u64() as usize,
+                u.t2_swap.val(),
+                aligned,
+            )
         },
         |(d1, d2)| {
             let (t1, t2, d2) = align_t1([0usize, 1, 2], [3usize, 4, 5], *d1, *d2);
-            (t1[0], t2 != [3, 4, 5], d2.map(|s| (s == Sign::Negative, s == Sign::Zero)))
+            (
+                t1[0],
+                t2 != [3, 4, 5],
+                d2.map(|s| (s == Sign::Negative, s == Sign::Zero)),
+            )
         },
     );
     // Step (6): T2's rotation and T1's swap; step (5)'s pass through.
-    let vectors: Vec<([Sign; 3], usize, bool)> =
-        sign_triples().into_iter().enumerate().map(|(k, d2)| (d2, k % 3, k % 2 == 0)).collect();
+    let vectors: Vec<([Sign; 3], usize, bool)> = sign_triples()
+        .into_iter()
+        .enumerate()
+        .map(|(k, d2)| (d2, k % 3, k % 2 == 0))
+        .collect();
     let mut uut = AlignT2::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -397,7 +463,14 @@ fn alignment_units_follow_the_models_sign_tables() {
             u.t1_rotation_in.next = (*rotation as u64).into();
             u.t2_swap_in.next = *swap;
         },
-        |u| (u.t2_rotation.val().to_u64() as usize, u.t1_swap.val(), u.t1_rotation.val().to_u64() as usize, u.t2_swap.val()),
+        |u| {
+            (
+                u.t2_rotation.val().to_u64() as usize,
+                u.t1_swap.val(),
+                u.t1_rotation.val().to_u64() as usize,
+                u.t2_swap.val(),
+            )
+        },
         |(d2, rotation, swap)| {
             let aligned = align_t2([0usize, 1, 2], *d2);
             (aligned.t2[0], aligned.swap_t1, *rotation, *swap)
@@ -410,8 +483,9 @@ fn alignment_units_follow_the_models_sign_tables() {
 /// `[p1, p2, r1, r2]` of `interval_overlap`, for every rotation and swap.
 #[test]
 fn interval_overlap_names_the_models_determinants() {
-    let vectors: Vec<(usize, bool, usize, bool)> =
-        (0..36).map(|k| (k % 3, k / 3 % 2 == 1, k / 6 % 3, k / 18 == 1)).collect();
+    let vectors: Vec<(usize, bool, usize, bool)> = (0..36)
+        .map(|k| (k % 3, k / 3 % 2 == 1, k / 6 % 3, k / 18 == 1))
+        .collect();
     let mut uut = IntervalOverlap::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -426,7 +500,12 @@ fn interval_overlap_names_the_models_determinants() {
             u.t2_rotation.next = (*r2 as u64).into();
             u.t1_swap.next = *s1;
         },
-        |u| (u.first.each_ref().map(|i| i.val().to_u64()), u.second.each_ref().map(|i| i.val().to_u64())),
+        |u| {
+            (
+                u.first.each_ref().map(|i| i.val().to_u64()),
+                u.second.each_ref().map(|i| i.val().to_u64()),
+            )
+        },
         |(r1, s2, r2, s1)| {
             let rotate = |t: [u64; 3], k: usize| [t[k], t[(k + 1) % 3], t[(k + 2) % 3]];
             let [p1, mut q1, mut r1v] = rotate([0, 1, 2], *r1);
@@ -453,7 +532,11 @@ fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
     for k in 0..VECTORS {
         let o = point(&mut rng, 2);
         let d: [i64; 3] = std::array::from_fn(|_| rng.gen_range(-2..3));
-        let s = [rng.gen_range(-3..4), rng.gen_range(-3..4), if k % 4 == 0 { 0 } else { rng.gen_range(-3..4) }];
+        let s = [
+            rng.gen_range(-3..4),
+            rng.gen_range(-3..4),
+            if k % 4 == 0 { 0 } else { rng.gen_range(-3..4) },
+        ];
         out.push(on_line(o, d, s));
     }
     out
@@ -464,7 +547,15 @@ fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
 /// each triangle, all `FRONT_END_LATENCY` clocks later.
 #[test]
 fn front_end_describes_each_triangle() {
-    type Description = ([i128; 9], [i128; 3], [(bool, bool); 3], bool, usize, (usize, usize), u64);
+    type Description = (
+        [i128; 9],
+        [i128; 3],
+        [(bool, bool); 3],
+        bool,
+        usize,
+        (usize, usize),
+        u64,
+    );
     let mut uut = TriangleFrontEnd::<24, 25, 49>::default();
     uut.connect_all();
     uut.advance.next = true;
@@ -481,7 +572,10 @@ fn front_end_describes_each_triangle() {
                 std::array::from_fn(|k| (u.normal_negative[k].val(), u.normal_zero[k].val())),
                 u.degenerate.val(),
                 u.dominant_axis.val().to_u64() as usize,
-                (u.segment_low.val().to_u64() as usize, u.segment_high.val().to_u64() as usize),
+                (
+                    u.segment_low.val().to_u64() as usize,
+                    u.segment_high.val().to_u64() as usize,
+                ),
                 u.edge_thermometer.val().to_u64(),
             )
         },
@@ -504,7 +598,8 @@ fn front_end_describes_each_triangle() {
 #[test]
 fn base_polygon_holds_the_last_loaded_record() {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
-    let records: Vec<(u32, FixedTriangle)> = triangles(13).into_iter().map(|t| (rng.gen(), t)).collect();
+    let records: Vec<(u32, FixedTriangle)> =
+        triangles(13).into_iter().map(|t| (rng.gen(), t)).collect();
     // (load, offered record, the record held after the clock)
     let mut held = records[0];
     let vectors: Vec<(bool, (u32, FixedTriangle), (u32, FixedTriangle))> = records
@@ -535,8 +630,15 @@ fn base_polygon_holds_the_last_loaded_record() {
             u.edge_thermometer_in.next = edge_thermometer(t).into();
         },
         |u| {
-            let t: FixedTriangle = std::array::from_fn(|v| std::array::from_fn(|i| to_i128(u.vertices[3 * v + i].val()) as i64));
-            (u.id.val().to_u64() as u32, t, u.normal.each_ref().map(|n| to_i128(n.val())), u.edge_thermometer.val().to_u64())
+            let t: FixedTriangle = std::array::from_fn(|v| {
+                std::array::from_fn(|i| to_i128(u.vertices[3 * v + i].val()) as i64)
+            });
+            (
+                u.id.val().to_u64() as u32,
+                t,
+                u.normal.each_ref().map(|n| to_i128(n.val())),
+                u.edge_thermometer.val().to_u64(),
+            )
         },
         |(_, _, (id, t))| (*id, *t, normal(t), edge_thermometer(t)),
     );

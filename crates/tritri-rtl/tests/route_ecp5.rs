@@ -15,13 +15,29 @@ fn a_small_unit_places_and_routes_on_ecp5() {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("route-ecp5-owner-filter");
     let _ = std::fs::remove_dir_all(&dir);
     design.write_to(&dir).unwrap();
-    let report = route_ecp5(&dir, &design.top, &Ecp5Options::default()).unwrap_or_else(|e| panic!("{e}"));
-    eprintln!("{}", tritri_rtl::route::route_table(std::slice::from_ref(&report)));
-    assert!(report.fmax_mhz > 10.0 && report.fmax_mhz < 500.0, "{report:?}");
-    assert!(report.block_rams >= 2 && report.luts > 50 && report.flip_flops > 50 && report.multipliers == 0, "{report:?}");
+    let report =
+        route_ecp5(&dir, &design.top, &Ecp5Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!(
+        "{}",
+        tritri_rtl::route::route_table(std::slice::from_ref(&report))
+    );
+    assert!(
+        report.fmax_mhz > 10.0 && report.fmax_mhz < 500.0,
+        "{report:?}"
+    );
+    assert!(
+        report.block_rams >= 2
+            && report.luts > 50
+            && report.flip_flops > 50
+            && report.multipliers == 0,
+        "{report:?}"
+    );
     let path = report.critical_path.expect("a critical path");
     assert!(path.logic_levels >= 1 && path.logic_ns > 0.0, "{path:?}");
-    assert!(dir.join("route_ecp5.log").is_file() && dir.join("tritri_owner_filter_s256.ecp5.json").is_file());
+    assert!(
+        dir.join("route_ecp5.log").is_file()
+            && dir.join("tritri_owner_filter_s256.ecp5.json").is_file()
+    );
 }
 
 /// `--dsp ecp5`: the W = 16 pipeline's wide multiplier (17 x 33 -> 50
@@ -33,17 +49,34 @@ fn a_small_unit_places_and_routes_on_ecp5() {
 fn ecp5_multipliers_keep_their_registers_in_the_dsp_blocks() {
     let module = "tritri_pipeline_w16_multiplier_w50";
     let mut flip_flops = Vec::new();
-    for (mapping, name) in [(MultiplierMapping::Ecp5, "ecp5"), (MultiplierMapping::Inferred, "inferred")] {
+    for (mapping, name) in [
+        (MultiplierMapping::Ecp5, "ecp5"),
+        (MultiplierMapping::Inferred, "inferred"),
+    ] {
         let design = emit_pipeline_with(16, mapping).unwrap();
-        assert!(design.modules.iter().any(|m| m == module), "{module} is emitted");
-        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("route-ecp5-multiplier-{name}"));
+        assert!(
+            design.modules.iter().any(|m| m == module),
+            "{module} is emitted"
+        );
+        let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("route-ecp5-multiplier-{name}"));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
-        let report = route_ecp5(&dir, module, &Ecp5Options::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
-        eprintln!("{name}: {}", tritri_rtl::route::route_table(std::slice::from_ref(&report)));
+        let report = route_ecp5(&dir, module, &Ecp5Options::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        eprintln!(
+            "{name}: {}",
+            tritri_rtl::route::route_table(std::slice::from_ref(&report))
+        );
         assert_eq!(report.multipliers, 2, "{name}: {report:?}");
         flip_flops.push(report.flip_flops);
     }
-    assert_eq!(flip_flops[0], 50, "ecp5: only the product register is in fabric");
-    assert!(flip_flops[1] >= 17 + 33 + 50 + 50, "inferred: operands, product and two more stages in fabric: {flip_flops:?}");
+    assert_eq!(
+        flip_flops[0], 50,
+        "ecp5: only the product register is in fabric"
+    );
+    assert!(
+        flip_flops[1] >= 17 + 33 + 50 + 50,
+        "inferred: operands, product and two more stages in fabric: {flip_flops:?}"
+    );
 }

@@ -37,12 +37,12 @@ use tritri_cosim::engine::{run_scene_with, Engine};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
 use tritri_geom::scene::PreparedScene;
+use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::measured::{Device, Measurements};
 use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
+use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system_with;
-use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
-use tritri_rtl::system::cycle_model::scene_cycles;
 
 /// Another doubling of P must save at least this share of the cycles.
 pub const MIN_GAIN: f64 = 0.10;
@@ -54,7 +54,10 @@ const LOCAL_GRID_BITS: u32 = 24;
 /// leaves in W-bit local frames (2, 4 and 8 bits finer, and the
 /// broad-phase top's 24), up to 32 bits.
 fn grids_for(width: u32) -> Vec<u32> {
-    let mut grids: Vec<u32> = [width, width + 2, width + 4, width + 8, LOCAL_GRID_BITS].into_iter().filter(|&g| g >= width && g <= 32).collect();
+    let mut grids: Vec<u32> = [width, width + 2, width + 4, width + 8, LOCAL_GRID_BITS]
+        .into_iter()
+        .filter(|&g| g >= width && g <= 32)
+        .collect();
     grids.sort_unstable();
     grids.dedup();
     grids
@@ -67,7 +70,10 @@ const DEPTHS: [u64; 5] = [64, 128, 256, 512, 1024];
 /// memories' logic, result FIFO, serializer): `tritri_system_w24_p1_d256`
 /// less `tritri_pipeline_w24` in the Xilinx flow, a measured figure.
 fn control_luts(m: &Measurements) -> u64 {
-    match (m.xilinx("tritri_system_w24_p1_d256"), m.xilinx("tritri_pipeline_w24")) {
+    match (
+        m.xilinx("tritri_system_w24_p1_d256"),
+        m.xilinx("tritri_pipeline_w24"),
+    ) {
         (Some(s), Some(p)) => s.lut.saturating_sub(p.lut),
         _ => 0,
     }
@@ -97,7 +103,8 @@ impl Candidate {
     /// Of every pair the hardware or the host decides, those the host
     /// decides (a host pair without a certificate is counted once).
     fn host_share(&self) -> f64 {
-        (self.uncertain.unwrap_or(0) + self.host_pairs) as f64 / (self.pairs_tested + self.host_pairs).max(1) as f64
+        (self.uncertain.unwrap_or(0) + self.host_pairs) as f64
+            / (self.pairs_tested + self.host_pairs).max(1) as f64
     }
 
     /// The host's share, `>=` where the model was not run.
@@ -108,7 +115,10 @@ impl Candidate {
 
     fn name(&self) -> String {
         if self.grid_bits > self.width {
-            format!("W = {} in local frames of a {}-bit grid", self.width, self.grid_bits)
+            format!(
+                "W = {} in local frames of a {}-bit grid",
+                self.width, self.grid_bits
+            )
         } else {
             format!("W = {}", self.width)
         }
@@ -148,22 +158,47 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     };
     let measurements = Measurements::committed();
     let device = request.device;
-    eprintln!("for-scene: {} ({} triangles) x {} ({} triangles) on {} ({})", a.name, a.triangles.len(), b.name, b.triangles.len(), device.name, device.part);
+    eprintln!(
+        "for-scene: {} ({} triangles) x {} ({} triangles) on {} ({})",
+        a.name,
+        a.triangles.len(),
+        b.name,
+        b.triangles.len(),
+        device.name,
+        device.part
+    );
 
     let mut candidates = Vec::new();
     for &w in SUPPORTED_WIDTHS {
         let w = w as u32;
         for grid_bits in grids_for(w) {
-            candidates.push(measure(&a, &b, w, grid_bits, &measurements, device, request.max_uncertain)?);
+            candidates.push(measure(
+                &a,
+                &b,
+                w,
+                grid_bits,
+                &measurements,
+                device,
+                request.max_uncertain,
+            )?);
         }
     }
     // Cheapest first: multipliers per pipeline, then LUTs, then the
     // coarser grid.
     candidates.sort_by_key(|c| (!c.measured, c.multipliers, c.luts, c.grid_bits));
-    let fits = |c: &Candidate| c.measured && c.multipliers <= device.dsps && c.luts + control_luts(&measurements) <= device.luts;
-    let chosen = candidates.iter().position(|c| fits(c) && c.uncertain.is_some() && c.host_share() <= request.max_uncertain);
+    let fits = |c: &Candidate| {
+        c.measured
+            && c.multipliers <= device.dsps
+            && c.luts + control_luts(&measurements) <= device.luts
+    };
+    let chosen = candidates
+        .iter()
+        .position(|c| fits(c) && c.uncertain.is_some() && c.host_share() <= request.max_uncertain);
     let Some(chosen) = chosen else {
-        let best = candidates.iter().filter(|c| fits(c)).min_by(|x, y| x.host_share().total_cmp(&y.host_share()));
+        let best = candidates
+            .iter()
+            .filter(|c| fits(c))
+            .min_by(|x, y| x.host_share().total_cmp(&y.host_share()));
         match best {
             Some(best) => eprintln!(
                 "error: --max-uncertain {}: no configuration on {} keeps the host's share of the pairs that low; the best there is {} ({} of {} pairs back to the host, {} multipliers per pipeline)",
@@ -182,20 +217,51 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     let sizing = size(&a, &b, &candidate, &measurements, device)?;
     let hardware = hardware(&candidate, sizing.pipelines, sizing.depth);
     let scene = hardware.prepare(&a, &b)?;
-    let run = run_scene_with(Engine::Model, &scene, hardware.system_config(), &|_| {}, None)?;
-    let measured =
-        Candidate { pairs_tested: scene.pairs_tested(), uncertain: Some(uncertain_in_leaves(&scene, &run.uncertain)), host_pairs: scene.host_pairs(), ..candidate.clone() };
+    let run = run_scene_with(
+        Engine::Model,
+        &scene,
+        hardware.system_config(),
+        &|_| {},
+        None,
+    )?;
+    let measured = Candidate {
+        pairs_tested: scene.pairs_tested(),
+        uncertain: Some(uncertain_in_leaves(&scene, &run.uncertain)),
+        host_pairs: scene.host_pairs(),
+        ..candidate.clone()
+    };
 
     let config = hardware.system_config();
-    let mut design = emit_system_with(config, PipelineKind::Real, MultiplierMapping::Inferred).with_context(|| format!("emitting {}", config.unit_name()))?;
-    let why = explain(&request, &a, &b, &candidates, chosen, &sizing, &measured, run.cycles, &measurements);
+    let mut design = emit_system_with(config, PipelineKind::Real, MultiplierMapping::Inferred)
+        .with_context(|| format!("emitting {}", config.unit_name()))?;
+    let why = explain(
+        &request,
+        &a,
+        &b,
+        &candidates,
+        chosen,
+        &sizing,
+        &measured,
+        run.cycles,
+        &measurements,
+    );
     if let Some(readme) = design.files.iter_mut().find(|f| f.path == "README.md") {
         readme.contents.push_str(&why);
     }
-    let dir = request.out.clone().unwrap_or_else(|| PathBuf::from("rtl-out").join(&design.top));
-    design.write_to(&dir).with_context(|| format!("writing {}", dir.display()))?;
+    let dir = request
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("rtl-out").join(&design.top));
+    design
+        .write_to(&dir)
+        .with_context(|| format!("writing {}", dir.display()))?;
     print!("{why}");
-    eprintln!("wrote {} ({} modules) to {}", design.top, design.modules.len(), dir.display());
+    eprintln!(
+        "wrote {} ({} modules) to {}",
+        design.top,
+        design.modules.len(),
+        dir.display()
+    );
     Ok(ExitCode::SUCCESS)
 }
 
@@ -215,35 +281,84 @@ fn hardware(c: &Candidate, pipelines: u32, depth: u64) -> HardwareArgs {
 /// The pairs without a certificate that the hardware decided (those of
 /// the host's own batches are the host's already).
 fn uncertain_in_leaves(scene: &PreparedScene, uncertain: &PairSet) -> u64 {
-    let host: std::collections::HashSet<(u32, u32)> =
-        scene.host_batches().iter().flat_map(|batch| batch.a.iter().flat_map(|a| batch.b.iter().map(move |b| (a.id, b.id)))).collect();
+    let host: std::collections::HashSet<(u32, u32)> = scene
+        .host_batches()
+        .iter()
+        .flat_map(|batch| {
+            batch
+                .a
+                .iter()
+                .flat_map(|a| batch.b.iter().map(move |b| (a.id, b.id)))
+        })
+        .collect();
     uncertain.iter().filter(|p| !host.contains(p)).count() as u64
 }
 
 /// `w` on the device's flow, and the scene in the model at P = 2, depth
 /// 256 (not run where it cannot be chosen: module docs).
-fn measure(a: &SceneObject, b: &SceneObject, width: u32, grid_bits: u32, m: &Measurements, device: &Device, budget: f64) -> anyhow::Result<Candidate> {
+fn measure(
+    a: &SceneObject,
+    b: &SceneObject,
+    width: u32,
+    grid_bits: u32,
+    m: &Measurements,
+    device: &Device,
+    budget: f64,
+) -> anyhow::Result<Candidate> {
     let unit = format!("tritri_pipeline_w{width}");
     let (multipliers, luts, measured) = match device.flow {
-        "ecp5" => m.ecp5(&unit).map_or((0, 0, false), |r| (r.mult18x18d, r.lut4, true)),
-        _ => m.xilinx(&unit).map_or((0, 0, false), |r| (r.dsp48e1, r.lut, true)),
+        "ecp5" => m
+            .ecp5(&unit)
+            .map_or((0, 0, false), |r| (r.mult18x18d, r.lut4, true)),
+        _ => m
+            .xilinx(&unit)
+            .map_or((0, 0, false), |r| (r.dsp48e1, r.lut, true)),
     };
-    let mut c = Candidate { width, grid_bits, multipliers, luts, measured, pairs_tested: 0, uncertain: None, host_pairs: 0 };
+    let mut c = Candidate {
+        width,
+        grid_bits,
+        multipliers,
+        luts,
+        measured,
+        pairs_tested: 0,
+        uncertain: None,
+        host_pairs: 0,
+    };
     let hardware = hardware(&c, 2, 256);
     let scene = hardware.prepare(a, b)?;
     c.pairs_tested = scene.pairs_tested();
     c.host_pairs = scene.host_pairs();
     if measured && c.host_share() <= budget {
-        let run = run_scene_with(Engine::Model, &scene, hardware.system_config(), &|_| {}, None)?;
+        let run = run_scene_with(
+            Engine::Model,
+            &scene,
+            hardware.system_config(),
+            &|_| {},
+            None,
+        )?;
         c.uncertain = Some(uncertain_in_leaves(&scene, &run.uncertain));
     }
-    eprintln!("for-scene: {}: {} of {} pairs to the host", c.name(), c.share_text(), c.pairs_tested + c.host_pairs);
+    eprintln!(
+        "for-scene: {}: {} of {} pairs to the host",
+        c.name(),
+        c.share_text(),
+        c.pairs_tested + c.host_pairs
+    );
     Ok(c)
 }
 
 /// P and the depth for `c` (module docs).
-fn size(a: &SceneObject, b: &SceneObject, c: &Candidate, m: &Measurements, device: &Device) -> anyhow::Result<Sizing> {
-    let fits = |p: u32| p as u64 * c.multipliers <= device.dsps && p as u64 * c.luts + control_luts(m) <= device.luts;
+fn size(
+    a: &SceneObject,
+    b: &SceneObject,
+    c: &Candidate,
+    m: &Measurements,
+    device: &Device,
+) -> anyhow::Result<Sizing> {
+    let fits = |p: u32| {
+        p as u64 * c.multipliers <= device.dsps
+            && p as u64 * c.luts + control_luts(m) <= device.luts
+    };
     let best_depth = |p: u32| -> anyhow::Result<(u64, u64)> {
         let mut best: Option<(u64, u64)> = None;
         for depth in DEPTHS {
@@ -256,7 +371,11 @@ fn size(a: &SceneObject, b: &SceneObject, c: &Candidate, m: &Measurements, devic
         Ok(best.expect("depths tried"))
     };
     let (mut depth, mut cycles) = best_depth(1)?;
-    let mut sizing = Sizing { pipelines: 1, depth, tried: vec![(1, cycles, fits(1))] };
+    let mut sizing = Sizing {
+        pipelines: 1,
+        depth,
+        tried: vec![(1, cycles, fits(1))],
+    };
     let mut p = 1;
     while p < tritri_rtl::system::MAX_PIPELINES as u32 {
         let next = 2 * p;
@@ -316,7 +435,10 @@ fn explain(
         cycles
     );
     // Every cheaper configuration misses the budget; the closest says by how much.
-    let fewer = candidates[..chosen].iter().filter(|x| x.measured && x.multipliers < c.multipliers).min_by(|x, y| x.host_share().total_cmp(&y.host_share()));
+    let fewer = candidates[..chosen]
+        .iter()
+        .filter(|x| x.measured && x.multipliers < c.multipliers)
+        .min_by(|x, y| x.host_share().total_cmp(&y.host_share()));
     let _ = match fewer {
         Some(x) => writeln!(
             s,
@@ -328,7 +450,11 @@ fn explain(
         None => writeln!(s, "*Why not one bit fewer:* no cheaper configuration is measured on {}.\n", device.flow),
     };
     let last = sizing.tried.last().copied();
-    let current = sizing.tried.iter().find(|t| t.0 == sizing.pipelines).map_or(0, |t| t.1);
+    let current = sizing
+        .tried
+        .iter()
+        .find(|t| t.0 == sizing.pipelines)
+        .map_or(0, |t| t.1);
     let _ = match last.filter(|t| t.0 > sizing.pipelines) {
         Some((p, _, false)) => writeln!(s, "*Why not one more pipeline:* P = {p} does not fit: {} x {} multipliers and LUTs of one pipeline exceed the device.\n", p, c.multipliers),
         Some((p, next, true)) => writeln!(
@@ -359,23 +485,44 @@ fn explain(
                 x.share_text()
             );
         } else {
-            let _ = writeln!(s, "| {} | not measured on {} | - | {} | not run | {} | - |", x.name(), device.flow, x.pairs_tested, x.host_pairs);
+            let _ = writeln!(
+                s,
+                "| {} | not measured on {} | - | {} | not run | {} | - |",
+                x.name(),
+                device.flow,
+                x.pairs_tested,
+                x.host_pairs
+            );
         }
     }
     let left_out = candidates.iter().filter(|x| hopeless(x)).count();
     if left_out > 0 {
         let _ = writeln!(s, "\nNot listed: {left_out} configurations in local frames whose pairs too long for a leaf's frame alone exceed the budget.");
     }
-    let _ = writeln!(s, "\n| P | narrow-phase cycles (best depth) | fits |\n|---:|---:|---|");
+    let _ = writeln!(
+        s,
+        "\n| P | narrow-phase cycles (best depth) | fits |\n|---:|---:|---|"
+    );
     for (p, cycles, fits) in &sizing.tried {
-        let _ = writeln!(s, "| {p} | {cycles} | {} |", if *fits { "yes" } else { "no" });
+        let _ = writeln!(
+            s,
+            "| {p} | {cycles} | {} |",
+            if *fits { "yes" } else { "no" }
+        );
     }
     let scene_flags = format!(
         "--scene {} {}{}{}",
         a.name,
         b.name,
-        request.scene.pose_b.map_or(String::new(), |p| format!(" --pose-b {p}")),
-        if request.scene.scale_b == 1.0 { String::new() } else { format!(" --scale-b {}", request.scene.scale_b) }
+        request
+            .scene
+            .pose_b
+            .map_or(String::new(), |p| format!(" --pose-b {p}")),
+        if request.scene.scale_b == 1.0 {
+            String::new()
+        } else {
+            format!(" --scale-b {}", request.scene.scale_b)
+        }
     );
     let _ = writeln!(
         s,

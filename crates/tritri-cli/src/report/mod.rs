@@ -129,19 +129,30 @@ pub struct WidthRow {
 impl WidthRow {
     /// Wrong verdicts without certificates, as a fraction of the pairs.
     pub fn wrong_rate(&self) -> Option<f64> {
-        self.error.as_ref().map(|e| e.wrong as f64 / self.pairs.max(1) as f64)
+        self.error
+            .as_ref()
+            .map(|e| e.wrong as f64 / self.pairs.max(1) as f64)
     }
 
     /// Verdicts without a certificate, as a fraction of the pairs.
     pub fn uncertain_rate(&self) -> Option<f64> {
-        self.error.as_ref().and_then(|e| e.uncertain).map(|u| u as f64 / self.pairs.max(1) as f64)
+        self.error
+            .as_ref()
+            .and_then(|e| e.uncertain)
+            .map(|u| u as f64 / self.pairs.max(1) as f64)
     }
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let (measurements, source) = match &args.measurements {
-        None => (Measurements::committed(), "rtl-out/measurements.json (built in)".to_string()),
-        Some(path) => match std::fs::read_to_string(path).map_err(anyhow::Error::from).and_then(|t| Measurements::parse(&t).map_err(anyhow::Error::msg)) {
+        None => (
+            Measurements::committed(),
+            "rtl-out/measurements.json (built in)".to_string(),
+        ),
+        Some(path) => match std::fs::read_to_string(path)
+            .map_err(anyhow::Error::from)
+            .and_then(|t| Measurements::parse(&t).map_err(anyhow::Error::msg))
+        {
             Ok(m) => (m, path.display().to_string()),
             Err(e) => {
                 eprintln!("error: --measurements {}: {e}", path.display());
@@ -154,7 +165,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     if args.out.exists() && !args.out.is_dir() {
-        eprintln!("error: --out {}: exists and is not a directory", args.out.display());
+        eprintln!(
+            "error: --out {}: exists and is not a directory",
+            args.out.display()
+        );
         return Ok(ExitCode::from(2));
     }
     let batches = match eval::load_batches(&args.files, "reported") {
@@ -175,11 +189,33 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut widths = args.widths.clone();
     widths.sort_unstable();
     widths.dedup();
-    let errors = if batches.is_empty() { None } else { Some(evaluate(&batches, &widths, Duration::from_millis(args.min_time_ms))?) };
+    let errors = if batches.is_empty() {
+        None
+    } else {
+        Some(evaluate(
+            &batches,
+            &widths,
+            Duration::from_millis(args.min_time_ms),
+        )?)
+    };
     let rows = width_rows(&widths, errors.as_ref(), &measurements, args.pipelines);
-    let baselines = errors.as_ref().map_or(Vec::new(), |e| e.total.rows.iter().filter(|r| !r.arithmetic.starts_with("fixed")).cloned().collect());
+    let baselines = errors.as_ref().map_or(Vec::new(), |e| {
+        e.total
+            .rows
+            .iter()
+            .filter(|r| !r.arithmetic.starts_with("fixed"))
+            .cloned()
+            .collect()
+    });
     let scene = match &scene_objects {
-        Some((a, b)) => Some(scene::measure(a, b, &args.scene, &widths, args.pipelines, &rows)?),
+        Some((a, b)) => Some(scene::measure(
+            a,
+            b,
+            &args.scene,
+            &widths,
+            args.pipelines,
+            &rows,
+        )?),
         None => None,
     };
     let report = Report {
@@ -195,7 +231,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     page::write_all(&args.out, &report)?;
     print_summary(&args.out, &report);
 
-    let bugs: usize = report.widths.iter().filter_map(|w| w.error.as_ref()).map(|e| e.grid_exact_disagreements.unwrap_or(0) + e.certified_wrong.unwrap_or(0)).sum();
+    let bugs: usize = report
+        .widths
+        .iter()
+        .filter_map(|w| w.error.as_ref())
+        .map(|e| e.grid_exact_disagreements.unwrap_or(0) + e.certified_wrong.unwrap_or(0))
+        .sum();
     if bugs > 0 {
         eprintln!("error: {bugs} fixed-point verdicts disagree with the exact model on the grid, or certified verdicts with the exact answer: a bug");
         return Ok(ExitCode::from(1));
@@ -208,29 +249,60 @@ fn evaluate(batches: &[Batch], widths: &[u32], min_time: Duration) -> anyhow::Re
     let arithmetics = Arithmetic::all(widths)?;
     let mut reports = Vec::new();
     for (i, batch) in batches.iter().enumerate() {
-        eprintln!("report: errors and speed on {} ({} pairs; {} of {})", batch.name, batch.pairs.len(), i + 1, batches.len());
+        eprintln!(
+            "report: errors and speed on {} ({} pairs; {} of {})",
+            batch.name,
+            batch.pairs.len(),
+            i + 1,
+            batches.len()
+        );
         reports.push(eval::evaluate(batch, &arithmetics, min_time)?);
     }
     let total = eval::total(&reports, &arithmetics);
-    Ok(Errors { inputs: batches.iter().map(|b| b.name.clone()).collect(), batches: reports, total })
+    Ok(Errors {
+        inputs: batches.iter().map(|b| b.name.clone()).collect(),
+        batches: reports,
+        total,
+    })
 }
 
 /// Error, cost and speed per width, and the Pareto front.
-fn width_rows(widths: &[u32], errors: Option<&Errors>, measurements: &Measurements, pipelines: u32) -> Vec<WidthRow> {
+fn width_rows(
+    widths: &[u32],
+    errors: Option<&Errors>,
+    measurements: &Measurements,
+    pipelines: u32,
+) -> Vec<WidthRow> {
     let mut rows: Vec<WidthRow> = widths
         .iter()
         .map(|&width| {
             let unit = format!("tritri_pipeline_w{width}");
             let ecp5 = measurements.ecp5(&unit).cloned();
             // A width whose pipeline does not fit the device has no throughput.
-            let fitting = ecp5.as_ref().map(|r| pipelines.min((ecp5_device().dsps / r.mult18x18d.max(1)) as u32)).filter(|&p| p >= 1);
-            let pairs_per_second = ecp5.as_ref().zip(fitting).map(|(r, p)| r.fmax_mhz * 1e6 * p as f64);
+            let fitting = ecp5
+                .as_ref()
+                .map(|r| pipelines.min((ecp5_device().dsps / r.mult18x18d.max(1)) as u32))
+                .filter(|&p| p >= 1);
+            let pairs_per_second = ecp5
+                .as_ref()
+                .zip(fitting)
+                .map(|(r, p)| r.fmax_mhz * 1e6 * p as f64);
             WidthRow {
                 width,
-                error: errors.and_then(|e| e.total.rows.iter().find(|r| r.arithmetic == format!("fixed{width}")).cloned()),
+                error: errors.and_then(|e| {
+                    e.total
+                        .rows
+                        .iter()
+                        .find(|r| r.arithmetic == format!("fixed{width}"))
+                        .cloned()
+                }),
                 pairs: errors.map_or(0, |e| e.total.pairs),
                 xilinx: measurements.xilinx(&unit).cloned(),
-                pairs_per_second_per_multiplier: ecp5.as_ref().zip(pairs_per_second).zip(fitting).map(|((r, p), n)| p / (r.mult18x18d * n as u64).max(1) as f64),
+                pairs_per_second_per_multiplier: ecp5
+                    .as_ref()
+                    .zip(pairs_per_second)
+                    .zip(fitting)
+                    .map(|((r, p), n)| p / (r.mult18x18d * n as u64).max(1) as f64),
                 ecp5,
                 ecp5_pipelines: fitting,
                 pairs_per_second,
@@ -244,7 +316,9 @@ fn width_rows(widths: &[u32], errors: Option<&Errors>, measurements: &Measuremen
         .filter_map(|(i, r)| Some((i, r.wrong_rate()?, r.pairs_per_second_per_multiplier?)))
         .collect();
     for &(i, error, speed) in &points {
-        let dominated = points.iter().any(|&(j, e, s)| j != i && e <= error && s >= speed && (e < error || s > speed));
+        let dominated = points
+            .iter()
+            .any(|&(j, e, s)| j != i && e <= error && s >= speed && (e < error || s > speed));
         rows[i].pareto = !dominated;
     }
     rows
@@ -253,26 +327,47 @@ fn width_rows(widths: &[u32], errors: Option<&Errors>, measurements: &Measuremen
 fn print_summary(dir: &Path, report: &Report) {
     println!("report: {}", dir.join("report.html").display());
     if let Some(e) = &report.errors {
-        println!("pairs: {} in {} batch(es) ({} intersect, exact)", e.total.pairs, e.batches.len(), e.total.exact_intersecting);
+        println!(
+            "pairs: {} in {} batch(es) ({} intersect, exact)",
+            e.total.pairs,
+            e.batches.len(),
+            e.total.exact_intersecting
+        );
     }
-    println!("  {:>3} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}", "W", "wrong", "uncert", "uncert %", "LUT", "DSP", "Fmax MHz", "pairs/s");
+    println!(
+        "  {:>3} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}",
+        "W", "wrong", "uncert", "uncert %", "LUT", "DSP", "Fmax MHz", "pairs/s"
+    );
     let dash = || "-".to_string();
     for w in &report.widths {
         println!(
             "  {:>3} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}{}",
             w.width,
             w.error.as_ref().map_or_else(dash, |e| e.wrong.to_string()),
-            w.error.as_ref().and_then(|e| e.uncertain).map_or_else(dash, |u| u.to_string()),
-            w.uncertain_rate().map_or_else(dash, |r| format!("{:.3}", 100.0 * r)),
+            w.error
+                .as_ref()
+                .and_then(|e| e.uncertain)
+                .map_or_else(dash, |u| u.to_string()),
+            w.uncertain_rate()
+                .map_or_else(dash, |r| format!("{:.3}", 100.0 * r)),
             w.xilinx.as_ref().map_or_else(dash, |x| x.lut.to_string()),
-            w.xilinx.as_ref().map_or_else(dash, |x| x.dsp48e1.to_string()),
-            w.ecp5.as_ref().map_or_else(dash, |r| format!("{:.1}", r.fmax_mhz)),
+            w.xilinx
+                .as_ref()
+                .map_or_else(dash, |x| x.dsp48e1.to_string()),
+            w.ecp5
+                .as_ref()
+                .map_or_else(dash, |r| format!("{:.1}", r.fmax_mhz)),
             w.pairs_per_second.map_or_else(dash, |p| format!("{p:.3e}")),
             if w.pareto { "  (Pareto)" } else { "" }
         );
     }
     if let Some(s) = &report.scene {
-        println!("scene: {} x {}: software {:.3} ms", s.a, s.b, 1e3 * s.software_seconds);
+        println!(
+            "scene: {} x {}: software {:.3} ms",
+            s.a,
+            s.b,
+            1e3 * s.software_seconds
+        );
         for r in &s.rows {
             println!(
                 "  W = {:>2}: {} pairs tested, {} leaves, {} cycles, {:.3} ms at {:.1} MHz ({}), {:.1} x software; {} uncertain; {} missing / {} extra against exact f64",

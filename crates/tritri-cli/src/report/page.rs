@@ -14,8 +14,20 @@ struct Table {
 
 impl Table {
     fn csv(&self) -> String {
-        let quote = |c: &str| if c.contains([',', '"', '\n']) { format!("\"{}\"", c.replace('"', "\"\"")) } else { c.to_string() };
-        let mut out = self.header.iter().map(|h| quote(h)).collect::<Vec<_>>().join(",") + "\n";
+        let quote = |c: &str| {
+            if c.contains([',', '"', '\n']) {
+                format!("\"{}\"", c.replace('"', "\"\""))
+            } else {
+                c.to_string()
+            }
+        };
+        let mut out = self
+            .header
+            .iter()
+            .map(|h| quote(h))
+            .collect::<Vec<_>>()
+            .join(",")
+            + "\n";
         for row in &self.rows {
             out += &(row.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",") + "\n");
         }
@@ -40,7 +52,9 @@ impl Table {
 }
 
 fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 fn opt<T: ToString>(v: Option<T>) -> String {
@@ -58,8 +72,25 @@ fn sci(v: Option<f64>) -> String {
 /// Speed against error, one row per width.
 fn widths_table(report: &Report) -> Table {
     let header = vec![
-        "W", "wrong", "false+", "false-", "wrong %", "uncertain", "uncertain %", "re-check ns/pair", "LUT (xc7)", "FF (xc7)", "DSP48E1 (xc7)",
-        "SRL (xc7)", "Fmax MHz (ECP5)", "LUT4 (ECP5)", "MULT18X18D (ECP5)", "P on ECP5-85", "pairs/s", "pairs/s per MULT18X18D", "Pareto",
+        "W",
+        "wrong",
+        "false+",
+        "false-",
+        "wrong %",
+        "uncertain",
+        "uncertain %",
+        "re-check ns/pair",
+        "LUT (xc7)",
+        "FF (xc7)",
+        "DSP48E1 (xc7)",
+        "SRL (xc7)",
+        "Fmax MHz (ECP5)",
+        "LUT4 (ECP5)",
+        "MULT18X18D (ECP5)",
+        "P on ECP5-85",
+        "pairs/s",
+        "pairs/s per MULT18X18D",
+        "Pareto",
     ];
     let rows = report
         .widths
@@ -94,7 +125,19 @@ fn widths_table(report: &Report) -> Table {
 
 /// One pipeline's resources per width, both flows.
 fn hardware_table(report: &Report) -> Table {
-    let header = vec!["W", "LUT", "FF", "DSP48E1", "CARRY4", "SRL", "Fmax MHz", "LUT4", "FF (ECP5)", "MULT18X18D", "EBR"];
+    let header = vec![
+        "W",
+        "LUT",
+        "FF",
+        "DSP48E1",
+        "CARRY4",
+        "SRL",
+        "Fmax MHz",
+        "LUT4",
+        "FF (ECP5)",
+        "MULT18X18D",
+        "EBR",
+    ];
     let rows = report
         .widths
         .iter()
@@ -123,9 +166,29 @@ fn hardware_table(report: &Report) -> Table {
 /// the total.
 fn errors_table(report: &Report, every_batch: bool) -> Option<Table> {
     let errors = report.errors.as_ref()?;
-    let batches: Vec<&crate::eval::BatchReport> = if every_batch { errors.batches.iter().chain(std::iter::once(&errors.total)).collect() } else { vec![&errors.total] };
+    let batches: Vec<&crate::eval::BatchReport> = if every_batch {
+        errors
+            .batches
+            .iter()
+            .chain(std::iter::once(&errors.total))
+            .collect()
+    } else {
+        vec![&errors.total]
+    };
     let header = vec![
-        "batch", "pairs", "arithmetic", "wrong", "false+", "false-", "ns/pair", "kernel ns/pair", "grid", "uncertain", "re-check ns/pair", "certified wrong", "step h",
+        "batch",
+        "pairs",
+        "arithmetic",
+        "wrong",
+        "false+",
+        "false-",
+        "ns/pair",
+        "kernel ns/pair",
+        "grid",
+        "uncertain",
+        "re-check ns/pair",
+        "certified wrong",
+        "step h",
     ];
     let mut rows = Vec::new();
     for batch in batches {
@@ -152,7 +215,14 @@ fn errors_table(report: &Report, every_batch: bool) -> Option<Table> {
 
 /// The software baselines on the pair files' total.
 fn baselines_table(report: &Report) -> Table {
-    let header = vec!["arithmetic", "wrong", "false+", "false-", "ns/pair (one thread)", "pairs/s"];
+    let header = vec![
+        "arithmetic",
+        "wrong",
+        "false+",
+        "false-",
+        "ns/pair (one thread)",
+        "pairs/s",
+    ];
     let rows = report
         .baselines
         .iter()
@@ -173,8 +243,23 @@ fn baselines_table(report: &Report) -> Table {
 fn scene_table(report: &Report) -> Option<Table> {
     let scene = report.scene.as_ref()?;
     let header = vec![
-        "W", "P", "pairs tested", "leaves", "cells", "narrow-phase cycles", "first in to last out cycles", "clock MHz", "clock", "time ms", "x software",
-        "intersecting (grid)", "uncertain", "missing", "extra", "certified missing", "certified extra",
+        "W",
+        "P",
+        "pairs tested",
+        "leaves",
+        "cells",
+        "narrow-phase cycles",
+        "first in to last out cycles",
+        "clock MHz",
+        "clock",
+        "time ms",
+        "x software",
+        "intersecting (grid)",
+        "uncertain",
+        "missing",
+        "extra",
+        "certified missing",
+        "certified extra",
     ];
     let rows = scene
         .rows
@@ -222,7 +307,10 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
         let path = dir.join(name);
         std::fs::write(&path, text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
     };
-    write("report.json", &(serde_json::to_string_pretty(report)? + "\n"))?;
+    write(
+        "report.json",
+        &(serde_json::to_string_pretty(report)? + "\n"),
+    )?;
     write("widths.csv", &widths.csv())?;
     if let Some(t) = &errors {
         write("errors.csv", &t.csv())?;
@@ -242,12 +330,21 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
         super::ecp5_device().part,
         super::ecp5_device().dsps
     );
-    let section = |html: &mut String, title: &str, plot: Option<String>, table: Option<&Table>, note: &str| {
+    let section = |html: &mut String,
+                   title: &str,
+                   plot: Option<String>,
+                   table: Option<&Table>,
+                   note: &str| {
         let table = table.filter(|t| !t.rows.is_empty());
         if plot.is_none() && table.is_none() {
             return;
         }
-        let _ = write!(html, "<h2>{}</h2><p class=\"note\">{}</p><div class=\"pair\">", escape(title), note);
+        let _ = write!(
+            html,
+            "<h2>{}</h2><p class=\"note\">{}</p><div class=\"pair\">",
+            escape(title),
+            note
+        );
         if let Some(svg) = plot {
             let _ = write!(html, "<div>{svg}</div>");
         }
@@ -256,7 +353,10 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
         }
         html.push_str("</div>");
     };
-    let inputs = report.errors.as_ref().map_or_else(|| "no pair files".to_string(), |e| e.inputs.join(", "));
+    let inputs = report
+        .errors
+        .as_ref()
+        .map_or_else(|| "no pair files".to_string(), |e| e.inputs.join(", "));
     section(
         &mut html,
         "Speed against error, per width",
@@ -278,7 +378,11 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
         "Every arithmetic on all the pairs, as <code>tritri eval</code> prints it (every batch below).",
     );
     if let Some(t) = &errors {
-        let _ = write!(html, "<details><summary>every batch</summary>{}</details>", t.html());
+        let _ = write!(
+            html,
+            "<details><summary>every batch</summary>{}</details>",
+            t.html()
+        );
     }
     section(&mut html, "Hardware cost against W", plots::cost(report)?, Some(&hardware_table(report)), "One pipeline: Yosys <code>synth_xilinx</code> for a 7-series part, and nextpnr-ecp5 post-route on an LFE5U-85F (speed 6) where routed.");
     section(&mut html, "Speed against W", plots::speed(report)?, Some(&baselines), "The software baselines, timed on this machine in this run (one thread; the fastest of repeated samples).");
@@ -301,7 +405,13 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
             s.exact_pairs,
             1e3 * s.software_seconds
         );
-        section(&mut html, "Scene", Some(plots::scene(s, &report.widths)?), Some(t), &note);
+        section(
+            &mut html,
+            "Scene",
+            Some(plots::scene(s, &report.widths)?),
+            Some(t),
+            &note,
+        );
         section(
             &mut html,
             "Scene: error against W",

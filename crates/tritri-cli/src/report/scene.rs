@@ -60,8 +60,18 @@ pub struct SceneRow {
     pub certified_extra: usize,
 }
 
-pub fn measure(a: &SceneObject, b: &SceneObject, args: &SceneArgs, widths: &[u32], pipelines: u32, rows: &[WidthRow]) -> anyhow::Result<SceneSection> {
-    eprintln!("report: scene {} x {}: exact f64 on the originals", a.name, b.name);
+pub fn measure(
+    a: &SceneObject,
+    b: &SceneObject,
+    args: &SceneArgs,
+    widths: &[u32],
+    pipelines: u32,
+    rows: &[WidthRow],
+) -> anyhow::Result<SceneSection> {
+    eprintln!(
+        "report: scene {} x {}: exact f64 on the originals",
+        a.name, b.name
+    );
     let started = Instant::now();
     let truth = exact_f64_pairs(&a.triangles, &b.triangles);
     let software_seconds = started.elapsed().as_secs_f64();
@@ -88,7 +98,8 @@ pub fn measure(a: &SceneObject, b: &SceneObject, args: &SceneArgs, widths: &[u32
         if !same.is_empty() {
             bail!("W = {width}: the model differs from the exact model on the quantized coordinates (a bug)");
         }
-        let whole_cycles = first_in_to_last_out(&hardware, &scene, &run, run.cycles).map_or(run.cycles, |(c, _)| c);
+        let whole_cycles = first_in_to_last_out(&hardware, &scene, &run, run.cycles)
+            .map_or(run.cycles, |(c, _)| c);
         let whole_seconds = hardware.time_of(whole_cycles).as_secs_f64();
         let diff = PairDiff::between(&truth.pairs, &quantized);
         let certified = certify(&run.pairs, &run.uncertain, a, b);
@@ -102,7 +113,11 @@ pub fn measure(a: &SceneObject, b: &SceneObject, args: &SceneArgs, widths: &[u32
             cycles: run.cycles,
             whole_cycles,
             clock_mhz: hardware.clock_mhz,
-            clock: if routed.is_some() { "post-route".into() } else { "assumed".into() },
+            clock: if routed.is_some() {
+                "post-route".into()
+            } else {
+                "assumed".into()
+            },
             whole_seconds,
             speedup: software_seconds / whole_seconds.max(f64::MIN_POSITIVE),
             intersecting: run.pairs.len(),

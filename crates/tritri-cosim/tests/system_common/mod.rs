@@ -5,10 +5,10 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tritri_geom::scene::{Batch, TaggedTriangle};
 use tritri_geom::bounding_volume::{triangle_box_overlap_conservative, Aabb};
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::quantize::Frame;
+use tritri_geom::scene::{Batch, TaggedTriangle};
 use tritri_geom::triangle::Triangle;
 
 /// The triangles of each object inside the common box, with their indices
@@ -28,7 +28,14 @@ pub fn small_scene(width: u32, nu: usize, nv: usize) -> (Vec<TaggedTriangle>, Ve
     };
     let (ka, kb) = (keep(&a), keep(&b));
     let frame = Frame::fit(ka.iter().chain(kb.iter()).map(|(_, t)| t), width).unwrap();
-    let q = |v: Vec<(u32, Triangle)>| v.into_iter().map(|(id, t)| TaggedTriangle { id, triangle: frame.quantize(&t) }).collect();
+    let q = |v: Vec<(u32, Triangle)>| {
+        v.into_iter()
+            .map(|(id, t)| TaggedTriangle {
+                id,
+                triangle: frame.quantize(&t),
+            })
+            .collect()
+    };
     (q(ka), q(kb))
 }
 
@@ -37,13 +44,21 @@ pub type Arrays = (Vec<TaggedTriangle>, Vec<TaggedTriangle>);
 
 /// Random arrays of the given `(A, B)` sizes; batch k's ids start at
 /// `k * id_step` (A) and `k * id_step + id_step / 2` (B).
-pub fn random_arrays(rng: &mut ChaCha8Rng, shapes: &[(usize, usize)], width: u32, id_step: u32) -> Vec<Arrays> {
+pub fn random_arrays(
+    rng: &mut ChaCha8Rng,
+    shapes: &[(usize, usize)],
+    width: u32,
+    id_step: u32,
+) -> Vec<Arrays> {
     shapes
         .iter()
         .enumerate()
         .map(|(k, &(a, b))| {
             let first = id_step * k as u32;
-            (random_triangles(rng, a, width, first), random_triangles(rng, b, width, first + id_step / 2))
+            (
+                random_triangles(rng, a, width, first),
+                random_triangles(rng, b, width, first + id_step / 2),
+            )
         })
         .collect()
 }
@@ -54,7 +69,12 @@ pub fn batches(arrays: &[Arrays]) -> Vec<Batch<'_>> {
 }
 
 /// `n` random W-bit triangles with ids from `first_id`.
-pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize, width: u32, first_id: u32) -> Vec<TaggedTriangle> {
+pub fn random_triangles(
+    rng: &mut ChaCha8Rng,
+    n: usize,
+    width: u32,
+    first_id: u32,
+) -> Vec<TaggedTriangle> {
     let half = 1i64 << (width - 1);
     (0..n)
         .map(|i| {
@@ -64,7 +84,10 @@ pub fn random_triangles(rng: &mut ChaCha8Rng, n: usize, width: u32, first_id: u3
                     *c = rng.gen_range(-half..half);
                 }
             }
-            TaggedTriangle { id: first_id + i as u32, triangle: t }
+            TaggedTriangle {
+                id: first_id + i as u32,
+                triangle: t,
+            }
         })
         .collect()
 }

@@ -53,7 +53,10 @@ impl NormalPatch {
                 for k in 0..4 {
                     for l in 0..3 {
                         let dv = d(p[k][l], p[k][l + 1]);
-                        let w = binomial(2, i) * binomial(3, k) / binomial(5, i + k) * binomial(3, j) * binomial(2, l) / binomial(5, j + l);
+                        let w = binomial(2, i) * binomial(3, k) / binomial(5, i + k)
+                            * binomial(3, j)
+                            * binomial(2, l)
+                            / binomial(5, j + l);
                         net[i + k][j + l] += w * du.cross(&dv);
                     }
                 }
@@ -64,7 +67,8 @@ impl NormalPatch {
 
     /// `N(u, v)` and its partial derivatives `N_u`, `N_v`.
     pub fn evaluate(&self, u: f64, v: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        let rows: Vec<(Vector3<f64>, Vector3<f64>)> = self.net.iter().map(|row| curve(row, v)).collect();
+        let rows: Vec<(Vector3<f64>, Vector3<f64>)> =
+            self.net.iter().map(|row| curve(row, v)).collect();
         let values: Vec<Vector3<f64>> = rows.iter().map(|r| r.0).collect();
         let slopes: Vec<Vector3<f64>> = rows.iter().map(|r| r.1).collect();
         let (n, nu) = curve(&values, u);
@@ -101,7 +105,13 @@ impl NormalCone {
     pub fn of(patch: &BezierPatch) -> Option<NormalCone> {
         let normals = NormalPatch::of(patch);
         let scale = patch.size();
-        let vectors: Vec<Vector3<f64>> = normals.net.iter().flatten().copied().filter(|n| n.norm() > 1e-14 * scale * scale).collect();
+        let vectors: Vec<Vector3<f64>> = normals
+            .net
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|n| n.norm() > 1e-14 * scale * scale)
+            .collect();
         if vectors.is_empty() {
             return None;
         }
@@ -112,21 +122,32 @@ impl NormalCone {
         let l = sum.norm();
         if l < 1e-12 {
             // Directions that cancel: no axis is better than another.
-            return Some(NormalCone { axis: vectors[0] / vectors[0].norm(), half_angle: std::f64::consts::PI });
+            return Some(NormalCone {
+                axis: vectors[0] / vectors[0].norm(),
+                half_angle: std::f64::consts::PI,
+            });
         }
         let axis = sum / l;
-        let widest = vectors.iter().map(|n| (axis.dot(n) / n.norm()).clamp(-1.0, 1.0).acos()).fold(0.0, f64::max);
+        let widest = vectors
+            .iter()
+            .map(|n| (axis.dot(n) / n.norm()).clamp(-1.0, 1.0).acos())
+            .fold(0.0, f64::max);
         // Past 90° the set of directions within the angle is not convex: two
         // control vectors at 100° on either side of the axis combine to one
         // at 180°. Such a cone bounds nothing.
-        let half_angle = if widest < std::f64::consts::FRAC_PI_2 { widest } else { std::f64::consts::PI };
+        let half_angle = if widest < std::f64::consts::FRAC_PI_2 {
+            widest
+        } else {
+            std::f64::consts::PI
+        };
         Some(NormalCone { axis, half_angle })
     }
 
     /// Does the direction lie in the closed cone (to `slack` radians)?
     pub fn contains(&self, direction: Vector3<f64>, slack: f64) -> bool {
         let l = direction.norm();
-        l == 0.0 || (self.axis.dot(&direction) / l).clamp(-1.0, 1.0).acos() <= self.half_angle + slack
+        l == 0.0
+            || (self.axis.dot(&direction) / l).clamp(-1.0, 1.0).acos() <= self.half_angle + slack
     }
 }
 
@@ -147,17 +168,26 @@ fn unit_from(eye: Point3<f64>, p: Point3<f64>) -> Vector3<f64> {
 /// four corners do not bound the directions to the rest of the patch.
 /// Kept to measure what it would cull; [`back_facing`] is the guarantee.
 pub fn paper_back_facing(cone: &NormalCone, patch: &BezierPatch, eye: Point3<f64>) -> bool {
-    corners(patch).iter().all(|&c| cone.axis.dot(&unit_from(eye, c)) < cone.half_angle.sin())
+    corners(patch)
+        .iter()
+        .all(|&c| cone.axis.dot(&unit_from(eye, c)) < cone.half_angle.sin())
 }
 
 /// The paper's silhouette test, equation (3.2): some corner has
 /// `|N · E_i| < sin α`.
 pub fn paper_silhouette(cone: &NormalCone, patch: &BezierPatch, eye: Point3<f64>) -> bool {
-    corners(patch).iter().any(|&c| cone.axis.dot(&unit_from(eye, c)).abs() < cone.half_angle.sin())
+    corners(patch)
+        .iter()
+        .any(|&c| cone.axis.dot(&unit_from(eye, c)).abs() < cone.half_angle.sin())
 }
 
 fn corners(patch: &BezierPatch) -> [Point3<f64>; 4] {
-    [patch.net[0][0], patch.net[0][3], patch.net[3][0], patch.net[3][3]]
+    [
+        patch.net[0][0],
+        patch.net[0][3],
+        patch.net[3][0],
+        patch.net[3][3],
+    ]
 }
 
 /// Every point of the patch faces away from the eye (`n · (p - e) > 0`
@@ -172,12 +202,20 @@ fn corners(patch: &BezierPatch) -> [Point3<f64>; 4] {
 /// patch without normals has no cone and is never culled.
 pub fn back_facing(cone: &NormalCone, patch: &BezierPatch, eye: Point3<f64>) -> bool {
     let (sin, limit) = (cone.half_angle.sin(), std::f64::consts::FRAC_PI_2);
-    cone.half_angle < limit && patch.net.iter().flatten().all(|&c| c != eye && cone.axis.dot(&unit_from(eye, c)) > sin)
+    cone.half_angle < limit
+        && patch
+            .net
+            .iter()
+            .flatten()
+            .all(|&c| c != eye && cone.axis.dot(&unit_from(eye, c)) > sin)
 }
 
 /// The mirror of [`back_facing`]: every point faces the eye.
 pub fn front_facing(cone: &NormalCone, patch: &BezierPatch, eye: Point3<f64>) -> bool {
-    let flipped = NormalCone { axis: -cone.axis, half_angle: cone.half_angle };
+    let flipped = NormalCone {
+        axis: -cone.axis,
+        half_angle: cone.half_angle,
+    };
     back_facing(&flipped, patch, eye)
 }
 

@@ -37,10 +37,16 @@ impl BezierPatch {
     /// `S(u, v)`, `d_u`, `d_v` by De Casteljau: each row of the net (fixed
     /// `i`, along `v`) at `v`, then the four results along `u`.
     pub fn evaluate_with_derivatives(&self, u: f64, v: f64) -> SurfacePoint {
-        let rows = self.net.map(|row| cubic_coordinates(row.map(|p| p.coords), v));
+        let rows = self
+            .net
+            .map(|row| cubic_coordinates(row.map(|p| p.coords), v));
         let (point, du) = cubic_coordinates(rows.map(|r| r.0), u);
         let (dv, _) = cubic_coordinates(rows.map(|r| r.1), u);
-        SurfacePoint { point: Point3::from(point), du, dv }
+        SurfacePoint {
+            point: Point3::from(point),
+            du,
+            dv,
+        }
     }
 
     /// The unit normal at `(u, v)`: `d_u × d_v` normalized, or, where it
@@ -72,7 +78,11 @@ impl BezierPatch {
     pub fn grid_by_forward_differences(&self, n: usize) -> Vec<Vec<Point3<f64>>> {
         let n = n.max(1);
         // Samples of the four row curves at every v_j.
-        let rows: Vec<Vec<[f64; 3]>> = self.net.iter().map(|row| forward_differences(row.map(Into::into), n)).collect();
+        let rows: Vec<Vec<[f64; 3]>> = self
+            .net
+            .iter()
+            .map(|row| forward_differences(row.map(Into::into), n))
+            .collect();
         let mut grid = vec![vec![Point3::origin(); n + 1]; n + 1];
         for j in 0..=n {
             let column = [rows[0][j], rows[1][j], rows[2][j], rows[3][j]];
@@ -134,7 +144,10 @@ mod tests {
             let (v0, v1) = ((v - h).max(0.0), (v + h).min(1.0));
             let fu = (p.evaluate(u1, v) - p.evaluate(u0, v)) / (u1 - u0);
             let fv = (p.evaluate(u, v1) - p.evaluate(u, v0)) / (v1 - v0);
-            assert!((fu - s.du).norm() < 1e-4 && (fv - s.dv).norm() < 1e-4, "({u}, {v})");
+            assert!(
+                (fu - s.du).norm() < 1e-4 && (fv - s.dv).norm() < 1e-4,
+                "({u}, {v})"
+            );
         }
     }
 
@@ -146,7 +159,10 @@ mod tests {
             for i in 0..=n {
                 for j in 0..=n {
                     let e = p.evaluate(i as f64 / n as f64, j as f64 / n as f64);
-                    assert!((grid[i][j] - e).norm() < 1e-10 * p.size(), "n {n} ({i}, {j})");
+                    assert!(
+                        (grid[i][j] - e).norm() < 1e-10 * p.size(),
+                        "n {n} ({i}, {j})"
+                    );
                 }
             }
         }

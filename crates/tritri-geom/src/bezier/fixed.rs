@@ -48,7 +48,10 @@ pub fn fixed_grid(net: &FixedNet, k: u32) -> Vec<[i64; 3]> {
         for j in 0..=n {
             let bv = scaled_bernstein(j, n);
             let vertex = [0, 1, 2].map(|axis| {
-                let g: i128 = (0..4).flat_map(|a| (0..4).map(move |b| (a, b))).map(|(a, b)| bu[a] * bv[b] * net[a][b][axis] as i128).sum();
+                let g: i128 = (0..4)
+                    .flat_map(|a| (0..4).map(move |b| (a, b)))
+                    .map(|(a, b)| bu[a] * bv[b] * net[a][b][axis] as i128)
+                    .sum();
                 (g + half).div_euclid(1i128 << shift) as i64
             });
             out.push(vertex);
@@ -68,16 +71,27 @@ impl PatchFrame {
     /// The frame that puts `patches`' control points on a `width`-bit
     /// signed grid, centred, with a bit of margin.
     pub fn fit(patches: &[BezierPatch], width: u32) -> PatchFrame {
-        let Aabb { lo, hi } = patches_box(patches).unwrap_or(Aabb { lo: [0.0; 3], hi: [0.0; 3] });
-        let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let Aabb { lo, hi } = patches_box(patches).unwrap_or(Aabb {
+            lo: [0.0; 3],
+            hi: [0.0; 3],
+        });
+        let extent = (0..3)
+            .map(|k| hi[k] - lo[k])
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
         let origin = [0, 1, 2].map(|k| (lo[k] + hi[k]) / 2.0);
         // Half the range less a margin of two steps for the rounding.
         let half_range = ((1i64 << (width - 1)) - 2) as f64;
-        PatchFrame { origin, step: extent / (2.0 * half_range) }
+        PatchFrame {
+            origin,
+            step: extent / (2.0 * half_range),
+        }
     }
 
     pub fn quantize(&self, patch: &BezierPatch) -> FixedNet {
-        patch.net.map(|row| row.map(|p| [0, 1, 2].map(|k| ((p[k] - self.origin[k]) / self.step).round() as i64)))
+        patch.net.map(|row| {
+            row.map(|p| [0, 1, 2].map(|k| ((p[k] - self.origin[k]) / self.step).round() as i64))
+        })
     }
 
     pub fn dequantize(&self, v: [i64; 3]) -> [f64; 3] {
@@ -114,7 +128,9 @@ mod tests {
     /// surface.
     #[test]
     fn fixed_grid_is_exact_up_to_one_rounding() {
-        let affine: FixedNet = std::array::from_fn(|a| std::array::from_fn(|b| [30 * a as i64 - 45, 20 * b as i64, 7 * (a + b) as i64]));
+        let affine: FixedNet = std::array::from_fn(|a| {
+            std::array::from_fn(|b| [30 * a as i64 - 45, 20 * b as i64, 7 * (a + b) as i64])
+        });
         for k in 0..=4 {
             let n = 1usize << k;
             let grid = fixed_grid(&affine, k);
@@ -127,7 +143,8 @@ mod tests {
                 for i in 0..=n {
                     for j in 0..=n {
                         let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
-                        let want = [90.0 * u - 45.0, 60.0 * v, 21.0 * (u + v)].map(|c: f64| (c + 0.5).floor() as i64);
+                        let want = [90.0 * u - 45.0, 60.0 * v, 21.0 * (u + v)]
+                            .map(|c: f64| (c + 0.5).floor() as i64);
                         assert_eq!(grid[i * (n + 1) + j], want, "k {k} ({i}, {j})");
                     }
                 }

@@ -10,8 +10,8 @@
 //! P_{i+1,j} - P_{i,j+1} + P_{i,j}|`, `|S_vv|` likewise: each derivative is
 //! a Bernstein combination of those differences, whose weights sum to 1.
 
-use nalgebra::{Point3, Vector3};
 use super::BezierPatch;
+use nalgebra::{Point3, Vector3};
 
 /// The paper's samples per side, by distance: 5, 10, 15, 20.
 pub const DISTANCE_LEVELS: [usize; 4] = [5, 10, 15, 20];
@@ -29,19 +29,53 @@ pub fn distance_level(distance: f64, near: f64) -> usize {
 pub fn second_derivative_bounds(patch: &BezierPatch) -> [f64; 3] {
     let p = &patch.net;
     let (mut uu, mut uv, mut vv) = (0.0f64, 0.0f64, 0.0f64);
-    let comb = |a: Point3<f64>, b: Point3<f64>, c: Point3<f64>, d: Point3<f64>, wa: f64, wb: f64, wc: f64, wd: f64| {
+    let comb = |a: Point3<f64>,
+                b: Point3<f64>,
+                c: Point3<f64>,
+                d: Point3<f64>,
+                wa: f64,
+                wb: f64,
+                wc: f64,
+                wd: f64| {
         Vector3::from([0, 1, 2].map(|k| wa * a[k] + wb * b[k] + wc * c[k] + wd * d[k])).norm()
     };
     for i in 0..4 {
         for j in 0..4 {
             if i + 2 < 4 {
-                uu = uu.max(comb(p[i + 2][j], p[i + 1][j], p[i][j], p[i][j], 1.0, -2.0, 1.0, 0.0));
+                uu = uu.max(comb(
+                    p[i + 2][j],
+                    p[i + 1][j],
+                    p[i][j],
+                    p[i][j],
+                    1.0,
+                    -2.0,
+                    1.0,
+                    0.0,
+                ));
             }
             if j + 2 < 4 {
-                vv = vv.max(comb(p[i][j + 2], p[i][j + 1], p[i][j], p[i][j], 1.0, -2.0, 1.0, 0.0));
+                vv = vv.max(comb(
+                    p[i][j + 2],
+                    p[i][j + 1],
+                    p[i][j],
+                    p[i][j],
+                    1.0,
+                    -2.0,
+                    1.0,
+                    0.0,
+                ));
             }
             if i + 1 < 4 && j + 1 < 4 {
-                uv = uv.max(comb(p[i + 1][j + 1], p[i + 1][j], p[i][j + 1], p[i][j], 1.0, -1.0, -1.0, 1.0));
+                uv = uv.max(comb(
+                    p[i + 1][j + 1],
+                    p[i + 1][j],
+                    p[i][j + 1],
+                    p[i][j],
+                    1.0,
+                    -1.0,
+                    -1.0,
+                    1.0,
+                ));
             }
         }
     }
@@ -73,7 +107,10 @@ mod tests {
 
     #[test]
     fn distance_levels_step_down_with_distance() {
-        assert_eq!([0.5, 1.0, 3.0, 4.0, 100.0].map(|d| distance_level(d, 1.0)), [20, 15, 10, 5, 5]);
+        assert_eq!(
+            [0.5, 1.0, 3.0, 4.0, 100.0].map(|d| distance_level(d, 1.0)),
+            [20, 15, 10, 5, 5]
+        );
     }
 
     /// The measured deviation (densely sampled, against the triangles of
@@ -88,8 +125,14 @@ mod tests {
             let m = 8;
             for ci in 0..n {
                 for cj in 0..n {
-                    let corner = |a: usize, b: usize| p.evaluate(a as f64 / n as f64, b as f64 / n as f64);
-                    let (c00, c10, c11, c01) = (corner(ci, cj), corner(ci + 1, cj), corner(ci + 1, cj + 1), corner(ci, cj + 1));
+                    let corner =
+                        |a: usize, b: usize| p.evaluate(a as f64 / n as f64, b as f64 / n as f64);
+                    let (c00, c10, c11, c01) = (
+                        corner(ci, cj),
+                        corner(ci + 1, cj),
+                        corner(ci + 1, cj + 1),
+                        corner(ci, cj + 1),
+                    );
                     for a in 0..=m {
                         for b in 0..=m {
                             let (s, t) = (a as f64 / m as f64, b as f64 / m as f64);
@@ -99,13 +142,17 @@ mod tests {
                             } else {
                                 c00 + t * (c01 - c00) + s * (c11 - c01)
                             };
-                            let on = p.evaluate((ci as f64 + s) / n as f64, (cj as f64 + t) / n as f64);
+                            let on =
+                                p.evaluate((ci as f64 + s) / n as f64, (cj as f64 + t) / n as f64);
                             worst = worst.max((on - flat).norm());
                         }
                     }
                 }
             }
-            assert!(worst <= bound, "n {n}: deviation {worst} above the bound {bound}");
+            assert!(
+                worst <= bound,
+                "n {n}: deviation {worst} above the bound {bound}"
+            );
         }
         let tolerance = deviation_bound(&p, 6) * 1.01;
         assert_eq!(error_level(&p, tolerance, 64), 6);

@@ -44,9 +44,16 @@ pub struct BezierPatch {
 #[derive(Debug, thiserror::Error)]
 pub enum BptError {
     #[error("{path}: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
     #[error("{path}:{line}: {message}")]
-    Parse { path: String, line: usize, message: String },
+    Parse {
+        path: String,
+        line: usize,
+        message: String,
+    },
 }
 
 /// Cubic Bernstein weights at `t`.
@@ -74,12 +81,22 @@ impl BezierPatch {
     /// Triangles are the collision system's plain coordinate arrays.
     pub fn tessellate(&self, n: usize) -> Vec<Triangle> {
         let n = n.max(1);
-        let sample = |i: usize, j: usize| self.evaluate(i as f64 / n as f64, j as f64 / n as f64).into();
-        let grid: Vec<Vec<[f64; 3]>> = (0..=n).map(|i| (0..=n).map(|j| sample(i, j)).collect()).collect();
+        let sample = |i: usize, j: usize| {
+            self.evaluate(i as f64 / n as f64, j as f64 / n as f64)
+                .into()
+        };
+        let grid: Vec<Vec<[f64; 3]>> = (0..=n)
+            .map(|i| (0..=n).map(|j| sample(i, j)).collect())
+            .collect();
         let mut out = Vec::with_capacity(2 * n * n);
         for i in 0..n {
             for j in 0..n {
-                let (a, b, c, d) = (grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]);
+                let (a, b, c, d) = (
+                    grid[i][j],
+                    grid[i + 1][j],
+                    grid[i + 1][j + 1],
+                    grid[i][j + 1],
+                );
                 for t in [[a, b, c], [a, c, d]] {
                     if t[0] != t[1] && t[1] != t[2] && t[2] != t[0] {
                         out.push(t);
@@ -109,7 +126,11 @@ pub fn signed_volume(patches: &[BezierPatch]) -> f64 {
     patches
         .iter()
         .flat_map(|p| p.tessellate(8))
-        .map(|[a, b, c]| (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0)
+        .map(|[a, b, c]| {
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
         .sum()
 }
 
@@ -126,23 +147,43 @@ pub fn oriented_outwards(patches: &[BezierPatch]) -> (Vec<BezierPatch>, bool) {
 /// Reads a `.bpt` file.
 pub fn read_bpt(path: &Path) -> Result<Vec<BezierPatch>, BptError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| BptError::Io { path: name.clone(), source })?;
-    parse_bpt(&text).map_err(|(line, message)| BptError::Parse { path: name, line, message })
+    let text = std::fs::read_to_string(path).map_err(|source| BptError::Io {
+        path: name.clone(),
+        source,
+    })?;
+    parse_bpt(&text).map_err(|(line, message)| BptError::Parse {
+        path: name,
+        line,
+        message,
+    })
 }
 
 /// Parses `.bpt` text; errors are `(line, message)`.
 pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
     // A truncated file is reported at the line after its last.
     let end = text.lines().count() + 1;
-    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim())).filter(|(_, l)| !l.is_empty());
-    let mut next = |what: &str| lines.next().ok_or_else(|| (end, format!("file ends where {what} was expected")));
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty());
+    let mut next = |what: &str| {
+        lines
+            .next()
+            .ok_or_else(|| (end, format!("file ends where {what} was expected")))
+    };
     let (line, count) = next("the patch count")?;
-    let count: usize = count.parse().map_err(|_| (line, format!("patch count `{count}` is not an integer")))?;
+    let count: usize = count
+        .parse()
+        .map_err(|_| (line, format!("patch count `{count}` is not an integer")))?;
     let mut patches = Vec::with_capacity(count.min(1 << 16));
     for _ in 0..count {
         let (line, degrees) = next("`3 3`")?;
         if degrees.split_whitespace().collect::<Vec<_>>() != ["3", "3"] {
-            return Err((line, format!("only bicubic patches (`3 3`) are supported, found `{degrees}`")));
+            return Err((
+                line,
+                format!("only bicubic patches (`3 3`) are supported, found `{degrees}`"),
+            ));
         }
         let mut net = [[Point3::origin(); 4]; 4];
         for row in net.iter_mut() {
@@ -150,10 +191,15 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
                 let (line, xyz) = next("a control point")?;
                 let values: Vec<&str> = xyz.split_whitespace().collect();
                 if values.len() != 3 {
-                    return Err((line, format!("control point has {} numbers, expected 3", values.len())));
+                    return Err((
+                        line,
+                        format!("control point has {} numbers, expected 3", values.len()),
+                    ));
                 }
                 for k in 0..3 {
-                    let v: f64 = values[k].parse().map_err(|_| (line, format!("`{}` is not a number", values[k])))?;
+                    let v: f64 = values[k]
+                        .parse()
+                        .map_err(|_| (line, format!("`{}` is not a number", values[k])))?;
                     if !v.is_finite() {
                         return Err((line, format!("coordinate `{}` is not finite", values[k])));
                     }
@@ -176,7 +222,11 @@ pub(crate) mod tests {
         for i in 0..4 {
             for j in 0..4 {
                 let (x, y) = (i as f64, j as f64);
-                net[i][j] = Point3::new(x + 0.3 * y, y - 0.2 * x, (x * 1.3).sin() + 0.5 * (y * 0.9).cos() + 0.1 * x * y);
+                net[i][j] = Point3::new(
+                    x + 0.3 * y,
+                    y - 0.2 * x,
+                    (x * 1.3).sin() + 0.5 * (y * 0.9).cos() + 0.1 * x * y,
+                );
             }
         }
         BezierPatch { net }
@@ -205,18 +255,33 @@ pub(crate) mod tests {
         let mut p = flat_patch();
         p.net[0] = [Point3::origin(); 4];
         let tris = p.tessellate(4);
-        assert_eq!(tris.len(), 2 * 16 - 4, "one triangle per quad of the collapsed row is dropped");
-        assert!(tris.iter().all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
+        assert_eq!(
+            tris.len(),
+            2 * 16 - 4,
+            "one triangle per quad of the collapsed row is dropped"
+        );
+        assert!(tris
+            .iter()
+            .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]));
     }
 
     #[test]
     fn parse_errors_name_the_line() {
-        assert_eq!(parse_bpt("1\n3 2\n").unwrap_err(), (2, "only bicubic patches (`3 3`) are supported, found `3 2`".into()));
+        assert_eq!(
+            parse_bpt("1\n3 2\n").unwrap_err(),
+            (
+                2,
+                "only bicubic patches (`3 3`) are supported, found `3 2`".into()
+            )
+        );
         let mut text = String::from("1\n3 3\n");
         for _ in 0..15 {
             text.push_str("0 0 0\n");
         }
         text.push_str("0 nan 0\n");
-        assert_eq!(parse_bpt(&text).unwrap_err(), (18, "coordinate `nan` is not finite".into()));
+        assert_eq!(
+            parse_bpt(&text).unwrap_err(),
+            (18, "coordinate `nan` is not finite".into())
+        );
     }
 }

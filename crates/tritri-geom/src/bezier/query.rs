@@ -59,7 +59,10 @@ pub fn net_box(patch: &BezierPatch) -> Aabb<f64> {
 
 /// The box of every patch's net (`None` for no patches).
 pub fn patches_box(patches: &[BezierPatch]) -> Option<Aabb<f64>> {
-    patches.iter().map(net_box).reduce(|a, b| Aabb { lo: [0, 1, 2].map(|k| a.lo[k].min(b.lo[k])), hi: [0, 1, 2].map(|k| a.hi[k].max(b.hi[k])) })
+    patches.iter().map(net_box).reduce(|a, b| Aabb {
+        lo: [0, 1, 2].map(|k| a.lo[k].min(b.lo[k])),
+        hi: [0, 1, 2].map(|k| a.hi[k].max(b.hi[k])),
+    })
 }
 
 fn inside(inner: &Aabb<f64>, outer: &Aabb<f64>) -> bool {
@@ -68,10 +71,29 @@ fn inside(inner: &Aabb<f64>, outer: &Aabb<f64>) -> bool {
 
 /// The patches tessellated for a query over `region` to within `tolerance`
 /// (module docs); `None` for the region: nothing can touch.
-pub fn tessellate_for_query(patches: &[BezierPatch], region: Option<&Aabb<f64>>, tolerance: f64, max_splits: u32) -> QueryTessellation {
-    let uniform_samples = patches.iter().map(|p| error_level(p, tolerance, MAX_SAMPLES)).max().unwrap_or(1);
-    let uniform_triangles = patches.iter().map(|p| p.tessellate(uniform_samples).len()).sum();
-    let mut out = QueryTessellation { triangles: Vec::new(), face_of: Vec::new(), patches_kept: 0, pieces: 0, uniform_samples, uniform_triangles };
+pub fn tessellate_for_query(
+    patches: &[BezierPatch],
+    region: Option<&Aabb<f64>>,
+    tolerance: f64,
+    max_splits: u32,
+) -> QueryTessellation {
+    let uniform_samples = patches
+        .iter()
+        .map(|p| error_level(p, tolerance, MAX_SAMPLES))
+        .max()
+        .unwrap_or(1);
+    let uniform_triangles = patches
+        .iter()
+        .map(|p| p.tessellate(uniform_samples).len())
+        .sum();
+    let mut out = QueryTessellation {
+        triangles: Vec::new(),
+        face_of: Vec::new(),
+        patches_kept: 0,
+        pieces: 0,
+        uniform_samples,
+        uniform_triangles,
+    };
     let Some(region) = region else { return out };
     for (index, patch) in patches.iter().enumerate() {
         let mut pieces = vec![(*patch, 0)];
@@ -91,7 +113,8 @@ pub fn tessellate_for_query(patches: &[BezierPatch], region: Option<&Aabb<f64>>,
                 continue;
             }
             let triangles = piece.tessellate(error_level(&piece, tolerance, MAX_SAMPLES));
-            out.face_of.extend(std::iter::repeat_n(index, triangles.len()));
+            out.face_of
+                .extend(std::iter::repeat_n(index, triangles.len()));
             out.triangles.extend(triangles);
             out.pieces += 1;
             kept = true;
@@ -117,22 +140,45 @@ mod tests {
         let tolerance = 1e-3 * whole.extent();
         let all = tessellate_for_query(&[patch], Some(&whole.expanded(1.0)), tolerance, MAX_SPLITS);
         let n = error_level(&patch, tolerance, MAX_SAMPLES);
-        assert_eq!((all.patches_kept, all.pieces, all.triangles.len()), (1, 1, patch.tessellate(n).len()));
-        assert_eq!((all.uniform_samples, all.uniform_triangles), (n, all.triangles.len()));
+        assert_eq!(
+            (all.patches_kept, all.pieces, all.triangles.len()),
+            (1, 1, patch.tessellate(n).len())
+        );
+        assert_eq!(
+            (all.uniform_samples, all.uniform_triangles),
+            (n, all.triangles.len())
+        );
         assert!(deviation_bound(&patch, n) <= tolerance);
 
-        let beside = Aabb { lo: whole.hi.map(|c| c + 1.0), hi: whole.hi.map(|c| c + 2.0) };
+        let beside = Aabb {
+            lo: whole.hi.map(|c| c + 1.0),
+            hi: whole.hi.map(|c| c + 2.0),
+        };
         let none = tessellate_for_query(&[patch], Some(&beside), tolerance, MAX_SPLITS);
         assert_eq!((none.patches_kept, none.triangles.len()), (0, 0));
-        assert!(tessellate_for_query(&[patch], None, tolerance, MAX_SPLITS).triangles.is_empty());
+        assert!(tessellate_for_query(&[patch], None, tolerance, MAX_SPLITS)
+            .triangles
+            .is_empty());
 
         // A small box around the surface's corner S(0, 0) = net[0][0].
         let c = patch.net[0][0];
-        let corner = Aabb { lo: [0, 1, 2].map(|k| c[k] - 0.05 * whole.extent()), hi: [0, 1, 2].map(|k| c[k] + 0.05 * whole.extent()) };
+        let corner = Aabb {
+            lo: [0, 1, 2].map(|k| c[k] - 0.05 * whole.extent()),
+            hi: [0, 1, 2].map(|k| c[k] + 0.05 * whole.extent()),
+        };
         let some = tessellate_for_query(&[patch], Some(&corner), tolerance, MAX_SPLITS);
         assert_eq!(some.patches_kept, 1);
-        assert!(some.pieces >= 1 && some.pieces < 4usize.pow(MAX_SPLITS), "{}", some.pieces);
-        assert!(!some.triangles.is_empty() && some.triangles.len() < all.triangles.len() / 4, "{} of {}", some.triangles.len(), all.triangles.len());
+        assert!(
+            some.pieces >= 1 && some.pieces < 4usize.pow(MAX_SPLITS),
+            "{}",
+            some.pieces
+        );
+        assert!(
+            !some.triangles.is_empty() && some.triangles.len() < all.triangles.len() / 4,
+            "{} of {}",
+            some.triangles.len(),
+            all.triangles.len()
+        );
         assert!(some.face_of.iter().all(|&f| f == 0));
     }
 }

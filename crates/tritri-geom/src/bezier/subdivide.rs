@@ -51,7 +51,11 @@ pub fn subdivide(patches: &[BezierPatch], times: u32) -> Vec<BezierPatch> {
         out = out
             .iter()
             .flat_map(|p| {
-                let (a, b) = if step % 2 == 0 { p.split_u() } else { p.split_v() };
+                let (a, b) = if step % 2 == 0 {
+                    p.split_u()
+                } else {
+                    p.split_v()
+                };
                 [a, b]
             })
             .collect();

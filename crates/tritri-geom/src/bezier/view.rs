@@ -38,12 +38,28 @@ pub fn plan(patches: &[BezierPatch], eye: Point3<f64>, near: f64) -> Vec<PatchVi
         .map(|p| {
             let samples = distance_level((centre(p) - eye).norm(), near);
             match NormalCone::of(p) {
-                Some(cone) if back_facing(&cone, p, eye) => PatchView { culled: true, silhouette: false, samples: 0 },
+                Some(cone) if back_facing(&cone, p, eye) => PatchView {
+                    culled: true,
+                    silhouette: false,
+                    samples: 0,
+                },
                 Some(cone) if may_hold_silhouette(&cone, p, eye) => {
-                    let finer = DISTANCE_LEVELS.iter().copied().find(|&l| l > samples).unwrap_or(samples);
-                    PatchView { culled: false, silhouette: true, samples: finer }
+                    let finer = DISTANCE_LEVELS
+                        .iter()
+                        .copied()
+                        .find(|&l| l > samples)
+                        .unwrap_or(samples);
+                    PatchView {
+                        culled: false,
+                        silhouette: true,
+                        samples: finer,
+                    }
                 }
-                _ => PatchView { culled: false, silhouette: false, samples },
+                _ => PatchView {
+                    culled: false,
+                    silhouette: false,
+                    samples,
+                },
             }
         })
         .collect()
@@ -62,7 +78,14 @@ mod tests {
         // The normals point towards an eye in front, away from one behind.
         let behind = c - 50.0 * cone.axis;
         let in_front = c + 50.0 * cone.axis;
-        assert_eq!(plan(&[p], behind, 1.0)[0], PatchView { culled: true, silhouette: false, samples: 0 });
+        assert_eq!(
+            plan(&[p], behind, 1.0)[0],
+            PatchView {
+                culled: true,
+                silhouette: false,
+                samples: 0
+            }
+        );
         let front = plan(&[p], in_front, 1.0)[0];
         assert!(!front.culled && front.samples == 5);
         assert_eq!(plan(&[p], in_front, 100.0)[0].samples, 20);

@@ -24,9 +24,16 @@ pub struct Mesh {
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
     #[error("{path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
     #[error("{path}:{line}: {message}")]
-    Parse { path: PathBuf, line: usize, message: String },
+    Parse {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
     #[error("{path}: unknown mesh format (expected .obj, .ply or .off)")]
     UnknownFormat { path: PathBuf },
 }
@@ -39,21 +46,38 @@ pub(crate) struct LineError {
 }
 
 pub(crate) fn line_error(line: usize, message: impl Into<String>) -> LineError {
-    LineError { line, message: message.into() }
+    LineError {
+        line,
+        message: message.into(),
+    }
 }
 
 impl Mesh {
     /// Reads a mesh, choosing the format by the file extension.
     pub fn read(path: &Path) -> Result<Mesh, MeshError> {
-        let bytes = std::fs::read(path).map_err(|source| MeshError::Io { path: path.to_owned(), source })?;
-        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
         let parsed = match ext.as_deref() {
             Some("obj") => obj::parse(&bytes),
             Some("off") => off::parse(&bytes),
             Some("ply") => ply::parse(&bytes),
-            _ => return Err(MeshError::UnknownFormat { path: path.to_owned() }),
+            _ => {
+                return Err(MeshError::UnknownFormat {
+                    path: path.to_owned(),
+                })
+            }
         };
-        parsed.map_err(|e| MeshError::Parse { path: path.to_owned(), line: e.line, message: e.message })
+        parsed.map_err(|e| MeshError::Parse {
+            path: path.to_owned(),
+            line: e.line,
+            message: e.message,
+        })
     }
 
     /// Builds a mesh from vertices and polygons, checking indices and
@@ -65,18 +89,29 @@ impl Mesh {
         let mut mesh = Mesh::default();
         for (face_index, (line, polygon)) in faces.iter().enumerate() {
             if polygon.len() < 3 {
-                return Err(line_error(*line, format!("face has {} vertices, at least 3 needed", polygon.len())));
+                return Err(line_error(
+                    *line,
+                    format!("face has {} vertices, at least 3 needed", polygon.len()),
+                ));
             }
             for &v in polygon {
                 if v >= vertices.len() {
                     return Err(line_error(
                         *line,
-                        format!("vertex index {} out of range (the file has {} vertices)", v, vertices.len()),
+                        format!(
+                            "vertex index {} out of range (the file has {} vertices)",
+                            v,
+                            vertices.len()
+                        ),
                     ));
                 }
             }
             for k in 1..polygon.len() - 1 {
-                mesh.triangles.push([vertices[polygon[0]], vertices[polygon[k]], vertices[polygon[k + 1]]]);
+                mesh.triangles.push([
+                    vertices[polygon[0]],
+                    vertices[polygon[k]],
+                    vertices[polygon[k + 1]],
+                ]);
                 mesh.face_of.push(face_index);
             }
         }
@@ -86,9 +121,14 @@ impl Mesh {
 
 /// Parses a finite f64, with a message that names the text.
 pub(crate) fn parse_coordinate(text: &str, line: usize) -> Result<f64, LineError> {
-    let v: f64 = text.parse().map_err(|_| line_error(line, format!("`{text}` is not a number")))?;
+    let v: f64 = text
+        .parse()
+        .map_err(|_| line_error(line, format!("`{text}` is not a number")))?;
     if !v.is_finite() {
-        return Err(line_error(line, format!("coordinate `{text}` is not finite")));
+        return Err(line_error(
+            line,
+            format!("coordinate `{text}` is not finite"),
+        ));
     }
     Ok(v)
 }

@@ -5,7 +5,8 @@
 use super::{line_error, numbered_lines, parse_coordinate, LineError, Mesh};
 
 pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| line_error(1 + count_lines(&bytes[..e.valid_up_to()]), "not UTF-8 text"))?;
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| line_error(1 + count_lines(&bytes[..e.valid_up_to()]), "not UTF-8 text"))?;
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for (line, content) in numbered_lines(text, '#') {
@@ -14,7 +15,10 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
             Some("v") => {
                 let xyz: Vec<&str> = fields.collect();
                 if xyz.len() < 3 || xyz.len() > 4 {
-                    return Err(line_error(line, format!("vertex has {} numbers, expected 3 (or 4 with w)", xyz.len())));
+                    return Err(line_error(
+                        line,
+                        format!("vertex has {} numbers, expected 3 (or 4 with w)", xyz.len()),
+                    ));
                 }
                 let mut p = [0.0; 3];
                 for k in 0..3 {
@@ -26,16 +30,26 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                 let mut polygon = Vec::new();
                 for corner in fields {
                     let index_text = corner.split('/').next().unwrap_or("");
-                    let index: i64 = index_text
-                        .parse()
-                        .map_err(|_| line_error(line, format!("face corner `{corner}` is not a vertex index")))?;
+                    let index: i64 = index_text.parse().map_err(|_| {
+                        line_error(
+                            line,
+                            format!("face corner `{corner}` is not a vertex index"),
+                        )
+                    })?;
                     let resolved = match index {
-                        0 => return Err(line_error(line, "vertex index 0 (OBJ indices start at 1)")),
+                        0 => {
+                            return Err(line_error(line, "vertex index 0 (OBJ indices start at 1)"))
+                        }
                         i if i > 0 => (i - 1) as usize,
                         i => {
                             let back = i.unsigned_abs() as usize;
                             if back > vertices.len() {
-                                return Err(line_error(line, format!("relative vertex index {i} reaches before the first vertex")));
+                                return Err(line_error(
+                                    line,
+                                    format!(
+                                        "relative vertex index {i} reaches before the first vertex"
+                                    ),
+                                ));
                             }
                             vertices.len() - back
                         }

@@ -8,12 +8,16 @@ use super::{line_error, numbered_lines, parse_coordinate, LineError, Mesh};
 pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
     let text = std::str::from_utf8(bytes).map_err(|_| line_error(1, "not UTF-8 text"))?;
     let mut lines = numbered_lines(text, '#');
-    let (line, header) = lines.next().ok_or_else(|| line_error(1, "empty file, expected `OFF`"))?;
+    let (line, header) = lines
+        .next()
+        .ok_or_else(|| line_error(1, "empty file, expected `OFF`"))?;
     let rest = header
         .strip_prefix("OFF")
         .ok_or_else(|| line_error(line, format!("expected `OFF`, found `{header}`")))?;
     let (counts_line, counts) = if rest.trim().is_empty() {
-        lines.next().ok_or_else(|| line_error(line + 1, "missing `vertices faces edges` counts"))?
+        lines
+            .next()
+            .ok_or_else(|| line_error(line + 1, "missing `vertices faces edges` counts"))?
     } else {
         (line, rest)
     };
@@ -21,7 +25,12 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
         field
             .ok_or_else(|| line_error(counts_line, format!("missing {what} count")))?
             .parse()
-            .map_err(|_| line_error(counts_line, format!("{what} count is not a non-negative integer")))
+            .map_err(|_| {
+                line_error(
+                    counts_line,
+                    format!("{what} count is not a non-negative integer"),
+                )
+            })
     };
     let mut fields = counts.split_whitespace();
     let vertex_count = count(fields.next(), "vertex")?;
@@ -29,20 +38,36 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
 
     let mut vertices = Vec::with_capacity(vertex_count.min(1 << 24));
     for _ in 0..vertex_count {
-        let (line, content) = lines
-            .next()
-            .ok_or_else(|| line_error(counts_line, format!("file ends after {} of {vertex_count} vertices", vertices.len())))?;
+        let (line, content) = lines.next().ok_or_else(|| {
+            line_error(
+                counts_line,
+                format!(
+                    "file ends after {} of {vertex_count} vertices",
+                    vertices.len()
+                ),
+            )
+        })?;
         let xyz: Vec<&str> = content.split_whitespace().collect();
         if xyz.len() < 3 {
-            return Err(line_error(line, format!("vertex has {} numbers, expected 3", xyz.len())));
+            return Err(line_error(
+                line,
+                format!("vertex has {} numbers, expected 3", xyz.len()),
+            ));
         }
-        vertices.push([parse_coordinate(xyz[0], line)?, parse_coordinate(xyz[1], line)?, parse_coordinate(xyz[2], line)?]);
+        vertices.push([
+            parse_coordinate(xyz[0], line)?,
+            parse_coordinate(xyz[1], line)?,
+            parse_coordinate(xyz[2], line)?,
+        ]);
     }
     let mut faces = Vec::with_capacity(face_count.min(1 << 24));
     for _ in 0..face_count {
-        let (line, content) = lines
-            .next()
-            .ok_or_else(|| line_error(counts_line, format!("file ends after {} of {face_count} faces", faces.len())))?;
+        let (line, content) = lines.next().ok_or_else(|| {
+            line_error(
+                counts_line,
+                format!("file ends after {} of {face_count} faces", faces.len()),
+            )
+        })?;
         let mut fields = content.split_whitespace();
         let k: usize = fields
             .next()
@@ -52,9 +77,13 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
             .map(|_| {
                 fields
                     .next()
-                    .ok_or_else(|| line_error(line, format!("face announces {k} vertices but has fewer")))?
+                    .ok_or_else(|| {
+                        line_error(line, format!("face announces {k} vertices but has fewer"))
+                    })?
                     .parse()
-                    .map_err(|_| line_error(line, "face vertex index is not a non-negative integer"))
+                    .map_err(|_| {
+                        line_error(line, "face vertex index is not a non-negative integer")
+                    })
             })
             .collect();
         faces.push((line, polygon?));

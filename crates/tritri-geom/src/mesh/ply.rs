@@ -43,8 +43,15 @@ impl Scalar {
 
 #[derive(Clone, Debug)]
 enum Property {
-    Scalar { name: String, ty: Scalar },
-    List { name: String, count: Scalar, item: Scalar },
+    Scalar {
+        name: String,
+        ty: Scalar,
+    },
+    List {
+        name: String,
+        count: Scalar,
+        item: Scalar,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -65,14 +72,26 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
     let (elements, encoding, body_start, header_lines) = parse_header(bytes)?;
     let mut reader: Box<dyn ValueReader> = match encoding {
         Encoding::Ascii => Box::new(AsciiReader::new(&bytes[body_start..], header_lines)?),
-        Encoding::LittleEndian => Box::new(BinaryReader { bytes: &bytes[body_start..], at: 0, big_endian: false, line: header_lines }),
-        Encoding::BigEndian => Box::new(BinaryReader { bytes: &bytes[body_start..], at: 0, big_endian: true, line: header_lines }),
+        Encoding::LittleEndian => Box::new(BinaryReader {
+            bytes: &bytes[body_start..],
+            at: 0,
+            big_endian: false,
+            line: header_lines,
+        }),
+        Encoding::BigEndian => Box::new(BinaryReader {
+            bytes: &bytes[body_start..],
+            at: 0,
+            big_endian: true,
+            line: header_lines,
+        }),
     };
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for element in &elements {
         for index in 0..element.count {
-            let context = |e: LineError| line_error(e.line, format!("{} {index}: {}", element.name, e.message));
+            let context = |e: LineError| {
+                line_error(e.line, format!("{} {index}: {}", element.name, e.message))
+            };
             reader.start_record().map_err(context)?;
             let line = reader.line();
             let mut xyz = [None; 3];
@@ -93,7 +112,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                         for _ in 0..n as usize {
                             items.push(reader.read(*item).map_err(context)?);
                         }
-                        if element.name == "face" && (name == "vertex_indices" || name == "vertex_index") {
+                        if element.name == "face"
+                            && (name == "vertex_indices" || name == "vertex_index")
+                        {
                             let mut ids = Vec::with_capacity(items.len());
                             for v in items {
                                 if v < 0.0 || v.fract() != 0.0 {
@@ -112,15 +133,24 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                     [Some(x), Some(y), Some(z)] => {
                         for v in [x, y, z] {
                             if !v.is_finite() {
-                                return Err(line_error(line, format!("vertex {index}: coordinate {v} is not finite")));
+                                return Err(line_error(
+                                    line,
+                                    format!("vertex {index}: coordinate {v} is not finite"),
+                                ));
                             }
                         }
                         vertices.push([x, y, z])
                     }
-                    _ => return Err(line_error(line, "vertex element lacks an x, y or z property")),
+                    _ => {
+                        return Err(line_error(
+                            line,
+                            "vertex element lacks an x, y or z property",
+                        ))
+                    }
                 }
             } else if element.name == "face" {
-                let polygon = polygon.ok_or_else(|| line_error(line, "face element lacks a vertex_indices list"))?;
+                let polygon = polygon
+                    .ok_or_else(|| line_error(line, "face element lacks a vertex_indices list"))?;
                 faces.push((line, polygon));
             }
         }
@@ -148,7 +178,12 @@ fn parse_header(bytes: &[u8]) -> Result<(Vec<Element>, Encoding, usize, usize), 
         let fields: Vec<&str> = text.split_whitespace().collect();
         match fields.as_slice() {
             ["ply"] if line == 1 => {}
-            _ if line == 1 => return Err(line_error(1, "not a PLY file: the first line must be `ply`")),
+            _ if line == 1 => {
+                return Err(line_error(
+                    1,
+                    "not a PLY file: the first line must be `ply`",
+                ))
+            }
             ["format", format, _version] => {
                 encoding = Some(match *format {
                     "ascii" => Encoding::Ascii,
@@ -160,18 +195,39 @@ fn parse_header(bytes: &[u8]) -> Result<(Vec<Element>, Encoding, usize, usize), 
             ["comment", ..] | ["obj_info", ..] | [] => {}
             ["element", name, count] => elements.push(Element {
                 name: name.to_string(),
-                count: count.parse().map_err(|_| line_error(line, format!("element count `{count}` is not an integer")))?,
+                count: count.parse().map_err(|_| {
+                    line_error(line, format!("element count `{count}` is not an integer"))
+                })?,
                 properties: Vec::new(),
             }),
             ["property", "list", count, item, name] => {
-                let ty = |t: &str| Scalar::parse(t).ok_or_else(|| line_error(line, format!("unknown property type `{t}`")));
-                let property = Property::List { name: name.to_string(), count: ty(count)?, item: ty(item)? };
-                elements.last_mut().ok_or_else(|| line_error(line, "property before any element"))?.properties.push(property);
+                let ty = |t: &str| {
+                    Scalar::parse(t)
+                        .ok_or_else(|| line_error(line, format!("unknown property type `{t}`")))
+                };
+                let property = Property::List {
+                    name: name.to_string(),
+                    count: ty(count)?,
+                    item: ty(item)?,
+                };
+                elements
+                    .last_mut()
+                    .ok_or_else(|| line_error(line, "property before any element"))?
+                    .properties
+                    .push(property);
             }
             ["property", ty, name] => {
-                let ty = Scalar::parse(ty).ok_or_else(|| line_error(line, format!("unknown property type `{ty}`")))?;
-                let property = Property::Scalar { name: name.to_string(), ty };
-                elements.last_mut().ok_or_else(|| line_error(line, "property before any element"))?.properties.push(property);
+                let ty = Scalar::parse(ty)
+                    .ok_or_else(|| line_error(line, format!("unknown property type `{ty}`")))?;
+                let property = Property::Scalar {
+                    name: name.to_string(),
+                    ty,
+                };
+                elements
+                    .last_mut()
+                    .ok_or_else(|| line_error(line, "property before any element"))?
+                    .properties
+                    .push(property);
             }
             ["end_header"] => break,
             _ => return Err(line_error(line, format!("unexpected header line `{text}`"))),
@@ -198,18 +254,33 @@ struct AsciiReader<'a> {
 
 impl<'a> AsciiReader<'a> {
     fn new(body: &'a [u8], header_lines: usize) -> Result<Self, LineError> {
-        let text = std::str::from_utf8(body).map_err(|_| line_error(header_lines + 1, "ASCII body is not text"))?;
-        Ok(AsciiReader { lines: text.lines().enumerate().peekable(), fields: Vec::new(), next_field: 0, first_line: header_lines + 1, line: header_lines })
+        let text = std::str::from_utf8(body)
+            .map_err(|_| line_error(header_lines + 1, "ASCII body is not text"))?;
+        Ok(AsciiReader {
+            lines: text.lines().enumerate().peekable(),
+            fields: Vec::new(),
+            next_field: 0,
+            first_line: header_lines + 1,
+            line: header_lines,
+        })
     }
 }
 
 impl ValueReader for AsciiReader<'_> {
     fn start_record(&mut self) -> Result<(), LineError> {
         if self.next_field < self.fields.len() {
-            return Err(line_error(self.line, format!("{} extra values on the line", self.fields.len() - self.next_field)));
+            return Err(line_error(
+                self.line,
+                format!(
+                    "{} extra values on the line",
+                    self.fields.len() - self.next_field
+                ),
+            ));
         }
         loop {
-            let (i, l) = self.lines.next().ok_or_else(|| line_error(self.line + 1, "file ends before all elements are read"))?;
+            let (i, l) = self.lines.next().ok_or_else(|| {
+                line_error(self.line + 1, "file ends before all elements are read")
+            })?;
             self.line = self.first_line + i;
             let l = l.trim();
             if !l.is_empty() && !l.starts_with("comment") {
@@ -220,9 +291,14 @@ impl ValueReader for AsciiReader<'_> {
         }
     }
     fn read(&mut self, _ty: Scalar) -> Result<f64, LineError> {
-        let text = self.fields.get(self.next_field).ok_or_else(|| line_error(self.line, "too few values on the line"))?;
+        let text = self
+            .fields
+            .get(self.next_field)
+            .ok_or_else(|| line_error(self.line, "too few values on the line"))?;
         self.next_field += 1;
-        let v: f64 = text.parse().map_err(|_| line_error(self.line, format!("`{text}` is not a number")))?;
+        let v: f64 = text
+            .parse()
+            .map_err(|_| line_error(self.line, format!("`{text}` is not a number")))?;
         if v.is_nan() || v.is_infinite() {
             // Reported by the caller for coordinates; reject everywhere else too.
             return parse_coordinate(text, self.line);
@@ -248,10 +324,12 @@ impl ValueReader for BinaryReader<'_> {
     }
     fn read(&mut self, ty: Scalar) -> Result<f64, LineError> {
         let n = ty.size();
-        let raw = self
-            .bytes
-            .get(self.at..self.at + n)
-            .ok_or_else(|| line_error(self.line, format!("binary body ends at byte {} of the body", self.bytes.len())))?;
+        let raw = self.bytes.get(self.at..self.at + n).ok_or_else(|| {
+            line_error(
+                self.line,
+                format!("binary body ends at byte {} of the body", self.bytes.len()),
+            )
+        })?;
         self.at += n;
         let mut b = [0u8; 8];
         b[..n].copy_from_slice(raw);

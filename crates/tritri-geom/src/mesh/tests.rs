@@ -6,45 +6,89 @@ use super::*;
 fn parse(name: &str, text: &[u8]) -> Result<Mesh, String> {
     let path = std::env::temp_dir().join(format!("tritri-mesh-test-{}-{name}", std::process::id()));
     std::fs::write(&path, text).unwrap();
-    let result = Mesh::read(&path).map_err(|e| e.to_string().replace(&path.display().to_string(), "FILE"));
+    let result =
+        Mesh::read(&path).map_err(|e| e.to_string().replace(&path.display().to_string(), "FILE"));
     std::fs::remove_file(&path).ok();
     result
 }
 
-const QUAD: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+const QUAD: [[f64; 3]; 4] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [1.0, 1.0, 0.0],
+    [0.0, 1.0, 0.0],
+];
 
 fn check_quad(mesh: &Mesh) {
-    assert_eq!(mesh.triangles, vec![[QUAD[0], QUAD[1], QUAD[2]], [QUAD[0], QUAD[2], QUAD[3]]]);
+    assert_eq!(
+        mesh.triangles,
+        vec![[QUAD[0], QUAD[1], QUAD[2]], [QUAD[0], QUAD[2], QUAD[3]]]
+    );
     assert_eq!(mesh.face_of, vec![0, 0]);
 }
 
 #[test]
 fn obj_quad_with_slashes_and_negative_indices_is_two_triangles() {
-    let m = parse("a.obj", b"# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 -2//1 -1//1\n").unwrap();
+    let m = parse(
+        "a.obj",
+        b"# quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 -2//1 -1//1\n",
+    )
+    .unwrap();
     check_quad(&m);
 }
 
 #[test]
 fn obj_errors_name_the_line() {
-    assert_eq!(parse("b.obj", b"v 0 0 0\nv 1 0 nan\n").unwrap_err(), "FILE:2: coordinate `nan` is not finite");
-    assert_eq!(parse("c.obj", b"v 0 0 0\nv 1 0\n").unwrap_err(), "FILE:2: vertex has 2 numbers, expected 3 (or 4 with w)");
-    assert_eq!(parse("d.obj", b"v 0 0 0\nf 1 2 3\n").unwrap_err(), "FILE:2: vertex index 1 out of range (the file has 1 vertices)");
-    assert_eq!(parse("e.obj", b"v 0 0 0\nv x 0 0\n").unwrap_err(), "FILE:2: `x` is not a number");
-    assert_eq!(parse("f.obj", b"v 0 0 0\n\nf 1 1\n").unwrap_err(), "FILE:3: face has 2 vertices, at least 3 needed");
+    assert_eq!(
+        parse("b.obj", b"v 0 0 0\nv 1 0 nan\n").unwrap_err(),
+        "FILE:2: coordinate `nan` is not finite"
+    );
+    assert_eq!(
+        parse("c.obj", b"v 0 0 0\nv 1 0\n").unwrap_err(),
+        "FILE:2: vertex has 2 numbers, expected 3 (or 4 with w)"
+    );
+    assert_eq!(
+        parse("d.obj", b"v 0 0 0\nf 1 2 3\n").unwrap_err(),
+        "FILE:2: vertex index 1 out of range (the file has 1 vertices)"
+    );
+    assert_eq!(
+        parse("e.obj", b"v 0 0 0\nv x 0 0\n").unwrap_err(),
+        "FILE:2: `x` is not a number"
+    );
+    assert_eq!(
+        parse("f.obj", b"v 0 0 0\n\nf 1 1\n").unwrap_err(),
+        "FILE:3: face has 2 vertices, at least 3 needed"
+    );
 }
 
 #[test]
 fn off_quad_is_two_triangles() {
-    let m = parse("a.off", b"OFF\n# c\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n").unwrap();
+    let m = parse(
+        "a.off",
+        b"OFF\n# c\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n",
+    )
+    .unwrap();
     check_quad(&m);
 }
 
 #[test]
 fn off_errors_name_the_line() {
-    assert_eq!(parse("b.off", b"OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n").unwrap_err(), "FILE:4: coordinate `inf` is not finite");
-    assert_eq!(parse("c.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").unwrap_err(), "FILE:6: vertex index 7 out of range (the file has 3 vertices)");
-    assert_eq!(parse("d.off", b"COFF\n").unwrap_err(), "FILE:1: expected `OFF`, found `COFF`");
-    assert_eq!(parse("e.off", b"OFF\n3 1 0\n0 0 0\n").unwrap_err(), "FILE:2: file ends after 1 of 3 vertices");
+    assert_eq!(
+        parse("b.off", b"OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n").unwrap_err(),
+        "FILE:4: coordinate `inf` is not finite"
+    );
+    assert_eq!(
+        parse("c.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").unwrap_err(),
+        "FILE:6: vertex index 7 out of range (the file has 3 vertices)"
+    );
+    assert_eq!(
+        parse("d.off", b"COFF\n").unwrap_err(),
+        "FILE:1: expected `OFF`, found `COFF`"
+    );
+    assert_eq!(
+        parse("e.off", b"OFF\n3 1 0\n0 0 0\n").unwrap_err(),
+        "FILE:2: file ends after 1 of 3 vertices"
+    );
 }
 
 const PLY_HEADER: &str = "ply\nformat {} 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
@@ -58,12 +102,20 @@ fn ply_ascii_and_binary_quads_are_two_triangles() {
         for p in QUAD {
             for v in p {
                 let v = v as f32;
-                bytes.extend(if big { v.to_be_bytes() } else { v.to_le_bytes() });
+                bytes.extend(if big {
+                    v.to_be_bytes()
+                } else {
+                    v.to_le_bytes()
+                });
             }
         }
         bytes.push(4);
         for i in 0..4i32 {
-            bytes.extend(if big { i.to_be_bytes() } else { i.to_le_bytes() });
+            bytes.extend(if big {
+                i.to_be_bytes()
+            } else {
+                i.to_le_bytes()
+            });
         }
         check_quad(&parse("b.ply", &bytes).unwrap());
     }
@@ -72,14 +124,27 @@ fn ply_ascii_and_binary_quads_are_two_triangles() {
 #[test]
 fn ply_errors_name_the_line_or_element() {
     let ascii = PLY_HEADER.replace("{}", "ascii") + "0 0 0\n1 0 0\n1 z 0\n0 1 0\n4 0 1 2 3\n";
-    assert_eq!(parse("c.ply", ascii.as_bytes()).unwrap_err(), "FILE:12: vertex 2: `z` is not a number");
-    let mut truncated = PLY_HEADER.replace("{}", "binary_little_endian").into_bytes();
+    assert_eq!(
+        parse("c.ply", ascii.as_bytes()).unwrap_err(),
+        "FILE:12: vertex 2: `z` is not a number"
+    );
+    let mut truncated = PLY_HEADER
+        .replace("{}", "binary_little_endian")
+        .into_bytes();
     truncated.extend([0u8; 10]);
-    assert_eq!(parse("d.ply", &truncated).unwrap_err(), "FILE:9: vertex 0: binary body ends at byte 10 of the body");
-    assert_eq!(parse("e.ply", b"plx\n").unwrap_err(), "FILE:1: not a PLY file: the first line must be `ply`");
+    assert_eq!(
+        parse("d.ply", &truncated).unwrap_err(),
+        "FILE:9: vertex 0: binary body ends at byte 10 of the body"
+    );
+    assert_eq!(
+        parse("e.ply", b"plx\n").unwrap_err(),
+        "FILE:1: not a PLY file: the first line must be `ply`"
+    );
 }
 
 #[test]
 fn unknown_extension_is_refused() {
-    assert!(parse("a.stl", b"solid").unwrap_err().contains("unknown mesh format"));
+    assert!(parse("a.stl", b"solid")
+        .unwrap_err()
+        .contains("unknown mesh format"));
 }

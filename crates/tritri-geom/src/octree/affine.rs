@@ -39,7 +39,10 @@ impl AffineOverBox {
     /// The values over child `octant` of a cube of side >= 2: adds and shifts.
     #[inline]
     pub fn child(&self, octant: usize) -> AffineOverBox {
-        debug_assert!(self.along.iter().all(|a| a % 2 == 0), "halving is exact only on a cell of side >= 2");
+        debug_assert!(
+            self.along.iter().all(|a| a % 2 == 0),
+            "halving is exact only on a cell of side >= 2"
+        );
         let along = self.along.map(|a| a >> 1);
         let mut at_lo = self.at_lo;
         for (k, a) in along.iter().enumerate() {
@@ -84,7 +87,10 @@ mod tests {
     #[test]
     fn interpolation_is_exact_down_to_unit_cells() {
         let g = [7i128, -3, 11];
-        let mut cells = vec![Cell { lo: [-5, 2, 9], level: 4 }];
+        let mut cells = vec![Cell {
+            lo: [-5, 2, 9],
+            level: 4,
+        }];
         while let Some(c) = cells.pop() {
             let values = AffineOverBox::over_cell(g, &c);
             if !c.splittable() {
@@ -92,7 +98,11 @@ mod tests {
             }
             for o in 0..8 {
                 let child = c.child(o);
-                assert_eq!(values.child(o), AffineOverBox::over_cell(g, &child), "{c:?} octant {o}");
+                assert_eq!(
+                    values.child(o),
+                    AffineOverBox::over_cell(g, &child),
+                    "{c:?} octant {o}"
+                );
                 cells.push(child);
             }
         }
@@ -100,7 +110,10 @@ mod tests {
 
     #[test]
     fn range_is_the_extreme_corners() {
-        let b = Aabb { lo: [0, 0, 0], hi: [2, 3, 4] };
+        let b = Aabb {
+            lo: [0, 0, 0],
+            hi: [2, 3, 4],
+        };
         let f = AffineOverBox::over_box([1, -2, 3], &b);
         assert_eq!(f.range(), (-6, 14));
         assert!(f.meets(14, 20) && f.meets(-10, -6) && !f.meets(15, 20));

@@ -20,7 +20,10 @@ impl Cell {
     /// The smallest cell with its low corner at `b.lo` that holds `b`.
     pub fn covering(b: &Aabb<i64>) -> Cell {
         let extent = (0..3).map(|k| b.hi[k] - b.lo[k]).max().unwrap_or(0).max(1) as u64;
-        Cell { lo: b.lo, level: extent.next_power_of_two().trailing_zeros() }
+        Cell {
+            lo: b.lo,
+            level: extent.next_power_of_two().trailing_zeros(),
+        }
     }
 
     /// Can the cell be split into eight children on the grid?
@@ -33,12 +36,18 @@ impl Cell {
         debug_assert!(self.splittable() && octant < 8);
         let half = self.size() / 2;
         let lo = [0, 1, 2].map(|k| self.lo[k] + if octant >> k & 1 == 1 { half } else { 0 });
-        Cell { lo, level: self.level - 1 }
+        Cell {
+            lo,
+            level: self.level - 1,
+        }
     }
 
     /// The closed box of the cell.
     pub fn as_box(&self) -> Aabb<i64> {
-        Aabb { lo: self.lo, hi: self.lo.map(|v| v + self.size()) }
+        Aabb {
+            lo: self.lo,
+            hi: self.lo.map(|v| v + self.size()),
+        }
     }
 
     /// Is `p` in the half-open cell `lo <= p < lo + size`? Half-open cells
@@ -54,20 +63,41 @@ mod tests {
 
     #[test]
     fn covering_cell_holds_the_box_with_a_power_of_two_side() {
-        let b = Aabb { lo: [-3, 0, 5], hi: [2, 9, 5] };
+        let b = Aabb {
+            lo: [-3, 0, 5],
+            hi: [2, 9, 5],
+        };
         let c = Cell::covering(&b);
-        assert_eq!(c, Cell { lo: [-3, 0, 5], level: 4 });
+        assert_eq!(
+            c,
+            Cell {
+                lo: [-3, 0, 5],
+                level: 4
+            }
+        );
         // A single point still gets a splittable-or-not cell of side 1.
-        assert_eq!(Cell::covering(&Aabb { lo: [1, 1, 1], hi: [1, 1, 1] }).level, 0);
+        assert_eq!(
+            Cell::covering(&Aabb {
+                lo: [1, 1, 1],
+                hi: [1, 1, 1]
+            })
+            .level,
+            0
+        );
     }
 
     #[test]
     fn children_tile_the_parent_half_open() {
-        let parent = Cell { lo: [4, -8, 0], level: 3 };
+        let parent = Cell {
+            lo: [4, -8, 0],
+            level: 3,
+        };
         for x in 4..12 {
             for y in -8..0 {
                 for z in 0..8 {
-                    let owners = (0..8).filter(|&o| parent.child(o).contains_half_open([x, y, z])).count();
+                    let owners = (0..8)
+                        .filter(|&o| parent.child(o).contains_half_open([x, y, z]))
+                        .count();
                     assert_eq!(owners, 1, "({x},{y},{z})");
                 }
             }

@@ -49,15 +49,29 @@ pub fn classify(cell: &Cell, lo: [i64; 3], hi: [i64; 3]) -> Side {
 
 /// The model clipped to the box, and the octants of each class.
 pub fn clip(tree: &Octree, lo: [i64; 3], hi: [i64; 3]) -> (Octree, ClipCounts) {
-    let mut pass = Pass { lo, hi, counts: ClipCounts::default(), log: None };
+    let mut pass = Pass {
+        lo,
+        hi,
+        counts: ClipCounts::default(),
+        log: None,
+    };
     let clipped = pass.run(tree);
     (clipped, pass.counts)
 }
 
 /// [`clip`], also listing every octant classified with its class, in the
 /// order the pass met them (what a hardware clipper is given).
-pub fn clip_logged(tree: &Octree, lo: [i64; 3], hi: [i64; 3]) -> (Octree, ClipCounts, Vec<(Cell, Side)>) {
-    let mut pass = Pass { lo, hi, counts: ClipCounts::default(), log: Some(Vec::new()) };
+pub fn clip_logged(
+    tree: &Octree,
+    lo: [i64; 3],
+    hi: [i64; 3],
+) -> (Octree, ClipCounts, Vec<(Cell, Side)>) {
+    let mut pass = Pass {
+        lo,
+        hi,
+        counts: ClipCounts::default(),
+        log: Some(Vec::new()),
+    };
     let clipped = pass.run(tree);
     (clipped, pass.counts, pass.log.unwrap_or_default())
 }
@@ -74,7 +88,15 @@ impl Pass {
     fn run(&mut self, tree: &Octree) -> Octree {
         let mut out = Vec::new();
         let mut i = 0;
-        self.clip_at(tree.nodes(), &mut i, Cell { lo: [0; 3], level: tree.level() }, &mut out);
+        self.clip_at(
+            tree.nodes(),
+            &mut i,
+            Cell {
+                lo: [0; 3],
+                level: tree.level(),
+            },
+            &mut out,
+        );
         Octree::from_canonical(tree.level(), out)
     }
 
@@ -156,7 +178,13 @@ mod tests {
         model.fill_cube([8, 8, 8], 2);
         model.set([15, 0, 9]);
         let tree = Octree::from_voxels(&model);
-        for (lo, hi) in [([1, 2, 3], [9, 9, 13]), ([0, 0, 0], [16, 16, 16]), ([-4, 5, 7], [30, 6, 8]), ([3, 3, 3], [3, 9, 9]), ([20, 0, 0], [30, 5, 5])] {
+        for (lo, hi) in [
+            ([1, 2, 3], [9, 9, 13]),
+            ([0, 0, 0], [16, 16, 16]),
+            ([-4, 5, 7], [30, 6, 8]),
+            ([3, 3, 3], [3, 9, 9]),
+            ([20, 0, 0], [30, 5, 5]),
+        ] {
             let mut box_voxels = VoxelGrid::empty(4);
             for z in 0..16i64 {
                 for y in 0..16i64 {
@@ -169,9 +197,17 @@ mod tests {
                 }
             }
             let (clipped, counts) = clip(&tree, lo, hi);
-            assert_eq!(clipped.to_voxels(), model.combine(SetOperation::Intersection, &box_voxels), "{lo:?} {hi:?}");
+            assert_eq!(
+                clipped.to_voxels(),
+                model.combine(SetOperation::Intersection, &box_voxels),
+                "{lo:?} {hi:?}"
+            );
             assert!(counts.octants() >= 1);
-            assert_eq!(clipped, Octree::from_voxels(&clipped.to_voxels()), "{lo:?} {hi:?}: canonical");
+            assert_eq!(
+                clipped,
+                Octree::from_voxels(&clipped.to_voxels()),
+                "{lo:?} {hi:?}: canonical"
+            );
             let (logged, _, log) = clip_logged(&tree, lo, hi);
             assert_eq!((logged, log.len() as u64), (clipped, counts.octants()));
         }

@@ -11,7 +11,11 @@ use std::io::{self, Write};
 /// origin, `scale` = the grid's side in the placement's units), then the
 /// voxels as run-length pairs (value, count 1 to 255), `y` running fastest,
 /// then `z`, then `x`, as the format orders them.
-pub fn write_binvox(grid: &VoxelGrid, placement: &Placement, out: &mut dyn Write) -> io::Result<()> {
+pub fn write_binvox(
+    grid: &VoxelGrid,
+    placement: &Placement,
+    out: &mut dyn Write,
+) -> io::Result<()> {
     let n = grid.side();
     let o = placement.origin;
     writeln!(out, "#binvox 1")?;
@@ -56,12 +60,14 @@ pub struct BoundaryMesh {
 
 pub fn boundary_mesh(grid: &VoxelGrid, placement: &Placement) -> BoundaryMesh {
     let n = grid.side() as i64;
-    let occupied = |p: [i64; 3]| p.iter().all(|&c| (0..n).contains(&c)) && grid.get(p.map(|c| c as usize));
+    let occupied =
+        |p: [i64; 3]| p.iter().all(|&c| (0..n).contains(&c)) && grid.get(p.map(|c| c as usize));
     let mut mesh = BoundaryMesh::default();
     let mut index: HashMap<[i64; 3], u32> = HashMap::new();
     let mut vertex = |mesh: &mut BoundaryMesh, p: [i64; 3]| -> u32 {
         *index.entry(p).or_insert_with(|| {
-            mesh.vertices.push([0, 1, 2].map(|k| placement.origin[k] + p[k] as f64 * placement.voxel_size));
+            mesh.vertices
+                .push([0, 1, 2].map(|k| placement.origin[k] + p[k] as f64 * placement.voxel_size));
             (mesh.vertices.len() - 1) as u32
         })
     };
@@ -156,7 +162,9 @@ mod tests {
         let mut edges = HashMap::new();
         for t in &m.triangles {
             for k in 0..3 {
-                *edges.entry((t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))).or_insert(0) += 1;
+                *edges
+                    .entry((t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))
+                    .or_insert(0) += 1;
             }
         }
         assert!(edges.values().all(|&c| c == 2));
@@ -166,7 +174,9 @@ mod tests {
             .iter()
             .map(|t| {
                 let [a, b, c] = t.map(|i| m.vertices[i as usize]);
-                (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0
+                (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                    / 6.0
             })
             .sum();
         assert!((volume - 8.0).abs() < 1e-9, "{volume}");

@@ -20,6 +20,8 @@
 //!   grid.
 //! * [`clip`]: a model against an axis-aligned box, octants inside,
 //!   outside or crossing.
+//! * [`stack_schedule`]: the cycle model of the engine's depth-first
+//!   traversals in hardware (a classifier of fixed latency and a stack).
 //! * [`render`]: shaded pictures of voxel models; [`export`]: `.binvox`
 //!   and the boundary faces as a mesh.
 //! * [`tree`]: the octree model in preorder, its file format, conversion
@@ -34,6 +36,7 @@ pub mod clip;
 pub mod export;
 pub mod plane;
 pub mod render;
+pub mod stack_schedule;
 pub mod tree;
 pub mod triangle_cell;
 pub mod voxelize;

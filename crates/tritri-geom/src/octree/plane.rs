@@ -20,6 +20,7 @@
 
 use super::affine::AffineOverBox;
 use super::cell::Cell;
+use super::stack_schedule::StackSchedule;
 use super::tree::{collapse_if_uniform, Node, Octree};
 use super::voxels::VoxelGrid;
 
@@ -46,11 +47,22 @@ pub fn classify_plane(level: u32, normal: [i64; 3], d: i64) -> PlaneClassificati
     let centre_offset: i128 = gradient.iter().sum();
     visit(root, f, d as i128, centre_offset, &mut counts, &mut nodes);
     let half_space = Octree::from_canonical(level, nodes);
-    PlaneClassification { crossed_voxels: counts.0, cells_split: counts.1, half_space }
+    PlaneClassification {
+        crossed_voxels: counts.0,
+        cells_split: counts.1,
+        half_space,
+    }
 }
 
 /// Emits the nodes of `cell` in preorder; counts `(crossed voxels, splits)`.
-fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, counts: &mut (u64, u64), nodes: &mut Vec<Node>) {
+fn visit(
+    cell: Cell,
+    f: AffineOverBox,
+    d: i128,
+    centre_offset: i128,
+    counts: &mut (u64, u64),
+    nodes: &mut Vec<Node>,
+) {
     let (lo, hi) = f.range();
     if hi < d {
         // Wholly inside the open half-space: every centre is inside too.
@@ -63,14 +75,25 @@ fn visit(cell: Cell, f: AffineOverBox, d: i128, centre_offset: i128, counts: &mu
     }
     if !cell.splittable() {
         counts.0 += 1;
-        nodes.push(if 2 * f.at_lo + centre_offset <= 2 * d { Node::Full } else { Node::Empty });
+        nodes.push(if 2 * f.at_lo + centre_offset <= 2 * d {
+            Node::Full
+        } else {
+            Node::Empty
+        });
         return;
     }
     counts.1 += 1;
     let at = nodes.len();
     nodes.push(Node::Mixed);
     for octant in 0..8 {
-        visit(cell.child(octant), f.child(octant), d, centre_offset, counts, nodes);
+        visit(
+            cell.child(octant),
+            f.child(octant),
+            d,
+            centre_offset,
+            counts,
+            nodes,
+        );
     }
     // A split cell whose voxels all fall on one side is one leaf.
     collapse_if_uniform(nodes, at);
@@ -108,7 +131,10 @@ impl TraversalRun {
     pub fn half_space(&self, level: u32) -> VoxelGrid {
         let mut grid = VoxelGrid::empty(level);
         for r in &self.records {
-            let cell = Cell { lo: r.lo, level: r.level };
+            let cell = Cell {
+                lo: r.lo,
+                level: r.level,
+            };
             for o in (0..8).filter(|o| r.full >> o & 1 == 1) {
                 let child = cell.child(o);
                 grid.fill_cube(child.lo.map(|c| c as usize), child.level);
@@ -135,7 +161,10 @@ impl TraversalRun {
 
     /// Voxels the closed plane crosses.
     pub fn crossed_voxels(&self) -> u64 {
-        self.records.iter().map(|r| r.crossed.count_ones() as u64).sum()
+        self.records
+            .iter()
+            .map(|r| r.crossed.count_ones() as u64)
+            .sum()
     }
 }
 
@@ -143,23 +172,15 @@ impl TraversalRun {
 pub const TRAVERSAL_LATENCY: u64 = 5;
 
 /// The cycle model of the hardware traversal: the same schedule, clock
-/// edge by clock edge. Each edge issues one cell: the root at edge 0, then
-/// the lowest remaining crossing child of the stack's top; the result of
-/// the cell issued at edge `e` is taken at edge `e + 5`, pushing the cell
-/// with its crossing children when its level is >= 2. A top whose last
-/// child is issued is dropped; the next comes back from the RAM at the
-/// edge after (no issue at that edge) unless a push takes its place. The
-/// masks are decided here by [`AffineOverBox`] over each child directly.
+/// edge by clock edge ([`StackSchedule`]): the root issued at edge 0, each
+/// result taken [`TRAVERSAL_LATENCY`] edges after its issue, and a cell of
+/// level >= 2 pushed with its crossing children. The masks are decided
+/// here by [`AffineOverBox`] over each child directly.
 pub fn traversal_schedule(level: u32, normal: [i64; 3], d: i64) -> TraversalRun {
-    #[derive(Clone, Copy)]
-    struct Entry {
-        cell: Cell,
-        mask: u8,
-    }
     let gradient = normal.map(i128::from);
     let d = d as i128;
     let centre_offset: i128 = gradient.iter().sum();
-    // A cell's record and its crossing children.
+    // A cell's record and the crossing children to descend into.
     let classify = |cell: Cell| -> (TraversalRecord, u8) {
         let f = AffineOverBox::over_cell(gradient, &cell);
         let (mut full, mut crossing) = (0u8, 0u8);
@@ -177,65 +198,27 @@ pub fn traversal_schedule(level: u32, normal: [i64; 3], d: i64) -> TraversalRun 
             }
         }
         let crossed = if cell.level == 1 { crossing } else { 0 };
-        (TraversalRecord { lo: cell.lo, level: cell.level, full, crossed }, crossing)
+        let descend = if cell.level >= 2 { crossing } else { 0 };
+        (
+            TraversalRecord {
+                lo: cell.lo,
+                level: cell.level,
+                full,
+                crossed,
+            },
+            descend,
+        )
     };
     let mut run = TraversalRun::default();
-    let mut in_flight: std::collections::VecDeque<(u64, (TraversalRecord, u8))> = Default::default();
-    let mut start_pending = true;
-    let mut top: Option<Entry> = None;
-    // The entry read from the RAM, the top after this edge.
-    let mut refill: Option<Entry> = None;
-    let mut stack: Vec<Entry> = Vec::new();
+    let mut machine = StackSchedule::new(TRAVERSAL_LATENCY);
+    machine.start(Cell { lo: [0; 3], level });
     // A record shown after the previous edge (taken at this one).
     let mut shown = false;
     let mut edge = 0u64;
-    loop {
-        let busy = start_pending || top.is_some() || refill.is_some() || !stack.is_empty() || !in_flight.is_empty() || shown;
-        if !busy {
-            break;
-        }
-        let result = match in_flight.front() {
-            Some(&(ready, _)) if ready == edge => in_flight.pop_front().map(|(_, r)| r),
-            _ => None,
-        };
-        // Issue: the root, else the top's lowest remaining child.
-        let from_top = if start_pending { None } else { top };
-        let remaining = from_top.map_or(0, |t| t.mask & t.mask.wrapping_sub(1));
-        let issued = match from_top {
-            None if start_pending => Some(Cell { lo: [0; 3], level }),
-            None => None,
-            Some(t) => Some(t.cell.child(t.mask.trailing_zeros() as usize)),
-        };
-        if let Some(cell) = issued {
-            in_flight.push_back((edge + TRAVERSAL_LATENCY, classify(cell)));
-            run.cells += 1;
-        }
-        start_pending = false;
-        if let Some(t) = from_top {
-            top = (remaining != 0).then_some(Entry { cell: t.cell, mask: remaining });
-        }
-        match result {
-            Some((record, crossing)) if record.level >= 2 && crossing != 0 => {
-                if let (Some(t), true) = (from_top, remaining != 0) {
-                    stack.push(Entry { cell: t.cell, mask: remaining });
-                }
-                // An entry being read back stays on the stack.
-                if let Some(e) = refill.take() {
-                    stack.push(e);
-                }
-                top = Some(Entry { cell: Cell { lo: record.lo, level: record.level }, mask: crossing });
-            }
-            _ => {
-                if let Some(e) = refill.take() {
-                    top = Some(e);
-                } else if from_top.is_some() && remaining == 0 {
-                    refill = stack.pop();
-                }
-            }
-        }
-        run.stack_depth = run.stack_depth.max(stack.len() + usize::from(refill.is_some()));
+    while machine.busy() || shown {
+        let result = machine.edge(edge, classify);
         shown = false;
-        if let Some((record, _)) = result {
+        if let Some(record) = result {
             if record.full != 0 || record.crossed != 0 {
                 run.records.push(record);
                 // Shown after this edge, taken (the reader ready) at the next.
@@ -246,6 +229,8 @@ pub fn traversal_schedule(level: u32, normal: [i64; 3], d: i64) -> TraversalRun 
         edge += 1;
     }
     run.cycles = edge;
+    run.cells = machine.cells;
+    run.stack_depth = machine.stack_depth;
     run
 }
 
@@ -271,18 +256,33 @@ mod tests {
             let c = classify_plane(level, normal, d);
             let half_space = c.half_space.to_voxels();
             // Built canonical in one pass: equal to the tree of its voxels.
-            assert_eq!(c.half_space, Octree::from_voxels(&half_space), "round {round}: canonical");
+            assert_eq!(
+                c.half_space,
+                Octree::from_voxels(&half_space),
+                "round {round}: canonical"
+            );
             let (mut crossed, mut inside) = (0u64, 0u64);
             for z in 0..n {
                 for y in 0..n {
                     for x in 0..n {
-                        let f = |p: [i64; 3]| normal[0] * p[0] + normal[1] * p[1] + normal[2] * p[2] - d;
-                        let corners: Vec<i64> = (0..8).map(|o| f([x + (o & 1), y + (o >> 1 & 1), z + (o >> 2 & 1)])).collect();
-                        let is_crossed = corners.iter().any(|&v| v <= 0) && corners.iter().any(|&v| v >= 0);
+                        let f = |p: [i64; 3]| {
+                            normal[0] * p[0] + normal[1] * p[1] + normal[2] * p[2] - d
+                        };
+                        let corners: Vec<i64> = (0..8)
+                            .map(|o| f([x + (o & 1), y + (o >> 1 & 1), z + (o >> 2 & 1)]))
+                            .collect();
+                        let is_crossed =
+                            corners.iter().any(|&v| v <= 0) && corners.iter().any(|&v| v >= 0);
                         crossed += is_crossed as u64;
-                        let centre_inside = 2 * (normal[0] * x + normal[1] * y + normal[2] * z) + normal.iter().sum::<i64>() <= 2 * d;
+                        let centre_inside = 2 * (normal[0] * x + normal[1] * y + normal[2] * z)
+                            + normal.iter().sum::<i64>()
+                            <= 2 * d;
                         inside += centre_inside as u64;
-                        assert_eq!(half_space.get([x as usize, y as usize, z as usize]), centre_inside, "round {round} voxel ({x},{y},{z})");
+                        assert_eq!(
+                            half_space.get([x as usize, y as usize, z as usize]),
+                            centre_inside,
+                            "round {round} voxel ({x},{y},{z})"
+                        );
                     }
                 }
             }

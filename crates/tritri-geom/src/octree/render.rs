@@ -11,8 +11,8 @@
 //! three face orientations stay apart even under the same light.
 
 use super::voxels::VoxelGrid;
-use nalgebra::{Point3, Vector3};
 pub use crate::raster::Image;
+use nalgebra::{Point3, Vector3};
 
 /// Where the picture is taken from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,7 +27,11 @@ pub struct View {
 
 impl Default for View {
     fn default() -> View {
-        View { eye: Vector3::new(1.0, 0.7, 1.6), size: 512, up: 1 }
+        View {
+            eye: Vector3::new(1.0, 0.7, 1.6),
+            size: 512,
+            up: 1,
+        }
     }
 }
 
@@ -89,7 +93,11 @@ pub fn render(grid: &VoxelGrid, view: &View) -> Image {
             pixels.push(colour);
         }
     }
-    Image { width: size, height: size, pixels }
+    Image {
+        width: size,
+        height: size,
+        pixels,
+    }
 }
 
 /// The distance along the ray to the first occupied voxel and the axis of
@@ -132,13 +140,21 @@ fn first_hit(grid: &VoxelGrid, origin: Point3<f64>, dir: Vector3<f64>) -> Option
             (boundary - origin[k]) / dir[k]
         }
     });
-    let t_delta = dir.map(|d| if d == 0.0 { f64::INFINITY } else { 1.0 / d.abs() });
+    let t_delta = dir.map(|d| {
+        if d == 0.0 {
+            f64::INFINITY
+        } else {
+            1.0 / d.abs()
+        }
+    });
     let (mut t, mut axis) = (t_in, axis_in);
     loop {
         if grid.get(cell.map(|c| c as usize)) {
             return Some((t, axis));
         }
-        axis = (0..3).min_by(|&a, &b| t_next[a].total_cmp(&t_next[b])).unwrap_or(0);
+        axis = (0..3)
+            .min_by(|&a, &b| t_next[a].total_cmp(&t_next[b]))
+            .unwrap_or(0);
         t = t_next[axis];
         cell[axis] += step[axis];
         if cell[axis] < 0 || cell[axis] >= side {
@@ -159,13 +175,27 @@ mod tests {
     fn a_voxel_shows_the_face_towards_the_eye() {
         let mut g = VoxelGrid::empty(3);
         g.fill_cube([2, 2, 2], 2);
-        let image = render(&g, &View { eye: Vector3::new(1.0, 0.0, 0.0), size: 64, up: 2 });
+        let image = render(
+            &g,
+            &View {
+                eye: Vector3::new(1.0, 0.0, 0.0),
+                size: 64,
+                up: 2,
+            },
+        );
         let centre = image.pixels[32 * 64 + 32];
         let corner = image.pixels[0];
         assert_ne!(centre, corner);
         // The x-face tint: red above blue.
         assert!(centre[0] > centre[2], "{centre:?}");
-        let empty = render(&VoxelGrid::empty(3), &View { eye: Vector3::new(1.0, 0.0, 0.0), size: 64, up: 2 });
+        let empty = render(
+            &VoxelGrid::empty(3),
+            &View {
+                eye: Vector3::new(1.0, 0.0, 0.0),
+                size: 64,
+                up: 2,
+            },
+        );
         assert_eq!(empty.pixels[32 * 64 + 32], empty.pixels[32 * 64 + 1]);
     }
 }

@@ -106,11 +106,17 @@ const HEADER_BYTES: usize = 8 + 1 + 4 * 8 + 8;
 
 impl Octree {
     pub fn empty(level: u32) -> Octree {
-        Octree { level, nodes: vec![Node::Empty] }
+        Octree {
+            level,
+            nodes: vec![Node::Empty],
+        }
     }
 
     pub fn full(level: u32) -> Octree {
-        Octree { level, nodes: vec![Node::Full] }
+        Octree {
+            level,
+            nodes: vec![Node::Full],
+        }
     }
 
     /// The side is `2^level` voxels.
@@ -135,15 +141,29 @@ impl Octree {
     /// A tree from preorder nodes its builder kept canonical (by
     /// [`collapse_if_uniform`] after each mixed node's children).
     pub(crate) fn from_canonical(level: u32, nodes: Vec<Node>) -> Octree {
-        debug_assert_eq!(Octree::from_preorder(level, &nodes).map(|t| t.nodes), Some(nodes.clone()), "not one canonical tree");
+        debug_assert_eq!(
+            Octree::from_preorder(level, &nodes).map(|t| t.nodes),
+            Some(nodes.clone()),
+            "not one canonical tree"
+        );
         Octree { level, nodes }
     }
 
     /// The tree of a voxel model.
     pub fn from_voxels(grid: &VoxelGrid) -> Octree {
         let mut nodes = Vec::new();
-        push_from_voxels(grid, Cell { lo: [0; 3], level: grid.level() }, &mut nodes);
-        Octree { level: grid.level(), nodes }
+        push_from_voxels(
+            grid,
+            Cell {
+                lo: [0; 3],
+                level: grid.level(),
+            },
+            &mut nodes,
+        );
+        Octree {
+            level: grid.level(),
+            nodes,
+        }
     }
 
     /// The voxel model of the tree: full cells written whole.
@@ -159,7 +179,10 @@ impl Octree {
 
     /// Calls `f` with every leaf (empty or full) and its cell, in preorder.
     pub fn for_each_leaf(&self, mut f: impl FnMut(Cell, Node)) {
-        let mut stack = vec![Cell { lo: [0; 3], level: self.level }];
+        let mut stack = vec![Cell {
+            lo: [0; 3],
+            level: self.level,
+        }];
         for &node in &self.nodes {
             let Some(cell) = stack.pop() else { break };
             match node {
@@ -177,12 +200,23 @@ impl Octree {
         let mut out = Vec::new();
         if self.nodes == [Node::Full] {
             if self.level >= 1 {
-                out.push(super::plane::TraversalRecord { lo: [0; 3], level: self.level, full: 0xFF, crossed: 0 });
+                out.push(super::plane::TraversalRecord {
+                    lo: [0; 3],
+                    level: self.level,
+                    full: 0xFF,
+                    crossed: 0,
+                });
             }
             return out;
         }
         // Walk mixed nodes with the index of their first child.
-        let mut stack = vec![(Cell { lo: [0; 3], level: self.level }, 0usize)];
+        let mut stack = vec![(
+            Cell {
+                lo: [0; 3],
+                level: self.level,
+            },
+            0usize,
+        )];
         while let Some((cell, at)) = stack.pop() {
             if self.nodes[at] != Node::Mixed {
                 continue;
@@ -199,7 +233,12 @@ impl Octree {
                 child_at = skip_subtree(&self.nodes, child_at);
             }
             if full != 0 {
-                out.push(super::plane::TraversalRecord { lo: cell.lo, level: cell.level, full, crossed: 0 });
+                out.push(super::plane::TraversalRecord {
+                    lo: cell.lo,
+                    level: cell.level,
+                    full,
+                    crossed: 0,
+                });
             }
             stack.extend(children.into_iter().rev());
         }
@@ -220,16 +259,25 @@ impl Octree {
     /// A set operation, in one preorder pass over both trees (neither is
     /// expanded to voxels). Both must have the same level.
     pub fn combine(&self, op: SetOperation, other: &Octree) -> Octree {
-        assert_eq!(self.level, other.level, "set operations need models of one grid");
+        assert_eq!(
+            self.level, other.level,
+            "set operations need models of one grid"
+        );
         let mut nodes = Vec::with_capacity(self.nodes.len().max(other.nodes.len()));
         let (mut i, mut j) = (0, 0);
         combine_at(&self.nodes, &mut i, &other.nodes, &mut j, op, &mut nodes);
-        Octree { level: self.level, nodes }
+        Octree {
+            level: self.level,
+            nodes,
+        }
     }
 
     /// The complement within the cube.
     pub fn complement(&self) -> Octree {
-        Octree { level: self.level, nodes: self.nodes.iter().map(|n| n.complement()).collect() }
+        Octree {
+            level: self.level,
+            nodes: self.nodes.iter().map(|n| n.complement()).collect(),
+        }
     }
 }
 
@@ -247,7 +295,10 @@ pub struct Placement {
 impl Default for Placement {
     /// The grid's own units.
     fn default() -> Placement {
-        Placement { origin: [0.0; 3], voxel_size: 1.0 }
+        Placement {
+            origin: [0.0; 3],
+            voxel_size: 1.0,
+        }
     }
 }
 
@@ -268,12 +319,22 @@ impl OctreeFile {
         let mut bytes = Vec::with_capacity(HEADER_BYTES + nodes.len().div_ceil(4));
         bytes.extend_from_slice(MAGIC);
         bytes.push(self.tree.level as u8);
-        for v in self.placement.origin.iter().chain([&self.placement.voxel_size]) {
+        for v in self
+            .placement
+            .origin
+            .iter()
+            .chain([&self.placement.voxel_size])
+        {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
         bytes.extend_from_slice(&(nodes.len() as u64).to_le_bytes());
         for chunk in nodes.chunks(4) {
-            bytes.push(chunk.iter().enumerate().fold(0u8, |b, (k, &n)| b | (n as u8) << (2 * k)));
+            bytes.push(
+                chunk
+                    .iter()
+                    .enumerate()
+                    .fold(0u8, |b, (k, &n)| b | (n as u8) << (2 * k)),
+            );
         }
         bytes
     }
@@ -340,13 +401,32 @@ impl OctreeFile {
         }
         // Canonical: no mixed node with eight equal leaves.
         for (index, window) in nodes.windows(9).enumerate() {
-            if window[0] == Node::Mixed && window[1] != Node::Mixed && window[1..].iter().all(|&n| n == window[1]) {
-                let kind = if window[1] == Node::Full { "full" } else { "empty" };
-                return Err(OctreeFormatError::NotCanonical { index: index as u64, kind });
+            if window[0] == Node::Mixed
+                && window[1] != Node::Mixed
+                && window[1..].iter().all(|&n| n == window[1])
+            {
+                let kind = if window[1] == Node::Full {
+                    "full"
+                } else {
+                    "empty"
+                };
+                return Err(OctreeFormatError::NotCanonical {
+                    index: index as u64,
+                    kind,
+                });
             }
         }
-        let tree = Octree { level: u32::from(level), nodes };
-        Ok(OctreeFile { tree, placement: Placement { origin: [x, y, z], voxel_size: size } })
+        let tree = Octree {
+            level: u32::from(level),
+            nodes,
+        };
+        Ok(OctreeFile {
+            tree,
+            placement: Placement {
+                origin: [x, y, z],
+                voxel_size: size,
+            },
+        })
     }
 }
 
@@ -367,7 +447,10 @@ fn push_from_voxels(grid: &VoxelGrid, cell: Cell, out: &mut Vec<Node>) {
 /// If the mixed node at `at` has just its eight children after it and they
 /// are equal leaves, replaces the nine nodes by that leaf.
 pub(crate) fn collapse_if_uniform(out: &mut Vec<Node>, at: usize) {
-    if out.len() == at + 9 && out[at + 1] != Node::Mixed && out[at + 2..].iter().all(|&n| n == out[at + 1]) {
+    if out.len() == at + 9
+        && out[at + 1] != Node::Mixed
+        && out[at + 2..].iter().all(|&n| n == out[at + 1])
+    {
         let leaf = out[at + 1];
         out.truncate(at);
         out.push(leaf);
@@ -390,7 +473,11 @@ pub(crate) fn skip_subtree(nodes: &[Node], mut i: usize) -> usize {
 /// Copies the subtree at `i`, complemented or not; returns the index after it.
 fn copy_subtree(nodes: &[Node], i: usize, complement: bool, out: &mut Vec<Node>) -> usize {
     let end = skip_subtree(nodes, i);
-    out.extend(nodes[i..end].iter().map(|&n| if complement { n.complement() } else { n }));
+    out.extend(
+        nodes[i..end]
+            .iter()
+            .map(|&n| if complement { n.complement() } else { n }),
+    );
     end
 }
 
@@ -416,7 +503,14 @@ fn copy_canonical(nodes: &[Node], i: usize, level: u32, out: &mut Vec<Node>) -> 
 }
 
 /// One node of `op(a, b)` from the subtrees at `*i` and `*j`, advancing both.
-fn combine_at(a: &[Node], i: &mut usize, b: &[Node], j: &mut usize, op: SetOperation, out: &mut Vec<Node>) {
+fn combine_at(
+    a: &[Node],
+    i: &mut usize,
+    b: &[Node],
+    j: &mut usize,
+    op: SetOperation,
+    out: &mut Vec<Node>,
+) {
     match (a[*i], b[*j]) {
         (Node::Mixed, Node::Mixed) => {
             *i += 1;
@@ -449,7 +543,12 @@ fn combine_at(a: &[Node], i: &mut usize, b: &[Node], j: &mut usize, op: SetOpera
 /// `f` applied to every voxel of the subtree at `i`: a constant (one leaf),
 /// the identity (a copy) or the negation (a complemented copy). Returns the
 /// index after the subtree.
-fn apply_to_subtree(nodes: &[Node], i: usize, f: impl Fn(bool) -> bool, out: &mut Vec<Node>) -> usize {
+fn apply_to_subtree(
+    nodes: &[Node],
+    i: usize,
+    f: impl Fn(bool) -> bool,
+    out: &mut Vec<Node>,
+) -> usize {
     match (f(false), f(true)) {
         (false, true) => copy_subtree(nodes, i, false, out),
         (true, false) => copy_subtree(nodes, i, true, out),
@@ -487,10 +586,19 @@ mod tests {
             let t = Octree::from_voxels(&g);
             assert_eq!(t.to_voxels(), g);
             assert_eq!(t.voxel_count(), g.count());
-            let file = OctreeFile { tree: t.clone(), placement: Placement { origin: [1.5, -2.0, 0.25], voxel_size: 0.125 } };
+            let file = OctreeFile {
+                tree: t.clone(),
+                placement: Placement {
+                    origin: [1.5, -2.0, 0.25],
+                    voxel_size: 0.125,
+                },
+            };
             assert_eq!(OctreeFile::from_bytes(&file.to_bytes()), Ok(file));
             // The fill records describe the same voxels.
-            let run = super::super::plane::TraversalRun { records: t.fill_records(), ..Default::default() };
+            let run = super::super::plane::TraversalRun {
+                records: t.fill_records(),
+                ..Default::default()
+            };
             assert_eq!(run.half_space(level), g, "round {round}: fill records");
             assert_eq!(Octree::from_preorder(level, t.nodes()), Some(t));
         }
@@ -504,10 +612,18 @@ mod tests {
             let level = 1 + round % 4;
             let (ga, gb) = (random_grid(&mut rng, level), random_grid(&mut rng, level));
             let (ta, tb) = (Octree::from_voxels(&ga), Octree::from_voxels(&gb));
-            for op in [SetOperation::Union, SetOperation::Intersection, SetOperation::Difference] {
+            for op in [
+                SetOperation::Union,
+                SetOperation::Intersection,
+                SetOperation::Difference,
+            ] {
                 let tree = ta.combine(op, &tb);
                 // Canonical, so equal to the tree rebuilt from its voxels.
-                assert_eq!(tree, Octree::from_voxels(&ga.combine(op, &gb)), "{op:?} round {round}");
+                assert_eq!(
+                    tree,
+                    Octree::from_voxels(&ga.combine(op, &gb)),
+                    "{op:?} round {round}"
+                );
             }
             assert_eq!(ta.complement().to_voxels(), ga.complement());
         }
@@ -520,19 +636,35 @@ mod tests {
             g.set([1, 2, 3]);
             g
         });
-        let file = |tree: Octree| OctreeFile { tree, placement: Placement::default() };
+        let file = |tree: Octree| OctreeFile {
+            tree,
+            placement: Placement::default(),
+        };
         let bytes = file(t).to_bytes();
         let read = |b: &[u8]| OctreeFile::from_bytes(b).map(|f| f.tree);
         assert_eq!(read(b"PLY"), Err(OctreeFormatError::Magic));
-        assert_eq!(read(&bytes[..bytes.len() - 1]), Err(OctreeFormatError::Truncated("nodes")));
+        assert_eq!(
+            read(&bytes[..bytes.len() - 1]),
+            Err(OctreeFormatError::Truncated("nodes"))
+        );
         let mut extra = bytes.clone();
         extra.push(0);
         assert_eq!(read(&extra), Err(OctreeFormatError::Trailing(1)));
         let mut count = bytes.clone();
         count[HEADER_BYTES - 8] += 1;
         assert!(matches!(read(&count), Err(OctreeFormatError::Count { .. })));
-        let uniform = file(Octree { level: 1, nodes: [[Node::Mixed].as_slice(), &[Node::Full; 8]].concat() }).to_bytes();
-        assert_eq!(read(&uniform), Err(OctreeFormatError::NotCanonical { index: 0, kind: "full" }));
+        let uniform = file(Octree {
+            level: 1,
+            nodes: [[Node::Mixed].as_slice(), &[Node::Full; 8]].concat(),
+        })
+        .to_bytes();
+        assert_eq!(
+            read(&uniform),
+            Err(OctreeFormatError::NotCanonical {
+                index: 0,
+                kind: "full"
+            })
+        );
         let mut level = bytes.clone();
         level[8] = 11;
         assert_eq!(read(&level), Err(OctreeFormatError::Level(11)));

@@ -88,23 +88,37 @@ impl TriangleCellTest {
     pub fn widened(t: &FixedTriangle, margin: i128) -> TriangleCellTest {
         let p = t.map(|v| v.map(i128::from));
         let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-        let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let cross = |u: [i128; 3], v: [i128; 3]| {
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        };
         let unit = |k: usize| {
             let mut e = [0i128; 3];
             e[k] = 1;
             e
         };
         let edges = [sub(p[1], p[0]), sub(p[2], p[1]), sub(p[0], p[2])];
-        let mut test = TriangleCellTest { axes: [Axis::default(); MAX_AXES], count: 0 };
+        let mut test = TriangleCellTest {
+            axes: [Axis::default(); MAX_AXES],
+            count: 0,
+        };
         let mut add = |gradient: [i128; 3]| {
             if gradient == [0; 3] {
                 return;
             }
-            let projections = p.map(|v| gradient[0] * v[0] + gradient[1] * v[1] + gradient[2] * v[2]);
+            let projections =
+                p.map(|v| gradient[0] * v[0] + gradient[1] * v[1] + gradient[2] * v[2]);
             let grow = margin * gradient.iter().map(|g| g.abs()).sum::<i128>();
             let low = projections.into_iter().min().unwrap_or(0) - grow;
             let high = projections.into_iter().max().unwrap_or(0) + grow;
-            test.axes[test.count] = Axis { gradient, low, high };
+            test.axes[test.count] = Axis {
+                gradient,
+                low,
+                high,
+            };
             test.count += 1;
         };
         for k in 0..3 {
@@ -133,25 +147,37 @@ impl TriangleCellTest {
         for (v, axis) in at_lo.iter_mut().zip(&self.axes[..self.count]) {
             *v = AffineOverBox::over_cell(axis.gradient, cell).at_lo;
         }
-        CellValues { at_lo, level: cell.level }
+        CellValues {
+            at_lo,
+            level: cell.level,
+        }
     }
 
     /// Test function `i` over the cell whose values these are.
     #[inline]
     fn function(&self, values: &CellValues, i: usize) -> AffineOverBox {
-        AffineOverBox { at_lo: values.at_lo[i], along: self.axes[i].gradient.map(|g| g << values.level) }
+        AffineOverBox {
+            at_lo: values.at_lo[i],
+            along: self.axes[i].gradient.map(|g| g << values.level),
+        }
     }
 
     /// Does the closed triangle meet the closed cell whose values these are?
     #[inline]
     pub fn touches(&self, values: &CellValues) -> bool {
-        (0..self.count).all(|i| self.function(values, i).meets(self.axes[i].low, self.axes[i].high))
+        (0..self.count).all(|i| {
+            self.function(values, i)
+                .meets(self.axes[i].low, self.axes[i].high)
+        })
     }
 
     /// The values over child `octant` of a cell of side >= 2: adds and shifts.
     #[inline]
     pub fn child(&self, parent: &CellValues, octant: usize) -> CellValues {
-        let mut child = CellValues { at_lo: [0; MAX_AXES], level: parent.level - 1 };
+        let mut child = CellValues {
+            at_lo: [0; MAX_AXES],
+            level: parent.level - 1,
+        };
         for i in 0..self.count {
             child.at_lo[i] = self.function(parent, i).child(octant).at_lo;
         }
@@ -161,14 +187,18 @@ impl TriangleCellTest {
     /// Does the closed triangle meet the closed box `b` (any box, not only
     /// a cell)?
     pub fn touches_box(&self, b: &Aabb<i64>) -> bool {
-        self.axes[..self.count].iter().all(|axis| AffineOverBox::over_box(axis.gradient, b).meets(axis.low, axis.high))
+        self.axes[..self.count]
+            .iter()
+            .all(|axis| AffineOverBox::over_box(axis.gradient, b).meets(axis.low, axis.high))
     }
 
     /// The classifier's step: the children of a cell of side >= 2 that the
     /// triangle meets, as a mask (bit `o` for octant `o`), from the
     /// parent's values by interpolation.
     pub fn children_touched(&self, parent: &CellValues) -> u8 {
-        (0..8).filter(|&octant| self.touches(&self.child(parent, octant))).fold(0u8, |mask, octant| mask | 1 << octant)
+        (0..8)
+            .filter(|&octant| self.touches(&self.child(parent, octant)))
+            .fold(0u8, |mask, octant| mask | 1 << octant)
     }
 
     /// [`Self::children_touched`]'s mask for a cell given directly.
@@ -188,10 +218,20 @@ impl TriangleCellTest {
 /// triangle's interval with it. `margin` grows the triangle as
 /// [`TriangleCellTest::widened`] does (the hardware's is
 /// [`BROAD_PHASE_MARGIN`]).
-pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3], margin: i128) -> [([i128; 3], i128, i128); MAX_AXES] {
+pub fn root_relative_axes(
+    t: &FixedTriangle,
+    lo: [i64; 3],
+    margin: i128,
+) -> [([i128; 3], i128, i128); MAX_AXES] {
     let p = t.map(|v| [0, 1, 2].map(|k| v[k] as i128 - lo[k] as i128));
     let sub = |a: [i128; 3], b: [i128; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let cross = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let cross = |u: [i128; 3], v: [i128; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
     let unit = |k: usize| [0, 1, 2].map(|j| i128::from(j == k));
     let edges = [sub(p[1], p[0]), sub(p[2], p[1]), sub(p[0], p[2])];
     let mut gradients = vec![unit(0), unit(1), unit(2), cross(edges[0], edges[1])];
@@ -202,7 +242,11 @@ pub fn root_relative_axes(t: &FixedTriangle, lo: [i64; 3], margin: i128) -> [([i
     for (axis, g) in axes.iter_mut().zip(gradients) {
         let projections = p.map(|v| g[0] * v[0] + g[1] * v[1] + g[2] * v[2]);
         let grow = margin * g.iter().map(|x| x.abs()).sum::<i128>();
-        *axis = (g, projections.into_iter().min().unwrap_or(0) - grow, projections.into_iter().max().unwrap_or(0) + grow);
+        *axis = (
+            g,
+            projections.into_iter().min().unwrap_or(0) - grow,
+            projections.into_iter().max().unwrap_or(0) + grow,
+        );
     }
     axes
 }
@@ -219,11 +263,22 @@ mod tests {
     /// The interpolated children's mask equals testing each child directly.
     #[test]
     fn children_by_interpolation_equal_direct_tests() {
-        let cell = Cell { lo: [-8, -8, -8], level: 4 };
-        let triangles = [[[-8, -8, -8], [8, 8, 8], [8, -8, 0]], [[0, 0, 0], [0, 0, 0], [0, 0, 0]], [[-3, 5, 100], [7, 1, -50], [2, 2, 2]], [[1, 1, 1], [3, 1, 1], [1, 3, 1]]];
+        let cell = Cell {
+            lo: [-8, -8, -8],
+            level: 4,
+        };
+        let triangles = [
+            [[-8, -8, -8], [8, 8, 8], [8, -8, 0]],
+            [[0, 0, 0], [0, 0, 0], [0, 0, 0]],
+            [[-3, 5, 100], [7, 1, -50], [2, 2, 2]],
+            [[1, 1, 1], [3, 1, 1], [1, 3, 1]],
+        ];
         for t in triangles {
             let test = TriangleCellTest::new(&t);
-            let direct: u8 = (0..8).filter(|&o| test.touches_box(&cell.child(o).as_box())).map(|o| 1u8 << o).sum();
+            let direct: u8 = (0..8)
+                .filter(|&o| test.touches_box(&cell.child(o).as_box()))
+                .map(|o| 1u8 << o)
+                .sum();
             assert_eq!(test.children_of_cell(&cell), direct, "{t:?}");
         }
     }
@@ -232,9 +287,21 @@ mod tests {
     /// triangle's own test does.
     #[test]
     fn root_relative_axes_decide_as_the_test_does() {
-        let root = Cell { lo: [-8, -3, 5], level: 4 };
-        let triangles = [[[-8, -3, 5], [8, 13, 21], [8, -3, 13]], [[0, 0, 9], [0, 0, 9], [0, 0, 9]], [[-3, 5, 100], [7, 1, -50], [2, 2, 2]], [[1, 1, 6], [3, 1, 6], [1, 3, 6]], [[2, 2, 7], [6, 6, 11], [4, 4, 9]]];
-        for (t, margin) in triangles.iter().flat_map(|t| [(*t, 0), (*t, BROAD_PHASE_MARGIN)]) {
+        let root = Cell {
+            lo: [-8, -3, 5],
+            level: 4,
+        };
+        let triangles = [
+            [[-8, -3, 5], [8, 13, 21], [8, -3, 13]],
+            [[0, 0, 9], [0, 0, 9], [0, 0, 9]],
+            [[-3, 5, 100], [7, 1, -50], [2, 2, 2]],
+            [[1, 1, 6], [3, 1, 6], [1, 3, 6]],
+            [[2, 2, 7], [6, 6, 11], [4, 4, 9]],
+        ];
+        for (t, margin) in triangles
+            .iter()
+            .flat_map(|t| [(*t, 0), (*t, BROAD_PHASE_MARGIN)])
+        {
             let test = TriangleCellTest::widened(&t, margin);
             let axes = root_relative_axes(&t, root.lo, margin);
             for level in 0..=2 {
@@ -242,10 +309,26 @@ mod tests {
                 for i in 0..(16 / side) {
                     for j in 0..(16 / side) {
                         for k in [0, 16 / side - 1] {
-                            let cell = Cell { lo: [root.lo[0] + i * side, root.lo[1] + j * side, root.lo[2] + k * side], level: level as u32 };
-                            let relative = Cell { lo: [0, 1, 2].map(|a| cell.lo[a] - root.lo[a]), level: cell.level };
-                            let hardware = axes.iter().all(|&(g, low, high)| AffineOverBox::over_cell(g, &relative).meets(low, high));
-                            assert_eq!(hardware, test.touches_box(&cell.as_box()), "{t:?} {cell:?} margin {margin}");
+                            let cell = Cell {
+                                lo: [
+                                    root.lo[0] + i * side,
+                                    root.lo[1] + j * side,
+                                    root.lo[2] + k * side,
+                                ],
+                                level: level as u32,
+                            };
+                            let relative = Cell {
+                                lo: [0, 1, 2].map(|a| cell.lo[a] - root.lo[a]),
+                                level: cell.level,
+                            };
+                            let hardware = axes.iter().all(|&(g, low, high)| {
+                                AffineOverBox::over_cell(g, &relative).meets(low, high)
+                            });
+                            assert_eq!(
+                                hardware,
+                                test.touches_box(&cell.as_box()),
+                                "{t:?} {cell:?} margin {margin}"
+                            );
                         }
                     }
                 }
@@ -259,13 +342,22 @@ mod tests {
     #[test]
     fn widened_test_keeps_cells_within_a_step() {
         let t = [[3, 3, 3], [9, 4, 3], [4, 9, 5]];
-        let (exact, widened) = (TriangleCellTest::new(&t), TriangleCellTest::widened(&t, BROAD_PHASE_MARGIN));
+        let (exact, widened) = (
+            TriangleCellTest::new(&t),
+            TriangleCellTest::widened(&t, BROAD_PHASE_MARGIN),
+        );
         let mut extra = 0;
         for x in -2..14 {
             for y in -2..14 {
                 for z in -2..10 {
-                    let cell = Cell { lo: [x, y, z], level: 0 }.as_box();
-                    let near = t.iter().any(|v| (0..3).all(|k| v[k] + 1 >= cell.lo[k] && v[k] - 1 <= cell.hi[k]));
+                    let cell = Cell {
+                        lo: [x, y, z],
+                        level: 0,
+                    }
+                    .as_box();
+                    let near = t
+                        .iter()
+                        .any(|v| (0..3).all(|k| v[k] + 1 >= cell.lo[k] && v[k] - 1 <= cell.hi[k]));
                     assert!(!near || widened.touches_box(&cell), "{cell:?}");
                     assert!(!exact.touches_box(&cell) || widened.touches_box(&cell));
                     extra += (widened.touches_box(&cell) && !exact.touches_box(&cell)) as usize;

@@ -109,8 +109,16 @@ impl VoxelFrame {
         }
         let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         let side = (1u64 << level) as f64;
-        let voxel_size = if extent > 0.0 && extent.is_finite() { extent / side } else { 1.0 };
-        Ok(VoxelFrame { level, origin: lo, voxel_size })
+        let voxel_size = if extent > 0.0 && extent.is_finite() {
+            extent / side
+        } else {
+            1.0
+        };
+        Ok(VoxelFrame {
+            level,
+            origin: lo,
+            voxel_size,
+        })
     }
 
     /// Fine grid steps per voxel.
@@ -127,7 +135,11 @@ impl VoxelFrame {
     /// The fine grid point nearest to `p`, kept inside the grid's cube.
     pub fn quantize_point(&self, p: Point) -> FixedPoint3 {
         let top = (1i64 << (self.level + SUB_BITS)) as f64;
-        [0, 1, 2].map(|k| ((p[k] - self.origin[k]) / self.fine_step()).round().clamp(0.0, top) as i64)
+        [0, 1, 2].map(|k| {
+            ((p[k] - self.origin[k]) / self.fine_step())
+                .round()
+                .clamp(0.0, top) as i64
+        })
     }
 
     pub fn quantize(&self, t: &Triangle) -> FixedTriangle {
@@ -141,14 +153,24 @@ impl VoxelFrame {
 
     /// Where the voxel grid sits in the mesh's coordinates.
     pub fn placement(&self) -> Placement {
-        Placement { origin: self.origin, voxel_size: self.voxel_size }
+        Placement {
+            origin: self.origin,
+            voxel_size: self.voxel_size,
+        }
     }
 }
 
 /// Every voxel a closed triangle meets.
-pub fn surface(triangles: &[FixedTriangle], level: u32, progress: &mut dyn FnMut(usize)) -> VoxelGrid {
+pub fn surface(
+    triangles: &[FixedTriangle],
+    level: u32,
+    progress: &mut dyn FnMut(usize),
+) -> VoxelGrid {
     let mut grid = VoxelGrid::empty(level);
-    let root = Cell { lo: [0; 3], level: level + SUB_BITS };
+    let root = Cell {
+        lo: [0; 3],
+        level: level + SUB_BITS,
+    };
     let mut stack = Vec::new();
     for (index, t) in triangles.iter().enumerate() {
         let test = TriangleCellTest::new(t);
@@ -188,17 +210,27 @@ pub fn check_closed(triangles: &[FixedTriangle], frame: &VoxelFrame) -> Result<(
         }
     }
     // The first open edge in triangle order, so the message is reproducible.
-    let open = uses.into_iter().filter(|(_, (count, _))| count % 2 == 1).min_by_key(|(_, (_, first))| *first);
+    let open = uses
+        .into_iter()
+        .filter(|(_, (count, _))| count % 2 == 1)
+        .min_by_key(|(_, (_, first))| *first);
     match open {
         None => Ok(()),
-        Some(((a, b), (count, triangle))) => {
-            Err(OpenEdge { from: frame.dequantize_point(a), to: frame.dequantize_point(b), uses: count, triangle })
-        }
+        Some(((a, b), (count, triangle))) => Err(OpenEdge {
+            from: frame.dequantize_point(a),
+            to: frame.dequantize_point(b),
+            uses: count,
+            triangle,
+        }),
     }
 }
 
 /// Every voxel whose centre is inside or on the closed mesh.
-pub fn solid(triangles: &[FixedTriangle], frame: &VoxelFrame, progress: &mut dyn FnMut(usize)) -> Result<VoxelGrid, OpenEdge> {
+pub fn solid(
+    triangles: &[FixedTriangle],
+    frame: &VoxelFrame,
+    progress: &mut dyn FnMut(usize),
+) -> Result<VoxelGrid, OpenEdge> {
     check_closed(triangles, frame)?;
     let level = frame.level;
     let n = 1usize << level;
@@ -250,7 +282,11 @@ fn sub(a: [i128; 3], b: [i128; 3]) -> [i128; 3] {
 }
 
 fn cross(u: [i128; 3], v: [i128; 3]) -> [i128; 3] {
-    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
 }
 
 /// Fine coordinate of the centre of voxel `i`.
@@ -273,13 +309,23 @@ fn centres_within(lo: i128, hi: i128, level: u32) -> std::ops::Range<usize> {
 /// The voxel indices along axis `k` whose centres lie within the
 /// triangle's extent along `k`.
 fn centres_under(p: &[[i128; 3]; 3], k: usize, level: u32) -> std::ops::Range<usize> {
-    centres_within(p.iter().map(|v| v[k]).min().unwrap_or(0), p.iter().map(|v| v[k]).max().unwrap_or(0), level)
+    centres_within(
+        p.iter().map(|v| v[k]).min().unwrap_or(0),
+        p.iter().map(|v| v[k]).max().unwrap_or(0),
+        level,
+    )
 }
 
 /// Calls `f(i, j, centre)` for every column of voxel centres along the
 /// third axis whose foot, in axes `a` and `b`, lies in the triangle's
 /// projected bounding box.
-fn for_columns_under(p: &[[i128; 3]; 3], a: usize, b: usize, level: u32, mut f: impl FnMut(usize, usize, [i128; 2])) {
+fn for_columns_under(
+    p: &[[i128; 3]; 3],
+    a: usize,
+    b: usize,
+    level: u32,
+    mut f: impl FnMut(usize, usize, [i128; 2]),
+) {
     let columns = centres_under(p, a, level);
     for j in centres_under(p, b, level) {
         for i in columns.clone() {
@@ -319,11 +365,19 @@ fn covers_perturbed(p: &[[i128; 3]; 3], foot: [i128; 2], ccw: bool) -> bool {
 fn voxels_below(v0: &[i128; 3], normal: [i128; 3], foot: [i128; 2], level: u32) -> usize {
     // n_z z = n · v0 - n_x x - n_y y = r: the crossing's height is r / n_z.
     let r = normal[0] * (v0[0] - foot[0]) + normal[1] * (v0[1] - foot[1]) + normal[2] * v0[2];
-    let (num, den) = if normal[2] > 0 { (r, normal[2]) } else { (-r, -normal[2]) };
+    let (num, den) = if normal[2] > 0 {
+        (r, normal[2])
+    } else {
+        (-r, -normal[2])
+    };
     // centre_of(l) < num / den  <=>  l s den < num - (s/2) den.
     let s = 1i128 << SUB_BITS;
     let t = num - s / 2 * den;
-    let below = if t <= 0 { 0 } else { (t + s * den - 1) / (s * den) };
+    let below = if t <= 0 {
+        0
+    } else {
+        (t + s * den - 1) / (s * den)
+    };
     below.min(1i128 << level) as usize
 }
 
@@ -337,17 +391,25 @@ fn mark_centres_on(p: &[[i128; 3]; 3], normal: [i128; 3], level: u32, grid: &mut
     let d = (0..3).max_by_key(|&k| normal[k].abs()).unwrap_or(2);
     let (a, b) = ((d + 1) % 3, (d + 2) % 3);
     let s = 1i128 << SUB_BITS;
-    let orient = |u: [i128; 3], v: [i128; 3], c: [i128; 2]| (v[a] - u[a]) * (c[1] - u[b]) - (v[b] - u[b]) * (c[0] - u[a]);
+    let orient = |u: [i128; 3], v: [i128; 3], c: [i128; 2]| {
+        (v[a] - u[a]) * (c[1] - u[b]) - (v[b] - u[b]) * (c[0] - u[a])
+    };
     let columns = centres_under(p, a, level);
     for j in centres_under(p, b, level) {
         for i in columns.clone() {
             let foot = [centre_of(i as i128), centre_of(j as i128)];
-            let signs = [orient(p[0], p[1], foot), orient(p[1], p[2], foot), orient(p[2], p[0], foot)];
+            let signs = [
+                orient(p[0], p[1], foot),
+                orient(p[1], p[2], foot),
+                orient(p[2], p[0], foot),
+            ];
             if !(signs.iter().all(|&v| v >= 0) || signs.iter().all(|&v| v <= 0)) {
                 continue;
             }
             // n_d c = n · v0 - n_a foot_a - n_b foot_b, and c = l s + s/2.
-            let r = normal[a] * (p[0][a] - foot[0]) + normal[b] * (p[0][b] - foot[1]) + normal[d] * p[0][d];
+            let r = normal[a] * (p[0][a] - foot[0])
+                + normal[b] * (p[0][b] - foot[1])
+                + normal[d] * p[0][d];
             let t = r - normal[d] * (s / 2);
             let den = normal[d] * s;
             if t % den == 0 {
@@ -369,7 +431,10 @@ fn mark_centres_on(p: &[[i128; 3]; 3], normal: [i128; 3], level: u32, grid: &mut
 fn mark_centres_on_segment(p: &[[i128; 3]; 3], level: u32, grid: &mut VoxelGrid) {
     // The two vertices farthest apart span the segment.
     let length = |u: [i128; 3], v: [i128; 3]| (0..3).map(|k| (u[k] - v[k]).abs()).sum::<i128>();
-    let (from, to) = [(p[0], p[1]), (p[1], p[2]), (p[2], p[0])].into_iter().max_by_key(|&(u, v)| length(u, v)).unwrap_or((p[0], p[0]));
+    let (from, to) = [(p[0], p[1]), (p[1], p[2]), (p[2], p[0])]
+        .into_iter()
+        .max_by_key(|&(u, v)| length(u, v))
+        .unwrap_or((p[0], p[0]));
     let dir = sub(to, from);
     let d = (0..3).max_by_key(|&k| dir[k].abs()).unwrap_or(0);
     let s = 1i128 << SUB_BITS;
@@ -378,7 +443,11 @@ fn mark_centres_on_segment(p: &[[i128; 3]; 3], level: u32, grid: &mut VoxelGrid)
         // The segment's point at c_d: from + dir (c_d - from_d) / dir_d.
         let mut voxel = [0usize; 3];
         let on = (0..3).all(|k| {
-            let (num, den) = if dir[d] == 0 { (from[k], 1) } else { (from[k] * dir[d] + dir[k] * (c_d - from[d]), dir[d]) };
+            let (num, den) = if dir[d] == 0 {
+                (from[k], 1)
+            } else {
+                (from[k] * dir[d] + dir[k] * (c_d - from[d]), dir[d])
+            };
             if num % den != 0 {
                 return false;
             }
@@ -412,7 +481,11 @@ mod tests {
     }
 
     fn frame(level: u32) -> VoxelFrame {
-        VoxelFrame { level, origin: [0.0; 3], voxel_size: 1.0 }
+        VoxelFrame {
+            level,
+            origin: [0.0; 3],
+            voxel_size: 1.0,
+        }
     }
 
     fn quiet(_: usize) {}
@@ -428,7 +501,11 @@ mod tests {
             let solid = solid(&cube, &frame(level), &mut quiet).unwrap();
             assert_eq!(solid.count(), (n * n * n) as u64, "level {level}");
             let inner = (n - 2).max(0);
-            assert_eq!(surface(&cube, level, &mut quiet).count(), (n * n * n - inner * inner * inner) as u64, "level {level}");
+            assert_eq!(
+                surface(&cube, level, &mut quiet).count(),
+                (n * n * n - inner * inner * inner) as u64,
+                "level {level}"
+            );
         }
     }
 
@@ -447,12 +524,25 @@ mod tests {
             // surface misses only voxel (2, 2, 2).
             ([3 * s / 2; 3], [7 * s / 2; 3], 27, 26),
             // [1.25, 3.75] x [2, 2.75] x [0, 16]: centres 1.5..3.5 (3), 2.5 (1), all 16.
-            ([5 * s / 4, 2 * s, 0], [15 * s / 4, 11 * s / 4, 16 * s], 3 * 16, 3 * 2 * 16),
+            (
+                [5 * s / 4, 2 * s, 0],
+                [15 * s / 4, 11 * s / 4, 16 * s],
+                3 * 16,
+                3 * 2 * 16,
+            ),
         ];
         for (lo, hi, solid_count, surface_count) in cases {
             let b = box_triangles(lo, hi);
-            assert_eq!(solid(&b, &frame(level), &mut quiet).unwrap().count(), solid_count, "{lo:?} {hi:?}");
-            assert_eq!(surface(&b, level, &mut quiet).count(), surface_count, "{lo:?} {hi:?}");
+            assert_eq!(
+                solid(&b, &frame(level), &mut quiet).unwrap().count(),
+                solid_count,
+                "{lo:?} {hi:?}"
+            );
+            assert_eq!(
+                surface(&b, level, &mut quiet).count(),
+                surface_count,
+                "{lo:?} {hi:?}"
+            );
         }
     }
 
@@ -469,7 +559,13 @@ mod tests {
     #[test]
     fn resolutions_are_powers_of_two() {
         assert_eq!(level_of_resolution(512), Ok(9));
-        assert_eq!(level_of_resolution(100), Err(VoxelizeError::Resolution(100)));
-        assert_eq!(level_of_resolution(2048), Err(VoxelizeError::Resolution(2048)));
+        assert_eq!(
+            level_of_resolution(100),
+            Err(VoxelizeError::Resolution(100))
+        );
+        assert_eq!(
+            level_of_resolution(2048),
+            Err(VoxelizeError::Resolution(2048))
+        );
     }
 }

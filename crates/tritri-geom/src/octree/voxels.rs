@@ -14,9 +14,15 @@ pub struct VoxelGrid {
 impl VoxelGrid {
     /// An empty grid of side `2^level` (level 0 to 10: up to 1024^3).
     pub fn empty(level: u32) -> VoxelGrid {
-        assert!(level <= 10, "a voxel grid of side 2^{level} is larger than this model keeps in memory");
+        assert!(
+            level <= 10,
+            "a voxel grid of side 2^{level} is larger than this model keeps in memory"
+        );
         let voxels = 1usize << (3 * level);
-        VoxelGrid { level, bits: vec![0; voxels.div_ceil(64)] }
+        VoxelGrid {
+            level,
+            bits: vec![0; voxels.div_ceil(64)],
+        }
     }
 
     /// The side `n`.
@@ -79,13 +85,24 @@ impl VoxelGrid {
     /// A set operation, 64 voxels a word (the engine's memory-side unit
     /// streams words the same way). Both grids must have one level.
     pub fn combine(&self, op: SetOperation, other: &VoxelGrid) -> VoxelGrid {
-        assert_eq!(self.level, other.level, "set operations need models of one grid");
+        assert_eq!(
+            self.level, other.level,
+            "set operations need models of one grid"
+        );
         let word = |a: u64, b: u64| match op {
             SetOperation::Union => a | b,
             SetOperation::Intersection => a & b,
             SetOperation::Difference => a & !b,
         };
-        VoxelGrid { level: self.level, bits: self.bits.iter().zip(&other.bits).map(|(&a, &b)| word(a, b)).collect() }
+        VoxelGrid {
+            level: self.level,
+            bits: self
+                .bits
+                .iter()
+                .zip(&other.bits)
+                .map(|(&a, &b)| word(a, b))
+                .collect(),
+        }
     }
 
     /// The voxels not in the model.
@@ -96,7 +113,10 @@ impl VoxelGrid {
         if voxels % 64 != 0 {
             bits[voxels / 64] &= (1u64 << (voxels % 64)) - 1;
         }
-        VoxelGrid { level: self.level, bits }
+        VoxelGrid {
+            level: self.level,
+            bits,
+        }
     }
 }
 
@@ -106,7 +126,11 @@ fn fill_bit_range(bits: &mut [u64], start: usize, end: usize) {
     while i < end {
         let (word, bit) = (i / 64, i % 64);
         let run = (64 - bit).min(end - i);
-        let mask = if run == 64 { u64::MAX } else { ((1u64 << run) - 1) << bit };
+        let mask = if run == 64 {
+            u64::MAX
+        } else {
+            ((1u64 << run) - 1) << bit
+        };
         bits[word] |= mask;
         i += run;
     }

@@ -53,13 +53,25 @@ pub enum LoadError {
 impl SceneObject {
     pub fn from_triangles(name: impl Into<String>, triangles: Vec<Triangle>) -> SceneObject {
         let face_of = (0..triangles.len()).collect();
-        SceneObject { name: name.into(), triangles, face_of }
+        SceneObject {
+            name: name.into(),
+            triangles,
+            face_of,
+        }
     }
 
     /// The same object scaled by `factor` about its origin.
     pub fn scaled(&self, factor: f64) -> SceneObject {
-        let triangles = self.triangles.iter().map(|t| t.map(|p| p.map(|c| c * factor))).collect();
-        SceneObject { name: self.name.clone(), triangles, face_of: self.face_of.clone() }
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|p| p.map(|c| c * factor)))
+            .collect();
+        SceneObject {
+            name: self.name.clone(),
+            triangles,
+            face_of: self.face_of.clone(),
+        }
     }
 
     /// The same surface cut into `4^levels` times as many triangles: each
@@ -80,14 +92,26 @@ impl SceneObject {
                 .collect();
             face_of = face_of.iter().flat_map(|&f| [f; 4]).collect();
         }
-        SceneObject { name: self.name.clone(), triangles, face_of }
+        SceneObject {
+            name: self.name.clone(),
+            triangles,
+            face_of,
+        }
     }
 
     /// The same object moved by `pose`.
     pub fn posed(&self, pose: &Pose) -> SceneObject {
         let motion = pose.isometry();
-        let triangles = self.triangles.iter().map(|t| t.map(|p| motion.transform_point(&Point3::from(p)).coords.into())).collect();
-        SceneObject { name: self.name.clone(), triangles, face_of: self.face_of.clone() }
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|p| motion.transform_point(&Point3::from(p)).coords.into()))
+            .collect();
+        SceneObject {
+            name: self.name.clone(),
+            triangles,
+            face_of: self.face_of.clone(),
+        }
     }
 }
 
@@ -103,9 +127,16 @@ pub fn load_object(spec: &str, bezier_level: usize) -> Result<SceneObject, LoadE
         }
     } else {
         let path = Path::new(spec);
-        let is_bpt = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("bpt"));
+        let is_bpt = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("bpt"));
         if is_bpt {
-            let mut object = SceneObject { name: spec.to_string(), triangles: Vec::new(), face_of: Vec::new() };
+            let mut object = SceneObject {
+                name: spec.to_string(),
+                triangles: Vec::new(),
+                face_of: Vec::new(),
+            };
             for (index, patch) in read_bpt(path)?.iter().enumerate() {
                 let ts = patch.tessellate(bezier_level);
                 object.face_of.extend(std::iter::repeat_n(index, ts.len()));
@@ -114,14 +145,21 @@ pub fn load_object(spec: &str, bezier_level: usize) -> Result<SceneObject, LoadE
             object
         } else {
             let Mesh { triangles, face_of } = Mesh::read(path)?;
-            SceneObject { name: spec.to_string(), triangles, face_of }
+            SceneObject {
+                name: spec.to_string(),
+                triangles,
+                face_of,
+            }
         }
     };
     if object.triangles.is_empty() {
         return Err(LoadError::Empty(object.name));
     }
     if u32::try_from(object.triangles.len()).is_err() {
-        return Err(LoadError::TooManyTriangles { name: object.name, count: object.triangles.len() });
+        return Err(LoadError::TooManyTriangles {
+            name: object.name,
+            count: object.triangles.len(),
+        });
     }
     Ok(object)
 }
@@ -140,7 +178,9 @@ pub struct Pose {
 
 /// Error for a pose that is not `tx,ty,tz[,rx,ry,rz]`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("bad pose `{text}`: {reason} (expected tx,ty,tz or tx,ty,tz,rx,ry,rz, rotations in degrees)")]
+#[error(
+    "bad pose `{text}`: {reason} (expected tx,ty,tz or tx,ty,tz,rx,ry,rz, rotations in degrees)"
+)]
 pub struct PoseError {
     pub text: String,
     pub reason: String,
@@ -148,7 +188,10 @@ pub struct PoseError {
 
 impl Pose {
     pub fn translation(t: [f64; 3]) -> Pose {
-        Pose { translation: t, rotation_degrees: [0.0; 3] }
+        Pose {
+            translation: t,
+            rotation_degrees: [0.0; 3],
+        }
     }
 
     pub fn is_identity(&self) -> bool {
@@ -164,12 +207,18 @@ impl Pose {
         let ry = Matrix3::new(cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy);
         let rz = Matrix3::new(cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0);
         let rotation = Rotation3::from_matrix_unchecked(rz * ry * rx);
-        IsometryMatrix3::from_parts(Translation3::from(Vector3::from(self.translation)), rotation)
+        IsometryMatrix3::from_parts(
+            Translation3::from(Vector3::from(self.translation)),
+            rotation,
+        )
     }
 
     /// The posed point.
     pub fn apply(&self, p: Point) -> Point {
-        self.isometry().transform_point(&Point3::from(p)).coords.into()
+        self.isometry()
+            .transform_point(&Point3::from(p))
+            .coords
+            .into()
     }
 }
 
@@ -193,19 +242,31 @@ impl FromStr for Pose {
 
     /// `tx,ty,tz` or `tx,ty,tz,rx,ry,rz` (commas or spaces).
     fn from_str(s: &str) -> Result<Pose, PoseError> {
-        let err = |reason: String| PoseError { text: s.to_string(), reason };
-        let fields: Vec<&str> = s.split([',', ' ']).map(str::trim).filter(|f| !f.is_empty()).collect();
+        let err = |reason: String| PoseError {
+            text: s.to_string(),
+            reason,
+        };
+        let fields: Vec<&str> = s
+            .split([',', ' '])
+            .map(str::trim)
+            .filter(|f| !f.is_empty())
+            .collect();
         if fields.len() != 3 && fields.len() != 6 {
             return Err(err(format!("{} numbers", fields.len())));
         }
         let mut values = [0.0f64; 6];
         for (v, f) in values.iter_mut().zip(&fields) {
-            *v = f.parse().map_err(|_| err(format!("`{f}` is not a number")))?;
+            *v = f
+                .parse()
+                .map_err(|_| err(format!("`{f}` is not a number")))?;
             if !v.is_finite() {
                 return Err(err(format!("`{f}` is not finite")));
             }
         }
-        Ok(Pose { translation: [values[0], values[1], values[2]], rotation_degrees: [values[3], values[4], values[5]] })
+        Ok(Pose {
+            translation: [values[0], values[1], values[2]],
+            rotation_degrees: [values[3], values[4], values[5]],
+        })
     }
 }
 
@@ -236,24 +297,45 @@ mod tests {
     /// Rotations are about x, then y, then z (fixed axes), then the translation.
     #[test]
     fn pose_rotates_x_then_y_then_z_then_translates() {
-        let quarter_x = Pose { translation: [0.0; 3], rotation_degrees: [90.0, 0.0, 0.0] };
+        let quarter_x = Pose {
+            translation: [0.0; 3],
+            rotation_degrees: [90.0, 0.0, 0.0],
+        };
         assert_eq!(quarter_x.apply([0.0, 1.0, 0.0]), [0.0, 0.0, 1.0]);
         // x then z: (0,1,0) -x-> (0,0,1) -z-> (0,0,1); z then x would give (0,0,-1)... order matters.
-        let xz = Pose { translation: [10.0, 0.0, 0.0], rotation_degrees: [90.0, 0.0, 90.0] };
+        let xz = Pose {
+            translation: [10.0, 0.0, 0.0],
+            rotation_degrees: [90.0, 0.0, 90.0],
+        };
         assert_eq!(xz.apply([1.0, 0.0, 0.0]), [10.0, 1.0, 0.0]);
         assert_eq!(xz.apply([0.0, 1.0, 0.0]), [10.0, 0.0, 1.0]);
-        let xy = Pose { translation: [0.0; 3], rotation_degrees: [90.0, 90.0, 0.0] };
+        let xy = Pose {
+            translation: [0.0; 3],
+            rotation_degrees: [90.0, 90.0, 0.0],
+        };
         // (0,1,0) -x-> (0,0,1) -y-> (1,0,0)
         assert_eq!(xy.apply([0.0, 1.0, 0.0]), [1.0, 0.0, 0.0]);
-        let general = Pose { translation: [0.0; 3], rotation_degrees: [30.0, 0.0, 0.0] };
+        let general = Pose {
+            translation: [0.0; 3],
+            rotation_degrees: [30.0, 0.0, 0.0],
+        };
         let q = general.apply([0.0, 1.0, 0.0]);
         assert!((q[1] - 30f64.to_radians().cos()).abs() < 1e-15 && (q[2] - 0.5).abs() < 1e-15);
     }
 
     #[test]
     fn builtins_and_unknown_builtins() {
-        assert_eq!(load_object("@torus", 4).unwrap().triangles.len(), 2 * 48 * 24);
-        assert_eq!(load_object("@sphere", 4).unwrap().triangles.len(), 2 * 32 * 15);
-        assert!(matches!(load_object("@cube", 4), Err(LoadError::UnknownBuiltin(_))));
+        assert_eq!(
+            load_object("@torus", 4).unwrap().triangles.len(),
+            2 * 48 * 24
+        );
+        assert_eq!(
+            load_object("@sphere", 4).unwrap().triangles.len(),
+            2 * 32 * 15
+        );
+        assert!(matches!(
+            load_object("@cube", 4),
+            Err(LoadError::UnknownBuiltin(_))
+        ));
     }
 }

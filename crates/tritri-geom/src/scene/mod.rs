@@ -33,8 +33,8 @@ pub mod reference;
 pub mod render;
 
 use crate::bounding_volume::{grown_triangle_touches_box, triangle_box_overlap_conservative, Aabb};
-use crate::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use crate::fixed_point::FixedTriangle;
+use crate::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use crate::quantize::{Frame, QuantizeError};
 use crate::triangle::Triangle;
 use load::SceneObject;
@@ -85,7 +85,12 @@ pub enum SceneError {
         "the arrays in the common BV hold {kept_a} (A) and {kept_b} (B) triangles, more than the memory depth {depth}; \
          allow splitting into tiles (drop --no-split) or generate hardware with --depth {needed}"
     )]
-    ExceedsDepth { kept_a: usize, kept_b: usize, depth: usize, needed: usize },
+    ExceedsDepth {
+        kept_a: usize,
+        kept_b: usize,
+        depth: usize,
+        needed: usize,
+    },
 }
 
 /// How the arrays were cut to fit the memories.
@@ -143,16 +148,30 @@ impl PreparedScene {
     /// (`a[i]` stands for `octree.a[i]`), for example the same triangles
     /// with slots for ids ([`owner_slots::OwnerSlots::slotted`]). Empty
     /// without an octree.
-    pub fn leaf_batches<'a>(&self, a: &'a [TaggedTriangle], b: &'a [TaggedTriangle]) -> Vec<Batch<'a>> {
-        let Some(octree) = &self.octree else { return Vec::new() };
-        octree.leaves.iter().flat_map(|leaf| tile(&a[leaf.a.clone()], &b[leaf.b.clone()], self.tiling.depth)).collect()
+    pub fn leaf_batches<'a>(
+        &self,
+        a: &'a [TaggedTriangle],
+        b: &'a [TaggedTriangle],
+    ) -> Vec<Batch<'a>> {
+        let Some(octree) = &self.octree else {
+            return Vec::new();
+        };
+        octree
+            .leaves
+            .iter()
+            .flat_map(|leaf| tile(&a[leaf.a.clone()], &b[leaf.b.clone()], self.tiling.depth))
+            .collect()
     }
 
     /// Pairs the hardware tests, the sum over batches: `|kept A| * |kept B|`
     /// flat, the sum over leaves with the octree.
     pub fn pairs_tested(&self) -> u64 {
         match &self.octree {
-            Some(octree) => octree.leaves.iter().map(|l| l.a.len() as u64 * l.b.len() as u64).sum(),
+            Some(octree) => octree
+                .leaves
+                .iter()
+                .map(|l| l.a.len() as u64 * l.b.len() as u64)
+                .sum(),
             None => self.kept_a.len() as u64 * self.kept_b.len() as u64,
         }
     }
@@ -161,7 +180,9 @@ impl PreparedScene {
     /// batches: triangles too long for a leaf's window ([`LocalFrames`])
     /// against the other object. Grid coordinates.
     pub fn host_batches(&self) -> Vec<Batch<'_>> {
-        self.octree.as_ref().map_or(Vec::new(), |o| o.host_arrays.iter().map(|(a, b)| Batch { a, b }).collect())
+        self.octree.as_ref().map_or(Vec::new(), |o| {
+            o.host_arrays.iter().map(|(a, b)| Batch { a, b }).collect()
+        })
     }
 
     /// Pairs in [`Self::host_batches`].
@@ -203,7 +224,11 @@ impl PreparedScene {
 /// A pair whose f64 triangles intersect is never dropped by the f64 filter
 /// either: the meeting point lies in both objects' boxes, so in the common
 /// BV, and the comparisons of the box filter are exact.
-pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Result<PreparedScene, SceneError> {
+pub fn prepare(
+    a: &SceneObject,
+    b: &SceneObject,
+    options: &SceneOptions,
+) -> Result<PreparedScene, SceneError> {
     if options.depth == 0 {
         return Err(SceneError::ZeroDepth);
     }
@@ -225,43 +250,75 @@ pub fn prepare(a: &SceneObject, b: &SceneObject, options: &SceneOptions) -> Resu
         integer_box: None,
         kept_a: Vec::new(),
         kept_b: Vec::new(),
-        tiling: Tiling { depth: options.depth, a_tiles: 0, b_tiles: 0 },
+        tiling: Tiling {
+            depth: options.depth,
+            a_tiles: 0,
+            b_tiles: 0,
+        },
         octree: None,
     };
-    let Some(common) = common else { return Ok(scene) };
+    let Some(common) = common else {
+        return Ok(scene);
+    };
 
     let touching = |ts: &[Triangle]| -> Vec<u32> {
-        ts.iter().enumerate().filter(|(_, t)| triangle_box_overlap_conservative(t, &common)).map(|(i, _)| i as u32).collect()
+        ts.iter()
+            .enumerate()
+            .filter(|(_, t)| triangle_box_overlap_conservative(t, &common))
+            .map(|(i, _)| i as u32)
+            .collect()
     };
     scene.candidates_a = touching(&a.triangles);
     scene.candidates_b = touching(&b.triangles);
     let frame = Frame::fit(
-        scene.candidates_a.iter().map(|&i| &a.triangles[i as usize]).chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
+        scene
+            .candidates_a
+            .iter()
+            .map(|&i| &a.triangles[i as usize])
+            .chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
         options.width,
     )?;
     let quantize = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
-        ids.iter().map(|&id| TaggedTriangle { id, triangle: frame.quantize(&ts[id as usize]) }).collect()
+        ids.iter()
+            .map(|&id| TaggedTriangle {
+                id,
+                triangle: frame.quantize(&ts[id as usize]),
+            })
+            .collect()
     };
     let qa = quantize(&scene.candidates_a, &a.triangles);
     let qb = quantize(&scene.candidates_b, &b.triangles);
     scene.frame = Some(frame);
 
     let margin = BROAD_PHASE_MARGIN as i64;
-    let integer_box = match (Aabb::of_triangles(qa.iter().map(|t| &t.triangle)), Aabb::of_triangles(qb.iter().map(|t| &t.triangle))) {
+    let integer_box = match (
+        Aabb::of_triangles(qa.iter().map(|t| &t.triangle)),
+        Aabb::of_triangles(qb.iter().map(|t| &t.triangle)),
+    ) {
         (Some(x), Some(y)) => x.grown(margin).overlap(&y.grown(margin)),
         _ => None,
     };
     scene.integer_box = integer_box;
     if let Some(ibox) = integer_box {
-        let near = |t: &TaggedTriangle| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &ibox);
+        let near =
+            |t: &TaggedTriangle| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &ibox);
         scene.kept_a = qa.into_iter().filter(near).collect();
         scene.kept_b = qb.into_iter().filter(near).collect();
     }
     let (ka, kb, depth) = (scene.kept_a.len(), scene.kept_b.len(), options.depth);
     if (ka > depth || kb > depth) && !options.split {
-        return Err(SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth, needed: ka.max(kb) });
+        return Err(SceneError::ExceedsDepth {
+            kept_a: ka,
+            kept_b: kb,
+            depth,
+            needed: ka.max(kb),
+        });
     }
-    scene.tiling = Tiling { depth, a_tiles: ka.div_ceil(depth), b_tiles: kb.div_ceil(depth) };
+    scene.tiling = Tiling {
+        depth,
+        a_tiles: ka.div_ceil(depth),
+        b_tiles: kb.div_ceil(depth),
+    };
     Ok(scene)
 }
 
@@ -278,13 +335,38 @@ pub fn prepare_octree(
     cost: &dyn BatchCost,
     local_frames: Option<LocalFrames>,
 ) -> Result<PreparedScene, SceneError> {
-    let mut scene = prepare(a, b, &SceneOptions { split: true, ..*options })?;
-    let Some(ibox) = scene.integer_box else { return Ok(scene) };
-    let octree = octree::schedule(&scene.kept_a, &scene.kept_b, &ibox, options.depth, cost, local_frames);
-    if let Some(leaf) = octree.leaves.iter().find(|l| l.a.len() > options.depth || l.b.len() > options.depth) {
+    let mut scene = prepare(
+        a,
+        b,
+        &SceneOptions {
+            split: true,
+            ..*options
+        },
+    )?;
+    let Some(ibox) = scene.integer_box else {
+        return Ok(scene);
+    };
+    let octree = octree::schedule(
+        &scene.kept_a,
+        &scene.kept_b,
+        &ibox,
+        options.depth,
+        cost,
+        local_frames,
+    );
+    if let Some(leaf) = octree
+        .leaves
+        .iter()
+        .find(|l| l.a.len() > options.depth || l.b.len() > options.depth)
+    {
         if !options.split {
             let (kept_a, kept_b) = (leaf.a.len(), leaf.b.len());
-            return Err(SceneError::ExceedsDepth { kept_a, kept_b, depth: options.depth, needed: kept_a.max(kept_b) });
+            return Err(SceneError::ExceedsDepth {
+                kept_a,
+                kept_b,
+                depth: options.depth,
+                needed: kept_a.max(kept_b),
+            });
         }
     }
     scene.octree = Some(octree);

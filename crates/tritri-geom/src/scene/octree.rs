@@ -107,7 +107,9 @@ impl LocalFrames {
     pub fn fits_any_leaf(&self, t: &TaggedTriangle) -> bool {
         let limit = (1i64 << (self.width - 1)) - 1 - (1i64 << (self.width - 3));
         (0..3).all(|k| {
-            let (lo, hi) = t.triangle.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| (lo.min(p[k]), hi.max(p[k])));
+            let (lo, hi) = t.triangle.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| {
+                (lo.min(p[k]), hi.max(p[k]))
+            });
             hi - lo <= limit
         })
     }
@@ -115,7 +117,9 @@ impl LocalFrames {
     /// Is every coordinate of `t - offset` a W-bit integer?
     fn fits(&self, t: &TaggedTriangle, offset: [i64; 3]) -> bool {
         let half = 1i64 << (self.width - 1);
-        t.triangle.iter().all(|p| (0..3).all(|k| (-half..half).contains(&(p[k] - offset[k]))))
+        t.triangle
+            .iter()
+            .all(|p| (0..3).all(|k| (-half..half).contains(&(p[k] - offset[k]))))
     }
 }
 
@@ -204,14 +208,21 @@ pub fn schedule(
     local_frames: Option<LocalFrames>,
 ) -> OctreeSchedule {
     let root = Cell::covering(root_box);
-    let mut out = OctreeSchedule { root: Some(root), ..Default::default() };
+    let mut out = OctreeSchedule {
+        root: Some(root),
+        ..Default::default()
+    };
     if a.is_empty() || b.is_empty() {
         return out;
     }
     // Triangles too long for any leaf's window go to the host.
     let b_all = b;
-    let (a, a_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = a.iter().partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
-    let (b, b_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = b.iter().partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
+    let (a, a_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = a
+        .iter()
+        .partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
+    let (b, b_long): (Vec<TaggedTriangle>, Vec<TaggedTriangle>) = b
+        .iter()
+        .partition(|t| local_frames.is_none_or(|l| l.fits_any_leaf(t)));
     if !a_long.is_empty() {
         out.host_arrays.push((a_long, b_all.to_vec()));
     }
@@ -219,12 +230,29 @@ pub fn schedule(
         out.host_arrays.push((a.clone(), b_long));
     }
     let (a, b) = (&a[..], &b[..]);
-    let tests_a: Vec<TriangleCellTest> = a.iter().map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN)).collect();
-    let tests_b: Vec<TriangleCellTest> = b.iter().map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN)).collect();
+    let tests_a: Vec<TriangleCellTest> = a
+        .iter()
+        .map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN))
+        .collect();
+    let tests_b: Vec<TriangleCellTest> = b
+        .iter()
+        .map(|t| TriangleCellTest::widened(&t.triangle, BROAD_PHASE_MARGIN))
+        .collect();
     // The root's values take multiplications; every cell below, adds and shifts.
-    let planner = Planner { memory_depth, cost, max_leaf_level: local_frames.map(|l| l.max_leaf_level()) };
+    let planner = Planner {
+        memory_depth,
+        cost,
+        max_leaf_level: local_frames.map(|l| l.max_leaf_level()),
+    };
     let mut work = Work::default();
-    let plan = planner.plan(root, 0, root_items(a, &tests_a, &root), root_items(b, &tests_b, &root), LOOKAHEAD, &mut work);
+    let plan = planner.plan(
+        root,
+        0,
+        root_items(a, &tests_a, &root),
+        root_items(b, &tests_b, &root),
+        LOOKAHEAD,
+        &mut work,
+    );
     out.cells_visited = work.cells;
     out.classifications = work.classifications;
     out.classify_cycles = work.classify_cycles;
@@ -243,12 +271,24 @@ pub fn schedule(
         };
         let translate = |t: &&TaggedTriangle| {
             // Never fails: every binned triangle fits every leaf's window.
-            assert!(local_frames.is_none_or(|l| l.fits(t, offset)), "triangle {} outside the window of leaf {cell:?}", t.id);
-            TaggedTriangle { id: t.id, triangle: t.triangle.map(|p| [0, 1, 2].map(|k| p[k] - offset[k])) }
+            assert!(
+                local_frames.is_none_or(|l| l.fits(t, offset)),
+                "triangle {} outside the window of leaf {cell:?}",
+                t.id
+            );
+            TaggedTriangle {
+                id: t.id,
+                triangle: t.triangle.map(|p| [0, 1, 2].map(|k| p[k] - offset[k])),
+            }
         };
         out.a.extend(la.iter().map(translate));
         out.b.extend(lb.iter().map(translate));
-        let leaf = Leaf { cell, offset, a: start.0..out.a.len(), b: start.1..out.b.len() };
+        let leaf = Leaf {
+            cell,
+            offset,
+            a: start.0..out.a.len(),
+            b: start.1..out.b.len(),
+        };
         if leaf.a.len() > memory_depth || leaf.b.len() > memory_depth {
             out.oversized_leaves += 1;
         }
@@ -280,15 +320,29 @@ impl Planner<'_> {
         if na == 0 || nb == 0 {
             return 0;
         }
-        let tiles = |n: usize| (0..n.div_ceil(self.memory_depth)).map(move |t| (n - t * self.memory_depth).min(self.memory_depth));
-        tiles(na).map(|ta| tiles(nb).map(|tb| self.cost.batch_cycles(ta, tb)).sum::<u64>()).sum()
+        let tiles = |n: usize| {
+            (0..n.div_ceil(self.memory_depth))
+                .map(move |t| (n - t * self.memory_depth).min(self.memory_depth))
+        };
+        tiles(na)
+            .map(|ta| {
+                tiles(nb)
+                    .map(|tb| self.cost.batch_cycles(ta, tb))
+                    .sum::<u64>()
+            })
+            .sum()
     }
 
     /// A leaf of these arrays.
     fn leaf<'t>(&self, cell: Cell, level: u32, a: &[Item<'t>], b: &[Item<'t>]) -> Plan<'t> {
         Plan {
             cost: self.leaf_cost(a.len(), b.len()),
-            leaves: vec![(cell, level, a.iter().map(|i| i.triangle).collect(), b.iter().map(|i| i.triangle).collect())],
+            leaves: vec![(
+                cell,
+                level,
+                a.iter().map(|i| i.triangle).collect(),
+                b.iter().map(|i| i.triangle).collect(),
+            )],
         }
     }
 
@@ -304,15 +358,32 @@ impl Planner<'_> {
         classify > 0 && !forced && self.leaf_cost(a, b) <= (a + b + 1) as u64 + classify
     }
 
-    fn plan<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, work: &mut Work) -> Plan<'t> {
+    fn plan<'t>(
+        &self,
+        cell: Cell,
+        level: u32,
+        a: Vec<Item<'t>>,
+        b: Vec<Item<'t>>,
+        slack: u32,
+        work: &mut Work,
+    ) -> Plan<'t> {
         if a.is_empty() || b.is_empty() {
-            return Plan { cost: 0, leaves: Vec::new() };
+            return Plan {
+                cost: 0,
+                leaves: Vec::new(),
+            };
         }
         // The root's entries are classified as they stream in from the
         // host: its pass costs no more than an empty cell's, and it is
         // always looked into.
-        let classify = if level == 0 { self.cost.classify_cycles(0, 0) } else { self.cost.classify_cycles(a.len(), b.len()) };
-        if !cell.splittable() || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len(), classify)) {
+        let classify = if level == 0 {
+            self.cost.classify_cycles(0, 0)
+        } else {
+            self.cost.classify_cycles(a.len(), b.len())
+        };
+        if !cell.splittable()
+            || (level > 0 && self.split_cannot_pay(&cell, a.len(), b.len(), classify))
+        {
             return self.leaf(cell, level, &a, &b);
         }
         // The cell's entries are classified.
@@ -327,17 +398,30 @@ impl Planner<'_> {
     }
 
     /// The cheaper of a classified cell as a leaf and its split subtree.
-    fn split_or_keep<'t>(&self, cell: Cell, level: u32, a: Vec<Item<'t>>, b: Vec<Item<'t>>, slack: u32, work: &mut Work) -> Plan<'t> {
+    fn split_or_keep<'t>(
+        &self,
+        cell: Cell,
+        level: u32,
+        a: Vec<Item<'t>>,
+        b: Vec<Item<'t>>,
+        slack: u32,
+        work: &mut Work,
+    ) -> Plan<'t> {
         let leaf_cost = self.leaf_cost(a.len(), b.len());
         let (children_a, children_b) = (split(&a), split(&b));
-        let children_cost: u64 = (0..8).map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len())).sum();
+        let children_cost: u64 = (0..8)
+            .map(|o| self.leaf_cost(children_a[o].len(), children_b[o].len()))
+            .sum();
         let forced = self.max_leaf_level.is_some_and(|m| cell.level > m);
         let improving = forced || children_cost < leaf_cost;
         if !improving && slack == 0 {
             return self.leaf(cell, level, &a, &b);
         }
         let next_slack = if improving { LOOKAHEAD } else { slack - 1 };
-        let mut subtree = Plan { cost: 0, leaves: Vec::new() };
+        let mut subtree = Plan {
+            cost: 0,
+            leaves: Vec::new(),
+        };
         for (o, (ca, cb)) in children_a.into_iter().zip(children_b).enumerate() {
             let child = self.plan(cell.child(o), level + 1, ca, cb, next_slack, work);
             subtree.cost += child.cost;
@@ -351,8 +435,19 @@ impl Planner<'_> {
     }
 }
 
-fn root_items<'t>(ts: &'t [TaggedTriangle], tests: &'t [TriangleCellTest], root: &Cell) -> Vec<Item<'t>> {
-    ts.iter().zip(tests).map(|(triangle, test)| Item { triangle, test, values: test.values(root) }).collect()
+fn root_items<'t>(
+    ts: &'t [TaggedTriangle],
+    tests: &'t [TriangleCellTest],
+    root: &Cell,
+) -> Vec<Item<'t>> {
+    ts.iter()
+        .zip(tests)
+        .map(|(triangle, test)| Item {
+            triangle,
+            test,
+            values: test.values(root),
+        })
+        .collect()
 }
 
 /// Each item into the children its triangle meets, with its values there.
@@ -362,7 +457,11 @@ fn split<'t>(items: &[Item<'t>]) -> [Vec<Item<'t>>; 8] {
         let mask = item.test.children_touched(&item.values);
         for (o, child) in children.iter_mut().enumerate() {
             if mask >> o & 1 == 1 {
-                child.push(Item { triangle: item.triangle, test: item.test, values: item.test.child(&item.values, o) });
+                child.push(Item {
+                    triangle: item.triangle,
+                    test: item.test,
+                    values: item.test.child(&item.values, o),
+                });
             }
         }
     }

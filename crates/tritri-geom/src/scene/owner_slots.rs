@@ -70,15 +70,29 @@ impl OwnerSlots {
         }
         let (a, a_slot) = tables(schedule.a.iter().map(|t| t.id), &entry_leaf_a);
         let (b, b_slot) = tables(schedule.b.iter().map(|t| t.id), &entry_leaf_b);
-        OwnerSlots { a, b, a_slot, b_slot }
+        OwnerSlots {
+            a,
+            b,
+            a_slot,
+            b_slot,
+        }
     }
 
     /// The schedule's leaf arrays with each triangle's slot as its id:
     /// what the hardware's memories hold, so that its hits come out as
     /// slots ([`super::PreparedScene::leaf_batches`] makes the batches).
     pub fn slotted(&self, schedule: &OctreeSchedule) -> (Vec<TaggedTriangle>, Vec<TaggedTriangle>) {
-        let with = |arrays: &[TaggedTriangle], slots: &[u32]| arrays.iter().zip(slots).map(|(t, &id)| TaggedTriangle { id, ..*t }).collect();
-        (with(&schedule.a, &self.a_slot), with(&schedule.b, &self.b_slot))
+        let with = |arrays: &[TaggedTriangle], slots: &[u32]| {
+            arrays
+                .iter()
+                .zip(slots)
+                .map(|(t, &id)| TaggedTriangle { id, ..*t })
+                .collect()
+        };
+        (
+            with(&schedule.a, &self.a_slot),
+            with(&schedule.b, &self.b_slot),
+        )
     }
 
     /// The triangle ids of a hit's slots.
@@ -92,14 +106,20 @@ impl OwnerSlots {
         let (x, y) = (self.a[s_a as usize], self.b[s_b as usize]);
         debug_assert_eq!(x.leaf, y.leaf, "a hit's two slots belong to one leaf");
         if x.first == s_a || y.first == s_b {
-            return OwnerDecision { owner: true, comparisons: 0 };
+            return OwnerDecision {
+                owner: true,
+                comparisons: 0,
+            };
         }
         let (mut i, mut j) = (x.first as usize, y.first as usize);
         let mut comparisons = 1;
         loop {
             let (p, q) = (self.a[i].leaf, self.b[j].leaf);
             if p == q {
-                return OwnerDecision { owner: p == x.leaf, comparisons };
+                return OwnerDecision {
+                    owner: p == x.leaf,
+                    comparisons,
+                };
             }
             if p < q {
                 i += 1;
@@ -132,7 +152,11 @@ fn tables(ids: impl Iterator<Item = u32>, entry_leaf: &[u32]) -> (Vec<Slot>, Vec
         let first = table.len() as u32;
         for &i in &entries[&id] {
             slot_of_entry[i] = table.len() as u32;
-            table.push(Slot { id, leaf: entry_leaf[i], first });
+            table.push(Slot {
+                id,
+                leaf: entry_leaf[i],
+                first,
+            });
         }
     }
     (table, slot_of_entry)

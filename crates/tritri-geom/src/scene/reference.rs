@@ -30,14 +30,22 @@ pub type PairSet = BTreeSet<(u32, u32)>;
 /// The bit-exact hardware model over every pair of every batch; `progress`
 /// is told how many pairs were done (in pieces).
 pub fn fixed_point_pairs(batches: &[Batch], progress: &(dyn Fn(u64) + Sync)) -> PairSet {
-    pairs_over_batches(batches, |x, y| fixed_point::intersects(&x.triangle, &y.triangle), progress)
+    pairs_over_batches(
+        batches,
+        |x, y| fixed_point::intersects(&x.triangle, &y.triangle),
+        progress,
+    )
 }
 
 /// Exact predicates on the quantized coordinates (as f64), over every pair of
 /// every batch, deduplicated across tiles.
 pub fn quantized_exact_pairs(batches: &[Batch]) -> PairSet {
     let as_f64 = |t: &TaggedTriangle| t.triangle.map(|p| p.map(|c| c as f64));
-    pairs_over_batches(batches, |x, y| exact_f64::intersects(&as_f64(x), &as_f64(y)), &|_| {})
+    pairs_over_batches(
+        batches,
+        |x, y| exact_f64::intersects(&as_f64(x), &as_f64(y)),
+        &|_| {},
+    )
 }
 
 /// `test` on every pair of every batch (pairs with disjoint integer boxes are
@@ -58,7 +66,10 @@ pub fn pairs_over_batches(
                 let test = &test;
                 s.spawn(move || {
                     let mut hits = Vec::new();
-                    let mine = batches.iter().enumerate().filter(|(i, _)| !by_batch || i % threads == k);
+                    let mine = batches
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| !by_batch || i % threads == k);
                     for (_, batch) in mine {
                         let (first_row, row_step) = if by_batch { (0, 1) } else { (k, threads) };
                         let rows = batch_pairs(batch, first_row, row_step, test, &mut hits);
@@ -68,7 +79,10 @@ pub fn pairs_over_batches(
                 })
             })
             .collect();
-        handles.into_iter().map(|h| h.join().expect("worker thread panicked")).collect()
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("worker thread panicked"))
+            .collect()
     });
     found.into_iter().flatten().collect()
 }
@@ -84,9 +98,17 @@ fn batch_pairs(
 ) -> u64 {
     // B's boxes sorted by their low x: the B boxes that can overlap an A box
     // [lo, hi] in x start in [lo - widest, hi] (exact in integers).
-    let mut boxes_b: Vec<(Aabb<i64>, &TaggedTriangle)> = batch.b.iter().map(|t| (triangle_box(&t.triangle), t)).collect();
+    let mut boxes_b: Vec<(Aabb<i64>, &TaggedTriangle)> = batch
+        .b
+        .iter()
+        .map(|t| (triangle_box(&t.triangle), t))
+        .collect();
     boxes_b.sort_unstable_by_key(|(bb, _)| bb.lo[0]);
-    let widest = boxes_b.iter().map(|(bb, _)| bb.hi[0] - bb.lo[0]).max().unwrap_or(0);
+    let widest = boxes_b
+        .iter()
+        .map(|(bb, _)| bb.hi[0] - bb.lo[0])
+        .max()
+        .unwrap_or(0);
     let mut rows = 0;
     for x in batch.a.iter().skip(first_row).step_by(row_step) {
         rows += 1;
@@ -125,13 +147,27 @@ pub fn exact_f64_pairs(a: &[Triangle], b: &[Triangle]) -> ExactF64Result {
 
 /// [`exact_f64_pairs`] with another decision function (for timing the
 /// published float code on the same work).
-pub fn f64_pairs_with(a: &[Triangle], b: &[Triangle], test: impl Fn(&Triangle, &Triangle) -> bool) -> ExactF64Result {
+pub fn f64_pairs_with(
+    a: &[Triangle],
+    b: &[Triangle],
+    test: impl Fn(&Triangle, &Triangle) -> bool,
+) -> ExactF64Result {
     let boxes_a: Vec<Aabb<f64>> = a.iter().map(triangle_box).collect();
-    let mut order_b: Vec<(Aabb<f64>, u32)> = b.iter().enumerate().map(|(j, t)| (triangle_box(t), j as u32)).collect();
+    let mut order_b: Vec<(Aabb<f64>, u32)> = b
+        .iter()
+        .enumerate()
+        .map(|(j, t)| (triangle_box(t), j as u32))
+        .collect();
     order_b.sort_by(|x, y| x.0.lo[0].total_cmp(&y.0.lo[0]));
     // Widths rounded up, so `widest_b` is at least every true width.
-    let widest_b = order_b.iter().map(|(bb, _)| next_up(bb.hi[0] - bb.lo[0])).fold(0.0, f64::max);
-    let mut result = ExactF64Result { pairs: PairSet::new(), pairs_decided: 0 };
+    let widest_b = order_b
+        .iter()
+        .map(|(bb, _)| next_up(bb.hi[0] - bb.lo[0]))
+        .fold(0.0, f64::max);
+    let mut result = ExactF64Result {
+        pairs: PairSet::new(),
+        pairs_decided: 0,
+    };
     for (i, ba) in boxes_a.iter().enumerate() {
         // A B box that overlaps has hi >= ba.lo, so lo = hi - width >= ba.lo - widest,
         // and lo <= ba.hi. The subtraction rounds; one step down keeps the bound below.
@@ -183,13 +219,19 @@ pub struct PairDiff {
 impl PairDiff {
     /// `reference` and `other` in any order: sets, sorted lists, or pairs
     /// in the order a run delivered them.
-    pub fn between<'p>(reference: impl IntoIterator<Item = &'p (u32, u32)>, other: impl IntoIterator<Item = &'p (u32, u32)>) -> PairDiff {
+    pub fn between<'p>(
+        reference: impl IntoIterator<Item = &'p (u32, u32)>,
+        other: impl IntoIterator<Item = &'p (u32, u32)>,
+    ) -> PairDiff {
         let sorted = |pairs: Vec<&'p (u32, u32)>| {
             let mut v: Vec<(u32, u32)> = pairs.into_iter().copied().collect();
             v.sort_unstable();
             v
         };
-        let (reference, other) = (sorted(reference.into_iter().collect()), sorted(other.into_iter().collect()));
+        let (reference, other) = (
+            sorted(reference.into_iter().collect()),
+            sorted(other.into_iter().collect()),
+        );
         let mut diff = PairDiff::default();
         let (mut i, mut j) = (0, 0);
         while i < reference.len() || j < other.len() {
@@ -222,10 +264,19 @@ impl PairDiff {
 /// [`pairs_over_batches`] it skips nothing, so `test` may be any verdict
 /// (the stub pipeline's, for example), and it keeps duplicates across
 /// batches, as a hardware run reports them.
-pub fn pairs_where(batches: &[Batch], test: impl Fn(&TaggedTriangle, &TaggedTriangle) -> bool) -> Vec<(u32, u32)> {
+pub fn pairs_where(
+    batches: &[Batch],
+    test: impl Fn(&TaggedTriangle, &TaggedTriangle) -> bool,
+) -> Vec<(u32, u32)> {
     let mut pairs: Vec<(u32, u32)> = batches
         .iter()
-        .flat_map(|batch| batch.a.iter().flat_map(|a| batch.b.iter().filter(|b| test(a, b)).map(|b| (a.id, b.id))).collect::<Vec<_>>())
+        .flat_map(|batch| {
+            batch
+                .a
+                .iter()
+                .flat_map(|a| batch.b.iter().filter(|b| test(a, b)).map(|b| (a.id, b.id)))
+                .collect::<Vec<_>>()
+        })
         .collect();
     pairs.sort_unstable();
     pairs

@@ -25,7 +25,10 @@ const FOV: f64 = 40.0;
 /// The objects `a` and `b` with the triangles of `pairs` (`(i, j)`: A's
 /// triangle `i`, B's `j`) highlighted. `view.eye` must not be zero.
 pub fn render_pairs(a: &[Triangle], b: &[Triangle], pairs: &PairSet, view: &View) -> Image {
-    let (mut lo, mut hi) = (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY));
+    let (mut lo, mut hi) = (
+        Vector3::repeat(f64::INFINITY),
+        Vector3::repeat(f64::NEG_INFINITY),
+    );
     for p in a.iter().chain(b).flatten() {
         let p = Vector3::from(*p);
         lo = lo.inf(&p);
@@ -39,19 +42,41 @@ pub fn render_pairs(a: &[Triangle], b: &[Triangle], pairs: &PairSet, view: &View
     let distance = radius / (0.5 * FOV.to_radians()).sin();
     let mut up = Vector3::zeros();
     up[view.up.min(2)] = 1.0;
-    let camera = Camera { eye: centre + view.eye.normalize() * distance, target: centre, up, fov_degrees: FOV };
+    let camera = Camera {
+        eye: centre + view.eye.normalize() * distance,
+        target: centre,
+        up,
+        fov_degrees: FOV,
+    };
     let mut canvas = Canvas::new(view.size, view.size, camera);
     let hit_a: std::collections::BTreeSet<u32> = pairs.iter().map(|p| p.0).collect();
     let hit_b: std::collections::BTreeSet<u32> = pairs.iter().map(|p| p.1).collect();
     for (i, t) in a.iter().enumerate() {
-        canvas.triangle(t, if hit_a.contains(&(i as u32)) { COLOUR_HIT_A } else { COLOUR_A });
+        canvas.triangle(
+            t,
+            if hit_a.contains(&(i as u32)) {
+                COLOUR_HIT_A
+            } else {
+                COLOUR_A
+            },
+        );
     }
     for (j, t) in b.iter().enumerate() {
-        canvas.triangle(t, if hit_b.contains(&(j as u32)) { COLOUR_HIT_B } else { COLOUR_B });
+        canvas.triangle(
+            t,
+            if hit_b.contains(&(j as u32)) {
+                COLOUR_HIT_B
+            } else {
+                COLOUR_B
+            },
+        );
     }
     // The contact is often hidden by one of the objects: the hit
     // triangles' edges are drawn over everything.
-    let hits = hit_a.iter().map(|&i| (a[i as usize], COLOUR_HIT_A)).chain(hit_b.iter().map(|&j| (b[j as usize], COLOUR_HIT_B)));
+    let hits = hit_a
+        .iter()
+        .map(|&i| (a[i as usize], COLOUR_HIT_A))
+        .chain(hit_b.iter().map(|&j| (b[j as usize], COLOUR_HIT_B)));
     for (t, colour) in hits {
         for k in 0..3 {
             canvas.line_through(Point3::from(t[k]), Point3::from(t[(k + 1) % 3]), colour);
@@ -69,14 +94,32 @@ mod tests {
     /// for an empty scene.
     #[test]
     fn hits_are_drawn_in_their_colours() {
-        let a: Vec<Triangle> = vec![[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]], [[-1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]]];
-        let b: Vec<Triangle> = vec![[[0.0, -1.0, -1.0], [0.0, 1.0, -1.0], [0.0, 1.0, 1.0]], [[0.0, -1.0, -1.0], [0.0, 1.0, 1.0], [0.0, -1.0, 1.0]]];
-        let view = View { eye: Vector3::new(1.0, 0.5, 2.0), size: 96, up: 2 };
+        let a: Vec<Triangle> = vec![
+            [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]],
+            [[-1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]],
+        ];
+        let b: Vec<Triangle> = vec![
+            [[0.0, -1.0, -1.0], [0.0, 1.0, -1.0], [0.0, 1.0, 1.0]],
+            [[0.0, -1.0, -1.0], [0.0, 1.0, 1.0], [0.0, -1.0, 1.0]],
+        ];
+        let view = View {
+            eye: Vector3::new(1.0, 0.5, 2.0),
+            size: 96,
+            up: 2,
+        };
         let none = render_pairs(&a, &b, &PairSet::new(), &view);
         let some = render_pairs(&a, &b, &PairSet::from([(0, 1)]), &view);
-        let reddish = |img: &Image| img.pixels.iter().filter(|p| p[0] as u32 > 3 * p[1] as u32).count();
+        let reddish = |img: &Image| {
+            img.pixels
+                .iter()
+                .filter(|p| p[0] as u32 > 3 * p[1] as u32)
+                .count()
+        };
         assert_eq!(reddish(&none), 0);
         assert!(reddish(&some) > 50, "{}", reddish(&some));
-        assert_eq!(render_pairs(&[], &[], &PairSet::new(), &view), Image::background(96, 96));
+        assert_eq!(
+            render_pairs(&[], &[], &PairSet::new(), &view),
+            Image::background(96, 96)
+        );
     }
 }

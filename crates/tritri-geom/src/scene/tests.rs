@@ -6,14 +6,25 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 fn options(width: u32, depth: usize) -> SceneOptions {
-    SceneOptions { width, depth, split: true }
+    SceneOptions {
+        width,
+        depth,
+        split: true,
+    }
 }
 
 /// Random triangles around `centre`, some of them degenerate (segments,
 /// points, zero-area), on a coarse grid so that touching happens often.
 /// Non-degenerate triangles have edges up to `edge / 8 * spread` per axis.
-fn random_object(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], spread: f64, edge: i32) -> SceneObject {
-    let point = |rng: &mut ChaCha8Rng| centre.map(|c| c + (rng.gen_range(-8i32..=8) as f64) * spread / 8.0);
+fn random_object(
+    rng: &mut ChaCha8Rng,
+    n: usize,
+    centre: [f64; 3],
+    spread: f64,
+    edge: i32,
+) -> SceneObject {
+    let point =
+        |rng: &mut ChaCha8Rng| centre.map(|c| c + (rng.gen_range(-8i32..=8) as f64) * spread / 8.0);
     let triangles = (0..n)
         .map(|_| {
             let p = point(rng);
@@ -26,10 +37,16 @@ fn random_object(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], spread: f64, 
                 2 => {
                     // three collinear points: zero area, not coincident
                     let q = point(rng);
-                    [p, q, [2.0 * q[0] - p[0], 2.0 * q[1] - p[1], 2.0 * q[2] - p[2]]]
+                    [
+                        p,
+                        q,
+                        [2.0 * q[0] - p[0], 2.0 * q[1] - p[1], 2.0 * q[2] - p[2]],
+                    ]
                 }
                 _ => {
-                    let small = |rng: &mut ChaCha8Rng, c: f64| c + rng.gen_range(-edge..=edge) as f64 * spread / 8.0;
+                    let small = |rng: &mut ChaCha8Rng, c: f64| {
+                        c + rng.gen_range(-edge..=edge) as f64 * spread / 8.0
+                    };
                     [p, p.map(|c| small(rng, c)), p.map(|c| small(rng, c))]
                 }
             }
@@ -38,7 +55,11 @@ fn random_object(rng: &mut ChaCha8Rng, n: usize, centre: [f64; 3], spread: f64, 
     SceneObject::from_triangles("random", triangles)
 }
 
-fn brute_force(a: &[Triangle], b: &[Triangle], test: impl Fn(&Triangle, &Triangle) -> bool) -> PairSet {
+fn brute_force(
+    a: &[Triangle],
+    b: &[Triangle],
+    test: impl Fn(&Triangle, &Triangle) -> bool,
+) -> PairSet {
     let mut out = PairSet::new();
     for (i, x) in a.iter().enumerate() {
         for (j, y) in b.iter().enumerate() {
@@ -63,7 +84,12 @@ fn no_overlap_gives_no_common_bv_and_zero_pairs() {
     assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), PairSet::new());
     // An empty object has no box either.
     let empty = SceneObject::from_triangles("empty", vec![]);
-    assert_eq!(prepare(&a, &empty, &options(24, 16)).unwrap().pairs_tested(), 0);
+    assert_eq!(
+        prepare(&a, &empty, &options(24, 16))
+            .unwrap()
+            .pairs_tested(),
+        0
+    );
 }
 
 /// Boxes that only touch still give a (flat) common BV, and the touching
@@ -76,8 +102,14 @@ fn touching_boxes_give_a_flat_common_bv_and_the_touching_pair() {
     let scene = prepare(&a, &b, &options(24, 16)).unwrap();
     let common = scene.common.unwrap();
     assert_eq!(common.lo[0], common.hi[0]);
-    assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), PairSet::from([(0, 0)]));
-    assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, PairSet::from([(0, 0)]));
+    assert_eq!(
+        fixed_point_pairs(&scene.batches(), &|_| {}),
+        PairSet::from([(0, 0)])
+    );
+    assert_eq!(
+        exact_f64_pairs(&a.triangles, &b.triangles).pairs,
+        PairSet::from([(0, 0)])
+    );
 }
 
 /// Points, segments and zero-area triangles go through filtering,
@@ -96,7 +128,11 @@ fn degenerate_and_zero_area_triangles_survive_the_whole_flow() {
     assert_eq!(scene.kept_b.len(), 3);
     assert!(scene.tiling.is_split());
     let expected = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
-    assert_eq!(expected.len(), 9, "every one of these degenerate pieces meets every other: {expected:?}");
+    assert_eq!(
+        expected.len(),
+        9,
+        "every one of these degenerate pieces meets every other: {expected:?}"
+    );
     assert_eq!(fixed_point_pairs(&scene.batches(), &|_| {}), expected);
     assert_eq!(quantized_exact_pairs(&scene.batches()), expected);
     assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, expected);
@@ -114,8 +150,14 @@ fn tiling_covers_every_pair_exactly_once() {
     assert_eq!(untiled.batches().len(), 1);
     for depth in [1, 2, 5, 7, 23, 36] {
         let tiled = prepare(&a, &b, &options(12, depth)).unwrap();
-        assert_eq!(tiled.batches().len(), tiled.tiling.a_tiles * tiled.tiling.b_tiles);
-        assert!(tiled.batches().iter().all(|batch| batch.a.len() <= depth && batch.b.len() <= depth));
+        assert_eq!(
+            tiled.batches().len(),
+            tiled.tiling.a_tiles * tiled.tiling.b_tiles
+        );
+        assert!(tiled
+            .batches()
+            .iter()
+            .all(|batch| batch.a.len() <= depth && batch.b.len() <= depth));
         let mut seen = std::collections::HashMap::new();
         for batch in &tiled.batches() {
             for x in batch.a {
@@ -125,9 +167,15 @@ fn tiling_covers_every_pair_exactly_once() {
             }
         }
         assert_eq!(seen.len() as u64, untiled.pairs_tested(), "depth {depth}");
-        assert!(seen.values().all(|&n| n == 1), "depth {depth}: a pair is in two batches");
+        assert!(
+            seen.values().all(|&n| n == 1),
+            "depth {depth}: a pair is in two batches"
+        );
         assert_eq!(tiled.pairs_tested(), untiled.pairs_tested());
-        assert_eq!(fixed_point_pairs(&tiled.batches(), &|_| {}), fixed_point_pairs(&untiled.batches(), &|_| {}));
+        assert_eq!(
+            fixed_point_pairs(&tiled.batches(), &|_| {}),
+            fixed_point_pairs(&untiled.batches(), &|_| {})
+        );
     }
 }
 
@@ -139,10 +187,30 @@ fn no_split_refuses_arrays_deeper_than_the_memory() {
     let b = random_object(&mut rng, 20, [0.2, 0.0, 0.0], 1.0, 6);
     let scene = prepare(&a, &b, &options(16, 1000)).unwrap();
     let (ka, kb) = (scene.kept_a.len(), scene.kept_b.len());
-    let err = prepare(&a, &b, &SceneOptions { width: 16, depth: 4, split: false }).unwrap_err();
-    assert_eq!(err, SceneError::ExceedsDepth { kept_a: ka, kept_b: kb, depth: 4, needed: ka.max(kb) });
+    let err = prepare(
+        &a,
+        &b,
+        &SceneOptions {
+            width: 16,
+            depth: 4,
+            split: false,
+        },
+    )
+    .unwrap_err();
+    assert_eq!(
+        err,
+        SceneError::ExceedsDepth {
+            kept_a: ka,
+            kept_b: kb,
+            depth: 4,
+            needed: ka.max(kb)
+        }
+    );
     let text = err.to_string();
-    assert!(text.contains(&format!("{ka} (A)")) && text.contains("memory depth 4"), "{text}");
+    assert!(
+        text.contains(&format!("{ka} (A)")) && text.contains("memory depth 4"),
+        "{text}"
+    );
 }
 
 /// The filters lose nothing, on random small scenes at coarse and fine
@@ -162,22 +230,42 @@ fn filter_never_drops_an_intersecting_pair() {
         let a = random_object(&mut rng, 30, [0.0; 3], 1.0, edge);
         let offset = [rng.gen_range(-2.0..2.0), rng.gen_range(-1.0..1.0), 0.0];
         let b = random_object(&mut rng, 30, offset, 1.0, edge);
-        let b = b.posed(&Pose { translation: [0.0; 3], rotation_degrees: [rng.gen_range(0.0..360.0), 0.0, 0.0] });
+        let b = b.posed(&Pose {
+            translation: [0.0; 3],
+            rotation_degrees: [rng.gen_range(0.0..360.0), 0.0, 0.0],
+        });
         let scene = prepare(&a, &b, &options(width, 8)).unwrap();
         let found = fixed_point_pairs(&scene.batches(), &|_| {});
-        assert_eq!(found, quantized_exact_pairs(&scene.batches()), "round {round}");
+        assert_eq!(
+            found,
+            quantized_exact_pairs(&scene.batches()),
+            "round {round}"
+        );
 
         let truth = brute_force(&a.triangles, &b.triangles, exact_f64::intersects);
-        assert_eq!(exact_f64_pairs(&a.triangles, &b.triangles).pairs, truth, "round {round}");
+        assert_eq!(
+            exact_f64_pairs(&a.triangles, &b.triangles).pairs,
+            truth,
+            "round {round}"
+        );
         for &(i, j) in &truth {
-            assert!(scene.candidates_a.contains(&i) && scene.candidates_b.contains(&j), "round {round}: f64 pair ({i},{j}) dropped");
+            assert!(
+                scene.candidates_a.contains(&i) && scene.candidates_b.contains(&j),
+                "round {round}: f64 pair ({i},{j}) dropped"
+            );
         }
         if let Some(frame) = scene.frame {
             for &i in &scene.candidates_a {
                 for &j in &scene.candidates_b {
-                    let (qa, qb) = (frame.quantize(&a.triangles[i as usize]), frame.quantize(&b.triangles[j as usize]));
+                    let (qa, qb) = (
+                        frame.quantize(&a.triangles[i as usize]),
+                        frame.quantize(&b.triangles[j as usize]),
+                    );
                     if fixed_point::intersects(&qa, &qb) {
-                        assert!(found.contains(&(i, j)), "round {round}: quantized pair ({i},{j}) dropped by the integer filter");
+                        assert!(
+                            found.contains(&(i, j)),
+                            "round {round}: quantized pair ({i},{j}) dropped by the integer filter"
+                        );
                     }
                 }
             }
@@ -190,14 +278,25 @@ fn filter_never_drops_an_intersecting_pair() {
 #[test]
 fn default_scene_filter_saves_pairs_and_keeps_every_hit() {
     let (a, b) = crate::builtin_scene::default_scene();
-    let (a, b) = (SceneObject::from_triangles("@torus", a), SceneObject::from_triangles("@sphere", b));
+    let (a, b) = (
+        SceneObject::from_triangles("@torus", a),
+        SceneObject::from_triangles("@sphere", b),
+    );
     let scene = prepare(&a, &b, &options(24, 4096)).unwrap();
-    assert!(scene.pairs_tested() * 4 < scene.all_pairs(), "{} of {}", scene.pairs_tested(), scene.all_pairs());
+    assert!(
+        scene.pairs_tested() * 4 < scene.all_pairs(),
+        "{} of {}",
+        scene.pairs_tested(),
+        scene.all_pairs()
+    );
     let quantized = fixed_point_pairs(&scene.batches(), &|_| {});
     let truth = exact_f64_pairs(&a.triangles, &b.triangles).pairs;
     assert!(truth.len() > 10);
     let diff = reference::PairDiff::between(&truth, &quantized);
-    assert!(diff.missing.len() + diff.extra.len() <= truth.len() / 20, "{diff:?}");
+    assert!(
+        diff.missing.len() + diff.extra.len() <= truth.len() / 20,
+        "{diff:?}"
+    );
 }
 
 /// The system's batch cost with overlapped banks (a copy for these tests;
@@ -242,7 +341,11 @@ fn brute_force_fixed(a: &[TaggedTriangle], b: &[TaggedTriangle]) -> PairSet {
 /// The owner rule: every pair found is owned by exactly one leaf, the first
 /// that holds both triangles, and reporting each leaf's hits only where it
 /// owns them gives every pair once.
-fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &PairSet, context: &str) {
+fn assert_each_pair_reported_once(
+    schedule: &octree::OctreeSchedule,
+    expected: &PairSet,
+    context: &str,
+) {
     assert_slots_decide_as_the_owner_rule(schedule, context);
     let mut reported = Vec::new();
     for (k, leaf) in schedule.leaves.iter().enumerate() {
@@ -250,8 +353,13 @@ fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &
         for x in la {
             for y in lb {
                 if fixed_point::intersects(&x.triangle, &y.triangle) {
-                    let owner = schedule.owner(x.id, y.id).expect("a pair tested in a leaf has an owner");
-                    assert!(owner <= k, "{context}: owner {owner} after a leaf {k} holding both");
+                    let owner = schedule
+                        .owner(x.id, y.id)
+                        .expect("a pair tested in a leaf has an owner");
+                    assert!(
+                        owner <= k,
+                        "{context}: owner {owner} after a leaf {k} holding both"
+                    );
                     if owner == k {
                         reported.push((x.id, y.id));
                     }
@@ -260,7 +368,11 @@ fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &
         }
     }
     let unique: PairSet = reported.iter().copied().collect();
-    assert_eq!(unique.len(), reported.len(), "{context}: a pair reported twice");
+    assert_eq!(
+        unique.len(),
+        reported.len(),
+        "{context}: a pair reported twice"
+    );
     assert_eq!(&unique, expected, "{context}");
 }
 
@@ -270,17 +382,32 @@ fn assert_each_pair_reported_once(schedule: &octree::OctreeSchedule, expected: &
 /// comparisons the hardware's cycle model relies on.
 fn assert_slots_decide_as_the_owner_rule(schedule: &octree::OctreeSchedule, context: &str) {
     let slots = owner_slots::OwnerSlots::of(schedule);
-    assert_eq!(slots.a.len(), schedule.a.len(), "{context}: one slot per entry");
+    assert_eq!(
+        slots.a.len(),
+        schedule.a.len(),
+        "{context}: one slot per entry"
+    );
     for (k, leaf) in schedule.leaves.iter().enumerate() {
         for i in leaf.a.clone() {
             for j in leaf.b.clone() {
                 let (sa, sb) = (slots.a_slot[i], slots.b_slot[j]);
                 let (x, y) = (slots.a[sa as usize], slots.b[sb as usize]);
-                assert_eq!((x.id, y.id, x.leaf, y.leaf), (schedule.a[i].id, schedule.b[j].id, k as u32, k as u32), "{context}");
+                assert_eq!(
+                    (x.id, y.id, x.leaf, y.leaf),
+                    (schedule.a[i].id, schedule.b[j].id, k as u32, k as u32),
+                    "{context}"
+                );
                 let decision = slots.decide(sa, sb);
                 let owner = schedule.owner(x.id, y.id) == Some(k);
-                assert_eq!(decision.owner, owner, "{context}: leaf {k}, pair ({}, {})", x.id, y.id);
-                assert!(decision.comparisons <= (sa - x.first) + (sb - y.first) + 1, "{context}");
+                assert_eq!(
+                    decision.owner, owner,
+                    "{context}: leaf {k}, pair ({}, {})",
+                    x.id, y.id
+                );
+                assert!(
+                    decision.comparisons <= (sa - x.first) + (sb - y.first) + 1,
+                    "{context}"
+                );
             }
         }
     }
@@ -302,27 +429,69 @@ fn octree_finds_the_flat_pairs_each_once() {
         let b = random_object(&mut rng, 120, offset, 1.0, edge);
         let depth = [4, 16, 64][round % 3];
         let flat = prepare(&a, &b, &options(width, depth)).unwrap();
-        let tree = prepare_octree(&a, &b, &options(width, depth), &OverlappedCycles { pipelines: 2 }, None).unwrap();
+        let tree = prepare_octree(
+            &a,
+            &b,
+            &options(width, depth),
+            &OverlappedCycles { pipelines: 2 },
+            None,
+        )
+        .unwrap();
         let expected = fixed_point_pairs(&flat.batches(), &|_| {});
-        assert_eq!(fixed_point_pairs(&tree.batches(), &|_| {}), expected, "round {round}");
-        assert_eq!(quantized_exact_pairs(&tree.batches()), expected, "round {round}");
+        assert_eq!(
+            fixed_point_pairs(&tree.batches(), &|_| {}),
+            expected,
+            "round {round}"
+        );
+        assert_eq!(
+            quantized_exact_pairs(&tree.batches()),
+            expected,
+            "round {round}"
+        );
         let schedule = tree.octree.as_ref().expect("octree scheduled");
         assert_each_pair_reported_once(schedule, &expected, &format!("round {round}"));
-        assert!(tree.batches().iter().all(|b| b.a.len() <= depth && b.b.len() <= depth));
+        assert!(tree
+            .batches()
+            .iter()
+            .all(|b| b.a.len() <= depth && b.b.len() <= depth));
         split_scenes += (schedule.tree_depth > 0) as usize;
         // Charging the binning unit's classifications: the same pairs, each
         // once, from no more cells, and the cycles of those charged.
-        let binned = prepare_octree(&a, &b, &options(width, depth), &WithBinning(OverlappedCycles { pipelines: 2 }), None).unwrap();
-        assert_eq!(fixed_point_pairs(&binned.batches(), &|_| {}), expected, "round {round}, binning charged");
+        let binned = prepare_octree(
+            &a,
+            &b,
+            &options(width, depth),
+            &WithBinning(OverlappedCycles { pipelines: 2 }),
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            fixed_point_pairs(&binned.batches(), &|_| {}),
+            expected,
+            "round {round}, binning charged"
+        );
         let binned_schedule = binned.octree.as_ref().expect("octree scheduled");
-        assert_each_pair_reported_once(binned_schedule, &expected, &format!("round {round}, binning charged"));
-        assert!(binned_schedule.cells_visited <= schedule.cells_visited, "round {round}");
+        assert_each_pair_reported_once(
+            binned_schedule,
+            &expected,
+            &format!("round {round}, binning charged"),
+        );
+        assert!(
+            binned_schedule.cells_visited <= schedule.cells_visited,
+            "round {round}"
+        );
         fewer_cells += (binned_schedule.cells_visited < schedule.cells_visited) as usize;
         assert_eq!(schedule.classify_cycles, 0);
-        assert!(binned_schedule.classify_cycles >= binned_schedule.cells_visited * 6, "round {round}");
+        assert!(
+            binned_schedule.classify_cycles >= binned_schedule.cells_visited * 6,
+            "round {round}"
+        );
     }
     assert!(split_scenes > 30, "only {split_scenes} scenes split");
-    assert!(fewer_cells > 10, "charging classification cut cells in only {fewer_cells} scenes");
+    assert!(
+        fewer_cells > 10,
+        "charging classification cut cells in only {fewer_cells} scenes"
+    );
 }
 
 /// Triangles lying exactly on cell faces, along cell edges and at cell
@@ -361,16 +530,33 @@ fn octree_pairs_straddling_cell_faces_edges_and_corners() {
                             (q, q)
                         }
                     };
-                    TaggedTriangle { id: base + i, triangle: [p, q, r] }
+                    TaggedTriangle {
+                        id: base + i,
+                        triangle: [p, q, r],
+                    }
                 })
                 .collect()
         };
         let (a, b) = (object(&mut rng, 0), object(&mut rng, 0));
-        let root = Aabb { lo: [0; 3], hi: [side; 3] };
+        let root = Aabb {
+            lo: [0; 3],
+            hi: [side; 3],
+        };
         let expected = brute_force_fixed(&a, &b);
         for depth in [2, 8] {
-            let schedule = octree::schedule(&a, &b, &root, depth, &OverlappedCycles { pipelines: 1 }, None);
-            assert_each_pair_reported_once(&schedule, &expected, &format!("round {round}, depth {depth}"));
+            let schedule = octree::schedule(
+                &a,
+                &b,
+                &root,
+                depth,
+                &OverlappedCycles { pipelines: 1 },
+                None,
+            );
+            assert_each_pair_reported_once(
+                &schedule,
+                &expected,
+                &format!("round {round}, depth {depth}"),
+            );
         }
     }
 }
@@ -382,12 +568,24 @@ fn octree_pairs_straddling_cell_faces_edges_and_corners() {
 fn octree_stops_on_coplanar_overlaps_deeper_than_the_memory() {
     let big = 1i64 << 22;
     let object = |shift: i64| -> Vec<TaggedTriangle> {
-        (0..12).map(|i| TaggedTriangle { id: i as u32, triangle: [[-big + shift * i, -big, 0], [big, -big + i, 0], [0, big, 0]] }).collect()
+        (0..12)
+            .map(|i| TaggedTriangle {
+                id: i as u32,
+                triangle: [[-big + shift * i, -big, 0], [big, -big + i, 0], [0, big, 0]],
+            })
+            .collect()
     };
     let (a, b) = (object(3), object(-5));
-    let root = Aabb { lo: [-big; 3], hi: [big; 3] };
+    let root = Aabb {
+        lo: [-big; 3],
+        hi: [big; 3],
+    };
     let schedule = octree::schedule(&a, &b, &root, 2, &OverlappedCycles { pipelines: 2 }, None);
-    assert!(schedule.cells_visited < 10_000, "{} cells", schedule.cells_visited);
+    assert!(
+        schedule.cells_visited < 10_000,
+        "{} cells",
+        schedule.cells_visited
+    );
     assert_each_pair_reported_once(&schedule, &brute_force_fixed(&a, &b), "coplanar");
 }
 
@@ -397,9 +595,16 @@ fn octree_stops_on_coplanar_overlaps_deeper_than_the_memory() {
 fn slab_object(rng: &mut ChaCha8Rng, n: usize) -> SceneObject {
     let triangles = (0..n)
         .map(|i| {
-            let p = [rng.gen_range(-0.3..0.3), rng.gen_range(-0.3..0.3), rng.gen_range(-0.01..0.01)];
+            let p = [
+                rng.gen_range(-0.3..0.3),
+                rng.gen_range(-0.3..0.3),
+                rng.gen_range(-0.01..0.01),
+            ];
             let size = if i % 20 == 0 { 0.3 } else { 0.02 };
-            let mut near = || [0, 1, 2].map(|k| p[k] + rng.gen_range(-size..size) / if k == 2 { 4.0 } else { 2.0 });
+            let mut near = || {
+                [0, 1, 2]
+                    .map(|k| p[k] + rng.gen_range(-size..size) / if k == 2 { 4.0 } else { 2.0 })
+            };
             match i % 10 {
                 0 => [p, p, p],
                 1 => [p, near(), p],
@@ -425,21 +630,46 @@ fn local_frames_keep_the_grid_answer_with_fewer_bits() {
         let (a, b) = (slab_object(&mut rng, 1500), slab_object(&mut rng, 1500));
         let flat = prepare(&a, &b, &options(grid, 32)).unwrap();
         let local = Some(octree::LocalFrames { width });
-        let tree = prepare_octree(&a, &b, &options(grid, 32), &OverlappedCycles { pipelines: 2 }, local).unwrap();
+        let tree = prepare_octree(
+            &a,
+            &b,
+            &options(grid, 32),
+            &OverlappedCycles { pipelines: 2 },
+            local,
+        )
+        .unwrap();
         let mut found = fixed_point_pairs(&tree.batches(), &|_| {});
         found.extend(fixed_point_pairs(&tree.host_batches(), &|_| {}));
-        assert_eq!(found, fixed_point_pairs(&flat.batches(), &|_| {}), "round {round}");
+        assert_eq!(
+            found,
+            fixed_point_pairs(&flat.batches(), &|_| {}),
+            "round {round}"
+        );
         hits += found.len();
         let half = 1i64 << (width - 1);
         for batch in tree.batches() {
-            assert!(batch.a.iter().chain(batch.b).all(|t| t.triangle.iter().flatten().all(|c| (-half..half).contains(c))), "round {round}");
+            assert!(
+                batch.a.iter().chain(batch.b).all(|t| t
+                    .triangle
+                    .iter()
+                    .flatten()
+                    .all(|c| (-half..half).contains(c))),
+                "round {round}"
+            );
         }
         let schedule = tree.octree.as_ref().unwrap();
         assert!(schedule.leaves.iter().all(|l| l.cell.level <= width - 2));
-        assert!(schedule.cells_visited < 100_000, "round {round}: {} cells", schedule.cells_visited);
+        assert!(
+            schedule.cells_visited < 100_000,
+            "round {round}: {} cells",
+            schedule.cells_visited
+        );
         hosted += tree.host_pairs();
         sent += tree.pairs_tested();
     }
     // Both routes are exercised.
-    assert!(hosted > 0 && sent > 0 && hits > 300, "host {hosted}, hardware {sent}, intersecting {hits}");
+    assert!(
+        hosted > 0 && sent > 0 && hits > 300,
+        "host {hosted}, hardware {sent}, intersecting {hits}"
+    );
 }

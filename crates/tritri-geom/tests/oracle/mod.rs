@@ -164,7 +164,10 @@ struct Oracle {
 
 impl Oracle {
     fn new(t1: &Triangle, t2: &Triangle, use_filter: bool) -> Self {
-        assert!(t1.iter().chain(t2.iter()).flatten().all(|x| x.is_finite()), "the oracle takes finite coordinates");
+        assert!(
+            t1.iter().chain(t2.iter()).flatten().all(|x| x.is_finite()),
+            "the oracle takes finite coordinates"
+        );
         let lift = |t: &Triangle| t.map(|p| p.map(Bounded::exact));
         Oracle {
             approx: vectors(&lift(t1), &lift(t2)),
@@ -199,7 +202,10 @@ impl Oracle {
         }
         cross_axes().any(|axis| {
             let n = axis_vector(axis, &self.approx);
-            self.approx.edges.iter().any(|g| matches!(dot(&n, g).sign(), Some(s) if s != Ordering::Equal))
+            self.approx
+                .edges
+                .iter()
+                .any(|g| matches!(dot(&n, g).sign(), Some(s) if s != Ordering::Equal))
         })
     }
 
@@ -214,7 +220,8 @@ impl Oracle {
         }
         let exact = self.exact_vectors();
         let n = axis_vector(axis, exact);
-        let signs: [Ordering; 9] = std::array::from_fn(|k| dot(&n, &exact.differences[k]).cmp(&BigInt::zero()));
+        let signs: [Ordering; 9] =
+            std::array::from_fn(|k| dot(&n, &exact.differences[k]).cmp(&BigInt::zero()));
         separates(&signs)
     }
 }
@@ -225,8 +232,12 @@ fn filtered_decision(signs: &[Option<Ordering>; 9]) -> Option<bool> {
     if signs.iter().all(Option::is_some) {
         return Some(separates(&signs.map(Option::unwrap)));
     }
-    let non_negative = signs.iter().any(|s| matches!(s, Some(Ordering::Greater | Ordering::Equal)));
-    let non_positive = signs.iter().any(|s| matches!(s, Some(Ordering::Less | Ordering::Equal)));
+    let non_negative = signs
+        .iter()
+        .any(|s| matches!(s, Some(Ordering::Greater | Ordering::Equal)));
+    let non_positive = signs
+        .iter()
+        .any(|s| matches!(s, Some(Ordering::Less | Ordering::Equal)));
     if non_negative && non_positive {
         return Some(false);
     }
@@ -266,9 +277,22 @@ pub fn decompose(x: f64) -> (i64, i32) {
 /// The 18 coordinates as integers `X` with `x = X * 2^s` for one common `s`
 /// (the smallest exponent present). Scaling by a positive constant changes
 /// no sign of any homogeneous polynomial the test evaluates.
-fn to_common_scale_integers(t1: &Triangle, t2: &Triangle) -> ([Vec3<BigInt>; 3], [Vec3<BigInt>; 3]) {
-    let all: Vec<(i64, i32)> = t1.iter().chain(t2.iter()).flatten().map(|&x| decompose(x)).collect();
-    let scale = all.iter().filter(|(m, _)| *m != 0).map(|&(_, e)| e).min().unwrap_or(0);
+fn to_common_scale_integers(
+    t1: &Triangle,
+    t2: &Triangle,
+) -> ([Vec3<BigInt>; 3], [Vec3<BigInt>; 3]) {
+    let all: Vec<(i64, i32)> = t1
+        .iter()
+        .chain(t2.iter())
+        .flatten()
+        .map(|&x| decompose(x))
+        .collect();
+    let scale = all
+        .iter()
+        .filter(|(m, _)| *m != 0)
+        .map(|&(_, e)| e)
+        .min()
+        .unwrap_or(0);
     let int = |k: usize| {
         let (m, e) = all[k];
         if m == 0 {
@@ -278,7 +302,10 @@ fn to_common_scale_integers(t1: &Triangle, t2: &Triangle) -> ([Vec3<BigInt>; 3],
         }
     };
     let point = |p: usize| [int(3 * p), int(3 * p + 1), int(3 * p + 2)];
-    ([point(0), point(1), point(2)], [point(3), point(4), point(5)])
+    (
+        [point(0), point(1), point(2)],
+        [point(3), point(4), point(5)],
+    )
 }
 
 // ---------------------------------------------------------------------------
@@ -350,7 +377,10 @@ impl Bounded {
                 return Bounded { v: s, e: 0.0 };
             }
         }
-        Bounded { v: s, e: (ea + eb + UNIT_ROUNDOFF * s.abs()) * INFLATE + TINY }
+        Bounded {
+            v: s,
+            e: (ea + eb + UNIT_ROUNDOFF * s.abs()) * INFLATE + TINY,
+        }
     }
 }
 
@@ -367,10 +397,17 @@ impl Arith for Bounded {
         }
         let p = self.v * o.v;
         // The FMA residual is the exact rounding error when nothing underflows.
-        if self.e == 0.0 && o.e == 0.0 && p.abs() >= TINY && p.is_finite() && self.v.mul_add(o.v, -p) == 0.0 {
+        if self.e == 0.0
+            && o.e == 0.0
+            && p.abs() >= TINY
+            && p.is_finite()
+            && self.v.mul_add(o.v, -p) == 0.0
+        {
             return Bounded { v: p, e: 0.0 };
         }
-        let e = (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + UNIT_ROUNDOFF * p.abs()) * INFLATE + TINY;
+        let e = (self.v.abs() * o.e + o.v.abs() * self.e + self.e * o.e + UNIT_ROUNDOFF * p.abs())
+            * INFLATE
+            + TINY;
         Bounded { v: p, e }
     }
 }
@@ -379,12 +416,16 @@ impl Arith for Bounded {
 /// does iff it meets one of the 12 triangles of the box's surface or has a
 /// vertex inside the box (a convex set meeting a box either crosses its
 /// boundary or lies inside it); the surface test is [`intersects`].
-pub fn triangle_touches_box(t: &[[i64; 3]; 3], b: &tritri_geom::bounding_volume::Aabb<i64>) -> bool {
+pub fn triangle_touches_box(
+    t: &[[i64; 3]; 3],
+    b: &tritri_geom::bounding_volume::Aabb<i64>,
+) -> bool {
     let inside = |p: &[i64; 3]| (0..3).all(|k| b.lo[k] <= p[k] && p[k] <= b.hi[k]);
     if t.iter().any(inside) {
         return true;
     }
-    let corner = |o: usize| [0, 1, 2].map(|k| if o >> k & 1 == 1 { b.hi[k] } else { b.lo[k] } as f64);
+    let corner =
+        |o: usize| [0, 1, 2].map(|k| if o >> k & 1 == 1 { b.hi[k] } else { b.lo[k] } as f64);
     let tf = t.map(|p| p.map(|c| c as f64));
     // Each face of the box as two triangles: the four corners with bit k fixed.
     for k in 0..3 {
@@ -392,7 +433,9 @@ pub fn triangle_touches_box(t: &[[i64; 3]; 3], b: &tritri_geom::bounding_volume:
             let corners: Vec<usize> = (0..8).filter(|o| o >> k & 1 == side).collect();
             // corners in the face, ordered around it: 0, 1, 3, 2 of the two free bits.
             let quad = [corners[0], corners[1], corners[3], corners[2]].map(corner);
-            if intersects(&tf, &[quad[0], quad[1], quad[2]]) || intersects(&tf, &[quad[0], quad[2], quad[3]]) {
+            if intersects(&tf, &[quad[0], quad[1], quad[2]])
+                || intersects(&tf, &[quad[0], quad[2], quad[3]])
+            {
                 return true;
             }
         }

@@ -40,7 +40,10 @@ pub fn surface(mesh: &Mesh, n: i64, s: i64) -> Vec<[i64; 3]> {
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
                 for z in lo[2]..=hi[2] {
-                    let cube = Aabb { lo: [x * s, y * s, z * s], hi: [(x + 1) * s, (y + 1) * s, (z + 1) * s] };
+                    let cube = Aabb {
+                        lo: [x * s, y * s, z * s],
+                        hi: [(x + 1) * s, (y + 1) * s, (z + 1) * s],
+                    };
                     if super::triangle_touches_box(t, &cube) {
                         out.insert([x, y, z]);
                     }
@@ -88,7 +91,10 @@ pub fn solid_by_columns(mesh: &Mesh, n: i64, s: i64) -> Vec<[i64; 3]> {
     for x in 0..n {
         for y in 0..n {
             for z in 0..n {
-                let candidates: Vec<[[i64; 3]; 3]> = columns[(z * n + y) as usize].iter().map(|&i| mesh[i]).collect();
+                let candidates: Vec<[[i64; 3]; 3]> = columns[(z * n + y) as usize]
+                    .iter()
+                    .map(|&i| mesh[i])
+                    .collect();
                 if inside_or_on(&candidates, [foot(x), foot(y), foot(z)].map(i128::from)) {
                     out.push([x, y, z]);
                 }
@@ -106,13 +112,20 @@ fn inside_or_on(mesh: &Mesh, c: [i128; 3]) -> bool {
             return true;
         }
         // Cheap rejections: the ray only goes towards +x.
-        let all = |k: usize, below: bool| p.iter().all(|v| if below { v[k] < c[k] } else { v[k] > c[k] });
+        let all = |k: usize, below: bool| {
+            p.iter()
+                .all(|v| if below { v[k] < c[k] } else { v[k] > c[k] })
+        };
         if all(0, true) || all(1, true) || all(1, false) || all(2, true) || all(2, false) {
             continue;
         }
         let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
         let w = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
-        let normal = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]];
+        let normal = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
         if normal[0] == 0 {
             continue;
         }
@@ -122,7 +135,11 @@ fn inside_or_on(mesh: &Mesh, c: [i128; 3]) -> bool {
             let (a, b) = (p[e], p[(e + 1) % 3]);
             let exact = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
             // d/dy = -(b_z - a_z) (the ε term), d/dz = b_y - a_y (ε²).
-            let sign = [exact, a[2] - b[2], b[1] - a[1]].into_iter().find(|&v| v != 0).unwrap_or(0).signum();
+            let sign = [exact, a[2] - b[2], b[1] - a[1]]
+                .into_iter()
+                .find(|&v| v != 0)
+                .unwrap_or(0)
+                .signum();
             (sign > 0) == ccw && sign != 0
         });
         if !inside {
@@ -140,7 +157,13 @@ fn inside_or_on(mesh: &Mesh, c: [i128; 3]) -> bool {
 /// Is `c` on the closed triangle (any triangle, degenerate ones too)?
 fn point_on_triangle(p: &[[i128; 3]; 3], c: [i128; 3]) -> bool {
     let d = |a: [i128; 3], b: [i128; 3]| [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let x = |u: [i128; 3], v: [i128; 3]| [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    let x = |u: [i128; 3], v: [i128; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
     let dot = |u: [i128; 3], v: [i128; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
     let normal = x(d(p[0], p[1]), d(p[0], p[2]));
     if normal == [0; 3] {

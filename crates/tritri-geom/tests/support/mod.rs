@@ -9,15 +9,21 @@ use std::time::Instant;
 /// Runs `check` on every item, split over the available cores; returns the
 /// indices where it returned false (sorted) and how long it took.
 pub fn failures<T: Sync>(items: &[T], check: impl Fn(&T) -> bool + Sync) -> Vec<usize> {
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).max(1);
+    let threads = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .max(1);
     let chunk = items.len().div_ceil(threads).max(1);
     let found = Mutex::new(Vec::new());
     std::thread::scope(|scope| {
         for (c, part) in items.chunks(chunk).enumerate() {
             let (found, check) = (&found, &check);
             scope.spawn(move || {
-                let bad: Vec<usize> =
-                    part.iter().enumerate().filter(|(_, item)| !check(item)).map(|(i, _)| c * chunk + i).collect();
+                let bad: Vec<usize> = part
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, item)| !check(item))
+                    .map(|(i, _)| c * chunk + i)
+                    .collect();
                 found.lock().unwrap().extend(bad);
             });
         }

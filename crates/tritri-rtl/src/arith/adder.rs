@@ -76,7 +76,10 @@ impl<const N: usize> crate::unit::Unit for RegisteredSum3<N> {
 impl<const N: usize> Logic for RegisteredSum3<N> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
-            let v = wrap_i128(to_i128(self.a.val()) + to_i128(self.b.val()) + to_i128(self.c.val()), N);
+            let v = wrap_i128(
+                to_i128(self.a.val()) + to_i128(self.b.val()) + to_i128(self.c.val()),
+                N,
+            );
             self.sum.next = from_i128::<N>(v);
         }
     }

@@ -85,7 +85,8 @@ impl<const D: usize> Logic for MagnitudeThermometer<D> {
         }
         dff_setup!(self, clock, magnitudes_q, thermometer_q);
         if self.advance.val() {
-            self.magnitudes_q.d.next = self.magnitude[0].val() | self.magnitude[1].val() | self.magnitude[2].val();
+            self.magnitudes_q.d.next =
+                self.magnitude[0].val() | self.magnitude[1].val() | self.magnitude[2].val();
         }
         self.smear[0].next = self.magnitudes_q.q.val();
         self.smear[1].next = self.smear[0].val() | (self.smear[0].val() >> 1);
@@ -140,7 +141,9 @@ impl<const O: usize, const D: usize> crate::unit::Unit for CertainSign<O, D> {
 
 /// Bits `i` with `i mod 2s < s`: where the expansion step by `s` keeps bits.
 fn spread_mask<const O: usize>(step: u64) -> Bits<O> {
-    (0..O).filter(|i| (*i as u64) % (2 * step) < step).fold(Bits::<O>::default(), |m, i| m.replace_bit(i, true))
+    (0..O)
+        .filter(|i| (*i as u64) % (2 * step) < step)
+        .fold(Bits::<O>::default(), |m, i| m.replace_bit(i, true))
 }
 
 impl<const O: usize, const D: usize> Default for CertainSign<O, D> {
@@ -175,13 +178,20 @@ impl<const O: usize, const D: usize> Logic for CertainSign<O, D> {
         // Bit i of the thermometer to bit 2i (Morton expansion), then to
         // bits 2i and 2i + 1, then five places up.
         self.spread[0].next = bit_cast::<O, D>(self.thermometer.val());
-        self.spread[1].next = (self.spread[0].val() | (self.spread[0].val() << 32)) & self.spread_mask[0].val();
-        self.spread[2].next = (self.spread[1].val() | (self.spread[1].val() << 16)) & self.spread_mask[1].val();
-        self.spread[3].next = (self.spread[2].val() | (self.spread[2].val() << 8)) & self.spread_mask[2].val();
-        self.spread[4].next = (self.spread[3].val() | (self.spread[3].val() << 4)) & self.spread_mask[3].val();
-        self.spread[5].next = (self.spread[4].val() | (self.spread[4].val() << 2)) & self.spread_mask[4].val();
-        self.spread[6].next = (self.spread[5].val() | (self.spread[5].val() << 1)) & self.spread_mask[5].val();
-        self.mask.next = ((self.spread[6].val() | (self.spread[6].val() << 1)) << 5) | self.low_five.val();
+        self.spread[1].next =
+            (self.spread[0].val() | (self.spread[0].val() << 32)) & self.spread_mask[0].val();
+        self.spread[2].next =
+            (self.spread[1].val() | (self.spread[1].val() << 16)) & self.spread_mask[1].val();
+        self.spread[3].next =
+            (self.spread[2].val() | (self.spread[2].val() << 8)) & self.spread_mask[2].val();
+        self.spread[4].next =
+            (self.spread[3].val() | (self.spread[3].val() << 4)) & self.spread_mask[3].val();
+        self.spread[5].next =
+            (self.spread[4].val() | (self.spread[4].val() << 2)) & self.spread_mask[4].val();
+        self.spread[6].next =
+            (self.spread[5].val() | (self.spread[5].val() << 1)) & self.spread_mask[5].val();
+        self.mask.next =
+            ((self.spread[6].val() | (self.spread[6].val() << 1)) << 5) | self.low_five.val();
         if self.value.val().get_bit(self.top_bit.val().index()) {
             self.magnitude.next = !self.value.val();
         } else {
@@ -248,7 +258,21 @@ mod tests {
         let (lo, hi) = (-(1i128 << (O - 1)), (1i128 << (O - 1)) - 1);
         for m in 1..=D as u32 {
             let t = 2i128 << (2 * m + 4);
-            for p in [0, 1, -1, t - 1, t, t + 1, -t + 1, -t, -t - 1, 2 * t, -2 * t, lo, hi] {
+            for p in [
+                0,
+                1,
+                -1,
+                t - 1,
+                t,
+                t + 1,
+                -t + 1,
+                -t,
+                -t - 1,
+                2 * t,
+                -2 * t,
+                lo,
+                hi,
+            ] {
                 let p = p.clamp(lo, hi);
                 uut.value.next = from_i128::<O>(p);
                 uut.thermometer.next = Bits::from((1u64 << m) - 1);

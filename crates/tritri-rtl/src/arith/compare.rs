@@ -55,7 +55,8 @@ impl<const W: usize> Logic for CoordinateCompare<W> {
     fn update(&mut self) {
         dff_setup!(self, clock, less_q, equal_q);
         if self.advance.val() {
-            self.less_q.d.next = (self.a.val() ^ self.sign_flip.val()) < (self.b.val() ^ self.sign_flip.val());
+            self.less_q.d.next =
+                (self.a.val() ^ self.sign_flip.val()) < (self.b.val() ^ self.sign_flip.val());
             self.equal_q.d.next = self.a.val() == self.b.val();
         }
         self.less.next = self.less_q.q.val();

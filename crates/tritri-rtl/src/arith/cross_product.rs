@@ -37,7 +37,12 @@ impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct<D, C> {
 
 impl<const D: usize, const C: usize> Default for CrossProduct<D, C> {
     fn default() -> Self {
-        assert_eq!(C, 2 * D - 1, "a cross product of {D}-bit differences has {} bits", 2 * D - 1);
+        assert_eq!(
+            C,
+            2 * D - 1,
+            "a cross product of {D}-bit differences has {} bits",
+            2 * D - 1
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -106,7 +111,12 @@ impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct2d<D, C> 
 
 impl<const D: usize, const C: usize> Default for CrossProduct2d<D, C> {
     fn default() -> Self {
-        assert_eq!(C, 2 * D - 1, "a cross product of {D}-bit differences has {} bits", 2 * D - 1);
+        assert_eq!(
+            C,
+            2 * D - 1,
+            "a cross product of {D}-bit differences has {} bits",
+            2 * D - 1
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),

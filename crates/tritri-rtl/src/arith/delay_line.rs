@@ -58,8 +58,18 @@ impl<T: Synth, const N: usize> Logic for DelayLine<T, N> {
 /// Verilog of an `n`-stage, `bits`-wide enabled shift register ending in `q`;
 /// with `reset = Some(signal)`, a synchronous active-high reset clears it.
 pub(crate) fn delay_line_verilog(bits: usize, n: usize, reset: Option<&str>) -> String {
-    let range = if bits == 1 { String::new() } else { format!("[{}:0] ", bits - 1) };
-    let name = |i: usize| if i + 1 == n { "q".to_string() } else { format!("stage_{i}_q") };
+    let range = if bits == 1 {
+        String::new()
+    } else {
+        format!("[{}:0] ", bits - 1)
+    };
+    let name = |i: usize| {
+        if i + 1 == n {
+            "q".to_string()
+        } else {
+            format!("stage_{i}_q")
+        }
+    };
     let mut v = format!("// Delay line: {n} stage(s) of {bits} bit(s).\n");
     for i in 0..n - 1 {
         v += &format!("reg {range}{};\n", name(i));

@@ -36,7 +36,11 @@ impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit for DotPr
 
 impl<const D: usize, const C: usize, const O: usize> Default for DotProduct<D, C, O> {
     fn default() -> Self {
-        assert!(O <= D + C, "a dot product of {D}-bit by {C}-bit vectors has at most {} bits", D + C);
+        assert!(
+            O <= D + C,
+            "a dot product of {D}-bit by {C}-bit vectors has at most {} bits",
+            D + C
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),

@@ -53,7 +53,10 @@ impl<const A: usize, const B: usize, const P: usize> crate::unit::Unit for Multi
 
 impl<const A: usize, const B: usize, const P: usize> Default for Multiplier<A, B, P> {
     fn default() -> Self {
-        assert!(P <= A + B && A + B <= 126, "multiplier {A} x {B} -> {P} bits is not supported");
+        assert!(
+            P <= A + B && A + B <= 126,
+            "multiplier {A} x {B} -> {P} bits is not supported"
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -123,8 +126,12 @@ end
 fn signed_operands(a: usize, b: usize) -> String {
     match a.cmp(&b) {
         std::cmp::Ordering::Equal => "a_q * b_q".to_string(),
-        std::cmp::Ordering::Less => format!("$signed({{{{{}{{a_q[{}]}}}}, a_q}}) * b_q", b - a, a - 1),
-        std::cmp::Ordering::Greater => format!("a_q * $signed({{{{{}{{b_q[{}]}}}}, b_q}})", a - b, b - 1),
+        std::cmp::Ordering::Less => {
+            format!("$signed({{{{{}{{a_q[{}]}}}}, a_q}}) * b_q", b - a, a - 1)
+        }
+        std::cmp::Ordering::Greater => {
+            format!("a_q * $signed({{{{{}{{b_q[{}]}}}}, b_q}})", a - b, b - 1)
+        }
     }
 }
 
@@ -159,18 +166,34 @@ pub fn ecp5_verilog(a: usize, b: usize, p: usize) -> Option<String> {
         return None;
     }
     // `x` is the operand that stays whole, `y` the one that may split.
-    let (x, xb, y, yb) = if a > DSP_BITS { ("b", b, "a", a) } else { ("a", a, "b", b) };
+    let (x, xb, y, yb) = if a > DSP_BITS {
+        ("b", b, "a", a)
+    } else {
+        ("a", a, "b", b)
+    };
     let mut v = format!(
         "// Registered signed multiplier {a} x {b} -> {p} bits (product modulo 2^{p}), on ECP5\n\
          // MULT18X18D blocks with their input, pipeline and output registers.\n"
     );
-    v.push_str(&format!("wire [17:0] {x}_x = {};\n", sign_extend(x, xb, 0, DSP_BITS)));
+    v.push_str(&format!(
+        "wire [17:0] {x}_x = {};\n",
+        sign_extend(x, xb, 0, DSP_BITS)
+    ));
     let two = yb > DSP_BITS;
     if two {
-        v.push_str(&format!("wire [17:0] {y}_lo = {{1'b0, {y}[{}:0]}};\n", LOW_LIMB_BITS - 1));
-        v.push_str(&format!("wire [17:0] {y}_hi = {};\n", sign_extend(y, yb, LOW_LIMB_BITS, DSP_BITS)));
+        v.push_str(&format!(
+            "wire [17:0] {y}_lo = {{1'b0, {y}[{}:0]}};\n",
+            LOW_LIMB_BITS - 1
+        ));
+        v.push_str(&format!(
+            "wire [17:0] {y}_hi = {};\n",
+            sign_extend(y, yb, LOW_LIMB_BITS, DSP_BITS)
+        ));
     } else {
-        v.push_str(&format!("wire [17:0] {y}_x = {};\n", sign_extend(y, yb, 0, DSP_BITS)));
+        v.push_str(&format!(
+            "wire [17:0] {y}_x = {};\n",
+            sign_extend(y, yb, 0, DSP_BITS)
+        ));
     }
     v.push_str("// verilator lint_off UNUSED\n");
     let blocks: &[(&str, String)] = if two {
@@ -183,13 +206,28 @@ pub fn ecp5_verilog(a: usize, b: usize, p: usize) -> Option<String> {
     }
     v.push_str("// verilator lint_on UNUSED\n");
     for (suffix, y_operand) in blocks {
-        v.push_str(&dsp_instance(&format!("u_dsp{}", limb(suffix)), &format!("{x}_x"), y_operand, &format!("m{}", limb(suffix))));
+        v.push_str(&dsp_instance(
+            &format!("u_dsp{}", limb(suffix)),
+            &format!("{x}_x"),
+            y_operand,
+            &format!("m{}", limb(suffix)),
+        ));
     }
-    v.push_str(&format!("initial product = {p}'d0;\nalways @(posedge clock) begin\n    if (advance) begin\n"));
+    v.push_str(&format!(
+        "initial product = {p}'d0;\nalways @(posedge clock) begin\n    if (advance) begin\n"
+    ));
     if two {
         // lo is 35 significant signed bits, hi lands at bit 17.
-        let lo = if p <= 36 { format!("m_lo[{}:0]", p - 1) } else { format!("{{{{{}{{m_lo[35]}}}}, m_lo}}", p - 36) };
-        v.push_str(&format!("        product <= {{m_hi[{}:0], {}'d0}} + {lo};\n", p - LOW_LIMB_BITS - 1, LOW_LIMB_BITS));
+        let lo = if p <= 36 {
+            format!("m_lo[{}:0]", p - 1)
+        } else {
+            format!("{{{{{}{{m_lo[35]}}}}, m_lo}}", p - 36)
+        };
+        v.push_str(&format!(
+            "        product <= {{m_hi[{}:0], {}'d0}} + {lo};\n",
+            p - LOW_LIMB_BITS - 1,
+            LOW_LIMB_BITS
+        ));
     } else {
         v.push_str(&format!("        product <= m[{}:0];\n", p - 1));
     }
@@ -198,13 +236,21 @@ pub fn ecp5_verilog(a: usize, b: usize, p: usize) -> Option<String> {
 }
 
 fn limb(suffix: &str) -> String {
-    if suffix.is_empty() { String::new() } else { format!("_{suffix}") }
+    if suffix.is_empty() {
+        String::new()
+    } else {
+        format!("_{suffix}")
+    }
 }
 
 /// `name[bits - 1:from]` sign-extended to `to` bits, as a Verilog expression.
 fn sign_extend(name: &str, bits: usize, from: usize, to: usize) -> String {
     let width = bits - from;
-    let slice = if from == 0 { name.to_string() } else { format!("{name}[{}:{from}]", bits - 1) };
+    let slice = if from == 0 {
+        name.to_string()
+    } else {
+        format!("{name}[{}:{from}]", bits - 1)
+    };
     if width == to {
         slice
     } else {
@@ -216,15 +262,25 @@ fn sign_extend(name: &str, bits: usize, from: usize, to: usize) -> String {
 /// enabled by `advance` (the parameters [`ECP5_MULT18X18D_MODEL`] models).
 fn dsp_instance(name: &str, a: &str, b: &str, p: &str) -> String {
     let bus = |port: &str, signal: &str, bits: usize| -> Vec<String> {
-        (0..bits).map(|i| format!(".{port}{i}({signal}[{i}])")).collect()
+        (0..bits)
+            .map(|i| format!(".{port}{i}({signal}[{i}])"))
+            .collect()
     };
     let mut pins = bus("A", a, 18);
     pins.extend(bus("B", b, 18));
     pins.extend((0..18).map(|i| format!(".C{i}(1'b0)")));
     pins.extend(
-        ["SIGNEDA(1'b1)", "SIGNEDB(1'b1)", "SOURCEA(1'b0)", "SOURCEB(1'b0)", "CLK0(clock)", "CE0(advance)", "RST0(1'b0)"]
-            .iter()
-            .map(|s| format!(".{s}")),
+        [
+            "SIGNEDA(1'b1)",
+            "SIGNEDB(1'b1)",
+            "SOURCEA(1'b0)",
+            "SOURCEB(1'b0)",
+            "CLK0(clock)",
+            "CE0(advance)",
+            "RST0(1'b0)",
+        ]
+        .iter()
+        .map(|s| format!(".{s}")),
     );
     pins.extend(bus("P", p, 36));
     let mut v = format!(

@@ -41,7 +41,12 @@ impl<const W: usize, const D: usize> crate::unit::Unit for VectorSubtractor<W, D
 
 impl<const W: usize, const D: usize> Default for VectorSubtractor<W, D> {
     fn default() -> Self {
-        assert_eq!(D, tritri_geom::widths::difference_bits(W), "a difference of {W}-bit values has {} bits", W + 1);
+        assert_eq!(
+            D,
+            tritri_geom::widths::difference_bits(W),
+            "a difference of {W}-bit values has {} bits",
+            W + 1
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -97,7 +102,12 @@ impl<const W: usize, const D: usize> crate::unit::Unit for Subtractor<W, D> {
 
 impl<const W: usize, const D: usize> Default for Subtractor<W, D> {
     fn default() -> Self {
-        assert_eq!(D, tritri_geom::widths::difference_bits(W), "a difference of {W}-bit values has {} bits", W + 1);
+        assert_eq!(
+            D,
+            tritri_geom::widths::difference_bits(W),
+            "a difference of {W}-bit values has {} bits",
+            W + 1
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),

@@ -31,7 +31,7 @@
 //! with the clock that takes it: [`tessellation_clocks`] clocks from
 //! `start` with the reader always ready.
 
-use crate::arith::convert::{to_i128, wrap_i128, from_i128};
+use crate::arith::convert::{from_i128, to_i128, wrap_i128};
 use rust_hdl::prelude::*;
 
 /// Clock edges from the `start` edge through the edge that takes the last
@@ -122,13 +122,21 @@ struct State {
     e3: [i128; 3],
 }
 
-impl<const W: usize, const K: usize, const V: usize, const N: usize> crate::unit::Unit for PatchTessellator<W, K, V, N> {}
+impl<const W: usize, const K: usize, const V: usize, const N: usize> crate::unit::Unit
+    for PatchTessellator<W, K, V, N>
+{
+}
 
-impl<const W: usize, const K: usize, const V: usize, const N: usize> Default for PatchTessellator<W, K, V, N> {
+impl<const W: usize, const K: usize, const V: usize, const N: usize> Default
+    for PatchTessellator<W, K, V, N>
+{
     fn default() -> Self {
         assert_eq!(V, value_bits(W, K), "V = 6K + W");
         assert_eq!(N, net_bits(W), "N = 48 W");
-        assert!((1..=7).contains(&K) && V <= 127, "K = {K}, V = {V}: out of range");
+        assert!(
+            (1..=7).contains(&K) && V <= 127,
+            "K = {K}, V = {V}: out of range"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -155,7 +163,12 @@ fn differences(p: [i128; 4], k: u32, bits: usize) -> [i128; 4] {
     let a1 = w(3 * (p[1] - p[0]));
     let a2 = w(3 * (p[0] - 2 * p[1] + p[2]));
     let a3 = w(p[3] - 3 * p[2] + 3 * p[1] - p[0]);
-    [w(p[0] << (3 * k)), w((a1 << (2 * k)) + (a2 << k) + a3), w((a2 << (k + 1)) + 6 * a3), w(6 * a3)]
+    [
+        w(p[0] << (3 * k)),
+        w((a1 << (2 * k)) + (a2 << k) + a3),
+        w((a2 << (k + 1)) + 6 * a3),
+        w(6 * a3),
+    ]
 }
 
 impl<const W: usize, const K: usize, const V: usize, const N: usize> PatchTessellator<W, K, V, N> {
@@ -186,7 +199,9 @@ impl<const W: usize, const K: usize, const V: usize, const N: usize> PatchTessel
     }
 }
 
-impl<const W: usize, const K: usize, const V: usize, const N: usize> Logic for PatchTessellator<W, K, V, N> {
+impl<const W: usize, const K: usize, const V: usize, const N: usize> Logic
+    for PatchTessellator<W, K, V, N>
+{
     fn update(&mut self) {
         if !self.clock.pos_edge() {
             return;
@@ -203,9 +218,14 @@ impl<const W: usize, const K: usize, const V: usize, const N: usize> Logic for P
                 for axis in 0..3 {
                     for c in 0..4 {
                         // Offset binary, zero-extended.
-                        let p = [0, 1, 2, 3].map(|r| (to_i128(self.net.val().get_bits::<W>((3 * (4 * r + c) + axis) * W)) ^ -flip) & ((1i128 << W) - 1));
+                        let p = [0, 1, 2, 3].map(|r| {
+                            (to_i128(self.net.val().get_bits::<W>((3 * (4 * r + c) + axis) * W))
+                                ^ -flip)
+                                & ((1i128 << W) - 1)
+                        });
                         let t = differences(p, K as u32, V);
-                        (s.f[axis][c], s.d1[axis][c], s.d2[axis][c], s.d3[axis][c]) = (t[0], t[1], t[2], t[3]);
+                        (s.f[axis][c], s.d1[axis][c], s.d2[axis][c], s.d3[axis][c]) =
+                            (t[0], t[1], t[2], t[3]);
                     }
                 }
                 s.busy = true;
@@ -297,15 +317,28 @@ fn verilog_body(w: usize, k: usize, v: usize) -> String {
         )
     };
     for (axis, name) in ["x", "y", "z"].iter().enumerate() {
-        decl.push_str(&format!("reg [{v1}:0] g_{name}, e1_{name}, e2_{name}, e3_{name};\n"));
-        init.push_str(&format!("    g_{name} = {v}'d0; e1_{name} = {v}'d0; e2_{name} = {v}'d0; e3_{name} = {v}'d0;\n"));
+        decl.push_str(&format!(
+            "reg [{v1}:0] g_{name}, e1_{name}, e2_{name}, e3_{name};\n"
+        ));
+        init.push_str(&format!(
+            "    g_{name} = {v}'d0; e1_{name} = {v}'d0; e2_{name} = {v}'d0; e3_{name} = {v}'d0;\n"
+        ));
         for c in 0..4 {
             let col = format!("{name}{c}");
-            decl.push_str(&format!("reg [{v1}:0] f_{col}, d1_{col}, d2_{col}, d3_{col};\n"));
-            init.push_str(&format!("    f_{col} = {v}'d0; d1_{col} = {v}'d0; d2_{col} = {v}'d0; d3_{col} = {v}'d0;\n"));
+            decl.push_str(&format!(
+                "reg [{v1}:0] f_{col}, d1_{col}, d2_{col}, d3_{col};\n"
+            ));
+            init.push_str(&format!(
+                "    f_{col} = {v}'d0; d1_{col} = {v}'d0; d2_{col} = {v}'d0; d3_{col} = {v}'d0;\n"
+            ));
             // The column's control values, offset binary, zero-extended.
             wires.push_str(&table(&format!("col_{col}"), &|r| {
-                format!("{{{pad}'d0, net[{lo} +: {w}] ^ {w}'d{flip}}}", pad = v - w, lo = (3 * (4 * r + c) + axis) * w, flip = 1u64 << (w - 1))
+                format!(
+                    "{{{pad}'d0, net[{lo} +: {w}] ^ {w}'d{flip}}}",
+                    pad = v - w,
+                    lo = (3 * (4 * r + c) + axis) * w,
+                    flip = 1u64 << (w - 1)
+                )
             }));
             start_block.push_str(&format!(
                 "            f_{col} <= col_{col}_f; d1_{col} <= col_{col}_d1; d2_{col} <= col_{col}_d2; d3_{col} <= col_{col}_d3;\n"
@@ -324,7 +357,10 @@ fn verilog_body(w: usize, k: usize, v: usize) -> String {
             flip = 1u64 << (w - 1)
         ));
     }
-    let row_block_inner: String = row_block.lines().map(|l| format!("        {l}\n")).collect();
+    let row_block_inner: String = row_block
+        .lines()
+        .map(|l| format!("        {l}\n"))
+        .collect();
     format!(
         "\
 // Registers: the column tables f, d1, d2, d3 per axis and column; the row
@@ -373,7 +409,8 @@ end
 mod tests {
     use super::*;
 
-    fn parameters<const W: usize, const K: usize, const V: usize, const N: usize>() -> (usize, usize) {
+    fn parameters<const W: usize, const K: usize, const V: usize, const N: usize>() -> (usize, usize)
+    {
         (W, K)
     }
 
@@ -384,7 +421,11 @@ mod tests {
         for w in 8..=32 {
             for k in 0..=8 {
                 let built = crate::with_patch_tessellator!(w, k, parameters());
-                assert_eq!(built.is_some(), TESSELLATOR_CONFIGURATIONS.contains(&(w, k)), "W = {w}, K = {k}");
+                assert_eq!(
+                    built.is_some(),
+                    TESSELLATOR_CONFIGURATIONS.contains(&(w, k)),
+                    "W = {w}, K = {k}"
+                );
                 assert!(built.is_none_or(|p| p == (w, k)));
             }
         }

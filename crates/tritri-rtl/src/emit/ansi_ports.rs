@@ -45,7 +45,10 @@ fn rewrite(text: &str) -> Option<String> {
     }
     let header_end = close + 1 + text[close + 1..].find(';')? + 1;
     let names: Vec<&str> = text[open + 1..close].split(',').map(str::trim).collect();
-    if names.iter().any(|n| n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')) {
+    if names
+        .iter()
+        .any(|n| n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+    {
         return None; // already ANSI, or not a plain name list
     }
     let module_name = text[start + "module ".len()..open].trim();
@@ -70,11 +73,18 @@ fn rewrite(text: &str) -> Option<String> {
     let declarations: Vec<Declaration> = declarations.into_iter().collect::<Option<_>>()?;
 
     let kind_width = declarations.iter().map(|d| d.kind.len()).max().unwrap_or(0);
-    let range_width = declarations.iter().map(|d| d.range.len()).max().unwrap_or(0);
+    let range_width = declarations
+        .iter()
+        .map(|d| d.range.len())
+        .max()
+        .unwrap_or(0);
     let mut header = format!("module {module_name} (\n");
     for (k, d) in declarations.iter().enumerate() {
         let separator = if k + 1 == declarations.len() { "" } else { "," };
-        let line = format!("    {:<6} {:<kind_width$} {:<range_width$} {}{separator}", d.direction, d.kind, d.range, d.name);
+        let line = format!(
+            "    {:<6} {:<kind_width$} {:<range_width$} {}{separator}",
+            d.direction, d.kind, d.range, d.name
+        );
         header.push_str(&squeeze_empty_columns(&line, kind_width, range_width));
         header.push('\n');
     }
@@ -121,16 +131,27 @@ fn declaration(line: &str) -> Option<Declaration> {
         }
     }
     if let Some(&"signed") = words.peek() {
-        kind = if kind.is_empty() { "signed".into() } else { format!("{kind} signed") };
+        kind = if kind.is_empty() {
+            "signed".into()
+        } else {
+            format!("{kind} signed")
+        };
         words.next();
     }
     let rest: Vec<&str> = words.collect();
     let (range, name) = match rest.as_slice() {
         [name] => (String::new(), *name),
-        [range @ .., name] if range.concat().starts_with('[') && range.concat().ends_with(']') => (range.concat(), *name),
+        [range @ .., name] if range.concat().starts_with('[') && range.concat().ends_with(']') => {
+            (range.concat(), *name)
+        }
         _ => return None,
     };
-    Some(Declaration { direction: direction.to_string(), kind, range, name: name.to_string() })
+    Some(Declaration {
+        direction: direction.to_string(),
+        kind,
+        range,
+        name: name.to_string(),
+    })
 }
 
 #[cfg(test)]
@@ -150,6 +171,9 @@ mod tests {
     #[test]
     fn ansi_headers_and_missing_declarations_are_left_alone() {
         assert_eq!(rewrite("module m (\n    input wire a\n);\nendmodule"), None);
-        assert_eq!(rewrite("module m(a,b);\n    input wire a;\nendmodule"), None);
+        assert_eq!(
+            rewrite("module m(a,b);\n    input wire a;\nendmodule"),
+            None
+        );
     }
 }

@@ -19,11 +19,16 @@ pub enum BinningEmitError {
 }
 
 /// rust-hdl's Verilog of the unit built for `config`.
-pub fn raw_binning_unit_verilog(config: &BinningUnitConfig) -> Result<crate::unit::RawDesign, BinningEmitError> {
+pub fn raw_binning_unit_verilog(
+    config: &BinningUnitConfig,
+) -> Result<crate::unit::RawDesign, BinningEmitError> {
     config.check().map_err(BinningEmitError::Config)?;
-    fn raw<const G: usize, const V: usize, const N: usize, const T: usize>(config: &BinningUnitConfig) -> crate::unit::RawDesign {
-        let mut uut = BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves)
-            .with_system(config.log_depth, config.log_pipelines);
+    fn raw<const G: usize, const V: usize, const N: usize, const T: usize>(
+        config: &BinningUnitConfig,
+    ) -> crate::unit::RawDesign {
+        let mut uut =
+            BinningUnit::<G, V, N, T>::new(config.triangles, config.list_words, config.leaves)
+                .with_system(config.log_depth, config.log_pipelines);
         uut.connect_all();
         crate::unit::RawDesign::of(&uut)
     }
@@ -112,7 +117,10 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
 
 /// The emitted unit built for `config`.
 pub fn emit_binning_unit(config: &BinningUnitConfig) -> Result<EmittedDesign, BinningEmitError> {
-    Ok(emit(&raw_binning_unit_verilog(config)?, &binning_unit(config))?)
+    Ok(emit(
+        &raw_binning_unit_verilog(config)?,
+        &binning_unit(config),
+    )?)
 }
 
 #[cfg(test)]
@@ -121,10 +129,21 @@ mod tests {
 
     #[test]
     fn a_grid_without_a_unit_is_an_error_naming_it() {
-        let config = BinningUnitConfig { grid_bits: 20, triangles: 16, list_words: 16, leaves: 16, log_depth: 4, log_pipelines: 1 };
+        let config = BinningUnitConfig {
+            grid_bits: 20,
+            triangles: 16,
+            list_words: 16,
+            leaves: 16,
+            log_depth: 4,
+            log_pipelines: 1,
+        };
         let error = raw_binning_unit_verilog(&config).unwrap_err().to_string();
         assert!(error.contains("not 20"), "{error}");
-        let config = BinningUnitConfig { grid_bits: 16, triangles: 1 << 19, ..config };
+        let config = BinningUnitConfig {
+            grid_bits: 16,
+            triangles: 1 << 19,
+            ..config
+        };
         let error = raw_binning_unit_verilog(&config).unwrap_err().to_string();
         assert!(error.contains("triangles per object 524288"), "{error}");
     }

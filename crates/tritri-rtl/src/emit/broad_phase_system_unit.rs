@@ -47,13 +47,19 @@ impl BroadPhaseConfig {
     pub fn check(&self) -> Result<(), String> {
         self.unit.check()?;
         if self.slots == 0 || self.slots > 1 << CHAIN_SLOT_BITS {
-            return Err(format!("slots {}: 1 to {} ({CHAIN_SLOT_BITS} address bits)", self.slots, 1u64 << CHAIN_SLOT_BITS));
+            return Err(format!(
+                "slots {}: 1 to {} ({CHAIN_SLOT_BITS} address bits)",
+                self.slots,
+                1u64 << CHAIN_SLOT_BITS
+            ));
         }
         let widths = (self.unit.grid_bits, self.system.coordinate_bits);
         if !BROAD_PHASE_WIDTHS.contains(&widths) {
             return Err(format!("the broad-phase top is built for (grid, width) {BROAD_PHASE_WIDTHS:?}, not {widths:?}"));
         }
-        if 1usize << self.unit.log_depth != self.system.triangles_per_bank || 1usize << self.unit.log_pipelines != self.system.pipelines {
+        if 1usize << self.unit.log_depth != self.system.triangles_per_bank
+            || 1usize << self.unit.log_pipelines != self.system.pipelines
+        {
             return Err(format!(
                 "the binning unit's split rule (depth {}, {} pipelines) is not the system's (depth {}, {} pipelines)",
                 1u64 << self.unit.log_depth,
@@ -67,20 +73,56 @@ impl BroadPhaseConfig {
 }
 
 /// rust-hdl's Verilog of the top built for `config`.
-pub fn raw_broad_phase_verilog(config: &BroadPhaseConfig) -> Result<crate::unit::RawDesign, BinningEmitError> {
+pub fn raw_broad_phase_verilog(
+    config: &BroadPhaseConfig,
+) -> Result<crate::unit::RawDesign, BinningEmitError> {
     config.check().map_err(BinningEmitError::Config)?;
-    fn raw<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>(
+    fn raw<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
         config: &BroadPhaseConfig,
     ) -> crate::unit::RawDesign {
         let unit = &config.unit;
-        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(unit.triangles, unit.list_words, unit.leaves, config.slots, config.system, config.local_frames);
+        let mut uut = BroadPhaseSystem::<G, V, N, T, W, D, C, O>::new(
+            unit.triangles,
+            unit.list_words,
+            unit.leaves,
+            config.slots,
+            config.system,
+            config.local_frames,
+        );
         uut.connect_all();
         crate::unit::RawDesign::of(&uut)
     }
     const V24: usize = value_bits(24);
     Ok(on_unit_stack(|| match config.system.coordinate_bits {
-        24 => raw::<24, V24, { AXES * V24 }, { 9 * 24 }, 24, { difference_bits(24) }, { cross_bits(24) }, { orient3d_bits(24) }>(config),
-        _ => raw::<24, V24, { AXES * V24 }, { 9 * 24 }, 16, { difference_bits(16) }, { cross_bits(16) }, { orient3d_bits(16) }>(config),
+        24 => raw::<
+            24,
+            V24,
+            { AXES * V24 },
+            { 9 * 24 },
+            24,
+            { difference_bits(24) },
+            { cross_bits(24) },
+            { orient3d_bits(24) },
+        >(config),
+        _ => raw::<
+            24,
+            V24,
+            { AXES * V24 },
+            { 9 * 24 },
+            16,
+            { difference_bits(16) },
+            { cross_bits(16) },
+            { orient3d_bits(16) },
+        >(config),
     }))
 }
 
@@ -145,7 +187,9 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
 }
 
 /// The emitted top built for `config`.
-pub fn emit_broad_phase_system(config: &BroadPhaseConfig) -> Result<EmittedDesign, BinningEmitError> {
+pub fn emit_broad_phase_system(
+    config: &BroadPhaseConfig,
+) -> Result<EmittedDesign, BinningEmitError> {
     emit_broad_phase_system_with(config, MultiplierMapping::Inferred)
 }
 
@@ -156,8 +200,13 @@ pub fn emit_broad_phase_system_with(
     multipliers: MultiplierMapping,
 ) -> Result<EmittedDesign, BinningEmitError> {
     let raw = raw_broad_phase_verilog(config)?;
-    let options = EmitOptions { multipliers, ..EmitOptions::default() };
+    let options = EmitOptions {
+        multipliers,
+        ..EmitOptions::default()
+    };
     // The passes recurse over the text's expressions, deeper here than a
     // test thread's stack allows.
-    Ok(on_unit_stack(|| emit_with(&raw, &broad_phase_system(config), options))?)
+    Ok(on_unit_stack(|| {
+        emit_with(&raw, &broad_phase_system(config), options)
+    })?)
 }

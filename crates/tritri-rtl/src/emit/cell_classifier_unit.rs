@@ -28,7 +28,9 @@ pub enum ClassifierEmitError {
 }
 
 /// rust-hdl's Verilog of the classifier for `grid_bits`.
-pub fn raw_cell_classifier_verilog(grid_bits: usize) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
+pub fn raw_cell_classifier_verilog(
+    grid_bits: usize,
+) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
     fn raw<const V: usize>() -> crate::unit::RawDesign {
         let mut uut = CellClassifier::<V>::default();
         uut.connect_all();
@@ -82,13 +84,25 @@ pub fn cell_classifier_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppo
     for i in 0..AXES {
         let axis = |what: &str| format!("{what} of test function {i}, V-bit two's complement.");
         unit = unit
-            .port(&format!("in_at_lo_{i}"), &axis("Value at the cell's (or, with `in_descend`, the parent's) low corner"))
+            .port(
+                &format!("in_at_lo_{i}"),
+                &axis("Value at the cell's (or, with `in_descend`, the parent's) low corner"),
+            )
             .port(&format!("in_gradient_x_{i}"), &axis("Gradient x"))
             .port(&format!("in_gradient_y_{i}"), &axis("Gradient y"))
             .port(&format!("in_gradient_z_{i}"), &axis("Gradient z"))
-            .port(&format!("in_low_{i}"), &axis("Low end of the triangle's interval"))
-            .port(&format!("in_high_{i}"), &axis("High end of the triangle's interval"))
-            .port(&format!("out_at_lo_{i}"), &axis("Value at the classified cell's low corner"));
+            .port(
+                &format!("in_low_{i}"),
+                &axis("Low end of the triangle's interval"),
+            )
+            .port(
+                &format!("in_high_{i}"),
+                &axis("High end of the triangle's interval"),
+            )
+            .port(
+                &format!("out_at_lo_{i}"),
+                &axis("Value at the classified cell's low corner"),
+            );
     }
     Ok(unit)
 }

@@ -35,9 +35,17 @@ impl Words {
         self.texts.iter().map(String::as_str).collect()
     }
     fn of(module: &Module) -> Self {
-        let positions: Vec<usize> =
-            module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
-        let texts = positions.iter().map(|&i| module.tokens[i].text.clone()).collect();
+        let positions: Vec<usize> = module
+            .tokens
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| !t.is_trivia())
+            .map(|(i, _)| i)
+            .collect();
+        let texts = positions
+            .iter()
+            .map(|&i| module.tokens[i].text.clone())
+            .collect();
         Words { positions, texts }
     }
     fn get(&self, k: usize) -> Option<&str> {
@@ -56,7 +64,10 @@ fn assignment_targets(words: &Words, name: &str) -> usize {
             words.get(k) == Some(name)
                 && matches!(words.get(k + 1), Some("=" | "<=" | "["))
                 && k > 0
-                && matches!(words.get(k - 1), Some(";" | "begin" | "else" | ")" | ":" | "end"))
+                && matches!(
+                    words.get(k - 1),
+                    Some(";" | "begin" | "else" | ")" | ":" | "end")
+                )
         })
         .count()
 }
@@ -88,20 +99,29 @@ pub fn continuous_assigns(module: &mut Module) {
     let mut k = 0;
     while k < words.len() {
         let is_combinational = words.get(k) == Some("always")
-            && (1..=5).map(|d| words.get(k + d)).eq(["@", "(", "*", ")", "begin"].map(Some));
+            && (1..=5)
+                .map(|d| words.get(k + d))
+                .eq(["@", "(", "*", ")", "begin"].map(Some));
         if !is_combinational {
             k += 1;
             continue;
         }
         let always = k;
         // The block's `end`: its `begin ... end` is one statement.
-        let Some(end) = statement_end(&texts, k + 5).map(|after| after - 1) else { return };
+        let Some(end) = statement_end(&texts, k + 5).map(|after| after - 1) else {
+            return;
+        };
         let mut statement = k + 6;
         let mut kept = 0;
         while statement < end {
-            let Some(next) = statement_end(&texts, statement) else { return };
+            let Some(next) = statement_end(&texts, statement) else {
+                return;
+            };
             let target = words.get(statement).unwrap_or_default();
-            let simple = words.positions.get(statement).is_some_and(|&p| module.tokens[p].kind == Kind::Identifier)
+            let simple = words
+                .positions
+                .get(statement)
+                .is_some_and(|&p| module.tokens[p].kind == Kind::Identifier)
                 && words.get(statement + 1) == Some("=");
             let reads_itself = (statement + 2..next).any(|j| words.get(j) == Some(target));
             let reg = if simple && !reads_itself && assignment_targets(&words, target) == 1 {
@@ -130,7 +150,10 @@ pub fn continuous_assigns(module: &mut Module) {
     // Rebuild the token list: declarations, assigns before their block,
     // the block without the moved statements.
     let text_of = |from: usize, to: usize| -> String {
-        module.tokens[words.positions[from]..=words.positions[to - 1]].iter().map(|t| t.text.as_str()).collect()
+        module.tokens[words.positions[from]..=words.positions[to - 1]]
+            .iter()
+            .map(|t| t.text.as_str())
+            .collect()
     };
     let mut out: Vec<Token> = Vec::with_capacity(module.tokens.len());
     let mut skip_until = 0usize; // token index up to which tokens are dropped
@@ -144,7 +167,10 @@ pub fn continuous_assigns(module: &mut Module) {
             if let Some(&(_, end)) = empty_blocks.iter().find(|(a, _)| *a == w) {
                 // The assigns of an emptied block, then nothing of the block.
                 for &(_, from, to) in moved.iter().filter(|(a, _, _)| *a == w) {
-                    out.push(Token::new(Kind::Punctuation, format!("assign {}", text_of(from, to))));
+                    out.push(Token::new(
+                        Kind::Punctuation,
+                        format!("assign {}", text_of(from, to)),
+                    ));
                     out.push(Token::new(Kind::Whitespace, "\n    "));
                 }
                 strip_trailing_indent(&mut out);
@@ -153,7 +179,10 @@ pub fn continuous_assigns(module: &mut Module) {
             }
             if words.get(w) == Some("always") && moved.iter().any(|(a, _, _)| *a == w) {
                 for &(_, from, to) in moved.iter().filter(|(a, _, _)| *a == w) {
-                    out.push(Token::new(Kind::Punctuation, format!("assign {}", text_of(from, to))));
+                    out.push(Token::new(
+                        Kind::Punctuation,
+                        format!("assign {}", text_of(from, to)),
+                    ));
                     out.push(Token::new(Kind::Whitespace, "\n    "));
                 }
             }
@@ -202,16 +231,27 @@ mod tests {
     #[test]
     fn unconditional_assignments_become_assigns() {
         let out = run("module top(a,b,y,z);\n    input wire  a;\n    input wire  b;\n    output reg  y;\n    output reg  z;\n    reg  t;\n\n    // Update code\n    always @(*) begin\n        t = a & b;\n        y = t;\n        z = 1'b0;\n        if (a) z = b;\n    end\nendmodule\n");
-        assert!(out.contains("output wire  y;") && out.contains("wire  t;"), "{out}");
+        assert!(
+            out.contains("output wire  y;") && out.contains("wire  t;"),
+            "{out}"
+        );
         assert!(out.contains("output reg  z;"), "z is assigned twice: {out}");
-        assert!(out.contains("assign t = a & b;\n    assign y = t;\n    always @(*) begin\n        z = 1'b0;"), "{out}");
+        assert!(
+            out.contains(
+                "assign t = a & b;\n    assign y = t;\n    always @(*) begin\n        z = 1'b0;"
+            ),
+            "{out}"
+        );
     }
 
     #[test]
     fn an_emptied_block_is_removed() {
         let out = run("module top(a,y);\n    input wire  a;\n    output reg  y;\n\n    // Update code\n    always @(*) begin\n        y = ~a;\n    end\nendmodule\n");
         assert!(!out.contains("always"), "{out}");
-        assert!(out.contains("output wire  y;") && out.contains("assign y = ~a;"), "{out}");
+        assert!(
+            out.contains("output wire  y;") && out.contains("assign y = ~a;"),
+            "{out}"
+        );
     }
 
     #[test]

@@ -72,15 +72,32 @@ fn multiplier_shape(text: &str) -> Option<(usize, usize, usize)> {
 /// whether it was one.
 pub fn map_ecp5(module: &mut Module) -> Result<bool, UnmappedMultiplier> {
     let text = module.text();
-    let Some((a, b, p)) = multiplier_shape(&text) else { return Ok(false) };
+    let Some((a, b, p)) = multiplier_shape(&text) else {
+        return Ok(false);
+    };
     if !ecp5_maps(a, b) {
-        return Err(UnmappedMultiplier { module: module.name.clone(), a, b });
+        return Err(UnmappedMultiplier {
+            module: module.name.clone(),
+            a,
+            b,
+        });
     }
     let marker = "// Update code (custom)";
-    let (Some(start), Some(end)) = (text.find(marker), text.rfind("endmodule")) else { return Ok(false) };
+    let (Some(start), Some(end)) = (text.find(marker), text.rfind("endmodule")) else {
+        return Ok(false);
+    };
     let head = &text[..start + marker.len()];
     let body = ecp5_verilog(a, b, p).expect("ecp5_maps said yes");
-    let indented: String = body.lines().map(|l| if l.is_empty() { "\n".to_string() } else { format!("    {l}\n") }).collect();
+    let indented: String = body
+        .lines()
+        .map(|l| {
+            if l.is_empty() {
+                "\n".to_string()
+            } else {
+                format!("    {l}\n")
+            }
+        })
+        .collect();
     module.tokens = tokenize(&format!("{head}\n{indented}{}", &text[end..]));
     Ok(true)
 }
@@ -92,8 +109,12 @@ mod tests {
     #[test]
     fn widest_width_is_the_widest_mapped() {
         let products = |w: usize| [(w + 1, w + 1), (w + 1, 2 * w + 1)];
-        assert!(products(MAX_ECP5_DSP_WIDTH).iter().all(|&(a, b)| ecp5_maps(a, b)));
-        assert!(!products(MAX_ECP5_DSP_WIDTH + 1).iter().all(|&(a, b)| ecp5_maps(a, b)));
+        assert!(products(MAX_ECP5_DSP_WIDTH)
+            .iter()
+            .all(|&(a, b)| ecp5_maps(a, b)));
+        assert!(!products(MAX_ECP5_DSP_WIDTH + 1)
+            .iter()
+            .all(|&(a, b)| ecp5_maps(a, b)));
     }
 
     #[test]
@@ -113,6 +134,9 @@ mod tests {
         };
         let e = map_ecp5(&mut m).unwrap_err();
         assert_eq!((e.a, e.b), (25, 49));
-        assert!(e.to_string().contains("tritri_pipeline_w24_multiplier_w74"), "{e}");
+        assert!(
+            e.to_string().contains("tritri_pipeline_w24_multiplier_w74"),
+            "{e}"
+        );
     }
 }

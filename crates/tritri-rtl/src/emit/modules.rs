@@ -42,7 +42,12 @@ pub enum ModuleError {
     #[error("module `{0}` has no `endmodule`")]
     Unterminated(String),
     #[error("in module `{module}`, `{first}` and `{second}` would both be renamed `{renamed}`")]
-    NameCollision { module: String, first: String, second: String, renamed: String },
+    NameCollision {
+        module: String,
+        first: String,
+        second: String,
+        renamed: String,
+    },
     #[error("no unit is recorded at `{0}`: list the field in its parent's `Unit::sub_units`")]
     UnknownUnit(String),
 }
@@ -63,7 +68,10 @@ pub fn split_modules(verilog: &str) -> Result<Vec<Module>, ModuleError> {
                 j -= 1;
             }
             if j > 1 && tokens[j - 1].is(")") && tokens[j - 2].is("*") {
-                if let Some(open) = (1..j - 2).rev().find(|&k| tokens[k].is("*") && tokens[k - 1].is("(")) {
+                if let Some(open) = (1..j - 2)
+                    .rev()
+                    .find(|&k| tokens[k].is("*") && tokens[k - 1].is("("))
+                {
                     start = open - 1;
                 }
             }
@@ -75,7 +83,12 @@ pub fn split_modules(verilog: &str) -> Result<Vec<Module>, ModuleError> {
             let end = (i..tokens.len())
                 .find(|&k| tokens[k].kind == Kind::Identifier && tokens[k].text == "endmodule")
                 .ok_or_else(|| ModuleError::Unterminated(name.clone()))?;
-            modules.push(Module { instances: vec![name.clone()], name, tokens: tokens[start..=end].to_vec(), unit: None });
+            modules.push(Module {
+                instances: vec![name.clone()],
+                name,
+                tokens: tokens[start..=end].to_vec(),
+                unit: None,
+            });
             i = end + 1;
         } else {
             i += 1;
@@ -105,7 +118,10 @@ pub fn path_name(unit: &str, rust_hdl_name: &str) -> String {
 /// `base`, and a signal `base_id`), the name with `$` uses `__` instead, in
 /// every module, so that a port keeps one name in its module and at every
 /// instance.
-pub fn identifier_names(modules: &[Module], names: &HashMap<String, String>) -> HashMap<String, String> {
+pub fn identifier_names(
+    modules: &[Module],
+    names: &HashMap<String, String>,
+) -> HashMap<String, String> {
     let simple = |name: &str| match names.get(name) {
         Some(n) => n.clone(),
         None if is_reserved_for_renaming(name) => format!("{name}_kw"),
@@ -113,14 +129,21 @@ pub fn identifier_names(modules: &[Module], names: &HashMap<String, String>) -> 
     };
     let mut double: BTreeSet<String> = BTreeSet::new();
     for m in modules {
-        let originals: BTreeSet<&str> =
-            m.tokens.iter().filter(|t| t.kind == Kind::Identifier).map(|t| t.text.as_str()).collect();
+        let originals: BTreeSet<&str> = m
+            .tokens
+            .iter()
+            .filter(|t| t.kind == Kind::Identifier)
+            .map(|t| t.text.as_str())
+            .collect();
         let mut by_simple: HashMap<String, Vec<&str>> = HashMap::new();
         for o in &originals {
             by_simple.entry(simple(o)).or_default().push(o);
         }
         for group in by_simple.values().filter(|g| g.len() > 1) {
-            for o in group.iter().filter(|o| o.contains('$') && !names.contains_key(**o)) {
+            for o in group
+                .iter()
+                .filter(|o| o.contains('$') && !names.contains_key(**o))
+            {
                 double.insert(o.to_string());
             }
         }
@@ -129,7 +152,11 @@ pub fn identifier_names(modules: &[Module], names: &HashMap<String, String>) -> 
     for m in modules {
         for t in m.tokens.iter().filter(|t| t.kind == Kind::Identifier) {
             if !all.contains_key(&t.text) {
-                let new = if double.contains(&t.text) { t.text.replace('$', "__") } else { simple(&t.text) };
+                let new = if double.contains(&t.text) {
+                    t.text.replace('$', "__")
+                } else {
+                    simple(&t.text)
+                };
                 all.insert(t.text.clone(), new);
             }
         }
@@ -139,7 +166,10 @@ pub fn identifier_names(modules: &[Module], names: &HashMap<String, String>) -> 
 
 /// Renames every identifier of `module` by `renamed` (from
 /// [`identifier_names`]); refuses a rename that merges two identifiers.
-pub fn rename_identifiers(module: &mut Module, renamed: &HashMap<String, String>) -> Result<(), ModuleError> {
+pub fn rename_identifiers(
+    module: &mut Module,
+    renamed: &HashMap<String, String>,
+) -> Result<(), ModuleError> {
     let mut renamed_from: HashMap<&str, &str> = HashMap::new();
     for t in module.tokens.iter().filter(|t| t.kind == Kind::Identifier) {
         let new = renamed[&t.text].as_str();
@@ -154,7 +184,11 @@ pub fn rename_identifiers(module: &mut Module, renamed: &HashMap<String, String>
             }
         }
     }
-    for token in module.tokens.iter_mut().filter(|t| t.kind == Kind::Identifier) {
+    for token in module
+        .tokens
+        .iter_mut()
+        .filter(|t| t.kind == Kind::Identifier)
+    {
         token.text = renamed[&token.text].clone();
     }
     if let Some(n) = renamed.get(&module.name) {
@@ -169,17 +203,32 @@ pub fn rename_identifiers(module: &mut Module, renamed: &HashMap<String, String>
 /// `x_clock`, and the instance `u_x_q`. `registers` are the names of the
 /// register modules. A register whose new names are taken keeps rust-hdl's.
 pub fn name_register_nets(module: &mut Module, registers: &BTreeSet<String>) {
-    let taken: BTreeSet<String> =
-        module.tokens.iter().filter(|t| t.kind == Kind::Identifier).map(|t| t.text.clone()).collect();
-    let significant: Vec<usize> =
-        module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
+    let taken: BTreeSet<String> = module
+        .tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Identifier)
+        .map(|t| t.text.clone())
+        .collect();
+    let significant: Vec<usize> = module
+        .tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !t.is_trivia())
+        .map(|(i, _)| i)
+        .collect();
     let mut renamed: HashMap<String, String> = HashMap::new();
     for w in significant.windows(3) {
-        let (kind, instance, open) = (&module.tokens[w[0]], &module.tokens[w[1]], &module.tokens[w[2]]);
+        let (kind, instance, open) = (
+            &module.tokens[w[0]],
+            &module.tokens[w[1]],
+            &module.tokens[w[2]],
+        );
         if kind.kind != Kind::Identifier || !registers.contains(&kind.text) || !open.is("(") {
             continue;
         }
-        let Some(stem) = instance.text.strip_suffix("_q") else { continue };
+        let Some(stem) = instance.text.strip_suffix("_q") else {
+            continue;
+        };
         let new: Vec<(String, String)> = vec![
             (instance.text.clone(), format!("u_{}", instance.text)),
             (format!("{}$q", instance.text), instance.text.clone()),
@@ -187,11 +236,19 @@ pub fn name_register_nets(module: &mut Module, registers: &BTreeSet<String>) {
             (format!("{}$clock", instance.text), format!("{stem}_clock")),
         ];
         // `x_q` itself is taken by the instance, which is renamed.
-        if new.iter().filter(|(_, to)| *to != instance.text).all(|(_, to)| !taken.contains(to)) {
+        if new
+            .iter()
+            .filter(|(_, to)| *to != instance.text)
+            .all(|(_, to)| !taken.contains(to))
+        {
             renamed.extend(new);
         }
     }
-    for token in module.tokens.iter_mut().filter(|t| t.kind == Kind::Identifier) {
+    for token in module
+        .tokens
+        .iter_mut()
+        .filter(|t| t.kind == Kind::Identifier)
+    {
         if let Some(n) = renamed.get(&token.text) {
             token.text = n.clone();
         }
@@ -206,12 +263,25 @@ pub fn name_register_nets(module: &mut Module, registers: &BTreeSet<String>) {
 /// local. A name already taken keeps its original; a name that already has
 /// the prefix ([`name_register_nets`]) keeps it once.
 pub fn prefix_instance_names(module: &mut Module, module_names: &BTreeSet<String>) {
-    let taken: BTreeSet<String> =
-        module.tokens.iter().filter(|t| t.kind == Kind::Identifier).map(|t| t.text.clone()).collect();
-    let significant: Vec<usize> =
-        module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
+    let taken: BTreeSet<String> = module
+        .tokens
+        .iter()
+        .filter(|t| t.kind == Kind::Identifier)
+        .map(|t| t.text.clone())
+        .collect();
+    let significant: Vec<usize> = module
+        .tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !t.is_trivia())
+        .map(|(i, _)| i)
+        .collect();
     for w in significant.windows(3) {
-        let (kind, instance, open) = (&module.tokens[w[0]], &module.tokens[w[1]], &module.tokens[w[2]]);
+        let (kind, instance, open) = (
+            &module.tokens[w[0]],
+            &module.tokens[w[1]],
+            &module.tokens[w[2]],
+        );
         if kind.kind == Kind::Identifier
             && module_names.contains(&kind.text)
             && kind.text != module.name
@@ -234,20 +304,137 @@ pub fn prefix_instance_names(module: &mut Module, module_names: &BTreeSet<String
 /// as keywords are not in the list.
 fn is_reserved_for_renaming(name: &str) -> bool {
     const WORDS: &[&str] = &[
-        "alias", "always_comb", "always_ff", "always_latch", "assert", "assume", "before", "bind", "bins", "binsof",
-        "bit", "break", "byte", "cell", "chandle", "checker", "class", "clocking", "config", "const", "constraint",
-        "context", "continue", "cover", "covergroup", "coverpoint", "cross", "design", "dist", "do", "endchecker",
-        "endclass", "endclocking", "endconfig", "endgroup", "endinterface", "endpackage", "endprimitive",
-        "endprogram", "endproperty", "endsequence", "endtable", "enum", "eventually", "expect", "export", "extends",
-        "extern", "final", "first_match", "foreach", "forkjoin", "global", "iff", "ignore_bins", "illegal_bins",
-        "implements", "implies", "import", "incdir", "include", "inside", "instance", "int", "interconnect",
-        "interface", "intersect", "join_any", "join_none", "let", "liblist", "library", "local", "logic", "longint",
-        "matches", "modport", "nettype", "new", "nexttime", "null", "package", "packed", "primitive", "priority",
-        "program", "property", "protected", "pure", "rand", "randc", "randcase", "randsequence", "ref", "restrict",
-        "return", "sequence", "shortint", "shortreal", "showcancelled", "soft", "solve", "static", "string", "strong",
-        "struct", "super", "sync_accept_on", "sync_reject_on", "table", "tagged", "this", "throughout",
-        "timeprecision", "timeunit", "type", "typedef", "union", "unique", "unique0", "until", "untyped", "use",
-        "var", "virtual", "void", "wait_order", "weak", "wildcard", "with", "within",
+        "alias",
+        "always_comb",
+        "always_ff",
+        "always_latch",
+        "assert",
+        "assume",
+        "before",
+        "bind",
+        "bins",
+        "binsof",
+        "bit",
+        "break",
+        "byte",
+        "cell",
+        "chandle",
+        "checker",
+        "class",
+        "clocking",
+        "config",
+        "const",
+        "constraint",
+        "context",
+        "continue",
+        "cover",
+        "covergroup",
+        "coverpoint",
+        "cross",
+        "design",
+        "dist",
+        "do",
+        "endchecker",
+        "endclass",
+        "endclocking",
+        "endconfig",
+        "endgroup",
+        "endinterface",
+        "endpackage",
+        "endprimitive",
+        "endprogram",
+        "endproperty",
+        "endsequence",
+        "endtable",
+        "enum",
+        "eventually",
+        "expect",
+        "export",
+        "extends",
+        "extern",
+        "final",
+        "first_match",
+        "foreach",
+        "forkjoin",
+        "global",
+        "iff",
+        "ignore_bins",
+        "illegal_bins",
+        "implements",
+        "implies",
+        "import",
+        "incdir",
+        "include",
+        "inside",
+        "instance",
+        "int",
+        "interconnect",
+        "interface",
+        "intersect",
+        "join_any",
+        "join_none",
+        "let",
+        "liblist",
+        "library",
+        "local",
+        "logic",
+        "longint",
+        "matches",
+        "modport",
+        "nettype",
+        "new",
+        "nexttime",
+        "null",
+        "package",
+        "packed",
+        "primitive",
+        "priority",
+        "program",
+        "property",
+        "protected",
+        "pure",
+        "rand",
+        "randc",
+        "randcase",
+        "randsequence",
+        "ref",
+        "restrict",
+        "return",
+        "sequence",
+        "shortint",
+        "shortreal",
+        "showcancelled",
+        "soft",
+        "solve",
+        "static",
+        "string",
+        "strong",
+        "struct",
+        "super",
+        "sync_accept_on",
+        "sync_reject_on",
+        "table",
+        "tagged",
+        "this",
+        "throughout",
+        "timeprecision",
+        "timeunit",
+        "type",
+        "typedef",
+        "union",
+        "unique",
+        "unique0",
+        "until",
+        "untyped",
+        "use",
+        "var",
+        "virtual",
+        "void",
+        "wait_order",
+        "weak",
+        "wildcard",
+        "with",
+        "within",
     ];
     WORDS.contains(&name)
 }
@@ -282,8 +469,26 @@ pub fn rust_hdl_dff_shape(module: &Module) -> Option<(usize, bool)> {
         body = &body[end + 1..];
     }
     let expected = [
-        "initial", "begin", "q", "=", "?", ";", "end", "always", "@", "(", "posedge", "clock", ")", "begin", "q", "<=",
-        "d", ";", "end", "endmodule",
+        "initial",
+        "begin",
+        "q",
+        "=",
+        "?",
+        ";",
+        "end",
+        "always",
+        "@",
+        "(",
+        "posedge",
+        "clock",
+        ")",
+        "begin",
+        "q",
+        "<=",
+        "d",
+        ";",
+        "end",
+        "endmodule",
     ];
     if body.len() != expected.len() || body.iter().zip(expected).any(|(w, e)| e != "?" && *w != e) {
         return None;
@@ -308,7 +513,8 @@ fn port_declaration<'a, 'b>(
     }
     let mut bits = 1;
     if words[k] == "[" {
-        if words.len() < k + 6 || words[k + 2] != ":" || words[k + 3] != "0" || words[k + 4] != "]" {
+        if words.len() < k + 6 || words[k + 2] != ":" || words[k + 3] != "0" || words[k + 4] != "]"
+        {
             return None;
         }
         bits = words[k + 1].parse::<usize>().ok()? + 1;
@@ -324,7 +530,11 @@ fn port_declaration<'a, 'b>(
 /// and a power-on value of the right width (rust-hdl writes `64'h0` for a
 /// one-bit enum register, a width warning).
 pub fn dff_module(name: &str, bits: usize, signed: bool) -> Module {
-    let range = if bits == 1 { String::new() } else { format!(" [{}:0]", bits - 1) };
+    let range = if bits == 1 {
+        String::new()
+    } else {
+        format!(" [{}:0]", bits - 1)
+    };
     let sign = if signed { " signed" } else { "" };
     let text = format!(
         "module {name} (\n    input  wire{sign}{range} d,\n    output reg {sign}{range} q,\n    input  wire clock\n);\n\n    \
@@ -332,7 +542,12 @@ pub fn dff_module(name: &str, bits: usize, signed: bool) -> Module {
          initial q = {bits}'d0;\n\n    \
          always @(posedge clock) begin\n        q <= d;\n    end\n\nendmodule"
     );
-    Module { name: name.to_string(), tokens: tokenize(&text), instances: Vec::new(), unit: None }
+    Module {
+        name: name.to_string(),
+        tokens: tokenize(&text),
+        instances: Vec::new(),
+        unit: None,
+    }
 }
 
 /// The text of `module` with its own name blanked out: two modules with the
@@ -342,7 +557,13 @@ fn structure_key(module: &Module) -> String {
         .tokens
         .iter()
         .filter(|t| t.kind != Kind::Comment)
-        .map(|t| if t.kind == Kind::Identifier && t.text == module.name { "\u{0}" } else { t.text.as_str() })
+        .map(|t| {
+            if t.kind == Kind::Identifier && t.text == module.name {
+                "\u{0}"
+            } else {
+                t.text.as_str()
+            }
+        })
         .collect()
 }
 
@@ -377,7 +598,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
         for group in group_list {
             let members: Vec<String> = group.iter().map(|&i| modules[i].name.clone()).collect();
             let dff = rust_hdl_dff_shape(&modules[group[0]]);
-            let info = units.get(&members[0]).ok_or_else(|| ModuleError::UnknownUnit(members[0].clone()))?.clone();
+            let info = units
+                .get(&members[0])
+                .ok_or_else(|| ModuleError::UnknownUnit(members[0].clone()))?
+                .clone();
             let name = if let Some((bits, signed)) = dff {
                 format!("{unit}_dff_{}{bits}", if signed { "signed_" } else { "" })
             } else {
@@ -407,7 +631,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
         // Keep one module per name, with the instances of all.
         let mut instances: BTreeMap<String, Vec<String>> = BTreeMap::new();
         for m in &modules {
-            instances.entry(m.name.clone()).or_default().extend(m.instances.iter().cloned());
+            instances
+                .entry(m.name.clone())
+                .or_default()
+                .extend(m.instances.iter().cloned());
         }
         let mut seen = BTreeSet::new();
         modules.retain(|m| seen.insert(m.name.clone()));
@@ -423,12 +650,23 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
     let mut wanted: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for (placeholder, (name, dff)) in &desired {
         if dff.is_none() {
-            wanted.entry(name.clone()).or_default().push(placeholder.clone());
+            wanted
+                .entry(name.clone())
+                .or_default()
+                .push(placeholder.clone());
         }
     }
     let module = |placeholder: &str| modules.iter().find(|m| m.name == placeholder);
     let widest = |placeholder: &str| {
-        module(placeholder).map(|m| super::package::top_ports(m).iter().map(|p| p.bits).max().unwrap_or(1)).unwrap_or(1)
+        module(placeholder)
+            .map(|m| {
+                super::package::top_ports(m)
+                    .iter()
+                    .map(|p| p.bits)
+                    .max()
+                    .unwrap_or(1)
+            })
+            .unwrap_or(1)
     };
     let mut final_names: HashMap<String, String> = HashMap::new();
     let mut taken: BTreeSet<String> = BTreeSet::new();
@@ -441,7 +679,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
     }
     for (name, placeholders) in &wanted {
         let widths: BTreeSet<usize> = placeholders.iter().map(|p| widest(p)).collect();
-        let infos: Vec<&UnitInfo> = placeholders.iter().filter_map(|p| module(p)?.unit.as_ref()).collect();
+        let infos: Vec<&UnitInfo> = placeholders
+            .iter()
+            .filter_map(|p| module(p)?.unit.as_ref())
+            .collect();
         for (p, info) in placeholders.iter().zip(&infos) {
             let mut candidate = if placeholders.len() == 1 {
                 name.clone()
@@ -452,7 +693,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
             };
             if taken.contains(&candidate) {
                 let stem = candidate.clone();
-                candidate = (2..).map(|k| format!("{stem}_{k}")).find(|n| !taken.contains(n)).unwrap();
+                candidate = (2..)
+                    .map(|k| format!("{stem}_{k}"))
+                    .find(|n| !taken.contains(n))
+                    .unwrap();
             }
             taken.insert(candidate.clone());
             final_names.insert(p.clone(), candidate);
@@ -472,7 +716,10 @@ pub fn normalize(verilog: &str, unit: &str, units: &UnitMap) -> Result<Vec<Modul
     // duplicates by name: keep one, with every instance.
     let mut instances: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for m in &modules {
-        instances.entry(m.name.clone()).or_default().extend(m.instances.iter().cloned());
+        instances
+            .entry(m.name.clone())
+            .or_default()
+            .extend(m.instances.iter().cloned());
     }
     let mut seen = BTreeSet::new();
     modules.retain(|m| seen.insert(m.name.clone()));
@@ -520,7 +767,11 @@ fn module_heights(modules: &[Module]) -> HashMap<String, usize> {
             // by the instance's name. (A signal may share a module's name:
             // the binning unit's register `top` inside the broad-phase top,
             // itself `top` in rust-hdl's text.)
-            let significant: Vec<&Token> = m.tokens.iter().filter(|t| !matches!(t.kind, Kind::Whitespace | Kind::Comment)).collect();
+            let significant: Vec<&Token> = m
+                .tokens
+                .iter()
+                .filter(|t| !matches!(t.kind, Kind::Whitespace | Kind::Comment))
+                .collect();
             let kids = significant
                 .windows(2)
                 .filter(|w| {
@@ -534,13 +785,22 @@ fn module_heights(modules: &[Module]) -> HashMap<String, usize> {
             (m.name.as_str(), kids)
         })
         .collect();
-    fn height<'a>(n: &'a str, children: &HashMap<&'a str, Vec<&'a str>>, memo: &mut HashMap<String, usize>) -> usize {
+    fn height<'a>(
+        n: &'a str,
+        children: &HashMap<&'a str, Vec<&'a str>>,
+        memo: &mut HashMap<String, usize>,
+    ) -> usize {
         if let Some(&h) = memo.get(n) {
             return h;
         }
         let h = children
             .get(n)
-            .map(|kids| kids.iter().map(|k| height(k, children, memo) + 1).max().unwrap_or(0))
+            .map(|kids| {
+                kids.iter()
+                    .map(|k| height(k, children, memo) + 1)
+                    .max()
+                    .unwrap_or(0)
+            })
             .unwrap_or(0);
         memo.insert(n.to_string(), h);
         h
@@ -559,16 +819,28 @@ fn module_heights(modules: &[Module]) -> HashMap<String, usize> {
 fn parameter_suffix(info: &UnitInfo, group: &[&UnitInfo]) -> String {
     let mut suffix = String::new();
     for (i, (name, value)) in info.parameters.iter().enumerate() {
-        if group.iter().all(|g| g.parameters.get(i).map(|(_, v)| v) == Some(value)) {
+        if group
+            .iter()
+            .all(|g| g.parameters.get(i).map(|(_, v)| v) == Some(value))
+        {
             continue;
         }
-        let bits = value.strip_prefix("Bits<").or_else(|| value.strip_prefix("Signed<"));
+        let bits = value
+            .strip_prefix("Bits<")
+            .or_else(|| value.strip_prefix("Signed<"));
         let part = match bits {
             // A signal type is named by its width, as ports are.
             Some(bits) => format!("w{}", bits.trim_end_matches('>')),
             None if value == "bool" => "w1".to_string(),
-            None if value.starts_with(|c: char| c.is_ascii_digit()) => format!("{}{value}", name.to_ascii_lowercase()),
-            None => UnitInfo { type_name: value.clone(), parameters: Vec::new(), latency: None }.module_stem(),
+            None if value.starts_with(|c: char| c.is_ascii_digit()) => {
+                format!("{}{value}", name.to_ascii_lowercase())
+            }
+            None => UnitInfo {
+                type_name: value.clone(),
+                parameters: Vec::new(),
+                latency: None,
+            }
+            .module_stem(),
         };
         suffix.push('_');
         suffix.push_str(&part);
@@ -592,7 +864,10 @@ mod tests {
     #[test]
     fn split_and_recognize_dff() {
         let modules = split_modules(SAMPLE).unwrap();
-        assert_eq!(modules.iter().map(|m| m.name.as_str()).collect::<Vec<_>>(), vec!["top", "top$r"]);
+        assert_eq!(
+            modules.iter().map(|m| m.name.as_str()).collect::<Vec<_>>(),
+            vec!["top", "top$r"]
+        );
         assert_eq!(rust_hdl_dff_shape(&modules[1]), Some((9, false)));
         assert_eq!(rust_hdl_dff_shape(&modules[0]), None);
     }
@@ -618,7 +893,10 @@ mod tests {
         let m = normalize(text, "u", &UnitMap::new()).unwrap();
         assert!(m[0].text().contains("input wire a__b;"), "{}", m[0].text());
         let text = "module top(a$b, a_b, a__b);\ninput wire a$b;\noutput wire a_b;\noutput wire a__b;\nendmodule\n";
-        assert!(matches!(normalize(text, "u", &UnitMap::new()), Err(ModuleError::NameCollision { .. })));
+        assert!(matches!(
+            normalize(text, "u", &UnitMap::new()),
+            Err(ModuleError::NameCollision { .. })
+        ));
     }
 
     /// A register field `r_q` gives nets `r_q` and `r_d`, not `r_q_q` and
@@ -635,5 +913,4 @@ mod tests {
         let top = normalize(&taken, "unit_w8", &register_at("r")).unwrap()[0].text();
         assert!(top.contains(".q(r_q_q)"), "{top}");
     }
-
 }

@@ -7,7 +7,12 @@ use super::{EmittedFile, Port, UnitDescription};
 /// Ports of a module, from its `input` / `output` / `inout` declarations
 /// (non-ANSI, as rust-hdl prints them, or ANSI).
 pub fn top_ports(module: &Module) -> Vec<Port> {
-    let words: Vec<&str> = module.tokens.iter().filter(|t| !t.is_trivia()).map(|t| t.text.as_str()).collect();
+    let words: Vec<&str> = module
+        .tokens
+        .iter()
+        .filter(|t| !t.is_trivia())
+        .map(|t| t.text.as_str())
+        .collect();
     let mut ports = Vec::new();
     let mut i = 0;
     while i < words.len() {
@@ -29,7 +34,12 @@ pub fn top_ports(module: &Module) -> Vec<Port> {
                 k += 5;
             }
             if let Some(name) = words.get(k) {
-                ports.push(Port { name: name.to_string(), direction, bits, signed });
+                ports.push(Port {
+                    name: name.to_string(),
+                    direction,
+                    bits,
+                    signed,
+                });
             }
             i = k + 1;
         } else {
@@ -55,12 +65,17 @@ fn dotted_path(path: &str) -> String {
     out
 }
 
-const RULE: &str = "////////////////////////////////////////////////////////////////////////////////";
+const RULE: &str =
+    "////////////////////////////////////////////////////////////////////////////////";
 
 fn wrap_comment(text: &str, first_prefix: &str, prefix: &str, width: usize) -> String {
     // Headers are ASCII, as the Verilog around them: the units' docs write
     // products and dashes as in print.
-    let text = text.replace('·', ".").replace('×', " x ").replace(['–', '—'], "-").replace('→', "->");
+    let text = text
+        .replace('·', ".")
+        .replace('×', " x ")
+        .replace(['–', '—'], "-")
+        .replace('→', "->");
     let mut lines = Vec::new();
     let mut line = first_prefix.to_string();
     let mut empty = true;
@@ -69,7 +84,10 @@ fn wrap_comment(text: &str, first_prefix: &str, prefix: &str, width: usize) -> S
             // A comment line that begins with `verilator` is a Verilator
             // directive: such a word takes the one before it along.
             let carried = match line.rsplit_once(' ') {
-                Some((rest, last)) if word.to_ascii_lowercase().starts_with("verilator") && rest.len() > prefix.len() => {
+                Some((rest, last))
+                    if word.to_ascii_lowercase().starts_with("verilator")
+                        && rest.len() > prefix.len() =>
+                {
                     let last = last.to_string();
                     line.truncate(rest.len());
                     Some(last)
@@ -104,14 +122,20 @@ fn purpose(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
         return text;
     }
     let register = rust_hdl_dff_shape(module).is_some()
-        || (module.name.starts_with(&format!("{}_dff_", unit.name)) && module.text().contains("q <= d;"));
+        || (module.name.starts_with(&format!("{}_dff_", unit.name))
+            && module.text().contains("q <= d;"));
     let kind = match module.unit.as_ref().and_then(|u| u.doc()) {
         _ if register => "A D flip-flop register (rust-hdl's DFF) without reset.".to_string(),
         Some(doc) => format!("{} Part of {}.", doc.purpose, unit.name),
         None => format!("Part of {}.", unit.name),
     };
     let count = module.instances.len();
-    let shown: Vec<String> = module.instances.iter().take(4).map(|p| dotted_path(p)).collect();
+    let shown: Vec<String> = module
+        .instances
+        .iter()
+        .take(4)
+        .map(|p| dotted_path(p))
+        .collect();
     let instances = match count {
         0 => String::new(),
         1 => format!(" Instance: {}.", shown[0]),
@@ -126,14 +150,28 @@ fn header(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
     h.push_str(RULE);
     h.push_str("\n//\n");
     h.push_str(&format!("// Filename:   {}.v\n//\n", module.name));
-    h.push_str(&wrap_comment(&purpose(module, unit, is_top), "// Purpose:    ", "//             ", 80));
+    h.push_str(&wrap_comment(
+        &purpose(module, unit, is_top),
+        "// Purpose:    ",
+        "//             ",
+        80,
+    ));
     h.push_str("//\n");
     if is_top {
         if !unit.parameters.is_empty() {
             let mut first = true;
             for (name, meaning) in &unit.parameters {
-                let lead = if first { "// Parameters: " } else { "//             " };
-                h.push_str(&wrap_comment(&format!("{name} = {meaning}"), lead, "//               ", 80));
+                let lead = if first {
+                    "// Parameters: "
+                } else {
+                    "//             "
+                };
+                h.push_str(&wrap_comment(
+                    &format!("{name} = {meaning}"),
+                    lead,
+                    "//               ",
+                    80,
+                ));
                 first = false;
             }
             h.push_str("//\n");
@@ -142,15 +180,28 @@ fn header(module: &Module, unit: &UnitDescription, is_top: bool) -> String {
             h.push_str(&format!("// Latency:    {l} clock cycles\n"));
         }
         if !unit.throughput.is_empty() {
-            h.push_str(&wrap_comment(&unit.throughput, "// Throughput: ", "//             ", 80));
+            h.push_str(&wrap_comment(
+                &unit.throughput,
+                "// Throughput: ",
+                "//             ",
+                80,
+            ));
         }
         h.push_str("//\n");
     } else if let Some(u) = &module.unit {
         // The unit's Rust type with its parameters' values: the
         // description this module was generated from.
-        h.push_str(&wrap_comment(&u.signature(), "// Rust unit:  ", "//             ", 80));
+        h.push_str(&wrap_comment(
+            &u.signature(),
+            "// Rust unit:  ",
+            "//             ",
+            80,
+        ));
         if let Some(l) = u.latency {
-            h.push_str(&format!("// Latency:    {l} clock cycle{}\n", if l == 1 { "" } else { "s" }));
+            h.push_str(&format!(
+                "// Latency:    {l} clock cycle{}\n",
+                if l == 1 { "" } else { "s" }
+            ));
         }
         h.push_str("//\n");
     }
@@ -192,10 +243,18 @@ pub fn module_file(module: &Module, unit: &UnitDescription, is_top: bool) -> Str
 /// Every file of the emitted directory (see [`super::EmittedDesign::files`]).
 /// `models` are simulation models of device primitives the modules
 /// instantiate (written as they are, listed first).
-pub fn files(modules: &[Module], ports: &[Port], unit: &UnitDescription, models: &[EmittedFile]) -> Vec<EmittedFile> {
+pub fn files(
+    modules: &[Module],
+    ports: &[Port],
+    unit: &UnitDescription,
+    models: &[EmittedFile],
+) -> Vec<EmittedFile> {
     let mut files = Vec::new();
     for (k, m) in modules.iter().enumerate() {
-        files.push(EmittedFile { path: format!("{}.v", m.name), contents: module_file(m, unit, k == 0) });
+        files.push(EmittedFile {
+            path: format!("{}.v", m.name),
+            contents: module_file(m, unit, k == 0),
+        });
     }
     files.extend(models.iter().cloned());
     // Children first, top last: the order tools that need definitions
@@ -203,29 +262,65 @@ pub fn files(modules: &[Module], ports: &[Port], unit: &UnitDescription, models:
     let mut order: Vec<String> = models.iter().map(|f| f.path.clone()).collect();
     order.extend(modules.iter().skip(1).map(|m| format!("{}.v", m.name)));
     order.push(format!("{}.v", modules[0].name));
-    files.push(EmittedFile { path: "filelist.f".into(), contents: order.join("\n") + "\n" });
-    files.push(EmittedFile { path: format!("{}.core", unit.name), contents: fusesoc_core(&order, unit) });
-    files.push(EmittedFile { path: "synth_generic.ys".into(), contents: yosys_script(&order, unit, false) });
-    files.push(EmittedFile { path: "synth_xilinx.ys".into(), contents: yosys_script(&order, unit, true) });
-    files.push(EmittedFile { path: "README.md".into(), contents: readme(&order, ports, unit) });
+    files.push(EmittedFile {
+        path: "filelist.f".into(),
+        contents: order.join("\n") + "\n",
+    });
+    files.push(EmittedFile {
+        path: format!("{}.core", unit.name),
+        contents: fusesoc_core(&order, unit),
+    });
+    files.push(EmittedFile {
+        path: "synth_generic.ys".into(),
+        contents: yosys_script(&order, unit, false),
+    });
+    files.push(EmittedFile {
+        path: "synth_xilinx.ys".into(),
+        contents: yosys_script(&order, unit, true),
+    });
+    files.push(EmittedFile {
+        path: "README.md".into(),
+        contents: readme(&order, ports, unit),
+    });
     files
 }
 
 fn fusesoc_core(order: &[String], unit: &UnitDescription) -> String {
     let mut c = String::from("CAPI=2:\n");
-    c.push_str(&format!("# Generated by {}; regenerate, do not edit.\n", unit.generator));
-    c.push_str(&format!("name: {}:{}:{}\n", unit.vendor_library, unit.name, env!("CARGO_PKG_VERSION")));
-    c.push_str(&format!("description: \"{}\"\n\n", unit.summary.replace('"', "'")));
+    c.push_str(&format!(
+        "# Generated by {}; regenerate, do not edit.\n",
+        unit.generator
+    ));
+    c.push_str(&format!(
+        "name: {}:{}:{}\n",
+        unit.vendor_library,
+        unit.name,
+        env!("CARGO_PKG_VERSION")
+    ));
+    c.push_str(&format!(
+        "description: \"{}\"\n\n",
+        unit.summary.replace('"', "'")
+    ));
     c.push_str("filesets:\n  rtl:\n    files:\n");
     for f in order {
         c.push_str(&format!("      - {f}\n"));
     }
     c.push_str("    file_type: verilogSource\n\n");
     c.push_str("targets:\n");
-    c.push_str(&format!("  default: &default\n    filesets: [rtl]\n    toplevel: {}\n\n", unit.name));
+    c.push_str(&format!(
+        "  default: &default\n    filesets: [rtl]\n    toplevel: {}\n\n",
+        unit.name
+    ));
     c.push_str("  lint:\n    <<: *default\n    default_tool: verilator\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n\n");
     // MULT18X18D instances (`--dsp ecp5`) synthesize for ECP5 only.
-    let arch = if order.iter().any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE) { "ecp5" } else { "xilinx" };
+    let arch = if order
+        .iter()
+        .any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE)
+    {
+        "ecp5"
+    } else {
+        "xilinx"
+    };
     c.push_str(&format!("  synth:\n    <<: *default\n    default_tool: yosys\n    tools:\n      yosys:\n        arch: {arch}\n"));
     c
 }
@@ -247,7 +342,18 @@ fn yosys_script(order: &[String], unit: &UnitDescription, xilinx: bool) -> Strin
     } else {
         s.push_str(&format!("synth -flatten -top {}\n", unit.name));
     }
-    s.push_str("tee -o stat.txt stat\n".replace("stat.txt", if xilinx { "stat_xilinx.txt" } else { "stat_generic.txt" }).as_str());
+    s.push_str(
+        "tee -o stat.txt stat\n"
+            .replace(
+                "stat.txt",
+                if xilinx {
+                    "stat_xilinx.txt"
+                } else {
+                    "stat_generic.txt"
+                },
+            )
+            .as_str(),
+    );
     s
 }
 
@@ -266,13 +372,27 @@ fn readme(order: &[String], ports: &[Port], unit: &UnitDescription) -> String {
     }
     r.push_str("## Ports\n\n| name | direction | width | meaning |\n|---|---|---|---|\n");
     for p in ports {
-        let meaning = unit.ports.iter().find(|(n, _)| n == &p.name).map(|(_, m)| m.as_str()).unwrap_or("");
-        let width = if p.signed { format!("{} (signed)", p.bits) } else { p.bits.to_string() };
-        r.push_str(&format!("| `{}` | {} | {} | {} |\n", p.name, p.direction, width, meaning));
+        let meaning = unit
+            .ports
+            .iter()
+            .find(|(n, _)| n == &p.name)
+            .map(|(_, m)| m.as_str())
+            .unwrap_or("");
+        let width = if p.signed {
+            format!("{} (signed)", p.bits)
+        } else {
+            p.bits.to_string()
+        };
+        r.push_str(&format!(
+            "| `{}` | {} | {} | {} |\n",
+            p.name, p.direction, width, meaning
+        ));
     }
     r.push_str("\n## Timing\n\n");
     if let Some(l) = unit.latency {
-        r.push_str(&format!("- Latency: {l} clock cycles from an input to its result.\n"));
+        r.push_str(&format!(
+            "- Latency: {l} clock cycles from an input to its result.\n"
+        ));
     }
     if !unit.throughput.is_empty() {
         r.push_str(&format!("- Throughput: {}\n", unit.throughput));
@@ -282,9 +402,17 @@ fn readme(order: &[String], ports: &[Port], unit: &UnitDescription) -> String {
         "- `filelist.f`: the {} Verilog-2005 files below, children first, one module per file.\n",
         order.len()
     ));
-    r.push_str(&format!("- `{}.core`: FuseSoC (CAPI2) core, targets `default`, `lint`, `synth`.\n", unit.name));
-    r.push_str("- `synth_generic.ys`, `synth_xilinx.ys`: Yosys synthesis with a `stat` resource report.\n");
-    if order.iter().any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE) {
+    r.push_str(&format!(
+        "- `{}.core`: FuseSoC (CAPI2) core, targets `default`, `lint`, `synth`.\n",
+        unit.name
+    ));
+    r.push_str(
+        "- `synth_generic.ys`, `synth_xilinx.ys`: Yosys synthesis with a `stat` resource report.\n",
+    );
+    if order
+        .iter()
+        .any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE)
+    {
         r.push_str(&format!(
             "- `{}`: a simulation model of Lattice's MULT18X18D, which the multipliers instantiate with their registers \
              (`tritri gen --dsp ecp5`); Yosys skips it (`SYNTHESIS` is defined), so synthesize with an ECP5 flow \
@@ -294,7 +422,10 @@ fn readme(order: &[String], ports: &[Port], unit: &UnitDescription) -> String {
     }
     r.push('\n');
     r.push_str("## Use\n\nFrom this directory:\n\n```sh\n");
-    r.push_str(&format!("verilator --lint-only -Wall -f filelist.f --top-module {}\n", unit.name));
+    r.push_str(&format!(
+        "verilator --lint-only -Wall -f filelist.f --top-module {}\n",
+        unit.name
+    ));
     r.push_str("iverilog -g2012 -c filelist.f -o /dev/null\n");
     r.push_str("yosys -q -s synth_xilinx.ys   # writes stat_xilinx.txt\n```\n\n");
     r.push_str(&format!(
@@ -316,20 +447,34 @@ mod tests {
 
     #[test]
     fn comments_wrap_at_width() {
-        let text = wrap_comment(&"word ".repeat(40), "// Purpose:    ", "//             ", 80);
+        let text = wrap_comment(
+            &"word ".repeat(40),
+            "// Purpose:    ",
+            "//             ",
+            80,
+        );
         assert!(text.lines().all(|l| l.len() <= 80), "{text}");
-        assert!(text.lines().skip(1).all(|l| l.starts_with("//             ")));
+        assert!(text
+            .lines()
+            .skip(1)
+            .all(|l| l.starts_with("//             ")));
     }
 
     /// No line of a header begins with `verilator` (a directive to Verilator).
     #[test]
     fn no_line_begins_with_verilator() {
         for n in 0..20 {
-            let text = format!("{}would look like a loop to Verilator. Part of x.", "ab ".repeat(n));
+            let text = format!(
+                "{}would look like a loop to Verilator. Part of x.",
+                "ab ".repeat(n)
+            );
             let wrapped = wrap_comment(&text, "// Purpose:    ", "//             ", 40);
             for line in wrapped.lines() {
                 let words = line.trim_start_matches('/').trim_start();
-                assert!(!words.to_ascii_lowercase().starts_with("verilator"), "{wrapped}");
+                assert!(
+                    !words.to_ascii_lowercase().starts_with("verilator"),
+                    "{wrapped}"
+                );
             }
         }
     }

@@ -110,16 +110,28 @@ mod tests {
 
     #[test]
     fn constant_bases_become_slices() {
-        assert_eq!(constant_part_selects("pushed[(64'h28)+:(11)] = x;"), "pushed[50:40] = x;");
-        assert_eq!(constant_part_selects("a[(64'h0)+:(40)] = b; c[(64'hz)+:(3)]"), "a[39:0] = b; c[(64'hz)+:(3)]");
+        assert_eq!(
+            constant_part_selects("pushed[(64'h28)+:(11)] = x;"),
+            "pushed[50:40] = x;"
+        );
+        assert_eq!(
+            constant_part_selects("a[(64'h0)+:(40)] = b; c[(64'hz)+:(3)]"),
+            "a[39:0] = b; c[(64'hz)+:(3)]"
+        );
         assert_eq!(constant_part_selects("plain[3:0]"), "plain[3:0]");
     }
 
     #[test]
     fn a_bit_of_a_slice_is_one_bit_select() {
-        assert_eq!(constant_part_selects("if (top_q[360:357][2]) x = m[3:0][1:0];"), "if (top_q[359]) x = m[3:0][1:0];");
+        assert_eq!(
+            constant_part_selects("if (top_q[360:357][2]) x = m[3:0][1:0];"),
+            "if (top_q[359]) x = m[3:0][1:0];"
+        );
         assert_eq!(constant_part_selects("a[(64'h8)+:(4)][3]"), "a[11]");
-        assert_eq!(constant_part_selects("a[(64'h8)+:(4)][32'ha]"), "a[(64'h8)+:(4)][32'ha]".replace("(64'h8)+:(4)", "11:8"));
+        assert_eq!(
+            constant_part_selects("a[(64'h8)+:(4)][32'ha]"),
+            "a[(64'h8)+:(4)][32'ha]".replace("(64'h8)+:(4)", "11:8")
+        );
     }
 
     #[test]

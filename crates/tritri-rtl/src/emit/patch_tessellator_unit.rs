@@ -2,8 +2,10 @@
 //! its name, port meanings and timing, at the widths it is built for.
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::bezier::patch_tessellator::{net_bits, tessellation_clocks, value_bits, PatchTessellator};
 pub use crate::bezier::patch_tessellator::TESSELLATOR_CONFIGURATIONS;
+use crate::bezier::patch_tessellator::{
+    net_bits, tessellation_clocks, value_bits, PatchTessellator,
+};
 use rust_hdl::prelude::*;
 
 /// `tritri_patch_tessellator_w<W>_k<K>`.
@@ -49,10 +51,14 @@ pub fn patch_tessellator_unit(w: usize, k: usize) -> UnitDescription {
 }
 
 pub fn emit_patch_tessellator(w: usize, k: usize) -> Result<EmittedDesign, EmitError> {
-    fn one<const W: usize, const K: usize, const V: usize, const N: usize>() -> Result<EmittedDesign, EmitError> {
+    fn one<const W: usize, const K: usize, const V: usize, const N: usize>(
+    ) -> Result<EmittedDesign, EmitError> {
         let mut uut = PatchTessellator::<W, K, V, N>::default();
         uut.connect_all();
-        emit(&crate::unit::RawDesign::of(&uut), &patch_tessellator_unit(W, K))
+        emit(
+            &crate::unit::RawDesign::of(&uut),
+            &patch_tessellator_unit(W, K),
+        )
     }
     crate::with_patch_tessellator!(w, k, one())
         .unwrap_or_else(|| panic!("the patch tessellator is built for {TESSELLATOR_CONFIGURATIONS:?}, not W = {w}, K = {k}"))

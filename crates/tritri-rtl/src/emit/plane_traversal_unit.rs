@@ -2,7 +2,9 @@
 //! name, port meanings, timing, and the host's preparation of a plane.
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::plane_traversal::{PlaneTraversal, CLASSIFY_LATENCY, MAX_LEVEL, PLANE_VALUE_BITS, STACK_ADDRESS_BITS};
+use crate::octree::plane_traversal::{
+    PlaneTraversal, CLASSIFY_LATENCY, MAX_LEVEL, PLANE_VALUE_BITS, STACK_ADDRESS_BITS,
+};
 use rust_hdl::prelude::*;
 
 /// Top module name.
@@ -29,7 +31,10 @@ pub struct PlaneInputs {
 impl PlaneInputs {
     pub fn new(level: u32, normal: [i64; 3], d: i64) -> Result<PlaneInputs, String> {
         if !(1..=MAX_LEVEL).contains(&level) {
-            return Err(format!("the plane traversal classifies grids of 2 to {} voxels a side, not 2^{level}", 1 << MAX_LEVEL));
+            return Err(format!(
+                "the plane traversal classifies grids of 2 to {} voxels a side, not 2^{level}",
+                1 << MAX_LEVEL
+            ));
         }
         if normal.iter().any(|c| c.abs() > MAX_NORMAL_COMPONENT) {
             return Err(format!("normal {normal:?}: components of at most 2^20 in size fit the traversal's {PLANE_VALUE_BITS}-bit values"));
@@ -38,7 +43,13 @@ impl PlaneInputs {
         let root_min: i64 = normal.iter().map(|&n| (n * side).min(0)).sum();
         let root_max: i64 = normal.iter().map(|&n| (n * side).max(0)).sum();
         let d = d.clamp(root_min - 1, root_max + 1);
-        Ok(PlaneInputs { level, gradient: normal, d, root_min, centre_offset: 2 * d - normal.iter().sum::<i64>() })
+        Ok(PlaneInputs {
+            level,
+            gradient: normal,
+            d,
+            root_min,
+            centre_offset: 2 * d - normal.iter().sum::<i64>(),
+        })
     }
 }
 

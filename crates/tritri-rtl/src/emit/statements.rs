@@ -22,7 +22,12 @@ pub(crate) struct StatementParser<'a> {
 
 impl<'a> StatementParser<'a> {
     pub(crate) fn new(words: &'a [&'a str], position: usize) -> Self {
-        StatementParser { words, position, spans: Vec::new(), cases_without_default: Vec::new() }
+        StatementParser {
+            words,
+            position,
+            spans: Vec::new(),
+            cases_without_default: Vec::new(),
+        }
     }
 
     fn peek(&self) -> Option<&str> {
@@ -84,7 +89,8 @@ impl<'a> StatementParser<'a> {
                     if self.words[label] == "default" {
                         default = true;
                     } else {
-                        self.spans.push(Span::CaseLabel((label, self.position), (open + 1, close)));
+                        self.spans
+                            .push(Span::CaseLabel((label, self.position), (open + 1, close)));
                     }
                     self.position += 1;
                     self.statement()?;
@@ -100,7 +106,8 @@ impl<'a> StatementParser<'a> {
                 let start = self.position;
                 let end = (start..self.words.len()).find(|&k| self.words[k] == ";")?;
                 if let Some(equals) = (start..end).find(|&k| self.words[k] == "=") {
-                    self.spans.push(Span::Assignment((start, equals), (equals + 1, end)));
+                    self.spans
+                        .push(Span::Assignment((start, equals), (equals + 1, end)));
                 }
                 self.position = end + 1;
             }

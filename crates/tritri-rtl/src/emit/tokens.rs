@@ -32,7 +32,10 @@ pub struct Token {
 
 impl Token {
     pub fn new(kind: Kind, text: impl Into<String>) -> Self {
-        Token { kind, text: text.into() }
+        Token {
+            kind,
+            text: text.into(),
+        }
     }
     pub fn is(&self, text: &str) -> bool {
         self.text == text && !matches!(self.kind, Kind::Comment | Kind::String)
@@ -45,8 +48,8 @@ impl Token {
 // Attribute brackets `(*` `*)` are left as two tokens each, so that
 // `@(*)` reads as `@ ( * )`.
 const PUNCTUATION: [&str; 29] = [
-    "<<<", ">>>", "===", "!==", "<=", ">=", "==", "!=", "&&", "||", "<<", ">>", "+:", "-:", "**", "~&",
-    "~|", "~^", "^~", "->", "::", "++", "--", "+=", "-=", "|=", "&=", "^=", "'{",
+    "<<<", ">>>", "===", "!==", "<=", ">=", "==", "!=", "&&", "||", "<<", ">>", "+:", "-:", "**",
+    "~&", "~|", "~^", "^~", "->", "::", "++", "--", "+=", "-=", "|=", "&=", "^=", "'{",
 ];
 
 fn is_identifier_start(c: char) -> bool {
@@ -118,7 +121,12 @@ pub fn tokenize(text: &str) -> Vec<Token> {
                 i += 1;
             }
             kind = Kind::Directive;
-        } else if c.is_ascii_digit() || (c == '\'' && chars.get(i + 1).is_some_and(|d| "sSbBoOdDhH01xXzZ".contains(*d))) {
+        } else if c.is_ascii_digit()
+            || (c == '\''
+                && chars
+                    .get(i + 1)
+                    .is_some_and(|d| "sSbBoOdDhH01xXzZ".contains(*d)))
+        {
             while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '_') {
                 i += 1;
             }
@@ -134,18 +142,26 @@ pub fn tokenize(text: &str) -> Vec<Token> {
                         i += 1;
                     }
                 }
-                while i < chars.len() && (chars[i].is_ascii_hexdigit() || "xXzZ_?".contains(chars[i])) {
+                while i < chars.len()
+                    && (chars[i].is_ascii_hexdigit() || "xXzZ_?".contains(chars[i]))
+                {
                     i += 1;
                 }
             }
             kind = Kind::Number;
         } else {
             let rest: String = chars[i..(i + 3).min(chars.len())].iter().collect();
-            let len = PUNCTUATION.iter().find(|p| rest.starts_with(*p)).map_or(1, |p| p.len());
+            let len = PUNCTUATION
+                .iter()
+                .find(|p| rest.starts_with(*p))
+                .map_or(1, |p| p.len());
             i += len;
             kind = Kind::Punctuation;
         }
-        tokens.push(Token { kind, text: take(start, i) });
+        tokens.push(Token {
+            kind,
+            text: take(start, i),
+        });
     }
     tokens
 }

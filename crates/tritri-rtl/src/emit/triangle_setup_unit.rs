@@ -23,7 +23,9 @@ pub enum SetupEmitError {
 
 /// rust-hdl's Verilog of the setup for `grid_bits` (the grids the
 /// classifier is emitted for).
-pub fn raw_triangle_setup_verilog(grid_bits: usize) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
+pub fn raw_triangle_setup_verilog(
+    grid_bits: usize,
+) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
     fn raw<const G: usize, const V: usize, const N: usize>() -> crate::unit::RawDesign {
         let mut uut = TriangleSetup::<G, V, N>::default();
         uut.connect_all();
@@ -44,7 +46,9 @@ pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppor
     }
     let v = value_bits(grid_bits);
     let l = TRIANGLE_SETUP_LATENCY as u64;
-    let field = |what: &str| format!("{what} of the {AXES} test functions, packed: function i at bits [i*V +: V], V-bit two's complement.");
+    let field = |what: &str| {
+        format!("{what} of the {AXES} test functions, packed: function i at bits [i*V +: V], V-bit two's complement.")
+    };
     let unit = UnitDescription::new(
         &triangle_setup_unit_name(grid_bits),
         &format!(
@@ -68,6 +72,7 @@ pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppor
     .port("in_root_x", "Low corner of the root cell, x (G-bit two's complement).")
     .port("in_root_y", "Low corner of the root cell, y.")
     .port("in_root_z", "Low corner of the root cell, z.")
+    .port("grow", "High: every interval grown by |g|_1, one grid step in every direction (the broad phase). Low: the triangle's own intervals (exact voxelization). Held constant.")
     .port("out_valid", &format!("The functions of the triangle that entered {l} clocks earlier are on the outputs."))
     .port("out_tag", "Tag of the triangle.")
     .port("out_gradient_x", &field("Gradients, x"))
@@ -80,7 +85,10 @@ pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppor
     let mut unit = unit;
     for i in 0..3 {
         for c in ["x", "y", "z"] {
-            unit = unit.port(&format!("in_{c}{i}"), &format!("Vertex {i}, {c} (G-bit two's complement grid coordinate)."));
+            unit = unit.port(
+                &format!("in_{c}{i}"),
+                &format!("Vertex {i}, {c} (G-bit two's complement grid coordinate)."),
+            );
         }
     }
     Ok(unit)

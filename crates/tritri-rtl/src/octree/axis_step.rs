@@ -90,7 +90,10 @@ struct Stage3 {
 
 impl<const V: usize> Default for AxisStep<V> {
     fn default() -> Self {
-        assert!((8..=127).contains(&V), "axis step of {V} bits is not supported");
+        assert!(
+            (8..=127).contains(&V),
+            "axis step of {V} bits is not supported"
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -128,7 +131,9 @@ impl<const V: usize> Logic for AxisStep<V> {
         }
         // Stage 4: comparisons.
         let s3 = self._s3;
-        let mask = (0..8).filter(|&o| s3.epsilon <= s3.sums[o] && s3.sums[o] <= s3.delta).fold(0u64, |m, o| m | 1 << o);
+        let mask = (0..8)
+            .filter(|&o| s3.epsilon <= s3.sums[o] && s3.sums[o] <= s3.delta)
+            .fold(0u64, |m, o| m | 1 << o);
         self.mask.next = Bits::from(mask);
         self.value.next = from_i128::<V>(s3.value);
         // Stage 3: the two differences.
@@ -141,7 +146,10 @@ impl<const V: usize> Logic for AxisStep<V> {
         };
         // Stage 2: descent, subset sums, range ends.
         let s1 = self._s1;
-        let descent: i128 = (0..3).filter(|k| s1.step >> k & 1 == 1).map(|k| s1.q[k] << 1).sum();
+        let descent: i128 = (0..3)
+            .filter(|k| s1.step >> k & 1 == 1)
+            .map(|k| s1.q[k] << 1)
+            .sum();
         self._s2 = Stage2 {
             sums: subset_sums(s1.q, V),
             value: wrap_i128(s1.at_lo + descent, V),
@@ -153,9 +161,19 @@ impl<const V: usize> Logic for AxisStep<V> {
         // Stage 1: shifts (Verilog's `<<` by `level - 1`, six bits, modulo 2^V).
         let shift = (self.level.val().index() as u32).wrapping_sub(1) & 63;
         let octant = self.octant.val().index() as u8;
-        let gradient = [self.gradient_x.val(), self.gradient_y.val(), self.gradient_z.val()];
+        let gradient = [
+            self.gradient_x.val(),
+            self.gradient_y.val(),
+            self.gradient_z.val(),
+        ];
         self._s1 = Stage1 {
-            q: gradient.map(|g| if shift >= V as u32 { 0 } else { wrap_i128(to_i128(g) << shift, V) }),
+            q: gradient.map(|g| {
+                if shift >= V as u32 {
+                    0
+                } else {
+                    wrap_i128(to_i128(g) << shift, V)
+                }
+            }),
             step: if self.descend.val() { octant } else { 0 },
             at_lo: to_i128(self.at_lo.val()),
             low: to_i128(self.low.val()),

@@ -57,7 +57,8 @@ use tritri_geom::scene::octree::LOOKAHEAD;
 /// list memory (1), triangle memory (1), setup and classifier (the last
 /// masks are written into the list memories as they come out), and the
 /// packers' flush of a half word (1).
-pub const PASS_DRAIN: u64 = 2 + super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64 + CELL_CLASSIFIER_LATENCY as u64 + 1;
+pub const PASS_DRAIN: u64 =
+    2 + super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64 + CELL_CLASSIFIER_LATENCY as u64 + 1;
 /// Clocks of the cost queries after a pass: the eight children and the
 /// cell, one per clock, and the last one's latency.
 pub const COSTS_CLOCKS: u64 = 9 + LEAF_COST_LATENCY as u64;
@@ -146,7 +147,13 @@ impl Machine<'_> {
             return (0..list.count).collect();
         }
         let words = &self.memories[object][list.memory as usize][list.start as usize..];
-        words.iter().flatten().flatten().copied().take(list.count as usize).collect()
+        words
+            .iter()
+            .flatten()
+            .flatten()
+            .copied()
+            .take(list.count as usize)
+            .collect()
     }
 
     /// One pass over `cell`'s lists: the children's lists appended to the
@@ -158,7 +165,11 @@ impl Machine<'_> {
             let mut per_child: [Vec<u32>; 8] = Default::default();
             for &index in &entries {
                 // A unit cell has no children (the root may be one; it is then a leaf).
-                let mask = if cell.splittable() { self.tests[object][index as usize].children_of_cell(&cell) } else { 0 };
+                let mask = if cell.splittable() {
+                    self.tests[object][index as usize].children_of_cell(&cell)
+                } else {
+                    0
+                };
                 for (o, child) in per_child.iter_mut().enumerate() {
                     if mask >> o & 1 == 1 {
                         child.push(index);
@@ -167,8 +178,16 @@ impl Machine<'_> {
             }
             for (o, child) in per_child.into_iter().enumerate() {
                 let memory = &mut self.memories[object][o];
-                children[o][object] = ListRef { memory: o as u8, start: memory.len() as u32, count: child.len() as u32 };
-                memory.extend(child.chunks(2).map(|pair| [Some(pair[0]), pair.get(1).copied()]));
+                children[o][object] = ListRef {
+                    memory: o as u8,
+                    start: memory.len() as u32,
+                    count: child.len() as u32,
+                };
+                memory.extend(
+                    child
+                        .chunks(2)
+                        .map(|pair| [Some(pair[0]), pair.get(1).copied()]),
+                );
             }
             self.run.entries += entries.len() as u64;
         }
@@ -177,7 +196,12 @@ impl Machine<'_> {
     }
 
     fn leaf_cost(&self, lists: [ListRef; 2]) -> u64 {
-        leaf_cost(lists[0].count as u64, lists[1].count as u64, self.params.log_depth, self.params.log_pipelines)
+        leaf_cost(
+            lists[0].count as u64,
+            lists[1].count as u64,
+            self.params.log_depth,
+            self.params.log_pipelines,
+        )
     }
 
     fn forced(&self, cell: &Cell) -> bool {
@@ -185,13 +209,24 @@ impl Machine<'_> {
     }
 
     fn emit(&mut self, cell: Cell, lists: [ListRef; 2]) {
-        self.run.leaves.push(LeafDescriptor { cell, a: lists[0], b: lists[1] });
+        self.run.leaves.push(LeafDescriptor {
+            cell,
+            a: lists[0],
+            b: lists[1],
+        });
         self.run.peak_leaves = self.run.peak_leaves.max(self.run.leaves.len());
     }
 
     /// After a cell's pass: its costs, then the decision (1 clock). Returns
     /// the frame to push, or the cell's cost when it is a leaf.
-    fn decide(&mut self, cell: Cell, lists: [ListRef; 2], children: [[ListRef; 2]; 8], classify: u64, slack: u32) -> Result<Frame, u64> {
+    fn decide(
+        &mut self,
+        cell: Cell,
+        lists: [ListRef; 2],
+        children: [[ListRef; 2]; 8],
+        classify: u64,
+        slack: u32,
+    ) -> Result<Frame, u64> {
         self.run.cycles += COSTS_CLOCKS + 1;
         let leaf_cost = self.leaf_cost(lists);
         if lists[0].count == 0 || lists[1].count == 0 {
@@ -205,7 +240,17 @@ impl Machine<'_> {
             return Err(leaf_cost + classify);
         }
         let slack_next = if improving { LOOKAHEAD } else { slack - 1 };
-        Ok(Frame { cell, lists, leaf_cost, classify, subtree: 0, slack_next, forced, leaf_mark: self.run.leaves.len(), children })
+        Ok(Frame {
+            cell,
+            lists,
+            leaf_cost,
+            classify,
+            subtree: 0,
+            slack_next,
+            forced,
+            leaf_mark: self.run.leaves.len(),
+            children,
+        })
     }
 
     /// Visits child `octant` of the top frame; returns its cost or the
@@ -235,14 +280,22 @@ impl Machine<'_> {
     }
 
     fn bin(&mut self, root: Cell) {
-        let counts = [self._triangles[0].len() as u32, self._triangles[1].len() as u32];
-        let lists = counts.map(|count| ListRef { memory: IDENTITY_LIST, start: 0, count });
+        let counts = [
+            self._triangles[0].len() as u32,
+            self._triangles[1].len() as u32,
+        ];
+        let lists = counts.map(|count| ListRef {
+            memory: IDENTITY_LIST,
+            start: 0,
+            count,
+        });
         // The root's pass is the stream.
         self.run.cycles += (counts[0] + counts[1]) as u64 + PASS_DRAIN;
         let children = self.pass(root, lists);
         // Frames and the octant each visits next.
         let mut stack: Vec<(Frame, usize)> = Vec::new();
-        let mut returned = match self.decide(root, lists, children, classify_cost(0, 0), LOOKAHEAD) {
+        let mut returned = match self.decide(root, lists, children, classify_cost(0, 0), LOOKAHEAD)
+        {
             Ok(frame) => {
                 stack.push((frame, 0));
                 None
@@ -254,7 +307,9 @@ impl Machine<'_> {
             if let Some(cost) = returned.take() {
                 // The cost goes to the top frame (1).
                 self.run.cycles += 1;
-                let Some((top, next)) = stack.last_mut() else { break };
+                let Some((top, next)) = stack.last_mut() else {
+                    break;
+                };
                 top.subtree += cost;
                 *next += 1;
                 if *next < 8 {
@@ -284,10 +339,19 @@ impl Machine<'_> {
 
 /// Bins `a` and `b` (the host's arrays, in the order they are streamed)
 /// under `root` as the unit does.
-pub fn run_binning(a: &[FixedTriangle], b: &[FixedTriangle], root: Cell, params: BinningParams) -> BinningRun {
+pub fn run_binning(
+    a: &[FixedTriangle],
+    b: &[FixedTriangle],
+    root: Cell,
+    params: BinningParams,
+) -> BinningRun {
     let mut machine = Machine {
         params,
-        tests: [a, b].map(|ts| ts.iter().map(|t| TriangleCellTest::widened(t, BROAD_PHASE_MARGIN)).collect()),
+        tests: [a, b].map(|ts| {
+            ts.iter()
+                .map(|t| TriangleCellTest::widened(t, BROAD_PHASE_MARGIN))
+                .collect()
+        }),
         _triangles: [a, b],
         memories: Default::default(),
         run: BinningRun::default(),
@@ -298,7 +362,12 @@ pub fn run_binning(a: &[FixedTriangle], b: &[FixedTriangle], root: Cell, params:
             machine.run.list_words[object][o] = machine.memories[object][o].len() as u32;
         }
     }
-    let lists: Vec<_> = machine.run.leaves.iter().map(|l| (machine.list(0, l.a), machine.list(1, l.b))).collect();
+    let lists: Vec<_> = machine
+        .run
+        .leaves
+        .iter()
+        .map(|l| (machine.list(0, l.a), machine.list(1, l.b)))
+        .collect();
     machine.run.leaf_lists = lists;
     machine.run
 }
@@ -324,7 +393,10 @@ mod tests {
             .map(|i| {
                 let c = [next(spread), next(spread), next(spread)];
                 let triangle = [0, 1, 2].map(|_| [0, 1, 2].map(|k| c[k] + next(size)));
-                TaggedTriangle { id: i as u32 * 3 + 1, triangle }
+                TaggedTriangle {
+                    id: i as u32 * 3 + 1,
+                    triangle,
+                }
             })
             .collect()
     }
@@ -333,34 +405,91 @@ mod tests {
     /// for triangle, with and without local frames, at several depths.
     #[test]
     fn machine_leaves_equal_the_planner() {
-        for (seed, n, spread, size, log_depth, local) in
-            [(1, 300, 1000, 60, 3, None), (2, 900, 3000, 200, 4, None), (3, 400, 200, 40, 8, None), (4, 500, 1 << 14, 300, 5, Some(12)), (5, 60, 10, 10, 2, None)]
-        {
+        for (seed, n, spread, size, log_depth, local) in [
+            (1, 300, 1000, 60, 3, None),
+            (2, 900, 3000, 200, 4, None),
+            (3, 400, 200, 40, 8, None),
+            (4, 500, 1 << 14, 300, 5, Some(12)),
+            (5, 60, 10, 10, 2, None),
+        ] {
             let a = scene(seed, n, spread, size);
             let b = scene(seed + 100, n, spread, size);
             let mut config = SystemConfig::new(24, 2, 30);
             config.triangles_per_bank = 1 << log_depth;
-            let lo = [0, 1, 2].map(|k| a.iter().chain(&b).flat_map(|t| t.triangle.map(|p| p[k])).min().unwrap());
-            let hi = [0, 1, 2].map(|k| a.iter().chain(&b).flat_map(|t| t.triangle.map(|p| p[k])).max().unwrap());
+            let lo = [0, 1, 2].map(|k| {
+                a.iter()
+                    .chain(&b)
+                    .flat_map(|t| t.triangle.map(|p| p[k]))
+                    .min()
+                    .unwrap()
+            });
+            let hi = [0, 1, 2].map(|k| {
+                a.iter()
+                    .chain(&b)
+                    .flat_map(|t| t.triangle.map(|p| p[k]))
+                    .max()
+                    .unwrap()
+            });
             let root_box = Aabb { lo, hi };
             let local_frames = local.map(|width| LocalFrames { width });
-            let plan = schedule(&a, &b, &root_box, config.triangles_per_bank, &config, local_frames);
+            let plan = schedule(
+                &a,
+                &b,
+                &root_box,
+                config.triangles_per_bank,
+                &config,
+                local_frames,
+            );
             assert!(plan.host_arrays.is_empty());
-            let params = BinningParams { log_depth, log_pipelines: 1, max_leaf_level: local.map(|w: u32| w - 2) };
-            let run = run_binning(&a.iter().map(|t| t.triangle).collect::<Vec<_>>(), &b.iter().map(|t| t.triangle).collect::<Vec<_>>(), plan.root.unwrap(), params);
+            let params = BinningParams {
+                log_depth,
+                log_pipelines: 1,
+                max_leaf_level: local.map(|w: u32| w - 2),
+            };
+            let run = run_binning(
+                &a.iter().map(|t| t.triangle).collect::<Vec<_>>(),
+                &b.iter().map(|t| t.triangle).collect::<Vec<_>>(),
+                plan.root.unwrap(),
+                params,
+            );
             // Seed 5 is small enough for the root to stay one leaf, whose
             // lists are the streamed arrays themselves.
             if seed == 5 {
-                assert_eq!((run.leaves.len(), run.leaves[0].a.memory), (1, IDENTITY_LIST));
+                assert_eq!(
+                    (run.leaves.len(), run.leaves[0].a.memory),
+                    (1, IDENTITY_LIST)
+                );
             } else {
-                assert!(plan.leaves.len() > 3, "seed {seed}: {} leaves", plan.leaves.len());
+                assert!(
+                    plan.leaves.len() > 3,
+                    "seed {seed}: {} leaves",
+                    plan.leaves.len()
+                );
             }
             assert_eq!(run.leaves.len(), plan.leaves.len(), "seed {seed}");
-            for ((leaf, (la, lb)), planned) in run.leaves.iter().zip(&run.leaf_lists).zip(&plan.leaves) {
+            for ((leaf, (la, lb)), planned) in
+                run.leaves.iter().zip(&run.leaf_lists).zip(&plan.leaves)
+            {
                 assert_eq!(leaf.cell, planned.cell, "seed {seed}");
-                let ids = |list: &[u32], all: &[TaggedTriangle]| list.iter().map(|&i| all[i as usize].id).collect::<Vec<_>>();
-                assert_eq!(ids(la, &a), plan.a[planned.a.clone()].iter().map(|t| t.id).collect::<Vec<_>>(), "seed {seed}");
-                assert_eq!(ids(lb, &b), plan.b[planned.b.clone()].iter().map(|t| t.id).collect::<Vec<_>>(), "seed {seed}");
+                let ids = |list: &[u32], all: &[TaggedTriangle]| {
+                    list.iter().map(|&i| all[i as usize].id).collect::<Vec<_>>()
+                };
+                assert_eq!(
+                    ids(la, &a),
+                    plan.a[planned.a.clone()]
+                        .iter()
+                        .map(|t| t.id)
+                        .collect::<Vec<_>>(),
+                    "seed {seed}"
+                );
+                assert_eq!(
+                    ids(lb, &b),
+                    plan.b[planned.b.clone()]
+                        .iter()
+                        .map(|t| t.id)
+                        .collect::<Vec<_>>(),
+                    "seed {seed}"
+                );
             }
             assert_eq!(run.cells, plan.cells_visited, "seed {seed}");
         }

@@ -62,7 +62,12 @@ mod tests {
     #[test]
     fn cycles_count_every_entry_and_each_cell_once() {
         assert_eq!(cell_cycles(40, 91), 46 + 6);
-        let work = BinningWork { triangles: 100, cells: 3, entries: 250, cell_cycles: 200 };
+        let work = BinningWork {
+            triangles: 100,
+            cells: 3,
+            entries: 250,
+            cell_cycles: 200,
+        };
         assert_eq!(binning_cycles(&work), 100 + SETUP_LATENCY + 200);
     }
 }

@@ -39,7 +39,15 @@ pub const CHILD_ADDRESS_BITS: usize = FRAME_ADDRESS_BITS + 3;
 // The kernel counts clocks with literals: the drain's last clock is
 // PASS_DRAIN - 1 = 12, the cost queries' results come 4 clocks after them;
 // memory addresses are cut to their widths with literals too.
-const _: () = assert!(FRAME_ADDRESS_BITS == 6 && CHILD_ADDRESS_BITS == 9 && PASS_DRAIN == 2 + LANE_LATENCY as u64 + 1 && PASS_DRAIN == 13 && LEAF_COST_LATENCY == 4 && INDEX_BITS == 18 && COUNT_BITS == 20);
+const _: () = assert!(
+    FRAME_ADDRESS_BITS == 6
+        && CHILD_ADDRESS_BITS == 9
+        && PASS_DRAIN == 2 + LANE_LATENCY as u64 + 1
+        && PASS_DRAIN == 13
+        && LEAF_COST_LATENCY == 4
+        && INDEX_BITS == 18
+        && COUNT_BITS == 20
+);
 /// `binning_model::cell_cycles(0, 0)`: what the split rule charges a cell
 /// besides its entries.
 const CLASSIFY_BASE: u64 = CELL_CLASSIFIER_LATENCY as u64 + 1;
@@ -95,11 +103,23 @@ impl BinningUnitConfig {
     /// A unit for a scene: a `grid_bits` grid, the system of `params`, and
     /// memories just large enough for the model's `run` of the scene with
     /// at most `triangles` per object.
-    pub fn sized_for(grid_bits: usize, params: BinningParams, triangles: usize, run: &BinningRun) -> Self {
+    pub fn sized_for(
+        grid_bits: usize,
+        params: BinningParams,
+        triangles: usize,
+        run: &BinningRun,
+    ) -> Self {
         BinningUnitConfig {
             grid_bits,
             triangles: triangles.max(1),
-            list_words: run.list_words.iter().flatten().max().copied().unwrap_or(1).max(1) as usize,
+            list_words: run
+                .list_words
+                .iter()
+                .flatten()
+                .max()
+                .copied()
+                .unwrap_or(1)
+                .max(1) as usize,
             leaves: run.peak_leaves.max(1),
             log_depth: params.log_depth,
             log_pipelines: params.log_pipelines,
@@ -109,11 +129,17 @@ impl BinningUnitConfig {
     /// An error naming the parameter out of the unit's range, if any.
     pub fn check(&self) -> Result<(), String> {
         if !BINNING_GRID_WIDTHS.contains(&self.grid_bits) {
-            return Err(format!("the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {}", self.grid_bits));
+            return Err(format!(
+                "the binning unit is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {}",
+                self.grid_bits
+            ));
         }
         let fits = |what: &str, n: usize, bits: usize| {
             if n == 0 || n > 1 << bits {
-                Err(format!("{what} {n}: 1 to {} ({bits} address bits)", 1u64 << bits))
+                Err(format!(
+                    "{what} {n}: 1 to {} ({bits} address bits)",
+                    1u64 << bits
+                ))
             } else {
                 Ok(())
             }
@@ -403,16 +429,53 @@ pub struct BinningUnit<const G: usize, const V: usize, const N: usize, const T: 
     tile_word_b: Signal<Local, Bits<20>>,
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit for BinningUnit<G, V, N, T> {
+impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit
+    for BinningUnit<G, V, N, T>
+{
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            overflow_q, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost,
-            children_cost, returned, top_frame, frame_count, frames, children, leaf_count, leaves, cost,
-            triangles, list_a, list_b, packer_a, packer_b, read_memory_a, read_memory_b, s1_root, s1_valid,
-            s1_root_index, s2_valid, s2_index, lane, out_valid_q, out_header_q, out_object_q, out_index_q,
-            out_leaf, out_cell, tile_a, tile_b, pass_length
+            overflow_q,
+            state,
+            counter,
+            loaded_a,
+            loaded_b,
+            cur,
+            cur_slack,
+            cur_classify,
+            cur_leaf_cost,
+            children_cost,
+            returned,
+            top_frame,
+            frame_count,
+            frames,
+            children,
+            leaf_count,
+            leaves,
+            cost,
+            triangles,
+            list_a,
+            list_b,
+            packer_a,
+            packer_b,
+            read_memory_a,
+            read_memory_b,
+            s1_root,
+            s1_valid,
+            s1_root_index,
+            s2_valid,
+            s2_index,
+            lane,
+            out_valid_q,
+            out_header_q,
+            out_object_q,
+            out_index_q,
+            out_leaf,
+            out_cell,
+            tile_a,
+            tile_b,
+            pass_length
         );
     }
 }
@@ -421,7 +484,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
     /// A unit for up to `triangles` per object, `list_words` words per list
     /// memory and `leaves` leaf descriptors.
     pub fn new(triangles: usize, list_words: usize, leaves: usize) -> Self {
-        assert!(V == super::value_bits(G) && N == AXES * V && T == 9 * G && G <= 32, "binning unit for G = {G}");
+        assert!(
+            V == super::value_bits(G) && N == AXES * V && T == 9 * G && G <= 32,
+            "binning unit for G = {G}"
+        );
         BinningUnit {
             clock: Default::default(),
             reset: Default::default(),
@@ -537,13 +603,39 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for BinningUnit<G, V, N, T> {
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
+    for BinningUnit<G, V, N, T>
+{
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, state, counter, loaded_a, loaded_b, cur, cur_slack, cur_classify, cur_leaf_cost, children_cost, returned, top_frame, frame_count,
-            leaf_count, read_memory_a, read_memory_b, s1_root, overflow_q, out_valid_q, out_header_q, out_object_q, out_index_q, out_leaf, out_cell,
-            tile_a, tile_b
+            self,
+            clock,
+            state,
+            counter,
+            loaded_a,
+            loaded_b,
+            cur,
+            cur_slack,
+            cur_classify,
+            cur_leaf_cost,
+            children_cost,
+            returned,
+            top_frame,
+            frame_count,
+            leaf_count,
+            read_memory_a,
+            read_memory_b,
+            s1_root,
+            overflow_q,
+            out_valid_q,
+            out_header_q,
+            out_object_q,
+            out_index_q,
+            out_leaf,
+            out_cell,
+            tile_a,
+            tile_b
         );
         clock!(self, clock, frames, children, leaves, cost);
 
@@ -554,8 +646,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.frames.read_enable.next = false;
         self.frames.read_address.next = bit_cast::<6, 7>(self.frame_count.q.val() - 2);
         self.children.write_enable.next = false;
-        self.children.write_address.next =
-            (bit_cast::<9, 7>(self.frame_count.q.val()) << 3) | bit_cast::<9, 20>(self.counter.q.val() & 7);
+        self.children.write_address.next = (bit_cast::<9, 7>(self.frame_count.q.val()) << 3)
+            | bit_cast::<9, 20>(self.counter.q.val() & 7);
         // (A value in every state, so that the lists' word is no latch; it
         // is written only from Costs.)
         self.children.write_data.next.a_start = self.packer_a[0].start.val();
@@ -563,7 +655,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.children.write_data.next.b_start = self.packer_b[0].start.val();
         self.children.write_data.next.b_count = self.packer_b[0].count.val();
         self.children.read_enable.next = false;
-        self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3) | bit_cast::<9, 4>(self.top_frame.q.val().octant & 7);
+        self.children.read_address.next = (bit_cast::<9, 7>(self.frame_count.q.val() - 1) << 3)
+            | bit_cast::<9, 4>(self.top_frame.q.val().octant & 7);
         self.leaves.write_enable.next = false;
         self.leaves.write_address.next = self.leaf_count.q.val();
         self.leaves.write_data.next = self.cur.q.val();
@@ -650,13 +743,17 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         }
         // The masks into the packers: lane 0 before lane 1.
         for o in 0..8 {
-            self.packer_a[o].in0_valid.next = self.lane[0].out_valid.val() & self.lane[0].out_mask.val().get_bit(o);
+            self.packer_a[o].in0_valid.next =
+                self.lane[0].out_valid.val() & self.lane[0].out_mask.val().get_bit(o);
             self.packer_a[o].in0_index.next = self.lane[0].out_index.val();
-            self.packer_a[o].in1_valid.next = self.lane[1].out_valid.val() & self.lane[1].out_mask.val().get_bit(o);
+            self.packer_a[o].in1_valid.next =
+                self.lane[1].out_valid.val() & self.lane[1].out_mask.val().get_bit(o);
             self.packer_a[o].in1_index.next = self.lane[1].out_index.val();
-            self.packer_b[o].in0_valid.next = self.lane[2].out_valid.val() & self.lane[2].out_mask.val().get_bit(o);
+            self.packer_b[o].in0_valid.next =
+                self.lane[2].out_valid.val() & self.lane[2].out_mask.val().get_bit(o);
             self.packer_b[o].in0_index.next = self.lane[2].out_index.val();
-            self.packer_b[o].in1_valid.next = self.lane[3].out_valid.val() & self.lane[3].out_mask.val().get_bit(o);
+            self.packer_b[o].in1_valid.next =
+                self.lane[3].out_valid.val() & self.lane[3].out_mask.val().get_bit(o);
             self.packer_b[o].in1_index.next = self.lane[3].out_index.val();
         }
 
@@ -669,8 +766,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
         self.slot_up.next = self.counter.q.val() + 1;
         self.next_word.next = self.slot_up.val() >> 1;
         self.both.next = (self.cur.q.val().a_count != 0) & (self.cur.q.val().b_count != 0);
-        self.forced.next = self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
-        self.improving.next = self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
+        self.forced.next =
+            self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
+        self.improving.next =
+            self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
         self.half.next = bits::<32>(1) << (self.top_frame.q.val().level - 1);
         self.child_data.next = self.children.read_data.val();
 
@@ -743,7 +842,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
             self.overflow_q.d.next = true;
         }
         for o in 0..8 {
-            if (self.packer_a[o].used.val() > self.list_limit.val()) | (self.packer_b[o].used.val() > self.list_limit.val()) {
+            if (self.packer_a[o].used.val() > self.list_limit.val())
+                | (self.packer_b[o].used.val() > self.list_limit.val())
+            {
                 self.overflow_q.d.next = true;
             }
         }
@@ -784,13 +885,15 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.triangles[2].write_enable.next = true;
                         self.triangles[3].write_enable.next = true;
                         self.s1_valid[2].d.next = true;
-                        self.s1_root_index[1].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
+                        self.s1_root_index[1].d.next =
+                            bit_cast::<INDEX_BITS, 20>(self.loaded_b.q.val());
                         self.loaded_b.d.next = self.loaded_b.q.val() + 1;
                     } else {
                         self.triangles[0].write_enable.next = true;
                         self.triangles[1].write_enable.next = true;
                         self.s1_valid[0].d.next = true;
-                        self.s1_root_index[0].d.next = bit_cast::<INDEX_BITS, 20>(self.loaded_a.q.val());
+                        self.s1_root_index[0].d.next =
+                            bit_cast::<INDEX_BITS, 20>(self.loaded_a.q.val());
                         self.loaded_a.d.next = self.loaded_a.q.val() + 1;
                     }
                     if self.in_last.val() {
@@ -806,9 +909,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.list_b[o].read_enable.next = true;
                 }
                 self.s1_valid[0].d.next = (self.counter.q.val() << 1) < self.cur.q.val().a_count;
-                self.s1_valid[1].d.next = ((self.counter.q.val() << 1) + 1) < self.cur.q.val().a_count;
+                self.s1_valid[1].d.next =
+                    ((self.counter.q.val() << 1) + 1) < self.cur.q.val().a_count;
                 self.s1_valid[2].d.next = (self.counter.q.val() << 1) < self.cur.q.val().b_count;
-                self.s1_valid[3].d.next = ((self.counter.q.val() << 1) + 1) < self.cur.q.val().b_count;
+                self.s1_valid[3].d.next =
+                    ((self.counter.q.val() << 1) + 1) < self.cur.q.val().b_count;
                 self.counter.d.next = self.counter.q.val() + 1;
                 if self.counter.q.val() + 1 == self.pass_words.val() {
                     self.counter.d.next = 0.into();
@@ -865,7 +970,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 if !self.both.val() {
                     self.returned.d.next = 0.into();
                     self.state.d.next = BinState::Return;
-                } else if (self.cur.q.val().level == 0) | (!self.improving.val() & (self.cur_slack.q.val() == 0)) {
+                } else if (self.cur.q.val().level == 0)
+                    | (!self.improving.val() & (self.cur_slack.q.val() == 0))
+                {
                     self.leaves.write_enable.next = true;
                     self.leaf_count.d.next = self.leaf_count.q.val() + 1;
                     self.returned.d.next = self.cur_leaf_cost.q.val() + self.cur_classify.q.val();
@@ -950,7 +1057,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 if (self.cur.q.val().level == 0)
                     | (!self.forced.val()
                         & (self.cost.cost.val()
-                            <= bit_cast::<48, 20>(self.cur.q.val().a_count) + bit_cast::<48, 20>(self.cur.q.val().b_count) + 1 + self.classify.val()))
+                            <= bit_cast::<48, 20>(self.cur.q.val().a_count)
+                                + bit_cast::<48, 20>(self.cur.q.val().b_count)
+                                + 1
+                                + self.classify.val()))
                 {
                     self.leaves.write_enable.next = true;
                     self.leaf_count.d.next = self.leaf_count.q.val() + 1;
@@ -976,7 +1086,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                         self.state.d.next = BinState::Done;
                     }
                 } else {
-                    self.top_frame.d.next.subtree = self.top_frame.q.val().subtree + self.returned.q.val();
+                    self.top_frame.d.next.subtree =
+                        self.top_frame.q.val().subtree + self.returned.q.val();
                     self.top_frame.d.next.octant = self.top_frame.q.val().octant + 1;
                     if self.top_frame.q.val().octant == 7 {
                         self.state.d.next = BinState::Finish;
@@ -986,7 +1097,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                 }
             }
             BinState::Finish => {
-                if !self.top_frame.q.val().forced & (self.top_frame.q.val().subtree >= self.top_frame.q.val().leaf_cost) {
+                if !self.top_frame.q.val().forced
+                    & (self.top_frame.q.val().subtree >= self.top_frame.q.val().leaf_cost)
+                {
                     // The subtree did not pay: its leaves are dropped, the cell is one.
                     self.leaves.write_enable.next = true;
                     self.leaves.write_address.next = self.top_frame.q.val().leaf_mark;
@@ -1001,9 +1114,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.leaves.write_data.next.b_start = self.top_frame.q.val().b_start;
                     self.leaves.write_data.next.b_count = self.top_frame.q.val().b_count;
                     self.leaf_count.d.next = self.top_frame.q.val().leaf_mark + 1;
-                    self.returned.d.next = self.top_frame.q.val().leaf_cost + self.top_frame.q.val().classify;
+                    self.returned.d.next =
+                        self.top_frame.q.val().leaf_cost + self.top_frame.q.val().classify;
                 } else {
-                    self.returned.d.next = self.top_frame.q.val().subtree + self.top_frame.q.val().classify;
+                    self.returned.d.next =
+                        self.top_frame.q.val().subtree + self.top_frame.q.val().classify;
                 }
                 // Pop: the frame below comes back from the memory.
                 self.frames.read_enable.next = true;
@@ -1057,7 +1172,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.out_header_q.d.next = true;
                     for o in 0..8 {
                         self.list_a[o].read_enable.next = true;
-                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + self.tile_word_a.val();
+                        self.list_a[o].read_address.next =
+                            self.out_cell.q.val().a_start + self.tile_word_a.val();
                     }
                     self.counter.d.next = self.tile_a.q.val();
                     self.state.d.next = BinState::OutA;
@@ -1077,12 +1193,14 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.counter.d.next = self.counter.q.val() + 1;
                     for o in 0..8 {
                         self.list_a[o].read_enable.next = true;
-                        self.list_a[o].read_address.next = self.out_cell.q.val().a_start + self.next_word.val();
+                        self.list_a[o].read_address.next =
+                            self.out_cell.q.val().a_start + self.next_word.val();
                     }
                     if self.counter.q.val() + 1 == self.tile_end_a.val() {
                         for o in 0..8 {
                             self.list_b[o].read_enable.next = true;
-                            self.list_b[o].read_address.next = self.out_cell.q.val().b_start + self.tile_word_b.val();
+                            self.list_b[o].read_address.next =
+                                self.out_cell.q.val().b_start + self.tile_word_b.val();
                         }
                         self.counter.d.next = self.tile_b.q.val();
                         self.state.d.next = BinState::OutB;
@@ -1101,7 +1219,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for B
                     self.counter.d.next = self.counter.q.val() + 1;
                     for o in 0..8 {
                         self.list_b[o].read_enable.next = true;
-                        self.list_b[o].read_address.next = self.out_cell.q.val().b_start + self.next_word.val();
+                        self.list_b[o].read_address.next =
+                            self.out_cell.q.val().b_start + self.next_word.val();
                     }
                     if self.counter.q.val() + 1 == self.tile_end_b.val() {
                         if self.tile_end_b.val() != self.out_cell.q.val().b_count {

@@ -98,24 +98,50 @@ pub struct BroadPhaseSystem<
     _config: SystemConfig,
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>
-    crate::unit::Unit for BroadPhaseSystem<G, V, N, T, W, D, C, O>
+impl<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    > crate::unit::Unit for BroadPhaseSystem<G, V, N, T, W, D, C, O>
 {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(self, units, binning, batcher, system, owner);
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize>
-    BroadPhaseSystem<G, V, N, T, W, D, C, O>
+impl<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    > BroadPhaseSystem<G, V, N, T, W, D, C, O>
 {
     /// The top for a binning unit of `triangles` per object, `list_words`
     /// per list memory and `leaves` descriptors, feeding the system of
     /// `config` (whose width must be `W`), whose hits the owner filter
     /// decides with tables of `slots` entries per object ([`stream_slots`]);
     /// `local_frames` when `G > W`.
-    pub fn new(triangles: usize, list_words: usize, leaves: usize, slots: usize, config: SystemConfig, local_frames: bool) -> Self {
-        assert_eq!(config.coordinate_bits, W, "the system's width differs from the type's");
+    pub fn new(
+        triangles: usize,
+        list_words: usize,
+        leaves: usize,
+        slots: usize,
+        config: SystemConfig,
+        local_frames: bool,
+    ) -> Self {
+        assert_eq!(
+            config.coordinate_bits, W,
+            "the system's width differs from the type's"
+        );
         BroadPhaseSystem {
             clock: Default::default(),
             reset: Default::default(),
@@ -142,7 +168,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
             overflow: Default::default(),
             pairs_tested: Default::default(),
             hits: Default::default(),
-            binning: BinningUnit::new(triangles, list_words, leaves).with_system(log2(config.triangles_per_bank), log2(config.pipelines)),
+            binning: BinningUnit::new(triangles, list_words, leaves)
+                .with_system(log2(config.triangles_per_bank), log2(config.pipelines)),
             batcher: LeafBatcher::new(local_frames),
             system: CollisionSystem::with_pipelines(config),
             owner: OwnerChainFilter::new(triangles, slots),
@@ -165,8 +192,16 @@ fn log2(n: usize) -> u32 {
 // The counts of a leaf header are COUNT_BITS wide on both sides.
 const _: () = assert!(COUNT_BITS == 20);
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: usize, const D: usize, const C: usize, const O: usize> Logic
-    for BroadPhaseSystem<G, V, N, T, W, D, C, O>
+impl<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    > Logic for BroadPhaseSystem<G, V, N, T, W, D, C, O>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -253,7 +288,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
             & self.system.results_empty.val()
             & !self.system.out_valid.val()
             & self.owner.idle.val();
-        self.overflow.next = self.binning.overflow.val() | self.system.overflow.val() | self.owner.overflow.val();
+        self.overflow.next =
+            self.binning.overflow.val() | self.system.overflow.val() | self.owner.overflow.val();
         self.unused_outputs.next = self.system.stall_cycles.val().any();
     }
 }
@@ -262,13 +298,27 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const W: us
 /// tile)`: each leaf whole, or a leaf with more than `depth` triangles of
 /// an object as every A tile of at most `depth` with every B tile (as the
 /// host's `scene::tile` cuts it), each under a header of its own.
-pub fn leaf_tiles(leaf_lists: &[(Vec<u32>, Vec<u32>)], depth: usize) -> impl Iterator<Item = (usize, &[u32], &[u32])> {
-    leaf_lists.iter().enumerate().flat_map(move |(leaf, (a, b))| a.chunks(depth).flat_map(move |ta| b.chunks(depth).map(move |tb| (leaf, ta, tb))))
+pub fn leaf_tiles(
+    leaf_lists: &[(Vec<u32>, Vec<u32>)],
+    depth: usize,
+) -> impl Iterator<Item = (usize, &[u32], &[u32])> {
+    leaf_lists
+        .iter()
+        .enumerate()
+        .flat_map(move |(leaf, (a, b))| {
+            a.chunks(depth)
+                .flat_map(move |ta| b.chunks(depth).map(move |tb| (leaf, ta, tb)))
+        })
 }
 
 /// The batches the system gets: [`leaf_tiles`]' sizes.
 pub fn leaf_batches(depth: usize, run: &BinningRun) -> Vec<BatchSizes> {
-    leaf_tiles(&run.leaf_lists, depth).map(|(_, a, b)| BatchSizes { a: a.len(), b: b.len() }).collect()
+    leaf_tiles(&run.leaf_lists, depth)
+        .map(|(_, a, b)| BatchSizes {
+            a: a.len(),
+            b: b.len(),
+        })
+        .collect()
 }
 
 /// Entries each object streams into the system (A's repeated for every

@@ -33,7 +33,10 @@ impl<const V: usize> crate::unit::Unit for CentreTest<V> {}
 
 impl<const V: usize> Default for CentreTest<V> {
     fn default() -> Self {
-        assert!((8..=127).contains(&V), "centre test of {V} bits is not supported");
+        assert!(
+            (8..=127).contains(&V),
+            "centre test of {V} bits is not supported"
+        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -58,7 +61,12 @@ impl<const V: usize> Logic for CentreTest<V> {
             let mask = (0..8usize).filter(|&o| twice <= self._thresholds[o]);
             self.mask.next = Bits::from(mask.fold(0u64, |m, o| m | 1 << o));
         }
-        let g = [self.gradient_x.val(), self.gradient_y.val(), self.gradient_z.val()].map(to_i128);
+        let g = [
+            self.gradient_x.val(),
+            self.gradient_y.val(),
+            self.gradient_z.val(),
+        ]
+        .map(to_i128);
         let offset = to_i128(self.offset.val());
         for (o, t) in self._thresholds.iter_mut().enumerate() {
             let sum: i128 = (0..3).filter(|k| o >> k & 1 == 1).map(|k| g[k]).sum();

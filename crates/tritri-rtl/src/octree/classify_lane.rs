@@ -46,16 +46,23 @@ pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T:
     unused_outputs: Signal<Local, Bit>,
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit for ClassifyLane<G, V, N, T> {
+impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit
+    for ClassifyLane<G, V, N, T>
+{
     const LATENCY: Option<usize> = Some(LANE_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(self, units, setup, classifier, index_line);
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> Default for ClassifyLane<G, V, N, T> {
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
+    for ClassifyLane<G, V, N, T>
+{
     fn default() -> Self {
-        assert!(V == super::value_bits(G) && N == AXES * V && T == 9 * G, "classify lane for G = {G}");
+        assert!(
+            V == super::value_bits(G) && N == AXES * V && T == 9 * G,
+            "classify lane for G = {G}"
+        );
         ClassifyLane {
             clock: Default::default(),
             reset: Default::default(),
@@ -79,7 +86,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default for
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for ClassifyLane<G, V, N, T> {
+impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
+    for ClassifyLane<G, V, N, T>
+{
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, setup, classifier, index_line);
@@ -87,18 +96,47 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for C
         self.setup.advance.next = true;
         self.setup.in_valid.next = self.in_valid.val();
         self.setup.in_tag.next = 0.into();
-        self.setup.in_x0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[0].val().index());
-        self.setup.in_y0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[1].val().index());
-        self.setup.in_z0.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[2].val().index());
-        self.setup.in_x1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[3].val().index());
-        self.setup.in_y1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[4].val().index());
-        self.setup.in_z1.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[5].val().index());
-        self.setup.in_x2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[6].val().index());
-        self.setup.in_y2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[7].val().index());
-        self.setup.in_z2.next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[8].val().index());
+        self.setup.in_x0.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[0].val().index());
+        self.setup.in_y0.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[1].val().index());
+        self.setup.in_z0.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[2].val().index());
+        self.setup.in_x1.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[3].val().index());
+        self.setup.in_y1.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[4].val().index());
+        self.setup.in_z1.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[5].val().index());
+        self.setup.in_x2.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[6].val().index());
+        self.setup.in_y2.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[7].val().index());
+        self.setup.in_z2.next = self
+            .in_vertices
+            .val()
+            .get_bits::<G>(self.vertex_offset[8].val().index());
         self.setup.in_root_x.next = self.in_corner_x.val();
         self.setup.in_root_y.next = self.in_corner_y.val();
         self.setup.in_root_z.next = self.in_corner_z.val();
+        // The broad phase grows every triangle by a step (certificates).
+        self.setup.grow.next = true;
         self.classifier.reset.next = self.reset.val();
         self.classifier.advance.next = true;
         self.classifier.in_valid.next = self.setup.out_valid.val();
@@ -109,18 +147,52 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic for C
         // Relative to the cell's corner, every function is zero there.
         for i in 0..13 {
             self.classifier.in_at_lo[i].next = 0.into();
-            self.classifier.in_gradient_x[i].next = self.setup.out_gradient_x.val().get_bits::<V>(self.field_offset[i].val().index());
-            self.classifier.in_gradient_y[i].next = self.setup.out_gradient_y.val().get_bits::<V>(self.field_offset[i].val().index());
-            self.classifier.in_gradient_z[i].next = self.setup.out_gradient_z.val().get_bits::<V>(self.field_offset[i].val().index());
-            self.classifier.in_low[i].next = self.setup.out_low.val().get_bits::<V>(self.field_offset[i].val().index());
-            self.classifier.in_high[i].next = self.setup.out_high.val().get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_gradient_x[i].next = self
+                .setup
+                .out_gradient_x
+                .val()
+                .get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_gradient_y[i].next = self
+                .setup
+                .out_gradient_y
+                .val()
+                .get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_gradient_z[i].next = self
+                .setup
+                .out_gradient_z
+                .val()
+                .get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_low[i].next = self
+                .setup
+                .out_low
+                .val()
+                .get_bits::<V>(self.field_offset[i].val().index());
+            self.classifier.in_high[i].next = self
+                .setup
+                .out_high
+                .val()
+                .get_bits::<V>(self.field_offset[i].val().index());
         }
         self.index_line.advance.next = true;
         self.index_line.d.next = self.in_index.val();
         self.out_valid.next = self.classifier.out_valid.val();
         self.out_index.next = self.index_line.q.val();
         self.out_mask.next = self.classifier.out_mask.val();
-        self.unused_outputs.next = self.setup.out_tag.val().any() ^ self.classifier.out_tag.val().any() ^ self.classifier.out_at_lo[0].val().any() ^ self.classifier.out_at_lo[1].val().any() ^ self.classifier.out_at_lo[2].val().any() ^ self.classifier.out_at_lo[3].val().any() ^ self.classifier.out_at_lo[4].val().any() ^ self.classifier.out_at_lo[5].val().any() ^ self.classifier.out_at_lo[6].val().any() ^ self.classifier.out_at_lo[7].val().any() ^ self.classifier.out_at_lo[8].val().any() ^ self.classifier.out_at_lo[9].val().any() ^ self.classifier.out_at_lo[10].val().any() ^ self.classifier.out_at_lo[11].val().any() ^ self.classifier.out_at_lo[12].val().any();
+        self.unused_outputs.next = self.setup.out_tag.val().any()
+            ^ self.classifier.out_tag.val().any()
+            ^ self.classifier.out_at_lo[0].val().any()
+            ^ self.classifier.out_at_lo[1].val().any()
+            ^ self.classifier.out_at_lo[2].val().any()
+            ^ self.classifier.out_at_lo[3].val().any()
+            ^ self.classifier.out_at_lo[4].val().any()
+            ^ self.classifier.out_at_lo[5].val().any()
+            ^ self.classifier.out_at_lo[6].val().any()
+            ^ self.classifier.out_at_lo[7].val().any()
+            ^ self.classifier.out_at_lo[8].val().any()
+            ^ self.classifier.out_at_lo[9].val().any()
+            ^ self.classifier.out_at_lo[10].val().any()
+            ^ self.classifier.out_at_lo[11].val().any()
+            ^ self.classifier.out_at_lo[12].val().any();
     }
 }
 

@@ -113,7 +113,16 @@ impl<const G: usize, const T: usize, const W: usize> crate::unit::Unit for LeafB
         crate::sub_units!(
             self,
             units,
-            slot_q, leaf_q, valid_q, end_q, object_q, id_q, coordinate_q, offset_q, remaining_q, end_due_q
+            slot_q,
+            leaf_q,
+            valid_q,
+            end_q,
+            object_q,
+            id_q,
+            coordinate_q,
+            offset_q,
+            remaining_q,
+            end_due_q
         );
     }
 }
@@ -123,7 +132,10 @@ impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
     /// `local_frames` the grid's coordinates must fit `W` bits (the host
     /// quantizes them so); the batcher keeps their low `W` bits.
     pub fn new(local_frames: bool) -> Self {
-        assert!(T == 9 * G && W <= G && G <= 32, "leaf batcher for G = {G}, W = {W}");
+        assert!(
+            T == 9 * G && W <= G && G <= 32,
+            "leaf batcher for G = {G}, W = {W}"
+        );
         LeafBatcher {
             clock: Default::default(),
             reset: Default::default(),
@@ -187,7 +199,17 @@ impl<const G: usize, const T: usize, const W: usize> LeafBatcher<G, T, W> {
 impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T, W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, valid_q, end_q, object_q, id_q, remaining_q, end_due_q, leaf_q);
+        dff_setup!(
+            self,
+            clock,
+            valid_q,
+            end_q,
+            object_q,
+            id_q,
+            remaining_q,
+            end_due_q,
+            leaf_q
+        );
         for o in 0..2 {
             self.slot_q[o].clock.next = self.clock.val();
             self.slot_q[o].d.next = self.slot_q[o].q.val();
@@ -212,12 +234,27 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
         self.half.next = self.side.val() >> 1;
         // Vertex coordinate k is along axis k mod 3.
         for v in 0..3 {
-            self.difference[3 * v].next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[3 * v].val().index()) - self.offset_q[0].q.val();
-            self.difference[3 * v + 1].next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[3 * v + 1].val().index()) - self.offset_q[1].q.val();
-            self.difference[3 * v + 2].next = self.in_vertices.val().get_bits::<G>(self.vertex_offset[3 * v + 2].val().index()) - self.offset_q[2].q.val();
+            self.difference[3 * v].next = self
+                .in_vertices
+                .val()
+                .get_bits::<G>(self.vertex_offset[3 * v].val().index())
+                - self.offset_q[0].q.val();
+            self.difference[3 * v + 1].next = self
+                .in_vertices
+                .val()
+                .get_bits::<G>(self.vertex_offset[3 * v + 1].val().index())
+                - self.offset_q[1].q.val();
+            self.difference[3 * v + 2].next = self
+                .in_vertices
+                .val()
+                .get_bits::<G>(self.vertex_offset[3 * v + 2].val().index())
+                - self.offset_q[2].q.val();
         }
 
-        self.take_entry.next = self.advance.val() & !self.end_due_q.q.val() & self.in_valid.val() & !self.in_header.val();
+        self.take_entry.next = self.advance.val()
+            & !self.end_due_q.q.val()
+            & self.in_valid.val()
+            & !self.in_header.val();
         // Slots: the entry's number among its object's entries.
         self.entry_valid.next = self.take_entry.val();
         self.entry_object.next = self.in_object.val();
@@ -258,7 +295,8 @@ impl<const G: usize, const T: usize, const W: usize> Logic for LeafBatcher<G, T,
                 self.end_due_q.d.next = false;
             } else if self.in_valid.val() {
                 if self.in_header.val() {
-                    self.leaf_q.d.next = bit_cast::<CHAIN_LEAF_BITS, LEAF_ADDRESS_BITS>(self.in_leaf_number.val());
+                    self.leaf_q.d.next =
+                        bit_cast::<CHAIN_LEAF_BITS, LEAF_ADDRESS_BITS>(self.in_leaf_number.val());
                     self.remaining_q.d.next = self.in_count_a.val() + self.in_count_b.val();
                     self.offset_q[0].d.next = 0.into();
                     self.offset_q[1].d.next = 0.into();

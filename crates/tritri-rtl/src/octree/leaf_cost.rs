@@ -34,7 +34,12 @@ pub fn leaf_cost(a: u64, b: u64, log_depth: u32, log_pipelines: u32) -> u64 {
     }
     let depth = 1u64 << log_depth;
     let f = |x: u64, y: u64| 1 + x + x.div_ceil(1 << log_pipelines) * y;
-    let (qa, ra, qb, rb) = (a >> log_depth, a & (depth - 1), b >> log_depth, b & (depth - 1));
+    let (qa, ra, qb, rb) = (
+        a >> log_depth,
+        a & (depth - 1),
+        b >> log_depth,
+        b & (depth - 1),
+    );
     let mut cost = qa * qb * f(depth, depth);
     if rb > 0 {
         cost += qa * f(depth, rb);
@@ -68,7 +73,10 @@ impl LeafCost {
     /// For memory depth `2^log_depth` (1 to 2^16) and `2^log_pipelines`
     /// pipelines (1 to 16).
     pub fn new(log_depth: u32, log_pipelines: u32) -> Self {
-        assert!(log_depth <= 16 && log_pipelines <= 4, "leaf cost for D = 2^{log_depth}, P = 2^{log_pipelines}");
+        assert!(
+            log_depth <= 16 && log_pipelines <= 4,
+            "leaf cost for D = 2^{log_depth}, P = 2^{log_pipelines}"
+        );
         LeafCost {
             clock: Default::default(),
             a: Default::default(),
@@ -187,8 +195,20 @@ mod tests {
             let tiles = |n: usize| (0..n.div_ceil(depth)).map(move |t| (n - t * depth).min(depth));
             for a in 0..(3 * depth + 2) {
                 for b in 0..(3 * depth + 2) {
-                    let tiled: u64 = tiles(a).map(|ta| tiles(b).map(|tb| overlapped_batch_cycles(config, BatchSizes { a: ta, b: tb })).sum::<u64>()).sum();
-                    assert_eq!(leaf_cost(a as u64, b as u64, log_depth, log_pipelines), tiled, "a {a} b {b} D {depth}");
+                    let tiled: u64 = tiles(a)
+                        .map(|ta| {
+                            tiles(b)
+                                .map(|tb| {
+                                    overlapped_batch_cycles(config, BatchSizes { a: ta, b: tb })
+                                })
+                                .sum::<u64>()
+                        })
+                        .sum();
+                    assert_eq!(
+                        leaf_cost(a as u64, b as u64, log_depth, log_pipelines),
+                        tiled,
+                        "a {a} b {b} D {depth}"
+                    );
                 }
             }
         }

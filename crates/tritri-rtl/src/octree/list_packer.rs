@@ -75,15 +75,17 @@ impl Logic for ListPacker {
         if self.flush.val() {
             if self.waiting.q.val() {
                 self.write_enable.next = true;
-                self.write_data.next = bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.waiting_index.q.val());
+                self.write_data.next =
+                    bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.waiting_index.q.val());
                 self.waiting.d.next = false;
             }
         } else if self.waiting.q.val() {
             if self.in0_valid.val() | self.in1_valid.val() {
                 // The waiting index and the first new one make a word.
                 self.write_enable.next = true;
-                self.write_data.next = bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.waiting_index.q.val())
-                    | (bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.first.val()) << 18);
+                self.write_data.next =
+                    bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.waiting_index.q.val())
+                        | (bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.first.val()) << 18);
                 if self.in0_valid.val() & self.in1_valid.val() {
                     self.waiting_index.d.next = self.in1_index.val();
                 } else {
@@ -92,8 +94,8 @@ impl Logic for ListPacker {
             }
         } else if self.in0_valid.val() & self.in1_valid.val() {
             self.write_enable.next = true;
-            self.write_data.next =
-                bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.in0_index.val()) | (bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.in1_index.val()) << 18);
+            self.write_data.next = bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.in0_index.val())
+                | (bit_cast::<LIST_WORD_BITS, INDEX_BITS>(self.in1_index.val()) << 18);
         } else if self.in0_valid.val() | self.in1_valid.val() {
             self.waiting.d.next = true;
             self.waiting_index.d.next = self.first.val();

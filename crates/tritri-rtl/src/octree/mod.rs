@@ -29,6 +29,9 @@
 //!   models streamed a 64-voxel word per clock;
 //! * [`voxel_fill`]: cells with children to fill (the plane traversal's
 //!   records) written into the voxel memory a word per clock;
+//! * [`triangle_voxelizer`]: surface voxelization, triangles in and the
+//!   voxels each meets out, the setup and the classifier step driven by a
+//!   depth-first traversal; [`voxelizer_machine`] is its cycle model;
 //! * [`octant_clipper`]: one octant per clock against a box: inside,
 //!   outside or crossing;
 //! * [`owner_filter`]: behind the system's result stream, lets each
@@ -41,8 +44,8 @@ pub mod binning_model;
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
-pub mod classify_lane;
 pub mod centre_test;
+pub mod classify_lane;
 pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_packer;
@@ -51,8 +54,10 @@ pub mod owner_chain_filter;
 pub mod owner_filter;
 pub mod plane_traversal;
 pub mod set_operation_unit;
-pub mod voxel_fill;
 pub mod triangle_setup;
+pub mod triangle_voxelizer;
+pub mod voxel_fill;
+pub mod voxelizer_machine;
 
 /// Bits of the classifier's values for `grid_bits`-bit coordinates: cell
 /// corners stay below `2^(G+1)` in magnitude and gradients below

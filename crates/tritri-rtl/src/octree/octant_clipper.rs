@@ -53,7 +53,9 @@ pub struct OctantClipper {
 impl crate::unit::Unit for OctantClipper {
     const LATENCY: Option<usize> = Some(CLIPPER_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, valid_1, lo_x, lo_y, lo_z, hi_x, hi_y, hi_z, valid_2, class_2);
+        crate::sub_units!(
+            self, units, valid_1, lo_x, lo_y, lo_z, hi_x, hi_y, hi_z, valid_2, class_2
+        );
     }
 }
 

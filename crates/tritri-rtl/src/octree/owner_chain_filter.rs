@@ -147,8 +147,21 @@ impl crate::unit::Unit for OwnerChainFilter {
         crate::sub_units!(
             self,
             units,
-            overflow_q, heads, records, loaded, entry_q, entry_object_q, entry_index_q, entry_slot_q,
-            entry_leaf_q, state, hit_leaf, index_a, index_b, hit_q, certain_q
+            overflow_q,
+            heads,
+            records,
+            loaded,
+            entry_q,
+            entry_object_q,
+            entry_index_q,
+            entry_slot_q,
+            entry_leaf_q,
+            state,
+            hit_leaf,
+            index_a,
+            index_b,
+            hit_q,
+            certain_q
         );
     }
 }
@@ -230,7 +243,10 @@ impl Logic for OwnerChainFilter {
             overflow_q
         );
         self.overflow.next = self.overflow_q.q.val();
-        if self.entry_valid.val() & (bit_cast::<{ CHAIN_SLOT_BITS + 1 }, CHAIN_SLOT_BITS>(self.entry_slot.val()) >= self.slot_limit.val()) {
+        if self.entry_valid.val()
+            & (bit_cast::<{ CHAIN_SLOT_BITS + 1 }, CHAIN_SLOT_BITS>(self.entry_slot.val())
+                >= self.slot_limit.val())
+        {
             self.overflow_q.d.next = true;
         }
         self.cleared.next.slot = 0.into();
@@ -308,8 +324,11 @@ impl Logic for OwnerChainFilter {
         // In Walk: step the chain at the hit's own leaf, else the one at
         // the higher leaf; neither: equal leaves below it, a duplicate.
         self.step_a.next = (self.record_a.val().leaf == self.hit_leaf.q.val())
-            | ((self.record_b.val().leaf != self.hit_leaf.q.val()) & (self.record_a.val().leaf > self.record_b.val().leaf));
-        self.step_b.next = !self.step_a.val() & ((self.record_b.val().leaf == self.hit_leaf.q.val()) | (self.record_b.val().leaf > self.record_a.val().leaf));
+            | ((self.record_b.val().leaf != self.hit_leaf.q.val())
+                & (self.record_a.val().leaf > self.record_b.val().leaf));
+        self.step_b.next = !self.step_a.val()
+            & ((self.record_b.val().leaf == self.hit_leaf.q.val())
+                | (self.record_b.val().leaf > self.record_a.val().leaf));
         self.in_ready.next = self.state.q.val() == ChainState::Idle;
         self.out_valid.next = self.state.q.val() == ChainState::Emit;
         self.out_index_a.next = bit_cast::<ID_BITS, INDEX_BITS>(self.index_a.q.val());
@@ -317,12 +336,15 @@ impl Logic for OwnerChainFilter {
         self.out_hit.next = self.hit_q.q.val();
         self.out_certain.next = self.certain_q.q.val();
         self.idle.next = self.state.q.val() == ChainState::Idle;
-        self.unused_high_bits.next = self.in_slot_a.val().get_bits::<8>(24).any() ^ self.in_slot_b.val().get_bits::<8>(24).any();
+        self.unused_high_bits.next = self.in_slot_a.val().get_bits::<8>(24).any()
+            ^ self.in_slot_b.val().get_bits::<8>(24).any();
 
         match self.state.q.val() {
             ChainState::Idle => {
-                self.records[0].read_address.next = bit_cast::<CHAIN_SLOT_BITS, ID_BITS>(self.in_slot_a.val());
-                self.records[1].read_address.next = bit_cast::<CHAIN_SLOT_BITS, ID_BITS>(self.in_slot_b.val());
+                self.records[0].read_address.next =
+                    bit_cast::<CHAIN_SLOT_BITS, ID_BITS>(self.in_slot_a.val());
+                self.records[1].read_address.next =
+                    bit_cast::<CHAIN_SLOT_BITS, ID_BITS>(self.in_slot_b.val());
                 if self.in_valid.val() {
                     self.records[0].read_enable.next = true;
                     self.records[1].read_enable.next = true;
@@ -378,13 +400,19 @@ impl Logic for OwnerChainFilter {
 /// entries in order, `(object, index, leaf)` (tiles as
 /// [`super::broad_phase_system::leaf_tiles`] cuts them), the system's hits
 /// as slots (the pairs of each tile that `touches`), and each hit's leaf.
-pub fn streamed(leaf_lists: &[(Vec<u32>, Vec<u32>)], depth: usize, touches: impl Fn(u32, u32) -> bool) -> Streamed {
+pub fn streamed(
+    leaf_lists: &[(Vec<u32>, Vec<u32>)],
+    depth: usize,
+    touches: impl Fn(u32, u32) -> bool,
+) -> Streamed {
     let mut out = Streamed::default();
     let mut slots = [0u32; 2];
     for (leaf, ta, tb) in super::broad_phase_system::leaf_tiles(leaf_lists, depth) {
         let first = slots;
-        out.entries.extend(ta.iter().map(|&i| (false, i, leaf as u32)));
-        out.entries.extend(tb.iter().map(|&j| (true, j, leaf as u32)));
+        out.entries
+            .extend(ta.iter().map(|&i| (false, i, leaf as u32)));
+        out.entries
+            .extend(tb.iter().map(|&j| (true, j, leaf as u32)));
         slots[0] += ta.len() as u32;
         slots[1] += tb.len() as u32;
         for (x, &i) in ta.iter().enumerate() {
@@ -427,7 +455,9 @@ pub fn decide(entries: &[(bool, u32, u32)], hits: &[(u32, u32)]) -> Vec<(Option<
             let (ib, _, mut pb) = records[1][sb as usize];
             let mut steps = 0;
             loop {
-                let (Some(a), Some(b)) = (pa, pb) else { return (Some((ia, ib)), steps) };
+                let (Some(a), Some(b)) = (pa, pb) else {
+                    return (Some((ia, ib)), steps);
+                };
                 let (ra, rb) = (records[0][a as usize], records[1][b as usize]);
                 steps += 1;
                 if ra.1 == l || (rb.1 != l && ra.1 > rb.1) {
@@ -462,24 +492,51 @@ mod tests {
         for depth in [1usize, 3, 64] {
             let leaves: Vec<(Vec<u32>, Vec<u32>)> = (0..40)
                 .map(|_| {
-                    let pick = |next: &mut dyn FnMut(u64) -> u64| -> Vec<u32> { (0..12).filter(|_| next(3) == 0).collect() };
+                    let pick = |next: &mut dyn FnMut(u64) -> u64| -> Vec<u32> {
+                        (0..12).filter(|_| next(3) == 0).collect()
+                    };
                     (pick(&mut next), pick(&mut next))
                 })
                 .filter(|(a, b): &(Vec<u32>, Vec<u32>)| !a.is_empty() && !b.is_empty())
                 .collect();
             let touches = |i: u32, j: u32| (i * 7 + j * 3) % 4 == 0;
-            let Streamed { entries, hits, hit_leaves } = streamed(&leaves, depth, touches);
-            let first_leaf = |i: u32, j: u32| leaves.iter().position(|(la, lb)| la.contains(&i) && lb.contains(&j)).unwrap();
+            let Streamed {
+                entries,
+                hits,
+                hit_leaves,
+            } = streamed(&leaves, depth, touches);
+            let first_leaf = |i: u32, j: u32| {
+                leaves
+                    .iter()
+                    .position(|(la, lb)| la.contains(&i) && lb.contains(&j))
+                    .unwrap()
+            };
             let mut kept = BTreeSet::new();
             for ((owned, _), leaf) in decide(&entries, &hits).into_iter().zip(&hit_leaves) {
                 if let Some((i, j)) = owned {
                     assert!(kept.insert((i, j)), "depth {depth}: ({i}, {j}) kept twice");
-                    assert_eq!(*leaf, first_leaf(i, j), "depth {depth}: ({i}, {j}) kept from leaf {leaf}");
+                    assert_eq!(
+                        *leaf,
+                        first_leaf(i, j),
+                        "depth {depth}: ({i}, {j}) kept from leaf {leaf}"
+                    );
                 }
             }
-            let all: BTreeSet<(u32, u32)> = leaves.iter().flat_map(|(la, lb)| la.iter().flat_map(move |&i| lb.iter().map(move |&j| (i, j)))).filter(|&(i, j)| touches(i, j)).collect();
+            let all: BTreeSet<(u32, u32)> = leaves
+                .iter()
+                .flat_map(|(la, lb)| {
+                    la.iter()
+                        .flat_map(move |&i| lb.iter().map(move |&j| (i, j)))
+                })
+                .filter(|&(i, j)| touches(i, j))
+                .collect();
             assert_eq!(kept, all, "depth {depth}");
-            assert!(hits.len() > 2 * all.len(), "depth {depth}: {} hits, {} pairs", hits.len(), all.len());
+            assert!(
+                hits.len() > 2 * all.len(),
+                "depth {depth}: {} hits, {} pairs",
+                hits.len(),
+                all.len()
+            );
         }
     }
 }

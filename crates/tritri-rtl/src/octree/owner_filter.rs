@@ -167,7 +167,8 @@ impl Logic for OwnerFilter {
         self.table_b.read_enable.next = false;
         self.table_a.read_address.next = self.slot_a.q.val();
         self.table_b.read_address.next = self.slot_b.q.val();
-        self.in_ready.next = (self.state.q.val() == OwnerState::Idle) | ((self.state.q.val() == OwnerState::Emit) & self.out_ready.val());
+        self.in_ready.next = (self.state.q.val() == OwnerState::Idle)
+            | ((self.state.q.val() == OwnerState::Emit) & self.out_ready.val());
         self.take.next = self.in_valid.val() & self.in_ready.val();
         self.out_valid.next = self.state.q.val() == OwnerState::Emit;
         self.out_id_a.next = self.id_a.q.val();
@@ -178,7 +179,9 @@ impl Logic for OwnerFilter {
                 self.id_a.d.next = self.table_a.read_data.val().get_bits::<32>(40);
                 self.id_b.d.next = self.table_b.read_data.val().get_bits::<32>(40);
                 self.leaf.d.next = self.word_a_leaf.val();
-                if (self.word_a_first.val() == self.slot_a.q.val()) | (self.word_b_first.val() == self.slot_b.q.val()) {
+                if (self.word_a_first.val() == self.slot_a.q.val())
+                    | (self.word_b_first.val() == self.slot_b.q.val())
+                {
                     self.state.d.next = OwnerState::Emit;
                 } else {
                     self.table_a.read_enable.next = true;

@@ -152,9 +152,31 @@ impl crate::unit::Unit for PlaneTraversal {
         crate::sub_units!(
             self,
             units,
-            crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid, crossing_q, below_q,
-            value_q, stack, top, top_valid, refill, depth, in_flight, start_pending, out_valid_q, out_x_q,
-            out_y_q, out_z_q, out_level_q, out_full_q, out_crossed_q
+            crossing,
+            below,
+            centre,
+            cell_x,
+            cell_y,
+            cell_z,
+            cell_level,
+            cell_valid,
+            crossing_q,
+            below_q,
+            value_q,
+            stack,
+            top,
+            top_valid,
+            refill,
+            depth,
+            in_flight,
+            start_pending,
+            out_valid_q,
+            out_x_q,
+            out_y_q,
+            out_z_q,
+            out_level_q,
+            out_full_q,
+            out_crossed_q
         );
     }
 }
@@ -225,8 +247,24 @@ impl Logic for PlaneTraversal {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, crossing_q, below_q, value_q, top, top_valid, refill, depth, in_flight, start_pending, out_valid_q, out_x_q, out_y_q,
-            out_z_q, out_level_q, out_full_q, out_crossed_q
+            self,
+            clock,
+            crossing_q,
+            below_q,
+            value_q,
+            top,
+            top_valid,
+            refill,
+            depth,
+            in_flight,
+            start_pending,
+            out_valid_q,
+            out_x_q,
+            out_y_q,
+            out_z_q,
+            out_level_q,
+            out_full_q,
+            out_crossed_q
         );
         // Everything moves unless a record waits at the output.
         self.advance.next = !self.out_valid_q.q.val() | self.out_ready.val();
@@ -268,7 +306,10 @@ impl Logic for PlaneTraversal {
         self.half.next = bits::<11>(1) << (self.top.q.val().level - 1);
         self.issue.next = self.start_pending.q.val() | self.top_valid.q.val();
 
-        clock!(self, clock, crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid, stack);
+        clock!(
+            self, clock, crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid,
+            stack
+        );
         self.crossing.advance.next = self.advance.val();
         self.below.advance.next = self.advance.val();
         self.centre.advance.next = self.advance.val();
@@ -344,7 +385,9 @@ impl Logic for PlaneTraversal {
             self.full.next = self.inside.val() | (self.crossing_q.q.val() & self.centre.mask.val());
             self.crossed.next = self.crossing_q.q.val();
         }
-        self.push.next = self.cell_valid.q.val() & (self.cell_level.q.val() != 1) & (self.crossing_q.q.val() != 0);
+        self.push.next = self.cell_valid.q.val()
+            & (self.cell_level.q.val() != 1)
+            & (self.crossing_q.q.val() != 0);
         self.pushed.next.value = self.value_q.q.val();
         self.pushed.next.x = self.cell_x.q.val();
         self.pushed.next.y = self.cell_y.q.val();
@@ -369,7 +412,10 @@ impl Logic for PlaneTraversal {
                 }
             }
             if self.push.val() {
-                if self.top_valid.q.val() & !self.start_pending.q.val() & (self.remaining.val() != 0) {
+                if self.top_valid.q.val()
+                    & !self.start_pending.q.val()
+                    & (self.remaining.val() != 0)
+                {
                     self.stack.write_enable.next = true;
                     self.depth.d.next = self.depth.q.val() + 1;
                 }
@@ -384,7 +430,11 @@ impl Logic for PlaneTraversal {
                 self.top.d.next = self.stack.read_data.val();
                 self.top_valid.d.next = true;
                 self.refill.d.next = false;
-            } else if self.top_valid.q.val() & !self.start_pending.q.val() & (self.remaining.val() == 0) & (self.depth.q.val() != 0) {
+            } else if self.top_valid.q.val()
+                & !self.start_pending.q.val()
+                & (self.remaining.val() == 0)
+                & (self.depth.q.val() != 0)
+            {
                 self.stack.read_enable.next = true;
                 self.depth.d.next = self.depth.q.val() - 1;
                 self.refill.d.next = true;
@@ -395,7 +445,8 @@ impl Logic for PlaneTraversal {
             if !self.issue.val() & self.cell_valid.q.val() {
                 self.in_flight.d.next = self.in_flight.q.val() - 1;
             }
-            self.out_valid_q.d.next = self.cell_valid.q.val() & ((self.full.val() != 0) | (self.crossed.val() != 0));
+            self.out_valid_q.d.next =
+                self.cell_valid.q.val() & ((self.full.val() != 0) | (self.crossed.val() != 0));
             self.out_x_q.d.next = self.cell_x.q.val();
             self.out_y_q.d.next = self.cell_y.q.val();
             self.out_z_q.d.next = self.cell_z.q.val();

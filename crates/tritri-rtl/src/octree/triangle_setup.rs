@@ -23,11 +23,13 @@
 //! for the plane), against 90 for evaluating every function at every
 //! vertex and at the root.
 //!
-//! Every interval is then grown by `|g|_1` (one grid step in every
-//! direction, `tritri_geom::octree::triangle_cell::BROAD_PHASE_MARGIN`), so
-//! that two triangles that touch before quantization share a leaf: 1 for
-//! the axes, `|n_x| + |n_y| + |n_z|` for the plane, the two non-zero
-//! components' magnitudes of the edge's `e_j` for an edge function.
+//! With `grow` high every interval is then grown by `|g|_1` (one grid step
+//! in every direction, `tritri_geom::octree::triangle_cell::
+//! BROAD_PHASE_MARGIN`), so that two triangles that touch before
+//! quantization share a leaf: 1 for the axes, `|n_x| + |n_y| + |n_z|` for
+//! the plane, the two non-zero components' magnitudes of the edge's `e_j`
+//! for an edge function. With `grow` low the intervals are the triangle's
+//! own, for exact voxelization (`tritri_geom::octree::voxelize::surface`).
 //!
 //! Stages: relative coordinates and edges (1); products (2); the normal and
 //! the edge starts (3); the plane's products, the opposite ends and the
@@ -74,6 +76,9 @@ pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
     pub in_root_x: Signal<In, Bits<G>>,
     pub in_root_y: Signal<In, Bits<G>>,
     pub in_root_z: Signal<In, Bits<G>>,
+    /// Grow every interval by one grid step (the broad phase); low: the
+    /// triangle's exact intervals (voxelization). Held constant.
+    pub grow: Signal<In, Bit>,
     pub out_valid: Signal<Out, Bit>,
     pub out_tag: Signal<Out, Bits<TAG_BITS>>,
     /// Function `i`'s gradient, interval ends: bits `[i V +: V]`.
@@ -108,7 +113,10 @@ struct Stage {
 
 impl<const G: usize, const V: usize, const N: usize> Default for TriangleSetup<G, V, N> {
     fn default() -> Self {
-        assert!(V == super::value_bits(G) && N == AXES * V && V <= 127, "setup for G = {G}: V = {V}, N = {N}");
+        assert!(
+            V == super::value_bits(G) && N == AXES * V && V <= 127,
+            "setup for G = {G}: V = {V}, N = {N}"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -127,6 +135,7 @@ impl<const G: usize, const V: usize, const N: usize> Default for TriangleSetup<G
             in_root_x: Default::default(),
             in_root_y: Default::default(),
             in_root_z: Default::default(),
+            grow: Default::default(),
             out_valid: Default::default(),
             out_tag: Default::default(),
             out_gradient_x: Default::default(),
@@ -149,17 +158,31 @@ pub fn edge_gradient(e: [i128; 3], k: usize) -> [i128; 3] {
 }
 
 /// The thirteen `(gradient, low, high)` of a stage-4 record, each interval
-/// grown by `|g|_1`: what the output registers take.
-fn functions(s: &Stage, v: usize) -> [([i128; 3], i128, i128); AXES] {
+/// grown by `|g|_1` when `grow`: what the output registers take.
+fn functions(s: &Stage, v: usize, grow: bool) -> [([i128; 3], i128, i128); AXES] {
     let w = |x: i128| wrap_i128(x, v);
-    let l1 = |g: [i128; 3]| w(g.iter().map(|x| x.abs()).sum());
+    let l1 = |g: [i128; 3]| {
+        if grow {
+            w(g.iter().map(|x| x.abs()).sum())
+        } else {
+            0
+        }
+    };
     let mut out = [([0i128; 3], 0i128, 0i128); AXES];
     for (k, f) in out.iter_mut().take(3).enumerate() {
         let coordinates = s.p.map(|p| p[k]);
         let unit = [0, 1, 2].map(|j| i128::from(j == k));
-        *f = (unit, w(coordinates.into_iter().min().unwrap_or(0) - 1), w(coordinates.into_iter().max().unwrap_or(0) + 1));
+        *f = (
+            unit,
+            w(coordinates.into_iter().min().unwrap_or(0) - l1(unit)),
+            w(coordinates.into_iter().max().unwrap_or(0) + l1(unit)),
+        );
     }
-    out[3] = (s.normal, w(s.plane - l1(s.normal)), w(s.plane + l1(s.normal)));
+    out[3] = (
+        s.normal,
+        w(s.plane - l1(s.normal)),
+        w(s.plane + l1(s.normal)),
+    );
     for j in 0..3 {
         for k in 0..3 {
             let (a, b) = (s.start[3 * j + k], s.opposite[3 * j + k]);
@@ -190,13 +213,20 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
             let w = |x: i128| wrap_i128(x, V);
             let [s1, s2, s3, s4, _] = self._stages;
             // Stage 5: the outputs.
-            let f = functions(&s4, V);
-            let next5 = Stage { plane: w(s4.plane), ..s4 };
+            let f = functions(&s4, V, self.grow.val());
+            let next5 = Stage {
+                plane: w(s4.plane),
+                ..s4
+            };
             // Stage 4: the plane's products (summed here, as the Verilog
             // sums them into the output) and the opposite ends.
             let plane = w((0..3).map(|k| w(s3.normal[k] * s3.p[0][k])).sum());
             let opposite = std::array::from_fn(|i| w(s3.start[i] - s3.normal[i % 3]));
-            let next4 = Stage { plane, opposite, ..s3 };
+            let next4 = Stage {
+                plane,
+                opposite,
+                ..s3
+            };
             // Stages 2 and 3: products, then differences (one step in the
             // model: the products are exact in i128).
             let e = s2.e;
@@ -209,7 +239,11 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
                 let g = edge_gradient(e[j], k);
                 w((0..3).map(|c| w(g[c] * s2.p[j][c])).sum())
             });
-            let next3 = Stage { normal, start, ..s2 };
+            let next3 = Stage {
+                normal,
+                start,
+                ..s2
+            };
             let next2 = s1;
             // Stage 1: relative coordinates and edges.
             let v = [
@@ -217,10 +251,17 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
                 [&self.in_x1, &self.in_y1, &self.in_z1].map(|x| to_i128(x.val())),
                 [&self.in_x2, &self.in_y2, &self.in_z2].map(|x| to_i128(x.val())),
             ];
-            let root = [&self.in_root_x, &self.in_root_y, &self.in_root_z].map(|x| to_i128(x.val()));
+            let root =
+                [&self.in_root_x, &self.in_root_y, &self.in_root_z].map(|x| to_i128(x.val()));
             let p = v.map(|q| [0, 1, 2].map(|k| w(q[k] - root[k])));
             let edge = |a: usize, b: usize| [0, 1, 2].map(|k| w(v[b][k] - v[a][k]));
-            let next1 = Stage { valid: self.in_valid.val(), tag: self.in_tag.val().index() as u64, p, e: [edge(0, 1), edge(1, 2), edge(2, 0)], ..Stage::default() };
+            let next1 = Stage {
+                valid: self.in_valid.val(),
+                tag: self.in_tag.val().index() as u64,
+                p,
+                e: [edge(0, 1), edge(1, 2), edge(2, 0)],
+                ..Stage::default()
+            };
             self._stages = [next1, next2, next3, next4, next5];
             self.out_gradient_x.next = pack(f.map(|a| a.0[0]), V);
             self.out_gradient_y.next = pack(f.map(|a| a.0[1]), V);
@@ -263,17 +304,57 @@ fn setup_verilog(g: usize, v: usize) -> String {
     let xyz = ["x", "y", "z"];
     let extend = |port: String| format!("$signed({{{{{}{{{port}[{}]}}}}, {port}}})", v - g, g - 1);
     let regs = |names: Vec<String>| format!("reg signed [{v1}:0] {};", names.join(", "));
-    let per = |stage: usize, what: &str, n: usize| (0..n).map(|i| format!("{what}{i}_{stage}")).collect::<Vec<_>>();
-    let coords = |stage: usize, what: &str| (0..3).flat_map(|i| xyz.map(|c| format!("{what}{i}{c}_{stage}"))).collect::<Vec<_>>();
+    let per = |stage: usize, what: &str, n: usize| {
+        (0..n)
+            .map(|i| format!("{what}{i}_{stage}"))
+            .collect::<Vec<_>>()
+    };
+    let coords = |stage: usize, what: &str| {
+        (0..3)
+            .flat_map(|i| xyz.map(|c| format!("{what}{i}{c}_{stage}")))
+            .collect::<Vec<_>>()
+    };
     line("// Stage 1: p_i = v_i - root, e_j = v_{j+1} - v_j.".into());
     line(regs([coords(1, "p"), coords(1, "e")].concat()));
     line("// Stage 2: the products of the normal and of the edge starts.".into());
-    line(regs([per(2, "na", 3), per(2, "nb", 3), per(2, "sa", 9), per(2, "sb", 9), coords(2, "p"), coords(2, "e")].concat()));
+    line(regs(
+        [
+            per(2, "na", 3),
+            per(2, "nb", 3),
+            per(2, "sa", 9),
+            per(2, "sb", 9),
+            coords(2, "p"),
+            coords(2, "e"),
+        ]
+        .concat(),
+    ));
     line("// Stage 3: the normal and the edge starts.".into());
-    line(regs([per(3, "n", 3), per(3, "s", 9), coords(3, "p"), coords(3, "e")].concat()));
+    line(regs(
+        [
+            per(3, "n", 3),
+            per(3, "s", 9),
+            coords(3, "p"),
+            coords(3, "e"),
+        ]
+        .concat(),
+    ));
     line("// Stage 4: the plane's products, the opposite ends, the margins |g|_1.".into());
-    line(regs([per(4, "pl", 3), per(4, "n", 3), per(4, "s", 9), per(4, "o", 9), per(4, "m", 10), coords(4, "p"), coords(4, "e")].concat()));
-    line(format!("reg [{}:0] tag_1, tag_2, tag_3, tag_4;", TAG_BITS - 1));
+    line(regs(
+        [
+            per(4, "pl", 3),
+            per(4, "n", 3),
+            per(4, "s", 9),
+            per(4, "o", 9),
+            per(4, "m", 10),
+            coords(4, "p"),
+            coords(4, "e"),
+        ]
+        .concat(),
+    ));
+    line(format!(
+        "reg [{}:0] tag_1, tag_2, tag_3, tag_4;",
+        TAG_BITS - 1
+    ));
     line("reg valid_1, valid_2, valid_3, valid_4;".into());
     line("always @(posedge clock) begin".into());
     line("    if (reset) begin".into());
@@ -285,9 +366,17 @@ fn setup_verilog(g: usize, v: usize) -> String {
     line("        tag_1 <= in_tag; tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3; out_tag <= tag_4;".into());
     for i in 0..3 {
         for c in xyz {
-            line(format!("        p{i}{c}_1 <= {} - {};", extend(format!("in_{c}{i}")), extend(format!("in_root_{c}"))));
+            line(format!(
+                "        p{i}{c}_1 <= {} - {};",
+                extend(format!("in_{c}{i}")),
+                extend(format!("in_root_{c}"))
+            ));
             let next = (i + 1) % 3;
-            line(format!("        e{i}{c}_1 <= {} - {};", extend(format!("in_{c}{next}")), extend(format!("in_{c}{i}"))));
+            line(format!(
+                "        e{i}{c}_1 <= {} - {};",
+                extend(format!("in_{c}{next}")),
+                extend(format!("in_{c}{i}"))
+            ));
         }
     }
     // Stage 2. n_k = e0_a e1_b - e0_b e1_a with (a, b) = (k+1, k+2) mod 3.
@@ -301,8 +390,14 @@ fn setup_verilog(g: usize, v: usize) -> String {
     for j in 0..3 {
         for k in 0..3 {
             let (a, b) = (xyz[(k + 2) % 3], xyz[(k + 1) % 3]);
-            line(format!("        sa{}_2 <= e{j}{a}_1 * p{j}{b}_1;", 3 * j + k));
-            line(format!("        sb{}_2 <= e{j}{b}_1 * p{j}{a}_1;", 3 * j + k));
+            line(format!(
+                "        sa{}_2 <= e{j}{a}_1 * p{j}{b}_1;",
+                3 * j + k
+            ));
+            line(format!(
+                "        sb{}_2 <= e{j}{b}_1 * p{j}{a}_1;",
+                3 * j + k
+            ));
         }
     }
     let pass = |line: &mut dyn FnMut(String), from: usize, to: usize| {
@@ -332,15 +427,28 @@ fn setup_verilog(g: usize, v: usize) -> String {
     // Margins: m0 = |n|_1 (the plane); m(1 + 3j + k) = |e_j| over the two
     // axes other than k (the edge function's gradient e_j x u_k).
     let abs = |x: String| format!("(({x} < 0) ? -{x} : {x})");
-    line(format!("        m0_4 <= {} + {} + {};", abs("n0_3".into()), abs("n1_3".into()), abs("n2_3".into())));
+    line(format!(
+        "        m0_4 <= {} + {} + {};",
+        abs("n0_3".into()),
+        abs("n1_3".into()),
+        abs("n2_3".into())
+    ));
     for j in 0..3 {
         for k in 0..3 {
             let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
-            line(format!("        m{}_4 <= {} + {};", 1 + 3 * j + k, abs(format!("e{j}{a}_3")), abs(format!("e{j}{b}_3"))));
+            line(format!(
+                "        m{}_4 <= {} + {};",
+                1 + 3 * j + k,
+                abs(format!("e{j}{a}_3")),
+                abs(format!("e{j}{b}_3"))
+            ));
         }
     }
     pass(&mut line, 3, 4);
     // Stage 5: the packed outputs, function i at [i V +: V].
+    // The margins apply only while `grow` is high.
+    let one = format!("(grow ? {v}'sd1 : {v}'sd0)");
+    let margin = |i: usize| format!("(grow ? m{i}_4 : {v}'sd0)");
     let min = |a: &str, b: &str| format!("(({a} < {b}) ? {a} : {b})");
     let max = |a: &str, b: &str| format!("(({a} < {b}) ? {b} : {a})");
     let mut gradient: [Vec<String>; 3] = Default::default();
@@ -350,14 +458,14 @@ fn setup_verilog(g: usize, v: usize) -> String {
             g.push(format!("{v}'sd{}", u8::from(d == k)));
         }
         let (c0, c1, c2) = (format!("p0{c}_4"), format!("p1{c}_4"), format!("p2{c}_4"));
-        low.push(format!("{} - {v}'sd1", min(&min(&c0, &c1), &c2)));
-        high.push(format!("{} + {v}'sd1", max(&max(&c0, &c1), &c2)));
+        low.push(format!("{} - {one}", min(&min(&c0, &c1), &c2)));
+        high.push(format!("{} + {one}", max(&max(&c0, &c1), &c2)));
     }
     for (k, g) in gradient.iter_mut().enumerate() {
         g.push(format!("n{k}_4"));
     }
-    low.push("pl0_4 + pl1_4 + pl2_4 - m0_4".into());
-    high.push("pl0_4 + pl1_4 + pl2_4 + m0_4".into());
+    low.push(format!("pl0_4 + pl1_4 + pl2_4 - {}", margin(0)));
+    high.push(format!("pl0_4 + pl1_4 + pl2_4 + {}", margin(0)));
     for j in 0..3 {
         for k in 0..3 {
             let e = |c: usize| format!("e{j}{}_4", xyz[c]);
@@ -371,14 +479,32 @@ fn setup_verilog(g: usize, v: usize) -> String {
                 gradient[d].push(component);
             }
             let i = 3 * j + k;
-            low.push(format!("{} - m{}_4", min(&format!("s{i}_4"), &format!("o{i}_4")), i + 1));
-            high.push(format!("{} + m{}_4", max(&format!("s{i}_4"), &format!("o{i}_4")), i + 1));
+            low.push(format!(
+                "{} - {}",
+                min(&format!("s{i}_4"), &format!("o{i}_4")),
+                margin(i + 1)
+            ));
+            high.push(format!(
+                "{} + {}",
+                max(&format!("s{i}_4"), &format!("o{i}_4")),
+                margin(i + 1)
+            ));
         }
     }
     // Each field is a V-bit signed expression written into its slice.
-    for (name, fields) in [("out_gradient_x", &gradient[0]), ("out_gradient_y", &gradient[1]), ("out_gradient_z", &gradient[2]), ("out_low", &low), ("out_high", &high)] {
+    for (name, fields) in [
+        ("out_gradient_x", &gradient[0]),
+        ("out_gradient_y", &gradient[1]),
+        ("out_gradient_z", &gradient[2]),
+        ("out_low", &low),
+        ("out_high", &high),
+    ] {
         for (i, f) in fields.iter().enumerate() {
-            line(format!("        {name}[{}:{}] <= $unsigned({f});", i * v + v1, i * v));
+            line(format!(
+                "        {name}[{}:{}] <= $unsigned({f});",
+                i * v + v1,
+                i * v
+            ));
         }
     }
     line("    end".into());

@@ -77,7 +77,16 @@ impl crate::unit::Unit for VoxelFill {
         crate::sub_units!(
             self,
             units,
-            active, cell_x, cell_y, cell_z, child_level, remaining, dy, dz, word, last_word
+            active,
+            cell_x,
+            cell_y,
+            cell_z,
+            child_level,
+            remaining,
+            dy,
+            dz,
+            word,
+            last_word
         );
     }
 }
@@ -85,7 +94,20 @@ impl crate::unit::Unit for VoxelFill {
 impl Logic for VoxelFill {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, active, cell_x, cell_y, cell_z, child_level, remaining, dy, dz, word, last_word);
+        dff_setup!(
+            self,
+            clock,
+            active,
+            cell_x,
+            cell_y,
+            cell_z,
+            child_level,
+            remaining,
+            dy,
+            dz,
+            word,
+            last_word
+        );
         // The current child: the lowest remaining octant.
         self.octant.next = 7.into();
         if self.remaining.q.val().get_bit(0) {
@@ -118,7 +140,8 @@ impl Logic for VoxelFill {
             self.z.next = self.cell_z.q.val() + self.side.val() + self.dz.q.val();
         }
         // The row's first voxel, then the word: (z n + y) n + x + 64 word.
-        self.index.next = (bit_cast::<30, 11>(self.z.val()) << (bit_cast::<5, 4>(self.level.val()) + bit_cast::<5, 4>(self.level.val())))
+        self.index.next = (bit_cast::<30, 11>(self.z.val())
+            << (bit_cast::<5, 4>(self.level.val()) + bit_cast::<5, 4>(self.level.val())))
             + (bit_cast::<30, 11>(self.y.val()) << self.level.val())
             + bit_cast::<30, 11>(self.x.val())
             + (bit_cast::<30, 5>(self.word.q.val()) << 6);

@@ -127,7 +127,11 @@ impl crate::unit::Unit for AlignT1 {
         crate::sub_units!(
             self,
             units,
-            sign_table, t1_rotation_q, t2_swap_q, t2_aligned_negative_q, t2_aligned_zero_q
+            sign_table,
+            t1_rotation_q,
+            t2_swap_q,
+            t2_aligned_negative_q,
+            t2_aligned_zero_q
         );
     }
 }

@@ -39,7 +39,15 @@ pub struct AlignT2 {
 impl crate::unit::Unit for AlignT2 {
     const LATENCY: Option<usize> = Some(ALIGN_T2_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, sign_table, t1_rotation_q, t2_swap_q, t2_rotation_q, t1_swap_q);
+        crate::sub_units!(
+            self,
+            units,
+            sign_table,
+            t1_rotation_q,
+            t2_swap_q,
+            t2_rotation_q,
+            t1_swap_q
+        );
     }
 }
 
@@ -50,7 +58,14 @@ impl Logic for AlignT2 {
             self.sign_table.negative[i].next = self.t2_aligned_negative[i].val();
             self.sign_table.zero[i].next = self.t2_aligned_zero[i].val();
         }
-        dff_setup!(self, clock, t1_rotation_q, t2_swap_q, t2_rotation_q, t1_swap_q);
+        dff_setup!(
+            self,
+            clock,
+            t1_rotation_q,
+            t2_swap_q,
+            t2_rotation_q,
+            t1_swap_q
+        );
         if self.advance.val() {
             self.t1_rotation_q.d.next = self.t1_rotation_in.val();
             self.t2_swap_q.d.next = self.t2_swap_in.val();

@@ -53,8 +53,16 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BaseP
         crate::sub_units!(
             self,
             units,
-            id_q, vertices_q, normal_q, normal_negative_q, normal_zero_q, degenerate_q, dominant_axis_q,
-            segment_low_q, segment_high_q, edge_thermometer_q
+            id_q,
+            vertices_q,
+            normal_q,
+            normal_negative_q,
+            normal_zero_q,
+            degenerate_q,
+            dominant_axis_q,
+            segment_low_q,
+            segment_high_q,
+            edge_thermometer_q
         );
     }
 }
@@ -62,7 +70,16 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BaseP
 impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, id_q, degenerate_q, dominant_axis_q, segment_low_q, segment_high_q, edge_thermometer_q);
+        dff_setup!(
+            self,
+            clock,
+            id_q,
+            degenerate_q,
+            dominant_axis_q,
+            segment_low_q,
+            segment_high_q,
+            edge_thermometer_q
+        );
         for i in 0..9 {
             self.vertices_q[i].clock.next = self.clock.val();
             self.vertices_q[i].d.next = self.vertices_q[i].q.val();

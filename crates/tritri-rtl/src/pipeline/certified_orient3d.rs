@@ -11,10 +11,12 @@
 //! (`tritri_geom::certificate::orient3d_certified`) is the thermometer of
 //! the nine differences, carried beside the products to the sign stage.
 
+use crate::arith::certificate::{
+    CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY,
+};
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
@@ -49,23 +51,41 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     magnitude_ab: MagnitudeThermometer<D>,
     magnitude_ac: MagnitudeThermometer<D>,
     magnitude_ad: MagnitudeThermometer<D>,
-    thermometer_delay: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>,
+    thermometer_delay: DelayLine<
+        Bits<D>,
+        { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY },
+    >,
     sign: CertainSign<O, D>,
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for CertifiedOrient3d<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for CertifiedOrient3d<W, D, C, O>
+{
     const LATENCY: Option<usize> = Some(CERTIFIED_ORIENT3D_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            edge_ab, edge_ac, edge_ad, normal, edge_ad_delay_0, edge_ad_delay_1, edge_ad_delay_2,
-            determinant, magnitude_ab, magnitude_ac, magnitude_ad, thermometer_delay, sign
+            edge_ab,
+            edge_ac,
+            edge_ad,
+            normal,
+            edge_ad_delay_0,
+            edge_ad_delay_1,
+            edge_ad_delay_2,
+            determinant,
+            magnitude_ab,
+            magnitude_ac,
+            magnitude_ad,
+            thermometer_delay,
+            sign
         );
     }
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for CertifiedOrient3d<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for CertifiedOrient3d<W, D, C, O>
+{
     #[hdl_gen]
     fn update(&mut self) {
         clock!(

@@ -98,8 +98,22 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for Copla
         crate::sub_units!(
             self,
             units,
-            axis_q, t1_q, t2_q, normal_q, projection_q, edge_a, edge_b, offset, compare, on_edge_a,
-            on_edge_b, orientation, orient, sign, term_q, hit_q
+            axis_q,
+            t1_q,
+            t2_q,
+            normal_q,
+            projection_q,
+            edge_a,
+            edge_b,
+            offset,
+            compare,
+            on_edge_a,
+            on_edge_b,
+            orientation,
+            orient,
+            sign,
+            term_q,
+            hit_q
         );
     }
 }
@@ -200,17 +214,20 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
             for c in 0..2 {
                 self.edge_a[2 * e + c].a.next = self.projection_q[2 * ((e + 1) % 3) + c].q.val();
                 self.edge_a[2 * e + c].b.next = self.projection_q[2 * e + c].q.val();
-                self.edge_b[2 * e + c].a.next = self.projection_q[6 + 2 * ((e + 1) % 3) + c].q.val();
+                self.edge_b[2 * e + c].a.next =
+                    self.projection_q[6 + 2 * ((e + 1) % 3) + c].q.val();
                 self.edge_b[2 * e + c].b.next = self.projection_q[6 + 2 * e + c].q.val();
             }
         }
         for u in 0..3 {
             for v in 0..3 {
                 for c in 0..2 {
-                    self.offset[2 * (3 * u + v) + c].a.next = self.projection_q[6 + 2 * v + c].q.val();
+                    self.offset[2 * (3 * u + v) + c].a.next =
+                        self.projection_q[6 + 2 * v + c].q.val();
                     self.offset[2 * (3 * u + v) + c].b.next = self.projection_q[2 * u + c].q.val();
                     self.compare[9 * c + 3 * u + v].a.next = self.projection_q[2 * u + c].q.val();
-                    self.compare[9 * c + 3 * u + v].b.next = self.projection_q[6 + 2 * v + c].q.val();
+                    self.compare[9 * c + 3 * u + v].b.next =
+                        self.projection_q[6 + 2 * v + c].q.val();
                 }
             }
         }
@@ -225,7 +242,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
                 self.orient[9 + 3 * e + v].u_x.next = self.edge_b[2 * e].difference.val();
                 self.orient[9 + 3 * e + v].u_y.next = self.edge_b[2 * e + 1].difference.val();
                 self.orient[9 + 3 * e + v].w_x.next = self.offset[2 * (3 * v + e)].difference.val();
-                self.orient[9 + 3 * e + v].w_y.next = self.offset[2 * (3 * v + e) + 1].difference.val();
+                self.orient[9 + 3 * e + v].w_y.next =
+                    self.offset[2 * (3 * v + e) + 1].difference.val();
             }
         }
         // Collinear touching (on_segment_2d): within the edge's bounding box
@@ -243,12 +261,14 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
                     || self.compare[3 * e + v].equal.val()
                     || self.compare[3 * ((e + 1) % 3) + v].less.val()
                     || self.compare[3 * ((e + 1) % 3) + v].equal.val())
-                    && (!self.compare[3 * e + v].less.val() || !self.compare[3 * ((e + 1) % 3) + v].less.val())
+                    && (!self.compare[3 * e + v].less.val()
+                        || !self.compare[3 * ((e + 1) % 3) + v].less.val())
                     && (self.compare[9 + 3 * e + v].less.val()
                         || self.compare[9 + 3 * e + v].equal.val()
                         || self.compare[9 + 3 * ((e + 1) % 3) + v].less.val()
                         || self.compare[9 + 3 * ((e + 1) % 3) + v].equal.val())
-                    && (!self.compare[9 + 3 * e + v].less.val() || !self.compare[9 + 3 * ((e + 1) % 3) + v].less.val());
+                    && (!self.compare[9 + 3 * e + v].less.val()
+                        || !self.compare[9 + 3 * ((e + 1) % 3) + v].less.val());
                 // f = e, u = v: A_u on [B_f, B_f+1].
                 self.on_edge_b[3 * e + v].d.next = (!self.compare[3 * v + e].less.val()
                     || !self.compare[3 * v + (e + 1) % 3].less.val())
@@ -256,7 +276,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
                         || self.compare[3 * v + e].equal.val()
                         || self.compare[3 * v + (e + 1) % 3].less.val()
                         || self.compare[3 * v + (e + 1) % 3].equal.val())
-                    && (!self.compare[9 + 3 * v + e].less.val() || !self.compare[9 + 3 * v + (e + 1) % 3].less.val())
+                    && (!self.compare[9 + 3 * v + e].less.val()
+                        || !self.compare[9 + 3 * v + (e + 1) % 3].less.val())
                     && (self.compare[9 + 3 * v + e].less.val()
                         || self.compare[9 + 3 * v + e].equal.val()
                         || self.compare[9 + 3 * v + (e + 1) % 3].less.val()
@@ -275,28 +296,41 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
                     // strictly opposite (o3, o4 are both negated: same test);
                     // or touching: an end collinear with the other edge and
                     // on it.
-                    self.term_q[3 * e + f].d.next = (((self.sign[3 * e + f].negative.val() && self.positive[3 * e + (f + 1) % 3].val())
-                        || (self.positive[3 * e + f].val() && self.sign[3 * e + (f + 1) % 3].negative.val()))
-                        && ((self.sign[9 + 3 * f + e].negative.val() && self.positive[9 + 3 * f + (e + 1) % 3].val())
-                            || (self.positive[9 + 3 * f + e].val() && self.sign[9 + 3 * f + (e + 1) % 3].negative.val())))
+                    self.term_q[3 * e + f].d.next = (((self.sign[3 * e + f].negative.val()
+                        && self.positive[3 * e + (f + 1) % 3].val())
+                        || (self.positive[3 * e + f].val()
+                            && self.sign[3 * e + (f + 1) % 3].negative.val()))
+                        && ((self.sign[9 + 3 * f + e].negative.val()
+                            && self.positive[9 + 3 * f + (e + 1) % 3].val())
+                            || (self.positive[9 + 3 * f + e].val()
+                                && self.sign[9 + 3 * f + (e + 1) % 3].negative.val())))
                         || (self.sign[3 * e + f].zero.val() && self.on_edge_a[3 * e + f].q.val())
-                        || (self.sign[3 * e + (f + 1) % 3].zero.val() && self.on_edge_a[3 * e + (f + 1) % 3].q.val())
-                        || (self.sign[9 + 3 * f + e].zero.val() && self.on_edge_b[3 * f + e].q.val())
-                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val() && self.on_edge_b[3 * f + (e + 1) % 3].q.val());
+                        || (self.sign[3 * e + (f + 1) % 3].zero.val()
+                            && self.on_edge_a[3 * e + (f + 1) % 3].q.val())
+                        || (self.sign[9 + 3 * f + e].zero.val()
+                            && self.on_edge_b[3 * f + e].q.val())
+                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val()
+                            && self.on_edge_b[3 * f + (e + 1) % 3].q.val());
                 }
             }
             // B_0 inside A: A proper here, and B_0 on the inner side of (or
             // on) every edge.
             self.term_q[9].d.next = !self.orientation[1].q.val()
-                && (self.sign[0].zero.val() || (self.sign[0].negative.val() == self.orientation[0].q.val()))
-                && (self.sign[3].zero.val() || (self.sign[3].negative.val() == self.orientation[0].q.val()))
-                && (self.sign[6].zero.val() || (self.sign[6].negative.val() == self.orientation[0].q.val()));
+                && (self.sign[0].zero.val()
+                    || (self.sign[0].negative.val() == self.orientation[0].q.val()))
+                && (self.sign[3].zero.val()
+                    || (self.sign[3].negative.val() == self.orientation[0].q.val()))
+                && (self.sign[6].zero.val()
+                    || (self.sign[6].negative.val() == self.orientation[0].q.val()));
             // A_0 inside B (its orient2d values are negated: positive here
             // means negative there).
             self.term_q[10].d.next = !self.orientation[3].q.val()
-                && (self.sign[9].zero.val() || (self.positive[9].val() == self.orientation[2].q.val()))
-                && (self.sign[12].zero.val() || (self.positive[12].val() == self.orientation[2].q.val()))
-                && (self.sign[15].zero.val() || (self.positive[15].val() == self.orientation[2].q.val()));
+                && (self.sign[9].zero.val()
+                    || (self.positive[9].val() == self.orientation[2].q.val()))
+                && (self.sign[12].zero.val()
+                    || (self.positive[12].val() == self.orientation[2].q.val()))
+                && (self.sign[15].zero.val()
+                    || (self.positive[15].val() == self.orientation[2].q.val()));
         }
         // Stage 9: any term.
         dff_setup!(self, clock, hit_q);

@@ -98,8 +98,15 @@ impl crate::unit::Unit for Decision {
         crate::sub_units!(
             self,
             units,
-            rejected_certainly_q, interval_certain_q, certain_q, triangles_hit_q, segment_hit_q,
-            degenerate_hit_q, t1_degenerate_q, t2_degenerate_q, hit_q
+            rejected_certainly_q,
+            interval_certain_q,
+            certain_q,
+            triangles_hit_q,
+            segment_hit_q,
+            degenerate_hit_q,
+            t1_degenerate_q,
+            t2_degenerate_q,
+            hit_q
         );
     }
 }
@@ -108,21 +115,36 @@ impl Logic for Decision {
     #[hdl_gen]
     fn update(&mut self) {
         for i in 0..3 {
-            self.t1_side_positive[i].next = !self.t1_side_negative[i].val() && !self.t1_side_zero[i].val();
-            self.t2_side_positive[i].next = !self.t2_side_negative[i].val() && !self.t2_side_zero[i].val();
-            self.orient_positive[i].next = !self.orient_negative[i].val() && !self.orient_zero[i].val();
+            self.t1_side_positive[i].next =
+                !self.t1_side_negative[i].val() && !self.t1_side_zero[i].val();
+            self.t2_side_positive[i].next =
+                !self.t2_side_negative[i].val() && !self.t2_side_zero[i].val();
+            self.orient_positive[i].next =
+                !self.orient_negative[i].val() && !self.orient_zero[i].val();
         }
         // triangles_intersect.
-        if (self.t1_side_positive[0].val() && self.t1_side_positive[1].val() && self.t1_side_positive[2].val())
-            || (self.t1_side_negative[0].val() && self.t1_side_negative[1].val() && self.t1_side_negative[2].val())
-            || (self.t2_side_positive[0].val() && self.t2_side_positive[1].val() && self.t2_side_positive[2].val())
-            || (self.t2_side_negative[0].val() && self.t2_side_negative[1].val() && self.t2_side_negative[2].val())
+        if (self.t1_side_positive[0].val()
+            && self.t1_side_positive[1].val()
+            && self.t1_side_positive[2].val())
+            || (self.t1_side_negative[0].val()
+                && self.t1_side_negative[1].val()
+                && self.t1_side_negative[2].val())
+            || (self.t2_side_positive[0].val()
+                && self.t2_side_positive[1].val()
+                && self.t2_side_positive[2].val())
+            || (self.t2_side_negative[0].val()
+                && self.t2_side_negative[1].val()
+                && self.t2_side_negative[2].val())
         {
             self.triangles_hit.next = false;
-        } else if self.t1_side_zero[0].val() && self.t1_side_zero[1].val() && self.t1_side_zero[2].val() {
+        } else if self.t1_side_zero[0].val()
+            && self.t1_side_zero[1].val()
+            && self.t1_side_zero[2].val()
+        {
             self.triangles_hit.next = self.coplanar_hit.val();
         } else {
-            self.triangles_hit.next = !self.orient_positive[0].val() && !self.orient_positive[1].val();
+            self.triangles_hit.next =
+                !self.orient_positive[0].val() && !self.orient_positive[1].val();
         }
         // segment_triangle: the ends' signs.
         self.end_a_negative.next = false;
@@ -165,13 +187,17 @@ impl Logic for Decision {
             self.segment_hit.next = !((self.orient_positive[0].val()
                 || self.orient_positive[1].val()
                 || self.orient_positive[2].val())
-                && (self.orient_negative[0].val() || self.orient_negative[1].val() || self.orient_negative[2].val()));
+                && (self.orient_negative[0].val()
+                    || self.orient_negative[1].val()
+                    || self.orient_negative[2].val()));
         }
         // The certificate's rules 1 and 2, and rule 3.
-        self.t1_sides_certain.next =
-            self.t1_side_certain[0].val() && self.t1_side_certain[1].val() && self.t1_side_certain[2].val();
-        self.t2_sides_certain.next =
-            self.t2_side_certain[0].val() && self.t2_side_certain[1].val() && self.t2_side_certain[2].val();
+        self.t1_sides_certain.next = self.t1_side_certain[0].val()
+            && self.t1_side_certain[1].val()
+            && self.t1_side_certain[2].val();
+        self.t2_sides_certain.next = self.t2_side_certain[0].val()
+            && self.t2_side_certain[1].val()
+            && self.t2_side_certain[2].val();
         dff_setup!(
             self,
             clock,
@@ -188,14 +214,21 @@ impl Logic for Decision {
         if self.advance.val() {
             self.triangles_hit_q.d.next = self.triangles_hit.val();
             self.segment_hit_q.d.next = self.segment_hit.val();
-            self.degenerate_hit_q.d.next = self.orient_zero[0].val() && self.degenerate_pair_hit.val();
+            self.degenerate_hit_q.d.next =
+                self.orient_zero[0].val() && self.degenerate_pair_hit.val();
             self.t1_degenerate_q.d.next = self.t1_degenerate.val();
             self.t2_degenerate_q.d.next = self.t2_degenerate.val();
             self.rejected_certainly_q.d.next = (self.t1_sides_certain.val()
-                && ((self.t1_side_positive[0].val() && self.t1_side_positive[1].val() && self.t1_side_positive[2].val())
-                    || (self.t1_side_negative[0].val() && self.t1_side_negative[1].val() && self.t1_side_negative[2].val())))
+                && ((self.t1_side_positive[0].val()
+                    && self.t1_side_positive[1].val()
+                    && self.t1_side_positive[2].val())
+                    || (self.t1_side_negative[0].val()
+                        && self.t1_side_negative[1].val()
+                        && self.t1_side_negative[2].val())))
                 || (self.t2_sides_certain.val()
-                    && ((self.t2_side_positive[0].val() && self.t2_side_positive[1].val() && self.t2_side_positive[2].val())
+                    && ((self.t2_side_positive[0].val()
+                        && self.t2_side_positive[1].val()
+                        && self.t2_side_positive[2].val())
                         || (self.t2_side_negative[0].val()
                             && self.t2_side_negative[1].val()
                             && self.t2_side_negative[2].val())));
@@ -204,7 +237,8 @@ impl Logic for Decision {
                 && ((self.orient_certain[0].val() && self.orient_certain[1].val())
                     || (self.orient_certain[0].val() && self.orient_positive[0].val())
                     || (self.orient_certain[1].val() && self.orient_positive[1].val()));
-            self.certain_q.d.next = self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
+            self.certain_q.d.next =
+                self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
             if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
                 self.hit_q.d.next = self.triangles_hit_q.q.val();
             } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {

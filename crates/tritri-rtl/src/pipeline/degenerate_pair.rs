@@ -22,7 +22,8 @@ use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
-pub const DEGENERATE_PAIR_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
+pub const DEGENERATE_PAIR_LATENCY: usize =
+    1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
 const ON_SEGMENT_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
 const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
 
@@ -71,8 +72,21 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for Degen
         crate::sub_units!(
             self,
             units,
-            ends_q, edge_ab, offset_ac, offset_ad, edge_cd, offset_ca, offset_cb, orient_abc, orient_abd,
-            orient_cda, orient_cdb, sign, compare, within_segment, hit_q
+            ends_q,
+            edge_ab,
+            offset_ac,
+            offset_ad,
+            edge_cd,
+            offset_ca,
+            offset_cb,
+            orient_abc,
+            orient_abd,
+            orient_cda,
+            orient_cdb,
+            sign,
+            compare,
+            within_segment,
+            hit_q
         );
     }
 }
@@ -119,18 +133,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
         }
         // Stage 2: differences and comparisons.
         clock!(
-            self,
-            clock,
-            edge_ab,
-            offset_ac,
-            offset_ad,
-            edge_cd,
-            offset_ca,
-            offset_cb,
-            orient_abc,
-            orient_abd,
-            orient_cda,
-            orient_cdb
+            self, clock, edge_ab, offset_ac, offset_ad, edge_cd, offset_ca, offset_cb, orient_abc,
+            orient_abd, orient_cda, orient_cdb
         );
         self.edge_ab.advance.next = self.advance.val();
         self.offset_ac.advance.next = self.advance.val();
@@ -203,12 +207,14 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
                 || self.compare[9 + m].equal.val())
                 && (!self.compare[3 + m].less.val() || !self.compare[9 + m].less.val());
             // a within [c, d]: pairs (a,c), (a,d); c <= a is !(a < c).
-            self.within_segment[6 + m].d.next = (!self.compare[m].less.val() || !self.compare[3 + m].less.val())
+            self.within_segment[6 + m].d.next = (!self.compare[m].less.val()
+                || !self.compare[3 + m].less.val())
                 && (self.compare[m].less.val()
                     || self.compare[m].equal.val()
                     || self.compare[3 + m].less.val()
                     || self.compare[3 + m].equal.val());
-            self.within_segment[9 + m].d.next = (!self.compare[6 + m].less.val() || !self.compare[9 + m].less.val())
+            self.within_segment[9 + m].d.next = (!self.compare[6 + m].less.val()
+                || !self.compare[9 + m].less.val())
                 && (self.compare[6 + m].less.val()
                     || self.compare[6 + m].equal.val()
                     || self.compare[9 + m].less.val()

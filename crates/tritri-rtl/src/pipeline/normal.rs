@@ -36,14 +36,30 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for NormalUnit<W, D, C> {
     const LATENCY: Option<usize> = Some(NORMAL_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, edge_pq, edge_pr, edge_cross, magnitude_pq, magnitude_pr);
+        crate::sub_units!(
+            self,
+            units,
+            edge_pq,
+            edge_pr,
+            edge_cross,
+            magnitude_pq,
+            magnitude_pr
+        );
     }
 }
 
 impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, edge_pq, edge_pr, edge_cross, magnitude_pq, magnitude_pr);
+        clock!(
+            self,
+            clock,
+            edge_pq,
+            edge_pr,
+            edge_cross,
+            magnitude_pq,
+            magnitude_pr
+        );
         self.edge_pq.advance.next = self.advance.val();
         self.edge_pr.advance.next = self.advance.val();
         self.edge_cross.advance.next = self.advance.val();
@@ -60,6 +76,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
             self.magnitude_pq.value[k].next = self.edge_pq.difference[k].val();
             self.magnitude_pr.value[k].next = self.edge_pr.difference[k].val();
         }
-        self.edge_thermometer.next = self.magnitude_pq.thermometer.val() | self.magnitude_pr.thermometer.val();
+        self.edge_thermometer.next =
+            self.magnitude_pq.thermometer.val() | self.magnitude_pr.thermometer.val();
     }
 }

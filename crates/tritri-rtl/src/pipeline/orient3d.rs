@@ -18,7 +18,8 @@ use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from the four points to the sign.
-pub const ORIENT3D_LATENCY: usize = SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY + SIGN_LATENCY;
+pub const ORIENT3D_LATENCY: usize =
+    SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY + SIGN_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct Orient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -43,19 +44,30 @@ pub struct Orient3d<const W: usize, const D: usize, const C: usize, const O: usi
     sign: SignOf<O>,
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for Orient3d<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for Orient3d<W, D, C, O>
+{
     const LATENCY: Option<usize> = Some(ORIENT3D_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            edge_ab, edge_ac, edge_ad, normal, edge_ad_delay_0, edge_ad_delay_1, edge_ad_delay_2,
-            determinant, sign
+            edge_ab,
+            edge_ac,
+            edge_ad,
+            normal,
+            edge_ad_delay_0,
+            edge_ad_delay_1,
+            edge_ad_delay_2,
+            determinant,
+            sign
         );
     }
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for Orient3d<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for Orient3d<W, D, C, O>
+{
     #[hdl_gen]
     fn update(&mut self) {
         clock!(

@@ -75,8 +75,16 @@ impl<const W: usize> crate::unit::Unit for Orient3dOperands<W> {
         crate::sub_units!(
             self,
             units,
-            degenerate_index_q, proper_q, vertex_q, from_t2_q, t1_delay, t2_delay, t1_pick_q, t2_pick_q,
-            from_t2_2q, operands_q
+            degenerate_index_q,
+            proper_q,
+            vertex_q,
+            from_t2_q,
+            t1_delay,
+            t2_delay,
+            t1_pick_q,
+            t2_pick_q,
+            from_t2_2q,
+            operands_q
         );
     }
 }
@@ -124,7 +132,8 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             // Segment of T1 against the edges of T2.
             for u in 0..3 {
                 self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t1_segment_low.val());
-                self.degenerate_index[4 * u + 1].next = bit_cast::<3, 2>(self.t1_segment_high.val());
+                self.degenerate_index[4 * u + 1].next =
+                    bit_cast::<3, 2>(self.t1_segment_high.val());
             }
             self.degenerate_index[2].next = 3.into();
             self.degenerate_index[3].next = 4.into();
@@ -136,7 +145,8 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             // Segment of T2 against the edges of T1.
             for u in 0..3 {
                 self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
-                self.degenerate_index[4 * u + 1].next = bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
+                self.degenerate_index[4 * u + 1].next =
+                    bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
             }
             self.degenerate_index[2].next = 0.into();
             self.degenerate_index[3].next = 1.into();
@@ -185,7 +195,9 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
                 } else {
                     self.vertex_q[s].d.next = 2.into();
                 }
-                self.from_t2_q[s].d.next = self.index[s].val() == 3 || self.index[s].val() == 4 || self.index[s].val() == 5;
+                self.from_t2_q[s].d.next = self.index[s].val() == 3
+                    || self.index[s].val() == 4
+                    || self.index[s].val() == 5;
                 self.from_t2_2q[s].d.next = self.from_t2_q[s].q.val();
             }
         }

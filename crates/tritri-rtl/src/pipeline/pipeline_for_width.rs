@@ -38,11 +38,21 @@ pub struct PipelineInput {
 impl PipelineInput {
     /// The cycle that loads `t` into the base registers.
     pub fn load_base(t: &TaggedTriangle) -> Self {
-        PipelineInput { valid: true, bset: true, id: t.id, vertices: flatten(&t.triangle) }
+        PipelineInput {
+            valid: true,
+            bset: true,
+            id: t.id,
+            vertices: flatten(&t.triangle),
+        }
     }
     /// The cycle that tests `t` against the loaded base.
     pub fn test(t: &TaggedTriangle) -> Self {
-        PipelineInput { valid: true, bset: false, id: t.id, vertices: flatten(&t.triangle) }
+        PipelineInput {
+            valid: true,
+            bset: false,
+            id: t.id,
+            vertices: flatten(&t.triangle),
+        }
     }
     /// A bubble: nothing on the bus.
     pub fn idle() -> Self {
@@ -52,7 +62,9 @@ impl PipelineInput {
 
 /// `x0 y0 z0 x1 y1 z1 x2 y2 z2`, the order of the coordinate ports.
 pub fn flatten(t: &FixedTriangle) -> [i64; 9] {
-    [t[0][0], t[0][1], t[0][2], t[1][0], t[1][1], t[1][2], t[2][0], t[2][1], t[2][2]]
+    [
+        t[0][0], t[0][1], t[0][2], t[1][0], t[1][1], t[1][2], t[2][0], t[2][1], t[2][2],
+    ]
 }
 
 /// The output ports after a clock.
@@ -143,7 +155,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSim
         for (signal, &v) in self.coordinate_inputs().into_iter().zip(&input.vertices) {
             let lo = -(1i64 << (W - 1));
             let hi = (1i64 << (W - 1)) - 1;
-            assert!((lo..=hi).contains(&v), "coordinate {v} does not fit in {W} bits");
+            assert!(
+                (lo..=hi).contains(&v),
+                "coordinate {v} does not fit in {W} bits"
+            );
             signal.next = from_i128::<W>(v as i128);
         }
     }
@@ -223,7 +238,11 @@ pub struct UnsupportedWidth(pub usize);
 
 impl std::fmt::Display for UnsupportedWidth {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "no hardware is generated for {}-bit coordinates; the supported widths are {:?}", self.0, SUPPORTED_WIDTHS)
+        write!(
+            f,
+            "no hardware is generated for {}-bit coordinates; the supported widths are {:?}",
+            self.0, SUPPORTED_WIDTHS
+        )
     }
 }
 

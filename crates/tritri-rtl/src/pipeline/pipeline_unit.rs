@@ -71,8 +71,18 @@ pub fn emit_pipeline(width: usize) -> Result<EmittedDesign, PipelineEmitError> {
 
 /// [`emit_pipeline`] with its multipliers mapped as `multipliers` says
 /// (`tritri gen --dsp`).
-pub fn emit_pipeline_with(width: usize, multipliers: MultiplierMapping) -> Result<EmittedDesign, PipelineEmitError> {
+pub fn emit_pipeline_with(
+    width: usize,
+    multipliers: MultiplierMapping,
+) -> Result<EmittedDesign, PipelineEmitError> {
     let unit = pipeline_unit(width)?;
     let raw = crate::raw_design(width)?;
-    Ok(emit_with(&raw, &unit, EmitOptions { multipliers, ..EmitOptions::default() })?)
+    Ok(emit_with(
+        &raw,
+        &unit,
+        EmitOptions {
+            multipliers,
+            ..EmitOptions::default()
+        },
+    )?)
 }

@@ -8,14 +8,17 @@
 //! are `tritri_geom::certificate::orient3d_certified` of each vertex (the
 //! plane's edge thermometer OR-ed with the offset's).
 
+use crate::arith::certificate::{
+    CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY,
+};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::certificate::{CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from inputs to signs.
-pub const PLANE_SIDE_LATENCY: usize = SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
+pub const PLANE_SIDE_LATENCY: usize =
+    SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -44,28 +47,44 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
-    plane_thermometer_delay: DelayLine<Bits<D>, { SUBTRACTOR_LATENCY + MAGNITUDE_THERMOMETER_LATENCY }>,
+    plane_thermometer_delay:
+        DelayLine<Bits<D>, { SUBTRACTOR_LATENCY + MAGNITUDE_THERMOMETER_LATENCY }>,
     offset_magnitude_0: MagnitudeThermometer<D>,
     offset_magnitude_1: MagnitudeThermometer<D>,
     offset_magnitude_2: MagnitudeThermometer<D>,
-    thermometer_delay: [DelayLine<Bits<D>, { DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>; 3],
+    thermometer_delay:
+        [DelayLine<Bits<D>, { DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>; 3],
     sign: [CertainSign<O, D>; 3],
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for PlaneSide<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for PlaneSide<W, D, C, O>
+{
     const LATENCY: Option<usize> = Some(PLANE_SIDE_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            offset_0, offset_1, offset_2, normal_delay, distance_0, distance_1, distance_2,
-            plane_thermometer_delay, offset_magnitude_0, offset_magnitude_1, offset_magnitude_2,
-            thermometer_delay, sign
+            offset_0,
+            offset_1,
+            offset_2,
+            normal_delay,
+            distance_0,
+            distance_1,
+            distance_2,
+            plane_thermometer_delay,
+            offset_magnitude_0,
+            offset_magnitude_1,
+            offset_magnitude_2,
+            thermometer_delay,
+            sign
         );
     }
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for PlaneSide<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for PlaneSide<W, D, C, O>
+{
     #[hdl_gen]
     fn update(&mut self) {
         clock!(
@@ -120,9 +139,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for P
         self.sign[0].value.next = self.distance_0.product.val();
         self.sign[1].value.next = self.distance_1.product.val();
         self.sign[2].value.next = self.distance_2.product.val();
-        self.thermometer_delay[0].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_0.thermometer.val();
-        self.thermometer_delay[1].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_1.thermometer.val();
-        self.thermometer_delay[2].d.next = self.plane_thermometer_delay.q.val() | self.offset_magnitude_2.thermometer.val();
+        self.thermometer_delay[0].d.next =
+            self.plane_thermometer_delay.q.val() | self.offset_magnitude_0.thermometer.val();
+        self.thermometer_delay[1].d.next =
+            self.plane_thermometer_delay.q.val() | self.offset_magnitude_1.thermometer.val();
+        self.thermometer_delay[2].d.next =
+            self.plane_thermometer_delay.q.val() | self.offset_magnitude_2.thermometer.val();
         for v in 0..3 {
             self.thermometer_delay[v].clock.next = self.clock.val();
             self.thermometer_delay[v].advance.next = self.advance.val();

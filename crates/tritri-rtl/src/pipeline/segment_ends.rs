@@ -64,11 +64,14 @@ impl<const W: usize> Logic for SegmentEnds<W> {
             self.first_less[p].next = self.compare[3 * p].less.val()
                 || (self.compare[3 * p].equal.val()
                     && (self.compare[3 * p + 1].less.val()
-                        || (self.compare[3 * p + 1].equal.val() && self.compare[3 * p + 2].less.val())));
+                        || (self.compare[3 * p + 1].equal.val()
+                            && self.compare[3 * p + 2].less.val())));
             // j < i: the same with "greater" = neither less nor equal.
-            self.second_less[p].next = (!self.compare[3 * p].less.val() && !self.compare[3 * p].equal.val())
+            self.second_less[p].next = (!self.compare[3 * p].less.val()
+                && !self.compare[3 * p].equal.val())
                 || (self.compare[3 * p].equal.val()
-                    && ((!self.compare[3 * p + 1].less.val() && !self.compare[3 * p + 1].equal.val())
+                    && ((!self.compare[3 * p + 1].less.val()
+                        && !self.compare[3 * p + 1].equal.val())
                         || (self.compare[3 * p + 1].equal.val()
                             && !self.compare[3 * p + 2].less.val()
                             && !self.compare[3 * p + 2].equal.val())));

@@ -11,9 +11,9 @@
 use super::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
 use super::normal::{NormalUnit, NORMAL_LATENCY};
 use super::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
+use crate::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use crate::arith::delay_line::DelayLine;
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
-use crate::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use crate::arith::subtractor::SUBTRACTOR_LATENCY;
 use rust_hdl::prelude::*;
 
@@ -51,17 +51,31 @@ pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
     normal_zero_delay: [DelayLine<Bit, { DOMINANT_AXIS_LATENCY - SIGN_LATENCY }>; 3],
     segment_low_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
     segment_high_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
-    edge_thermometer_delay: DelayLine<Bits<D>, { FRONT_END_LATENCY - SUBTRACTOR_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>,
+    edge_thermometer_delay: DelayLine<
+        Bits<D>,
+        { FRONT_END_LATENCY - SUBTRACTOR_LATENCY - MAGNITUDE_THERMOMETER_LATENCY },
+    >,
 }
 
-impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for TriangleFrontEnd<W, D, C> {
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
+    for TriangleFrontEnd<W, D, C>
+{
     const LATENCY: Option<usize> = Some(FRONT_END_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            normal_unit, normal_sign, axis, ends, vertex_delay, normal_delay, normal_negative_delay,
-            normal_zero_delay, segment_low_delay, segment_high_delay, edge_thermometer_delay
+            normal_unit,
+            normal_sign,
+            axis,
+            ends,
+            vertex_delay,
+            normal_delay,
+            normal_negative_delay,
+            normal_zero_delay,
+            segment_low_delay,
+            segment_high_delay,
+            edge_thermometer_delay
         );
     }
 }
@@ -69,7 +83,16 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for Trian
 impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, normal_unit, axis, ends, segment_low_delay, segment_high_delay, edge_thermometer_delay);
+        clock!(
+            self,
+            clock,
+            normal_unit,
+            axis,
+            ends,
+            segment_low_delay,
+            segment_high_delay,
+            edge_thermometer_delay
+        );
         self.normal_unit.advance.next = self.advance.val();
         self.axis.advance.next = self.advance.val();
         self.ends.advance.next = self.advance.val();
@@ -104,8 +127,9 @@ impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<
             self.normal_negative[k].next = self.normal_negative_delay[k].q.val();
             self.normal_zero[k].next = self.normal_zero_delay[k].q.val();
         }
-        self.degenerate.next =
-            self.normal_zero_delay[0].q.val() && self.normal_zero_delay[1].q.val() && self.normal_zero_delay[2].q.val();
+        self.degenerate.next = self.normal_zero_delay[0].q.val()
+            && self.normal_zero_delay[1].q.val()
+            && self.normal_zero_delay[2].q.val();
         self.dominant_axis.next = self.axis.axis.val();
         self.segment_low_delay.d.next = self.ends.low.val();
         self.segment_high_delay.d.next = self.ends.high.val();

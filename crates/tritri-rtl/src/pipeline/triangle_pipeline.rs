@@ -30,11 +30,11 @@
 use super::align_t1::{AlignT1, ALIGN_T1_LATENCY};
 use super::align_t2::{AlignT2, ALIGN_T2_LATENCY};
 use super::base_polygon::BasePolygon;
+use super::certified_orient3d::CertifiedOrient3d;
 use super::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use super::decision::{Decision, DECISION_LATENCY};
 use super::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
 use super::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
-use super::certified_orient3d::CertifiedOrient3d;
 use super::orient3d::{Orient3d, ORIENT3D_LATENCY};
 use super::orient3d_operands::{Orient3dOperands, ORIENT3D_OPERANDS_LATENCY};
 use super::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
@@ -49,11 +49,13 @@ const INPUT_LATENCY: usize = 1;
 /// From the input ports to the triangle's record.
 const RECORD_STAGE: usize = INPUT_LATENCY + FRONT_END_LATENCY;
 // Stages below count from the pair's formation.
-const OPERANDS_STAGE: usize = PLANE_SIDE_LATENCY + ALIGN_T1_LATENCY + ALIGN_T2_LATENCY + INTERVAL_OVERLAP_LATENCY;
+const OPERANDS_STAGE: usize =
+    PLANE_SIDE_LATENCY + ALIGN_T1_LATENCY + ALIGN_T2_LATENCY + INTERVAL_OVERLAP_LATENCY;
 const DECISION_STAGE: usize = OPERANDS_STAGE + ORIENT3D_OPERANDS_LATENCY + ORIENT3D_LATENCY;
 /// From the pair's formation to the output ports.
 const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
-const _: () = assert!(COPLANAR_TEST_LATENCY < DECISION_STAGE && DEGENERATE_PAIR_LATENCY < DECISION_STAGE);
+const _: () =
+    assert!(COPLANAR_TEST_LATENCY < DECISION_STAGE && DEGENERATE_PAIR_LATENCY < DECISION_STAGE);
 
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
@@ -111,18 +113,44 @@ crate::pipeline_ports! {
     }
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit for TrianglePipeline<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for TrianglePipeline<W, D, C, O>
+{
     const LATENCY: Option<usize> = Some(TRIANGLE_PIPELINE_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
             units,
-            input_vertices, record_valid, record_bset, record_id, front_end, base, pair_valid, base_id,
-            stream_id, plane_side_t1, plane_side_t2, align_t1, align_t2, interval_overlap, operands,
-            orient3d_0, orient3d_1, orient3d_2, coplanar, degenerate_pair, decision,
-            t1_vertices_to_operands, t2_vertices_to_operands, degenerate_to_operands,
-            segment_ends_to_operands, degenerate_to_decision, segment_ends_to_decision, sides_to_decision,
-            coplanar_to_decision, degenerate_pair_to_decision
+            input_vertices,
+            record_valid,
+            record_bset,
+            record_id,
+            front_end,
+            base,
+            pair_valid,
+            base_id,
+            stream_id,
+            plane_side_t1,
+            plane_side_t2,
+            align_t1,
+            align_t2,
+            interval_overlap,
+            operands,
+            orient3d_0,
+            orient3d_1,
+            orient3d_2,
+            coplanar,
+            degenerate_pair,
+            decision,
+            t1_vertices_to_operands,
+            t2_vertices_to_operands,
+            degenerate_to_operands,
+            segment_ends_to_operands,
+            degenerate_to_decision,
+            segment_ends_to_decision,
+            sides_to_decision,
+            coplanar_to_decision,
+            degenerate_pair_to_decision
         );
     }
 }
@@ -139,7 +167,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePip
     }
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for TrianglePipeline<W, D, C, O> {
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for TrianglePipeline<W, D, C, O>
+{
     #[hdl_gen]
     fn update(&mut self) {
         // Clock and clock enable to every unit.
@@ -235,7 +265,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic for T
         }
 
         // Base polygon (thesis: BSET latches the record into its registers).
-        self.base.load.next = self.advance.val() && self.record_valid.q.val() && self.record_bset.q.val();
+        self.base.load.next =
+            self.advance.val() && self.record_valid.q.val() && self.record_bset.q.val();
         self.base.id_in.next = self.record_id.q.val();
         self.base.degenerate_in.next = self.front_end.degenerate.val();
         self.base.dominant_axis_in.next = self.front_end.dominant_axis.val();

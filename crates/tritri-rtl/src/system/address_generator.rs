@@ -135,9 +135,28 @@ impl crate::unit::Unit for AddressGenerator {
         crate::sub_units!(
             self,
             units,
-            write_bank, a_write_pointer, b_write_pointer, overflow_q, a_write_count, b_write_count,
-            bank_full, a_bank_count, b_bank_count, bank_empty, read_state, read_bank, a_read_pointer,
-            a_left, b_read_pointer, b_count, b_left, lane, lane_active, lane_valid_q, bset_q, flight
+            write_bank,
+            a_write_pointer,
+            b_write_pointer,
+            overflow_q,
+            a_write_count,
+            b_write_count,
+            bank_full,
+            a_bank_count,
+            b_bank_count,
+            bank_empty,
+            read_state,
+            read_bank,
+            a_read_pointer,
+            a_left,
+            b_read_pointer,
+            b_count,
+            b_left,
+            lane,
+            lane_active,
+            lane_valid_q,
+            bset_q,
+            flight
         );
     }
 }
@@ -289,12 +308,14 @@ impl Logic for AddressGenerator {
                 self.bank_full[1].d.next = true;
                 self.a_bank_count[1].d.next = self.a_write_count.q.val();
                 self.b_bank_count[1].d.next = self.b_write_count.q.val();
-                self.bank_empty[1].d.next = (self.a_write_count.q.val() == 0) | (self.b_write_count.q.val() == 0);
+                self.bank_empty[1].d.next =
+                    (self.a_write_count.q.val() == 0) | (self.b_write_count.q.val() == 0);
             } else {
                 self.bank_full[0].d.next = true;
                 self.a_bank_count[0].d.next = self.a_write_count.q.val();
                 self.b_bank_count[0].d.next = self.b_write_count.q.val();
-                self.bank_empty[0].d.next = (self.a_write_count.q.val() == 0) | (self.b_write_count.q.val() == 0);
+                self.bank_empty[0].d.next =
+                    (self.a_write_count.q.val() == 0) | (self.b_write_count.q.val() == 0);
             }
             self.write_bank.d.next = !self.write_bank.q.val();
             self.a_write_pointer.d.next = self.other_bank_start.val();

@@ -427,7 +427,10 @@ macro_rules! collision_system {
 
 collision_system!(
     /// The system with stub pipelines (see [`StubPipeline`]).
-    pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> }
+    pub struct StubCollisionSystem<const W: usize> {
+        coordinate_bits: W,
+        pipeline: StubPipeline<W>,
+    }
 );
 
 impl<const W: usize> StubCollisionSystem<W> {
@@ -443,7 +446,7 @@ collision_system!(
     /// [`super::system_for_width`]).
     pub struct CollisionSystem<const W: usize, const D: usize, const C: usize, const O: usize> {
         coordinate_bits: W,
-        pipeline: TrianglePipeline<W, D, C, O>
+        pipeline: TrianglePipeline<W, D, C, O>,
     }
 );
 
@@ -451,7 +454,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> CollisionSy
     /// The system with real pipelines; `config.pipeline_latency` must be the
     /// pipeline's latency.
     pub fn with_pipelines(config: crate::system::SystemConfig) -> Self {
-        assert_eq!(config.pipeline_latency, latency(), "the pipeline's latency is {}", latency());
+        assert_eq!(
+            config.pipeline_latency,
+            latency(),
+            "the pipeline's latency is {}",
+            latency()
+        );
         Self::new(config, TrianglePipeline::new)
     }
 }

@@ -57,7 +57,10 @@ pub struct BatchSizes {
 
 impl BatchSizes {
     pub fn of(batch: &Batch) -> BatchSizes {
-        BatchSizes { a: batch.a.len(), b: batch.b.len() }
+        BatchSizes {
+            a: batch.a.len(),
+            b: batch.b.len(),
+        }
     }
 }
 
@@ -99,7 +102,12 @@ pub fn pairs(batch: BatchSizes) -> u64 {
 /// when the result FIFO never fills; with a slower `reader` or dense hits
 /// the hardware adds its `stall_cycles` (exactly, without overlap), so this
 /// is then a lower bound.
-pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool, reader: ReaderBehaviour) -> u64 {
+pub fn system_cycles(
+    config: SystemConfig,
+    batches: &[BatchSizes],
+    overlap: bool,
+    reader: ReaderBehaviour,
+) -> u64 {
     let _ = reader; // the always-ready reader never stalls the read side
     recurrence(config, batches, overlap, 0, 0).max(0) as u64
 }
@@ -109,13 +117,24 @@ pub fn system_cycles(config: SystemConfig, batches: &[BatchSizes], overlap: bool
 /// between a batch's end word and the next batch's first triangle (the
 /// broad phase's leaf batcher: one, the clock of the leaf's header).
 /// Returns the cycle in which `done` rises, counted like `first`.
-pub fn streamed_system_cycles(config: SystemConfig, batches: &[BatchSizes], first: u64, gap: u64) -> u64 {
+pub fn streamed_system_cycles(
+    config: SystemConfig,
+    batches: &[BatchSizes],
+    first: u64,
+    gap: u64,
+) -> u64 {
     recurrence(config, batches, true, first as i64, gap as i64).max(0) as u64
 }
 
 /// The module's recurrence: `S_0 = first`, `S_k = C_{k-1} + 1 + gap` with
 /// overlap (else `D_{k-1} + 1`); returns `D`.
-fn recurrence(config: SystemConfig, batches: &[BatchSizes], overlap: bool, first: i64, gap: i64) -> i64 {
+fn recurrence(
+    config: SystemConfig,
+    batches: &[BatchSizes],
+    overlap: bool,
+    first: i64,
+    gap: i64,
+) -> i64 {
     let latency = config.pipeline_latency as i64;
     // Cycle indices; -1 stands for "before cycle 0".
     let mut commit_previous: i64 = -1; // C_{k-1}
@@ -190,7 +209,16 @@ mod tests {
     fn recurrence_matches_closed_forms() {
         for p in [1, 2, 4] {
             let config = SystemConfig::new(24, p, 7);
-            let sizes = [(0, 0), (0, 3), (3, 0), (1, 1), (5, 3), (4, 4), (9, 2), (2, 9)];
+            let sizes = [
+                (0, 0),
+                (0, 3),
+                (3, 0),
+                (1, 1),
+                (5, 3),
+                (4, 4),
+                (9, 2),
+                (2, 9),
+            ];
             for &(a, b) in &sizes {
                 let batch = BatchSizes { a, b };
                 for overlap in [false, true] {
@@ -201,8 +229,15 @@ mod tests {
                 }
             }
             let batches: Vec<_> = sizes.iter().map(|&(a, b)| BatchSizes { a, b }).collect();
-            let serial: u64 = batches.iter().map(|&b| single_batch_cycles(config, b) + 1).sum::<u64>() - 1;
-            assert_eq!(system_cycles(config, &batches, false, ReaderBehaviour::AlwaysReady), serial);
+            let serial: u64 = batches
+                .iter()
+                .map(|&b| single_batch_cycles(config, b) + 1)
+                .sum::<u64>()
+                - 1;
+            assert_eq!(
+                system_cycles(config, &batches, false, ReaderBehaviour::AlwaysReady),
+                serial
+            );
             assert!(system_cycles(config, &batches, true, ReaderBehaviour::AlwaysReady) < serial);
         }
     }
@@ -214,7 +249,10 @@ mod tests {
         let config = SystemConfig::new(24, 1, 32);
         let (n1, n2) = (10u64, 20u64);
         let expected = (n1 + n2 + 1) + n1 + n1 * n2 + 32 + 2;
-        assert_eq!(single_batch_cycles(config, BatchSizes { a: 10, b: 20 }), expected);
+        assert_eq!(
+            single_batch_cycles(config, BatchSizes { a: 10, b: 20 }),
+            expected
+        );
     }
 
     /// A scene's batches: loading the next batch hides behind processing
@@ -222,7 +260,13 @@ mod tests {
     #[test]
     fn scene_cycles_overlap_loading_and_share_the_bases() {
         use tritri_geom::scene::TaggedTriangle;
-        let ts = vec![TaggedTriangle { id: 0, triangle: [[0; 3]; 3] }; 10];
+        let ts = vec![
+            TaggedTriangle {
+                id: 0,
+                triangle: [[0; 3]; 3]
+            };
+            10
+        ];
         let batch = Batch { a: &ts, b: &ts };
         let config = |p| SystemConfig::new(24, p, 30);
         let one = scene_cycles(config(1), &[batch]);

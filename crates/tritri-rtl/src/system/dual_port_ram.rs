@@ -38,7 +38,10 @@ impl<T: Synth, const A: usize> crate::unit::Unit for SimpleDualPortRam<T, A> {
 
 impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
     pub fn new(words: usize) -> Self {
-        assert!(words >= 1 && words <= 1 << A, "a RAM of {words} words needs more than {A} address bits");
+        assert!(
+            words >= 1 && words <= 1 << A,
+            "a RAM of {words} words needs more than {A} address bits"
+        );
         SimpleDualPortRam {
             clock: Default::default(),
             write_enable: Default::default(),
@@ -56,7 +59,10 @@ impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
     /// pins are a few loads, where a small memory in distributed RAM
     /// spreads its read address over dozens of LUTs.
     pub fn new_block_ram(words: usize) -> Self {
-        SimpleDualPortRam { _block_ram: true, ..Self::new(words) }
+        SimpleDualPortRam {
+            _block_ram: true,
+            ..Self::new(words)
+        }
     }
 
     pub fn words(&self) -> usize {
@@ -86,7 +92,11 @@ impl<T: Synth, const A: usize> Logic for SimpleDualPortRam<T, A> {
 
     fn hdl(&self) -> Verilog {
         let words = self._memory.len();
-        let data_range = if T::BITS == 1 { String::new() } else { format!("[{}:0] ", T::BITS - 1) };
+        let data_range = if T::BITS == 1 {
+            String::new()
+        } else {
+            format!("[{}:0] ", T::BITS - 1)
+        };
         // The memory is indexed with just the address bits it needs.
         let index_bits = (usize::BITS - (words.max(2) - 1).leading_zeros()) as usize;
         let (write_index, read_index, unused) = if index_bits < A {
@@ -103,7 +113,11 @@ impl<T: Synth, const A: usize> Logic for SimpleDualPortRam<T, A> {
                 ),
             )
         } else {
-            ("write_address".to_string(), "read_address".to_string(), String::new())
+            (
+                "write_address".to_string(),
+                "read_address".to_string(),
+                String::new(),
+            )
         };
         Verilog::Custom(format!(
             "\
@@ -122,7 +136,11 @@ end
 ",
             bits = T::BITS,
             last = words - 1,
-            style = if self._block_ram { "(* ram_style = \"block\" *) " } else { "" },
+            style = if self._block_ram {
+                "(* ram_style = \"block\" *) "
+            } else {
+                ""
+            },
         ))
     }
 }

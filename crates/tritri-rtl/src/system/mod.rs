@@ -131,12 +131,18 @@ impl SystemConfig {
             1 << (FIFO_POINTER_BITS - 1),
             self.result_fifo_depth
         );
-        assert!(self.pipeline_latency >= 1 && self.pipeline_latency < 200, "pipeline latency out of range");
+        assert!(
+            self.pipeline_latency >= 1 && self.pipeline_latency < 200,
+            "pipeline latency out of range"
+        );
     }
 
     /// The unit name of the emitted top: `tritri_system_w24_p2_d256`.
     pub fn unit_name(&self) -> String {
-        format!("tritri_system_w{}_p{}_d{}", self.coordinate_bits, self.pipelines, self.triangles_per_bank)
+        format!(
+            "tritri_system_w{}_p{}_d{}",
+            self.coordinate_bits, self.pipelines, self.triangles_per_bank
+        )
     }
 
     /// One line per parameter, as the generator reports them.

@@ -90,8 +90,10 @@ impl Logic for PairSerializer {
             }
         }
         // The selected pipeline's bit is the one `remaining` cleared.
-        self.out_hit.next = (self.head_hit_mask.val() & self.pending.val() & !self.remaining.val()).any();
-        self.out_certain.next = (self.head_certain_mask.val() & self.pending.val() & !self.remaining.val()).any();
+        self.out_hit.next =
+            (self.head_hit_mask.val() & self.pending.val() & !self.remaining.val()).any();
+        self.out_certain.next =
+            (self.head_certain_mask.val() & self.pending.val() & !self.remaining.val()).any();
         self.out_id_b.next = self.head_stream_id.val();
         self.out_valid.next = self.head_valid.val();
         self.transfer.next = self.head_valid.val() & self.out_ready.val();

@@ -75,8 +75,18 @@ impl crate::unit::Unit for ResultFifo {
         crate::sub_units!(
             self,
             units,
-            mask_column, hit_column, certain_column, stream_id_column, base_id_columns, write_pointer,
-            read_pointer, count, readable, head_valid_q, read_pointer_next, wrote
+            mask_column,
+            hit_column,
+            certain_column,
+            stream_id_column,
+            base_id_columns,
+            write_pointer,
+            read_pointer,
+            count,
+            readable,
+            head_valid_q,
+            read_pointer_next,
+            wrote
         );
     }
 }
@@ -110,7 +120,9 @@ impl ResultFifo {
             hit_column: SimpleDualPortRam::new_block_ram(depth),
             certain_column: SimpleDualPortRam::new_block_ram(depth),
             stream_id_column: SimpleDualPortRam::new_block_ram(depth),
-            base_id_columns: (0..pipelines).map(|_| SimpleDualPortRam::new_block_ram(depth)).collect(),
+            base_id_columns: (0..pipelines)
+                .map(|_| SimpleDualPortRam::new_block_ram(depth))
+                .collect(),
             write_pointer: Default::default(),
             read_pointer: Default::default(),
             count: Default::default(),
@@ -128,7 +140,17 @@ impl ResultFifo {
 impl Logic for ResultFifo {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, write_pointer, read_pointer, count, readable, head_valid_q, read_pointer_next, wrote);
+        dff_setup!(
+            self,
+            clock,
+            write_pointer,
+            read_pointer,
+            count,
+            readable,
+            head_valid_q,
+            read_pointer_next,
+            wrote
+        );
         self.full.next = self.count.q.val() == self.depth.val();
         self.empty.next = self.count.q.val() == 0;
         self.head_valid.next = self.head_valid_q.q.val();
@@ -177,7 +199,14 @@ impl Logic for ResultFifo {
         self.wrote.d.next = self.do_write.val();
 
         // The columns: written at the write pointer, read at the next head.
-        clock!(self, clock, mask_column, hit_column, certain_column, stream_id_column);
+        clock!(
+            self,
+            clock,
+            mask_column,
+            hit_column,
+            certain_column,
+            stream_id_column
+        );
         self.mask_column.write_enable.next = self.do_write.val();
         self.mask_column.write_address.next = self.write_pointer.q.val();
         self.mask_column.write_data.next = self.write_mask.val();

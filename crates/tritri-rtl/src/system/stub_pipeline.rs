@@ -53,7 +53,10 @@ impl<const W: usize> crate::unit::Unit for StubPipeline<W> {}
 impl<const W: usize> StubPipeline<W> {
     pub fn new(latency: usize) -> Self {
         assert!(latency >= 1);
-        StubPipeline { _stages: vec![Stage::default(); latency], ..Default::default() }
+        StubPipeline {
+            _stages: vec![Stage::default(); latency],
+            ..Default::default()
+        }
     }
 
     pub fn latency(&self) -> usize {

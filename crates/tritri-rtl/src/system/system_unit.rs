@@ -109,7 +109,10 @@ pub enum SystemEmitError {
 }
 
 /// The emitted Verilog directory of the system for `config`.
-pub fn emit_system(config: SystemConfig, kind: PipelineKind) -> Result<EmittedDesign, SystemEmitError> {
+pub fn emit_system(
+    config: SystemConfig,
+    kind: PipelineKind,
+) -> Result<EmittedDesign, SystemEmitError> {
     emit_system_with(config, kind, MultiplierMapping::Inferred)
 }
 
@@ -122,5 +125,12 @@ pub fn emit_system_with(
 ) -> Result<EmittedDesign, SystemEmitError> {
     let mut system = system_for_config(config, kind).map_err(SystemEmitError::Width)?;
     system.connect_all();
-    Ok(emit_with(&system.raw_design(), &system_unit(config, kind), EmitOptions { multipliers, ..EmitOptions::default() })?)
+    Ok(emit_with(
+        &system.raw_design(),
+        &system_unit(config, kind),
+        EmitOptions {
+            multipliers,
+            ..EmitOptions::default()
+        },
+    )?)
 }

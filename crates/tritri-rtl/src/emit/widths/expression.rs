@@ -17,7 +17,11 @@ pub struct Ty {
 pub enum Expr {
     Ident(String),
     /// A literal; `bits: None` for an unsized one (32 bits).
-    Number { bits: Option<usize>, signed: bool, value: BigUint },
+    Number {
+        bits: Option<usize>,
+        signed: bool,
+        value: BigUint,
+    },
     Unary(String, Box<Expr>),
     Binary(String, Box<Expr>, Box<Expr>),
     Paren(Box<Expr>),
@@ -58,9 +62,17 @@ pub fn parse_number(text: &str) -> Option<Expr> {
     let text = text.replace('_', "");
     let Some(tick) = text.find('\'') else {
         let value = text.parse::<BigUint>().ok()?;
-        return Some(Expr::Number { bits: None, signed: true, value });
+        return Some(Expr::Number {
+            bits: None,
+            signed: true,
+            value,
+        });
     };
-    let bits = if tick == 0 { None } else { Some(text[..tick].parse::<usize>().ok()?) };
+    let bits = if tick == 0 {
+        None
+    } else {
+        Some(text[..tick].parse::<usize>().ok()?)
+    };
     let mut rest = &text[tick + 1..];
     let signed = rest.starts_with(['s', 'S']);
     if signed {
@@ -87,7 +99,11 @@ pub fn parse_number(text: &str) -> Option<Expr> {
     } else {
         magnitude
     };
-    Some(Expr::Number { bits, signed: signed || negative, value })
+    Some(Expr::Number {
+        bits,
+        signed: signed || negative,
+        value,
+    })
 }
 
 pub(super) struct Parser<'a> {
@@ -123,7 +139,9 @@ impl<'a> Parser<'a> {
     fn binary(&mut self, min: u8) -> Option<Expr> {
         let mut left = self.unary()?;
         while let Some(op) = self.peek() {
-            let Some(p) = binary_precedence(op) else { break };
+            let Some(p) = binary_precedence(op) else {
+                break;
+            };
             if p < min {
                 break;
             }
@@ -170,7 +188,10 @@ impl<'a> Parser<'a> {
             let inner = &self.words[start..end];
             e = if let Some(pc) = plus_colon {
                 let width_text: String = self.words[pc + 1..end].concat();
-                let width = width_text.trim_matches(|c| c == '(' || c == ')').parse().ok()?;
+                let width = width_text
+                    .trim_matches(|c| c == '(' || c == ')')
+                    .parse()
+                    .ok()?;
                 Expr::Slice(Box::new(e), self.words[start..pc].concat(), width)
             } else if let Some(c) = colon {
                 let msb = self.words[start..c].concat().parse().ok()?;
@@ -201,7 +222,9 @@ impl<'a> Parser<'a> {
                 let first = self.expression()?;
                 if self.peek() == Some("{") {
                     // Replication {n{a, b}}.
-                    let Expr::Number { value, .. } = first else { return None };
+                    let Expr::Number { value, .. } = first else {
+                        return None;
+                    };
                     self.next();
                     let items = self.list("}")?;
                     self.expect("}")?;
@@ -241,7 +264,17 @@ impl<'a> Parser<'a> {
 pub(super) fn is_keyword(w: &str) -> bool {
     matches!(
         w,
-        "begin" | "end" | "if" | "else" | "case" | "endcase" | "default" | "always" | "assign" | "module" | "endmodule"
+        "begin"
+            | "end"
+            | "if"
+            | "else"
+            | "case"
+            | "endcase"
+            | "default"
+            | "always"
+            | "assign"
+            | "module"
+            | "endmodule"
     )
 }
 

@@ -32,7 +32,10 @@ pub(super) fn size_enum_labels(
     // Unsized localparams: name -> word index of `localparam`.
     let mut unsized_labels: HashMap<&str, usize> = HashMap::new();
     for i in 0..words.len().saturating_sub(3) {
-        if words[i] == "localparam" && words[i + 2] == "=" && words[i + 3].chars().all(|c| c.is_ascii_digit()) {
+        if words[i] == "localparam"
+            && words[i + 2] == "="
+            && words[i + 3].chars().all(|c| c.is_ascii_digit())
+        {
             unsized_labels.insert(words[i + 1], i);
         }
     }
@@ -54,7 +57,8 @@ pub(super) fn size_enum_labels(
             Span::CaseLabel(label, subject) => (*label, *subject),
             Span::SelfDetermined(..) => continue,
         };
-        let other_ty = parse_expression(&words[other.0..other.1]).and_then(|e| self_type(&e, decls));
+        let other_ty =
+            parse_expression(&words[other.0..other.1]).and_then(|e| self_type(&e, decls));
         if single.1 == single.0 + 1 {
             note(words[single.0], other_ty.map(|t| t.bits));
         } else {
@@ -76,10 +80,20 @@ pub(super) fn size_enum_labels(
         if w == 0 || w > 127 || value >> w != 0 {
             continue;
         }
-        let range = if w == 1 { String::new() } else { format!(" [{}:0]", w - 1) };
+        let range = if w == 1 {
+            String::new()
+        } else {
+            format!(" [{}:0]", w - 1)
+        };
         edits.push((positions[i], format!("localparam{range}")));
         edits.push((positions[i + 3], format!("{w}'d{value}")));
-        decls.insert(name.to_string(), Ty { bits: w, signed: false });
+        decls.insert(
+            name.to_string(),
+            Ty {
+                bits: w,
+                signed: false,
+            },
+        );
     }
     edits
 }
@@ -87,7 +101,11 @@ pub(super) fn size_enum_labels(
 /// The uses of names in an expression: a name compared with `==` or `!=`
 /// takes the width of the other side; any other use keeps a label as
 /// rust-hdl wrote it (as does an expression the parser does not know).
-pub(super) fn note_label_uses(words: &[&str], decls: &Declarations, note: &mut impl FnMut(&str, Option<usize>)) {
+pub(super) fn note_label_uses(
+    words: &[&str],
+    decls: &Declarations,
+    note: &mut impl FnMut(&str, Option<usize>),
+) {
     fn walk(e: &Expr, decls: &Declarations, note: &mut impl FnMut(&str, Option<usize>)) {
         match e {
             Expr::Binary(op, a, b) if op == "==" || op == "!=" => {
@@ -103,18 +121,24 @@ pub(super) fn note_label_uses(words: &[&str], decls: &Declarations, note: &mut i
             Expr::Unary(_, a) | Expr::Paren(a) | Expr::SignCast(_, a) => walk(a, decls, note),
             Expr::Index(a, index) => {
                 walk(a, decls, note);
-                index.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).for_each(|w| note(w, None));
+                index
+                    .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .for_each(|w| note(w, None));
             }
             Expr::Slice(a, offset, _) => {
                 walk(a, decls, note);
-                offset.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).for_each(|w| note(w, None));
+                offset
+                    .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                    .for_each(|w| note(w, None));
             }
             Expr::Range(a, ..) => walk(a, decls, note),
             Expr::Binary(_, a, b) => {
                 walk(a, decls, note);
                 walk(b, decls, note);
             }
-            Expr::Concat(items) | Expr::Replicate(_, items) => items.iter().for_each(|i| walk(i, decls, note)),
+            Expr::Concat(items) | Expr::Replicate(_, items) => {
+                items.iter().for_each(|i| walk(i, decls, note))
+            }
             Expr::Ternary(c, a, b) => [c, a, b].iter().for_each(|x| walk(x, decls, note)),
         }
     }
@@ -142,11 +166,17 @@ pub(super) fn remove_unused_localparams(module: &mut Module) {
                 if uses.get(name.text.as_str()) == Some(&1) {
                     // Take the line's indentation and newline with it.
                     let mut from = i;
-                    if from > 0 && tokens[from - 1].kind == Kind::Whitespace && !tokens[from - 1].text.contains('\n') {
+                    if from > 0
+                        && tokens[from - 1].kind == Kind::Whitespace
+                        && !tokens[from - 1].text.contains('\n')
+                    {
                         from -= 1;
                     }
                     let mut to = end;
-                    if tokens.get(to + 1).is_some_and(|t| t.kind == Kind::Whitespace) {
+                    if tokens
+                        .get(to + 1)
+                        .is_some_and(|t| t.kind == Kind::Whitespace)
+                    {
                         to += 1;
                     }
                     remove.push((from, to));

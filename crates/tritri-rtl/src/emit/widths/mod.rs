@@ -34,29 +34,42 @@ mod printer;
 mod rewrite;
 mod typing;
 
+use crate::emit::statements::StatementParser;
 use expression::*;
 use lint_fixes::*;
 use printer::*;
-use crate::emit::statements::StatementParser;
 use rewrite::*;
 use typing::*;
-
 
 /// Applies the pass to a module (see the module docs).
 pub fn fix_module(module: &mut Module) {
     // Positions of the non-trivia tokens.
-    let positions: Vec<usize> =
-        module.tokens.iter().enumerate().filter(|(_, t)| !t.is_trivia()).map(|(i, _)| i).collect();
-    let owned: Vec<String> = positions.iter().map(|&i| module.tokens[i].text.clone()).collect();
+    let positions: Vec<usize> = module
+        .tokens
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| !t.is_trivia())
+        .map(|(i, _)| i)
+        .collect();
+    let owned: Vec<String> = positions
+        .iter()
+        .map(|&i| module.tokens[i].text.clone())
+        .collect();
     let words: Vec<&str> = owned.iter().map(String::as_str).collect();
     let decls = declarations(&words);
     let constants = constants(&words);
     // rust-hdl's generated block follows the comment `// Update code`.
-    let Some(generated) = module.tokens.iter().position(|t| t.kind == Kind::Comment && t.text.trim() == "// Update code")
+    let Some(generated) = module
+        .tokens
+        .iter()
+        .position(|t| t.kind == Kind::Comment && t.text.trim() == "// Update code")
     else {
         return;
     };
-    let first = positions.iter().position(|&p| p > generated).unwrap_or(words.len());
+    let first = positions
+        .iter()
+        .position(|&p| p > generated)
+        .unwrap_or(words.len());
     let mut decls = decls;
     let mut parser = StatementParser::new(&words, first);
     let mut replacements: Vec<(usize, usize, String)> = Vec::new();
@@ -86,7 +99,11 @@ pub fn fix_module(module: &mut Module) {
         }
     }
     for &endcase in &parser.cases_without_default {
-        replacements.push((endcase, endcase + 1, case_default(module, positions[endcase])));
+        replacements.push((
+            endcase,
+            endcase + 1,
+            case_default(module, positions[endcase]),
+        ));
     }
     // Apply from the end so earlier token positions stay valid.
     replacements.sort_by_key(|r| std::cmp::Reverse(r.0));
@@ -95,11 +112,17 @@ pub fn fix_module(module: &mut Module) {
             continue;
         }
         let (from, to) = (positions[a], positions[b - 1]);
-        let original: String = module.tokens[from..=to].iter().map(|t| t.text.as_str()).collect();
+        let original: String = module.tokens[from..=to]
+            .iter()
+            .map(|t| t.text.as_str())
+            .collect();
         if original == text {
             continue;
         }
-        module.tokens.splice(from..=to, std::iter::once(Token::new(Kind::Punctuation, text)));
+        module.tokens.splice(
+            from..=to,
+            std::iter::once(Token::new(Kind::Punctuation, text)),
+        );
     }
     // Re-lex so that the rewritten text is tokens again, then drop labels
     // nothing uses.
@@ -115,29 +138,47 @@ mod tests {
 
     fn decls() -> Declarations {
         let mut d = Declarations::new();
-        for (n, bits, signed) in [("a", 8, false), ("b", 8, false), ("y", 9, false), ("s", 10, true), ("x", 8, true)] {
+        for (n, bits, signed) in [
+            ("a", 8, false),
+            ("b", 8, false),
+            ("y", 9, false),
+            ("s", 10, true),
+            ("x", 8, true),
+        ] {
             d.insert(n.into(), Ty { bits, signed });
         }
         d
     }
 
     fn rewrite(lhs: &str, rhs: &str) -> String {
-        let words_l: Vec<String> =
-            tokenize(lhs).into_iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
-        let words_r: Vec<String> =
-            tokenize(rhs).into_iter().filter(|t| !t.is_trivia()).map(|t| t.text).collect();
+        let words_l: Vec<String> = tokenize(lhs)
+            .into_iter()
+            .filter(|t| !t.is_trivia())
+            .map(|t| t.text)
+            .collect();
+        let words_r: Vec<String> = tokenize(rhs)
+            .into_iter()
+            .filter(|t| !t.is_trivia())
+            .map(|t| t.text)
+            .collect();
         let mut words: Vec<&str> = words_l.iter().map(String::as_str).collect();
         let eq = words.len();
         words.push("=");
         words.extend(words_r.iter().map(String::as_str));
         let span = Span::Assignment((0, eq), (eq + 1, words.len()));
-        rewrite_span(&words, &span, &decls(), &Constants::new()).unwrap().remove(0).2
+        rewrite_span(&words, &span, &decls(), &Constants::new())
+            .unwrap()
+            .remove(0)
+            .2
     }
 
     /// rust-hdl's widening bit_cast becomes an explicit zero-extension.
     #[test]
     fn bit_cast_becomes_concatenation() {
-        assert_eq!(rewrite("y", "((a) & 9'h1ff) + ((b) & 9'h1ff)"), "{1'h0, a} + {1'h0, b}");
+        assert_eq!(
+            rewrite("y", "((a) & 9'h1ff) + ((b) & 9'h1ff)"),
+            "{1'h0, a} + {1'h0, b}"
+        );
     }
 
     /// Literals take the width of their context.
@@ -150,7 +191,10 @@ mod tests {
     /// A bare $signed in a wider signed context is sign-extended.
     #[test]
     fn signed_operands_are_sign_extended() {
-        assert_eq!(rewrite("s", "$signed(x) + $signed(x)"), "$signed({{2{x[7]}}, x}) + $signed({{2{x[7]}}, x})");
+        assert_eq!(
+            rewrite("s", "$signed(x) + $signed(x)"),
+            "$signed({{2{x[7]}}, x}) + $signed({{2{x[7]}}, x})"
+        );
     }
 
     /// A comparison against a literal is done at the operand's width.
@@ -158,7 +202,10 @@ mod tests {
     fn comparisons_shrink_literals() {
         assert_eq!(rewrite("y[0]", "a == 32'h5"), "a == 8'h5");
         // A sum is not width-stable: its carry would be lost.
-        assert_eq!(rewrite("y[0]", "a + b == 32'h5"), "{24'h0, a} + {24'h0, b} == 32'h5");
+        assert_eq!(
+            rewrite("y[0]", "a + b == 32'h5"),
+            "{24'h0, a} + {24'h0, b} == 32'h5"
+        );
     }
 
     /// Truncating a compound expression with a right shift is left alone.
@@ -180,8 +227,29 @@ mod tests {
 
     #[test]
     fn numbers_parse() {
-        assert_eq!(parse_number("9'h1ff"), Some(Expr::Number { bits: Some(9), signed: false, value: 511u32.into() }));
-        assert_eq!(parse_number("4'h-1"), Some(Expr::Number { bits: Some(4), signed: true, value: 15u32.into() }));
-        assert_eq!(parse_number("12"), Some(Expr::Number { bits: None, signed: true, value: 12u32.into() }));
+        assert_eq!(
+            parse_number("9'h1ff"),
+            Some(Expr::Number {
+                bits: Some(9),
+                signed: false,
+                value: 511u32.into()
+            })
+        );
+        assert_eq!(
+            parse_number("4'h-1"),
+            Some(Expr::Number {
+                bits: Some(4),
+                signed: true,
+                value: 15u32.into()
+            })
+        );
+        assert_eq!(
+            parse_number("12"),
+            Some(Expr::Number {
+                bits: None,
+                signed: true,
+                value: 12u32.into()
+            })
+        );
     }
 }

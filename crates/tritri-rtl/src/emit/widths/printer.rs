@@ -12,7 +12,11 @@ pub(super) struct Context {
 
 pub(super) fn literal(bits: usize, signed: bool, value: &BigUint) -> String {
     let v = value % (one() << bits);
-    format!("{bits}'{}h{}", if signed { "s" } else { "" }, v.to_str_radix(16))
+    format!(
+        "{bits}'{}h{}",
+        if signed { "s" } else { "" },
+        v.to_str_radix(16)
+    )
 }
 
 pub(super) fn zeros(bits: usize) -> String {
@@ -65,10 +69,18 @@ impl Printer<'_> {
         match e {
             Expr::Paren(a) => {
                 let inner = self.emit(a, k, ctx)?;
-                Some(if is_atomic_text(&inner) { inner } else { format!("({inner})") })
+                Some(if is_atomic_text(&inner) {
+                    inner
+                } else {
+                    format!("({inner})")
+                })
             }
             Expr::Ident(name) => self.fit_leaf(name, own, k, ctx),
-            Expr::Number { bits, signed, value } => {
+            Expr::Number {
+                bits,
+                signed,
+                value,
+            } => {
                 // Extend to the context (sign-extend a negative literal in a
                 // signed context), then keep k bits.
                 let b = bits.unwrap_or(32);
@@ -97,18 +109,30 @@ impl Printer<'_> {
                     if width_stable(a, decls) && wa <= n.min(k) {
                         // Widening: x's own value, zero-extended.
                         let inner = self.emit_self(a)?;
-                        return Some(if k == wa { inner } else { format!("{{{}, {inner}}}", zeros(k - wa)) });
+                        return Some(if k == wa {
+                            inner
+                        } else {
+                            format!("{{{}, {inner}}}", zeros(k - wa))
+                        });
                     }
                     if k <= n {
                         self.emit(a, k, ctx)
                     } else {
                         let low = self.emit(a, n, ctx)?;
-                        Some(format!("{{{}, {}}}", zeros(k - n), parenthesize_compound(a, low)))
+                        Some(format!(
+                            "{{{}, {}}}",
+                            zeros(k - n),
+                            parenthesize_compound(a, low)
+                        ))
                     }
                 }
                 "+" | "-" | "*" | "&" | "|" | "^" | "^~" | "~^" => {
                     let (left, right) = (self.emit(a, k, ctx)?, self.emit(b, k, ctx)?);
-                    Some(format!("{} {op} {}", mixed_bitwise(op, a, left), mixed_bitwise(op, b, right)))
+                    Some(format!(
+                        "{} {op} {}",
+                        mixed_bitwise(op, a, left),
+                        mixed_bitwise(op, b, right)
+                    ))
                 }
                 "<<" | "<<<" => {
                     // Its low k bits are zero when it shifts by k or more.
@@ -117,7 +141,11 @@ impl Printer<'_> {
                             return Some(zeros(k));
                         }
                     }
-                    Some(format!("{} {op} {}", self.emit(a, k, ctx)?, self.emit_self(b)?))
+                    Some(format!(
+                        "{} {op} {}",
+                        self.emit(a, k, ctx)?,
+                        self.emit_self(b)?
+                    ))
                 }
                 ">>" | ">>>" | "/" | "%" | "**" => {
                     if k != ctx.width {
@@ -132,12 +160,20 @@ impl Printer<'_> {
                             return Some(zeros(k));
                         }
                     }
-                    let right = if op == "/" || op == "%" { self.emit(b, k, ctx)? } else { self.emit_self(b)? };
+                    let right = if op == "/" || op == "%" {
+                        self.emit(b, k, ctx)?
+                    } else {
+                        self.emit_self(b)?
+                    };
                     Some(format!("{} {op} {}", self.emit(a, k, ctx)?, right))
                 }
                 "&&" | "||" => {
                     let (left, right) = (self.emit_self(a)?, self.emit_self(b)?);
-                    let inner = format!("{} {op} {}", mixed_bitwise(op, a, left), mixed_bitwise(op, b, right));
+                    let inner = format!(
+                        "{} {op} {}",
+                        mixed_bitwise(op, a, left),
+                        mixed_bitwise(op, b, right)
+                    );
                     self.fit_unsigned_compound(inner, 1, k)
                 }
                 _ => {
@@ -149,14 +185,20 @@ impl Printer<'_> {
                     // that operand's width when its value fits.
                     for (lit, other, t_other) in [(a, b, tb), (b, a, ta)] {
                         if let Expr::Number { value, .. } = strip_paren(lit) {
-                            if !signed && width_stable(other, decls) && value.bits() as usize <= t_other.bits {
+                            if !signed
+                                && width_stable(other, decls)
+                                && value.bits() as usize <= t_other.bits
+                            {
                                 width = t_other.bits;
                             }
                         }
                     }
                     let inner_ctx = Context { width, signed };
-                    let inner =
-                        format!("{} {op} {}", self.emit(a, width, inner_ctx)?, self.emit(b, width, inner_ctx)?);
+                    let inner = format!(
+                        "{} {op} {}",
+                        self.emit(a, width, inner_ctx)?,
+                        self.emit(b, width, inner_ctx)?
+                    );
                     self.fit_unsigned_compound(inner, 1, k)
                 }
             },
@@ -165,12 +207,22 @@ impl Printer<'_> {
                 let inner_ty = self_type(a, decls)?;
                 if k == inner_ty.bits {
                     let inner = self.emit_self(a)?;
-                    return Some(if *signed { format!("$signed({inner})") } else { format!("$unsigned({inner})") });
+                    return Some(if *signed {
+                        format!("$signed({inner})")
+                    } else {
+                        format!("$unsigned({inner})")
+                    });
                 }
                 match strip_paren(a) {
-                    Expr::Ident(name) => {
-                        self.fit_leaf(name, Ty { bits: inner_ty.bits, signed: *signed }, k, ctx)
-                    }
+                    Expr::Ident(name) => self.fit_leaf(
+                        name,
+                        Ty {
+                            bits: inner_ty.bits,
+                            signed: *signed,
+                        },
+                        k,
+                        ctx,
+                    ),
                     _ => None,
                 }
             }
@@ -197,8 +249,11 @@ impl Printer<'_> {
                 if let Some(lsb) = constant {
                     // `x[(32'h5)+:(4)]` is `x[8:5]`.
                     let keep = k.min(*w);
-                    let select =
-                        if keep == 1 { format!("{base}[{lsb}]") } else { format!("{base}[{}:{lsb}]", lsb + keep - 1) };
+                    let select = if keep == 1 {
+                        format!("{base}[{lsb}]")
+                    } else {
+                        format!("{base}[{}:{lsb}]", lsb + keep - 1)
+                    };
                     return if k <= *w {
                         Some(signed_wrap(select, ctx.signed))
                     } else {
@@ -206,7 +261,10 @@ impl Printer<'_> {
                     };
                 }
                 if k <= *w {
-                    Some(signed_wrap(format!("{base}[({offset})+:({k})]"), ctx.signed))
+                    Some(signed_wrap(
+                        format!("{base}[({offset})+:({k})]"),
+                        ctx.signed,
+                    ))
                 } else {
                     self.fit_unsigned_compound(format!("{base}[({offset})+:({w})]"), *w, k)
                 }
@@ -215,13 +273,19 @@ impl Printer<'_> {
                 let base = self.emit_self(base)?;
                 let w = m.abs_diff(*l) + 1;
                 if k <= w && m >= l {
-                    Some(signed_wrap(format!("{base}[{}:{l}]", l + k - 1), ctx.signed))
+                    Some(signed_wrap(
+                        format!("{base}[{}:{l}]", l + k - 1),
+                        ctx.signed,
+                    ))
                 } else {
                     self.fit_unsigned_compound(format!("{base}[{m}:{l}]"), w, k)
                 }
             }
             Expr::Concat(items) => {
-                let parts = items.iter().map(|i| self.emit_self(i)).collect::<Option<Vec<_>>>()?;
+                let parts = items
+                    .iter()
+                    .map(|i| self.emit_self(i))
+                    .collect::<Option<Vec<_>>>()?;
                 if k == own.bits {
                     Some(signed_wrap(format!("{{{}}}", parts.join(", ")), ctx.signed))
                 } else if k > own.bits && !ctx.signed {
@@ -231,7 +295,10 @@ impl Printer<'_> {
                 }
             }
             Expr::Replicate(n, items) => {
-                let parts = items.iter().map(|i| self.emit_self(i)).collect::<Option<Vec<_>>>()?;
+                let parts = items
+                    .iter()
+                    .map(|i| self.emit_self(i))
+                    .collect::<Option<Vec<_>>>()?;
                 let text = format!("{{{n}{{{}}}}}", parts.join(", "));
                 if k == own.bits {
                     Some(signed_wrap(text, ctx.signed))
@@ -239,16 +306,26 @@ impl Printer<'_> {
                     self.fit_unsigned_compound(text, own.bits, k)
                 }
             }
-            Expr::Ternary(c, a, b) => {
-                Some(format!("{} ? {} : {}", self.emit_self(c)?, self.emit(a, k, ctx)?, self.emit(b, k, ctx)?))
-            }
+            Expr::Ternary(c, a, b) => Some(format!(
+                "{} ? {} : {}",
+                self.emit_self(c)?,
+                self.emit(a, k, ctx)?,
+                self.emit(b, k, ctx)?
+            )),
         }
     }
 
     /// `e` at its own width, in its own context.
     pub(super) fn emit_self(&self, e: &Expr) -> Option<String> {
         let t = self_type(e, self.decls)?;
-        self.emit(e, t.bits, Context { width: t.bits, signed: t.signed })
+        self.emit(
+            e,
+            t.bits,
+            Context {
+                width: t.bits,
+                signed: t.signed,
+            },
+        )
     }
 
     /// An identifier of type `own` as `k` bits of its value in `ctx`.
@@ -264,13 +341,21 @@ impl Printer<'_> {
                 format!("{name}[{}:0]", k - 1)
             }
         } else if sign_extend {
-            let msb = if w == 1 { name.to_string() } else { format!("{name}[{}]", w - 1) };
+            let msb = if w == 1 {
+                name.to_string()
+            } else {
+                format!("{name}[{}]", w - 1)
+            };
             format!("{{{{{}{{{msb}}}}}, {name}}}", k - w)
         } else {
             format!("{{{}, {name}}}", zeros(k - w))
         };
         // Keep the signedness the context had (a select or a concatenation is unsigned).
-        Some(if ctx.signed && (k != w || !own.signed) { format!("$signed({text})") } else { text })
+        Some(if ctx.signed && (k != w || !own.signed) {
+            format!("$signed({text})")
+        } else {
+            text
+        })
     }
 
     /// A `w`-bit unsigned expression (never truncated) as `k` bits.
@@ -306,7 +391,9 @@ pub(super) fn is_atomic_text(text: &str) -> bool {
     if t.starts_with('{') {
         return closing('{', '}', 0) == Some(t.len() - 1);
     }
-    let name_end = t.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$' || c == '\'')).unwrap_or(t.len());
+    let name_end = t
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '$' || c == '\''))
+        .unwrap_or(t.len());
     if name_end == 0 {
         return false;
     }
@@ -328,7 +415,11 @@ pub(super) fn mixed_bitwise(op: &str, operand: &Expr, text: String) -> String {
         _ => return text,
     };
     let mixed = matches!((op, inner), ("|" | "^", "&") | ("||", "&&"));
-    if mixed && !text.starts_with('(') { format!("({text})") } else { text }
+    if mixed && !text.starts_with('(') {
+        format!("({text})")
+    } else {
+        text
+    }
 }
 
 pub(super) fn strip_paren(e: &Expr) -> &Expr {
@@ -348,9 +439,11 @@ pub(super) fn parenthesize_compound(e: &Expr, text: String) -> String {
 /// `Some(n)` when `e` is a sized literal of `n` bits, all ones.
 pub(super) fn is_all_ones_mask(e: &Expr) -> Option<usize> {
     match strip_paren(e) {
-        Expr::Number { bits: Some(n), signed: false, value } if *value == (one() << *n) - one() => {
-            Some(*n)
-        }
+        Expr::Number {
+            bits: Some(n),
+            signed: false,
+            value,
+        } if *value == (one() << *n) - one() => Some(*n),
         _ => None,
     }
 }

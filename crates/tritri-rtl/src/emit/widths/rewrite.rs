@@ -11,14 +11,28 @@ pub fn declarations(words: &[&str]) -> Declarations {
     let mut i = 0;
     while i < words.len() {
         let w = words[i];
-        if matches!(w, "input" | "output" | "inout" | "reg" | "wire" | "logic" | "integer") {
+        if matches!(
+            w,
+            "input" | "output" | "inout" | "reg" | "wire" | "logic" | "integer"
+        ) {
             let mut k = i;
-            while k < words.len() && matches!(words[k], "input" | "output" | "inout" | "reg" | "wire" | "logic") {
+            while k < words.len()
+                && matches!(
+                    words[k],
+                    "input" | "output" | "inout" | "reg" | "wire" | "logic"
+                )
+            {
                 k += 1;
             }
-            let mut ty = Ty { bits: 1, signed: false };
+            let mut ty = Ty {
+                bits: 1,
+                signed: false,
+            };
             if words.get(k) == Some(&"integer") {
-                ty = Ty { bits: 32, signed: true };
+                ty = Ty {
+                    bits: 32,
+                    signed: true,
+                };
                 k += 1;
             }
             if words.get(k) == Some(&"signed") {
@@ -28,7 +42,9 @@ pub fn declarations(words: &[&str]) -> Declarations {
             if words.get(k) == Some(&"[") {
                 let msb: Option<usize> = words.get(k + 1).and_then(|x| x.parse().ok());
                 let lsb: Option<usize> = words.get(k + 3).and_then(|x| x.parse().ok());
-                if let (Some(m), Some(l), Some(&":"), Some(&"]")) = (msb, lsb, words.get(k + 2), words.get(k + 4)) {
+                if let (Some(m), Some(l), Some(&":"), Some(&"]")) =
+                    (msb, lsb, words.get(k + 2), words.get(k + 4))
+                {
                     ty.bits = m.abs_diff(l) + 1;
                     k += 5;
                 } else {
@@ -38,11 +54,17 @@ pub fn declarations(words: &[&str]) -> Declarations {
             }
             // Names up to `;`, `)` or `=` (ANSI lists end at `,` + direction).
             while let Some(&name) = words.get(k) {
-                if name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_') && !is_keyword(name) {
+                if name.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+                    && !is_keyword(name)
+                {
                     decls.insert(name.to_string(), ty);
                 }
                 match words.get(k + 1) {
-                    Some(&",") if words.get(k + 2).is_some_and(|n| !matches!(*n, "input" | "output" | "inout")) => {
+                    Some(&",")
+                        if words
+                            .get(k + 2)
+                            .is_some_and(|n| !matches!(*n, "input" | "output" | "inout")) =>
+                    {
                         k += 2
                     }
                     _ => break,
@@ -51,7 +73,9 @@ pub fn declarations(words: &[&str]) -> Declarations {
             i = k + 1;
         } else if w == "localparam" || w == "parameter" {
             // localparam NAME = literal;  (rust-hdl's constants and enum labels)
-            if let (Some(&name), Some(&"="), Some(&value)) = (words.get(i + 1), words.get(i + 2), words.get(i + 3)) {
+            if let (Some(&name), Some(&"="), Some(&value)) =
+                (words.get(i + 1), words.get(i + 2), words.get(i + 3))
+            {
                 if let Some(Expr::Number { bits, signed, .. }) = parse_number(value) {
                     decls.insert(name.to_string(), number_ty(bits, signed));
                 }
@@ -83,7 +107,10 @@ pub(super) fn rewrite_span(
             let rhs = parse_expression(&words[*ra..*rb])?;
             let target = self_type(&lhs, decls)?;
             let own = self_type(&rhs, decls)?;
-            let ctx = Context { width: target.bits.max(own.bits), signed: own.signed };
+            let ctx = Context {
+                width: target.bits.max(own.bits),
+                signed: own.signed,
+            };
             let text = printer.emit(&rhs, target.bits, ctx)?;
             Some(vec![(*ra, *rb, text)])
         }

@@ -6,12 +6,20 @@ use super::*;
 pub type Declarations = HashMap<String, Ty>;
 
 pub(super) fn number_ty(bits: Option<usize>, signed: bool) -> Ty {
-    Ty { bits: bits.unwrap_or(32), signed }
+    Ty {
+        bits: bits.unwrap_or(32),
+        signed,
+    }
 }
 
 /// The self-determined width and signedness of `e` (IEEE 1364 table 5-22).
 pub fn self_type(e: &Expr, decls: &Declarations) -> Option<Ty> {
-    let unsigned = |bits| Some(Ty { bits, signed: false });
+    let unsigned = |bits| {
+        Some(Ty {
+            bits,
+            signed: false,
+        })
+    };
     match e {
         Expr::Ident(n) => decls.get(n).copied(),
         Expr::Number { bits, signed, .. } => Some(number_ty(*bits, *signed)),
@@ -22,25 +30,40 @@ pub fn self_type(e: &Expr, decls: &Declarations) -> Option<Ty> {
         Expr::Binary(op, a, b) => {
             let (ta, tb) = (self_type(a, decls)?, self_type(b, decls)?);
             match op.as_str() {
-                "+" | "-" | "*" | "/" | "%" | "&" | "|" | "^" | "^~" | "~^" => {
-                    Some(Ty { bits: ta.bits.max(tb.bits), signed: ta.signed && tb.signed })
-                }
+                "+" | "-" | "*" | "/" | "%" | "&" | "|" | "^" | "^~" | "~^" => Some(Ty {
+                    bits: ta.bits.max(tb.bits),
+                    signed: ta.signed && tb.signed,
+                }),
                 "<<" | ">>" | "<<<" | ">>>" | "**" => Some(ta),
                 _ => unsigned(1),
             }
         }
         Expr::Paren(a) => self_type(a, decls),
-        Expr::SignCast(signed, a) => Some(Ty { bits: self_type(a, decls)?.bits, signed: *signed }),
+        Expr::SignCast(signed, a) => Some(Ty {
+            bits: self_type(a, decls)?.bits,
+            signed: *signed,
+        }),
         Expr::Index(..) => unsigned(1),
         Expr::Slice(_, _, w) => unsigned(*w),
         Expr::Range(_, m, l) => unsigned(m.abs_diff(*l) + 1),
-        Expr::Concat(items) => unsigned(items.iter().map(|i| self_type(i, decls).map(|t| t.bits)).sum::<Option<usize>>()?),
-        Expr::Replicate(n, items) => {
-            unsigned(n * items.iter().map(|i| self_type(i, decls).map(|t| t.bits)).sum::<Option<usize>>()?)
-        }
+        Expr::Concat(items) => unsigned(
+            items
+                .iter()
+                .map(|i| self_type(i, decls).map(|t| t.bits))
+                .sum::<Option<usize>>()?,
+        ),
+        Expr::Replicate(n, items) => unsigned(
+            n * items
+                .iter()
+                .map(|i| self_type(i, decls).map(|t| t.bits))
+                .sum::<Option<usize>>()?,
+        ),
         Expr::Ternary(_, a, b) => {
             let (ta, tb) = (self_type(a, decls)?, self_type(b, decls)?);
-            Some(Ty { bits: ta.bits.max(tb.bits), signed: ta.signed && tb.signed })
+            Some(Ty {
+                bits: ta.bits.max(tb.bits),
+                signed: ta.signed && tb.signed,
+            })
         }
     }
 }
@@ -50,7 +73,11 @@ pub fn self_type(e: &Expr, decls: &Declarations) -> Option<Ty> {
 pub(super) fn width_stable(e: &Expr, decls: &Declarations) -> bool {
     match e {
         Expr::Ident(n) => decls.get(n).is_some_and(|t| !t.signed),
-        Expr::Index(..) | Expr::Slice(..) | Expr::Range(..) | Expr::Concat(..) | Expr::Replicate(..) => true,
+        Expr::Index(..)
+        | Expr::Slice(..)
+        | Expr::Range(..)
+        | Expr::Concat(..)
+        | Expr::Replicate(..) => true,
         Expr::Unary(op, _) => !matches!(op.as_str(), "~" | "-" | "+"),
         Expr::Binary(op, a, b) => match op.as_str() {
             "&" | "|" | "^" => width_stable(a, decls) && width_stable(b, decls),
