@@ -92,22 +92,23 @@ struct ClipArgs {
     #[arg(long = "box", value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true, value_parser = input::parse_voxel_box)]
     voxel_box: [i64; 6],
     #[command(flatten)]
-    hardware: HardwareArgs,
+    hardware: EngineArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
 
 /// Who computes, and the clock for the hardware's time.
 #[derive(clap::Args, Debug)]
-struct HardwareArgs {
+pub struct EngineArgs {
     /// `model` (software), or the hardware unit in `rusthdl`, `icarus` or
     /// `verilator`, checked against the model.
     #[arg(long, value_enum, default_value_t = Engine::Model)]
-    engine: Engine,
+    pub engine: Engine,
     /// Clock frequency in MHz for the hardware's time [default: the
-    /// unit's post-route clock on an ECP5-85, rtl-out/README.md].
+    /// unit's post-route clock on an ECP5-85, rtl-out/README.md; an
+    /// assumed 100 MHz for a unit not routed].
     #[arg(long, value_name = "F", value_parser = input::parse_clock_mhz)]
-    clock_mhz: Option<f64>,
+    pub clock_mhz: Option<f64>,
 }
 
 #[derive(clap::Args, Debug)]
@@ -115,7 +116,7 @@ struct PairArgs {
     a: String,
     b: String,
     #[command(flatten)]
-    hardware: HardwareArgs,
+    hardware: EngineArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
@@ -126,7 +127,7 @@ struct ConvertArgs {
     /// With a hardware engine, the octree's full leaves are also written
     /// into a voxel memory by the voxel fill unit and checked.
     #[command(flatten)]
-    hardware: HardwareArgs,
+    hardware: EngineArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
@@ -223,7 +224,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
 
 /// Octree → voxels in hardware: the tree's full leaves as records through
 /// the voxel fill, the memory checked against the model's voxels.
-fn fill_in_hardware(model: &OctreeFile, hardware: &HardwareArgs) -> anyhow::Result<()> {
+fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result<()> {
     let level = model.tree.level();
     anyhow::ensure!(
         level >= 1,

@@ -4,12 +4,16 @@
 
 use crate::input;
 use crate::model_files::ModelOutput;
+use crate::octree::EngineArgs;
 use crate::progress::Progress;
 use std::process::ExitCode;
 use std::time::Instant;
+use tritri_cosim::engine::Engine;
+use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::render::View;
 use tritri_geom::octree::tree::Octree;
 use tritri_geom::octree::voxelize::{self, level_of_resolution, VoxelFrame, SUB_BITS};
+use tritri_geom::octree::voxels::VoxelGrid;
 use tritri_geom::scene::load::load_object;
 
 #[derive(clap::Args, Debug)]
@@ -35,7 +39,14 @@ pub struct Args {
     png: Option<String>,
     #[command(flatten)]
     view: ViewArgs,
+    /// Surface mode: who voxelizes, the software model (with the hardware's
+    /// cycle model) or the hardware voxelizer, checked against the model.
+    #[command(flatten)]
+    hardware: EngineArgs,
 }
+
+/// The voxelizer is not routed: its time is given at an assumed clock.
+const VOXELIZER_ASSUMED_CLOCK_MHZ: f64 = 100.0;
 
 /// Where renders are taken from.
 #[derive(clap::Args, Debug, Clone)]
@@ -71,6 +82,10 @@ impl ViewArgs {
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let level = level_of_resolution(args.resolution)?;
+    if args.solid && args.hardware.engine != Engine::Model {
+        eprintln!("error: --engine {}: the hardware voxelizes surfaces; --solid runs in the software model only", args.hardware.engine.name());
+        return Ok(ExitCode::from(2));
+    }
     let side = args.resolution as usize;
     // Outputs are checked before the work.
     let mut outputs = Vec::new();
@@ -143,10 +158,61 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         bitmap_bytes,
         100.0 * tree_bytes as f64 / bitmap_bytes as f64
     );
+    if !args.solid {
+        match voxelize_in_hardware(&triangles, level, &grid, &args.hardware) {
+            // The model's voxels are the answer; the hardware's figures are
+            // extra when no hardware was asked for.
+            Err(e) if args.hardware.engine == Engine::Model => {
+                println!("hardware: no cycle count: {e:#}")
+            }
+            result => result?,
+        }
+    }
     for output in outputs {
         let path = output.path.clone();
         let bytes = output.write(&tree, &grid, &frame.placement(), &args.view.view())?;
         println!("wrote {path} ({bytes} bytes)");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The surface through the hardware voxelizer (or its cycle model), its
+/// voxels checked against the software model's.
+fn voxelize_in_hardware(
+    triangles: &[FixedTriangle],
+    level: u32,
+    grid: &VoxelGrid,
+    hardware: &EngineArgs,
+) -> anyhow::Result<()> {
+    if hardware.engine != Engine::Model {
+        println!(
+            "hardware ({}): simulating {} triangles ...",
+            hardware.engine.name(),
+            triangles.len()
+        );
+    }
+    let started = Instant::now();
+    let run = tritri_cosim::triangle_voxelizer::run(hardware.engine, triangles, level)?;
+    anyhow::ensure!(
+        run.grid(level) == *grid,
+        "the triangle voxelizer in {} marked voxels that differ from the software model (a bug)",
+        hardware.engine.name()
+    );
+    let (clock, how) = match hardware.clock_mhz {
+        Some(f) => (f, ""),
+        None => (VOXELIZER_ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
+    };
+    let simulated = if hardware.engine == Engine::Model {
+        String::new()
+    } else {
+        format!(" (simulated in {:.1} s)", started.elapsed().as_secs_f64())
+    };
+    println!(
+        "hardware ({}): {} records of 8 voxels, the model's voxels; {} cycles = {:.3} ms at {clock} MHz{how}{simulated}",
+        hardware.engine.name(),
+        run.records.len(),
+        run.cycles,
+        run.cycles as f64 / (clock * 1e3),
+    );
+    Ok(())
 }

@@ -191,6 +191,18 @@ fn voxelized_models_obey_the_laws_of_set_operations() {
         clipped.contains("hardware (rusthdl): the model's"),
         "{clipped}"
     );
+    let voxelized = ok(&[
+        "voxelize",
+        "@torus",
+        "--resolution",
+        "16",
+        "--engine",
+        "verilator",
+    ]);
+    assert!(
+        voxelized.contains("hardware (verilator): ") && voxelized.contains("the model's voxels"),
+        "{voxelized}"
+    );
     let filled = ok(&["octree", "convert", &p("solid.oct"), "--engine", "rusthdl"]);
     assert!(filled.contains("the model's voxels"), "{filled}");
     let plane = ok(&[
@@ -294,6 +306,16 @@ fn bad_voxel_input_is_refused_naming_it() {
         (
             vec!["voxelize".into(), p("open.obj"), "--solid".into()],
             "not closed",
+        ),
+        (
+            vec![
+                "voxelize".into(),
+                "@torus".into(),
+                "--solid".into(),
+                "--engine".into(),
+                "rusthdl".into(),
+            ],
+            "--engine rusthdl",
         ),
         (
             vec![
