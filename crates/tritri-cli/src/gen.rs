@@ -63,7 +63,9 @@
 //! children written into the voxel memory a word per clock), top
 //! `tritri_voxel_fill`; `--triangle-voxelizer` its surface voxelization
 //! (triangles in, the voxels each meets out), top
-//! `tritri_triangle_voxelizer`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
+//! `tritri_triangle_voxelizer`; `--octree-builder` its voxel → octree
+//! conversion (a level-1 cell in per clock, the canonical tree's nodes
+//! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
 //! `tritri_patch_tessellator_w<W>_k<K>`.
@@ -95,6 +97,7 @@ use tritri_rtl::emit::cell_classifier_unit::{
     cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS,
 };
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
+use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::patch_tessellator_unit::{
     emit_patch_tessellator, patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS,
@@ -194,6 +197,10 @@ pub struct Args {
     /// in, the voxels each meets out; grids up to 1024^3).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "width"])]
     triangle_voxelizer: bool,
+    /// Emit the octree engine's voxel → octree conversion instead (a
+    /// level-1 cell in per clock, the canonical tree's nodes out).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "triangle_voxelizer", "width"])]
+    octree_builder: bool,
     /// With --owner-filter or --broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
@@ -462,6 +469,10 @@ impl Args {
             return emit_triangle_voxelizer()
                 .with_context(|| format!("emitting {TRIANGLE_VOXELIZER_NAME}"));
         }
+        if self.octree_builder {
+            return emit_octree_builder()
+                .with_context(|| format!("emitting {OCTREE_BUILDER_NAME}"));
+        }
         if self.binning_unit {
             let config = self.binning_config(width);
             return emit_binning_unit(&config)
@@ -512,6 +523,7 @@ impl Args {
             || self.octant_clipper
             || self.voxel_fill
             || self.triangle_voxelizer
+            || self.octree_builder
     }
 
     /// The grid-width units of the octree engine.
@@ -533,6 +545,8 @@ impl Args {
             VOXEL_FILL_NAME.to_string()
         } else if self.triangle_voxelizer {
             TRIANGLE_VOXELIZER_NAME.to_string()
+        } else if self.octree_builder {
+            OCTREE_BUILDER_NAME.to_string()
         } else if self.owner_filter {
             owner_filter_unit_name(self.slots())
         } else if self.binning_unit {

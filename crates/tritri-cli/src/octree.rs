@@ -12,8 +12,9 @@ use tritri_cosim::engine::Engine;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::clip::{clip, clip_logged};
 use tritri_geom::octree::plane::classify_plane;
-use tritri_geom::octree::tree::{OctreeFile, Placement, SetOperation};
+use tritri_geom::octree::tree::{Octree, OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
+use tritri_geom::octree::voxels::VoxelGrid;
 use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
 use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 
@@ -84,6 +85,8 @@ const DEFAULT_CLOCK_MHZ: f64 = 68.3;
 const CLIPPER_CLOCK_MHZ: f64 = 134.2;
 const SET_OPERATION_CLOCK_MHZ: f64 = 379.2;
 const VOXEL_FILL_CLOCK_MHZ: f64 = 67.9;
+/// The octree builder is not routed: its time is given at an assumed clock.
+const BUILDER_ASSUMED_CLOCK_MHZ: f64 = 100.0;
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
@@ -125,7 +128,8 @@ struct PairArgs {
 struct ConvertArgs {
     model: String,
     /// With a hardware engine, the octree's full leaves are also written
-    /// into a voxel memory by the voxel fill unit and checked.
+    /// into a voxel memory by the voxel fill unit, and that memory turned
+    /// back into an octree by the octree builder, both checked.
     #[command(flatten)]
     hardware: EngineArgs,
     #[command(flatten)]
@@ -201,6 +205,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             };
             if a.hardware.engine != Engine::Model {
                 fill_in_hardware(&model, &a.hardware)?;
+                build_in_hardware(&model.tree.to_voxels(), &model.tree, &a.hardware)?;
             }
             write_all(outputs, &model, &a.outputs.view)?;
             Ok(ExitCode::SUCCESS)
@@ -249,6 +254,36 @@ fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result
         run.writes,
         run.writes + 1,
         (run.writes + 1) as f64 / (clock * 1e3),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Voxels → octree in hardware: the grid's level-1 cells through the octree
+/// builder, its nodes checked against the model's tree.
+pub fn build_in_hardware(
+    grid: &VoxelGrid,
+    tree: &Octree,
+    hardware: &EngineArgs,
+) -> anyhow::Result<()> {
+    let started = Instant::now();
+    let run = tritri_cosim::octree_builder::run(hardware.engine, grid)?;
+    anyhow::ensure!(
+        run.preorder() == tree.nodes(),
+        "the octree builder in {} wrote a tree that differs from the model's (a bug)",
+        hardware.engine.name()
+    );
+    let (clock, how) = match hardware.clock_mhz {
+        Some(f) => (f, ""),
+        None => (BUILDER_ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
+    };
+    println!(
+        "hardware ({}): octree builder, {} level-1 cells in, the model's {} nodes out; {} cycles = {:.3} ms at {clock} MHz{how} (simulated in {:.1} s)",
+        hardware.engine.name(),
+        1u64 << (3 * (grid.level() - 1)),
+        run.nodes.len(),
+        run.cycles,
+        run.cycles as f64 / (clock * 1e3),
         started.elapsed().as_secs_f64()
     );
     Ok(())

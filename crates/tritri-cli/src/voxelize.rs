@@ -168,6 +168,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             result => result?,
         }
     }
+    if args.hardware.engine != Engine::Model {
+        crate::octree::build_in_hardware(&grid, &tree, &args.hardware)?;
+    }
     for output in outputs {
         let path = output.path.clone();
         let bytes = output.write(&tree, &grid, &frame.placement(), &args.view.view())?;

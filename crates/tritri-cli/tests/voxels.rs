@@ -200,11 +200,17 @@ fn voxelized_models_obey_the_laws_of_set_operations() {
         "verilator",
     ]);
     assert!(
-        voxelized.contains("hardware (verilator): ") && voxelized.contains("the model's voxels"),
+        voxelized.contains("hardware (verilator): ")
+            && voxelized.contains("the model's voxels")
+            && voxelized.contains("octree builder"),
         "{voxelized}"
     );
     let filled = ok(&["octree", "convert", &p("solid.oct"), "--engine", "rusthdl"]);
     assert!(filled.contains("the model's voxels"), "{filled}");
+    assert!(
+        filled.contains("octree builder") && filled.contains("nodes out"),
+        "{filled}"
+    );
     let plane = ok(&[
         "octree",
         "plane",

@@ -16,13 +16,15 @@
 //!   Verilog with `testbenches/tb_collision_system.sv`) take the same
 //!   batches and return the same [`system_harness::SystemResult`].
 //! * The octree classifier and its setup: [`cell_classifier`],
-//!   [`triangle_setup`]; surface voxelization: [`triangle_voxelizer`].
+//!   [`triangle_setup`]; surface voxelization: [`triangle_voxelizer`];
+//!   voxel → octree conversion: [`octree_builder`].
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod engine;
+pub mod octree_builder;
 pub mod owner_filter;
 pub mod patch_tessellator;
 pub mod pipeline_rtl;

@@ -1,15 +1,17 @@
 //! The emitted octree classifier step, its setup, the binning unit, the
-//! broad-phase top, the owner filter, the plane traversal and the triangle voxelizer:
+//! broad-phase top, the owner filter, the plane traversal, the triangle voxelizer and the
+//! octree builder:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
 //! tritri-cosim's tests/cell_classifier.rs, tests/triangle_setup.rs and
-//! tests/binning_unit.rs, tests/owner_filter.rs, tests/plane_traversal.rs and
-//! tests/triangle_voxelizer.rs.)
+//! tests/binning_unit.rs, tests/owner_filter.rs, tests/plane_traversal.rs,
+//! tests/triangle_voxelizer.rs and tests/octree_builder.rs.)
 
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::octree_builder_unit::emit_octree_builder;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
 use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
@@ -85,6 +87,7 @@ fn the_octree_engines_units_are_lint_clean() {
     check(0, emit_octant_clipper().unwrap());
     check(0, emit_voxel_fill().unwrap());
     check(0, emit_triangle_voxelizer().unwrap());
+    check(0, emit_octree_builder().unwrap());
 }
 
 /// The emitted patch tessellator at W = 16, K = 3, for review: any change

@@ -50,6 +50,8 @@ pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_packer;
 pub mod octant_clipper;
+pub mod octree_builder;
+pub mod octree_builder_machine;
 pub mod owner_chain_filter;
 pub mod owner_filter;
 pub mod plane_traversal;
