@@ -5,6 +5,7 @@
 use crate::input;
 use crate::model_files::{read_octree, ModelOutput};
 use crate::voxelize::ViewArgs;
+use anyhow::Context as _;
 use clap::Subcommand;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -12,6 +13,7 @@ use tritri_cosim::engine::Engine;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::clip::{clip, clip_logged};
 use tritri_geom::octree::plane::classify_plane;
+use tritri_geom::octree::segments::{boundary_edges, clip_segment, Clipped, Segment};
 use tritri_geom::octree::tree::{Octree, OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
 use tritri_geom::octree::voxels::VoxelGrid;
@@ -94,6 +96,11 @@ struct ClipArgs {
     /// The box in voxel indices, half-open: x0 <= x < x1 and so on.
     #[arg(long = "box", value_name = "X0,Y0,Z0,X1,Y1,Z1", allow_hyphen_values = true, value_parser = input::parse_voxel_box)]
     voxel_box: [i64; 6],
+    /// Also write the model's display data: the edges of its boundary
+    /// faces clipped exactly against the box (its closed extent), as OBJ
+    /// line elements.
+    #[arg(long, value_name = "FILE.obj")]
+    segments: Option<String>,
     #[command(flatten)]
     hardware: EngineArgs,
     #[command(flatten)]
@@ -375,6 +382,15 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         Err(e) => return bad(e),
     };
     let b = a.voxel_box;
+    if let Some(path) = a
+        .segments
+        .as_deref()
+        .filter(|p| !p.to_ascii_lowercase().ends_with(".obj"))
+    {
+        return bad(anyhow::anyhow!(
+            "--segments {path}: the segments are written as .obj"
+        ));
+    }
     let started = Instant::now();
     let (lo, hi) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
     // The octants are listed only for a hardware engine to be given them.
@@ -439,7 +455,56 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         },
         &a.outputs.view,
     )?;
+    // After the model's outputs, so a bad path loses none of them.
+    if let Some(path) = &a.segments {
+        write_clipped_segments(path, &model, lo, hi)?;
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The boundary's edges clipped against the voxel box's closed extent
+/// (corners `lo` to `hi`), written as OBJ lines in the model's coordinates.
+fn write_clipped_segments(
+    path: &str,
+    model: &OctreeFile,
+    lo: [i64; 3],
+    hi: [i64; 3],
+) -> anyhow::Result<()> {
+    let edges = boundary_edges(&model.tree.to_voxels());
+    let started = Instant::now();
+    let clipped: Vec<(Segment, Clipped)> = edges
+        .iter()
+        .filter_map(|s| clip_segment(s, lo, hi).map(|c| (*s, c)))
+        .collect();
+    let took = started.elapsed();
+    let whole = clipped.iter().filter(|(_, c)| c.is_whole()).count();
+    println!(
+        "segments: {} boundary edges clipped in {:.3} ms, {:.1} ns per segment: {whole} inside, {} cut or touching it, {} outside",
+        edges.len(),
+        took.as_secs_f64() * 1e3,
+        took.as_secs_f64() * 1e9 / edges.len().max(1) as f64,
+        clipped.len() - whole,
+        edges.len() - clipped.len()
+    );
+    let p = &model.placement;
+    let mut text =
+        String::from("# boundary edges of a voxel model clipped to a box, written by tritri\n");
+    for (s, c) in &clipped {
+        for end in c.ends(s) {
+            text += &format!(
+                "v {} {} {}\n",
+                p.origin[0] + end[0] * p.voxel_size,
+                p.origin[1] + end[1] * p.voxel_size,
+                p.origin[2] + end[2] * p.voxel_size
+            );
+        }
+    }
+    for i in 0..clipped.len() {
+        text += &format!("l {} {}\n", 2 * i + 1, 2 * i + 2);
+    }
+    std::fs::write(path, text).with_context(|| format!("writing {path}"))?;
+    println!("wrote {path} ({} segments)", clipped.len());
+    Ok(())
 }
 
 fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {

@@ -165,6 +165,24 @@ fn voxelized_models_obey_the_laws_of_set_operations() {
     let kept = number_after(&cut, "cut:");
     assert!(kept > 0 && kept < n_solid, "{cut}");
     let clip = ok(&["octree", "clip", &p("solid.oct"), "--box", "0,0,0,32,32,32"]);
+    // Display data: the boundary's edges clipped to half the grid.
+    let seg = ok(&[
+        "octree",
+        "clip",
+        &p("solid.oct"),
+        "--box",
+        "0,0,0,16,32,32",
+        "--segments",
+        &p("edges.obj"),
+    ]);
+    let obj = std::fs::read_to_string(p("edges.obj")).unwrap();
+    let lines = obj.lines().filter(|l| l.starts_with("l ")).count() as u64;
+    assert!(
+        lines > 0 && seg.contains(&format!("({lines} segments)")),
+        "{seg}"
+    );
+    let edges = number_after(&seg, "segments:");
+    assert!(lines < edges, "half the grid keeps fewer edges: {seg}");
     // The hardware units agree with the model (the command fails if not).
     let hardware = ok(&[
         "octree",

@@ -24,6 +24,8 @@
 //!   traversals in hardware (a classifier of fixed latency and a stack).
 //! * [`render`]: shaded pictures of voxel models; [`export`]: `.binvox`
 //!   and the boundary faces as a mesh.
+//! * [`segments`]: display data, the boundary's edges as segments, clipped
+//!   exactly against a view box.
 //! * [`tree`]: the octree model in preorder, its file format, conversion
 //!   both ways and set operations done directly on trees.
 //!
@@ -36,6 +38,7 @@ pub mod clip;
 pub mod export;
 pub mod plane;
 pub mod render;
+pub mod segments;
 pub mod stack_schedule;
 pub mod tree;
 pub mod triangle_cell;
