@@ -17,7 +17,7 @@ use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::emit::plane_traversal_unit::{
     emit_plane_traversal, PlaneInputs, PLANE_TRAVERSAL_NAME,
 };
-use tritri_rtl::octree::plane_traversal::{PlaneTraversal, PLANE_VALUE_BITS};
+use tritri_rtl::octree::plane_traversal::{PlaneTraversal, PLANE_VALUE_BITS, STACK_ADDRESS_BITS};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// What a hardware run reports: the records with their edges, and the
@@ -34,7 +34,16 @@ fn record(x: u64, y: u64, z: u64, level: u64, full: u64, crossed: u64) -> Traver
 /// One plane through the rust-hdl model; the reader is ready at edges
 /// where `reader_ready(edge)` is true (always, for edges to compare).
 pub fn run_rusthdl(plane: &PlaneInputs, reader_ready: impl Fn(u64) -> bool) -> TraversalRun {
-    let mut uut = PlaneTraversal::default();
+    run_rusthdl_with_stack::<STACK_ADDRESS_BITS>(plane, reader_ready).0
+}
+
+/// The same through a unit whose stack has `2^S` entries, and whether its
+/// overflow flag rose.
+pub fn run_rusthdl_with_stack<const S: usize>(
+    plane: &PlaneInputs,
+    reader_ready: impl Fn(u64) -> bool,
+) -> (TraversalRun, bool) {
+    let mut uut = PlaneTraversal::<S>::default();
     uut.connect_all();
     reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
     let v = |x: i64| from_i128::<PLANE_VALUE_BITS>(x as i128);
@@ -74,7 +83,7 @@ pub fn run_rusthdl(plane: &PlaneInputs, reader_ready: impl Fn(u64) -> bool) -> T
         edge += 1;
     }
     run.cycles = edge;
-    run
+    (run, uut.overflow.val())
 }
 
 /// Planes through the emitted traversal in `simulator`, the reader always
@@ -145,6 +154,7 @@ pub fn run_emitted(
                 ));
                 run.edges.push(number(edge, 10)?);
             }
+            ["overflow"] => bail!("the plane traversal's stack overflowed"),
             _ => {
                 bail!("plane traversal output line `{line}` is neither a record nor `done CYCLES`")
             }
@@ -174,7 +184,7 @@ module tb_plane_traversal;
     reg start = 1'b0;
     reg [3:0] level = 4'd1;
     reg [39:0] gx = 40'd0, gy = 40'd0, gz = 40'd0, d = 40'd0, root_min = 40'd0, centre_offset = 40'd0;
-    wire busy, out_valid;
+    wire busy, overflow, out_valid;
     wire [10:0] out_x, out_y, out_z;
     wire [3:0] out_level;
     wire [7:0] out_full, out_crossed;
@@ -184,7 +194,7 @@ module tb_plane_traversal;
     {PLANE_TRAVERSAL_NAME} dut (
         .clock(clock), .reset(reset),
         .gradient_x(gx), .gradient_y(gy), .gradient_z(gz), .d(d), .root_min(root_min), .centre_offset(centre_offset),
-        .level(level), .start(start), .busy(busy),
+        .level(level), .start(start), .busy(busy), .overflow(overflow),
         .out_valid(out_valid), .out_ready(1'b1), .out_x(out_x), .out_y(out_y), .out_z(out_z),
         .out_level(out_level), .out_full(out_full), .out_crossed(out_crossed)
     );
@@ -206,6 +216,7 @@ module tb_plane_traversal;
                 if (out_valid) $fwrite(outputs, \"%0d %h %h %h %h %h %h\\n\", edge_count - base, out_x, out_y, out_z, out_level, out_full, out_crossed);
                 @(negedge clock);
             end
+            if (overflow) $fwrite(outputs, \"overflow\\n\");
             $fwrite(outputs, \"done %0d\\n\", edge_count - base);
         end
         $fclose(outputs);
@@ -226,11 +237,12 @@ pub fn run(
 ) -> anyhow::Result<TraversalRun> {
     let plane = PlaneInputs::new(level, normal, d).map_err(anyhow::Error::msg)?;
     let model = tritri_geom::octree::plane::traversal_schedule(level, normal, plane.d);
-    // The RAM has no overflow check: the cycle model says first whether the
-    // plane fits (the most seen on 512^3 and 1024^3 planes is 42 entries).
-    let capacity = 1usize << tritri_rtl::octree::plane_traversal::STACK_ADDRESS_BITS;
+    // The RAM's overflow is flagged, not survived: the cycle model says
+    // first whether the plane fits (the most seen on 512^3 and 1024^3
+    // planes is 42 entries).
+    let capacity = 1usize << STACK_ADDRESS_BITS;
     anyhow::ensure!(
-        model.stack_depth < capacity,
+        model.stack_depth <= capacity,
         "the plane needs {} stack entries, more than the traversal's {capacity}",
         model.stack_depth
     );

@@ -37,8 +37,18 @@ fn vertices(t: &FixedTriangle) -> Bits<{ 9 * G }> {
 /// The triangles through the rust-hdl model (`level` 1 to 10, vertices on
 /// the fine grid inside the `2^level` grid).
 pub fn run_rusthdl(triangles: &[FixedTriangle], level: u32) -> VoxelizerRun {
+    run_rusthdl_with_stack::<VOXELIZER_STACK_BITS>(triangles, level).0
+}
+
+/// The same through a unit whose stack has `2^S` entries, and whether its
+/// overflow flag rose.
+pub fn run_rusthdl_with_stack<const S: usize>(
+    triangles: &[FixedTriangle],
+    level: u32,
+) -> (VoxelizerRun, bool) {
     let mut uut =
-        TriangleVoxelizer::<G, { value_bits(G) }, { AXES * value_bits(G) }, { 9 * G }>::default();
+        TriangleVoxelizer::<G, { value_bits(G) }, { AXES * value_bits(G) }, { 9 * G }, S>::default(
+        );
     uut.connect_all();
     uut.level.next = (level as u64).into();
     uut.out_ready.next = true;
@@ -70,7 +80,7 @@ pub fn run_rusthdl(triangles: &[FixedTriangle], level: u32) -> VoxelizerRun {
         edge += 1;
     }
     run.cycles = edge;
-    run
+    (run, uut.overflow.val())
 }
 
 /// The triangles through the emitted voxelizer in `simulator`.

@@ -132,3 +132,35 @@ fn the_voxel_fill_writes_the_half_space_a_word_per_clock() {
         }
     }
 }
+
+/// A traversal built with a stack of 4 entries: its overflow flag rises
+/// exactly for the planes whose traversal the cycle model says needs more,
+/// and the others give the model's records.
+#[test]
+fn the_overflow_flag_rises_exactly_when_the_stack_is_too_small() {
+    use tritri_cosim::plane_traversal::run_rusthdl_with_stack;
+    let (mut over, mut within) = (0, 0);
+    for (level, normal, d) in planes(60, 2026) {
+        let model = traversal_schedule(level, normal, d);
+        let plane = PlaneInputs::new(level, normal, d).unwrap();
+        let (run, overflow) = run_rusthdl_with_stack::<2>(&plane, |_| true);
+        assert_eq!(
+            overflow,
+            model.stack_depth > 4,
+            "{level} {normal:?} {d}: stack depth {}",
+            model.stack_depth
+        );
+        if overflow {
+            over += 1;
+        } else {
+            within += 1;
+            assert_eq!(
+                (run.records, run.edges, run.cycles),
+                (model.records, model.edges, model.cycles),
+                "{level} {normal:?} {d}"
+            );
+        }
+    }
+    eprintln!("{over} planes overflow a 4-entry stack, {within} fit");
+    assert!(over > 0 && within > 0);
+}

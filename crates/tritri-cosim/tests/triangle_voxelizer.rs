@@ -108,3 +108,35 @@ fn a_torus_mesh_agrees_in_verilator() {
     let fixed: Vec<FixedTriangle> = triangles.iter().map(|t| frame.quantize(t)).collect();
     check("torus", &fixed, level, &[Simulator::Verilator]);
 }
+
+/// A unit built with a stack of 4 entries: its overflow flag rises exactly
+/// for the triangles whose traversal the cycle model says needs more, and
+/// the others are voxelized as the model says.
+#[test]
+fn the_overflow_flag_rises_exactly_when_the_stack_is_too_small() {
+    use tritri_cosim::triangle_voxelizer::run_rusthdl_with_stack;
+    let (mut over, mut within) = (0, 0);
+    for (i, t) in random_triangles(6, 40, 66).iter().enumerate() {
+        let stream = [*t];
+        let model = check_stream(&stream, 6).unwrap();
+        let (run, overflow) = run_rusthdl_with_stack::<2>(&stream, 6);
+        assert_eq!(
+            overflow,
+            model.stack_depth > 4,
+            "triangle {i}: stack depth {}",
+            model.stack_depth
+        );
+        if overflow {
+            over += 1;
+        } else {
+            within += 1;
+            assert_eq!(
+                (run.records, run.edges, run.cycles),
+                (model.records, model.edges, model.cycles),
+                "triangle {i}"
+            );
+        }
+    }
+    eprintln!("{over} triangles overflow a 4-entry stack, {within} fit");
+    assert!(over > 0 && within > 0);
+}

@@ -55,7 +55,7 @@ impl PlaneInputs {
 
 /// rust-hdl's Verilog of the traversal.
 pub fn raw_plane_traversal_verilog() -> crate::unit::RawDesign {
-    let mut uut = PlaneTraversal::default();
+    let mut uut = PlaneTraversal::<STACK_ADDRESS_BITS>::default();
     uut.connect_all();
     crate::unit::RawDesign::of(&uut)
 }
@@ -91,6 +91,7 @@ pub fn plane_traversal_unit() -> UnitDescription {
     .port("level", "The grid is 2^level voxels a side (1 to 10).")
     .port("start", "High for one clock while idle: classify the grid.")
     .port("busy", "From the edge after start until the last record is taken.")
+    .port("overflow", "Sticky until reset: a push found the stack's RAM full; the records since are incomplete.")
     .port("out_valid", "A record is offered.")
     .port("out_ready", "The reader takes it.")
     .port("out_x", "Low corner of the classified cell, in voxels.")

@@ -17,8 +17,13 @@ pub const TRIANGLE_VOXELIZER_NAME: &str = "tritri_triangle_voxelizer";
 /// rust-hdl's Verilog of the voxelizer.
 pub fn raw_triangle_voxelizer_verilog() -> crate::unit::RawDesign {
     const G: usize = VOXELIZER_GRID_BITS;
-    let mut uut =
-        TriangleVoxelizer::<G, { value_bits(G) }, { AXES * value_bits(G) }, { 9 * G }>::default();
+    let mut uut = TriangleVoxelizer::<
+        G,
+        { value_bits(G) },
+        { AXES * value_bits(G) },
+        { 9 * G },
+        VOXELIZER_STACK_BITS,
+    >::default();
     uut.connect_all();
     crate::unit::RawDesign::of(&uut)
 }

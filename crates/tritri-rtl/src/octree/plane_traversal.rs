@@ -50,7 +50,8 @@ use rust_hdl::widgets::prelude::DFF;
 pub const PLANE_VALUE_BITS: usize = 40;
 /// Bits of a cell corner coordinate (0 to 1024).
 pub const CORNER_BITS: usize = 11;
-/// Stack entries in block RAM.
+/// Address bits of the stack's block RAM in the emitted unit (the unit's
+/// `S`; tests build smaller stacks to see the overflow flag rise).
 pub const STACK_ADDRESS_BITS: usize = 8;
 /// Clock edges from an issue to its result: the axis steps, then one
 /// register stage (masks, value and the centre test).
@@ -73,7 +74,7 @@ pub struct StackEntry {
 const _: () = assert!(PLANE_VALUE_BITS == 40 && CORNER_BITS == 11);
 
 #[derive(LogicBlock)]
-pub struct PlaneTraversal {
+pub struct PlaneTraversal<const S: usize> {
     pub clock: Signal<In, Clock>,
     /// Synchronous, active high: idle, stack empty.
     pub reset: Signal<In, Bit>,
@@ -92,6 +93,9 @@ pub struct PlaneTraversal {
     /// One clock high while idle: classify the grid.
     pub start: Signal<In, Bit>,
     pub busy: Signal<Out, Bit>,
+    /// Sticky: a push found the stack's RAM full (the records are then
+    /// incomplete).
+    pub overflow: Signal<Out, Bit>,
     // Records out (valid/ready).
     pub out_valid: Signal<Out, Bit>,
     pub out_ready: Signal<In, Bit>,
@@ -116,13 +120,16 @@ pub struct PlaneTraversal {
     crossing_q: DFF<Bits<8>>,
     below_q: DFF<Bits<8>>,
     value_q: DFF<Bits<40>>,
-    stack: SimpleDualPortRam<StackEntry, STACK_ADDRESS_BITS>,
+    stack: SimpleDualPortRam<StackEntry, S>,
     top: DFF<StackEntry>,
     top_valid: DFF<Bit>,
     /// The RAM's read data is the next top (read the clock before).
     refill: DFF<Bit>,
     /// Entries in the RAM.
-    depth: DFF<Bits<9>>,
+    depth: DFF<Bits<16>>,
+    overflow_q: DFF<Bit>,
+    /// Entries the RAM holds.
+    stack_words: Constant<Bits<16>>,
     in_flight: DFF<Bits<4>>,
     start_pending: DFF<Bit>,
     out_valid_q: DFF<Bit>,
@@ -147,7 +154,7 @@ pub struct PlaneTraversal {
     pushed: Signal<Local, StackEntry>,
 }
 
-impl crate::unit::Unit for PlaneTraversal {
+impl<const S: usize> crate::unit::Unit for PlaneTraversal<S> {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
             self,
@@ -168,6 +175,7 @@ impl crate::unit::Unit for PlaneTraversal {
             top_valid,
             refill,
             depth,
+            overflow_q,
             in_flight,
             start_pending,
             out_valid_q,
@@ -181,7 +189,7 @@ impl crate::unit::Unit for PlaneTraversal {
     }
 }
 
-impl Default for PlaneTraversal {
+impl<const S: usize> Default for PlaneTraversal<S> {
     fn default() -> Self {
         PlaneTraversal {
             clock: Default::default(),
@@ -195,6 +203,7 @@ impl Default for PlaneTraversal {
             level: Default::default(),
             start: Default::default(),
             busy: Default::default(),
+            overflow: Default::default(),
             out_valid: Default::default(),
             out_ready: Default::default(),
             out_x: Default::default(),
@@ -214,11 +223,13 @@ impl Default for PlaneTraversal {
             crossing_q: Default::default(),
             below_q: Default::default(),
             value_q: Default::default(),
-            stack: SimpleDualPortRam::new(1 << STACK_ADDRESS_BITS),
+            stack: SimpleDualPortRam::new(1 << S),
             top: Default::default(),
             top_valid: Default::default(),
             refill: Default::default(),
             depth: Default::default(),
+            overflow_q: Default::default(),
+            stack_words: Constant::new(Bits::<16>::from(1u64 << S)),
             in_flight: Default::default(),
             start_pending: Default::default(),
             out_valid_q: Default::default(),
@@ -243,7 +254,7 @@ impl Default for PlaneTraversal {
     }
 }
 
-impl Logic for PlaneTraversal {
+impl<const S: usize> Logic for PlaneTraversal<S> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
@@ -256,6 +267,7 @@ impl Logic for PlaneTraversal {
             top_valid,
             refill,
             depth,
+            overflow_q,
             in_flight,
             start_pending,
             out_valid_q,
@@ -275,6 +287,7 @@ impl Logic for PlaneTraversal {
         self.out_level.next = self.out_level_q.q.val();
         self.out_full.next = self.out_full_q.q.val();
         self.out_crossed.next = self.out_crossed_q.q.val();
+        self.overflow.next = self.overflow_q.q.val();
         self.busy.next = self.start_pending.q.val()
             | self.top_valid.q.val()
             | self.refill.q.val()
@@ -397,11 +410,11 @@ impl Logic for PlaneTraversal {
 
         // The stack.
         self.stack.write_enable.next = false;
-        self.stack.write_address.next = bit_cast::<8, 9>(self.depth.q.val());
+        self.stack.write_address.next = bit_cast::<S, 16>(self.depth.q.val());
         self.stack.write_data.next = self.top.q.val();
         self.stack.write_data.next.mask = self.remaining.val();
         self.stack.read_enable.next = false;
-        self.stack.read_address.next = bit_cast::<8, 9>(self.depth.q.val() - 1);
+        self.stack.read_address.next = bit_cast::<S, 16>(self.depth.q.val() - 1);
         if self.advance.val() {
             if self.start_pending.q.val() {
                 self.start_pending.d.next = false;
@@ -418,6 +431,9 @@ impl Logic for PlaneTraversal {
                 {
                     self.stack.write_enable.next = true;
                     self.depth.d.next = self.depth.q.val() + 1;
+                    if self.depth.q.val() == self.stack_words.val() {
+                        self.overflow_q.d.next = true;
+                    }
                 }
                 if self.refill.q.val() {
                     // The entry just read stays where it was.
@@ -462,6 +478,7 @@ impl Logic for PlaneTraversal {
             self.top_valid.d.next = false;
             self.refill.d.next = false;
             self.depth.d.next = 0.into();
+            self.overflow_q.d.next = false;
             self.in_flight.d.next = 0.into();
             self.out_valid_q.d.next = false;
         }

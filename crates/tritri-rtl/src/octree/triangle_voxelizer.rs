@@ -40,7 +40,8 @@ use tritri_geom::octree::voxelize::SUB_BITS;
 
 /// Bits of a voxel coordinate (0 to 1024).
 pub const VOXEL_BITS: usize = 11;
-/// Stack entries in block RAM.
+/// Address bits of the stack's block RAM in the emitted unit (the unit's
+/// `S`; tests build smaller stacks to see the overflow flag rise).
 pub const VOXELIZER_STACK_BITS: usize = 6;
 /// Largest grid level (1024 voxels a side).
 pub const VOXELIZER_MAX_LEVEL: u32 = 10;
@@ -64,7 +65,13 @@ pub struct VoxelStackEntry {
 }
 
 #[derive(LogicBlock)]
-pub struct TriangleVoxelizer<const G: usize, const V: usize, const N: usize, const T: usize> {
+pub struct TriangleVoxelizer<
+    const G: usize,
+    const V: usize,
+    const N: usize,
+    const T: usize,
+    const S: usize,
+> {
     pub clock: Signal<In, Clock>,
     /// Synchronous, active high: idle, stack empty, setup empty.
     pub reset: Signal<In, Bit>,
@@ -100,15 +107,15 @@ pub struct TriangleVoxelizer<const G: usize, const V: usize, const N: usize, con
     cell_y: DelayLine<Bits<11>, CELL_CLASSIFIER_LATENCY>,
     cell_z: DelayLine<Bits<11>, CELL_CLASSIFIER_LATENCY>,
     cell_level: DelayLine<Bits<4>, CELL_CLASSIFIER_LATENCY>,
-    stack: SimpleDualPortRam<VoxelStackEntry, VOXELIZER_STACK_BITS>,
-    stack_value: [SimpleDualPortRam<Bits<V>, VOXELIZER_STACK_BITS>; AXES],
+    stack: SimpleDualPortRam<VoxelStackEntry, S>,
+    stack_value: [SimpleDualPortRam<Bits<V>, S>; AXES],
     top: DFF<VoxelStackEntry>,
     top_value: [DFF<Bits<V>>; AXES],
     top_valid: DFF<Bit>,
     /// The RAMs' read data is the next top (read the clock before).
     refill: DFF<Bit>,
     /// Entries in the RAMs.
-    depth: DFF<Bits<7>>,
+    depth: DFF<Bits<16>>,
     in_flight: DFF<Bits<4>>,
     start_pending: DFF<Bit>,
     overflow_q: DFF<Bit>,
@@ -124,7 +131,7 @@ pub struct TriangleVoxelizer<const G: usize, const V: usize, const N: usize, con
     /// The classifier's level is the cell's in fine-grid steps.
     sub_bits: Constant<Bits<6>>,
     /// Entries the RAMs hold.
-    stack_words: Constant<Bits<7>>,
+    stack_words: Constant<Bits<16>>,
     // Combinational.
     advance: Signal<Local, Bit>,
     traversing: Signal<Local, Bit>,
@@ -142,8 +149,8 @@ pub struct TriangleVoxelizer<const G: usize, const V: usize, const N: usize, con
     unused_outputs: Signal<Local, Bit>,
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit::Unit
-    for TriangleVoxelizer<G, V, N, T>
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: usize>
+    crate::unit::Unit for TriangleVoxelizer<G, V, N, T, S>
 {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
@@ -180,15 +187,15 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
-    for TriangleVoxelizer<G, V, N, T>
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: usize> Default
+    for TriangleVoxelizer<G, V, N, T, S>
 {
     fn default() -> Self {
         assert!(
             V == super::value_bits(G) && N == AXES * V && T == 9 * G,
             "triangle voxelizer for G = {G}"
         );
-        let words = 1 << VOXELIZER_STACK_BITS;
+        let words = 1 << S;
         TriangleVoxelizer {
             clock: Default::default(),
             reset: Default::default(),
@@ -234,7 +241,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
             vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
             field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
             sub_bits: Constant::new(Bits::<6>::from(SUB_BITS as u64)),
-            stack_words: Constant::new(Bits::<7>::from(words as u64)),
+            stack_words: Constant::new(Bits::<16>::from(words as u64)),
             advance: Default::default(),
             traversing: Default::default(),
             load: Default::default(),
@@ -251,8 +258,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
     }
 }
 
-impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
-    for TriangleVoxelizer<G, V, N, T>
+impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: usize> Logic
+    for TriangleVoxelizer<G, V, N, T, S>
 {
     #[hdl_gen]
     fn update(&mut self) {
@@ -464,11 +471,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
 
         // The stack: one control RAM and thirteen value RAMs, one address.
         self.stack.write_enable.next = false;
-        self.stack.write_address.next = bit_cast::<6, 7>(self.depth.q.val());
+        self.stack.write_address.next = bit_cast::<S, 16>(self.depth.q.val());
         self.stack.write_data.next = self.top.q.val();
         self.stack.write_data.next.mask = self.remaining.val();
         self.stack.read_enable.next = false;
-        self.stack.read_address.next = bit_cast::<6, 7>(self.depth.q.val() - 1);
+        self.stack.read_address.next = bit_cast::<S, 16>(self.depth.q.val() - 1);
         if self.advance.val() {
             if self.start_pending.q.val() {
                 self.start_pending.d.next = false;
@@ -556,4 +563,4 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
 }
 
 // The loops over the test functions are written with a literal.
-const _: () = assert!(AXES == 13 && VOXELIZER_STACK_BITS == 6);
+const _: () = assert!(AXES == 13);
