@@ -64,7 +64,7 @@
 //! `tritri_voxel_fill`; `--triangle-voxelizer` its surface voxelization
 //! (triangles in, the voxels each meets out), top
 //! `tritri_triangle_voxelizer`; `--octree-builder` its voxel → octree
-//! conversion (a level-1 cell in per clock, the canonical tree's nodes
+//! conversion (a 4x4x4 brick in per clock, the canonical tree's nodes
 //! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
@@ -198,7 +198,7 @@ pub struct Args {
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "width"])]
     triangle_voxelizer: bool,
     /// Emit the octree engine's voxel → octree conversion instead (a
-    /// level-1 cell in per clock, the canonical tree's nodes out).
+    /// 4x4x4 brick of voxels in per clock, the canonical tree's nodes out).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "triangle_voxelizer", "width"])]
     octree_builder: bool,
     /// With --owner-filter or --broad-phase: words of each object's slot

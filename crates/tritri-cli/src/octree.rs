@@ -266,7 +266,7 @@ fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result
     Ok(())
 }
 
-/// Voxels → octree in hardware: the grid's level-1 cells through the octree
+/// Voxels → octree in hardware: the grid's 4x4x4 bricks through the octree
 /// builder, its nodes checked against the model's tree.
 pub fn build_in_hardware(
     grid: &VoxelGrid,
@@ -285,9 +285,9 @@ pub fn build_in_hardware(
         None => (BUILDER_ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
     };
     println!(
-        "hardware ({}): octree builder, {} level-1 cells in, the model's {} nodes out; {} cycles = {:.3} ms at {clock} MHz{how} (simulated in {:.1} s)",
+        "hardware ({}): octree builder, {} bricks in, the model's {} nodes out; {} cycles = {:.3} ms at {clock} MHz{how} (simulated in {:.1} s)",
         hardware.engine.name(),
-        1u64 << (3 * (grid.level() - 1)),
+        1u64 << (3 * grid.level().saturating_sub(2)),
         run.nodes.len(),
         run.cycles,
         run.cycles as f64 / (clock * 1e3),

@@ -1,19 +1,21 @@
 //! The octree engine's voxel → octree conversion (`octree_engine.txt`,
-//! function 2): a voxel model's level-1 cells streamed in (a mask of 8
+//! function 2): a voxel model's bricks streamed in (a 64-bit word of 4×4×4
 //! voxels a clock), its canonical octree's nodes streamed out.
 //!
 //! The order, the holding of leaf children that keeps the tree canonical on
 //! the fly, and the clock-by-clock steps are those of the cycle model,
-//! [`super::octree_builder_machine`] (module docs there): cells in reverse
+//! [`super::octree_builder_machine`] (module docs there): bricks in reverse
 //! Morton order, nodes out in postorder, which a node memory written from
 //! its top address down turns into the preorder of
 //! `tritri_geom::octree::tree::Octree`.
 //!
-//! Per level of the grid (2 to 10) the unit keeps three things: the cell
+//! Per level of the grid above the bricks (3 to 10) the unit keeps three things: the cell
 //! is known mixed (a bit), the leaves held (a count of 0 to 7) and their
 //! type (a bit). Reads of one level are multiplexers, writes one-hot
 //! decodes of the level; the cell's position among its siblings comes from
-//! the count of level-1 cells taken, shifted by three bits a level.
+//! the count of bricks taken, shifted by three bits a level. A brick that
+//! is not uniform sits in a register shifted a byte a step, its level-1
+//! cell on view in the top byte.
 //!
 //! The whole unit stalls while a node waits for `out_ready`.
 
@@ -22,10 +24,10 @@ use rust_hdl::widgets::prelude::DFF;
 
 /// Largest grid level (1024 voxels a side).
 pub const BUILDER_MAX_LEVEL: u32 = 10;
-/// Levels with a held-leaf counter: 2 to 10.
-const HELD_LEVELS: usize = 9;
-/// Bits of the count of level-1 cells (8^9 at 1024^3).
-pub const CELL_COUNT_BITS: usize = 27;
+/// Levels with a held-leaf counter: 3 to 10.
+const HELD_LEVELS: usize = 8;
+/// Bits of the count of bricks (8^8 at 1024^3).
+pub const BRICK_COUNT_BITS: usize = 24;
 
 /// The node codes on `out_node` (`tritri_geom::octree::tree::Node`).
 pub const NODE_EMPTY: u64 = 0;
@@ -37,7 +39,9 @@ pub const NODE_MIXED: u64 = 2;
 pub enum BuildState {
     Input,
     Flush,
+    Cells,
     Voxels,
+    Closed,
     Leaf,
     Mixed,
     Cascade,
@@ -48,13 +52,14 @@ pub struct OctreeBuilder {
     pub clock: Signal<In, Clock>,
     /// Synchronous, active high: waiting for a model's first cell.
     pub reset: Signal<In, Bit>,
-    /// The grid is `2^level` voxels a side (1 to 10); held.
+    /// The grid is `2^level` voxels a side (2 to 10); held.
     pub level: Signal<In, Bits<4>>,
-    // Level-1 cells in (valid/ready), reverse Morton order: bit `o` is
-    // voxel `o` of the cell (bit `k` of `o`: upper half along axis `k`).
+    // Bricks in (valid/ready), reverse Morton order: bit `8 c + o` is voxel
+    // `o` of the brick's level-1 cell `c` (bit `k` of an octant: the upper
+    // half along axis `k`).
     pub in_valid: Signal<In, Bit>,
     pub in_ready: Signal<Out, Bit>,
-    pub in_mask: Signal<In, Bits<8>>,
+    pub in_brick: Signal<In, Bits<64>>,
     /// A model is under way or a node waits.
     pub busy: Signal<Out, Bit>,
     // Nodes out (valid/ready), postorder: 0 empty, 1 full, 2 mixed.
@@ -66,15 +71,19 @@ pub struct OctreeBuilder {
     /// the leaves it holds (1: full).
     mixed: DFF<Bits<16>>,
     full: DFF<Bits<16>>,
-    /// Leaves held by the current cell of level `i + 2`.
+    /// Leaves held by the current cell of level `i + 3`.
     held: [DFF<Bits<3>>; HELD_LEVELS],
-    count: DFF<Bits<CELL_COUNT_BITS>>,
+    count: DFF<Bits<BRICK_COUNT_BITS>>,
     cell_level: DFF<Bits<4>>,
-    probe: DFF<Bits<CELL_COUNT_BITS>>,
+    probe: DFF<Bits<BRICK_COUNT_BITS>>,
     cell_full: DFF<Bit>,
     cell_mixed: DFF<Bit>,
     flush_stop: DFF<Bits<4>>,
     after_flush: DFF<BuildState>,
+    /// A brick that is not uniform, its current level-1 cell in the top
+    /// byte; the cells left after it.
+    brick: DFF<Bits<64>>,
+    cells_left: DFF<Bits<3>>,
     mask: DFF<Bits<8>>,
     voxel: DFF<Bits<3>>,
     out_valid_q: DFF<Bit>,
@@ -96,7 +105,10 @@ pub struct OctreeBuilder {
     highest_found: Signal<Local, Bit>,
     /// The type of its leaves.
     highest_full: Signal<Local, Bit>,
-    shifted: Signal<Local, Bits<CELL_COUNT_BITS>>,
+    shifted: Signal<Local, Bits<BRICK_COUNT_BITS>>,
+    /// The brick's next level-1 cell moved to the top byte.
+    brick_next: Signal<Local, Bits<64>>,
+    cell: Signal<Local, Bits<8>>,
     emit: Signal<Local, Bit>,
     node: Signal<Local, Bits<2>>,
 }
@@ -117,6 +129,8 @@ impl crate::unit::Unit for OctreeBuilder {
             cell_mixed,
             flush_stop,
             after_flush,
+            brick,
+            cells_left,
             mask,
             voxel,
             out_valid_q,
@@ -133,7 +147,7 @@ impl Default for OctreeBuilder {
             level: Default::default(),
             in_valid: Default::default(),
             in_ready: Default::default(),
-            in_mask: Default::default(),
+            in_brick: Default::default(),
             busy: Default::default(),
             out_valid: Default::default(),
             out_ready: Default::default(),
@@ -149,11 +163,13 @@ impl Default for OctreeBuilder {
             cell_mixed: Default::default(),
             flush_stop: Default::default(),
             after_flush: Default::default(),
+            brick: Default::default(),
+            cells_left: Default::default(),
             mask: Default::default(),
             voxel: Default::default(),
             out_valid_q: Default::default(),
             out_node_q: Default::default(),
-            level_of: std::array::from_fn(|i| Constant::new(Bits::<4>::from(i as u64 + 2))),
+            level_of: std::array::from_fn(|i| Constant::new(Bits::<4>::from(i as u64 + 3))),
             advance: Default::default(),
             complete: Default::default(),
             parent: Default::default(),
@@ -165,6 +181,8 @@ impl Default for OctreeBuilder {
             highest_found: Default::default(),
             highest_full: Default::default(),
             shifted: Default::default(),
+            brick_next: Default::default(),
+            cell: Default::default(),
             emit: Default::default(),
             node: Default::default(),
         }
@@ -187,12 +205,14 @@ impl Logic for OctreeBuilder {
             cell_mixed,
             flush_stop,
             after_flush,
+            brick,
+            cells_left,
             mask,
             voxel,
             out_valid_q,
             out_node_q
         );
-        for i in 0..9 {
+        for i in 0..8 {
             self.held[i].clock.next = self.clock.val();
             self.held[i].d.next = self.held[i].q.val();
         }
@@ -213,11 +233,13 @@ impl Logic for OctreeBuilder {
         self.cell_bit.next = bits::<16>(1) << self.cell_level.q.val();
         self.from_parent.next = bits::<16>(0xffff) << self.parent.val();
         self.shifted.next = self.probe.q.val() >> 3;
+        self.brick_next.next = self.brick.q.val() << 8;
+        self.cell.next = self.brick.q.val().get_bits::<8>(56);
         self.parent_held.next = 0.into();
         self.highest.next = 0.into();
         self.highest_found.next = false;
         self.highest_full.next = false;
-        for i in 0..9 {
+        for i in 0..8 {
             if self.level_of[i].val() == self.parent.val() {
                 self.parent_held.next = self.held[i].q.val();
             }
@@ -237,18 +259,18 @@ impl Logic for OctreeBuilder {
                     if self.in_valid.val() {
                         self.probe.d.next = self.count.q.val();
                         self.count.d.next = self.count.q.val() + 1;
-                        self.cell_level.d.next = 1.into();
-                        if (self.in_mask.val() == 0) | (self.in_mask.val() == 0xff) {
-                            self.cell_full.d.next = self.in_mask.val() == 0xff;
+                        self.cell_level.d.next = 2.into();
+                        if (self.in_brick.val() == 0) | self.in_brick.val().all() {
+                            self.cell_full.d.next = self.in_brick.val().all();
                             self.cell_mixed.d.next = false;
                             self.state.d.next = BuildState::Cascade;
                         } else {
-                            self.mask.d.next = self.in_mask.val();
-                            self.voxel.d.next = 7.into();
+                            self.brick.d.next = self.in_brick.val();
+                            self.cells_left.d.next = 7.into();
                             // Every ancestor is mixed: flush their leaves.
-                            self.mixed.d.next = self.mixed.q.val() | bits::<16>(0xfffc);
-                            self.flush_stop.d.next = 2.into();
-                            self.after_flush.d.next = BuildState::Voxels;
+                            self.mixed.d.next = self.mixed.q.val() | bits::<16>(0xfff8);
+                            self.flush_stop.d.next = 3.into();
+                            self.after_flush.d.next = BuildState::Cells;
                             self.state.d.next = BuildState::Flush;
                         }
                     }
@@ -260,13 +282,32 @@ impl Logic for OctreeBuilder {
                         if self.highest_full.val() {
                             self.node.next = 1.into();
                         }
-                        for i in 0..9 {
+                        for i in 0..8 {
                             if self.level_of[i].val() == self.highest.val() {
                                 self.held[i].d.next = self.held[i].q.val() - 1;
                             }
                         }
                     } else {
                         self.state.d.next = self.after_flush.q.val();
+                    }
+                }
+                BuildState::Cells => {
+                    if (self.cell.val() == 0) | (self.cell.val() == 0xff) {
+                        // A uniform level-1 cell of a mixed brick: a leaf.
+                        self.emit.next = true;
+                        self.node.next = 0.into();
+                        if self.cell.val() == 0xff {
+                            self.node.next = 1.into();
+                        }
+                        self.brick.d.next = self.brick_next.val();
+                        self.cells_left.d.next = self.cells_left.q.val() - 1;
+                        if self.cells_left.q.val() == 0 {
+                            self.state.d.next = BuildState::Mixed;
+                        }
+                    } else {
+                        self.mask.d.next = self.cell.val();
+                        self.voxel.d.next = 7.into();
+                        self.state.d.next = BuildState::Voxels;
                     }
                 }
                 BuildState::Voxels => {
@@ -276,9 +317,20 @@ impl Logic for OctreeBuilder {
                         self.node.next = 1.into();
                     }
                     if self.voxel.q.val() == 0 {
-                        self.state.d.next = BuildState::Mixed;
+                        self.state.d.next = BuildState::Closed;
                     } else {
                         self.voxel.d.next = self.voxel.q.val() - 1;
+                    }
+                }
+                BuildState::Closed => {
+                    // A mixed level-1 cell's node, after its voxels.
+                    self.emit.next = true;
+                    self.node.next = 2.into();
+                    self.brick.d.next = self.brick_next.val();
+                    self.cells_left.d.next = self.cells_left.q.val() - 1;
+                    self.state.d.next = BuildState::Cells;
+                    if self.cells_left.q.val() == 0 {
+                        self.state.d.next = BuildState::Mixed;
                     }
                 }
                 BuildState::Leaf => {
@@ -299,7 +351,7 @@ impl Logic for OctreeBuilder {
                     self.emit.next = true;
                     self.node.next = 2.into();
                     self.mixed.d.next = self.mixed.q.val() & !self.cell_bit.val();
-                    for i in 0..9 {
+                    for i in 0..8 {
                         if self.level_of[i].val() == self.cell_level.q.val() {
                             self.held[i].d.next = 0.into();
                         }
@@ -323,7 +375,7 @@ impl Logic for OctreeBuilder {
                             self.emit.next = true;
                             self.node.next = 2.into();
                             self.mixed.d.next = self.mixed.q.val() & !self.parent_bit.val();
-                            for i in 0..9 {
+                            for i in 0..8 {
                                 if self.level_of[i].val() == self.parent.val() {
                                     self.held[i].d.next = 0.into();
                                 }
@@ -358,7 +410,7 @@ impl Logic for OctreeBuilder {
                         if self.complete.val() {
                             // Eight leaves of one type: the parent is one.
                             self.mixed.d.next = self.mixed.q.val() & !self.parent_bit.val();
-                            for i in 0..9 {
+                            for i in 0..8 {
                                 if self.level_of[i].val() == self.parent.val() {
                                     self.held[i].d.next = 0.into();
                                 }
@@ -366,7 +418,7 @@ impl Logic for OctreeBuilder {
                             self.cell_level.d.next = self.parent.val();
                             self.probe.d.next = self.shifted.val();
                         } else {
-                            for i in 0..9 {
+                            for i in 0..8 {
                                 if self.level_of[i].val() == self.parent.val() {
                                     self.held[i].d.next = self.held[i].q.val() + 1;
                                 }
@@ -391,7 +443,7 @@ impl Logic for OctreeBuilder {
             self.mixed.d.next = 0.into();
             self.count.d.next = 0.into();
             self.out_valid_q.d.next = false;
-            for i in 0..9 {
+            for i in 0..8 {
                 self.held[i].d.next = 0.into();
             }
         }
@@ -399,4 +451,4 @@ impl Logic for OctreeBuilder {
 }
 
 // The loops over the levels are written with a literal.
-const _: () = assert!(HELD_LEVELS == 9 && BUILDER_MAX_LEVEL as usize == HELD_LEVELS + 1);
+const _: () = assert!(HELD_LEVELS == 8 && BUILDER_MAX_LEVEL as usize == HELD_LEVELS + 2);

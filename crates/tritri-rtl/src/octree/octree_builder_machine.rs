@@ -3,42 +3,54 @@
 //! edge by clock edge, for one voxel model streamed in (the writer of the
 //! nodes always ready).
 //!
-//! **Order.** The builder reads the grid's level-1 cells (2×2×2 voxels,
-//! one mask a clock) in *reverse* Morton order, octant 7 first at every
-//! level, and writes each cell's node after its children (postorder). That
-//! sequence, reversed, is the canonical preorder of `tritri_geom::octree::
-//! tree` (a node, then its children octant 0 first): the node memory is
-//! written from its top address down and read from where the writer
-//! stopped.
+//! **Order.** The builder reads the grid a *brick* a clock: a level-2 cell
+//! of 4×4×4 voxels, one 64-bit word ([`brick_words`]), the bricks in
+//! *reverse* Morton order, octant 7 first at every level. It writes each
+//! cell's node after its children (postorder). That sequence, reversed, is
+//! the canonical preorder of `tritri_geom::octree::tree` (a node, then its
+//! children octant 0 first): the node memory is written from its top
+//! address down and read from where the writer stopped.
 //!
-//! **Canonical form on the fly.** A leaf child (a uniform cell) is not
+//! **Canonical form on the fly.** A uniform brick is a leaf; a brick that
+//! is not is a mixed cell whose eight level-1 cells are written at once
+//! (octant 7 first: a uniform one as a leaf, a mixed one as its eight
+//! voxels and its mixed node). Above the bricks, a leaf child is not
 //! written at once but *held* at its parent's level: a count and a type,
 //! while the parent's children so far are leaves of one type. Eight held
 //! leaves of one type make the parent a leaf of that type, passed up the
-//! same way. The first child that differs, or the first node written inside
-//! a mixed child, makes the parent and every ancestor mixed: the held
-//! leaves of those levels are written first, outermost level first (in
-//! postorder they precede everything inside the current cell), and every
-//! later leaf child of a mixed cell is written at once. A mixed cell's node
-//! follows its last child.
+//! same way. The first child that differs, or a mixed brick inside the
+//! parent, makes the parent and every ancestor mixed: the held leaves of
+//! those levels are written first, outermost level first (in postorder they
+//! precede everything inside the current cell), and every later leaf child
+//! of a mixed cell is written at once. A mixed cell's node follows its
+//! last child.
 //!
-//! **Clocks.** Each clock does one step: take a level-1 cell's mask; write
-//! one held leaf (a flush ends with a clock that finds none left); write one voxel of a mixed level-1 cell (octant 7 to 0);
-//! write a leaf child of a mixed cell; write a mixed node; or pass a
-//! completed cell's class up one level (writing the parent's mixed node in
-//! the same clock when the child was mixed and the parent is complete).
+//! **Clocks.** Each clock does one step: take a brick; write one held leaf
+//! (a flush ends with a clock that finds none left); look at one level-1
+//! cell of a mixed brick (writing it when it is a leaf); write one voxel of
+//! a mixed level-1 cell, or its mixed node; write a leaf child of a mixed
+//! cell; write a mixed node; or pass a completed cell's class up one level
+//! (writing the parent's mixed node in the same clock when the child was
+//! mixed and the parent is complete).
 
 use tritri_geom::octree::tree::Node;
+
+/// The smallest grid the builder takes: one brick, `2^2` voxels a side.
+pub const BUILDER_MIN_LEVEL: u32 = 2;
 
 /// The state machine's step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BuilderState {
-    /// Waiting for a level-1 cell's mask.
+    /// Waiting for a brick.
     Input,
     /// Writing held leaves of the levels >= `flush_stop`, highest first.
     Flush,
+    /// Looking at the next level-1 cell of a mixed brick.
+    Cells,
     /// Writing a mixed level-1 cell's voxels, octant 7 to 0.
     Voxels,
+    /// Writing a mixed level-1 cell's node.
+    Closed,
     /// Writing the leaf child that made its parent mixed.
     Leaf,
     /// Writing the mixed node of the cell at `cell_level`.
@@ -49,7 +61,7 @@ pub enum BuilderState {
 
 /// What the builder wrote for one model: its nodes in the order written
 /// (reverse preorder), the edge each was taken at (counted from 0, the edge
-/// the first mask is offered at), and the edges until it is idle.
+/// the first brick is offered at), and the edges until it is idle.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct BuilderRun {
     pub nodes: Vec<Node>,
@@ -64,24 +76,30 @@ impl BuilderRun {
     }
 }
 
-/// The masks of the `2^level` grid's level-1 cells in the builder's order:
-/// reverse Morton order (octant 7 first at every level). Bit `o` of a
-/// mask is voxel `o` of the cell (bit `k` of `o`: upper half along `k`).
-pub fn level1_masks(level: u32, voxel: impl Fn([usize; 3]) -> bool) -> Vec<u8> {
-    let cells = 1usize << (3 * (level - 1));
-    (0..cells)
+/// The `2^level` grid's bricks (level >= 2) in the builder's order:
+/// reverse Morton order, octant 7 first at every level. Bit `8 c + o` of a
+/// brick is voxel `o` of its level-1 cell `c` (bit `k` of an octant: the
+/// upper half along axis `k`).
+pub fn brick_words(level: u32, voxel: impl Fn([usize; 3]) -> bool) -> Vec<u64> {
+    let bricks = 1usize << (3 * (level - 2));
+    (0..bricks)
         .map(|i| {
-            let morton = cells - 1 - i;
+            let morton = bricks - 1 - i;
             // De-interleave the Morton code: bit 3j + k is bit j of axis k.
             let mut lo = [0usize; 3];
-            for j in 0..(level as usize - 1) {
+            for j in 0..(level as usize - 2) {
                 for (k, c) in lo.iter_mut().enumerate() {
                     *c |= (morton >> (3 * j + k) & 1) << j;
                 }
             }
-            (0..8)
-                .filter(|&o| voxel([0, 1, 2].map(|k| 2 * lo[k] + (o >> k & 1))))
-                .fold(0u8, |m, o| m | 1 << o)
+            let mut word = 0u64;
+            for c in 0..8 {
+                for o in 0..8 {
+                    let p = [0, 1, 2].map(|k| 4 * lo[k] + 2 * (c >> k & 1) + (o >> k & 1));
+                    word |= u64::from(voxel(p)) << (8 * c + o);
+                }
+            }
+            word
         })
         .collect()
 }
@@ -90,12 +108,12 @@ pub fn level1_masks(level: u32, voxel: impl Fn([usize; 3]) -> bool) -> Vec<u8> {
 struct Builder {
     level: u32,
     state: BuilderState,
-    /// Per level (2 to `level`): the cell is known mixed; leaves held, and
+    /// Per level (3 to `level`): the cell is known mixed; leaves held, and
     /// their type (true: full).
     mixed: [bool; 16],
     held: [u8; 16],
     full: [bool; 16],
-    /// The level-1 cells taken so far in this model.
+    /// The bricks taken so far in this model.
     count: u64,
     /// The cell being passed up: its level, its position (bits 2..0: its
     /// octant counted from 7 down, 7 the parent's last), its class.
@@ -104,8 +122,12 @@ struct Builder {
     cell_full: bool,
     cell_mixed: bool,
     flush_stop: u32,
-    /// The state after a flush: `Voxels` or `Leaf`.
+    /// The state after a flush: `Cells` or `Leaf`.
     after_flush: BuilderState,
+    /// A mixed brick, shifted so that the level-1 cell looked at is its top
+    /// byte; the level-1 cells left after it.
+    brick: u64,
+    cells_left: u8,
     mask: u8,
     voxel: u8,
 }
@@ -134,28 +156,39 @@ impl Builder {
         self.held[l as usize] = 0;
     }
 
+    /// After a level-1 cell of a mixed brick: the next, or the brick's node.
+    fn next_cell(&mut self) {
+        self.brick <<= 8;
+        if self.cells_left == 0 {
+            self.state = BuilderState::Mixed;
+        } else {
+            self.cells_left -= 1;
+            self.state = BuilderState::Cells;
+        }
+    }
+
     /// One clock edge with `input` offered; returns the node written and
     /// whether the input was taken.
-    fn step(&mut self, input: Option<u8>) -> (Option<Node>, bool) {
+    fn step(&mut self, input: Option<u64>) -> (Option<Node>, bool) {
         let leaf = |full: bool| if full { Node::Full } else { Node::Empty };
         let complete = self.probe & 7 == 7;
         let parent = self.cell_level + 1;
         match self.state {
             BuilderState::Input => {
-                let Some(mask) = input else {
+                let Some(brick) = input else {
                     return (None, false);
                 };
                 self.probe = self.count;
                 self.count += 1;
-                self.cell_level = 1;
-                if mask == 0 || mask == 0xff {
-                    self.cell_full = mask == 0xff;
+                self.cell_level = 2;
+                if brick == 0 || brick == u64::MAX {
+                    self.cell_full = brick == u64::MAX;
                     self.cell_mixed = false;
                     self.state = BuilderState::Cascade;
                 } else {
-                    self.mask = mask;
-                    self.voxel = 7;
-                    self.mix_from(2, BuilderState::Voxels);
+                    self.brick = brick;
+                    self.cells_left = 7;
+                    self.mix_from(3, BuilderState::Cells);
                 }
                 (None, true)
             }
@@ -169,14 +202,30 @@ impl Builder {
                     (None, false)
                 }
             },
+            BuilderState::Cells => {
+                let cell = (self.brick >> 56) as u8;
+                if cell == 0 || cell == 0xff {
+                    self.next_cell();
+                    (Some(leaf(cell == 0xff)), false)
+                } else {
+                    self.mask = cell;
+                    self.voxel = 7;
+                    self.state = BuilderState::Voxels;
+                    (None, false)
+                }
+            }
             BuilderState::Voxels => {
                 let node = leaf(self.mask >> self.voxel & 1 == 1);
                 if self.voxel == 0 {
-                    self.state = BuilderState::Mixed;
+                    self.state = BuilderState::Closed;
                 } else {
                     self.voxel -= 1;
                 }
                 (Some(node), false)
+            }
+            BuilderState::Closed => {
+                self.next_cell();
+                (Some(Node::Mixed), false)
             }
             BuilderState::Leaf => {
                 if complete {
@@ -243,9 +292,9 @@ impl Builder {
     }
 }
 
-/// The builder's nodes and edges for the masks of one `2^level` model
-/// (1 to 10) offered one after another.
-pub fn builder_schedule(level: u32, masks: &[u8]) -> BuilderRun {
+/// The builder's nodes and edges for the bricks of one `2^level` model
+/// (2 to 10) offered one after another.
+pub fn builder_schedule(level: u32, bricks: &[u64]) -> BuilderRun {
     let mut b = Builder {
         level,
         state: BuilderState::Input,
@@ -253,12 +302,14 @@ pub fn builder_schedule(level: u32, masks: &[u8]) -> BuilderRun {
         held: [0; 16],
         full: [false; 16],
         count: 0,
-        cell_level: 1,
+        cell_level: 2,
         probe: 0,
         cell_full: false,
         cell_mixed: false,
-        flush_stop: 2,
+        flush_stop: 3,
         after_flush: BuilderState::Input,
+        brick: 0,
+        cells_left: 0,
         mask: 0,
         voxel: 0,
     };
@@ -266,8 +317,8 @@ pub fn builder_schedule(level: u32, masks: &[u8]) -> BuilderRun {
     let mut next = 0usize;
     let mut shown = false;
     let mut edge = 0u64;
-    while next < masks.len() || b.state != BuilderState::Input || b.count != 0 || shown {
-        let (node, taken) = b.step(masks.get(next).copied());
+    while next < bricks.len() || b.state != BuilderState::Input || b.count != 0 || shown {
+        let (node, taken) = b.step(bricks.get(next).copied());
         next += usize::from(taken);
         shown = false;
         if let Some(node) = node {
@@ -296,7 +347,7 @@ mod tests {
     #[test]
     fn reversed_nodes_are_the_canonical_preorder() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        for level in 1..=5u32 {
+        for level in BUILDER_MIN_LEVEL..=5u32 {
             for round in 0..12 {
                 let mut grid = VoxelGrid::empty(level);
                 let n = 1usize << level;
@@ -318,7 +369,7 @@ mod tests {
                         }
                     }
                 }
-                let masks = level1_masks(level, |p| grid.get(p));
+                let masks = brick_words(level, |p| grid.get(p));
                 let run = builder_schedule(level, &masks);
                 assert_eq!(
                     run.preorder(),
