@@ -372,7 +372,9 @@ impl Args {
         if self.dsp.is_some() && !self.has_multipliers() {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
         }
-        if self.multipliers() == MultiplierMapping::Ecp5 {
+        // The width check is the multipliers' (the octree engine's units and
+        // the tessellator map none onto MULT18X18D).
+        if self.multipliers() == MultiplierMapping::Ecp5 && self.has_multipliers() {
             if let Some(flow) = self.synth.as_deref().filter(|&s| s != "ecp5") {
                 return Err(format!("--dsp ecp5 with --synth {flow}: the multipliers are ECP5 primitives; synthesize them with --synth ecp5"));
             }

@@ -17,6 +17,7 @@ use tritri_geom::octree::segments::{boundary_edges, clip_segment, Clipped, Segme
 use tritri_geom::octree::tree::{Octree, OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
 use tritri_geom::octree::voxels::VoxelGrid;
+use tritri_rtl::emit::octree_builder_unit::OCTREE_BUILDER_NAME;
 use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
 use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 
@@ -87,8 +88,23 @@ const DEFAULT_CLOCK_MHZ: f64 = 68.3;
 const CLIPPER_CLOCK_MHZ: f64 = 134.2;
 const SET_OPERATION_CLOCK_MHZ: f64 = 379.2;
 const VOXEL_FILL_CLOCK_MHZ: f64 = 67.9;
-/// The octree builder is not routed: its time is given at an assumed clock.
-const BUILDER_ASSUMED_CLOCK_MHZ: f64 = 100.0;
+/// A unit not routed yet is timed at this clock, said so.
+pub const ASSUMED_CLOCK_MHZ: f64 = 100.0;
+
+/// The clock a unit's time is given at: `--clock-mhz`, else its post-route
+/// clock on the ECP5-85 from the measurements built in
+/// (`rtl-out/measurements.json`), else [`ASSUMED_CLOCK_MHZ`]; with words
+/// saying which.
+pub fn unit_clock(hardware: &EngineArgs, unit: &str) -> (f64, &'static str) {
+    match (
+        hardware.clock_mhz,
+        tritri_rtl::measured::Measurements::committed().ecp5(unit),
+    ) {
+        (Some(f), _) => (f, ""),
+        (None, Some(row)) => (row.fmax_mhz, " (post-route, ECP5-85)"),
+        (None, None) => (ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
+    }
+}
 
 #[derive(clap::Args, Debug)]
 struct ClipArgs {
@@ -280,10 +296,7 @@ pub fn build_in_hardware(
         "the octree builder in {} wrote a tree that differs from the model's (a bug)",
         hardware.engine.name()
     );
-    let (clock, how) = match hardware.clock_mhz {
-        Some(f) => (f, ""),
-        None => (BUILDER_ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
-    };
+    let (clock, how) = unit_clock(hardware, OCTREE_BUILDER_NAME);
     println!(
         "hardware ({}): octree builder, {} bricks in, the model's {} nodes out; {} cycles = {:.3} ms at {clock} MHz{how} (simulated in {:.1} s)",
         hardware.engine.name(),

@@ -15,6 +15,7 @@ use tritri_geom::octree::tree::Octree;
 use tritri_geom::octree::voxelize::{self, level_of_resolution, VoxelFrame, SUB_BITS};
 use tritri_geom::octree::voxels::VoxelGrid;
 use tritri_geom::scene::load::load_object;
+use tritri_rtl::emit::triangle_voxelizer_unit::TRIANGLE_VOXELIZER_NAME;
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -44,9 +45,6 @@ pub struct Args {
     #[command(flatten)]
     hardware: EngineArgs,
 }
-
-/// The voxelizer is not routed: its time is given at an assumed clock.
-const VOXELIZER_ASSUMED_CLOCK_MHZ: f64 = 100.0;
 
 /// Where renders are taken from.
 #[derive(clap::Args, Debug, Clone)]
@@ -201,10 +199,7 @@ fn voxelize_in_hardware(
         "the triangle voxelizer in {} marked voxels that differ from the software model (a bug)",
         hardware.engine.name()
     );
-    let (clock, how) = match hardware.clock_mhz {
-        Some(f) => (f, ""),
-        None => (VOXELIZER_ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
-    };
+    let (clock, how) = crate::octree::unit_clock(hardware, TRIANGLE_VOXELIZER_NAME);
     let simulated = if hardware.engine == Engine::Model {
         String::new()
     } else {

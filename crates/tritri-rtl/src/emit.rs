@@ -61,6 +61,7 @@ pub mod ansi_ports;
 pub mod binning_unit_unit;
 pub mod broad_phase_system_unit;
 pub mod cell_classifier_unit;
+pub mod cone_unit_unit;
 pub mod continuous_assigns;
 pub mod dsp_mapping;
 pub mod modules;

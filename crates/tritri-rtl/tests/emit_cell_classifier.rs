@@ -102,6 +102,23 @@ fn patch_tessellator_snapshot() {
     insta::assert_snapshot!(design.verilog_files().next().unwrap().contents.clone());
 }
 
+/// The emitted cone unit at W = 16, for review.
+#[test]
+fn cone_unit_snapshot() {
+    let design = tritri_rtl::emit::cone_unit_unit::emit_cone_unit(16).unwrap();
+    assert_eq!(design.modules, vec!["tritri_cone_unit_w16".to_string()]);
+    insta::assert_snapshot!(design.verilog_files().next().unwrap().contents.clone());
+}
+
+/// The Bezier system's cone unit, at every W it is built for.
+#[test]
+fn the_cone_unit_is_lint_clean() {
+    use tritri_rtl::emit::cone_unit_unit::{emit_cone_unit, CONE_UNIT_WIDTHS};
+    for w in CONE_UNIT_WIDTHS {
+        check(w, emit_cone_unit(w).unwrap());
+    }
+}
+
 /// The Bezier system's patch tessellator, at every (W, K) it is built for.
 #[test]
 fn the_patch_tessellator_is_lint_clean() {

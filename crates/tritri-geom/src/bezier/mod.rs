@@ -7,7 +7,9 @@
 //! * [`subdivide`]: De Casteljau subdivision (the teapot's 32 patches into
 //!   64 to 512);
 //! * [`cone`]: the cone of normals as a guarantee, the paper's back-facing
-//!   and silhouette tests and their conservative forms;
+//!   and silhouette tests and their conservative forms; [`cone_fixed`]: the
+//!   conservative test exactly in fixed point, the hardware cone unit's
+//!   model;
 //! * [`lod`]: the paper's distance levels and an error-driven level;
 //! * [`view`]: each patch's treatment for one eye (culled, silhouette,
 //!   samples);
@@ -24,6 +26,7 @@ use nalgebra::{Point3, Vector3};
 use std::path::Path;
 
 pub mod cone;
+pub mod cone_fixed;
 pub mod evaluate;
 pub mod fixed;
 pub mod lod;

@@ -1,3 +1,4 @@
 //! The Bezier level-of-detail system's hardware (`bezier_lod_gpu.txt`):
-//! the patch tessellation unit.
+//! the patch tessellation unit and the cone-of-normals unit.
+pub mod cone_unit;
 pub mod patch_tessellator;
