@@ -2,6 +2,9 @@
 //! patch tessellation unit (forward differences, one vertex per clock) or
 //! its exact fixed-point model, the error against the f64 patches.
 //!
+//! `tritri bezier cones`: every patch classified from an eye by its cone
+//! of normals in fixed point, in the hardware cone unit or its model.
+//!
 //! `tritri bezier render`: Bezier patches drawn the way
 //! `bezier_lod_gpu.txt` displays them: back-facing patches culled by their
 //! cone of normals, patches that may hold a silhouette refined, the rest
@@ -37,6 +40,29 @@ enum BezierCommand {
     /// hardware tessellation unit or its fixed-point model; report the
     /// error against the f64 patches and the clocks.
     Tessellate(TessellateArgs),
+    /// Classify every patch from an eye with its cone of normals in fixed
+    /// point (culled, front-facing, or a possible silhouette), in the
+    /// hardware cone unit or its model; compare with the f64 guarantee.
+    Cones(ConesArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct ConesArgs {
+    /// The patches (.bpt).
+    file: String,
+    /// The eye's position, in the patches' coordinates.
+    #[arg(long, default_value = "7,-10,6", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = input::parse_point)]
+    eye: [f64; 3],
+    /// Bits of a control point's coordinate on the patches' grid (16 or 24).
+    #[arg(long, default_value_t = 24)]
+    width: usize,
+    /// Cut every patch in two this many times first (0 to 6).
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    subdivide: u32,
+    /// What classifies: the exact fixed-point model, or the unit in
+    /// rust-hdl, Icarus or Verilator (checked against the model).
+    #[arg(long, value_enum, default_value_t = Engine::Model)]
+    engine: Engine,
 }
 
 #[derive(clap::Args, Debug)]
@@ -96,6 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let a = match args.command {
         BezierCommand::Render(a) => a,
         BezierCommand::Tessellate(t) => return tessellate(t),
+        BezierCommand::Cones(c) => return cones(c),
     };
     if !a.png.to_ascii_lowercase().ends_with(".png") {
         eprintln!("error: --png {}: the render is written as .png", a.png);
@@ -283,4 +310,78 @@ fn assembled_triangles(grid: &[[i64; 3]], side: usize) -> usize {
         }
     }
     count
+}
+
+/// `tritri bezier cones`: the fixed-point cone test on every patch.
+fn cones(a: ConesArgs) -> anyhow::Result<ExitCode> {
+    use tritri_cosim::cone_unit::{expected, inputs_for};
+    use tritri_geom::bezier::cone::{back_facing, NormalCone};
+    use tritri_geom::bezier::cone_fixed::Facing;
+    use tritri_rtl::bezier::cone_unit::{CONE_UNIT_LATENCY, CONE_UNIT_WIDTHS};
+    if !CONE_UNIT_WIDTHS.contains(&a.width) {
+        eprintln!(
+            "error: --width {}: the cone unit is built for {CONE_UNIT_WIDTHS:?}",
+            a.width
+        );
+        return Ok(ExitCode::from(2));
+    }
+    let patches = match read_bpt(std::path::Path::new(&a.file)) {
+        Ok(p) => oriented_outwards(&subdivide(&p, a.subdivide)).0,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let eye = a.eye.into();
+    let inputs = match inputs_for(&patches, &[eye], a.width) {
+        Ok(i) => i,
+        Err(e) => {
+            eprintln!("error: --eye {:?}: {e:#}", a.eye);
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let started = std::time::Instant::now();
+    let model = expected(&inputs);
+    let classes = match a.engine.simulator() {
+        _ if a.engine == Engine::Model => model.clone(),
+        None => tritri_cosim::cone_unit::run_rusthdl(a.width, &inputs)?,
+        Some(simulator) => tritri_cosim::cone_unit::run_emitted(a.width, &inputs, simulator)?,
+    };
+    anyhow::ensure!(
+        classes == model,
+        "the cone unit in {} differs from the fixed-point model (a bug)",
+        a.engine.name()
+    );
+    let count = |f: Facing| classes.iter().filter(|&&c| c == f).count();
+    let f64_culled: Vec<bool> = patches
+        .iter()
+        .map(|p| NormalCone::of(p).is_some_and(|c| back_facing(&c, p, eye)))
+        .collect();
+    let differ = f64_culled
+        .iter()
+        .zip(&classes)
+        .filter(|(&f, &c)| f != (c == Facing::Back))
+        .count();
+    println!(
+        "{} patches from ({}, {}, {}) on a {}-bit grid: {} culled, {} front-facing, {} possible silhouettes; the f64 guarantee culls {}, {differ} answers differ",
+        patches.len(),
+        a.eye[0],
+        a.eye[1],
+        a.eye[2],
+        a.width,
+        count(Facing::Back),
+        count(Facing::Front),
+        count(Facing::Silhouette),
+        f64_culled.iter().filter(|&&c| c).count(),
+    );
+    if a.engine != Engine::Model {
+        let cycles = patches.len() + CONE_UNIT_LATENCY;
+        println!(
+            "hardware ({}): the model's classes, one patch a clock: {cycles} cycles = {:.3} us at an assumed 100 MHz (not routed; simulated in {:.1} s)",
+            a.engine.name(),
+            cycles as f64 / 100.0,
+            started.elapsed().as_secs_f64()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
 }

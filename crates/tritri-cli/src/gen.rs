@@ -68,7 +68,9 @@
 //! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
-//! `tritri_patch_tessellator_w<W>_k<K>`.
+//! `tritri_patch_tessellator_w<W>_k<K>`; `--cone-unit [--width 16|24]` its
+//! cone-of-normals test (one patch and eye a clock), top
+//! `tritri_cone_unit_w<W>`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -96,6 +98,7 @@ use tritri_rtl::emit::broad_phase_system_unit::{
 use tritri_rtl::emit::cell_classifier_unit::{
     cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS,
 };
+use tritri_rtl::emit::cone_unit_unit::{cone_unit_name, emit_cone_unit, CONE_UNIT_WIDTHS};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
 use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
@@ -186,6 +189,11 @@ pub struct Args {
     /// the coordinates' (16 or 24), --steps the log2 of the steps a side.
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase"])]
     patch_tessellator: bool,
+    /// Emit the Bezier system's cone-of-normals unit instead (one patch and
+    /// eye a clock: culled, front-facing or a possible silhouette); --width
+    /// is the control points' (16 or 24).
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator"])]
+    cone_unit: bool,
     /// With --patch-tessellator: 2^K steps a side (3 or 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
     steps: Option<usize>,
@@ -361,6 +369,7 @@ impl Args {
             || self.owner_filter
             || self.binning_unit
             || self.patch_tessellator
+            || self.cone_unit
             || self.engine_unit())
     }
 
@@ -453,6 +462,10 @@ impl Args {
             return emit_patch_tessellator(width, k)
                 .with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
         }
+        if self.cone_unit {
+            return emit_cone_unit(width)
+                .with_context(|| format!("emitting {}", cone_unit_name(width)));
+        }
         if self.plane_traversal {
             return emit_plane_traversal()
                 .with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
@@ -509,6 +522,7 @@ impl Args {
     /// Everything but the pipeline goes into a directory named after its top.
     fn named_by_unit(&self) -> bool {
         self.patch_tessellator
+            || self.cone_unit
             || self.system
             || self.classifier
             || self.setup
@@ -537,6 +551,8 @@ impl Args {
     fn unit_name(&self, width: usize) -> String {
         if self.patch_tessellator {
             patch_tessellator_unit_name(width, self.steps.unwrap_or(3))
+        } else if self.cone_unit {
+            cone_unit_name(width)
         } else if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
         } else if self.set_operation {
@@ -600,6 +616,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             eprintln!("error: --patch-tessellator --width {w} --steps {}: the unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}", args.steps.unwrap_or(3));
             return Ok(ExitCode::from(2));
         }
+        if args.cone_unit && !CONE_UNIT_WIDTHS.contains(&w) {
+            eprintln!(
+                "error: --cone-unit --width {w}: the unit is built for W in {CONE_UNIT_WIDTHS:?}"
+            );
+            return Ok(ExitCode::from(2));
+        }
         if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
             let unit = if args.setup {
                 "--setup"
@@ -611,6 +633,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
         if let (false, Err(e)) = (
             args.patch_tessellator
+                || args.cone_unit
                 || args.octree_unit()
                 || args.binning_unit
                 || args.broad_phase

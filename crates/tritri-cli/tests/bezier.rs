@@ -120,3 +120,36 @@ fn tessellate_runs_the_unit_and_reports_the_error() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--width 20"));
 }
+
+/// `tritri bezier cones`: two squares, one facing the eye and one turned
+/// away, through the cone unit in Verilator: one culled, one front-facing,
+/// as the f64 guarantee says; a width the unit is not built for is refused.
+#[test]
+fn cones_runs_the_unit_and_compares_with_f64() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bezier-cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("squares-cones.bpt");
+    std::fs::write(&file, two_squares()).unwrap();
+    let out = tritri(&[
+        "bezier",
+        "cones",
+        file.to_str().unwrap(),
+        "--eye",
+        "3,1.5,10",
+        "--engine",
+        "verilator",
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    for needle in ["2 patches from (3, 1.5, 10) on a 24-bit grid: 1 culled, 1 front-facing, 0 possible silhouettes; the f64 guarantee culls 1, 0 answers differ", "hardware (verilator): the model's classes"] {
+        assert!(text.contains(needle), "no `{needle}` in:\n{text}");
+    }
+    let out = tritri(&["bezier", "cones", file.to_str().unwrap(), "--width", "20"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--width 20"));
+}

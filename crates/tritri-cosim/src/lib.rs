@@ -23,6 +23,7 @@
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
+pub mod cone_unit;
 pub mod engine;
 pub mod octree_builder;
 pub mod owner_filter;

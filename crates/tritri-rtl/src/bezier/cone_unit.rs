@@ -123,7 +123,9 @@ impl<const W: usize, const NET: usize, const EYE: usize> ConeUnit<W, NET, EYE> {
         });
         let e = W + EYE_EXTRA_BITS;
         let eye = std::array::from_fn(|k| {
-            let raw = eye_bits.get_bits::<64>(k * e).index() as u64 & ((1u64 << e) - 1);
+            let raw = (0..e)
+                .filter(|&b| eye_bits.get_bit(k * e + b))
+                .fold(0u64, |v, b| v | 1 << b);
             // Sign-extend the W + 4 bits.
             ((raw << (64 - e)) as i64) >> (64 - e)
         });
