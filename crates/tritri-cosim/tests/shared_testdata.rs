@@ -217,3 +217,43 @@ fn cone_unit_equals_model_on_the_teapot() {
         assert!(culled > 0);
     }
 }
+
+/// The patch tessellation unit on the teapot at 32 to 512 patches (a
+/// 24-bit grid fit to the teapot, 8 steps a side): rust-hdl and the
+/// emitted Verilog in Verilator give the fixed-point model's vertices, in
+/// the timing formula's clocks.
+#[test]
+fn patch_tessellator_equals_model_on_the_teapot() {
+    use tritri_cosim::patch_tessellator::{run_emitted, run_rusthdl};
+    use tritri_geom::bezier::fixed::{fixed_grid, PatchFrame};
+    use tritri_rtl::bezier::patch_tessellator::tessellation_clocks;
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/testdata");
+    let base = tritri_geom::bezier::read_bpt(&dir.join("teapot.bpt")).unwrap();
+    let (w, k) = (24usize, 3usize);
+    for times in 0..=4u32 {
+        let patches = tritri_geom::bezier::subdivide::subdivide(&base, times);
+        let frame = PatchFrame::fit(&patches, w as u32);
+        let nets: Vec<_> = patches.iter().map(|p| frame.quantize(p)).collect();
+        let runs = [
+            ("rust-hdl", run_rusthdl(w, k, &nets, &|_| true)),
+            (
+                "Verilator",
+                run_emitted(w, k, &nets, tritri_cosim::simulator::Simulator::Verilator).unwrap(),
+            ),
+        ];
+        for (name, runs) in runs {
+            assert_eq!(runs.len(), nets.len(), "{name}");
+            for (run, net) in runs.iter().zip(&nets) {
+                let vertices: Vec<[i64; 3]> = run.vertices.iter().map(|v| v.2).collect();
+                assert_eq!(
+                    vertices,
+                    fixed_grid(net, k as u32),
+                    "{name}, {} patches",
+                    patches.len()
+                );
+                assert_eq!(run.clocks, tessellation_clocks(k as u32), "{name}: clocks");
+            }
+        }
+        eprintln!("teapot, {} patches: the tessellator's {} vertices equal the model's in rust-hdl and Verilator", patches.len(), nets.len() * 81);
+    }
+}
