@@ -68,7 +68,9 @@
 //! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
-//! `tritri_patch_tessellator_w<W>_k<K>`; `--cone-unit [--width 16|24]` its
+//! `tritri_patch_tessellator_w<W>_k<K>` (with `--assemble`, its triangles
+//! assembled, two a clock in the collision system's format, top
+//! `tritri_patch_triangles_w<W>_k<K>`); `--cone-unit [--width 16|24]` its
 //! cone-of-normals test (one patch and eye a clock), top
 //! `tritri_cone_unit_w<W>`.
 //!
@@ -103,7 +105,8 @@ use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
 use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::patch_tessellator_unit::{
-    emit_patch_tessellator, patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS,
+    emit_patch_tessellator, emit_patch_triangles, patch_tessellator_unit_name,
+    patch_triangles_unit_name, TESSELLATOR_CONFIGURATIONS,
 };
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
@@ -197,6 +200,10 @@ pub struct Args {
     /// With --patch-tessellator: 2^K steps a side (3 or 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
     steps: Option<usize>,
+    /// With --patch-tessellator: the unit with its triangles assembled (two
+    /// a clock, in the collision system's triangle format).
+    #[arg(long, requires = "patch_tessellator")]
+    assemble: bool,
     /// Emit the octree engine's voxel fill instead (cells' children
     /// written into the voxel memory, a word per clock).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
@@ -459,6 +466,10 @@ impl Args {
     fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
         if self.patch_tessellator {
             let k = self.steps.unwrap_or(3);
+            if self.assemble {
+                return emit_patch_triangles(width, k)
+                    .with_context(|| format!("emitting {}", patch_triangles_unit_name(width, k)));
+            }
             return emit_patch_tessellator(width, k)
                 .with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
         }
@@ -549,7 +560,9 @@ impl Args {
 
     /// The top module's name for `width`.
     fn unit_name(&self, width: usize) -> String {
-        if self.patch_tessellator {
+        if self.patch_tessellator && self.assemble {
+            patch_triangles_unit_name(width, self.steps.unwrap_or(3))
+        } else if self.patch_tessellator {
             patch_tessellator_unit_name(width, self.steps.unwrap_or(3))
         } else if self.cone_unit {
             cone_unit_name(width)

@@ -28,6 +28,7 @@ pub mod engine;
 pub mod octree_builder;
 pub mod owner_filter;
 pub mod patch_tessellator;
+pub mod patch_triangles;
 pub mod pipeline_rtl;
 pub mod plane_traversal;
 pub mod rusthdl_harness;

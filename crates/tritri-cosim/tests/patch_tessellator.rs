@@ -94,3 +94,51 @@ fn the_emitted_unit_equals_the_model_in_verilator_and_icarus() {
         }
     }
 }
+
+/// The tessellator with its triangles assembled: two triangles a cell in
+/// the model's order (`fixed_triangles`), the pair of vertex (i, j) a clock
+/// after it, `out_last` with the last pair, in rust-hdl and in the emitted
+/// Verilog under Verilator and Icarus.
+#[test]
+fn assembled_triangles_equal_the_model() {
+    use tritri_cosim::patch_triangles::{
+        run_emitted as triangles_emitted, run_rusthdl as triangles_rusthdl,
+    };
+    use tritri_geom::bezier::fixed::fixed_triangles;
+    for (w, k) in [(16, 3), (24, 4)] {
+        let nets = nets(w, 6, 300 + w as u64);
+        let vertices = run_rusthdl(w, k, &nets, &|_| true);
+        let mut runs = vec![("rust-hdl", triangles_rusthdl(w, k, &nets))];
+        runs.push((
+            "Verilator",
+            triangles_emitted(w, k, &nets, Simulator::Verilator).unwrap(),
+        ));
+        if w == 16 {
+            runs.push((
+                "Icarus",
+                triangles_emitted(w, k, &nets, Simulator::Icarus).unwrap(),
+            ));
+        }
+        let side = (1u64 << k) + 1;
+        for (name, runs) in runs {
+            for ((run, net), tess) in runs.iter().zip(&nets).zip(&vertices) {
+                assert_eq!(
+                    run.triangles,
+                    fixed_triangles(net, k as u32),
+                    "{name}, W = {w}, K = {k}"
+                );
+                assert!(run.last_flag_right, "{name}: out_last");
+                // Each pair a clock after its vertex (i, j >= 1).
+                let want: Vec<u64> = tess
+                    .edges
+                    .iter()
+                    .enumerate()
+                    .filter(|(m, _)| *m as u64 / side > 0 && *m as u64 % side > 0)
+                    .map(|(_, e)| e + 1)
+                    .collect();
+                assert_eq!(run.edges, want, "{name}: edges");
+                assert_eq!(run.clocks, tess.clocks + 1, "{name}: clocks");
+            }
+        }
+    }
+}

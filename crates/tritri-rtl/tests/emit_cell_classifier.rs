@@ -119,14 +119,17 @@ fn the_cone_unit_is_lint_clean() {
     }
 }
 
-/// The Bezier system's patch tessellator, at every (W, K) it is built for.
+/// The Bezier system's patch tessellator, alone and with its triangles
+/// assembled, at every (W, K) it is built for.
 #[test]
 fn the_patch_tessellator_is_lint_clean() {
+    use tritri_rtl::emit::patch_tessellator_unit::emit_patch_triangles;
     use tritri_rtl::emit::patch_tessellator_unit::{
         emit_patch_tessellator, TESSELLATOR_CONFIGURATIONS,
     };
     for (w, k) in TESSELLATOR_CONFIGURATIONS {
         check(w, emit_patch_tessellator(w, k).unwrap());
+        check(w, emit_patch_triangles(w, k).unwrap());
     }
 }
 

@@ -60,6 +60,24 @@ pub fn fixed_grid(net: &FixedNet, k: u32) -> Vec<[i64; 3]> {
     out
 }
 
+/// The `2 n^2` triangles of the fixed-point grid, two per cell, cells row
+/// by row (`i` outer): `[(i, j), (i + 1, j), (i + 1, j + 1)]` and `[(i, j),
+/// (i + 1, j + 1), (i, j + 1)]`, what the hardware assembles
+/// (`tritri_rtl::bezier::patch_triangles`).
+pub fn fixed_triangles(net: &FixedNet, k: u32) -> Vec<crate::fixed_point::FixedTriangle> {
+    let n = 1usize << k;
+    let grid = fixed_grid(net, k);
+    let at = |i: usize, j: usize| grid[i * (n + 1) + j];
+    let mut out = Vec::with_capacity(2 * n * n);
+    for i in 0..n {
+        for j in 0..n {
+            out.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            out.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    out
+}
+
 /// A grid for an f64 patch: `step` per grid unit, `origin` at grid 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PatchFrame {

@@ -1,0 +1,267 @@
+//! Co-simulation of the tessellation unit with its triangles assembled
+//! ([`tritri_rtl::bezier::patch_triangles`]): nets through the rust-hdl
+//! model and the emitted Verilog, against the exact fixed-point model
+//! `tritri_geom::bezier::fixed::fixed_triangles`.
+//!
+//! Vectors: one line per patch, the 48 coordinates in hex (as for the
+//! tessellator). Outputs: per patch, one line per cell, `edge first second
+//! last` (the triangles as hex buses), then `done CLOCKS`.
+
+use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
+use anyhow::{bail, Context as _};
+use rust_hdl::prelude::*;
+use tritri_geom::bezier::fixed::FixedNet;
+use tritri_geom::fixed_point::FixedTriangle;
+use tritri_rtl::arith::convert::{from_i128, to_i128};
+use tritri_rtl::bezier::patch_tessellator::net_bits;
+use tritri_rtl::bezier::patch_triangles::PatchTriangles;
+use tritri_rtl::emit::patch_tessellator_unit::{emit_patch_triangles, patch_triangles_unit_name};
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+
+/// One patch's run: its triangles in order, the edge each pair was taken
+/// at (the start edge is 0), whether `out_last` came with the last pair
+/// alone, and the clocks from `start` to idle.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TrianglesRun {
+    pub triangles: Vec<FixedTriangle>,
+    pub edges: Vec<u64>,
+    pub last_flag_right: bool,
+    pub clocks: u64,
+}
+
+/// A triangle from its nine `w`-bit fields.
+fn triangle(field: impl Fn(usize) -> i64) -> FixedTriangle {
+    std::array::from_fn(|v| std::array::from_fn(|k| field(3 * v + k)))
+}
+
+/// Patches through the rust-hdl model at `(w, k)`, the reader always ready.
+pub fn run_rusthdl(w: usize, k: usize, nets: &[FixedNet]) -> Vec<TrianglesRun> {
+    fn one<
+        const W: usize,
+        const K: usize,
+        const V: usize,
+        const N: usize,
+        const C: usize,
+        const T: usize,
+        const S: usize,
+    >(
+        nets: &[FixedNet],
+    ) -> Vec<TrianglesRun> {
+        let mut uut = PatchTriangles::<W, K, V, N, C, T, S>::default();
+        uut.connect_all();
+        uut.out_ready.next = true;
+        reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
+        let cells = 1u64 << (2 * K);
+        let mut runs = Vec::new();
+        for net in nets {
+            let mut packed = Bits::<N>::default();
+            for (index, c) in net.iter().flatten().flatten().enumerate() {
+                packed.set_bits::<W>(index * W, from_i128::<W>(*c as i128));
+            }
+            uut.net.next = packed;
+            uut.start.next = true;
+            settle(&mut uut);
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            uut.start.next = false;
+            let mut run = TrianglesRun {
+                last_flag_right: true,
+                ..Default::default()
+            };
+            let mut edge = 1u64;
+            loop {
+                settle(&mut uut);
+                if !uut.busy.val() || edge > 4 * cells + 100 {
+                    break;
+                }
+                if uut.out_valid.val() {
+                    let (first, second) = (uut.out_first.val(), uut.out_second.val());
+                    run.triangles
+                        .push(triangle(|f| to_i128(first.get_bits::<W>(f * W)) as i64));
+                    run.triangles
+                        .push(triangle(|f| to_i128(second.get_bits::<W>(f * W)) as i64));
+                    run.edges.push(edge);
+                    run.last_flag_right &= uut.out_last.val() == (run.edges.len() as u64 == cells);
+                }
+                clock_cycle(&mut uut, |u| &mut u.clock);
+                edge += 1;
+            }
+            run.clocks = edge;
+            runs.push(run);
+        }
+        runs
+    }
+    tritri_rtl::with_patch_triangles!(w, k, one(nets))
+        .unwrap_or_else(|| panic!("no patch triangles unit at W = {w}, K = {k}"))
+}
+
+/// Patches through the emitted unit in `simulator`, the reader always ready.
+pub fn run_emitted(
+    w: usize,
+    k: usize,
+    nets: &[FixedNet],
+    simulator: Simulator,
+) -> anyhow::Result<Vec<TrianglesRun>> {
+    let design = emit_patch_triangles(w, k)?;
+    let mut files = vec![("tb_patch_triangles.sv".to_string(), testbench(w, k))];
+    files.extend(
+        design
+            .verilog_files()
+            .map(|f| (f.path.clone(), f.contents.clone())),
+    );
+    let bench = Testbench {
+        top: "tb_patch_triangles".into(),
+        files,
+        defines: vec![],
+        parameters: vec![],
+        c_optimization: 1,
+        trace: false,
+    };
+    let compiled = compile(simulator, &bench)?;
+    let mask = (1u128 << w) - 1;
+    let vectors: String = nets
+        .iter()
+        .map(|net| {
+            net.iter()
+                .flatten()
+                .flatten()
+                .map(|&c| format!("{:x}", c as i128 as u128 & mask))
+                .collect::<Vec<_>>()
+                .join(" ")
+                + "\n"
+        })
+        .collect();
+    let (text, _) = run_on_vectors(&compiled, "patch-triangles-run", &vectors, &[])?;
+    let cells = 1u64 << (2 * k);
+    // A hex bus, field `f` of `w` bits, two's complement.
+    let field = |bus: &str, f: usize| -> i64 {
+        let digits: Vec<u32> = bus
+            .chars()
+            .rev()
+            .map(|c| c.to_digit(16).unwrap_or(0))
+            .collect();
+        let raw: i128 = (0..w)
+            .filter(|b| {
+                digits
+                    .get((f * w + b) / 4)
+                    .is_some_and(|d| d >> ((f * w + b) % 4) & 1 == 1)
+            })
+            .map(|b| 1i128 << b)
+            .sum();
+        (if raw >> (w - 1) & 1 == 1 {
+            raw - (1i128 << w)
+        } else {
+            raw
+        }) as i64
+    };
+    let mut runs = Vec::new();
+    let mut run = TrianglesRun {
+        last_flag_right: true,
+        ..Default::default()
+    };
+    for line in text.lines() {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let number = |s: &str, radix| {
+            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
+        };
+        match fields.as_slice() {
+            ["done", clocks] => {
+                run.clocks = number(clocks, 10)?;
+                runs.push(std::mem::replace(
+                    &mut run,
+                    TrianglesRun {
+                        last_flag_right: true,
+                        ..Default::default()
+                    },
+                ));
+            }
+            [edge, first, second, last] => {
+                anyhow::ensure!(
+                    first
+                        .chars()
+                        .chain(second.chars())
+                        .all(|c| c.is_ascii_hexdigit()),
+                    "`{line}` is not hexadecimal"
+                );
+                run.triangles.push(triangle(|f| field(first, f)));
+                run.triangles.push(triangle(|f| field(second, f)));
+                run.edges.push(number(edge, 10)?);
+                run.last_flag_right &= (number(last, 2)? == 1) == (run.edges.len() as u64 == cells);
+            }
+            _ => bail!("patch triangles output line `{line}` is neither a pair nor `done CLOCKS`"),
+        }
+    }
+    if runs.len() != nets.len() {
+        bail!(
+            "the patch triangles unit finished {} of {} patches",
+            runs.len(),
+            nets.len()
+        );
+    }
+    Ok(runs)
+}
+
+/// The testbench: per patch, the net and start for one clock, then every
+/// pair with its edge (the start edge is edge 0) until busy falls.
+fn testbench(w: usize, k: usize) -> String {
+    let open_files = crate::simulator::OPEN_VECTOR_FILES;
+    let top = patch_triangles_unit_name(w, k);
+    let (n, t1, w1) = (net_bits(w), 9 * w - 1, w - 1);
+    let packed = (0..48)
+        .rev()
+        .map(|m| format!("c[{m}]"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    format!(
+        "\
+// Generated by tritri-cosim: the patch triangles unit, one patch per vector line.
+`timescale 1ns/1ps
+module tb_patch_triangles;
+    reg clock = 1'b0;
+    reg reset = 1'b1;
+    reg start = 1'b0;
+    reg [{n1}:0] net = {n}'d0;
+    wire busy, out_valid, out_last;
+    wire [{t1}:0] out_first, out_second;
+    reg [63:0] edge_count = 64'd0, base = 64'd0;
+    reg [{w1}:0] c [0:47];
+    integer vectors, outputs, r, m, got;
+    reg [8*4096-1:0] vectors_path, outputs_path;
+    {top} dut (
+        .clock(clock), .reset(reset), .start(start), .net(net), .busy(busy),
+        .out_valid(out_valid), .out_ready(1'b1), .out_first(out_first), .out_second(out_second), .out_last(out_last)
+    );
+    always #5 clock = ~clock;
+    always @(posedge clock) edge_count <= edge_count + 64'd1;
+
+    initial begin
+{open_files}
+        repeat (2) @(negedge clock);
+        reset = 1'b0;
+        got = 48;
+        while (got == 48) begin
+            got = 0;
+            for (m = 0; m < 48; m = m + 1) begin
+                r = $fscanf(vectors, \"%h\", c[m]);
+                if (r == 1) got = got + 1;
+            end
+            if (got == 48) begin
+                net = {{{packed}}};
+                start = 1'b1;
+                base = edge_count;
+                @(negedge clock);
+                start = 1'b0;
+                while (busy) begin
+                    if (out_valid) $fwrite(outputs, \"%0d %h %h %b\\n\", edge_count - base, out_first, out_second, out_last);
+                    @(negedge clock);
+                end
+                $fwrite(outputs, \"done %0d\\n\", edge_count - base);
+            end
+        end
+        $fclose(outputs);
+        $finish;
+    end
+endmodule
+",
+        n1 = n - 1
+    )
+}
