@@ -2,8 +2,11 @@
 //! hardware options and loading the objects.
 
 use crate::input;
+use anyhow::Context as _;
 use std::time::Duration;
-use tritri_geom::bezier::query::{patches_box, tessellate_for_query, MAX_SPLITS};
+use tritri_cosim::engine::Engine;
+use tritri_cosim::patch_triangles::tessellate_pieces;
+use tritri_geom::bezier::query::{patches_box, query_pieces, tessellate_for_query, MAX_SPLITS};
 use tritri_geom::bezier::{read_bpt, BezierPatch};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
@@ -48,19 +51,29 @@ pub struct SceneArgs {
     pub tolerance: Option<f64>,
 }
 
+/// The grid the tessellation unit works on for `--tolerance` with a
+/// hardware engine: fit to the kept pieces, so its step is far below any
+/// tolerance (the unit is built for 16 and 24 bits).
+const UNIT_GRID_BITS: usize = 24;
+
 impl SceneArgs {
     /// Loads A and B (B posed); `default` names the objects when `--scene`
     /// is not given.
-    pub fn load(&self, default: [&str; 2]) -> Result<(SceneObject, SceneObject), LoadError> {
-        self.load_with_notes(default).map(|(a, b, _)| (a, b))
+    pub fn load(&self, default: [&str; 2]) -> anyhow::Result<(SceneObject, SceneObject)> {
+        let (a, b, _) = self.load_with_notes(default, None)?;
+        Ok((a, b))
     }
 
     /// [`Self::load`], and a line per `.bpt` object tessellated for the
-    /// query (`--tolerance`) saying what it took.
+    /// query (`--tolerance`) saying what it took. With `unit`, a hardware
+    /// engine, the query's pieces go through the patch tessellation unit
+    /// (with its triangles assembled) in that engine instead of the f64
+    /// tessellation.
     pub fn load_with_notes(
         &self,
         default: [&str; 2],
-    ) -> Result<(SceneObject, SceneObject, Vec<String>), LoadError> {
+        unit: Option<Engine>,
+    ) -> anyhow::Result<(SceneObject, SceneObject, Vec<String>)> {
         let names: Vec<&str> = match &self.scene {
             Some(v) => v.iter().map(String::as_str).collect(),
             None => default.to_vec(),
@@ -93,11 +106,36 @@ impl SceneArgs {
         let (a, b) = (shape(names[0], false)?, shape(names[1], true)?);
         let region = a.bounds().zip(b.bounds()).and_then(|(x, y)| x.overlap(&y));
         let mut notes = Vec::new();
-        let mut object = |name: &str, shape: Shape| match shape {
-            Shape::Mesh(object) => object.subdivided(self.subdivide),
-            Shape::Patches(patches) => {
-                let q = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
-                notes.push(format!(
+        let mut object = |name: &str, shape: Shape| -> anyhow::Result<SceneObject> {
+            Ok(match shape {
+                Shape::Mesh(object) => object.subdivided(self.subdivide),
+                Shape::Patches(patches) if unit.is_some() => {
+                    let engine = unit.unwrap_or(Engine::Model);
+                    let (pieces, kept) =
+                        query_pieces(&patches, region.as_ref(), tolerance, MAX_SPLITS);
+                    let t = tessellate_pieces(engine, UNIT_GRID_BITS, &pieces, tolerance)
+                        .with_context(|| format!("{name} through the tessellation unit"))?;
+                    notes.push(format!(
+                    "tessellation for the query: {name}: {kept} of {} patches can meet the other object, {} pieces recut to {} for the tessellation unit in {} ({}-bit grid, step {:.3e}): {} triangles within {tolerance} of the surface plus a grid step, {} unit clocks",
+                    patches.len(),
+                    pieces.len(),
+                    t.pieces,
+                    engine.name(),
+                    UNIT_GRID_BITS,
+                    t.step,
+                    t.triangles.len(),
+                    t.clocks
+                ));
+                    SceneObject {
+                        name: name.to_string(),
+                        triangles: t.triangles,
+                        face_of: t.face_of,
+                    }
+                    .subdivided(self.subdivide)
+                }
+                Shape::Patches(patches) => {
+                    let q = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
+                    notes.push(format!(
                     "tessellation for the query: {name}: {} of {} patches can meet the other object, cut into {} pieces: {} triangles within {tolerance} of the surface, against {} for every patch at {} samples a side (the same tolerance)",
                     q.patches_kept,
                     patches.len(),
@@ -106,16 +144,17 @@ impl SceneArgs {
                     q.uniform_triangles,
                     q.uniform_samples
                 ));
-                SceneObject {
-                    name: name.to_string(),
-                    triangles: q.triangles,
-                    face_of: q.face_of,
+                    SceneObject {
+                        name: name.to_string(),
+                        triangles: q.triangles,
+                        face_of: q.face_of,
+                    }
+                    .subdivided(self.subdivide)
                 }
-                .subdivided(self.subdivide)
-            }
+            })
         };
-        let a = object(names[0], a);
-        let b = object(names[1], b);
+        let a = object(names[0], a)?;
+        let b = object(names[1], b)?;
         Ok((a, b, notes))
     }
 

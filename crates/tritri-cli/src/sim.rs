@@ -220,12 +220,19 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --vcd -: a waveform goes to a file, not to standard output");
         return Ok(ExitCode::from(2));
     }
-    let (a, b, notes) = match args.scene.load_with_notes(DEFAULT_SCENE) {
+    // With a hardware engine, `.bpt` pieces for the query go through the
+    // tessellation unit in it too.
+    let unit = (args.engine != Engine::Model).then_some(args.engine);
+    let (a, b, notes) = match args.scene.load_with_notes(DEFAULT_SCENE, unit) {
         Ok(objects) => objects,
-        Err(e) => {
+        Err(e)
+            if e.downcast_ref::<tritri_geom::scene::load::LoadError>()
+                .is_some() =>
+        {
             eprintln!("error: {e}");
             return Ok(ExitCode::from(2));
         }
+        Err(e) => return Err(e),
     };
     let pairs_to_stdout = args.out.as_deref() == Some("-");
     let mut report: Box<dyn Write> = if pairs_to_stdout {

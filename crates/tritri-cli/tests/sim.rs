@@ -563,6 +563,30 @@ fn tolerance_tessellates_only_what_the_query_needs() {
         .and_then(|n| n.trim().parse().ok())
         .unwrap();
     assert!(hits > 0, "{report}");
+    // With a hardware engine the pieces go through the tessellation unit
+    // (its triangles assembled) in it, and the contact is still found.
+    let out = tritri(&[
+        "sim",
+        "--scene",
+        patch.to_str().unwrap(),
+        "@sphere",
+        "--tolerance",
+        "0.001",
+        "--engine",
+        "rusthdl",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let report = text(&out.stdout);
+    assert!(
+        report.contains("for the tessellation unit in rusthdl (24-bit grid"),
+        "{report}"
+    );
+    let unit_hits: u64 = report
+        .lines()
+        .find_map(|l| l.strip_prefix("intersecting pairs: "))
+        .and_then(|n| n.trim().parse().ok())
+        .unwrap();
+    assert!(unit_hits > 0, "{report}");
     for bad in ["0", "-1", "x"] {
         let out = tritri(&[
             "sim",

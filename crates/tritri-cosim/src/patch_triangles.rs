@@ -265,3 +265,80 @@ endmodule
         n1 = n - 1
     )
 }
+
+/// Query pieces tessellated through the unit (or its fixed-point model):
+/// the f64 triangles and the patch each comes from, and the unit's clocks.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct UnitTessellation {
+    pub triangles: Vec<tritri_geom::triangle::Triangle>,
+    pub face_of: Vec<usize>,
+    /// Pieces after recutting to the unit's largest `2^K`.
+    pub pieces: usize,
+    /// Clocks with the reader always ready, patch after patch.
+    pub clocks: u64,
+    /// The grid's step: each vertex is within one step per coordinate of
+    /// the f64 surface point at its parameters.
+    pub step: f64,
+}
+
+/// `pieces` (from `tritri_geom::bezier::query::query_pieces`) on a `w`-bit
+/// grid fit to them, each recut to at most `2^4` samples a side and
+/// tessellated at the unit's `2^3` or `2^4` (the least that is at least its
+/// samples), through `engine`: the fixed-point model, or the unit in
+/// rust-hdl or the emitted Verilog, checked against the model.
+pub fn tessellate_pieces(
+    engine: crate::engine::Engine,
+    w: usize,
+    pieces: &[tritri_geom::bezier::query::QueryPiece],
+    tolerance: f64,
+) -> anyhow::Result<UnitTessellation> {
+    use tritri_geom::bezier::fixed::{fixed_triangles, PatchFrame};
+    use tritri_geom::bezier::query::pieces_within;
+    let recut = pieces_within(pieces, 1 << 4, tolerance);
+    let shapes: Vec<_> = recut.iter().map(|p| p.piece).collect();
+    let frame = PatchFrame::fit(&shapes, w as u32);
+    let mut out = UnitTessellation {
+        pieces: recut.len(),
+        step: frame.step,
+        ..Default::default()
+    };
+    for k in [3usize, 4] {
+        let group: Vec<_> = recut
+            .iter()
+            .filter(|p| (if p.samples <= 8 { 3 } else { 4 }) == k)
+            .collect();
+        if group.is_empty() {
+            continue;
+        }
+        let nets: Vec<FixedNet> = group.iter().map(|p| frame.quantize(&p.piece)).collect();
+        let model: Vec<Vec<FixedTriangle>> =
+            nets.iter().map(|n| fixed_triangles(n, k as u32)).collect();
+        let hardware = match (engine, engine.simulator()) {
+            (crate::engine::Engine::Model, _) => None,
+            (_, None) => Some(run_rusthdl(w, k, &nets)),
+            (_, Some(simulator)) => Some(run_emitted(w, k, &nets, simulator)?),
+        };
+        if let Some(runs) = &hardware {
+            let wrong = runs
+                .iter()
+                .zip(&model)
+                .filter(|(r, m)| r.triangles != **m)
+                .count()
+                + runs.len().abs_diff(model.len());
+            anyhow::ensure!(wrong == 0, "the tessellation unit in {} gave {wrong} pieces' triangles that differ from the fixed-point model (a bug)", engine.name());
+        }
+        let clocks = tritri_rtl::bezier::patch_tessellator::tessellation_clocks(k as u32) + 1;
+        out.clocks += clocks * group.len() as u64;
+        for (piece, triangles) in group.iter().zip(model) {
+            for t in triangles {
+                // Degenerate triangles (a collapsed row) touch nothing new.
+                if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+                    continue;
+                }
+                out.triangles.push(t.map(|v| frame.dequantize(v)));
+                out.face_of.push(piece.patch);
+            }
+        }
+    }
+    Ok(out)
+}

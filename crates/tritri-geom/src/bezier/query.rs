@@ -69,6 +69,84 @@ fn inside(inner: &Aabb<f64>, outer: &Aabb<f64>) -> bool {
     (0..3).all(|k| outer.lo[k] <= inner.lo[k] && inner.hi[k] <= outer.hi[k])
 }
 
+/// One kept piece of a patch: the patch's index, the piece (the patch or a
+/// De Casteljau quarter of it) and its samples per side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct QueryPiece {
+    pub patch: usize,
+    pub piece: BezierPatch,
+    pub samples: usize,
+}
+
+/// The pieces of `patches` a query over `region` keeps (module docs), each
+/// with the fewest samples per side within `tolerance`, and the number of
+/// patches with a piece kept.
+pub fn query_pieces(
+    patches: &[BezierPatch],
+    region: Option<&Aabb<f64>>,
+    tolerance: f64,
+    max_splits: u32,
+) -> (Vec<QueryPiece>, usize) {
+    let mut out = Vec::new();
+    let mut patches_kept = 0;
+    let Some(region) = region else {
+        return (out, 0);
+    };
+    for (index, patch) in patches.iter().enumerate() {
+        let mut pieces = vec![(*patch, 0)];
+        let mut kept = false;
+        while let Some((piece, splits)) = pieces.pop() {
+            let bounds = net_box(&piece);
+            if bounds.overlap(region).is_none() {
+                continue;
+            }
+            if splits < max_splits && !inside(&bounds, region) {
+                pieces.extend(quarters(&piece).map(|q| (q, splits + 1)));
+                continue;
+            }
+            out.push(QueryPiece {
+                patch: index,
+                piece,
+                samples: error_level(&piece, tolerance, MAX_SAMPLES),
+            });
+            kept = true;
+        }
+        patches_kept += kept as usize;
+    }
+    (out, patches_kept)
+}
+
+/// A patch cut in four by De Casteljau.
+fn quarters(patch: &BezierPatch) -> [BezierPatch; 4] {
+    let (a, b) = patch.split_u();
+    let ((c, d), (e, f)) = (a.split_v(), b.split_v());
+    [c, d, e, f]
+}
+
+/// The pieces recut until each needs at most `most` samples a side (the
+/// tessellation unit takes `2^3` or `2^4`): a piece that needs more is cut
+/// in four and each quarter's samples found again, within the same
+/// tolerance. The quarters' own levels are at most half their parent's
+/// plus one (the second differences shrink fourfold).
+pub fn pieces_within(pieces: &[QueryPiece], most: usize, tolerance: f64) -> Vec<QueryPiece> {
+    let mut out = Vec::new();
+    let mut todo: Vec<QueryPiece> = pieces.iter().rev().copied().collect();
+    while let Some(p) = todo.pop() {
+        if p.samples <= most {
+            out.push(p);
+            continue;
+        }
+        for q in quarters(&p.piece).into_iter().rev() {
+            todo.push(QueryPiece {
+                patch: p.patch,
+                piece: q,
+                samples: error_level(&q, tolerance, MAX_SAMPLES),
+            });
+        }
+    }
+    out
+}
+
 /// The patches tessellated for a query over `region` to within `tolerance`
 /// (module docs); `None` for the region: nothing can touch.
 pub fn tessellate_for_query(
@@ -86,40 +164,20 @@ pub fn tessellate_for_query(
         .iter()
         .map(|p| p.tessellate(uniform_samples).len())
         .sum();
+    let (pieces, patches_kept) = query_pieces(patches, region, tolerance, max_splits);
     let mut out = QueryTessellation {
         triangles: Vec::new(),
         face_of: Vec::new(),
-        patches_kept: 0,
-        pieces: 0,
+        patches_kept,
+        pieces: pieces.len(),
         uniform_samples,
         uniform_triangles,
     };
-    let Some(region) = region else { return out };
-    for (index, patch) in patches.iter().enumerate() {
-        let mut pieces = vec![(*patch, 0)];
-        let mut kept = false;
-        while let Some((piece, splits)) = pieces.pop() {
-            let bounds = net_box(&piece);
-            if bounds.overlap(region).is_none() {
-                continue;
-            }
-            if splits < max_splits && !inside(&bounds, region) {
-                let (a, b) = piece.split_u();
-                for half in [a, b] {
-                    let (c, d) = half.split_v();
-                    pieces.push((c, splits + 1));
-                    pieces.push((d, splits + 1));
-                }
-                continue;
-            }
-            let triangles = piece.tessellate(error_level(&piece, tolerance, MAX_SAMPLES));
-            out.face_of
-                .extend(std::iter::repeat_n(index, triangles.len()));
-            out.triangles.extend(triangles);
-            out.pieces += 1;
-            kept = true;
-        }
-        out.patches_kept += kept as usize;
+    for p in &pieces {
+        let triangles = p.piece.tessellate(p.samples);
+        out.face_of
+            .extend(std::iter::repeat_n(p.patch, triangles.len()));
+        out.triangles.extend(triangles);
     }
     out
 }
@@ -180,5 +238,23 @@ mod tests {
             all.triangles.len()
         );
         assert!(some.face_of.iter().all(|&f| f == 0));
+    }
+
+    /// Recut for the unit: every piece needs at most 16 samples a side and
+    /// still meets the tolerance by its bound; a piece that needed more is
+    /// replaced by quarters of it.
+    #[test]
+    fn pieces_within_the_units_samples() {
+        let patch = wavy_patch();
+        let tolerance = 1e-5 * net_box(&patch).extent();
+        let whole = net_box(&patch).expanded(1.0);
+        let (pieces, kept) = query_pieces(&[patch], Some(&whole), tolerance, MAX_SPLITS);
+        assert_eq!((pieces.len(), kept), (1, 1));
+        assert!(pieces[0].samples > 16, "{}", pieces[0].samples);
+        let recut = pieces_within(&pieces, 16, tolerance);
+        assert!(recut.len() >= 4 && recut.iter().all(|p| p.samples <= 16 && p.patch == 0));
+        assert!(recut
+            .iter()
+            .all(|p| deviation_bound(&p.piece, p.samples) <= tolerance));
     }
 }
