@@ -118,6 +118,12 @@ pub fn run_rusthdl(w: usize, inputs: &[ConeInput]) -> anyhow::Result<Vec<Facing>
             }
             clock_cycle(&mut uut, |u| &mut u.clock);
             if uut.out_valid.val() {
+                // The patch given `CONE_UNIT_LATENCY` edges ago, exactly.
+                let (want, got) = (
+                    (tag + 1).checked_sub(CONE_UNIT_LATENCY),
+                    uut.out_tag.val().index(),
+                );
+                anyhow::ensure!(want == Some(got) && got == out.len(), "the class of patch {got} left at edge {tag}, not {CONE_UNIT_LATENCY} edges after it");
                 let code = uut.out_class.val().index() as u64;
                 out.push(Facing::from_code(code).with_context(|| format!("class code {code}"))?);
             }
@@ -163,11 +169,17 @@ pub fn run_emitted(
     }
     let (text, _) = run_on_vectors(&compiled, "cone-unit-run", &vectors, &[])?;
     text.lines()
-        .map(|line| {
+        .enumerate()
+        .map(|(n, line)| {
             let fields: Vec<&str> = line.split_whitespace().collect();
-            let [_, class] = fields.as_slice() else {
+            let [tag, class] = fields.as_slice() else {
                 bail!("cone unit output line `{line}` is not `tag class`")
             };
+            // One class a patch, in order.
+            anyhow::ensure!(
+                u64::from_str_radix(tag, 16).ok() == Some(n as u64 & 0xffff),
+                "`{line}`: out of order (patch {n} expected)"
+            );
             let code = u64::from_str_radix(class, 16).with_context(|| format!("`{line}`"))?;
             Facing::from_code(code).with_context(|| format!("class code {code} in `{line}`"))
         })

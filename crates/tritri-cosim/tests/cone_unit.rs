@@ -1,6 +1,7 @@
 //! The cone-of-normals unit in hardware equals the fixed-point model class
 //! for class, in rust-hdl, Icarus and Verilator, on random patches and
-//! eyes (the teapot at 32 to 512 patches is in tests/shared_testdata.rs,
+//! eyes, each class a fixed 4 clocks after its patch (the teapot at 32 to
+//! 512 patches is in tests/shared_testdata.rs,
 //! run by scripts/test-shared.sh).
 
 use nalgebra::Point3;
