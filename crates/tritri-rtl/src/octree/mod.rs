@@ -29,6 +29,8 @@
 //!   models streamed a 64-voxel word per clock;
 //! * [`voxel_fill`]: cells with children to fill (the plane traversal's
 //!   records) written into the voxel memory a word per clock;
+//! * [`traversal_stack`]: the two traversals' stack, which cell to issue
+//!   each clock and the cells with children left;
 //! * [`triangle_voxelizer`]: surface voxelization, triangles in and the
 //!   voxels each meets out, the setup and the classifier step driven by a
 //!   depth-first traversal; [`voxelizer_machine`] is its cycle model;
@@ -56,6 +58,7 @@ pub mod owner_chain_filter;
 pub mod owner_filter;
 pub mod plane_traversal;
 pub mod set_operation_unit;
+pub mod traversal_stack;
 pub mod triangle_setup;
 pub mod triangle_voxelizer;
 pub mod voxel_fill;

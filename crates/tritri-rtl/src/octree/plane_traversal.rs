@@ -39,6 +39,7 @@
 
 use super::axis_step::{AxisStep, AXIS_STEP_LATENCY};
 use super::centre_test::CentreTest;
+use super::traversal_stack::{StackCell, TraversalStack};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::valid_line::ValidLine;
 use crate::system::dual_port_ram::SimpleDualPortRam;
@@ -58,18 +59,6 @@ pub const STACK_ADDRESS_BITS: usize = 8;
 pub const CLASSIFY_LATENCY: usize = AXIS_STEP_LATENCY + 1;
 /// Largest grid level (1024 voxels a side).
 pub const MAX_LEVEL: u32 = 10;
-
-/// A cell on the stack: its value `f(lo)`, its low corner, its level and
-/// the children still to classify.
-#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
-pub struct StackEntry {
-    pub value: Bits<40>,
-    pub x: Bits<11>,
-    pub y: Bits<11>,
-    pub z: Bits<11>,
-    pub level: Bits<4>,
-    pub mask: Bits<8>,
-}
 
 const _: () = assert!(PLANE_VALUE_BITS == 40 && CORNER_BITS == 11);
 
@@ -120,18 +109,11 @@ pub struct PlaneTraversal<const S: usize> {
     crossing_q: DFF<Bits<8>>,
     below_q: DFF<Bits<8>>,
     value_q: DFF<Bits<40>>,
-    stack: SimpleDualPortRam<StackEntry, S>,
-    top: DFF<StackEntry>,
-    top_valid: DFF<Bit>,
-    /// The RAM's read data is the next top (read the clock before).
-    refill: DFF<Bit>,
-    /// Entries in the RAM.
-    depth: DFF<Bits<16>>,
-    overflow_q: DFF<Bit>,
-    /// Entries the RAM holds.
-    stack_words: Constant<Bits<16>>,
-    in_flight: DFF<Bits<4>>,
-    start_pending: DFF<Bit>,
+    /// Which cell to issue, and the cells with children left.
+    stack: TraversalStack<S>,
+    /// The stack's cells' values `f(lo)`: the top's, the rest's.
+    top_value: DFF<Bits<40>>,
+    stack_value: SimpleDualPortRam<Bits<40>, S>,
     out_valid_q: DFF<Bit>,
     out_x_q: DFF<Bits<11>>,
     out_y_q: DFF<Bits<11>>,
@@ -141,17 +123,11 @@ pub struct PlaneTraversal<const S: usize> {
     out_crossed_q: DFF<Bits<8>>,
     // Combinational.
     advance: Signal<Local, Bit>,
-    issue: Signal<Local, Bit>,
-    /// The top's mask (a struct field cannot be indexed in Verilog).
-    top_mask: Signal<Local, Bits<8>>,
-    octant: Signal<Local, Bits<3>>,
-    remaining: Signal<Local, Bits<8>>,
-    half: Signal<Local, Bits<11>>,
     inside: Signal<Local, Bits<8>>,
     full: Signal<Local, Bits<8>>,
     crossed: Signal<Local, Bits<8>>,
     push: Signal<Local, Bit>,
-    pushed: Signal<Local, StackEntry>,
+    pushed: Signal<Local, StackCell>,
 }
 
 impl<const S: usize> crate::unit::Unit for PlaneTraversal<S> {
@@ -171,13 +147,8 @@ impl<const S: usize> crate::unit::Unit for PlaneTraversal<S> {
             below_q,
             value_q,
             stack,
-            top,
-            top_valid,
-            refill,
-            depth,
-            overflow_q,
-            in_flight,
-            start_pending,
+            top_value,
+            stack_value,
             out_valid_q,
             out_x_q,
             out_y_q,
@@ -223,15 +194,9 @@ impl<const S: usize> Default for PlaneTraversal<S> {
             crossing_q: Default::default(),
             below_q: Default::default(),
             value_q: Default::default(),
-            stack: SimpleDualPortRam::new(1 << S),
-            top: Default::default(),
-            top_valid: Default::default(),
-            refill: Default::default(),
-            depth: Default::default(),
-            overflow_q: Default::default(),
-            stack_words: Constant::new(Bits::<16>::from(1u64 << S)),
-            in_flight: Default::default(),
-            start_pending: Default::default(),
+            stack: Default::default(),
+            top_value: Default::default(),
+            stack_value: SimpleDualPortRam::new(1 << S),
             out_valid_q: Default::default(),
             out_x_q: Default::default(),
             out_y_q: Default::default(),
@@ -240,11 +205,6 @@ impl<const S: usize> Default for PlaneTraversal<S> {
             out_full_q: Default::default(),
             out_crossed_q: Default::default(),
             advance: Default::default(),
-            issue: Default::default(),
-            top_mask: Default::default(),
-            octant: Default::default(),
-            remaining: Default::default(),
-            half: Default::default(),
             inside: Default::default(),
             full: Default::default(),
             crossed: Default::default(),
@@ -263,13 +223,7 @@ impl<const S: usize> Logic for PlaneTraversal<S> {
             crossing_q,
             below_q,
             value_q,
-            top,
-            top_valid,
-            refill,
-            depth,
-            overflow_q,
-            in_flight,
-            start_pending,
+            top_value,
             out_valid_q,
             out_x_q,
             out_y_q,
@@ -287,41 +241,29 @@ impl<const S: usize> Logic for PlaneTraversal<S> {
         self.out_level.next = self.out_level_q.q.val();
         self.out_full.next = self.out_full_q.q.val();
         self.out_crossed.next = self.out_crossed_q.q.val();
-        self.overflow.next = self.overflow_q.q.val();
-        self.busy.next = self.start_pending.q.val()
-            | self.top_valid.q.val()
-            | self.refill.q.val()
-            | (self.depth.q.val() != 0)
-            | (self.in_flight.q.val() != 0)
-            | self.out_valid_q.q.val();
+        self.overflow.next = self.stack.overflow.val();
+        self.busy.next = self.stack.busy.val() | self.out_valid_q.q.val();
 
-        // Issue: the root after start, else the top's lowest remaining child.
-        self.top_mask.next = self.top.q.val().mask;
-        self.octant.next = 0.into();
-        if self.top_mask.val().get_bit(0) {
-            self.octant.next = 0.into();
-        } else if self.top_mask.val().get_bit(1) {
-            self.octant.next = 1.into();
-        } else if self.top_mask.val().get_bit(2) {
-            self.octant.next = 2.into();
-        } else if self.top_mask.val().get_bit(3) {
-            self.octant.next = 3.into();
-        } else if self.top_mask.val().get_bit(4) {
-            self.octant.next = 4.into();
-        } else if self.top_mask.val().get_bit(5) {
-            self.octant.next = 5.into();
-        } else if self.top_mask.val().get_bit(6) {
-            self.octant.next = 6.into();
-        } else {
-            self.octant.next = 7.into();
-        }
-        self.remaining.next = self.top_mask.val() & (self.top_mask.val() - 1);
-        self.half.next = bits::<11>(1) << (self.top.q.val().level - 1);
-        self.issue.next = self.start_pending.q.val() | self.top_valid.q.val();
+        // The stack issues the root after start, then the crossing children.
+        self.stack.reset.next = self.reset.val();
+        self.stack.advance.next = self.advance.val();
+        self.stack.start.next = self.start.val() & !self.busy.val();
+        self.stack.root_level.next = self.level.val();
+        self.stack.result_valid.next = self.cell_valid.q.val();
 
         clock!(
-            self, clock, crossing, below, centre, cell_x, cell_y, cell_z, cell_level, cell_valid,
-            stack
+            self,
+            clock,
+            crossing,
+            below,
+            centre,
+            cell_x,
+            cell_y,
+            cell_z,
+            cell_level,
+            cell_valid,
+            stack,
+            stack_value
         );
         self.crossing.advance.next = self.advance.val();
         self.below.advance.next = self.advance.val();
@@ -347,38 +289,22 @@ impl<const S: usize> Logic for PlaneTraversal<S> {
         self.cell_level.advance.next = self.advance.val();
         self.cell_valid.advance.next = self.advance.val();
         self.cell_valid.reset.next = self.reset.val();
-        self.cell_valid.d.next = self.issue.val();
-        if self.start_pending.q.val() {
-            self.crossing.level.next = bit_cast::<6, 4>(self.level.val());
-            self.crossing.descend.next = false;
+        self.cell_valid.d.next = self.stack.issue.val();
+        self.cell_level.d.next = self.stack.issue_level.val();
+        self.cell_x.d.next = self.stack.issue_x.val();
+        self.cell_y.d.next = self.stack.issue_y.val();
+        self.cell_z.d.next = self.stack.issue_z.val();
+        self.crossing.level.next = bit_cast::<6, 4>(self.stack.issue_level.val());
+        self.crossing.descend.next = !self.stack.issue_root.val();
+        self.crossing.at_lo.next = self.top_value.q.val();
+        if self.stack.issue_root.val() {
             self.crossing.at_lo.next = 0.into();
-            self.cell_level.d.next = self.level.val();
-            self.cell_x.d.next = 0.into();
-            self.cell_y.d.next = 0.into();
-            self.cell_z.d.next = 0.into();
-        } else {
-            self.crossing.level.next = bit_cast::<6, 4>(self.top.q.val().level - 1);
-            self.crossing.descend.next = true;
-            self.crossing.at_lo.next = self.top.q.val().value;
-            self.cell_level.d.next = self.top.q.val().level - 1;
-            self.cell_x.d.next = self.top.q.val().x;
-            self.cell_y.d.next = self.top.q.val().y;
-            self.cell_z.d.next = self.top.q.val().z;
-            if self.octant.val().get_bit(0) {
-                self.cell_x.d.next = self.top.q.val().x + self.half.val();
-            }
-            if self.octant.val().get_bit(1) {
-                self.cell_y.d.next = self.top.q.val().y + self.half.val();
-            }
-            if self.octant.val().get_bit(2) {
-                self.cell_z.d.next = self.top.q.val().z + self.half.val();
-            }
         }
-        self.crossing.octant.next = self.octant.val();
+        self.crossing.octant.next = self.stack.issue_octant.val();
         self.below.level.next = self.crossing.level.val();
         self.below.descend.next = self.crossing.descend.val();
         self.below.at_lo.next = self.crossing.at_lo.val();
-        self.below.octant.next = self.octant.val();
+        self.below.octant.next = self.stack.issue_octant.val();
 
         // One register after the axis steps, beside the centre test.
         if self.advance.val() {
@@ -401,66 +327,27 @@ impl<const S: usize> Logic for PlaneTraversal<S> {
         self.push.next = self.cell_valid.q.val()
             & (self.cell_level.q.val() != 1)
             & (self.crossing_q.q.val() != 0);
-        self.pushed.next.value = self.value_q.q.val();
         self.pushed.next.x = self.cell_x.q.val();
         self.pushed.next.y = self.cell_y.q.val();
         self.pushed.next.z = self.cell_z.q.val();
         self.pushed.next.level = self.cell_level.q.val();
         self.pushed.next.mask = self.crossing_q.q.val();
 
-        // The stack.
-        self.stack.write_enable.next = false;
-        self.stack.write_address.next = bit_cast::<S, 16>(self.depth.q.val());
-        self.stack.write_data.next = self.top.q.val();
-        self.stack.write_data.next.mask = self.remaining.val();
-        self.stack.read_enable.next = false;
-        self.stack.read_address.next = bit_cast::<S, 16>(self.depth.q.val() - 1);
+        self.stack.push.next = self.push.val();
+        self.stack.pushed.next = self.pushed.val();
+        // The values move with their cell: written beside it, read back
+        // with it, and the pushed cell's from the axis steps.
+        self.stack_value.write_enable.next = self.stack.write_enable.val();
+        self.stack_value.write_address.next = self.stack.write_address.val();
+        self.stack_value.write_data.next = self.top_value.q.val();
+        self.stack_value.read_enable.next = self.stack.read_enable.val();
+        self.stack_value.read_address.next = self.stack.read_address.val();
+        if self.stack.take_pushed.val() {
+            self.top_value.d.next = self.value_q.q.val();
+        } else if self.stack.take_read.val() {
+            self.top_value.d.next = self.stack_value.read_data.val();
+        }
         if self.advance.val() {
-            if self.start_pending.q.val() {
-                self.start_pending.d.next = false;
-            } else if self.top_valid.q.val() {
-                self.top.d.next.mask = self.remaining.val();
-                if self.remaining.val() == 0 {
-                    self.top_valid.d.next = false;
-                }
-            }
-            if self.push.val() {
-                if self.top_valid.q.val()
-                    & !self.start_pending.q.val()
-                    & (self.remaining.val() != 0)
-                {
-                    self.stack.write_enable.next = true;
-                    self.depth.d.next = self.depth.q.val() + 1;
-                    if self.depth.q.val() == self.stack_words.val() {
-                        self.overflow_q.d.next = true;
-                    }
-                }
-                if self.refill.q.val() {
-                    // The entry just read stays where it was.
-                    self.depth.d.next = self.depth.q.val() + 1;
-                }
-                self.top.d.next = self.pushed.val();
-                self.top_valid.d.next = true;
-                self.refill.d.next = false;
-            } else if self.refill.q.val() {
-                self.top.d.next = self.stack.read_data.val();
-                self.top_valid.d.next = true;
-                self.refill.d.next = false;
-            } else if self.top_valid.q.val()
-                & !self.start_pending.q.val()
-                & (self.remaining.val() == 0)
-                & (self.depth.q.val() != 0)
-            {
-                self.stack.read_enable.next = true;
-                self.depth.d.next = self.depth.q.val() - 1;
-                self.refill.d.next = true;
-            }
-            if self.issue.val() & !self.cell_valid.q.val() {
-                self.in_flight.d.next = self.in_flight.q.val() + 1;
-            }
-            if !self.issue.val() & self.cell_valid.q.val() {
-                self.in_flight.d.next = self.in_flight.q.val() - 1;
-            }
             self.out_valid_q.d.next =
                 self.cell_valid.q.val() & ((self.full.val() != 0) | (self.crossed.val() != 0));
             self.out_x_q.d.next = self.cell_x.q.val();
@@ -470,16 +357,7 @@ impl<const S: usize> Logic for PlaneTraversal<S> {
             self.out_full_q.d.next = self.full.val();
             self.out_crossed_q.d.next = self.crossed.val();
         }
-        if self.start.val() & !self.busy.val() {
-            self.start_pending.d.next = true;
-        }
         if self.reset.val() {
-            self.start_pending.d.next = false;
-            self.top_valid.d.next = false;
-            self.refill.d.next = false;
-            self.depth.d.next = 0.into();
-            self.overflow_q.d.next = false;
-            self.in_flight.d.next = 0.into();
             self.out_valid_q.d.next = false;
         }
     }

@@ -31,6 +31,7 @@
 //! The whole traversal stalls while a record waits for `out_ready`.
 
 use super::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use super::traversal_stack::{StackCell, TraversalStack};
 use super::triangle_setup::TriangleSetup;
 use crate::arith::delay_line::DelayLine;
 use crate::system::dual_port_ram::SimpleDualPortRam;
@@ -52,17 +53,6 @@ pub const VOXELIZER_GRID_BITS: usize = 32;
 const _: () = assert!(
     VOXELIZER_MAX_LEVEL as usize + SUB_BITS as usize + 2 <= VOXELIZER_GRID_BITS && VOXEL_BITS == 11
 );
-
-/// A cell on the stack (its thirteen values are in RAMs of their own): its
-/// low corner in voxels, its level and the children still to classify.
-#[derive(Clone, Copy, Debug, PartialEq, Default, LogicStruct)]
-pub struct VoxelStackEntry {
-    pub x: Bits<11>,
-    pub y: Bits<11>,
-    pub z: Bits<11>,
-    pub level: Bits<4>,
-    pub mask: Bits<8>,
-}
 
 #[derive(LogicBlock)]
 pub struct TriangleVoxelizer<
@@ -107,18 +97,11 @@ pub struct TriangleVoxelizer<
     cell_y: DelayLine<Bits<11>, CELL_CLASSIFIER_LATENCY>,
     cell_z: DelayLine<Bits<11>, CELL_CLASSIFIER_LATENCY>,
     cell_level: DelayLine<Bits<4>, CELL_CLASSIFIER_LATENCY>,
-    stack: SimpleDualPortRam<VoxelStackEntry, S>,
-    stack_value: [SimpleDualPortRam<Bits<V>, S>; AXES],
-    top: DFF<VoxelStackEntry>,
+    /// Which cell to issue, and the cells with children left.
+    stack: TraversalStack<S>,
+    /// The thirteen values of the stack's cells: the top's, the rest's.
     top_value: [DFF<Bits<V>>; AXES],
-    top_valid: DFF<Bit>,
-    /// The RAMs' read data is the next top (read the clock before).
-    refill: DFF<Bit>,
-    /// Entries in the RAMs.
-    depth: DFF<Bits<16>>,
-    in_flight: DFF<Bits<4>>,
-    start_pending: DFF<Bit>,
-    overflow_q: DFF<Bit>,
+    stack_value: [SimpleDualPortRam<Bits<V>, S>; AXES],
     out_valid_q: DFF<Bit>,
     out_x_q: DFF<Bits<11>>,
     out_y_q: DFF<Bits<11>>,
@@ -130,20 +113,12 @@ pub struct TriangleVoxelizer<
     field_offset: [Constant<Bits<16>>; AXES],
     /// The classifier's level is the cell's in fine-grid steps.
     sub_bits: Constant<Bits<6>>,
-    /// Entries the RAMs hold.
-    stack_words: Constant<Bits<16>>,
     // Combinational.
     advance: Signal<Local, Bit>,
-    traversing: Signal<Local, Bit>,
     load: Signal<Local, Bit>,
     setup_advance: Signal<Local, Bit>,
-    issue: Signal<Local, Bit>,
-    top_mask: Signal<Local, Bits<8>>,
-    octant: Signal<Local, Bits<3>>,
-    remaining: Signal<Local, Bits<8>>,
-    half: Signal<Local, Bits<11>>,
     push: Signal<Local, Bit>,
-    pushed: Signal<Local, VoxelStackEntry>,
+    pushed: Signal<Local, StackCell>,
     /// The setup's and classifier's tags, unused, folded into one bit whose
     /// name tells Verilator's lint so.
     unused_outputs: Signal<Local, Bit>,
@@ -169,15 +144,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             cell_z,
             cell_level,
             stack,
-            stack_value,
-            top,
             top_value,
-            top_valid,
-            refill,
-            depth,
-            in_flight,
-            start_pending,
-            overflow_q,
+            stack_value,
             out_valid_q,
             out_x_q,
             out_y_q,
@@ -223,16 +191,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             cell_y: Default::default(),
             cell_z: Default::default(),
             cell_level: Default::default(),
-            stack: SimpleDualPortRam::new(words),
-            stack_value: std::array::from_fn(|_| SimpleDualPortRam::new(words)),
-            top: Default::default(),
+            stack: Default::default(),
             top_value: Default::default(),
-            top_valid: Default::default(),
-            refill: Default::default(),
-            depth: Default::default(),
-            in_flight: Default::default(),
-            start_pending: Default::default(),
-            overflow_q: Default::default(),
+            stack_value: std::array::from_fn(|_| SimpleDualPortRam::new(words)),
             out_valid_q: Default::default(),
             out_x_q: Default::default(),
             out_y_q: Default::default(),
@@ -241,16 +202,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
             field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
             sub_bits: Constant::new(Bits::<6>::from(SUB_BITS as u64)),
-            stack_words: Constant::new(Bits::<16>::from(words as u64)),
             advance: Default::default(),
-            traversing: Default::default(),
             load: Default::default(),
             setup_advance: Default::default(),
-            issue: Default::default(),
-            top_mask: Default::default(),
-            octant: Default::default(),
-            remaining: Default::default(),
-            half: Default::default(),
             push: Default::default(),
             pushed: Default::default(),
             unused_outputs: Default::default(),
@@ -272,13 +226,6 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             loaded_gradient_z,
             loaded_low,
             loaded_high,
-            top,
-            top_valid,
-            refill,
-            depth,
-            in_flight,
-            start_pending,
-            overflow_q,
             out_valid_q,
             out_x_q,
             out_y_q,
@@ -293,18 +240,13 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
         self.out_y.next = self.out_y_q.q.val();
         self.out_z.next = self.out_z_q.q.val();
         self.out_mask.next = self.out_mask_q.q.val();
-        self.overflow.next = self.overflow_q.q.val();
-        self.traversing.next = self.start_pending.q.val()
-            | self.top_valid.q.val()
-            | self.refill.q.val()
-            | (self.depth.q.val() != 0)
-            | (self.in_flight.q.val() != 0);
+        self.overflow.next = self.stack.overflow.val();
         self.busy.next =
-            self.traversing.val() | (self.in_setup.q.val() != 0) | self.out_valid_q.q.val();
+            self.stack.busy.val() | (self.in_setup.q.val() != 0) | self.out_valid_q.q.val();
 
         // The setup: the next triangle's functions wait at its output until
         // the traversal is over, then are loaded.
-        self.load.next = self.setup.out_valid.val() & !self.traversing.val();
+        self.load.next = self.setup.out_valid.val() & !self.stack.busy.val();
         self.setup_advance.next = !self.setup.out_valid.val() | self.load.val();
         self.in_ready.next = self.setup_advance.val();
         self.setup.reset.next = self.reset.val();
@@ -364,42 +306,31 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             self.loaded_gradient_z.d.next = self.setup.out_gradient_z.val();
             self.loaded_low.d.next = self.setup.out_low.val();
             self.loaded_high.d.next = self.setup.out_high.val();
-            self.start_pending.d.next = true;
         }
 
-        // Issue: the root after a load, else the top's lowest remaining child.
-        self.top_mask.next = self.top.q.val().mask;
-        self.octant.next = 0.into();
-        if self.top_mask.val().get_bit(0) {
-            self.octant.next = 0.into();
-        } else if self.top_mask.val().get_bit(1) {
-            self.octant.next = 1.into();
-        } else if self.top_mask.val().get_bit(2) {
-            self.octant.next = 2.into();
-        } else if self.top_mask.val().get_bit(3) {
-            self.octant.next = 3.into();
-        } else if self.top_mask.val().get_bit(4) {
-            self.octant.next = 4.into();
-        } else if self.top_mask.val().get_bit(5) {
-            self.octant.next = 5.into();
-        } else if self.top_mask.val().get_bit(6) {
-            self.octant.next = 6.into();
-        } else {
-            self.octant.next = 7.into();
-        }
-        self.remaining.next = self.top_mask.val() & (self.top_mask.val() - 1);
-        self.half.next = bits::<11>(1) << (self.top.q.val().level - 1);
-        self.issue.next = self.start_pending.q.val() | self.top_valid.q.val();
-
+        // The stack issues the root after a load, then the children met.
+        self.stack.reset.next = self.reset.val();
+        self.stack.advance.next = self.advance.val();
+        self.stack.start.next = self.load.val();
+        self.stack.root_level.next = self.level.val();
+        self.stack.result_valid.next = self.classifier.out_valid.val();
         self.classifier.reset.next = self.reset.val();
         self.classifier.advance.next = self.advance.val();
-        self.classifier.in_valid.next = self.issue.val();
+        self.classifier.in_valid.next = self.stack.issue.val();
         self.classifier.in_tag.next = 0.into();
-        self.classifier.in_octant.next = self.octant.val();
+        self.classifier.in_octant.next = self.stack.issue_octant.val();
+        // The classifier's levels are the fine grid's, SUB_BITS below a voxel.
+        self.classifier.in_level.next =
+            bit_cast::<6, 4>(self.stack.issue_level.val()) + self.sub_bits.val();
+        self.classifier.in_descend.next = !self.stack.issue_root.val();
         self.cell_x.advance.next = self.advance.val();
         self.cell_y.advance.next = self.advance.val();
         self.cell_z.advance.next = self.advance.val();
         self.cell_level.advance.next = self.advance.val();
+        self.cell_x.d.next = self.stack.issue_x.val();
+        self.cell_y.d.next = self.stack.issue_y.val();
+        self.cell_z.d.next = self.stack.issue_z.val();
+        self.cell_level.d.next = self.stack.issue_level.val();
         for i in 0..13 {
             self.classifier.in_gradient_x[i].next = self
                 .loaded_gradient_x
@@ -426,35 +357,10 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
                 .q
                 .val()
                 .get_bits::<V>(self.field_offset[i].val().index());
+            // Relative to the grid's origin, every function is zero at the root.
             self.classifier.in_at_lo[i].next = self.top_value[i].q.val();
-            if self.start_pending.q.val() {
+            if self.stack.issue_root.val() {
                 self.classifier.in_at_lo[i].next = 0.into();
-            }
-        }
-        if self.start_pending.q.val() {
-            self.classifier.in_level.next =
-                bit_cast::<6, 4>(self.level.val()) + self.sub_bits.val();
-            self.classifier.in_descend.next = false;
-            self.cell_level.d.next = self.level.val();
-            self.cell_x.d.next = 0.into();
-            self.cell_y.d.next = 0.into();
-            self.cell_z.d.next = 0.into();
-        } else {
-            self.classifier.in_level.next =
-                bit_cast::<6, 4>(self.top.q.val().level - 1) + self.sub_bits.val();
-            self.classifier.in_descend.next = true;
-            self.cell_level.d.next = self.top.q.val().level - 1;
-            self.cell_x.d.next = self.top.q.val().x;
-            self.cell_y.d.next = self.top.q.val().y;
-            self.cell_z.d.next = self.top.q.val().z;
-            if self.octant.val().get_bit(0) {
-                self.cell_x.d.next = self.top.q.val().x + self.half.val();
-            }
-            if self.octant.val().get_bit(1) {
-                self.cell_y.d.next = self.top.q.val().y + self.half.val();
-            }
-            if self.octant.val().get_bit(2) {
-                self.cell_z.d.next = self.top.q.val().z + self.half.val();
             }
         }
 
@@ -468,60 +374,9 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
         self.pushed.next.z = self.cell_z.q.val();
         self.pushed.next.level = self.cell_level.q.val();
         self.pushed.next.mask = self.classifier.out_mask.val();
-
-        // The stack: one control RAM and thirteen value RAMs, one address.
-        self.stack.write_enable.next = false;
-        self.stack.write_address.next = bit_cast::<S, 16>(self.depth.q.val());
-        self.stack.write_data.next = self.top.q.val();
-        self.stack.write_data.next.mask = self.remaining.val();
-        self.stack.read_enable.next = false;
-        self.stack.read_address.next = bit_cast::<S, 16>(self.depth.q.val() - 1);
+        self.stack.push.next = self.push.val();
+        self.stack.pushed.next = self.pushed.val();
         if self.advance.val() {
-            if self.start_pending.q.val() {
-                self.start_pending.d.next = false;
-            } else if self.top_valid.q.val() {
-                self.top.d.next.mask = self.remaining.val();
-                if self.remaining.val() == 0 {
-                    self.top_valid.d.next = false;
-                }
-            }
-            if self.push.val() {
-                if self.top_valid.q.val()
-                    & !self.start_pending.q.val()
-                    & (self.remaining.val() != 0)
-                {
-                    self.stack.write_enable.next = true;
-                    self.depth.d.next = self.depth.q.val() + 1;
-                    if self.depth.q.val() == self.stack_words.val() {
-                        self.overflow_q.d.next = true;
-                    }
-                }
-                if self.refill.q.val() {
-                    // The entry just read stays where it was.
-                    self.depth.d.next = self.depth.q.val() + 1;
-                }
-                self.top.d.next = self.pushed.val();
-                self.top_valid.d.next = true;
-                self.refill.d.next = false;
-            } else if self.refill.q.val() {
-                self.top.d.next = self.stack.read_data.val();
-                self.top_valid.d.next = true;
-                self.refill.d.next = false;
-            } else if self.top_valid.q.val()
-                & !self.start_pending.q.val()
-                & (self.remaining.val() == 0)
-                & (self.depth.q.val() != 0)
-            {
-                self.stack.read_enable.next = true;
-                self.depth.d.next = self.depth.q.val() - 1;
-                self.refill.d.next = true;
-            }
-            if self.issue.val() & !self.classifier.out_valid.val() {
-                self.in_flight.d.next = self.in_flight.q.val() + 1;
-            }
-            if !self.issue.val() & self.classifier.out_valid.val() {
-                self.in_flight.d.next = self.in_flight.q.val() - 1;
-            }
             self.out_valid_q.d.next = self.classifier.out_valid.val()
                 & (self.cell_level.q.val() == 1)
                 & (self.classifier.out_mask.val() != 0);
@@ -530,8 +385,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             self.out_z_q.d.next = self.cell_z.q.val();
             self.out_mask_q.d.next = self.classifier.out_mask.val();
         }
-        // The values move with their entry: written beside it, read back
-        // with it, and the pushed cell's from the classifier.
+        // The values move with their cell: written beside it, read back with
+        // it, and the pushed cell's from the classifier.
         for i in 0..13 {
             self.stack_value[i].clock.next = self.clock.val();
             self.stack_value[i].write_enable.next = self.stack.write_enable.val();
@@ -541,20 +396,14 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize, const S: us
             self.stack_value[i].read_address.next = self.stack.read_address.val();
             self.top_value[i].clock.next = self.clock.val();
             self.top_value[i].d.next = self.top_value[i].q.val();
-            if self.advance.val() & self.push.val() {
+            if self.stack.take_pushed.val() {
                 self.top_value[i].d.next = self.classifier.out_at_lo[i].val();
-            } else if self.advance.val() & self.refill.q.val() {
+            } else if self.stack.take_read.val() {
                 self.top_value[i].d.next = self.stack_value[i].read_data.val();
             }
         }
         if self.reset.val() {
             self.in_setup.d.next = 0.into();
-            self.start_pending.d.next = false;
-            self.top_valid.d.next = false;
-            self.refill.d.next = false;
-            self.depth.d.next = 0.into();
-            self.in_flight.d.next = 0.into();
-            self.overflow_q.d.next = false;
             self.out_valid_q.d.next = false;
         }
         self.unused_outputs.next =
