@@ -28,7 +28,9 @@
 //! cell goes onto the stack with the mask of those children, and the issue
 //! logic takes them one per clock from the top.
 //!
-//! The stack's top sits in registers; the rest in a block RAM. Pushing a
+//! The stack ([`super::traversal_stack`], shared with the triangle
+//! voxelizer) keeps its top in registers and the rest in a block RAM; the
+//! cells' values `f(lo)` sit beside it in a RAM of this unit's. Pushing a
 //! result while the top has children left writes the top to the RAM; a top
 //! whose last child is issued is dropped, and the next comes back from the
 //! RAM (one clock without an issue). The order records leave in is not

@@ -21,11 +21,12 @@
 //! from the setup's output when the previous traversal is over, and the
 //! setup works on the next triangles meanwhile. The traversal is the plane
 //! traversal's ([`super::plane_traversal`]) with the triangle's classifier
-//! ([`super::cell_classifier`]) in place of the plane's two axis steps: a
-//! stack of cells with the children still to classify, its top in
-//! registers and the rest in block RAM, each entry with the thirteen values
-//! at its cell's low corner. Cells are in voxels; the classifier works on
-//! the fine grid, `SUB_BITS` levels below a voxel, where the vertices are.
+//! ([`super::cell_classifier`]) in place of the plane's two axis steps; the
+//! stack ([`super::traversal_stack`]) is the same unit, and the thirteen
+//! values at each stacked cell's low corner sit beside it, the top's in
+//! registers and the rest in block RAMs driven by its ports. Cells are in
+//! voxels; the classifier works on the fine grid, `SUB_BITS` levels below a
+//! voxel, where the vertices are.
 //!
 //! The cycle model is [`super::voxelizer_machine::voxelizer_schedule`].
 //! The whole traversal stalls while a record waits for `out_ready`.
