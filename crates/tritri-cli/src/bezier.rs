@@ -72,7 +72,7 @@ struct TessellateArgs {
     /// Bits of a grid coordinate (16 or 24).
     #[arg(long, default_value_t = 16)]
     width: usize,
-    /// 2^K steps a side (3 or 4).
+    /// 2^K steps a side (1 to 4).
     #[arg(long, default_value_t = 3, value_name = "K")]
     steps: usize,
     /// Cut every patch in two this many times first (0 to 6).

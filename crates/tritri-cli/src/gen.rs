@@ -65,7 +65,7 @@
 //! (triangles in, the voxels each meets out), top
 //! `tritri_triangle_voxelizer`; `--octree-builder` its voxel → octree
 //! conversion (a 4x4x4 brick in per clock, the canonical tree's nodes
-//! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 3|4]`
+//! out), top `tritri_octree_builder`. `--patch-tessellator [--width 16|24] [--steps 1..4]`
 //! writes the Bezier system's patch tessellation unit (forward
 //! differences, one vertex per clock), top
 //! `tritri_patch_tessellator_w<W>_k<K>` (with `--assemble`, its triangles
@@ -197,7 +197,7 @@ pub struct Args {
     /// is the control points' (16 or 24).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator"])]
     cone_unit: bool,
-    /// With --patch-tessellator: 2^K steps a side (3 or 4) [default: 3].
+    /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
     steps: Option<usize>,
     /// With --patch-tessellator: the unit with its triangles assembled (two

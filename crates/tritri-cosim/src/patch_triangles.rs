@@ -283,8 +283,8 @@ pub struct UnitTessellation {
 
 /// `pieces` (from `tritri_geom::bezier::query::query_pieces`) on a `w`-bit
 /// grid fit to them, each recut to at most `2^4` samples a side and
-/// tessellated at the unit's `2^3` or `2^4` (the least that is at least its
-/// samples), through `engine`: the fixed-point model, or the unit in
+/// tessellated at the unit's least `2^K` (K from 1 to 4) that is at least
+/// its samples, through `engine`: the fixed-point model, or the unit in
 /// rust-hdl or the emitted Verilog, checked against the model.
 pub fn tessellate_pieces(
     engine: crate::engine::Engine,
@@ -302,10 +302,11 @@ pub fn tessellate_pieces(
         step: frame.step,
         ..Default::default()
     };
-    for k in [3usize, 4] {
+    for k in 1usize..=4 {
+        // The least 2^K that covers the piece's samples.
         let group: Vec<_> = recut
             .iter()
-            .filter(|p| (if p.samples <= 8 { 3 } else { 4 }) == k)
+            .filter(|p| p.samples.next_power_of_two().max(2).trailing_zeros() as usize == k)
             .collect();
         if group.is_empty() {
             continue;

@@ -51,7 +51,7 @@ fn check(runs: &[TessellationRun], nets: &[FixedNet], k: usize, what: &str) {
 
 #[test]
 fn rusthdl_equals_the_fixed_point_model() {
-    for (w, k) in [(16, 3), (24, 4)] {
+    for (w, k) in [(16, 1), (16, 3), (24, 2), (24, 4)] {
         let nets = nets(w, 12, w as u64);
         let always = run_rusthdl(w, k, &nets, &|_| true);
         check(&always, &nets, k, "rust-hdl");
@@ -79,6 +79,7 @@ fn the_emitted_unit_equals_the_model_in_verilator_and_icarus() {
     for (w, k, simulator) in [
         (16, 3, Simulator::Verilator),
         (24, 4, Simulator::Verilator),
+        (24, 1, Simulator::Verilator),
         (16, 3, Simulator::Icarus),
     ] {
         let nets = nets(w, 6, 100 + w as u64);
@@ -105,7 +106,7 @@ fn assembled_triangles_equal_the_model() {
         run_emitted as triangles_emitted, run_rusthdl as triangles_rusthdl,
     };
     use tritri_geom::bezier::fixed::fixed_triangles;
-    for (w, k) in [(16, 3), (24, 4)] {
+    for (w, k) in [(16, 1), (16, 3), (24, 2), (24, 4)] {
         let nets = nets(w, 6, 300 + w as u64);
         let vertices = run_rusthdl(w, k, &nets, &|_| true);
         let mut runs = vec![("rust-hdl", triangles_rusthdl(w, k, &nets))];

@@ -49,7 +49,16 @@ pub const fn value_bits(w: usize, k: usize) -> usize {
 
 /// (W, K) the unit is built for: coordinate bits and `log2` of the steps
 /// a side. [`with_patch_tessellator!`] dispatches on the same list.
-pub const TESSELLATOR_CONFIGURATIONS: [(usize, usize); 4] = [(16, 3), (16, 4), (24, 3), (24, 4)];
+pub const TESSELLATOR_CONFIGURATIONS: [(usize, usize); 8] = [
+    (16, 1),
+    (16, 2),
+    (16, 3),
+    (16, 4),
+    (24, 1),
+    (24, 2),
+    (24, 3),
+    (24, 4),
+];
 
 /// `$run::<W, K, V, N>($args...)` for the unit built for `($w, $k)`, as
 /// `Some`, or `None` for a configuration it is not built for: the one
@@ -59,8 +68,12 @@ macro_rules! with_patch_tessellator {
     ($w:expr, $k:expr, $run:ident($($arg:expr),*)) => {{
         use $crate::bezier::patch_tessellator::{net_bits, value_bits};
         match ($w, $k) {
+            (16, 1) => Some($run::<16, 1, { value_bits(16, 1) }, { net_bits(16) }>($($arg),*)),
+            (16, 2) => Some($run::<16, 2, { value_bits(16, 2) }, { net_bits(16) }>($($arg),*)),
             (16, 3) => Some($run::<16, 3, { value_bits(16, 3) }, { net_bits(16) }>($($arg),*)),
             (16, 4) => Some($run::<16, 4, { value_bits(16, 4) }, { net_bits(16) }>($($arg),*)),
+            (24, 1) => Some($run::<24, 1, { value_bits(24, 1) }, { net_bits(24) }>($($arg),*)),
+            (24, 2) => Some($run::<24, 2, { value_bits(24, 2) }, { net_bits(24) }>($($arg),*)),
             (24, 3) => Some($run::<24, 3, { value_bits(24, 3) }, { net_bits(24) }>($($arg),*)),
             (24, 4) => Some($run::<24, 4, { value_bits(24, 4) }, { net_bits(24) }>($($arg),*)),
             _ => None,

@@ -27,8 +27,12 @@ macro_rules! with_patch_triangles {
     ($w:expr, $k:expr, $run:ident($($arg:expr),*)) => {{
         use $crate::bezier::patch_tessellator::{net_bits, value_bits};
         match ($w, $k) {
+            (16, 1) => Some($run::<16, 1, { value_bits(16, 1) }, { net_bits(16) }, 48, 144, 2>($($arg),*)),
+            (16, 2) => Some($run::<16, 2, { value_bits(16, 2) }, { net_bits(16) }, 48, 144, 4>($($arg),*)),
             (16, 3) => Some($run::<16, 3, { value_bits(16, 3) }, { net_bits(16) }, 48, 144, 8>($($arg),*)),
             (16, 4) => Some($run::<16, 4, { value_bits(16, 4) }, { net_bits(16) }, 48, 144, 16>($($arg),*)),
+            (24, 1) => Some($run::<24, 1, { value_bits(24, 1) }, { net_bits(24) }, 72, 216, 2>($($arg),*)),
+            (24, 2) => Some($run::<24, 2, { value_bits(24, 2) }, { net_bits(24) }, 72, 216, 4>($($arg),*)),
             (24, 3) => Some($run::<24, 3, { value_bits(24, 3) }, { net_bits(24) }, 72, 216, 8>($($arg),*)),
             (24, 4) => Some($run::<24, 4, { value_bits(24, 4) }, { net_bits(24) }, 72, 216, 16>($($arg),*)),
             _ => None,
