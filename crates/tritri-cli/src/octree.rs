@@ -18,7 +18,8 @@ use tritri_geom::octree::tree::{Octree, OctreeFile, Placement, SetOperation};
 use tritri_geom::octree::voxelize::level_of_resolution;
 use tritri_geom::octree::voxels::VoxelGrid;
 use tritri_rtl::emit::octree_builder_unit::OCTREE_BUILDER_NAME;
-use tritri_rtl::emit::plane_traversal_unit::PlaneInputs;
+use tritri_rtl::emit::plane_traversal_unit::{PlaneInputs, PLANE_TRAVERSAL_NAME};
+use tritri_rtl::emit::voxel_units::{OCTANT_CLIPPER_NAME, SET_OPERATION_NAME, VOXEL_FILL_NAME};
 use tritri_rtl::octree::octant_clipper::CLIPPER_LATENCY;
 
 #[derive(clap::Args, Debug)]
@@ -70,24 +71,14 @@ struct PlaneArgs {
     /// The plane's offset d (an integer).
     #[arg(long, value_name = "D", allow_hyphen_values = true)]
     offset: i64,
-    /// Who classifies: `model` (the software model and the hardware's
-    /// cycle model), `rusthdl`, `icarus` or `verilator` (the hardware,
-    /// checked against the model).
-    #[arg(long, value_enum, default_value_t = Engine::Model)]
-    engine: Engine,
-    /// Clock frequency in MHz for the hardware's time.
-    #[arg(long, default_value_t = DEFAULT_CLOCK_MHZ, value_name = "F", value_parser = input::parse_clock_mhz)]
-    clock_mhz: f64,
+    /// Who classifies (with `model`, the hardware's figures come from its
+    /// cycle model), and the clock for the hardware's time.
+    #[command(flatten)]
+    hardware: EngineArgs,
     #[command(flatten)]
     outputs: Outputs,
 }
 
-/// Post-route clocks on an ECP5-85 at speed 6 (rtl-out/README.md, `tritri
-/// gen --plane-traversal | --octant-clipper | --set-operation --synth ecp5`).
-const DEFAULT_CLOCK_MHZ: f64 = 68.3;
-const CLIPPER_CLOCK_MHZ: f64 = 134.2;
-const SET_OPERATION_CLOCK_MHZ: f64 = 379.2;
-const VOXEL_FILL_CLOCK_MHZ: f64 = 67.9;
 /// A unit not routed yet is timed at this clock, said so.
 pub const ASSUMED_CLOCK_MHZ: f64 = 100.0;
 
@@ -269,7 +260,7 @@ fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result
         "the voxel fill in {} left a memory that differs from the model (a bug)",
         hardware.engine.name()
     );
-    let clock = hardware.clock_mhz.unwrap_or(VOXEL_FILL_CLOCK_MHZ);
+    let (clock, _) = unit_clock(hardware, VOXEL_FILL_NAME);
     println!(
         "hardware ({}): {} fill records, {} word writes into the voxel memory, the model's voxels; {} cycles (a write per clock) = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
         hardware.engine.name(),
@@ -343,28 +334,30 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         took.as_secs_f64() * 1e3
     );
     // The hardware: its records must describe the model's half-space.
+    let engine = a.hardware.engine;
+    let (clock, _) = unit_clock(&a.hardware, PLANE_TRAVERSAL_NAME);
     let started = Instant::now();
-    let hardware = tritri_cosim::plane_traversal::run(a.engine, level, a.normal, a.offset)?;
+    let hardware = tritri_cosim::plane_traversal::run(engine, level, a.normal, a.offset)?;
     let simulated = started.elapsed();
     let agrees = hardware.crossed_voxels() == c.crossed_voxels
         && hardware.half_space(level) == c.half_space.to_voxels();
     anyhow::ensure!(
         agrees,
         "the plane traversal in {} differs from the software model (a bug)",
-        a.engine.name()
+        engine.name()
     );
     let words = hardware.fill_words(64);
     println!(
         "hardware ({}): {} cells classified, {} records, {} cycles = {:.3} ms at {} MHz{}; the same half-space and crossed voxels as the model; \
          filling a voxel memory of 64-bit words takes {words} writes ({:.3} ms at one write per clock, overlapped with the traversal)",
-        a.engine.name(),
-        if a.engine == Engine::Model { hardware.cells.to_string() } else { "-".into() },
+        engine.name(),
+        if engine == Engine::Model { hardware.cells.to_string() } else { "-".into() },
         hardware.records.len(),
         hardware.cycles,
-        hardware.cycles as f64 / (a.clock_mhz * 1e3),
-        a.clock_mhz,
-        if a.engine == Engine::Model { String::new() } else { format!(" (simulated in {:.1} s)", simulated.as_secs_f64()) },
-        words as f64 / (a.clock_mhz * 1e3)
+        hardware.cycles as f64 / (clock * 1e3),
+        clock,
+        if engine == Engine::Model { String::new() } else { format!(" (simulated in {:.1} s)", simulated.as_secs_f64()) },
+        words as f64 / (clock * 1e3)
     );
     let result = match model {
         Some(m) => {
@@ -449,7 +442,7 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
             .count()
             + octants.len().abs_diff(classes.len());
         anyhow::ensure!(wrong == 0, "the octant clipper in {} classified {wrong} octants differently from the model (a bug)", a.hardware.engine.name());
-        let clock = a.hardware.clock_mhz.unwrap_or(CLIPPER_CLOCK_MHZ);
+        let (clock, _) = unit_clock(&a.hardware, OCTANT_CLIPPER_NAME);
         let cycles = cells.len() as u64 + CLIPPER_LATENCY as u64;
         println!(
             "hardware ({}): the model's {} classes, one octant per clock: {cycles} cycles = {:.3} ms at {clock} MHz ({:.1} ns per octant; simulated in {:.1} s)",
@@ -572,7 +565,7 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
             "the set-operation unit in {} differs from the model (a bug)",
             a.hardware.engine.name()
         );
-        let clock = a.hardware.clock_mhz.unwrap_or(SET_OPERATION_CLOCK_MHZ);
+        let (clock, _) = unit_clock(&a.hardware, SET_OPERATION_NAME);
         let cycles = words.len() as u64 + 1;
         println!(
             "hardware ({}): {} words of 64 voxels, the model's result; {cycles} cycles = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
