@@ -18,7 +18,6 @@ use tritri_geom::bezier::cone::NormalCone;
 use tritri_geom::bezier::cone_fixed::{facing, Facing, FixedCone, EYE_EXTRA_BITS};
 use tritri_geom::bezier::fixed::{FixedNet, PatchFrame};
 use tritri_geom::bezier::BezierPatch;
-use tritri_rtl::arith::convert::from_i128;
 use tritri_rtl::bezier::cone_unit::{ConeUnit, CONE_UNIT_LATENCY, CONE_UNIT_WIDTHS};
 use tritri_rtl::emit::cone_unit_unit::emit_cone_unit;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock};
@@ -77,14 +76,6 @@ pub fn expected(inputs: &[ConeInput]) -> Vec<Facing> {
         .collect()
 }
 
-fn pack_net<const W: usize, const NET: usize>(net: &FixedNet) -> Bits<NET> {
-    let mut bus = Bits::<NET>::default();
-    for (k, &c) in net.iter().flatten().flatten().enumerate() {
-        bus.set_bits::<W>(k * W, from_i128::<W>(c as i128));
-    }
-    bus
-}
-
 /// The inputs through the rust-hdl model of the `w`-bit unit, one a clock.
 pub fn run_rusthdl(w: usize, inputs: &[ConeInput]) -> anyhow::Result<Vec<Facing>> {
     fn run<const W: usize, const NET: usize, const EYE: usize>(
@@ -100,7 +91,7 @@ pub fn run_rusthdl(w: usize, inputs: &[ConeInput]) -> anyhow::Result<Vec<Facing>
             uut.in_valid.next = input.is_some();
             uut.in_tag.next = (tag as u64 & 0xffff).into();
             if let Some(i) = input {
-                uut.in_net.next = pack_net::<W, NET>(&i.net);
+                uut.in_net.next = crate::patch_tessellator::pack_net::<W, NET>(&i.net);
                 let mut eye = Bits::<EYE>::default();
                 let e = W + EYE_EXTRA_BITS;
                 for (k, &x) in i.eye.iter().enumerate() {
