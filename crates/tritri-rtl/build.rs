@@ -147,7 +147,7 @@ fn first_paragraph(doc: &[&str]) -> String {
         .take_while(|l| !l.is_empty())
         .collect();
     let text = words.join(" ").replace("[`", "`").replace("`]", "`");
-    // `super::orient3d::Orient3d` → `Orient3d`: paths mean nothing in Verilog.
+    // `super::third_determinant::EndsDifference` → `EndsDifference`: paths mean nothing in Verilog.
     let mut out = String::new();
     for (i, part) in text.split('`').enumerate() {
         if i > 0 {

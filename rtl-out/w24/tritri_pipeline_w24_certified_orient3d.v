@@ -2,12 +2,11 @@
 //
 // Filename:   tritri_pipeline_w24_certified_orient3d.v
 //
-// Purpose:    `Orient3d` with a certificate: the sign of `[a,b,c,d] =
-//             (d-a).((b-a) x (c-a))` and whether it holds when every coordinate
-//             moves by half a grid step. Step (7)'s two determinants use it
-//             (units 0 and 1); unit 2 serves only degenerate pairs, which are
-//             never certain, and stays a plain `Orient3d`. Part of
-//             tritri_pipeline_w24. Instances (2): orient3d_0, orient3d_1.
+// Purpose:    Orientation determinant `[a,b,c,d] = (d-a).((b-a) x (c-a))` of
+//             four W-bit points, exact in 3W+2 bits, reduced to its sign, with
+//             a certificate: whether the sign holds when every coordinate moves
+//             by half a grid step. Part of tritri_pipeline_w24. Instances (2):
+//             orient3d_0, orient3d_1.
 //
 // Rust unit:  CertifiedOrient3d<W = 24, D = 25, C = 49, O = 74>
 // Latency:    12 clock cycles
@@ -36,7 +35,8 @@ module tritri_pipeline_w24_certified_orient3d (
     input  wire [23:0] d_2,
     output wire        negative,
     output wire        zero,
-    output wire        certain
+    output wire        certain,
+    output wire [73:0] value
 );
 
     // Stub signals
@@ -328,6 +328,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign determinant_u_1 = edge_ad_delay_1_q;
     assign determinant_u_2 = edge_ad_delay_2_q;
     assign sign_value = determinant_product;
+    assign value = determinant_product;
     assign sign_thermometer = thermometer_delay_q;
     assign negative = sign_negative;
     assign zero = sign_zero;

@@ -4,7 +4,7 @@
 //
 // Purpose:    Cross product `u x v` of two (W+1)-bit difference vectors, exact
 //             in 2W+1 bits per component. Part of tritri_pipeline_w24.
-//             Instances (8), for example: degenerate_pair.orient_abc,
+//             Instances (7), for example: degenerate_pair.orient_abc,
 //             degenerate_pair.orient_abd, degenerate_pair.orient_cda,
 //             degenerate_pair.orient_cdb.
 //
@@ -122,21 +122,21 @@ module tritri_pipeline_w24_cross_product (
         .b(multiplier_5_b),
         .product(multiplier_5_product)
     );
-    tritri_pipeline_w24_registered_difference u_component_0(
+    tritri_pipeline_w24_registered_difference_w49 u_component_0(
         .clock(component_0_clock),
         .advance(component_0_advance),
         .a(component_0_a),
         .b(component_0_b),
         .difference(component_0_difference)
     );
-    tritri_pipeline_w24_registered_difference u_component_1(
+    tritri_pipeline_w24_registered_difference_w49 u_component_1(
         .clock(component_1_clock),
         .advance(component_1_advance),
         .a(component_1_a),
         .b(component_1_b),
         .difference(component_1_difference)
     );
-    tritri_pipeline_w24_registered_difference u_component_2(
+    tritri_pipeline_w24_registered_difference_w49 u_component_2(
         .clock(component_2_clock),
         .advance(component_2_advance),
         .a(component_2_a),

@@ -62,7 +62,7 @@ module tritri_pipeline_w24_cross_product2d (
         .b(multiplier_1_b),
         .product(multiplier_1_product)
     );
-    tritri_pipeline_w24_registered_difference u_difference(
+    tritri_pipeline_w24_registered_difference_w49 u_difference(
         .clock(difference_clock),
         .advance(difference_advance),
         .a(difference_a),

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_1.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (248), for example: align_t1.t2_aligned_negative_q[0],
+//             (240), for example: align_t1.t2_aligned_negative_q[0],
 //             align_t1.t2_aligned_negative_q[1],
 //             align_t1.t2_aligned_negative_q[2], align_t1.t2_aligned_zero_q[0].
 //

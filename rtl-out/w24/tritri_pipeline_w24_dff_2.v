@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_2.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (22), for example: align_t1.t1_rotation_q,
+//             (18), for example: align_t1.t1_rotation_q,
 //             align_t2.t1_rotation_q, align_t2.t2_rotation_q,
 //             base.dominant_axis_q.
 //

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_3.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (20), for example: interval_overlap.first_q[0],
+//             (16), for example: interval_overlap.first_q[0],
 //             interval_overlap.first_q[1], interval_overlap.first_q[2],
 //             interval_overlap.first_q[3].
 //

@@ -4,7 +4,7 @@
 //
 // Purpose:    Registered signed multiplier `A x B -> P` bits, the one
 //             arithmetic block that rust-hdl 0.46 cannot express (its `*` is 16
-//             x 16 only). Part of tritri_pipeline_w24. Instances (84), for
+//             x 16 only). Part of tritri_pipeline_w24. Instances (78), for
 //             example: coplanar.orient[0].multiplier[0],
 //             coplanar.orient[0].multiplier[1],
 //             coplanar.orient[1].multiplier[0],

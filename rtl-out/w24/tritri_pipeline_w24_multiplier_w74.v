@@ -4,7 +4,7 @@
 //
 // Purpose:    Registered signed multiplier `A x B -> P` bits, the one
 //             arithmetic block that rust-hdl 0.46 cannot express (its `*` is 16
-//             x 16 only). Part of tritri_pipeline_w24. Instances (27), for
+//             x 16 only). Part of tritri_pipeline_w24. Instances (24), for
 //             example: orient3d_0.determinant.multiplier[0],
 //             orient3d_0.determinant.multiplier[1],
 //             orient3d_0.determinant.multiplier[2],

@@ -2,7 +2,7 @@
 //
 // Filename:   tritri_pipeline_w24_orient3d_operands.v
 //
-// Purpose:    The operands of the three shared `orient3d` units, chosen by the
+// Purpose:    The operands of the two shared `orient3d` units, chosen by the
 //             pair's case, then fetched from the six vertices (T1: indices
 //             0..2, T2: 3..5). Part of tritri_pipeline_w24. Instance: operands.
 //
@@ -74,19 +74,7 @@ module tritri_pipeline_w24_orient3d_operands (
     output wire [23:0] operands_20,
     output wire [23:0] operands_21,
     output wire [23:0] operands_22,
-    output wire [23:0] operands_23,
-    output wire [23:0] operands_24,
-    output wire [23:0] operands_25,
-    output wire [23:0] operands_26,
-    output wire [23:0] operands_27,
-    output wire [23:0] operands_28,
-    output wire [23:0] operands_29,
-    output wire [23:0] operands_30,
-    output wire [23:0] operands_31,
-    output wire [23:0] operands_32,
-    output wire [23:0] operands_33,
-    output wire [23:0] operands_34,
-    output wire [23:0] operands_35
+    output wire [23:0] operands_23
 );
 
     // Stub signals
@@ -114,18 +102,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [2:0] degenerate_index_q_7_d;
     wire  [2:0] degenerate_index_q_7_q;
     wire  degenerate_index_q_7_clock;
-    reg  [2:0] degenerate_index_q_8_d;
-    wire  [2:0] degenerate_index_q_8_q;
-    wire  degenerate_index_q_8_clock;
-    reg  [2:0] degenerate_index_q_9_d;
-    wire  [2:0] degenerate_index_q_9_q;
-    wire  degenerate_index_q_9_clock;
-    reg  [2:0] degenerate_index_q_10_d;
-    wire  [2:0] degenerate_index_q_10_q;
-    wire  degenerate_index_q_10_clock;
-    reg  [2:0] degenerate_index_q_11_d;
-    wire  [2:0] degenerate_index_q_11_q;
-    wire  degenerate_index_q_11_clock;
     reg  proper_d;
     wire  proper_q;
     wire  proper_clock;
@@ -153,18 +129,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [1:0] vertex_q_7_d;
     wire  [1:0] vertex_q_7_q;
     wire  vertex_q_7_clock;
-    reg  [1:0] vertex_q_8_d;
-    wire  [1:0] vertex_q_8_q;
-    wire  vertex_q_8_clock;
-    reg  [1:0] vertex_q_9_d;
-    wire  [1:0] vertex_q_9_q;
-    wire  vertex_q_9_clock;
-    reg  [1:0] vertex_q_10_d;
-    wire  [1:0] vertex_q_10_q;
-    wire  vertex_q_10_clock;
-    reg  [1:0] vertex_q_11_d;
-    wire  [1:0] vertex_q_11_q;
-    wire  vertex_q_11_clock;
     reg  from_t2_q_0_d;
     wire  from_t2_q_0_q;
     wire  from_t2_q_0_clock;
@@ -189,18 +153,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  from_t2_q_7_d;
     wire  from_t2_q_7_q;
     wire  from_t2_q_7_clock;
-    reg  from_t2_q_8_d;
-    wire  from_t2_q_8_q;
-    wire  from_t2_q_8_clock;
-    reg  from_t2_q_9_d;
-    wire  from_t2_q_9_q;
-    wire  from_t2_q_9_clock;
-    reg  from_t2_q_10_d;
-    wire  from_t2_q_10_q;
-    wire  from_t2_q_10_clock;
-    reg  from_t2_q_11_d;
-    wire  from_t2_q_11_q;
-    wire  from_t2_q_11_clock;
     wire  t1_delay_0_clock;
     wire  t1_delay_0_advance;
     wire  [23:0] t1_delay_0_d;
@@ -345,42 +297,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [23:0] t1_pick_q_23_d;
     wire  [23:0] t1_pick_q_23_q;
     wire  t1_pick_q_23_clock;
-    reg  [23:0] t1_pick_q_24_d;
-    wire  [23:0] t1_pick_q_24_q;
-    wire  t1_pick_q_24_clock;
-    reg  [23:0] t1_pick_q_25_d;
-    wire  [23:0] t1_pick_q_25_q;
-    wire  t1_pick_q_25_clock;
-    reg  [23:0] t1_pick_q_26_d;
-    wire  [23:0] t1_pick_q_26_q;
-    wire  t1_pick_q_26_clock;
-    reg  [23:0] t1_pick_q_27_d;
-    wire  [23:0] t1_pick_q_27_q;
-    wire  t1_pick_q_27_clock;
-    reg  [23:0] t1_pick_q_28_d;
-    wire  [23:0] t1_pick_q_28_q;
-    wire  t1_pick_q_28_clock;
-    reg  [23:0] t1_pick_q_29_d;
-    wire  [23:0] t1_pick_q_29_q;
-    wire  t1_pick_q_29_clock;
-    reg  [23:0] t1_pick_q_30_d;
-    wire  [23:0] t1_pick_q_30_q;
-    wire  t1_pick_q_30_clock;
-    reg  [23:0] t1_pick_q_31_d;
-    wire  [23:0] t1_pick_q_31_q;
-    wire  t1_pick_q_31_clock;
-    reg  [23:0] t1_pick_q_32_d;
-    wire  [23:0] t1_pick_q_32_q;
-    wire  t1_pick_q_32_clock;
-    reg  [23:0] t1_pick_q_33_d;
-    wire  [23:0] t1_pick_q_33_q;
-    wire  t1_pick_q_33_clock;
-    reg  [23:0] t1_pick_q_34_d;
-    wire  [23:0] t1_pick_q_34_q;
-    wire  t1_pick_q_34_clock;
-    reg  [23:0] t1_pick_q_35_d;
-    wire  [23:0] t1_pick_q_35_q;
-    wire  t1_pick_q_35_clock;
     reg  [23:0] t2_pick_q_0_d;
     wire  [23:0] t2_pick_q_0_q;
     wire  t2_pick_q_0_clock;
@@ -453,42 +369,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [23:0] t2_pick_q_23_d;
     wire  [23:0] t2_pick_q_23_q;
     wire  t2_pick_q_23_clock;
-    reg  [23:0] t2_pick_q_24_d;
-    wire  [23:0] t2_pick_q_24_q;
-    wire  t2_pick_q_24_clock;
-    reg  [23:0] t2_pick_q_25_d;
-    wire  [23:0] t2_pick_q_25_q;
-    wire  t2_pick_q_25_clock;
-    reg  [23:0] t2_pick_q_26_d;
-    wire  [23:0] t2_pick_q_26_q;
-    wire  t2_pick_q_26_clock;
-    reg  [23:0] t2_pick_q_27_d;
-    wire  [23:0] t2_pick_q_27_q;
-    wire  t2_pick_q_27_clock;
-    reg  [23:0] t2_pick_q_28_d;
-    wire  [23:0] t2_pick_q_28_q;
-    wire  t2_pick_q_28_clock;
-    reg  [23:0] t2_pick_q_29_d;
-    wire  [23:0] t2_pick_q_29_q;
-    wire  t2_pick_q_29_clock;
-    reg  [23:0] t2_pick_q_30_d;
-    wire  [23:0] t2_pick_q_30_q;
-    wire  t2_pick_q_30_clock;
-    reg  [23:0] t2_pick_q_31_d;
-    wire  [23:0] t2_pick_q_31_q;
-    wire  t2_pick_q_31_clock;
-    reg  [23:0] t2_pick_q_32_d;
-    wire  [23:0] t2_pick_q_32_q;
-    wire  t2_pick_q_32_clock;
-    reg  [23:0] t2_pick_q_33_d;
-    wire  [23:0] t2_pick_q_33_q;
-    wire  t2_pick_q_33_clock;
-    reg  [23:0] t2_pick_q_34_d;
-    wire  [23:0] t2_pick_q_34_q;
-    wire  t2_pick_q_34_clock;
-    reg  [23:0] t2_pick_q_35_d;
-    wire  [23:0] t2_pick_q_35_q;
-    wire  t2_pick_q_35_clock;
     reg  from_t2_2q_0_d;
     wire  from_t2_2q_0_q;
     wire  from_t2_2q_0_clock;
@@ -513,18 +393,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  from_t2_2q_7_d;
     wire  from_t2_2q_7_q;
     wire  from_t2_2q_7_clock;
-    reg  from_t2_2q_8_d;
-    wire  from_t2_2q_8_q;
-    wire  from_t2_2q_8_clock;
-    reg  from_t2_2q_9_d;
-    wire  from_t2_2q_9_q;
-    wire  from_t2_2q_9_clock;
-    reg  from_t2_2q_10_d;
-    wire  from_t2_2q_10_q;
-    wire  from_t2_2q_10_clock;
-    reg  from_t2_2q_11_d;
-    wire  from_t2_2q_11_q;
-    wire  from_t2_2q_11_clock;
     reg  [23:0] operands_q_0_d;
     wire  [23:0] operands_q_0_q;
     wire  operands_q_0_clock;
@@ -597,42 +465,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [23:0] operands_q_23_d;
     wire  [23:0] operands_q_23_q;
     wire  operands_q_23_clock;
-    reg  [23:0] operands_q_24_d;
-    wire  [23:0] operands_q_24_q;
-    wire  operands_q_24_clock;
-    reg  [23:0] operands_q_25_d;
-    wire  [23:0] operands_q_25_q;
-    wire  operands_q_25_clock;
-    reg  [23:0] operands_q_26_d;
-    wire  [23:0] operands_q_26_q;
-    wire  operands_q_26_clock;
-    reg  [23:0] operands_q_27_d;
-    wire  [23:0] operands_q_27_q;
-    wire  operands_q_27_clock;
-    reg  [23:0] operands_q_28_d;
-    wire  [23:0] operands_q_28_q;
-    wire  operands_q_28_clock;
-    reg  [23:0] operands_q_29_d;
-    wire  [23:0] operands_q_29_q;
-    wire  operands_q_29_clock;
-    reg  [23:0] operands_q_30_d;
-    wire  [23:0] operands_q_30_q;
-    wire  operands_q_30_clock;
-    reg  [23:0] operands_q_31_d;
-    wire  [23:0] operands_q_31_q;
-    wire  operands_q_31_clock;
-    reg  [23:0] operands_q_32_d;
-    wire  [23:0] operands_q_32_q;
-    wire  operands_q_32_clock;
-    reg  [23:0] operands_q_33_d;
-    wire  [23:0] operands_q_33_q;
-    wire  operands_q_33_clock;
-    reg  [23:0] operands_q_34_d;
-    wire  [23:0] operands_q_34_q;
-    wire  operands_q_34_clock;
-    reg  [23:0] operands_q_35_d;
-    wire  [23:0] operands_q_35_q;
-    wire  operands_q_35_clock;
 
     // Local signals
     reg  [2:0] degenerate_index_0;
@@ -643,10 +475,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [2:0] degenerate_index_5;
     reg  [2:0] degenerate_index_6;
     reg  [2:0] degenerate_index_7;
-    reg  [2:0] degenerate_index_8;
-    reg  [2:0] degenerate_index_9;
-    reg  [2:0] degenerate_index_10;
-    reg  [2:0] degenerate_index_11;
     reg  [2:0] index_0;
     reg  [2:0] index_1;
     reg  [2:0] index_2;
@@ -655,10 +483,6 @@ module tritri_pipeline_w24_orient3d_operands (
     reg  [2:0] index_5;
     reg  [2:0] index_6;
     reg  [2:0] index_7;
-    reg  [2:0] index_8;
-    reg  [2:0] index_9;
-    reg  [2:0] index_10;
-    reg  [2:0] index_11;
 
     // Sub module instances
     tritri_pipeline_w24_dff_3 u_degenerate_index_q_0(
@@ -700,26 +524,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .d(degenerate_index_q_7_d),
         .q(degenerate_index_q_7_q),
         .clock(degenerate_index_q_7_clock)
-    );
-    tritri_pipeline_w24_dff_3 u_degenerate_index_q_8(
-        .d(degenerate_index_q_8_d),
-        .q(degenerate_index_q_8_q),
-        .clock(degenerate_index_q_8_clock)
-    );
-    tritri_pipeline_w24_dff_3 u_degenerate_index_q_9(
-        .d(degenerate_index_q_9_d),
-        .q(degenerate_index_q_9_q),
-        .clock(degenerate_index_q_9_clock)
-    );
-    tritri_pipeline_w24_dff_3 u_degenerate_index_q_10(
-        .d(degenerate_index_q_10_d),
-        .q(degenerate_index_q_10_q),
-        .clock(degenerate_index_q_10_clock)
-    );
-    tritri_pipeline_w24_dff_3 u_degenerate_index_q_11(
-        .d(degenerate_index_q_11_d),
-        .q(degenerate_index_q_11_q),
-        .clock(degenerate_index_q_11_clock)
     );
     tritri_pipeline_w24_dff_1 u_proper_q(
         .d(proper_d),
@@ -766,26 +570,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .q(vertex_q_7_q),
         .clock(vertex_q_7_clock)
     );
-    tritri_pipeline_w24_dff_2 u_vertex_q_8(
-        .d(vertex_q_8_d),
-        .q(vertex_q_8_q),
-        .clock(vertex_q_8_clock)
-    );
-    tritri_pipeline_w24_dff_2 u_vertex_q_9(
-        .d(vertex_q_9_d),
-        .q(vertex_q_9_q),
-        .clock(vertex_q_9_clock)
-    );
-    tritri_pipeline_w24_dff_2 u_vertex_q_10(
-        .d(vertex_q_10_d),
-        .q(vertex_q_10_q),
-        .clock(vertex_q_10_clock)
-    );
-    tritri_pipeline_w24_dff_2 u_vertex_q_11(
-        .d(vertex_q_11_d),
-        .q(vertex_q_11_q),
-        .clock(vertex_q_11_clock)
-    );
     tritri_pipeline_w24_dff_1 u_from_t2_q_0(
         .d(from_t2_q_0_d),
         .q(from_t2_q_0_q),
@@ -825,26 +609,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .d(from_t2_q_7_d),
         .q(from_t2_q_7_q),
         .clock(from_t2_q_7_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_q_8(
-        .d(from_t2_q_8_d),
-        .q(from_t2_q_8_q),
-        .clock(from_t2_q_8_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_q_9(
-        .d(from_t2_q_9_d),
-        .q(from_t2_q_9_q),
-        .clock(from_t2_q_9_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_q_10(
-        .d(from_t2_q_10_d),
-        .q(from_t2_q_10_q),
-        .clock(from_t2_q_10_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_q_11(
-        .d(from_t2_q_11_d),
-        .q(from_t2_q_11_q),
-        .clock(from_t2_q_11_clock)
     );
     tritri_pipeline_w24_delay_line_w24_n1 u_t1_delay_0(
         .clock(t1_delay_0_clock),
@@ -1074,66 +838,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .q(t1_pick_q_23_q),
         .clock(t1_pick_q_23_clock)
     );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_24(
-        .d(t1_pick_q_24_d),
-        .q(t1_pick_q_24_q),
-        .clock(t1_pick_q_24_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_25(
-        .d(t1_pick_q_25_d),
-        .q(t1_pick_q_25_q),
-        .clock(t1_pick_q_25_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_26(
-        .d(t1_pick_q_26_d),
-        .q(t1_pick_q_26_q),
-        .clock(t1_pick_q_26_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_27(
-        .d(t1_pick_q_27_d),
-        .q(t1_pick_q_27_q),
-        .clock(t1_pick_q_27_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_28(
-        .d(t1_pick_q_28_d),
-        .q(t1_pick_q_28_q),
-        .clock(t1_pick_q_28_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_29(
-        .d(t1_pick_q_29_d),
-        .q(t1_pick_q_29_q),
-        .clock(t1_pick_q_29_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_30(
-        .d(t1_pick_q_30_d),
-        .q(t1_pick_q_30_q),
-        .clock(t1_pick_q_30_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_31(
-        .d(t1_pick_q_31_d),
-        .q(t1_pick_q_31_q),
-        .clock(t1_pick_q_31_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_32(
-        .d(t1_pick_q_32_d),
-        .q(t1_pick_q_32_q),
-        .clock(t1_pick_q_32_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_33(
-        .d(t1_pick_q_33_d),
-        .q(t1_pick_q_33_q),
-        .clock(t1_pick_q_33_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_34(
-        .d(t1_pick_q_34_d),
-        .q(t1_pick_q_34_q),
-        .clock(t1_pick_q_34_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t1_pick_q_35(
-        .d(t1_pick_q_35_d),
-        .q(t1_pick_q_35_q),
-        .clock(t1_pick_q_35_clock)
-    );
     tritri_pipeline_w24_dff_24 u_t2_pick_q_0(
         .d(t2_pick_q_0_d),
         .q(t2_pick_q_0_q),
@@ -1254,66 +958,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .q(t2_pick_q_23_q),
         .clock(t2_pick_q_23_clock)
     );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_24(
-        .d(t2_pick_q_24_d),
-        .q(t2_pick_q_24_q),
-        .clock(t2_pick_q_24_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_25(
-        .d(t2_pick_q_25_d),
-        .q(t2_pick_q_25_q),
-        .clock(t2_pick_q_25_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_26(
-        .d(t2_pick_q_26_d),
-        .q(t2_pick_q_26_q),
-        .clock(t2_pick_q_26_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_27(
-        .d(t2_pick_q_27_d),
-        .q(t2_pick_q_27_q),
-        .clock(t2_pick_q_27_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_28(
-        .d(t2_pick_q_28_d),
-        .q(t2_pick_q_28_q),
-        .clock(t2_pick_q_28_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_29(
-        .d(t2_pick_q_29_d),
-        .q(t2_pick_q_29_q),
-        .clock(t2_pick_q_29_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_30(
-        .d(t2_pick_q_30_d),
-        .q(t2_pick_q_30_q),
-        .clock(t2_pick_q_30_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_31(
-        .d(t2_pick_q_31_d),
-        .q(t2_pick_q_31_q),
-        .clock(t2_pick_q_31_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_32(
-        .d(t2_pick_q_32_d),
-        .q(t2_pick_q_32_q),
-        .clock(t2_pick_q_32_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_33(
-        .d(t2_pick_q_33_d),
-        .q(t2_pick_q_33_q),
-        .clock(t2_pick_q_33_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_34(
-        .d(t2_pick_q_34_d),
-        .q(t2_pick_q_34_q),
-        .clock(t2_pick_q_34_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_t2_pick_q_35(
-        .d(t2_pick_q_35_d),
-        .q(t2_pick_q_35_q),
-        .clock(t2_pick_q_35_clock)
-    );
     tritri_pipeline_w24_dff_1 u_from_t2_2q_0(
         .d(from_t2_2q_0_d),
         .q(from_t2_2q_0_q),
@@ -1353,26 +997,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .d(from_t2_2q_7_d),
         .q(from_t2_2q_7_q),
         .clock(from_t2_2q_7_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_2q_8(
-        .d(from_t2_2q_8_d),
-        .q(from_t2_2q_8_q),
-        .clock(from_t2_2q_8_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_2q_9(
-        .d(from_t2_2q_9_d),
-        .q(from_t2_2q_9_q),
-        .clock(from_t2_2q_9_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_2q_10(
-        .d(from_t2_2q_10_d),
-        .q(from_t2_2q_10_q),
-        .clock(from_t2_2q_10_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_from_t2_2q_11(
-        .d(from_t2_2q_11_d),
-        .q(from_t2_2q_11_q),
-        .clock(from_t2_2q_11_clock)
     );
     tritri_pipeline_w24_dff_24 u_operands_q_0(
         .d(operands_q_0_d),
@@ -1494,66 +1118,6 @@ module tritri_pipeline_w24_orient3d_operands (
         .q(operands_q_23_q),
         .clock(operands_q_23_clock)
     );
-    tritri_pipeline_w24_dff_24 u_operands_q_24(
-        .d(operands_q_24_d),
-        .q(operands_q_24_q),
-        .clock(operands_q_24_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_25(
-        .d(operands_q_25_d),
-        .q(operands_q_25_q),
-        .clock(operands_q_25_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_26(
-        .d(operands_q_26_d),
-        .q(operands_q_26_q),
-        .clock(operands_q_26_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_27(
-        .d(operands_q_27_d),
-        .q(operands_q_27_q),
-        .clock(operands_q_27_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_28(
-        .d(operands_q_28_d),
-        .q(operands_q_28_q),
-        .clock(operands_q_28_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_29(
-        .d(operands_q_29_d),
-        .q(operands_q_29_q),
-        .clock(operands_q_29_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_30(
-        .d(operands_q_30_d),
-        .q(operands_q_30_q),
-        .clock(operands_q_30_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_31(
-        .d(operands_q_31_d),
-        .q(operands_q_31_q),
-        .clock(operands_q_31_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_32(
-        .d(operands_q_32_d),
-        .q(operands_q_32_q),
-        .clock(operands_q_32_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_33(
-        .d(operands_q_33_d),
-        .q(operands_q_33_q),
-        .clock(operands_q_33_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_34(
-        .d(operands_q_34_d),
-        .q(operands_q_34_q),
-        .clock(operands_q_34_clock)
-    );
-    tritri_pipeline_w24_dff_24 u_operands_q_35(
-        .d(operands_q_35_d),
-        .q(operands_q_35_q),
-        .clock(operands_q_35_clock)
-    );
 
     // Update code
     assign proper_clock = clock;
@@ -1565,10 +1129,6 @@ module tritri_pipeline_w24_orient3d_operands (
     assign degenerate_index_q_5_clock = clock;
     assign degenerate_index_q_6_clock = clock;
     assign degenerate_index_q_7_clock = clock;
-    assign degenerate_index_q_8_clock = clock;
-    assign degenerate_index_q_9_clock = clock;
-    assign degenerate_index_q_10_clock = clock;
-    assign degenerate_index_q_11_clock = clock;
     assign vertex_q_0_clock = clock;
     assign from_t2_q_0_clock = clock;
     assign from_t2_2q_0_clock = clock;
@@ -1593,18 +1153,6 @@ module tritri_pipeline_w24_orient3d_operands (
     assign vertex_q_7_clock = clock;
     assign from_t2_q_7_clock = clock;
     assign from_t2_2q_7_clock = clock;
-    assign vertex_q_8_clock = clock;
-    assign from_t2_q_8_clock = clock;
-    assign from_t2_2q_8_clock = clock;
-    assign vertex_q_9_clock = clock;
-    assign from_t2_q_9_clock = clock;
-    assign from_t2_2q_9_clock = clock;
-    assign vertex_q_10_clock = clock;
-    assign from_t2_q_10_clock = clock;
-    assign from_t2_2q_10_clock = clock;
-    assign vertex_q_11_clock = clock;
-    assign from_t2_q_11_clock = clock;
-    assign from_t2_2q_11_clock = clock;
     assign t1_delay_0_clock = clock;
     assign t1_delay_0_advance = advance;
     assign t1_delay_0_d = t1_vertices_0;
@@ -1755,54 +1303,6 @@ module tritri_pipeline_w24_orient3d_operands (
     assign t2_pick_q_23_clock = clock;
     assign operands_q_23_clock = clock;
     assign operands_23 = operands_q_23_q;
-    assign t1_pick_q_24_clock = clock;
-    assign t2_pick_q_24_clock = clock;
-    assign operands_q_24_clock = clock;
-    assign operands_24 = operands_q_24_q;
-    assign t1_pick_q_25_clock = clock;
-    assign t2_pick_q_25_clock = clock;
-    assign operands_q_25_clock = clock;
-    assign operands_25 = operands_q_25_q;
-    assign t1_pick_q_26_clock = clock;
-    assign t2_pick_q_26_clock = clock;
-    assign operands_q_26_clock = clock;
-    assign operands_26 = operands_q_26_q;
-    assign t1_pick_q_27_clock = clock;
-    assign t2_pick_q_27_clock = clock;
-    assign operands_q_27_clock = clock;
-    assign operands_27 = operands_q_27_q;
-    assign t1_pick_q_28_clock = clock;
-    assign t2_pick_q_28_clock = clock;
-    assign operands_q_28_clock = clock;
-    assign operands_28 = operands_q_28_q;
-    assign t1_pick_q_29_clock = clock;
-    assign t2_pick_q_29_clock = clock;
-    assign operands_q_29_clock = clock;
-    assign operands_29 = operands_q_29_q;
-    assign t1_pick_q_30_clock = clock;
-    assign t2_pick_q_30_clock = clock;
-    assign operands_q_30_clock = clock;
-    assign operands_30 = operands_q_30_q;
-    assign t1_pick_q_31_clock = clock;
-    assign t2_pick_q_31_clock = clock;
-    assign operands_q_31_clock = clock;
-    assign operands_31 = operands_q_31_q;
-    assign t1_pick_q_32_clock = clock;
-    assign t2_pick_q_32_clock = clock;
-    assign operands_q_32_clock = clock;
-    assign operands_32 = operands_q_32_q;
-    assign t1_pick_q_33_clock = clock;
-    assign t2_pick_q_33_clock = clock;
-    assign operands_q_33_clock = clock;
-    assign operands_33 = operands_q_33_q;
-    assign t1_pick_q_34_clock = clock;
-    assign t2_pick_q_34_clock = clock;
-    assign operands_q_34_clock = clock;
-    assign operands_34 = operands_q_34_q;
-    assign t1_pick_q_35_clock = clock;
-    assign t2_pick_q_35_clock = clock;
-    assign operands_q_35_clock = clock;
-    assign operands_35 = operands_q_35_q;
     always @(*) begin
         degenerate_index_0 = 3'h0;
         degenerate_index_1 = 3'h0;
@@ -1812,37 +1312,25 @@ module tritri_pipeline_w24_orient3d_operands (
         degenerate_index_5 = 3'h0;
         degenerate_index_6 = 3'h0;
         degenerate_index_7 = 3'h0;
-        degenerate_index_8 = 3'h0;
-        degenerate_index_9 = 3'h0;
-        degenerate_index_10 = 3'h0;
-        degenerate_index_11 = 3'h0;
         if (t1_degenerate && ~t2_degenerate) begin
             degenerate_index_0 = {1'h0, t1_segment_low};
             degenerate_index_1 = {1'h0, t1_segment_high};
             degenerate_index_4 = {1'h0, t1_segment_low};
             degenerate_index_5 = {1'h0, t1_segment_high};
-            degenerate_index_8 = {1'h0, t1_segment_low};
-            degenerate_index_9 = {1'h0, t1_segment_high};
             degenerate_index_2 = 3'h3;
             degenerate_index_3 = 3'h4;
             degenerate_index_6 = 3'h4;
             degenerate_index_7 = 3'h5;
-            degenerate_index_10 = 3'h5;
-            degenerate_index_11 = 3'h3;
         end
         else if (~t1_degenerate && t2_degenerate) begin
             degenerate_index_0 = {1'h0, t2_segment_low} + 3'h3;
             degenerate_index_1 = {1'h0, t2_segment_high} + 3'h3;
             degenerate_index_4 = {1'h0, t2_segment_low} + 3'h3;
             degenerate_index_5 = {1'h0, t2_segment_high} + 3'h3;
-            degenerate_index_8 = {1'h0, t2_segment_low} + 3'h3;
-            degenerate_index_9 = {1'h0, t2_segment_high} + 3'h3;
             degenerate_index_2 = 3'h0;
             degenerate_index_3 = 3'h1;
             degenerate_index_6 = 3'h1;
             degenerate_index_7 = 3'h2;
-            degenerate_index_10 = 3'h2;
-            degenerate_index_11 = 3'h0;
         end
         else if (t1_degenerate && t2_degenerate) begin
             degenerate_index_0 = {1'h0, t1_segment_low};
@@ -1894,39 +1382,15 @@ module tritri_pipeline_w24_orient3d_operands (
             degenerate_index_q_7_d = degenerate_index_7;
         end
         index_7 = degenerate_index_q_7_q;
-        degenerate_index_q_8_d = degenerate_index_q_8_q;
-        if (advance) begin
-            degenerate_index_q_8_d = degenerate_index_8;
-        end
-        index_8 = degenerate_index_q_8_q;
-        degenerate_index_q_9_d = degenerate_index_q_9_q;
-        if (advance) begin
-            degenerate_index_q_9_d = degenerate_index_9;
-        end
-        index_9 = degenerate_index_q_9_q;
-        degenerate_index_q_10_d = degenerate_index_q_10_q;
-        if (advance) begin
-            degenerate_index_q_10_d = degenerate_index_10;
-        end
-        index_10 = degenerate_index_q_10_q;
-        degenerate_index_q_11_d = degenerate_index_q_11_q;
-        if (advance) begin
-            degenerate_index_q_11_d = degenerate_index_11;
-        end
-        index_11 = degenerate_index_q_11_q;
         if (proper_q) begin
             index_0 = overlap_first_0;
             index_4 = overlap_second_0;
-            index_8 = 3'h0;
             index_1 = overlap_first_1;
             index_5 = overlap_second_1;
-            index_9 = 3'h0;
             index_2 = overlap_first_2;
             index_6 = overlap_second_2;
-            index_10 = 3'h0;
             index_3 = overlap_first_3;
             index_7 = overlap_second_3;
-            index_11 = 3'h0;
         end
         vertex_q_0_d = vertex_q_0_q;
         from_t2_q_0_d = from_t2_q_0_q;
@@ -2055,70 +1519,6 @@ module tritri_pipeline_w24_orient3d_operands (
             end
             from_t2_q_7_d = index_7 == 3'h3 || index_7 == 3'h4 || index_7 == 3'h5;
             from_t2_2q_7_d = from_t2_q_7_q;
-        end
-        vertex_q_8_d = vertex_q_8_q;
-        from_t2_q_8_d = from_t2_q_8_q;
-        from_t2_2q_8_d = from_t2_2q_8_q;
-        if (advance) begin
-            if (index_8 == 3'h0 || index_8 == 3'h3) begin
-                vertex_q_8_d = 2'h0;
-            end
-            else if (index_8 == 3'h1 || index_8 == 3'h4) begin
-                vertex_q_8_d = 2'h1;
-            end
-            else begin
-                vertex_q_8_d = 2'h2;
-            end
-            from_t2_q_8_d = index_8 == 3'h3 || index_8 == 3'h4 || index_8 == 3'h5;
-            from_t2_2q_8_d = from_t2_q_8_q;
-        end
-        vertex_q_9_d = vertex_q_9_q;
-        from_t2_q_9_d = from_t2_q_9_q;
-        from_t2_2q_9_d = from_t2_2q_9_q;
-        if (advance) begin
-            if (index_9 == 3'h0 || index_9 == 3'h3) begin
-                vertex_q_9_d = 2'h0;
-            end
-            else if (index_9 == 3'h1 || index_9 == 3'h4) begin
-                vertex_q_9_d = 2'h1;
-            end
-            else begin
-                vertex_q_9_d = 2'h2;
-            end
-            from_t2_q_9_d = index_9 == 3'h3 || index_9 == 3'h4 || index_9 == 3'h5;
-            from_t2_2q_9_d = from_t2_q_9_q;
-        end
-        vertex_q_10_d = vertex_q_10_q;
-        from_t2_q_10_d = from_t2_q_10_q;
-        from_t2_2q_10_d = from_t2_2q_10_q;
-        if (advance) begin
-            if (index_10 == 3'h0 || index_10 == 3'h3) begin
-                vertex_q_10_d = 2'h0;
-            end
-            else if (index_10 == 3'h1 || index_10 == 3'h4) begin
-                vertex_q_10_d = 2'h1;
-            end
-            else begin
-                vertex_q_10_d = 2'h2;
-            end
-            from_t2_q_10_d = index_10 == 3'h3 || index_10 == 3'h4 || index_10 == 3'h5;
-            from_t2_2q_10_d = from_t2_q_10_q;
-        end
-        vertex_q_11_d = vertex_q_11_q;
-        from_t2_q_11_d = from_t2_q_11_q;
-        from_t2_2q_11_d = from_t2_2q_11_q;
-        if (advance) begin
-            if (index_11 == 3'h0 || index_11 == 3'h3) begin
-                vertex_q_11_d = 2'h0;
-            end
-            else if (index_11 == 3'h1 || index_11 == 3'h4) begin
-                vertex_q_11_d = 2'h1;
-            end
-            else begin
-                vertex_q_11_d = 2'h2;
-            end
-            from_t2_q_11_d = index_11 == 3'h3 || index_11 == 3'h4 || index_11 == 3'h5;
-            from_t2_2q_11_d = from_t2_q_11_q;
         end
         t1_pick_q_0_d = t1_pick_q_0_q;
         t2_pick_q_0_d = t2_pick_q_0_q;
@@ -2670,282 +2070,6 @@ module tritri_pipeline_w24_orient3d_operands (
             end
             else begin
                 operands_q_23_d = t1_pick_q_23_q;
-            end
-        end
-        t1_pick_q_24_d = t1_pick_q_24_q;
-        t2_pick_q_24_d = t2_pick_q_24_q;
-        operands_q_24_d = operands_q_24_q;
-        if (advance) begin
-            if (vertex_q_8_q == 2'h0) begin
-                t1_pick_q_24_d = t1_delay_0_q;
-                t2_pick_q_24_d = t2_delay_0_q;
-            end
-            else if (vertex_q_8_q == 2'h1) begin
-                t1_pick_q_24_d = t1_delay_3_q;
-                t2_pick_q_24_d = t2_delay_3_q;
-            end
-            else begin
-                t1_pick_q_24_d = t1_delay_6_q;
-                t2_pick_q_24_d = t2_delay_6_q;
-            end
-            if (from_t2_2q_8_q) begin
-                operands_q_24_d = t2_pick_q_24_q;
-            end
-            else begin
-                operands_q_24_d = t1_pick_q_24_q;
-            end
-        end
-        t1_pick_q_25_d = t1_pick_q_25_q;
-        t2_pick_q_25_d = t2_pick_q_25_q;
-        operands_q_25_d = operands_q_25_q;
-        if (advance) begin
-            if (vertex_q_8_q == 2'h0) begin
-                t1_pick_q_25_d = t1_delay_1_q;
-                t2_pick_q_25_d = t2_delay_1_q;
-            end
-            else if (vertex_q_8_q == 2'h1) begin
-                t1_pick_q_25_d = t1_delay_4_q;
-                t2_pick_q_25_d = t2_delay_4_q;
-            end
-            else begin
-                t1_pick_q_25_d = t1_delay_7_q;
-                t2_pick_q_25_d = t2_delay_7_q;
-            end
-            if (from_t2_2q_8_q) begin
-                operands_q_25_d = t2_pick_q_25_q;
-            end
-            else begin
-                operands_q_25_d = t1_pick_q_25_q;
-            end
-        end
-        t1_pick_q_26_d = t1_pick_q_26_q;
-        t2_pick_q_26_d = t2_pick_q_26_q;
-        operands_q_26_d = operands_q_26_q;
-        if (advance) begin
-            if (vertex_q_8_q == 2'h0) begin
-                t1_pick_q_26_d = t1_delay_2_q;
-                t2_pick_q_26_d = t2_delay_2_q;
-            end
-            else if (vertex_q_8_q == 2'h1) begin
-                t1_pick_q_26_d = t1_delay_5_q;
-                t2_pick_q_26_d = t2_delay_5_q;
-            end
-            else begin
-                t1_pick_q_26_d = t1_delay_8_q;
-                t2_pick_q_26_d = t2_delay_8_q;
-            end
-            if (from_t2_2q_8_q) begin
-                operands_q_26_d = t2_pick_q_26_q;
-            end
-            else begin
-                operands_q_26_d = t1_pick_q_26_q;
-            end
-        end
-        t1_pick_q_27_d = t1_pick_q_27_q;
-        t2_pick_q_27_d = t2_pick_q_27_q;
-        operands_q_27_d = operands_q_27_q;
-        if (advance) begin
-            if (vertex_q_9_q == 2'h0) begin
-                t1_pick_q_27_d = t1_delay_0_q;
-                t2_pick_q_27_d = t2_delay_0_q;
-            end
-            else if (vertex_q_9_q == 2'h1) begin
-                t1_pick_q_27_d = t1_delay_3_q;
-                t2_pick_q_27_d = t2_delay_3_q;
-            end
-            else begin
-                t1_pick_q_27_d = t1_delay_6_q;
-                t2_pick_q_27_d = t2_delay_6_q;
-            end
-            if (from_t2_2q_9_q) begin
-                operands_q_27_d = t2_pick_q_27_q;
-            end
-            else begin
-                operands_q_27_d = t1_pick_q_27_q;
-            end
-        end
-        t1_pick_q_28_d = t1_pick_q_28_q;
-        t2_pick_q_28_d = t2_pick_q_28_q;
-        operands_q_28_d = operands_q_28_q;
-        if (advance) begin
-            if (vertex_q_9_q == 2'h0) begin
-                t1_pick_q_28_d = t1_delay_1_q;
-                t2_pick_q_28_d = t2_delay_1_q;
-            end
-            else if (vertex_q_9_q == 2'h1) begin
-                t1_pick_q_28_d = t1_delay_4_q;
-                t2_pick_q_28_d = t2_delay_4_q;
-            end
-            else begin
-                t1_pick_q_28_d = t1_delay_7_q;
-                t2_pick_q_28_d = t2_delay_7_q;
-            end
-            if (from_t2_2q_9_q) begin
-                operands_q_28_d = t2_pick_q_28_q;
-            end
-            else begin
-                operands_q_28_d = t1_pick_q_28_q;
-            end
-        end
-        t1_pick_q_29_d = t1_pick_q_29_q;
-        t2_pick_q_29_d = t2_pick_q_29_q;
-        operands_q_29_d = operands_q_29_q;
-        if (advance) begin
-            if (vertex_q_9_q == 2'h0) begin
-                t1_pick_q_29_d = t1_delay_2_q;
-                t2_pick_q_29_d = t2_delay_2_q;
-            end
-            else if (vertex_q_9_q == 2'h1) begin
-                t1_pick_q_29_d = t1_delay_5_q;
-                t2_pick_q_29_d = t2_delay_5_q;
-            end
-            else begin
-                t1_pick_q_29_d = t1_delay_8_q;
-                t2_pick_q_29_d = t2_delay_8_q;
-            end
-            if (from_t2_2q_9_q) begin
-                operands_q_29_d = t2_pick_q_29_q;
-            end
-            else begin
-                operands_q_29_d = t1_pick_q_29_q;
-            end
-        end
-        t1_pick_q_30_d = t1_pick_q_30_q;
-        t2_pick_q_30_d = t2_pick_q_30_q;
-        operands_q_30_d = operands_q_30_q;
-        if (advance) begin
-            if (vertex_q_10_q == 2'h0) begin
-                t1_pick_q_30_d = t1_delay_0_q;
-                t2_pick_q_30_d = t2_delay_0_q;
-            end
-            else if (vertex_q_10_q == 2'h1) begin
-                t1_pick_q_30_d = t1_delay_3_q;
-                t2_pick_q_30_d = t2_delay_3_q;
-            end
-            else begin
-                t1_pick_q_30_d = t1_delay_6_q;
-                t2_pick_q_30_d = t2_delay_6_q;
-            end
-            if (from_t2_2q_10_q) begin
-                operands_q_30_d = t2_pick_q_30_q;
-            end
-            else begin
-                operands_q_30_d = t1_pick_q_30_q;
-            end
-        end
-        t1_pick_q_31_d = t1_pick_q_31_q;
-        t2_pick_q_31_d = t2_pick_q_31_q;
-        operands_q_31_d = operands_q_31_q;
-        if (advance) begin
-            if (vertex_q_10_q == 2'h0) begin
-                t1_pick_q_31_d = t1_delay_1_q;
-                t2_pick_q_31_d = t2_delay_1_q;
-            end
-            else if (vertex_q_10_q == 2'h1) begin
-                t1_pick_q_31_d = t1_delay_4_q;
-                t2_pick_q_31_d = t2_delay_4_q;
-            end
-            else begin
-                t1_pick_q_31_d = t1_delay_7_q;
-                t2_pick_q_31_d = t2_delay_7_q;
-            end
-            if (from_t2_2q_10_q) begin
-                operands_q_31_d = t2_pick_q_31_q;
-            end
-            else begin
-                operands_q_31_d = t1_pick_q_31_q;
-            end
-        end
-        t1_pick_q_32_d = t1_pick_q_32_q;
-        t2_pick_q_32_d = t2_pick_q_32_q;
-        operands_q_32_d = operands_q_32_q;
-        if (advance) begin
-            if (vertex_q_10_q == 2'h0) begin
-                t1_pick_q_32_d = t1_delay_2_q;
-                t2_pick_q_32_d = t2_delay_2_q;
-            end
-            else if (vertex_q_10_q == 2'h1) begin
-                t1_pick_q_32_d = t1_delay_5_q;
-                t2_pick_q_32_d = t2_delay_5_q;
-            end
-            else begin
-                t1_pick_q_32_d = t1_delay_8_q;
-                t2_pick_q_32_d = t2_delay_8_q;
-            end
-            if (from_t2_2q_10_q) begin
-                operands_q_32_d = t2_pick_q_32_q;
-            end
-            else begin
-                operands_q_32_d = t1_pick_q_32_q;
-            end
-        end
-        t1_pick_q_33_d = t1_pick_q_33_q;
-        t2_pick_q_33_d = t2_pick_q_33_q;
-        operands_q_33_d = operands_q_33_q;
-        if (advance) begin
-            if (vertex_q_11_q == 2'h0) begin
-                t1_pick_q_33_d = t1_delay_0_q;
-                t2_pick_q_33_d = t2_delay_0_q;
-            end
-            else if (vertex_q_11_q == 2'h1) begin
-                t1_pick_q_33_d = t1_delay_3_q;
-                t2_pick_q_33_d = t2_delay_3_q;
-            end
-            else begin
-                t1_pick_q_33_d = t1_delay_6_q;
-                t2_pick_q_33_d = t2_delay_6_q;
-            end
-            if (from_t2_2q_11_q) begin
-                operands_q_33_d = t2_pick_q_33_q;
-            end
-            else begin
-                operands_q_33_d = t1_pick_q_33_q;
-            end
-        end
-        t1_pick_q_34_d = t1_pick_q_34_q;
-        t2_pick_q_34_d = t2_pick_q_34_q;
-        operands_q_34_d = operands_q_34_q;
-        if (advance) begin
-            if (vertex_q_11_q == 2'h0) begin
-                t1_pick_q_34_d = t1_delay_1_q;
-                t2_pick_q_34_d = t2_delay_1_q;
-            end
-            else if (vertex_q_11_q == 2'h1) begin
-                t1_pick_q_34_d = t1_delay_4_q;
-                t2_pick_q_34_d = t2_delay_4_q;
-            end
-            else begin
-                t1_pick_q_34_d = t1_delay_7_q;
-                t2_pick_q_34_d = t2_delay_7_q;
-            end
-            if (from_t2_2q_11_q) begin
-                operands_q_34_d = t2_pick_q_34_q;
-            end
-            else begin
-                operands_q_34_d = t1_pick_q_34_q;
-            end
-        end
-        t1_pick_q_35_d = t1_pick_q_35_q;
-        t2_pick_q_35_d = t2_pick_q_35_q;
-        operands_q_35_d = operands_q_35_q;
-        if (advance) begin
-            if (vertex_q_11_q == 2'h0) begin
-                t1_pick_q_35_d = t1_delay_2_q;
-                t2_pick_q_35_d = t2_delay_2_q;
-            end
-            else if (vertex_q_11_q == 2'h1) begin
-                t1_pick_q_35_d = t1_delay_5_q;
-                t2_pick_q_35_d = t2_delay_5_q;
-            end
-            else begin
-                t1_pick_q_35_d = t1_delay_8_q;
-                t2_pick_q_35_d = t2_delay_8_q;
-            end
-            if (from_t2_2q_11_q) begin
-                operands_q_35_d = t2_pick_q_35_q;
-            end
-            else begin
-                operands_q_35_d = t1_pick_q_35_q;
             end
         end
     end

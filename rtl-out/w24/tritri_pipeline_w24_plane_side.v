@@ -44,7 +44,10 @@ module tritri_pipeline_w24_plane_side (
     output wire        zero_2,
     output wire        certain_0,
     output wire        certain_1,
-    output wire        certain_2
+    output wire        certain_2,
+    output wire [73:0] distance__0,
+    output wire [73:0] distance__1,
+    output wire [73:0] distance__2
 );
 
     // Stub signals
@@ -425,6 +428,9 @@ module tritri_pipeline_w24_plane_side (
     assign distance_0_v_2 = normal_delay_2_q;
     assign distance_1_v_2 = normal_delay_2_q;
     assign distance_2_v_2 = normal_delay_2_q;
+    assign distance__0 = distance_0_product;
+    assign distance__1 = distance_1_product;
+    assign distance__2 = distance_2_product;
     assign sign_0_value = distance_0_product;
     assign sign_1_value = distance_1_product;
     assign sign_2_value = distance_2_product;

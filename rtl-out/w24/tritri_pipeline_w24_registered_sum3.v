@@ -3,9 +3,9 @@
 // Filename:   tritri_pipeline_w24_registered_sum3.v
 //
 // Purpose:    `sum = a + b + c` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instances (9), for example:
+//             tritri_pipeline_w24. Instances (8), for example:
 //             orient3d_0.determinant.sum, orient3d_1.determinant.sum,
-//             orient3d_2.determinant.sum, plane_side_t1.distance_0.sum.
+//             plane_side_t1.distance_0.sum, plane_side_t1.distance_1.sum.
 //
 // Rust unit:  RegisteredSum3<N = 74>
 // Latency:    1 clock cycle

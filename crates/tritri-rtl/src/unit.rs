@@ -6,8 +6,8 @@
 //! which Rust type an instance is. Every unit therefore implements [`Unit`]:
 //! its latency constant, and ([`sub_units!`](crate::sub_units)) the fields that hold other
 //! units. [`RawDesign::of`] walks a top this way beside rust-hdl's Verilog,
-//! and the emitter names each module after its type (`orient3d`,
-//! `certified_orient3d`, `delay_line`) and heads its file with the type's
+//! and the emitter names each module after its type
+//! (`certified_orient3d`, `delay_line`) and heads its file with the type's
 //! doc (collected by `build.rs`), parameters and latency. A module whose
 //! path the walk did not reach is an emission error that names the path.
 
@@ -76,7 +76,7 @@ impl<T: Synth> Unit for DFF<T> {
 /// A unit's type, as the emitter names and describes it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct UnitInfo {
-    /// The type's name without path or parameters: `Orient3d`.
+    /// The type's name without path or parameters: `CertifiedOrient3d`.
     pub type_name: String,
     /// Its generic parameters' names and values (`W = 24`, `T = Bits<25>`),
     /// then its [`Unit::settings`].
@@ -113,7 +113,7 @@ impl UnitInfo {
         }
     }
 
-    /// The module name stem: `Orient3d` → `orient3d`, `DelayLine` →
+    /// The module name stem: `CertifiedOrient3d` → `certified_orient3d`, `DelayLine` →
     /// `delay_line`, `CrossProduct2d` → `cross_product2d`.
     pub fn module_stem(&self) -> String {
         let mut stem = String::new();
@@ -135,7 +135,7 @@ impl UnitInfo {
         UNIT_DOCS.iter().find(|d| d.name == self.type_name)
     }
 
-    /// `Orient3d<W = 24, D = 25, C = 49, O = 74>`, `SimpleDualPortRam<T =
+    /// `CertifiedOrient3d<W = 24, D = 25, C = 49, O = 74>`, `SimpleDualPortRam<T =
     /// Bits<32>, A = 16>, depth = 512`.
     pub fn signature(&self) -> String {
         let generics = self
@@ -289,7 +289,10 @@ mod tests {
     /// Every unit type has a doc, and its parameters are named.
     #[test]
     fn docs_are_collected() {
-        let orient = UNIT_DOCS.iter().find(|d| d.name == "Orient3d").unwrap();
+        let orient = UNIT_DOCS
+            .iter()
+            .find(|d| d.name == "CertifiedOrient3d")
+            .unwrap();
         assert_eq!(orient.parameters, &["W", "D", "C", "O"]);
         assert!(
             orient.purpose.starts_with("Orientation determinant"),

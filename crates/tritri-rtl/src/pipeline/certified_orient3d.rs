@@ -1,8 +1,14 @@
-//! [`super::orient3d::Orient3d`] with a certificate: the sign of
-//! `[a,b,c,d] = (d-a)·((b-a)×(c-a))` and whether it holds when every
-//! coordinate moves by half a grid step. Step (7)'s two determinants use it
-//! (units 0 and 1); unit 2 serves only degenerate pairs, which are never
-//! certain, and stays a plain [`super::orient3d::Orient3d`].
+//! Orientation determinant `[a,b,c,d] = (d-a)·((b-a)×(c-a))` of four
+//! W-bit points, exact in 3W+2 bits, reduced to its sign, with a
+//! certificate: whether the sign holds when every coordinate moves by half
+//! a grid step.
+//!
+//! Thesis, step (7) (interval overlap test, figure 3.8) and the `orient3d`
+//! predicate of `tritri_geom::fixed_point::orient3d_value`. The pipeline's
+//! two units compute step (7)'s determinants, or two of the
+//! segment-triangle case's three (the third follows from their values,
+//! `super::third_determinant`), or the degenerate pair's `[a,b,c,d]`
+//! (unit 0); the top multiplexes their inputs.
 //!
 //! Software model: `tritri_geom::certificate::orient3d_certified`.
 //!
@@ -20,11 +26,11 @@ use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
-/// Clock edges from the four points to the sign and certificate: those of
-/// the plain unit, so that all three units line up.
+/// Clock edges from the four points to the sign and certificate.
 pub const CERTIFIED_ORIENT3D_LATENCY: usize =
     SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
-const _: () = assert!(CERTIFIED_ORIENT3D_LATENCY == super::orient3d::ORIENT3D_LATENCY);
+/// Clock edges from the four points to [`CertifiedOrient3d::value`].
+pub const ORIENT3D_VALUE_LATENCY: usize = CERTIFIED_ORIENT3D_LATENCY - CERTAIN_SIGN_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -40,6 +46,8 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     pub zero: Signal<Out, Bit>,
     /// The sign holds for every move of the points by half a grid step.
     pub certain: Signal<Out, Bit>,
+    /// `[a,b,c,d]` itself, `ORIENT3D_VALUE_LATENCY` edges after the points.
+    pub value: Signal<Out, Bits<O>>,
     edge_ab: VectorSubtractor<W, D>,
     edge_ac: VectorSubtractor<W, D>,
     edge_ad: VectorSubtractor<W, D>,
@@ -142,6 +150,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.determinant.u[1].next = self.edge_ad_delay_1.q.val();
         self.determinant.u[2].next = self.edge_ad_delay_2.q.val();
         self.sign.value.next = self.determinant.product.val();
+        self.value.next = self.determinant.product.val();
         self.sign.thermometer.next = self.thermometer_delay.q.val();
         self.negative.next = self.sign.negative.val();
         self.zero.next = self.sign.zero.val();

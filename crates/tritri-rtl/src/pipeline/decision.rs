@@ -12,7 +12,8 @@
 //! * one degenerate, spanning `[a, b]` (`segment_triangle`): no if `a` and
 //!   `b` are strictly on one side of the other triangle's plane; if both are
 //!   on it, the coplanar test; otherwise yes iff the three signs of
-//!   `[a, b, v_i, v_i+1]` (orient3d units 0..2) are not strictly opposite;
+//!   `[a, b, v_i, v_i+1]` (orient3d units 0 and 1, and the third
+//!   determinant) are not strictly opposite;
 //! * both degenerate (`degenerate_pair`): `[a, b, c, d] == 0` (unit 0) and
 //!   the three-projection segment test.
 //!
@@ -52,11 +53,13 @@ pub struct Decision {
     /// Signs of T2's vertices against T1's plane (steps 3-4).
     pub t2_side_negative: [Signal<In, Bit>; 3],
     pub t2_side_zero: [Signal<In, Bit>; 3],
-    /// Signs of the three shared orient3d units.
+    /// Signs of the two shared orient3d units, then of the segment-triangle
+    /// case's third determinant (`super::third_determinant`).
     pub orient_negative: [Signal<In, Bit>; 3],
     pub orient_zero: [Signal<In, Bit>; 3],
     /// Certificates of the plane signs, and of orient3d units 0 and 1
-    /// (step (7); unit 2 serves degenerate pairs only, never certain).
+    /// (step (7); the third determinant serves degenerate pairs only, never
+    /// certain).
     pub t1_side_certain: [Signal<In, Bit>; 3],
     pub t2_side_certain: [Signal<In, Bit>; 3],
     pub orient_certain: [Signal<In, Bit>; 2],

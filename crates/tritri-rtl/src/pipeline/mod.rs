@@ -11,13 +11,13 @@ pub mod degenerate_pair;
 pub mod dominant_axis;
 pub mod interval_overlap;
 pub mod normal;
-pub mod orient3d;
 pub mod orient3d_operands;
 pub mod pipeline_for_width;
 pub mod pipeline_unit;
 pub mod plane_side;
 pub mod ports;
 pub mod segment_ends;
+pub mod third_determinant;
 pub mod triangle_front_end;
 pub mod triangle_pipeline;
 

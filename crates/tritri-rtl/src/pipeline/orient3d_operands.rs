@@ -1,11 +1,12 @@
-//! The operands of the three shared `orient3d` units, chosen by the pair's
+//! The operands of the two shared `orient3d` units, chosen by the pair's
 //! case, then fetched from the six vertices (T1: indices 0..2, T2: 3..5).
 //!
 //! * both triangles proper: the two determinants of step (7),
 //!   `interval_overlap` in devillers_guigue.rs;
 //! * one triangle degenerate, spanning the segment `[a, b]` (its
-//!   lexicographic ends): `[a, b, v_i, v_i+1]` for the three edges of the
-//!   other triangle, `segment_triangle` in devillers_guigue.rs;
+//!   lexicographic ends): `[a, b, v_i, v_i+1]` for the first two edges of
+//!   the other triangle, `segment_triangle` in devillers_guigue.rs (the
+//!   third edge's follows from these two, `super::third_determinant`);
 //! * both degenerate: `[a, b, c, d]` of the two segments,
 //!   `degenerate_pair` in devillers_guigue.rs.
 //!
@@ -48,25 +49,25 @@ pub struct Orient3dOperands<const W: usize> {
     pub t1_vertices: [Signal<In, Bits<W>>; 9],
     pub t2_vertices: [Signal<In, Bits<W>>; 9],
     /// Unit `u`, operand `j` (a, b, c, d), coordinate `k` at `12 u + 3 j + k`.
-    pub operands: [Signal<Out, Bits<W>>; 36],
+    pub operands: [Signal<Out, Bits<W>>; 24],
     /// Operand `s`'s index in a degenerate case (from the flags and
     /// segment ends), registered with whether both triangles are proper.
-    degenerate_index: [Signal<Local, Bits<3>>; 12],
-    degenerate_index_q: [DFF<Bits<3>>; 12],
+    degenerate_index: [Signal<Local, Bits<3>>; 8],
+    degenerate_index_q: [DFF<Bits<3>>; 8],
     proper_q: DFF<Bit>,
     /// Operand `s`'s index this clock (0..2: T1's vertices, 3..5: T2's).
-    index: [Signal<Local, Bits<3>>; 12],
+    index: [Signal<Local, Bits<3>>; 8],
     /// Stage 1: the index as a vertex number (0..2) and a triangle.
-    vertex_q: [DFF<Bits<2>>; 12],
-    from_t2_q: [DFF<Bit>; 12],
+    vertex_q: [DFF<Bits<2>>; 8],
+    from_t2_q: [DFF<Bit>; 8],
     t1_delay: [DelayLine<Bits<W>, 1>; 9],
     t2_delay: [DelayLine<Bits<W>, 1>; 9],
     /// Stage 2: that vertex's coordinate in each triangle, and the triangle.
-    t1_pick_q: [DFF<Bits<W>>; 36],
-    t2_pick_q: [DFF<Bits<W>>; 36],
-    from_t2_2q: [DFF<Bit>; 12],
+    t1_pick_q: [DFF<Bits<W>>; 24],
+    t2_pick_q: [DFF<Bits<W>>; 24],
+    from_t2_2q: [DFF<Bit>; 8],
     /// Stage 3: the operand.
-    operands_q: [DFF<Bits<W>>; 36],
+    operands_q: [DFF<Bits<W>>; 24],
 }
 
 impl<const W: usize> crate::unit::Unit for Orient3dOperands<W> {
@@ -125,12 +126,12 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
     #[hdl_gen]
     fn update(&mut self) {
         // A clock early: the degenerate cases' indices and the case.
-        for i in 0..12 {
+        for i in 0..8 {
             self.degenerate_index[i].next = 0.into();
         }
         if self.t1_degenerate.val() && !self.t2_degenerate.val() {
-            // Segment of T1 against the edges of T2.
-            for u in 0..3 {
+            // Segment of T1 against the first two edges of T2.
+            for u in 0..2 {
                 self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t1_segment_low.val());
                 self.degenerate_index[4 * u + 1].next =
                     bit_cast::<3, 2>(self.t1_segment_high.val());
@@ -139,11 +140,9 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             self.degenerate_index[3].next = 4.into();
             self.degenerate_index[6].next = 4.into();
             self.degenerate_index[7].next = 5.into();
-            self.degenerate_index[10].next = 5.into();
-            self.degenerate_index[11].next = 3.into();
         } else if !self.t1_degenerate.val() && self.t2_degenerate.val() {
-            // Segment of T2 against the edges of T1.
-            for u in 0..3 {
+            // Segment of T2 against the first two edges of T1.
+            for u in 0..2 {
                 self.degenerate_index[4 * u].next = bit_cast::<3, 2>(self.t2_segment_low.val()) + 3;
                 self.degenerate_index[4 * u + 1].next =
                     bit_cast::<3, 2>(self.t2_segment_high.val()) + 3;
@@ -152,8 +151,6 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             self.degenerate_index[3].next = 1.into();
             self.degenerate_index[6].next = 1.into();
             self.degenerate_index[7].next = 2.into();
-            self.degenerate_index[10].next = 2.into();
-            self.degenerate_index[11].next = 0.into();
         } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
             // Two segments: [a, b, c, d].
             self.degenerate_index[0].next = bit_cast::<3, 2>(self.t1_segment_low.val());
@@ -165,7 +162,7 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
         if self.advance.val() {
             self.proper_q.d.next = !self.t1_degenerate.val() && !self.t2_degenerate.val();
         }
-        for i in 0..12 {
+        for i in 0..8 {
             self.degenerate_index_q[i].clock.next = self.clock.val();
             self.degenerate_index_q[i].d.next = self.degenerate_index_q[i].q.val();
             if self.advance.val() {
@@ -177,10 +174,9 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             for i in 0..4 {
                 self.index[i].next = self.overlap_first[i].val();
                 self.index[4 + i].next = self.overlap_second[i].val();
-                self.index[8 + i].next = 0.into();
             }
         }
-        for s in 0..12 {
+        for s in 0..8 {
             self.vertex_q[s].clock.next = self.clock.val();
             self.vertex_q[s].d.next = self.vertex_q[s].q.val();
             self.from_t2_q[s].clock.next = self.clock.val();
@@ -209,7 +205,7 @@ impl<const W: usize> Logic for Orient3dOperands<W> {
             self.t2_delay[i].advance.next = self.advance.val();
             self.t2_delay[i].d.next = self.t2_vertices[i].val();
         }
-        for s in 0..12 {
+        for s in 0..8 {
             for k in 0..3 {
                 self.t1_pick_q[3 * s + k].clock.next = self.clock.val();
                 self.t1_pick_q[3 * s + k].d.next = self.t1_pick_q[3 * s + k].q.val();

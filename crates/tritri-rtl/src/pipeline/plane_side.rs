@@ -38,6 +38,11 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     pub zero: [Signal<Out, Bit>; 3],
     /// Vertex `i`'s sign holds for every move by half a grid step.
     pub certain: [Signal<Out, Bit>; 3],
+    /// Vertex `i`'s value `(v - p) · N`, a stage before its sign
+    /// (`PLANE_SIDE_LATENCY - CERTAIN_SIGN_LATENCY` edges after the inputs):
+    /// the segment ends' values give the segment-triangle case's third
+    /// determinant (`super::third_determinant`).
+    pub distance: [Signal<Out, Bits<O>>; 3],
     // (rust-hdl's Verilog generator resolves one array index per name, so
     // units with array ports are separate fields rather than arrays.)
     offset_0: VectorSubtractor<W, D>,
@@ -136,6 +141,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.distance_1.v[k].next = self.normal_delay[k].q.val();
             self.distance_2.v[k].next = self.normal_delay[k].q.val();
         }
+        self.distance[0].next = self.distance_0.product.val();
+        self.distance[1].next = self.distance_1.product.val();
+        self.distance[2].next = self.distance_2.product.val();
         self.sign[0].value.next = self.distance_0.product.val();
         self.sign[1].value.next = self.distance_1.product.val();
         self.sign[2].value.next = self.distance_2.product.val();

@@ -19,9 +19,11 @@
 //!   -> base polygon registers (on bset) | pair = (base, streamed)
 //!   -> plane side T1 vs plane 2 || plane side T2 vs plane 1   (6)   steps 1-4
 //!   -> align T1 (1) -> align T2 (1) -> interval overlap (1)         steps 5-7
-//!   -> orient3d operands (2) -> 3 x orient3d (10)
-//!   || coplanar test (8), degenerate pair (8) started with the plane side
-//!   -> decision (1)
+//!   -> orient3d operands (3) -> 2 x orient3d (10)
+//!   -> the segment-triangle case's third determinant, from the two
+//!      determinants' values and the segment ends' plane-side values (2)
+//!   || coplanar test (10), degenerate pair (8) started with the plane side
+//!   -> decision (2)
 //! ```
 //!
 //! Every verdict equals `tritri_geom::fixed_point::intersects(base, streamed)`
@@ -30,16 +32,21 @@
 use super::align_t1::{AlignT1, ALIGN_T1_LATENCY};
 use super::align_t2::{AlignT2, ALIGN_T2_LATENCY};
 use super::base_polygon::BasePolygon;
-use super::certified_orient3d::CertifiedOrient3d;
+use super::certified_orient3d::{
+    CertifiedOrient3d, CERTIFIED_ORIENT3D_LATENCY, ORIENT3D_VALUE_LATENCY,
+};
 use super::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use super::decision::{Decision, DECISION_LATENCY};
 use super::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
 use super::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
-use super::orient3d::{Orient3d, ORIENT3D_LATENCY};
 use super::orient3d_operands::{Orient3dOperands, ORIENT3D_OPERANDS_LATENCY};
 use super::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
+use super::third_determinant::{
+    EndsDifference, ThirdDeterminant, ENDS_DIFFERENCE_LATENCY, THIRD_DETERMINANT_LATENCY,
+};
 use super::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
 use super::ID_BITS;
+use crate::arith::certificate::CERTAIN_SIGN_LATENCY;
 use crate::arith::delay_line::DelayLine;
 use crate::arith::valid_line::ValidLine;
 use rust_hdl::prelude::*;
@@ -51,7 +58,16 @@ const RECORD_STAGE: usize = INPUT_LATENCY + FRONT_END_LATENCY;
 // Stages below count from the pair's formation.
 const OPERANDS_STAGE: usize =
     PLANE_SIDE_LATENCY + ALIGN_T1_LATENCY + ALIGN_T2_LATENCY + INTERVAL_OVERLAP_LATENCY;
-const DECISION_STAGE: usize = OPERANDS_STAGE + ORIENT3D_OPERANDS_LATENCY + ORIENT3D_LATENCY;
+/// The determinants' values, and a stage later their signs.
+const VALUES_STAGE: usize = OPERANDS_STAGE + ORIENT3D_OPERANDS_LATENCY + ORIENT3D_VALUE_LATENCY;
+const ORIENT_SIGNS_STAGE: usize =
+    OPERANDS_STAGE + ORIENT3D_OPERANDS_LATENCY + CERTIFIED_ORIENT3D_LATENCY;
+/// The plane-side values a stage before their signs, and `s_b - s_a`.
+const DISTANCES_STAGE: usize = PLANE_SIDE_LATENCY - CERTAIN_SIGN_LATENCY;
+const ENDS_DIFFERENCE_STAGE: usize = DISTANCES_STAGE + ENDS_DIFFERENCE_LATENCY;
+/// The third determinant's sign comes last.
+const DECISION_STAGE: usize = VALUES_STAGE + THIRD_DETERMINANT_LATENCY;
+const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STAGE < VALUES_STAGE);
 /// From the pair's formation to the output ports.
 const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 const _: () =
@@ -91,7 +107,17 @@ crate::pipeline_ports! {
         /// Step (7)'s determinants, with certificates.
         orient3d_0: CertifiedOrient3d<W, D, C, O>,
         orient3d_1: CertifiedOrient3d<W, D, C, O>,
-        orient3d_2: Orient3d<W, D, C, O>,
+        /// The segment-triangle case's third determinant, from the segment
+        /// ends' plane-side values and units 0 and 1.
+        ends_difference: EndsDifference<O>,
+        ends_difference_to_values: DelayLine<Bits<O>, { VALUES_STAGE - ENDS_DIFFERENCE_STAGE }>,
+        third_determinant: ThirdDeterminant<O>,
+        /// The degenerate flag of T1 and the four segment ends, to the
+        /// plane-side values.
+        degenerate_to_distances: DelayLine<Bit, DISTANCES_STAGE>,
+        segment_ends_to_distances: [DelayLine<Bits<2>, DISTANCES_STAGE>; 4],
+        /// Units 0 and 1's negative, zero and certain bits, to the third's sign.
+        orient_signs_to_decision: [DelayLine<Bit, { DECISION_STAGE - ORIENT_SIGNS_STAGE }>; 6],
         coplanar: CoplanarTest<W, D, C>,
         degenerate_pair: DegeneratePair<W, D, C>,
         decision: Decision,
@@ -138,7 +164,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             operands,
             orient3d_0,
             orient3d_1,
-            orient3d_2,
+            ends_difference,
+            ends_difference_to_values,
+            third_determinant,
+            degenerate_to_distances,
+            segment_ends_to_distances,
+            orient_signs_to_decision,
             coplanar,
             degenerate_pair,
             decision,
@@ -192,7 +223,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             operands,
             orient3d_0,
             orient3d_1,
-            orient3d_2,
+            ends_difference,
+            ends_difference_to_values,
+            third_determinant,
+            degenerate_to_distances,
             coplanar,
             degenerate_pair,
             decision,
@@ -216,7 +250,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.operands.advance.next = self.advance.val();
         self.orient3d_0.advance.next = self.advance.val();
         self.orient3d_1.advance.next = self.advance.val();
-        self.orient3d_2.advance.next = self.advance.val();
+        self.ends_difference.advance.next = self.advance.val();
+        self.ends_difference_to_values.advance.next = self.advance.val();
+        self.third_determinant.advance.next = self.advance.val();
+        self.degenerate_to_distances.advance.next = self.advance.val();
         self.coplanar.advance.next = self.advance.val();
         self.degenerate_pair.advance.next = self.advance.val();
         self.decision.advance.next = self.advance.val();
@@ -241,6 +278,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.segment_ends_to_operands[i].advance.next = self.advance.val();
             self.segment_ends_to_decision[i].clock.next = self.clock.val();
             self.segment_ends_to_decision[i].advance.next = self.advance.val();
+        }
+        for i in 0..6 {
+            self.orient_signs_to_decision[i].clock.next = self.clock.val();
+            self.orient_signs_to_decision[i].advance.next = self.advance.val();
         }
         for i in 0..18 {
             self.sides_to_decision[i].clock.next = self.clock.val();
@@ -349,11 +390,33 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.orient3d_1.b[k].next = self.operands.operands[15 + k].val();
             self.orient3d_1.c[k].next = self.operands.operands[18 + k].val();
             self.orient3d_1.d[k].next = self.operands.operands[21 + k].val();
-            self.orient3d_2.a[k].next = self.operands.operands[24 + k].val();
-            self.orient3d_2.b[k].next = self.operands.operands[27 + k].val();
-            self.orient3d_2.c[k].next = self.operands.operands[30 + k].val();
-            self.orient3d_2.d[k].next = self.operands.operands[33 + k].val();
         }
+
+        // The segment-triangle case's third determinant: s_b - s_a of the
+        // degenerate triangle's ends beside the plane side, then that less
+        // units 0 and 1's values.
+        self.degenerate_to_distances.d.next = self.base.degenerate.val();
+        self.segment_ends_to_distances[0].d.next = self.base.segment_low.val();
+        self.segment_ends_to_distances[1].d.next = self.base.segment_high.val();
+        self.segment_ends_to_distances[2].d.next = self.front_end.segment_low.val();
+        self.segment_ends_to_distances[3].d.next = self.front_end.segment_high.val();
+        for i in 0..4 {
+            self.segment_ends_to_distances[i].clock.next = self.clock.val();
+            self.segment_ends_to_distances[i].advance.next = self.advance.val();
+        }
+        self.ends_difference.t1_degenerate.next = self.degenerate_to_distances.q.val();
+        self.ends_difference.t1_segment_low.next = self.segment_ends_to_distances[0].q.val();
+        self.ends_difference.t1_segment_high.next = self.segment_ends_to_distances[1].q.val();
+        self.ends_difference.t2_segment_low.next = self.segment_ends_to_distances[2].q.val();
+        self.ends_difference.t2_segment_high.next = self.segment_ends_to_distances[3].q.val();
+        for v in 0..3 {
+            self.ends_difference.t1_distance[v].next = self.plane_side_t1.distance[v].val();
+            self.ends_difference.t2_distance[v].next = self.plane_side_t2.distance[v].val();
+        }
+        self.ends_difference_to_values.d.next = self.ends_difference.difference.val();
+        self.third_determinant.ends_difference.next = self.ends_difference_to_values.q.val();
+        self.third_determinant.first.next = self.orient3d_0.value.val();
+        self.third_determinant.second.next = self.orient3d_1.value.val();
 
         // The coplanar test, in the projection of the proper triangle
         // (T1's unless T1 is degenerate), and the degenerate pair test.
@@ -408,14 +471,19 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.decision.t1_segment_high.next = self.segment_ends_to_decision[1].q.val();
         self.decision.t2_segment_low.next = self.segment_ends_to_decision[2].q.val();
         self.decision.t2_segment_high.next = self.segment_ends_to_decision[3].q.val();
-        self.decision.orient_negative[0].next = self.orient3d_0.negative.val();
-        self.decision.orient_zero[0].next = self.orient3d_0.zero.val();
-        self.decision.orient_negative[1].next = self.orient3d_1.negative.val();
-        self.decision.orient_zero[1].next = self.orient3d_1.zero.val();
-        self.decision.orient_negative[2].next = self.orient3d_2.negative.val();
-        self.decision.orient_zero[2].next = self.orient3d_2.zero.val();
-        self.decision.orient_certain[0].next = self.orient3d_0.certain.val();
-        self.decision.orient_certain[1].next = self.orient3d_1.certain.val();
+        self.orient_signs_to_decision[0].d.next = self.orient3d_0.negative.val();
+        self.orient_signs_to_decision[1].d.next = self.orient3d_0.zero.val();
+        self.orient_signs_to_decision[2].d.next = self.orient3d_0.certain.val();
+        self.orient_signs_to_decision[3].d.next = self.orient3d_1.negative.val();
+        self.orient_signs_to_decision[4].d.next = self.orient3d_1.zero.val();
+        self.orient_signs_to_decision[5].d.next = self.orient3d_1.certain.val();
+        for u in 0..2 {
+            self.decision.orient_negative[u].next = self.orient_signs_to_decision[3 * u].q.val();
+            self.decision.orient_zero[u].next = self.orient_signs_to_decision[3 * u + 1].q.val();
+            self.decision.orient_certain[u].next = self.orient_signs_to_decision[3 * u + 2].q.val();
+        }
+        self.decision.orient_negative[2].next = self.third_determinant.negative.val();
+        self.decision.orient_zero[2].next = self.third_determinant.zero.val();
         self.decision.coplanar_hit.next = self.coplanar_to_decision.q.val();
         self.decision.degenerate_pair_hit.next = self.degenerate_pair_to_decision.q.val();
 

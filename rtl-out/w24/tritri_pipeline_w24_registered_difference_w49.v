@@ -1,13 +1,9 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_registered_difference.v
+// Filename:   tritri_pipeline_w24_registered_difference_w49.v
 //
 // Purpose:    `difference = a - b` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instances (42), for example:
+//             tritri_pipeline_w24. Instances (39), for example:
 //             coplanar.orient[0].difference, coplanar.orient[1].difference,
 //             coplanar.orient[10].difference, coplanar.orient[11].difference.
 //
@@ -21,7 +17,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_registered_difference (
+module tritri_pipeline_w24_registered_difference_w49 (
     input  wire        clock,
     input  wire        advance,
     input  wire [48:0] a,
@@ -37,6 +33,6 @@ module tritri_pipeline_w24_registered_difference (
             difference <= a - b;
         end
     end
-endmodule  // tritri_pipeline_w24_registered_difference
+endmodule  // tritri_pipeline_w24_registered_difference_w49
 
 `default_nettype wire

@@ -1,0 +1,142 @@
+//! The segment-triangle case's third determinant, without multipliers.
+//!
+//! A degenerate triangle spans the segment `[a, b]`; against a proper
+//! triangle `p q r` the test needs the signs of `[a, b, p, q]`,
+//! `[a, b, q, r]` and `[a, b, r, p]` (`segment_triangle` in
+//! devillers_guigue.rs), where `[a, b, c, d] = (b - a) · ((c - a) × (d - a))`.
+//! The three cross products `(c - a) × (d - a)` over the triangle's edges
+//! sum to `p × q + q × r + r × p` (the terms in `a` cancel), which is the
+//! triangle's normal `N = (q - p) × (r - p)`. So the three determinants sum
+//! to `(b - a) · N = orient3d(p, q, r, b) - orient3d(p, q, r, a)`: the
+//! difference of the segment ends' plane-side values, which the plane side
+//! computes for every pair anyway. Hence
+//!
+//! ```text
+//! [a, b, r, p] = (s_b - s_a) - [a, b, p, q] - [a, b, q, r]
+//! ```
+//!
+//! from orient3d units 0 and 1: two subtractions where a third orient3d
+//! unit took nine multipliers. `s_b - s_a` is a sum of three orient3d
+//! values and may pass `O` bits, but the result is one orient3d value and
+//! fits them, so arithmetic modulo `2^O` (residues only) gives it exactly.
+//!
+//! [`EndsDifference`] forms `s_b - s_a` beside the plane side (1 stage);
+//! [`ThirdDeterminant`] the determinant and its sign beside units 0 and
+//! 1's sign stage (2 stages: the subtraction, then the sign).
+
+use crate::arith::adder::{RegisteredDifference, RegisteredDifference3, ADDER_LATENCY};
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use rust_hdl::prelude::*;
+
+/// Clock edges from the plane-side values to `s_b - s_a`.
+pub const ENDS_DIFFERENCE_LATENCY: usize = ADDER_LATENCY;
+/// Clock edges from the two determinants to the third's sign.
+pub const THIRD_DETERMINANT_LATENCY: usize = ADDER_LATENCY + SIGN_LATENCY;
+
+/// `s_b - s_a` for the degenerate triangle's segment ends `a = low`, `b =
+/// high` (T1's when T1 is degenerate, else T2's), from the plane-side
+/// values of each triangle's vertices against the other's plane.
+#[derive(LogicBlock, Default)]
+pub struct EndsDifference<const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// T1's vertices against T2's plane, and T2's against T1's.
+    pub t1_distance: [Signal<In, Bits<O>>; 3],
+    pub t2_distance: [Signal<In, Bits<O>>; 3],
+    pub t1_degenerate: Signal<In, Bit>,
+    pub t1_segment_low: Signal<In, Bits<2>>,
+    pub t1_segment_high: Signal<In, Bits<2>>,
+    pub t2_segment_low: Signal<In, Bits<2>>,
+    pub t2_segment_high: Signal<In, Bits<2>>,
+    /// `s_b - s_a` modulo `2^O`, `ENDS_DIFFERENCE_LATENCY` edges later.
+    pub difference: Signal<Out, Bits<O>>,
+    low: Signal<Local, Bits<O>>,
+    high: Signal<Local, Bits<O>>,
+    subtract: RegisteredDifference<O>,
+}
+
+impl<const O: usize> crate::unit::Unit for EndsDifference<O> {
+    const LATENCY: Option<usize> = Some(ENDS_DIFFERENCE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, subtract);
+    }
+}
+
+impl<const O: usize> Logic for EndsDifference<O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.subtract.clock.next = self.clock.val();
+        self.subtract.advance.next = self.advance.val();
+        if self.t1_degenerate.val() {
+            self.low.next = self.t1_distance[0].val();
+            if self.t1_segment_low.val() == 1 {
+                self.low.next = self.t1_distance[1].val();
+            } else if self.t1_segment_low.val() == 2 {
+                self.low.next = self.t1_distance[2].val();
+            }
+            self.high.next = self.t1_distance[0].val();
+            if self.t1_segment_high.val() == 1 {
+                self.high.next = self.t1_distance[1].val();
+            } else if self.t1_segment_high.val() == 2 {
+                self.high.next = self.t1_distance[2].val();
+            }
+        } else {
+            self.low.next = self.t2_distance[0].val();
+            if self.t2_segment_low.val() == 1 {
+                self.low.next = self.t2_distance[1].val();
+            } else if self.t2_segment_low.val() == 2 {
+                self.low.next = self.t2_distance[2].val();
+            }
+            self.high.next = self.t2_distance[0].val();
+            if self.t2_segment_high.val() == 1 {
+                self.high.next = self.t2_distance[1].val();
+            } else if self.t2_segment_high.val() == 2 {
+                self.high.next = self.t2_distance[2].val();
+            }
+        }
+        self.subtract.a.next = self.high.val();
+        self.subtract.b.next = self.low.val();
+        self.difference.next = self.subtract.difference.val();
+    }
+}
+
+/// The segment-triangle case's third orientation sign without multipliers:
+/// `[a, b, r, p] = (s_b - s_a) - [a, b, p, q] - [a, b, q, r]`.
+#[derive(LogicBlock, Default)]
+pub struct ThirdDeterminant<const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// `s_b - s_a`, from [`EndsDifference`].
+    pub ends_difference: Signal<In, Bits<O>>,
+    /// The values of orient3d units 0 and 1.
+    pub first: Signal<In, Bits<O>>,
+    pub second: Signal<In, Bits<O>>,
+    /// `[a, b, r, p] < 0`, `THIRD_DETERMINANT_LATENCY` edges later.
+    pub negative: Signal<Out, Bit>,
+    /// `[a, b, r, p] == 0`.
+    pub zero: Signal<Out, Bit>,
+    subtract: RegisteredDifference3<O>,
+    sign: SignOf<O>,
+}
+
+impl<const O: usize> crate::unit::Unit for ThirdDeterminant<O> {
+    const LATENCY: Option<usize> = Some(THIRD_DETERMINANT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, subtract, sign);
+    }
+}
+
+impl<const O: usize> Logic for ThirdDeterminant<O> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(self, clock, subtract, sign);
+        self.subtract.advance.next = self.advance.val();
+        self.sign.advance.next = self.advance.val();
+        self.subtract.a.next = self.ends_difference.val();
+        self.subtract.b.next = self.first.val();
+        self.subtract.c.next = self.second.val();
+        self.sign.value.next = self.subtract.difference.val();
+        self.negative.next = self.sign.negative.val();
+        self.zero.next = self.sign.zero.val();
+    }
+}
