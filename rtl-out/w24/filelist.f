@@ -5,6 +5,8 @@ tritri_pipeline_w24_base_polygon.v
 tritri_pipeline_w24_certain_sign.v
 tritri_pipeline_w24_certified_orient3d.v
 tritri_pipeline_w24_coordinate_compare.v
+tritri_pipeline_w24_coplanar_contacts.v
+tritri_pipeline_w24_coplanar_decision.v
 tritri_pipeline_w24_coplanar_test.v
 tritri_pipeline_w24_cross_product.v
 tritri_pipeline_w24_cross_product2d.v
@@ -34,7 +36,7 @@ tritri_pipeline_w24_delay_line_w32_n10.v
 tritri_pipeline_w24_delay_line_w32_n28.v
 tritri_pipeline_w24_delay_line_w49_n1.v
 tritri_pipeline_w24_delay_line_w49_n3.v
-tritri_pipeline_w24_delay_line_w74_n17.v
+tritri_pipeline_w24_delay_line_w74_n16.v
 tritri_pipeline_w24_dff_1.v
 tritri_pipeline_w24_dff_2.v
 tritri_pipeline_w24_dff_24.v
@@ -42,6 +44,7 @@ tritri_pipeline_w24_dff_25.v
 tritri_pipeline_w24_dff_3.v
 tritri_pipeline_w24_dff_32.v
 tritri_pipeline_w24_dff_49.v
+tritri_pipeline_w24_dff_74.v
 tritri_pipeline_w24_dominant_axis.v
 tritri_pipeline_w24_dot_product.v
 tritri_pipeline_w24_ends_difference.v
@@ -56,7 +59,9 @@ tritri_pipeline_w24_registered_difference3.v
 tritri_pipeline_w24_registered_difference_w49.v
 tritri_pipeline_w24_registered_difference_w74.v
 tritri_pipeline_w24_registered_sum3.v
+tritri_pipeline_w24_segment_contacts.v
 tritri_pipeline_w24_segment_ends.v
+tritri_pipeline_w24_segments_decision.v
 tritri_pipeline_w24_sign_of_w49.v
 tritri_pipeline_w24_sign_of_w74.v
 tritri_pipeline_w24_subtractor.v

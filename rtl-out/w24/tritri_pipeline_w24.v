@@ -1192,7 +1192,7 @@ module tritri_pipeline_w24 (
         .t2_segment_high(ends_difference_t2_segment_high),
         .difference(ends_difference_difference)
     );
-    tritri_pipeline_w24_delay_line_w74_n17 u_ends_difference_to_values(
+    tritri_pipeline_w24_delay_line_w74_n16 u_ends_difference_to_values(
         .clock(ends_difference_to_values_clock),
         .advance(ends_difference_to_values_advance),
         .d(ends_difference_to_values_d),

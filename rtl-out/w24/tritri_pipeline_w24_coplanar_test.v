@@ -745,62 +745,121 @@ module tritri_pipeline_w24_coplanar_test (
     wire  [48:0] sign_17_value;
     wire  sign_17_negative;
     wire  sign_17_zero;
-    reg  term_q_0_d;
-    wire  term_q_0_q;
-    wire  term_q_0_clock;
-    reg  term_q_1_d;
-    wire  term_q_1_q;
-    wire  term_q_1_clock;
-    reg  term_q_2_d;
-    wire  term_q_2_q;
-    wire  term_q_2_clock;
-    reg  term_q_3_d;
-    wire  term_q_3_q;
-    wire  term_q_3_clock;
-    reg  term_q_4_d;
-    wire  term_q_4_q;
-    wire  term_q_4_clock;
-    reg  term_q_5_d;
-    wire  term_q_5_q;
-    wire  term_q_5_clock;
-    reg  term_q_6_d;
-    wire  term_q_6_q;
-    wire  term_q_6_clock;
-    reg  term_q_7_d;
-    wire  term_q_7_q;
-    wire  term_q_7_clock;
-    reg  term_q_8_d;
-    wire  term_q_8_q;
-    wire  term_q_8_clock;
-    reg  term_q_9_d;
-    wire  term_q_9_q;
-    wire  term_q_9_clock;
-    reg  term_q_10_d;
-    wire  term_q_10_q;
-    wire  term_q_10_clock;
-    reg  hit_d;
-    wire  hit_q;
-    wire  hit_clock;
-
-    // Local signals
-    wire  positive_0;
-    wire  positive_1;
-    wire  positive_2;
-    wire  positive_3;
-    wire  positive_4;
-    wire  positive_5;
-    wire  positive_6;
-    wire  positive_7;
-    wire  positive_8;
-    wire  positive_9;
-    wire  positive_10;
-    wire  positive_11;
-    wire  positive_12;
-    wire  positive_13;
-    wire  positive_14;
-    wire  positive_15;
-    wire  positive_16;
-    wire  positive_17;
+    wire  contacts_less_0;
+    wire  contacts_less_1;
+    wire  contacts_less_2;
+    wire  contacts_less_3;
+    wire  contacts_less_4;
+    wire  contacts_less_5;
+    wire  contacts_less_6;
+    wire  contacts_less_7;
+    wire  contacts_less_8;
+    wire  contacts_less_9;
+    wire  contacts_less_10;
+    wire  contacts_less_11;
+    wire  contacts_less_12;
+    wire  contacts_less_13;
+    wire  contacts_less_14;
+    wire  contacts_less_15;
+    wire  contacts_less_16;
+    wire  contacts_less_17;
+    wire  contacts_equal_0;
+    wire  contacts_equal_1;
+    wire  contacts_equal_2;
+    wire  contacts_equal_3;
+    wire  contacts_equal_4;
+    wire  contacts_equal_5;
+    wire  contacts_equal_6;
+    wire  contacts_equal_7;
+    wire  contacts_equal_8;
+    wire  contacts_equal_9;
+    wire  contacts_equal_10;
+    wire  contacts_equal_11;
+    wire  contacts_equal_12;
+    wire  contacts_equal_13;
+    wire  contacts_equal_14;
+    wire  contacts_equal_15;
+    wire  contacts_equal_16;
+    wire  contacts_equal_17;
+    wire  contacts_on_edge_a_0;
+    wire  contacts_on_edge_a_1;
+    wire  contacts_on_edge_a_2;
+    wire  contacts_on_edge_a_3;
+    wire  contacts_on_edge_a_4;
+    wire  contacts_on_edge_a_5;
+    wire  contacts_on_edge_a_6;
+    wire  contacts_on_edge_a_7;
+    wire  contacts_on_edge_a_8;
+    wire  contacts_on_edge_b_0;
+    wire  contacts_on_edge_b_1;
+    wire  contacts_on_edge_b_2;
+    wire  contacts_on_edge_b_3;
+    wire  contacts_on_edge_b_4;
+    wire  contacts_on_edge_b_5;
+    wire  contacts_on_edge_b_6;
+    wire  contacts_on_edge_b_7;
+    wire  contacts_on_edge_b_8;
+    wire  decision_clock;
+    wire  decision_advance;
+    wire  decision_negative_0;
+    wire  decision_negative_1;
+    wire  decision_negative_2;
+    wire  decision_negative_3;
+    wire  decision_negative_4;
+    wire  decision_negative_5;
+    wire  decision_negative_6;
+    wire  decision_negative_7;
+    wire  decision_negative_8;
+    wire  decision_negative_9;
+    wire  decision_negative_10;
+    wire  decision_negative_11;
+    wire  decision_negative_12;
+    wire  decision_negative_13;
+    wire  decision_negative_14;
+    wire  decision_negative_15;
+    wire  decision_negative_16;
+    wire  decision_negative_17;
+    wire  decision_zero_0;
+    wire  decision_zero_1;
+    wire  decision_zero_2;
+    wire  decision_zero_3;
+    wire  decision_zero_4;
+    wire  decision_zero_5;
+    wire  decision_zero_6;
+    wire  decision_zero_7;
+    wire  decision_zero_8;
+    wire  decision_zero_9;
+    wire  decision_zero_10;
+    wire  decision_zero_11;
+    wire  decision_zero_12;
+    wire  decision_zero_13;
+    wire  decision_zero_14;
+    wire  decision_zero_15;
+    wire  decision_zero_16;
+    wire  decision_zero_17;
+    wire  decision_on_edge_a_0;
+    wire  decision_on_edge_a_1;
+    wire  decision_on_edge_a_2;
+    wire  decision_on_edge_a_3;
+    wire  decision_on_edge_a_4;
+    wire  decision_on_edge_a_5;
+    wire  decision_on_edge_a_6;
+    wire  decision_on_edge_a_7;
+    wire  decision_on_edge_a_8;
+    wire  decision_on_edge_b_0;
+    wire  decision_on_edge_b_1;
+    wire  decision_on_edge_b_2;
+    wire  decision_on_edge_b_3;
+    wire  decision_on_edge_b_4;
+    wire  decision_on_edge_b_5;
+    wire  decision_on_edge_b_6;
+    wire  decision_on_edge_b_7;
+    wire  decision_on_edge_b_8;
+    wire  decision_orientation_0;
+    wire  decision_orientation_1;
+    wire  decision_orientation_2;
+    wire  decision_orientation_3;
+    wire  decision_hit;
 
     // Sub module instances
     tritri_pipeline_w24_dff_2 u_axis_q(
@@ -1792,65 +1851,124 @@ module tritri_pipeline_w24_coplanar_test (
         .negative(sign_17_negative),
         .zero(sign_17_zero)
     );
-    tritri_pipeline_w24_dff_1 u_term_q_0(
-        .d(term_q_0_d),
-        .q(term_q_0_q),
-        .clock(term_q_0_clock)
+    tritri_pipeline_w24_coplanar_contacts u_contacts(
+        .less_0(contacts_less_0),
+        .less_1(contacts_less_1),
+        .less_2(contacts_less_2),
+        .less_3(contacts_less_3),
+        .less_4(contacts_less_4),
+        .less_5(contacts_less_5),
+        .less_6(contacts_less_6),
+        .less_7(contacts_less_7),
+        .less_8(contacts_less_8),
+        .less_9(contacts_less_9),
+        .less_10(contacts_less_10),
+        .less_11(contacts_less_11),
+        .less_12(contacts_less_12),
+        .less_13(contacts_less_13),
+        .less_14(contacts_less_14),
+        .less_15(contacts_less_15),
+        .less_16(contacts_less_16),
+        .less_17(contacts_less_17),
+        .equal_0(contacts_equal_0),
+        .equal_1(contacts_equal_1),
+        .equal_2(contacts_equal_2),
+        .equal_3(contacts_equal_3),
+        .equal_4(contacts_equal_4),
+        .equal_5(contacts_equal_5),
+        .equal_6(contacts_equal_6),
+        .equal_7(contacts_equal_7),
+        .equal_8(contacts_equal_8),
+        .equal_9(contacts_equal_9),
+        .equal_10(contacts_equal_10),
+        .equal_11(contacts_equal_11),
+        .equal_12(contacts_equal_12),
+        .equal_13(contacts_equal_13),
+        .equal_14(contacts_equal_14),
+        .equal_15(contacts_equal_15),
+        .equal_16(contacts_equal_16),
+        .equal_17(contacts_equal_17),
+        .on_edge_a_0(contacts_on_edge_a_0),
+        .on_edge_a_1(contacts_on_edge_a_1),
+        .on_edge_a_2(contacts_on_edge_a_2),
+        .on_edge_a_3(contacts_on_edge_a_3),
+        .on_edge_a_4(contacts_on_edge_a_4),
+        .on_edge_a_5(contacts_on_edge_a_5),
+        .on_edge_a_6(contacts_on_edge_a_6),
+        .on_edge_a_7(contacts_on_edge_a_7),
+        .on_edge_a_8(contacts_on_edge_a_8),
+        .on_edge_b_0(contacts_on_edge_b_0),
+        .on_edge_b_1(contacts_on_edge_b_1),
+        .on_edge_b_2(contacts_on_edge_b_2),
+        .on_edge_b_3(contacts_on_edge_b_3),
+        .on_edge_b_4(contacts_on_edge_b_4),
+        .on_edge_b_5(contacts_on_edge_b_5),
+        .on_edge_b_6(contacts_on_edge_b_6),
+        .on_edge_b_7(contacts_on_edge_b_7),
+        .on_edge_b_8(contacts_on_edge_b_8)
     );
-    tritri_pipeline_w24_dff_1 u_term_q_1(
-        .d(term_q_1_d),
-        .q(term_q_1_q),
-        .clock(term_q_1_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_2(
-        .d(term_q_2_d),
-        .q(term_q_2_q),
-        .clock(term_q_2_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_3(
-        .d(term_q_3_d),
-        .q(term_q_3_q),
-        .clock(term_q_3_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_4(
-        .d(term_q_4_d),
-        .q(term_q_4_q),
-        .clock(term_q_4_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_5(
-        .d(term_q_5_d),
-        .q(term_q_5_q),
-        .clock(term_q_5_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_6(
-        .d(term_q_6_d),
-        .q(term_q_6_q),
-        .clock(term_q_6_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_7(
-        .d(term_q_7_d),
-        .q(term_q_7_q),
-        .clock(term_q_7_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_8(
-        .d(term_q_8_d),
-        .q(term_q_8_q),
-        .clock(term_q_8_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_9(
-        .d(term_q_9_d),
-        .q(term_q_9_q),
-        .clock(term_q_9_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_term_q_10(
-        .d(term_q_10_d),
-        .q(term_q_10_q),
-        .clock(term_q_10_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_hit_q(
-        .d(hit_d),
-        .q(hit_q),
-        .clock(hit_clock)
+    tritri_pipeline_w24_coplanar_decision u_decision(
+        .clock(decision_clock),
+        .advance(decision_advance),
+        .negative_0(decision_negative_0),
+        .negative_1(decision_negative_1),
+        .negative_2(decision_negative_2),
+        .negative_3(decision_negative_3),
+        .negative_4(decision_negative_4),
+        .negative_5(decision_negative_5),
+        .negative_6(decision_negative_6),
+        .negative_7(decision_negative_7),
+        .negative_8(decision_negative_8),
+        .negative_9(decision_negative_9),
+        .negative_10(decision_negative_10),
+        .negative_11(decision_negative_11),
+        .negative_12(decision_negative_12),
+        .negative_13(decision_negative_13),
+        .negative_14(decision_negative_14),
+        .negative_15(decision_negative_15),
+        .negative_16(decision_negative_16),
+        .negative_17(decision_negative_17),
+        .zero_0(decision_zero_0),
+        .zero_1(decision_zero_1),
+        .zero_2(decision_zero_2),
+        .zero_3(decision_zero_3),
+        .zero_4(decision_zero_4),
+        .zero_5(decision_zero_5),
+        .zero_6(decision_zero_6),
+        .zero_7(decision_zero_7),
+        .zero_8(decision_zero_8),
+        .zero_9(decision_zero_9),
+        .zero_10(decision_zero_10),
+        .zero_11(decision_zero_11),
+        .zero_12(decision_zero_12),
+        .zero_13(decision_zero_13),
+        .zero_14(decision_zero_14),
+        .zero_15(decision_zero_15),
+        .zero_16(decision_zero_16),
+        .zero_17(decision_zero_17),
+        .on_edge_a_0(decision_on_edge_a_0),
+        .on_edge_a_1(decision_on_edge_a_1),
+        .on_edge_a_2(decision_on_edge_a_2),
+        .on_edge_a_3(decision_on_edge_a_3),
+        .on_edge_a_4(decision_on_edge_a_4),
+        .on_edge_a_5(decision_on_edge_a_5),
+        .on_edge_a_6(decision_on_edge_a_6),
+        .on_edge_a_7(decision_on_edge_a_7),
+        .on_edge_a_8(decision_on_edge_a_8),
+        .on_edge_b_0(decision_on_edge_b_0),
+        .on_edge_b_1(decision_on_edge_b_1),
+        .on_edge_b_2(decision_on_edge_b_2),
+        .on_edge_b_3(decision_on_edge_b_3),
+        .on_edge_b_4(decision_on_edge_b_4),
+        .on_edge_b_5(decision_on_edge_b_5),
+        .on_edge_b_6(decision_on_edge_b_6),
+        .on_edge_b_7(decision_on_edge_b_7),
+        .on_edge_b_8(decision_on_edge_b_8),
+        .orientation_0(decision_orientation_0),
+        .orientation_1(decision_orientation_1),
+        .orientation_2(decision_orientation_2),
+        .orientation_3(decision_orientation_3),
+        .hit(decision_hit)
     );
 
     // Update code
@@ -1938,7 +2056,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_0_clock = clock;
     assign sign_0_advance = advance;
     assign sign_0_value = orient_0_product;
-    assign positive_0 = ~sign_0_negative && ~sign_0_zero;
+    assign contacts_less_0 = compare_0_less;
+    assign contacts_equal_0 = compare_0_equal;
+    assign decision_negative_0 = sign_0_negative;
+    assign decision_zero_0 = sign_0_zero;
     assign offset_1_clock = clock;
     assign offset_1_advance = advance;
     assign compare_1_clock = clock;
@@ -1948,7 +2069,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_1_clock = clock;
     assign sign_1_advance = advance;
     assign sign_1_value = orient_1_product;
-    assign positive_1 = ~sign_1_negative && ~sign_1_zero;
+    assign contacts_less_1 = compare_1_less;
+    assign contacts_equal_1 = compare_1_equal;
+    assign decision_negative_1 = sign_1_negative;
+    assign decision_zero_1 = sign_1_zero;
     assign offset_2_clock = clock;
     assign offset_2_advance = advance;
     assign compare_2_clock = clock;
@@ -1958,7 +2082,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_2_clock = clock;
     assign sign_2_advance = advance;
     assign sign_2_value = orient_2_product;
-    assign positive_2 = ~sign_2_negative && ~sign_2_zero;
+    assign contacts_less_2 = compare_2_less;
+    assign contacts_equal_2 = compare_2_equal;
+    assign decision_negative_2 = sign_2_negative;
+    assign decision_zero_2 = sign_2_zero;
     assign offset_3_clock = clock;
     assign offset_3_advance = advance;
     assign compare_3_clock = clock;
@@ -1968,7 +2095,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_3_clock = clock;
     assign sign_3_advance = advance;
     assign sign_3_value = orient_3_product;
-    assign positive_3 = ~sign_3_negative && ~sign_3_zero;
+    assign contacts_less_3 = compare_3_less;
+    assign contacts_equal_3 = compare_3_equal;
+    assign decision_negative_3 = sign_3_negative;
+    assign decision_zero_3 = sign_3_zero;
     assign offset_4_clock = clock;
     assign offset_4_advance = advance;
     assign compare_4_clock = clock;
@@ -1978,7 +2108,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_4_clock = clock;
     assign sign_4_advance = advance;
     assign sign_4_value = orient_4_product;
-    assign positive_4 = ~sign_4_negative && ~sign_4_zero;
+    assign contacts_less_4 = compare_4_less;
+    assign contacts_equal_4 = compare_4_equal;
+    assign decision_negative_4 = sign_4_negative;
+    assign decision_zero_4 = sign_4_zero;
     assign offset_5_clock = clock;
     assign offset_5_advance = advance;
     assign compare_5_clock = clock;
@@ -1988,7 +2121,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_5_clock = clock;
     assign sign_5_advance = advance;
     assign sign_5_value = orient_5_product;
-    assign positive_5 = ~sign_5_negative && ~sign_5_zero;
+    assign contacts_less_5 = compare_5_less;
+    assign contacts_equal_5 = compare_5_equal;
+    assign decision_negative_5 = sign_5_negative;
+    assign decision_zero_5 = sign_5_zero;
     assign offset_6_clock = clock;
     assign offset_6_advance = advance;
     assign compare_6_clock = clock;
@@ -1998,7 +2134,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_6_clock = clock;
     assign sign_6_advance = advance;
     assign sign_6_value = orient_6_product;
-    assign positive_6 = ~sign_6_negative && ~sign_6_zero;
+    assign contacts_less_6 = compare_6_less;
+    assign contacts_equal_6 = compare_6_equal;
+    assign decision_negative_6 = sign_6_negative;
+    assign decision_zero_6 = sign_6_zero;
     assign offset_7_clock = clock;
     assign offset_7_advance = advance;
     assign compare_7_clock = clock;
@@ -2008,7 +2147,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_7_clock = clock;
     assign sign_7_advance = advance;
     assign sign_7_value = orient_7_product;
-    assign positive_7 = ~sign_7_negative && ~sign_7_zero;
+    assign contacts_less_7 = compare_7_less;
+    assign contacts_equal_7 = compare_7_equal;
+    assign decision_negative_7 = sign_7_negative;
+    assign decision_zero_7 = sign_7_zero;
     assign offset_8_clock = clock;
     assign offset_8_advance = advance;
     assign compare_8_clock = clock;
@@ -2018,7 +2160,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_8_clock = clock;
     assign sign_8_advance = advance;
     assign sign_8_value = orient_8_product;
-    assign positive_8 = ~sign_8_negative && ~sign_8_zero;
+    assign contacts_less_8 = compare_8_less;
+    assign contacts_equal_8 = compare_8_equal;
+    assign decision_negative_8 = sign_8_negative;
+    assign decision_zero_8 = sign_8_zero;
     assign offset_9_clock = clock;
     assign offset_9_advance = advance;
     assign compare_9_clock = clock;
@@ -2028,7 +2173,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_9_clock = clock;
     assign sign_9_advance = advance;
     assign sign_9_value = orient_9_product;
-    assign positive_9 = ~sign_9_negative && ~sign_9_zero;
+    assign contacts_less_9 = compare_9_less;
+    assign contacts_equal_9 = compare_9_equal;
+    assign decision_negative_9 = sign_9_negative;
+    assign decision_zero_9 = sign_9_zero;
     assign offset_10_clock = clock;
     assign offset_10_advance = advance;
     assign compare_10_clock = clock;
@@ -2038,7 +2186,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_10_clock = clock;
     assign sign_10_advance = advance;
     assign sign_10_value = orient_10_product;
-    assign positive_10 = ~sign_10_negative && ~sign_10_zero;
+    assign contacts_less_10 = compare_10_less;
+    assign contacts_equal_10 = compare_10_equal;
+    assign decision_negative_10 = sign_10_negative;
+    assign decision_zero_10 = sign_10_zero;
     assign offset_11_clock = clock;
     assign offset_11_advance = advance;
     assign compare_11_clock = clock;
@@ -2048,7 +2199,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_11_clock = clock;
     assign sign_11_advance = advance;
     assign sign_11_value = orient_11_product;
-    assign positive_11 = ~sign_11_negative && ~sign_11_zero;
+    assign contacts_less_11 = compare_11_less;
+    assign contacts_equal_11 = compare_11_equal;
+    assign decision_negative_11 = sign_11_negative;
+    assign decision_zero_11 = sign_11_zero;
     assign offset_12_clock = clock;
     assign offset_12_advance = advance;
     assign compare_12_clock = clock;
@@ -2058,7 +2212,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_12_clock = clock;
     assign sign_12_advance = advance;
     assign sign_12_value = orient_12_product;
-    assign positive_12 = ~sign_12_negative && ~sign_12_zero;
+    assign contacts_less_12 = compare_12_less;
+    assign contacts_equal_12 = compare_12_equal;
+    assign decision_negative_12 = sign_12_negative;
+    assign decision_zero_12 = sign_12_zero;
     assign offset_13_clock = clock;
     assign offset_13_advance = advance;
     assign compare_13_clock = clock;
@@ -2068,7 +2225,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_13_clock = clock;
     assign sign_13_advance = advance;
     assign sign_13_value = orient_13_product;
-    assign positive_13 = ~sign_13_negative && ~sign_13_zero;
+    assign contacts_less_13 = compare_13_less;
+    assign contacts_equal_13 = compare_13_equal;
+    assign decision_negative_13 = sign_13_negative;
+    assign decision_zero_13 = sign_13_zero;
     assign offset_14_clock = clock;
     assign offset_14_advance = advance;
     assign compare_14_clock = clock;
@@ -2078,7 +2238,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_14_clock = clock;
     assign sign_14_advance = advance;
     assign sign_14_value = orient_14_product;
-    assign positive_14 = ~sign_14_negative && ~sign_14_zero;
+    assign contacts_less_14 = compare_14_less;
+    assign contacts_equal_14 = compare_14_equal;
+    assign decision_negative_14 = sign_14_negative;
+    assign decision_zero_14 = sign_14_zero;
     assign offset_15_clock = clock;
     assign offset_15_advance = advance;
     assign compare_15_clock = clock;
@@ -2088,7 +2251,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_15_clock = clock;
     assign sign_15_advance = advance;
     assign sign_15_value = orient_15_product;
-    assign positive_15 = ~sign_15_negative && ~sign_15_zero;
+    assign contacts_less_15 = compare_15_less;
+    assign contacts_equal_15 = compare_15_equal;
+    assign decision_negative_15 = sign_15_negative;
+    assign decision_zero_15 = sign_15_zero;
     assign offset_16_clock = clock;
     assign offset_16_advance = advance;
     assign compare_16_clock = clock;
@@ -2098,7 +2264,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_16_clock = clock;
     assign sign_16_advance = advance;
     assign sign_16_value = orient_16_product;
-    assign positive_16 = ~sign_16_negative && ~sign_16_zero;
+    assign contacts_less_16 = compare_16_less;
+    assign contacts_equal_16 = compare_16_equal;
+    assign decision_negative_16 = sign_16_negative;
+    assign decision_zero_16 = sign_16_zero;
     assign offset_17_clock = clock;
     assign offset_17_advance = advance;
     assign compare_17_clock = clock;
@@ -2108,7 +2277,10 @@ module tritri_pipeline_w24_coplanar_test (
     assign sign_17_clock = clock;
     assign sign_17_advance = advance;
     assign sign_17_value = orient_17_product;
-    assign positive_17 = ~sign_17_negative && ~sign_17_zero;
+    assign contacts_less_17 = compare_17_less;
+    assign contacts_equal_17 = compare_17_equal;
+    assign decision_negative_17 = sign_17_negative;
+    assign decision_zero_17 = sign_17_zero;
     assign edge_a_0_a = projection_q_2_q;
     assign edge_a_0_b = projection_q_0_q;
     assign edge_b_0_a = projection_q_8_q;
@@ -2313,37 +2485,49 @@ module tritri_pipeline_w24_coplanar_test (
     assign on_edge_a_8_advance = advance;
     assign on_edge_b_8_clock = clock;
     assign on_edge_b_8_advance = advance;
-    assign on_edge_a_0_d = (compare_0_less || compare_0_equal || compare_3_less || compare_3_equal) && (~compare_0_less || ~compare_3_less) && (compare_9_less || compare_9_equal || compare_12_less || compare_12_equal) && (~compare_9_less || ~compare_12_less);
-    assign on_edge_b_0_d = (~compare_0_less || ~compare_1_less) && (compare_0_less || compare_0_equal || compare_1_less || compare_1_equal) && (~compare_9_less || ~compare_10_less) && (compare_9_less || compare_9_equal || compare_10_less || compare_10_equal);
-    assign on_edge_a_1_d = (compare_1_less || compare_1_equal || compare_4_less || compare_4_equal) && (~compare_1_less || ~compare_4_less) && (compare_10_less || compare_10_equal || compare_13_less || compare_13_equal) && (~compare_10_less || ~compare_13_less);
-    assign on_edge_b_1_d = (~compare_3_less || ~compare_4_less) && (compare_3_less || compare_3_equal || compare_4_less || compare_4_equal) && (~compare_12_less || ~compare_13_less) && (compare_12_less || compare_12_equal || compare_13_less || compare_13_equal);
-    assign on_edge_a_2_d = (compare_2_less || compare_2_equal || compare_5_less || compare_5_equal) && (~compare_2_less || ~compare_5_less) && (compare_11_less || compare_11_equal || compare_14_less || compare_14_equal) && (~compare_11_less || ~compare_14_less);
-    assign on_edge_b_2_d = (~compare_6_less || ~compare_7_less) && (compare_6_less || compare_6_equal || compare_7_less || compare_7_equal) && (~compare_15_less || ~compare_16_less) && (compare_15_less || compare_15_equal || compare_16_less || compare_16_equal);
-    assign on_edge_a_3_d = (compare_3_less || compare_3_equal || compare_6_less || compare_6_equal) && (~compare_3_less || ~compare_6_less) && (compare_12_less || compare_12_equal || compare_15_less || compare_15_equal) && (~compare_12_less || ~compare_15_less);
-    assign on_edge_b_3_d = (~compare_1_less || ~compare_2_less) && (compare_1_less || compare_1_equal || compare_2_less || compare_2_equal) && (~compare_10_less || ~compare_11_less) && (compare_10_less || compare_10_equal || compare_11_less || compare_11_equal);
-    assign on_edge_a_4_d = (compare_4_less || compare_4_equal || compare_7_less || compare_7_equal) && (~compare_4_less || ~compare_7_less) && (compare_13_less || compare_13_equal || compare_16_less || compare_16_equal) && (~compare_13_less || ~compare_16_less);
-    assign on_edge_b_4_d = (~compare_4_less || ~compare_5_less) && (compare_4_less || compare_4_equal || compare_5_less || compare_5_equal) && (~compare_13_less || ~compare_14_less) && (compare_13_less || compare_13_equal || compare_14_less || compare_14_equal);
-    assign on_edge_a_5_d = (compare_5_less || compare_5_equal || compare_8_less || compare_8_equal) && (~compare_5_less || ~compare_8_less) && (compare_14_less || compare_14_equal || compare_17_less || compare_17_equal) && (~compare_14_less || ~compare_17_less);
-    assign on_edge_b_5_d = (~compare_7_less || ~compare_8_less) && (compare_7_less || compare_7_equal || compare_8_less || compare_8_equal) && (~compare_16_less || ~compare_17_less) && (compare_16_less || compare_16_equal || compare_17_less || compare_17_equal);
-    assign on_edge_a_6_d = (compare_6_less || compare_6_equal || compare_0_less || compare_0_equal) && (~compare_6_less || ~compare_0_less) && (compare_15_less || compare_15_equal || compare_9_less || compare_9_equal) && (~compare_15_less || ~compare_9_less);
-    assign on_edge_b_6_d = (~compare_2_less || ~compare_0_less) && (compare_2_less || compare_2_equal || compare_0_less || compare_0_equal) && (~compare_11_less || ~compare_9_less) && (compare_11_less || compare_11_equal || compare_9_less || compare_9_equal);
-    assign on_edge_a_7_d = (compare_7_less || compare_7_equal || compare_1_less || compare_1_equal) && (~compare_7_less || ~compare_1_less) && (compare_16_less || compare_16_equal || compare_10_less || compare_10_equal) && (~compare_16_less || ~compare_10_less);
-    assign on_edge_b_7_d = (~compare_5_less || ~compare_3_less) && (compare_5_less || compare_5_equal || compare_3_less || compare_3_equal) && (~compare_14_less || ~compare_12_less) && (compare_14_less || compare_14_equal || compare_12_less || compare_12_equal);
-    assign on_edge_a_8_d = (compare_8_less || compare_8_equal || compare_2_less || compare_2_equal) && (~compare_8_less || ~compare_2_less) && (compare_17_less || compare_17_equal || compare_11_less || compare_11_equal) && (~compare_17_less || ~compare_11_less);
-    assign on_edge_b_8_d = (~compare_8_less || ~compare_6_less) && (compare_8_less || compare_8_equal || compare_6_less || compare_6_equal) && (~compare_17_less || ~compare_15_less) && (compare_17_less || compare_17_equal || compare_15_less || compare_15_equal);
-    assign term_q_0_clock = clock;
-    assign term_q_1_clock = clock;
-    assign term_q_2_clock = clock;
-    assign term_q_3_clock = clock;
-    assign term_q_4_clock = clock;
-    assign term_q_5_clock = clock;
-    assign term_q_6_clock = clock;
-    assign term_q_7_clock = clock;
-    assign term_q_8_clock = clock;
-    assign term_q_9_clock = clock;
-    assign term_q_10_clock = clock;
-    assign hit_clock = clock;
-    assign hit = hit_q;
+    assign on_edge_a_0_d = contacts_on_edge_a_0;
+    assign on_edge_b_0_d = contacts_on_edge_b_0;
+    assign on_edge_a_1_d = contacts_on_edge_a_1;
+    assign on_edge_b_1_d = contacts_on_edge_b_1;
+    assign on_edge_a_2_d = contacts_on_edge_a_2;
+    assign on_edge_b_2_d = contacts_on_edge_b_2;
+    assign on_edge_a_3_d = contacts_on_edge_a_3;
+    assign on_edge_b_3_d = contacts_on_edge_b_3;
+    assign on_edge_a_4_d = contacts_on_edge_a_4;
+    assign on_edge_b_4_d = contacts_on_edge_b_4;
+    assign on_edge_a_5_d = contacts_on_edge_a_5;
+    assign on_edge_b_5_d = contacts_on_edge_b_5;
+    assign on_edge_a_6_d = contacts_on_edge_a_6;
+    assign on_edge_b_6_d = contacts_on_edge_b_6;
+    assign on_edge_a_7_d = contacts_on_edge_a_7;
+    assign on_edge_b_7_d = contacts_on_edge_b_7;
+    assign on_edge_a_8_d = contacts_on_edge_a_8;
+    assign on_edge_b_8_d = contacts_on_edge_b_8;
+    assign decision_clock = clock;
+    assign decision_advance = advance;
+    assign decision_on_edge_a_0 = on_edge_a_0_q;
+    assign decision_on_edge_b_0 = on_edge_b_0_q;
+    assign decision_on_edge_a_1 = on_edge_a_1_q;
+    assign decision_on_edge_b_1 = on_edge_b_1_q;
+    assign decision_on_edge_a_2 = on_edge_a_2_q;
+    assign decision_on_edge_b_2 = on_edge_b_2_q;
+    assign decision_on_edge_a_3 = on_edge_a_3_q;
+    assign decision_on_edge_b_3 = on_edge_b_3_q;
+    assign decision_on_edge_a_4 = on_edge_a_4_q;
+    assign decision_on_edge_b_4 = on_edge_b_4_q;
+    assign decision_on_edge_a_5 = on_edge_a_5_q;
+    assign decision_on_edge_b_5 = on_edge_b_5_q;
+    assign decision_on_edge_a_6 = on_edge_a_6_q;
+    assign decision_on_edge_b_6 = on_edge_b_6_q;
+    assign decision_on_edge_a_7 = on_edge_a_7_q;
+    assign decision_on_edge_b_7 = on_edge_b_7_q;
+    assign decision_on_edge_a_8 = on_edge_a_8_q;
+    assign decision_on_edge_b_8 = on_edge_b_8_q;
+    assign decision_orientation_0 = orientation_0_q;
+    assign decision_orientation_1 = orientation_1_q;
+    assign decision_orientation_2 = orientation_2_q;
+    assign decision_orientation_3 = orientation_3_q;
+    assign hit = decision_hit;
     always @(*) begin
         axis_d = axis_q;
         t1_q_0_d = t1_q_0_q;
@@ -2494,34 +2678,6 @@ module tritri_pipeline_w24_coplanar_test (
             orientation_1_d = normal_q_5_q;
             orientation_2_d = normal_q_8_q;
             orientation_3_d = normal_q_11_q;
-        end
-        term_q_0_d = term_q_0_q;
-        term_q_1_d = term_q_1_q;
-        term_q_2_d = term_q_2_q;
-        term_q_3_d = term_q_3_q;
-        term_q_4_d = term_q_4_q;
-        term_q_5_d = term_q_5_q;
-        term_q_6_d = term_q_6_q;
-        term_q_7_d = term_q_7_q;
-        term_q_8_d = term_q_8_q;
-        term_q_9_d = term_q_9_q;
-        term_q_10_d = term_q_10_q;
-        if (advance) begin
-            term_q_0_d = (((sign_0_negative && positive_1) || (positive_0 && sign_1_negative)) && ((sign_9_negative && positive_10) || (positive_9 && sign_10_negative))) || (sign_0_zero && on_edge_a_0_q) || (sign_1_zero && on_edge_a_1_q) || (sign_9_zero && on_edge_b_0_q) || (sign_10_zero && on_edge_b_1_q);
-            term_q_1_d = (((sign_1_negative && positive_2) || (positive_1 && sign_2_negative)) && ((sign_12_negative && positive_13) || (positive_12 && sign_13_negative))) || (sign_1_zero && on_edge_a_1_q) || (sign_2_zero && on_edge_a_2_q) || (sign_12_zero && on_edge_b_3_q) || (sign_13_zero && on_edge_b_4_q);
-            term_q_2_d = (((sign_2_negative && positive_0) || (positive_2 && sign_0_negative)) && ((sign_15_negative && positive_16) || (positive_15 && sign_16_negative))) || (sign_2_zero && on_edge_a_2_q) || (sign_0_zero && on_edge_a_0_q) || (sign_15_zero && on_edge_b_6_q) || (sign_16_zero && on_edge_b_7_q);
-            term_q_3_d = (((sign_3_negative && positive_4) || (positive_3 && sign_4_negative)) && ((sign_10_negative && positive_11) || (positive_10 && sign_11_negative))) || (sign_3_zero && on_edge_a_3_q) || (sign_4_zero && on_edge_a_4_q) || (sign_10_zero && on_edge_b_1_q) || (sign_11_zero && on_edge_b_2_q);
-            term_q_4_d = (((sign_4_negative && positive_5) || (positive_4 && sign_5_negative)) && ((sign_13_negative && positive_14) || (positive_13 && sign_14_negative))) || (sign_4_zero && on_edge_a_4_q) || (sign_5_zero && on_edge_a_5_q) || (sign_13_zero && on_edge_b_4_q) || (sign_14_zero && on_edge_b_5_q);
-            term_q_5_d = (((sign_5_negative && positive_3) || (positive_5 && sign_3_negative)) && ((sign_16_negative && positive_17) || (positive_16 && sign_17_negative))) || (sign_5_zero && on_edge_a_5_q) || (sign_3_zero && on_edge_a_3_q) || (sign_16_zero && on_edge_b_7_q) || (sign_17_zero && on_edge_b_8_q);
-            term_q_6_d = (((sign_6_negative && positive_7) || (positive_6 && sign_7_negative)) && ((sign_11_negative && positive_9) || (positive_11 && sign_9_negative))) || (sign_6_zero && on_edge_a_6_q) || (sign_7_zero && on_edge_a_7_q) || (sign_11_zero && on_edge_b_2_q) || (sign_9_zero && on_edge_b_0_q);
-            term_q_7_d = (((sign_7_negative && positive_8) || (positive_7 && sign_8_negative)) && ((sign_14_negative && positive_12) || (positive_14 && sign_12_negative))) || (sign_7_zero && on_edge_a_7_q) || (sign_8_zero && on_edge_a_8_q) || (sign_14_zero && on_edge_b_5_q) || (sign_12_zero && on_edge_b_3_q);
-            term_q_8_d = (((sign_8_negative && positive_6) || (positive_8 && sign_6_negative)) && ((sign_17_negative && positive_15) || (positive_17 && sign_15_negative))) || (sign_8_zero && on_edge_a_8_q) || (sign_6_zero && on_edge_a_6_q) || (sign_17_zero && on_edge_b_8_q) || (sign_15_zero && on_edge_b_6_q);
-            term_q_9_d = ~orientation_1_q && (sign_0_zero || (sign_0_negative == orientation_0_q)) && (sign_3_zero || (sign_3_negative == orientation_0_q)) && (sign_6_zero || (sign_6_negative == orientation_0_q));
-            term_q_10_d = ~orientation_3_q && (sign_9_zero || (positive_9 == orientation_2_q)) && (sign_12_zero || (positive_12 == orientation_2_q)) && (sign_15_zero || (positive_15 == orientation_2_q));
-        end
-        hit_d = hit_q;
-        if (advance) begin
-            hit_d = term_q_0_q || term_q_1_q || term_q_2_q || term_q_3_q || term_q_4_q || term_q_5_q || term_q_6_q || term_q_7_q || term_q_8_q || term_q_9_q || term_q_10_q;
         end
     end
 

@@ -371,26 +371,81 @@ module tritri_pipeline_w24_degenerate_pair (
     wire  within_segment_11_advance;
     wire  within_segment_11_d;
     wire  within_segment_11_q;
-    reg  hit_d;
-    wire  hit_q;
-    wire  hit_clock;
-
-    // Local signals
-    wire  positive_0;
-    wire  positive_1;
-    wire  positive_2;
-    wire  positive_3;
-    wire  positive_4;
-    wire  positive_5;
-    wire  positive_6;
-    wire  positive_7;
-    wire  positive_8;
-    wire  positive_9;
-    wire  positive_10;
-    wire  positive_11;
-    wire  meets_0;
-    wire  meets_1;
-    wire  meets_2;
+    wire  contacts_less_0;
+    wire  contacts_less_1;
+    wire  contacts_less_2;
+    wire  contacts_less_3;
+    wire  contacts_less_4;
+    wire  contacts_less_5;
+    wire  contacts_less_6;
+    wire  contacts_less_7;
+    wire  contacts_less_8;
+    wire  contacts_less_9;
+    wire  contacts_less_10;
+    wire  contacts_less_11;
+    wire  contacts_equal_0;
+    wire  contacts_equal_1;
+    wire  contacts_equal_2;
+    wire  contacts_equal_3;
+    wire  contacts_equal_4;
+    wire  contacts_equal_5;
+    wire  contacts_equal_6;
+    wire  contacts_equal_7;
+    wire  contacts_equal_8;
+    wire  contacts_equal_9;
+    wire  contacts_equal_10;
+    wire  contacts_equal_11;
+    wire  contacts_within_0;
+    wire  contacts_within_1;
+    wire  contacts_within_2;
+    wire  contacts_within_3;
+    wire  contacts_within_4;
+    wire  contacts_within_5;
+    wire  contacts_within_6;
+    wire  contacts_within_7;
+    wire  contacts_within_8;
+    wire  contacts_within_9;
+    wire  contacts_within_10;
+    wire  contacts_within_11;
+    wire  decision_clock;
+    wire  decision_advance;
+    wire  decision_negative_0;
+    wire  decision_negative_1;
+    wire  decision_negative_2;
+    wire  decision_negative_3;
+    wire  decision_negative_4;
+    wire  decision_negative_5;
+    wire  decision_negative_6;
+    wire  decision_negative_7;
+    wire  decision_negative_8;
+    wire  decision_negative_9;
+    wire  decision_negative_10;
+    wire  decision_negative_11;
+    wire  decision_zero_0;
+    wire  decision_zero_1;
+    wire  decision_zero_2;
+    wire  decision_zero_3;
+    wire  decision_zero_4;
+    wire  decision_zero_5;
+    wire  decision_zero_6;
+    wire  decision_zero_7;
+    wire  decision_zero_8;
+    wire  decision_zero_9;
+    wire  decision_zero_10;
+    wire  decision_zero_11;
+    wire  decision_within_0;
+    wire  decision_within_1;
+    wire  decision_within_2;
+    wire  decision_within_3;
+    wire  decision_within_4;
+    wire  decision_within_5;
+    wire  decision_within_6;
+    wire  decision_within_7;
+    wire  decision_within_8;
+    wire  decision_within_9;
+    wire  decision_within_10;
+    wire  decision_within_11;
+    wire  decision_hit;
 
     // Sub module instances
     tritri_pipeline_w24_dff_24 u_ends_q_0(
@@ -835,10 +890,84 @@ module tritri_pipeline_w24_degenerate_pair (
         .d(within_segment_11_d),
         .q(within_segment_11_q)
     );
-    tritri_pipeline_w24_dff_1 u_hit_q(
-        .d(hit_d),
-        .q(hit_q),
-        .clock(hit_clock)
+    tritri_pipeline_w24_segment_contacts u_contacts(
+        .less_0(contacts_less_0),
+        .less_1(contacts_less_1),
+        .less_2(contacts_less_2),
+        .less_3(contacts_less_3),
+        .less_4(contacts_less_4),
+        .less_5(contacts_less_5),
+        .less_6(contacts_less_6),
+        .less_7(contacts_less_7),
+        .less_8(contacts_less_8),
+        .less_9(contacts_less_9),
+        .less_10(contacts_less_10),
+        .less_11(contacts_less_11),
+        .equal_0(contacts_equal_0),
+        .equal_1(contacts_equal_1),
+        .equal_2(contacts_equal_2),
+        .equal_3(contacts_equal_3),
+        .equal_4(contacts_equal_4),
+        .equal_5(contacts_equal_5),
+        .equal_6(contacts_equal_6),
+        .equal_7(contacts_equal_7),
+        .equal_8(contacts_equal_8),
+        .equal_9(contacts_equal_9),
+        .equal_10(contacts_equal_10),
+        .equal_11(contacts_equal_11),
+        .within_0(contacts_within_0),
+        .within_1(contacts_within_1),
+        .within_2(contacts_within_2),
+        .within_3(contacts_within_3),
+        .within_4(contacts_within_4),
+        .within_5(contacts_within_5),
+        .within_6(contacts_within_6),
+        .within_7(contacts_within_7),
+        .within_8(contacts_within_8),
+        .within_9(contacts_within_9),
+        .within_10(contacts_within_10),
+        .within_11(contacts_within_11)
+    );
+    tritri_pipeline_w24_segments_decision u_decision(
+        .clock(decision_clock),
+        .advance(decision_advance),
+        .negative_0(decision_negative_0),
+        .negative_1(decision_negative_1),
+        .negative_2(decision_negative_2),
+        .negative_3(decision_negative_3),
+        .negative_4(decision_negative_4),
+        .negative_5(decision_negative_5),
+        .negative_6(decision_negative_6),
+        .negative_7(decision_negative_7),
+        .negative_8(decision_negative_8),
+        .negative_9(decision_negative_9),
+        .negative_10(decision_negative_10),
+        .negative_11(decision_negative_11),
+        .zero_0(decision_zero_0),
+        .zero_1(decision_zero_1),
+        .zero_2(decision_zero_2),
+        .zero_3(decision_zero_3),
+        .zero_4(decision_zero_4),
+        .zero_5(decision_zero_5),
+        .zero_6(decision_zero_6),
+        .zero_7(decision_zero_7),
+        .zero_8(decision_zero_8),
+        .zero_9(decision_zero_9),
+        .zero_10(decision_zero_10),
+        .zero_11(decision_zero_11),
+        .within_0(decision_within_0),
+        .within_1(decision_within_1),
+        .within_2(decision_within_2),
+        .within_3(decision_within_3),
+        .within_4(decision_within_4),
+        .within_5(decision_within_5),
+        .within_6(decision_within_6),
+        .within_7(decision_within_7),
+        .within_8(decision_within_8),
+        .within_9(decision_within_9),
+        .within_10(decision_within_10),
+        .within_11(decision_within_11),
+        .hit(decision_hit)
     );
 
     // Update code
@@ -976,101 +1105,147 @@ module tritri_pipeline_w24_degenerate_pair (
     assign sign_0_advance = advance;
     assign within_segment_0_clock = clock;
     assign within_segment_0_advance = advance;
-    assign positive_0 = ~sign_0_negative && ~sign_0_zero;
+    assign within_segment_0_d = contacts_within_0;
+    assign contacts_less_0 = compare_0_less;
+    assign contacts_equal_0 = compare_0_equal;
+    assign decision_negative_0 = sign_0_negative;
+    assign decision_zero_0 = sign_0_zero;
+    assign decision_within_0 = within_segment_0_q;
     assign compare_1_clock = clock;
     assign compare_1_advance = advance;
     assign sign_1_clock = clock;
     assign sign_1_advance = advance;
     assign within_segment_1_clock = clock;
     assign within_segment_1_advance = advance;
-    assign positive_1 = ~sign_1_negative && ~sign_1_zero;
+    assign within_segment_1_d = contacts_within_1;
+    assign contacts_less_1 = compare_1_less;
+    assign contacts_equal_1 = compare_1_equal;
+    assign decision_negative_1 = sign_1_negative;
+    assign decision_zero_1 = sign_1_zero;
+    assign decision_within_1 = within_segment_1_q;
     assign compare_2_clock = clock;
     assign compare_2_advance = advance;
     assign sign_2_clock = clock;
     assign sign_2_advance = advance;
     assign within_segment_2_clock = clock;
     assign within_segment_2_advance = advance;
-    assign positive_2 = ~sign_2_negative && ~sign_2_zero;
+    assign within_segment_2_d = contacts_within_2;
+    assign contacts_less_2 = compare_2_less;
+    assign contacts_equal_2 = compare_2_equal;
+    assign decision_negative_2 = sign_2_negative;
+    assign decision_zero_2 = sign_2_zero;
+    assign decision_within_2 = within_segment_2_q;
     assign compare_3_clock = clock;
     assign compare_3_advance = advance;
     assign sign_3_clock = clock;
     assign sign_3_advance = advance;
     assign within_segment_3_clock = clock;
     assign within_segment_3_advance = advance;
-    assign positive_3 = ~sign_3_negative && ~sign_3_zero;
+    assign within_segment_3_d = contacts_within_3;
+    assign contacts_less_3 = compare_3_less;
+    assign contacts_equal_3 = compare_3_equal;
+    assign decision_negative_3 = sign_3_negative;
+    assign decision_zero_3 = sign_3_zero;
+    assign decision_within_3 = within_segment_3_q;
     assign compare_4_clock = clock;
     assign compare_4_advance = advance;
     assign sign_4_clock = clock;
     assign sign_4_advance = advance;
     assign within_segment_4_clock = clock;
     assign within_segment_4_advance = advance;
-    assign positive_4 = ~sign_4_negative && ~sign_4_zero;
+    assign within_segment_4_d = contacts_within_4;
+    assign contacts_less_4 = compare_4_less;
+    assign contacts_equal_4 = compare_4_equal;
+    assign decision_negative_4 = sign_4_negative;
+    assign decision_zero_4 = sign_4_zero;
+    assign decision_within_4 = within_segment_4_q;
     assign compare_5_clock = clock;
     assign compare_5_advance = advance;
     assign sign_5_clock = clock;
     assign sign_5_advance = advance;
     assign within_segment_5_clock = clock;
     assign within_segment_5_advance = advance;
-    assign positive_5 = ~sign_5_negative && ~sign_5_zero;
+    assign within_segment_5_d = contacts_within_5;
+    assign contacts_less_5 = compare_5_less;
+    assign contacts_equal_5 = compare_5_equal;
+    assign decision_negative_5 = sign_5_negative;
+    assign decision_zero_5 = sign_5_zero;
+    assign decision_within_5 = within_segment_5_q;
     assign compare_6_clock = clock;
     assign compare_6_advance = advance;
     assign sign_6_clock = clock;
     assign sign_6_advance = advance;
     assign within_segment_6_clock = clock;
     assign within_segment_6_advance = advance;
-    assign positive_6 = ~sign_6_negative && ~sign_6_zero;
+    assign within_segment_6_d = contacts_within_6;
+    assign contacts_less_6 = compare_6_less;
+    assign contacts_equal_6 = compare_6_equal;
+    assign decision_negative_6 = sign_6_negative;
+    assign decision_zero_6 = sign_6_zero;
+    assign decision_within_6 = within_segment_6_q;
     assign compare_7_clock = clock;
     assign compare_7_advance = advance;
     assign sign_7_clock = clock;
     assign sign_7_advance = advance;
     assign within_segment_7_clock = clock;
     assign within_segment_7_advance = advance;
-    assign positive_7 = ~sign_7_negative && ~sign_7_zero;
+    assign within_segment_7_d = contacts_within_7;
+    assign contacts_less_7 = compare_7_less;
+    assign contacts_equal_7 = compare_7_equal;
+    assign decision_negative_7 = sign_7_negative;
+    assign decision_zero_7 = sign_7_zero;
+    assign decision_within_7 = within_segment_7_q;
     assign compare_8_clock = clock;
     assign compare_8_advance = advance;
     assign sign_8_clock = clock;
     assign sign_8_advance = advance;
     assign within_segment_8_clock = clock;
     assign within_segment_8_advance = advance;
-    assign positive_8 = ~sign_8_negative && ~sign_8_zero;
+    assign within_segment_8_d = contacts_within_8;
+    assign contacts_less_8 = compare_8_less;
+    assign contacts_equal_8 = compare_8_equal;
+    assign decision_negative_8 = sign_8_negative;
+    assign decision_zero_8 = sign_8_zero;
+    assign decision_within_8 = within_segment_8_q;
     assign compare_9_clock = clock;
     assign compare_9_advance = advance;
     assign sign_9_clock = clock;
     assign sign_9_advance = advance;
     assign within_segment_9_clock = clock;
     assign within_segment_9_advance = advance;
-    assign positive_9 = ~sign_9_negative && ~sign_9_zero;
+    assign within_segment_9_d = contacts_within_9;
+    assign contacts_less_9 = compare_9_less;
+    assign contacts_equal_9 = compare_9_equal;
+    assign decision_negative_9 = sign_9_negative;
+    assign decision_zero_9 = sign_9_zero;
+    assign decision_within_9 = within_segment_9_q;
     assign compare_10_clock = clock;
     assign compare_10_advance = advance;
     assign sign_10_clock = clock;
     assign sign_10_advance = advance;
     assign within_segment_10_clock = clock;
     assign within_segment_10_advance = advance;
-    assign positive_10 = ~sign_10_negative && ~sign_10_zero;
+    assign within_segment_10_d = contacts_within_10;
+    assign contacts_less_10 = compare_10_less;
+    assign contacts_equal_10 = compare_10_equal;
+    assign decision_negative_10 = sign_10_negative;
+    assign decision_zero_10 = sign_10_zero;
+    assign decision_within_10 = within_segment_10_q;
     assign compare_11_clock = clock;
     assign compare_11_advance = advance;
     assign sign_11_clock = clock;
     assign sign_11_advance = advance;
     assign within_segment_11_clock = clock;
     assign within_segment_11_advance = advance;
-    assign positive_11 = ~sign_11_negative && ~sign_11_zero;
-    assign within_segment_0_d = (compare_0_less || compare_0_equal || compare_6_less || compare_6_equal) && (~compare_0_less || ~compare_6_less);
-    assign within_segment_3_d = (compare_3_less || compare_3_equal || compare_9_less || compare_9_equal) && (~compare_3_less || ~compare_9_less);
-    assign within_segment_6_d = (~compare_0_less || ~compare_3_less) && (compare_0_less || compare_0_equal || compare_3_less || compare_3_equal);
-    assign within_segment_9_d = (~compare_6_less || ~compare_9_less) && (compare_6_less || compare_6_equal || compare_9_less || compare_9_equal);
-    assign within_segment_1_d = (compare_1_less || compare_1_equal || compare_7_less || compare_7_equal) && (~compare_1_less || ~compare_7_less);
-    assign within_segment_4_d = (compare_4_less || compare_4_equal || compare_10_less || compare_10_equal) && (~compare_4_less || ~compare_10_less);
-    assign within_segment_7_d = (~compare_1_less || ~compare_4_less) && (compare_1_less || compare_1_equal || compare_4_less || compare_4_equal);
-    assign within_segment_10_d = (~compare_7_less || ~compare_10_less) && (compare_7_less || compare_7_equal || compare_10_less || compare_10_equal);
-    assign within_segment_2_d = (compare_2_less || compare_2_equal || compare_8_less || compare_8_equal) && (~compare_2_less || ~compare_8_less);
-    assign within_segment_5_d = (compare_5_less || compare_5_equal || compare_11_less || compare_11_equal) && (~compare_5_less || ~compare_11_less);
-    assign within_segment_8_d = (~compare_2_less || ~compare_5_less) && (compare_2_less || compare_2_equal || compare_5_less || compare_5_equal);
-    assign within_segment_11_d = (~compare_8_less || ~compare_11_less) && (compare_8_less || compare_8_equal || compare_11_less || compare_11_equal);
-    assign meets_0 = (((sign_0_negative && positive_3) || (positive_0 && sign_3_negative)) && ((sign_6_negative && positive_9) || (positive_6 && sign_9_negative))) || (sign_0_zero && within_segment_1_q && within_segment_2_q) || (sign_3_zero && within_segment_4_q && within_segment_5_q) || (sign_6_zero && within_segment_7_q && within_segment_8_q) || (sign_9_zero && within_segment_10_q && within_segment_11_q);
-    assign meets_1 = (((sign_1_negative && positive_4) || (positive_1 && sign_4_negative)) && ((sign_7_negative && positive_10) || (positive_7 && sign_10_negative))) || (sign_1_zero && within_segment_2_q && within_segment_0_q) || (sign_4_zero && within_segment_5_q && within_segment_3_q) || (sign_7_zero && within_segment_8_q && within_segment_6_q) || (sign_10_zero && within_segment_11_q && within_segment_9_q);
-    assign meets_2 = (((sign_2_negative && positive_5) || (positive_2 && sign_5_negative)) && ((sign_8_negative && positive_11) || (positive_8 && sign_11_negative))) || (sign_2_zero && within_segment_0_q && within_segment_1_q) || (sign_5_zero && within_segment_3_q && within_segment_4_q) || (sign_8_zero && within_segment_6_q && within_segment_7_q) || (sign_11_zero && within_segment_9_q && within_segment_10_q);
-    assign hit_clock = clock;
-    assign hit = hit_q;
+    assign within_segment_11_d = contacts_within_11;
+    assign contacts_less_11 = compare_11_less;
+    assign contacts_equal_11 = compare_11_equal;
+    assign decision_negative_11 = sign_11_negative;
+    assign decision_zero_11 = sign_11_zero;
+    assign decision_within_11 = within_segment_11_q;
+    assign decision_clock = clock;
+    assign decision_advance = advance;
+    assign hit = decision_hit;
     always @(*) begin
         ends_q_0_d = ends_q_0_q;
         ends_q_1_d = ends_q_1_q;
@@ -1193,10 +1368,6 @@ module tritri_pipeline_w24_degenerate_pair (
             else begin
                 ends_q_11_d = t2_vertices_8;
             end
-        end
-        hit_d = hit_q;
-        if (advance) begin
-            hit_d = meets_0 && meets_1 && meets_2;
         end
     end
 

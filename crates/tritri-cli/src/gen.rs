@@ -72,7 +72,10 @@
 //! assembled, two a clock in the collision system's format, top
 //! `tritri_patch_triangles_w<W>_k<K>`); `--cone-unit [--width 16|24]` its
 //! cone-of-normals test (one patch and eye a clock), top
-//! `tritri_cone_unit_w<W>`.
+//! `tritri_cone_unit_w<W>`. `--shared-rare-cases [--width 8|16|24]` writes
+//! the pipeline's rare cases on one shared path (the coplanar and
+//! degenerate-pair tests on three orient2d lanes), top
+//! `tritri_shared_rare_cases_w<W>`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -109,6 +112,9 @@ use tritri_rtl::emit::patch_tessellator_unit::{
     patch_triangles_unit_name, TESSELLATOR_CONFIGURATIONS,
 };
 use tritri_rtl::emit::plane_traversal_unit::{emit_plane_traversal, PLANE_TRAVERSAL_NAME};
+use tritri_rtl::emit::shared_rare_cases_unit::{
+    emit_shared_rare_cases, shared_rare_cases_name, SHARED_RARE_CASES_WIDTHS,
+};
 use tritri_rtl::emit::triangle_setup_unit::{emit_triangle_setup, triangle_setup_unit_name};
 use tritri_rtl::emit::triangle_voxelizer_unit::{emit_triangle_voxelizer, TRIANGLE_VOXELIZER_NAME};
 use tritri_rtl::emit::voxel_units::{
@@ -197,6 +203,11 @@ pub struct Args {
     /// is the control points' (16 or 24).
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator"])]
     cone_unit: bool,
+    /// Emit the pipeline's rare cases on one shared path instead: the
+    /// coplanar and degenerate-pair tests on three orient2d lanes (six
+    /// multipliers), a pair every 4 or 6 clocks; --width 8, 16 or 24.
+    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit"])]
+    shared_rare_cases: bool,
     /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
     steps: Option<usize>,
@@ -477,6 +488,10 @@ impl Args {
             return emit_cone_unit(width)
                 .with_context(|| format!("emitting {}", cone_unit_name(width)));
         }
+        if self.shared_rare_cases {
+            return emit_shared_rare_cases(width, self.multipliers())
+                .with_context(|| format!("emitting {}", shared_rare_cases_name(width)));
+        }
         if self.plane_traversal {
             return emit_plane_traversal()
                 .with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
@@ -534,6 +549,7 @@ impl Args {
     fn named_by_unit(&self) -> bool {
         self.patch_tessellator
             || self.cone_unit
+            || self.shared_rare_cases
             || self.system
             || self.classifier
             || self.setup
@@ -566,6 +582,8 @@ impl Args {
             patch_tessellator_unit_name(width, self.steps.unwrap_or(3))
         } else if self.cone_unit {
             cone_unit_name(width)
+        } else if self.shared_rare_cases {
+            shared_rare_cases_name(width)
         } else if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
         } else if self.set_operation {
@@ -632,6 +650,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         if args.cone_unit && !CONE_UNIT_WIDTHS.contains(&w) {
             eprintln!(
                 "error: --cone-unit --width {w}: the unit is built for W in {CONE_UNIT_WIDTHS:?}"
+            );
+            return Ok(ExitCode::from(2));
+        }
+        if args.shared_rare_cases && !SHARED_RARE_CASES_WIDTHS.contains(&w) {
+            eprintln!(
+                "error: --shared-rare-cases --width {w}: the unit is emitted for W in {SHARED_RARE_CASES_WIDTHS:?}"
             );
             return Ok(ExitCode::from(2));
         }

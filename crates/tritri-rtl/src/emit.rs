@@ -71,6 +71,7 @@ pub mod package;
 pub mod part_selects;
 pub mod patch_tessellator_unit;
 pub mod plane_traversal_unit;
+pub mod shared_rare_cases_unit;
 pub mod statements;
 pub mod tokens;
 pub mod triangle_setup_unit;

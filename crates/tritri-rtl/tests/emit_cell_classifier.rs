@@ -170,3 +170,18 @@ fn check(g: usize, design: EmittedDesign) {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
+
+/// The pipeline's shared rare-case unit, at W = 8, 16 and 24.
+#[test]
+fn the_shared_rare_case_unit_is_lint_clean() {
+    use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
+    use tritri_rtl::emit::shared_rare_cases_unit::{
+        emit_shared_rare_cases, SHARED_RARE_CASES_WIDTHS,
+    };
+    for w in SHARED_RARE_CASES_WIDTHS {
+        check(
+            w,
+            emit_shared_rare_cases(w, MultiplierMapping::Inferred).unwrap(),
+        );
+    }
+}

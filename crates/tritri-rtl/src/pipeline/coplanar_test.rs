@@ -26,6 +26,7 @@
 //! their OR; in one stage, eighteen signs fanned into one register through
 //! five LUT levels, 129 MHz on ECP5).
 
+use super::rare_decisions::{CoplanarContacts, CoplanarDecision, COPLANAR_DECISION_LATENCY};
 use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
@@ -40,13 +41,10 @@ pub const COPLANAR_TEST_LATENCY: usize =
 /// The inputs' register stage.
 const INPUT_STAGES: usize = 1;
 /// The decision's stages: the terms, then their OR.
-const DECISION_STAGES: usize = 2;
+const DECISION_STAGES: usize = COPLANAR_DECISION_LATENCY;
 const ON_EDGE_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
 /// The orientations are read where the terms are formed.
 const ORIENTATION_DELAY: usize = COPLANAR_TEST_LATENCY - DECISION_STAGES - INPUT_STAGES;
-/// Terms of the decision: a crossing or touching per pair of edges (`3 e +
-/// f`), B_0 inside A, A_0 inside B.
-const TERMS: usize = 11;
 const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
 
 #[derive(LogicBlock, Default)]
@@ -87,9 +85,8 @@ pub struct CoplanarTest<const W: usize, const D: usize, const C: usize> {
     /// `[A_e, A_e+1, B_v]` at `3 e + v`; `-[B_f, B_f+1, A_u]` at `9 + 3 f + u`.
     orient: [CrossProduct2d<D, C>; 18],
     sign: [SignOf<C>; 18],
-    positive: [Signal<Local, Bit>; 18],
-    term_q: [DFF<Bit>; TERMS],
-    hit_q: DFF<Bit>,
+    contacts: CoplanarContacts,
+    decision: CoplanarDecision,
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for CoplanarTest<W, D, C> {
@@ -112,8 +109,8 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for Copla
             orientation,
             orient,
             sign,
-            term_q,
-            hit_q
+            contacts,
+            decision
         );
     }
 }
@@ -208,7 +205,10 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
             self.sign[i].clock.next = self.clock.val();
             self.sign[i].advance.next = self.advance.val();
             self.sign[i].value.next = self.orient[i].product.val();
-            self.positive[i].next = !self.sign[i].negative.val() && !self.sign[i].zero.val();
+            self.contacts.less[i].next = self.compare[i].less.val();
+            self.contacts.equal[i].next = self.compare[i].equal.val();
+            self.decision.negative[i].next = self.sign[i].negative.val();
+            self.decision.zero[i].next = self.sign[i].zero.val();
         }
         for e in 0..3 {
             for c in 0..2 {
@@ -254,99 +254,20 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
             self.on_edge_b[i].clock.next = self.clock.val();
             self.on_edge_b[i].advance.next = self.advance.val();
         }
-        for e in 0..3 {
-            for v in 0..3 {
-                // B_v on [A_e, A_e+1].
-                self.on_edge_a[3 * e + v].d.next = (self.compare[3 * e + v].less.val()
-                    || self.compare[3 * e + v].equal.val()
-                    || self.compare[3 * ((e + 1) % 3) + v].less.val()
-                    || self.compare[3 * ((e + 1) % 3) + v].equal.val())
-                    && (!self.compare[3 * e + v].less.val()
-                        || !self.compare[3 * ((e + 1) % 3) + v].less.val())
-                    && (self.compare[9 + 3 * e + v].less.val()
-                        || self.compare[9 + 3 * e + v].equal.val()
-                        || self.compare[9 + 3 * ((e + 1) % 3) + v].less.val()
-                        || self.compare[9 + 3 * ((e + 1) % 3) + v].equal.val())
-                    && (!self.compare[9 + 3 * e + v].less.val()
-                        || !self.compare[9 + 3 * ((e + 1) % 3) + v].less.val());
-                // f = e, u = v: A_u on [B_f, B_f+1].
-                self.on_edge_b[3 * e + v].d.next = (!self.compare[3 * v + e].less.val()
-                    || !self.compare[3 * v + (e + 1) % 3].less.val())
-                    && (self.compare[3 * v + e].less.val()
-                        || self.compare[3 * v + e].equal.val()
-                        || self.compare[3 * v + (e + 1) % 3].less.val()
-                        || self.compare[3 * v + (e + 1) % 3].equal.val())
-                    && (!self.compare[9 + 3 * v + e].less.val()
-                        || !self.compare[9 + 3 * v + (e + 1) % 3].less.val())
-                    && (self.compare[9 + 3 * v + e].less.val()
-                        || self.compare[9 + 3 * v + e].equal.val()
-                        || self.compare[9 + 3 * v + (e + 1) % 3].less.val()
-                        || self.compare[9 + 3 * v + (e + 1) % 3].equal.val());
-            }
+        for i in 0..9 {
+            self.on_edge_a[i].d.next = self.contacts.on_edge_a[i].val();
+            self.on_edge_b[i].d.next = self.contacts.on_edge_b[i].val();
         }
-        // Stage 8: the terms of hulls_intersect_2d.
-        for i in 0..TERMS {
-            self.term_q[i].clock.next = self.clock.val();
-            self.term_q[i].d.next = self.term_q[i].q.val();
+        // Stages 8-9: the terms of hulls_intersect_2d, then their OR.
+        self.decision.clock.next = self.clock.val();
+        self.decision.advance.next = self.advance.val();
+        for i in 0..9 {
+            self.decision.on_edge_a[i].next = self.on_edge_a[i].q.val();
+            self.decision.on_edge_b[i].next = self.on_edge_b[i].q.val();
         }
-        if self.advance.val() {
-            for e in 0..3 {
-                for f in 0..3 {
-                    // Proper crossing: o1, o2 strictly opposite and o3, o4
-                    // strictly opposite (o3, o4 are both negated: same test);
-                    // or touching: an end collinear with the other edge and
-                    // on it.
-                    self.term_q[3 * e + f].d.next = (((self.sign[3 * e + f].negative.val()
-                        && self.positive[3 * e + (f + 1) % 3].val())
-                        || (self.positive[3 * e + f].val()
-                            && self.sign[3 * e + (f + 1) % 3].negative.val()))
-                        && ((self.sign[9 + 3 * f + e].negative.val()
-                            && self.positive[9 + 3 * f + (e + 1) % 3].val())
-                            || (self.positive[9 + 3 * f + e].val()
-                                && self.sign[9 + 3 * f + (e + 1) % 3].negative.val())))
-                        || (self.sign[3 * e + f].zero.val() && self.on_edge_a[3 * e + f].q.val())
-                        || (self.sign[3 * e + (f + 1) % 3].zero.val()
-                            && self.on_edge_a[3 * e + (f + 1) % 3].q.val())
-                        || (self.sign[9 + 3 * f + e].zero.val()
-                            && self.on_edge_b[3 * f + e].q.val())
-                        || (self.sign[9 + 3 * f + (e + 1) % 3].zero.val()
-                            && self.on_edge_b[3 * f + (e + 1) % 3].q.val());
-                }
-            }
-            // B_0 inside A: A proper here, and B_0 on the inner side of (or
-            // on) every edge.
-            self.term_q[9].d.next = !self.orientation[1].q.val()
-                && (self.sign[0].zero.val()
-                    || (self.sign[0].negative.val() == self.orientation[0].q.val()))
-                && (self.sign[3].zero.val()
-                    || (self.sign[3].negative.val() == self.orientation[0].q.val()))
-                && (self.sign[6].zero.val()
-                    || (self.sign[6].negative.val() == self.orientation[0].q.val()));
-            // A_0 inside B (its orient2d values are negated: positive here
-            // means negative there).
-            self.term_q[10].d.next = !self.orientation[3].q.val()
-                && (self.sign[9].zero.val()
-                    || (self.positive[9].val() == self.orientation[2].q.val()))
-                && (self.sign[12].zero.val()
-                    || (self.positive[12].val() == self.orientation[2].q.val()))
-                && (self.sign[15].zero.val()
-                    || (self.positive[15].val() == self.orientation[2].q.val()));
+        for i in 0..4 {
+            self.decision.orientation[i].next = self.orientation[i].q.val();
         }
-        // Stage 9: any term.
-        dff_setup!(self, clock, hit_q);
-        if self.advance.val() {
-            self.hit_q.d.next = self.term_q[0].q.val()
-                || self.term_q[1].q.val()
-                || self.term_q[2].q.val()
-                || self.term_q[3].q.val()
-                || self.term_q[4].q.val()
-                || self.term_q[5].q.val()
-                || self.term_q[6].q.val()
-                || self.term_q[7].q.val()
-                || self.term_q[8].q.val()
-                || self.term_q[9].q.val()
-                || self.term_q[10].q.val();
-        }
-        self.hit.next = self.hit_q.q.val();
+        self.hit.next = self.decision.hit.val();
     }
 }

@@ -13,6 +13,7 @@
 //! Stages: end selection (1), differences and comparisons (1), cross
 //! products (4), signs (1), decision (1).
 
+use super::rare_decisions::{SegmentContacts, SegmentsDecision, SEGMENTS_DECISION_LATENCY};
 use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
@@ -23,7 +24,7 @@ use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
 pub const DEGENERATE_PAIR_LATENCY: usize =
-    1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + 1;
+    1 + SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + SIGN_LATENCY + SEGMENTS_DECISION_LATENCY;
 const ON_SEGMENT_DELAY: usize = CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
 const _: () = assert!(COMPARE_LATENCY == SUBTRACTOR_LATENCY);
 
@@ -55,15 +56,13 @@ pub struct DegeneratePair<const W: usize, const D: usize, const C: usize> {
     orient_cdb: CrossProduct<D, C>,
     /// Sign of component `k` of cross product `i` at `3 i + k`.
     sign: [SignOf<C>; 12],
-    positive: [Signal<Local, Bit>; 12],
     /// Coordinate `k` of the pairs (a, c), (a, d), (b, c), (b, d) at `3 pair + k`.
     compare: [CoordinateCompare<W>; 12],
     /// Along coordinate `m` (`3 i + m`): c within [a, b], d within [a, b],
     /// a within [c, d], b within [c, d].
     within_segment: [DelayLine<Bit, ON_SEGMENT_DELAY>; 12],
-    /// The 2D test per dropped axis.
-    meets: [Signal<Local, Bit>; 3],
-    hit_q: DFF<Bit>,
+    contacts: SegmentContacts,
+    decision: SegmentsDecision,
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for DegeneratePair<W, D, C> {
@@ -86,7 +85,8 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for Degen
             sign,
             compare,
             within_segment,
-            hit_q
+            contacts,
+            decision
         );
     }
 }
@@ -190,62 +190,16 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
             self.sign[i].advance.next = self.advance.val();
             self.within_segment[i].clock.next = self.clock.val();
             self.within_segment[i].advance.next = self.advance.val();
-            self.positive[i].next = !self.sign[i].negative.val() && !self.sign[i].zero.val();
+            self.within_segment[i].d.next = self.contacts.within[i].val();
+            self.contacts.less[i].next = self.compare[i].less.val();
+            self.contacts.equal[i].next = self.compare[i].equal.val();
+            self.decision.negative[i].next = self.sign[i].negative.val();
+            self.decision.zero[i].next = self.sign[i].zero.val();
+            self.decision.within[i].next = self.within_segment[i].q.val();
         }
-        // on_segment_2d along one coordinate m: x within [lo, hi] of the
-        // segment's two ends. For "c within [a, b]" with pairs (a,c) and
-        // (b,c): (a <= c or b <= c) and (a >= c or b >= c).
-        for m in 0..3 {
-            self.within_segment[m].d.next = (self.compare[m].less.val()
-                || self.compare[m].equal.val()
-                || self.compare[6 + m].less.val()
-                || self.compare[6 + m].equal.val())
-                && (!self.compare[m].less.val() || !self.compare[6 + m].less.val());
-            self.within_segment[3 + m].d.next = (self.compare[3 + m].less.val()
-                || self.compare[3 + m].equal.val()
-                || self.compare[9 + m].less.val()
-                || self.compare[9 + m].equal.val())
-                && (!self.compare[3 + m].less.val() || !self.compare[9 + m].less.val());
-            // a within [c, d]: pairs (a,c), (a,d); c <= a is !(a < c).
-            self.within_segment[6 + m].d.next = (!self.compare[m].less.val()
-                || !self.compare[3 + m].less.val())
-                && (self.compare[m].less.val()
-                    || self.compare[m].equal.val()
-                    || self.compare[3 + m].less.val()
-                    || self.compare[3 + m].equal.val());
-            self.within_segment[9 + m].d.next = (!self.compare[6 + m].less.val()
-                || !self.compare[9 + m].less.val())
-                && (self.compare[6 + m].less.val()
-                    || self.compare[6 + m].equal.val()
-                    || self.compare[9 + m].less.val()
-                    || self.compare[9 + m].equal.val());
-        }
-        // Stage 8: segments_intersect_2d for each dropped axis k, whose
-        // projection keeps the coordinates (k+1) % 3 and (k+2) % 3.
-        for k in 0..3 {
-            // The proper crossing in parentheses of its own, so that no
-            // reader (or linter) has to recall that && binds tighter.
-            self.meets[k].next = (((self.sign[k].negative.val() && self.positive[3 + k].val())
-                || (self.positive[k].val() && self.sign[3 + k].negative.val()))
-                && ((self.sign[6 + k].negative.val() && self.positive[9 + k].val())
-                    || (self.positive[6 + k].val() && self.sign[9 + k].negative.val())))
-                || (self.sign[k].zero.val()
-                    && self.within_segment[(k + 1) % 3].q.val()
-                    && self.within_segment[(k + 2) % 3].q.val())
-                || (self.sign[3 + k].zero.val()
-                    && self.within_segment[3 + (k + 1) % 3].q.val()
-                    && self.within_segment[3 + (k + 2) % 3].q.val())
-                || (self.sign[6 + k].zero.val()
-                    && self.within_segment[6 + (k + 1) % 3].q.val()
-                    && self.within_segment[6 + (k + 2) % 3].q.val())
-                || (self.sign[9 + k].zero.val()
-                    && self.within_segment[9 + (k + 1) % 3].q.val()
-                    && self.within_segment[9 + (k + 2) % 3].q.val());
-        }
-        dff_setup!(self, clock, hit_q);
-        if self.advance.val() {
-            self.hit_q.d.next = self.meets[0].val() && self.meets[1].val() && self.meets[2].val();
-        }
-        self.hit.next = self.hit_q.q.val();
+        // Stage 8: the 2D test in each projection.
+        self.decision.clock.next = self.clock.val();
+        self.decision.advance.next = self.advance.val();
+        self.hit.next = self.decision.hit.val();
     }
 }

@@ -20,16 +20,20 @@
 //! values and may pass `O` bits, but the result is one orient3d value and
 //! fits them, so arithmetic modulo `2^O` (residues only) gives it exactly.
 //!
-//! [`EndsDifference`] forms `s_b - s_a` beside the plane side (1 stage);
+//! [`EndsDifference`] forms `s_b - s_a` beside the plane side (2 stages:
+//! the two ends' values, then their difference; in one stage the 6:1
+//! choice and the subtraction were the W = 8 pipeline's critical path on
+//! ECP5, 108 MHz, 13 logic levels);
 //! [`ThirdDeterminant`] the determinant and its sign beside units 0 and
 //! 1's sign stage (2 stages: the subtraction, then the sign).
 
 use crate::arith::adder::{RegisteredDifference, RegisteredDifference3, ADDER_LATENCY};
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
 use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from the plane-side values to `s_b - s_a`.
-pub const ENDS_DIFFERENCE_LATENCY: usize = ADDER_LATENCY;
+pub const ENDS_DIFFERENCE_LATENCY: usize = 1 + ADDER_LATENCY;
 /// Clock edges from the two determinants to the third's sign.
 pub const THIRD_DETERMINANT_LATENCY: usize = ADDER_LATENCY + SIGN_LATENCY;
 
@@ -50,52 +54,57 @@ pub struct EndsDifference<const O: usize> {
     pub t2_segment_high: Signal<In, Bits<2>>,
     /// `s_b - s_a` modulo `2^O`, `ENDS_DIFFERENCE_LATENCY` edges later.
     pub difference: Signal<Out, Bits<O>>,
-    low: Signal<Local, Bits<O>>,
-    high: Signal<Local, Bits<O>>,
+    low_q: DFF<Bits<O>>,
+    high_q: DFF<Bits<O>>,
     subtract: RegisteredDifference<O>,
 }
 
 impl<const O: usize> crate::unit::Unit for EndsDifference<O> {
     const LATENCY: Option<usize> = Some(ENDS_DIFFERENCE_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, subtract);
+        crate::sub_units!(self, units, low_q, high_q, subtract);
     }
 }
 
 impl<const O: usize> Logic for EndsDifference<O> {
     #[hdl_gen]
     fn update(&mut self) {
-        self.subtract.clock.next = self.clock.val();
+        clock!(self, clock, subtract);
+        dff_setup!(self, clock, low_q, high_q);
         self.subtract.advance.next = self.advance.val();
-        if self.t1_degenerate.val() {
-            self.low.next = self.t1_distance[0].val();
-            if self.t1_segment_low.val() == 1 {
-                self.low.next = self.t1_distance[1].val();
-            } else if self.t1_segment_low.val() == 2 {
-                self.low.next = self.t1_distance[2].val();
-            }
-            self.high.next = self.t1_distance[0].val();
-            if self.t1_segment_high.val() == 1 {
-                self.high.next = self.t1_distance[1].val();
-            } else if self.t1_segment_high.val() == 2 {
-                self.high.next = self.t1_distance[2].val();
-            }
-        } else {
-            self.low.next = self.t2_distance[0].val();
-            if self.t2_segment_low.val() == 1 {
-                self.low.next = self.t2_distance[1].val();
-            } else if self.t2_segment_low.val() == 2 {
-                self.low.next = self.t2_distance[2].val();
-            }
-            self.high.next = self.t2_distance[0].val();
-            if self.t2_segment_high.val() == 1 {
-                self.high.next = self.t2_distance[1].val();
-            } else if self.t2_segment_high.val() == 2 {
-                self.high.next = self.t2_distance[2].val();
+        // Stage 1: the ends' values.
+        if self.advance.val() {
+            if self.t1_degenerate.val() {
+                self.low_q.d.next = self.t1_distance[0].val();
+                if self.t1_segment_low.val() == 1 {
+                    self.low_q.d.next = self.t1_distance[1].val();
+                } else if self.t1_segment_low.val() == 2 {
+                    self.low_q.d.next = self.t1_distance[2].val();
+                }
+                self.high_q.d.next = self.t1_distance[0].val();
+                if self.t1_segment_high.val() == 1 {
+                    self.high_q.d.next = self.t1_distance[1].val();
+                } else if self.t1_segment_high.val() == 2 {
+                    self.high_q.d.next = self.t1_distance[2].val();
+                }
+            } else {
+                self.low_q.d.next = self.t2_distance[0].val();
+                if self.t2_segment_low.val() == 1 {
+                    self.low_q.d.next = self.t2_distance[1].val();
+                } else if self.t2_segment_low.val() == 2 {
+                    self.low_q.d.next = self.t2_distance[2].val();
+                }
+                self.high_q.d.next = self.t2_distance[0].val();
+                if self.t2_segment_high.val() == 1 {
+                    self.high_q.d.next = self.t2_distance[1].val();
+                } else if self.t2_segment_high.val() == 2 {
+                    self.high_q.d.next = self.t2_distance[2].val();
+                }
             }
         }
-        self.subtract.a.next = self.high.val();
-        self.subtract.b.next = self.low.val();
+        // Stage 2: their difference.
+        self.subtract.a.next = self.high_q.q.val();
+        self.subtract.b.next = self.low_q.q.val();
         self.difference.next = self.subtract.difference.val();
     }
 }

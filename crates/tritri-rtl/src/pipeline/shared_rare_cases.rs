@@ -1,0 +1,682 @@
+//! The rare cases on one shared, slower path: the coplanar test and the
+//! degenerate pair's segment test, computed by three orient2d lanes (six
+//! multipliers) over several clocks instead of by the 18 + 12 orient2d of
+//! [`super::coplanar_test::CoplanarTest`] and
+//! [`super::degenerate_pair::DegeneratePair`] (60 multipliers).
+//!
+//! A job is one pair: its six vertices, the projection's axis and the
+//! normals' signs (coplanar), or the two segments' ends (degenerate pair,
+//! `in_segments`). It is taken when `in_valid` and `ready` are high, and its
+//! verdict leaves with `done` in order, a fixed number of clocks later:
+//! [`SHARED_RARE_CASES_LATENCY`]. The unit issues one step a clock, three
+//! orient2d values each: [`COPLANAR_STEPS`] steps for a coplanar pair (the
+//! eighteen values of `hulls_intersect_2d`), [`SEGMENTS_STEPS`] for two
+//! segments (the components of `[a, b, c]`, `[a, b, d]`, `[c, d, a]`,
+//! `[c, d, b]`). `ready` rises in the clock of a job's last step, so jobs
+//! follow each other without a gap. Signs go into a register file at
+//! `3 step + lane`, the numbering of [`super::rare_decisions`], whose
+//! decisions then give the verdict; the coordinate comparisons and the
+//! orientations (no multipliers) are formed once per job, at its last
+//! step, and carried beside the lanes.
+//!
+//! A degenerate pair's job keeps its ends as points 0, 1 (`a`, `b`: T1's
+//! lexicographic ends) and 3, 4 (`c`, `d`: T2's), so that its steps and
+//! comparisons are fixed wiring.
+//!
+//! Stages of a step: the points (1), their differences (1), the
+//! projection of each lane (1: axis `k` keeps coordinates `k + 1` and
+//! `k + 2`; a degenerate pair's lane `k` drops axis `k`), orient2d
+//! (`CROSS_PRODUCT_LATENCY`), the sign (1); then the register file (1) and
+//! the decision (2).
+
+use super::rare_decisions::{
+    CoplanarContacts, CoplanarDecision, SegmentContacts, SegmentsDecision,
+    COPLANAR_DECISION_LATENCY, SEGMENTS_DECISION_LATENCY,
+};
+use crate::arith::compare::CoordinateCompare;
+use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::sign::{SignOf, SIGN_LATENCY};
+use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::valid_line::ValidLine;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Steps of a coplanar pair (18 orient2d values, three a clock; the
+/// update's literal 6).
+pub const COPLANAR_STEPS: usize = 6;
+/// Steps of two segments (12 orient2d values; the update's literal 4).
+pub const SEGMENTS_STEPS: usize = 4;
+/// Clock edges from a step's issue (its points chosen) to its lanes' signs.
+const LANE_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + 1 + CROSS_PRODUCT_LATENCY + SIGN_LATENCY;
+/// The job's context (comparisons, orientations, kind), formed in its last
+/// step's clock, meets the complete register file a clock after the last
+/// signs.
+const CONTEXT_DELAY: usize = LANE_LATENCY + 1;
+const _: () = assert!(SEGMENTS_DECISION_LATENCY < COPLANAR_DECISION_LATENCY);
+/// Clock edges from a coplanar job's acceptance to its `done`: its last
+/// step is issued `COPLANAR_STEPS - 1` clocks after its first, which is
+/// issued a clock after the job is taken; then the lanes, the register
+/// file (the `+ 1` of `CONTEXT_DELAY`) and the decision. A degenerate
+/// pair's job takes `COPLANAR_STEPS - SEGMENTS_STEPS` fewer.
+pub const SHARED_RARE_CASES_LATENCY: usize =
+    COPLANAR_STEPS + CONTEXT_DELAY + COPLANAR_DECISION_LATENCY - 1;
+
+#[derive(LogicBlock, Default)]
+pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high: no job in the unit.
+    pub reset: Signal<In, Bit>,
+    /// A job is offered; it is taken at the clock edge if `ready` is high.
+    pub in_valid: Signal<In, Bit>,
+    /// The job is a degenerate pair (else a coplanar pair).
+    pub in_segments: Signal<In, Bit>,
+    pub t1_vertices: [Signal<In, Bits<W>>; 9],
+    pub t2_vertices: [Signal<In, Bits<W>>; 9],
+    /// Coplanar: the axis the projection drops, and the normals' signs.
+    pub axis: Signal<In, Bits<2>>,
+    pub t1_normal_negative: [Signal<In, Bit>; 3],
+    pub t1_normal_zero: [Signal<In, Bit>; 3],
+    pub t2_normal_negative: [Signal<In, Bit>; 3],
+    pub t2_normal_zero: [Signal<In, Bit>; 3],
+    /// Degenerate pair: each segment's lexicographic ends.
+    pub t1_segment_low: Signal<In, Bits<2>>,
+    pub t1_segment_high: Signal<In, Bits<2>>,
+    pub t2_segment_low: Signal<In, Bits<2>>,
+    pub t2_segment_high: Signal<In, Bits<2>>,
+    /// The unit takes a job at this clock's edge.
+    pub ready: Signal<Out, Bit>,
+    /// A job's verdict is on `hit`.
+    pub done: Signal<Out, Bit>,
+    pub hit: Signal<Out, Bit>,
+    /// The job: point `i` coordinate `k` at `3 i + k` (T1: 0..2, T2: 3..5).
+    points_q: [DFF<Bits<W>>; 18],
+    segments_q: DFF<Bit>,
+    axis_q: DFF<Bits<2>>,
+    /// T1's normal's negative and zero flags (`k`, `3 + k`), then T2's.
+    normal_q: [DFF<Bit>; 12],
+    /// Steps left to issue (the current one included), and its number.
+    remaining_q: DFF<Bits<3>>,
+    step_q: DFF<Bits<3>>,
+    /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
+    /// (coordinate `k` at `3 l + k`), and each lane's axis.
+    u0_q: [DFF<Bits<W>>; 3],
+    u1_q: [DFF<Bits<W>>; 3],
+    w0_q: [DFF<Bits<W>>; 9],
+    w1_q: [DFF<Bits<W>>; 9],
+    lane_axis_q: [DFF<Bits<2>>; 3],
+    /// Stage 2: the differences.
+    u_difference: VectorSubtractor<W, D>,
+    w_difference_0: VectorSubtractor<W, D>,
+    w_difference_1: VectorSubtractor<W, D>,
+    w_difference_2: VectorSubtractor<W, D>,
+    lane_axis_2q: [DFF<Bits<2>>; 3],
+    /// Stage 3: lane `l`'s `u.x, u.y, w.x, w.y` at `4 l + i`.
+    projection_q: [DFF<Bits<D>>; 12],
+    lane: [CrossProduct2d<D, C>; 3],
+    sign: [SignOf<C>; 3],
+    /// Each issued step's number and whether it is its job's last, beside
+    /// the lanes.
+    issue_line: ValidLine<LANE_LATENCY>,
+    last_line: ValidLine<LANE_LATENCY>,
+    step_line: DelayLine<Bits<3>, LANE_LATENCY>,
+    /// The register file: orient2d value `3 step + lane`.
+    negative_q: [DFF<Bit>; 18],
+    zero_q: [DFF<Bit>; 18],
+    /// The job's last signs are in the file.
+    decide_q: DFF<Bit>,
+    /// Coordinate `k` of `A_u` against `B_v` at `9 k + 3 u + v`.
+    compare: [CoordinateCompare<W>; 27],
+    /// The coplanar comparisons in the projection, `9 c + 3 u + v`.
+    projected_less: [Signal<Local, Bit>; 18],
+    projected_equal: [Signal<Local, Bit>; 18],
+    coplanar_contacts: CoplanarContacts,
+    segment_contacts: SegmentContacts,
+    /// Orientation of A (negative, zero) and of B in the projection.
+    orientation: [Signal<Local, Bit>; 4],
+    /// The job's context beside the lanes: on-edge A (9), on-edge B (9),
+    /// within (12); the orientations; the kind.
+    contacts_line: [DelayLine<Bit, CONTEXT_DELAY>; 30],
+    orientation_line: [DelayLine<Bit, CONTEXT_DELAY>; 4],
+    segments_line: DelayLine<Bit, CONTEXT_DELAY>,
+    coplanar_decision: CoplanarDecision,
+    segments_decision: SegmentsDecision,
+    segments_hit: DelayLine<Bit, { COPLANAR_DECISION_LATENCY - SEGMENTS_DECISION_LATENCY }>,
+    segments_out: DelayLine<Bit, COPLANAR_DECISION_LATENCY>,
+    done_line: ValidLine<COPLANAR_DECISION_LATENCY>,
+}
+
+impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
+    for SharedRareCases<W, D, C>
+{
+    const LATENCY: Option<usize> = Some(SHARED_RARE_CASES_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            points_q,
+            segments_q,
+            axis_q,
+            normal_q,
+            remaining_q,
+            step_q,
+            u0_q,
+            u1_q,
+            w0_q,
+            w1_q,
+            lane_axis_q,
+            u_difference,
+            w_difference_0,
+            w_difference_1,
+            w_difference_2,
+            lane_axis_2q,
+            projection_q,
+            lane,
+            sign,
+            issue_line,
+            last_line,
+            step_line,
+            negative_q,
+            zero_q,
+            decide_q,
+            compare,
+            coplanar_contacts,
+            segment_contacts,
+            contacts_line,
+            orientation_line,
+            segments_line,
+            coplanar_decision,
+            segments_decision,
+            segments_hit,
+            segments_out,
+            done_line
+        );
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W, D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            u_difference,
+            w_difference_0,
+            w_difference_1,
+            w_difference_2,
+            issue_line,
+            last_line,
+            step_line,
+            coplanar_decision,
+            segments_decision,
+            segments_hit,
+            segments_out,
+            done_line,
+            segments_line
+        );
+        dff_setup!(
+            self,
+            clock,
+            segments_q,
+            axis_q,
+            remaining_q,
+            step_q,
+            decide_q
+        );
+        self.u_difference.advance.next = true;
+        self.w_difference_0.advance.next = true;
+        self.w_difference_1.advance.next = true;
+        self.w_difference_2.advance.next = true;
+        self.issue_line.advance.next = true;
+        self.last_line.advance.next = true;
+        self.step_line.advance.next = true;
+        self.coplanar_decision.advance.next = true;
+        self.segments_decision.advance.next = true;
+        self.segments_hit.advance.next = true;
+        self.segments_out.advance.next = true;
+        self.done_line.advance.next = true;
+        self.segments_line.advance.next = true;
+        self.issue_line.reset.next = self.reset.val();
+        self.last_line.reset.next = self.reset.val();
+        self.done_line.reset.next = self.reset.val();
+
+        // The job: taken when the last step of the one before is issued.
+        self.ready.next = self.remaining_q.q.val() == 0 || self.remaining_q.q.val() == 1;
+        for i in 0..18 {
+            self.points_q[i].clock.next = self.clock.val();
+            self.points_q[i].d.next = self.points_q[i].q.val();
+        }
+        for i in 0..12 {
+            self.normal_q[i].clock.next = self.clock.val();
+            self.normal_q[i].d.next = self.normal_q[i].q.val();
+        }
+        if self.remaining_q.q.val() != 0 {
+            self.remaining_q.d.next = self.remaining_q.q.val() - 1;
+            self.step_q.d.next = self.step_q.q.val() + 1;
+        }
+        if self.in_valid.val() && (self.remaining_q.q.val() == 0 || self.remaining_q.q.val() == 1) {
+            self.segments_q.d.next = self.in_segments.val();
+            self.axis_q.d.next = self.axis.val();
+            self.step_q.d.next = 0.into();
+            if self.in_segments.val() {
+                self.remaining_q.d.next = 4.into();
+            } else {
+                self.remaining_q.d.next = 6.into();
+            }
+            for i in 0..9 {
+                self.points_q[i].d.next = self.t1_vertices[i].val();
+                self.points_q[9 + i].d.next = self.t2_vertices[i].val();
+            }
+            if self.in_segments.val() {
+                // a, b = points 0, 1; c, d = points 3, 4.
+                for k in 0..3 {
+                    if self.t1_segment_low.val() == 1 {
+                        self.points_q[k].d.next = self.t1_vertices[3 + k].val();
+                    } else if self.t1_segment_low.val() == 2 {
+                        self.points_q[k].d.next = self.t1_vertices[6 + k].val();
+                    } else {
+                        self.points_q[k].d.next = self.t1_vertices[k].val();
+                    }
+                    if self.t1_segment_high.val() == 1 {
+                        self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
+                    } else if self.t1_segment_high.val() == 2 {
+                        self.points_q[3 + k].d.next = self.t1_vertices[6 + k].val();
+                    } else {
+                        self.points_q[3 + k].d.next = self.t1_vertices[k].val();
+                    }
+                    if self.t2_segment_low.val() == 1 {
+                        self.points_q[9 + k].d.next = self.t2_vertices[3 + k].val();
+                    } else if self.t2_segment_low.val() == 2 {
+                        self.points_q[9 + k].d.next = self.t2_vertices[6 + k].val();
+                    } else {
+                        self.points_q[9 + k].d.next = self.t2_vertices[k].val();
+                    }
+                    if self.t2_segment_high.val() == 1 {
+                        self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
+                    } else if self.t2_segment_high.val() == 2 {
+                        self.points_q[12 + k].d.next = self.t2_vertices[6 + k].val();
+                    } else {
+                        self.points_q[12 + k].d.next = self.t2_vertices[k].val();
+                    }
+                }
+            }
+            for k in 0..3 {
+                self.normal_q[k].d.next = self.t1_normal_negative[k].val();
+                self.normal_q[3 + k].d.next = self.t1_normal_zero[k].val();
+                self.normal_q[6 + k].d.next = self.t2_normal_negative[k].val();
+                self.normal_q[9 + k].d.next = self.t2_normal_zero[k].val();
+            }
+        }
+        if self.reset.val() {
+            self.remaining_q.d.next = 0.into();
+        }
+
+        // Stage 1: the step's points, by the program of its kind.
+        for i in 0..3 {
+            self.u0_q[i].clock.next = self.clock.val();
+            self.u1_q[i].clock.next = self.clock.val();
+            self.lane_axis_q[i].clock.next = self.clock.val();
+            self.lane_axis_2q[i].clock.next = self.clock.val();
+            self.lane_axis_2q[i].d.next = self.lane_axis_q[i].q.val();
+            self.lane_axis_q[i].d.next = self.axis_q.q.val();
+        }
+        // A degenerate pair's lane k computes component k of a cross
+        // product: the orient2d that drops axis k.
+        if self.segments_q.q.val() {
+            self.lane_axis_q[0].d.next = 0.into();
+            self.lane_axis_q[1].d.next = 1.into();
+            self.lane_axis_q[2].d.next = 2.into();
+        }
+        for i in 0..9 {
+            self.w0_q[i].clock.next = self.clock.val();
+            self.w1_q[i].clock.next = self.clock.val();
+        }
+        if self.segments_q.q.val() {
+            if self.step_q.q.val() == 0 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[k].q.val();
+                    self.u1_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 1 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[k].q.val();
+                    self.u1_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 2 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[k].d.next = self.points_q[k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[k].q.val();
+                }
+            } else {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[3 + k].q.val();
+                }
+            }
+        } else {
+            if self.step_q.q.val() == 0 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[k].q.val();
+                    self.u1_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 1 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[6 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 2 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[6 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[k].q.val();
+                    self.w0_q[k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 3 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                }
+            } else if self.step_q.q.val() == 4 {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[15 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
+                }
+            } else {
+                for k in 0..3 {
+                    self.u0_q[k].d.next = self.points_q[15 + k].q.val();
+                    self.u1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                    self.w1_q[k].d.next = self.points_q[15 + k].q.val();
+                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.w1_q[3 + k].d.next = self.points_q[15 + k].q.val();
+                    self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
+                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
+                }
+            }
+        }
+        self.issue_line.d.next = self.remaining_q.q.val() != 0;
+        self.last_line.d.next = self.remaining_q.q.val() == 1;
+        self.step_line.d.next = self.step_q.q.val();
+
+        // Stage 2: the differences.
+        for k in 0..3 {
+            self.u_difference.a[k].next = self.u1_q[k].q.val();
+            self.u_difference.b[k].next = self.u0_q[k].q.val();
+            self.w_difference_0.a[k].next = self.w1_q[k].q.val();
+            self.w_difference_0.b[k].next = self.w0_q[k].q.val();
+            self.w_difference_1.a[k].next = self.w1_q[3 + k].q.val();
+            self.w_difference_1.b[k].next = self.w0_q[3 + k].q.val();
+            self.w_difference_2.a[k].next = self.w1_q[6 + k].q.val();
+            self.w_difference_2.b[k].next = self.w0_q[6 + k].q.val();
+        }
+
+        // Stage 3: each lane's projection; then orient2d and its sign.
+        for i in 0..12 {
+            self.projection_q[i].clock.next = self.clock.val();
+            self.projection_q[i].d.next = self.projection_q[i].q.val();
+        }
+        if self.lane_axis_2q[0].q.val() == 0 {
+            self.projection_q[0].d.next = self.u_difference.difference[1].val();
+            self.projection_q[1].d.next = self.u_difference.difference[2].val();
+            self.projection_q[2].d.next = self.w_difference_0.difference[1].val();
+            self.projection_q[3].d.next = self.w_difference_0.difference[2].val();
+        } else if self.lane_axis_2q[0].q.val() == 1 {
+            self.projection_q[0].d.next = self.u_difference.difference[2].val();
+            self.projection_q[1].d.next = self.u_difference.difference[0].val();
+            self.projection_q[2].d.next = self.w_difference_0.difference[2].val();
+            self.projection_q[3].d.next = self.w_difference_0.difference[0].val();
+        } else {
+            self.projection_q[0].d.next = self.u_difference.difference[0].val();
+            self.projection_q[1].d.next = self.u_difference.difference[1].val();
+            self.projection_q[2].d.next = self.w_difference_0.difference[0].val();
+            self.projection_q[3].d.next = self.w_difference_0.difference[1].val();
+        }
+        if self.lane_axis_2q[1].q.val() == 0 {
+            self.projection_q[4].d.next = self.u_difference.difference[1].val();
+            self.projection_q[5].d.next = self.u_difference.difference[2].val();
+            self.projection_q[6].d.next = self.w_difference_1.difference[1].val();
+            self.projection_q[7].d.next = self.w_difference_1.difference[2].val();
+        } else if self.lane_axis_2q[1].q.val() == 1 {
+            self.projection_q[4].d.next = self.u_difference.difference[2].val();
+            self.projection_q[5].d.next = self.u_difference.difference[0].val();
+            self.projection_q[6].d.next = self.w_difference_1.difference[2].val();
+            self.projection_q[7].d.next = self.w_difference_1.difference[0].val();
+        } else {
+            self.projection_q[4].d.next = self.u_difference.difference[0].val();
+            self.projection_q[5].d.next = self.u_difference.difference[1].val();
+            self.projection_q[6].d.next = self.w_difference_1.difference[0].val();
+            self.projection_q[7].d.next = self.w_difference_1.difference[1].val();
+        }
+        if self.lane_axis_2q[2].q.val() == 0 {
+            self.projection_q[8].d.next = self.u_difference.difference[1].val();
+            self.projection_q[9].d.next = self.u_difference.difference[2].val();
+            self.projection_q[10].d.next = self.w_difference_2.difference[1].val();
+            self.projection_q[11].d.next = self.w_difference_2.difference[2].val();
+        } else if self.lane_axis_2q[2].q.val() == 1 {
+            self.projection_q[8].d.next = self.u_difference.difference[2].val();
+            self.projection_q[9].d.next = self.u_difference.difference[0].val();
+            self.projection_q[10].d.next = self.w_difference_2.difference[2].val();
+            self.projection_q[11].d.next = self.w_difference_2.difference[0].val();
+        } else {
+            self.projection_q[8].d.next = self.u_difference.difference[0].val();
+            self.projection_q[9].d.next = self.u_difference.difference[1].val();
+            self.projection_q[10].d.next = self.w_difference_2.difference[0].val();
+            self.projection_q[11].d.next = self.w_difference_2.difference[1].val();
+        }
+        for l in 0..3 {
+            self.lane[l].clock.next = self.clock.val();
+            self.lane[l].advance.next = true;
+            self.lane[l].u_x.next = self.projection_q[4 * l].q.val();
+            self.lane[l].u_y.next = self.projection_q[4 * l + 1].q.val();
+            self.lane[l].w_x.next = self.projection_q[4 * l + 2].q.val();
+            self.lane[l].w_y.next = self.projection_q[4 * l + 3].q.val();
+            self.sign[l].clock.next = self.clock.val();
+            self.sign[l].advance.next = true;
+            self.sign[l].value.next = self.lane[l].product.val();
+        }
+
+        // The register file, then the decision a clock after the last step.
+        for i in 0..18 {
+            self.negative_q[i].clock.next = self.clock.val();
+            self.negative_q[i].d.next = self.negative_q[i].q.val();
+            self.zero_q[i].clock.next = self.clock.val();
+            self.zero_q[i].d.next = self.zero_q[i].q.val();
+        }
+        if self.issue_line.q.val() {
+            if self.step_line.q.val() == 0 {
+                for l in 0..3 {
+                    self.negative_q[l].d.next = self.sign[l].negative.val();
+                    self.zero_q[l].d.next = self.sign[l].zero.val();
+                }
+            } else if self.step_line.q.val() == 1 {
+                for l in 0..3 {
+                    self.negative_q[3 + l].d.next = self.sign[l].negative.val();
+                    self.zero_q[3 + l].d.next = self.sign[l].zero.val();
+                }
+            } else if self.step_line.q.val() == 2 {
+                for l in 0..3 {
+                    self.negative_q[6 + l].d.next = self.sign[l].negative.val();
+                    self.zero_q[6 + l].d.next = self.sign[l].zero.val();
+                }
+            } else if self.step_line.q.val() == 3 {
+                for l in 0..3 {
+                    self.negative_q[9 + l].d.next = self.sign[l].negative.val();
+                    self.zero_q[9 + l].d.next = self.sign[l].zero.val();
+                }
+            } else if self.step_line.q.val() == 4 {
+                for l in 0..3 {
+                    self.negative_q[12 + l].d.next = self.sign[l].negative.val();
+                    self.zero_q[12 + l].d.next = self.sign[l].zero.val();
+                }
+            } else if self.step_line.q.val() == 5 {
+                for l in 0..3 {
+                    self.negative_q[15 + l].d.next = self.sign[l].negative.val();
+                    self.zero_q[15 + l].d.next = self.sign[l].zero.val();
+                }
+            }
+        }
+        self.decide_q.d.next = self.last_line.q.val() && !self.reset.val();
+
+        // The job's context: comparisons (no multipliers) and orientations.
+        for k in 0..3 {
+            for u in 0..3 {
+                for v in 0..3 {
+                    self.compare[9 * k + 3 * u + v].clock.next = self.clock.val();
+                    self.compare[9 * k + 3 * u + v].advance.next = true;
+                    self.compare[9 * k + 3 * u + v].a.next = self.points_q[3 * u + k].q.val();
+                    self.compare[9 * k + 3 * u + v].b.next = self.points_q[9 + 3 * v + k].q.val();
+                }
+            }
+        }
+        for c in 0..2 {
+            for u in 0..3 {
+                for v in 0..3 {
+                    if self.axis_q.q.val() == 0 {
+                        self.projected_less[9 * c + 3 * u + v].next =
+                            self.compare[9 * (c + 1) + 3 * u + v].less.val();
+                        self.projected_equal[9 * c + 3 * u + v].next =
+                            self.compare[9 * (c + 1) + 3 * u + v].equal.val();
+                    } else if self.axis_q.q.val() == 1 {
+                        self.projected_less[9 * c + 3 * u + v].next =
+                            self.compare[9 * ((c + 2) % 3) + 3 * u + v].less.val();
+                        self.projected_equal[9 * c + 3 * u + v].next =
+                            self.compare[9 * ((c + 2) % 3) + 3 * u + v].equal.val();
+                    } else {
+                        self.projected_less[9 * c + 3 * u + v].next =
+                            self.compare[9 * c + 3 * u + v].less.val();
+                        self.projected_equal[9 * c + 3 * u + v].next =
+                            self.compare[9 * c + 3 * u + v].equal.val();
+                    }
+                }
+            }
+        }
+        for i in 0..18 {
+            self.coplanar_contacts.less[i].next = self.projected_less[i].val();
+            self.coplanar_contacts.equal[i].next = self.projected_equal[i].val();
+        }
+        // The pairs (a, c), (a, d), (b, c), (b, d): points (0, 3), (0, 4),
+        // (1, 3), (1, 4).
+        for k in 0..3 {
+            for p in 0..4 {
+                self.segment_contacts.less[3 * p + k].next =
+                    self.compare[9 * k + 3 * (p / 2) + p % 2].less.val();
+                self.segment_contacts.equal[3 * p + k].next =
+                    self.compare[9 * k + 3 * (p / 2) + p % 2].equal.val();
+            }
+        }
+        if self.axis_q.q.val() == 0 {
+            self.orientation[0].next = self.normal_q[0].q.val();
+            self.orientation[1].next = self.normal_q[3].q.val();
+            self.orientation[2].next = self.normal_q[6].q.val();
+            self.orientation[3].next = self.normal_q[9].q.val();
+        } else if self.axis_q.q.val() == 1 {
+            self.orientation[0].next = self.normal_q[1].q.val();
+            self.orientation[1].next = self.normal_q[4].q.val();
+            self.orientation[2].next = self.normal_q[7].q.val();
+            self.orientation[3].next = self.normal_q[10].q.val();
+        } else {
+            self.orientation[0].next = self.normal_q[2].q.val();
+            self.orientation[1].next = self.normal_q[5].q.val();
+            self.orientation[2].next = self.normal_q[8].q.val();
+            self.orientation[3].next = self.normal_q[11].q.val();
+        }
+        for i in 0..30 {
+            self.contacts_line[i].clock.next = self.clock.val();
+            self.contacts_line[i].advance.next = true;
+        }
+        for i in 0..4 {
+            self.orientation_line[i].clock.next = self.clock.val();
+            self.orientation_line[i].advance.next = true;
+        }
+        for i in 0..9 {
+            self.contacts_line[i].d.next = self.coplanar_contacts.on_edge_a[i].val();
+            self.contacts_line[9 + i].d.next = self.coplanar_contacts.on_edge_b[i].val();
+        }
+        for i in 0..12 {
+            self.contacts_line[18 + i].d.next = self.segment_contacts.within[i].val();
+        }
+        for i in 0..4 {
+            self.orientation_line[i].d.next = self.orientation[i].val();
+        }
+        self.segments_line.d.next = self.segments_q.q.val();
+
+        // The decisions on the file, and the job's.
+        for i in 0..18 {
+            self.coplanar_decision.negative[i].next = self.negative_q[i].q.val();
+            self.coplanar_decision.zero[i].next = self.zero_q[i].q.val();
+        }
+        for i in 0..9 {
+            self.coplanar_decision.on_edge_a[i].next = self.contacts_line[i].q.val();
+            self.coplanar_decision.on_edge_b[i].next = self.contacts_line[9 + i].q.val();
+        }
+        for i in 0..4 {
+            self.coplanar_decision.orientation[i].next = self.orientation_line[i].q.val();
+        }
+        for i in 0..12 {
+            self.segments_decision.negative[i].next = self.negative_q[i].q.val();
+            self.segments_decision.zero[i].next = self.zero_q[i].q.val();
+            self.segments_decision.within[i].next = self.contacts_line[18 + i].q.val();
+        }
+        self.segments_hit.d.next = self.segments_decision.hit.val();
+        self.segments_out.d.next = self.segments_line.q.val();
+        self.done_line.d.next = self.decide_q.q.val();
+        self.done.next = self.done_line.q.val();
+        if self.segments_out.q.val() {
+            self.hit.next = self.segments_hit.q.val();
+        } else {
+            self.hit.next = self.coplanar_decision.hit.val();
+        }
+    }
+}
