@@ -32,6 +32,7 @@ pub mod patch_triangles;
 pub mod pipeline_rtl;
 pub mod plane_traversal;
 pub mod rusthdl_harness;
+pub mod shared_rare_cases;
 pub mod simulator;
 pub mod stream;
 pub mod suites;
