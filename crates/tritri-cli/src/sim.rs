@@ -89,6 +89,7 @@ use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
 use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::system::cycle_model::scene_cycles;
+use tritri_rtl::system::rare_case_model::rare_case_cost;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -424,6 +425,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         pipeline_latency(),
         args.hardware.clock_mhz,
         human(time)
+    )?;
+    let rare = rare_case_cost(args.hardware.pipelines as usize, &scene.batches());
+    writeln!(
+        report,
+        "rare cases: {} coplanar and {} degenerate pairs of {} tested; with them on a shared path (issue 14's option, its cycle model; the pipeline still has the parallel units) at most {} stall cycles, {:.2} % of the cycles",
+        rare.coplanar,
+        rare.segments,
+        rare.pairs,
+        rare.stall_cycles,
+        100.0 * rare.stall_cycles as f64 / cycles.max(1) as f64
     )?;
     write_pairs(output, args.indices, &a, &b, pairs)?;
     write_render(png, &args, &a, &b, pairs, &mut report)?;

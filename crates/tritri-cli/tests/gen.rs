@@ -362,9 +362,9 @@ fn for_scene_sizes_the_system_and_says_why() {
     for needle in [
         "**Chosen: W = 24, P = 2, memory depth",
         "*Why not one bit fewer:*",
-        "the closest, W = 20 (276 multipliers per pipeline)",
+        "the closest, W = 20 (252 multipliers per pipeline)",
         "*Why not one more pipeline:* P = 4 does not fit",
-        "| W = 24 (chosen) | 330 |",
+        "| W = 24 (chosen) | 300 |",
         "--width 24 --pipelines 2 --depth",
         "--engine verilator --certified",
     ] {

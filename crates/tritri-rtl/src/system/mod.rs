@@ -50,6 +50,7 @@ pub mod cycle_model;
 pub mod dual_port_ram;
 pub mod host_ports;
 pub mod pair_serializer;
+pub mod rare_case_model;
 pub mod result_fifo;
 pub mod stub_pipeline;
 pub mod system_for_width;
