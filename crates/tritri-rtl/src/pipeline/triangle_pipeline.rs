@@ -15,14 +15,15 @@
 //!
 //! ```text
 //! input registers (1)
-//!   -> triangle front end: normal, signs, degenerate, axis, segment ends (7)
+//!   -> triangle front end: normal, signs, degenerate, axis, segment ends (9)
 //!   -> base polygon registers (on bset) | pair = (base, streamed)
-//!   -> plane side T1 vs plane 2 || plane side T2 vs plane 1   (6)   steps 1-4
+//!   -> plane side T1 vs plane 2 || plane side T2 vs plane 1   (7)   steps 1-4
 //!   -> align T1 (1) -> align T2 (1) -> interval overlap (1)         steps 5-7
-//!   -> orient3d operands (3) -> 2 x orient3d (10)
+//!   -> orient3d operands (3) -> 2 x orient3d (11 to the values)
 //!   -> the segment-triangle case's third determinant, from the two
-//!      determinants' values and the segment ends' plane-side values (2)
-//!   || coplanar test (10), degenerate pair (8) started with the plane side
+//!      determinants' values and the segment ends' plane-side values (2;
+//!      units 0 and 1's signs, a clock after their values, wait a clock)
+//!   || coplanar test (11), degenerate pair (9) started with the plane side
 //!   -> decision (2)
 //! ```
 //!
