@@ -1,6 +1,7 @@
 //! Co-simulation of the shared rare-case unit ([`tritri_rtl::pipeline::
-//! shared_rare_cases`]): coplanar pairs and pairs of degenerate triangles
-//! offered one after another, each held until the unit takes it, through
+//! shared_rare_cases`]): the pairs the pipeline sends to a rare test
+//! (coplanar, a segment in the other's plane, two segments) offered one
+//! after another, each held until the unit takes it, through
 //! the rust-hdl model and the emitted Verilog in Icarus and Verilator.
 //!
 //! Vectors: one job per line, `segments axis n1 n2 ends` then the 18
@@ -14,13 +15,14 @@ use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::devillers_guigue::hulls_intersect_2d;
-use tritri_geom::fixed_point::{cross, dominant_axis, FixedPoint, FixedTriangle};
+use tritri_geom::fixed_point::{cross, dominant_axis, intersects, FixedPoint, FixedTriangle};
 use tritri_geom::kernel::ExactKernel;
 use tritri_rtl::arith::convert::from_i128;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::shared_rare_cases_unit::{emit_shared_rare_cases, shared_rare_cases_name};
 use tritri_rtl::pipeline::shared_rare_cases::SharedRareCases;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+use tritri_rtl::system::rare_case_model::{degenerate, rare_kind, RareKind};
 
 /// One pair for the unit, with what its ports carry.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,40 +34,33 @@ pub struct RareJob {
 }
 
 impl RareJob {
-    /// The job for a pair the parallel path would send to a rare test:
-    /// T1 proper and T2 in its plane, or both degenerate.
+    /// The job for a pair the pipeline's decision sends to a rare test
+    /// (`rare_case_model::rare_kind`: coplanar, a segment in the other's
+    /// plane, or two segments).
     pub fn of(t1: FixedTriangle, t2: FixedTriangle) -> Option<RareJob> {
-        let (n1, n2) = (normal(&t1), normal(&t2));
-        let in_plane = |t: &FixedTriangle| {
-            t.iter().all(|v| {
-                (0..3)
-                    .map(|k| n1[k] * (v[k] - t1[0][k]) as i128)
-                    .sum::<i128>()
-                    == 0
-            })
-        };
-        match (n1 == [0; 3], n2 == [0; 3]) {
-            (false, _) if in_plane(&t2) => Some(RareJob {
-                segments: false,
-                t1,
-                t2,
-            }),
-            (true, true) => Some(RareJob {
-                segments: true,
-                t1,
-                t2,
-            }),
-            _ => None,
-        }
+        rare_kind(&t1, &t2).map(|kind| RareJob {
+            segments: kind == RareKind::Segments,
+            t1,
+            t2,
+        })
     }
 
-    /// The projection's axis: T1's normal's largest component.
+    /// The projection's axis, as the pipeline picks it: the largest
+    /// normal component of the proper triangle (T1's unless T1 is
+    /// degenerate).
     pub fn axis(&self) -> usize {
-        dominant_axis(normal(&self.t1).map(|c| c.unsigned_abs()))
+        let proper = if degenerate(&self.t1) {
+            &self.t2
+        } else {
+            &self.t1
+        };
+        dominant_axis(normal(proper).map(|c| c.unsigned_abs()))
     }
 
-    /// The model's verdict: the closed projected hulls meet (coplanar), or
-    /// the segments meet in all three projections.
+    /// The model's verdict: the exact test on the grid for a coplanar job
+    /// (the pipeline's verdict is the coplanar test's there), the segments
+    /// meeting in all three projections for two segments (the pipeline
+    /// adds `[a, b, c, d] == 0` from its orient3d unit).
     pub fn expected(&self) -> bool {
         if self.segments {
             let ((a, b), (c, d)) = (lexicographic_ends(&self.t1), lexicographic_ends(&self.t2));
@@ -77,7 +72,7 @@ impl RareJob {
                 )
             })
         } else {
-            hulls_intersect_2d::<FixedPoint>(self.axis(), &self.t1, &self.t2)
+            intersects(&self.t1, &self.t2)
         }
     }
 

@@ -1,7 +1,8 @@
 //! The shared rare-case unit (`tritri_rtl::pipeline::shared_rare_cases`)
-//! on the hard-case suite's coplanar and degenerate pairs at W = 16, in all
-//! orderings: the rust-hdl model gives the models' verdicts, and Icarus and
-//! Verilator run the emitted unit to the same verdicts at the same edges.
+//! on the hard-case suite's rare pairs (coplanar, a segment in the other's
+//! plane, two segments) at W = 16, in all orderings: the rust-hdl model
+//! gives the models' verdicts, and Icarus and Verilator run the emitted
+//! unit to the same verdicts at the same edges.
 
 use tritri_cosim::shared_rare_cases::{run_emitted, run_rusthdl, RareJob};
 use tritri_cosim::simulator::Simulator;

@@ -17,7 +17,8 @@
 //! shared unit will have to meet.
 
 use crate::pipeline::shared_rare_cases::{COPLANAR_STEPS, SEGMENTS_STEPS};
-use tritri_geom::fixed_point::{cross, orient3d_value, FixedTriangle};
+use tritri_geom::devillers_guigue::{shape, Shape};
+use tritri_geom::fixed_point::{orient3d_value, FixedPoint, FixedTriangle};
 use tritri_geom::scene::Batch;
 
 /// The test a pair needs beyond the general path.
@@ -40,12 +41,10 @@ impl RareKind {
     }
 }
 
-fn degenerate(t: &FixedTriangle) -> bool {
-    let [p, q, r] = *t;
-    cross(
-        std::array::from_fn(|k| q[k] - p[k]),
-        std::array::from_fn(|k| r[k] - p[k]),
-    ) == [0; 3]
+/// A segment or a point: `devillers_guigue::shape`'s test, the pipeline's
+/// degenerate flag.
+pub fn degenerate(t: &FixedTriangle) -> bool {
+    !matches!(shape::<FixedPoint>(*t), Shape::Triangle(_))
 }
 
 /// Whether every vertex of `t` lies in the plane of the proper `plane`.
