@@ -14,6 +14,9 @@
 //   TRITRI_DUT  module name of the pipeline top (default tritri_pipeline_w24)
 //   TRITRI_VCD  define to dump every signal to the +vcd file (Verilator
 //               needs --trace for it; runs are slower, keep them short)
+//   TRITRI_HOLD define for a pipeline with a `hold` output (the rare cases
+//               on the shared unit): while it is high the input stays on
+//               the bus, and the held clocks are counted
 // Plusargs:
 //   +vectors=FILE  input vectors (required)
 //   +outputs=FILE  where verdicts go (required)
@@ -21,7 +24,8 @@
 //
 // The run ends when every tested triangle (valid, bset = 0) has its verdict;
 // the last line written is "# cycles N" with N counted from the first input
-// cycle to the cycle of the last verdict, inclusive.
+// cycle to the cycle of the last verdict, inclusive, after "# held H" (the
+// clocks with `hold` high) with TRITRI_HOLD.
 
 `timescale 1ns / 1ps
 `default_nettype none
@@ -50,6 +54,15 @@ module tb_triangle_pipeline #(
     wire out_certain;
     wire [ID_WIDTH-1:0] out_base_id;
     wire [ID_WIDTH-1:0] out_stream_id;
+`ifdef TRITRI_HOLD
+    wire hold;
+`else
+    wire hold = 1'b0;
+`endif
+    // The edge that ended the last cycle was held: the outputs still show
+    // the verdict already written.
+    reg held_edge = 1'b0;
+    integer held_cycles = 0;
 
     `TRITRI_DUT dut (
         .clock(clock),
@@ -72,6 +85,10 @@ module tb_triangle_pipeline #(
         .out_certain(out_certain),
         .out_base_id(out_base_id),
         .out_stream_id(out_stream_id)
+`ifdef TRITRI_HOLD
+        ,
+        .hold(hold)
+`endif
     );
 
     always #5 clock = ~clock;
@@ -181,12 +198,16 @@ module tb_triangle_pipeline #(
     // at that edge (before it updates anything) are the outputs of cycle c.
     always @(posedge clock) begin
         cycle = edge_count - RESET_CYCLES;
-        if (cycle >= 0 && out_valid) begin
+        if (cycle >= 0 && out_valid && !held_edge) begin
             $fdisplay(outputs_fd, "%0d %0h %0h %0d %0d", cycle, out_base_id, out_stream_id, out_hit, out_certain);
             verdicts_seen = verdicts_seen + 1;
             last_verdict_cycle = cycle;
         end
-        if (cycle + 1 >= 0) begin
+        held_edge = hold;
+        if (hold) begin
+            // This edge does not take the input: it stays on the bus.
+            held_cycles = held_cycles + 1;
+        end else if (cycle + 1 >= 0) begin
             reset <= 1'b0;
             read_vector();
             if (!input_done) begin
@@ -203,6 +224,9 @@ module tb_triangle_pipeline #(
         end
         if (input_done) begin
             if (verdicts_seen == tests_sent) begin
+`ifdef TRITRI_HOLD
+                $fdisplay(outputs_fd, "# held %0d", held_cycles);
+`endif
                 $fdisplay(outputs_fd, "# cycles %0d",
                     tests_sent == 0 ? input_cycles : last_verdict_cycle + 1);
                 $fclose(outputs_fd);

@@ -48,6 +48,7 @@ tritri_pipeline_w24_dff_74.v
 tritri_pipeline_w24_dominant_axis.v
 tritri_pipeline_w24_dot_product.v
 tritri_pipeline_w24_ends_difference.v
+tritri_pipeline_w24_general_path.v
 tritri_pipeline_w24_interval_overlap.v
 tritri_pipeline_w24_magnitude_thermometer.v
 tritri_pipeline_w24_multiplier_w49.v
@@ -68,6 +69,7 @@ tritri_pipeline_w24_subtractor.v
 tritri_pipeline_w24_third_determinant.v
 tritri_pipeline_w24_triangle_front_end.v
 tritri_pipeline_w24_valid_line_n10.v
-tritri_pipeline_w24_valid_line_n28.v
+tritri_pipeline_w24_valid_line_n21.v
+tritri_pipeline_w24_valid_line_n7.v
 tritri_pipeline_w24_vector_subtractor.v
 tritri_pipeline_w24.v

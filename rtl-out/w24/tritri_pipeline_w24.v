@@ -58,425 +58,72 @@ module tritri_pipeline_w24 (
 );
 
     // Stub signals
-    wire  input_vertices_0_clock;
-    wire  input_vertices_0_advance;
-    wire  [23:0] input_vertices_0_d;
-    wire  [23:0] input_vertices_0_q;
-    wire  input_vertices_1_clock;
-    wire  input_vertices_1_advance;
-    wire  [23:0] input_vertices_1_d;
-    wire  [23:0] input_vertices_1_q;
-    wire  input_vertices_2_clock;
-    wire  input_vertices_2_advance;
-    wire  [23:0] input_vertices_2_d;
-    wire  [23:0] input_vertices_2_q;
-    wire  input_vertices_3_clock;
-    wire  input_vertices_3_advance;
-    wire  [23:0] input_vertices_3_d;
-    wire  [23:0] input_vertices_3_q;
-    wire  input_vertices_4_clock;
-    wire  input_vertices_4_advance;
-    wire  [23:0] input_vertices_4_d;
-    wire  [23:0] input_vertices_4_q;
-    wire  input_vertices_5_clock;
-    wire  input_vertices_5_advance;
-    wire  [23:0] input_vertices_5_d;
-    wire  [23:0] input_vertices_5_q;
-    wire  input_vertices_6_clock;
-    wire  input_vertices_6_advance;
-    wire  [23:0] input_vertices_6_d;
-    wire  [23:0] input_vertices_6_q;
-    wire  input_vertices_7_clock;
-    wire  input_vertices_7_advance;
-    wire  [23:0] input_vertices_7_d;
-    wire  [23:0] input_vertices_7_q;
-    wire  input_vertices_8_clock;
-    wire  input_vertices_8_advance;
-    wire  [23:0] input_vertices_8_d;
-    wire  [23:0] input_vertices_8_q;
-    wire  record_valid_clock;
-    wire  record_valid_reset;
-    wire  record_valid_advance;
-    wire  record_valid_d;
-    wire  record_valid_q;
-    wire  record_bset_clock;
-    wire  record_bset_advance;
-    wire  record_bset_d;
-    wire  record_bset_q;
-    wire  record_id_clock;
-    wire  record_id_advance;
-    wire  [31:0] record_id_d;
-    wire  [31:0] record_id_q;
-    wire  front_end_clock;
-    wire  front_end_advance;
-    wire  [23:0] front_end_vertices_in_0;
-    wire  [23:0] front_end_vertices_in_1;
-    wire  [23:0] front_end_vertices_in_2;
-    wire  [23:0] front_end_vertices_in_3;
-    wire  [23:0] front_end_vertices_in_4;
-    wire  [23:0] front_end_vertices_in_5;
-    wire  [23:0] front_end_vertices_in_6;
-    wire  [23:0] front_end_vertices_in_7;
-    wire  [23:0] front_end_vertices_in_8;
-    wire  [23:0] front_end_vertices_0;
-    wire  [23:0] front_end_vertices_1;
-    wire  [23:0] front_end_vertices_2;
-    wire  [23:0] front_end_vertices_3;
-    wire  [23:0] front_end_vertices_4;
-    wire  [23:0] front_end_vertices_5;
-    wire  [23:0] front_end_vertices_6;
-    wire  [23:0] front_end_vertices_7;
-    wire  [23:0] front_end_vertices_8;
-    wire  [48:0] front_end_normal_0;
-    wire  [48:0] front_end_normal_1;
-    wire  [48:0] front_end_normal_2;
-    wire  front_end_normal_negative_0;
-    wire  front_end_normal_negative_1;
-    wire  front_end_normal_negative_2;
-    wire  front_end_normal_zero_0;
-    wire  front_end_normal_zero_1;
-    wire  front_end_normal_zero_2;
-    wire  front_end_degenerate;
-    wire  [1:0] front_end_dominant_axis;
-    wire  [1:0] front_end_segment_low;
-    wire  [1:0] front_end_segment_high;
-    wire  [24:0] front_end_edge_thermometer;
-    wire  base_clock;
-    wire  base_load;
-    wire  [31:0] base_id_in;
-    wire  [23:0] base_vertices_in_0;
-    wire  [23:0] base_vertices_in_1;
-    wire  [23:0] base_vertices_in_2;
-    wire  [23:0] base_vertices_in_3;
-    wire  [23:0] base_vertices_in_4;
-    wire  [23:0] base_vertices_in_5;
-    wire  [23:0] base_vertices_in_6;
-    wire  [23:0] base_vertices_in_7;
-    wire  [23:0] base_vertices_in_8;
-    wire  [48:0] base_normal_in_0;
-    wire  [48:0] base_normal_in_1;
-    wire  [48:0] base_normal_in_2;
-    wire  base_normal_negative_in_0;
-    wire  base_normal_negative_in_1;
-    wire  base_normal_negative_in_2;
-    wire  base_normal_zero_in_0;
-    wire  base_normal_zero_in_1;
-    wire  base_normal_zero_in_2;
-    wire  base_degenerate_in;
-    wire  [1:0] base_dominant_axis_in;
-    wire  [1:0] base_segment_low_in;
-    wire  [1:0] base_segment_high_in;
-    wire  [24:0] base_edge_thermometer_in;
-    wire  [31:0] base__id;
-    wire  [23:0] base_vertices_0;
-    wire  [23:0] base_vertices_1;
-    wire  [23:0] base_vertices_2;
-    wire  [23:0] base_vertices_3;
-    wire  [23:0] base_vertices_4;
-    wire  [23:0] base_vertices_5;
-    wire  [23:0] base_vertices_6;
-    wire  [23:0] base_vertices_7;
-    wire  [23:0] base_vertices_8;
-    wire  [48:0] base_normal_0;
-    wire  [48:0] base_normal_1;
-    wire  [48:0] base_normal_2;
-    wire  base_normal_negative_0;
-    wire  base_normal_negative_1;
-    wire  base_normal_negative_2;
-    wire  base_normal_zero_0;
-    wire  base_normal_zero_1;
-    wire  base_normal_zero_2;
-    wire  base_degenerate;
-    wire  [1:0] base_dominant_axis;
-    wire  [1:0] base_segment_low;
-    wire  [1:0] base_segment_high;
-    wire  [24:0] base_edge_thermometer;
-    wire  pair_valid_clock;
-    wire  pair_valid_reset;
-    wire  pair_valid_advance;
-    wire  pair_valid_d;
-    wire  pair_valid_q;
-    wire  base_id_clock;
-    wire  base_id_advance;
-    wire  [31:0] base_id_d;
-    wire  [31:0] base_id_q;
-    wire  stream_id_clock;
-    wire  stream_id_advance;
-    wire  [31:0] stream_id_d;
-    wire  [31:0] stream_id_q;
-    wire  plane_side_t1_clock;
-    wire  plane_side_t1_advance;
-    wire  [23:0] plane_side_t1_plane_point_0;
-    wire  [23:0] plane_side_t1_plane_point_1;
-    wire  [23:0] plane_side_t1_plane_point_2;
-    wire  [48:0] plane_side_t1_plane_normal_0;
-    wire  [48:0] plane_side_t1_plane_normal_1;
-    wire  [48:0] plane_side_t1_plane_normal_2;
-    wire  [24:0] plane_side_t1_plane_thermometer;
-    wire  [23:0] plane_side_t1_vertices_0;
-    wire  [23:0] plane_side_t1_vertices_1;
-    wire  [23:0] plane_side_t1_vertices_2;
-    wire  [23:0] plane_side_t1_vertices_3;
-    wire  [23:0] plane_side_t1_vertices_4;
-    wire  [23:0] plane_side_t1_vertices_5;
-    wire  [23:0] plane_side_t1_vertices_6;
-    wire  [23:0] plane_side_t1_vertices_7;
-    wire  [23:0] plane_side_t1_vertices_8;
-    wire  plane_side_t1_negative_0;
-    wire  plane_side_t1_negative_1;
-    wire  plane_side_t1_negative_2;
-    wire  plane_side_t1_zero_0;
-    wire  plane_side_t1_zero_1;
-    wire  plane_side_t1_zero_2;
-    wire  plane_side_t1_certain_0;
-    wire  plane_side_t1_certain_1;
-    wire  plane_side_t1_certain_2;
-    wire  [73:0] plane_side_t1_distance_0;
-    wire  [73:0] plane_side_t1_distance_1;
-    wire  [73:0] plane_side_t1_distance_2;
-    wire  plane_side_t2_clock;
-    wire  plane_side_t2_advance;
-    wire  [23:0] plane_side_t2_plane_point_0;
-    wire  [23:0] plane_side_t2_plane_point_1;
-    wire  [23:0] plane_side_t2_plane_point_2;
-    wire  [48:0] plane_side_t2_plane_normal_0;
-    wire  [48:0] plane_side_t2_plane_normal_1;
-    wire  [48:0] plane_side_t2_plane_normal_2;
-    wire  [24:0] plane_side_t2_plane_thermometer;
-    wire  [23:0] plane_side_t2_vertices_0;
-    wire  [23:0] plane_side_t2_vertices_1;
-    wire  [23:0] plane_side_t2_vertices_2;
-    wire  [23:0] plane_side_t2_vertices_3;
-    wire  [23:0] plane_side_t2_vertices_4;
-    wire  [23:0] plane_side_t2_vertices_5;
-    wire  [23:0] plane_side_t2_vertices_6;
-    wire  [23:0] plane_side_t2_vertices_7;
-    wire  [23:0] plane_side_t2_vertices_8;
-    wire  plane_side_t2_negative_0;
-    wire  plane_side_t2_negative_1;
-    wire  plane_side_t2_negative_2;
-    wire  plane_side_t2_zero_0;
-    wire  plane_side_t2_zero_1;
-    wire  plane_side_t2_zero_2;
-    wire  plane_side_t2_certain_0;
-    wire  plane_side_t2_certain_1;
-    wire  plane_side_t2_certain_2;
-    wire  [73:0] plane_side_t2_distance_0;
-    wire  [73:0] plane_side_t2_distance_1;
-    wire  [73:0] plane_side_t2_distance_2;
-    wire  align_t1_clock;
-    wire  align_t1_advance;
-    wire  align_t1_t1_negative_0;
-    wire  align_t1_t1_negative_1;
-    wire  align_t1_t1_negative_2;
-    wire  align_t1_t1_zero_0;
-    wire  align_t1_t1_zero_1;
-    wire  align_t1_t1_zero_2;
-    wire  align_t1_t2_negative_0;
-    wire  align_t1_t2_negative_1;
-    wire  align_t1_t2_negative_2;
-    wire  align_t1_t2_zero_0;
-    wire  align_t1_t2_zero_1;
-    wire  align_t1_t2_zero_2;
-    wire  [1:0] align_t1_t1_rotation;
-    wire  align_t1_t2_swap;
-    wire  align_t1_t2_aligned_negative_0;
-    wire  align_t1_t2_aligned_negative_1;
-    wire  align_t1_t2_aligned_negative_2;
-    wire  align_t1_t2_aligned_zero_0;
-    wire  align_t1_t2_aligned_zero_1;
-    wire  align_t1_t2_aligned_zero_2;
-    wire  align_t2_clock;
-    wire  align_t2_advance;
-    wire  [1:0] align_t2_t1_rotation_in;
-    wire  align_t2_t2_swap_in;
-    wire  align_t2_t2_aligned_negative_0;
-    wire  align_t2_t2_aligned_negative_1;
-    wire  align_t2_t2_aligned_negative_2;
-    wire  align_t2_t2_aligned_zero_0;
-    wire  align_t2_t2_aligned_zero_1;
-    wire  align_t2_t2_aligned_zero_2;
-    wire  [1:0] align_t2_t1_rotation;
-    wire  align_t2_t2_swap;
-    wire  [1:0] align_t2_t2_rotation;
-    wire  align_t2_t1_swap;
-    wire  interval_overlap_clock;
-    wire  interval_overlap_advance;
-    wire  [1:0] interval_overlap_t1_rotation;
-    wire  interval_overlap_t2_swap;
-    wire  [1:0] interval_overlap_t2_rotation;
-    wire  interval_overlap_t1_swap;
-    wire  [2:0] interval_overlap_first_0;
-    wire  [2:0] interval_overlap_first_1;
-    wire  [2:0] interval_overlap_first_2;
-    wire  [2:0] interval_overlap_first_3;
-    wire  [2:0] interval_overlap_second_0;
-    wire  [2:0] interval_overlap_second_1;
-    wire  [2:0] interval_overlap_second_2;
-    wire  [2:0] interval_overlap_second_3;
-    wire  operands_clock;
-    wire  operands_advance;
-    wire  operands_t1_degenerate;
-    wire  operands_t2_degenerate;
-    wire  [1:0] operands_t1_segment_low;
-    wire  [1:0] operands_t1_segment_high;
-    wire  [1:0] operands_t2_segment_low;
-    wire  [1:0] operands_t2_segment_high;
-    wire  [2:0] operands_overlap_first_0;
-    wire  [2:0] operands_overlap_first_1;
-    wire  [2:0] operands_overlap_first_2;
-    wire  [2:0] operands_overlap_first_3;
-    wire  [2:0] operands_overlap_second_0;
-    wire  [2:0] operands_overlap_second_1;
-    wire  [2:0] operands_overlap_second_2;
-    wire  [2:0] operands_overlap_second_3;
-    wire  [23:0] operands_t1_vertices_0;
-    wire  [23:0] operands_t1_vertices_1;
-    wire  [23:0] operands_t1_vertices_2;
-    wire  [23:0] operands_t1_vertices_3;
-    wire  [23:0] operands_t1_vertices_4;
-    wire  [23:0] operands_t1_vertices_5;
-    wire  [23:0] operands_t1_vertices_6;
-    wire  [23:0] operands_t1_vertices_7;
-    wire  [23:0] operands_t1_vertices_8;
-    wire  [23:0] operands_t2_vertices_0;
-    wire  [23:0] operands_t2_vertices_1;
-    wire  [23:0] operands_t2_vertices_2;
-    wire  [23:0] operands_t2_vertices_3;
-    wire  [23:0] operands_t2_vertices_4;
-    wire  [23:0] operands_t2_vertices_5;
-    wire  [23:0] operands_t2_vertices_6;
-    wire  [23:0] operands_t2_vertices_7;
-    wire  [23:0] operands_t2_vertices_8;
-    wire  [23:0] operands_operands_0;
-    wire  [23:0] operands_operands_1;
-    wire  [23:0] operands_operands_2;
-    wire  [23:0] operands_operands_3;
-    wire  [23:0] operands_operands_4;
-    wire  [23:0] operands_operands_5;
-    wire  [23:0] operands_operands_6;
-    wire  [23:0] operands_operands_7;
-    wire  [23:0] operands_operands_8;
-    wire  [23:0] operands_operands_9;
-    wire  [23:0] operands_operands_10;
-    wire  [23:0] operands_operands_11;
-    wire  [23:0] operands_operands_12;
-    wire  [23:0] operands_operands_13;
-    wire  [23:0] operands_operands_14;
-    wire  [23:0] operands_operands_15;
-    wire  [23:0] operands_operands_16;
-    wire  [23:0] operands_operands_17;
-    wire  [23:0] operands_operands_18;
-    wire  [23:0] operands_operands_19;
-    wire  [23:0] operands_operands_20;
-    wire  [23:0] operands_operands_21;
-    wire  [23:0] operands_operands_22;
-    wire  [23:0] operands_operands_23;
-    wire  orient3d_0_clock;
-    wire  orient3d_0_advance;
-    wire  [23:0] orient3d_0_a_0;
-    wire  [23:0] orient3d_0_a_1;
-    wire  [23:0] orient3d_0_a_2;
-    wire  [23:0] orient3d_0_b_0;
-    wire  [23:0] orient3d_0_b_1;
-    wire  [23:0] orient3d_0_b_2;
-    wire  [23:0] orient3d_0_c_0;
-    wire  [23:0] orient3d_0_c_1;
-    wire  [23:0] orient3d_0_c_2;
-    wire  [23:0] orient3d_0_d_0;
-    wire  [23:0] orient3d_0_d_1;
-    wire  [23:0] orient3d_0_d_2;
-    wire  orient3d_0_negative;
-    wire  orient3d_0_zero;
-    wire  orient3d_0_certain;
-    wire  [73:0] orient3d_0_value;
-    wire  orient3d_1_clock;
-    wire  orient3d_1_advance;
-    wire  [23:0] orient3d_1_a_0;
-    wire  [23:0] orient3d_1_a_1;
-    wire  [23:0] orient3d_1_a_2;
-    wire  [23:0] orient3d_1_b_0;
-    wire  [23:0] orient3d_1_b_1;
-    wire  [23:0] orient3d_1_b_2;
-    wire  [23:0] orient3d_1_c_0;
-    wire  [23:0] orient3d_1_c_1;
-    wire  [23:0] orient3d_1_c_2;
-    wire  [23:0] orient3d_1_d_0;
-    wire  [23:0] orient3d_1_d_1;
-    wire  [23:0] orient3d_1_d_2;
-    wire  orient3d_1_negative;
-    wire  orient3d_1_zero;
-    wire  orient3d_1_certain;
-    wire  [73:0] orient3d_1_value;
-    wire  ends_difference_clock;
-    wire  ends_difference_advance;
-    wire  [73:0] ends_difference_t1_distance_0;
-    wire  [73:0] ends_difference_t1_distance_1;
-    wire  [73:0] ends_difference_t1_distance_2;
-    wire  [73:0] ends_difference_t2_distance_0;
-    wire  [73:0] ends_difference_t2_distance_1;
-    wire  [73:0] ends_difference_t2_distance_2;
-    wire  ends_difference_t1_degenerate;
-    wire  [1:0] ends_difference_t1_segment_low;
-    wire  [1:0] ends_difference_t1_segment_high;
-    wire  [1:0] ends_difference_t2_segment_low;
-    wire  [1:0] ends_difference_t2_segment_high;
-    wire  [73:0] ends_difference_difference;
-    wire  ends_difference_to_values_clock;
-    wire  ends_difference_to_values_advance;
-    wire  [73:0] ends_difference_to_values_d;
-    wire  [73:0] ends_difference_to_values_q;
-    wire  third_determinant_clock;
-    wire  third_determinant_advance;
-    wire  [73:0] third_determinant_ends_difference;
-    wire  [73:0] third_determinant_first;
-    wire  [73:0] third_determinant_second;
-    wire  third_determinant_negative;
-    wire  third_determinant_zero;
-    wire  degenerate_to_distances_clock;
-    wire  degenerate_to_distances_advance;
-    wire  degenerate_to_distances_d;
-    wire  degenerate_to_distances_q;
-    wire  segment_ends_to_distances_0_clock;
-    wire  segment_ends_to_distances_0_advance;
-    wire  [1:0] segment_ends_to_distances_0_d;
-    wire  [1:0] segment_ends_to_distances_0_q;
-    wire  segment_ends_to_distances_1_clock;
-    wire  segment_ends_to_distances_1_advance;
-    wire  [1:0] segment_ends_to_distances_1_d;
-    wire  [1:0] segment_ends_to_distances_1_q;
-    wire  segment_ends_to_distances_2_clock;
-    wire  segment_ends_to_distances_2_advance;
-    wire  [1:0] segment_ends_to_distances_2_d;
-    wire  [1:0] segment_ends_to_distances_2_q;
-    wire  segment_ends_to_distances_3_clock;
-    wire  segment_ends_to_distances_3_advance;
-    wire  [1:0] segment_ends_to_distances_3_d;
-    wire  [1:0] segment_ends_to_distances_3_q;
-    wire  orient_signs_to_decision_0_clock;
-    wire  orient_signs_to_decision_0_advance;
-    wire  orient_signs_to_decision_0_d;
-    wire  orient_signs_to_decision_0_q;
-    wire  orient_signs_to_decision_1_clock;
-    wire  orient_signs_to_decision_1_advance;
-    wire  orient_signs_to_decision_1_d;
-    wire  orient_signs_to_decision_1_q;
-    wire  orient_signs_to_decision_2_clock;
-    wire  orient_signs_to_decision_2_advance;
-    wire  orient_signs_to_decision_2_d;
-    wire  orient_signs_to_decision_2_q;
-    wire  orient_signs_to_decision_3_clock;
-    wire  orient_signs_to_decision_3_advance;
-    wire  orient_signs_to_decision_3_d;
-    wire  orient_signs_to_decision_3_q;
-    wire  orient_signs_to_decision_4_clock;
-    wire  orient_signs_to_decision_4_advance;
-    wire  orient_signs_to_decision_4_d;
-    wire  orient_signs_to_decision_4_q;
-    wire  orient_signs_to_decision_5_clock;
-    wire  orient_signs_to_decision_5_advance;
-    wire  orient_signs_to_decision_5_d;
-    wire  orient_signs_to_decision_5_q;
+    wire  path_clock;
+    wire  path_reset;
+    wire  path_advance;
+    wire  path_in_valid;
+    wire  path_in_bset;
+    wire  [31:0] path_in_id;
+    wire  [23:0] path_in_x0;
+    wire  [23:0] path_in_y0;
+    wire  [23:0] path_in_z0;
+    wire  [23:0] path_in_x1;
+    wire  [23:0] path_in_y1;
+    wire  [23:0] path_in_z1;
+    wire  [23:0] path_in_x2;
+    wire  [23:0] path_in_y2;
+    wire  [23:0] path_in_z2;
+    wire  path_out_valid;
+    wire  path_out_hit;
+    wire  path_out_certain;
+    wire  [31:0] path_out_base_id;
+    wire  [31:0] path_out_stream_id;
+    wire  [23:0] path_pair_t1_vertices_0;
+    wire  [23:0] path_pair_t1_vertices_1;
+    wire  [23:0] path_pair_t1_vertices_2;
+    wire  [23:0] path_pair_t1_vertices_3;
+    wire  [23:0] path_pair_t1_vertices_4;
+    wire  [23:0] path_pair_t1_vertices_5;
+    wire  [23:0] path_pair_t1_vertices_6;
+    wire  [23:0] path_pair_t1_vertices_7;
+    wire  [23:0] path_pair_t1_vertices_8;
+    wire  [23:0] path_pair_t2_vertices_0;
+    wire  [23:0] path_pair_t2_vertices_1;
+    wire  [23:0] path_pair_t2_vertices_2;
+    wire  [23:0] path_pair_t2_vertices_3;
+    wire  [23:0] path_pair_t2_vertices_4;
+    wire  [23:0] path_pair_t2_vertices_5;
+    wire  [23:0] path_pair_t2_vertices_6;
+    wire  [23:0] path_pair_t2_vertices_7;
+    wire  [23:0] path_pair_t2_vertices_8;
+    wire  [1:0] path_pair_axis;
+    wire  path_pair_t1_normal_negative_0;
+    wire  path_pair_t1_normal_negative_1;
+    wire  path_pair_t1_normal_negative_2;
+    wire  path_pair_t1_normal_zero_0;
+    wire  path_pair_t1_normal_zero_1;
+    wire  path_pair_t1_normal_zero_2;
+    wire  path_pair_t2_normal_negative_0;
+    wire  path_pair_t2_normal_negative_1;
+    wire  path_pair_t2_normal_negative_2;
+    wire  path_pair_t2_normal_zero_0;
+    wire  path_pair_t2_normal_zero_1;
+    wire  path_pair_t2_normal_zero_2;
+    wire  path_pair_t1_degenerate;
+    wire  path_pair_t2_degenerate;
+    wire  [1:0] path_pair_t1_segment_low;
+    wire  [1:0] path_pair_t1_segment_high;
+    wire  [1:0] path_pair_t2_segment_low;
+    wire  [1:0] path_pair_t2_segment_high;
+    wire  path_sides_valid;
+    wire  path_sides_t1_zero_0;
+    wire  path_sides_t1_zero_1;
+    wire  path_sides_t1_zero_2;
+    wire  path_sides_t2_zero_0;
+    wire  path_sides_t2_zero_1;
+    wire  path_sides_t2_zero_2;
+    wire  path_coplanar_hit;
+    wire  path_degenerate_pair_hit;
     wire  coplanar_clock;
     wire  coplanar_advance;
     wire  [23:0] coplanar_t1_vertices_0;
@@ -497,7 +144,7 @@ module tritri_pipeline_w24 (
     wire  [23:0] coplanar_t2_vertices_6;
     wire  [23:0] coplanar_t2_vertices_7;
     wire  [23:0] coplanar_t2_vertices_8;
-    reg  [1:0] coplanar_axis;
+    wire  [1:0] coplanar_axis;
     wire  coplanar_t1_normal_negative_0;
     wire  coplanar_t1_normal_negative_1;
     wire  coplanar_t1_normal_negative_2;
@@ -536,236 +183,6 @@ module tritri_pipeline_w24 (
     wire  [1:0] degenerate_pair_t2_segment_low;
     wire  [1:0] degenerate_pair_t2_segment_high;
     wire  degenerate_pair__hit;
-    wire  decision_clock;
-    wire  decision_advance;
-    wire  decision_t1_degenerate;
-    wire  decision_t2_degenerate;
-    wire  [1:0] decision_t1_segment_low;
-    wire  [1:0] decision_t1_segment_high;
-    wire  [1:0] decision_t2_segment_low;
-    wire  [1:0] decision_t2_segment_high;
-    wire  decision_t1_side_negative_0;
-    wire  decision_t1_side_negative_1;
-    wire  decision_t1_side_negative_2;
-    wire  decision_t1_side_zero_0;
-    wire  decision_t1_side_zero_1;
-    wire  decision_t1_side_zero_2;
-    wire  decision_t2_side_negative_0;
-    wire  decision_t2_side_negative_1;
-    wire  decision_t2_side_negative_2;
-    wire  decision_t2_side_zero_0;
-    wire  decision_t2_side_zero_1;
-    wire  decision_t2_side_zero_2;
-    wire  decision_orient_negative_0;
-    wire  decision_orient_negative_1;
-    wire  decision_orient_negative_2;
-    wire  decision_orient_zero_0;
-    wire  decision_orient_zero_1;
-    wire  decision_orient_zero_2;
-    wire  decision_t1_side_certain_0;
-    wire  decision_t1_side_certain_1;
-    wire  decision_t1_side_certain_2;
-    wire  decision_t2_side_certain_0;
-    wire  decision_t2_side_certain_1;
-    wire  decision_t2_side_certain_2;
-    wire  decision_orient_certain_0;
-    wire  decision_orient_certain_1;
-    wire  decision_coplanar_hit;
-    wire  decision_degenerate_pair_hit;
-    wire  decision_hit;
-    wire  decision_certain;
-    wire  t1_vertices_to_operands_0_clock;
-    wire  t1_vertices_to_operands_0_advance;
-    wire  [23:0] t1_vertices_to_operands_0_d;
-    wire  [23:0] t1_vertices_to_operands_0_q;
-    wire  t1_vertices_to_operands_1_clock;
-    wire  t1_vertices_to_operands_1_advance;
-    wire  [23:0] t1_vertices_to_operands_1_d;
-    wire  [23:0] t1_vertices_to_operands_1_q;
-    wire  t1_vertices_to_operands_2_clock;
-    wire  t1_vertices_to_operands_2_advance;
-    wire  [23:0] t1_vertices_to_operands_2_d;
-    wire  [23:0] t1_vertices_to_operands_2_q;
-    wire  t1_vertices_to_operands_3_clock;
-    wire  t1_vertices_to_operands_3_advance;
-    wire  [23:0] t1_vertices_to_operands_3_d;
-    wire  [23:0] t1_vertices_to_operands_3_q;
-    wire  t1_vertices_to_operands_4_clock;
-    wire  t1_vertices_to_operands_4_advance;
-    wire  [23:0] t1_vertices_to_operands_4_d;
-    wire  [23:0] t1_vertices_to_operands_4_q;
-    wire  t1_vertices_to_operands_5_clock;
-    wire  t1_vertices_to_operands_5_advance;
-    wire  [23:0] t1_vertices_to_operands_5_d;
-    wire  [23:0] t1_vertices_to_operands_5_q;
-    wire  t1_vertices_to_operands_6_clock;
-    wire  t1_vertices_to_operands_6_advance;
-    wire  [23:0] t1_vertices_to_operands_6_d;
-    wire  [23:0] t1_vertices_to_operands_6_q;
-    wire  t1_vertices_to_operands_7_clock;
-    wire  t1_vertices_to_operands_7_advance;
-    wire  [23:0] t1_vertices_to_operands_7_d;
-    wire  [23:0] t1_vertices_to_operands_7_q;
-    wire  t1_vertices_to_operands_8_clock;
-    wire  t1_vertices_to_operands_8_advance;
-    wire  [23:0] t1_vertices_to_operands_8_d;
-    wire  [23:0] t1_vertices_to_operands_8_q;
-    wire  t2_vertices_to_operands_0_clock;
-    wire  t2_vertices_to_operands_0_advance;
-    wire  [23:0] t2_vertices_to_operands_0_d;
-    wire  [23:0] t2_vertices_to_operands_0_q;
-    wire  t2_vertices_to_operands_1_clock;
-    wire  t2_vertices_to_operands_1_advance;
-    wire  [23:0] t2_vertices_to_operands_1_d;
-    wire  [23:0] t2_vertices_to_operands_1_q;
-    wire  t2_vertices_to_operands_2_clock;
-    wire  t2_vertices_to_operands_2_advance;
-    wire  [23:0] t2_vertices_to_operands_2_d;
-    wire  [23:0] t2_vertices_to_operands_2_q;
-    wire  t2_vertices_to_operands_3_clock;
-    wire  t2_vertices_to_operands_3_advance;
-    wire  [23:0] t2_vertices_to_operands_3_d;
-    wire  [23:0] t2_vertices_to_operands_3_q;
-    wire  t2_vertices_to_operands_4_clock;
-    wire  t2_vertices_to_operands_4_advance;
-    wire  [23:0] t2_vertices_to_operands_4_d;
-    wire  [23:0] t2_vertices_to_operands_4_q;
-    wire  t2_vertices_to_operands_5_clock;
-    wire  t2_vertices_to_operands_5_advance;
-    wire  [23:0] t2_vertices_to_operands_5_d;
-    wire  [23:0] t2_vertices_to_operands_5_q;
-    wire  t2_vertices_to_operands_6_clock;
-    wire  t2_vertices_to_operands_6_advance;
-    wire  [23:0] t2_vertices_to_operands_6_d;
-    wire  [23:0] t2_vertices_to_operands_6_q;
-    wire  t2_vertices_to_operands_7_clock;
-    wire  t2_vertices_to_operands_7_advance;
-    wire  [23:0] t2_vertices_to_operands_7_d;
-    wire  [23:0] t2_vertices_to_operands_7_q;
-    wire  t2_vertices_to_operands_8_clock;
-    wire  t2_vertices_to_operands_8_advance;
-    wire  [23:0] t2_vertices_to_operands_8_d;
-    wire  [23:0] t2_vertices_to_operands_8_q;
-    wire  degenerate_to_operands_0_clock;
-    wire  degenerate_to_operands_0_advance;
-    wire  degenerate_to_operands_0_d;
-    wire  degenerate_to_operands_0_q;
-    wire  degenerate_to_operands_1_clock;
-    wire  degenerate_to_operands_1_advance;
-    wire  degenerate_to_operands_1_d;
-    wire  degenerate_to_operands_1_q;
-    wire  segment_ends_to_operands_0_clock;
-    wire  segment_ends_to_operands_0_advance;
-    wire  [1:0] segment_ends_to_operands_0_d;
-    wire  [1:0] segment_ends_to_operands_0_q;
-    wire  segment_ends_to_operands_1_clock;
-    wire  segment_ends_to_operands_1_advance;
-    wire  [1:0] segment_ends_to_operands_1_d;
-    wire  [1:0] segment_ends_to_operands_1_q;
-    wire  segment_ends_to_operands_2_clock;
-    wire  segment_ends_to_operands_2_advance;
-    wire  [1:0] segment_ends_to_operands_2_d;
-    wire  [1:0] segment_ends_to_operands_2_q;
-    wire  segment_ends_to_operands_3_clock;
-    wire  segment_ends_to_operands_3_advance;
-    wire  [1:0] segment_ends_to_operands_3_d;
-    wire  [1:0] segment_ends_to_operands_3_q;
-    wire  degenerate_to_decision_0_clock;
-    wire  degenerate_to_decision_0_advance;
-    wire  degenerate_to_decision_0_d;
-    wire  degenerate_to_decision_0_q;
-    wire  degenerate_to_decision_1_clock;
-    wire  degenerate_to_decision_1_advance;
-    wire  degenerate_to_decision_1_d;
-    wire  degenerate_to_decision_1_q;
-    wire  segment_ends_to_decision_0_clock;
-    wire  segment_ends_to_decision_0_advance;
-    wire  [1:0] segment_ends_to_decision_0_d;
-    wire  [1:0] segment_ends_to_decision_0_q;
-    wire  segment_ends_to_decision_1_clock;
-    wire  segment_ends_to_decision_1_advance;
-    wire  [1:0] segment_ends_to_decision_1_d;
-    wire  [1:0] segment_ends_to_decision_1_q;
-    wire  segment_ends_to_decision_2_clock;
-    wire  segment_ends_to_decision_2_advance;
-    wire  [1:0] segment_ends_to_decision_2_d;
-    wire  [1:0] segment_ends_to_decision_2_q;
-    wire  segment_ends_to_decision_3_clock;
-    wire  segment_ends_to_decision_3_advance;
-    wire  [1:0] segment_ends_to_decision_3_d;
-    wire  [1:0] segment_ends_to_decision_3_q;
-    wire  sides_to_decision_0_clock;
-    wire  sides_to_decision_0_advance;
-    wire  sides_to_decision_0_d;
-    wire  sides_to_decision_0_q;
-    wire  sides_to_decision_1_clock;
-    wire  sides_to_decision_1_advance;
-    wire  sides_to_decision_1_d;
-    wire  sides_to_decision_1_q;
-    wire  sides_to_decision_2_clock;
-    wire  sides_to_decision_2_advance;
-    wire  sides_to_decision_2_d;
-    wire  sides_to_decision_2_q;
-    wire  sides_to_decision_3_clock;
-    wire  sides_to_decision_3_advance;
-    wire  sides_to_decision_3_d;
-    wire  sides_to_decision_3_q;
-    wire  sides_to_decision_4_clock;
-    wire  sides_to_decision_4_advance;
-    wire  sides_to_decision_4_d;
-    wire  sides_to_decision_4_q;
-    wire  sides_to_decision_5_clock;
-    wire  sides_to_decision_5_advance;
-    wire  sides_to_decision_5_d;
-    wire  sides_to_decision_5_q;
-    wire  sides_to_decision_6_clock;
-    wire  sides_to_decision_6_advance;
-    wire  sides_to_decision_6_d;
-    wire  sides_to_decision_6_q;
-    wire  sides_to_decision_7_clock;
-    wire  sides_to_decision_7_advance;
-    wire  sides_to_decision_7_d;
-    wire  sides_to_decision_7_q;
-    wire  sides_to_decision_8_clock;
-    wire  sides_to_decision_8_advance;
-    wire  sides_to_decision_8_d;
-    wire  sides_to_decision_8_q;
-    wire  sides_to_decision_9_clock;
-    wire  sides_to_decision_9_advance;
-    wire  sides_to_decision_9_d;
-    wire  sides_to_decision_9_q;
-    wire  sides_to_decision_10_clock;
-    wire  sides_to_decision_10_advance;
-    wire  sides_to_decision_10_d;
-    wire  sides_to_decision_10_q;
-    wire  sides_to_decision_11_clock;
-    wire  sides_to_decision_11_advance;
-    wire  sides_to_decision_11_d;
-    wire  sides_to_decision_11_q;
-    wire  sides_to_decision_12_clock;
-    wire  sides_to_decision_12_advance;
-    wire  sides_to_decision_12_d;
-    wire  sides_to_decision_12_q;
-    wire  sides_to_decision_13_clock;
-    wire  sides_to_decision_13_advance;
-    wire  sides_to_decision_13_d;
-    wire  sides_to_decision_13_q;
-    wire  sides_to_decision_14_clock;
-    wire  sides_to_decision_14_advance;
-    wire  sides_to_decision_14_d;
-    wire  sides_to_decision_14_q;
-    wire  sides_to_decision_15_clock;
-    wire  sides_to_decision_15_advance;
-    wire  sides_to_decision_15_d;
-    wire  sides_to_decision_15_q;
-    wire  sides_to_decision_16_clock;
-    wire  sides_to_decision_16_advance;
-    wire  sides_to_decision_16_d;
-    wire  sides_to_decision_16_q;
-    wire  sides_to_decision_17_clock;
-    wire  sides_to_decision_17_advance;
-    wire  sides_to_decision_17_d;
-    wire  sides_to_decision_17_q;
     wire  coplanar_to_decision_clock;
     wire  coplanar_to_decision_advance;
     wire  coplanar_to_decision_d;
@@ -775,503 +192,77 @@ module tritri_pipeline_w24 (
     wire  degenerate_pair_to_decision_d;
     wire  degenerate_pair_to_decision_q;
 
+    // Local signals
+    wire  unused_sides;
+
     // Sub module instances
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_0(
-        .clock(input_vertices_0_clock),
-        .advance(input_vertices_0_advance),
-        .d(input_vertices_0_d),
-        .q(input_vertices_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_1(
-        .clock(input_vertices_1_clock),
-        .advance(input_vertices_1_advance),
-        .d(input_vertices_1_d),
-        .q(input_vertices_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_2(
-        .clock(input_vertices_2_clock),
-        .advance(input_vertices_2_advance),
-        .d(input_vertices_2_d),
-        .q(input_vertices_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_3(
-        .clock(input_vertices_3_clock),
-        .advance(input_vertices_3_advance),
-        .d(input_vertices_3_d),
-        .q(input_vertices_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_4(
-        .clock(input_vertices_4_clock),
-        .advance(input_vertices_4_advance),
-        .d(input_vertices_4_d),
-        .q(input_vertices_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_5(
-        .clock(input_vertices_5_clock),
-        .advance(input_vertices_5_advance),
-        .d(input_vertices_5_d),
-        .q(input_vertices_5_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_6(
-        .clock(input_vertices_6_clock),
-        .advance(input_vertices_6_advance),
-        .d(input_vertices_6_d),
-        .q(input_vertices_6_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_7(
-        .clock(input_vertices_7_clock),
-        .advance(input_vertices_7_advance),
-        .d(input_vertices_7_d),
-        .q(input_vertices_7_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_8(
-        .clock(input_vertices_8_clock),
-        .advance(input_vertices_8_advance),
-        .d(input_vertices_8_d),
-        .q(input_vertices_8_q)
-    );
-    tritri_pipeline_w24_valid_line_n10 u_record_valid(
-        .clock(record_valid_clock),
-        .reset(record_valid_reset),
-        .advance(record_valid_advance),
-        .d(record_valid_d),
-        .q(record_valid_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n10 u_record_bset(
-        .clock(record_bset_clock),
-        .advance(record_bset_advance),
-        .d(record_bset_d),
-        .q(record_bset_q)
-    );
-    tritri_pipeline_w24_delay_line_w32_n10 u_record_id(
-        .clock(record_id_clock),
-        .advance(record_id_advance),
-        .d(record_id_d),
-        .q(record_id_q)
-    );
-    tritri_pipeline_w24_triangle_front_end u_front_end(
-        .clock(front_end_clock),
-        .advance(front_end_advance),
-        .vertices_in_0(front_end_vertices_in_0),
-        .vertices_in_1(front_end_vertices_in_1),
-        .vertices_in_2(front_end_vertices_in_2),
-        .vertices_in_3(front_end_vertices_in_3),
-        .vertices_in_4(front_end_vertices_in_4),
-        .vertices_in_5(front_end_vertices_in_5),
-        .vertices_in_6(front_end_vertices_in_6),
-        .vertices_in_7(front_end_vertices_in_7),
-        .vertices_in_8(front_end_vertices_in_8),
-        .vertices_0(front_end_vertices_0),
-        .vertices_1(front_end_vertices_1),
-        .vertices_2(front_end_vertices_2),
-        .vertices_3(front_end_vertices_3),
-        .vertices_4(front_end_vertices_4),
-        .vertices_5(front_end_vertices_5),
-        .vertices_6(front_end_vertices_6),
-        .vertices_7(front_end_vertices_7),
-        .vertices_8(front_end_vertices_8),
-        .normal_0(front_end_normal_0),
-        .normal_1(front_end_normal_1),
-        .normal_2(front_end_normal_2),
-        .normal_negative_0(front_end_normal_negative_0),
-        .normal_negative_1(front_end_normal_negative_1),
-        .normal_negative_2(front_end_normal_negative_2),
-        .normal_zero_0(front_end_normal_zero_0),
-        .normal_zero_1(front_end_normal_zero_1),
-        .normal_zero_2(front_end_normal_zero_2),
-        .degenerate(front_end_degenerate),
-        .dominant_axis(front_end_dominant_axis),
-        .segment_low(front_end_segment_low),
-        .segment_high(front_end_segment_high),
-        .edge_thermometer(front_end_edge_thermometer)
-    );
-    tritri_pipeline_w24_base_polygon u_base(
-        .clock(base_clock),
-        .load(base_load),
-        .id_in(base_id_in),
-        .vertices_in_0(base_vertices_in_0),
-        .vertices_in_1(base_vertices_in_1),
-        .vertices_in_2(base_vertices_in_2),
-        .vertices_in_3(base_vertices_in_3),
-        .vertices_in_4(base_vertices_in_4),
-        .vertices_in_5(base_vertices_in_5),
-        .vertices_in_6(base_vertices_in_6),
-        .vertices_in_7(base_vertices_in_7),
-        .vertices_in_8(base_vertices_in_8),
-        .normal_in_0(base_normal_in_0),
-        .normal_in_1(base_normal_in_1),
-        .normal_in_2(base_normal_in_2),
-        .normal_negative_in_0(base_normal_negative_in_0),
-        .normal_negative_in_1(base_normal_negative_in_1),
-        .normal_negative_in_2(base_normal_negative_in_2),
-        .normal_zero_in_0(base_normal_zero_in_0),
-        .normal_zero_in_1(base_normal_zero_in_1),
-        .normal_zero_in_2(base_normal_zero_in_2),
-        .degenerate_in(base_degenerate_in),
-        .dominant_axis_in(base_dominant_axis_in),
-        .segment_low_in(base_segment_low_in),
-        .segment_high_in(base_segment_high_in),
-        .edge_thermometer_in(base_edge_thermometer_in),
-        .id(base__id),
-        .vertices_0(base_vertices_0),
-        .vertices_1(base_vertices_1),
-        .vertices_2(base_vertices_2),
-        .vertices_3(base_vertices_3),
-        .vertices_4(base_vertices_4),
-        .vertices_5(base_vertices_5),
-        .vertices_6(base_vertices_6),
-        .vertices_7(base_vertices_7),
-        .vertices_8(base_vertices_8),
-        .normal_0(base_normal_0),
-        .normal_1(base_normal_1),
-        .normal_2(base_normal_2),
-        .normal_negative_0(base_normal_negative_0),
-        .normal_negative_1(base_normal_negative_1),
-        .normal_negative_2(base_normal_negative_2),
-        .normal_zero_0(base_normal_zero_0),
-        .normal_zero_1(base_normal_zero_1),
-        .normal_zero_2(base_normal_zero_2),
-        .degenerate(base_degenerate),
-        .dominant_axis(base_dominant_axis),
-        .segment_low(base_segment_low),
-        .segment_high(base_segment_high),
-        .edge_thermometer(base_edge_thermometer)
-    );
-    tritri_pipeline_w24_valid_line_n28 u_pair_valid(
-        .clock(pair_valid_clock),
-        .reset(pair_valid_reset),
-        .advance(pair_valid_advance),
-        .d(pair_valid_d),
-        .q(pair_valid_q)
-    );
-    tritri_pipeline_w24_delay_line_w32_n28 u_base_id(
-        .clock(base_id_clock),
-        .advance(base_id_advance),
-        .d(base_id_d),
-        .q(base_id_q)
-    );
-    tritri_pipeline_w24_delay_line_w32_n28 u_stream_id(
-        .clock(stream_id_clock),
-        .advance(stream_id_advance),
-        .d(stream_id_d),
-        .q(stream_id_q)
-    );
-    tritri_pipeline_w24_plane_side u_plane_side_t1(
-        .clock(plane_side_t1_clock),
-        .advance(plane_side_t1_advance),
-        .plane_point_0(plane_side_t1_plane_point_0),
-        .plane_point_1(plane_side_t1_plane_point_1),
-        .plane_point_2(plane_side_t1_plane_point_2),
-        .plane_normal_0(plane_side_t1_plane_normal_0),
-        .plane_normal_1(plane_side_t1_plane_normal_1),
-        .plane_normal_2(plane_side_t1_plane_normal_2),
-        .plane_thermometer(plane_side_t1_plane_thermometer),
-        .vertices_0(plane_side_t1_vertices_0),
-        .vertices_1(plane_side_t1_vertices_1),
-        .vertices_2(plane_side_t1_vertices_2),
-        .vertices_3(plane_side_t1_vertices_3),
-        .vertices_4(plane_side_t1_vertices_4),
-        .vertices_5(plane_side_t1_vertices_5),
-        .vertices_6(plane_side_t1_vertices_6),
-        .vertices_7(plane_side_t1_vertices_7),
-        .vertices_8(plane_side_t1_vertices_8),
-        .negative_0(plane_side_t1_negative_0),
-        .negative_1(plane_side_t1_negative_1),
-        .negative_2(plane_side_t1_negative_2),
-        .zero_0(plane_side_t1_zero_0),
-        .zero_1(plane_side_t1_zero_1),
-        .zero_2(plane_side_t1_zero_2),
-        .certain_0(plane_side_t1_certain_0),
-        .certain_1(plane_side_t1_certain_1),
-        .certain_2(plane_side_t1_certain_2),
-        .distance__0(plane_side_t1_distance_0),
-        .distance__1(plane_side_t1_distance_1),
-        .distance__2(plane_side_t1_distance_2)
-    );
-    tritri_pipeline_w24_plane_side u_plane_side_t2(
-        .clock(plane_side_t2_clock),
-        .advance(plane_side_t2_advance),
-        .plane_point_0(plane_side_t2_plane_point_0),
-        .plane_point_1(plane_side_t2_plane_point_1),
-        .plane_point_2(plane_side_t2_plane_point_2),
-        .plane_normal_0(plane_side_t2_plane_normal_0),
-        .plane_normal_1(plane_side_t2_plane_normal_1),
-        .plane_normal_2(plane_side_t2_plane_normal_2),
-        .plane_thermometer(plane_side_t2_plane_thermometer),
-        .vertices_0(plane_side_t2_vertices_0),
-        .vertices_1(plane_side_t2_vertices_1),
-        .vertices_2(plane_side_t2_vertices_2),
-        .vertices_3(plane_side_t2_vertices_3),
-        .vertices_4(plane_side_t2_vertices_4),
-        .vertices_5(plane_side_t2_vertices_5),
-        .vertices_6(plane_side_t2_vertices_6),
-        .vertices_7(plane_side_t2_vertices_7),
-        .vertices_8(plane_side_t2_vertices_8),
-        .negative_0(plane_side_t2_negative_0),
-        .negative_1(plane_side_t2_negative_1),
-        .negative_2(plane_side_t2_negative_2),
-        .zero_0(plane_side_t2_zero_0),
-        .zero_1(plane_side_t2_zero_1),
-        .zero_2(plane_side_t2_zero_2),
-        .certain_0(plane_side_t2_certain_0),
-        .certain_1(plane_side_t2_certain_1),
-        .certain_2(plane_side_t2_certain_2),
-        .distance__0(plane_side_t2_distance_0),
-        .distance__1(plane_side_t2_distance_1),
-        .distance__2(plane_side_t2_distance_2)
-    );
-    tritri_pipeline_w24_align_t1 u_align_t1(
-        .clock(align_t1_clock),
-        .advance(align_t1_advance),
-        .t1_negative_0(align_t1_t1_negative_0),
-        .t1_negative_1(align_t1_t1_negative_1),
-        .t1_negative_2(align_t1_t1_negative_2),
-        .t1_zero_0(align_t1_t1_zero_0),
-        .t1_zero_1(align_t1_t1_zero_1),
-        .t1_zero_2(align_t1_t1_zero_2),
-        .t2_negative_0(align_t1_t2_negative_0),
-        .t2_negative_1(align_t1_t2_negative_1),
-        .t2_negative_2(align_t1_t2_negative_2),
-        .t2_zero_0(align_t1_t2_zero_0),
-        .t2_zero_1(align_t1_t2_zero_1),
-        .t2_zero_2(align_t1_t2_zero_2),
-        .t1_rotation(align_t1_t1_rotation),
-        .t2_swap(align_t1_t2_swap),
-        .t2_aligned_negative_0(align_t1_t2_aligned_negative_0),
-        .t2_aligned_negative_1(align_t1_t2_aligned_negative_1),
-        .t2_aligned_negative_2(align_t1_t2_aligned_negative_2),
-        .t2_aligned_zero_0(align_t1_t2_aligned_zero_0),
-        .t2_aligned_zero_1(align_t1_t2_aligned_zero_1),
-        .t2_aligned_zero_2(align_t1_t2_aligned_zero_2)
-    );
-    tritri_pipeline_w24_align_t2 u_align_t2(
-        .clock(align_t2_clock),
-        .advance(align_t2_advance),
-        .t1_rotation_in(align_t2_t1_rotation_in),
-        .t2_swap_in(align_t2_t2_swap_in),
-        .t2_aligned_negative_0(align_t2_t2_aligned_negative_0),
-        .t2_aligned_negative_1(align_t2_t2_aligned_negative_1),
-        .t2_aligned_negative_2(align_t2_t2_aligned_negative_2),
-        .t2_aligned_zero_0(align_t2_t2_aligned_zero_0),
-        .t2_aligned_zero_1(align_t2_t2_aligned_zero_1),
-        .t2_aligned_zero_2(align_t2_t2_aligned_zero_2),
-        .t1_rotation(align_t2_t1_rotation),
-        .t2_swap(align_t2_t2_swap),
-        .t2_rotation(align_t2_t2_rotation),
-        .t1_swap(align_t2_t1_swap)
-    );
-    tritri_pipeline_w24_interval_overlap u_interval_overlap(
-        .clock(interval_overlap_clock),
-        .advance(interval_overlap_advance),
-        .t1_rotation(interval_overlap_t1_rotation),
-        .t2_swap(interval_overlap_t2_swap),
-        .t2_rotation(interval_overlap_t2_rotation),
-        .t1_swap(interval_overlap_t1_swap),
-        .first_0(interval_overlap_first_0),
-        .first_1(interval_overlap_first_1),
-        .first_2(interval_overlap_first_2),
-        .first_3(interval_overlap_first_3),
-        .second_0(interval_overlap_second_0),
-        .second_1(interval_overlap_second_1),
-        .second_2(interval_overlap_second_2),
-        .second_3(interval_overlap_second_3)
-    );
-    tritri_pipeline_w24_orient3d_operands u_operands(
-        .clock(operands_clock),
-        .advance(operands_advance),
-        .t1_degenerate(operands_t1_degenerate),
-        .t2_degenerate(operands_t2_degenerate),
-        .t1_segment_low(operands_t1_segment_low),
-        .t1_segment_high(operands_t1_segment_high),
-        .t2_segment_low(operands_t2_segment_low),
-        .t2_segment_high(operands_t2_segment_high),
-        .overlap_first_0(operands_overlap_first_0),
-        .overlap_first_1(operands_overlap_first_1),
-        .overlap_first_2(operands_overlap_first_2),
-        .overlap_first_3(operands_overlap_first_3),
-        .overlap_second_0(operands_overlap_second_0),
-        .overlap_second_1(operands_overlap_second_1),
-        .overlap_second_2(operands_overlap_second_2),
-        .overlap_second_3(operands_overlap_second_3),
-        .t1_vertices_0(operands_t1_vertices_0),
-        .t1_vertices_1(operands_t1_vertices_1),
-        .t1_vertices_2(operands_t1_vertices_2),
-        .t1_vertices_3(operands_t1_vertices_3),
-        .t1_vertices_4(operands_t1_vertices_4),
-        .t1_vertices_5(operands_t1_vertices_5),
-        .t1_vertices_6(operands_t1_vertices_6),
-        .t1_vertices_7(operands_t1_vertices_7),
-        .t1_vertices_8(operands_t1_vertices_8),
-        .t2_vertices_0(operands_t2_vertices_0),
-        .t2_vertices_1(operands_t2_vertices_1),
-        .t2_vertices_2(operands_t2_vertices_2),
-        .t2_vertices_3(operands_t2_vertices_3),
-        .t2_vertices_4(operands_t2_vertices_4),
-        .t2_vertices_5(operands_t2_vertices_5),
-        .t2_vertices_6(operands_t2_vertices_6),
-        .t2_vertices_7(operands_t2_vertices_7),
-        .t2_vertices_8(operands_t2_vertices_8),
-        .operands_0(operands_operands_0),
-        .operands_1(operands_operands_1),
-        .operands_2(operands_operands_2),
-        .operands_3(operands_operands_3),
-        .operands_4(operands_operands_4),
-        .operands_5(operands_operands_5),
-        .operands_6(operands_operands_6),
-        .operands_7(operands_operands_7),
-        .operands_8(operands_operands_8),
-        .operands_9(operands_operands_9),
-        .operands_10(operands_operands_10),
-        .operands_11(operands_operands_11),
-        .operands_12(operands_operands_12),
-        .operands_13(operands_operands_13),
-        .operands_14(operands_operands_14),
-        .operands_15(operands_operands_15),
-        .operands_16(operands_operands_16),
-        .operands_17(operands_operands_17),
-        .operands_18(operands_operands_18),
-        .operands_19(operands_operands_19),
-        .operands_20(operands_operands_20),
-        .operands_21(operands_operands_21),
-        .operands_22(operands_operands_22),
-        .operands_23(operands_operands_23)
-    );
-    tritri_pipeline_w24_certified_orient3d u_orient3d_0(
-        .clock(orient3d_0_clock),
-        .advance(orient3d_0_advance),
-        .a_0(orient3d_0_a_0),
-        .a_1(orient3d_0_a_1),
-        .a_2(orient3d_0_a_2),
-        .b_0(orient3d_0_b_0),
-        .b_1(orient3d_0_b_1),
-        .b_2(orient3d_0_b_2),
-        .c_0(orient3d_0_c_0),
-        .c_1(orient3d_0_c_1),
-        .c_2(orient3d_0_c_2),
-        .d_0(orient3d_0_d_0),
-        .d_1(orient3d_0_d_1),
-        .d_2(orient3d_0_d_2),
-        .negative(orient3d_0_negative),
-        .zero(orient3d_0_zero),
-        .certain(orient3d_0_certain),
-        .value(orient3d_0_value)
-    );
-    tritri_pipeline_w24_certified_orient3d u_orient3d_1(
-        .clock(orient3d_1_clock),
-        .advance(orient3d_1_advance),
-        .a_0(orient3d_1_a_0),
-        .a_1(orient3d_1_a_1),
-        .a_2(orient3d_1_a_2),
-        .b_0(orient3d_1_b_0),
-        .b_1(orient3d_1_b_1),
-        .b_2(orient3d_1_b_2),
-        .c_0(orient3d_1_c_0),
-        .c_1(orient3d_1_c_1),
-        .c_2(orient3d_1_c_2),
-        .d_0(orient3d_1_d_0),
-        .d_1(orient3d_1_d_1),
-        .d_2(orient3d_1_d_2),
-        .negative(orient3d_1_negative),
-        .zero(orient3d_1_zero),
-        .certain(orient3d_1_certain),
-        .value(orient3d_1_value)
-    );
-    tritri_pipeline_w24_ends_difference u_ends_difference(
-        .clock(ends_difference_clock),
-        .advance(ends_difference_advance),
-        .t1_distance_0(ends_difference_t1_distance_0),
-        .t1_distance_1(ends_difference_t1_distance_1),
-        .t1_distance_2(ends_difference_t1_distance_2),
-        .t2_distance_0(ends_difference_t2_distance_0),
-        .t2_distance_1(ends_difference_t2_distance_1),
-        .t2_distance_2(ends_difference_t2_distance_2),
-        .t1_degenerate(ends_difference_t1_degenerate),
-        .t1_segment_low(ends_difference_t1_segment_low),
-        .t1_segment_high(ends_difference_t1_segment_high),
-        .t2_segment_low(ends_difference_t2_segment_low),
-        .t2_segment_high(ends_difference_t2_segment_high),
-        .difference(ends_difference_difference)
-    );
-    tritri_pipeline_w24_delay_line_w74_n16 u_ends_difference_to_values(
-        .clock(ends_difference_to_values_clock),
-        .advance(ends_difference_to_values_advance),
-        .d(ends_difference_to_values_d),
-        .q(ends_difference_to_values_q)
-    );
-    tritri_pipeline_w24_third_determinant u_third_determinant(
-        .clock(third_determinant_clock),
-        .advance(third_determinant_advance),
-        .ends_difference(third_determinant_ends_difference),
-        .first(third_determinant_first),
-        .second(third_determinant_second),
-        .negative(third_determinant_negative),
-        .zero(third_determinant_zero)
-    );
-    tritri_pipeline_w24_delay_line_w1_n6 u_degenerate_to_distances(
-        .clock(degenerate_to_distances_clock),
-        .advance(degenerate_to_distances_advance),
-        .d(degenerate_to_distances_d),
-        .q(degenerate_to_distances_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n6 u_segment_ends_to_distances_0(
-        .clock(segment_ends_to_distances_0_clock),
-        .advance(segment_ends_to_distances_0_advance),
-        .d(segment_ends_to_distances_0_d),
-        .q(segment_ends_to_distances_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n6 u_segment_ends_to_distances_1(
-        .clock(segment_ends_to_distances_1_clock),
-        .advance(segment_ends_to_distances_1_advance),
-        .d(segment_ends_to_distances_1_d),
-        .q(segment_ends_to_distances_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n6 u_segment_ends_to_distances_2(
-        .clock(segment_ends_to_distances_2_clock),
-        .advance(segment_ends_to_distances_2_advance),
-        .d(segment_ends_to_distances_2_d),
-        .q(segment_ends_to_distances_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n6 u_segment_ends_to_distances_3(
-        .clock(segment_ends_to_distances_3_clock),
-        .advance(segment_ends_to_distances_3_advance),
-        .d(segment_ends_to_distances_3_d),
-        .q(segment_ends_to_distances_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_0(
-        .clock(orient_signs_to_decision_0_clock),
-        .advance(orient_signs_to_decision_0_advance),
-        .d(orient_signs_to_decision_0_d),
-        .q(orient_signs_to_decision_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_1(
-        .clock(orient_signs_to_decision_1_clock),
-        .advance(orient_signs_to_decision_1_advance),
-        .d(orient_signs_to_decision_1_d),
-        .q(orient_signs_to_decision_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_2(
-        .clock(orient_signs_to_decision_2_clock),
-        .advance(orient_signs_to_decision_2_advance),
-        .d(orient_signs_to_decision_2_d),
-        .q(orient_signs_to_decision_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_3(
-        .clock(orient_signs_to_decision_3_clock),
-        .advance(orient_signs_to_decision_3_advance),
-        .d(orient_signs_to_decision_3_d),
-        .q(orient_signs_to_decision_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_4(
-        .clock(orient_signs_to_decision_4_clock),
-        .advance(orient_signs_to_decision_4_advance),
-        .d(orient_signs_to_decision_4_d),
-        .q(orient_signs_to_decision_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_5(
-        .clock(orient_signs_to_decision_5_clock),
-        .advance(orient_signs_to_decision_5_advance),
-        .d(orient_signs_to_decision_5_d),
-        .q(orient_signs_to_decision_5_q)
+    tritri_pipeline_w24_general_path u_path(
+        .clock(path_clock),
+        .reset(path_reset),
+        .advance(path_advance),
+        .in_valid(path_in_valid),
+        .in_bset(path_in_bset),
+        .in_id(path_in_id),
+        .in_x0(path_in_x0),
+        .in_y0(path_in_y0),
+        .in_z0(path_in_z0),
+        .in_x1(path_in_x1),
+        .in_y1(path_in_y1),
+        .in_z1(path_in_z1),
+        .in_x2(path_in_x2),
+        .in_y2(path_in_y2),
+        .in_z2(path_in_z2),
+        .out_valid(path_out_valid),
+        .out_hit(path_out_hit),
+        .out_certain(path_out_certain),
+        .out_base_id(path_out_base_id),
+        .out_stream_id(path_out_stream_id),
+        .pair_t1_vertices_0(path_pair_t1_vertices_0),
+        .pair_t1_vertices_1(path_pair_t1_vertices_1),
+        .pair_t1_vertices_2(path_pair_t1_vertices_2),
+        .pair_t1_vertices_3(path_pair_t1_vertices_3),
+        .pair_t1_vertices_4(path_pair_t1_vertices_4),
+        .pair_t1_vertices_5(path_pair_t1_vertices_5),
+        .pair_t1_vertices_6(path_pair_t1_vertices_6),
+        .pair_t1_vertices_7(path_pair_t1_vertices_7),
+        .pair_t1_vertices_8(path_pair_t1_vertices_8),
+        .pair_t2_vertices_0(path_pair_t2_vertices_0),
+        .pair_t2_vertices_1(path_pair_t2_vertices_1),
+        .pair_t2_vertices_2(path_pair_t2_vertices_2),
+        .pair_t2_vertices_3(path_pair_t2_vertices_3),
+        .pair_t2_vertices_4(path_pair_t2_vertices_4),
+        .pair_t2_vertices_5(path_pair_t2_vertices_5),
+        .pair_t2_vertices_6(path_pair_t2_vertices_6),
+        .pair_t2_vertices_7(path_pair_t2_vertices_7),
+        .pair_t2_vertices_8(path_pair_t2_vertices_8),
+        .pair_axis(path_pair_axis),
+        .pair_t1_normal_negative_0(path_pair_t1_normal_negative_0),
+        .pair_t1_normal_negative_1(path_pair_t1_normal_negative_1),
+        .pair_t1_normal_negative_2(path_pair_t1_normal_negative_2),
+        .pair_t1_normal_zero_0(path_pair_t1_normal_zero_0),
+        .pair_t1_normal_zero_1(path_pair_t1_normal_zero_1),
+        .pair_t1_normal_zero_2(path_pair_t1_normal_zero_2),
+        .pair_t2_normal_negative_0(path_pair_t2_normal_negative_0),
+        .pair_t2_normal_negative_1(path_pair_t2_normal_negative_1),
+        .pair_t2_normal_negative_2(path_pair_t2_normal_negative_2),
+        .pair_t2_normal_zero_0(path_pair_t2_normal_zero_0),
+        .pair_t2_normal_zero_1(path_pair_t2_normal_zero_1),
+        .pair_t2_normal_zero_2(path_pair_t2_normal_zero_2),
+        .pair_t1_degenerate(path_pair_t1_degenerate),
+        .pair_t2_degenerate(path_pair_t2_degenerate),
+        .pair_t1_segment_low(path_pair_t1_segment_low),
+        .pair_t1_segment_high(path_pair_t1_segment_high),
+        .pair_t2_segment_low(path_pair_t2_segment_low),
+        .pair_t2_segment_high(path_pair_t2_segment_high),
+        .sides_valid(path_sides_valid),
+        .sides_t1_zero_0(path_sides_t1_zero_0),
+        .sides_t1_zero_1(path_sides_t1_zero_1),
+        .sides_t1_zero_2(path_sides_t1_zero_2),
+        .sides_t2_zero_0(path_sides_t2_zero_0),
+        .sides_t2_zero_1(path_sides_t2_zero_1),
+        .sides_t2_zero_2(path_sides_t2_zero_2),
+        .coplanar_hit(path_coplanar_hit),
+        .degenerate_pair_hit(path_degenerate_pair_hit)
     );
     tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
@@ -1336,334 +327,6 @@ module tritri_pipeline_w24 (
         .t2_segment_high(degenerate_pair_t2_segment_high),
         .hit(degenerate_pair__hit)
     );
-    tritri_pipeline_w24_decision u_decision(
-        .clock(decision_clock),
-        .advance(decision_advance),
-        .t1_degenerate(decision_t1_degenerate),
-        .t2_degenerate(decision_t2_degenerate),
-        .t1_segment_low(decision_t1_segment_low),
-        .t1_segment_high(decision_t1_segment_high),
-        .t2_segment_low(decision_t2_segment_low),
-        .t2_segment_high(decision_t2_segment_high),
-        .t1_side_negative_0(decision_t1_side_negative_0),
-        .t1_side_negative_1(decision_t1_side_negative_1),
-        .t1_side_negative_2(decision_t1_side_negative_2),
-        .t1_side_zero_0(decision_t1_side_zero_0),
-        .t1_side_zero_1(decision_t1_side_zero_1),
-        .t1_side_zero_2(decision_t1_side_zero_2),
-        .t2_side_negative_0(decision_t2_side_negative_0),
-        .t2_side_negative_1(decision_t2_side_negative_1),
-        .t2_side_negative_2(decision_t2_side_negative_2),
-        .t2_side_zero_0(decision_t2_side_zero_0),
-        .t2_side_zero_1(decision_t2_side_zero_1),
-        .t2_side_zero_2(decision_t2_side_zero_2),
-        .orient_negative_0(decision_orient_negative_0),
-        .orient_negative_1(decision_orient_negative_1),
-        .orient_negative_2(decision_orient_negative_2),
-        .orient_zero_0(decision_orient_zero_0),
-        .orient_zero_1(decision_orient_zero_1),
-        .orient_zero_2(decision_orient_zero_2),
-        .t1_side_certain_0(decision_t1_side_certain_0),
-        .t1_side_certain_1(decision_t1_side_certain_1),
-        .t1_side_certain_2(decision_t1_side_certain_2),
-        .t2_side_certain_0(decision_t2_side_certain_0),
-        .t2_side_certain_1(decision_t2_side_certain_1),
-        .t2_side_certain_2(decision_t2_side_certain_2),
-        .orient_certain_0(decision_orient_certain_0),
-        .orient_certain_1(decision_orient_certain_1),
-        .coplanar_hit(decision_coplanar_hit),
-        .degenerate_pair_hit(decision_degenerate_pair_hit),
-        .hit(decision_hit),
-        .certain(decision_certain)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_0(
-        .clock(t1_vertices_to_operands_0_clock),
-        .advance(t1_vertices_to_operands_0_advance),
-        .d(t1_vertices_to_operands_0_d),
-        .q(t1_vertices_to_operands_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_1(
-        .clock(t1_vertices_to_operands_1_clock),
-        .advance(t1_vertices_to_operands_1_advance),
-        .d(t1_vertices_to_operands_1_d),
-        .q(t1_vertices_to_operands_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_2(
-        .clock(t1_vertices_to_operands_2_clock),
-        .advance(t1_vertices_to_operands_2_advance),
-        .d(t1_vertices_to_operands_2_d),
-        .q(t1_vertices_to_operands_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_3(
-        .clock(t1_vertices_to_operands_3_clock),
-        .advance(t1_vertices_to_operands_3_advance),
-        .d(t1_vertices_to_operands_3_d),
-        .q(t1_vertices_to_operands_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_4(
-        .clock(t1_vertices_to_operands_4_clock),
-        .advance(t1_vertices_to_operands_4_advance),
-        .d(t1_vertices_to_operands_4_d),
-        .q(t1_vertices_to_operands_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_5(
-        .clock(t1_vertices_to_operands_5_clock),
-        .advance(t1_vertices_to_operands_5_advance),
-        .d(t1_vertices_to_operands_5_d),
-        .q(t1_vertices_to_operands_5_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_6(
-        .clock(t1_vertices_to_operands_6_clock),
-        .advance(t1_vertices_to_operands_6_advance),
-        .d(t1_vertices_to_operands_6_d),
-        .q(t1_vertices_to_operands_6_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_7(
-        .clock(t1_vertices_to_operands_7_clock),
-        .advance(t1_vertices_to_operands_7_advance),
-        .d(t1_vertices_to_operands_7_d),
-        .q(t1_vertices_to_operands_7_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t1_vertices_to_operands_8(
-        .clock(t1_vertices_to_operands_8_clock),
-        .advance(t1_vertices_to_operands_8_advance),
-        .d(t1_vertices_to_operands_8_d),
-        .q(t1_vertices_to_operands_8_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_0(
-        .clock(t2_vertices_to_operands_0_clock),
-        .advance(t2_vertices_to_operands_0_advance),
-        .d(t2_vertices_to_operands_0_d),
-        .q(t2_vertices_to_operands_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_1(
-        .clock(t2_vertices_to_operands_1_clock),
-        .advance(t2_vertices_to_operands_1_advance),
-        .d(t2_vertices_to_operands_1_d),
-        .q(t2_vertices_to_operands_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_2(
-        .clock(t2_vertices_to_operands_2_clock),
-        .advance(t2_vertices_to_operands_2_advance),
-        .d(t2_vertices_to_operands_2_d),
-        .q(t2_vertices_to_operands_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_3(
-        .clock(t2_vertices_to_operands_3_clock),
-        .advance(t2_vertices_to_operands_3_advance),
-        .d(t2_vertices_to_operands_3_d),
-        .q(t2_vertices_to_operands_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_4(
-        .clock(t2_vertices_to_operands_4_clock),
-        .advance(t2_vertices_to_operands_4_advance),
-        .d(t2_vertices_to_operands_4_d),
-        .q(t2_vertices_to_operands_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_5(
-        .clock(t2_vertices_to_operands_5_clock),
-        .advance(t2_vertices_to_operands_5_advance),
-        .d(t2_vertices_to_operands_5_d),
-        .q(t2_vertices_to_operands_5_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_6(
-        .clock(t2_vertices_to_operands_6_clock),
-        .advance(t2_vertices_to_operands_6_advance),
-        .d(t2_vertices_to_operands_6_d),
-        .q(t2_vertices_to_operands_6_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_7(
-        .clock(t2_vertices_to_operands_7_clock),
-        .advance(t2_vertices_to_operands_7_advance),
-        .d(t2_vertices_to_operands_7_d),
-        .q(t2_vertices_to_operands_7_q)
-    );
-    tritri_pipeline_w24_delay_line_w24_n10 u_t2_vertices_to_operands_8(
-        .clock(t2_vertices_to_operands_8_clock),
-        .advance(t2_vertices_to_operands_8_advance),
-        .d(t2_vertices_to_operands_8_d),
-        .q(t2_vertices_to_operands_8_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n9 u_degenerate_to_operands_0(
-        .clock(degenerate_to_operands_0_clock),
-        .advance(degenerate_to_operands_0_advance),
-        .d(degenerate_to_operands_0_d),
-        .q(degenerate_to_operands_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n9 u_degenerate_to_operands_1(
-        .clock(degenerate_to_operands_1_clock),
-        .advance(degenerate_to_operands_1_advance),
-        .d(degenerate_to_operands_1_d),
-        .q(degenerate_to_operands_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_0(
-        .clock(segment_ends_to_operands_0_clock),
-        .advance(segment_ends_to_operands_0_advance),
-        .d(segment_ends_to_operands_0_d),
-        .q(segment_ends_to_operands_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_1(
-        .clock(segment_ends_to_operands_1_clock),
-        .advance(segment_ends_to_operands_1_advance),
-        .d(segment_ends_to_operands_1_d),
-        .q(segment_ends_to_operands_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_2(
-        .clock(segment_ends_to_operands_2_clock),
-        .advance(segment_ends_to_operands_2_advance),
-        .d(segment_ends_to_operands_2_d),
-        .q(segment_ends_to_operands_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n9 u_segment_ends_to_operands_3(
-        .clock(segment_ends_to_operands_3_clock),
-        .advance(segment_ends_to_operands_3_advance),
-        .d(segment_ends_to_operands_3_d),
-        .q(segment_ends_to_operands_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n17 u_degenerate_to_decision_0(
-        .clock(degenerate_to_decision_0_clock),
-        .advance(degenerate_to_decision_0_advance),
-        .d(degenerate_to_decision_0_d),
-        .q(degenerate_to_decision_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n17 u_degenerate_to_decision_1(
-        .clock(degenerate_to_decision_1_clock),
-        .advance(degenerate_to_decision_1_advance),
-        .d(degenerate_to_decision_1_d),
-        .q(degenerate_to_decision_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n17 u_segment_ends_to_decision_0(
-        .clock(segment_ends_to_decision_0_clock),
-        .advance(segment_ends_to_decision_0_advance),
-        .d(segment_ends_to_decision_0_d),
-        .q(segment_ends_to_decision_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n17 u_segment_ends_to_decision_1(
-        .clock(segment_ends_to_decision_1_clock),
-        .advance(segment_ends_to_decision_1_advance),
-        .d(segment_ends_to_decision_1_d),
-        .q(segment_ends_to_decision_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n17 u_segment_ends_to_decision_2(
-        .clock(segment_ends_to_decision_2_clock),
-        .advance(segment_ends_to_decision_2_advance),
-        .d(segment_ends_to_decision_2_d),
-        .q(segment_ends_to_decision_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w2_n17 u_segment_ends_to_decision_3(
-        .clock(segment_ends_to_decision_3_clock),
-        .advance(segment_ends_to_decision_3_advance),
-        .d(segment_ends_to_decision_3_d),
-        .q(segment_ends_to_decision_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_0(
-        .clock(sides_to_decision_0_clock),
-        .advance(sides_to_decision_0_advance),
-        .d(sides_to_decision_0_d),
-        .q(sides_to_decision_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_1(
-        .clock(sides_to_decision_1_clock),
-        .advance(sides_to_decision_1_advance),
-        .d(sides_to_decision_1_d),
-        .q(sides_to_decision_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_2(
-        .clock(sides_to_decision_2_clock),
-        .advance(sides_to_decision_2_advance),
-        .d(sides_to_decision_2_d),
-        .q(sides_to_decision_2_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_3(
-        .clock(sides_to_decision_3_clock),
-        .advance(sides_to_decision_3_advance),
-        .d(sides_to_decision_3_d),
-        .q(sides_to_decision_3_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_4(
-        .clock(sides_to_decision_4_clock),
-        .advance(sides_to_decision_4_advance),
-        .d(sides_to_decision_4_d),
-        .q(sides_to_decision_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_5(
-        .clock(sides_to_decision_5_clock),
-        .advance(sides_to_decision_5_advance),
-        .d(sides_to_decision_5_d),
-        .q(sides_to_decision_5_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_6(
-        .clock(sides_to_decision_6_clock),
-        .advance(sides_to_decision_6_advance),
-        .d(sides_to_decision_6_d),
-        .q(sides_to_decision_6_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_7(
-        .clock(sides_to_decision_7_clock),
-        .advance(sides_to_decision_7_advance),
-        .d(sides_to_decision_7_d),
-        .q(sides_to_decision_7_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_8(
-        .clock(sides_to_decision_8_clock),
-        .advance(sides_to_decision_8_advance),
-        .d(sides_to_decision_8_d),
-        .q(sides_to_decision_8_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_9(
-        .clock(sides_to_decision_9_clock),
-        .advance(sides_to_decision_9_advance),
-        .d(sides_to_decision_9_d),
-        .q(sides_to_decision_9_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_10(
-        .clock(sides_to_decision_10_clock),
-        .advance(sides_to_decision_10_advance),
-        .d(sides_to_decision_10_d),
-        .q(sides_to_decision_10_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_11(
-        .clock(sides_to_decision_11_clock),
-        .advance(sides_to_decision_11_advance),
-        .d(sides_to_decision_11_d),
-        .q(sides_to_decision_11_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_12(
-        .clock(sides_to_decision_12_clock),
-        .advance(sides_to_decision_12_advance),
-        .d(sides_to_decision_12_d),
-        .q(sides_to_decision_12_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_13(
-        .clock(sides_to_decision_13_clock),
-        .advance(sides_to_decision_13_advance),
-        .d(sides_to_decision_13_d),
-        .q(sides_to_decision_13_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_14(
-        .clock(sides_to_decision_14_clock),
-        .advance(sides_to_decision_14_advance),
-        .d(sides_to_decision_14_d),
-        .q(sides_to_decision_14_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_15(
-        .clock(sides_to_decision_15_clock),
-        .advance(sides_to_decision_15_advance),
-        .d(sides_to_decision_15_d),
-        .q(sides_to_decision_15_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_16(
-        .clock(sides_to_decision_16_clock),
-        .advance(sides_to_decision_16_advance),
-        .d(sides_to_decision_16_d),
-        .q(sides_to_decision_16_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_17(
-        .clock(sides_to_decision_17_clock),
-        .advance(sides_to_decision_17_advance),
-        .d(sides_to_decision_17_d),
-        .q(sides_to_decision_17_q)
-    );
     tritri_pipeline_w24_delay_line_w1_n15 u_coplanar_to_decision(
         .clock(coplanar_to_decision_clock),
         .advance(coplanar_to_decision_advance),
@@ -1678,527 +341,92 @@ module tritri_pipeline_w24 (
     );
 
     // Update code
-    assign record_valid_clock = clock;
-    assign record_bset_clock = clock;
-    assign record_id_clock = clock;
-    assign front_end_clock = clock;
-    assign base_clock = clock;
-    assign pair_valid_clock = clock;
-    assign base_id_clock = clock;
-    assign stream_id_clock = clock;
-    assign plane_side_t1_clock = clock;
-    assign plane_side_t2_clock = clock;
-    assign align_t1_clock = clock;
-    assign align_t2_clock = clock;
-    assign interval_overlap_clock = clock;
-    assign operands_clock = clock;
-    assign orient3d_0_clock = clock;
-    assign orient3d_1_clock = clock;
-    assign ends_difference_clock = clock;
-    assign ends_difference_to_values_clock = clock;
-    assign third_determinant_clock = clock;
-    assign degenerate_to_distances_clock = clock;
+    assign path_clock = clock;
     assign coplanar_clock = clock;
     assign degenerate_pair_clock = clock;
-    assign decision_clock = clock;
     assign coplanar_to_decision_clock = clock;
     assign degenerate_pair_to_decision_clock = clock;
-    assign record_valid_reset = reset;
-    assign record_valid_advance = advance;
-    assign record_bset_advance = advance;
-    assign record_id_advance = advance;
-    assign front_end_advance = advance;
-    assign pair_valid_reset = reset;
-    assign pair_valid_advance = advance;
-    assign base_id_advance = advance;
-    assign stream_id_advance = advance;
-    assign plane_side_t1_advance = advance;
-    assign plane_side_t2_advance = advance;
-    assign align_t1_advance = advance;
-    assign align_t2_advance = advance;
-    assign interval_overlap_advance = advance;
-    assign operands_advance = advance;
-    assign orient3d_0_advance = advance;
-    assign orient3d_1_advance = advance;
-    assign ends_difference_advance = advance;
-    assign ends_difference_to_values_advance = advance;
-    assign third_determinant_advance = advance;
-    assign degenerate_to_distances_advance = advance;
+    assign path_reset = reset;
+    assign path_advance = advance;
     assign coplanar_advance = advance;
     assign degenerate_pair_advance = advance;
-    assign decision_advance = advance;
     assign coplanar_to_decision_advance = advance;
     assign degenerate_pair_to_decision_advance = advance;
-    assign input_vertices_0_clock = clock;
-    assign input_vertices_0_advance = advance;
-    assign t1_vertices_to_operands_0_clock = clock;
-    assign t1_vertices_to_operands_0_advance = advance;
-    assign t2_vertices_to_operands_0_clock = clock;
-    assign t2_vertices_to_operands_0_advance = advance;
-    assign input_vertices_1_clock = clock;
-    assign input_vertices_1_advance = advance;
-    assign t1_vertices_to_operands_1_clock = clock;
-    assign t1_vertices_to_operands_1_advance = advance;
-    assign t2_vertices_to_operands_1_clock = clock;
-    assign t2_vertices_to_operands_1_advance = advance;
-    assign input_vertices_2_clock = clock;
-    assign input_vertices_2_advance = advance;
-    assign t1_vertices_to_operands_2_clock = clock;
-    assign t1_vertices_to_operands_2_advance = advance;
-    assign t2_vertices_to_operands_2_clock = clock;
-    assign t2_vertices_to_operands_2_advance = advance;
-    assign input_vertices_3_clock = clock;
-    assign input_vertices_3_advance = advance;
-    assign t1_vertices_to_operands_3_clock = clock;
-    assign t1_vertices_to_operands_3_advance = advance;
-    assign t2_vertices_to_operands_3_clock = clock;
-    assign t2_vertices_to_operands_3_advance = advance;
-    assign input_vertices_4_clock = clock;
-    assign input_vertices_4_advance = advance;
-    assign t1_vertices_to_operands_4_clock = clock;
-    assign t1_vertices_to_operands_4_advance = advance;
-    assign t2_vertices_to_operands_4_clock = clock;
-    assign t2_vertices_to_operands_4_advance = advance;
-    assign input_vertices_5_clock = clock;
-    assign input_vertices_5_advance = advance;
-    assign t1_vertices_to_operands_5_clock = clock;
-    assign t1_vertices_to_operands_5_advance = advance;
-    assign t2_vertices_to_operands_5_clock = clock;
-    assign t2_vertices_to_operands_5_advance = advance;
-    assign input_vertices_6_clock = clock;
-    assign input_vertices_6_advance = advance;
-    assign t1_vertices_to_operands_6_clock = clock;
-    assign t1_vertices_to_operands_6_advance = advance;
-    assign t2_vertices_to_operands_6_clock = clock;
-    assign t2_vertices_to_operands_6_advance = advance;
-    assign input_vertices_7_clock = clock;
-    assign input_vertices_7_advance = advance;
-    assign t1_vertices_to_operands_7_clock = clock;
-    assign t1_vertices_to_operands_7_advance = advance;
-    assign t2_vertices_to_operands_7_clock = clock;
-    assign t2_vertices_to_operands_7_advance = advance;
-    assign input_vertices_8_clock = clock;
-    assign input_vertices_8_advance = advance;
-    assign t1_vertices_to_operands_8_clock = clock;
-    assign t1_vertices_to_operands_8_advance = advance;
-    assign t2_vertices_to_operands_8_clock = clock;
-    assign t2_vertices_to_operands_8_advance = advance;
-    assign degenerate_to_operands_0_clock = clock;
-    assign degenerate_to_operands_0_advance = advance;
-    assign degenerate_to_decision_0_clock = clock;
-    assign degenerate_to_decision_0_advance = advance;
-    assign degenerate_to_operands_1_clock = clock;
-    assign degenerate_to_operands_1_advance = advance;
-    assign degenerate_to_decision_1_clock = clock;
-    assign degenerate_to_decision_1_advance = advance;
-    assign segment_ends_to_operands_0_clock = clock;
-    assign segment_ends_to_operands_0_advance = advance;
-    assign segment_ends_to_decision_0_clock = clock;
-    assign segment_ends_to_decision_0_advance = advance;
-    assign segment_ends_to_operands_1_clock = clock;
-    assign segment_ends_to_operands_1_advance = advance;
-    assign segment_ends_to_decision_1_clock = clock;
-    assign segment_ends_to_decision_1_advance = advance;
-    assign segment_ends_to_operands_2_clock = clock;
-    assign segment_ends_to_operands_2_advance = advance;
-    assign segment_ends_to_decision_2_clock = clock;
-    assign segment_ends_to_decision_2_advance = advance;
-    assign segment_ends_to_operands_3_clock = clock;
-    assign segment_ends_to_operands_3_advance = advance;
-    assign segment_ends_to_decision_3_clock = clock;
-    assign segment_ends_to_decision_3_advance = advance;
-    assign orient_signs_to_decision_0_clock = clock;
-    assign orient_signs_to_decision_0_advance = advance;
-    assign orient_signs_to_decision_1_clock = clock;
-    assign orient_signs_to_decision_1_advance = advance;
-    assign orient_signs_to_decision_2_clock = clock;
-    assign orient_signs_to_decision_2_advance = advance;
-    assign orient_signs_to_decision_3_clock = clock;
-    assign orient_signs_to_decision_3_advance = advance;
-    assign orient_signs_to_decision_4_clock = clock;
-    assign orient_signs_to_decision_4_advance = advance;
-    assign orient_signs_to_decision_5_clock = clock;
-    assign orient_signs_to_decision_5_advance = advance;
-    assign sides_to_decision_0_clock = clock;
-    assign sides_to_decision_0_advance = advance;
-    assign sides_to_decision_1_clock = clock;
-    assign sides_to_decision_1_advance = advance;
-    assign sides_to_decision_2_clock = clock;
-    assign sides_to_decision_2_advance = advance;
-    assign sides_to_decision_3_clock = clock;
-    assign sides_to_decision_3_advance = advance;
-    assign sides_to_decision_4_clock = clock;
-    assign sides_to_decision_4_advance = advance;
-    assign sides_to_decision_5_clock = clock;
-    assign sides_to_decision_5_advance = advance;
-    assign sides_to_decision_6_clock = clock;
-    assign sides_to_decision_6_advance = advance;
-    assign sides_to_decision_7_clock = clock;
-    assign sides_to_decision_7_advance = advance;
-    assign sides_to_decision_8_clock = clock;
-    assign sides_to_decision_8_advance = advance;
-    assign sides_to_decision_9_clock = clock;
-    assign sides_to_decision_9_advance = advance;
-    assign sides_to_decision_10_clock = clock;
-    assign sides_to_decision_10_advance = advance;
-    assign sides_to_decision_11_clock = clock;
-    assign sides_to_decision_11_advance = advance;
-    assign sides_to_decision_12_clock = clock;
-    assign sides_to_decision_12_advance = advance;
-    assign sides_to_decision_13_clock = clock;
-    assign sides_to_decision_13_advance = advance;
-    assign sides_to_decision_14_clock = clock;
-    assign sides_to_decision_14_advance = advance;
-    assign sides_to_decision_15_clock = clock;
-    assign sides_to_decision_15_advance = advance;
-    assign sides_to_decision_16_clock = clock;
-    assign sides_to_decision_16_advance = advance;
-    assign sides_to_decision_17_clock = clock;
-    assign sides_to_decision_17_advance = advance;
-    assign record_valid_d = in_valid;
-    assign record_bset_d = in_bset;
-    assign record_id_d = in_id;
-    assign input_vertices_0_d = in_x0;
-    assign input_vertices_1_d = in_y0;
-    assign input_vertices_2_d = in_z0;
-    assign input_vertices_3_d = in_x1;
-    assign input_vertices_4_d = in_y1;
-    assign input_vertices_5_d = in_z1;
-    assign input_vertices_6_d = in_x2;
-    assign input_vertices_7_d = in_y2;
-    assign input_vertices_8_d = in_z2;
-    assign front_end_vertices_in_0 = input_vertices_0_q;
-    assign front_end_vertices_in_1 = input_vertices_1_q;
-    assign front_end_vertices_in_2 = input_vertices_2_q;
-    assign front_end_vertices_in_3 = input_vertices_3_q;
-    assign front_end_vertices_in_4 = input_vertices_4_q;
-    assign front_end_vertices_in_5 = input_vertices_5_q;
-    assign front_end_vertices_in_6 = input_vertices_6_q;
-    assign front_end_vertices_in_7 = input_vertices_7_q;
-    assign front_end_vertices_in_8 = input_vertices_8_q;
-    assign base_load = advance && record_valid_q && record_bset_q;
-    assign base_id_in = record_id_q;
-    assign base_degenerate_in = front_end_degenerate;
-    assign base_dominant_axis_in = front_end_dominant_axis;
-    assign base_segment_low_in = front_end_segment_low;
-    assign base_segment_high_in = front_end_segment_high;
-    assign base_edge_thermometer_in = front_end_edge_thermometer;
-    assign base_vertices_in_0 = front_end_vertices_0;
-    assign base_vertices_in_1 = front_end_vertices_1;
-    assign base_vertices_in_2 = front_end_vertices_2;
-    assign base_vertices_in_3 = front_end_vertices_3;
-    assign base_vertices_in_4 = front_end_vertices_4;
-    assign base_vertices_in_5 = front_end_vertices_5;
-    assign base_vertices_in_6 = front_end_vertices_6;
-    assign base_vertices_in_7 = front_end_vertices_7;
-    assign base_vertices_in_8 = front_end_vertices_8;
-    assign base_normal_in_0 = front_end_normal_0;
-    assign base_normal_negative_in_0 = front_end_normal_negative_0;
-    assign base_normal_zero_in_0 = front_end_normal_zero_0;
-    assign base_normal_in_1 = front_end_normal_1;
-    assign base_normal_negative_in_1 = front_end_normal_negative_1;
-    assign base_normal_zero_in_1 = front_end_normal_zero_1;
-    assign base_normal_in_2 = front_end_normal_2;
-    assign base_normal_negative_in_2 = front_end_normal_negative_2;
-    assign base_normal_zero_in_2 = front_end_normal_zero_2;
-    assign pair_valid_d = record_valid_q && ~record_bset_q;
-    assign base_id_d = base__id;
-    assign stream_id_d = record_id_q;
-    assign plane_side_t1_vertices_0 = base_vertices_0;
-    assign plane_side_t2_vertices_0 = front_end_vertices_0;
-    assign plane_side_t1_vertices_1 = base_vertices_1;
-    assign plane_side_t2_vertices_1 = front_end_vertices_1;
-    assign plane_side_t1_vertices_2 = base_vertices_2;
-    assign plane_side_t2_vertices_2 = front_end_vertices_2;
-    assign plane_side_t1_vertices_3 = base_vertices_3;
-    assign plane_side_t2_vertices_3 = front_end_vertices_3;
-    assign plane_side_t1_vertices_4 = base_vertices_4;
-    assign plane_side_t2_vertices_4 = front_end_vertices_4;
-    assign plane_side_t1_vertices_5 = base_vertices_5;
-    assign plane_side_t2_vertices_5 = front_end_vertices_5;
-    assign plane_side_t1_vertices_6 = base_vertices_6;
-    assign plane_side_t2_vertices_6 = front_end_vertices_6;
-    assign plane_side_t1_vertices_7 = base_vertices_7;
-    assign plane_side_t2_vertices_7 = front_end_vertices_7;
-    assign plane_side_t1_vertices_8 = base_vertices_8;
-    assign plane_side_t2_vertices_8 = front_end_vertices_8;
-    assign plane_side_t1_plane_thermometer = front_end_edge_thermometer;
-    assign plane_side_t2_plane_thermometer = base_edge_thermometer;
-    assign plane_side_t1_plane_point_0 = front_end_vertices_0;
-    assign plane_side_t1_plane_normal_0 = front_end_normal_0;
-    assign plane_side_t2_plane_point_0 = base_vertices_0;
-    assign plane_side_t2_plane_normal_0 = base_normal_0;
-    assign plane_side_t1_plane_point_1 = front_end_vertices_1;
-    assign plane_side_t1_plane_normal_1 = front_end_normal_1;
-    assign plane_side_t2_plane_point_1 = base_vertices_1;
-    assign plane_side_t2_plane_normal_1 = base_normal_1;
-    assign plane_side_t1_plane_point_2 = front_end_vertices_2;
-    assign plane_side_t1_plane_normal_2 = front_end_normal_2;
-    assign plane_side_t2_plane_point_2 = base_vertices_2;
-    assign plane_side_t2_plane_normal_2 = base_normal_2;
-    assign align_t1_t1_negative_0 = plane_side_t1_negative_0;
-    assign align_t1_t1_zero_0 = plane_side_t1_zero_0;
-    assign align_t1_t2_negative_0 = plane_side_t2_negative_0;
-    assign align_t1_t2_zero_0 = plane_side_t2_zero_0;
-    assign align_t2_t2_aligned_negative_0 = align_t1_t2_aligned_negative_0;
-    assign align_t2_t2_aligned_zero_0 = align_t1_t2_aligned_zero_0;
-    assign align_t1_t1_negative_1 = plane_side_t1_negative_1;
-    assign align_t1_t1_zero_1 = plane_side_t1_zero_1;
-    assign align_t1_t2_negative_1 = plane_side_t2_negative_1;
-    assign align_t1_t2_zero_1 = plane_side_t2_zero_1;
-    assign align_t2_t2_aligned_negative_1 = align_t1_t2_aligned_negative_1;
-    assign align_t2_t2_aligned_zero_1 = align_t1_t2_aligned_zero_1;
-    assign align_t1_t1_negative_2 = plane_side_t1_negative_2;
-    assign align_t1_t1_zero_2 = plane_side_t1_zero_2;
-    assign align_t1_t2_negative_2 = plane_side_t2_negative_2;
-    assign align_t1_t2_zero_2 = plane_side_t2_zero_2;
-    assign align_t2_t2_aligned_negative_2 = align_t1_t2_aligned_negative_2;
-    assign align_t2_t2_aligned_zero_2 = align_t1_t2_aligned_zero_2;
-    assign align_t2_t1_rotation_in = align_t1_t1_rotation;
-    assign align_t2_t2_swap_in = align_t1_t2_swap;
-    assign interval_overlap_t1_rotation = align_t2_t1_rotation;
-    assign interval_overlap_t2_swap = align_t2_t2_swap;
-    assign interval_overlap_t2_rotation = align_t2_t2_rotation;
-    assign interval_overlap_t1_swap = align_t2_t1_swap;
-    assign t1_vertices_to_operands_0_d = base_vertices_0;
-    assign t2_vertices_to_operands_0_d = front_end_vertices_0;
-    assign operands_t1_vertices_0 = t1_vertices_to_operands_0_q;
-    assign operands_t2_vertices_0 = t2_vertices_to_operands_0_q;
-    assign t1_vertices_to_operands_1_d = base_vertices_1;
-    assign t2_vertices_to_operands_1_d = front_end_vertices_1;
-    assign operands_t1_vertices_1 = t1_vertices_to_operands_1_q;
-    assign operands_t2_vertices_1 = t2_vertices_to_operands_1_q;
-    assign t1_vertices_to_operands_2_d = base_vertices_2;
-    assign t2_vertices_to_operands_2_d = front_end_vertices_2;
-    assign operands_t1_vertices_2 = t1_vertices_to_operands_2_q;
-    assign operands_t2_vertices_2 = t2_vertices_to_operands_2_q;
-    assign t1_vertices_to_operands_3_d = base_vertices_3;
-    assign t2_vertices_to_operands_3_d = front_end_vertices_3;
-    assign operands_t1_vertices_3 = t1_vertices_to_operands_3_q;
-    assign operands_t2_vertices_3 = t2_vertices_to_operands_3_q;
-    assign t1_vertices_to_operands_4_d = base_vertices_4;
-    assign t2_vertices_to_operands_4_d = front_end_vertices_4;
-    assign operands_t1_vertices_4 = t1_vertices_to_operands_4_q;
-    assign operands_t2_vertices_4 = t2_vertices_to_operands_4_q;
-    assign t1_vertices_to_operands_5_d = base_vertices_5;
-    assign t2_vertices_to_operands_5_d = front_end_vertices_5;
-    assign operands_t1_vertices_5 = t1_vertices_to_operands_5_q;
-    assign operands_t2_vertices_5 = t2_vertices_to_operands_5_q;
-    assign t1_vertices_to_operands_6_d = base_vertices_6;
-    assign t2_vertices_to_operands_6_d = front_end_vertices_6;
-    assign operands_t1_vertices_6 = t1_vertices_to_operands_6_q;
-    assign operands_t2_vertices_6 = t2_vertices_to_operands_6_q;
-    assign t1_vertices_to_operands_7_d = base_vertices_7;
-    assign t2_vertices_to_operands_7_d = front_end_vertices_7;
-    assign operands_t1_vertices_7 = t1_vertices_to_operands_7_q;
-    assign operands_t2_vertices_7 = t2_vertices_to_operands_7_q;
-    assign t1_vertices_to_operands_8_d = base_vertices_8;
-    assign t2_vertices_to_operands_8_d = front_end_vertices_8;
-    assign operands_t1_vertices_8 = t1_vertices_to_operands_8_q;
-    assign operands_t2_vertices_8 = t2_vertices_to_operands_8_q;
-    assign degenerate_to_operands_0_d = base_degenerate;
-    assign degenerate_to_operands_1_d = front_end_degenerate;
-    assign segment_ends_to_operands_0_d = base_segment_low;
-    assign segment_ends_to_operands_1_d = base_segment_high;
-    assign segment_ends_to_operands_2_d = front_end_segment_low;
-    assign segment_ends_to_operands_3_d = front_end_segment_high;
-    assign operands_t1_degenerate = degenerate_to_operands_0_q;
-    assign operands_t2_degenerate = degenerate_to_operands_1_q;
-    assign operands_t1_segment_low = segment_ends_to_operands_0_q;
-    assign operands_t1_segment_high = segment_ends_to_operands_1_q;
-    assign operands_t2_segment_low = segment_ends_to_operands_2_q;
-    assign operands_t2_segment_high = segment_ends_to_operands_3_q;
-    assign operands_overlap_first_0 = interval_overlap_first_0;
-    assign operands_overlap_second_0 = interval_overlap_second_0;
-    assign operands_overlap_first_1 = interval_overlap_first_1;
-    assign operands_overlap_second_1 = interval_overlap_second_1;
-    assign operands_overlap_first_2 = interval_overlap_first_2;
-    assign operands_overlap_second_2 = interval_overlap_second_2;
-    assign operands_overlap_first_3 = interval_overlap_first_3;
-    assign operands_overlap_second_3 = interval_overlap_second_3;
-    assign orient3d_0_a_0 = operands_operands_0;
-    assign orient3d_0_b_0 = operands_operands_3;
-    assign orient3d_0_c_0 = operands_operands_6;
-    assign orient3d_0_d_0 = operands_operands_9;
-    assign orient3d_1_a_0 = operands_operands_12;
-    assign orient3d_1_b_0 = operands_operands_15;
-    assign orient3d_1_c_0 = operands_operands_18;
-    assign orient3d_1_d_0 = operands_operands_21;
-    assign orient3d_0_a_1 = operands_operands_1;
-    assign orient3d_0_b_1 = operands_operands_4;
-    assign orient3d_0_c_1 = operands_operands_7;
-    assign orient3d_0_d_1 = operands_operands_10;
-    assign orient3d_1_a_1 = operands_operands_13;
-    assign orient3d_1_b_1 = operands_operands_16;
-    assign orient3d_1_c_1 = operands_operands_19;
-    assign orient3d_1_d_1 = operands_operands_22;
-    assign orient3d_0_a_2 = operands_operands_2;
-    assign orient3d_0_b_2 = operands_operands_5;
-    assign orient3d_0_c_2 = operands_operands_8;
-    assign orient3d_0_d_2 = operands_operands_11;
-    assign orient3d_1_a_2 = operands_operands_14;
-    assign orient3d_1_b_2 = operands_operands_17;
-    assign orient3d_1_c_2 = operands_operands_20;
-    assign orient3d_1_d_2 = operands_operands_23;
-    assign degenerate_to_distances_d = base_degenerate;
-    assign segment_ends_to_distances_0_d = base_segment_low;
-    assign segment_ends_to_distances_1_d = base_segment_high;
-    assign segment_ends_to_distances_2_d = front_end_segment_low;
-    assign segment_ends_to_distances_3_d = front_end_segment_high;
-    assign segment_ends_to_distances_0_clock = clock;
-    assign segment_ends_to_distances_0_advance = advance;
-    assign segment_ends_to_distances_1_clock = clock;
-    assign segment_ends_to_distances_1_advance = advance;
-    assign segment_ends_to_distances_2_clock = clock;
-    assign segment_ends_to_distances_2_advance = advance;
-    assign segment_ends_to_distances_3_clock = clock;
-    assign segment_ends_to_distances_3_advance = advance;
-    assign ends_difference_t1_degenerate = degenerate_to_distances_q;
-    assign ends_difference_t1_segment_low = segment_ends_to_distances_0_q;
-    assign ends_difference_t1_segment_high = segment_ends_to_distances_1_q;
-    assign ends_difference_t2_segment_low = segment_ends_to_distances_2_q;
-    assign ends_difference_t2_segment_high = segment_ends_to_distances_3_q;
-    assign ends_difference_t1_distance_0 = plane_side_t1_distance_0;
-    assign ends_difference_t2_distance_0 = plane_side_t2_distance_0;
-    assign ends_difference_t1_distance_1 = plane_side_t1_distance_1;
-    assign ends_difference_t2_distance_1 = plane_side_t2_distance_1;
-    assign ends_difference_t1_distance_2 = plane_side_t1_distance_2;
-    assign ends_difference_t2_distance_2 = plane_side_t2_distance_2;
-    assign ends_difference_to_values_d = ends_difference_difference;
-    assign third_determinant_ends_difference = ends_difference_to_values_q;
-    assign third_determinant_first = orient3d_0_value;
-    assign third_determinant_second = orient3d_1_value;
-    assign coplanar_t1_vertices_0 = base_vertices_0;
-    assign coplanar_t2_vertices_0 = front_end_vertices_0;
-    assign degenerate_pair_t1_vertices_0 = base_vertices_0;
-    assign degenerate_pair_t2_vertices_0 = front_end_vertices_0;
-    assign coplanar_t1_vertices_1 = base_vertices_1;
-    assign coplanar_t2_vertices_1 = front_end_vertices_1;
-    assign degenerate_pair_t1_vertices_1 = base_vertices_1;
-    assign degenerate_pair_t2_vertices_1 = front_end_vertices_1;
-    assign coplanar_t1_vertices_2 = base_vertices_2;
-    assign coplanar_t2_vertices_2 = front_end_vertices_2;
-    assign degenerate_pair_t1_vertices_2 = base_vertices_2;
-    assign degenerate_pair_t2_vertices_2 = front_end_vertices_2;
-    assign coplanar_t1_vertices_3 = base_vertices_3;
-    assign coplanar_t2_vertices_3 = front_end_vertices_3;
-    assign degenerate_pair_t1_vertices_3 = base_vertices_3;
-    assign degenerate_pair_t2_vertices_3 = front_end_vertices_3;
-    assign coplanar_t1_vertices_4 = base_vertices_4;
-    assign coplanar_t2_vertices_4 = front_end_vertices_4;
-    assign degenerate_pair_t1_vertices_4 = base_vertices_4;
-    assign degenerate_pair_t2_vertices_4 = front_end_vertices_4;
-    assign coplanar_t1_vertices_5 = base_vertices_5;
-    assign coplanar_t2_vertices_5 = front_end_vertices_5;
-    assign degenerate_pair_t1_vertices_5 = base_vertices_5;
-    assign degenerate_pair_t2_vertices_5 = front_end_vertices_5;
-    assign coplanar_t1_vertices_6 = base_vertices_6;
-    assign coplanar_t2_vertices_6 = front_end_vertices_6;
-    assign degenerate_pair_t1_vertices_6 = base_vertices_6;
-    assign degenerate_pair_t2_vertices_6 = front_end_vertices_6;
-    assign coplanar_t1_vertices_7 = base_vertices_7;
-    assign coplanar_t2_vertices_7 = front_end_vertices_7;
-    assign degenerate_pair_t1_vertices_7 = base_vertices_7;
-    assign degenerate_pair_t2_vertices_7 = front_end_vertices_7;
-    assign coplanar_t1_vertices_8 = base_vertices_8;
-    assign coplanar_t2_vertices_8 = front_end_vertices_8;
-    assign degenerate_pair_t1_vertices_8 = base_vertices_8;
-    assign degenerate_pair_t2_vertices_8 = front_end_vertices_8;
-    assign coplanar_t1_normal_negative_0 = base_normal_negative_0;
-    assign coplanar_t1_normal_zero_0 = base_normal_zero_0;
-    assign coplanar_t2_normal_negative_0 = front_end_normal_negative_0;
-    assign coplanar_t2_normal_zero_0 = front_end_normal_zero_0;
-    assign coplanar_t1_normal_negative_1 = base_normal_negative_1;
-    assign coplanar_t1_normal_zero_1 = base_normal_zero_1;
-    assign coplanar_t2_normal_negative_1 = front_end_normal_negative_1;
-    assign coplanar_t2_normal_zero_1 = front_end_normal_zero_1;
-    assign coplanar_t1_normal_negative_2 = base_normal_negative_2;
-    assign coplanar_t1_normal_zero_2 = base_normal_zero_2;
-    assign coplanar_t2_normal_negative_2 = front_end_normal_negative_2;
-    assign coplanar_t2_normal_zero_2 = front_end_normal_zero_2;
-    assign degenerate_pair_t1_segment_low = base_segment_low;
-    assign degenerate_pair_t1_segment_high = base_segment_high;
-    assign degenerate_pair_t2_segment_low = front_end_segment_low;
-    assign degenerate_pair_t2_segment_high = front_end_segment_high;
-    assign degenerate_to_decision_0_d = degenerate_to_operands_0_q;
-    assign degenerate_to_decision_1_d = degenerate_to_operands_1_q;
-    assign segment_ends_to_decision_0_d = segment_ends_to_operands_0_q;
-    assign segment_ends_to_decision_1_d = segment_ends_to_operands_1_q;
-    assign segment_ends_to_decision_2_d = segment_ends_to_operands_2_q;
-    assign segment_ends_to_decision_3_d = segment_ends_to_operands_3_q;
-    assign sides_to_decision_0_d = plane_side_t1_negative_0;
-    assign sides_to_decision_3_d = plane_side_t1_zero_0;
-    assign sides_to_decision_6_d = plane_side_t2_negative_0;
-    assign sides_to_decision_9_d = plane_side_t2_zero_0;
-    assign sides_to_decision_12_d = plane_side_t1_certain_0;
-    assign sides_to_decision_15_d = plane_side_t2_certain_0;
-    assign decision_t1_side_negative_0 = sides_to_decision_0_q;
-    assign decision_t1_side_zero_0 = sides_to_decision_3_q;
-    assign decision_t2_side_negative_0 = sides_to_decision_6_q;
-    assign decision_t2_side_zero_0 = sides_to_decision_9_q;
-    assign decision_t1_side_certain_0 = sides_to_decision_12_q;
-    assign decision_t2_side_certain_0 = sides_to_decision_15_q;
-    assign sides_to_decision_1_d = plane_side_t1_negative_1;
-    assign sides_to_decision_4_d = plane_side_t1_zero_1;
-    assign sides_to_decision_7_d = plane_side_t2_negative_1;
-    assign sides_to_decision_10_d = plane_side_t2_zero_1;
-    assign sides_to_decision_13_d = plane_side_t1_certain_1;
-    assign sides_to_decision_16_d = plane_side_t2_certain_1;
-    assign decision_t1_side_negative_1 = sides_to_decision_1_q;
-    assign decision_t1_side_zero_1 = sides_to_decision_4_q;
-    assign decision_t2_side_negative_1 = sides_to_decision_7_q;
-    assign decision_t2_side_zero_1 = sides_to_decision_10_q;
-    assign decision_t1_side_certain_1 = sides_to_decision_13_q;
-    assign decision_t2_side_certain_1 = sides_to_decision_16_q;
-    assign sides_to_decision_2_d = plane_side_t1_negative_2;
-    assign sides_to_decision_5_d = plane_side_t1_zero_2;
-    assign sides_to_decision_8_d = plane_side_t2_negative_2;
-    assign sides_to_decision_11_d = plane_side_t2_zero_2;
-    assign sides_to_decision_14_d = plane_side_t1_certain_2;
-    assign sides_to_decision_17_d = plane_side_t2_certain_2;
-    assign decision_t1_side_negative_2 = sides_to_decision_2_q;
-    assign decision_t1_side_zero_2 = sides_to_decision_5_q;
-    assign decision_t2_side_negative_2 = sides_to_decision_8_q;
-    assign decision_t2_side_zero_2 = sides_to_decision_11_q;
-    assign decision_t1_side_certain_2 = sides_to_decision_14_q;
-    assign decision_t2_side_certain_2 = sides_to_decision_17_q;
+    assign path_in_valid = in_valid;
+    assign path_in_bset = in_bset;
+    assign path_in_id = in_id;
+    assign path_in_x0 = in_x0;
+    assign path_in_y0 = in_y0;
+    assign path_in_z0 = in_z0;
+    assign path_in_x1 = in_x1;
+    assign path_in_y1 = in_y1;
+    assign path_in_z1 = in_z1;
+    assign path_in_x2 = in_x2;
+    assign path_in_y2 = in_y2;
+    assign path_in_z2 = in_z2;
+    assign out_valid = path_out_valid;
+    assign out_hit = path_out_hit;
+    assign out_certain = path_out_certain;
+    assign out_base_id = path_out_base_id;
+    assign out_stream_id = path_out_stream_id;
+    assign coplanar_axis = path_pair_axis;
+    assign coplanar_t1_vertices_0 = path_pair_t1_vertices_0;
+    assign coplanar_t2_vertices_0 = path_pair_t2_vertices_0;
+    assign degenerate_pair_t1_vertices_0 = path_pair_t1_vertices_0;
+    assign degenerate_pair_t2_vertices_0 = path_pair_t2_vertices_0;
+    assign coplanar_t1_vertices_1 = path_pair_t1_vertices_1;
+    assign coplanar_t2_vertices_1 = path_pair_t2_vertices_1;
+    assign degenerate_pair_t1_vertices_1 = path_pair_t1_vertices_1;
+    assign degenerate_pair_t2_vertices_1 = path_pair_t2_vertices_1;
+    assign coplanar_t1_vertices_2 = path_pair_t1_vertices_2;
+    assign coplanar_t2_vertices_2 = path_pair_t2_vertices_2;
+    assign degenerate_pair_t1_vertices_2 = path_pair_t1_vertices_2;
+    assign degenerate_pair_t2_vertices_2 = path_pair_t2_vertices_2;
+    assign coplanar_t1_vertices_3 = path_pair_t1_vertices_3;
+    assign coplanar_t2_vertices_3 = path_pair_t2_vertices_3;
+    assign degenerate_pair_t1_vertices_3 = path_pair_t1_vertices_3;
+    assign degenerate_pair_t2_vertices_3 = path_pair_t2_vertices_3;
+    assign coplanar_t1_vertices_4 = path_pair_t1_vertices_4;
+    assign coplanar_t2_vertices_4 = path_pair_t2_vertices_4;
+    assign degenerate_pair_t1_vertices_4 = path_pair_t1_vertices_4;
+    assign degenerate_pair_t2_vertices_4 = path_pair_t2_vertices_4;
+    assign coplanar_t1_vertices_5 = path_pair_t1_vertices_5;
+    assign coplanar_t2_vertices_5 = path_pair_t2_vertices_5;
+    assign degenerate_pair_t1_vertices_5 = path_pair_t1_vertices_5;
+    assign degenerate_pair_t2_vertices_5 = path_pair_t2_vertices_5;
+    assign coplanar_t1_vertices_6 = path_pair_t1_vertices_6;
+    assign coplanar_t2_vertices_6 = path_pair_t2_vertices_6;
+    assign degenerate_pair_t1_vertices_6 = path_pair_t1_vertices_6;
+    assign degenerate_pair_t2_vertices_6 = path_pair_t2_vertices_6;
+    assign coplanar_t1_vertices_7 = path_pair_t1_vertices_7;
+    assign coplanar_t2_vertices_7 = path_pair_t2_vertices_7;
+    assign degenerate_pair_t1_vertices_7 = path_pair_t1_vertices_7;
+    assign degenerate_pair_t2_vertices_7 = path_pair_t2_vertices_7;
+    assign coplanar_t1_vertices_8 = path_pair_t1_vertices_8;
+    assign coplanar_t2_vertices_8 = path_pair_t2_vertices_8;
+    assign degenerate_pair_t1_vertices_8 = path_pair_t1_vertices_8;
+    assign degenerate_pair_t2_vertices_8 = path_pair_t2_vertices_8;
+    assign coplanar_t1_normal_negative_0 = path_pair_t1_normal_negative_0;
+    assign coplanar_t1_normal_zero_0 = path_pair_t1_normal_zero_0;
+    assign coplanar_t2_normal_negative_0 = path_pair_t2_normal_negative_0;
+    assign coplanar_t2_normal_zero_0 = path_pair_t2_normal_zero_0;
+    assign coplanar_t1_normal_negative_1 = path_pair_t1_normal_negative_1;
+    assign coplanar_t1_normal_zero_1 = path_pair_t1_normal_zero_1;
+    assign coplanar_t2_normal_negative_1 = path_pair_t2_normal_negative_1;
+    assign coplanar_t2_normal_zero_1 = path_pair_t2_normal_zero_1;
+    assign coplanar_t1_normal_negative_2 = path_pair_t1_normal_negative_2;
+    assign coplanar_t1_normal_zero_2 = path_pair_t1_normal_zero_2;
+    assign coplanar_t2_normal_negative_2 = path_pair_t2_normal_negative_2;
+    assign coplanar_t2_normal_zero_2 = path_pair_t2_normal_zero_2;
+    assign degenerate_pair_t1_segment_low = path_pair_t1_segment_low;
+    assign degenerate_pair_t1_segment_high = path_pair_t1_segment_high;
+    assign degenerate_pair_t2_segment_low = path_pair_t2_segment_low;
+    assign degenerate_pair_t2_segment_high = path_pair_t2_segment_high;
     assign coplanar_to_decision_d = coplanar__hit;
     assign degenerate_pair_to_decision_d = degenerate_pair__hit;
-    assign decision_t1_degenerate = degenerate_to_decision_0_q;
-    assign decision_t2_degenerate = degenerate_to_decision_1_q;
-    assign decision_t1_segment_low = segment_ends_to_decision_0_q;
-    assign decision_t1_segment_high = segment_ends_to_decision_1_q;
-    assign decision_t2_segment_low = segment_ends_to_decision_2_q;
-    assign decision_t2_segment_high = segment_ends_to_decision_3_q;
-    assign orient_signs_to_decision_0_d = orient3d_0_negative;
-    assign orient_signs_to_decision_1_d = orient3d_0_zero;
-    assign orient_signs_to_decision_2_d = orient3d_0_certain;
-    assign orient_signs_to_decision_3_d = orient3d_1_negative;
-    assign orient_signs_to_decision_4_d = orient3d_1_zero;
-    assign orient_signs_to_decision_5_d = orient3d_1_certain;
-    assign decision_orient_negative_0 = orient_signs_to_decision_0_q;
-    assign decision_orient_zero_0 = orient_signs_to_decision_1_q;
-    assign decision_orient_certain_0 = orient_signs_to_decision_2_q;
-    assign decision_orient_negative_1 = orient_signs_to_decision_3_q;
-    assign decision_orient_zero_1 = orient_signs_to_decision_4_q;
-    assign decision_orient_certain_1 = orient_signs_to_decision_5_q;
-    assign decision_orient_negative_2 = third_determinant_negative;
-    assign decision_orient_zero_2 = third_determinant_zero;
-    assign decision_coplanar_hit = coplanar_to_decision_q;
-    assign decision_degenerate_pair_hit = degenerate_pair_to_decision_q;
-    assign out_valid = pair_valid_q;
-    assign out_hit = decision_hit;
-    assign out_certain = decision_certain;
-    assign out_base_id = base_id_q;
-    assign out_stream_id = stream_id_q;
-    always @(*) begin
-        if (base_degenerate) begin
-            coplanar_axis = front_end_dominant_axis;
-        end
-        else begin
-            coplanar_axis = base_dominant_axis;
-        end
-    end
+    assign path_coplanar_hit = coplanar_to_decision_q;
+    assign path_degenerate_pair_hit = degenerate_pair_to_decision_q;
+    assign unused_sides = path_sides_valid || path_sides_t1_zero_0 || path_sides_t1_zero_1 || path_sides_t1_zero_2 || path_sides_t2_zero_0 || path_sides_t2_zero_1 || path_sides_t2_zero_2 || path_pair_t1_degenerate || path_pair_t2_degenerate;
 
 endmodule  // tritri_pipeline_w24
 

@@ -5,7 +5,8 @@
 // Purpose:    Step (5): align T1. Rotate T1 so that its vertex alone on its
 //             side of T2's plane comes first (and lies on the positive side or
 //             on the plane), and swap T2's orientation (q2 <-> r2) when that
-//             vertex is below. Part of tritri_pipeline_w24. Instance: align_t1.
+//             vertex is below. Part of tritri_pipeline_w24. Instance:
+//             path.align_t1.
 //
 // Rust unit:  AlignT1
 // Latency:    1 clock cycle

@@ -5,7 +5,7 @@
 // Purpose:    Step (6): align T2 (already re-oriented by step (5)): rotate it
 //             so that its lone vertex comes first, and swap T1's last two
 //             vertices instead of flipping signs. Part of tritri_pipeline_w24.
-//             Instance: align_t2.
+//             Instance: path.align_t2.
 //
 // Rust unit:  AlignT2
 // Latency:    1 clock cycle

@@ -8,7 +8,7 @@
 //             v_k+1, v_k+2]`) and whether the other triangle's last two
 //             vertices trade places. The all-zero row is unreachable (coplanar
 //             pairs never get here). Part of tritri_pipeline_w24. Instances
-//             (2): align_t1.sign_table, align_t2.sign_table.
+//             (2): path.align_t1.sign_table, path.align_t2.sign_table.
 //
 // Rust unit:  AlignmentTable
 //

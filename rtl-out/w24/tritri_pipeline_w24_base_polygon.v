@@ -8,7 +8,8 @@
 //             instead of being tested, and held until the next `BSET`. Every
 //             streamed triangle is then paired with this record, so one pair
 //             costs one clock and the input bus carries one triangle (`9 W`
-//             bits) per clock. Part of tritri_pipeline_w24. Instance: base.
+//             bits) per clock. Part of tritri_pipeline_w24. Instance:
+//             path.base.
 //
 // Rust unit:  BasePolygon<W = 24, D = 25, C = 49>
 //

@@ -4,8 +4,8 @@
 //
 // Purpose:    The sign of a determinant and its certificate, registered. Part
 //             of tritri_pipeline_w24. Instances (8), for example:
-//             orient3d_0.sign, orient3d_1.sign, plane_side_t1.sign[0],
-//             plane_side_t1.sign[1].
+//             path.orient3d_0.sign, path.orient3d_1.sign,
+//             path.plane_side_t1.sign[0], path.plane_side_t1.sign[1].
 //
 // Rust unit:  CertainSign<O = 74, D = 25>
 // Latency:    1 clock cycle

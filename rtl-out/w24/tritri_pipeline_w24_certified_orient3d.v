@@ -6,7 +6,7 @@
 //             four W-bit points, exact in 3W+2 bits, reduced to its sign, with
 //             a certificate: whether the sign holds when every coordinate moves
 //             by half a grid step. Part of tritri_pipeline_w24. Instances (2):
-//             orient3d_0, orient3d_1.
+//             path.orient3d_0, path.orient3d_1.
 //
 // Rust unit:  CertifiedOrient3d<W = 24, D = 25, C = 49, O = 74>
 // Latency:    12 clock cycles

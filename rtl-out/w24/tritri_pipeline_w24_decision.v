@@ -5,7 +5,7 @@
 // Purpose:    The verdict of a pair and its certificate, from signs only
 //             (docs/ARCHITECTURE.md, conventions), mirroring the control flow
 //             of `intersects` in devillers_guigue.rs. Part of
-//             tritri_pipeline_w24. Instance: decision.
+//             tritri_pipeline_w24. Instance: path.decision.
 //
 // Rust unit:  Decision
 // Latency:    2 clock cycles

@@ -8,9 +8,10 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: orient_signs_to_decision[0],
-//             orient_signs_to_decision[1], orient_signs_to_decision[2],
-//             orient_signs_to_decision[3].
+//             example: path.orient_signs_to_decision[0],
+//             path.orient_signs_to_decision[1],
+//             path.orient_signs_to_decision[2],
+//             path.orient_signs_to_decision[3].
 //
 // Rust unit:  DelayLine<T = bool, N = 1>
 // Latency:    1 clock cycle

@@ -8,8 +8,9 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (18),
-//             for example: sides_to_decision[0], sides_to_decision[1],
-//             sides_to_decision[10], sides_to_decision[11].
+//             for example: path.sides_to_decision[0],
+//             path.sides_to_decision[1], path.sides_to_decision[10],
+//             path.sides_to_decision[11].
 //
 // Rust unit:  DelayLine<T = bool, N = 19>
 // Latency:    19 clock cycles

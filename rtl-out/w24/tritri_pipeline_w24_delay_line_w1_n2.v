@@ -8,10 +8,10 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: front_end.normal_negative_delay[0],
-//             front_end.normal_negative_delay[1],
-//             front_end.normal_negative_delay[2],
-//             front_end.normal_zero_delay[0].
+//             example: path.front_end.normal_negative_delay[0],
+//             path.front_end.normal_negative_delay[1],
+//             path.front_end.normal_negative_delay[2],
+//             path.front_end.normal_zero_delay[0].
 //
 // Rust unit:  DelayLine<T = bool, N = 2>
 // Latency:    2 clock cycles

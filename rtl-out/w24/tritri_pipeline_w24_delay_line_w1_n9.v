@@ -8,7 +8,7 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
-//             degenerate_to_operands[0], degenerate_to_operands[1].
+//             path.degenerate_to_operands[0], path.degenerate_to_operands[1].
 //
 // Rust unit:  DelayLine<T = bool, N = 9>
 // Latency:    9 clock cycles

@@ -8,8 +8,8 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (27),
-//             for example: input_vertices[0], input_vertices[1],
-//             input_vertices[2], input_vertices[3].
+//             for example: path.input_vertices[0], path.input_vertices[1],
+//             path.input_vertices[2], path.input_vertices[3].
 //
 // Rust unit:  DelayLine<T = Bits<24>, N = 1>
 // Latency:    1 clock cycle

@@ -8,9 +8,9 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (18),
-//             for example: t1_vertices_to_operands[0],
-//             t1_vertices_to_operands[1], t1_vertices_to_operands[2],
-//             t1_vertices_to_operands[3].
+//             for example: path.t1_vertices_to_operands[0],
+//             path.t1_vertices_to_operands[1], path.t1_vertices_to_operands[2],
+//             path.t1_vertices_to_operands[3].
 //
 // Rust unit:  DelayLine<T = Bits<24>, N = 10>
 // Latency:    10 clock cycles

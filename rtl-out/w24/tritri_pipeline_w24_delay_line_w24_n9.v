@@ -8,8 +8,9 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (9), for
-//             example: front_end.vertex_delay[0], front_end.vertex_delay[1],
-//             front_end.vertex_delay[2], front_end.vertex_delay[3].
+//             example: path.front_end.vertex_delay[0],
+//             path.front_end.vertex_delay[1], path.front_end.vertex_delay[2],
+//             path.front_end.vertex_delay[3].
 //
 // Rust unit:  DelayLine<T = Bits<24>, N = 9>
 // Latency:    9 clock cycles

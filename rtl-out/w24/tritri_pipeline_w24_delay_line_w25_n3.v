@@ -8,10 +8,10 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (8), for
-//             example: plane_side_t1.plane_thermometer_delay,
-//             plane_side_t1.thermometer_delay[0],
-//             plane_side_t1.thermometer_delay[1],
-//             plane_side_t1.thermometer_delay[2].
+//             example: path.plane_side_t1.plane_thermometer_delay,
+//             path.plane_side_t1.thermometer_delay[0],
+//             path.plane_side_t1.thermometer_delay[1],
+//             path.plane_side_t1.thermometer_delay[2].
 //
 // Rust unit:  DelayLine<T = Bits<25>, N = 3>
 // Latency:    3 clock cycles

@@ -8,7 +8,7 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instance:
-//             front_end.edge_thermometer_delay.
+//             path.front_end.edge_thermometer_delay.
 //
 // Rust unit:  DelayLine<T = Bits<25>, N = 6>
 // Latency:    6 clock cycles

@@ -8,7 +8,8 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
-//             orient3d_0.thermometer_delay, orient3d_1.thermometer_delay.
+//             path.orient3d_0.thermometer_delay,
+//             path.orient3d_1.thermometer_delay.
 //
 // Rust unit:  DelayLine<T = Bits<25>, N = 8>
 // Latency:    8 clock cycles

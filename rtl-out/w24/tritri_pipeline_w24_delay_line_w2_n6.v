@@ -8,8 +8,10 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (4):
-//             segment_ends_to_distances[0], segment_ends_to_distances[1],
-//             segment_ends_to_distances[2], segment_ends_to_distances[3].
+//             path.segment_ends_to_distances[0],
+//             path.segment_ends_to_distances[1],
+//             path.segment_ends_to_distances[2],
+//             path.segment_ends_to_distances[3].
 //
 // Rust unit:  DelayLine<T = Bits<2>, N = 6>
 // Latency:    6 clock cycles

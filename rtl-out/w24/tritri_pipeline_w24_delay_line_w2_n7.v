@@ -8,7 +8,8 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
-//             front_end.segment_high_delay, front_end.segment_low_delay.
+//             path.front_end.segment_high_delay,
+//             path.front_end.segment_low_delay.
 //
 // Rust unit:  DelayLine<T = Bits<2>, N = 7>
 // Latency:    7 clock cycles

@@ -8,7 +8,7 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instance:
-//             record_id.
+//             path.record_id.
 //
 // Rust unit:  DelayLine<T = Bits<32>, N = 10>
 // Latency:    10 clock cycles

@@ -8,9 +8,10 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: plane_side_t1.normal_delay[0],
-//             plane_side_t1.normal_delay[1], plane_side_t1.normal_delay[2],
-//             plane_side_t2.normal_delay[0].
+//             example: path.plane_side_t1.normal_delay[0],
+//             path.plane_side_t1.normal_delay[1],
+//             path.plane_side_t1.normal_delay[2],
+//             path.plane_side_t2.normal_delay[0].
 //
 // Rust unit:  DelayLine<T = Bits<49>, N = 1>
 // Latency:    1 clock cycle

@@ -8,8 +8,8 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instances (3):
-//             front_end.normal_delay[0], front_end.normal_delay[1],
-//             front_end.normal_delay[2].
+//             path.front_end.normal_delay[0], path.front_end.normal_delay[1],
+//             path.front_end.normal_delay[2].
 //
 // Rust unit:  DelayLine<T = Bits<49>, N = 3>
 // Latency:    3 clock cycles

@@ -8,7 +8,7 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instance:
-//             ends_difference_to_values.
+//             path.ends_difference_to_values.
 //
 // Rust unit:  DelayLine<T = Bits<74>, N = 16>
 // Latency:    16 clock cycles

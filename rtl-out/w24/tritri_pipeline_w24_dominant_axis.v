@@ -5,7 +5,7 @@
 // Purpose:    The axis of the largest |component| of a normal, ties to the
 //             lowest axis: the projection used by the coplanar test drops it,
 //             so the projection is one-to-one on the triangle's plane. Part of
-//             tritri_pipeline_w24. Instance: front_end.axis.
+//             tritri_pipeline_w24. Instance: path.front_end.axis.
 //
 // Rust unit:  DominantAxis<C = 49>
 // Latency:    3 clock cycles

@@ -5,8 +5,8 @@
 // Purpose:    Dot product `u . v` of a (W+1)-bit difference vector and a
 //             (2W+1)-bit cross product, in 3W+2 bits: an orient3d value. Part
 //             of tritri_pipeline_w24. Instances (8), for example:
-//             orient3d_0.determinant, orient3d_1.determinant,
-//             plane_side_t1.distance_0, plane_side_t1.distance_1.
+//             path.orient3d_0.determinant, path.orient3d_1.determinant,
+//             path.plane_side_t1.distance_0, path.plane_side_t1.distance_1.
 //
 // Rust unit:  DotProduct<D = 25, C = 49, O = 74>
 // Latency:    5 clock cycles

@@ -5,7 +5,8 @@
 // Purpose:    `s_b - s_a` for the degenerate triangle's segment ends `a = low`,
 //             `b = high` (T1's when T1 is degenerate, else T2's), from the
 //             plane-side values of each triangle's vertices against the other's
-//             plane. Part of tritri_pipeline_w24. Instance: ends_difference.
+//             plane. Part of tritri_pipeline_w24. Instance:
+//             path.ends_difference.
 //
 // Rust unit:  EndsDifference<O = 74>
 // Latency:    2 clock cycles

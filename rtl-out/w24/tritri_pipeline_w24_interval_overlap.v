@@ -5,7 +5,7 @@
 // Purpose:    Step (7), the interval overlap test: with both triangles aligned,
 //             the segments they cut on the line where the planes meet overlap
 //             iff `[q1, p2, p1, q2] <= 0` and `[p1, p2, r1, r2] <= 0`. Part of
-//             tritri_pipeline_w24. Instance: interval_overlap.
+//             tritri_pipeline_w24. Instance: path.interval_overlap.
 //
 // Rust unit:  IntervalOverlap
 // Latency:    1 clock cycle

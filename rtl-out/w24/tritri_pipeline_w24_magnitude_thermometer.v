@@ -6,9 +6,9 @@
 //             (`tritri_geom::certificate`): is `|P|` clear of `2^(2m + 5)`,
 //             where every entry of the determinant's rows is at most `2^m` in
 //             magnitude? Part of tritri_pipeline_w24. Instances (14), for
-//             example: front_end.normal_unit.magnitude_pq,
-//             front_end.normal_unit.magnitude_pr, orient3d_0.magnitude_ab,
-//             orient3d_0.magnitude_ac.
+//             example: path.front_end.normal_unit.magnitude_pq,
+//             path.front_end.normal_unit.magnitude_pr,
+//             path.orient3d_0.magnitude_ab, path.orient3d_0.magnitude_ac.
 //
 // Rust unit:  MagnitudeThermometer<D = 25>
 // Latency:    2 clock cycles

@@ -5,10 +5,10 @@
 // Purpose:    Registered signed multiplier `A x B -> P` bits, the one
 //             arithmetic block that rust-hdl 0.46 cannot express (its `*` is 16
 //             x 16 only). Part of tritri_pipeline_w24. Instances (24), for
-//             example: orient3d_0.determinant.multiplier[0],
-//             orient3d_0.determinant.multiplier[1],
-//             orient3d_0.determinant.multiplier[2],
-//             orient3d_1.determinant.multiplier[0].
+//             example: path.orient3d_0.determinant.multiplier[0],
+//             path.orient3d_0.determinant.multiplier[1],
+//             path.orient3d_0.determinant.multiplier[2],
+//             path.orient3d_1.determinant.multiplier[0].
 //
 // Rust unit:  Multiplier<A = 25, B = 49, P = 74>
 // Latency:    4 clock cycles

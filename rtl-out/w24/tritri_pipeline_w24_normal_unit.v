@@ -4,7 +4,7 @@
 //
 // Purpose:    Normal vector of a triangle, `N = (q - p) x (r - p)`, exact in
 //             2W+1 bits. Part of tritri_pipeline_w24. Instance:
-//             front_end.normal_unit.
+//             path.front_end.normal_unit.
 //
 // Rust unit:  NormalUnit<W = 24, D = 25, C = 49>
 // Latency:    6 clock cycles

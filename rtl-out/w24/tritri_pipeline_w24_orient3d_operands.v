@@ -4,7 +4,8 @@
 //
 // Purpose:    The operands of the two shared `orient3d` units, chosen by the
 //             pair's case, then fetched from the six vertices (T1: indices
-//             0..2, T2: 3..5). Part of tritri_pipeline_w24. Instance: operands.
+//             0..2, T2: 3..5). Part of tritri_pipeline_w24. Instance:
+//             path.operands.
 //
 // Rust unit:  Orient3dOperands<W = 24>
 // Latency:    3 clock cycles

@@ -4,8 +4,8 @@
 //
 // Purpose:    Signs of the three vertices of one triangle against the plane of
 //             the other: `orient3d(p, q, r, v) = (v - p) . N` for each vertex
-//             `v`. Part of tritri_pipeline_w24. Instances (2): plane_side_t1,
-//             plane_side_t2.
+//             `v`. Part of tritri_pipeline_w24. Instances (2):
+//             path.plane_side_t1, path.plane_side_t2.
 //
 // Rust unit:  PlaneSide<W = 24, D = 25, C = 49, O = 74>
 // Latency:    7 clock cycles

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_registered_difference3.v
 //
 // Purpose:    `difference = a - b - c` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instance: third_determinant.subtract.
+//             tritri_pipeline_w24. Instance: path.third_determinant.subtract.
 //
 // Rust unit:  RegisteredDifference3<N = 74>
 // Latency:    1 clock cycle

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_registered_difference_w74.v
 //
 // Purpose:    `difference = a - b` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instance: ends_difference.subtract.
+//             tritri_pipeline_w24. Instance: path.ends_difference.subtract.
 //
 // Rust unit:  RegisteredDifference<N = 74>
 // Latency:    1 clock cycle

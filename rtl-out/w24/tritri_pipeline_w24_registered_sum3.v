@@ -4,8 +4,9 @@
 //
 // Purpose:    `sum = a + b + c` (mod `2^N`), registered. Part of
 //             tritri_pipeline_w24. Instances (8), for example:
-//             orient3d_0.determinant.sum, orient3d_1.determinant.sum,
-//             plane_side_t1.distance_0.sum, plane_side_t1.distance_1.sum.
+//             path.orient3d_0.determinant.sum, path.orient3d_1.determinant.sum,
+//             path.plane_side_t1.distance_0.sum,
+//             path.plane_side_t1.distance_1.sum.
 //
 // Rust unit:  RegisteredSum3<N = 74>
 // Latency:    1 clock cycle

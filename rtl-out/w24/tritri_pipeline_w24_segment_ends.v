@@ -4,7 +4,7 @@
 //
 // Purpose:    The two ends of a degenerate triangle: the lexicographic (x, y,
 //             z) minimum and maximum of its three vertices, as vertex indices.
-//             Part of tritri_pipeline_w24. Instance: front_end.ends.
+//             Part of tritri_pipeline_w24. Instance: path.front_end.ends.
 //
 // Rust unit:  SegmentEnds<W = 24>
 // Latency:    2 clock cycles

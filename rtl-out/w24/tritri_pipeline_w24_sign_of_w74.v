@@ -6,7 +6,7 @@
 //             thing the decisions look at (docs/ARCHITECTURE.md, conventions:
 //             decide on signs, never on products of predicate values). Thesis,
 //             chapter 3: "the sign is in the top bit". Part of
-//             tritri_pipeline_w24. Instance: third_determinant.sign.
+//             tritri_pipeline_w24. Instance: path.third_determinant.sign.
 //
 // Rust unit:  SignOf<N = 74>
 // Latency:    1 clock cycle

@@ -4,7 +4,8 @@
 //
 // Purpose:    The segment-triangle case's third orientation sign without
 //             multipliers: `[a, b, r, p] = (s_b - s_a) - [a, b, p, q] - [a, b,
-//             q, r]`. Part of tritri_pipeline_w24. Instance: third_determinant.
+//             q, r]`. Part of tritri_pipeline_w24. Instance:
+//             path.third_determinant.
 //
 // Rust unit:  ThirdDeterminant<O = 74>
 // Latency:    2 clock cycles

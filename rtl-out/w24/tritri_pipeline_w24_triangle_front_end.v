@@ -9,7 +9,7 @@
 //             triangle spans, and the thermometer of its edges' magnitudes for
 //             the certificates. The vertices travel alongside so that the
 //             outputs describe one triangle. Part of tritri_pipeline_w24.
-//             Instance: front_end.
+//             Instance: path.front_end.
 //
 // Rust unit:  TriangleFrontEnd<W = 24, D = 25, C = 49>
 // Latency:    9 clock cycles

@@ -75,7 +75,9 @@
 //! `tritri_cone_unit_w<W>`. `--shared-rare-cases [--width 8|16|24]` writes
 //! the pipeline's rare cases on one shared path (the coplanar and
 //! degenerate-pair tests on three orient2d lanes), top
-//! `tritri_shared_rare_cases_w<W>`.
+//! `tritri_shared_rare_cases_w<W>`; `--rare-cases shared` the pipeline
+//! with that unit inside (it holds, output `hold`, while a rare pair
+//! waits), top `tritri_pipeline_shared_w<W>`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -126,11 +128,12 @@ use tritri_rtl::measured::{device, DEVICES};
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
-use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with;
+use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
-use tritri_rtl::system::system_unit::emit_system_with;
+use tritri_rtl::system::system_unit::{emit_system_with, system_unit_name};
 use tritri_rtl::system::{
     SystemConfig, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES, MAX_TRIANGLES_PER_BANK,
 };
@@ -208,6 +211,15 @@ pub struct Args {
     /// multipliers), a pair every 4 or 6 clocks; --width 8, 16 or 24.
     #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit"])]
     shared_rare_cases: bool,
+    /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
+    /// triangles): `parallel`, their own units (60 multipliers, never a
+    /// stall), or `shared`, the shared unit inside the pipeline (6
+    /// multipliers; the pipeline holds, output `hold`, while a rare pair
+    /// waits for it), top `tritri_pipeline_shared_w<W>`; with --system,
+    /// the system's pipelines (the read side holds with them), top
+    /// `tritri_system_..._shared`.
+    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = ["parallel", "shared"], conflicts_with_all = ["classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit", "shared_rare_cases"])]
+    rare_cases: String,
     /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
     steps: Option<usize>,
@@ -538,11 +550,28 @@ impl Args {
         }
         if self.system {
             let config = self.system_config(width);
-            return emit_system_with(config, PipelineKind::Real, self.multipliers())
-                .with_context(|| format!("emitting {}", config.unit_name()));
+            let kind = self.system_pipelines();
+            return emit_system_with(config, kind, self.multipliers())
+                .with_context(|| format!("emitting {}", system_unit_name(config, kind)));
         }
-        emit_pipeline_with(width, self.multipliers())
+        emit_pipeline_for(width, self.multipliers(), self.rare_case_path())
             .with_context(|| format!("emitting the {width}-bit pipeline"))
+    }
+
+    /// The system's pipelines, as `--rare-cases` says.
+    fn system_pipelines(&self) -> PipelineKind {
+        match self.rare_case_path() {
+            RareCasePath::Parallel => PipelineKind::Real,
+            RareCasePath::Shared => PipelineKind::Shared,
+        }
+    }
+
+    /// `--rare-cases`.
+    fn rare_case_path(&self) -> RareCasePath {
+        match self.rare_cases.as_str() {
+            "shared" => RareCasePath::Shared,
+            _ => RareCasePath::Parallel,
+        }
     }
 
     /// Everything but the pipeline goes into a directory named after its top.
@@ -550,6 +579,7 @@ impl Args {
         self.patch_tessellator
             || self.cone_unit
             || self.shared_rare_cases
+            || (self.rare_case_path() == RareCasePath::Shared && !self.system)
             || self.system
             || self.classifier
             || self.setup
@@ -584,6 +614,8 @@ impl Args {
             cone_unit_name(width)
         } else if self.shared_rare_cases {
             shared_rare_cases_name(width)
+        } else if self.rare_case_path() == RareCasePath::Shared && !self.system {
+            pipeline_unit_name_for(width, RareCasePath::Shared)
         } else if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
         } else if self.set_operation {
@@ -607,7 +639,7 @@ impl Args {
         } else if self.setup {
             triangle_setup_unit_name(width)
         } else if self.system {
-            self.system_config(width).unit_name()
+            system_unit_name(self.system_config(width), self.system_pipelines())
         } else {
             pipeline_unit_name(width)
         }

@@ -76,7 +76,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
 use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
-use tritri_cosim::engine::{check_quantized, run_scene_with, Engine, SceneRun};
+use tritri_cosim::engine::{check_quantized, run_scene_on, Engine, SceneRun};
+use tritri_cosim::system_harness::PipelineKind;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::octree::OctreeSchedule;
@@ -134,6 +135,13 @@ pub struct Args {
     /// W = 16 with --grid-bits 24.
     #[arg(long)]
     broad_phase_top: bool,
+    /// Where the system's pipelines test their rare pairs (coplanar, or
+    /// two degenerate triangles): `parallel`, their own units, or `shared`,
+    /// one shared unit a pipeline that stalls the system while a rare pair
+    /// waits for it (`tritri gen --rare-cases`). A hardware engine
+    /// simulates it; every engine reports the stall model's bound.
+    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = ["parallel", "shared"], conflicts_with = "broad_phase_top")]
+    rare_cases: String,
     /// The longest run --vcd records (every signal and memory word: the
     /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
     #[arg(long, value_name = "N", default_value_t = 10_000)]
@@ -331,8 +339,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let run = if args.broad_phase_top {
         run_on_top(&args, &scene, &mut report, &mut status)
     } else {
-        run_scene_with(
+        run_scene_on(
             args.engine,
+            match args.rare_cases.as_str() {
+                "shared" => PipelineKind::Shared,
+                _ => PipelineKind::Real,
+            },
             &scene,
             config,
             &|n| progress.inc(n),
@@ -427,14 +439,25 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         human(time)
     )?;
     let rare = rare_case_cost(args.hardware.pipelines as usize, &scene.batches());
+    let shared = args.rare_cases == "shared";
+    let simulated = match (shared, run.counters) {
+        (true, Some(c)) => format!(
+            "; simulated with them there ({}): {} stall cycles",
+            args.engine.name(),
+            c.stall_cycles
+        ),
+        (true, None) => "; the model engine does not simulate the stalls".to_string(),
+        (false, _) => "; these pipelines test them on parallel units, without a stall".to_string(),
+    };
     writeln!(
         report,
-        "rare cases: {} coplanar and {} degenerate pairs of {} tested; with them on a shared path (issue 14's option, its cycle model; the pipeline still has the parallel units) at most {} stall cycles, {:.2} % of the cycles",
+        "rare cases: {} coplanar and {} degenerate pairs of {} tested; on a shared path (`--rare-cases shared`, stall model) at most {} stall cycles, +{:.2} % on the cycle model's {}{simulated}",
         rare.coplanar,
         rare.segments,
         rare.pairs,
         rare.stall_cycles,
-        100.0 * rare.stall_cycles as f64 / cycles.max(1) as f64
+        100.0 * rare.stall_cycles as f64 / run.model_cycles.max(1) as f64,
+        run.model_cycles
     )?;
     write_pairs(output, args.indices, &a, &b, pairs)?;
     write_render(png, &args, &a, &b, pairs, &mut report)?;

@@ -309,6 +309,20 @@ pub fn run_scene_with(
     progress: &(dyn Fn(u64) + Sync),
     vcd: Option<&Path>,
 ) -> anyhow::Result<SceneRun> {
+    run_scene_on(engine, PipelineKind::Real, scene, config, progress, vcd)
+}
+
+/// [`run_scene_with`] on a system of `kind`'s pipelines (a hardware
+/// engine; `PipelineKind::Shared` tests the rare pairs on the shared unit
+/// and stalls for them).
+pub fn run_scene_on(
+    engine: Engine,
+    kind: PipelineKind,
+    scene: &PreparedScene,
+    config: SystemConfig,
+    progress: &(dyn Fn(u64) + Sync),
+    vcd: Option<&Path>,
+) -> anyhow::Result<SceneRun> {
     anyhow::ensure!(
         vcd.is_none() || engine.simulator().is_some(),
         "a waveform needs --engine icarus or verilator, not {}",
@@ -334,7 +348,7 @@ pub fn run_scene_with(
             let result: SystemResult = match engine.simulator() {
                 None => run_system_reporting(
                     config,
-                    PipelineKind::Real,
+                    kind,
                     &batches,
                     true,
                     ReaderBehaviour::AlwaysReady,
@@ -348,7 +362,7 @@ pub fn run_scene_with(
                     run_system_rtl_with(
                         simulator,
                         config,
-                        PipelineKind::Real,
+                        kind,
                         &batches,
                         true,
                         ReaderBehaviour::AlwaysReady,

@@ -10,6 +10,7 @@ use std::path::Path;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
+use tritri_rtl::pipeline::RareCasePath;
 
 /// The testbench, compiled into the library so runs need no checkout.
 pub const TESTBENCH: &str = include_str!("../../../testbenches/tb_triangle_pipeline.sv");
@@ -26,6 +27,9 @@ pub struct RtlDut {
     pub id_bits: u32,
     /// Pipeline latency L.
     pub latency: u64,
+    /// Where the rare pairs are tested; the shared unit's pipeline has a
+    /// `hold` port, which the testbench follows (`TRITRI_HOLD`).
+    pub rare_cases: RareCasePath,
 }
 
 impl RtlDut {
@@ -40,7 +44,9 @@ impl RtlDut {
         Testbench {
             top: TESTBENCH_TOP.into(),
             files,
-            defines: vec![format!("TRITRI_DUT={}", self.design.top)],
+            defines: std::iter::once(format!("TRITRI_DUT={}", self.design.top))
+                .chain((self.rare_cases == RareCasePath::Shared).then(|| "TRITRI_HOLD".into()))
+                .collect(),
             parameters: vec![
                 ("W".into(), self.width.to_string()),
                 ("ID_WIDTH".into(), self.id_bits.to_string()),
@@ -74,29 +80,41 @@ pub fn pipeline_dut_with(
     width: usize,
     multipliers: MultiplierMapping,
 ) -> anyhow::Result<std::sync::Arc<RtlDut>> {
+    pipeline_dut_for(width, multipliers, RareCasePath::Parallel)
+}
+
+/// [`pipeline_dut_with`] with the rare cases on `rare_cases`.
+pub fn pipeline_dut_for(
+    width: usize,
+    multipliers: MultiplierMapping,
+    rare_cases: RareCasePath,
+) -> anyhow::Result<std::sync::Arc<RtlDut>> {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex, OnceLock};
-    type Cache = Mutex<HashMap<(usize, MultiplierMapping), Arc<RtlDut>>>;
+    type Cache = Mutex<HashMap<(usize, MultiplierMapping, RareCasePath), Arc<RtlDut>>>;
     static CACHE: OnceLock<Cache> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
-    if let Some(d) = cache
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .get(&(width, multipliers))
+    if let Some(d) =
+        cache
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .get(&(width, multipliers, rare_cases))
     {
         return Ok(d.clone());
     }
-    let design = tritri_rtl::pipeline::pipeline_unit::emit_pipeline_with(width, multipliers)?;
+    let design =
+        tritri_rtl::pipeline::pipeline_unit::emit_pipeline_for(width, multipliers, rare_cases)?;
     let dut = Arc::new(RtlDut {
         design,
         width: width as u32,
         id_bits: tritri_rtl::pipeline::ID_BITS as u32,
         latency: tritri_rtl::pipeline::triangle_pipeline::latency() as u64,
+        rare_cases,
     });
     cache
         .lock()
         .unwrap_or_else(|e| e.into_inner())
-        .insert((width, multipliers), dut.clone());
+        .insert((width, multipliers, rare_cases), dut.clone());
     Ok(dut)
 }
 
@@ -123,10 +141,19 @@ pub fn run_schedule(
     schedule: &[PipelineInput],
     vcd: Option<&Path>,
 ) -> anyhow::Result<RtlRun> {
-    let dut = pipeline_dut(width)?;
+    run_schedule_on(simulator, &*pipeline_dut(width)?, schedule, vcd)
+}
+
+/// [`run_schedule`] on `dut`.
+pub fn run_schedule_on(
+    simulator: Simulator,
+    dut: &RtlDut,
+    schedule: &[PipelineInput],
+    vcd: Option<&Path>,
+) -> anyhow::Result<RtlRun> {
     run_vectors(
         simulator,
-        &dut,
+        dut,
         &vectors_for_schedule(schedule, dut.width, dut.id_bits),
         vcd,
     )

@@ -180,30 +180,38 @@ pub fn run_schedule_on(
     let mut last_output_cycle = 0u64;
     let latency = pipeline.latency() as u64;
     let input_cycles = schedule.len() as u64;
-    let limit = input_cycles + latency + 16;
-    // Cycle c: the input of cycle c is on the bus; the edge at its end
-    // loads it; the outputs then visible belong to cycle c + 1.
+    // Cycle c: the input `next` is on the bus; the edge at its end loads
+    // it unless the pipeline holds (a rare pair waits for the shared unit),
+    // and then it stays on the bus; the outputs then visible belong to
+    // cycle c + 1.
     let mut cycle = 0u64;
-    while verdicts.len() < expected_ids.len() || cycle < input_cycles {
+    let mut next = 0usize;
+    let mut held = 0u64;
+    while verdicts.len() < expected_ids.len() || next < schedule.len() {
         cycle += 1;
-        if cycle > limit {
+        if cycle > input_cycles + latency + 16 + held {
             bail!(
-                "{} of {} verdicts after {} cycles (inputs {}, latency {})",
+                "{} of {} verdicts after {} cycles (inputs {}, latency {}, held {})",
                 verdicts.len(),
                 expected_ids.len(),
                 cycle - 1,
                 input_cycles,
-                latency
+                latency,
+                held
             );
         }
-        let input = match schedule.get(cycle as usize - 1) {
-            Some(c) => *c,
-            None => PipelineInput::default(),
-        };
+        let input = schedule.get(next).copied().unwrap_or_default();
         pipeline.set_input(&input);
+        let hold = pipeline.hold();
+        if hold {
+            held += 1;
+        } else {
+            next += 1;
+        }
         clock(pipeline, &mut trace)?;
+        // A held edge leaves the outputs as they were.
         let out = pipeline.output();
-        if out.valid {
+        if out.valid && !hold {
             verdicts.push(PairVerdict {
                 base_id: out.base_id,
                 stream_id: out.stream_id,
@@ -231,9 +239,13 @@ pub fn run_schedule_on(
         }
     }
     let cycles = if expected_ids.is_empty() {
-        input_cycles
+        input_cycles + held
     } else {
         last_output_cycle
     };
-    Ok(StreamResult { verdicts, cycles })
+    Ok(StreamResult {
+        verdicts,
+        cycles,
+        held,
+    })
 }

@@ -13,9 +13,10 @@
 
 use tritri_geom::certificate::CertifiedVerdict;
 use tritri_geom::fixed_point::FixedTriangle;
-use tritri_geom::scene::TaggedTriangle;
+use tritri_geom::scene::{Batch, TaggedTriangle};
 use tritri_geom::triangle::{permute, VERTEX_PERMUTATIONS};
 use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
+use tritri_rtl::system::rare_case_model::{rare_case_cost, RareCaseCost};
 
 /// The work of one run: every base triangle against every streamed triangle.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -149,6 +150,33 @@ pub fn group_schedule(
     (cycles, expected)
 }
 
+/// What the rare pairs of `groups`, sent as [`group_schedule`] sends them
+/// (no gap between groups), cost one pipeline with the shared rare-case
+/// unit: `system::rare_case_model`'s count, which the pipeline's `hold`
+/// must equal clock for clock.
+pub fn shared_path_cost(groups: &[PairGroup]) -> RareCaseCost {
+    let tag = |id: usize, triangle: &FixedTriangle| TaggedTriangle {
+        id: id as u32,
+        triangle: *triangle,
+    };
+    let owned: Vec<([TaggedTriangle; 1], Vec<TaggedTriangle>)> = groups
+        .iter()
+        .enumerate()
+        .map(|(g, (base, streamed))| {
+            (
+                [tag(g, base)],
+                streamed
+                    .iter()
+                    .enumerate()
+                    .map(|(s, t)| tag(s, t))
+                    .collect(),
+            )
+        })
+        .collect();
+    let batches: Vec<Batch> = owned.iter().map(|(a, b)| Batch { a, b }).collect();
+    rare_case_cost(1, &batches)
+}
+
 /// One output of the pipeline: the verdict for (base, streamed).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct PairVerdict {
@@ -176,8 +204,11 @@ impl PairVerdict {
 pub struct StreamResult {
     pub verdicts: Vec<PairVerdict>,
     /// Cycles from the first input cycle to the last verdict, inclusive
-    /// (`N1 + N1 * N2 + L`).
+    /// (`N1 + N1 * N2 + L`, plus `held`).
     pub cycles: u64,
+    /// Cycles in which the pipeline held its input (`hold` high: a rare
+    /// pair waited for the shared unit); 0 with the parallel rare tests.
+    pub held: u64,
 }
 
 impl StreamResult {

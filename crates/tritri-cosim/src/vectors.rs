@@ -125,6 +125,7 @@ pub struct TimedVerdict {
 pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), OutputError> {
     let mut timed = Vec::new();
     let mut cycles = None;
+    let mut held = 0;
     for (i, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {
@@ -137,6 +138,11 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
                     line: i + 1,
                     text: line.into(),
                 })?);
+            } else if let Some(n) = rest.strip_prefix("held") {
+                held = n.trim().parse().map_err(|_| OutputError::Malformed {
+                    line: i + 1,
+                    text: line.into(),
+                })?;
             } else if rest.starts_with("timeout") {
                 return Err(OutputError::Timeout {
                     verdicts: timed.len(),
@@ -175,6 +181,7 @@ pub fn parse_outputs(text: &str) -> Result<(StreamResult, Vec<TimedVerdict>), Ou
     let result = StreamResult {
         verdicts: timed.iter().map(|t| t.verdict).collect(),
         cycles,
+        held,
     };
     Ok((result, timed))
 }

@@ -20,10 +20,11 @@ use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
 use tritri_cosim::engine::{run_pipeline, Engine};
 use tritri_cosim::pipeline_rtl::{
-    pipeline_dut, pipeline_dut_with, run_schedule, run_stream, RtlRun,
+    pipeline_dut, pipeline_dut_for, pipeline_dut_with, run_schedule, run_schedule_on, run_stream,
+    RtlRun,
 };
 use tritri_cosim::simulator::Simulator;
-use tritri_cosim::stream::{group_schedule, StreamResult, TriangleStream};
+use tritri_cosim::stream::{group_schedule, shared_path_cost, StreamResult, TriangleStream};
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
 use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::FixedTriangle;
@@ -31,6 +32,7 @@ use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
 use tritri_geom::scene::TaggedTriangle;
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, ECP5_MODEL_FILE};
+use tritri_rtl::pipeline::RareCasePath;
 
 fn env_usize(name: &str, default: usize) -> usize {
     std::env::var(name)
@@ -286,4 +288,43 @@ fn icarus_matches_fixed_point_model_on_the_hard_case_suite() {
         &expected,
         schedule.len(),
     );
+}
+
+/// The pipeline with the rare cases on the shared unit (`tritri gen
+/// --rare-cases shared`), emitted: the whole hard-case suite in all 72
+/// orderings at W = 16 in Verilator, every 16th case in Icarus. Every
+/// verdict is the model's, and the run holds exactly the clocks
+/// `system::rare_case_model` counts, the count the rust-hdl test
+/// `rusthdl_pipeline::shared_rare_case_path_gives_the_models_verdicts_and_holds`
+/// asserts for rust-hdl.
+#[test]
+fn shared_rare_case_pipeline_matches_the_model_and_its_stall_count() {
+    let width = 16;
+    let dut = pipeline_dut_for(width, MultiplierMapping::Inferred, RareCasePath::Shared)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    for (simulator, every) in [(Simulator::Verilator, 1), (Simulator::Icarus, 16)] {
+        let groups = hard_case_groups(width as u32, every);
+        let (schedule, expected) = group_schedule(&groups, certified_intersects);
+        let result = run_schedule_on(simulator, &dut, &schedule, None)
+            .map(|r| r.result)
+            .unwrap_or_else(|e| panic!("{e:#}"));
+        let cost = shared_path_cost(&groups);
+        let engine = format!("{simulator:?}, shared rare cases");
+        let what = format!("W={width} hard cases (every {every}) x 72 orderings");
+        eprintln!(
+            "{engine} {what}: {} rare pairs ({} coplanar), {} clocks held",
+            cost.coplanar + cost.segments,
+            cost.coplanar,
+            result.held
+        );
+        assert_eq!(result.held, cost.stall_cycles, "{engine}: clocks held");
+        assert!(cost.stall_cycles > 1000, "{engine}: the unit is busy");
+        check_schedule(
+            &engine,
+            &what,
+            &result,
+            &expected,
+            schedule.len() + result.held as usize,
+        );
+    }
 }

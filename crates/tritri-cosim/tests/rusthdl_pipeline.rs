@@ -13,7 +13,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};
-use tritri_cosim::stream::{all_orderings, group_schedule, PairGroup, TriangleStream};
+use tritri_cosim::stream::{
+    all_orderings, group_schedule, shared_path_cost, PairGroup, TriangleStream,
+};
 use tritri_cosim::suites::{hard_case_count, hard_case_groups};
 use tritri_geom::certificate::certified_intersects;
 use tritri_geom::devillers_guigue::{shape, Shape};
@@ -21,9 +23,10 @@ use tritri_geom::fixed_point::{intersects, orient3d_value, FixedPoint, FixedTria
 use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
 use tritri_rtl::pipeline::pipeline_for_width::{
-    pipeline_for_width, PipelineInput, PipelineSimulation,
+    pipeline_for_width, pipeline_with, PipelineInput, PipelineSimulation,
 };
 use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::pipeline::RareCasePath;
 
 fn env_usize(name: &str, default: usize) -> usize {
     std::env::var(name)
@@ -606,6 +609,102 @@ fn advance_low_holds_everything() {
         }
     }
     assert!(stalls > 100);
+    assert_eq!(got, expected);
+}
+
+/// Runs `groups` on the `width`-bit pipeline with the shared rare-case
+/// unit and asserts the model's verdicts, certificates included, and that
+/// it held exactly the clocks `system::rare_case_model` counts for one
+/// pipeline fed without gaps (`shared_path_cost`): a rare pair waits for
+/// the unit, and nothing else. Returns (pairs, rare pairs, clocks held).
+fn shared_path_run(width: usize, groups: &[PairGroup]) -> (usize, u64, u64) {
+    let mut pipeline = pipeline_with(width, RareCasePath::Shared).unwrap();
+    let (schedule, expected) = group_schedule(groups, certified_intersects);
+    let result = run_schedule_on(pipeline.as_mut(), &schedule, &HarnessOptions::default()).unwrap();
+    assert_eq!(result.verdicts, expected, "W = {width}");
+    let cost = shared_path_cost(groups);
+    assert_eq!(result.held, cost.stall_cycles, "W = {width}: clocks held");
+    assert_eq!(
+        result.cycles,
+        schedule.len() as u64 + latency() as u64 + result.held,
+        "W = {width}: N1 + N1 N2 + L + held"
+    );
+    let rare = cost.coplanar + cost.segments;
+    (expected.len(), rare, result.held)
+}
+
+/// The shared rare-case path on the hand-made cases and small, coplanar
+/// and extreme integers (most pairs rare, back to back), and on every 9th
+/// hard case in all orderings.
+#[test]
+fn shared_rare_case_path_gives_the_models_verdicts_and_holds() {
+    let mut groups = Vec::new();
+    for (_, t1, t2) in hand_made_cases() {
+        groups.extend(all_orderings(t1, t2));
+    }
+    groups.extend(small_integer_groups(61, 2, 6, 120));
+    groups.extend(coplanar_integer_groups(62, 6, 120));
+    for width in [8, 24] {
+        let mut groups = groups.clone();
+        groups.extend(extreme_groups(width, 63, 4, 60));
+        let (pairs, rare, held) = shared_path_run(width, &groups);
+        eprintln!("shared path, small integers, W = {width}: {pairs} pairs, {rare} rare, {held} clocks held");
+        assert!(rare > pairs as u64 / 4 && held > rare);
+    }
+    let step = env_usize("TRITRI_HARD_CASES", 9);
+    let (pairs, rare, held) = shared_path_run(16, &hard_case_groups(16, step));
+    eprintln!("shared path, every {step}-th hard case x 72 orderings, W = 16: {pairs} pairs, {rare} rare, {held} clocks held");
+    assert!(rare > 1000);
+}
+
+/// With the shared path, `advance` low and `hold` together: the driver
+/// lowers `advance` at random and offers the next input only on a clock
+/// that takes it (advance high, hold low); the verdicts are the model's,
+/// in order.
+#[test]
+fn shared_rare_case_path_under_back_pressure() {
+    let mut pipeline = pipeline_with(16, RareCasePath::Shared).unwrap();
+    let mut groups = coplanar_integer_groups(71, 4, 50);
+    groups.extend(small_integer_groups(72, 1, 4, 50));
+    let (schedule, expected) = group_schedule(&groups, certified_intersects);
+    let p = pipeline.as_mut();
+    p.set_reset(true);
+    p.set_input(&PipelineInput::default());
+    p.clock_cycle();
+    p.set_reset(false);
+    let mut rng = ChaCha8Rng::seed_from_u64(8);
+    let (mut next, mut held, mut low) = (0, 0, 0);
+    let mut got = Vec::new();
+    for _ in 0..20 * schedule.len() {
+        let advance = rng.gen_bool(0.7);
+        p.set_advance(advance);
+        p.set_input(&schedule.get(next).copied().unwrap_or_default());
+        let hold = p.hold();
+        p.clock_cycle();
+        if !advance {
+            low += 1;
+        } else if hold {
+            held += 1;
+        } else {
+            next += 1;
+        }
+        let out = p.output();
+        if out.valid && advance && !hold {
+            got.push((out.base_id, out.stream_id, out.hit, out.certain));
+        }
+        if got.len() == expected.len() {
+            break;
+        }
+    }
+    let expected: Vec<_> = expected
+        .iter()
+        .map(|e| (e.base_id, e.stream_id, e.hit, e.certain))
+        .collect();
+    eprintln!(
+        "shared path under back-pressure: {} pairs, {low} clocks with advance low, {held} held",
+        got.len()
+    );
+    assert!(low > 100 && held > 100);
     assert_eq!(got, expected);
 }
 

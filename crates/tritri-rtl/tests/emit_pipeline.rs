@@ -1,12 +1,15 @@
 //! The emitted pipeline: lint-clean under `verilator --lint-only -Wall` at
-//! every supported width, compiled by Icarus, synthesized by Yosys, and
+//! every supported width (with either rare-case path), compiled by Icarus, synthesized by Yosys, and
 //! snapshot-checked at W = 24 (rung 5 of the verification ladder: any
 //! change to the emitted RTL shows up as a snapshot diff to review).
 //!
 //! A missing tool fails the test with the package to install.
 
+use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::{emit_pipeline, EmittedDesign};
 use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
+use tritri_rtl::pipeline::pipeline_unit::emit_pipeline_for;
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::synth::{synthesize, Target};
 use tritri_rtl::tools::{run, IVERILOG};
 
@@ -27,41 +30,44 @@ fn write(design: &EmittedDesign, name: &str) -> std::path::PathBuf {
 }
 
 /// `verilator --lint-only -Wall` and `slang -Weverything` print nothing and
-/// Icarus compiles, at every width; the emitted files never contain a
-/// lint_off pragma.
+/// Icarus compiles, at every width, with the rare cases in parallel and on
+/// the shared unit; the emitted files never contain a lint_off pragma.
 #[test]
 fn every_width_is_lint_clean() {
     for &width in SUPPORTED_WIDTHS {
-        let design = emit_pipeline(width).unwrap();
-        let dir = write(&design, &format!("lint-w{width}"));
-        let messages =
-            tritri_rtl::tools::lint(&dir, &design.top).unwrap_or_else(|e| panic!("W={width}: {e}"));
-        assert!(
-            messages.trim().is_empty(),
-            "W={width}: verilator said:\n{messages}"
-        );
-        let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
-            .unwrap_or_else(|e| panic!("W={width}: {e}"));
-        assert!(
-            messages.is_empty(),
-            "W={width}: slang -Weverything said:\n{messages}"
-        );
-        run(IVERILOG.command().unwrap().current_dir(&dir).args([
-            "-g2012",
-            "-o",
-            "/dev/null",
-            "-c",
-            "filelist.f",
-        ]))
-        .unwrap_or_else(|e| panic!("W={width}: {e}"));
-        for f in design.verilog_files() {
+        for rare_cases in [RareCasePath::Parallel, RareCasePath::Shared] {
+            let design = emit_pipeline_for(width, MultiplierMapping::Inferred, rare_cases).unwrap();
+            let what = format!("W={width}, {rare_cases:?}");
+            let dir = write(&design, &format!("lint-w{width}-{rare_cases:?}"));
+            let messages = tritri_rtl::tools::lint(&dir, &design.top)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
             assert!(
-                !f.contents.contains("lint_off"),
-                "{}: no lint_off pragma is needed",
-                f.path
+                messages.trim().is_empty(),
+                "{what}: verilator said:\n{messages}"
             );
+            let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(
+                messages.is_empty(),
+                "{what}: slang -Weverything said:\n{messages}"
+            );
+            run(IVERILOG.command().unwrap().current_dir(&dir).args([
+                "-g2012",
+                "-o",
+                "/dev/null",
+                "-c",
+                "filelist.f",
+            ]))
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+            for f in design.verilog_files() {
+                assert!(
+                    !f.contents.contains("lint_off"),
+                    "{}: no lint_off pragma is needed",
+                    f.path
+                );
+            }
+            std::fs::remove_dir_all(&dir).unwrap();
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
 

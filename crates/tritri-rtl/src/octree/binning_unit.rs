@@ -151,10 +151,10 @@ impl BinningUnitConfig {
     }
 }
 
-/// Runs `work` on a thread with a stack large enough for the unit: its
-/// rust-hdl model (four setups, four classifiers, sixteen packers, the
-/// memories' ports) is built on the stack and outgrows a test thread's
-/// 2 MiB.
+/// Runs `work` on a thread with a stack large enough for the largest
+/// units: their rust-hdl models are built on the stack and outgrow a test
+/// thread's 2 MiB (this unit's four setups, four classifiers, sixteen
+/// packers and memory ports; the pipeline with the shared rare-case unit).
 pub fn on_unit_stack<T: Send>(work: impl FnOnce() -> T + Send) -> T {
     std::thread::scope(|scope| {
         std::thread::Builder::new()

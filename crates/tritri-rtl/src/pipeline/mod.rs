@@ -9,6 +9,7 @@ pub mod coplanar_test;
 pub mod decision;
 pub mod degenerate_pair;
 pub mod dominant_axis;
+pub mod general_path;
 pub mod interval_overlap;
 pub mod normal;
 pub mod orient3d_operands;
@@ -19,9 +20,25 @@ pub mod ports;
 pub mod rare_decisions;
 pub mod segment_ends;
 pub mod shared_rare_cases;
+pub mod shared_rare_pipeline;
 pub mod third_determinant;
 pub mod triangle_front_end;
 pub mod triangle_pipeline;
+pub mod verdict_queue;
 
 /// Width of the triangle ids carried with each triangle (the one place).
 pub const ID_BITS: usize = 32;
+
+/// Where a pipeline tests its rare pairs (coplanar, and two degenerate
+/// triangles).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RareCasePath {
+    /// Their own units beside the general path: 60 multipliers, no stall
+    /// ([`triangle_pipeline::TrianglePipeline`]).
+    #[default]
+    Parallel,
+    /// One shared unit that takes a pair every few clocks: 6 multipliers,
+    /// the pipeline holding while a rare pair waits for it
+    /// ([`shared_rare_pipeline::SharedRarePipeline`]).
+    Shared,
+}

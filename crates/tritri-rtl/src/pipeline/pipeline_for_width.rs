@@ -15,7 +15,10 @@
 //! ```
 
 use crate::arith::convert::from_i128;
+use crate::octree::binning_unit::on_unit_stack;
+use crate::pipeline::shared_rare_pipeline::SharedRarePipeline;
 use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
+use crate::pipeline::RareCasePath;
 use crate::sim_drive;
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
@@ -80,13 +83,17 @@ pub struct PipelineOutput {
 
 /// A simulated pipeline of some width, driven directly (see
 /// [`crate::sim_drive`]). Object safe, so the width can be chosen at run time.
-pub trait PipelineSimulation {
+pub trait PipelineSimulation: Send {
     /// Coordinate width W.
     fn width(&self) -> usize;
     /// Latency `L` in clocks.
     fn latency(&self) -> usize;
     /// Drives the input ports (they take effect at the next clock).
     fn set_input(&mut self, input: &PipelineInput);
+    /// The pipeline holds this clock (a rare pair waits for the shared
+    /// unit): the input on the bus is not taken and must stay there.
+    /// Depends on registers only, so it can be read before the edge.
+    fn hold(&self) -> bool;
     /// Drives the clock enable.
     fn set_advance(&mut self, advance: bool);
     /// Drives the synchronous reset.
@@ -103,94 +110,108 @@ pub trait PipelineSimulation {
     fn raw_design(&self) -> crate::unit::RawDesign;
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> TrianglePipeline<W, D, C, O> {
-    /// The nine coordinate inputs `in_x0 … in_z2`, in bus order.
-    pub fn coordinate_inputs(&mut self) -> [&mut Signal<In, Bits<W>>; 9] {
-        [
-            &mut self.in_x0,
-            &mut self.in_y0,
-            &mut self.in_z0,
-            &mut self.in_x1,
-            &mut self.in_y1,
-            &mut self.in_z1,
-            &mut self.in_x2,
-            &mut self.in_y2,
-            &mut self.in_z2,
-        ]
-    }
+/// The simulation interface of a pipeline top; `$hold` reads its `hold`
+/// port, if it has one.
+macro_rules! pipeline_simulation {
+    ($top:ident, $hold:expr) => {
+        impl<const W: usize, const D: usize, const C: usize, const O: usize> $top<W, D, C, O> {
+            /// The nine coordinate inputs `in_x0 … in_z2`, in bus order.
+            pub fn coordinate_inputs(&mut self) -> [&mut Signal<In, Bits<W>>; 9] {
+                [
+                    &mut self.in_x0,
+                    &mut self.in_y0,
+                    &mut self.in_z0,
+                    &mut self.in_x1,
+                    &mut self.in_y1,
+                    &mut self.in_z1,
+                    &mut self.in_x2,
+                    &mut self.in_y2,
+                    &mut self.in_z2,
+                ]
+            }
 
-    /// A pipeline ready to simulate: every top-level input marked driven,
-    /// internal connections made, `advance` high, `reset` low.
-    pub fn new_connected() -> Self {
-        let mut p = Self::new();
-        p.clock.connect();
-        p.reset.connect();
-        p.advance.connect();
-        p.in_valid.connect();
-        p.in_bset.connect();
-        p.in_id.connect();
-        for v in p.coordinate_inputs() {
-            v.connect();
+            /// A pipeline ready to simulate: every top-level input marked driven,
+            /// internal connections made, `advance` high, `reset` low.
+            pub fn new_connected() -> Self {
+                let mut p = Self::new();
+                p.clock.connect();
+                p.reset.connect();
+                p.advance.connect();
+                p.in_valid.connect();
+                p.in_bset.connect();
+                p.in_id.connect();
+                for v in p.coordinate_inputs() {
+                    v.connect();
+                }
+                p.connect_all();
+                p.advance.next = true;
+                sim_drive::settle(&mut p);
+                p
+            }
         }
-        p.connect_all();
-        p.advance.next = true;
-        sim_drive::settle(&mut p);
-        p
-    }
+
+        impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSimulation
+            for $top<W, D, C, O>
+        {
+            fn width(&self) -> usize {
+                W
+            }
+            fn latency(&self) -> usize {
+                latency()
+            }
+            fn set_input(&mut self, input: &PipelineInput) {
+                self.in_valid.next = input.valid;
+                self.in_bset.next = input.bset;
+                self.in_id.next = Bits::from(input.id as u64);
+                for (signal, &v) in self.coordinate_inputs().into_iter().zip(&input.vertices) {
+                    let lo = -(1i64 << (W - 1));
+                    let hi = (1i64 << (W - 1)) - 1;
+                    assert!(
+                        (lo..=hi).contains(&v),
+                        "coordinate {v} does not fit in {W} bits"
+                    );
+                    signal.next = from_i128::<W>(v as i128);
+                }
+            }
+            fn hold(&self) -> bool {
+                $hold(self)
+            }
+            fn set_advance(&mut self, advance: bool) {
+                self.advance.next = advance;
+            }
+            fn set_reset(&mut self, rst: bool) {
+                self.reset.next = rst;
+            }
+            fn clock_cycle(&mut self) {
+                sim_drive::clock_cycle(self, |p| &mut p.clock);
+            }
+            fn half_cycle(&mut self, level: bool) {
+                self.clock.next = Clock { clk: level };
+                sim_drive::settle(self);
+            }
+            fn output(&self) -> PipelineOutput {
+                PipelineOutput {
+                    valid: self.out_valid.val(),
+                    hit: self.out_hit.val(),
+                    certain: self.out_certain.val(),
+                    base_id: self.out_base_id.val().to_u32(),
+                    stream_id: self.out_stream_id.val().to_u32(),
+                }
+            }
+            fn block(&self) -> &dyn Block {
+                self
+            }
+            fn raw_design(&self) -> crate::unit::RawDesign {
+                crate::unit::RawDesign::of(self)
+            }
+        }
+    };
 }
 
-impl<const W: usize, const D: usize, const C: usize, const O: usize> PipelineSimulation
-    for TrianglePipeline<W, D, C, O>
-{
-    fn width(&self) -> usize {
-        W
-    }
-    fn latency(&self) -> usize {
-        latency()
-    }
-    fn set_input(&mut self, input: &PipelineInput) {
-        self.in_valid.next = input.valid;
-        self.in_bset.next = input.bset;
-        self.in_id.next = Bits::from(input.id as u64);
-        for (signal, &v) in self.coordinate_inputs().into_iter().zip(&input.vertices) {
-            let lo = -(1i64 << (W - 1));
-            let hi = (1i64 << (W - 1)) - 1;
-            assert!(
-                (lo..=hi).contains(&v),
-                "coordinate {v} does not fit in {W} bits"
-            );
-            signal.next = from_i128::<W>(v as i128);
-        }
-    }
-    fn set_advance(&mut self, advance: bool) {
-        self.advance.next = advance;
-    }
-    fn set_reset(&mut self, rst: bool) {
-        self.reset.next = rst;
-    }
-    fn clock_cycle(&mut self) {
-        sim_drive::clock_cycle(self, |p| &mut p.clock);
-    }
-    fn half_cycle(&mut self, level: bool) {
-        self.clock.next = Clock { clk: level };
-        sim_drive::settle(self);
-    }
-    fn output(&self) -> PipelineOutput {
-        PipelineOutput {
-            valid: self.out_valid.val(),
-            hit: self.out_hit.val(),
-            certain: self.out_certain.val(),
-            base_id: self.out_base_id.val().to_u32(),
-            stream_id: self.out_stream_id.val().to_u32(),
-        }
-    }
-    fn block(&self) -> &dyn Block {
-        self
-    }
-    fn raw_design(&self) -> crate::unit::RawDesign {
-        crate::unit::RawDesign::of(self)
-    }
-}
+pipeline_simulation!(TrianglePipeline, |_: &TrianglePipeline<W, D, C, O>| false);
+pipeline_simulation!(SharedRarePipeline, |p: &SharedRarePipeline<W, D, C, O>| p
+    .hold
+    .val());
 
 /// Calls `$then!` with the one list of coordinate widths that have
 /// hardware. The pipelines here, the systems
@@ -208,12 +229,20 @@ macro_rules! pipeline_widths {
         /// Coordinate widths with a concrete pipeline and system.
         pub const SUPPORTED_WIDTHS: &[usize] = &[$($w),*];
 
-        /// A new, connected pipeline for `width`-bit coordinates.
-        pub fn pipeline_for_width(width: usize) -> Result<Box<dyn PipelineSimulation>, UnsupportedWidth> {
-            match width {
-                $($w => Ok(Box::new(
+        /// A new, connected pipeline for `width`-bit coordinates, its rare
+        /// cases on the path `rare_cases` names.
+        pub fn pipeline_with(
+            width: usize,
+            rare_cases: RareCasePath,
+        ) -> Result<Box<dyn PipelineSimulation>, UnsupportedWidth> {
+            match (width, rare_cases) {
+                $(($w, RareCasePath::Parallel) => Ok(Box::new(
                     TrianglePipeline::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::new_connected(),
-                )),)*
+                )),
+                // Built where it fits: it outgrows a test thread's stack.
+                ($w, RareCasePath::Shared) => Ok(on_unit_stack(|| -> Box<dyn PipelineSimulation> { Box::new(
+                    SharedRarePipeline::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::new_connected(),
+                ) })),)*
                 _ => Err(UnsupportedWidth(width)),
             }
         }
@@ -221,6 +250,12 @@ macro_rules! pipeline_widths {
 }
 
 for_supported_widths!(pipeline_widths);
+
+/// A new, connected pipeline for `width`-bit coordinates, with the rare
+/// cases' tests in parallel (the default).
+pub fn pipeline_for_width(width: usize) -> Result<Box<dyn PipelineSimulation>, UnsupportedWidth> {
+    pipeline_with(width, RareCasePath::Parallel)
+}
 
 /// `Ok` when `width` has hardware, else the error that lists the widths
 /// that do.

@@ -4,26 +4,46 @@
 
 use crate::emit::dsp_mapping::MultiplierMapping;
 use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
-use crate::pipeline::pipeline_for_width::{UnsupportedWidth, SUPPORTED_WIDTHS};
+use crate::pipeline::pipeline_for_width::{pipeline_with, UnsupportedWidth, SUPPORTED_WIDTHS};
 use crate::pipeline::ports::port_descriptions;
+use crate::pipeline::shared_rare_cases::{COPLANAR_STEPS, SEGMENTS_STEPS};
 use crate::pipeline::triangle_pipeline::latency;
+use crate::pipeline::RareCasePath;
 use crate::pipeline::ID_BITS;
 use tritri_geom::widths::FixedWidths;
 
 /// Top module name of the `width`-bit pipeline: `tritri_pipeline_w<W>`.
 pub fn pipeline_unit_name(width: usize) -> String {
-    format!("tritri_pipeline_w{width}")
+    pipeline_unit_name_for(width, RareCasePath::Parallel)
+}
+
+/// Top module name of the `width`-bit pipeline with its rare cases on
+/// `rare_cases`: `tritri_pipeline_w<W>`, or `tritri_pipeline_shared_w<W>`.
+pub fn pipeline_unit_name_for(width: usize, rare_cases: RareCasePath) -> String {
+    match rare_cases {
+        RareCasePath::Parallel => format!("tritri_pipeline_w{width}"),
+        RareCasePath::Shared => format!("tritri_pipeline_shared_w{width}"),
+    }
 }
 
 /// The description of the `width`-bit pipeline for the emitter.
 pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> {
+    pipeline_unit_for(width, RareCasePath::Parallel)
+}
+
+/// The description of the `width`-bit pipeline with its rare cases on
+/// `rare_cases`.
+pub fn pipeline_unit_for(
+    width: usize,
+    rare_cases: RareCasePath,
+) -> Result<UnitDescription, UnsupportedWidth> {
     if !SUPPORTED_WIDTHS.contains(&width) {
         return Err(UnsupportedWidth(width));
     }
     let w = FixedWidths::new(width as u32).map_err(|_| UnsupportedWidth(width))?;
     let l = latency() as u64;
     let mut unit = UnitDescription::new(
-        &pipeline_unit_name(width),
+        &pipeline_unit_name_for(width, rare_cases),
         &format!(
             "Devillers-Guigue triangle-triangle overlap test for {width}-bit signed coordinates, pipelined: \
              one triangle pair per clock, verdict after {l} clocks."
@@ -53,6 +73,20 @@ pub fn pipeline_unit(width: usize) -> Result<UnitDescription, UnsupportedWidth> 
     for (name, meaning) in port_descriptions(latency()) {
         unit = unit.port(&name, &meaning);
     }
+    if rare_cases == RareCasePath::Shared {
+        unit = unit
+            .detail(&format!(
+                "The rare pairs (coplanar, or two degenerate triangles) are tested on one shared unit with six \
+                 multipliers instead of 60: it takes a coplanar pair every {COPLANAR_STEPS} clocks and two segments \
+                 every {SEGMENTS_STEPS}. While a rare pair waits for it, `hold` is high and the pipeline holds as if \
+                 `advance` were low; verdicts keep their order and their latency in advancing clocks."
+            ))
+            .port(
+                "hold",
+                "A rare pair waits for the shared unit: this clock does not take the input bus (keep the \
+                 triangle on it) and moves nothing. Depends on registers only.",
+            );
+    }
     Ok(unit)
 }
 
@@ -75,8 +109,18 @@ pub fn emit_pipeline_with(
     width: usize,
     multipliers: MultiplierMapping,
 ) -> Result<EmittedDesign, PipelineEmitError> {
-    let unit = pipeline_unit(width)?;
-    let raw = crate::raw_design(width)?;
+    emit_pipeline_for(width, multipliers, RareCasePath::Parallel)
+}
+
+/// [`emit_pipeline_with`] with the rare cases on `rare_cases`
+/// (`tritri gen --rare-cases`).
+pub fn emit_pipeline_for(
+    width: usize,
+    multipliers: MultiplierMapping,
+    rare_cases: RareCasePath,
+) -> Result<EmittedDesign, PipelineEmitError> {
+    let unit = pipeline_unit_for(width, rare_cases)?;
+    let raw = pipeline_with(width, rare_cases)?.raw_design();
     Ok(emit_with(
         &raw,
         &unit,

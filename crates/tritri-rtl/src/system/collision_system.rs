@@ -36,6 +36,7 @@
 //! [`StubPipeline`].
 
 use super::stub_pipeline::StubPipeline;
+use crate::pipeline::shared_rare_pipeline::SharedRarePipeline;
 use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
 use rust_hdl::prelude::*;
 
@@ -51,7 +52,7 @@ use rust_hdl::prelude::*;
 #[macro_export]
 macro_rules! collision_system {
     ($(#[$meta:meta])* $vis:vis struct $name:ident < $(const $param:ident : usize),* > {
-        coordinate_bits: $w:expr, pipeline: $pipeline:ty $(,)?
+        coordinate_bits: $w:expr, pipeline: $pipeline:ty $(, hold: $hold:ident)? $(,)?
     }) => {
         $(#[$meta])*
         #[derive(LogicBlock)]
@@ -108,6 +109,12 @@ macro_rules! collision_system {
             tested_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
             hit_count: Signal<Local, Bits<{ $crate::system::LANE_BITS }>>,
             any_report: Signal<Local, Bit>,
+            /// Some pipeline holds (a rare pair waits for its shared unit):
+            /// the chain ORs the pipelines' `hold` ports, if they have one
+            /// (the macro's `hold:`); otherwise it is constant 0 and
+            /// synthesis removes it.
+            hold_chain: Vec<Signal<Local, Bit>>,
+            any_hold: Signal<Local, Bit>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
             /// whose name tells Verilator's lint (`--unused-regexp`, default
@@ -178,6 +185,8 @@ macro_rules! collision_system {
                     tested_count: Default::default(),
                     hit_count: Default::default(),
                     any_report: Default::default(),
+                    hold_chain: (0..=p).map(|_| Default::default()).collect(),
+                    any_hold: Default::default(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -304,7 +313,13 @@ macro_rules! collision_system {
                     self.unused_stream_ids[i + 1].next =
                         self.unused_stream_ids[i].val() ^ self.pipelines[i].out_stream_id.val().any();
                 }
-                self.advance.next = !(self.result_fifo.full.val() & self.any_report.val());
+                self.hold_chain[0].next = false;
+                self.any_hold.next = false;
+                for i in 0..self.pipelines.len() {
+                    self.hold_chain[i + 1].next = self.hold_chain[i].val() $(| self.pipelines[i].$hold.val())?;
+                    self.any_hold.next = self.hold_chain[i + 1].val();
+                }
+                self.advance.next = !(self.result_fifo.full.val() & self.any_report.val()) & !self.any_hold.val();
 
                 // Host stream → write side of the address generator and memories.
                 clock!(self, clock, address_generator, memory_a, memory_b, result_fifo, pair_serializer);
@@ -449,6 +464,34 @@ collision_system!(
         pipeline: TrianglePipeline<W, D, C, O>,
     }
 );
+
+collision_system!(
+    /// The system with Devillers–Guigue pipelines that test their rare
+    /// pairs on a shared unit ([`SharedRarePipeline`]): every pipeline
+    /// holds, and the read side with them, while one of them waits for its
+    /// unit.
+    pub struct SharedCollisionSystem<const W: usize, const D: usize, const C: usize, const O: usize> {
+        coordinate_bits: W,
+        pipeline: SharedRarePipeline<W, D, C, O>,
+        hold: hold,
+    }
+);
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize>
+    SharedCollisionSystem<W, D, C, O>
+{
+    /// The system with shared-unit pipelines; `config.pipeline_latency`
+    /// must be the pipeline's latency.
+    pub fn with_pipelines(config: crate::system::SystemConfig) -> Self {
+        assert_eq!(
+            config.pipeline_latency,
+            latency(),
+            "the pipeline's latency is {}",
+            latency()
+        );
+        Self::new(config, SharedRarePipeline::new)
+    }
+}
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> CollisionSystem<W, D, C, O> {
     /// The system with real pipelines; `config.pipeline_latency` must be the

@@ -10,7 +10,7 @@
 //! assert_eq!(system.system_config().pipelines, 2);
 //! ```
 
-use super::collision_system::{CollisionSystem, StubCollisionSystem};
+use super::collision_system::{CollisionSystem, SharedCollisionSystem, StubCollisionSystem};
 use super::host_ports::HostPorts;
 use super::SystemConfig;
 pub use crate::pipeline::pipeline_for_width::UnsupportedWidth;
@@ -23,6 +23,9 @@ pub enum PipelineKind {
     Real,
     /// [`super::stub_pipeline::StubPipeline`] of latency `config.pipeline_latency`.
     Stub,
+    /// The Devillers–Guigue pipeline with its rare pairs on a shared unit
+    /// ([`crate::pipeline::shared_rare_pipeline`]).
+    Shared,
 }
 
 macro_rules! system_widths {
@@ -35,6 +38,9 @@ macro_rules! system_widths {
                         CollisionSystem::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::with_pipelines(config),
                     )),
                     ($w, PipelineKind::Stub) => Ok(Box::new(StubCollisionSystem::<$w>::with_stub_pipelines(config))),
+                    ($w, PipelineKind::Shared) => Ok(Box::new(
+                        SharedCollisionSystem::<$w, { difference_bits($w) }, { cross_bits($w) }, { orient3d_bits($w) }>::with_pipelines(config),
+                    )),
                 )*
                 (w, _) => Err(UnsupportedWidth(w)),
             }

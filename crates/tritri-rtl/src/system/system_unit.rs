@@ -15,11 +15,13 @@ use super::SystemConfig;
 use crate::emit::dsp_mapping::MultiplierMapping;
 use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 
-/// The top's name: [`SystemConfig::unit_name`], with `_stub` for stub pipelines.
+/// The top's name: [`SystemConfig::unit_name`], with `_stub` for stub
+/// pipelines and `_shared` for pipelines with the shared rare-case unit.
 pub fn system_unit_name(config: SystemConfig, kind: PipelineKind) -> String {
     match kind {
         PipelineKind::Real => config.unit_name(),
         PipelineKind::Stub => format!("{}_stub", config.unit_name()),
+        PipelineKind::Shared => format!("{}_shared", config.unit_name()),
     }
 }
 
@@ -43,6 +45,14 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
          (N1 + N2 + 1) + 1 + N1 + ceil(N1 / P) * N2 + 1 + L, plus stall cycles \
          (tritri_rtl::system::cycle_model).",
     )
+    .detail(if kind == PipelineKind::Shared {
+        "Each pipeline tests its rare pairs (coplanar, or two degenerate triangles) on one shared unit \
+         with six multipliers; while a rare pair waits for its pipeline's unit, every pipeline and the read \
+         side hold, and `stall_cycles` counts those clocks too (tritri_rtl::system::rare_case_model)."
+    } else {
+        "Each pipeline tests its rare pairs (coplanar, or two degenerate triangles) on units of their own, \
+         beside the general path: they never stall it."
+    })
     .parameter("W", &format!("{w}: coordinate width (signed bits)"))
     .parameter("P", &format!("{}: pipelines in parallel", config.pipelines))
     .parameter(

@@ -1,0 +1,147 @@
+//! The system whose pipelines test their rare pairs on the shared unit
+//! (`PipelineKind::Shared`, `tritri gen --system --rare-cases shared`), on
+//! batches full of coplanar and degenerate pairs. Properties, in rust-hdl
+//! and in the emitted Verilog in Verilator:
+//!
+//! * the pairs are those of `fixed_point::intersects`, the pairs without a
+//!   certificate those of `certificate::certain`;
+//! * on one batch, the clocks it stalls are exactly those
+//!   `system::rare_case_model` counts for it, and the run takes the cycle
+//!   model's cycles plus those; over several batches the model is an upper
+//!   bound (a unit finishes its job during the idle clocks between
+//!   batches, which the model leaves out);
+//! * Verilator and rust-hdl agree cycle for cycle.
+
+mod system_common;
+
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use tritri_cosim::simulator::Simulator;
+use tritri_cosim::system_harness::*;
+use tritri_cosim::system_rtl::run_system_rtl;
+use tritri_geom::certificate::certain;
+use tritri_geom::fixed_point::{intersects, FixedTriangle};
+use tritri_geom::scene::reference::{pairs_where, PairDiff};
+use tritri_geom::scene::{Batch, TaggedTriangle};
+use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::system::rare_case_model::rare_case_cost;
+
+/// Small integer triangles: most on the plane z = x (coplanar pairs with
+/// each other), some collinear (degenerate, many pairs of segments), the
+/// rest anywhere near.
+fn rare_triangles(rng: &mut ChaCha8Rng, n: usize, first_id: u32) -> Vec<TaggedTriangle> {
+    (0..n)
+        .map(|i| {
+            let mut c = || rng.gen_range(-4i64..=4);
+            let triangle: FixedTriangle = match i % 5 {
+                0..=2 => [0; 3].map(|_| {
+                    let (x, y) = (c(), c());
+                    [x, y, x]
+                }),
+                3 => {
+                    let (p, d) = ([c(), c(), c()], [c(), c(), c()]);
+                    [0, 1, 2].map(|k: i64| [p[0] + k * d[0], p[1] + k * d[1], p[2] + k * d[2]])
+                }
+                _ => [0; 3].map(|_| [c(), c(), c()]),
+            };
+            TaggedTriangle {
+                id: first_id + i as u32,
+                triangle,
+            }
+        })
+        .collect()
+}
+
+fn arrays(seed: u64, shapes: &[(usize, usize)]) -> Vec<system_common::Arrays> {
+    let mut rng = system_common::rng(seed);
+    shapes
+        .iter()
+        .enumerate()
+        .map(|(k, &(a, b))| {
+            let first = 1000 * k as u32;
+            (
+                rare_triangles(&mut rng, a, first),
+                rare_triangles(&mut rng, b, first + 500),
+            )
+        })
+        .collect()
+}
+
+/// The pairs and uncertain pairs are the models'; returns the run.
+fn run_and_check(
+    config: SystemConfig,
+    batches: &[Batch],
+    overlap: bool,
+    reader: ReaderBehaviour,
+) -> SystemResult {
+    let expected = pairs_where(batches, |x, y| intersects(&x.triangle, &y.triangle));
+    let uncertain = pairs_where(batches, |x, y| !certain(&x.triangle, &y.triangle));
+    let r = run_system_with(config, PipelineKind::Shared, batches, overlap, reader).unwrap();
+    assert!(PairDiff::between(&expected, &r.pairs).is_empty());
+    assert!(PairDiff::between(&uncertain, &r.uncertain).is_empty());
+    r
+}
+
+/// One batch at a time: stalls are the rare-case model's count, cycles the
+/// cycle model's plus the stalls.
+#[test]
+fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
+    for (p, shape) in [(1, (7, 40)), (2, (9, 40)), (4, (6, 33))] {
+        let arrays = arrays(p as u64, &[shape]);
+        let batches = system_common::batches(&arrays);
+        let config = SystemConfig::new(16, p, latency()).with_depth(64);
+        let r = run_and_check(config, &batches, false, ReaderBehaviour::AlwaysReady);
+        let cost = rare_case_cost(p, &batches);
+        let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
+        let model = system_cycles(config, &sizes, false, ReaderBehaviour::AlwaysReady);
+        eprintln!(
+            "P={p}, {shape:?}: {} pairs, {} rare ({} coplanar), stalls {} (model {}), cycles {} (model {model} + stalls)",
+            r.pairs_tested, cost.coplanar + cost.segments, cost.coplanar, r.stall_cycles, cost.stall_cycles, r.cycles
+        );
+        assert!(cost.stall_cycles > 50, "the batch keeps the unit busy");
+        assert_eq!(r.stall_cycles, cost.stall_cycles);
+        assert_eq!(r.cycles, model + cost.stall_cycles);
+    }
+}
+
+/// Several batches, the host writing on (overlap): with a reader always
+/// ready, the model bounds the stalls; with a two-word result FIFO and a
+/// slow reader, its back-pressure and the rare pairs' holds mix. Either
+/// way Verilator running the emitted system equals rust-hdl.
+#[test]
+fn batches_in_verilator_equal_rust_hdl() {
+    let arrays = arrays(7, &[(5, 30), (0, 4), (8, 25), (3, 3)]);
+    let batches = system_common::batches(&arrays);
+    let config = SystemConfig::new(16, 2, latency()).with_depth(32);
+    for (config, reader) in [
+        (config, ReaderBehaviour::AlwaysReady),
+        (config.with_result_fifo_depth(2), ReaderBehaviour::OneIn(5)),
+    ] {
+        let hdl = run_and_check(config, &batches, true, reader);
+        let bound = rare_case_cost(2, &batches).stall_cycles;
+        let rtl = run_system_rtl(
+            Simulator::Verilator,
+            config,
+            PipelineKind::Shared,
+            &batches,
+            true,
+            reader,
+        )
+        .unwrap();
+        eprintln!(
+            "P=2, 4 batches, {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {} (holds at most {bound})",
+            rtl.pairs.len(),
+            hdl.pairs.len(),
+            rtl.cycles,
+            hdl.cycles,
+            rtl.stall_cycles,
+            hdl.stall_cycles
+        );
+        if reader == ReaderBehaviour::AlwaysReady {
+            assert!(hdl.stall_cycles > 50 && hdl.stall_cycles <= bound);
+        } else {
+            assert!(hdl.stall_cycles > bound);
+        }
+        assert_eq!(rtl, hdl);
+    }
+}

@@ -1,0 +1,224 @@
+//! The other top: the triangle-pair pipeline with the rare cases on one
+//! shared, slower unit (issue 14, part 3). The general path
+//! ([`super::general_path`]) is the same as in
+//! [`super::triangle_pipeline::TrianglePipeline`]; the coplanar test and the
+//! degenerate pair's segment test are both done by
+//! [`SharedRareCases`] (6 multipliers instead of 60), which takes a
+//! coplanar pair every `COPLANAR_STEPS` clocks and two segments every
+//! `SEGMENTS_STEPS`.
+//!
+//! A pair is rare when, beside its plane-side signs ([`SIDES_STAGE`]), its
+//! case needs one of those tests (the rule of the decision, and of
+//! `system::rare_case_model::rare_kind`): both triangles degenerate, or
+//! the degenerate triangle's vertices (else T2's) all on the other's plane.
+//! Its job goes to the unit as the pair leaves that stage. While the unit
+//! cannot take it, `hold` is high and the whole pipeline holds, as if
+//! `advance` were low: the triangle on the input bus is not taken and must
+//! stay there. The unit runs on, free of `advance`, and its verdicts wait
+//! in a [`VerdictQueue`] for their pairs to reach the decision, in order.
+//!
+//! So the latency in advancing clocks is the parallel pipeline's
+//! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
+//! `hold` high, which `system::rare_case_model` counts.
+
+use super::general_path::{GeneralPath, DECISION_STAGE, SIDES_STAGE};
+use super::shared_rare_cases::{SharedRareCases, SHARED_RARE_CASES_LATENCY};
+use super::verdict_queue::{VerdictQueue, VERDICT_QUEUE_DEPTH};
+use crate::arith::delay_line::DelayLine;
+use crate::arith::valid_line::ValidLine;
+use rust_hdl::prelude::*;
+
+pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
+
+/// The unit's verdict is in the queue by the time its pair, taken as it
+/// left the sides stage and never faster than a stage a clock, reaches the
+/// decision (it is written a clock after `done`).
+const _: () = assert!(DECISION_STAGE - SIDES_STAGE > SHARED_RARE_CASES_LATENCY);
+/// Every verdict waiting or in the unit belongs to a pair between the two
+/// stages, at most one a stage.
+const _: () = assert!(DECISION_STAGE - SIDES_STAGE < VERDICT_QUEUE_DEPTH);
+
+crate::pipeline_ports! {
+    // The ports: crate::pipeline::ports, and `hold`.
+    #[derive(LogicBlock, Default)]
+    pub struct SharedRarePipeline<const W: usize, const D: usize, const C: usize, const O: usize> {
+        /// A rare pair waits for the unit: the pipeline holds this clock,
+        /// and the input bus is not taken.
+        pub hold: Signal<Out, Bit>,
+        path: GeneralPath<W, D, C, O>,
+        rare_cases: SharedRareCases<W, D, C>,
+        verdicts: VerdictQueue,
+        /// The job's vertices (T1's, then T2's), axis, normals' signs (T1's negative, zero, then T2's),
+        /// degenerate flags and segment ends (T1 low, high, T2 low, high),
+        /// from the pair to the sides stage.
+        vertices_to_sides: [DelayLine<Bits<W>, SIDES_STAGE>; 18],
+        axis_to_sides: DelayLine<Bits<2>, SIDES_STAGE>,
+        normals_to_sides: [DelayLine<Bit, SIDES_STAGE>; 12],
+        degenerate_to_sides: [DelayLine<Bit, SIDES_STAGE>; 2],
+        segment_ends_to_sides: [DelayLine<Bits<2>, SIDES_STAGE>; 4],
+        /// A rare pair, from the sides stage to the decision.
+        rare_to_decision: ValidLine<{ DECISION_STAGE - SIDES_STAGE }>,
+        segments: Signal<Local, Bit>,
+        coplanar: Signal<Local, Bit>,
+        rare: Signal<Local, Bit>,
+        /// `advance`, unless a rare pair waits.
+        moving: Signal<Local, Bit>,
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for SharedRarePipeline<W, D, C, O>
+{
+    const LATENCY: Option<usize> = Some(TRIANGLE_PIPELINE_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            path,
+            rare_cases,
+            verdicts,
+            vertices_to_sides,
+            axis_to_sides,
+            normals_to_sides,
+            degenerate_to_sides,
+            segment_ends_to_sides,
+            rare_to_decision
+        );
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize>
+    SharedRarePipeline<W, D, C, O>
+{
+    /// A pipeline for W-bit coordinates. Panics unless `D`, `C`, `O` are the
+    /// widths `tritri_geom::widths` derives from `W`.
+    pub fn new() -> Self {
+        GeneralPath::<W, D, C, O>::new();
+        Self::default()
+    }
+}
+
+impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
+    for SharedRarePipeline<W, D, C, O>
+{
+    #[hdl_gen]
+    fn update(&mut self) {
+        clock!(
+            self,
+            clock,
+            path,
+            rare_cases,
+            verdicts,
+            axis_to_sides,
+            rare_to_decision
+        );
+        // Which pairs are rare: two segments; else the degenerate
+        // triangle's vertices, or T2's, all on the other plane (for two
+        // proper triangles, T2 in T1's plane is T1 in T2's). First, since
+        // rust-hdl wants a local written before it is read.
+        self.segments.next =
+            self.degenerate_to_sides[0].q.val() && self.degenerate_to_sides[1].q.val();
+        if self.degenerate_to_sides[0].q.val() {
+            self.coplanar.next = self.path.sides_t1_zero[0].val()
+                && self.path.sides_t1_zero[1].val()
+                && self.path.sides_t1_zero[2].val();
+        } else {
+            self.coplanar.next = self.path.sides_t2_zero[0].val()
+                && self.path.sides_t2_zero[1].val()
+                && self.path.sides_t2_zero[2].val();
+        }
+        self.rare.next =
+            self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
+        self.hold.next = self.rare.val() && !self.rare_cases.ready.val();
+        self.moving.next = self.advance.val() && !(self.rare.val() && !self.rare_cases.ready.val());
+
+        for i in 0..18 {
+            self.vertices_to_sides[i].clock.next = self.clock.val();
+            self.vertices_to_sides[i].advance.next = self.moving.val();
+        }
+        for i in 0..12 {
+            self.normals_to_sides[i].clock.next = self.clock.val();
+            self.normals_to_sides[i].advance.next = self.moving.val();
+        }
+        for i in 0..2 {
+            self.degenerate_to_sides[i].clock.next = self.clock.val();
+            self.degenerate_to_sides[i].advance.next = self.moving.val();
+        }
+        for i in 0..4 {
+            self.segment_ends_to_sides[i].clock.next = self.clock.val();
+            self.segment_ends_to_sides[i].advance.next = self.moving.val();
+        }
+        self.axis_to_sides.advance.next = self.moving.val();
+        self.rare_to_decision.advance.next = self.moving.val();
+        self.rare_to_decision.reset.next = self.reset.val();
+        self.path.advance.next = self.moving.val();
+        self.path.reset.next = self.reset.val();
+        self.rare_cases.reset.next = self.reset.val();
+        self.verdicts.reset.next = self.reset.val();
+
+        // The ports, through to the path.
+        self.path.in_valid.next = self.in_valid.val();
+        self.path.in_bset.next = self.in_bset.val();
+        self.path.in_id.next = self.in_id.val();
+        self.path.in_x0.next = self.in_x0.val();
+        self.path.in_y0.next = self.in_y0.val();
+        self.path.in_z0.next = self.in_z0.val();
+        self.path.in_x1.next = self.in_x1.val();
+        self.path.in_y1.next = self.in_y1.val();
+        self.path.in_z1.next = self.in_z1.val();
+        self.path.in_x2.next = self.in_x2.val();
+        self.path.in_y2.next = self.in_y2.val();
+        self.path.in_z2.next = self.in_z2.val();
+        self.out_valid.next = self.path.out_valid.val();
+        self.out_hit.next = self.path.out_hit.val();
+        self.out_certain.next = self.path.out_certain.val();
+        self.out_base_id.next = self.path.out_base_id.val();
+        self.out_stream_id.next = self.path.out_stream_id.val();
+
+        // The job, to the sides stage.
+        for i in 0..9 {
+            self.vertices_to_sides[i].d.next = self.path.pair_t1_vertices[i].val();
+            self.vertices_to_sides[9 + i].d.next = self.path.pair_t2_vertices[i].val();
+        }
+        self.axis_to_sides.d.next = self.path.pair_axis.val();
+        for k in 0..3 {
+            self.normals_to_sides[k].d.next = self.path.pair_t1_normal_negative[k].val();
+            self.normals_to_sides[3 + k].d.next = self.path.pair_t1_normal_zero[k].val();
+            self.normals_to_sides[6 + k].d.next = self.path.pair_t2_normal_negative[k].val();
+            self.normals_to_sides[9 + k].d.next = self.path.pair_t2_normal_zero[k].val();
+        }
+        self.degenerate_to_sides[0].d.next = self.path.pair_t1_degenerate.val();
+        self.degenerate_to_sides[1].d.next = self.path.pair_t2_degenerate.val();
+        self.segment_ends_to_sides[0].d.next = self.path.pair_t1_segment_low.val();
+        self.segment_ends_to_sides[1].d.next = self.path.pair_t1_segment_high.val();
+        self.segment_ends_to_sides[2].d.next = self.path.pair_t2_segment_low.val();
+        self.segment_ends_to_sides[3].d.next = self.path.pair_t2_segment_high.val();
+
+        // The job, taken as the pair leaves the sides stage.
+        self.rare_cases.in_valid.next = self.rare.val() && self.moving.val();
+        self.rare_cases.in_segments.next = self.segments.val();
+        for i in 0..9 {
+            self.rare_cases.t1_vertices[i].next = self.vertices_to_sides[i].q.val();
+            self.rare_cases.t2_vertices[i].next = self.vertices_to_sides[9 + i].q.val();
+        }
+        self.rare_cases.axis.next = self.axis_to_sides.q.val();
+        for k in 0..3 {
+            self.rare_cases.t1_normal_negative[k].next = self.normals_to_sides[k].q.val();
+            self.rare_cases.t1_normal_zero[k].next = self.normals_to_sides[3 + k].q.val();
+            self.rare_cases.t2_normal_negative[k].next = self.normals_to_sides[6 + k].q.val();
+            self.rare_cases.t2_normal_zero[k].next = self.normals_to_sides[9 + k].q.val();
+        }
+        self.rare_cases.t1_segment_low.next = self.segment_ends_to_sides[0].q.val();
+        self.rare_cases.t1_segment_high.next = self.segment_ends_to_sides[1].q.val();
+        self.rare_cases.t2_segment_low.next = self.segment_ends_to_sides[2].q.val();
+        self.rare_cases.t2_segment_high.next = self.segment_ends_to_sides[3].q.val();
+
+        // Its verdict, queued until the pair reaches the decision.
+        self.rare_to_decision.d.next = self.rare.val();
+        self.verdicts.push.next = self.rare_cases.done.val();
+        self.verdicts.push_hit.next = self.rare_cases.hit.val();
+        self.verdicts.pop.next = self.rare_to_decision.q.val() && self.moving.val();
+        self.path.coplanar_hit.next = self.verdicts.head.val();
+        self.path.degenerate_pair_hit.next = self.verdicts.head.val();
+    }
+}
