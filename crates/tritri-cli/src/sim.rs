@@ -2,7 +2,7 @@
 //! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
 //! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
 //! [--clock-mhz F] [--out PAIRS] [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]
-//! [--tolerance T] [--broad-phase-top] [--certified]`
+//! [--tolerance T] [--broad-phase-top] [--certified] [--rare-cases parallel|shared]`
 //!
 //! `--tolerance T` tessellates `.bpt` objects for the query
 //! (`tritri_geom::bezier::query`): only the patches that can meet the

@@ -336,6 +336,52 @@ fn system_is_emitted_with_its_parameters() {
 /// contacts lose their certificates), two pipelines fit the Artix-7 200T
 /// and four do not; the README says so and gives the Verilator command.
 /// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named.
+/// `--rare-cases shared` writes the pipeline with the shared rare-case
+/// unit (its `hold` port in the README) and, with `--system`, the system
+/// of such pipelines; any other path is refused, naming it.
+#[test]
+fn rare_cases_option_chooses_the_top() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-shared-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri()
+        .args(["gen", "--width", "8", "--rare-cases", "shared", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    assert!(
+        out.join("tritri_pipeline_shared_w8.v").is_file() && readme.contains("| `hold` |"),
+        "{readme}"
+    );
+    std::fs::remove_dir_all(&out).unwrap();
+    let status = tritri()
+        .args([
+            "gen",
+            "--system",
+            "--width",
+            "8",
+            "--depth",
+            "16",
+            "--rare-cases",
+            "shared",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    assert!(out.join("tritri_system_w8_p2_d16_shared.v").is_file());
+    std::fs::remove_dir_all(&out).unwrap();
+
+    let refused = tritri()
+        .args(["gen", "--rare-cases", "serial"])
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("serial"));
+}
+
 #[test]
 fn for_scene_sizes_the_system_and_says_why() {
     let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));

@@ -13,8 +13,12 @@
 //! loads between groups and nothing between batches, so the count is an
 //! upper bound: the system has more idle clocks than that.
 //!
-//! Not yet in the pipeline: this is the cycle model the pipeline with the
-//! shared unit will have to meet.
+//! The pipeline with the shared unit
+//! ([`crate::pipeline::shared_rare_pipeline`]) and its system meet it: on
+//! one batch, or one pipeline fed without gaps, the clocks they hold are
+//! this count exactly; over several batches it is their upper bound
+//! (`tritri-cosim/tests/system_shared_rare_cases.rs`,
+//! `rusthdl_pipeline.rs`, `rtl_cosim.rs`).
 
 use crate::pipeline::shared_rare_cases::{COPLANAR_STEPS, SEGMENTS_STEPS};
 use tritri_geom::devillers_guigue::{shape, Shape};
