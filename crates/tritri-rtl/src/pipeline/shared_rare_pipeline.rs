@@ -48,9 +48,9 @@ crate::pipeline_ports! {
         path: GeneralPath<W, D, C, O>,
         rare_cases: SharedRareCases<W, D, C>,
         verdicts: VerdictQueue,
-        /// The job's vertices (T1's, then T2's), axis, normals' signs (T1's negative, zero, then T2's),
-        /// degenerate flags and segment ends (T1 low, high, T2 low, high),
-        /// from the pair to the sides stage.
+        /// The job, from the pair to the sides stage: vertices (T1's, then
+        /// T2's), axis, normals' signs (T1's negative, zero, then T2's),
+        /// degenerate flags and segment ends (T1 low, high, T2 low, high).
         vertices_to_sides: [DelayLine<Bits<W>, SIDES_STAGE>; 18],
         axis_to_sides: DelayLine<Bits<2>, SIDES_STAGE>,
         normals_to_sides: [DelayLine<Bit, SIDES_STAGE>; 12],
