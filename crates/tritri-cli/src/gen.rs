@@ -218,7 +218,7 @@ pub struct Args {
     /// waits for it), top `tritri_pipeline_shared_w<W>`; with --system,
     /// the system's pipelines (the read side holds with them), top
     /// `tritri_system_..._shared`.
-    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = ["parallel", "shared"], conflicts_with_all = ["classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit", "shared_rare_cases"])]
+    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = RareCasePath::NAMES, conflicts_with_all = ["classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit", "shared_rare_cases"])]
     rare_cases: String,
     /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
     #[arg(long, value_name = "K", requires = "patch_tessellator")]
@@ -550,7 +550,7 @@ impl Args {
         }
         if self.system {
             let config = self.system_config(width);
-            let kind = self.system_pipelines();
+            let kind = PipelineKind::from(self.rare_case_path());
             return emit_system_with(config, kind, self.multipliers())
                 .with_context(|| format!("emitting {}", system_unit_name(config, kind)));
         }
@@ -558,20 +558,14 @@ impl Args {
             .with_context(|| format!("emitting the {width}-bit pipeline"))
     }
 
-    /// The system's pipelines, as `--rare-cases` says.
-    fn system_pipelines(&self) -> PipelineKind {
-        match self.rare_case_path() {
-            RareCasePath::Parallel => PipelineKind::Real,
-            RareCasePath::Shared => PipelineKind::Shared,
-        }
+    /// `--rare-cases` (its value parser admits only the names).
+    fn rare_case_path(&self) -> RareCasePath {
+        RareCasePath::parse(&self.rare_cases).unwrap_or_default()
     }
 
-    /// `--rare-cases`.
-    fn rare_case_path(&self) -> RareCasePath {
-        match self.rare_cases.as_str() {
-            "shared" => RareCasePath::Shared,
-            _ => RareCasePath::Parallel,
-        }
+    /// The pipeline alone, with the shared rare-case unit.
+    fn shared_pipeline(&self) -> bool {
+        self.rare_case_path() == RareCasePath::Shared && !self.system
     }
 
     /// Everything but the pipeline goes into a directory named after its top.
@@ -579,7 +573,7 @@ impl Args {
         self.patch_tessellator
             || self.cone_unit
             || self.shared_rare_cases
-            || (self.rare_case_path() == RareCasePath::Shared && !self.system)
+            || self.shared_pipeline()
             || self.system
             || self.classifier
             || self.setup
@@ -614,7 +608,7 @@ impl Args {
             cone_unit_name(width)
         } else if self.shared_rare_cases {
             shared_rare_cases_name(width)
-        } else if self.rare_case_path() == RareCasePath::Shared && !self.system {
+        } else if self.shared_pipeline() {
             pipeline_unit_name_for(width, RareCasePath::Shared)
         } else if self.plane_traversal {
             PLANE_TRAVERSAL_NAME.to_string()
@@ -639,7 +633,7 @@ impl Args {
         } else if self.setup {
             triangle_setup_unit_name(width)
         } else if self.system {
-            system_unit_name(self.system_config(width), self.system_pipelines())
+            system_unit_name(self.system_config(width), self.rare_case_path().into())
         } else {
             pipeline_unit_name(width)
         }

@@ -77,7 +77,6 @@ use std::time::Instant;
 use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
 use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
 use tritri_cosim::engine::{check_quantized, run_scene_on, Engine, SceneRun};
-use tritri_cosim::system_harness::PipelineKind;
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::octree::OctreeSchedule;
@@ -89,6 +88,7 @@ use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
 use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
 use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::rare_case_model::rare_case_cost;
 
@@ -140,7 +140,7 @@ pub struct Args {
     /// one shared unit a pipeline that stalls the system while a rare pair
     /// waits for it (`tritri gen --rare-cases`). A hardware engine
     /// simulates it; every engine reports the stall model's bound.
-    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = ["parallel", "shared"], conflicts_with = "broad_phase_top")]
+    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = RareCasePath::NAMES, conflicts_with = "broad_phase_top")]
     rare_cases: String,
     /// The longest run --vcd records (every signal and memory word: the
     /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
@@ -336,15 +336,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             PROGRESS_THRESHOLD,
         )
     };
+    // The value parser admits only the names.
+    let rare_cases = RareCasePath::parse(&args.rare_cases).unwrap_or_default();
     let run = if args.broad_phase_top {
         run_on_top(&args, &scene, &mut report, &mut status)
     } else {
         run_scene_on(
             args.engine,
-            match args.rare_cases.as_str() {
-                "shared" => PipelineKind::Shared,
-                _ => PipelineKind::Real,
-            },
+            rare_cases.into(),
             &scene,
             config,
             &|n| progress.inc(n),
@@ -439,8 +438,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         human(time)
     )?;
     let rare = rare_case_cost(args.hardware.pipelines as usize, &scene.batches());
-    let shared = args.rare_cases == "shared";
-    let simulated = match (shared, run.counters) {
+    let simulated = match (rare_cases == RareCasePath::Shared, run.counters) {
         (true, Some(c)) => format!(
             "; simulated with them there ({}): {} stall cycles",
             args.engine.name(),

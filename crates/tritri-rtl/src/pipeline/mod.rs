@@ -42,3 +42,17 @@ pub enum RareCasePath {
     /// ([`shared_rare_pipeline::SharedRarePipeline`]).
     Shared,
 }
+
+impl RareCasePath {
+    /// The command line's names (`tritri gen --rare-cases`, `tritri sim
+    /// --rare-cases`), in the order of the variants.
+    pub const NAMES: [&'static str; 2] = ["parallel", "shared"];
+
+    pub fn parse(name: &str) -> Option<Self> {
+        match name {
+            "parallel" => Some(RareCasePath::Parallel),
+            "shared" => Some(RareCasePath::Shared),
+            _ => None,
+        }
+    }
+}

@@ -130,7 +130,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
         self.hold.next = self.rare.val() && !self.rare_cases.ready.val();
-        self.moving.next = self.advance.val() && !(self.rare.val() && !self.rare_cases.ready.val());
+        self.moving.next = self.advance.val() && !self.hold.val();
 
         for i in 0..18 {
             self.vertices_to_sides[i].clock.next = self.clock.val();

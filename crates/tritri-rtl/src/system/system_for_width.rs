@@ -28,6 +28,16 @@ pub enum PipelineKind {
     Shared,
 }
 
+impl From<crate::pipeline::RareCasePath> for PipelineKind {
+    /// The Devillers–Guigue pipelines with their rare cases on that path.
+    fn from(rare_cases: crate::pipeline::RareCasePath) -> Self {
+        match rare_cases {
+            crate::pipeline::RareCasePath::Parallel => PipelineKind::Real,
+            crate::pipeline::RareCasePath::Shared => PipelineKind::Shared,
+        }
+    }
+}
+
 macro_rules! system_widths {
     ($($w:literal),*) => {
         /// A new system for `config` (unconnected: the harness connects it).
