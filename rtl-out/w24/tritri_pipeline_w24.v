@@ -124,6 +124,13 @@ module tritri_pipeline_w24 (
     wire  path_sides_t2_zero_2;
     wire  path_coplanar_hit;
     wire  path_degenerate_pair_hit;
+    wire  path_advance_copies_0;
+    wire  path_advance_copies_1;
+    wire  path_advance_copies_2;
+    wire  path_advance_copies_3;
+    wire  path_advance_copies_4;
+    wire  path_advance_copies_5;
+    wire  path_advance_copies_6;
     wire  coplanar_clock;
     wire  coplanar_advance;
     wire  [23:0] coplanar_t1_vertices_0;
@@ -262,7 +269,14 @@ module tritri_pipeline_w24 (
         .sides_t2_zero_1(path_sides_t2_zero_1),
         .sides_t2_zero_2(path_sides_t2_zero_2),
         .coplanar_hit(path_coplanar_hit),
-        .degenerate_pair_hit(path_degenerate_pair_hit)
+        .degenerate_pair_hit(path_degenerate_pair_hit),
+        .advance_copies_0(path_advance_copies_0),
+        .advance_copies_1(path_advance_copies_1),
+        .advance_copies_2(path_advance_copies_2),
+        .advance_copies_3(path_advance_copies_3),
+        .advance_copies_4(path_advance_copies_4),
+        .advance_copies_5(path_advance_copies_5),
+        .advance_copies_6(path_advance_copies_6)
     );
     tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
@@ -348,6 +362,13 @@ module tritri_pipeline_w24 (
     assign degenerate_pair_to_decision_clock = clock;
     assign path_reset = reset;
     assign path_advance = advance;
+    assign path_advance_copies_0 = advance;
+    assign path_advance_copies_1 = advance;
+    assign path_advance_copies_2 = advance;
+    assign path_advance_copies_3 = advance;
+    assign path_advance_copies_4 = advance;
+    assign path_advance_copies_5 = advance;
+    assign path_advance_copies_6 = advance;
     assign coplanar_advance = advance;
     assign degenerate_pair_advance = advance;
     assign coplanar_to_decision_advance = advance;

@@ -70,6 +70,7 @@ pub fn shared_rare_cases(w: usize) -> UnitDescription {
             );
     }
     unit.port("ready", "The unit takes a job at this clock's edge.")
+        .port("idle_next", "ready will be high next clock unless a job is taken at this edge.")
         .port("done", &format!("A job's verdict is on hit: {SHARED_RARE_CASES_LATENCY} clocks after a coplanar job was taken, {} after two segments.", SHARED_RARE_CASES_LATENCY - (COPLANAR_STEPS - SEGMENTS_STEPS)))
         .port("hit", "The pair meets.")
         .latency(SHARED_RARE_CASES_LATENCY as u64)

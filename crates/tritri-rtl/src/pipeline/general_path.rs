@@ -82,6 +82,11 @@ const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STA
 /// From the pair's formation to the output ports.
 const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 
+/// The groups of units with an enable of their own (`advance_copies`):
+/// each plane side (with one of the ids' delay lines), alignment and the
+/// interval overlap, orient3d's operands, each orient3d, the decision.
+pub const ADVANCE_COPIES: usize = 7;
+
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
 pub const TRIANGLE_PIPELINE_LATENCY: usize = RECORD_STAGE + PAIR_LATENCY;
@@ -121,6 +126,12 @@ crate::pipeline_ports! {
         /// (each is read only when the pair's case needs it).
         pub coplanar_hit: Signal<In, Bit>,
         pub degenerate_pair_hit: Signal<In, Bit>,
+        /// Copies of `advance`, each the enable of one group of units from
+        /// the plane side on (`advance` itself enables the front: input,
+        /// front end, base polygon). A top ties them all to `advance`, or
+        /// drives each from a register of its own, so that no one net
+        /// reaches every register ([`super::hold_register`]).
+        pub advance_copies: [Signal<In, Bit>; 7],
         input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
         record_valid: ValidLine<RECORD_STAGE>,
         record_bset: DelayLine<Bit, RECORD_STAGE>,
@@ -267,48 +278,48 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.pair_valid_to_sides.advance.next = self.advance.val();
         self.pair_valid_to_out.reset.next = self.reset.val();
         self.pair_valid_to_out.advance.next = self.advance.val();
-        self.base_id.advance.next = self.advance.val();
-        self.stream_id.advance.next = self.advance.val();
-        self.plane_side_t1.advance.next = self.advance.val();
-        self.plane_side_t2.advance.next = self.advance.val();
-        self.align_t1.advance.next = self.advance.val();
-        self.align_t2.advance.next = self.advance.val();
-        self.interval_overlap.advance.next = self.advance.val();
-        self.operands.advance.next = self.advance.val();
-        self.orient3d_0.advance.next = self.advance.val();
-        self.orient3d_1.advance.next = self.advance.val();
-        self.ends_difference.advance.next = self.advance.val();
-        self.ends_difference_to_values.advance.next = self.advance.val();
-        self.third_determinant.advance.next = self.advance.val();
-        self.degenerate_to_distances.advance.next = self.advance.val();
-        self.decision.advance.next = self.advance.val();
+        self.base_id.advance.next = self.advance_copies[0].val();
+        self.stream_id.advance.next = self.advance_copies[1].val();
+        self.plane_side_t1.advance.next = self.advance_copies[0].val();
+        self.plane_side_t2.advance.next = self.advance_copies[1].val();
+        self.align_t1.advance.next = self.advance_copies[2].val();
+        self.align_t2.advance.next = self.advance_copies[2].val();
+        self.interval_overlap.advance.next = self.advance_copies[2].val();
+        self.operands.advance.next = self.advance_copies[3].val();
+        self.orient3d_0.advance.next = self.advance_copies[4].val();
+        self.orient3d_1.advance.next = self.advance_copies[5].val();
+        self.ends_difference.advance.next = self.advance_copies[2].val();
+        self.ends_difference_to_values.advance.next = self.advance_copies[2].val();
+        self.third_determinant.advance.next = self.advance_copies[5].val();
+        self.degenerate_to_distances.advance.next = self.advance_copies[2].val();
+        self.decision.advance.next = self.advance_copies[6].val();
         for i in 0..9 {
             self.input_vertices[i].clock.next = self.clock.val();
             self.input_vertices[i].advance.next = self.advance.val();
             self.t1_vertices_to_operands[i].clock.next = self.clock.val();
-            self.t1_vertices_to_operands[i].advance.next = self.advance.val();
+            self.t1_vertices_to_operands[i].advance.next = self.advance_copies[3].val();
             self.t2_vertices_to_operands[i].clock.next = self.clock.val();
-            self.t2_vertices_to_operands[i].advance.next = self.advance.val();
+            self.t2_vertices_to_operands[i].advance.next = self.advance_copies[3].val();
         }
         for i in 0..2 {
             self.degenerate_to_operands[i].clock.next = self.clock.val();
-            self.degenerate_to_operands[i].advance.next = self.advance.val();
+            self.degenerate_to_operands[i].advance.next = self.advance_copies[3].val();
             self.degenerate_to_decision[i].clock.next = self.clock.val();
-            self.degenerate_to_decision[i].advance.next = self.advance.val();
+            self.degenerate_to_decision[i].advance.next = self.advance_copies[6].val();
         }
         for i in 0..4 {
             self.segment_ends_to_operands[i].clock.next = self.clock.val();
-            self.segment_ends_to_operands[i].advance.next = self.advance.val();
+            self.segment_ends_to_operands[i].advance.next = self.advance_copies[3].val();
             self.segment_ends_to_decision[i].clock.next = self.clock.val();
-            self.segment_ends_to_decision[i].advance.next = self.advance.val();
+            self.segment_ends_to_decision[i].advance.next = self.advance_copies[6].val();
         }
         for i in 0..6 {
             self.orient_signs_to_decision[i].clock.next = self.clock.val();
-            self.orient_signs_to_decision[i].advance.next = self.advance.val();
+            self.orient_signs_to_decision[i].advance.next = self.advance_copies[6].val();
         }
         for i in 0..18 {
             self.sides_to_decision[i].clock.next = self.clock.val();
-            self.sides_to_decision[i].advance.next = self.advance.val();
+            self.sides_to_decision[i].advance.next = self.advance_copies[6].val();
         }
 
         // Input registers and the per-triangle front end.
@@ -426,7 +437,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.segment_ends_to_distances[3].d.next = self.front_end.segment_high.val();
         for i in 0..4 {
             self.segment_ends_to_distances[i].clock.next = self.clock.val();
-            self.segment_ends_to_distances[i].advance.next = self.advance.val();
+            self.segment_ends_to_distances[i].advance.next = self.advance_copies[2].val();
         }
         self.ends_difference.t1_degenerate.next = self.degenerate_to_distances.q.val();
         self.ends_difference.t1_segment_low.next = self.segment_ends_to_distances[0].q.val();

@@ -84,7 +84,7 @@ pub fn pipeline_unit_for(
             .port(
                 "hold",
                 "A rare pair waits for the shared unit: this clock does not take the input bus (keep the \
-                 triangle on it) and moves nothing. Depends on registers only.",
+                 triangle on it) and moves nothing. A register's output.",
             );
     }
     Ok(unit)

@@ -11,17 +11,26 @@
 //! case needs one of those tests (the rule of the decision, and of
 //! `system::rare_case_model::rare_kind`): both triangles degenerate, or
 //! the degenerate triangle's vertices (else T2's) all on the other's plane.
-//! Its job goes to the unit as the pair leaves that stage. While the unit
-//! cannot take it, `hold` is high and the whole pipeline holds, as if
+//! That is registered with the pair's job a stage later ([`JOB_STAGE`]),
+//! and the job goes to the unit as the pair leaves that stage. While the
+//! unit cannot take it, `hold` is high and the whole pipeline holds, as if
 //! `advance` were low: the triangle on the input bus is not taken and must
 //! stay there. The unit runs on, free of `advance`, and its verdicts wait
 //! in a [`VerdictQueue`] for their pairs to reach the decision, in order.
+//!
+//! `hold` goes into the enable of every register, so it is a register:
+//! [`HoldRegister`] decides it a clock ahead from the rare bits of both
+//! stages and the unit's steps left, and ten copies of it each enable a
+//! group of units. (Computed in the clock it acts, from the sides stage's
+//! zeros through the rule to one enable net, it ran at 79 MHz post-route
+//! on ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
 //!
 //! So the latency in advancing clocks is the parallel pipeline's
 //! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
 //! `hold` high, which `system::rare_case_model` counts.
 
-use super::general_path::{GeneralPath, DECISION_STAGE, SIDES_STAGE};
+use super::general_path::{GeneralPath, ADVANCE_COPIES, DECISION_STAGE, SIDES_STAGE};
+use super::hold_register::HoldRegister;
 use super::shared_rare_cases::{SharedRareCases, SHARED_RARE_CASES_LATENCY};
 use super::verdict_queue::{VerdictQueue, VERDICT_QUEUE_DEPTH};
 use crate::arith::delay_line::DelayLine;
@@ -30,13 +39,24 @@ use rust_hdl::prelude::*;
 
 pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
 
-/// The unit's verdict is in the queue by the time its pair, taken as it
-/// left the sides stage and never faster than a stage a clock, reaches the
-/// decision (it is written a clock after `done`).
-const _: () = assert!(DECISION_STAGE - SIDES_STAGE > SHARED_RARE_CASES_LATENCY);
+/// The stage whose pair offers its job to the unit: the rare bit,
+/// registered a stage after the plane side's zeros.
+pub const JOB_STAGE: usize = SIDES_STAGE + 1;
+
+/// The unit's verdict is at the queue's head by the time its pair reaches
+/// the decision: the job is taken at the edge that moves the pair a stage
+/// past the job stage, `done` rises `SHARED_RARE_CASES_LATENCY` edges
+/// later, and the queue hands it on in that clock (its bypass), when the
+/// pair, never faster than a stage a clock, is at most at `JOB_STAGE +
+/// SHARED_RARE_CASES_LATENCY`. (With the verdict read only from a slot, a
+/// clock later, a pair that found the unit idle and every stage moving
+/// missed it: the rust-hdl test caught 3 of 5,136.)
+const _: () = assert!(DECISION_STAGE - JOB_STAGE >= SHARED_RARE_CASES_LATENCY);
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
-const _: () = assert!(DECISION_STAGE - SIDES_STAGE < VERDICT_QUEUE_DEPTH);
+const _: () = assert!(DECISION_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
+/// The update's literals: copies 1 to 7 are the general path's.
+const _: () = assert!(ADVANCE_COPIES == 7);
 
 crate::pipeline_ports! {
     // The ports: crate::pipeline::ports, and `hold`.
@@ -48,20 +68,33 @@ crate::pipeline_ports! {
         path: GeneralPath<W, D, C, O>,
         rare_cases: SharedRareCases<W, D, C>,
         verdicts: VerdictQueue,
-        /// The job, from the pair to the sides stage: vertices (T1's, then
-        /// T2's), axis, normals' signs (T1's negative, zero, then T2's),
-        /// degenerate flags and segment ends (T1 low, high, T2 low, high).
-        vertices_to_sides: [DelayLine<Bits<W>, SIDES_STAGE>; 18],
-        axis_to_sides: DelayLine<Bits<2>, SIDES_STAGE>,
-        normals_to_sides: [DelayLine<Bit, SIDES_STAGE>; 12],
+        /// The job, from the pair to the job stage: vertices (T1's, then
+        /// T2's), axis, normals' signs (T1's negative, zero, then T2's) and
+        /// segment ends (T1 low, high, T2 low, high).
+        vertices_to_job: [DelayLine<Bits<W>, JOB_STAGE>; 18],
+        axis_to_job: DelayLine<Bits<2>, JOB_STAGE>,
+        normals_to_job: [DelayLine<Bit, JOB_STAGE>; 12],
+        segment_ends_to_job: [DelayLine<Bits<2>, JOB_STAGE>; 4],
+        /// The degenerate flags, to the sides stage, for the rule.
         degenerate_to_sides: [DelayLine<Bit, SIDES_STAGE>; 2],
-        segment_ends_to_sides: [DelayLine<Bits<2>, SIDES_STAGE>; 4],
-        /// A rare pair, from the sides stage to the decision.
-        rare_to_decision: ValidLine<{ DECISION_STAGE - SIDES_STAGE }>,
+        /// The rule's outcome, from the sides stage to the job stage.
+        rare_to_job: ValidLine<1>,
+        segments_to_job: DelayLine<Bit, 1>,
+        /// A rare pair, from the job stage to the decision.
+        rare_to_decision: ValidLine<{ DECISION_STAGE - JOB_STAGE }>,
         segments: Signal<Local, Bit>,
         coplanar: Signal<Local, Bit>,
         rare: Signal<Local, Bit>,
-        /// `advance`, unless a rare pair waits.
+        /// The job stage's pair is rare.
+        job_rare: Signal<Local, Bit>,
+        /// The unit's `ready`: the hold registers predict it instead
+        /// (Verilator's lint: unused on purpose).
+        unused_ready: Signal<Local, Bit>,
+        /// `hold`, registered, one copy per group of registers: the general
+        /// path's front (0, with this top's control), its
+        /// `advance_copies` (1 to 7) and the job's vertices (8, 9).
+        holds: [HoldRegister; 10],
+        /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
 }
@@ -77,11 +110,14 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             path,
             rare_cases,
             verdicts,
-            vertices_to_sides,
-            axis_to_sides,
-            normals_to_sides,
+            holds,
+            vertices_to_job,
+            axis_to_job,
+            normals_to_job,
+            segment_ends_to_job,
             degenerate_to_sides,
-            segment_ends_to_sides,
+            rare_to_job,
+            segments_to_job,
             rare_to_decision
         );
     }
@@ -109,7 +145,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             path,
             rare_cases,
             verdicts,
-            axis_to_sides,
+            axis_to_job,
+            rare_to_job,
+            segments_to_job,
             rare_to_decision
         );
         // Which pairs are rare: two segments; else the degenerate
@@ -129,29 +167,51 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
-        self.hold.next = self.rare.val() && !self.rare_cases.ready.val();
-        self.moving.next = self.advance.val() && !self.hold.val();
+        self.job_rare.next = self.rare_to_job.q.val();
+        for i in 0..10 {
+            self.holds[i].clock.next = self.clock.val();
+            self.holds[i].reset.next = self.reset.val();
+            self.holds[i].advance.next = self.advance.val();
+            self.holds[i].rare.next = self.rare.val();
+            self.holds[i].job_rare.next = self.job_rare.val();
+            self.holds[i].unit_idle_next.next = self.rare_cases.idle_next.val();
+        }
+        // Each group's enable: `advance` and its copy of `hold`, formed here
+        // (in rust-hdl's simulation an enable formed inside a unit below
+        // would reach the registers a delta cycle after the clock edge).
+        self.hold.next = self.holds[0].hold.val();
+        self.unused_ready.next = self.rare_cases.ready.val();
+        self.moving.next = self.advance.val() && !self.holds[0].hold.val();
+        self.path.advance.next = self.moving.val();
+        for i in 0..7 {
+            self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
+        }
 
-        for i in 0..18 {
-            self.vertices_to_sides[i].clock.next = self.clock.val();
-            self.vertices_to_sides[i].advance.next = self.moving.val();
+        for i in 0..9 {
+            self.vertices_to_job[i].clock.next = self.clock.val();
+            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[8].hold.val();
+            self.vertices_to_job[9 + i].clock.next = self.clock.val();
+            self.vertices_to_job[9 + i].advance.next =
+                self.advance.val() && !self.holds[9].hold.val();
         }
         for i in 0..12 {
-            self.normals_to_sides[i].clock.next = self.clock.val();
-            self.normals_to_sides[i].advance.next = self.moving.val();
+            self.normals_to_job[i].clock.next = self.clock.val();
+            self.normals_to_job[i].advance.next = self.moving.val();
         }
         for i in 0..2 {
             self.degenerate_to_sides[i].clock.next = self.clock.val();
             self.degenerate_to_sides[i].advance.next = self.moving.val();
         }
         for i in 0..4 {
-            self.segment_ends_to_sides[i].clock.next = self.clock.val();
-            self.segment_ends_to_sides[i].advance.next = self.moving.val();
+            self.segment_ends_to_job[i].clock.next = self.clock.val();
+            self.segment_ends_to_job[i].advance.next = self.moving.val();
         }
-        self.axis_to_sides.advance.next = self.moving.val();
+        self.axis_to_job.advance.next = self.moving.val();
+        self.rare_to_job.advance.next = self.moving.val();
+        self.rare_to_job.reset.next = self.reset.val();
+        self.segments_to_job.advance.next = self.moving.val();
         self.rare_to_decision.advance.next = self.moving.val();
         self.rare_to_decision.reset.next = self.reset.val();
-        self.path.advance.next = self.moving.val();
         self.path.reset.next = self.reset.val();
         self.rare_cases.reset.next = self.reset.val();
         self.verdicts.reset.next = self.reset.val();
@@ -175,46 +235,48 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.out_base_id.next = self.path.out_base_id.val();
         self.out_stream_id.next = self.path.out_stream_id.val();
 
-        // The job, to the sides stage.
+        // The job, to the job stage; the rule's outcome a stage later.
         for i in 0..9 {
-            self.vertices_to_sides[i].d.next = self.path.pair_t1_vertices[i].val();
-            self.vertices_to_sides[9 + i].d.next = self.path.pair_t2_vertices[i].val();
+            self.vertices_to_job[i].d.next = self.path.pair_t1_vertices[i].val();
+            self.vertices_to_job[9 + i].d.next = self.path.pair_t2_vertices[i].val();
         }
-        self.axis_to_sides.d.next = self.path.pair_axis.val();
+        self.axis_to_job.d.next = self.path.pair_axis.val();
         for k in 0..3 {
-            self.normals_to_sides[k].d.next = self.path.pair_t1_normal_negative[k].val();
-            self.normals_to_sides[3 + k].d.next = self.path.pair_t1_normal_zero[k].val();
-            self.normals_to_sides[6 + k].d.next = self.path.pair_t2_normal_negative[k].val();
-            self.normals_to_sides[9 + k].d.next = self.path.pair_t2_normal_zero[k].val();
+            self.normals_to_job[k].d.next = self.path.pair_t1_normal_negative[k].val();
+            self.normals_to_job[3 + k].d.next = self.path.pair_t1_normal_zero[k].val();
+            self.normals_to_job[6 + k].d.next = self.path.pair_t2_normal_negative[k].val();
+            self.normals_to_job[9 + k].d.next = self.path.pair_t2_normal_zero[k].val();
         }
         self.degenerate_to_sides[0].d.next = self.path.pair_t1_degenerate.val();
         self.degenerate_to_sides[1].d.next = self.path.pair_t2_degenerate.val();
-        self.segment_ends_to_sides[0].d.next = self.path.pair_t1_segment_low.val();
-        self.segment_ends_to_sides[1].d.next = self.path.pair_t1_segment_high.val();
-        self.segment_ends_to_sides[2].d.next = self.path.pair_t2_segment_low.val();
-        self.segment_ends_to_sides[3].d.next = self.path.pair_t2_segment_high.val();
+        self.segment_ends_to_job[0].d.next = self.path.pair_t1_segment_low.val();
+        self.segment_ends_to_job[1].d.next = self.path.pair_t1_segment_high.val();
+        self.segment_ends_to_job[2].d.next = self.path.pair_t2_segment_low.val();
+        self.segment_ends_to_job[3].d.next = self.path.pair_t2_segment_high.val();
+        self.rare_to_job.d.next = self.rare.val();
+        self.segments_to_job.d.next = self.segments.val();
 
-        // The job, taken as the pair leaves the sides stage.
-        self.rare_cases.in_valid.next = self.rare.val() && self.moving.val();
-        self.rare_cases.in_segments.next = self.segments.val();
+        // The job, taken as the pair leaves the job stage.
+        self.rare_cases.in_valid.next = self.job_rare.val() && self.moving.val();
+        self.rare_cases.in_segments.next = self.segments_to_job.q.val();
         for i in 0..9 {
-            self.rare_cases.t1_vertices[i].next = self.vertices_to_sides[i].q.val();
-            self.rare_cases.t2_vertices[i].next = self.vertices_to_sides[9 + i].q.val();
+            self.rare_cases.t1_vertices[i].next = self.vertices_to_job[i].q.val();
+            self.rare_cases.t2_vertices[i].next = self.vertices_to_job[9 + i].q.val();
         }
-        self.rare_cases.axis.next = self.axis_to_sides.q.val();
+        self.rare_cases.axis.next = self.axis_to_job.q.val();
         for k in 0..3 {
-            self.rare_cases.t1_normal_negative[k].next = self.normals_to_sides[k].q.val();
-            self.rare_cases.t1_normal_zero[k].next = self.normals_to_sides[3 + k].q.val();
-            self.rare_cases.t2_normal_negative[k].next = self.normals_to_sides[6 + k].q.val();
-            self.rare_cases.t2_normal_zero[k].next = self.normals_to_sides[9 + k].q.val();
+            self.rare_cases.t1_normal_negative[k].next = self.normals_to_job[k].q.val();
+            self.rare_cases.t1_normal_zero[k].next = self.normals_to_job[3 + k].q.val();
+            self.rare_cases.t2_normal_negative[k].next = self.normals_to_job[6 + k].q.val();
+            self.rare_cases.t2_normal_zero[k].next = self.normals_to_job[9 + k].q.val();
         }
-        self.rare_cases.t1_segment_low.next = self.segment_ends_to_sides[0].q.val();
-        self.rare_cases.t1_segment_high.next = self.segment_ends_to_sides[1].q.val();
-        self.rare_cases.t2_segment_low.next = self.segment_ends_to_sides[2].q.val();
-        self.rare_cases.t2_segment_high.next = self.segment_ends_to_sides[3].q.val();
+        self.rare_cases.t1_segment_low.next = self.segment_ends_to_job[0].q.val();
+        self.rare_cases.t1_segment_high.next = self.segment_ends_to_job[1].q.val();
+        self.rare_cases.t2_segment_low.next = self.segment_ends_to_job[2].q.val();
+        self.rare_cases.t2_segment_high.next = self.segment_ends_to_job[3].q.val();
 
         // Its verdict, queued until the pair reaches the decision.
-        self.rare_to_decision.d.next = self.rare.val();
+        self.rare_to_decision.d.next = self.job_rare.val();
         self.verdicts.push.next = self.rare_cases.done.val();
         self.verdicts.push_hit.next = self.rare_cases.hit.val();
         self.verdicts.pop.next = self.rare_to_decision.q.val() && self.moving.val();

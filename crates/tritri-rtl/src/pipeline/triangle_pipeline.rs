@@ -90,6 +90,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         );
         self.path.reset.next = self.reset.val();
         self.path.advance.next = self.advance.val();
+        for i in 0..7 {
+            self.path.advance_copies[i].next = self.advance.val();
+        }
         self.coplanar.advance.next = self.advance.val();
         self.degenerate_pair.advance.next = self.advance.val();
         self.coplanar_to_decision.advance.next = self.advance.val();

@@ -8,7 +8,9 @@
 //! pair between the unit's input and the decision occupies a stage of the
 //! general path (`super::shared_rare_pipeline` asserts that there are
 //! fewer stages than slots). The head is the slot at the read pointer, a
-//! verdict written at least one edge earlier.
+//! verdict written at least one edge earlier; or, when the queue is empty,
+//! the verdict being pushed, so that a pair meets its verdict in the
+//! clock the unit gives it.
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -58,6 +60,10 @@ impl Logic for VerdictQueue {
             self.read_q.d.next = 0.into();
         }
         self.head.next = self.slots.q.val().get_bit(self.read_q.q.val().index());
+        // Empty: the verdict on its way in.
+        if self.push.val() && self.read_q.q.val() == self.write_q.q.val() {
+            self.head.next = self.push_hit.val();
+        }
     }
 }
 

@@ -1,0 +1,62 @@
+//! One registered copy of the shared pipeline's `hold`; with `advance` it
+//! makes the enable of a group of its registers.
+//!
+//! The enable reaches every register of the pipeline. Computed once from
+//! the rare bit and the unit's state, it crossed the chip to some 11,000
+//! clock enables (ECP5, W = 8: 6.6 ns of routing on that net alone, 79 MHz
+//! post-route). So `hold` is a register, decided a clock ahead, and there
+//! is one copy per group of units ([`super::shared_rare_pipeline`]). Each
+//! copy computes its next value from its own output, so the copies stay
+//! equal clock by clock, yet synthesis sees different logic and keeps
+//! them apart (Yosys merges registers with the same inputs, `keep` or not).
+//!
+//! `hold` is high when the pair at the job stage is rare and the unit is
+//! not ready. Next clock:
+//! * that pair is the one moving in from the sides stage (`rare`) if the
+//!   pipeline moves now, else the same (`job_rare`);
+//! * the unit is ready unless it takes a job now (the job stage's pair is
+//!   rare and moves) or has more than two steps of its current job left
+//!   (`unit_idle_next` is low).
+
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+#[derive(LogicBlock, Default)]
+pub struct HoldRegister {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high: no hold.
+    pub reset: Signal<In, Bit>,
+    pub advance: Signal<In, Bit>,
+    /// The pair at the sides stage is rare.
+    pub rare: Signal<In, Bit>,
+    /// The pair at the job stage is rare.
+    pub job_rare: Signal<In, Bit>,
+    /// The unit will be ready next clock if it takes no job now.
+    pub unit_idle_next: Signal<In, Bit>,
+    pub hold: Signal<Out, Bit>,
+    hold_q: DFF<Bit>,
+    rare_next: Signal<Local, Bit>,
+    ready_next: Signal<Local, Bit>,
+}
+
+impl crate::unit::Unit for HoldRegister {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, hold_q);
+    }
+}
+
+impl Logic for HoldRegister {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, hold_q);
+        self.hold.next = self.hold_q.q.val();
+        if self.advance.val() && !self.hold_q.q.val() {
+            self.rare_next.next = self.rare.val();
+            self.ready_next.next = !self.job_rare.val() && self.unit_idle_next.val();
+        } else {
+            self.rare_next.next = self.job_rare.val();
+            self.ready_next.next = self.unit_idle_next.val();
+        }
+        self.hold_q.d.next = self.rare_next.val() && !self.ready_next.val() && !self.reset.val();
+    }
+}
