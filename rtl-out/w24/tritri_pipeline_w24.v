@@ -131,6 +131,8 @@ module tritri_pipeline_w24 (
     wire  path_advance_copies_4;
     wire  path_advance_copies_5;
     wire  path_advance_copies_6;
+    wire  path_advance_copies_7;
+    wire  path_advance_copies_8;
     wire  coplanar_clock;
     wire  coplanar_advance;
     wire  [23:0] coplanar_t1_vertices_0;
@@ -276,7 +278,9 @@ module tritri_pipeline_w24 (
         .advance_copies_3(path_advance_copies_3),
         .advance_copies_4(path_advance_copies_4),
         .advance_copies_5(path_advance_copies_5),
-        .advance_copies_6(path_advance_copies_6)
+        .advance_copies_6(path_advance_copies_6),
+        .advance_copies_7(path_advance_copies_7),
+        .advance_copies_8(path_advance_copies_8)
     );
     tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
@@ -369,6 +373,8 @@ module tritri_pipeline_w24 (
     assign path_advance_copies_4 = advance;
     assign path_advance_copies_5 = advance;
     assign path_advance_copies_6 = advance;
+    assign path_advance_copies_7 = advance;
+    assign path_advance_copies_8 = advance;
     assign coplanar_advance = advance;
     assign degenerate_pair_advance = advance;
     assign coplanar_to_decision_advance = advance;

@@ -97,7 +97,9 @@ module tritri_pipeline_w24_general_path (
     input  wire        advance_copies_3,
     input  wire        advance_copies_4,
     input  wire        advance_copies_5,
-    input  wire        advance_copies_6
+    input  wire        advance_copies_6,
+    input  wire        advance_copies_7,
+    input  wire        advance_copies_8
 );
 
     // Stub signals
@@ -1617,7 +1619,7 @@ module tritri_pipeline_w24_general_path (
     assign record_valid_advance = advance;
     assign record_bset_advance = advance;
     assign record_id_advance = advance;
-    assign front_end_advance = advance;
+    assign front_end_advance = advance_copies_7;
     assign pair_valid_to_sides_reset = reset;
     assign pair_valid_to_sides_advance = advance;
     assign pair_valid_to_out_reset = reset;
@@ -1638,55 +1640,55 @@ module tritri_pipeline_w24_general_path (
     assign degenerate_to_distances_advance = advance_copies_2;
     assign decision_advance = advance_copies_6;
     assign input_vertices_0_clock = clock;
-    assign input_vertices_0_advance = advance;
+    assign input_vertices_0_advance = advance_copies_8;
     assign t1_vertices_to_operands_0_clock = clock;
     assign t1_vertices_to_operands_0_advance = advance_copies_3;
     assign t2_vertices_to_operands_0_clock = clock;
     assign t2_vertices_to_operands_0_advance = advance_copies_3;
     assign input_vertices_1_clock = clock;
-    assign input_vertices_1_advance = advance;
+    assign input_vertices_1_advance = advance_copies_8;
     assign t1_vertices_to_operands_1_clock = clock;
     assign t1_vertices_to_operands_1_advance = advance_copies_3;
     assign t2_vertices_to_operands_1_clock = clock;
     assign t2_vertices_to_operands_1_advance = advance_copies_3;
     assign input_vertices_2_clock = clock;
-    assign input_vertices_2_advance = advance;
+    assign input_vertices_2_advance = advance_copies_8;
     assign t1_vertices_to_operands_2_clock = clock;
     assign t1_vertices_to_operands_2_advance = advance_copies_3;
     assign t2_vertices_to_operands_2_clock = clock;
     assign t2_vertices_to_operands_2_advance = advance_copies_3;
     assign input_vertices_3_clock = clock;
-    assign input_vertices_3_advance = advance;
+    assign input_vertices_3_advance = advance_copies_8;
     assign t1_vertices_to_operands_3_clock = clock;
     assign t1_vertices_to_operands_3_advance = advance_copies_3;
     assign t2_vertices_to_operands_3_clock = clock;
     assign t2_vertices_to_operands_3_advance = advance_copies_3;
     assign input_vertices_4_clock = clock;
-    assign input_vertices_4_advance = advance;
+    assign input_vertices_4_advance = advance_copies_8;
     assign t1_vertices_to_operands_4_clock = clock;
     assign t1_vertices_to_operands_4_advance = advance_copies_3;
     assign t2_vertices_to_operands_4_clock = clock;
     assign t2_vertices_to_operands_4_advance = advance_copies_3;
     assign input_vertices_5_clock = clock;
-    assign input_vertices_5_advance = advance;
+    assign input_vertices_5_advance = advance_copies_8;
     assign t1_vertices_to_operands_5_clock = clock;
     assign t1_vertices_to_operands_5_advance = advance_copies_3;
     assign t2_vertices_to_operands_5_clock = clock;
     assign t2_vertices_to_operands_5_advance = advance_copies_3;
     assign input_vertices_6_clock = clock;
-    assign input_vertices_6_advance = advance;
+    assign input_vertices_6_advance = advance_copies_8;
     assign t1_vertices_to_operands_6_clock = clock;
     assign t1_vertices_to_operands_6_advance = advance_copies_3;
     assign t2_vertices_to_operands_6_clock = clock;
     assign t2_vertices_to_operands_6_advance = advance_copies_3;
     assign input_vertices_7_clock = clock;
-    assign input_vertices_7_advance = advance;
+    assign input_vertices_7_advance = advance_copies_8;
     assign t1_vertices_to_operands_7_clock = clock;
     assign t1_vertices_to_operands_7_advance = advance_copies_3;
     assign t2_vertices_to_operands_7_clock = clock;
     assign t2_vertices_to_operands_7_advance = advance_copies_3;
     assign input_vertices_8_clock = clock;
-    assign input_vertices_8_advance = advance;
+    assign input_vertices_8_advance = advance_copies_8;
     assign t1_vertices_to_operands_8_clock = clock;
     assign t1_vertices_to_operands_8_advance = advance_copies_3;
     assign t2_vertices_to_operands_8_clock = clock;

@@ -84,8 +84,9 @@ const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 
 /// The groups of units with an enable of their own (`advance_copies`):
 /// each plane side (with one of the ids' delay lines), alignment and the
-/// interval overlap, orient3d's operands, each orient3d, the decision.
-pub const ADVANCE_COPIES: usize = 7;
+/// interval overlap, orient3d's operands, each orient3d, the decision,
+/// the front end, the input vertices (the update's literal 9).
+pub const ADVANCE_COPIES: usize = 9;
 
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
@@ -126,12 +127,12 @@ crate::pipeline_ports! {
         /// (each is read only when the pair's case needs it).
         pub coplanar_hit: Signal<In, Bit>,
         pub degenerate_pair_hit: Signal<In, Bit>,
-        /// Copies of `advance`, each the enable of one group of units from
-        /// the plane side on (`advance` itself enables the front: input,
-        /// front end, base polygon). A top ties them all to `advance`, or
-        /// drives each from a register of its own, so that no one net
-        /// reaches every register ([`super::hold_register`]).
-        pub advance_copies: [Signal<In, Bit>; 7],
+        /// Copies of `advance`, each the enable of one group of units
+        /// ([`ADVANCE_COPIES`]); `advance` itself enables the input records,
+        /// the base polygon's load and the valid bits. A top ties them all
+        /// to `advance`, or drives each from a register of its own, so that
+        /// no one net reaches every register ([`super::hold_register`]).
+        pub advance_copies: [Signal<In, Bit>; 9],
         input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
         record_valid: ValidLine<RECORD_STAGE>,
         record_bset: DelayLine<Bit, RECORD_STAGE>,
@@ -273,7 +274,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.record_valid.advance.next = self.advance.val();
         self.record_bset.advance.next = self.advance.val();
         self.record_id.advance.next = self.advance.val();
-        self.front_end.advance.next = self.advance.val();
+        self.front_end.advance.next = self.advance_copies[7].val();
         self.pair_valid_to_sides.reset.next = self.reset.val();
         self.pair_valid_to_sides.advance.next = self.advance.val();
         self.pair_valid_to_out.reset.next = self.reset.val();
@@ -295,7 +296,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.decision.advance.next = self.advance_copies[6].val();
         for i in 0..9 {
             self.input_vertices[i].clock.next = self.clock.val();
-            self.input_vertices[i].advance.next = self.advance.val();
+            self.input_vertices[i].advance.next = self.advance_copies[8].val();
             self.t1_vertices_to_operands[i].clock.next = self.clock.val();
             self.t1_vertices_to_operands[i].advance.next = self.advance_copies[3].val();
             self.t2_vertices_to_operands[i].clock.next = self.clock.val();

@@ -55,8 +55,8 @@ const _: () = assert!(DECISION_STAGE - JOB_STAGE >= SHARED_RARE_CASES_LATENCY);
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
 const _: () = assert!(DECISION_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
-/// The update's literals: copies 1 to 7 are the general path's.
-const _: () = assert!(ADVANCE_COPIES == 7);
+/// The update's literals: copies 1 to 9 are the general path's.
+const _: () = assert!(ADVANCE_COPIES == 9);
 
 crate::pipeline_ports! {
     // The ports: crate::pipeline::ports, and `hold`.
@@ -91,9 +91,10 @@ crate::pipeline_ports! {
         /// (Verilator's lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
         /// `hold`, registered, one copy per group of registers: the general
-        /// path's front (0, with this top's control), its
-        /// `advance_copies` (1 to 7) and the job's vertices (8, 9).
-        holds: [HoldRegister; 10],
+        /// path's `advance` (0, with this top's rare bits and the unit's
+        /// input), its `advance_copies` (1 to 9), the job's vertices (10,
+        /// 11), its other fields (12) and the degenerate flags (13).
+        holds: [HoldRegister; 14],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -168,7 +169,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
         self.job_rare.next = self.rare_to_job.q.val();
-        for i in 0..10 {
+        for i in 0..14 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -183,30 +184,32 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unused_ready.next = self.rare_cases.ready.val();
         self.moving.next = self.advance.val() && !self.holds[0].hold.val();
         self.path.advance.next = self.moving.val();
-        for i in 0..7 {
+        for i in 0..9 {
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
         }
 
         for i in 0..9 {
             self.vertices_to_job[i].clock.next = self.clock.val();
-            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[8].hold.val();
+            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[10].hold.val();
             self.vertices_to_job[9 + i].clock.next = self.clock.val();
             self.vertices_to_job[9 + i].advance.next =
-                self.advance.val() && !self.holds[9].hold.val();
+                self.advance.val() && !self.holds[11].hold.val();
         }
         for i in 0..12 {
             self.normals_to_job[i].clock.next = self.clock.val();
-            self.normals_to_job[i].advance.next = self.moving.val();
+            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[12].hold.val();
         }
         for i in 0..2 {
             self.degenerate_to_sides[i].clock.next = self.clock.val();
-            self.degenerate_to_sides[i].advance.next = self.moving.val();
+            self.degenerate_to_sides[i].advance.next =
+                self.advance.val() && !self.holds[13].hold.val();
         }
         for i in 0..4 {
             self.segment_ends_to_job[i].clock.next = self.clock.val();
-            self.segment_ends_to_job[i].advance.next = self.moving.val();
+            self.segment_ends_to_job[i].advance.next =
+                self.advance.val() && !self.holds[12].hold.val();
         }
-        self.axis_to_job.advance.next = self.moving.val();
+        self.axis_to_job.advance.next = self.advance.val() && !self.holds[12].hold.val();
         self.rare_to_job.advance.next = self.moving.val();
         self.rare_to_job.reset.next = self.reset.val();
         self.segments_to_job.advance.next = self.moving.val();
