@@ -20,7 +20,7 @@
 //!
 //! `hold` goes into the enable of every register, so it is a register:
 //! [`HoldRegister`] decides it a clock ahead from the rare bits of both
-//! stages and the unit's steps left, and ten copies of it each enable a
+//! stages and the unit's steps left, and fourteen copies of it each enable a
 //! group of units. (Computed in the clock it acts, from the sides stage's
 //! zeros through the rule to one enable net, it ran at 79 MHz post-route
 //! on ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
