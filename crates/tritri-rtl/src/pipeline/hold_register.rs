@@ -19,6 +19,12 @@
 //!   (`unit_idle_next` is low).
 
 use rust_hdl::prelude::*;
+
+/// A job taken now leaves the unit busy next clock (it is ready with one
+/// step left): the rule above, written against the unit's step counts.
+const _: () = assert!(
+    super::shared_rare_cases::SEGMENTS_STEPS >= 2 && super::shared_rare_cases::COPLANAR_STEPS >= 2
+);
 use rust_hdl::widgets::prelude::DFF;
 
 #[derive(LogicBlock, Default)]
