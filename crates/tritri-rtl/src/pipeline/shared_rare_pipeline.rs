@@ -20,7 +20,7 @@
 //!
 //! `hold` goes into the enable of every register, so it is a register:
 //! [`HoldRegister`] decides it a clock ahead from the rare bits of both
-//! stages and the unit's steps left, and fourteen copies of it each enable a
+//! stages and the unit's steps left, and eleven copies of it each enable a
 //! group of units. (Computed in the clock it acts, from the sides stage's
 //! zeros through the rule to one enable net, it ran at 79 MHz post-route
 //! on ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
@@ -92,9 +92,10 @@ crate::pipeline_ports! {
         unused_ready: Signal<Local, Bit>,
         /// `hold`, registered, one copy per group of registers: the general
         /// path's `advance` (0, with this top's rare bits and the unit's
-        /// input), its `advance_copies` (1 to 9), the job's vertices (10,
-        /// 11), its other fields (12) and the degenerate flags (13).
-        holds: [HoldRegister; 14],
+        /// input), its `advance_copies` (1 to 9; the job's vertices, segment
+        /// ends and degenerate flags ride on 4, the operands') and the
+        /// job's normals and axis (10).
+        holds: [HoldRegister; 11],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -169,7 +170,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
         self.job_rare.next = self.rare_to_job.q.val();
-        for i in 0..14 {
+        for i in 0..11 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -188,28 +189,28 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
         }
 
-        for i in 0..9 {
+        // The job's vertices, segment ends and the degenerate flags share
+        // the operand stage's copy: the general path delays the same
+        // fields on it, and synthesis shares lines on one enable.
+        for i in 0..18 {
             self.vertices_to_job[i].clock.next = self.clock.val();
-            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[10].hold.val();
-            self.vertices_to_job[9 + i].clock.next = self.clock.val();
-            self.vertices_to_job[9 + i].advance.next =
-                self.advance.val() && !self.holds[11].hold.val();
-        }
-        for i in 0..12 {
-            self.normals_to_job[i].clock.next = self.clock.val();
-            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[12].hold.val();
-        }
-        for i in 0..2 {
-            self.degenerate_to_sides[i].clock.next = self.clock.val();
-            self.degenerate_to_sides[i].advance.next =
-                self.advance.val() && !self.holds[13].hold.val();
+            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[4].hold.val();
         }
         for i in 0..4 {
             self.segment_ends_to_job[i].clock.next = self.clock.val();
             self.segment_ends_to_job[i].advance.next =
-                self.advance.val() && !self.holds[12].hold.val();
+                self.advance.val() && !self.holds[4].hold.val();
         }
-        self.axis_to_job.advance.next = self.advance.val() && !self.holds[12].hold.val();
+        for i in 0..2 {
+            self.degenerate_to_sides[i].clock.next = self.clock.val();
+            self.degenerate_to_sides[i].advance.next =
+                self.advance.val() && !self.holds[4].hold.val();
+        }
+        for i in 0..12 {
+            self.normals_to_job[i].clock.next = self.clock.val();
+            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[10].hold.val();
+        }
+        self.axis_to_job.advance.next = self.advance.val() && !self.holds[10].hold.val();
         self.rare_to_job.advance.next = self.moving.val();
         self.rare_to_job.reset.next = self.reset.val();
         self.segments_to_job.advance.next = self.moving.val();
