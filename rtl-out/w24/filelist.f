@@ -3,6 +3,7 @@ tritri_pipeline_w24_align_t2.v
 tritri_pipeline_w24_alignment_table.v
 tritri_pipeline_w24_base_polygon.v
 tritri_pipeline_w24_certain_sign.v
+tritri_pipeline_w24_certificate_threshold.v
 tritri_pipeline_w24_certified_orient3d.v
 tritri_pipeline_w24_coordinate_compare.v
 tritri_pipeline_w24_coplanar_contacts.v
@@ -24,10 +25,7 @@ tritri_pipeline_w24_delay_line_w1_n9.v
 tritri_pipeline_w24_delay_line_w24_n1.v
 tritri_pipeline_w24_delay_line_w24_n10.v
 tritri_pipeline_w24_delay_line_w24_n9.v
-tritri_pipeline_w24_delay_line_w25_n3.v
 tritri_pipeline_w24_delay_line_w25_n5.v
-tritri_pipeline_w24_delay_line_w25_n6.v
-tritri_pipeline_w24_delay_line_w25_n8.v
 tritri_pipeline_w24_delay_line_w2_n17.v
 tritri_pipeline_w24_delay_line_w2_n6.v
 tritri_pipeline_w24_delay_line_w2_n7.v
@@ -37,6 +35,8 @@ tritri_pipeline_w24_delay_line_w32_n28.v
 tritri_pipeline_w24_delay_line_w49_n1.v
 tritri_pipeline_w24_delay_line_w49_n3.v
 tritri_pipeline_w24_delay_line_w74_n16.v
+tritri_pipeline_w24_delay_line_w8_n1.v
+tritri_pipeline_w24_delay_line_w8_n4.v
 tritri_pipeline_w24_dff_1.v
 tritri_pipeline_w24_dff_2.v
 tritri_pipeline_w24_dff_24.v
@@ -45,12 +45,13 @@ tritri_pipeline_w24_dff_3.v
 tritri_pipeline_w24_dff_32.v
 tritri_pipeline_w24_dff_49.v
 tritri_pipeline_w24_dff_74.v
+tritri_pipeline_w24_dff_8.v
 tritri_pipeline_w24_dominant_axis.v
 tritri_pipeline_w24_dot_product.v
+tritri_pipeline_w24_edges_bit_length.v
 tritri_pipeline_w24_ends_difference.v
 tritri_pipeline_w24_general_path.v
 tritri_pipeline_w24_interval_overlap.v
-tritri_pipeline_w24_magnitude_thermometer.v
 tritri_pipeline_w24_multiplier_w49.v
 tritri_pipeline_w24_multiplier_w74.v
 tritri_pipeline_w24_normal_unit.v

@@ -46,7 +46,7 @@ module tritri_pipeline_w24_base_polygon (
     input  wire [1:0]  dominant_axis_in,
     input  wire [1:0]  segment_low_in,
     input  wire [1:0]  segment_high_in,
-    input  wire [24:0] edge_thermometer_in,
+    input  wire [7:0]  edges_bits_in,
     output wire [31:0] id,
     output wire [23:0] vertices_0,
     output wire [23:0] vertices_1,
@@ -70,7 +70,7 @@ module tritri_pipeline_w24_base_polygon (
     output wire [1:0]  dominant_axis,
     output wire [1:0]  segment_low,
     output wire [1:0]  segment_high,
-    output wire [24:0] edge_thermometer
+    output wire [7:0]  edges_bits
 );
 
     // Stub signals
@@ -143,9 +143,9 @@ module tritri_pipeline_w24_base_polygon (
     reg  [1:0] segment_high_d;
     wire  [1:0] segment_high_q;
     wire  segment_high_clock;
-    reg  [24:0] edge_thermometer_d;
-    wire  [24:0] edge_thermometer_q;
-    wire  edge_thermometer_clock;
+    reg  [7:0] edges_bits_d;
+    wire  [7:0] edges_bits_q;
+    wire  edges_bits_clock;
 
     // Sub module instances
     tritri_pipeline_w24_dff_32 u_id_q(
@@ -263,10 +263,10 @@ module tritri_pipeline_w24_base_polygon (
         .q(segment_high_q),
         .clock(segment_high_clock)
     );
-    tritri_pipeline_w24_dff_25 u_edge_thermometer_q(
-        .d(edge_thermometer_d),
-        .q(edge_thermometer_q),
-        .clock(edge_thermometer_clock)
+    tritri_pipeline_w24_dff_8 u_edges_bits_q(
+        .d(edges_bits_d),
+        .q(edges_bits_q),
+        .clock(edges_bits_clock)
     );
 
     // Update code
@@ -275,7 +275,7 @@ module tritri_pipeline_w24_base_polygon (
     assign dominant_axis_clock = clock;
     assign segment_low_clock = clock;
     assign segment_high_clock = clock;
-    assign edge_thermometer_clock = clock;
+    assign edges_bits_clock = clock;
     assign vertices_q_0_clock = clock;
     assign vertices_q_1_clock = clock;
     assign vertices_q_2_clock = clock;
@@ -299,7 +299,7 @@ module tritri_pipeline_w24_base_polygon (
     assign dominant_axis = dominant_axis_q;
     assign segment_low = segment_low_q;
     assign segment_high = segment_high_q;
-    assign edge_thermometer = edge_thermometer_q;
+    assign edges_bits = edges_bits_q;
     assign vertices_0 = vertices_q_0_q;
     assign vertices_1 = vertices_q_1_q;
     assign vertices_2 = vertices_q_2_q;
@@ -324,7 +324,7 @@ module tritri_pipeline_w24_base_polygon (
         dominant_axis_d = dominant_axis_q;
         segment_low_d = segment_low_q;
         segment_high_d = segment_high_q;
-        edge_thermometer_d = edge_thermometer_q;
+        edges_bits_d = edges_bits_q;
         vertices_q_0_d = vertices_q_0_q;
         vertices_q_1_d = vertices_q_1_q;
         vertices_q_2_d = vertices_q_2_q;
@@ -349,7 +349,7 @@ module tritri_pipeline_w24_base_polygon (
             dominant_axis_d = dominant_axis_in;
             segment_low_d = segment_low_in;
             segment_high_d = segment_high_in;
-            edge_thermometer_d = edge_thermometer_in;
+            edges_bits_d = edges_bits_in;
             vertices_q_0_d = vertices_in_0;
             vertices_q_1_d = vertices_in_1;
             vertices_q_2_d = vertices_in_2;

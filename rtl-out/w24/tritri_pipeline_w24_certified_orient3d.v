@@ -105,32 +105,33 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [48:0] determinant_v_1;
     wire  [48:0] determinant_v_2;
     wire  [73:0] determinant_product;
-    wire  magnitude_ab_clock;
-    wire  magnitude_ab_advance;
-    wire  [24:0] magnitude_ab_value_0;
-    wire  [24:0] magnitude_ab_value_1;
-    wire  [24:0] magnitude_ab_value_2;
-    wire  [24:0] magnitude_ab_thermometer;
-    wire  magnitude_ac_clock;
-    wire  magnitude_ac_advance;
-    wire  [24:0] magnitude_ac_value_0;
-    wire  [24:0] magnitude_ac_value_1;
-    wire  [24:0] magnitude_ac_value_2;
-    wire  [24:0] magnitude_ac_thermometer;
-    wire  magnitude_ad_clock;
-    wire  magnitude_ad_advance;
-    wire  [24:0] magnitude_ad_value_0;
-    wire  [24:0] magnitude_ad_value_1;
-    wire  [24:0] magnitude_ad_value_2;
-    wire  [24:0] magnitude_ad_thermometer;
-    wire  thermometer_delay_clock;
-    wire  thermometer_delay_advance;
-    wire  [24:0] thermometer_delay_d;
-    wire  [24:0] thermometer_delay_q;
+    wire  edges_bits_clock;
+    wire  edges_bits_advance;
+    wire  [24:0] edges_bits_a_0;
+    wire  [24:0] edges_bits_a_1;
+    wire  [24:0] edges_bits_a_2;
+    wire  [24:0] edges_bits_b_0;
+    wire  [24:0] edges_bits_b_1;
+    wire  [24:0] edges_bits_b_2;
+    wire  [7:0] edges_bits_bits;
+    wire  edges_bits_delay_clock;
+    wire  edges_bits_delay_advance;
+    wire  [7:0] edges_bits_delay_d;
+    wire  [7:0] edges_bits_delay_q;
+    wire  threshold_clock;
+    wire  threshold_advance;
+    wire  [24:0] threshold_offset_0;
+    wire  [24:0] threshold_offset_1;
+    wire  [24:0] threshold_offset_2;
+    wire  [48:0] threshold_normal_0;
+    wire  [48:0] threshold_normal_1;
+    wire  [48:0] threshold_normal_2;
+    wire  [7:0] threshold_edges_bits;
+    wire  [73:0] threshold_threshold;
     wire  sign_clock;
     wire  sign_advance;
     wire  [73:0] sign_value;
-    wire  [24:0] sign_thermometer;
+    wire  [73:0] sign_threshold;
     wire  sign_negative;
     wire  sign_zero;
     wire  sign_certain;
@@ -217,41 +218,40 @@ module tritri_pipeline_w24_certified_orient3d (
         .v_2(determinant_v_2),
         .product(determinant_product)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_magnitude_ab(
-        .clock(magnitude_ab_clock),
-        .advance(magnitude_ab_advance),
-        .value_0(magnitude_ab_value_0),
-        .value_1(magnitude_ab_value_1),
-        .value_2(magnitude_ab_value_2),
-        .thermometer(magnitude_ab_thermometer)
+    tritri_pipeline_w24_edges_bit_length u_edges_bits(
+        .clock(edges_bits_clock),
+        .advance(edges_bits_advance),
+        .a_0(edges_bits_a_0),
+        .a_1(edges_bits_a_1),
+        .a_2(edges_bits_a_2),
+        .b_0(edges_bits_b_0),
+        .b_1(edges_bits_b_1),
+        .b_2(edges_bits_b_2),
+        .bits(edges_bits_bits)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_magnitude_ac(
-        .clock(magnitude_ac_clock),
-        .advance(magnitude_ac_advance),
-        .value_0(magnitude_ac_value_0),
-        .value_1(magnitude_ac_value_1),
-        .value_2(magnitude_ac_value_2),
-        .thermometer(magnitude_ac_thermometer)
+    tritri_pipeline_w24_delay_line_w8_n1 u_edges_bits_delay(
+        .clock(edges_bits_delay_clock),
+        .advance(edges_bits_delay_advance),
+        .d(edges_bits_delay_d),
+        .q(edges_bits_delay_q)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_magnitude_ad(
-        .clock(magnitude_ad_clock),
-        .advance(magnitude_ad_advance),
-        .value_0(magnitude_ad_value_0),
-        .value_1(magnitude_ad_value_1),
-        .value_2(magnitude_ad_value_2),
-        .thermometer(magnitude_ad_thermometer)
-    );
-    tritri_pipeline_w24_delay_line_w25_n8 u_thermometer_delay(
-        .clock(thermometer_delay_clock),
-        .advance(thermometer_delay_advance),
-        .d(thermometer_delay_d),
-        .q(thermometer_delay_q)
+    tritri_pipeline_w24_certificate_threshold u_threshold(
+        .clock(threshold_clock),
+        .advance(threshold_advance),
+        .offset__0(threshold_offset_0),
+        .offset__1(threshold_offset_1),
+        .offset__2(threshold_offset_2),
+        .normal_0(threshold_normal_0),
+        .normal_1(threshold_normal_1),
+        .normal_2(threshold_normal_2),
+        .edges_bits(threshold_edges_bits),
+        .threshold(threshold_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign(
         .clock(sign_clock),
         .advance(sign_advance),
         .value(sign_value),
-        .thermometer(sign_thermometer),
+        .threshold(sign_threshold),
         .negative(sign_negative),
         .zero(sign_zero),
         .certain(sign_certain)
@@ -267,10 +267,9 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_2_clock = clock;
     assign determinant_clock = clock;
     assign sign_clock = clock;
-    assign thermometer_delay_clock = clock;
-    assign magnitude_ab_clock = clock;
-    assign magnitude_ac_clock = clock;
-    assign magnitude_ad_clock = clock;
+    assign edges_bits_clock = clock;
+    assign edges_bits_delay_clock = clock;
+    assign threshold_clock = clock;
     assign edge_ab_advance = advance;
     assign edge_ac_advance = advance;
     assign edge_ad_advance = advance;
@@ -280,10 +279,9 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_2_advance = advance;
     assign determinant_advance = advance;
     assign sign_advance = advance;
-    assign thermometer_delay_advance = advance;
-    assign magnitude_ab_advance = advance;
-    assign magnitude_ac_advance = advance;
-    assign magnitude_ad_advance = advance;
+    assign edges_bits_advance = advance;
+    assign edges_bits_delay_advance = advance;
+    assign threshold_advance = advance;
     assign edge_ab_a_0 = b_0;
     assign edge_ab_b_0 = a_0;
     assign edge_ac_a_0 = c_0;
@@ -293,9 +291,6 @@ module tritri_pipeline_w24_certified_orient3d (
     assign normal_u_0 = edge_ab_difference_0;
     assign normal_v_0 = edge_ac_difference_0;
     assign determinant_v_0 = normal_product_0;
-    assign magnitude_ab_value_0 = edge_ab_difference_0;
-    assign magnitude_ac_value_0 = edge_ac_difference_0;
-    assign magnitude_ad_value_0 = edge_ad_difference_0;
     assign edge_ab_a_1 = b_1;
     assign edge_ab_b_1 = a_1;
     assign edge_ac_a_1 = c_1;
@@ -305,9 +300,6 @@ module tritri_pipeline_w24_certified_orient3d (
     assign normal_u_1 = edge_ab_difference_1;
     assign normal_v_1 = edge_ac_difference_1;
     assign determinant_v_1 = normal_product_1;
-    assign magnitude_ab_value_1 = edge_ab_difference_1;
-    assign magnitude_ac_value_1 = edge_ac_difference_1;
-    assign magnitude_ad_value_1 = edge_ad_difference_1;
     assign edge_ab_a_2 = b_2;
     assign edge_ab_b_2 = a_2;
     assign edge_ac_a_2 = c_2;
@@ -317,10 +309,20 @@ module tritri_pipeline_w24_certified_orient3d (
     assign normal_u_2 = edge_ab_difference_2;
     assign normal_v_2 = edge_ac_difference_2;
     assign determinant_v_2 = normal_product_2;
-    assign magnitude_ab_value_2 = edge_ab_difference_2;
-    assign magnitude_ac_value_2 = edge_ac_difference_2;
-    assign magnitude_ad_value_2 = edge_ad_difference_2;
-    assign thermometer_delay_d = magnitude_ab_thermometer | magnitude_ac_thermometer | magnitude_ad_thermometer;
+    assign edges_bits_a_0 = edge_ab_difference_0;
+    assign edges_bits_b_0 = edge_ac_difference_0;
+    assign threshold_normal_0 = normal_product_0;
+    assign edges_bits_a_1 = edge_ab_difference_1;
+    assign edges_bits_b_1 = edge_ac_difference_1;
+    assign threshold_normal_1 = normal_product_1;
+    assign edges_bits_a_2 = edge_ab_difference_2;
+    assign edges_bits_b_2 = edge_ac_difference_2;
+    assign threshold_normal_2 = normal_product_2;
+    assign edges_bits_delay_d = edges_bits_bits;
+    assign threshold_edges_bits = edges_bits_delay_q;
+    assign threshold_offset_0 = edge_ad_delay_0_q;
+    assign threshold_offset_1 = edge_ad_delay_1_q;
+    assign threshold_offset_2 = edge_ad_delay_2_q;
     assign edge_ad_delay_0_d = edge_ad_difference_0;
     assign edge_ad_delay_1_d = edge_ad_difference_1;
     assign edge_ad_delay_2_d = edge_ad_difference_2;
@@ -329,7 +331,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign determinant_u_2 = edge_ad_delay_2_q;
     assign sign_value = determinant_product;
     assign value = determinant_product;
-    assign sign_thermometer = thermometer_delay_q;
+    assign sign_threshold = threshold_threshold;
     assign negative = sign_negative;
     assign zero = sign_zero;
     assign certain = sign_certain;

@@ -185,7 +185,7 @@ module tritri_pipeline_w24_general_path (
     wire  [1:0] front_end_dominant_axis;
     wire  [1:0] front_end_segment_low;
     wire  [1:0] front_end_segment_high;
-    wire  [24:0] front_end_edge_thermometer;
+    wire  [7:0] front_end_edges_bits;
     wire  base_clock;
     wire  base_load;
     wire  [31:0] base_id_in;
@@ -211,7 +211,7 @@ module tritri_pipeline_w24_general_path (
     wire  [1:0] base_dominant_axis_in;
     wire  [1:0] base_segment_low_in;
     wire  [1:0] base_segment_high_in;
-    wire  [24:0] base_edge_thermometer_in;
+    wire  [7:0] base_edges_bits_in;
     wire  [31:0] base__id;
     wire  [23:0] base_vertices_0;
     wire  [23:0] base_vertices_1;
@@ -235,7 +235,7 @@ module tritri_pipeline_w24_general_path (
     wire  [1:0] base_dominant_axis;
     wire  [1:0] base_segment_low;
     wire  [1:0] base_segment_high;
-    wire  [24:0] base_edge_thermometer;
+    wire  [7:0] base_edges_bits;
     wire  pair_valid_to_sides_clock;
     wire  pair_valid_to_sides_reset;
     wire  pair_valid_to_sides_advance;
@@ -262,7 +262,7 @@ module tritri_pipeline_w24_general_path (
     wire  [48:0] plane_side_t1_plane_normal_0;
     wire  [48:0] plane_side_t1_plane_normal_1;
     wire  [48:0] plane_side_t1_plane_normal_2;
-    wire  [24:0] plane_side_t1_plane_thermometer;
+    wire  [7:0] plane_side_t1_plane_edges_bits;
     wire  [23:0] plane_side_t1_vertices_0;
     wire  [23:0] plane_side_t1_vertices_1;
     wire  [23:0] plane_side_t1_vertices_2;
@@ -292,7 +292,7 @@ module tritri_pipeline_w24_general_path (
     wire  [48:0] plane_side_t2_plane_normal_0;
     wire  [48:0] plane_side_t2_plane_normal_1;
     wire  [48:0] plane_side_t2_plane_normal_2;
-    wire  [24:0] plane_side_t2_plane_thermometer;
+    wire  [7:0] plane_side_t2_plane_edges_bits;
     wire  [23:0] plane_side_t2_vertices_0;
     wire  [23:0] plane_side_t2_vertices_1;
     wire  [23:0] plane_side_t2_vertices_2;
@@ -866,7 +866,7 @@ module tritri_pipeline_w24_general_path (
         .dominant_axis(front_end_dominant_axis),
         .segment_low(front_end_segment_low),
         .segment_high(front_end_segment_high),
-        .edge_thermometer(front_end_edge_thermometer)
+        .edges_bits(front_end_edges_bits)
     );
     tritri_pipeline_w24_base_polygon u_base(
         .clock(base_clock),
@@ -894,7 +894,7 @@ module tritri_pipeline_w24_general_path (
         .dominant_axis_in(base_dominant_axis_in),
         .segment_low_in(base_segment_low_in),
         .segment_high_in(base_segment_high_in),
-        .edge_thermometer_in(base_edge_thermometer_in),
+        .edges_bits_in(base_edges_bits_in),
         .id(base__id),
         .vertices_0(base_vertices_0),
         .vertices_1(base_vertices_1),
@@ -918,7 +918,7 @@ module tritri_pipeline_w24_general_path (
         .dominant_axis(base_dominant_axis),
         .segment_low(base_segment_low),
         .segment_high(base_segment_high),
-        .edge_thermometer(base_edge_thermometer)
+        .edges_bits(base_edges_bits)
     );
     tritri_pipeline_w24_valid_line_n7 u_pair_valid_to_sides(
         .clock(pair_valid_to_sides_clock),
@@ -955,7 +955,7 @@ module tritri_pipeline_w24_general_path (
         .plane_normal_0(plane_side_t1_plane_normal_0),
         .plane_normal_1(plane_side_t1_plane_normal_1),
         .plane_normal_2(plane_side_t1_plane_normal_2),
-        .plane_thermometer(plane_side_t1_plane_thermometer),
+        .plane_edges_bits(plane_side_t1_plane_edges_bits),
         .vertices_0(plane_side_t1_vertices_0),
         .vertices_1(plane_side_t1_vertices_1),
         .vertices_2(plane_side_t1_vertices_2),
@@ -987,7 +987,7 @@ module tritri_pipeline_w24_general_path (
         .plane_normal_0(plane_side_t2_plane_normal_0),
         .plane_normal_1(plane_side_t2_plane_normal_1),
         .plane_normal_2(plane_side_t2_plane_normal_2),
-        .plane_thermometer(plane_side_t2_plane_thermometer),
+        .plane_edges_bits(plane_side_t2_plane_edges_bits),
         .vertices_0(plane_side_t2_vertices_0),
         .vertices_1(plane_side_t2_vertices_1),
         .vertices_2(plane_side_t2_vertices_2),
@@ -1792,7 +1792,7 @@ module tritri_pipeline_w24_general_path (
     assign base_dominant_axis_in = front_end_dominant_axis;
     assign base_segment_low_in = front_end_segment_low;
     assign base_segment_high_in = front_end_segment_high;
-    assign base_edge_thermometer_in = front_end_edge_thermometer;
+    assign base_edges_bits_in = front_end_edges_bits;
     assign base_vertices_in_0 = front_end_vertices_0;
     assign base_vertices_in_1 = front_end_vertices_1;
     assign base_vertices_in_2 = front_end_vertices_2;
@@ -1833,8 +1833,8 @@ module tritri_pipeline_w24_general_path (
     assign plane_side_t2_vertices_7 = front_end_vertices_7;
     assign plane_side_t1_vertices_8 = base_vertices_8;
     assign plane_side_t2_vertices_8 = front_end_vertices_8;
-    assign plane_side_t1_plane_thermometer = front_end_edge_thermometer;
-    assign plane_side_t2_plane_thermometer = base_edge_thermometer;
+    assign plane_side_t1_plane_edges_bits = front_end_edges_bits;
+    assign plane_side_t2_plane_edges_bits = base_edges_bits;
     assign plane_side_t1_plane_point_0 = front_end_vertices_0;
     assign plane_side_t1_plane_normal_0 = front_end_normal_0;
     assign plane_side_t2_plane_point_0 = base_vertices_0;

@@ -31,7 +31,7 @@ module tritri_pipeline_w24_normal_unit (
     output wire [48:0] normal_0,
     output wire [48:0] normal_1,
     output wire [48:0] normal_2,
-    output wire [24:0] edge_thermometer
+    output wire [7:0]  edges_bits
 );
 
     // Stub signals
@@ -68,18 +68,15 @@ module tritri_pipeline_w24_normal_unit (
     wire  [48:0] edge_cross_product_0;
     wire  [48:0] edge_cross_product_1;
     wire  [48:0] edge_cross_product_2;
-    wire  magnitude_pq_clock;
-    wire  magnitude_pq_advance;
-    wire  [24:0] magnitude_pq_value_0;
-    wire  [24:0] magnitude_pq_value_1;
-    wire  [24:0] magnitude_pq_value_2;
-    wire  [24:0] magnitude_pq_thermometer;
-    wire  magnitude_pr_clock;
-    wire  magnitude_pr_advance;
-    wire  [24:0] magnitude_pr_value_0;
-    wire  [24:0] magnitude_pr_value_1;
-    wire  [24:0] magnitude_pr_value_2;
-    wire  [24:0] magnitude_pr_thermometer;
+    wire  edge_bits_clock;
+    wire  edge_bits_advance;
+    wire  [24:0] edge_bits_a_0;
+    wire  [24:0] edge_bits_a_1;
+    wire  [24:0] edge_bits_a_2;
+    wire  [24:0] edge_bits_b_0;
+    wire  [24:0] edge_bits_b_1;
+    wire  [24:0] edge_bits_b_2;
+    wire  [7:0] edge_bits_bits;
 
     // Sub module instances
     tritri_pipeline_w24_vector_subtractor u_edge_pq(
@@ -121,34 +118,27 @@ module tritri_pipeline_w24_normal_unit (
         .product_1(edge_cross_product_1),
         .product_2(edge_cross_product_2)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_magnitude_pq(
-        .clock(magnitude_pq_clock),
-        .advance(magnitude_pq_advance),
-        .value_0(magnitude_pq_value_0),
-        .value_1(magnitude_pq_value_1),
-        .value_2(magnitude_pq_value_2),
-        .thermometer(magnitude_pq_thermometer)
-    );
-    tritri_pipeline_w24_magnitude_thermometer u_magnitude_pr(
-        .clock(magnitude_pr_clock),
-        .advance(magnitude_pr_advance),
-        .value_0(magnitude_pr_value_0),
-        .value_1(magnitude_pr_value_1),
-        .value_2(magnitude_pr_value_2),
-        .thermometer(magnitude_pr_thermometer)
+    tritri_pipeline_w24_edges_bit_length u_edge_bits(
+        .clock(edge_bits_clock),
+        .advance(edge_bits_advance),
+        .a_0(edge_bits_a_0),
+        .a_1(edge_bits_a_1),
+        .a_2(edge_bits_a_2),
+        .b_0(edge_bits_b_0),
+        .b_1(edge_bits_b_1),
+        .b_2(edge_bits_b_2),
+        .bits(edge_bits_bits)
     );
 
     // Update code
     assign edge_pq_clock = clock;
     assign edge_pr_clock = clock;
     assign edge_cross_clock = clock;
-    assign magnitude_pq_clock = clock;
-    assign magnitude_pr_clock = clock;
+    assign edge_bits_clock = clock;
     assign edge_pq_advance = advance;
     assign edge_pr_advance = advance;
     assign edge_cross_advance = advance;
-    assign magnitude_pq_advance = advance;
-    assign magnitude_pr_advance = advance;
+    assign edge_bits_advance = advance;
     assign edge_pq_a_0 = vertices_3;
     assign edge_pq_b_0 = vertices_0;
     assign edge_pr_a_0 = vertices_6;
@@ -156,8 +146,8 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_0 = edge_pq_difference_0;
     assign edge_cross_v_0 = edge_pr_difference_0;
     assign normal_0 = edge_cross_product_0;
-    assign magnitude_pq_value_0 = edge_pq_difference_0;
-    assign magnitude_pr_value_0 = edge_pr_difference_0;
+    assign edge_bits_a_0 = edge_pq_difference_0;
+    assign edge_bits_b_0 = edge_pr_difference_0;
     assign edge_pq_a_1 = vertices_4;
     assign edge_pq_b_1 = vertices_1;
     assign edge_pr_a_1 = vertices_7;
@@ -165,8 +155,8 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_1 = edge_pq_difference_1;
     assign edge_cross_v_1 = edge_pr_difference_1;
     assign normal_1 = edge_cross_product_1;
-    assign magnitude_pq_value_1 = edge_pq_difference_1;
-    assign magnitude_pr_value_1 = edge_pr_difference_1;
+    assign edge_bits_a_1 = edge_pq_difference_1;
+    assign edge_bits_b_1 = edge_pr_difference_1;
     assign edge_pq_a_2 = vertices_5;
     assign edge_pq_b_2 = vertices_2;
     assign edge_pr_a_2 = vertices_8;
@@ -174,9 +164,9 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_2 = edge_pq_difference_2;
     assign edge_cross_v_2 = edge_pr_difference_2;
     assign normal_2 = edge_cross_product_2;
-    assign magnitude_pq_value_2 = edge_pq_difference_2;
-    assign magnitude_pr_value_2 = edge_pr_difference_2;
-    assign edge_thermometer = magnitude_pq_thermometer | magnitude_pr_thermometer;
+    assign edge_bits_a_2 = edge_pq_difference_2;
+    assign edge_bits_b_2 = edge_pr_difference_2;
+    assign edges_bits = edge_bits_bits;
 
 endmodule  // tritri_pipeline_w24_normal_unit
 

@@ -26,7 +26,7 @@ module tritri_pipeline_w24_plane_side (
     input  wire [48:0] plane_normal_0,
     input  wire [48:0] plane_normal_1,
     input  wire [48:0] plane_normal_2,
-    input  wire [24:0] plane_thermometer,
+    input  wire [7:0]  plane_edges_bits,
     input  wire [23:0] vertices_0,
     input  wire [23:0] vertices_1,
     input  wire [23:0] vertices_2,
@@ -123,58 +123,58 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] distance_2_v_1;
     wire  [48:0] distance_2_v_2;
     wire  [73:0] distance_2_product;
-    wire  plane_thermometer_delay_clock;
-    wire  plane_thermometer_delay_advance;
-    wire  [24:0] plane_thermometer_delay_d;
-    wire  [24:0] plane_thermometer_delay_q;
-    wire  offset_magnitude_0_clock;
-    wire  offset_magnitude_0_advance;
-    wire  [24:0] offset_magnitude_0_value_0;
-    wire  [24:0] offset_magnitude_0_value_1;
-    wire  [24:0] offset_magnitude_0_value_2;
-    wire  [24:0] offset_magnitude_0_thermometer;
-    wire  offset_magnitude_1_clock;
-    wire  offset_magnitude_1_advance;
-    wire  [24:0] offset_magnitude_1_value_0;
-    wire  [24:0] offset_magnitude_1_value_1;
-    wire  [24:0] offset_magnitude_1_value_2;
-    wire  [24:0] offset_magnitude_1_thermometer;
-    wire  offset_magnitude_2_clock;
-    wire  offset_magnitude_2_advance;
-    wire  [24:0] offset_magnitude_2_value_0;
-    wire  [24:0] offset_magnitude_2_value_1;
-    wire  [24:0] offset_magnitude_2_value_2;
-    wire  [24:0] offset_magnitude_2_thermometer;
-    wire  thermometer_delay_0_clock;
-    wire  thermometer_delay_0_advance;
-    wire  [24:0] thermometer_delay_0_d;
-    wire  [24:0] thermometer_delay_0_q;
-    wire  thermometer_delay_1_clock;
-    wire  thermometer_delay_1_advance;
-    wire  [24:0] thermometer_delay_1_d;
-    wire  [24:0] thermometer_delay_1_q;
-    wire  thermometer_delay_2_clock;
-    wire  thermometer_delay_2_advance;
-    wire  [24:0] thermometer_delay_2_d;
-    wire  [24:0] thermometer_delay_2_q;
+    wire  edges_bits_delay_clock;
+    wire  edges_bits_delay_advance;
+    wire  [7:0] edges_bits_delay_d;
+    wire  [7:0] edges_bits_delay_q;
+    wire  threshold_0_clock;
+    wire  threshold_0_advance;
+    wire  [24:0] threshold_0_offset_0;
+    wire  [24:0] threshold_0_offset_1;
+    wire  [24:0] threshold_0_offset_2;
+    wire  [48:0] threshold_0_normal_0;
+    wire  [48:0] threshold_0_normal_1;
+    wire  [48:0] threshold_0_normal_2;
+    wire  [7:0] threshold_0_edges_bits;
+    wire  [73:0] threshold_0_threshold;
+    wire  threshold_1_clock;
+    wire  threshold_1_advance;
+    wire  [24:0] threshold_1_offset_0;
+    wire  [24:0] threshold_1_offset_1;
+    wire  [24:0] threshold_1_offset_2;
+    wire  [48:0] threshold_1_normal_0;
+    wire  [48:0] threshold_1_normal_1;
+    wire  [48:0] threshold_1_normal_2;
+    wire  [7:0] threshold_1_edges_bits;
+    wire  [73:0] threshold_1_threshold;
+    wire  threshold_2_clock;
+    wire  threshold_2_advance;
+    wire  [24:0] threshold_2_offset_0;
+    wire  [24:0] threshold_2_offset_1;
+    wire  [24:0] threshold_2_offset_2;
+    wire  [48:0] threshold_2_normal_0;
+    wire  [48:0] threshold_2_normal_1;
+    wire  [48:0] threshold_2_normal_2;
+    wire  [7:0] threshold_2_edges_bits;
+    wire  [73:0] threshold_2_threshold;
     wire  sign_0_clock;
     wire  sign_0_advance;
     wire  [73:0] sign_0_value;
-    wire  [24:0] sign_0_thermometer;
+    wire  [73:0] sign_0_threshold;
     wire  sign_0_negative;
     wire  sign_0_zero;
     wire  sign_0_certain;
     wire  sign_1_clock;
     wire  sign_1_advance;
     wire  [73:0] sign_1_value;
-    wire  [24:0] sign_1_thermometer;
+    wire  [73:0] sign_1_threshold;
     wire  sign_1_negative;
     wire  sign_1_zero;
     wire  sign_1_certain;
     wire  sign_2_clock;
     wire  sign_2_advance;
     wire  [73:0] sign_2_value;
-    wire  [24:0] sign_2_thermometer;
+    wire  [73:0] sign_2_threshold;
     wire  sign_2_negative;
     wire  sign_2_zero;
     wire  sign_2_certain;
@@ -270,59 +270,53 @@ module tritri_pipeline_w24_plane_side (
         .v_2(distance_2_v_2),
         .product(distance_2_product)
     );
-    tritri_pipeline_w24_delay_line_w25_n3 u_plane_thermometer_delay(
-        .clock(plane_thermometer_delay_clock),
-        .advance(plane_thermometer_delay_advance),
-        .d(plane_thermometer_delay_d),
-        .q(plane_thermometer_delay_q)
+    tritri_pipeline_w24_delay_line_w8_n1 u_edges_bits_delay(
+        .clock(edges_bits_delay_clock),
+        .advance(edges_bits_delay_advance),
+        .d(edges_bits_delay_d),
+        .q(edges_bits_delay_q)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_offset_magnitude_0(
-        .clock(offset_magnitude_0_clock),
-        .advance(offset_magnitude_0_advance),
-        .value_0(offset_magnitude_0_value_0),
-        .value_1(offset_magnitude_0_value_1),
-        .value_2(offset_magnitude_0_value_2),
-        .thermometer(offset_magnitude_0_thermometer)
+    tritri_pipeline_w24_certificate_threshold u_threshold_0(
+        .clock(threshold_0_clock),
+        .advance(threshold_0_advance),
+        .offset__0(threshold_0_offset_0),
+        .offset__1(threshold_0_offset_1),
+        .offset__2(threshold_0_offset_2),
+        .normal_0(threshold_0_normal_0),
+        .normal_1(threshold_0_normal_1),
+        .normal_2(threshold_0_normal_2),
+        .edges_bits(threshold_0_edges_bits),
+        .threshold(threshold_0_threshold)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_offset_magnitude_1(
-        .clock(offset_magnitude_1_clock),
-        .advance(offset_magnitude_1_advance),
-        .value_0(offset_magnitude_1_value_0),
-        .value_1(offset_magnitude_1_value_1),
-        .value_2(offset_magnitude_1_value_2),
-        .thermometer(offset_magnitude_1_thermometer)
+    tritri_pipeline_w24_certificate_threshold u_threshold_1(
+        .clock(threshold_1_clock),
+        .advance(threshold_1_advance),
+        .offset__0(threshold_1_offset_0),
+        .offset__1(threshold_1_offset_1),
+        .offset__2(threshold_1_offset_2),
+        .normal_0(threshold_1_normal_0),
+        .normal_1(threshold_1_normal_1),
+        .normal_2(threshold_1_normal_2),
+        .edges_bits(threshold_1_edges_bits),
+        .threshold(threshold_1_threshold)
     );
-    tritri_pipeline_w24_magnitude_thermometer u_offset_magnitude_2(
-        .clock(offset_magnitude_2_clock),
-        .advance(offset_magnitude_2_advance),
-        .value_0(offset_magnitude_2_value_0),
-        .value_1(offset_magnitude_2_value_1),
-        .value_2(offset_magnitude_2_value_2),
-        .thermometer(offset_magnitude_2_thermometer)
-    );
-    tritri_pipeline_w24_delay_line_w25_n3 u_thermometer_delay_0(
-        .clock(thermometer_delay_0_clock),
-        .advance(thermometer_delay_0_advance),
-        .d(thermometer_delay_0_d),
-        .q(thermometer_delay_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w25_n3 u_thermometer_delay_1(
-        .clock(thermometer_delay_1_clock),
-        .advance(thermometer_delay_1_advance),
-        .d(thermometer_delay_1_d),
-        .q(thermometer_delay_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w25_n3 u_thermometer_delay_2(
-        .clock(thermometer_delay_2_clock),
-        .advance(thermometer_delay_2_advance),
-        .d(thermometer_delay_2_d),
-        .q(thermometer_delay_2_q)
+    tritri_pipeline_w24_certificate_threshold u_threshold_2(
+        .clock(threshold_2_clock),
+        .advance(threshold_2_advance),
+        .offset__0(threshold_2_offset_0),
+        .offset__1(threshold_2_offset_1),
+        .offset__2(threshold_2_offset_2),
+        .normal_0(threshold_2_normal_0),
+        .normal_1(threshold_2_normal_1),
+        .normal_2(threshold_2_normal_2),
+        .edges_bits(threshold_2_edges_bits),
+        .threshold(threshold_2_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign_0(
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
-        .thermometer(sign_0_thermometer),
+        .threshold(sign_0_threshold),
         .negative(sign_0_negative),
         .zero(sign_0_zero),
         .certain(sign_0_certain)
@@ -331,7 +325,7 @@ module tritri_pipeline_w24_plane_side (
         .clock(sign_1_clock),
         .advance(sign_1_advance),
         .value(sign_1_value),
-        .thermometer(sign_1_thermometer),
+        .threshold(sign_1_threshold),
         .negative(sign_1_negative),
         .zero(sign_1_zero),
         .certain(sign_1_certain)
@@ -340,7 +334,7 @@ module tritri_pipeline_w24_plane_side (
         .clock(sign_2_clock),
         .advance(sign_2_advance),
         .value(sign_2_value),
-        .thermometer(sign_2_thermometer),
+        .threshold(sign_2_threshold),
         .negative(sign_2_negative),
         .zero(sign_2_zero),
         .certain(sign_2_certain)
@@ -353,30 +347,18 @@ module tritri_pipeline_w24_plane_side (
     assign distance_0_clock = clock;
     assign distance_1_clock = clock;
     assign distance_2_clock = clock;
-    assign plane_thermometer_delay_clock = clock;
-    assign offset_magnitude_0_clock = clock;
-    assign offset_magnitude_1_clock = clock;
-    assign offset_magnitude_2_clock = clock;
+    assign edges_bits_delay_clock = clock;
+    assign threshold_0_clock = clock;
+    assign threshold_1_clock = clock;
+    assign threshold_2_clock = clock;
     assign offset_0_advance = advance;
     assign offset_1_advance = advance;
     assign offset_2_advance = advance;
     assign distance_0_advance = advance;
     assign distance_1_advance = advance;
     assign distance_2_advance = advance;
-    assign plane_thermometer_delay_advance = advance;
-    assign plane_thermometer_delay_d = plane_thermometer;
-    assign offset_magnitude_0_advance = advance;
-    assign offset_magnitude_1_advance = advance;
-    assign offset_magnitude_2_advance = advance;
-    assign offset_magnitude_0_value_0 = offset_0_difference_0;
-    assign offset_magnitude_1_value_0 = offset_1_difference_0;
-    assign offset_magnitude_2_value_0 = offset_2_difference_0;
-    assign offset_magnitude_0_value_1 = offset_0_difference_1;
-    assign offset_magnitude_1_value_1 = offset_1_difference_1;
-    assign offset_magnitude_2_value_1 = offset_2_difference_1;
-    assign offset_magnitude_0_value_2 = offset_0_difference_2;
-    assign offset_magnitude_1_value_2 = offset_1_difference_2;
-    assign offset_magnitude_2_value_2 = offset_2_difference_2;
+    assign edges_bits_delay_advance = advance;
+    assign edges_bits_delay_d = plane_edges_bits;
     assign normal_delay_0_clock = clock;
     assign normal_delay_0_advance = advance;
     assign normal_delay_0_d = plane_normal_0;
@@ -434,24 +416,39 @@ module tritri_pipeline_w24_plane_side (
     assign sign_0_value = distance_0_product;
     assign sign_1_value = distance_1_product;
     assign sign_2_value = distance_2_product;
-    assign thermometer_delay_0_d = plane_thermometer_delay_q | offset_magnitude_0_thermometer;
-    assign thermometer_delay_1_d = plane_thermometer_delay_q | offset_magnitude_1_thermometer;
-    assign thermometer_delay_2_d = plane_thermometer_delay_q | offset_magnitude_2_thermometer;
-    assign thermometer_delay_0_clock = clock;
-    assign thermometer_delay_0_advance = advance;
-    assign sign_0_thermometer = thermometer_delay_0_q;
+    assign threshold_0_advance = advance;
+    assign threshold_1_advance = advance;
+    assign threshold_2_advance = advance;
+    assign threshold_0_edges_bits = edges_bits_delay_q;
+    assign threshold_1_edges_bits = edges_bits_delay_q;
+    assign threshold_2_edges_bits = edges_bits_delay_q;
+    assign threshold_0_offset_0 = offset_0_difference_0;
+    assign threshold_1_offset_0 = offset_1_difference_0;
+    assign threshold_2_offset_0 = offset_2_difference_0;
+    assign threshold_0_normal_0 = normal_delay_0_q;
+    assign threshold_1_normal_0 = normal_delay_0_q;
+    assign threshold_2_normal_0 = normal_delay_0_q;
+    assign threshold_0_offset_1 = offset_0_difference_1;
+    assign threshold_1_offset_1 = offset_1_difference_1;
+    assign threshold_2_offset_1 = offset_2_difference_1;
+    assign threshold_0_normal_1 = normal_delay_1_q;
+    assign threshold_1_normal_1 = normal_delay_1_q;
+    assign threshold_2_normal_1 = normal_delay_1_q;
+    assign threshold_0_offset_2 = offset_0_difference_2;
+    assign threshold_1_offset_2 = offset_1_difference_2;
+    assign threshold_2_offset_2 = offset_2_difference_2;
+    assign threshold_0_normal_2 = normal_delay_2_q;
+    assign threshold_1_normal_2 = normal_delay_2_q;
+    assign threshold_2_normal_2 = normal_delay_2_q;
+    assign sign_0_threshold = threshold_0_threshold;
+    assign sign_1_threshold = threshold_1_threshold;
+    assign sign_2_threshold = threshold_2_threshold;
     assign negative_0 = sign_0_negative;
     assign zero_0 = sign_0_zero;
     assign certain_0 = sign_0_certain;
-    assign thermometer_delay_1_clock = clock;
-    assign thermometer_delay_1_advance = advance;
-    assign sign_1_thermometer = thermometer_delay_1_q;
     assign negative_1 = sign_1_negative;
     assign zero_1 = sign_1_zero;
     assign certain_1 = sign_1_certain;
-    assign thermometer_delay_2_clock = clock;
-    assign thermometer_delay_2_advance = advance;
-    assign sign_2_thermometer = thermometer_delay_2_q;
     assign negative_2 = sign_2_negative;
     assign zero_2 = sign_2_zero;
     assign certain_2 = sign_2_certain;

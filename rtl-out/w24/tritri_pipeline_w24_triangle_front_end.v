@@ -6,10 +6,10 @@
 //             the normal (thesis steps (1)/(3)), the signs of its components,
 //             whether the triangle is degenerate (normal zero), the dominant
 //             axis of its normal and the ends of the segment a degenerate
-//             triangle spans, and the thermometer of its edges' magnitudes for
-//             the certificates. The vertices travel alongside so that the
-//             outputs describe one triangle. Part of tritri_pipeline_w24.
-//             Instance: path.front_end.
+//             triangle spans, and the bit length of its edges' sum of
+//             magnitudes for the certificates. The vertices travel alongside so
+//             that the outputs describe one triangle. Part of
+//             tritri_pipeline_w24. Instance: path.front_end.
 //
 // Rust unit:  TriangleFrontEnd<W = 24, D = 25, C = 49>
 // Latency:    9 clock cycles
@@ -55,7 +55,7 @@ module tritri_pipeline_w24_triangle_front_end (
     output wire [1:0]  dominant_axis,
     output wire [1:0]  segment_low,
     output wire [1:0]  segment_high,
-    output wire [24:0] edge_thermometer
+    output wire [7:0]  edges_bits
 );
 
     // Stub signals
@@ -73,7 +73,7 @@ module tritri_pipeline_w24_triangle_front_end (
     wire  [48:0] normal_unit_normal_0;
     wire  [48:0] normal_unit_normal_1;
     wire  [48:0] normal_unit_normal_2;
-    wire  [24:0] normal_unit_edge_thermometer;
+    wire  [7:0] normal_unit_edges_bits;
     wire  normal_sign_0_clock;
     wire  normal_sign_0_advance;
     wire  [48:0] normal_sign_0_value;
@@ -188,10 +188,10 @@ module tritri_pipeline_w24_triangle_front_end (
     wire  segment_high_delay_advance;
     wire  [1:0] segment_high_delay_d;
     wire  [1:0] segment_high_delay_q;
-    wire  edge_thermometer_delay_clock;
-    wire  edge_thermometer_delay_advance;
-    wire  [24:0] edge_thermometer_delay_d;
-    wire  [24:0] edge_thermometer_delay_q;
+    wire  edges_bits_delay_clock;
+    wire  edges_bits_delay_advance;
+    wire  [7:0] edges_bits_delay_d;
+    wire  [7:0] edges_bits_delay_q;
 
     // Sub module instances
     tritri_pipeline_w24_normal_unit u_normal_unit(
@@ -209,7 +209,7 @@ module tritri_pipeline_w24_triangle_front_end (
         .normal_0(normal_unit_normal_0),
         .normal_1(normal_unit_normal_1),
         .normal_2(normal_unit_normal_2),
-        .edge_thermometer(normal_unit_edge_thermometer)
+        .edges_bits(normal_unit_edges_bits)
     );
     tritri_pipeline_w24_sign_of_w49 u_normal_sign_0(
         .clock(normal_sign_0_clock),
@@ -375,11 +375,11 @@ module tritri_pipeline_w24_triangle_front_end (
         .d(segment_high_delay_d),
         .q(segment_high_delay_q)
     );
-    tritri_pipeline_w24_delay_line_w25_n6 u_edge_thermometer_delay(
-        .clock(edge_thermometer_delay_clock),
-        .advance(edge_thermometer_delay_advance),
-        .d(edge_thermometer_delay_d),
-        .q(edge_thermometer_delay_q)
+    tritri_pipeline_w24_delay_line_w8_n4 u_edges_bits_delay(
+        .clock(edges_bits_delay_clock),
+        .advance(edges_bits_delay_advance),
+        .d(edges_bits_delay_d),
+        .q(edges_bits_delay_q)
     );
 
     // Update code
@@ -388,15 +388,15 @@ module tritri_pipeline_w24_triangle_front_end (
     assign ends_clock = clock;
     assign segment_low_delay_clock = clock;
     assign segment_high_delay_clock = clock;
-    assign edge_thermometer_delay_clock = clock;
+    assign edges_bits_delay_clock = clock;
     assign normal_unit_advance = advance;
     assign axis_advance = advance;
     assign ends_advance = advance;
     assign segment_low_delay_advance = advance;
     assign segment_high_delay_advance = advance;
-    assign edge_thermometer_delay_advance = advance;
-    assign edge_thermometer_delay_d = normal_unit_edge_thermometer;
-    assign edge_thermometer = edge_thermometer_delay_q;
+    assign edges_bits_delay_advance = advance;
+    assign edges_bits_delay_d = normal_unit_edges_bits;
+    assign edges_bits = edges_bits_delay_q;
     assign vertex_delay_0_clock = clock;
     assign vertex_delay_0_advance = advance;
     assign normal_unit_vertices_0 = vertices_in_0;

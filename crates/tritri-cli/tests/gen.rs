@@ -331,11 +331,6 @@ fn system_is_emitted_with_its_parameters() {
     );
 }
 
-/// `--for-scene`: on the built-in scene with a 0.5 % budget the cheapest
-/// width that meets it is W = 24 (W = 20 sends 2 % back: its coplanar
-/// contacts lose their certificates), two pipelines fit the Artix-7 200T
-/// and four do not; the README says so and gives the Verilator command.
-/// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named.
 /// `--rare-cases shared` writes the pipeline with the shared rare-case
 /// unit (its `hold` port in the README) and, with `--system`, the system
 /// of such pipelines; any other path is refused, naming it.
@@ -382,6 +377,11 @@ fn rare_cases_option_chooses_the_top() {
     assert!(String::from_utf8_lossy(&refused.stderr).contains("serial"));
 }
 
+/// `--for-scene`: on the built-in scene with a 0.5 % budget the cheapest
+/// width that meets it is W = 20 (W = 16 sends 2.4 % back), two pipelines
+/// fit the Artix-7 200T and four do not; the README says so and gives the
+/// Verilator command.
+/// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named.
 #[test]
 fn for_scene_sizes_the_system_and_says_why() {
     let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));
@@ -406,12 +406,12 @@ fn for_scene_sizes_the_system_and_says_why() {
     );
     let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
     for needle in [
-        "**Chosen: W = 24, P = 2, memory depth",
+        "**Chosen: W = 20, P = 2, memory depth",
         "*Why not one bit fewer:*",
-        "the closest, W = 20 (252 multipliers per pipeline)",
+        "the closest, W = 16 (126 multipliers per pipeline)",
         "*Why not one more pipeline:* P = 4 does not fit",
-        "| W = 24 (chosen) | 300 |",
-        "--width 24 --pipelines 2 --depth",
+        "| W = 20 (chosen) | 252 |",
+        "--width 20 --pipelines 2 --depth",
         "--engine verilator --certified",
     ] {
         assert!(
@@ -423,7 +423,7 @@ fn for_scene_sizes_the_system_and_says_why() {
         .unwrap()
         .file_name()
         .to_string_lossy()
-        .starts_with("tritri_system_w24_p2_d")));
+        .starts_with("tritri_system_w20_p2_d")));
     std::fs::remove_dir_all(&out).unwrap();
 
     let run = tritri()

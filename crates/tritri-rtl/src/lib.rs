@@ -3,7 +3,7 @@
 //!
 //! * [`arith`]: registered arithmetic primitives in exact widths
 //!   (subtractors, multipliers, cross and dot products, signs, the
-//!   certificates' thermometers, delay lines);
+//!   certificates' sums of magnitudes and thresholds, delay lines);
 //! * [`pipeline`]: the Devillers–Guigue pipeline, one unit per step of the
 //!   test, its ports ([`pipeline::ports`]), the supported widths (one
 //!   list) and the pipeline instantiated at each

@@ -9,14 +9,13 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::*;
-use tritri_geom::certificate::{entry_bits, orient3d_certified};
+use tritri_geom::certificate::{bit_length, l1, orient3d_certified};
 use tritri_geom::devillers_guigue::{align_t1, align_t2, coplanar_triangles, hulls_intersect_2d};
 use tritri_geom::fixed_point::{
     cross, dominant_axis, orient3d_value, FixedPoint, FixedPoint3, FixedTriangle,
 };
 use tritri_geom::kernel::ExactKernel;
 use tritri_geom::sign::Sign;
-use tritri_rtl::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
 use tritri_rtl::arith::subtractor::SUBTRACTOR_LATENCY;
 use tritri_rtl::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
@@ -27,7 +26,7 @@ use tritri_rtl::pipeline::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use tritri_rtl::pipeline::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
 use tritri_rtl::pipeline::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
 use tritri_rtl::pipeline::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
-use tritri_rtl::pipeline::normal::{NormalUnit, NORMAL_LATENCY};
+use tritri_rtl::pipeline::normal::{NormalUnit, EDGES_BITS_LATENCY, NORMAL_LATENCY};
 use tritri_rtl::pipeline::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
 use tritri_rtl::pipeline::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
 use tritri_rtl::pipeline::shared_rare_cases::{
@@ -111,14 +110,15 @@ fn lexicographic_ends(t: &FixedTriangle) -> (usize, usize) {
     (low, high)
 }
 
-/// The thermometer `2^m - 1` of a triangle's edge entries.
-fn edge_thermometer(t: &FixedTriangle) -> u64 {
+/// `ke = bitlen(|q - p|_1 + |r - p|_1)`, the certificates' of a triangle's
+/// plane.
+fn edges_bits(t: &FixedTriangle) -> u64 {
     let (u, v) = edges(t);
-    (1 << entry_bits(&[u, v].concat())) - 1
+    bit_length(l1(u) + l1(v)) as u64
 }
 
 #[test]
-fn normal_unit_gives_the_cross_product_and_its_thermometer() {
+fn normal_unit_gives_the_cross_product_and_its_edges_bit_length() {
     let vectors = triangles(1);
     let mut uut = NormalUnit::<24, 25, 49>::default();
     uut.connect_all();
@@ -139,10 +139,10 @@ fn normal_unit_gives_the_cross_product_and_its_thermometer() {
         &mut uut,
         |u| &mut u.clock,
         &vectors,
-        SUBTRACTOR_LATENCY + MAGNITUDE_THERMOMETER_LATENCY,
+        EDGES_BITS_LATENCY,
         |u, t| set_vertices(&mut u.vertices, t),
-        |u| u.edge_thermometer.val().to_u64(),
-        edge_thermometer,
+        |u| u.edges_bits.val().to_u64(),
+        edges_bits,
     );
 }
 
@@ -237,12 +237,12 @@ fn plane_side_signs_and_certificates() {
             for k in 0..3 {
                 u.plane_point[k].next = from_i128(plane[0][k] as i128);
             }
-            // The normal and thermometer arrive from the base polygon,
+            // The normal and edges' bit length arrive from the base polygon,
             // computed by the normal unit (tested above).
             for (k, n) in normal(plane).iter().enumerate() {
                 u.plane_normal[k].next = from_i128(*n);
             }
-            u.plane_thermometer.next = edge_thermometer(plane).into();
+            u.plane_edges_bits.next = edges_bits(plane).into();
             set_vertices(&mut u.vertices, t);
         },
         |u| {
@@ -778,7 +778,7 @@ fn triangles_and_degenerate_ones(seed: u64) -> Vec<FixedTriangle> {
 }
 
 /// The front end: the vertices, the normal and its signs, the degenerate
-/// flag, the dominant axis, the segment ends and the edge thermometer of
+/// flag, the dominant axis, the segment ends and the edges' bit length of
 /// each triangle, all `FRONT_END_LATENCY` clocks later.
 #[test]
 fn front_end_describes_each_triangle() {
@@ -811,7 +811,7 @@ fn front_end_describes_each_triangle() {
                     u.segment_low.val().to_u64() as usize,
                     u.segment_high.val().to_u64() as usize,
                 ),
-                u.edge_thermometer.val().to_u64(),
+                u.edges_bits.val().to_u64(),
             )
         },
         |t| -> Description {
@@ -823,7 +823,7 @@ fn front_end_describes_each_triangle() {
                 n == [0, 0, 0],
                 FixedPoint::dominant_normal_axis(t[0], t[1], t[2]),
                 lexicographic_ends(t),
-                edge_thermometer(t),
+                edges_bits(t),
             )
         },
     );
@@ -862,7 +862,7 @@ fn base_polygon_holds_the_last_loaded_record() {
             for (k, c) in normal(t).iter().enumerate() {
                 u.normal_in[k].next = from_i128(*c);
             }
-            u.edge_thermometer_in.next = edge_thermometer(t).into();
+            u.edges_bits_in.next = edges_bits(t).into();
         },
         |u| {
             let t: FixedTriangle = std::array::from_fn(|v| {
@@ -872,9 +872,9 @@ fn base_polygon_holds_the_last_loaded_record() {
                 u.id.val().to_u64() as u32,
                 t,
                 u.normal.each_ref().map(|n| to_i128(n.val())),
-                u.edge_thermometer.val().to_u64(),
+                u.edges_bits.val().to_u64(),
             )
         },
-        |(_, _, (id, t))| (*id, *t, normal(t), edge_thermometer(t)),
+        |(_, _, (id, t))| (*id, *t, normal(t), edges_bits(t)),
     );
 }

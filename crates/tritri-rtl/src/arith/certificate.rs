@@ -1,130 +1,435 @@
 //! The certificate of an orientation sign (`tritri_geom::certificate`):
-//! is `|P|` clear of `2^(2m + 5)`, where every entry of the determinant's
-//! rows is at most `2^m` in magnitude?
+//! is `|P|` at least the threshold `T` of every admissible move of its
+//! entries,
 //!
-//! Two blocks, neither with an adder or a multiplier:
+//! ```text
+//! T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
+//! X = sum |n_k| - [n_k < 0], Sw = |w|_1, ke = bitlen(|e1|_1 + |e2|_1),
+//! Y = 2^(bitlen Sw + ke)?
+//! ```
 //!
-//! * [`MagnitudeThermometer`] (two register stages): `2^m - 1` for three
-//!   differences, the OR of their ones' complement magnitudes
-//!   (`x ^ (x >> top)`), then that smeared downwards, with bit 0 forced
-//!   (`m >= 1`). Thermometers of several rows combine by OR. In one
-//!   combinational stage it was the W = 8 pipeline's critical path on ECP5
-//!   (119.6 MHz: five LUT levels and 4.6 ns of routing from a difference
-//!   register next to the multipliers).
+//! Three blocks, none with a multiplier:
+//!
+//! * [`EdgesBitLength`] (four register stages): `ke` of a triangle's two
+//!   edges, once per triangle (with its normal) or per determinant.
+//! * [`CertificateThreshold`] (five register stages, beside the dot
+//!   product): `T` from `w`, `n` and `ke`.
 //! * [`CertainSign`] (one register stage, like [`super::sign::SignOf`]):
-//!   the sign of `P` and whether `(P ^ (P >> top)) & !mask` is not zero,
-//!   where `mask = 2^(2m + 5) - 1` is the thermometer with every bit doubled
-//!   (a Morton expansion: constant shifts and masks, wiring after
-//!   synthesis), shifted up five places, low five bits set.
+//!   the sign of `P` and whether its ones' complement magnitude
+//!   `P ^ (P >> top)` (`|P|` or `|P| - 1`) is at least `T`.
+//!
+//! A bit length is read from a leading one: the value smeared downwards
+//! (`t | t >> 1`, `>> 2`, ...), then `t & ~(t >> 1)`; of `2 v + 1`, so that
+//! the one sits at bit `bitlen v`, and each bit of that index is an OR of
+//! the one-hot through a constant mask. The first two blocks are
+//! primitives with custom Verilog and an exact model of each register,
+//! evaluated at clock edges, like the adders (`super::adder`): rust-hdl
+//! simulates values wider than 32 bits as bit arrays. They compute in the
+//! widths the values need at W-bit coordinates (`D = W + 1`, `C = 2W + 1`,
+//! `O = 3W + 2`): `Sw` in `D + 2` bits, `X` in `C + 2`, `T` in `C + 6`.
+//!
+//! (The earlier certificate compared `P` with `2^(2m + 5)` for the largest
+//! entry `2^m`: OR-trees and wiring only, but at W = 24 it sent 0.17 to
+//! 0.26 % of a real scene's pairs back to the host.)
 
+use super::convert::{from_i128, to_i128};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
+use tritri_geom::certificate::{bit_length, normal_l1};
 
-/// Clock edges from value to sign and certificate.
+/// Clock edges from value and threshold to sign and certificate.
 pub const CERTAIN_SIGN_LATENCY: usize = 1;
 
-/// Clock edges from the differences to their thermometer.
-pub const MAGNITUDE_THERMOMETER_LATENCY: usize = 2;
+/// Clock edges from two edges to their `ke`.
+pub const EDGES_BIT_LENGTH_LATENCY: usize = 4;
 
+/// Clock edges from `w`, `n` and `ke` to the threshold.
+pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 5;
+
+/// `sum_k |v_k|` of D-bit two's complement values, exactly.
+fn l1_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> u128 {
+    v.iter().map(|x| to_i128(x.val()).unsigned_abs()).sum()
+}
+
+/// Verilog: `name` = the sum of the magnitudes of the array port `prefix`
+/// (rust-hdl names its elements `{prefix}$0..2`, which the emitter
+/// renames), `width` bits wide (the inputs `bits` wide).
+fn l1_verilog(name: &str, prefix: &str, bits: usize, width: usize) -> String {
+    let magnitude = |k: usize| {
+        format!(
+            "({prefix}${k}[{top}] ? {{{pad}'d0, ~{prefix}${k}}} + {width}'d1 : {{{pad}'d0, {prefix}${k}}})",
+            top = bits - 1,
+            pad = width - bits
+        )
+    };
+    format!(
+        "wire [{}:0] {name} = {} + {} + {};\n",
+        width - 1,
+        magnitude(0),
+        magnitude(1),
+        magnitude(2)
+    )
+}
+
+/// Verilog: `name` = the sum of the ones' complement magnitudes
+/// `v ^ {bits{v[top]}}` (`|v|` or `|v| - 1`) of the array port `prefix`.
+fn ones_complement_l1_verilog(name: &str, prefix: &str, bits: usize, width: usize) -> String {
+    let magnitude = |k: usize| {
+        format!(
+            "{{{pad}'d0, {prefix}${k} ^ {{{bits}{{{prefix}${k}[{top}]}}}}}}",
+            top = bits - 1,
+            pad = width - bits
+        )
+    };
+    format!(
+        "wire [{}:0] {name} = {} + {} + {};\n",
+        width - 1,
+        magnitude(0),
+        magnitude(1),
+        magnitude(2)
+    )
+}
+
+/// Verilog: `{name}_lead`, the one-hot at bit `bitlen v` of a `width`-bit
+/// `v` (the leading one of `2 v + 1`).
+fn leading_one_verilog(name: &str, v: &str, width: usize) -> String {
+    let l = width + 1;
+    let mut text = format!("wire [{}:0] {name}_t0 = {{{v}, 1'b1}};\n", l - 1);
+    let mut last = 0;
+    for (i, step) in [1usize, 2, 4, 8, 16, 32, 64].iter().enumerate() {
+        if *step >= l {
+            break;
+        }
+        text += &format!(
+            "wire [{}:0] {name}_t{} = {name}_t{i} | ({name}_t{i} >> {step});\n",
+            l - 1,
+            i + 1
+        );
+        last = i + 1;
+    }
+    text + &format!(
+        "wire [{}:0] {name}_lead = {name}_t{last} & ~({name}_t{last} >> 1);\n",
+        l - 1
+    )
+}
+
+/// Verilog: the 8-bit index of the `width`-bit one-hot `lead`.
+fn index_verilog(lead: &str, width: usize) -> String {
+    let bits: Vec<String> = (0..8)
+        .rev()
+        .filter(|j| width > 1 << j)
+        .map(|j| {
+            let mask = (0..width)
+                .filter(|i| (i >> j) & 1 == 1)
+                .fold(0u128, |m, i| m | 1 << i);
+            format!("|({lead} & {width}'h{mask:x})")
+        })
+        .collect();
+    let pad = 8 - bits.len();
+    format!("{{{pad}'d0, {}}}", bits.join(", "))
+}
+
+/// `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences, in four
+/// register stages: the two sums of magnitudes; their sum; its leading
+/// one; the index.
 #[derive(LogicBlock)]
-pub struct MagnitudeThermometer<const D: usize> {
+pub struct EdgesBitLength<const D: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
-    /// Three D-bit two's complement differences.
-    pub value: [Signal<In, Bits<D>>; 3],
-    /// `2^m - 1`: every `|value| <= 2^m`, `m >= 1`
-    /// (`MAGNITUDE_THERMOMETER_LATENCY` enabled edges later).
-    pub thermometer: Signal<Out, Bits<D>>,
-    top_bit: Constant<Bits<8>>,
-    one: Constant<Bits<D>>,
-    /// Each value's ones' complement magnitude.
-    magnitude: [Signal<Local, Bits<D>>; 3],
-    /// Stage 1: their OR.
-    magnitudes_q: DFF<Bits<D>>,
-    /// After each smear step (by 1, 2, 4, 8, 16, 32 places: enough for
-    /// D <= 64).
-    smear: [Signal<Local, Bits<D>>; 7],
-    /// Stage 2: the thermometer.
-    thermometer_q: DFF<Bits<D>>,
+    pub a: [Signal<In, Bits<D>>; 3],
+    pub b: [Signal<In, Bits<D>>; 3],
+    /// `ke`, `EDGES_BIT_LENGTH_LATENCY` enabled edges later.
+    pub bits: Signal<Out, Bits<8>>,
+    // Simulation model state (the Verilog's registers; the leading one as
+    // its index).
+    _l1_a: u128,
+    _l1_b: u128,
+    _sum: u128,
+    _bits: u128,
 }
 
-impl<const D: usize> crate::unit::Unit for MagnitudeThermometer<D> {
-    const LATENCY: Option<usize> = Some(MAGNITUDE_THERMOMETER_LATENCY);
-    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, magnitudes_q, thermometer_q);
-    }
+impl<const D: usize> crate::unit::Unit for EdgesBitLength<D> {
+    const LATENCY: Option<usize> = Some(EDGES_BIT_LENGTH_LATENCY);
 }
 
-impl<const D: usize> Default for MagnitudeThermometer<D> {
+impl<const D: usize> Default for EdgesBitLength<D> {
     fn default() -> Self {
         assert!((2..=64).contains(&D));
         Self {
             clock: Default::default(),
             advance: Default::default(),
-            value: Default::default(),
-            thermometer: Default::default(),
-            top_bit: Constant::new(Bits::<8>::from((D - 1) as u64)),
-            one: Constant::new(Bits::<D>::from(1)),
-            magnitude: Default::default(),
-            magnitudes_q: Default::default(),
-            smear: Default::default(),
-            thermometer_q: Default::default(),
+            a: Default::default(),
+            b: Default::default(),
+            bits: Default::default(),
+            _l1_a: 0,
+            _l1_b: 0,
+            _sum: 0,
+            _bits: 0,
         }
     }
 }
 
-impl<const D: usize> Logic for MagnitudeThermometer<D> {
-    #[hdl_gen]
+impl<const D: usize> Logic for EdgesBitLength<D> {
     fn update(&mut self) {
-        for k in 0..3 {
-            if self.value[k].val().get_bit(self.top_bit.val().index()) {
-                self.magnitude[k].next = !self.value[k].val();
+        if self.clock.pos_edge() && self.advance.val() {
+            self.bits.next = Bits::from(self._bits as u64);
+            self._bits = bit_length(self._sum) as u128;
+            self._sum = self._l1_a + self._l1_b;
+            self._l1_a = l1_of(&self.a);
+            self._l1_b = l1_of(&self.b);
+        }
+    }
+
+    fn connect(&mut self) {
+        self.bits.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        // |a|_1 < 3 2^(D-1) fits D + 1 bits, their sum D + 2.
+        let (l1_bits, sum_bits) = (D + 1, D + 2);
+        Verilog::Custom(format!(
+            "\
+// ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in four
+// register stages.
+{l1_a}{l1_b}reg [{l1}:0] l1_a_q;
+reg [{l1}:0] l1_b_q;
+reg [{s1}:0] sum_q;
+{lead}reg [{s1p}:0] lead_q;
+initial begin
+    l1_a_q = {l1_bits}'d0;
+    l1_b_q = {l1_bits}'d0;
+    sum_q = {sum_bits}'d0;
+    lead_q = {sum_bits_p}'d0;
+    bits = 8'd0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        l1_a_q <= l1_a;
+        l1_b_q <= l1_b;
+        sum_q <= {{1'b0, l1_a_q}} + {{1'b0, l1_b_q}};
+        lead_q <= sum_lead;
+        bits <= {index};
+    end
+end
+",
+            l1_a = l1_verilog("l1_a", "a", D, l1_bits),
+            l1_b = l1_verilog("l1_b", "b", D, l1_bits),
+            lead = leading_one_verilog("sum", "sum_q", sum_bits),
+            index = index_verilog("lead_q", sum_bits + 1),
+            l1 = l1_bits - 1,
+            s1 = sum_bits - 1,
+            s1p = sum_bits,
+            sum_bits_p = sum_bits + 1,
+        ))
+    }
+}
+
+/// `T` of the module docs from the offset `w` (D-bit components), the
+/// normal `n = e1 × e2` (C-bit) and `ke` (all three in the same clock), in
+/// five register stages:
+///
+/// 1. `Sw = |w|_1`, `X` (the ones' complement magnitudes' sum,
+///    `tritri_geom::certificate::normal_l1`);
+/// 2. the leading one of `2 Sw + 1`; `X + (X >> 19)`;
+///    `4 Sw + 2^(ke + 2) + 16`;
+/// 3. the exponent `bitlen Sw + ke`; the two parts' sum;
+/// 4. `Y + (Y >> 19)`, a constant one shifted by the exponent;
+/// 5. `T`.
+#[derive(LogicBlock)]
+pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    /// `w = d - a`.
+    pub offset: [Signal<In, Bits<D>>; 3],
+    /// `n = (b - a) × (c - a)`.
+    pub normal: [Signal<In, Bits<C>>; 3],
+    /// `ke` of `b - a`, `c - a` ([`EdgesBitLength`]).
+    pub edges_bits: Signal<In, Bits<8>>,
+    /// `T`, `CERTIFICATE_THRESHOLD_LATENCY` enabled edges later.
+    pub threshold: Signal<Out, Bits<O>>,
+    // Simulation model state (the Verilog's registers; the leading one as
+    // its index).
+    _offset_l1: u128,
+    _normal_l1: u128,
+    _edges_bits: u128,
+    _bits_w: u128,
+    _normal_part: u128,
+    _small_part: u128,
+    _edges_bits_2: u128,
+    _exponent: u128,
+    _partial: u128,
+    _y: u128,
+    _partial_wait: u128,
+}
+
+impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit
+    for CertificateThreshold<D, C, O>
+{
+    const LATENCY: Option<usize> = Some(CERTIFICATE_THRESHOLD_LATENCY);
+}
+
+impl<const D: usize, const C: usize, const O: usize> Default for CertificateThreshold<D, C, O> {
+    fn default() -> Self {
+        // The pipeline's widths: C = 2D - 1, O = 3D - 1; T < 2^(C + 6) <= 2^O.
+        assert!(D >= 7 && C == 2 * D - 1 && O == 3 * D - 1 && O <= 120);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            offset: Default::default(),
+            normal: Default::default(),
+            edges_bits: Default::default(),
+            threshold: Default::default(),
+            _offset_l1: 0,
+            _normal_l1: 0,
+            _edges_bits: 0,
+            _bits_w: 0,
+            _normal_part: 0,
+            _small_part: 0,
+            _edges_bits_2: 0,
+            _exponent: 0,
+            _partial: 0,
+            _y: 0,
+            _partial_wait: 0,
+        }
+    }
+}
+
+impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThreshold<D, C, O> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.advance.val() {
+            let t_mask = (1u128 << (C + 6)) - 1;
+            // Each stage from the one before, last first.
+            self.threshold.next = from_i128::<O>(((self._partial_wait + self._y) & t_mask) as i128);
+            let one = if self._exponent < (C + 6) as u128 {
+                1u128 << self._exponent
             } else {
-                self.magnitude[k].next = self.value[k].val();
-            }
+                0
+            };
+            self._y = one | (one >> 19);
+            self._partial_wait = self._partial;
+            self._exponent = (self._bits_w + self._edges_bits_2) & 0xff;
+            self._partial = (self._normal_part + self._small_part) & t_mask;
+            self._bits_w = bit_length(self._offset_l1) as u128;
+            self._normal_part = self._normal_l1 + (self._normal_l1 >> 19);
+            let ke = self._edges_bits;
+            let edge_term = if ke + 2 < (D + 6) as u128 {
+                4u128 << ke
+            } else {
+                0
+            };
+            self._small_part = (4 * self._offset_l1 + edge_term + 16) & ((1 << (D + 6)) - 1);
+            self._edges_bits_2 = self._edges_bits;
+            self._offset_l1 = l1_of(&self.offset);
+            self._normal_l1 = self
+                .normal
+                .iter()
+                .map(|x| normal_l1([to_i128(x.val()), 0, 0]))
+                .sum();
+            self._edges_bits = self.edges_bits.val().to_u64() as u128;
         }
-        dff_setup!(self, clock, magnitudes_q, thermometer_q);
-        if self.advance.val() {
-            self.magnitudes_q.d.next =
-                self.magnitude[0].val() | self.magnitude[1].val() | self.magnitude[2].val();
-        }
-        self.smear[0].next = self.magnitudes_q.q.val();
-        self.smear[1].next = self.smear[0].val() | (self.smear[0].val() >> 1);
-        self.smear[2].next = self.smear[1].val() | (self.smear[1].val() >> 2);
-        self.smear[3].next = self.smear[2].val() | (self.smear[2].val() >> 4);
-        self.smear[4].next = self.smear[3].val() | (self.smear[3].val() >> 8);
-        self.smear[5].next = self.smear[4].val() | (self.smear[4].val() >> 16);
-        self.smear[6].next = self.smear[5].val() | (self.smear[5].val() >> 32);
-        if self.advance.val() {
-            self.thermometer_q.d.next = self.smear[6].val() | self.one.val();
-        }
-        self.thermometer.next = self.thermometer_q.q.val();
+    }
+
+    fn connect(&mut self) {
+        self.threshold.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        // Sw < 3 2^(D-1) fits D + 1 bits; X < 3 2^(C-1), C + 1; X + (X >> 19)
+        // C + 2; 4 Sw + 2^(ke + 2) + 16 (ke <= D + 2) D + 6; T C + 6.
+        let (sw, x, small, t) = (D + 1, C + 1, D + 6, C + 6);
+        Verilog::Custom(format!(
+            "\
+// The certificate's threshold (tritri_geom::certificate::threshold):
+// T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
+// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register stages.
+{offset_l1}{normal_l1}reg [{sw1}:0] offset_l1_q;
+reg [{x1}:0] normal_l1_q;
+reg [7:0] edges_bits_q;
+{lead}reg [{sw}:0] offset_lead_q;
+reg [{x}:0] normal_part_q;
+reg [{small1}:0] small_part_q;
+reg [7:0] edges_bits_q2;
+reg [7:0] exponent_q;
+reg [{t1}:0] partial_q;
+reg [{t1}:0] y_q;
+reg [{t1}:0] partial_wait_q;
+wire [7:0] offset_bits = {index};
+wire [{small1}:0] edge_term = {small}'d4 << edges_bits_q;
+wire [{t1}:0] y_one = {t}'d1 << exponent_q;
+initial begin
+    offset_l1_q = {sw}'d0;
+    normal_l1_q = {x}'d0;
+    edges_bits_q = 8'd0;
+    offset_lead_q = {sw_p}'d0;
+    normal_part_q = {x_p}'d0;
+    small_part_q = {small}'d0;
+    edges_bits_q2 = 8'd0;
+    exponent_q = 8'd0;
+    partial_q = {t}'d0;
+    y_q = {t}'d0;
+    partial_wait_q = {t}'d0;
+    threshold = {o}'d0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        offset_l1_q <= offset_l1;
+        normal_l1_q <= normal_l1;
+        edges_bits_q <= edges_bits;
+        offset_lead_q <= offset_lead;
+        normal_part_q <= {normal_part};
+        small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term + {small}'d16;
+        edges_bits_q2 <= edges_bits_q;
+        exponent_q <= offset_bits + edges_bits_q2;
+        partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q}};
+        y_q <= y_one | (y_one >> 19);
+        partial_wait_q <= partial_q;
+        threshold <= {{{pad_t}'d0, partial_wait_q + y_q}};
+    end
+end
+",
+            offset_l1 = l1_verilog("offset_l1", "offset", D, sw),
+            normal_l1 = ones_complement_l1_verilog("normal_l1", "normal", C, x),
+            lead = leading_one_verilog("offset", "offset_l1_q", sw),
+            index = index_verilog("offset_lead_q", sw + 1),
+            sw1 = sw - 1,
+            x1 = x - 1,
+            small1 = small - 1,
+            t1 = t - 1,
+            sw_p = sw + 1,
+            x_p = x + 1,
+            pad_x = t - (x + 1),
+            pad_small = t - small,
+            pad_t = O - t,
+            o = O,
+            // X >> 19 is zero below 20 bits.
+            normal_part = if x > 19 {
+                format!(
+                    "{{1'b0, normal_l1_q}} + {{20'd0, normal_l1_q[{}:19]}}",
+                    x - 1
+                )
+            } else {
+                "{1'b0, normal_l1_q}".to_string()
+            },
+        ))
     }
 }
 
 /// The sign of a determinant and its certificate, registered.
 #[derive(LogicBlock)]
-pub struct CertainSign<const O: usize, const D: usize> {
+pub struct CertainSign<const O: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
     /// The determinant `P`, O-bit two's complement.
     pub value: Signal<In, Bits<O>>,
-    /// `2^m - 1` of the determinant's entries.
-    pub thermometer: Signal<In, Bits<D>>,
+    /// `T` of the determinant's entries.
+    pub threshold: Signal<In, Bits<O>>,
     /// `P < 0`, `CERTAIN_SIGN_LATENCY` enabled edges later.
     pub negative: Signal<Out, Bit>,
     /// `P == 0`.
     pub zero: Signal<Out, Bit>,
-    /// `|P| > 2^(2m + 5)`: the sign holds for every admissible move.
+    /// `|P| >= T`: the sign holds for every admissible move.
     pub certain: Signal<Out, Bit>,
     top_bit: Constant<Bits<8>>,
-    /// The Morton expansion's masks, widest step first.
-    spread_mask: [Constant<Bits<O>>; 6],
-    low_five: Constant<Bits<O>>,
-    /// The thermometer widened, then after each expansion step.
-    spread: [Signal<Local, Bits<O>>; 7],
-    /// `2^(2m + 5) - 1`.
-    mask: Signal<Local, Bits<O>>,
     /// `|P|` or `|P| - 1`.
     magnitude: Signal<Local, Bits<O>>,
     negative_q: DFF<Bit>,
@@ -132,37 +437,25 @@ pub struct CertainSign<const O: usize, const D: usize> {
     certain_q: DFF<Bit>,
 }
 
-impl<const O: usize, const D: usize> crate::unit::Unit for CertainSign<O, D> {
+impl<const O: usize> crate::unit::Unit for CertainSign<O> {
     const LATENCY: Option<usize> = Some(CERTAIN_SIGN_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(self, units, negative_q, zero_q, certain_q);
     }
 }
 
-/// Bits `i` with `i mod 2s < s`: where the expansion step by `s` keeps bits.
-fn spread_mask<const O: usize>(step: u64) -> Bits<O> {
-    (0..O)
-        .filter(|i| (*i as u64) % (2 * step) < step)
-        .fold(Bits::<O>::default(), |m, i| m.replace_bit(i, true))
-}
-
-impl<const O: usize, const D: usize> Default for CertainSign<O, D> {
+impl<const O: usize> Default for CertainSign<O> {
     fn default() -> Self {
-        // The mask reaches bit 2D + 5 (the determinant has more: O = 3W + 2).
-        assert!(2 * D + 5 <= O && O < 256);
+        assert!(O < 256);
         Self {
             clock: Default::default(),
             advance: Default::default(),
             value: Default::default(),
-            thermometer: Default::default(),
+            threshold: Default::default(),
             negative: Default::default(),
             zero: Default::default(),
             certain: Default::default(),
             top_bit: Constant::new(Bits::<8>::from((O - 1) as u64)),
-            spread_mask: [32, 16, 8, 4, 2, 1].map(|s| Constant::new(spread_mask::<O>(s))),
-            low_five: Constant::new(Bits::<O>::from(0x1f)),
-            spread: Default::default(),
-            mask: Default::default(),
             magnitude: Default::default(),
             negative_q: Default::default(),
             zero_q: Default::default(),
@@ -171,27 +464,10 @@ impl<const O: usize, const D: usize> Default for CertainSign<O, D> {
     }
 }
 
-impl<const O: usize, const D: usize> Logic for CertainSign<O, D> {
+impl<const O: usize> Logic for CertainSign<O> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, negative_q, zero_q, certain_q);
-        // Bit i of the thermometer to bit 2i (Morton expansion), then to
-        // bits 2i and 2i + 1, then five places up.
-        self.spread[0].next = bit_cast::<O, D>(self.thermometer.val());
-        self.spread[1].next =
-            (self.spread[0].val() | (self.spread[0].val() << 32)) & self.spread_mask[0].val();
-        self.spread[2].next =
-            (self.spread[1].val() | (self.spread[1].val() << 16)) & self.spread_mask[1].val();
-        self.spread[3].next =
-            (self.spread[2].val() | (self.spread[2].val() << 8)) & self.spread_mask[2].val();
-        self.spread[4].next =
-            (self.spread[3].val() | (self.spread[3].val() << 4)) & self.spread_mask[3].val();
-        self.spread[5].next =
-            (self.spread[4].val() | (self.spread[4].val() << 2)) & self.spread_mask[4].val();
-        self.spread[6].next =
-            (self.spread[5].val() | (self.spread[5].val() << 1)) & self.spread_mask[5].val();
-        self.mask.next =
-            ((self.spread[6].val() | (self.spread[6].val() << 1)) << 5) | self.low_five.val();
         if self.value.val().get_bit(self.top_bit.val().index()) {
             self.magnitude.next = !self.value.val();
         } else {
@@ -200,7 +476,7 @@ impl<const O: usize, const D: usize> Logic for CertainSign<O, D> {
         if self.advance.val() {
             self.negative_q.d.next = self.value.val().get_bit(self.top_bit.val().index());
             self.zero_q.d.next = !self.value.val().any();
-            self.certain_q.d.next = (self.magnitude.val() & !self.mask.val()).any();
+            self.certain_q.d.next = self.magnitude.val() >= self.threshold.val();
         }
         self.negative.next = self.negative_q.q.val();
         self.zero.next = self.zero_q.q.val();
@@ -211,53 +487,145 @@ impl<const O: usize, const D: usize> Logic for CertainSign<O, D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::arith::convert::from_i128;
-    use tritri_geom::certificate::{clears_threshold, entry_bits};
+    use crate::arith::convert::{from_i128, to_i128};
+    use tritri_geom::certificate::{bit_length, clears_threshold, normal_l1, threshold};
 
-    /// The thermometer is `2^m - 1` of `tritri_geom::certificate::entry_bits`.
+    fn set_vector<const N: usize>(v: &mut [Signal<In, Bits<N>>; 3], x: [i128; 3]) {
+        for k in 0..3 {
+            v[k].next = from_i128::<N>(x[k]);
+        }
+    }
+
+    /// `ke` is the model's bit length of `|a|_1 + |b|_1`, at the extremes
+    /// of 9-bit differences (W = 8) and for every bit length of 33-bit ones
+    /// (W = 32).
     #[test]
-    fn thermometer_is_the_models_bit_count() {
-        let mut uut = MagnitudeThermometer::<9>::default();
+    fn edges_bit_length_is_the_models() {
+        let mut uut = EdgesBitLength::<9>::default();
         uut.clock.connect();
         uut.advance.connect();
-        for v in &mut uut.value {
-            v.connect();
-        }
+        uut.a
+            .iter_mut()
+            .chain(uut.b.iter_mut())
+            .for_each(|s| s.connect());
         uut.connect_all();
         uut.advance.next = true;
-        for x in -256i64..=255 {
-            for y in [0i64, -1, 3, -100, 255] {
-                uut.value[0].next = from_i128::<9>(x as i128);
-                uut.value[1].next = from_i128::<9>(y as i128);
-                uut.value[2].next = from_i128::<9>(-2);
-                for _ in 0..MAGNITUDE_THERMOMETER_LATENCY {
-                    crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
+        let mut cases: Vec<([i128; 3], [i128; 3])> = Vec::new();
+        for x in [-256i128, -255, -1, 0, 1, 2, 3, 127, 128, 255] {
+            for y in [0i128, -1, 5, -256, 255] {
+                cases.push(([x, y, -x], [y, x, 0]));
+            }
+        }
+        let expect = |(a, b): &([i128; 3], [i128; 3])| {
+            let l1 = |v: &[i128; 3]| v.iter().map(|x| x.unsigned_abs()).sum::<u128>();
+            bit_length(l1(a) + l1(b)) as u64
+        };
+        for case in &cases {
+            set_vector(&mut uut.a, case.0);
+            set_vector(&mut uut.b, case.1);
+            for _ in 0..EDGES_BIT_LENGTH_LATENCY {
+                crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
+            }
+            assert_eq!(uut.bits.val().to_u64(), expect(case), "{case:?}");
+        }
+        let mut uut = EdgesBitLength::<33>::default();
+        uut.clock.connect();
+        uut.advance.connect();
+        uut.a
+            .iter_mut()
+            .chain(uut.b.iter_mut())
+            .for_each(|s| s.connect());
+        uut.connect_all();
+        uut.advance.next = true;
+        for bits in 0..33 {
+            let x = (1i128 << bits) >> 1;
+            let case = ([x, -x, x], [-(1i128 << 32), 0, x]);
+            set_vector(&mut uut.a, case.0);
+            set_vector(&mut uut.b, case.1);
+            for _ in 0..EDGES_BIT_LENGTH_LATENCY {
+                crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
+            }
+            assert_eq!(uut.bits.val().to_u64(), expect(&case), "{case:?}");
+        }
+    }
+
+    /// The threshold is `tritri_geom::certificate::threshold` of the same
+    /// `w`, `n` and `ke`, for offsets of every bit length, normals around
+    /// the `>> 19` and `ke` across its range, at W = 8 (D = 9) and W = 32
+    /// (D = 33), the pipeline's inputs streaming a clock apart.
+    #[test]
+    fn threshold_is_the_models() {
+        check_threshold::<9, 17, 26>();
+        check_threshold::<33, 65, 98>();
+    }
+
+    fn check_threshold<const D: usize, const C: usize, const O: usize>() {
+        let mut uut = CertificateThreshold::<D, C, O>::default();
+        uut.clock.connect();
+        uut.advance.connect();
+        uut.offset.iter_mut().for_each(|s| s.connect());
+        uut.normal.iter_mut().for_each(|s| s.connect());
+        uut.edges_bits.connect();
+        uut.connect_all();
+        uut.advance.next = true;
+        let w_top = (1i128 << (D - 1)) - 1;
+        let n_top = (1i128 << (C - 1)) - 1;
+        let mut cases = Vec::new();
+        for bits in 0..D {
+            let w = [(1i128 << bits) >> 1, -w_top.min(3), 0];
+            for n in [
+                [0i128, 0, 0],
+                [((1 << 19) - 1).min(n_top), 0, 1],
+                [-(1 << 20).min(n_top), 7, 0],
+                [n_top, -n_top, n_top],
+            ] {
+                for ke in [0u32, 1, 7, (D + 2) as u32] {
+                    cases.push((w, n, ke));
                 }
-                let m = entry_bits(&[x, y, -2]);
-                assert_eq!(uut.thermometer.val().to_u64(), (1 << m) - 1, "{x} {y}");
+            }
+        }
+        cases.push((
+            [-w_top - 1, -w_top - 1, -w_top - 1],
+            [-n_top - 1; 3],
+            (D + 2) as u32,
+        ));
+        let expect = |(w, n, ke): &([i128; 3], [i128; 3], u32)| {
+            let l1 = |v: &[i128; 3]| v.iter().map(|x| x.unsigned_abs()).sum::<u128>();
+            threshold(normal_l1(*n), l1(w), *ke)
+        };
+        // One case a clock: the output then is the case CERTIFICATE_THRESHOLD_LATENCY before.
+        for (i, case) in cases.iter().enumerate() {
+            set_vector(&mut uut.offset, case.0);
+            set_vector(&mut uut.normal, case.1);
+            uut.edges_bits.next = Bits::from(case.2 as u64);
+            crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
+            if i + 1 >= CERTIFICATE_THRESHOLD_LATENCY {
+                let earlier = &cases[i + 1 - CERTIFICATE_THRESHOLD_LATENCY];
+                let t = to_i128(uut.threshold.val()) as u128;
+                assert_eq!(t, expect(earlier), "{earlier:?}");
             }
         }
     }
 
-    /// The certificate is `tritri_geom::certificate::clears_threshold` for
-    /// every m and values around each threshold, at W = 8 and W = 32.
+    /// The certificate is `tritri_geom::certificate::clears_threshold`
+    /// around each threshold, at W = 8 and W = 32.
     #[test]
     fn certain_is_the_models_threshold() {
-        check_certain::<26, 9>();
-        check_certain::<98, 33>();
+        check_certain::<26>();
+        check_certain::<98>();
     }
 
-    fn check_certain<const O: usize, const D: usize>() {
-        let mut uut = CertainSign::<O, D>::default();
+    fn check_certain<const O: usize>() {
+        let mut uut = CertainSign::<O>::default();
         uut.clock.connect();
         uut.advance.connect();
         uut.value.connect();
-        uut.thermometer.connect();
+        uut.threshold.connect();
         uut.connect_all();
         uut.advance.next = true;
         let (lo, hi) = (-(1i128 << (O - 1)), (1i128 << (O - 1)) - 1);
-        for m in 1..=D as u32 {
-            let t = 2i128 << (2 * m + 4);
+        for bits in 4..(O as u32 - 2) {
+            let t = (1i128 << bits) + 3;
             for p in [
                 0,
                 1,
@@ -275,9 +643,13 @@ mod tests {
             ] {
                 let p = p.clamp(lo, hi);
                 uut.value.next = from_i128::<O>(p);
-                uut.thermometer.next = Bits::from((1u64 << m) - 1);
+                uut.threshold.next = from_i128::<O>(t);
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
-                assert_eq!(uut.certain.val(), clears_threshold(p, m), "m {m} P {p}");
+                assert_eq!(
+                    uut.certain.val(),
+                    clears_threshold(p, t as u128),
+                    "T {t} P {p}"
+                );
                 assert_eq!(uut.negative.val(), p < 0);
                 assert_eq!(uut.zero.val(), p == 0);
             }

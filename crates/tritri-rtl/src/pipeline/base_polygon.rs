@@ -24,8 +24,9 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     pub dominant_axis_in: Signal<In, Bits<2>>,
     pub segment_low_in: Signal<In, Bits<2>>,
     pub segment_high_in: Signal<In, Bits<2>>,
-    /// The thermometer of the edges' magnitudes (the certificates' `m`).
-    pub edge_thermometer_in: Signal<In, Bits<D>>,
+    /// The bit length of the edges' sum of magnitudes (the certificates'
+    /// `ke`).
+    pub edges_bits_in: Signal<In, Bits<8>>,
     pub id: Signal<Out, Bits<ID_BITS>>,
     pub vertices: [Signal<Out, Bits<W>>; 9],
     pub normal: [Signal<Out, Bits<C>>; 3],
@@ -35,7 +36,7 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     pub dominant_axis: Signal<Out, Bits<2>>,
     pub segment_low: Signal<Out, Bits<2>>,
     pub segment_high: Signal<Out, Bits<2>>,
-    pub edge_thermometer: Signal<Out, Bits<D>>,
+    pub edges_bits: Signal<Out, Bits<8>>,
     id_q: DFF<Bits<ID_BITS>>,
     vertices_q: [DFF<Bits<W>>; 9],
     normal_q: [DFF<Bits<C>>; 3],
@@ -45,7 +46,7 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     dominant_axis_q: DFF<Bits<2>>,
     segment_low_q: DFF<Bits<2>>,
     segment_high_q: DFF<Bits<2>>,
-    edge_thermometer_q: DFF<Bits<D>>,
+    edges_bits_q: DFF<Bits<8>>,
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BasePolygon<W, D, C> {
@@ -62,7 +63,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BaseP
             dominant_axis_q,
             segment_low_q,
             segment_high_q,
-            edge_thermometer_q
+            edges_bits_q
         );
     }
 }
@@ -78,7 +79,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
             dominant_axis_q,
             segment_low_q,
             segment_high_q,
-            edge_thermometer_q
+            edges_bits_q
         );
         for i in 0..9 {
             self.vertices_q[i].clock.next = self.clock.val();
@@ -98,7 +99,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
             self.dominant_axis_q.d.next = self.dominant_axis_in.val();
             self.segment_low_q.d.next = self.segment_low_in.val();
             self.segment_high_q.d.next = self.segment_high_in.val();
-            self.edge_thermometer_q.d.next = self.edge_thermometer_in.val();
+            self.edges_bits_q.d.next = self.edges_bits_in.val();
             for i in 0..9 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
             }
@@ -113,7 +114,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
         self.dominant_axis.next = self.dominant_axis_q.q.val();
         self.segment_low.next = self.segment_low_q.q.val();
         self.segment_high.next = self.segment_high_q.q.val();
-        self.edge_thermometer.next = self.edge_thermometer_q.q.val();
+        self.edges_bits.next = self.edges_bits_q.q.val();
         for i in 0..9 {
             self.vertices[i].next = self.vertices_q[i].q.val();
         }

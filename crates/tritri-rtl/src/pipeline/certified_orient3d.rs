@@ -14,11 +14,14 @@
 //!
 //! Stages: differences (1), cross product while `d-a` waits in a delay
 //! line, dot product, sign and certificate (1). The certificate
-//! (`tritri_geom::certificate::orient3d_certified`) is the thermometer of
-//! the nine differences, carried beside the products to the sign stage.
+//! (`tritri_geom::certificate::orient3d_certified`) compares the
+//! determinant with its threshold, computed beside the dot product from
+//! the operands the dot product takes (`d - a` and the cross product) and
+//! the edges' `ke`.
 
 use crate::arith::certificate::{
-    CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY,
+    CertainSign, CertificateThreshold, EdgesBitLength, CERTAIN_SIGN_LATENCY,
+    CERTIFICATE_THRESHOLD_LATENCY, EDGES_BIT_LENGTH_LATENCY,
 };
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
@@ -31,6 +34,12 @@ pub const CERTIFIED_ORIENT3D_LATENCY: usize =
     SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
 /// Clock edges from the four points to [`CertifiedOrient3d::value`].
 pub const ORIENT3D_VALUE_LATENCY: usize = CERTIFIED_ORIENT3D_LATENCY - CERTAIN_SIGN_LATENCY;
+
+/// The threshold, from `d - a` and the cross product as the dot product
+/// takes them, arrives with the determinant.
+const _: () = assert!(CERTIFICATE_THRESHOLD_LATENCY == DOT_PRODUCT_LATENCY);
+/// The edges' `ke` waits for the cross product.
+const EDGES_BITS_WAIT: usize = CROSS_PRODUCT_LATENCY - EDGES_BIT_LENGTH_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -56,14 +65,12 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     edge_ad_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
     edge_ad_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
     determinant: DotProduct<D, C, O>,
-    magnitude_ab: MagnitudeThermometer<D>,
-    magnitude_ac: MagnitudeThermometer<D>,
-    magnitude_ad: MagnitudeThermometer<D>,
-    thermometer_delay: DelayLine<
-        Bits<D>,
-        { CROSS_PRODUCT_LATENCY + DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY },
-    >,
-    sign: CertainSign<O, D>,
+    /// The certificate's threshold: `ke` of the edges `b - a`, `c - a`,
+    /// then the threshold from `d - a` and the normal.
+    edges_bits: EdgesBitLength<D>,
+    edges_bits_delay: DelayLine<Bits<8>, EDGES_BITS_WAIT>,
+    threshold: CertificateThreshold<D, C, O>,
+    sign: CertainSign<O>,
 }
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
@@ -82,10 +89,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             edge_ad_delay_1,
             edge_ad_delay_2,
             determinant,
-            magnitude_ab,
-            magnitude_ac,
-            magnitude_ad,
-            thermometer_delay,
+            edges_bits,
+            edges_bits_delay,
+            threshold,
             sign
         );
     }
@@ -108,10 +114,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             edge_ad_delay_2,
             determinant,
             sign,
-            thermometer_delay,
-            magnitude_ab,
-            magnitude_ac,
-            magnitude_ad
+            edges_bits,
+            edges_bits_delay,
+            threshold
         );
         self.edge_ab.advance.next = self.advance.val();
         self.edge_ac.advance.next = self.advance.val();
@@ -122,10 +127,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.edge_ad_delay_2.advance.next = self.advance.val();
         self.determinant.advance.next = self.advance.val();
         self.sign.advance.next = self.advance.val();
-        self.thermometer_delay.advance.next = self.advance.val();
-        self.magnitude_ab.advance.next = self.advance.val();
-        self.magnitude_ac.advance.next = self.advance.val();
-        self.magnitude_ad.advance.next = self.advance.val();
+        self.edges_bits.advance.next = self.advance.val();
+        self.edges_bits_delay.advance.next = self.advance.val();
+        self.threshold.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();
             self.edge_ab.b[i].next = self.a[i].val();
@@ -136,13 +140,17 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.normal.u[i].next = self.edge_ab.difference[i].val();
             self.normal.v[i].next = self.edge_ac.difference[i].val();
             self.determinant.v[i].next = self.normal.product[i].val();
-            self.magnitude_ab.value[i].next = self.edge_ab.difference[i].val();
-            self.magnitude_ac.value[i].next = self.edge_ac.difference[i].val();
-            self.magnitude_ad.value[i].next = self.edge_ad.difference[i].val();
         }
-        self.thermometer_delay.d.next = self.magnitude_ab.thermometer.val()
-            | self.magnitude_ac.thermometer.val()
-            | self.magnitude_ad.thermometer.val();
+        for i in 0..3 {
+            self.edges_bits.a[i].next = self.edge_ab.difference[i].val();
+            self.edges_bits.b[i].next = self.edge_ac.difference[i].val();
+            self.threshold.normal[i].next = self.normal.product[i].val();
+        }
+        self.edges_bits_delay.d.next = self.edges_bits.bits.val();
+        self.threshold.edges_bits.next = self.edges_bits_delay.q.val();
+        self.threshold.offset[0].next = self.edge_ad_delay_0.q.val();
+        self.threshold.offset[1].next = self.edge_ad_delay_1.q.val();
+        self.threshold.offset[2].next = self.edge_ad_delay_2.q.val();
         self.edge_ad_delay_0.d.next = self.edge_ad.difference[0].val();
         self.edge_ad_delay_1.d.next = self.edge_ad.difference[1].val();
         self.edge_ad_delay_2.d.next = self.edge_ad.difference[2].val();
@@ -151,7 +159,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.determinant.u[2].next = self.edge_ad_delay_2.q.val();
         self.sign.value.next = self.determinant.product.val();
         self.value.next = self.determinant.product.val();
-        self.sign.thermometer.next = self.thermometer_delay.q.val();
+        self.sign.threshold.next = self.threshold.threshold.val();
         self.negative.next = self.sign.negative.val();
         self.zero.next = self.sign.zero.val();
         self.certain.next = self.sign.certain.val();

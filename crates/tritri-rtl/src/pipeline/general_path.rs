@@ -348,7 +348,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.base.dominant_axis_in.next = self.front_end.dominant_axis.val();
         self.base.segment_low_in.next = self.front_end.segment_low.val();
         self.base.segment_high_in.next = self.front_end.segment_high.val();
-        self.base.edge_thermometer_in.next = self.front_end.edge_thermometer.val();
+        self.base.edges_bits_in.next = self.front_end.edges_bits.val();
         for i in 0..9 {
             self.base.vertices_in[i].next = self.front_end.vertices[i].val();
         }
@@ -369,8 +369,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.plane_side_t1.vertices[i].next = self.base.vertices[i].val();
             self.plane_side_t2.vertices[i].next = self.front_end.vertices[i].val();
         }
-        self.plane_side_t1.plane_thermometer.next = self.front_end.edge_thermometer.val();
-        self.plane_side_t2.plane_thermometer.next = self.base.edge_thermometer.val();
+        self.plane_side_t1.plane_edges_bits.next = self.front_end.edges_bits.val();
+        self.plane_side_t2.plane_edges_bits.next = self.base.edges_bits.val();
         for k in 0..3 {
             self.plane_side_t1.plane_point[k].next = self.front_end.vertices[k].val();
             self.plane_side_t1.plane_normal[k].next = self.front_end.normal[k].val();

@@ -6,13 +6,16 @@
 //! base polygon keeps its own (thesis, "setting the base polygon").
 //! Software model: `tritri_geom::fixed_point::cross`.
 
-use crate::arith::certificate::MagnitudeThermometer;
+use crate::arith::certificate::{EdgesBitLength, EDGES_BIT_LENGTH_LATENCY};
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from vertices to normal.
 pub const NORMAL_LATENCY: usize = SUBTRACTOR_LATENCY + CROSS_PRODUCT_LATENCY;
+
+/// Clock edges from vertices to the edges' `ke`.
+pub const EDGES_BITS_LATENCY: usize = SUBTRACTOR_LATENCY + EDGES_BIT_LENGTH_LATENCY;
 
 #[derive(LogicBlock, Default)]
 pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
@@ -22,49 +25,30 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     pub vertices: [Signal<In, Bits<W>>; 9],
     /// `(q - p) × (r - p)`, `NORMAL_LATENCY` enabled edges later.
     pub normal: [Signal<Out, Bits<C>>; 3],
-    /// The thermometer of the edges' magnitudes (`2^m - 1`, see
-    /// `arith::certificate`), `SUBTRACTOR_LATENCY +
-    /// MAGNITUDE_THERMOMETER_LATENCY` enabled edges later.
-    pub edge_thermometer: Signal<Out, Bits<D>>,
+    /// `ke = bitlen(|q - p|_1 + |r - p|_1)`, the certificates' (see
+    /// `arith::certificate`), `EDGES_BITS_LATENCY` enabled edges later.
+    pub edges_bits: Signal<Out, Bits<8>>,
     edge_pq: VectorSubtractor<W, D>,
     edge_pr: VectorSubtractor<W, D>,
     edge_cross: CrossProduct<D, C>,
-    magnitude_pq: MagnitudeThermometer<D>,
-    magnitude_pr: MagnitudeThermometer<D>,
+    edge_bits: EdgesBitLength<D>,
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for NormalUnit<W, D, C> {
     const LATENCY: Option<usize> = Some(NORMAL_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(
-            self,
-            units,
-            edge_pq,
-            edge_pr,
-            edge_cross,
-            magnitude_pq,
-            magnitude_pr
-        );
+        crate::sub_units!(self, units, edge_pq, edge_pr, edge_cross, edge_bits);
     }
 }
 
 impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, C> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(
-            self,
-            clock,
-            edge_pq,
-            edge_pr,
-            edge_cross,
-            magnitude_pq,
-            magnitude_pr
-        );
+        clock!(self, clock, edge_pq, edge_pr, edge_cross, edge_bits);
         self.edge_pq.advance.next = self.advance.val();
         self.edge_pr.advance.next = self.advance.val();
         self.edge_cross.advance.next = self.advance.val();
-        self.magnitude_pq.advance.next = self.advance.val();
-        self.magnitude_pr.advance.next = self.advance.val();
+        self.edge_bits.advance.next = self.advance.val();
         for k in 0..3 {
             self.edge_pq.a[k].next = self.vertices[3 + k].val();
             self.edge_pq.b[k].next = self.vertices[k].val();
@@ -73,10 +57,9 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
             self.edge_cross.u[k].next = self.edge_pq.difference[k].val();
             self.edge_cross.v[k].next = self.edge_pr.difference[k].val();
             self.normal[k].next = self.edge_cross.product[k].val();
-            self.magnitude_pq.value[k].next = self.edge_pq.difference[k].val();
-            self.magnitude_pr.value[k].next = self.edge_pr.difference[k].val();
+            self.edge_bits.a[k].next = self.edge_pq.difference[k].val();
+            self.edge_bits.b[k].next = self.edge_pr.difference[k].val();
         }
-        self.edge_thermometer.next =
-            self.magnitude_pq.thermometer.val() | self.magnitude_pr.thermometer.val();
+        self.edges_bits.next = self.edge_bits.bits.val();
     }
 }

@@ -5,11 +5,13 @@
 //! test unit: three vector subtractions, three dot products with the normal,
 //! then the signs). The two instances run in parallel (thesis 3.4.1).
 //! Software model: `plane_side` in devillers_guigue.rs; the certificates
-//! are `tritri_geom::certificate::orient3d_certified` of each vertex (the
-//! plane's edge thermometer OR-ed with the offset's).
+//! are `tritri_geom::certificate::orient3d_certified` of each vertex: its
+//! threshold from the normal, the offset `v - p` and the bit length of the
+//! plane's edges' `|e1|_1 + |e2|_1` (computed once per triangle, with its
+//! normal), beside the dot products.
 
 use crate::arith::certificate::{
-    CertainSign, MagnitudeThermometer, CERTAIN_SIGN_LATENCY, MAGNITUDE_THERMOMETER_LATENCY,
+    CertainSign, CertificateThreshold, CERTAIN_SIGN_LATENCY, CERTIFICATE_THRESHOLD_LATENCY,
 };
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
@@ -20,6 +22,10 @@ use rust_hdl::prelude::*;
 pub const PLANE_SIDE_LATENCY: usize =
     SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
 
+/// The thresholds, from the offsets and the normal as the dot products
+/// take them, arrive with the distances.
+const _: () = assert!(CERTIFICATE_THRESHOLD_LATENCY == DOT_PRODUCT_LATENCY);
+
 #[derive(LogicBlock, Default)]
 pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: usize> {
     pub clock: Signal<In, Clock>,
@@ -28,8 +34,9 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     pub plane_point: [Signal<In, Bits<W>>; 3],
     /// The plane's triangle's normal `(q - p) × (r - p)`.
     pub plane_normal: [Signal<In, Bits<C>>; 3],
-    /// The thermometer of the plane's triangle's edges, with its normal.
-    pub plane_thermometer: Signal<In, Bits<D>>,
+    /// `ke`, the bit length of `|e1|_1 + |e2|_1` of the plane's triangle's
+    /// edges, with its normal.
+    pub plane_edges_bits: Signal<In, Bits<8>>,
     /// The three vertices to classify.
     pub vertices: [Signal<In, Bits<W>>; 9],
     /// Vertex `i` is strictly below the plane (`PLANE_SIDE_LATENCY` later).
@@ -52,14 +59,13 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
-    plane_thermometer_delay:
-        DelayLine<Bits<D>, { SUBTRACTOR_LATENCY + MAGNITUDE_THERMOMETER_LATENCY }>,
-    offset_magnitude_0: MagnitudeThermometer<D>,
-    offset_magnitude_1: MagnitudeThermometer<D>,
-    offset_magnitude_2: MagnitudeThermometer<D>,
-    thermometer_delay:
-        [DelayLine<Bits<D>, { DOT_PRODUCT_LATENCY - MAGNITUDE_THERMOMETER_LATENCY }>; 3],
-    sign: [CertainSign<O, D>; 3],
+    /// The certificate's threshold per vertex (`arith::certificate`), from
+    /// the offset and the normal as the dot product takes them.
+    edges_bits_delay: DelayLine<Bits<8>, SUBTRACTOR_LATENCY>,
+    threshold_0: CertificateThreshold<D, C, O>,
+    threshold_1: CertificateThreshold<D, C, O>,
+    threshold_2: CertificateThreshold<D, C, O>,
+    sign: [CertainSign<O>; 3],
 }
 
 impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit::Unit
@@ -77,11 +83,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             distance_0,
             distance_1,
             distance_2,
-            plane_thermometer_delay,
-            offset_magnitude_0,
-            offset_magnitude_1,
-            offset_magnitude_2,
-            thermometer_delay,
+            edges_bits_delay,
+            threshold_0,
+            threshold_1,
+            threshold_2,
             sign
         );
     }
@@ -101,10 +106,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             distance_0,
             distance_1,
             distance_2,
-            plane_thermometer_delay,
-            offset_magnitude_0,
-            offset_magnitude_1,
-            offset_magnitude_2
+            edges_bits_delay,
+            threshold_0,
+            threshold_1,
+            threshold_2
         );
         self.offset_0.advance.next = self.advance.val();
         self.offset_1.advance.next = self.advance.val();
@@ -112,16 +117,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.distance_0.advance.next = self.advance.val();
         self.distance_1.advance.next = self.advance.val();
         self.distance_2.advance.next = self.advance.val();
-        self.plane_thermometer_delay.advance.next = self.advance.val();
-        self.plane_thermometer_delay.d.next = self.plane_thermometer.val();
-        self.offset_magnitude_0.advance.next = self.advance.val();
-        self.offset_magnitude_1.advance.next = self.advance.val();
-        self.offset_magnitude_2.advance.next = self.advance.val();
-        for k in 0..3 {
-            self.offset_magnitude_0.value[k].next = self.offset_0.difference[k].val();
-            self.offset_magnitude_1.value[k].next = self.offset_1.difference[k].val();
-            self.offset_magnitude_2.value[k].next = self.offset_2.difference[k].val();
-        }
+        self.edges_bits_delay.advance.next = self.advance.val();
+        self.edges_bits_delay.d.next = self.plane_edges_bits.val();
         for k in 0..3 {
             self.normal_delay[k].clock.next = self.clock.val();
             self.normal_delay[k].advance.next = self.advance.val();
@@ -147,16 +144,24 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.sign[0].value.next = self.distance_0.product.val();
         self.sign[1].value.next = self.distance_1.product.val();
         self.sign[2].value.next = self.distance_2.product.val();
-        self.thermometer_delay[0].d.next =
-            self.plane_thermometer_delay.q.val() | self.offset_magnitude_0.thermometer.val();
-        self.thermometer_delay[1].d.next =
-            self.plane_thermometer_delay.q.val() | self.offset_magnitude_1.thermometer.val();
-        self.thermometer_delay[2].d.next =
-            self.plane_thermometer_delay.q.val() | self.offset_magnitude_2.thermometer.val();
+        self.threshold_0.advance.next = self.advance.val();
+        self.threshold_1.advance.next = self.advance.val();
+        self.threshold_2.advance.next = self.advance.val();
+        self.threshold_0.edges_bits.next = self.edges_bits_delay.q.val();
+        self.threshold_1.edges_bits.next = self.edges_bits_delay.q.val();
+        self.threshold_2.edges_bits.next = self.edges_bits_delay.q.val();
+        for k in 0..3 {
+            self.threshold_0.offset[k].next = self.offset_0.difference[k].val();
+            self.threshold_1.offset[k].next = self.offset_1.difference[k].val();
+            self.threshold_2.offset[k].next = self.offset_2.difference[k].val();
+            self.threshold_0.normal[k].next = self.normal_delay[k].q.val();
+            self.threshold_1.normal[k].next = self.normal_delay[k].q.val();
+            self.threshold_2.normal[k].next = self.normal_delay[k].q.val();
+        }
+        self.sign[0].threshold.next = self.threshold_0.threshold.val();
+        self.sign[1].threshold.next = self.threshold_1.threshold.val();
+        self.sign[2].threshold.next = self.threshold_2.threshold.val();
         for v in 0..3 {
-            self.thermometer_delay[v].clock.next = self.clock.val();
-            self.thermometer_delay[v].advance.next = self.advance.val();
-            self.sign[v].thermometer.next = self.thermometer_delay[v].q.val();
             self.negative[v].next = self.sign[v].negative.val();
             self.zero[v].next = self.sign[v].zero.val();
             self.certain[v].next = self.sign[v].certain.val();

@@ -1,20 +1,18 @@
 //! Everything computed once per triangle, before pairs are formed: the
 //! normal (thesis steps (1)/(3)), the signs of its components, whether the
 //! triangle is degenerate (normal zero), the dominant axis of its normal and
-//! the ends of the segment a degenerate triangle spans, and the thermometer
-//! of its edges' magnitudes for the certificates. The vertices travel
+//! the ends of the segment a degenerate triangle spans, and the bit length
+//! of its edges' sum of magnitudes for the certificates. The vertices travel
 //! alongside so that the outputs describe one triangle.
 //!
 //! Software models: `tritri_geom::fixed_point::cross` (normal), `shape`
 //! (degenerate flag and segment ends) and `dominant_normal_axis`.
 
 use super::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
-use super::normal::{NormalUnit, NORMAL_LATENCY};
+use super::normal::{NormalUnit, EDGES_BITS_LATENCY, NORMAL_LATENCY};
 use super::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
-use crate::arith::certificate::MAGNITUDE_THERMOMETER_LATENCY;
 use crate::arith::delay_line::DelayLine;
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
-use crate::arith::subtractor::SUBTRACTOR_LATENCY;
 use rust_hdl::prelude::*;
 
 /// Clock edges from vertices to the triangle's record.
@@ -39,8 +37,9 @@ pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
     pub dominant_axis: Signal<Out, Bits<2>>,
     pub segment_low: Signal<Out, Bits<2>>,
     pub segment_high: Signal<Out, Bits<2>>,
-    /// `2^m - 1` of the edges `q - p`, `r - p` (`tritri_geom::certificate`).
-    pub edge_thermometer: Signal<Out, Bits<D>>,
+    /// `ke = bitlen(|q - p|_1 + |r - p|_1)`, the certificates'
+    /// (`tritri_geom::certificate`).
+    pub edges_bits: Signal<Out, Bits<8>>,
     normal_unit: NormalUnit<W, D, C>,
     normal_sign: [SignOf<C>; 3],
     axis: DominantAxis<C>,
@@ -51,10 +50,7 @@ pub struct TriangleFrontEnd<const W: usize, const D: usize, const C: usize> {
     normal_zero_delay: [DelayLine<Bit, { DOMINANT_AXIS_LATENCY - SIGN_LATENCY }>; 3],
     segment_low_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
     segment_high_delay: DelayLine<Bits<2>, { FRONT_END_LATENCY - SEGMENT_ENDS_LATENCY }>,
-    edge_thermometer_delay: DelayLine<
-        Bits<D>,
-        { FRONT_END_LATENCY - SUBTRACTOR_LATENCY - MAGNITUDE_THERMOMETER_LATENCY },
-    >,
+    edges_bits_delay: DelayLine<Bits<8>, { FRONT_END_LATENCY - EDGES_BITS_LATENCY }>,
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
@@ -75,7 +71,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             normal_zero_delay,
             segment_low_delay,
             segment_high_delay,
-            edge_thermometer_delay
+            edges_bits_delay
         );
     }
 }
@@ -91,16 +87,16 @@ impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<
             ends,
             segment_low_delay,
             segment_high_delay,
-            edge_thermometer_delay
+            edges_bits_delay
         );
         self.normal_unit.advance.next = self.advance.val();
         self.axis.advance.next = self.advance.val();
         self.ends.advance.next = self.advance.val();
         self.segment_low_delay.advance.next = self.advance.val();
         self.segment_high_delay.advance.next = self.advance.val();
-        self.edge_thermometer_delay.advance.next = self.advance.val();
-        self.edge_thermometer_delay.d.next = self.normal_unit.edge_thermometer.val();
-        self.edge_thermometer.next = self.edge_thermometer_delay.q.val();
+        self.edges_bits_delay.advance.next = self.advance.val();
+        self.edges_bits_delay.d.next = self.normal_unit.edges_bits.val();
+        self.edges_bits.next = self.edges_bits_delay.q.val();
         for i in 0..9 {
             self.vertex_delay[i].clock.next = self.clock.val();
             self.vertex_delay[i].advance.next = self.advance.val();
