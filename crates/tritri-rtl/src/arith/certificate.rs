@@ -51,35 +51,29 @@ fn l1_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> u128 {
     v.iter().map(|x| to_i128(x.val()).unsigned_abs()).sum()
 }
 
+/// How [`l1_verilog`] takes a component's magnitude.
+#[derive(Clone, Copy)]
+enum Magnitude {
+    /// `|v|`: `~v + 1` when negative.
+    Exact,
+    /// `|v| - [v < 0]`: `v ^ {bits{v[top]}}`, no carry chain.
+    OnesComplement,
+}
+
 /// Verilog: `name` = the sum of the magnitudes of the array port `prefix`
 /// (rust-hdl names its elements `{prefix}$0..2`, which the emitter
 /// renames), `width` bits wide (the inputs `bits` wide).
-fn l1_verilog(name: &str, prefix: &str, bits: usize, width: usize) -> String {
+fn l1_verilog(name: &str, prefix: &str, bits: usize, width: usize, kind: Magnitude) -> String {
+    let (top, pad) = (bits - 1, width - bits);
     let magnitude = |k: usize| {
-        format!(
-            "({prefix}${k}[{top}] ? {{{pad}'d0, ~{prefix}${k}}} + {width}'d1 : {{{pad}'d0, {prefix}${k}}})",
-            top = bits - 1,
-            pad = width - bits
-        )
-    };
-    format!(
-        "wire [{}:0] {name} = {} + {} + {};\n",
-        width - 1,
-        magnitude(0),
-        magnitude(1),
-        magnitude(2)
-    )
-}
-
-/// Verilog: `name` = the sum of the ones' complement magnitudes
-/// `v ^ {bits{v[top]}}` (`|v|` or `|v| - 1`) of the array port `prefix`.
-fn ones_complement_l1_verilog(name: &str, prefix: &str, bits: usize, width: usize) -> String {
-    let magnitude = |k: usize| {
-        format!(
-            "{{{pad}'d0, {prefix}${k} ^ {{{bits}{{{prefix}${k}[{top}]}}}}}}",
-            top = bits - 1,
-            pad = width - bits
-        )
+        match kind {
+        Magnitude::Exact => format!(
+            "({prefix}${k}[{top}] ? {{{pad}'d0, ~{prefix}${k}}} + {width}'d1 : {{{pad}'d0, {prefix}${k}}})"
+        ),
+        Magnitude::OnesComplement => {
+            format!("{{{pad}'d0, {prefix}${k} ^ {{{bits}{{{prefix}${k}[{top}]}}}}}}")
+        }
+    }
     };
     format!(
         "wire [{}:0] {name} = {} + {} + {};\n",
@@ -212,8 +206,8 @@ always @(posedge clock) begin
     end
 end
 ",
-            l1_a = l1_verilog("l1_a", "a", D, l1_bits),
-            l1_b = l1_verilog("l1_b", "b", D, l1_bits),
+            l1_a = l1_verilog("l1_a", "a", D, l1_bits, Magnitude::Exact),
+            l1_b = l1_verilog("l1_b", "b", D, l1_bits, Magnitude::Exact),
             lead = leading_one_verilog("sum", "sum_q", sum_bits),
             index = index_verilog("lead_q", sum_bits + 1),
             l1 = l1_bits - 1,
@@ -387,8 +381,8 @@ always @(posedge clock) begin
     end
 end
 ",
-            offset_l1 = l1_verilog("offset_l1", "offset", D, sw),
-            normal_l1 = ones_complement_l1_verilog("normal_l1", "normal", C, x),
+            offset_l1 = l1_verilog("offset_l1", "offset", D, sw, Magnitude::Exact),
+            normal_l1 = l1_verilog("normal_l1", "normal", C, x, Magnitude::OnesComplement),
             lead = leading_one_verilog("offset", "offset_l1_q", sw),
             index = index_verilog("offset_lead_q", sw + 1),
             sw1 = sw - 1,
