@@ -74,7 +74,7 @@
 //! again with the exact predicates on the originals.
 
 use crate::devillers_guigue::{align_t1, align_t2};
-use crate::fixed_point::{cross, orient3d_value, FixedPoint3, FixedTriangle};
+use crate::fixed_point::{cross, orient3d_value, sub, FixedPoint3, FixedTriangle};
 use crate::sign::Sign;
 
 /// A fixed-point verdict and its certificate.
@@ -133,10 +133,6 @@ pub fn orient3d_certified(
     let value = orient3d_value(a, b, c, d);
     let t = threshold(normal_l1(cross(e1, e2)), l1(w), bit_length(l1(e1) + l1(e2)));
     (Sign::of_i128(value), clears_threshold(value, t))
-}
-
-fn sub(a: FixedPoint3, b: FixedPoint3) -> [i64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// Signs of `t`'s vertices against `plane`'s plane, and their certainty.

@@ -40,7 +40,7 @@ pub const NARROW_MIN: i64 = -(1 << 30);
 pub const NARROW_MAX: i64 = (1 << 30) - 1;
 
 #[inline(always)]
-fn sub(a: FixedPoint3, b: FixedPoint3) -> [i64; 3] {
+pub(crate) fn sub(a: FixedPoint3, b: FixedPoint3) -> [i64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 

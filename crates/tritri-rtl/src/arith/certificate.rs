@@ -66,14 +66,13 @@ enum Magnitude {
 fn l1_verilog(name: &str, prefix: &str, bits: usize, width: usize, kind: Magnitude) -> String {
     let (top, pad) = (bits - 1, width - bits);
     let magnitude = |k: usize| {
+        let v = format!("{prefix}${k}");
         match kind {
-        Magnitude::Exact => format!(
-            "({prefix}${k}[{top}] ? {{{pad}'d0, ~{prefix}${k}}} + {width}'d1 : {{{pad}'d0, {prefix}${k}}})"
-        ),
-        Magnitude::OnesComplement => {
-            format!("{{{pad}'d0, {prefix}${k} ^ {{{bits}{{{prefix}${k}[{top}]}}}}}}")
+            Magnitude::Exact => {
+                format!("({v}[{top}] ? {{{pad}'d0, ~{v}}} + {width}'d1 : {{{pad}'d0, {v}}})")
+            }
+            Magnitude::OnesComplement => format!("{{{pad}'d0, {v} ^ {{{bits}{{{v}[{top}]}}}}}}"),
         }
-    }
     };
     format!(
         "wire [{}:0] {name} = {} + {} + {};\n",
@@ -314,11 +313,7 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
             self._small_part = (4 * self._offset_l1 + edge_term + 16) & ((1 << (D + 6)) - 1);
             self._edges_bits_2 = self._edges_bits;
             self._offset_l1 = l1_of(&self.offset);
-            self._normal_l1 = self
-                .normal
-                .iter()
-                .map(|x| normal_l1([to_i128(x.val()), 0, 0]))
-                .sum();
+            self._normal_l1 = normal_l1(std::array::from_fn(|k| to_i128(self.normal[k].val())));
             self._edges_bits = self.edges_bits.val().to_u64() as u128;
         }
     }
