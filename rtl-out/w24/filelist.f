@@ -36,7 +36,7 @@ tritri_pipeline_w24_delay_line_w49_n1.v
 tritri_pipeline_w24_delay_line_w49_n3.v
 tritri_pipeline_w24_delay_line_w74_n16.v
 tritri_pipeline_w24_delay_line_w8_n1.v
-tritri_pipeline_w24_delay_line_w8_n4.v
+tritri_pipeline_w24_delay_line_w8_n3.v
 tritri_pipeline_w24_dff_1.v
 tritri_pipeline_w24_dff_2.v
 tritri_pipeline_w24_dff_24.v
@@ -52,6 +52,7 @@ tritri_pipeline_w24_edges_bit_length.v
 tritri_pipeline_w24_ends_difference.v
 tritri_pipeline_w24_general_path.v
 tritri_pipeline_w24_interval_overlap.v
+tritri_pipeline_w24_magnitude_subtractor.v
 tritri_pipeline_w24_multiplier_w49.v
 tritri_pipeline_w24_multiplier_w74.v
 tritri_pipeline_w24_normal_unit.v

@@ -2,12 +2,13 @@
 //
 // Filename:   tritri_pipeline_w24_certificate_threshold.v
 //
-// Purpose:    `T` of the module docs from the offset `w` (D-bit components),
-//             the normal `n = e1 x e2` (C-bit) and `ke` (all three in the same
-//             clock), in five register stages: Part of tritri_pipeline_w24.
-//             Instances (8), for example: path.orient3d_0.threshold,
-//             path.orient3d_1.threshold, path.plane_side_t1.threshold_0,
-//             path.plane_side_t1.threshold_1.
+// Purpose:    `T` of the module docs from the magnitudes of the offset `w`
+//             (`|w_k|`, D bits unsigned), the normal `n = e1 x e2` (C-bit) and
+//             `ke` (all three in the same clock), in five register stages, each
+//             at most one carry chain or one LUT tree: Part of
+//             tritri_pipeline_w24. Instances (8), for example:
+//             path.orient3d_0.threshold, path.orient3d_1.threshold,
+//             path.plane_side_t1.threshold_0, path.plane_side_t1.threshold_1.
 //
 // Rust unit:  CertificateThreshold<D = 25, C = 49, O = 74>
 // Latency:    5 clock cycles
@@ -22,9 +23,9 @@
 module tritri_pipeline_w24_certificate_threshold (
     input  wire        clock,
     input  wire        advance,
-    input  wire [24:0] offset__0,
-    input  wire [24:0] offset__1,
-    input  wire [24:0] offset__2,
+    input  wire [24:0] offset_magnitude_0,
+    input  wire [24:0] offset_magnitude_1,
+    input  wire [24:0] offset_magnitude_2,
     input  wire [48:0] normal_0,
     input  wire [48:0] normal_1,
     input  wire [48:0] normal_2,
@@ -35,11 +36,12 @@ module tritri_pipeline_w24_certificate_threshold (
     // Update code (custom)
     // The certificate's threshold (tritri_geom::certificate::threshold):
     // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
-    // X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register stages.
-    wire [25:0] offset_l1 = (offset__0[24] ? {1'd0, ~offset__0} + 26'd1 : {1'd0, offset__0}) + (offset__1[24] ? {1'd0, ~offset__1} + 26'd1 : {1'd0, offset__1}) + (offset__2[24] ? {1'd0, ~offset__2} + 26'd1 : {1'd0, offset__2});
-    wire [49:0] normal_l1 = {1'd0, normal_0 ^ {49{normal_0[48]}}} + {1'd0, normal_1 ^ {49{normal_1[48]}}} + {1'd0, normal_2 ^ {49{normal_2[48]}}};
+    // X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register
+    // stages, each at most one carry chain or one LUT tree.
     reg [25:0] offset_l1_q;
-    reg [49:0] normal_l1_q;
+    reg [49:0] normal_01_q;
+    reg [49:0] normal_2_q;
+    reg [30:0] edge_term_q;
     reg [7:0] edges_bits_q;
     wire [26:0] offset_t0 = {offset_l1_q, 1'b1};
     wire [26:0] offset_t1 = offset_t0 | (offset_t0 >> 1);
@@ -49,44 +51,50 @@ module tritri_pipeline_w24_certificate_threshold (
     wire [26:0] offset_t5 = offset_t4 | (offset_t4 >> 16);
     wire [26:0] offset_lead = offset_t5 & ~(offset_t5 >> 1);
     reg [26:0] offset_lead_q;
-    reg [50:0] normal_part_q;
+    reg [49:0] normal_l1_q;
     reg [30:0] small_part_q;
     reg [7:0] edges_bits_q2;
     reg [7:0] exponent_q;
-    reg [54:0] partial_q;
+    reg [50:0] normal_part_q;
+    reg [30:0] small_part_q2;
     reg [54:0] y_q;
-    reg [54:0] partial_wait_q;
+    reg [54:0] partial_q;
     wire [7:0] offset_bits = {3'd0, |(offset_lead_q & 27'h7ff0000), |(offset_lead_q & 27'h700ff00), |(offset_lead_q & 27'hf0f0f0), |(offset_lead_q & 27'h4cccccc), |(offset_lead_q & 27'h2aaaaaa)};
-    wire [30:0] edge_term = 31'd4 << edges_bits_q;
     wire [54:0] y_one = 55'd1 << exponent_q;
     initial begin
         offset_l1_q = 26'd0;
-        normal_l1_q = 50'd0;
+        normal_01_q = 50'd0;
+        normal_2_q = 50'd0;
+        edge_term_q = 31'd0;
         edges_bits_q = 8'd0;
         offset_lead_q = 27'd0;
-        normal_part_q = 51'd0;
+        normal_l1_q = 50'd0;
         small_part_q = 31'd0;
         edges_bits_q2 = 8'd0;
         exponent_q = 8'd0;
-        partial_q = 55'd0;
+        normal_part_q = 51'd0;
+        small_part_q2 = 31'd0;
         y_q = 55'd0;
-        partial_wait_q = 55'd0;
+        partial_q = 55'd0;
         threshold = 74'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
-            offset_l1_q <= offset_l1;
-            normal_l1_q <= normal_l1;
+            offset_l1_q <= {1'b0, offset_magnitude_0} + {1'b0, offset_magnitude_1} + {1'b0, offset_magnitude_2};
+            normal_01_q <= {1'd0, normal_0 ^ {49{normal_0[48]}}} + {1'd0, normal_1 ^ {49{normal_1[48]}}};
+            normal_2_q <= {1'd0, normal_2 ^ {49{normal_2[48]}}};
+            edge_term_q <= (31'd4 << edges_bits) + 31'd16;
             edges_bits_q <= edges_bits;
             offset_lead_q <= offset_lead;
-            normal_part_q <= {1'b0, normal_l1_q} + {20'd0, normal_l1_q[49:19]};
-            small_part_q <= {3'd0, offset_l1_q, 2'd0} + edge_term + 31'd16;
+            normal_l1_q <= normal_01_q + normal_2_q;
+            small_part_q <= {3'd0, offset_l1_q, 2'd0} + edge_term_q;
             edges_bits_q2 <= edges_bits_q;
             exponent_q <= offset_bits + edges_bits_q2;
-            partial_q <= {4'd0, normal_part_q} + {24'd0, small_part_q};
+            normal_part_q <= {1'b0, normal_l1_q} + {20'd0, normal_l1_q[49:19]};
+            small_part_q2 <= small_part_q;
             y_q <= y_one | (y_one >> 19);
-            partial_wait_q <= partial_q;
-            threshold <= {19'd0, partial_wait_q + y_q};
+            partial_q <= {4'd0, normal_part_q} + {24'd0, small_part_q2};
+            threshold <= {19'd0, partial_q + y_q};
         end
     end
 endmodule  // tritri_pipeline_w24_certificate_threshold

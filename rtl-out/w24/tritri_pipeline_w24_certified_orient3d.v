@@ -73,6 +73,9 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edge_ad_difference_0;
     wire  [24:0] edge_ad_difference_1;
     wire  [24:0] edge_ad_difference_2;
+    wire  [24:0] edge_ad_magnitude_0;
+    wire  [24:0] edge_ad_magnitude_1;
+    wire  [24:0] edge_ad_magnitude_2;
     wire  normal_clock;
     wire  normal_advance;
     wire  [24:0] normal_u_0;
@@ -96,6 +99,18 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  edge_ad_delay_2_advance;
     wire  [24:0] edge_ad_delay_2_d;
     wire  [24:0] edge_ad_delay_2_q;
+    wire  magnitude_delay_0_clock;
+    wire  magnitude_delay_0_advance;
+    wire  [24:0] magnitude_delay_0_d;
+    wire  [24:0] magnitude_delay_0_q;
+    wire  magnitude_delay_1_clock;
+    wire  magnitude_delay_1_advance;
+    wire  [24:0] magnitude_delay_1_d;
+    wire  [24:0] magnitude_delay_1_q;
+    wire  magnitude_delay_2_clock;
+    wire  magnitude_delay_2_advance;
+    wire  [24:0] magnitude_delay_2_d;
+    wire  [24:0] magnitude_delay_2_q;
     wire  determinant_clock;
     wire  determinant_advance;
     wire  [24:0] determinant_u_0;
@@ -114,15 +129,11 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edges_bits_b_1;
     wire  [24:0] edges_bits_b_2;
     wire  [7:0] edges_bits_bits;
-    wire  edges_bits_delay_clock;
-    wire  edges_bits_delay_advance;
-    wire  [7:0] edges_bits_delay_d;
-    wire  [7:0] edges_bits_delay_q;
     wire  threshold_clock;
     wire  threshold_advance;
-    wire  [24:0] threshold_offset_0;
-    wire  [24:0] threshold_offset_1;
-    wire  [24:0] threshold_offset_2;
+    wire  [24:0] threshold_offset_magnitude_0;
+    wire  [24:0] threshold_offset_magnitude_1;
+    wire  [24:0] threshold_offset_magnitude_2;
     wire  [48:0] threshold_normal_0;
     wire  [48:0] threshold_normal_1;
     wire  [48:0] threshold_normal_2;
@@ -163,7 +174,7 @@ module tritri_pipeline_w24_certified_orient3d (
         .difference__1(edge_ac_difference_1),
         .difference__2(edge_ac_difference_2)
     );
-    tritri_pipeline_w24_vector_subtractor u_edge_ad(
+    tritri_pipeline_w24_magnitude_subtractor u_edge_ad(
         .clock(edge_ad_clock),
         .advance(edge_ad_advance),
         .a_0(edge_ad_a_0),
@@ -174,7 +185,10 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_2(edge_ad_b_2),
         .difference__0(edge_ad_difference_0),
         .difference__1(edge_ad_difference_1),
-        .difference__2(edge_ad_difference_2)
+        .difference__2(edge_ad_difference_2),
+        .magnitude_0(edge_ad_magnitude_0),
+        .magnitude_1(edge_ad_magnitude_1),
+        .magnitude_2(edge_ad_magnitude_2)
     );
     tritri_pipeline_w24_cross_product u_normal(
         .clock(normal_clock),
@@ -207,6 +221,24 @@ module tritri_pipeline_w24_certified_orient3d (
         .d(edge_ad_delay_2_d),
         .q(edge_ad_delay_2_q)
     );
+    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_0(
+        .clock(magnitude_delay_0_clock),
+        .advance(magnitude_delay_0_advance),
+        .d(magnitude_delay_0_d),
+        .q(magnitude_delay_0_q)
+    );
+    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_1(
+        .clock(magnitude_delay_1_clock),
+        .advance(magnitude_delay_1_advance),
+        .d(magnitude_delay_1_d),
+        .q(magnitude_delay_1_q)
+    );
+    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_2(
+        .clock(magnitude_delay_2_clock),
+        .advance(magnitude_delay_2_advance),
+        .d(magnitude_delay_2_d),
+        .q(magnitude_delay_2_q)
+    );
     tritri_pipeline_w24_dot_product u_determinant(
         .clock(determinant_clock),
         .advance(determinant_advance),
@@ -229,18 +261,12 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_2(edges_bits_b_2),
         .bits(edges_bits_bits)
     );
-    tritri_pipeline_w24_delay_line_w8_n1 u_edges_bits_delay(
-        .clock(edges_bits_delay_clock),
-        .advance(edges_bits_delay_advance),
-        .d(edges_bits_delay_d),
-        .q(edges_bits_delay_q)
-    );
     tritri_pipeline_w24_certificate_threshold u_threshold(
         .clock(threshold_clock),
         .advance(threshold_advance),
-        .offset__0(threshold_offset_0),
-        .offset__1(threshold_offset_1),
-        .offset__2(threshold_offset_2),
+        .offset_magnitude_0(threshold_offset_magnitude_0),
+        .offset_magnitude_1(threshold_offset_magnitude_1),
+        .offset_magnitude_2(threshold_offset_magnitude_2),
         .normal_0(threshold_normal_0),
         .normal_1(threshold_normal_1),
         .normal_2(threshold_normal_2),
@@ -265,10 +291,12 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_0_clock = clock;
     assign edge_ad_delay_1_clock = clock;
     assign edge_ad_delay_2_clock = clock;
+    assign magnitude_delay_0_clock = clock;
+    assign magnitude_delay_1_clock = clock;
+    assign magnitude_delay_2_clock = clock;
     assign determinant_clock = clock;
     assign sign_clock = clock;
     assign edges_bits_clock = clock;
-    assign edges_bits_delay_clock = clock;
     assign threshold_clock = clock;
     assign edge_ab_advance = advance;
     assign edge_ac_advance = advance;
@@ -277,10 +305,12 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_0_advance = advance;
     assign edge_ad_delay_1_advance = advance;
     assign edge_ad_delay_2_advance = advance;
+    assign magnitude_delay_0_advance = advance;
+    assign magnitude_delay_1_advance = advance;
+    assign magnitude_delay_2_advance = advance;
     assign determinant_advance = advance;
     assign sign_advance = advance;
     assign edges_bits_advance = advance;
-    assign edges_bits_delay_advance = advance;
     assign threshold_advance = advance;
     assign edge_ab_a_0 = b_0;
     assign edge_ab_b_0 = a_0;
@@ -318,11 +348,13 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edges_bits_a_2 = edge_ab_difference_2;
     assign edges_bits_b_2 = edge_ac_difference_2;
     assign threshold_normal_2 = normal_product_2;
-    assign edges_bits_delay_d = edges_bits_bits;
-    assign threshold_edges_bits = edges_bits_delay_q;
-    assign threshold_offset_0 = edge_ad_delay_0_q;
-    assign threshold_offset_1 = edge_ad_delay_1_q;
-    assign threshold_offset_2 = edge_ad_delay_2_q;
+    assign threshold_edges_bits = edges_bits_bits;
+    assign magnitude_delay_0_d = edge_ad_magnitude_0;
+    assign magnitude_delay_1_d = edge_ad_magnitude_1;
+    assign magnitude_delay_2_d = edge_ad_magnitude_2;
+    assign threshold_offset_magnitude_0 = magnitude_delay_0_q;
+    assign threshold_offset_magnitude_1 = magnitude_delay_1_q;
+    assign threshold_offset_magnitude_2 = magnitude_delay_2_q;
     assign edge_ad_delay_0_d = edge_ad_difference_0;
     assign edge_ad_delay_1_d = edge_ad_difference_1;
     assign edge_ad_delay_2_d = edge_ad_difference_2;

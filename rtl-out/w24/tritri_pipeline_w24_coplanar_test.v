@@ -1161,21 +1161,21 @@ module tritri_pipeline_w24_coplanar_test (
         .b(edge_b_5_b),
         .difference(edge_b_5_difference)
     );
-    tritri_pipeline_w24_subtractor u_offset__0(
+    tritri_pipeline_w24_subtractor u_offset_0(
         .clock(offset_0_clock),
         .advance(offset_0_advance),
         .a(offset_0_a),
         .b(offset_0_b),
         .difference(offset_0_difference)
     );
-    tritri_pipeline_w24_subtractor u_offset__1(
+    tritri_pipeline_w24_subtractor u_offset_1(
         .clock(offset_1_clock),
         .advance(offset_1_advance),
         .a(offset_1_a),
         .b(offset_1_b),
         .difference(offset_1_difference)
     );
-    tritri_pipeline_w24_subtractor u_offset__2(
+    tritri_pipeline_w24_subtractor u_offset_2(
         .clock(offset_2_clock),
         .advance(offset_2_advance),
         .a(offset_2_a),

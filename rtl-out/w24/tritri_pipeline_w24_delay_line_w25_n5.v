@@ -7,10 +7,10 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: path.orient3d_0.edge_ad_delay_0,
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (12),
+//             for example: path.orient3d_0.edge_ad_delay_0,
 //             path.orient3d_0.edge_ad_delay_1, path.orient3d_0.edge_ad_delay_2,
-//             path.orient3d_1.edge_ad_delay_0.
+//             path.orient3d_0.magnitude_delay_0.
 //
 // Rust unit:  DelayLine<T = Bits<25>, N = 5>
 // Latency:    5 clock cycles

@@ -7,9 +7,7 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (4):
-//             path.orient3d_0.edges_bits_delay,
-//             path.orient3d_1.edges_bits_delay,
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
 //             path.plane_side_t1.edges_bits_delay,
 //             path.plane_side_t2.edges_bits_delay.
 //

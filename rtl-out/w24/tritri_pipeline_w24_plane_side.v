@@ -62,6 +62,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [24:0] offset_0_difference_0;
     wire  [24:0] offset_0_difference_1;
     wire  [24:0] offset_0_difference_2;
+    wire  [24:0] offset_0_magnitude_0;
+    wire  [24:0] offset_0_magnitude_1;
+    wire  [24:0] offset_0_magnitude_2;
     wire  offset_1_clock;
     wire  offset_1_advance;
     wire  [23:0] offset_1_a_0;
@@ -73,6 +76,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [24:0] offset_1_difference_0;
     wire  [24:0] offset_1_difference_1;
     wire  [24:0] offset_1_difference_2;
+    wire  [24:0] offset_1_magnitude_0;
+    wire  [24:0] offset_1_magnitude_1;
+    wire  [24:0] offset_1_magnitude_2;
     wire  offset_2_clock;
     wire  offset_2_advance;
     wire  [23:0] offset_2_a_0;
@@ -84,6 +90,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [24:0] offset_2_difference_0;
     wire  [24:0] offset_2_difference_1;
     wire  [24:0] offset_2_difference_2;
+    wire  [24:0] offset_2_magnitude_0;
+    wire  [24:0] offset_2_magnitude_1;
+    wire  [24:0] offset_2_magnitude_2;
     wire  normal_delay_0_clock;
     wire  normal_delay_0_advance;
     wire  [48:0] normal_delay_0_d;
@@ -129,9 +138,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [7:0] edges_bits_delay_q;
     wire  threshold_0_clock;
     wire  threshold_0_advance;
-    wire  [24:0] threshold_0_offset_0;
-    wire  [24:0] threshold_0_offset_1;
-    wire  [24:0] threshold_0_offset_2;
+    wire  [24:0] threshold_0_offset_magnitude_0;
+    wire  [24:0] threshold_0_offset_magnitude_1;
+    wire  [24:0] threshold_0_offset_magnitude_2;
     wire  [48:0] threshold_0_normal_0;
     wire  [48:0] threshold_0_normal_1;
     wire  [48:0] threshold_0_normal_2;
@@ -139,9 +148,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [73:0] threshold_0_threshold;
     wire  threshold_1_clock;
     wire  threshold_1_advance;
-    wire  [24:0] threshold_1_offset_0;
-    wire  [24:0] threshold_1_offset_1;
-    wire  [24:0] threshold_1_offset_2;
+    wire  [24:0] threshold_1_offset_magnitude_0;
+    wire  [24:0] threshold_1_offset_magnitude_1;
+    wire  [24:0] threshold_1_offset_magnitude_2;
     wire  [48:0] threshold_1_normal_0;
     wire  [48:0] threshold_1_normal_1;
     wire  [48:0] threshold_1_normal_2;
@@ -149,9 +158,9 @@ module tritri_pipeline_w24_plane_side (
     wire  [73:0] threshold_1_threshold;
     wire  threshold_2_clock;
     wire  threshold_2_advance;
-    wire  [24:0] threshold_2_offset_0;
-    wire  [24:0] threshold_2_offset_1;
-    wire  [24:0] threshold_2_offset_2;
+    wire  [24:0] threshold_2_offset_magnitude_0;
+    wire  [24:0] threshold_2_offset_magnitude_1;
+    wire  [24:0] threshold_2_offset_magnitude_2;
     wire  [48:0] threshold_2_normal_0;
     wire  [48:0] threshold_2_normal_1;
     wire  [48:0] threshold_2_normal_2;
@@ -180,7 +189,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_2_certain;
 
     // Sub module instances
-    tritri_pipeline_w24_vector_subtractor u_offset_0(
+    tritri_pipeline_w24_magnitude_subtractor u_offset_0(
         .clock(offset_0_clock),
         .advance(offset_0_advance),
         .a_0(offset_0_a_0),
@@ -191,9 +200,12 @@ module tritri_pipeline_w24_plane_side (
         .b_2(offset_0_b_2),
         .difference__0(offset_0_difference_0),
         .difference__1(offset_0_difference_1),
-        .difference__2(offset_0_difference_2)
+        .difference__2(offset_0_difference_2),
+        .magnitude_0(offset_0_magnitude_0),
+        .magnitude_1(offset_0_magnitude_1),
+        .magnitude_2(offset_0_magnitude_2)
     );
-    tritri_pipeline_w24_vector_subtractor u_offset_1(
+    tritri_pipeline_w24_magnitude_subtractor u_offset_1(
         .clock(offset_1_clock),
         .advance(offset_1_advance),
         .a_0(offset_1_a_0),
@@ -204,9 +216,12 @@ module tritri_pipeline_w24_plane_side (
         .b_2(offset_1_b_2),
         .difference__0(offset_1_difference_0),
         .difference__1(offset_1_difference_1),
-        .difference__2(offset_1_difference_2)
+        .difference__2(offset_1_difference_2),
+        .magnitude_0(offset_1_magnitude_0),
+        .magnitude_1(offset_1_magnitude_1),
+        .magnitude_2(offset_1_magnitude_2)
     );
-    tritri_pipeline_w24_vector_subtractor u_offset_2(
+    tritri_pipeline_w24_magnitude_subtractor u_offset_2(
         .clock(offset_2_clock),
         .advance(offset_2_advance),
         .a_0(offset_2_a_0),
@@ -217,7 +232,10 @@ module tritri_pipeline_w24_plane_side (
         .b_2(offset_2_b_2),
         .difference__0(offset_2_difference_0),
         .difference__1(offset_2_difference_1),
-        .difference__2(offset_2_difference_2)
+        .difference__2(offset_2_difference_2),
+        .magnitude_0(offset_2_magnitude_0),
+        .magnitude_1(offset_2_magnitude_1),
+        .magnitude_2(offset_2_magnitude_2)
     );
     tritri_pipeline_w24_delay_line_w49_n1 u_normal_delay_0(
         .clock(normal_delay_0_clock),
@@ -279,9 +297,9 @@ module tritri_pipeline_w24_plane_side (
     tritri_pipeline_w24_certificate_threshold u_threshold_0(
         .clock(threshold_0_clock),
         .advance(threshold_0_advance),
-        .offset__0(threshold_0_offset_0),
-        .offset__1(threshold_0_offset_1),
-        .offset__2(threshold_0_offset_2),
+        .offset_magnitude_0(threshold_0_offset_magnitude_0),
+        .offset_magnitude_1(threshold_0_offset_magnitude_1),
+        .offset_magnitude_2(threshold_0_offset_magnitude_2),
         .normal_0(threshold_0_normal_0),
         .normal_1(threshold_0_normal_1),
         .normal_2(threshold_0_normal_2),
@@ -291,9 +309,9 @@ module tritri_pipeline_w24_plane_side (
     tritri_pipeline_w24_certificate_threshold u_threshold_1(
         .clock(threshold_1_clock),
         .advance(threshold_1_advance),
-        .offset__0(threshold_1_offset_0),
-        .offset__1(threshold_1_offset_1),
-        .offset__2(threshold_1_offset_2),
+        .offset_magnitude_0(threshold_1_offset_magnitude_0),
+        .offset_magnitude_1(threshold_1_offset_magnitude_1),
+        .offset_magnitude_2(threshold_1_offset_magnitude_2),
         .normal_0(threshold_1_normal_0),
         .normal_1(threshold_1_normal_1),
         .normal_2(threshold_1_normal_2),
@@ -303,9 +321,9 @@ module tritri_pipeline_w24_plane_side (
     tritri_pipeline_w24_certificate_threshold u_threshold_2(
         .clock(threshold_2_clock),
         .advance(threshold_2_advance),
-        .offset__0(threshold_2_offset_0),
-        .offset__1(threshold_2_offset_1),
-        .offset__2(threshold_2_offset_2),
+        .offset_magnitude_0(threshold_2_offset_magnitude_0),
+        .offset_magnitude_1(threshold_2_offset_magnitude_1),
+        .offset_magnitude_2(threshold_2_offset_magnitude_2),
         .normal_0(threshold_2_normal_0),
         .normal_1(threshold_2_normal_1),
         .normal_2(threshold_2_normal_2),
@@ -422,21 +440,21 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_0_edges_bits = edges_bits_delay_q;
     assign threshold_1_edges_bits = edges_bits_delay_q;
     assign threshold_2_edges_bits = edges_bits_delay_q;
-    assign threshold_0_offset_0 = offset_0_difference_0;
-    assign threshold_1_offset_0 = offset_1_difference_0;
-    assign threshold_2_offset_0 = offset_2_difference_0;
+    assign threshold_0_offset_magnitude_0 = offset_0_magnitude_0;
+    assign threshold_1_offset_magnitude_0 = offset_1_magnitude_0;
+    assign threshold_2_offset_magnitude_0 = offset_2_magnitude_0;
     assign threshold_0_normal_0 = normal_delay_0_q;
     assign threshold_1_normal_0 = normal_delay_0_q;
     assign threshold_2_normal_0 = normal_delay_0_q;
-    assign threshold_0_offset_1 = offset_0_difference_1;
-    assign threshold_1_offset_1 = offset_1_difference_1;
-    assign threshold_2_offset_1 = offset_2_difference_1;
+    assign threshold_0_offset_magnitude_1 = offset_0_magnitude_1;
+    assign threshold_1_offset_magnitude_1 = offset_1_magnitude_1;
+    assign threshold_2_offset_magnitude_1 = offset_2_magnitude_1;
     assign threshold_0_normal_1 = normal_delay_1_q;
     assign threshold_1_normal_1 = normal_delay_1_q;
     assign threshold_2_normal_1 = normal_delay_1_q;
-    assign threshold_0_offset_2 = offset_0_difference_2;
-    assign threshold_1_offset_2 = offset_1_difference_2;
-    assign threshold_2_offset_2 = offset_2_difference_2;
+    assign threshold_0_offset_magnitude_2 = offset_0_magnitude_2;
+    assign threshold_1_offset_magnitude_2 = offset_1_magnitude_2;
+    assign threshold_2_offset_magnitude_2 = offset_2_magnitude_2;
     assign threshold_0_normal_2 = normal_delay_2_q;
     assign threshold_1_normal_2 = normal_delay_2_q;
     assign threshold_2_normal_2 = normal_delay_2_q;

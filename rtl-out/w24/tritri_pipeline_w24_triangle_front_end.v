@@ -375,7 +375,7 @@ module tritri_pipeline_w24_triangle_front_end (
         .d(segment_high_delay_d),
         .q(segment_high_delay_q)
     );
-    tritri_pipeline_w24_delay_line_w8_n4 u_edges_bits_delay(
+    tritri_pipeline_w24_delay_line_w8_n3 u_edges_bits_delay(
         .clock(edges_bits_delay_clock),
         .advance(edges_bits_delay_advance),
         .d(edges_bits_delay_d),

@@ -103,7 +103,13 @@ pub fn l1(v: [i64; 3]) -> u128 {
 /// threshold's slack covers the 3).
 #[inline]
 pub fn normal_l1(n: [i128; 3]) -> u128 {
-    n.iter().map(|&x| (x ^ (x >> 127)) as u128).sum()
+    n.into_iter().map(ones_complement_magnitude).sum()
+}
+
+/// `|x| - [x < 0]`: `x` with its bits inverted when negative.
+#[inline]
+pub fn ones_complement_magnitude(x: i128) -> u128 {
+    (x ^ (x >> 127)) as u128
 }
 
 /// `T` of the module docs from `X` ([`normal_l1`]), `Sw = |w|_1` and the

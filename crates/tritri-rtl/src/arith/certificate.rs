@@ -10,7 +10,7 @@
 //!
 //! Three blocks, none with a multiplier:
 //!
-//! * [`EdgesBitLength`] (four register stages): `ke` of a triangle's two
+//! * [`EdgesBitLength`] (five register stages): `ke` of a triangle's two
 //!   edges, once per triangle (with its normal) or per determinant.
 //! * [`CertificateThreshold`] (five register stages, beside the dot
 //!   product): `T` from `w`, `n` and `ke`.
@@ -35,51 +35,38 @@
 use super::convert::{from_i128, to_i128};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
-use tritri_geom::certificate::{bit_length, normal_l1};
+use tritri_geom::certificate::{bit_length, ones_complement_magnitude};
 
 /// Clock edges from value and threshold to sign and certificate.
 pub const CERTAIN_SIGN_LATENCY: usize = 1;
 
 /// Clock edges from two edges to their `ke`.
-pub const EDGES_BIT_LENGTH_LATENCY: usize = 4;
+pub const EDGES_BIT_LENGTH_LATENCY: usize = 5;
 
 /// Clock edges from `w`, `n` and `ke` to the threshold.
 pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 5;
 
-/// `sum_k |v_k|` of D-bit two's complement values, exactly.
-fn l1_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> u128 {
-    v.iter().map(|x| to_i128(x.val()).unsigned_abs()).sum()
+/// The magnitudes `|v_k|` of D-bit two's complement values.
+fn magnitudes_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> [u128; 3] {
+    std::array::from_fn(|k| to_i128(v[k].val()).unsigned_abs())
 }
 
-/// How [`l1_verilog`] takes a component's magnitude.
-#[derive(Clone, Copy)]
-enum Magnitude {
-    /// `|v|`: `~v + 1` when negative.
-    Exact,
-    /// `|v| - [v < 0]`: `v ^ {bits{v[top]}}`, no carry chain.
-    OnesComplement,
+/// Verilog: `{name}` = `|v|` of the `bits`-bit two's complement array port
+/// element `v` (rust-hdl names the elements `{prefix}$k`, which the
+/// emitter renames), `bits` bits wide: `|-2^(bits-1)|` is `2^(bits-1)`
+/// unsigned.
+fn magnitude_verilog(name: &str, v: &str, bits: usize) -> String {
+    let top = bits - 1;
+    format!("wire [{top}:0] {name} = {v}[{top}] ? ~{v} + {bits}'d1 : {v};\n")
 }
 
-/// Verilog: `name` = the sum of the magnitudes of the array port `prefix`
-/// (rust-hdl names its elements `{prefix}$0..2`, which the emitter
-/// renames), `width` bits wide (the inputs `bits` wide).
-fn l1_verilog(name: &str, prefix: &str, bits: usize, width: usize, kind: Magnitude) -> String {
-    let (top, pad) = (bits - 1, width - bits);
-    let magnitude = |k: usize| {
-        let v = format!("{prefix}${k}");
-        match kind {
-            Magnitude::Exact => {
-                format!("({v}[{top}] ? {{{pad}'d0, ~{v}}} + {width}'d1 : {{{pad}'d0, {v}}})")
-            }
-            Magnitude::OnesComplement => format!("{{{pad}'d0, {v} ^ {{{bits}{{{v}[{top}]}}}}}}"),
-        }
-    };
+/// Verilog: `|v| - [v < 0]` of the `bits`-bit element `v`, `v ^ {bits{v[top]}}`
+/// (no carry chain), zero-extended to `width` bits.
+fn ones_complement_verilog(v: &str, bits: usize, width: usize) -> String {
     format!(
-        "wire [{}:0] {name} = {} + {} + {};\n",
-        width - 1,
-        magnitude(0),
-        magnitude(1),
-        magnitude(2)
+        "{{{}'d0, {v} ^ {{{bits}{{{v}[{}]}}}}}}",
+        width - bits,
+        bits - 1
     )
 }
 
@@ -122,9 +109,9 @@ fn index_verilog(lead: &str, width: usize) -> String {
     format!("{{{pad}'d0, {}}}", bits.join(", "))
 }
 
-/// `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences, in four
-/// register stages: the two sums of magnitudes; their sum; its leading
-/// one; the index.
+/// `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences, in five
+/// register stages, each at most one carry chain: the six magnitudes; the
+/// two sums of magnitudes; their sum; its leading one; the index.
 #[derive(LogicBlock)]
 pub struct EdgesBitLength<const D: usize> {
     pub clock: Signal<In, Clock>,
@@ -135,6 +122,8 @@ pub struct EdgesBitLength<const D: usize> {
     pub bits: Signal<Out, Bits<8>>,
     // Simulation model state (the Verilog's registers; the leading one as
     // its index).
+    _abs_a: [u128; 3],
+    _abs_b: [u128; 3],
     _l1_a: u128,
     _l1_b: u128,
     _sum: u128,
@@ -154,6 +143,8 @@ impl<const D: usize> Default for EdgesBitLength<D> {
             a: Default::default(),
             b: Default::default(),
             bits: Default::default(),
+            _abs_a: [0; 3],
+            _abs_b: [0; 3],
             _l1_a: 0,
             _l1_b: 0,
             _sum: 0,
@@ -168,8 +159,10 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
             self.bits.next = Bits::from(self._bits as u64);
             self._bits = bit_length(self._sum) as u128;
             self._sum = self._l1_a + self._l1_b;
-            self._l1_a = l1_of(&self.a);
-            self._l1_b = l1_of(&self.b);
+            self._l1_a = self._abs_a.iter().sum();
+            self._l1_b = self._abs_b.iter().sum();
+            self._abs_a = magnitudes_of(&self.a);
+            self._abs_b = magnitudes_of(&self.b);
         }
     }
 
@@ -178,18 +171,37 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
     }
 
     fn hdl(&self) -> Verilog {
-        // |a|_1 < 3 2^(D-1) fits D + 1 bits, their sum D + 2.
+        // |a_k| <= 2^(D-1) fits D bits; |a|_1 < 3 2^(D-1), D + 1; their sum
+        // D + 2.
         let (l1_bits, sum_bits) = (D + 1, D + 2);
+        let mut magnitudes = String::new();
+        let mut registers = String::new();
+        let mut initial = String::new();
+        let mut updates = String::new();
+        for v in ["a", "b"] {
+            for k in 0..3 {
+                magnitudes += &magnitude_verilog(&format!("abs_{v}{k}"), &format!("{v}${k}"), D);
+                registers += &format!("reg [{}:0] abs_{v}{k}_q;\n", D - 1);
+                initial += &format!("    abs_{v}{k}_q = {D}'d0;\n");
+                updates += &format!("        abs_{v}{k}_q <= abs_{v}{k};\n");
+            }
+        }
+        let l1 = |v: &str| {
+            (0..3)
+                .map(|k| format!("{{1'b0, abs_{v}{k}_q}}"))
+                .collect::<Vec<_>>()
+                .join(" + ")
+        };
         Verilog::Custom(format!(
             "\
-// ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in four
+// ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in five
 // register stages.
-{l1_a}{l1_b}reg [{l1}:0] l1_a_q;
-reg [{l1}:0] l1_b_q;
+{magnitudes}{registers}reg [{l1m}:0] l1_a_q;
+reg [{l1m}:0] l1_b_q;
 reg [{s1}:0] sum_q;
 {lead}reg [{s1p}:0] lead_q;
 initial begin
-    l1_a_q = {l1_bits}'d0;
+{initial}    l1_a_q = {l1_bits}'d0;
     l1_b_q = {l1_bits}'d0;
     sum_q = {sum_bits}'d0;
     lead_q = {sum_bits_p}'d0;
@@ -197,19 +209,19 @@ initial begin
 end
 always @(posedge clock) begin
     if (advance) begin
-        l1_a_q <= l1_a;
-        l1_b_q <= l1_b;
+{updates}        l1_a_q <= {l1_a};
+        l1_b_q <= {l1_b};
         sum_q <= {{1'b0, l1_a_q}} + {{1'b0, l1_b_q}};
         lead_q <= sum_lead;
         bits <= {index};
     end
 end
 ",
-            l1_a = l1_verilog("l1_a", "a", D, l1_bits, Magnitude::Exact),
-            l1_b = l1_verilog("l1_b", "b", D, l1_bits, Magnitude::Exact),
+            l1_a = l1("a"),
+            l1_b = l1("b"),
             lead = leading_one_verilog("sum", "sum_q", sum_bits),
             index = index_verilog("lead_q", sum_bits + 1),
-            l1 = l1_bits - 1,
+            l1m = l1_bits - 1,
             s1 = sum_bits - 1,
             s1p = sum_bits,
             sum_bits_p = sum_bits + 1,
@@ -217,42 +229,51 @@ end
     }
 }
 
-/// `T` of the module docs from the offset `w` (D-bit components), the
-/// normal `n = e1 × e2` (C-bit) and `ke` (all three in the same clock), in
-/// five register stages:
+/// `T` of the module docs from the magnitudes of the offset `w` (`|w_k|`,
+/// D bits unsigned), the normal `n = e1 × e2` (C-bit) and `ke` (all three
+/// in the same clock), in five register stages, each at most one carry
+/// chain or one LUT tree:
 ///
-/// 1. `Sw = |w|_1`, `X` (the ones' complement magnitudes' sum,
-///    `tritri_geom::certificate::normal_l1`);
-/// 2. the leading one of `2 Sw + 1`; `X + (X >> 19)`;
+/// 1. `Sw = |w|_1`; the ones' complement magnitudes of `n`, the first two
+///    summed; `2^(ke + 2) + 16`;
+/// 2. the leading one of `2 Sw + 1`; `X` (`tritri_geom::certificate::normal_l1`);
 ///    `4 Sw + 2^(ke + 2) + 16`;
-/// 3. the exponent `bitlen Sw + ke`; the two parts' sum;
-/// 4. `Y + (Y >> 19)`, a constant one shifted by the exponent;
+/// 3. the exponent `bitlen Sw + ke`; `X + (X >> 19)`;
+/// 4. `Y + (Y >> 19)`, a one shifted by the exponent; the two parts' sum;
 /// 5. `T`.
+///
+/// (A first version took `w` itself and summed its magnitudes in the
+/// stage that formed them, two carry chains in series: the W = 8
+/// pipeline's critical path on ECP5. The offsets' units now form the
+/// magnitudes beside the differences, `super::subtractor::MagnitudeSubtractor`.)
 #[derive(LogicBlock)]
 pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
-    /// `w = d - a`.
-    pub offset: [Signal<In, Bits<D>>; 3],
+    /// `|w_k|` of the offset `w = d - a`, at most `2^(D-1)`.
+    pub offset_magnitude: [Signal<In, Bits<D>>; 3],
     /// `n = (b - a) × (c - a)`.
     pub normal: [Signal<In, Bits<C>>; 3],
     /// `ke` of `b - a`, `c - a` ([`EdgesBitLength`]).
     pub edges_bits: Signal<In, Bits<8>>,
     /// `T`, `CERTIFICATE_THRESHOLD_LATENCY` enabled edges later.
     pub threshold: Signal<Out, Bits<O>>,
-    // Simulation model state (the Verilog's registers; the leading one as
-    // its index).
+    // Simulation model state (the Verilog's registers by stage; the
+    // leading one as its index).
     _offset_l1: u128,
-    _normal_l1: u128,
+    _normal_01: u128,
+    _normal_2: u128,
+    _edge_term: u128,
     _edges_bits: u128,
     _bits_w: u128,
-    _normal_part: u128,
+    _normal_l1: u128,
     _small_part: u128,
     _edges_bits_2: u128,
     _exponent: u128,
-    _partial: u128,
+    _normal_part: u128,
+    _small_part_2: u128,
     _y: u128,
-    _partial_wait: u128,
+    _partial: u128,
 }
 
 impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit
@@ -268,21 +289,24 @@ impl<const D: usize, const C: usize, const O: usize> Default for CertificateThre
         Self {
             clock: Default::default(),
             advance: Default::default(),
-            offset: Default::default(),
+            offset_magnitude: Default::default(),
             normal: Default::default(),
             edges_bits: Default::default(),
             threshold: Default::default(),
             _offset_l1: 0,
-            _normal_l1: 0,
+            _normal_01: 0,
+            _normal_2: 0,
+            _edge_term: 0,
             _edges_bits: 0,
             _bits_w: 0,
-            _normal_part: 0,
+            _normal_l1: 0,
             _small_part: 0,
             _edges_bits_2: 0,
             _exponent: 0,
-            _partial: 0,
+            _normal_part: 0,
+            _small_part_2: 0,
             _y: 0,
-            _partial_wait: 0,
+            _partial: 0,
         }
     }
 }
@@ -291,30 +315,41 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
             let t_mask = (1u128 << (C + 6)) - 1;
+            let small_mask = (1u128 << (D + 6)) - 1;
             // Each stage from the one before, last first.
-            self.threshold.next = from_i128::<O>(((self._partial_wait + self._y) & t_mask) as i128);
+            self.threshold.next = from_i128::<O>(((self._partial + self._y) & t_mask) as i128);
             let one = if self._exponent < (C + 6) as u128 {
                 1u128 << self._exponent
             } else {
                 0
             };
             self._y = one | (one >> 19);
-            self._partial_wait = self._partial;
+            self._partial = (self._normal_part + self._small_part_2) & t_mask;
             self._exponent = (self._bits_w + self._edges_bits_2) & 0xff;
-            self._partial = (self._normal_part + self._small_part) & t_mask;
-            self._bits_w = bit_length(self._offset_l1) as u128;
             self._normal_part = self._normal_l1 + (self._normal_l1 >> 19);
-            let ke = self._edges_bits;
+            self._small_part_2 = self._small_part;
+            self._bits_w = bit_length(self._offset_l1) as u128;
+            self._normal_l1 = self._normal_01 + self._normal_2;
+            self._small_part = (4 * self._offset_l1 + self._edge_term) & small_mask;
+            self._edges_bits_2 = self._edges_bits;
+            self._offset_l1 = self
+                .offset_magnitude
+                .iter()
+                .map(|m| m.val().to_u128())
+                .sum();
+            // X (normal_l1) as the Verilog sums it.
+            let n: [u128; 3] =
+                std::array::from_fn(|k| ones_complement_magnitude(to_i128(self.normal[k].val())));
+            self._normal_01 = n[0] + n[1];
+            self._normal_2 = n[2];
+            let ke = self.edges_bits.val().to_u64() as u128;
             let edge_term = if ke + 2 < (D + 6) as u128 {
                 4u128 << ke
             } else {
                 0
             };
-            self._small_part = (4 * self._offset_l1 + edge_term + 16) & ((1 << (D + 6)) - 1);
-            self._edges_bits_2 = self._edges_bits;
-            self._offset_l1 = l1_of(&self.offset);
-            self._normal_l1 = normal_l1(std::array::from_fn(|k| to_i128(self.normal[k].val())));
-            self._edges_bits = self.edges_bits.val().to_u64() as u128;
+            self._edge_term = (edge_term + 16) & small_mask;
+            self._edges_bits = ke;
         }
     }
 
@@ -323,61 +358,71 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
     }
 
     fn hdl(&self) -> Verilog {
-        // Sw < 3 2^(D-1) fits D + 1 bits; X < 3 2^(C-1), C + 1; X + (X >> 19)
+        // Sw <= 3 2^(D-1) fits D + 1 bits; X < 3 2^(C-1), C + 1; X + (X >> 19)
         // C + 2; 4 Sw + 2^(ke + 2) + 16 (ke <= D + 2) D + 6; T C + 6.
         let (sw, x, small, t) = (D + 1, C + 1, D + 6, C + 6);
         Verilog::Custom(format!(
             "\
 // The certificate's threshold (tritri_geom::certificate::threshold):
 // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
-// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register stages.
-{offset_l1}{normal_l1}reg [{sw1}:0] offset_l1_q;
-reg [{x1}:0] normal_l1_q;
+// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register
+// stages, each at most one carry chain or one LUT tree.
+reg [{sw1}:0] offset_l1_q;
+reg [{x1}:0] normal_01_q;
+reg [{x1}:0] normal_2_q;
+reg [{small1}:0] edge_term_q;
 reg [7:0] edges_bits_q;
 {lead}reg [{sw}:0] offset_lead_q;
-reg [{x}:0] normal_part_q;
+reg [{x1}:0] normal_l1_q;
 reg [{small1}:0] small_part_q;
 reg [7:0] edges_bits_q2;
 reg [7:0] exponent_q;
-reg [{t1}:0] partial_q;
+reg [{x}:0] normal_part_q;
+reg [{small1}:0] small_part_q2;
 reg [{t1}:0] y_q;
-reg [{t1}:0] partial_wait_q;
+reg [{t1}:0] partial_q;
 wire [7:0] offset_bits = {index};
-wire [{small1}:0] edge_term = {small}'d4 << edges_bits_q;
 wire [{t1}:0] y_one = {t}'d1 << exponent_q;
 initial begin
     offset_l1_q = {sw}'d0;
-    normal_l1_q = {x}'d0;
+    normal_01_q = {x}'d0;
+    normal_2_q = {x}'d0;
+    edge_term_q = {small}'d0;
     edges_bits_q = 8'd0;
     offset_lead_q = {sw_p}'d0;
-    normal_part_q = {x_p}'d0;
+    normal_l1_q = {x}'d0;
     small_part_q = {small}'d0;
     edges_bits_q2 = 8'd0;
     exponent_q = 8'd0;
-    partial_q = {t}'d0;
+    normal_part_q = {x_p}'d0;
+    small_part_q2 = {small}'d0;
     y_q = {t}'d0;
-    partial_wait_q = {t}'d0;
+    partial_q = {t}'d0;
     threshold = {o}'d0;
 end
 always @(posedge clock) begin
     if (advance) begin
-        offset_l1_q <= offset_l1;
-        normal_l1_q <= normal_l1;
+        offset_l1_q <= {{1'b0, offset_magnitude$0}} + {{1'b0, offset_magnitude$1}} + {{1'b0, offset_magnitude$2}};
+        normal_01_q <= {n0} + {n1};
+        normal_2_q <= {n2};
+        edge_term_q <= ({small}'d4 << edges_bits) + {small}'d16;
         edges_bits_q <= edges_bits;
         offset_lead_q <= offset_lead;
-        normal_part_q <= {normal_part};
-        small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term + {small}'d16;
+        normal_l1_q <= normal_01_q + normal_2_q;
+        small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term_q;
         edges_bits_q2 <= edges_bits_q;
         exponent_q <= offset_bits + edges_bits_q2;
-        partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q}};
+        normal_part_q <= {normal_part};
+        small_part_q2 <= small_part_q;
         y_q <= y_one | (y_one >> 19);
-        partial_wait_q <= partial_q;
-        threshold <= {{{pad_t}'d0, partial_wait_q + y_q}};
+        partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q2}};
+        threshold <= {{{pad_t}'d0, partial_q + y_q}};
     end
 end
 ",
-            offset_l1 = l1_verilog("offset_l1", "offset", D, sw, Magnitude::Exact),
-            normal_l1 = l1_verilog("normal_l1", "normal", C, x, Magnitude::OnesComplement),
+            n0 = ones_complement_verilog("normal$0", C, x),
+            n1 = ones_complement_verilog("normal$1", C, x),
+            n2 = ones_complement_verilog("normal$2", C, x),
             lead = leading_one_verilog("offset", "offset_l1_q", sw),
             index = index_verilog("offset_lead_q", sw + 1),
             sw1 = sw - 1,
@@ -552,7 +597,7 @@ mod tests {
         let mut uut = CertificateThreshold::<D, C, O>::default();
         uut.clock.connect();
         uut.advance.connect();
-        uut.offset.iter_mut().for_each(|s| s.connect());
+        uut.offset_magnitude.iter_mut().for_each(|s| s.connect());
         uut.normal.iter_mut().for_each(|s| s.connect());
         uut.edges_bits.connect();
         uut.connect_all();
@@ -584,7 +629,9 @@ mod tests {
         };
         // One case a clock: the output then is the case CERTIFICATE_THRESHOLD_LATENCY before.
         for (i, case) in cases.iter().enumerate() {
-            set_vector(&mut uut.offset, case.0);
+            for k in 0..3 {
+                uut.offset_magnitude[k].next = Bits::from(case.0[k].unsigned_abs() as u64);
+            }
             set_vector(&mut uut.normal, case.1);
             uut.edges_bits.next = Bits::from(case.2 as u64);
             crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);

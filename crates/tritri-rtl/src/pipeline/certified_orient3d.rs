@@ -26,7 +26,7 @@ use crate::arith::certificate::{
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{MagnitudeSubtractor, VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from the four points to the sign and certificate.
@@ -38,8 +38,8 @@ pub const ORIENT3D_VALUE_LATENCY: usize = CERTIFIED_ORIENT3D_LATENCY - CERTAIN_S
 /// The threshold, from `d - a` and the cross product as the dot product
 /// takes them, arrives with the determinant.
 const _: () = assert!(CERTIFICATE_THRESHOLD_LATENCY == DOT_PRODUCT_LATENCY);
-/// The edges' `ke` waits for the cross product.
-const EDGES_BITS_WAIT: usize = CROSS_PRODUCT_LATENCY - EDGES_BIT_LENGTH_LATENCY;
+/// The edges' `ke` arrives with the cross product.
+const _: () = assert!(EDGES_BIT_LENGTH_LATENCY == CROSS_PRODUCT_LATENCY);
 
 #[derive(LogicBlock, Default)]
 pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -59,16 +59,19 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     pub value: Signal<Out, Bits<O>>,
     edge_ab: VectorSubtractor<W, D>,
     edge_ac: VectorSubtractor<W, D>,
-    edge_ad: VectorSubtractor<W, D>,
+    edge_ad: MagnitudeSubtractor<W, D>,
     normal: CrossProduct<D, C>,
     edge_ad_delay_0: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
     edge_ad_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
     edge_ad_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    /// `|d - a|`, for the threshold, with the normal.
+    magnitude_delay_0: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    magnitude_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    magnitude_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
     determinant: DotProduct<D, C, O>,
     /// The certificate's threshold: `ke` of the edges `b - a`, `c - a`,
     /// then the threshold from `d - a` and the normal.
     edges_bits: EdgesBitLength<D>,
-    edges_bits_delay: DelayLine<Bits<8>, EDGES_BITS_WAIT>,
     threshold: CertificateThreshold<D, C, O>,
     sign: CertainSign<O>,
 }
@@ -88,9 +91,11 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             edge_ad_delay_0,
             edge_ad_delay_1,
             edge_ad_delay_2,
+            magnitude_delay_0,
+            magnitude_delay_1,
+            magnitude_delay_2,
             determinant,
             edges_bits,
-            edges_bits_delay,
             threshold,
             sign
         );
@@ -112,10 +117,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             edge_ad_delay_0,
             edge_ad_delay_1,
             edge_ad_delay_2,
+            magnitude_delay_0,
+            magnitude_delay_1,
+            magnitude_delay_2,
             determinant,
             sign,
             edges_bits,
-            edges_bits_delay,
             threshold
         );
         self.edge_ab.advance.next = self.advance.val();
@@ -125,10 +132,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.edge_ad_delay_0.advance.next = self.advance.val();
         self.edge_ad_delay_1.advance.next = self.advance.val();
         self.edge_ad_delay_2.advance.next = self.advance.val();
+        self.magnitude_delay_0.advance.next = self.advance.val();
+        self.magnitude_delay_1.advance.next = self.advance.val();
+        self.magnitude_delay_2.advance.next = self.advance.val();
         self.determinant.advance.next = self.advance.val();
         self.sign.advance.next = self.advance.val();
         self.edges_bits.advance.next = self.advance.val();
-        self.edges_bits_delay.advance.next = self.advance.val();
         self.threshold.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();
@@ -146,11 +155,13 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.edges_bits.b[i].next = self.edge_ac.difference[i].val();
             self.threshold.normal[i].next = self.normal.product[i].val();
         }
-        self.edges_bits_delay.d.next = self.edges_bits.bits.val();
-        self.threshold.edges_bits.next = self.edges_bits_delay.q.val();
-        self.threshold.offset[0].next = self.edge_ad_delay_0.q.val();
-        self.threshold.offset[1].next = self.edge_ad_delay_1.q.val();
-        self.threshold.offset[2].next = self.edge_ad_delay_2.q.val();
+        self.threshold.edges_bits.next = self.edges_bits.bits.val();
+        self.magnitude_delay_0.d.next = self.edge_ad.magnitude[0].val();
+        self.magnitude_delay_1.d.next = self.edge_ad.magnitude[1].val();
+        self.magnitude_delay_2.d.next = self.edge_ad.magnitude[2].val();
+        self.threshold.offset_magnitude[0].next = self.magnitude_delay_0.q.val();
+        self.threshold.offset_magnitude[1].next = self.magnitude_delay_1.q.val();
+        self.threshold.offset_magnitude[2].next = self.magnitude_delay_2.q.val();
         self.edge_ad_delay_0.d.next = self.edge_ad.difference[0].val();
         self.edge_ad_delay_1.d.next = self.edge_ad.difference[1].val();
         self.edge_ad_delay_2.d.next = self.edge_ad.difference[2].val();

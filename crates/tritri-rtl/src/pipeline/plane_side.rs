@@ -15,7 +15,7 @@ use crate::arith::certificate::{
 };
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{MagnitudeSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from inputs to signs.
@@ -52,9 +52,9 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     pub distance: [Signal<Out, Bits<O>>; 3],
     // (rust-hdl's Verilog generator resolves one array index per name, so
     // units with array ports are separate fields rather than arrays.)
-    offset_0: VectorSubtractor<W, D>,
-    offset_1: VectorSubtractor<W, D>,
-    offset_2: VectorSubtractor<W, D>,
+    offset_0: MagnitudeSubtractor<W, D>,
+    offset_1: MagnitudeSubtractor<W, D>,
+    offset_2: MagnitudeSubtractor<W, D>,
     normal_delay: [DelayLine<Bits<C>, SUBTRACTOR_LATENCY>; 3],
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
@@ -151,9 +151,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.threshold_1.edges_bits.next = self.edges_bits_delay.q.val();
         self.threshold_2.edges_bits.next = self.edges_bits_delay.q.val();
         for k in 0..3 {
-            self.threshold_0.offset[k].next = self.offset_0.difference[k].val();
-            self.threshold_1.offset[k].next = self.offset_1.difference[k].val();
-            self.threshold_2.offset[k].next = self.offset_2.difference[k].val();
+            self.threshold_0.offset_magnitude[k].next = self.offset_0.magnitude[k].val();
+            self.threshold_1.offset_magnitude[k].next = self.offset_1.magnitude[k].val();
+            self.threshold_2.offset_magnitude[k].next = self.offset_2.magnitude[k].val();
             self.threshold_0.normal[k].next = self.normal_delay[k].q.val();
             self.threshold_1.normal[k].next = self.normal_delay[k].q.val();
             self.threshold_2.normal[k].next = self.normal_delay[k].q.val();
