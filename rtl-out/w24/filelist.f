@@ -25,7 +25,7 @@ tritri_pipeline_w24_delay_line_w1_n9.v
 tritri_pipeline_w24_delay_line_w24_n1.v
 tritri_pipeline_w24_delay_line_w24_n10.v
 tritri_pipeline_w24_delay_line_w24_n9.v
-tritri_pipeline_w24_delay_line_w25_n5.v
+tritri_pipeline_w24_delay_line_w25_n4.v
 tritri_pipeline_w24_delay_line_w2_n17.v
 tritri_pipeline_w24_delay_line_w2_n6.v
 tritri_pipeline_w24_delay_line_w2_n7.v
@@ -73,5 +73,6 @@ tritri_pipeline_w24_triangle_front_end.v
 tritri_pipeline_w24_valid_line_n10.v
 tritri_pipeline_w24_valid_line_n21.v
 tritri_pipeline_w24_valid_line_n7.v
+tritri_pipeline_w24_vector_magnitude.v
 tritri_pipeline_w24_vector_subtractor.v
 tritri_pipeline_w24.v

@@ -73,9 +73,6 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edge_ad_difference_0;
     wire  [24:0] edge_ad_difference_1;
     wire  [24:0] edge_ad_difference_2;
-    wire  [24:0] edge_ad_magnitude_0;
-    wire  [24:0] edge_ad_magnitude_1;
-    wire  [24:0] edge_ad_magnitude_2;
     wire  normal_clock;
     wire  normal_advance;
     wire  [24:0] normal_u_0;
@@ -99,18 +96,17 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  edge_ad_delay_2_advance;
     wire  [24:0] edge_ad_delay_2_d;
     wire  [24:0] edge_ad_delay_2_q;
-    wire  magnitude_delay_0_clock;
-    wire  magnitude_delay_0_advance;
-    wire  [24:0] magnitude_delay_0_d;
-    wire  [24:0] magnitude_delay_0_q;
-    wire  magnitude_delay_1_clock;
-    wire  magnitude_delay_1_advance;
-    wire  [24:0] magnitude_delay_1_d;
-    wire  [24:0] magnitude_delay_1_q;
-    wire  magnitude_delay_2_clock;
-    wire  magnitude_delay_2_advance;
-    wire  [24:0] magnitude_delay_2_d;
-    wire  [24:0] magnitude_delay_2_q;
+    wire  edge_ad_last_clock;
+    wire  edge_ad_last_advance;
+    wire  [24:0] edge_ad_last_v_0;
+    wire  [24:0] edge_ad_last_v_1;
+    wire  [24:0] edge_ad_last_v_2;
+    wire  [24:0] edge_ad_last_value_0;
+    wire  [24:0] edge_ad_last_value_1;
+    wire  [24:0] edge_ad_last_value_2;
+    wire  [24:0] edge_ad_last_magnitude_0;
+    wire  [24:0] edge_ad_last_magnitude_1;
+    wire  [24:0] edge_ad_last_magnitude_2;
     wire  determinant_clock;
     wire  determinant_advance;
     wire  [24:0] determinant_u_0;
@@ -174,7 +170,7 @@ module tritri_pipeline_w24_certified_orient3d (
         .difference__1(edge_ac_difference_1),
         .difference__2(edge_ac_difference_2)
     );
-    tritri_pipeline_w24_magnitude_subtractor u_edge_ad(
+    tritri_pipeline_w24_vector_subtractor u_edge_ad(
         .clock(edge_ad_clock),
         .advance(edge_ad_advance),
         .a_0(edge_ad_a_0),
@@ -185,10 +181,7 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_2(edge_ad_b_2),
         .difference__0(edge_ad_difference_0),
         .difference__1(edge_ad_difference_1),
-        .difference__2(edge_ad_difference_2),
-        .magnitude_0(edge_ad_magnitude_0),
-        .magnitude_1(edge_ad_magnitude_1),
-        .magnitude_2(edge_ad_magnitude_2)
+        .difference__2(edge_ad_difference_2)
     );
     tritri_pipeline_w24_cross_product u_normal(
         .clock(normal_clock),
@@ -203,41 +196,36 @@ module tritri_pipeline_w24_certified_orient3d (
         .product_1(normal_product_1),
         .product_2(normal_product_2)
     );
-    tritri_pipeline_w24_delay_line_w25_n5 u_edge_ad_delay_0(
+    tritri_pipeline_w24_delay_line_w25_n4 u_edge_ad_delay_0(
         .clock(edge_ad_delay_0_clock),
         .advance(edge_ad_delay_0_advance),
         .d(edge_ad_delay_0_d),
         .q(edge_ad_delay_0_q)
     );
-    tritri_pipeline_w24_delay_line_w25_n5 u_edge_ad_delay_1(
+    tritri_pipeline_w24_delay_line_w25_n4 u_edge_ad_delay_1(
         .clock(edge_ad_delay_1_clock),
         .advance(edge_ad_delay_1_advance),
         .d(edge_ad_delay_1_d),
         .q(edge_ad_delay_1_q)
     );
-    tritri_pipeline_w24_delay_line_w25_n5 u_edge_ad_delay_2(
+    tritri_pipeline_w24_delay_line_w25_n4 u_edge_ad_delay_2(
         .clock(edge_ad_delay_2_clock),
         .advance(edge_ad_delay_2_advance),
         .d(edge_ad_delay_2_d),
         .q(edge_ad_delay_2_q)
     );
-    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_0(
-        .clock(magnitude_delay_0_clock),
-        .advance(magnitude_delay_0_advance),
-        .d(magnitude_delay_0_d),
-        .q(magnitude_delay_0_q)
-    );
-    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_1(
-        .clock(magnitude_delay_1_clock),
-        .advance(magnitude_delay_1_advance),
-        .d(magnitude_delay_1_d),
-        .q(magnitude_delay_1_q)
-    );
-    tritri_pipeline_w24_delay_line_w25_n5 u_magnitude_delay_2(
-        .clock(magnitude_delay_2_clock),
-        .advance(magnitude_delay_2_advance),
-        .d(magnitude_delay_2_d),
-        .q(magnitude_delay_2_q)
+    tritri_pipeline_w24_vector_magnitude u_edge_ad_last(
+        .clock(edge_ad_last_clock),
+        .advance(edge_ad_last_advance),
+        .v_0(edge_ad_last_v_0),
+        .v_1(edge_ad_last_v_1),
+        .v_2(edge_ad_last_v_2),
+        .value_0(edge_ad_last_value_0),
+        .value_1(edge_ad_last_value_1),
+        .value_2(edge_ad_last_value_2),
+        .magnitude_0(edge_ad_last_magnitude_0),
+        .magnitude_1(edge_ad_last_magnitude_1),
+        .magnitude_2(edge_ad_last_magnitude_2)
     );
     tritri_pipeline_w24_dot_product u_determinant(
         .clock(determinant_clock),
@@ -291,9 +279,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_0_clock = clock;
     assign edge_ad_delay_1_clock = clock;
     assign edge_ad_delay_2_clock = clock;
-    assign magnitude_delay_0_clock = clock;
-    assign magnitude_delay_1_clock = clock;
-    assign magnitude_delay_2_clock = clock;
+    assign edge_ad_last_clock = clock;
     assign determinant_clock = clock;
     assign sign_clock = clock;
     assign edges_bits_clock = clock;
@@ -305,9 +291,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_0_advance = advance;
     assign edge_ad_delay_1_advance = advance;
     assign edge_ad_delay_2_advance = advance;
-    assign magnitude_delay_0_advance = advance;
-    assign magnitude_delay_1_advance = advance;
-    assign magnitude_delay_2_advance = advance;
+    assign edge_ad_last_advance = advance;
     assign determinant_advance = advance;
     assign sign_advance = advance;
     assign edges_bits_advance = advance;
@@ -349,18 +333,18 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edges_bits_b_2 = edge_ac_difference_2;
     assign threshold_normal_2 = normal_product_2;
     assign threshold_edges_bits = edges_bits_bits;
-    assign magnitude_delay_0_d = edge_ad_magnitude_0;
-    assign magnitude_delay_1_d = edge_ad_magnitude_1;
-    assign magnitude_delay_2_d = edge_ad_magnitude_2;
-    assign threshold_offset_magnitude_0 = magnitude_delay_0_q;
-    assign threshold_offset_magnitude_1 = magnitude_delay_1_q;
-    assign threshold_offset_magnitude_2 = magnitude_delay_2_q;
+    assign edge_ad_last_v_0 = edge_ad_delay_0_q;
+    assign edge_ad_last_v_1 = edge_ad_delay_1_q;
+    assign edge_ad_last_v_2 = edge_ad_delay_2_q;
+    assign threshold_offset_magnitude_0 = edge_ad_last_magnitude_0;
+    assign determinant_u_0 = edge_ad_last_value_0;
+    assign threshold_offset_magnitude_1 = edge_ad_last_magnitude_1;
+    assign determinant_u_1 = edge_ad_last_value_1;
+    assign threshold_offset_magnitude_2 = edge_ad_last_magnitude_2;
+    assign determinant_u_2 = edge_ad_last_value_2;
     assign edge_ad_delay_0_d = edge_ad_difference_0;
     assign edge_ad_delay_1_d = edge_ad_difference_1;
     assign edge_ad_delay_2_d = edge_ad_difference_2;
-    assign determinant_u_0 = edge_ad_delay_0_q;
-    assign determinant_u_1 = edge_ad_delay_1_q;
-    assign determinant_u_2 = edge_ad_delay_2_q;
     assign sign_value = determinant_product;
     assign value = determinant_product;
     assign sign_threshold = threshold_threshold;

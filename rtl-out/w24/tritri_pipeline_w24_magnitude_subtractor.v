@@ -9,9 +9,9 @@
 //             threshold (`CertificateThreshold`) takes the magnitudes of an
 //             offset where the offset has no clock to spare before it (the
 //             plane side's `v - p`). Part of tritri_pipeline_w24. Instances
-//             (8), for example: path.orient3d_0.edge_ad,
-//             path.orient3d_1.edge_ad, path.plane_side_t1.offset_0,
-//             path.plane_side_t1.offset_1.
+//             (6), for example: path.plane_side_t1.offset_0,
+//             path.plane_side_t1.offset_1, path.plane_side_t1.offset_2,
+//             path.plane_side_t2.offset_0.
 //
 // Rust unit:  MagnitudeSubtractor<W = 24, D = 25>
 // Latency:    1 clock cycle

@@ -268,6 +268,110 @@ impl<const W: usize, const D: usize> Logic for MagnitudeSubtractor<W, D> {
     }
 }
 
+/// `v` and its magnitudes `|v_k|` (D bits, at most `2^(D-1)`), registered
+/// together: one carry chain and a choice, from a register near by. Where
+/// an offset has clocks to spare before its threshold
+/// (`crate::pipeline::certified_orient3d`'s `d - a` waits for the cross
+/// product), its last wait is this stage, and the subtraction stays a
+/// single chain ([`MagnitudeSubtractor`]'s second chain and choice made
+/// that pipeline's ECP5 critical path from the operand registers).
+#[derive(LogicBlock)]
+pub struct VectorMagnitude<const D: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub v: [Signal<In, Bits<D>>; 3],
+    /// `v`, `SUBTRACTOR_LATENCY` enabled edges later.
+    pub value: [Signal<Out, Bits<D>>; 3],
+    /// `|v|`, with it.
+    pub magnitude: [Signal<Out, Bits<D>>; 3],
+    top_bit: Constant<Bits<8>>,
+    zero: Constant<Bits<D>>,
+    value_q0: DFF<Bits<D>>,
+    value_q1: DFF<Bits<D>>,
+    value_q2: DFF<Bits<D>>,
+    magnitude_q0: DFF<Bits<D>>,
+    magnitude_q1: DFF<Bits<D>>,
+    magnitude_q2: DFF<Bits<D>>,
+}
+
+impl<const D: usize> crate::unit::Unit for VectorMagnitude<D> {
+    const LATENCY: Option<usize> = Some(SUBTRACTOR_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            value_q0,
+            value_q1,
+            value_q2,
+            magnitude_q0,
+            magnitude_q1,
+            magnitude_q2
+        );
+    }
+}
+
+impl<const D: usize> Default for VectorMagnitude<D> {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            v: Default::default(),
+            value: Default::default(),
+            magnitude: Default::default(),
+            top_bit: Constant::new(Bits::<8>::from((D - 1) as u64)),
+            zero: Constant::new(Bits::<D>::from(0u64)),
+            value_q0: Default::default(),
+            value_q1: Default::default(),
+            value_q2: Default::default(),
+            magnitude_q0: Default::default(),
+            magnitude_q1: Default::default(),
+            magnitude_q2: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize> Logic for VectorMagnitude<D> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            value_q0,
+            value_q1,
+            value_q2,
+            magnitude_q0,
+            magnitude_q1,
+            magnitude_q2
+        );
+        if self.advance.val() {
+            self.value_q0.d.next = self.v[0].val();
+            self.value_q1.d.next = self.v[1].val();
+            self.value_q2.d.next = self.v[2].val();
+            if self.v[0].val().get_bit(self.top_bit.val().index()) {
+                self.magnitude_q0.d.next = self.zero.val() - self.v[0].val();
+            } else {
+                self.magnitude_q0.d.next = self.v[0].val();
+            }
+            if self.v[1].val().get_bit(self.top_bit.val().index()) {
+                self.magnitude_q1.d.next = self.zero.val() - self.v[1].val();
+            } else {
+                self.magnitude_q1.d.next = self.v[1].val();
+            }
+            if self.v[2].val().get_bit(self.top_bit.val().index()) {
+                self.magnitude_q2.d.next = self.zero.val() - self.v[2].val();
+            } else {
+                self.magnitude_q2.d.next = self.v[2].val();
+            }
+        }
+        self.value[0].next = self.value_q0.q.val();
+        self.value[1].next = self.value_q1.q.val();
+        self.value[2].next = self.value_q2.q.val();
+        self.magnitude[0].next = self.magnitude_q0.q.val();
+        self.magnitude[1].next = self.magnitude_q1.q.val();
+        self.magnitude[2].next = self.magnitude_q2.q.val();
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -294,6 +398,25 @@ mod tests {
                     assert_eq!(to_i128(unit.difference[k].val()), d as i128);
                     assert_eq!(unit.magnitude[k].val().to_u64(), d.unsigned_abs());
                 }
+            }
+        }
+    }
+
+    /// Value and magnitude of 9-bit values across their range, the most
+    /// negative included.
+    #[test]
+    fn vector_magnitude_is_exact() {
+        let mut unit = VectorMagnitude::<9>::default();
+        unit.connect_all();
+        for x in [-256i64, -255, -128, -1, 0, 1, 100, 255] {
+            for k in 0..3 {
+                unit.v[k].next = Bits::from((x >> k) as u64 & 0x1ff);
+            }
+            unit.advance.next = true;
+            clock_cycle(&mut unit, |u| &mut u.clock);
+            for k in 0..3 {
+                assert_eq!(to_i128(unit.value[k].val()), (x >> k) as i128);
+                assert_eq!(unit.magnitude[k].val().to_u64(), (x >> k).unsigned_abs());
             }
         }
     }

@@ -26,7 +26,7 @@ use crate::arith::certificate::{
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::subtractor::{MagnitudeSubtractor, VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{VectorMagnitude, VectorSubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from the four points to the sign and certificate.
@@ -59,15 +59,13 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     pub value: Signal<Out, Bits<O>>,
     edge_ab: VectorSubtractor<W, D>,
     edge_ac: VectorSubtractor<W, D>,
-    edge_ad: MagnitudeSubtractor<W, D>,
+    edge_ad: VectorSubtractor<W, D>,
     normal: CrossProduct<D, C>,
-    edge_ad_delay_0: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
-    edge_ad_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
-    edge_ad_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
-    /// `|d - a|`, for the threshold, with the normal.
-    magnitude_delay_0: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
-    magnitude_delay_1: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
-    magnitude_delay_2: DelayLine<Bits<D>, CROSS_PRODUCT_LATENCY>,
+    edge_ad_delay_0: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY - SUBTRACTOR_LATENCY }>,
+    edge_ad_delay_1: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY - SUBTRACTOR_LATENCY }>,
+    edge_ad_delay_2: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY - SUBTRACTOR_LATENCY }>,
+    /// `d - a` and `|d - a|` (for the threshold), with the normal.
+    edge_ad_last: VectorMagnitude<D>,
     determinant: DotProduct<D, C, O>,
     /// The certificate's threshold: `ke` of the edges `b - a`, `c - a`,
     /// then the threshold from `d - a` and the normal.
@@ -91,9 +89,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             edge_ad_delay_0,
             edge_ad_delay_1,
             edge_ad_delay_2,
-            magnitude_delay_0,
-            magnitude_delay_1,
-            magnitude_delay_2,
+            edge_ad_last,
             determinant,
             edges_bits,
             threshold,
@@ -117,9 +113,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             edge_ad_delay_0,
             edge_ad_delay_1,
             edge_ad_delay_2,
-            magnitude_delay_0,
-            magnitude_delay_1,
-            magnitude_delay_2,
+            edge_ad_last,
             determinant,
             sign,
             edges_bits,
@@ -132,9 +126,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.edge_ad_delay_0.advance.next = self.advance.val();
         self.edge_ad_delay_1.advance.next = self.advance.val();
         self.edge_ad_delay_2.advance.next = self.advance.val();
-        self.magnitude_delay_0.advance.next = self.advance.val();
-        self.magnitude_delay_1.advance.next = self.advance.val();
-        self.magnitude_delay_2.advance.next = self.advance.val();
+        self.edge_ad_last.advance.next = self.advance.val();
         self.determinant.advance.next = self.advance.val();
         self.sign.advance.next = self.advance.val();
         self.edges_bits.advance.next = self.advance.val();
@@ -156,18 +148,16 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.threshold.normal[i].next = self.normal.product[i].val();
         }
         self.threshold.edges_bits.next = self.edges_bits.bits.val();
-        self.magnitude_delay_0.d.next = self.edge_ad.magnitude[0].val();
-        self.magnitude_delay_1.d.next = self.edge_ad.magnitude[1].val();
-        self.magnitude_delay_2.d.next = self.edge_ad.magnitude[2].val();
-        self.threshold.offset_magnitude[0].next = self.magnitude_delay_0.q.val();
-        self.threshold.offset_magnitude[1].next = self.magnitude_delay_1.q.val();
-        self.threshold.offset_magnitude[2].next = self.magnitude_delay_2.q.val();
+        self.edge_ad_last.v[0].next = self.edge_ad_delay_0.q.val();
+        self.edge_ad_last.v[1].next = self.edge_ad_delay_1.q.val();
+        self.edge_ad_last.v[2].next = self.edge_ad_delay_2.q.val();
+        for i in 0..3 {
+            self.threshold.offset_magnitude[i].next = self.edge_ad_last.magnitude[i].val();
+            self.determinant.u[i].next = self.edge_ad_last.value[i].val();
+        }
         self.edge_ad_delay_0.d.next = self.edge_ad.difference[0].val();
         self.edge_ad_delay_1.d.next = self.edge_ad.difference[1].val();
         self.edge_ad_delay_2.d.next = self.edge_ad.difference[2].val();
-        self.determinant.u[0].next = self.edge_ad_delay_0.q.val();
-        self.determinant.u[1].next = self.edge_ad_delay_1.q.val();
-        self.determinant.u[2].next = self.edge_ad_delay_2.q.val();
         self.sign.value.next = self.determinant.product.val();
         self.value.next = self.determinant.product.val();
         self.sign.threshold.next = self.threshold.threshold.val();
