@@ -13,7 +13,7 @@
 //! * [`EdgesBitLength`] (five register stages): `ke` of a triangle's two
 //!   edges, once per triangle (with its normal) or per determinant.
 //! * [`CertificateThreshold`] (five register stages, beside the dot
-//!   product): `T` from `w`, `n` and `ke`.
+//!   product): `T` from `|w_k|`, `n` and `ke`.
 //! * [`CertainSign`] (one register stage, like [`super::sign::SignOf`]):
 //!   the sign of `P` and whether its ones' complement magnitude
 //!   `P ^ (P >> top)` (`|P|` or `|P| - 1`) is at least `T`.
@@ -26,7 +26,7 @@
 //! evaluated at clock edges, like the adders (`super::adder`): rust-hdl
 //! simulates values wider than 32 bits as bit arrays. They compute in the
 //! widths the values need at W-bit coordinates (`D = W + 1`, `C = 2W + 1`,
-//! `O = 3W + 2`): `Sw` in `D + 2` bits, `X` in `C + 2`, `T` in `C + 6`.
+//! `O = 3W + 2`): `Sw` in `D + 1` bits, `X` in `C + 1`, `T` in `C + 6`.
 //!
 //! (The earlier certificate compared `P` with `2^(2m + 5)` for the largest
 //! entry `2^m`: OR-trees and wiring only, but at W = 24 it sent 0.17 to
