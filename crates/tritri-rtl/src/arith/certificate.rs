@@ -70,6 +70,12 @@ fn ones_complement_verilog(v: &str, bits: usize, width: usize) -> String {
     )
 }
 
+/// Verilog: `t0 + t1 + t2` of unsigned terms, each widened by a zero bit
+/// (three magnitudes of at most `2^(n-1)` sum below `2^(n+1)`).
+fn widened_sum_verilog(terms: [String; 3]) -> String {
+    terms.map(|t| format!("{{1'b0, {t}}}")).join(" + ")
+}
+
 /// Verilog: `{name}_lead`, the one-hot at bit `bitlen v` of a `width`-bit
 /// `v` (the leading one of `2 v + 1`).
 fn leading_one_verilog(name: &str, v: &str, width: usize) -> String {
@@ -186,12 +192,7 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
                 updates += &format!("        abs_{v}{k}_q <= abs_{v}{k};\n");
             }
         }
-        let l1 = |v: &str| {
-            (0..3)
-                .map(|k| format!("{{1'b0, abs_{v}{k}_q}}"))
-                .collect::<Vec<_>>()
-                .join(" + ")
-        };
+        let l1 = |v: &str| widened_sum_verilog(std::array::from_fn(|k| format!("abs_{v}{k}_q")));
         Verilog::Custom(format!(
             "\
 // ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in five
@@ -402,7 +403,7 @@ initial begin
 end
 always @(posedge clock) begin
     if (advance) begin
-        offset_l1_q <= {{1'b0, offset_magnitude$0}} + {{1'b0, offset_magnitude$1}} + {{1'b0, offset_magnitude$2}};
+        offset_l1_q <= {offset_l1};
         normal_01_q <= {n0} + {n1};
         normal_2_q <= {n2};
         edge_term_q <= ({small}'d4 << edges_bits) + {small}'d16;
@@ -420,6 +421,8 @@ always @(posedge clock) begin
     end
 end
 ",
+            offset_l1 =
+                widened_sum_verilog(std::array::from_fn(|k| format!("offset_magnitude${k}"))),
             n0 = ones_complement_verilog("normal$0", C, x),
             n1 = ones_complement_verilog("normal$1", C, x),
             n2 = ones_complement_verilog("normal$2", C, x),
