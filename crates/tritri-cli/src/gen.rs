@@ -24,7 +24,8 @@
 //! to hours; a unit on its own, seconds to minutes).
 //!
 //! `--synth-top MODULE` places and routes one module of the emitted design
-//! instead of its top, for the critical path of one unit in minutes.
+//! instead of its top, for the critical path of one unit in minutes;
+//! `--seed N` sets nextpnr's placement seed (default 1).
 //!
 //! `--dsp ecp5` (the default with `--synth ecp5`) writes each multiplier as
 //! Lattice MULT18X18D blocks with their input, pipeline and output
@@ -166,6 +167,11 @@ pub struct Args {
     /// takes hours).
     #[arg(long, value_name = "MODULE")]
     synth_top: Option<String>,
+    /// With --synth ecp5: nextpnr's placement seed [default: 1]. The same
+    /// netlist routes some per cent faster or slower from seed to seed;
+    /// the table names the seed of each route.
+    #[arg(long, value_name = "N")]
+    seed: Option<u64>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
     #[arg(long, conflicts_with_all = ["classifier", "setup"])]
@@ -407,6 +413,9 @@ impl Args {
     fn check_usage(&self) -> Result<(), String> {
         if self.synth_top.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--synth-top applies to --synth ecp5".into());
+        }
+        if self.seed.is_some() && self.synth.as_deref() != Some("ecp5") {
+            return Err("--seed applies to --synth ecp5".into());
         }
         if self.dsp.is_some() && !self.has_multipliers() {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
@@ -745,7 +754,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 dir.display(),
                 dir.join("route_ecp5.log").display()
             );
-            let report = route_ecp5(&dir, top, &Ecp5Options::default())
+            let mut options = Ecp5Options::default();
+            options.seed = args.seed.unwrap_or(options.seed);
+            let report = route_ecp5(&dir, top, &options)
                 .with_context(|| format!("place and route of {top}"))?;
             std::fs::write(
                 dir.join("route_ecp5.md"),

@@ -142,6 +142,20 @@ fn dsp_mapping_options_are_checked() {
             "gen",
             "--width",
             "8",
+            "--seed",
+            "2",
+            "--synth",
+            "xilinx",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--seed applies to --synth ecp5"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
             "--dsp",
             "ecp5",
             "--synth",

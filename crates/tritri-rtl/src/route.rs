@@ -58,6 +58,9 @@ pub struct RouteReport {
     pub top: String,
     pub fmax_mhz: f64,
     pub target_mhz: f64,
+    /// nextpnr's placement seed: a route's Fmax moves by several per cent
+    /// from seed to seed on the same netlist, so a figure names its seed.
+    pub seed: u64,
     pub critical_path: Option<CriticalPath>,
     /// LUT4s (nextpnr's TRELLIS_COMB), flip-flops, 18 x 18 multipliers,
     /// 18-kbit block RAMs.
@@ -137,7 +140,7 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         "route_ecp5.log",
     ]))?;
     let text = std::fs::read_to_string(&report_path).map_err(io(&report_path))?;
-    parse_report(top, &text).map_err(|reason| RouteError::Report {
+    parse_report(top, options.seed, &text).map_err(|reason| RouteError::Report {
         path: report_path.display().to_string(),
         reason,
     })
@@ -182,8 +185,9 @@ struct End {
     port: String,
 }
 
-/// nextpnr's `--report` JSON, read into a [`RouteReport`].
-pub fn parse_report(top: &str, json: &str) -> Result<RouteReport, String> {
+/// nextpnr's `--report` JSON of a route with `seed`, read into a
+/// [`RouteReport`].
+pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, String> {
     let report: Report = serde_json::from_str(json).map_err(|e| e.to_string())?;
     let (_, fmax) = report.fmax.iter().next().ok_or("no clock in `fmax`")?;
     let used = |cell: &str| report.utilization.get(cell).map_or(0, |u| u.used);
@@ -208,6 +212,7 @@ pub fn parse_report(top: &str, json: &str) -> Result<RouteReport, String> {
         top: top.to_string(),
         fmax_mhz: fmax.achieved,
         target_mhz: fmax.constraint,
+        seed,
         critical_path,
         luts: used("TRELLIS_COMB"),
         flip_flops: used("TRELLIS_FF"),
@@ -219,8 +224,8 @@ pub fn parse_report(top: &str, json: &str) -> Result<RouteReport, String> {
 /// A Markdown table of reports.
 pub fn route_table(reports: &[RouteReport]) -> String {
     let mut t = String::from(
-        "| unit | Fmax post-route (MHz) | LUT4 | FF | MULT18X18D | EBR | critical path | logic levels | logic / routing (ns) |\n\
-         |---|---:|---:|---:|---:|---:|---|---:|---:|\n",
+        "| unit | Fmax post-route (MHz) | seed | LUT4 | FF | MULT18X18D | EBR | critical path | logic levels | logic / routing (ns) |\n\
+         |---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n",
     );
     for r in reports {
         let (path, levels, split) = match &r.critical_path {
@@ -232,8 +237,8 @@ pub fn route_table(reports: &[RouteReport]) -> String {
             None => ("-".into(), "-".into(), "-".into()),
         };
         t.push_str(&format!(
-            "| {} | {:.1} | {} | {} | {} | {} | {path} | {levels} | {split} |\n",
-            r.top, r.fmax_mhz, r.luts, r.flip_flops, r.multipliers, r.block_rams
+            "| {} | {:.1} | {} | {} | {} | {} | {} | {path} | {levels} | {split} |\n",
+            r.top, r.fmax_mhz, r.seed, r.luts, r.flip_flops, r.multipliers, r.block_rams
         ));
     }
     t
@@ -253,7 +258,7 @@ mod tests {
             {"delay":0.2,"from":{"cell":"ram","loc":[1,2],"port":"ADB6"},"to":{"cell":"ram","loc":[1,2],"port":"ADB6"},"type":"setup"}]}],
             "fmax":{"clock":{"achieved":48.75,"constraint":150}},
             "utilization":{"DP16KD":{"available":208,"used":16},"TRELLIS_COMB":{"available":83640,"used":643},"TRELLIS_FF":{"available":83640,"used":444}}}"#;
-        let r = parse_report("u", json).unwrap();
+        let r = parse_report("u", 1, json).unwrap();
         assert_eq!(
             (
                 r.fmax_mhz,
@@ -271,9 +276,11 @@ mod tests {
             ("ram.DOB3", "ram.ADB6", 1)
         );
         assert!((p.logic_ns - 6.43).abs() < 1e-9 && (p.routing_ns - 1.5).abs() < 1e-9);
-        assert!(route_table(&[parse_report("u", json).unwrap()]).contains(
-            "| u | 48.8 | 643 | 444 | 0 | 16 | `ram.DOB3` → `ram.ADB6` | 1 | 6.4 / 1.5 |"
-        ));
-        assert!(parse_report("u", "{}").is_err());
+        assert!(
+            route_table(&[parse_report("u", 1, json).unwrap()]).contains(
+                "| u | 48.8 | 1 | 643 | 444 | 0 | 16 | `ram.DOB3` → `ram.ADB6` | 1 | 6.4 / 1.5 |"
+            )
+        );
+        assert!(parse_report("u", 1, "{}").is_err());
     }
 }
