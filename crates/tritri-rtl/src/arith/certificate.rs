@@ -16,7 +16,8 @@
 //!   product): `T` from `|w_k|`, `n` and `ke`.
 //! * [`CertainSign`] (one register stage, like [`super::sign::SignOf`]):
 //!   the sign of `P` and whether its ones' complement magnitude
-//!   `P ^ (P >> top)` (`|P|` or `|P| - 1`) is at least `T`.
+//!   `P ^ (P >> top)` (`|P|` or `|P| - 1`) is at least `T`, compared as
+//!   `P >= T` or `P <= !T` by the sign.
 //!
 //! A bit length is read from a leading one: the value smeared downwards
 //! (`t | t >> 1`, `>> 2`, ...), then `t & ~(t >> 1)`; of `2 v + 1`, so that
@@ -467,8 +468,10 @@ pub struct CertainSign<const O: usize> {
     /// `|P| >= T`: the sign holds for every admissible move.
     pub certain: Signal<Out, Bit>,
     top_bit: Constant<Bits<8>>,
-    /// `|P|` or `|P| - 1`.
-    magnitude: Signal<Local, Bits<O>>,
+    /// `P >= T` and `P <= !T` as unsigned O-bit values: for `P >= 0`,
+    /// `|P| >= T`; for `P < 0` (both in the upper half), `!P >= T`.
+    above: Signal<Local, Bit>,
+    below: Signal<Local, Bit>,
     negative_q: DFF<Bit>,
     zero_q: DFF<Bit>,
     certain_q: DFF<Bit>,
@@ -493,7 +496,8 @@ impl<const O: usize> Default for CertainSign<O> {
             zero: Default::default(),
             certain: Default::default(),
             top_bit: Constant::new(Bits::<8>::from((O - 1) as u64)),
-            magnitude: Default::default(),
+            above: Default::default(),
+            below: Default::default(),
             negative_q: Default::default(),
             zero_q: Default::default(),
             certain_q: Default::default(),
@@ -505,15 +509,21 @@ impl<const O: usize> Logic for CertainSign<O> {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, negative_q, zero_q, certain_q);
-        if self.value.val().get_bit(self.top_bit.val().index()) {
-            self.magnitude.next = !self.value.val();
-        } else {
-            self.magnitude.next = self.value.val();
-        }
+        // Two comparisons on the value as it comes, each one carry chain,
+        // and the sign picks one. Forming `|P|` first put a LUT per bit,
+        // all on the sign bit, before a single chain: the W = 8
+        // pipeline's critical path on ECP5 (131.8 MHz, 4.9 of 7.6 ns
+        // routing).
+        self.above.next = self.value.val() >= self.threshold.val();
+        self.below.next = self.value.val() <= !self.threshold.val();
         if self.advance.val() {
             self.negative_q.d.next = self.value.val().get_bit(self.top_bit.val().index());
             self.zero_q.d.next = !self.value.val().any();
-            self.certain_q.d.next = self.magnitude.val() >= self.threshold.val();
+            if self.value.val().get_bit(self.top_bit.val().index()) {
+                self.certain_q.d.next = self.below.val();
+            } else {
+                self.certain_q.d.next = self.above.val();
+            }
         }
         self.negative.next = self.negative_q.q.val();
         self.zero.next = self.zero_q.q.val();

@@ -136,6 +136,9 @@ crate::pipeline_ports! {
         input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
         record_valid: ValidLine<RECORD_STAGE>,
         record_bset: DelayLine<Bit, RECORD_STAGE>,
+        /// `valid && bset` a stage before the record: the base polygon's
+        /// load, an enabled edge ahead.
+        record_load: ValidLine<{ RECORD_STAGE - 1 }>,
         record_id: DelayLine<Bits<ID_BITS>, RECORD_STAGE>,
         front_end: TriangleFrontEnd<W, D, C>,
         base: BasePolygon<W, D, C>,
@@ -193,6 +196,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             input_vertices,
             record_valid,
             record_bset,
+            record_load,
             record_id,
             front_end,
             base,
@@ -249,6 +253,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             clock,
             record_valid,
             record_bset,
+            record_load,
             record_id,
             front_end,
             base,
@@ -273,6 +278,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.record_valid.reset.next = self.reset.val();
         self.record_valid.advance.next = self.advance.val();
         self.record_bset.advance.next = self.advance.val();
+        self.record_load.reset.next = self.reset.val();
+        self.record_load.advance.next = self.advance.val();
         self.record_id.advance.next = self.advance.val();
         self.front_end.advance.next = self.advance_copies[7].val();
         self.pair_valid_to_sides.reset.next = self.reset.val();
@@ -326,6 +333,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         // Input registers and the per-triangle front end.
         self.record_valid.d.next = self.in_valid.val();
         self.record_bset.d.next = self.in_bset.val();
+        self.record_load.d.next = self.in_valid.val() && self.in_bset.val();
         self.record_id.d.next = self.in_id.val();
         self.input_vertices[0].d.next = self.in_x0.val();
         self.input_vertices[1].d.next = self.in_y0.val();
@@ -341,8 +349,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
 
         // Base polygon (thesis: BSET latches the record into its registers).
-        self.base.load.next =
-            self.advance.val() && self.record_valid.q.val() && self.record_bset.q.val();
+        self.base.reset.next = self.reset.val();
+        self.base.advance.next = self.advance.val();
+        self.base.load_ahead.next = self.record_load.q.val();
         self.base.id_in.next = self.record_id.q.val();
         self.base.degenerate_in.next = self.front_end.degenerate.val();
         self.base.dominant_axis_in.next = self.front_end.dominant_axis.val();
