@@ -58,6 +58,7 @@ tritri_pipeline_w24_multiplier_w74.v
 tritri_pipeline_w24_normal_unit.v
 tritri_pipeline_w24_orient3d_operands.v
 tritri_pipeline_w24_plane_side.v
+tritri_pipeline_w24_register_copy.v
 tritri_pipeline_w24_registered_difference3.v
 tritri_pipeline_w24_registered_difference_w49.v
 tritri_pipeline_w24_registered_difference_w74.v
@@ -73,6 +74,7 @@ tritri_pipeline_w24_triangle_front_end.v
 tritri_pipeline_w24_valid_line_n10.v
 tritri_pipeline_w24_valid_line_n21.v
 tritri_pipeline_w24_valid_line_n7.v
+tritri_pipeline_w24_valid_line_n9.v
 tritri_pipeline_w24_vector_magnitude.v
 tritri_pipeline_w24_vector_subtractor.v
 tritri_pipeline_w24.v

@@ -22,7 +22,9 @@
 
 module tritri_pipeline_w24_base_polygon (
     input  wire        clock,
-    input  wire        load,
+    input  wire        reset,
+    input  wire        advance,
+    input  wire        load_ahead,
     input  wire [31:0] id_in,
     input  wire [23:0] vertices_in_0,
     input  wire [23:0] vertices_in_1,
@@ -146,6 +148,26 @@ module tritri_pipeline_w24_base_polygon (
     reg  [7:0] edges_bits_d;
     wire  [7:0] edges_bits_q;
     wire  edges_bits_clock;
+    wire  load_copy_0_clock;
+    wire  load_copy_0_reset;
+    wire  load_copy_0_advance;
+    wire  load_copy_0_d;
+    wire  load_copy_0_q;
+    wire  load_copy_1_clock;
+    wire  load_copy_1_reset;
+    wire  load_copy_1_advance;
+    wire  load_copy_1_d;
+    wire  load_copy_1_q;
+    wire  load_copy_2_clock;
+    wire  load_copy_2_reset;
+    wire  load_copy_2_advance;
+    wire  load_copy_2_d;
+    wire  load_copy_2_q;
+    wire  load_copy_3_clock;
+    wire  load_copy_3_reset;
+    wire  load_copy_3_advance;
+    wire  load_copy_3_d;
+    wire  load_copy_3_q;
 
     // Sub module instances
     tritri_pipeline_w24_dff_32 u_id_q(
@@ -268,6 +290,34 @@ module tritri_pipeline_w24_base_polygon (
         .q(edges_bits_q),
         .clock(edges_bits_clock)
     );
+    tritri_pipeline_w24_register_copy u_load_copy_0(
+        .clock(load_copy_0_clock),
+        .reset(load_copy_0_reset),
+        .advance(load_copy_0_advance),
+        .d(load_copy_0_d),
+        .q(load_copy_0_q)
+    );
+    tritri_pipeline_w24_register_copy u_load_copy_1(
+        .clock(load_copy_1_clock),
+        .reset(load_copy_1_reset),
+        .advance(load_copy_1_advance),
+        .d(load_copy_1_d),
+        .q(load_copy_1_q)
+    );
+    tritri_pipeline_w24_register_copy u_load_copy_2(
+        .clock(load_copy_2_clock),
+        .reset(load_copy_2_reset),
+        .advance(load_copy_2_advance),
+        .d(load_copy_2_d),
+        .q(load_copy_2_q)
+    );
+    tritri_pipeline_w24_register_copy u_load_copy_3(
+        .clock(load_copy_3_clock),
+        .reset(load_copy_3_reset),
+        .advance(load_copy_3_advance),
+        .d(load_copy_3_d),
+        .q(load_copy_3_q)
+    );
 
     // Update code
     assign id_clock = clock;
@@ -294,6 +344,22 @@ module tritri_pipeline_w24_base_polygon (
     assign normal_q_2_clock = clock;
     assign normal_negative_q_2_clock = clock;
     assign normal_zero_q_2_clock = clock;
+    assign load_copy_0_clock = clock;
+    assign load_copy_0_reset = reset;
+    assign load_copy_0_advance = advance;
+    assign load_copy_0_d = load_ahead;
+    assign load_copy_1_clock = clock;
+    assign load_copy_1_reset = reset;
+    assign load_copy_1_advance = advance;
+    assign load_copy_1_d = load_ahead;
+    assign load_copy_2_clock = clock;
+    assign load_copy_2_reset = reset;
+    assign load_copy_2_advance = advance;
+    assign load_copy_2_d = load_ahead;
+    assign load_copy_3_clock = clock;
+    assign load_copy_3_reset = reset;
+    assign load_copy_3_advance = advance;
+    assign load_copy_3_d = load_ahead;
     assign id = id_q;
     assign degenerate = degenerate_q;
     assign dominant_axis = dominant_axis_q;
@@ -343,22 +409,28 @@ module tritri_pipeline_w24_base_polygon (
         normal_q_2_d = normal_q_2_q;
         normal_negative_q_2_d = normal_negative_q_2_q;
         normal_zero_q_2_d = normal_zero_q_2_q;
-        if (load) begin
+        if (advance && load_copy_0_q) begin
+            vertices_q_0_d = vertices_in_0;
+            vertices_q_1_d = vertices_in_1;
+            vertices_q_2_d = vertices_in_2;
+        end
+        if (advance && load_copy_1_q) begin
+            vertices_q_3_d = vertices_in_3;
+            vertices_q_4_d = vertices_in_4;
+            vertices_q_5_d = vertices_in_5;
+        end
+        if (advance && load_copy_2_q) begin
+            vertices_q_6_d = vertices_in_6;
+            vertices_q_7_d = vertices_in_7;
+            vertices_q_8_d = vertices_in_8;
+        end
+        if (advance && load_copy_3_q) begin
             id_d = id_in;
             degenerate_d = degenerate_in;
             dominant_axis_d = dominant_axis_in;
             segment_low_d = segment_low_in;
             segment_high_d = segment_high_in;
             edges_bits_d = edges_bits_in;
-            vertices_q_0_d = vertices_in_0;
-            vertices_q_1_d = vertices_in_1;
-            vertices_q_2_d = vertices_in_2;
-            vertices_q_3_d = vertices_in_3;
-            vertices_q_4_d = vertices_in_4;
-            vertices_q_5_d = vertices_in_5;
-            vertices_q_6_d = vertices_in_6;
-            vertices_q_7_d = vertices_in_7;
-            vertices_q_8_d = vertices_in_8;
             normal_q_0_d = normal_in_0;
             normal_negative_q_0_d = normal_negative_in_0;
             normal_zero_q_0_d = normal_zero_in_0;

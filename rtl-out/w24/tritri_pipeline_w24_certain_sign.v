@@ -40,7 +40,8 @@ module tritri_pipeline_w24_certain_sign (
     wire  certain_clock;
 
     // Local signals
-    reg  [73:0] magnitude;
+    wire  above;
+    wire  below;
 
     // Sub module instances
     tritri_pipeline_w24_dff_1 u_negative_q(
@@ -63,6 +64,8 @@ module tritri_pipeline_w24_certain_sign (
     assign negative_clock = clock;
     assign zero_clock = clock;
     assign certain_clock = clock;
+    assign above = value >= threshold;
+    assign below = value <= ~threshold;
     assign negative = negative_q;
     assign zero = zero_q;
     assign certain = certain_q;
@@ -70,16 +73,15 @@ module tritri_pipeline_w24_certain_sign (
         negative_d = negative_q;
         zero_d = zero_q;
         certain_d = certain_q;
-        if (value[73]) begin
-            magnitude = ~value;
-        end
-        else begin
-            magnitude = value;
-        end
         if (advance) begin
             negative_d = value[73];
             zero_d = ~|value;
-            certain_d = magnitude >= threshold;
+            if (value[73]) begin
+                certain_d = below;
+            end
+            else begin
+                certain_d = above;
+            end
         end
     end
 

@@ -30,7 +30,7 @@ module tritri_pipeline_w24_coordinate_compare (
 );
 
     // Constant declarations
-    localparam  sign_flip = 24'h800000;
+    localparam  reversed_order = 24'h7fffff;
 
     // Stub signals
     reg  less_d;
@@ -61,7 +61,7 @@ module tritri_pipeline_w24_coordinate_compare (
         less_d = less_q;
         equal_d = equal_q;
         if (advance) begin
-            less_d = (a ^ sign_flip) < (b ^ sign_flip);
+            less_d = (b ^ reversed_order) < (a ^ reversed_order);
             equal_d = a == b;
         end
     end

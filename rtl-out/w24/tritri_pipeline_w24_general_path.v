@@ -148,6 +148,11 @@ module tritri_pipeline_w24_general_path (
     wire  record_bset_advance;
     wire  record_bset_d;
     wire  record_bset_q;
+    wire  record_load_clock;
+    wire  record_load_reset;
+    wire  record_load_advance;
+    wire  record_load_d;
+    wire  record_load_q;
     wire  record_id_clock;
     wire  record_id_advance;
     wire  [31:0] record_id_d;
@@ -187,7 +192,9 @@ module tritri_pipeline_w24_general_path (
     wire  [1:0] front_end_segment_high;
     wire  [7:0] front_end_edges_bits;
     wire  base_clock;
-    wire  base_load;
+    wire  base_reset;
+    wire  base_advance;
+    wire  base_load_ahead;
     wire  [31:0] base_id_in;
     wire  [23:0] base_vertices_in_0;
     wire  [23:0] base_vertices_in_1;
@@ -826,6 +833,13 @@ module tritri_pipeline_w24_general_path (
         .d(record_bset_d),
         .q(record_bset_q)
     );
+    tritri_pipeline_w24_valid_line_n9 u_record_load(
+        .clock(record_load_clock),
+        .reset(record_load_reset),
+        .advance(record_load_advance),
+        .d(record_load_d),
+        .q(record_load_q)
+    );
     tritri_pipeline_w24_delay_line_w32_n10 u_record_id(
         .clock(record_id_clock),
         .advance(record_id_advance),
@@ -870,7 +884,9 @@ module tritri_pipeline_w24_general_path (
     );
     tritri_pipeline_w24_base_polygon u_base(
         .clock(base_clock),
-        .load(base_load),
+        .reset(base_reset),
+        .advance(base_advance),
+        .load_ahead(base_load_ahead),
         .id_in(base_id_in),
         .vertices_in_0(base_vertices_in_0),
         .vertices_in_1(base_vertices_in_1),
@@ -1595,6 +1611,7 @@ module tritri_pipeline_w24_general_path (
     // Update code
     assign record_valid_clock = clock;
     assign record_bset_clock = clock;
+    assign record_load_clock = clock;
     assign record_id_clock = clock;
     assign front_end_clock = clock;
     assign base_clock = clock;
@@ -1618,6 +1635,8 @@ module tritri_pipeline_w24_general_path (
     assign record_valid_reset = reset;
     assign record_valid_advance = advance;
     assign record_bset_advance = advance;
+    assign record_load_reset = reset;
+    assign record_load_advance = advance;
     assign record_id_advance = advance;
     assign front_end_advance = advance_copies_7;
     assign pair_valid_to_sides_reset = reset;
@@ -1767,6 +1786,7 @@ module tritri_pipeline_w24_general_path (
     assign sides_to_decision_17_advance = advance_copies_6;
     assign record_valid_d = in_valid;
     assign record_bset_d = in_bset;
+    assign record_load_d = in_valid && in_bset;
     assign record_id_d = in_id;
     assign input_vertices_0_d = in_x0;
     assign input_vertices_1_d = in_y0;
@@ -1786,7 +1806,9 @@ module tritri_pipeline_w24_general_path (
     assign front_end_vertices_in_6 = input_vertices_6_q;
     assign front_end_vertices_in_7 = input_vertices_7_q;
     assign front_end_vertices_in_8 = input_vertices_8_q;
-    assign base_load = advance && record_valid_q && record_bset_q;
+    assign base_reset = reset;
+    assign base_advance = advance;
+    assign base_load_ahead = record_load_q;
     assign base_id_in = record_id_q;
     assign base_degenerate_in = front_end_degenerate;
     assign base_dominant_axis_in = front_end_dominant_axis;
