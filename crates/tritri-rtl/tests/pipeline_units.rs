@@ -17,7 +17,6 @@ use tritri_geom::fixed_point::{
 use tritri_geom::kernel::ExactKernel;
 use tritri_geom::sign::Sign;
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
-use tritri_rtl::arith::subtractor::SUBTRACTOR_LATENCY;
 use tritri_rtl::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
 use tritri_rtl::pipeline::align_t2::{AlignT2, ALIGN_T2_LATENCY};
 use tritri_rtl::pipeline::base_polygon::BasePolygon;
@@ -829,34 +828,42 @@ fn front_end_describes_each_triangle() {
     );
 }
 
-/// The base polygon latches a record on `load` and holds it otherwise.
+/// The base polygon latches a record when `load_ahead` was high at the
+/// enabled edge before, and holds it otherwise.
 #[test]
 fn base_polygon_holds_the_last_loaded_record() {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     let records: Vec<(u32, FixedTriangle)> =
         triangles(13).into_iter().map(|t| (rng.gen(), t)).collect();
-    // (load, offered record, the record held after the clock)
+    let loads: Vec<bool> = (0..records.len())
+        .map(|k| k == 0 || rng.gen_bool(0.2))
+        .collect();
+    // (the next record's load, offered record, the record held after the clock)
     let mut held = records[0];
     let vectors: Vec<(bool, (u32, FixedTriangle), (u32, FixedTriangle))> = records
         .iter()
         .enumerate()
         .map(|(k, r)| {
-            let load = k == 0 || rng.gen_bool(0.2);
-            if load {
+            if loads[k] {
                 held = *r;
             }
-            (load, *r, held)
+            (loads.get(k + 1).copied().unwrap_or(false), *r, held)
         })
         .collect();
     let mut uut = BasePolygon::<24, 25, 49>::default();
     uut.connect_all();
+    // The first record's load, an edge ahead.
+    uut.advance.next = true;
+    uut.load_ahead.next = loads[0];
+    tritri_rtl::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
     assert_stream_matches(
         &mut uut,
         |u| &mut u.clock,
         &vectors,
         1,
-        |u, (load, (id, t), _)| {
-            u.load.next = *load;
+        |u, (load_next, (id, t), _)| {
+            u.advance.next = true;
+            u.load_ahead.next = *load_next;
             u.id_in.next = (*id as u64).into();
             set_vertices(&mut u.vertices_in, t);
             for (k, c) in normal(t).iter().enumerate() {
