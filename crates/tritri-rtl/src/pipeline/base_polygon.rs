@@ -113,7 +113,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
             self.load_copy[g].advance.next = self.advance.val();
             self.load_copy[g].d.next = self.load_ahead.val();
         }
-        // rust-hdl's hdl_gen takes no computed index: one loop per vertex.
+        // rust-hdl's hdl_gen takes no computed index: one block per vertex.
         if self.advance.val() && self.load_copy[0].q.val() {
             for i in 0..3 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
