@@ -306,7 +306,7 @@ macro_rules! collision_system {
                     self.hit_count.next = self.hit_count_chain[i + 1].val();
                 }
                 // Back-pressure: hold everything on the read side while the
-                // pipelines' current output has a pair the FIFO cannot take.
+                // FIFO is full, so no pair the pipelines report is lost.
                 self.any_report.next = self.report_mask.val().any();
                 self.unused_stream_ids[0].next = false;
                 for i in 0..self.pipelines.len() {
@@ -319,7 +319,10 @@ macro_rules! collision_system {
                     self.hold_chain[i + 1].next = self.hold_chain[i].val() $(| self.pipelines[i].$hold.val())?;
                     self.any_hold.next = self.hold_chain[i + 1].val();
                 }
-                self.advance.next = !(self.result_fifo.full.val() & self.any_report.val()) & !self.any_hold.val();
+                // `room` is a register, so without shared units `advance` is
+                // one: it holds a clock whenever the FIFO is full, verdict
+                // to report or not (see `result_fifo`).
+                self.advance.next = self.result_fifo.room.val() & !self.any_hold.val();
 
                 // Host stream → write side of the address generator and memories.
                 clock!(self, clock, address_generator, memory_a, memory_b, result_fifo, pair_serializer);
@@ -424,7 +427,8 @@ macro_rules! collision_system {
                         + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
                             self.hit_count.val(),
                         );
-                } else {
+                } else if !self.address_generator.done.val() {
+                    // Held with work to do: a clock the batch takes longer.
                     self.stall_cycles_q.d.next = self.stall_cycles_q.q.val() + 1;
                 }
                 if self.reset.val() {

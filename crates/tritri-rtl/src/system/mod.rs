@@ -27,10 +27,9 @@
 //!   every pipeline → next group of bases … → release the bank).
 //! * [`result_fifo`] and [`pair_serializer`]: one FIFO word per cycle in
 //!   which some pipeline reported a hit (`P`-bit hit mask, the `P` base ids,
-//!   the streamed id), serialized to one `(id_a, id_b)` per transfer. When
-//!   the FIFO is full and the pipelines' current output holds a hit,
-//!   `advance` goes low: the read side and every pipeline hold, and nothing
-//!   is dropped.
+//!   the streamed id), serialized to one `(id_a, id_b)` per transfer. While
+//!   the FIFO is full, `advance` is low: the read side and every pipeline
+//!   hold, and nothing is dropped.
 //! * [`collision_system`]: the top, generated for a pipeline type by
 //!   [`collision_system!`](crate::collision_system): `CollisionSystem` with
 //!   the real [`TrianglePipeline`](crate::pipeline::triangle_pipeline::TrianglePipeline),
