@@ -146,6 +146,7 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_0_normal_2;
     wire  [7:0] threshold_0_edges_bits;
     wire  [73:0] threshold_0_threshold;
+    wire  [73:0] threshold_0_threshold_inverse;
     wire  threshold_1_clock;
     wire  threshold_1_advance;
     wire  [24:0] threshold_1_offset_magnitude_0;
@@ -156,6 +157,7 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_1_normal_2;
     wire  [7:0] threshold_1_edges_bits;
     wire  [73:0] threshold_1_threshold;
+    wire  [73:0] threshold_1_threshold_inverse;
     wire  threshold_2_clock;
     wire  threshold_2_advance;
     wire  [24:0] threshold_2_offset_magnitude_0;
@@ -166,10 +168,12 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_2_normal_2;
     wire  [7:0] threshold_2_edges_bits;
     wire  [73:0] threshold_2_threshold;
+    wire  [73:0] threshold_2_threshold_inverse;
     wire  sign_0_clock;
     wire  sign_0_advance;
     wire  [73:0] sign_0_value;
     wire  [73:0] sign_0_threshold;
+    wire  [73:0] sign_0_threshold_inverse;
     wire  sign_0_negative;
     wire  sign_0_zero;
     wire  sign_0_certain;
@@ -177,6 +181,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_1_advance;
     wire  [73:0] sign_1_value;
     wire  [73:0] sign_1_threshold;
+    wire  [73:0] sign_1_threshold_inverse;
     wire  sign_1_negative;
     wire  sign_1_zero;
     wire  sign_1_certain;
@@ -184,6 +189,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_2_advance;
     wire  [73:0] sign_2_value;
     wire  [73:0] sign_2_threshold;
+    wire  [73:0] sign_2_threshold_inverse;
     wire  sign_2_negative;
     wire  sign_2_zero;
     wire  sign_2_certain;
@@ -304,7 +310,8 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_0_normal_1),
         .normal_2(threshold_0_normal_2),
         .edges_bits(threshold_0_edges_bits),
-        .threshold(threshold_0_threshold)
+        .threshold(threshold_0_threshold),
+        .threshold_inverse(threshold_0_threshold_inverse)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_1(
         .clock(threshold_1_clock),
@@ -316,7 +323,8 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_1_normal_1),
         .normal_2(threshold_1_normal_2),
         .edges_bits(threshold_1_edges_bits),
-        .threshold(threshold_1_threshold)
+        .threshold(threshold_1_threshold),
+        .threshold_inverse(threshold_1_threshold_inverse)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_2(
         .clock(threshold_2_clock),
@@ -328,13 +336,15 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_2_normal_1),
         .normal_2(threshold_2_normal_2),
         .edges_bits(threshold_2_edges_bits),
-        .threshold(threshold_2_threshold)
+        .threshold(threshold_2_threshold),
+        .threshold_inverse(threshold_2_threshold_inverse)
     );
     tritri_pipeline_w24_certain_sign u_sign_0(
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
         .threshold(sign_0_threshold),
+        .threshold_inverse(sign_0_threshold_inverse),
         .negative(sign_0_negative),
         .zero(sign_0_zero),
         .certain(sign_0_certain)
@@ -344,6 +354,7 @@ module tritri_pipeline_w24_plane_side (
         .advance(sign_1_advance),
         .value(sign_1_value),
         .threshold(sign_1_threshold),
+        .threshold_inverse(sign_1_threshold_inverse),
         .negative(sign_1_negative),
         .zero(sign_1_zero),
         .certain(sign_1_certain)
@@ -353,6 +364,7 @@ module tritri_pipeline_w24_plane_side (
         .advance(sign_2_advance),
         .value(sign_2_value),
         .threshold(sign_2_threshold),
+        .threshold_inverse(sign_2_threshold_inverse),
         .negative(sign_2_negative),
         .zero(sign_2_zero),
         .certain(sign_2_certain)
@@ -459,8 +471,11 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_1_normal_2 = normal_delay_2_q;
     assign threshold_2_normal_2 = normal_delay_2_q;
     assign sign_0_threshold = threshold_0_threshold;
+    assign sign_0_threshold_inverse = threshold_0_threshold_inverse;
     assign sign_1_threshold = threshold_1_threshold;
+    assign sign_1_threshold_inverse = threshold_1_threshold_inverse;
     assign sign_2_threshold = threshold_2_threshold;
+    assign sign_2_threshold_inverse = threshold_2_threshold_inverse;
     assign negative_0 = sign_0_negative;
     assign zero_0 = sign_0_zero;
     assign certain_0 = sign_0_certain;
