@@ -16,7 +16,7 @@
 //! | `out_id_a`, `out_id_b` | out | one reported pair per transfer: a hit, or a verdict without a certificate |
 //! | `out_hit`, `out_certain` | out | its verdict on the grid, and whether that is provably the verdict before quantization |
 //! | `done` | out | every committed batch is tested and its hits are in the FIFO |
-//! | `results_empty` | out | the result FIFO holds nothing |
+//! | `results_empty` | out | no pair waits: the result FIFO and the serializer hold nothing |
 //! | `overflow` | out | sticky: an array of a batch exceeded the memory depth |
 //! | `pairs_tested`, `hits`, `stall_cycles` | out | 32-bit counters |
 //!
@@ -416,7 +416,7 @@ macro_rules! collision_system {
 
                 // Status and counters.
                 self.done.next = self.address_generator.done.val();
-                self.results_empty.next = self.result_fifo.empty.val();
+                self.results_empty.next = self.result_fifo.empty.val() & !self.pair_serializer.holding.val();
                 self.overflow.next = self.address_generator.overflow.val();
                 if self.advance.val() {
                     self.pairs_tested_q.d.next = self.pairs_tested_q.q.val()

@@ -97,7 +97,7 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
         ("out_hit", "the pair intersects on the grid (touching counts)".into()),
         ("out_certain", "the verdict is provably the verdict before quantization; with 0 the host decides the pair again on its own coordinates (docs/certificates.md)".into()),
         ("done", "every committed batch is tested and its hits are in the result FIFO (busy = !done)".into()),
-        ("results_empty", "the result FIFO is empty".into()),
+        ("results_empty", "no pair waits: the result FIFO and the pair serializer hold nothing".into()),
         ("overflow", "sticky: an array of a batch exceeded DEPTH (the excess was not stored)".into()),
         ("pairs_tested", "counter: pairs tested since reset (wraps at 2^32)".into()),
         ("hits", "counter: intersecting pairs found since reset".into()),
