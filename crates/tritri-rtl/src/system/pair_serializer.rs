@@ -44,8 +44,6 @@ pub struct PairSerializer {
     word_stream_id: DFF<Bits<ID_BITS>>,
     word_base_ids: Vec<DFF<Bits<ID_BITS>>>,
     served: DFF<Bits<MAX_PIPELINES>>,
-    last: Signal<Local, Bit>,
-    load: Signal<Local, Bit>,
     pending: Signal<Local, Bits<MAX_PIPELINES>>,
     remaining: Signal<Local, Bits<MAX_PIPELINES>>,
     selected: Signal<Local, Bits<LANE_BITS>>,
@@ -95,8 +93,6 @@ impl PairSerializer {
             word_stream_id: Default::default(),
             word_base_ids: (0..pipelines).map(|_| Default::default()).collect(),
             served: Default::default(),
-            last: Default::default(),
-            load: Default::default(),
             pending: Default::default(),
             remaining: Default::default(),
             selected: Default::default(),
@@ -147,18 +143,21 @@ impl Logic for PairSerializer {
         self.out_valid.next = self.word_valid.q.val();
         self.holding.next = self.word_valid.q.val();
         self.transfer.next = self.word_valid.q.val() & self.out_ready.val();
-        self.last.next = self.transfer.val() & (self.remaining.val() == 0);
-        // The next word comes in as the last pair of this one goes out.
-        self.load.next = self.head_valid.val() & (!self.word_valid.q.val() | self.last.val());
-        self.pop.next = self.load.val();
+        // Written out here, not as locals assigned outside the block that
+        // computes `remaining`: Verilator's lint calls that circular.
         if self.transfer.val() {
             self.served.d.next = self.word_mask.q.val() & !self.remaining.val();
+            if self.remaining.val() == 0 {
+                self.word_valid.d.next = false;
+                self.served.d.next = 0.into();
+            }
         }
-        if self.last.val() {
-            self.word_valid.d.next = false;
-            self.served.d.next = 0.into();
-        }
-        if self.load.val() {
+        // The next word comes in as the last pair of this one goes out.
+        self.pop.next = false;
+        if self.head_valid.val()
+            & (!self.word_valid.q.val() | (self.transfer.val() & (self.remaining.val() == 0)))
+        {
+            self.pop.next = true;
             self.word_valid.d.next = true;
             self.served.d.next = 0.into();
             self.word_mask.d.next = self.head_mask.val();
