@@ -35,8 +35,9 @@ pub struct PairSerializer {
     pub out_id_b: Signal<Out, Bits<ID_BITS>>,
     pub out_hit: Signal<Out, Bit>,
     pub out_certain: Signal<Out, Bit>,
-    /// A word is held (`holding`), and the word.
+    /// A word is held, its pairs not all sent (the system's `results_empty`).
     pub holding: Signal<Out, Bit>,
+    /// The held word: its valid bit, masks and ids, loaded from the head.
     word_valid: DFF<Bit>,
     word_mask: DFF<Bits<MAX_PIPELINES>>,
     word_hit_mask: DFF<Bits<MAX_PIPELINES>>,
