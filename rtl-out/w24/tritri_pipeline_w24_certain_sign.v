@@ -22,33 +22,69 @@ module tritri_pipeline_w24_certain_sign (
     input  wire        advance,
     input  wire [73:0] value,
     input  wire [73:0] threshold,
-    input  wire [73:0] threshold_inverse,
-    output reg         negative,
-    output reg         zero,
-    output reg         certain
+    output wire        negative,
+    output wire        zero,
+    output wire        certain
 );
 
-    // Update code (custom)
-    // The sign of P and its certificate |P| >= T (tritri_geom::certificate::clears_threshold):
-    // P >= T is the carry of P + ~T + 1, P <= ~T no carry of P + T.
-    wire above_carry;
-    wire below_carry;
-    wire [73:0] above_unused_sum;
-    wire [73:0] below_unused_sum;
-    assign {above_carry, above_unused_sum} = {1'b0, value} + {1'b0, threshold_inverse} + {74'd0, 1'b1};
-    assign {below_carry, below_unused_sum} = {1'b0, value} + {1'b0, threshold};
-    initial begin
-        negative = 1'b0;
-        zero = 1'b0;
-        certain = 1'b0;
-    end
-    always @(posedge clock) begin
+    // Constant declarations
+    // Stub signals
+    reg  negative_d;
+    wire  negative_q;
+    wire  negative_clock;
+    reg  zero_d;
+    wire  zero_q;
+    wire  zero_clock;
+    reg  certain_d;
+    wire  certain_q;
+    wire  certain_clock;
+
+    // Local signals
+    wire  above;
+    wire  below;
+
+    // Sub module instances
+    tritri_pipeline_w24_dff_1 u_negative_q(
+        .d(negative_d),
+        .q(negative_q),
+        .clock(negative_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_zero_q(
+        .d(zero_d),
+        .q(zero_q),
+        .clock(zero_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_certain_q(
+        .d(certain_d),
+        .q(certain_q),
+        .clock(certain_clock)
+    );
+
+    // Update code
+    assign negative_clock = clock;
+    assign zero_clock = clock;
+    assign certain_clock = clock;
+    assign above = value >= threshold;
+    assign below = value <= ~threshold;
+    assign negative = negative_q;
+    assign zero = zero_q;
+    assign certain = certain_q;
+    always @(*) begin
+        negative_d = negative_q;
+        zero_d = zero_q;
+        certain_d = certain_q;
         if (advance) begin
-            negative <= value[73];
-            zero <= ~|value;
-            certain <= value[73] ? ~below_carry : above_carry;
+            negative_d = value[73];
+            zero_d = ~|value;
+            if (value[73]) begin
+                certain_d = below;
+            end
+            else begin
+                certain_d = above;
+            end
         end
     end
+
 endmodule  // tritri_pipeline_w24_certain_sign
 
 `default_nettype wire

@@ -30,8 +30,7 @@ module tritri_pipeline_w24_certificate_threshold (
     input  wire [48:0] normal_1,
     input  wire [48:0] normal_2,
     input  wire [7:0]  edges_bits,
-    output reg  [73:0] threshold,
-    output reg  [73:0] threshold_inverse
+    output reg  [73:0] threshold
 );
 
     // Update code (custom)
@@ -78,7 +77,6 @@ module tritri_pipeline_w24_certificate_threshold (
         y_q = 55'd0;
         partial_q = 55'd0;
         threshold = 74'd0;
-        threshold_inverse = ~74'd0;
     end
     always @(posedge clock) begin
         if (advance) begin
@@ -97,7 +95,6 @@ module tritri_pipeline_w24_certificate_threshold (
             y_q <= y_one | (y_one >> 19);
             partial_q <= {4'd0, normal_part_q} + {24'd0, small_part_q2};
             threshold <= {19'd0, partial_q + y_q};
-            threshold_inverse <= ~{19'd0, partial_q + y_q};
         end
     end
 endmodule  // tritri_pipeline_w24_certificate_threshold

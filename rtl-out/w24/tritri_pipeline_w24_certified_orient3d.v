@@ -135,12 +135,10 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [48:0] threshold_normal_2;
     wire  [7:0] threshold_edges_bits;
     wire  [73:0] threshold_threshold;
-    wire  [73:0] threshold_threshold_inverse;
     wire  sign_clock;
     wire  sign_advance;
     wire  [73:0] sign_value;
     wire  [73:0] sign_threshold;
-    wire  [73:0] sign_threshold_inverse;
     wire  sign_negative;
     wire  sign_zero;
     wire  sign_certain;
@@ -261,15 +259,13 @@ module tritri_pipeline_w24_certified_orient3d (
         .normal_1(threshold_normal_1),
         .normal_2(threshold_normal_2),
         .edges_bits(threshold_edges_bits),
-        .threshold(threshold_threshold),
-        .threshold_inverse(threshold_threshold_inverse)
+        .threshold(threshold_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign(
         .clock(sign_clock),
         .advance(sign_advance),
         .value(sign_value),
         .threshold(sign_threshold),
-        .threshold_inverse(sign_threshold_inverse),
         .negative(sign_negative),
         .zero(sign_zero),
         .certain(sign_certain)
@@ -352,7 +348,6 @@ module tritri_pipeline_w24_certified_orient3d (
     assign sign_value = determinant_product;
     assign value = determinant_product;
     assign sign_threshold = threshold_threshold;
-    assign sign_threshold_inverse = threshold_threshold_inverse;
     assign negative = sign_negative;
     assign zero = sign_zero;
     assign certain = sign_certain;

@@ -146,7 +146,6 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_0_normal_2;
     wire  [7:0] threshold_0_edges_bits;
     wire  [73:0] threshold_0_threshold;
-    wire  [73:0] threshold_0_threshold_inverse;
     wire  threshold_1_clock;
     wire  threshold_1_advance;
     wire  [24:0] threshold_1_offset_magnitude_0;
@@ -157,7 +156,6 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_1_normal_2;
     wire  [7:0] threshold_1_edges_bits;
     wire  [73:0] threshold_1_threshold;
-    wire  [73:0] threshold_1_threshold_inverse;
     wire  threshold_2_clock;
     wire  threshold_2_advance;
     wire  [24:0] threshold_2_offset_magnitude_0;
@@ -168,12 +166,10 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] threshold_2_normal_2;
     wire  [7:0] threshold_2_edges_bits;
     wire  [73:0] threshold_2_threshold;
-    wire  [73:0] threshold_2_threshold_inverse;
     wire  sign_0_clock;
     wire  sign_0_advance;
     wire  [73:0] sign_0_value;
     wire  [73:0] sign_0_threshold;
-    wire  [73:0] sign_0_threshold_inverse;
     wire  sign_0_negative;
     wire  sign_0_zero;
     wire  sign_0_certain;
@@ -181,7 +177,6 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_1_advance;
     wire  [73:0] sign_1_value;
     wire  [73:0] sign_1_threshold;
-    wire  [73:0] sign_1_threshold_inverse;
     wire  sign_1_negative;
     wire  sign_1_zero;
     wire  sign_1_certain;
@@ -189,7 +184,6 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_2_advance;
     wire  [73:0] sign_2_value;
     wire  [73:0] sign_2_threshold;
-    wire  [73:0] sign_2_threshold_inverse;
     wire  sign_2_negative;
     wire  sign_2_zero;
     wire  sign_2_certain;
@@ -310,8 +304,7 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_0_normal_1),
         .normal_2(threshold_0_normal_2),
         .edges_bits(threshold_0_edges_bits),
-        .threshold(threshold_0_threshold),
-        .threshold_inverse(threshold_0_threshold_inverse)
+        .threshold(threshold_0_threshold)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_1(
         .clock(threshold_1_clock),
@@ -323,8 +316,7 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_1_normal_1),
         .normal_2(threshold_1_normal_2),
         .edges_bits(threshold_1_edges_bits),
-        .threshold(threshold_1_threshold),
-        .threshold_inverse(threshold_1_threshold_inverse)
+        .threshold(threshold_1_threshold)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_2(
         .clock(threshold_2_clock),
@@ -336,15 +328,13 @@ module tritri_pipeline_w24_plane_side (
         .normal_1(threshold_2_normal_1),
         .normal_2(threshold_2_normal_2),
         .edges_bits(threshold_2_edges_bits),
-        .threshold(threshold_2_threshold),
-        .threshold_inverse(threshold_2_threshold_inverse)
+        .threshold(threshold_2_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign_0(
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
         .threshold(sign_0_threshold),
-        .threshold_inverse(sign_0_threshold_inverse),
         .negative(sign_0_negative),
         .zero(sign_0_zero),
         .certain(sign_0_certain)
@@ -354,7 +344,6 @@ module tritri_pipeline_w24_plane_side (
         .advance(sign_1_advance),
         .value(sign_1_value),
         .threshold(sign_1_threshold),
-        .threshold_inverse(sign_1_threshold_inverse),
         .negative(sign_1_negative),
         .zero(sign_1_zero),
         .certain(sign_1_certain)
@@ -364,7 +353,6 @@ module tritri_pipeline_w24_plane_side (
         .advance(sign_2_advance),
         .value(sign_2_value),
         .threshold(sign_2_threshold),
-        .threshold_inverse(sign_2_threshold_inverse),
         .negative(sign_2_negative),
         .zero(sign_2_zero),
         .certain(sign_2_certain)
@@ -471,11 +459,8 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_1_normal_2 = normal_delay_2_q;
     assign threshold_2_normal_2 = normal_delay_2_q;
     assign sign_0_threshold = threshold_0_threshold;
-    assign sign_0_threshold_inverse = threshold_0_threshold_inverse;
     assign sign_1_threshold = threshold_1_threshold;
-    assign sign_1_threshold_inverse = threshold_1_threshold_inverse;
     assign sign_2_threshold = threshold_2_threshold;
-    assign sign_2_threshold_inverse = threshold_2_threshold_inverse;
     assign negative_0 = sign_0_negative;
     assign zero_0 = sign_0_zero;
     assign certain_0 = sign_0_certain;

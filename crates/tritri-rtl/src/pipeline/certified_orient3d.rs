@@ -161,7 +161,6 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.sign.value.next = self.determinant.product.val();
         self.value.next = self.determinant.product.val();
         self.sign.threshold.next = self.threshold.threshold.val();
-        self.sign.threshold_inverse.next = self.threshold.threshold_inverse.val();
         self.negative.next = self.sign.negative.val();
         self.zero.next = self.sign.zero.val();
         self.certain.next = self.sign.certain.val();

@@ -159,11 +159,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.threshold_2.normal[k].next = self.normal_delay[k].q.val();
         }
         self.sign[0].threshold.next = self.threshold_0.threshold.val();
-        self.sign[0].threshold_inverse.next = self.threshold_0.threshold_inverse.val();
         self.sign[1].threshold.next = self.threshold_1.threshold.val();
-        self.sign[1].threshold_inverse.next = self.threshold_1.threshold_inverse.val();
         self.sign[2].threshold.next = self.threshold_2.threshold.val();
-        self.sign[2].threshold_inverse.next = self.threshold_2.threshold_inverse.val();
         for v in 0..3 {
             self.negative[v].next = self.sign[v].negative.val();
             self.zero[v].next = self.sign[v].zero.val();
