@@ -273,3 +273,69 @@ impl Logic for ResultFifo {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim_drive::clock_cycle;
+    use rand::Rng;
+    use rand_chacha::rand_core::SeedableRng;
+    use std::collections::VecDeque;
+
+    /// Random writes and pops against a queue: `room` is high exactly when
+    /// fewer than `depth` words are stored (so a write it allows is never
+    /// lost), `empty` when none is, and the head shows the oldest word.
+    #[test]
+    fn room_and_head_follow_a_queue() {
+        let depth = 3;
+        let mut fifo = ResultFifo::new(2, depth);
+        fifo.connect_all();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(14);
+        let mut queue: VecDeque<(u64, u64, u64)> = VecDeque::new();
+        fifo.reset.next = true;
+        clock_cycle(&mut fifo, |f| &mut f.clock);
+        fifo.reset.next = false;
+        let (mut writes, mut pops, mut full_clocks) = (0, 0, 0);
+        for clock in 0..4000 {
+            assert_eq!(fifo.room.val(), queue.len() < depth, "clock {clock}");
+            assert_eq!(fifo.empty.val(), queue.is_empty(), "clock {clock}");
+            full_clocks += usize::from(queue.len() == depth);
+            let (room, head_valid) = (fifo.room.val(), fifo.head_valid.val());
+            if head_valid {
+                let shown = (
+                    fifo.head_mask.val().to_u64(),
+                    fifo.head_stream_id.val().to_u64(),
+                    fifo.head_base_ids[1].val().to_u64(),
+                );
+                assert_eq!(Some(&shown), queue.front(), "clock {clock}");
+            }
+            // Bursts of writes, then of pops, so that it fills and drains.
+            let write_bias = if (clock / 50) % 2 == 0 { 0.8 } else { 0.2 };
+            let write = rng.gen_bool(write_bias);
+            let pop = rng.gen_bool(1.0 - write_bias);
+            let word = (
+                rng.gen_range(1..4u64),
+                rng.gen::<u32>() as u64,
+                rng.gen::<u32>() as u64,
+            );
+            fifo.write.next = write;
+            fifo.write_mask.next = word.0.into();
+            fifo.write_stream_id.next = word.1.into();
+            fifo.write_base_ids[1].next = word.2.into();
+            fifo.pop.next = pop;
+            clock_cycle(&mut fifo, |f| &mut f.clock);
+            if pop && head_valid {
+                queue.pop_front();
+                pops += 1;
+            }
+            if write && room {
+                queue.push_back(word);
+                writes += 1;
+            }
+        }
+        assert!(
+            writes > 500 && pops > 500 && full_clocks > 100,
+            "{writes} {pops} {full_clocks}"
+        );
+    }
+}
