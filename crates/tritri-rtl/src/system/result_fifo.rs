@@ -172,12 +172,15 @@ impl Logic for ResultFifo {
             self.next_read_pointer.next = self.read_pointer_next.q.val();
         }
         self.read_pointer.d.next = self.next_read_pointer.val();
-        // The successor of the pointer the next cycle starts with (right
-        // from the first edge on, when no pop can have happened).
-        if self.next_read_pointer.val() == self.last_address.val() {
-            self.read_pointer_next.d.next = 0.into();
-        } else {
-            self.read_pointer_next.d.next = self.next_read_pointer.val() + 1;
+        // The successor of the pointer the next cycle starts with: the same
+        // without a pop; with one, the successor's successor, computed from
+        // the register beside the pop rather than after it.
+        if self.do_pop.val() {
+            if self.read_pointer_next.q.val() == self.last_address.val() {
+                self.read_pointer_next.d.next = 0.into();
+            } else {
+                self.read_pointer_next.d.next = self.read_pointer_next.q.val() + 1;
+            }
         }
         if self.do_write.val() {
             if self.write_pointer.q.val() == self.last_address.val() {
