@@ -105,7 +105,7 @@ impl ResultFifo {
     /// `depth` words of `pipelines` lanes each.
     pub fn new(pipelines: usize, depth: usize) -> Self {
         assert!((1..=MAX_PIPELINES).contains(&pipelines));
-        assert!(depth >= 2 && depth < 1 << (FIFO_POINTER_BITS - 1));
+        assert!((2..1 << (FIFO_POINTER_BITS - 1)).contains(&depth));
         ResultFifo {
             clock: Default::default(),
             reset: Default::default(),
