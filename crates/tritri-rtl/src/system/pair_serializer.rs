@@ -56,7 +56,11 @@ pub struct PairSerializer {
     one_left: DFF<Bit>,
     /// The `P` lanes' bits.
     lanes: Constant<Bits<MAX_PIPELINES>>,
-    /// Of a mask: some lane set so far, more than one (the loops below).
+    /// The head word moves in (and is popped) this clock.
+    load: Signal<Local, Bit>,
+    /// The pairs pending next clock, and of those: some lane set so far,
+    /// more than one (the loop below).
+    next_pending: Signal<Local, Bits<MAX_PIPELINES>>,
     seen_one: Signal<Local, Bit>,
     seen_two: Signal<Local, Bit>,
     pending: Signal<Local, Bits<MAX_PIPELINES>>,
@@ -111,6 +115,8 @@ impl PairSerializer {
             served: Default::default(),
             one_left: Default::default(),
             lanes: Constant::new(((1u64 << pipelines) - 1).to_bits()),
+            load: Default::default(),
+            next_pending: Default::default(),
             seen_one: Default::default(),
             seen_two: Default::default(),
             pending: Default::default(),
@@ -164,49 +170,43 @@ impl Logic for PairSerializer {
         self.out_valid.next = self.word_valid.q.val();
         self.holding.next = self.word_valid.q.val();
         self.transfer.next = self.word_valid.q.val() & self.out_ready.val();
-        // Written out here, not as locals assigned outside the block that
-        // computes `remaining`: Verilator's lint calls that circular.
-        // Does one pair remain after this transfer?
+        // The next word comes in as the last pair of this one goes out.
+        self.load.next = self.head_valid.val()
+            & (!self.word_valid.q.val() | (self.transfer.val() & self.one_left.q.val()));
+        self.pop.next = self.load.val();
+        // The pairs pending next clock: the loaded word's, or what remains.
+        self.next_pending.next = self.remaining.val();
+        if self.load.val() {
+            self.next_pending.next = self.head_mask.val() & self.lanes.val();
+        }
         self.seen_one.next = false;
         self.seen_two.next = false;
         for i in 0..self.word_base_ids.len() {
-            if self.remaining.val().get_bit(i) {
+            if self.next_pending.val().get_bit(i) {
                 self.seen_two.next = self.seen_one.val();
                 self.seen_one.next = true;
             }
         }
         if self.transfer.val() {
             self.served.d.next = self.word_mask.q.val() & !self.remaining.val();
-            self.one_left.d.next = self.seen_one.val() & !self.seen_two.val();
             if self.one_left.q.val() {
                 self.word_valid.d.next = false;
                 self.served.d.next = 0.into();
             }
         }
-        // The next word comes in as the last pair of this one goes out.
-        self.pop.next = false;
-        if self.head_valid.val()
-            & (!self.word_valid.q.val() | (self.transfer.val() & self.one_left.q.val()))
-        {
-            self.pop.next = true;
+        if self.transfer.val() | self.load.val() {
+            self.one_left.d.next = self.seen_one.val() & !self.seen_two.val();
+        }
+        if self.load.val() {
             self.word_valid.d.next = true;
             self.served.d.next = 0.into();
-            self.word_mask.d.next = self.head_mask.val() & self.lanes.val();
+            self.word_mask.d.next = self.next_pending.val();
             self.word_hit_mask.d.next = self.head_hit_mask.val() & self.lanes.val();
             self.word_certain_mask.d.next = self.head_certain_mask.val() & self.lanes.val();
             self.word_stream_id.d.next = self.head_stream_id.val();
             for i in 0..self.word_base_ids.len() {
                 self.word_base_ids[i].d.next = self.head_base_ids[i].val();
             }
-            self.seen_one.next = false;
-            self.seen_two.next = false;
-            for i in 0..self.word_base_ids.len() {
-                if self.head_mask.val().get_bit(i) {
-                    self.seen_two.next = self.seen_one.val();
-                    self.seen_one.next = true;
-                }
-            }
-            self.one_left.d.next = self.seen_one.val() & !self.seen_two.val();
         }
         if self.reset.val() {
             self.word_valid.d.next = false;
