@@ -29,17 +29,18 @@
 //! One memory read per cycle in LoadBases and StreamB, so a batch of `N1`
 //! A-triangles and `N2` B-triangles issues `N1 + ceil(N1 / P) · N2` reads
 //! after one Idle cycle (the thesis's `N1 + N1 · N2` for `P = 1`). The
-//! memories answer one cycle later; `bset` and `lane_valid` are registered
-//! so that they arrive with the data. `done` is high when no bank is full,
-//! the read side is idle and the last streamed pair has left the pipelines
-//! (`L + 1` advancing cycles after its read).
+//! memories answer [`MEMORY_READ_LATENCY`] cycles later; `bset` and
+//! `lane_valid` pass through as many registers, so that they arrive with
+//! the data. `done` is high when no bank is full, the read side is idle and
+//! the last streamed pair has left the pipelines (`L` plus the read latency
+//! in advancing cycles after its read).
 //!
 //! The read side counts down what is left of each array (`a_left`,
 //! `b_left`) beside the address pointers, so that its end tests compare a
 //! register with a constant: testing `pointer + 1 == end` put an adder
 //! and a 16-bit comparison before the next state, 110 MHz on ECP5.
 
-use super::{ADDRESS_BITS, LANE_BITS, MAX_TRIANGLES_PER_BANK};
+use super::{ADDRESS_BITS, LANE_BITS, MAX_TRIANGLES_PER_BANK, MEMORY_READ_LATENCY};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
@@ -51,7 +52,7 @@ pub enum ReadState {
     StreamB,
 }
 
-/// Width of the in-flight countdown (pipeline latency + 1 < 256).
+/// Width of the in-flight countdown (pipeline latency + read latency < 256).
 pub const FLIGHT_BITS: usize = 8;
 
 #[derive(LogicBlock)]
@@ -112,7 +113,11 @@ pub struct AddressGenerator {
     b_left: DFF<Bits<ADDRESS_BITS>>,
     lane: DFF<Bits<LANE_BITS>>,
     lane_active: Vec<DFF<Bit>>,
+    /// `lane_valid` and `bset` aligned with the block RAMs' read data, then
+    /// with the memories' output registers (the ports).
+    lane_valid_read: Vec<DFF<Bit>>,
     lane_valid_q: Vec<DFF<Bit>>,
+    bset_read: DFF<Bit>,
     bset_q: DFF<Bit>,
     flight: DFF<Bits<FLIGHT_BITS>>,
     // Combinational.
@@ -154,7 +159,9 @@ impl crate::unit::Unit for AddressGenerator {
             b_left,
             lane,
             lane_active,
+            lane_valid_read,
             lane_valid_q,
+            bset_read,
             bset_q,
             flight
         );
@@ -167,7 +174,7 @@ impl AddressGenerator {
     pub fn new(pipelines: usize, triangles_per_bank: usize, pipeline_latency: usize) -> Self {
         assert!(pipelines >= 1 && pipelines <= 1 << LANE_BITS);
         assert!((1..=MAX_TRIANGLES_PER_BANK).contains(&triangles_per_bank));
-        assert!(pipeline_latency + 1 < 1 << FLIGHT_BITS);
+        assert!(pipeline_latency + MEMORY_READ_LATENCY < 1 << FLIGHT_BITS);
         AddressGenerator {
             clock: Default::default(),
             reset: Default::default(),
@@ -188,7 +195,9 @@ impl AddressGenerator {
             overflow: Default::default(),
             bank_size: Constant::new((triangles_per_bank as u64).to_bits()),
             last_lane: Constant::new(((pipelines - 1) as u64).to_bits()),
-            flight_cycles: Constant::new(((pipeline_latency + 1) as u64).to_bits()),
+            flight_cycles: Constant::new(
+                ((pipeline_latency + MEMORY_READ_LATENCY) as u64).to_bits(),
+            ),
             write_bank: Default::default(),
             a_write_pointer: Default::default(),
             b_write_pointer: Default::default(),
@@ -208,7 +217,9 @@ impl AddressGenerator {
             b_left: Default::default(),
             lane: Default::default(),
             lane_active: (0..pipelines).map(|_| Default::default()).collect(),
+            lane_valid_read: (0..pipelines).map(|_| Default::default()).collect(),
             lane_valid_q: (0..pipelines).map(|_| Default::default()).collect(),
+            bset_read: Default::default(),
             bset_q: Default::default(),
             flight: Default::default(),
             transfer: Default::default(),
@@ -247,6 +258,7 @@ impl Logic for AddressGenerator {
             b_count,
             b_left,
             lane,
+            bset_read,
             bset_q,
             flight
         );
@@ -263,6 +275,8 @@ impl Logic for AddressGenerator {
         for i in 0..self.lane_valid.len() {
             self.lane_active[i].clock.next = self.clock.val();
             self.lane_active[i].d.next = self.lane_active[i].q.val();
+            self.lane_valid_read[i].clock.next = self.clock.val();
+            self.lane_valid_read[i].d.next = self.lane_valid_read[i].q.val();
             self.lane_valid_q[i].clock.next = self.clock.val();
             self.lane_valid_q[i].d.next = self.lane_valid_q[i].q.val();
             self.lane_valid[i].next = self.lane_valid_q[i].q.val();
@@ -384,16 +398,20 @@ impl Logic for AddressGenerator {
                     }
                 }
             }
-            // Registered with the memories' read data.
-            self.bset_q.d.next = self.load_issue.val();
+            // Registered with the block RAMs' read data, then with the
+            // memories' output registers.
+            self.bset_read.d.next = self.load_issue.val();
+            self.bset_q.d.next = self.bset_read.q.val();
             for i in 0..self.lane_valid.len() {
-                self.lane_valid_q[i].d.next = self.stream_issue.val() & self.lane_active[i].q.val();
+                self.lane_valid_q[i].d.next = self.lane_valid_read[i].q.val();
+                self.lane_valid_read[i].d.next =
+                    self.stream_issue.val() & self.lane_active[i].q.val();
                 if self.load_issue.val() {
                     if self.lane.q.val().index() == i {
-                        self.lane_valid_q[i].d.next = true;
+                        self.lane_valid_read[i].d.next = true;
                         self.lane_active[i].d.next = true;
                     } else {
-                        self.lane_valid_q[i].d.next = false;
+                        self.lane_valid_read[i].d.next = false;
                         if self.lane.q.val() == 0 {
                             self.lane_active[i].d.next = false;
                         }
@@ -401,7 +419,7 @@ impl Logic for AddressGenerator {
                 }
             }
             // Pairs in flight: the last streamed read leaves the pipelines
-            // L + 1 advancing cycles later.
+            // L + MEMORY_READ_LATENCY advancing cycles later.
             if self.stream_issue.val() {
                 self.flight.d.next = self.flight_cycles.val();
             } else if self.flight.q.val() != 0 {
@@ -434,6 +452,7 @@ impl Logic for AddressGenerator {
             self.read_state.d.next = ReadState::Idle;
             self.read_bank.d.next = false;
             self.lane.d.next = 0.into();
+            self.bset_read.d.next = false;
             self.bset_q.d.next = false;
             self.flight.d.next = 0.into();
             for k in 0..2 {
@@ -441,6 +460,7 @@ impl Logic for AddressGenerator {
             }
             for i in 0..self.lane_valid.len() {
                 self.lane_active[i].d.next = false;
+                self.lane_valid_read[i].d.next = false;
                 self.lane_valid_q[i].d.next = false;
             }
         }

@@ -61,6 +61,10 @@ pub const ADDRESS_BITS: usize = 16;
 /// The most triangles a bank holds per object: an array's end pointer,
 /// `ADDRESS_BITS - 1` bits within its bank, must hold the count itself.
 pub const MAX_TRIANGLES_PER_BANK: usize = (1 << (ADDRESS_BITS - 1)) - 1;
+/// Clocks from a memory read address to its triangle on the pipelines'
+/// bus: the block RAM's registered read, then an output register in fabric
+/// ([`triangle_memory`]).
+pub const MEMORY_READ_LATENCY: usize = 2;
 /// Width of the result FIFO's pointers and fill count.
 pub const FIFO_POINTER_BITS: usize = 16;
 /// Width of the triangle ids carried through memories and pipelines (the

@@ -11,7 +11,7 @@
 //! ```
 
 use super::system_for_width::{system_for_config, PipelineKind, UnsupportedWidth};
-use super::SystemConfig;
+use super::{SystemConfig, MEMORY_READ_LATENCY};
 use crate::emit::dsp_mapping::MultiplierMapping;
 use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 
@@ -40,11 +40,11 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
          on the result stream as (id_a, id_b). When the result FIFO is full the pipelines stall; no \
          result is dropped.",
     )
-    .detail(
+    .detail(&format!(
         "Cycles of one batch of N1 A- and N2 B-triangles, from its first word to done: \
-         (N1 + N2 + 1) + 1 + N1 + ceil(N1 / P) * N2 + 1 + L, plus stall cycles \
-         (tritri_rtl::system::cycle_model).",
-    )
+         (N1 + N2 + 1) + 1 + N1 + ceil(N1 / P) * N2 + {MEMORY_READ_LATENCY} + L ({MEMORY_READ_LATENCY}: the \
+         memories' read latency), plus stall cycles (tritri_rtl::system::cycle_model).",
+    ))
     .detail(if kind == PipelineKind::Shared {
         "Each pipeline tests its rare pairs (coplanar, or two degenerate triangles) on one shared unit \
          with six multipliers; while a rare pair waits for its pipeline's unit, every pipeline and the read \
