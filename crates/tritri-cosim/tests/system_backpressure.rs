@@ -1,8 +1,9 @@
-//! Back-pressure: a result FIFO of two words and a reader that takes one
-//! pair in seven cycles. Property: no result is lost (pairs == all pairs
-//! under the stub verdict, 0 missing, 0 extra), the pipelines did stall
-//! (stall counter > 0), and without overlap every stall cycle adds exactly
-//! one cycle to the model's count.
+//! Back-pressure: a result FIFO with two words of room above its reserve of
+//! `L` words (the pairs in flight) and a reader that takes one pair in seven
+//! cycles. Property: no result is lost (pairs == all pairs under the stub
+//! verdict, 0 missing, 0 extra), the read side did stall (stall counter >
+//! 0), and without overlap every stall cycle adds exactly one cycle to the
+//! model's count.
 
 mod system_common;
 
@@ -23,7 +24,7 @@ fn tiny_fifo_slow_reader_loses_nothing() {
         for overlap in [false, true] {
             let config = SystemConfig::new(24, p, 6)
                 .with_depth(8)
-                .with_result_fifo_depth(2);
+                .with_result_fifo_room(2);
             let r = run_stub_system(config, &batches, overlap, ReaderBehaviour::OneIn(7));
             let (missing, extra) = PairDiff::between(&expected, &r.pairs).counts();
             let model = system_cycles(config, &sizes, overlap, ReaderBehaviour::AlwaysReady);
@@ -57,7 +58,7 @@ fn tiny_fifo_slow_reader_loses_nothing_with_real_pipelines() {
     });
     let config = SystemConfig::new(24, 4, tritri_rtl::pipeline::triangle_pipeline::latency())
         .with_depth(8)
-        .with_result_fifo_depth(2);
+        .with_result_fifo_room(2);
     let r = run_system_with(
         config,
         PipelineKind::Real,

@@ -34,7 +34,7 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
         for overlap in [false, true] {
             let config = SystemConfig::new(24, p, latency())
                 .with_depth(8)
-                .with_result_fifo_depth(16);
+                .with_result_fifo_room(16);
             let started = Instant::now();
             let r = run_system_with(
                 config,

@@ -105,7 +105,7 @@ fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
 }
 
 /// Several batches, the host writing on (overlap): with a reader always
-/// ready, the model bounds the stalls; with a two-word result FIFO and a
+/// ready, the model bounds the stalls; with a result FIFO of two words above its reserve and a
 /// slow reader, its back-pressure and the rare pairs' holds mix. Either
 /// way Verilator running the emitted system equals rust-hdl.
 #[test]
@@ -115,7 +115,7 @@ fn batches_in_verilator_equal_rust_hdl() {
     let config = SystemConfig::new(16, 2, latency()).with_depth(32);
     for (config, reader) in [
         (config, ReaderBehaviour::AlwaysReady),
-        (config.with_result_fifo_depth(2), ReaderBehaviour::OneIn(5)),
+        (config.with_result_fifo_room(2), ReaderBehaviour::OneIn(5)),
     ] {
         let hdl = run_and_check(config, &batches, true, reader);
         let bound = rare_case_cost(2, &batches).stall_cycles;

@@ -14,7 +14,7 @@ use tritri_rtl::system::SystemConfig;
 fn emitted_system_w24_p2_d64() {
     let config = SystemConfig::new(24, 2, latency())
         .with_depth(64)
-        .with_result_fifo_depth(8);
+        .with_result_fifo_room(8);
     let design = emit_system(config, PipelineKind::Real).unwrap();
     assert_eq!(design.top, "tritri_system_w24_p2_d64");
     let system_module = |path: &str| {

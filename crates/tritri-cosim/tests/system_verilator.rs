@@ -33,7 +33,7 @@ fn stub_system_verilator_matches_rust_hdl() {
     assert!(!uncertain.is_empty());
     let config = SystemConfig::new(24, 2, 4)
         .with_depth(8)
-        .with_result_fifo_depth(2);
+        .with_result_fifo_room(2);
     for (overlap, reader) in [
         (true, ReaderBehaviour::AlwaysReady),
         (false, ReaderBehaviour::OneIn(7)),
@@ -72,7 +72,7 @@ fn system_verilator_matches_rust_hdl_on_a_small_scene() {
     let uncertain = pairs_where(&batches, |x, y| !certain(&x.triangle, &y.triangle));
     let config = SystemConfig::new(24, 2, latency())
         .with_depth(16)
-        .with_result_fifo_depth(4);
+        .with_result_fifo_room(4);
     let started = Instant::now();
     let hdl = run_system_with(
         config,

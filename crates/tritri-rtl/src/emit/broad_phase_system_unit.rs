@@ -173,7 +173,7 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
     .port("in_object", "The offered triangle's object: 0 A, 1 B. Its index is its position in its object's stream.")
     .port("in_vertices", &format!("The triangle's vertices, x0 y0 z0 x1 ... z2 from bit 0 up, {g} bits each, grid coordinates."))
     .port("out_valid", "A pair is offered, once per pair: every intersecting pair and every pair whose verdict has no certificate.")
-    .port("out_ready", "The reader takes it (back-pressure: the owner filter holds, the result FIFO fills, then the pipelines hold).")
+    .port("out_ready", "The reader takes it (back-pressure: the owner filter holds, the result FIFO fills, then the read side holds).")
     .port("out_index_a", "The pair's A triangle: its index in A's stream.")
     .port("out_index_b", "The pair's B triangle: its index in B's stream.")
     .port("out_hit", "The pair intersects on the grid (touching counts).")

@@ -59,7 +59,7 @@ pub const FLIGHT_BITS: usize = 8;
 pub struct AddressGenerator {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
-    /// Clock enable of the read side (low while the result FIFO is full).
+    /// Clock enable of the read side (low while the result FIFO is above its mark).
     pub advance: Signal<In, Bit>,
     // Host triangle stream (the data fields go straight to the memories).
     pub in_valid: Signal<In, Bit>,

@@ -94,7 +94,11 @@ macro_rules! collision_system {
             pairs_tested_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             hits_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             stall_cycles_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            /// The read side's clock enable: the FIFO has room and no pipeline holds.
             advance: Signal<Local, Bit>,
+            /// The pipelines' clock enable: no pipeline holds (constant 1
+            /// without shared rare-case units). The FIFO does not stop them.
+            pipelines_move: Signal<Local, Bit>,
             bus_id: Signal<Local, Bits<{ $crate::system::ID_BITS }>>,
             bus_coordinates: [Signal<Local, Bits<$w>>; 9],
             /// Per lane: a verdict to report (a hit or uncertain), a hit, certain.
@@ -166,12 +170,17 @@ macro_rules! collision_system {
                     memory_a: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
                     memory_b: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
                     pipelines: (0..p).map(|_| make_pipeline()).collect(),
-                    result_fifo: $crate::system::result_fifo::ResultFifo::new(p, config.result_fifo_depth),
+                    result_fifo: $crate::system::result_fifo::ResultFifo::new(
+                        p,
+                        config.result_fifo_depth,
+                        config.pipeline_latency,
+                    ),
                     pair_serializer: $crate::system::pair_serializer::PairSerializer::new(p),
                     pairs_tested_q: Default::default(),
                     hits_q: Default::default(),
                     stall_cycles_q: Default::default(),
                     advance: Default::default(),
+                    pipelines_move: Default::default(),
                     bus_id: Default::default(),
                     bus_coordinates: Default::default(),
                     report_mask_chain: (0..=p).map(|_| Default::default()).collect(),
@@ -268,8 +277,7 @@ macro_rules! collision_system {
                 dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q);
 
                 // The pipelines' outputs (registers) first: the masks and the
-                // counts of this cycle's verdicts, then `advance`, which every
-                // register of the read side uses.
+                // counts of this cycle's verdicts, then the enables.
                 self.report_mask_chain[0].next = 0.into();
                 self.hit_mask_chain[0].next = 0.into();
                 self.certain_mask_chain[0].next = 0.into();
@@ -305,8 +313,6 @@ macro_rules! collision_system {
                     self.tested_count.next = self.tested_chain[i + 1].val();
                     self.hit_count.next = self.hit_count_chain[i + 1].val();
                 }
-                // Back-pressure: hold everything on the read side while the
-                // FIFO is full, so no pair the pipelines report is lost.
                 self.any_report.next = self.report_mask.val().any();
                 self.unused_stream_ids[0].next = false;
                 for i in 0..self.pipelines.len() {
@@ -319,10 +325,14 @@ macro_rules! collision_system {
                     self.hold_chain[i + 1].next = self.hold_chain[i].val() $(| self.pipelines[i].$hold.val())?;
                     self.any_hold.next = self.hold_chain[i + 1].val();
                 }
-                // `room` is a register, so without shared units `advance` is
-                // one: it holds a clock whenever the FIFO is full, verdict
-                // to report or not (see `result_fifo`).
+                // Back-pressure: the read side holds while the FIFO is above
+                // its mark (`room`, a register) and sends nothing; the
+                // pipelines run on, and their pairs in flight go into the
+                // FIFO's reserve (see `result_fifo`), so an enable need not
+                // reach every pipeline register. Shared rare-case units hold
+                // the pipelines and the read side together.
                 self.advance.next = self.result_fifo.room.val() & !self.any_hold.val();
+                self.pipelines_move.next = !self.any_hold.val();
 
                 // Host stream → write side of the address generator and memories.
                 clock!(self, clock, address_generator, memory_a, memory_b, result_fifo, pair_serializer);
@@ -373,12 +383,14 @@ macro_rules! collision_system {
                     }
                 }
 
-                // P pipelines: own bset/valid each, the same bus, one advance.
+                // P pipelines: own bset/valid each, the same bus; a lane takes
+                // the bus's triangle in a clock the read side advances.
                 for i in 0..self.pipelines.len() {
                     self.pipelines[i].clock.next = self.clock.val();
                     self.pipelines[i].reset.next = self.reset.val();
-                    self.pipelines[i].advance.next = self.advance.val();
-                    self.pipelines[i].in_valid.next = self.address_generator.lane_valid[i].val();
+                    self.pipelines[i].advance.next = self.pipelines_move.val();
+                    self.pipelines[i].in_valid.next =
+                        self.address_generator.lane_valid[i].val() & self.advance.val();
                     self.pipelines[i].in_bset.next = self.address_generator.bset.val();
                     self.pipelines[i].in_id.next = self.bus_id.val();
                     self.pipelines[i].in_x0.next = self.bus_coordinates[0].val();
@@ -395,7 +407,7 @@ macro_rules! collision_system {
                 }
 
                 self.result_fifo.reset.next = self.reset.val();
-                self.result_fifo.write.next = self.advance.val() & self.any_report.val();
+                self.result_fifo.write.next = self.pipelines_move.val() & self.any_report.val();
                 self.result_fifo.write_mask.next = self.report_mask.val();
                 self.result_fifo.write_hit_mask.next = self.hit_mask.val();
                 self.result_fifo.write_certain_mask.next = self.certain_mask.val();
@@ -418,7 +430,7 @@ macro_rules! collision_system {
                 self.done.next = self.address_generator.done.val();
                 self.results_empty.next = self.result_fifo.empty.val() & !self.pair_serializer.holding.val();
                 self.overflow.next = self.address_generator.overflow.val();
-                if self.advance.val() {
+                if self.pipelines_move.val() {
                     self.pairs_tested_q.d.next = self.pairs_tested_q.q.val()
                         + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
                             self.tested_count.val(),
@@ -427,7 +439,8 @@ macro_rules! collision_system {
                         + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
                             self.hit_count.val(),
                         );
-                } else if !self.address_generator.done.val() {
+                }
+                if !self.advance.val() & !self.address_generator.done.val() {
                     // Held with work to do: a clock the batch takes longer.
                     self.stall_cycles_q.d.next = self.stall_cycles_q.q.val() + 1;
                 }

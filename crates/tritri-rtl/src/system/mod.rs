@@ -28,8 +28,9 @@
 //! * [`result_fifo`] and [`pair_serializer`]: one FIFO word per cycle in
 //!   which some pipeline reported a hit (`P`-bit hit mask, the `P` base ids,
 //!   the streamed id), serialized to one `(id_a, id_b)` per transfer. While
-//!   the FIFO is full, `advance` is low: the read side and every pipeline
-//!   hold, and nothing is dropped.
+//!   the FIFO holds more than `depth - L` words, `advance` is low: the read
+//!   side holds and sends nothing, the pipelines run on, and the pairs in
+//!   flight fill the `L` words kept in reserve, so nothing is dropped.
 //! * [`collision_system`]: the top, generated for a pipeline type by
 //!   [`collision_system!`](crate::collision_system): `CollisionSystem` with
 //!   the real [`TrianglePipeline`](crate::pipeline::triangle_pipeline::TrianglePipeline),
@@ -78,8 +79,10 @@ pub const LANE_BITS: usize = 5;
 pub const COUNTER_BITS: usize = 32;
 /// The default memory depth: triangles per array per bank.
 pub const DEFAULT_TRIANGLES_PER_BANK: usize = 256;
-/// The default result FIFO depth (words; a word holds up to `P` pairs).
-pub const DEFAULT_RESULT_FIFO_DEPTH: usize = 32;
+/// The default result FIFO depth (words; a word holds up to `P` pairs):
+/// more than the pipeline's latency, which the FIFO keeps in reserve
+/// ([`result_fifo`]), and the same block RAMs as 32 words.
+pub const DEFAULT_RESULT_FIFO_DEPTH: usize = 64;
 
 /// The generator parameters of the system, in one place.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -115,6 +118,13 @@ impl SystemConfig {
         self.result_fifo_depth = words;
         self
     }
+    /// A result FIFO with `words` words below its mark, above the reserve
+    /// of `L` words ([`Self::smallest_result_fifo_depth`]): how full it may
+    /// get before the read side holds.
+    pub fn with_result_fifo_room(self, words: usize) -> Self {
+        let depth = self.pipeline_latency + words;
+        self.with_result_fifo_depth(depth)
+    }
 
     /// Panics with the reason when a parameter is out of the generator's range.
     pub fn validate(&self) {
@@ -130,15 +140,25 @@ impl SystemConfig {
             self.triangles_per_bank
         );
         assert!(
-            (2..1 << (FIFO_POINTER_BITS - 1)).contains(&self.result_fifo_depth),
-            "result FIFO depth must be in 2..{}, got {}",
-            1 << (FIFO_POINTER_BITS - 1),
-            self.result_fifo_depth
-        );
-        assert!(
             self.pipeline_latency >= 1 && self.pipeline_latency < 200,
             "pipeline latency out of range"
         );
+        assert!(
+            (self.smallest_result_fifo_depth()..1 << (FIFO_POINTER_BITS - 1))
+                .contains(&self.result_fifo_depth),
+            "result FIFO depth must be in {}..{} (more than the pipeline latency {}), got {}",
+            self.smallest_result_fifo_depth(),
+            1 << (FIFO_POINTER_BITS - 1),
+            self.pipeline_latency,
+            self.result_fifo_depth
+        );
+    }
+
+    /// The smallest result FIFO: the pipelines never stop, so when the read
+    /// side stops, the `L` pairs in flight still arrive; the FIFO keeps `L`
+    /// words in reserve, plus one to write at all ([`result_fifo`]).
+    pub fn smallest_result_fifo_depth(&self) -> usize {
+        self.pipeline_latency + 1
     }
 
     /// The unit name of the emitted top: `tritri_system_w24_p2_d256`.

@@ -37,8 +37,9 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
         "The host writes a batch (the triangles of objects A and B inside one common bounding volume) \
          as triangle words followed by one end-of-batch word, and may write the next batch at once into \
          the other memory bank. Every pair (a, b) of the batch is tested; the intersecting pairs leave \
-         on the result stream as (id_a, id_b). When the result FIFO is full the pipelines stall; no \
-         result is dropped.",
+         on the result stream as (id_a, id_b). When the result FIFO holds more than FIFO_DEPTH - L words \
+         the read side stalls; the pipelines run on and their pairs in flight fill the L words kept in \
+         reserve, so no result is dropped.",
     )
     .detail(&format!(
         "Cycles of one batch of N1 A- and N2 B-triangles, from its first word to done: \
