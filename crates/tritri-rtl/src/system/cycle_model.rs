@@ -11,9 +11,10 @@
 //! without overlap it starts batch `k + 1` in the cycle after it sees `done`
 //! for batch `k`. The result reader is always ready and the result FIFO
 //! never fills (`stall_cycles = 0`). While the FIFO is above its mark the
-//! read side holds (the pipelines run on); `stall_cycles` counts the clocks it holds while the system is
-//! busy (`done` low), so without overlap each adds exactly one cycle, while
-//! with overlap it may be hidden by the host's writes.
+//! read side holds (the pipelines run on); `stall_cycles` counts the clocks
+//! it holds while the system is busy (`done` low), so without overlap each
+//! adds exactly one cycle, while with overlap it may be hidden by the
+//! host's writes.
 //!
 //! # Formula
 //!

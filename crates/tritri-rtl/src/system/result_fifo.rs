@@ -12,7 +12,8 @@
 //! `head_*`, removed by `pop`. Because the memory reads one cycle late, a
 //! word becomes readable two cycles after its write (`readable` counts the
 //! words written at least one edge before the read), while `room` counts
-//! every stored word: `write` must stay low while `room` is low.
+//! every stored word: after `room` falls, at most `reserve` more words may
+//! be written before pops make room again.
 //!
 //! `room` (fewer than `depth - reserve` words stored) is a register,
 //! decided a clock ahead from the next count. The system's read side
