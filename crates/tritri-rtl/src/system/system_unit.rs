@@ -102,7 +102,7 @@ pub fn system_unit(config: SystemConfig, kind: PipelineKind) -> UnitDescription 
         ("overflow", "sticky: an array of a batch exceeded DEPTH (the excess was not stored)".into()),
         ("pairs_tested", "counter: pairs tested since reset (wraps at 2^32)".into()),
         ("hits", "counter: intersecting pairs found since reset".into()),
-        ("stall_cycles", "counter: cycles the pipelines were held, with work to do, by a full result FIFO".into()),
+        ("stall_cycles", "counter: cycles the read side was held, with work to do, by the result FIFO above its mark (or by a shared rare-case unit)".into()),
     ];
     for (name, meaning) in ports.iter() {
         unit = unit.port(name, meaning);
