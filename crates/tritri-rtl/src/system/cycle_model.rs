@@ -10,7 +10,7 @@
 //! visible). The host writes one word per cycle while `in_ready` is high;
 //! without overlap it starts batch `k + 1` in the cycle after it sees `done`
 //! for batch `k`. The result reader is always ready and the result FIFO
-//! never fills (`stall_cycles = 0`). While the FIFO is above its mark the
+//! never reaches its mark (`stall_cycles = 0`). While the FIFO is above its mark the
 //! read side holds (the pipelines run on); `stall_cycles` counts the clocks
 //! it holds while the system is busy (`done` low), so without overlap each
 //! adds exactly one cycle, while with overlap it may be hidden by the
@@ -102,7 +102,7 @@ pub fn pairs(batch: BatchSizes) -> u64 {
 }
 
 /// The cycles from the host's first write to `done` (module docs). Exact
-/// when the result FIFO never fills; with a slower `reader` or dense hits
+/// when the result FIFO never reaches its mark; with a slower `reader` or dense hits
 /// the hardware adds its `stall_cycles` (exactly, without overlap), so this
 /// is then a lower bound.
 pub fn system_cycles(
