@@ -52,6 +52,10 @@ pub enum ReadState {
     StreamB,
 }
 
+/// `bset` and `lane_valid` are registered twice below (`*_read`, `*_q`),
+/// once per clock of the memories' read.
+const _: () = assert!(MEMORY_READ_LATENCY == 2);
+
 /// Width of the in-flight countdown (pipeline latency + read latency < 256).
 pub const FLIGHT_BITS: usize = 8;
 

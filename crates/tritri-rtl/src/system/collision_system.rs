@@ -173,7 +173,7 @@ macro_rules! collision_system {
                     result_fifo: $crate::system::result_fifo::ResultFifo::new(
                         p,
                         config.result_fifo_depth,
-                        config.pipeline_latency,
+                        config.result_fifo_reserve(),
                     ),
                     pair_serializer: $crate::system::pair_serializer::PairSerializer::new(p),
                     pairs_tested_q: Default::default(),

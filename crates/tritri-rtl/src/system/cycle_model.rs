@@ -47,7 +47,7 @@
 //! D   = max(R_last + 1, X + M + L + 1) X: the last cycle that read B
 //! ```
 
-use super::{SystemConfig, MEMORY_READ_LATENCY};
+use super::SystemConfig;
 use tritri_geom::scene::octree::BatchCost;
 use tritri_geom::scene::Batch;
 
@@ -138,8 +138,7 @@ fn recurrence(
     first: i64,
     gap: i64,
 ) -> i64 {
-    // Read address to verdict.
-    let latency = (MEMORY_READ_LATENCY + config.pipeline_latency) as i64;
+    let latency = config.read_to_verdict_cycles() as i64;
     // Cycle indices; -1 stands for "before cycle 0".
     let mut commit_previous: i64 = -1; // C_{k-1}
     let mut done_previous: i64 = -1; // D_{k-1}
@@ -199,7 +198,7 @@ pub fn single_batch_cycles(config: SystemConfig, batch: BatchSizes) -> u64 {
     if reads == 0 {
         writes + 1
     } else {
-        writes + 1 + reads + (MEMORY_READ_LATENCY + config.pipeline_latency) as u64
+        writes + 1 + reads + config.read_to_verdict_cycles() as u64
     }
 }
 

@@ -122,7 +122,7 @@ impl SystemConfig {
     /// of `L` words ([`Self::smallest_result_fifo_depth`]): how full it may
     /// get before the read side holds.
     pub fn with_result_fifo_room(self, words: usize) -> Self {
-        let depth = self.pipeline_latency + words;
+        let depth = self.result_fifo_reserve() + words;
         self.with_result_fifo_depth(depth)
     }
 
@@ -154,11 +154,22 @@ impl SystemConfig {
         );
     }
 
-    /// The smallest result FIFO: the pipelines never stop, so when the read
-    /// side stops, the `L` pairs in flight still arrive; the FIFO keeps `L`
-    /// words in reserve, plus one to write at all ([`result_fifo`]).
+    /// The words the result FIFO keeps above its mark: the pipelines never
+    /// stop, so when the read side stops, the `L` pairs in flight still
+    /// arrive ([`result_fifo`]).
+    pub fn result_fifo_reserve(&self) -> usize {
+        self.pipeline_latency
+    }
+
+    /// The smallest result FIFO: the reserve, plus one word to write at all.
     pub fn smallest_result_fifo_depth(&self) -> usize {
-        self.pipeline_latency + 1
+        self.result_fifo_reserve() + 1
+    }
+
+    /// Clocks from a streamed triangle's read address to its verdict on the
+    /// pipelines' outputs: the memories' read latency and `L`.
+    pub fn read_to_verdict_cycles(&self) -> usize {
+        MEMORY_READ_LATENCY + self.pipeline_latency
     }
 
     /// The unit name of the emitted top: `tritri_system_w24_p2_d256`.
