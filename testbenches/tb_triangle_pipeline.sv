@@ -16,7 +16,8 @@
 //               needs --trace for it; runs are slower, keep them short)
 //   TRITRI_HOLD define for a pipeline with a `hold` output (the rare cases
 //               on the shared unit): while it is high the input stays on
-//               the bus, and the held clocks are counted
+//               the bus, and the held clocks are counted (the pipeline is
+//               on its own: `hold_others` is 0)
 // Plusargs:
 //   +vectors=FILE  input vectors (required)
 //   +outputs=FILE  where verdicts go (required)
@@ -56,6 +57,7 @@ module tb_triangle_pipeline #(
     wire [ID_WIDTH-1:0] out_stream_id;
 `ifdef TRITRI_HOLD
     wire hold;
+    wire hold_request;  // for pipelines in step with this one: none here
 `else
     wire hold = 1'b0;
 `endif
@@ -87,7 +89,9 @@ module tb_triangle_pipeline #(
         .out_stream_id(out_stream_id)
 `ifdef TRITRI_HOLD
         ,
-        .hold(hold)
+        .hold(hold),
+        .hold_request(hold_request),
+        .hold_others(1'b0)
 `endif
     );
 

@@ -37,29 +37,36 @@ fn emitted_system_w24_p2_d64() {
 }
 
 /// `verilator --lint-only -Wall` and `slang -Weverything` print nothing on
-/// the emitted system with 1, 2 and 4 pipelines, and Icarus compiles it.
+/// the emitted system with 1, 2 and 4 pipelines, with the rare cases in
+/// each pipeline and on shared units (whose pipelines hold together
+/// through each other's requests), and Icarus compiles it.
 #[test]
 fn emitted_system_is_lint_clean() {
     use tritri_rtl::tools::{lint, run, IVERILOG};
-    for pipelines in [1, 2, 4] {
+    for (kind, pipelines) in [1, 2, 4]
+        .map(|p| (PipelineKind::Real, p))
+        .into_iter()
+        .chain([1, 2].map(|p| (PipelineKind::Shared, p)))
+    {
         let config = SystemConfig::new(8, pipelines, latency()).with_depth(16);
-        let design = emit_system(config, PipelineKind::Real).unwrap();
+        let design = emit_system(config, kind).unwrap();
         let dir = std::env::temp_dir().join(format!(
-            "tritri-system-lint-{}-{pipelines}",
+            "tritri-system-lint-{}-{kind:?}-{pipelines}",
             std::process::id()
         ));
         let _ = std::fs::remove_dir_all(&dir);
         design.write_to(&dir).unwrap();
-        let messages = lint(&dir, &design.top).unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        let messages =
+            lint(&dir, &design.top).unwrap_or_else(|e| panic!("{kind:?}, P={pipelines}: {e}"));
         assert!(
             messages.trim().is_empty(),
-            "P={pipelines}: verilator said:\n{messages}"
+            "{kind:?}, P={pipelines}: verilator said:\n{messages}"
         );
         let messages = tritri_rtl::tools::slang_lint(&dir, &design.top)
-            .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+            .unwrap_or_else(|e| panic!("{kind:?}, P={pipelines}: {e}"));
         assert!(
             messages.is_empty(),
-            "P={pipelines}: slang -Weverything said:\n{messages}"
+            "{kind:?}, P={pipelines}: slang -Weverything said:\n{messages}"
         );
         run(IVERILOG.command().unwrap().current_dir(&dir).args([
             "-g2012",
@@ -68,7 +75,7 @@ fn emitted_system_is_lint_clean() {
             "-c",
             "filelist.f",
         ]))
-        .unwrap_or_else(|e| panic!("P={pipelines}: {e}"));
+        .unwrap_or_else(|e| panic!("{kind:?}, P={pipelines}: {e}"));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

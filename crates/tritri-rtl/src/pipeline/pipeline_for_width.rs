@@ -111,9 +111,10 @@ pub trait PipelineSimulation: Send {
 }
 
 /// The simulation interface of a pipeline top; `$hold` reads its `hold`
-/// port, if it has one.
+/// port, if it has one, and `$connect_more` marks its other inputs driven
+/// (a pipeline on its own leaves them 0).
 macro_rules! pipeline_simulation {
-    ($top:ident, $hold:expr) => {
+    ($top:ident, $hold:expr, $connect_more:expr) => {
         impl<const W: usize, const D: usize, const C: usize, const O: usize> $top<W, D, C, O> {
             /// The nine coordinate inputs `in_x0 … in_z2`, in bus order.
             pub fn coordinate_inputs(&mut self) -> [&mut Signal<In, Bits<W>>; 9] {
@@ -143,6 +144,7 @@ macro_rules! pipeline_simulation {
                 for v in p.coordinate_inputs() {
                     v.connect();
                 }
+                $connect_more(&mut p);
                 p.connect_all();
                 p.advance.next = true;
                 sim_drive::settle(&mut p);
@@ -208,10 +210,16 @@ macro_rules! pipeline_simulation {
     };
 }
 
-pipeline_simulation!(TrianglePipeline, |_: &TrianglePipeline<W, D, C, O>| false);
-pipeline_simulation!(SharedRarePipeline, |p: &SharedRarePipeline<W, D, C, O>| p
-    .hold
-    .val());
+pipeline_simulation!(
+    TrianglePipeline,
+    |_: &TrianglePipeline<W, D, C, O>| false,
+    |_: &mut TrianglePipeline<W, D, C, O>| ()
+);
+pipeline_simulation!(
+    SharedRarePipeline,
+    |p: &SharedRarePipeline<W, D, C, O>| p.hold.val(),
+    |p: &mut SharedRarePipeline<W, D, C, O>| p.hold_others.connect()
+);
 
 /// Calls `$then!` with the one list of coordinate widths that have
 /// hardware. The pipelines here, the systems

@@ -85,6 +85,16 @@ pub fn pipeline_unit_for(
                 "hold",
                 "A rare pair waits for the shared unit: this clock does not take the input bus (keep the \
                  triangle on it) and moves nothing. A register's output.",
+            )
+            .port(
+                "hold_request",
+                "This pipeline's rare pair will wait for its unit next clock: for pipelines that move in step \
+                 with this one (a system's), which take the OR of all their requests as `hold_others`.",
+            )
+            .port(
+                "hold_others",
+                "A pipeline moving in step with this one requests a hold (the OR of their `hold_request`s, this \
+                 one's may be included): `hold` rises with it next clock. Tie to 0 for a pipeline on its own.",
             );
     }
     Ok(unit)

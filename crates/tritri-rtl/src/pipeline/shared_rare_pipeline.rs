@@ -21,7 +21,10 @@
 //! `hold` goes into the enable of every register, so it is a register:
 //! [`HoldRegister`] decides it a clock ahead from the rare bits of both
 //! stages and the unit's steps left, and eleven copies of it each enable a
-//! group of units. (Computed in the clock it acts, from the sides stage's
+//! group of units. Pipelines that move in step (a system's) hold together:
+//! each sends its request for next clock (`hold_request`) and takes the
+//! others' (`hold_others`) into its copies in the same clock, so that no
+//! pipeline's enables wait for another's `hold`. (Computed in the clock it acts, from the sides stage's
 //! zeros through the rule to one enable net, it ran at 79 MHz post-route
 //! on ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
 //!
@@ -63,8 +66,16 @@ crate::pipeline_ports! {
     #[derive(LogicBlock, Default)]
     pub struct SharedRarePipeline<const W: usize, const D: usize, const C: usize, const O: usize> {
         /// A rare pair waits for the unit: the pipeline holds this clock,
-        /// and the input bus is not taken.
+        /// and the input bus is not taken: this pipeline's rare pair or
+        /// (`hold_others`) another's waits.
         pub hold: Signal<Out, Bit>,
+        /// This pipeline's rare pair will wait for the unit next clock:
+        /// for the pipelines that move in step with this one.
+        pub hold_request: Signal<Out, Bit>,
+        /// Another pipeline moving in step with this one raised its
+        /// `hold_request` this clock (this one's may be included): hold
+        /// with it next clock. 0 for a pipeline on its own.
+        pub hold_others: Signal<In, Bit>,
         path: GeneralPath<W, D, C, O>,
         rare_cases: SharedRareCases<W, D, C>,
         verdicts: VerdictQueue,
@@ -90,6 +101,8 @@ crate::pipeline_ports! {
         /// The unit's `ready`: the hold registers predict it instead
         /// (Verilator's lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
+        /// The copies' requests but copy 0's, which is the port: all equal.
+        unused_requests: Signal<Local, Bit>,
         /// `hold`, registered, one copy per group of registers: the general
         /// path's `advance` (0, with this top's rare bits and the unit's
         /// input), its `advance_copies` (1 to 9; the job's vertices, segment
@@ -177,7 +190,19 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.holds[i].rare.next = self.rare.val();
             self.holds[i].job_rare.next = self.job_rare.val();
             self.holds[i].unit_idle_next.next = self.rare_cases.idle_next.val();
+            self.holds[i].others.next = self.hold_others.val();
         }
+        self.hold_request.next = self.holds[0].request.val();
+        self.unused_requests.next = self.holds[1].request.val()
+            ^ self.holds[2].request.val()
+            ^ self.holds[3].request.val()
+            ^ self.holds[4].request.val()
+            ^ self.holds[5].request.val()
+            ^ self.holds[6].request.val()
+            ^ self.holds[7].request.val()
+            ^ self.holds[8].request.val()
+            ^ self.holds[9].request.val()
+            ^ self.holds[10].request.val();
         // Each group's enable: `advance` and its copy of `hold`, formed here
         // (in rust-hdl's simulation an enable formed inside a unit below
         // would reach the registers a delta cycle after the clock edge).

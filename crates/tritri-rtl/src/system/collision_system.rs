@@ -45,6 +45,10 @@ use rust_hdl::prelude::*;
 /// in_id in_x0 … in_z2 out_valid out_hit out_certain out_base_id
 /// out_stream_id`) and
 /// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
+/// Pipelines that hold for a shared unit name their three ports for it
+/// (`hold: hold, hold_request: hold_request, hold_others: hold_others`):
+/// the output that says they hold, the request for next clock, and the
+/// input that makes them hold with the others.
 ///
 /// ```text
 /// collision_system!(pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> });
@@ -52,7 +56,8 @@ use rust_hdl::prelude::*;
 #[macro_export]
 macro_rules! collision_system {
     ($(#[$meta:meta])* $vis:vis struct $name:ident < $(const $param:ident : usize),* > {
-        coordinate_bits: $w:expr, pipeline: $pipeline:ty $(, hold: $hold:ident)? $(,)?
+        coordinate_bits: $w:expr, pipeline: $pipeline:ty
+        $(, hold: $hold:ident, hold_request: $hold_request:ident, hold_others: $hold_others:ident)? $(,)?
     }) => {
         $(#[$meta])*
         #[derive(LogicBlock)]
@@ -96,8 +101,11 @@ macro_rules! collision_system {
             stall_cycles_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             /// The read side's clock enable: the FIFO has room and no pipeline holds.
             advance: Signal<Local, Bit>,
-            /// The pipelines' clock enable: no pipeline holds (constant 1
-            /// without shared rare-case units). The FIFO does not stop them.
+            /// The pipelines move this clock: no pipeline holds (constant 1
+            /// without shared rare-case units). Their `advance` is tied
+            /// high (the FIFO does not stop them, and shared-unit pipelines
+            /// hold together by themselves); this enables what leaves them
+            /// for the FIFO and the counters.
             pipelines_move: Signal<Local, Bit>,
             bus_id: Signal<Local, Bits<{ $crate::system::ID_BITS }>>,
             bus_coordinates: [Signal<Local, Bits<$w>>; 9],
@@ -119,6 +127,13 @@ macro_rules! collision_system {
             /// synthesis removes it.
             hold_chain: Vec<Signal<Local, Bit>>,
             any_hold: Signal<Local, Bit>,
+            /// With shared rare-case units: the chain ORs the pipelines'
+            /// `hold_request`s, and `any_request[0]`, the OR, goes back to
+            /// every pipeline's `hold_others`, so that they hold together
+            /// and each decides its enables from registers of its own. Both
+            /// empty without shared units.
+            hold_request_chain: Vec<Signal<Local, Bit>>,
+            any_request: Vec<Signal<Local, Bit>>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
             /// whose name tells Verilator's lint (`--unused-regexp`, default
@@ -128,6 +143,9 @@ macro_rules! collision_system {
         }
 
         impl<$(const $param: usize),*> $name<$($param),*> {
+            /// The pipelines have shared rare-case units (the macro's `hold:`).
+            const SHARED_UNITS: bool = false $(|| { let _ = stringify!($hold); true })?;
+
             /// The system for `config`, its `P` pipelines made by `make_pipeline`.
             pub fn new(config: $crate::system::SystemConfig, mut make_pipeline: impl FnMut() -> $pipeline) -> Self {
                 config.validate();
@@ -196,6 +214,8 @@ macro_rules! collision_system {
                     any_report: Default::default(),
                     hold_chain: (0..=p).map(|_| Default::default()).collect(),
                     any_hold: Default::default(),
+                    hold_request_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
+                    any_request: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -325,12 +345,24 @@ macro_rules! collision_system {
                     self.hold_chain[i + 1].next = self.hold_chain[i].val() $(| self.pipelines[i].$hold.val())?;
                     self.any_hold.next = self.hold_chain[i + 1].val();
                 }
+                $(
+                    self.hold_request_chain[0].next = false;
+                    for i in 0..self.pipelines.len() {
+                        self.hold_request_chain[i + 1].next =
+                            self.hold_request_chain[i].val() | self.pipelines[i].$hold_request.val();
+                        self.any_request[0].next = self.hold_request_chain[i + 1].val();
+                    }
+                    for i in 0..self.pipelines.len() {
+                        self.pipelines[i].$hold_others.next = self.any_request[0].val();
+                    }
+                )?
                 // Back-pressure: the read side holds while the FIFO is above
                 // its mark (`room`, a register) and sends nothing; the
                 // pipelines run on, and their pairs in flight go into the
                 // FIFO's reserve (see `result_fifo`), so an enable need not
                 // reach every pipeline register. Shared rare-case units hold
-                // the pipelines and the read side together.
+                // the pipelines (by themselves, `hold_others` above) and the
+                // read side together.
                 self.advance.next = self.result_fifo.room.val() & !self.any_hold.val();
                 self.pipelines_move.next = !self.any_hold.val();
 
@@ -388,7 +420,7 @@ macro_rules! collision_system {
                 for i in 0..self.pipelines.len() {
                     self.pipelines[i].clock.next = self.clock.val();
                     self.pipelines[i].reset.next = self.reset.val();
-                    self.pipelines[i].advance.next = self.pipelines_move.val();
+                    self.pipelines[i].advance.next = true;
                     self.pipelines[i].in_valid.next =
                         self.address_generator.lane_valid[i].val() & self.advance.val();
                     self.pipelines[i].in_bset.next = self.address_generator.bset.val();
@@ -491,6 +523,8 @@ collision_system!(
         coordinate_bits: W,
         pipeline: SharedRarePipeline<W, D, C, O>,
         hold: hold,
+        hold_request: hold_request,
+        hold_others: hold_others,
     }
 );
 
