@@ -44,10 +44,18 @@ pub struct XilinxRow {
 pub struct Ecp5Row {
     pub unit: String,
     pub fmax_mhz: f64,
+    /// nextpnr's placement seed: the same netlist routes a few per cent
+    /// faster or slower with another (files without it: seed 1, the flow's).
+    #[serde(default = "first_seed")]
+    pub seed: u64,
     pub lut4: u64,
     pub ff: u64,
     pub mult18x18d: u64,
     pub ebr: u64,
+}
+
+fn first_seed() -> u64 {
+    1
 }
 
 impl Measurements {

@@ -156,19 +156,20 @@ fn measurements_file_is_the_readme_tables() {
                 .parse::<u64>()
                 .unwrap_or_else(|_| panic!("{row:?}: column {i}"))
         };
-        if row.len() == 9 && row[6].starts_with('`') {
+        if row.len() == 10 && row[7].starts_with('`') {
             let r = kept
                 .ecp5(&row[0])
                 .unwrap_or_else(|| panic!("measurements.json has no ECP5 row for {}", row[0]));
             assert_eq!(
                 (
                     format!("{:.1}", r.fmax_mhz),
+                    r.seed,
                     r.lut4,
                     r.ff,
                     r.mult18x18d,
                     r.ebr
                 ),
-                (row[1].clone(), n(2), n(3), n(4), n(5)),
+                (row[1].clone(), n(2), n(3), n(4), n(5), n(6)),
                 "{}",
                 row[0]
             );
