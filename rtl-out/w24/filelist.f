@@ -17,6 +17,7 @@ tritri_pipeline_w24_delay_line_w1_n1.v
 tritri_pipeline_w24_delay_line_w1_n10.v
 tritri_pipeline_w24_delay_line_w1_n15.v
 tritri_pipeline_w24_delay_line_w1_n17.v
+tritri_pipeline_w24_delay_line_w1_n18.v
 tritri_pipeline_w24_delay_line_w1_n19.v
 tritri_pipeline_w24_delay_line_w1_n2.v
 tritri_pipeline_w24_delay_line_w1_n6.v

@@ -2,9 +2,9 @@
 //
 // Filename:   tritri_pipeline_w24_certain_sign.v
 //
-// Purpose:    The sign of a determinant and its certificate, registered. Part
-//             of tritri_pipeline_w24. Instances (8), for example:
-//             path.orient3d_0.sign, path.orient3d_1.sign,
+// Purpose:    The sign of a determinant, registered, and its certificate a
+//             clock later. Part of tritri_pipeline_w24. Instances (8), for
+//             example: path.orient3d_0.sign, path.orient3d_1.sign,
 //             path.plane_side_t1.sign[0], path.plane_side_t1.sign[1].
 //
 // Rust unit:  CertainSign<O = 74>
@@ -22,69 +22,48 @@ module tritri_pipeline_w24_certain_sign (
     input  wire        advance,
     input  wire [73:0] value,
     input  wire [73:0] threshold,
-    output wire        negative,
-    output wire        zero,
-    output wire        certain
+    output reg         negative,
+    output reg         zero,
+    output reg         certain
 );
 
-    // Constant declarations
-    // Stub signals
-    reg  negative_d;
-    wire  negative_q;
-    wire  negative_clock;
-    reg  zero_d;
-    wire  zero_q;
-    wire  zero_clock;
-    reg  certain_d;
-    wire  certain_q;
-    wire  certain_clock;
-
-    // Local signals
-    wire  above;
-    wire  below;
-
-    // Sub module instances
-    tritri_pipeline_w24_dff_1 u_negative_q(
-        .d(negative_d),
-        .q(negative_q),
-        .clock(negative_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_zero_q(
-        .d(zero_d),
-        .q(zero_q),
-        .clock(zero_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_certain_q(
-        .d(certain_d),
-        .q(certain_q),
-        .clock(certain_clock)
-    );
-
-    // Update code
-    assign negative_clock = clock;
-    assign zero_clock = clock;
-    assign certain_clock = clock;
-    assign above = value >= threshold;
-    assign below = value <= ~threshold;
-    assign negative = negative_q;
-    assign zero = zero_q;
-    assign certain = certain_q;
-    always @(*) begin
-        negative_d = negative_q;
-        zero_d = zero_q;
-        certain_d = certain_q;
+    // Update code (custom)
+    // The sign of P, registered, and its certificate |P| >= T a clock later:
+    // P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
+    // two halves whose results are registered, then combined.
+    wire [73:0] limit = ~threshold;
+    reg above_hi_ge_q;
+    reg above_hi_le_q;
+    reg above_lo_q;
+    reg below_hi_ge_q;
+    reg below_hi_le_q;
+    reg below_lo_q;
+    initial begin
+        above_hi_ge_q = 1'b0;
+        above_hi_le_q = 1'b0;
+        above_lo_q = 1'b0;
+        below_hi_ge_q = 1'b0;
+        below_hi_le_q = 1'b0;
+        below_lo_q = 1'b0;
+        negative = 1'b0;
+        zero = 1'b0;
+        certain = 1'b0;
+    end
+    always @(posedge clock) begin
         if (advance) begin
-            negative_d = value[73];
-            zero_d = ~|value;
-            if (value[73]) begin
-                certain_d = below;
-            end
-            else begin
-                certain_d = above;
-            end
+            negative <= value[73];
+            zero <= ~|value;
+            above_hi_ge_q <= value[73:37] >= threshold[73:37];
+            above_hi_le_q <= value[73:37] <= threshold[73:37];
+            above_lo_q <= value[36:0] >= threshold[36:0];
+            below_hi_ge_q <= value[73:37] >= limit[73:37];
+            below_hi_le_q <= value[73:37] <= limit[73:37];
+            below_lo_q <= value[36:0] <= limit[36:0];
+            certain <= negative
+                ? below_hi_le_q & (~below_hi_ge_q | below_lo_q)
+                : above_hi_ge_q & (~above_hi_le_q | above_lo_q);
         end
     end
-
 endmodule  // tritri_pipeline_w24_certain_sign
 
 `default_nettype wire

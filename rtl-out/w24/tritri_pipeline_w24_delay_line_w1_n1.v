@@ -7,8 +7,8 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: path.orient_signs_to_decision[0],
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (4):
+//             path.orient_signs_to_decision[0],
 //             path.orient_signs_to_decision[1],
 //             path.orient_signs_to_decision[2],
 //             path.orient_signs_to_decision[3].

@@ -526,14 +526,6 @@ module tritri_pipeline_w24_general_path (
     wire  orient_signs_to_decision_3_advance;
     wire  orient_signs_to_decision_3_d;
     wire  orient_signs_to_decision_3_q;
-    wire  orient_signs_to_decision_4_clock;
-    wire  orient_signs_to_decision_4_advance;
-    wire  orient_signs_to_decision_4_d;
-    wire  orient_signs_to_decision_4_q;
-    wire  orient_signs_to_decision_5_clock;
-    wire  orient_signs_to_decision_5_advance;
-    wire  orient_signs_to_decision_5_d;
-    wire  orient_signs_to_decision_5_q;
     wire  decision_clock;
     wire  decision_advance;
     wire  decision_t1_degenerate;
@@ -740,30 +732,30 @@ module tritri_pipeline_w24_general_path (
     wire  sides_to_decision_11_advance;
     wire  sides_to_decision_11_d;
     wire  sides_to_decision_11_q;
-    wire  sides_to_decision_12_clock;
-    wire  sides_to_decision_12_advance;
-    wire  sides_to_decision_12_d;
-    wire  sides_to_decision_12_q;
-    wire  sides_to_decision_13_clock;
-    wire  sides_to_decision_13_advance;
-    wire  sides_to_decision_13_d;
-    wire  sides_to_decision_13_q;
-    wire  sides_to_decision_14_clock;
-    wire  sides_to_decision_14_advance;
-    wire  sides_to_decision_14_d;
-    wire  sides_to_decision_14_q;
-    wire  sides_to_decision_15_clock;
-    wire  sides_to_decision_15_advance;
-    wire  sides_to_decision_15_d;
-    wire  sides_to_decision_15_q;
-    wire  sides_to_decision_16_clock;
-    wire  sides_to_decision_16_advance;
-    wire  sides_to_decision_16_d;
-    wire  sides_to_decision_16_q;
-    wire  sides_to_decision_17_clock;
-    wire  sides_to_decision_17_advance;
-    wire  sides_to_decision_17_d;
-    wire  sides_to_decision_17_q;
+    wire  side_certificates_to_decision_0_clock;
+    wire  side_certificates_to_decision_0_advance;
+    wire  side_certificates_to_decision_0_d;
+    wire  side_certificates_to_decision_0_q;
+    wire  side_certificates_to_decision_1_clock;
+    wire  side_certificates_to_decision_1_advance;
+    wire  side_certificates_to_decision_1_d;
+    wire  side_certificates_to_decision_1_q;
+    wire  side_certificates_to_decision_2_clock;
+    wire  side_certificates_to_decision_2_advance;
+    wire  side_certificates_to_decision_2_d;
+    wire  side_certificates_to_decision_2_q;
+    wire  side_certificates_to_decision_3_clock;
+    wire  side_certificates_to_decision_3_advance;
+    wire  side_certificates_to_decision_3_d;
+    wire  side_certificates_to_decision_3_q;
+    wire  side_certificates_to_decision_4_clock;
+    wire  side_certificates_to_decision_4_advance;
+    wire  side_certificates_to_decision_4_d;
+    wire  side_certificates_to_decision_4_q;
+    wire  side_certificates_to_decision_5_clock;
+    wire  side_certificates_to_decision_5_advance;
+    wire  side_certificates_to_decision_5_d;
+    wire  side_certificates_to_decision_5_q;
 
     // Sub module instances
     tritri_pipeline_w24_delay_line_w24_n1 u_input_vertices_0(
@@ -1267,18 +1259,6 @@ module tritri_pipeline_w24_general_path (
         .d(orient_signs_to_decision_3_d),
         .q(orient_signs_to_decision_3_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_4(
-        .clock(orient_signs_to_decision_4_clock),
-        .advance(orient_signs_to_decision_4_advance),
-        .d(orient_signs_to_decision_4_d),
-        .q(orient_signs_to_decision_4_q)
-    );
-    tritri_pipeline_w24_delay_line_w1_n1 u_orient_signs_to_decision_5(
-        .clock(orient_signs_to_decision_5_clock),
-        .advance(orient_signs_to_decision_5_advance),
-        .d(orient_signs_to_decision_5_d),
-        .q(orient_signs_to_decision_5_q)
-    );
     tritri_pipeline_w24_decision u_decision(
         .clock(decision_clock),
         .advance(decision_advance),
@@ -1571,41 +1551,41 @@ module tritri_pipeline_w24_general_path (
         .d(sides_to_decision_11_d),
         .q(sides_to_decision_11_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_12(
-        .clock(sides_to_decision_12_clock),
-        .advance(sides_to_decision_12_advance),
-        .d(sides_to_decision_12_d),
-        .q(sides_to_decision_12_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_0(
+        .clock(side_certificates_to_decision_0_clock),
+        .advance(side_certificates_to_decision_0_advance),
+        .d(side_certificates_to_decision_0_d),
+        .q(side_certificates_to_decision_0_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_13(
-        .clock(sides_to_decision_13_clock),
-        .advance(sides_to_decision_13_advance),
-        .d(sides_to_decision_13_d),
-        .q(sides_to_decision_13_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_1(
+        .clock(side_certificates_to_decision_1_clock),
+        .advance(side_certificates_to_decision_1_advance),
+        .d(side_certificates_to_decision_1_d),
+        .q(side_certificates_to_decision_1_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_14(
-        .clock(sides_to_decision_14_clock),
-        .advance(sides_to_decision_14_advance),
-        .d(sides_to_decision_14_d),
-        .q(sides_to_decision_14_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_2(
+        .clock(side_certificates_to_decision_2_clock),
+        .advance(side_certificates_to_decision_2_advance),
+        .d(side_certificates_to_decision_2_d),
+        .q(side_certificates_to_decision_2_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_15(
-        .clock(sides_to_decision_15_clock),
-        .advance(sides_to_decision_15_advance),
-        .d(sides_to_decision_15_d),
-        .q(sides_to_decision_15_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_3(
+        .clock(side_certificates_to_decision_3_clock),
+        .advance(side_certificates_to_decision_3_advance),
+        .d(side_certificates_to_decision_3_d),
+        .q(side_certificates_to_decision_3_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_16(
-        .clock(sides_to_decision_16_clock),
-        .advance(sides_to_decision_16_advance),
-        .d(sides_to_decision_16_d),
-        .q(sides_to_decision_16_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_4(
+        .clock(side_certificates_to_decision_4_clock),
+        .advance(side_certificates_to_decision_4_advance),
+        .d(side_certificates_to_decision_4_d),
+        .q(side_certificates_to_decision_4_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n19 u_sides_to_decision_17(
-        .clock(sides_to_decision_17_clock),
-        .advance(sides_to_decision_17_advance),
-        .d(sides_to_decision_17_d),
-        .q(sides_to_decision_17_q)
+    tritri_pipeline_w24_delay_line_w1_n18 u_side_certificates_to_decision_5(
+        .clock(side_certificates_to_decision_5_clock),
+        .advance(side_certificates_to_decision_5_advance),
+        .d(side_certificates_to_decision_5_d),
+        .q(side_certificates_to_decision_5_q)
     );
 
     // Update code
@@ -1744,10 +1724,6 @@ module tritri_pipeline_w24_general_path (
     assign orient_signs_to_decision_2_advance = advance_copies_6;
     assign orient_signs_to_decision_3_clock = clock;
     assign orient_signs_to_decision_3_advance = advance_copies_6;
-    assign orient_signs_to_decision_4_clock = clock;
-    assign orient_signs_to_decision_4_advance = advance_copies_6;
-    assign orient_signs_to_decision_5_clock = clock;
-    assign orient_signs_to_decision_5_advance = advance_copies_6;
     assign sides_to_decision_0_clock = clock;
     assign sides_to_decision_0_advance = advance_copies_6;
     assign sides_to_decision_1_clock = clock;
@@ -1772,18 +1748,18 @@ module tritri_pipeline_w24_general_path (
     assign sides_to_decision_10_advance = advance_copies_6;
     assign sides_to_decision_11_clock = clock;
     assign sides_to_decision_11_advance = advance_copies_6;
-    assign sides_to_decision_12_clock = clock;
-    assign sides_to_decision_12_advance = advance_copies_6;
-    assign sides_to_decision_13_clock = clock;
-    assign sides_to_decision_13_advance = advance_copies_6;
-    assign sides_to_decision_14_clock = clock;
-    assign sides_to_decision_14_advance = advance_copies_6;
-    assign sides_to_decision_15_clock = clock;
-    assign sides_to_decision_15_advance = advance_copies_6;
-    assign sides_to_decision_16_clock = clock;
-    assign sides_to_decision_16_advance = advance_copies_6;
-    assign sides_to_decision_17_clock = clock;
-    assign sides_to_decision_17_advance = advance_copies_6;
+    assign side_certificates_to_decision_0_clock = clock;
+    assign side_certificates_to_decision_0_advance = advance_copies_6;
+    assign side_certificates_to_decision_1_clock = clock;
+    assign side_certificates_to_decision_1_advance = advance_copies_6;
+    assign side_certificates_to_decision_2_clock = clock;
+    assign side_certificates_to_decision_2_advance = advance_copies_6;
+    assign side_certificates_to_decision_3_clock = clock;
+    assign side_certificates_to_decision_3_advance = advance_copies_6;
+    assign side_certificates_to_decision_4_clock = clock;
+    assign side_certificates_to_decision_4_advance = advance_copies_6;
+    assign side_certificates_to_decision_5_clock = clock;
+    assign side_certificates_to_decision_5_advance = advance_copies_6;
     assign record_valid_d = in_valid;
     assign record_bset_d = in_bset;
     assign record_load_d = in_valid && in_bset;
@@ -2054,38 +2030,38 @@ module tritri_pipeline_w24_general_path (
     assign sides_to_decision_3_d = plane_side_t1_zero_0;
     assign sides_to_decision_6_d = plane_side_t2_negative_0;
     assign sides_to_decision_9_d = plane_side_t2_zero_0;
-    assign sides_to_decision_12_d = plane_side_t1_certain_0;
-    assign sides_to_decision_15_d = plane_side_t2_certain_0;
+    assign side_certificates_to_decision_0_d = plane_side_t1_certain_0;
+    assign side_certificates_to_decision_3_d = plane_side_t2_certain_0;
     assign decision_t1_side_negative_0 = sides_to_decision_0_q;
     assign decision_t1_side_zero_0 = sides_to_decision_3_q;
     assign decision_t2_side_negative_0 = sides_to_decision_6_q;
     assign decision_t2_side_zero_0 = sides_to_decision_9_q;
-    assign decision_t1_side_certain_0 = sides_to_decision_12_q;
-    assign decision_t2_side_certain_0 = sides_to_decision_15_q;
+    assign decision_t1_side_certain_0 = side_certificates_to_decision_0_q;
+    assign decision_t2_side_certain_0 = side_certificates_to_decision_3_q;
     assign sides_to_decision_1_d = plane_side_t1_negative_1;
     assign sides_to_decision_4_d = plane_side_t1_zero_1;
     assign sides_to_decision_7_d = plane_side_t2_negative_1;
     assign sides_to_decision_10_d = plane_side_t2_zero_1;
-    assign sides_to_decision_13_d = plane_side_t1_certain_1;
-    assign sides_to_decision_16_d = plane_side_t2_certain_1;
+    assign side_certificates_to_decision_1_d = plane_side_t1_certain_1;
+    assign side_certificates_to_decision_4_d = plane_side_t2_certain_1;
     assign decision_t1_side_negative_1 = sides_to_decision_1_q;
     assign decision_t1_side_zero_1 = sides_to_decision_4_q;
     assign decision_t2_side_negative_1 = sides_to_decision_7_q;
     assign decision_t2_side_zero_1 = sides_to_decision_10_q;
-    assign decision_t1_side_certain_1 = sides_to_decision_13_q;
-    assign decision_t2_side_certain_1 = sides_to_decision_16_q;
+    assign decision_t1_side_certain_1 = side_certificates_to_decision_1_q;
+    assign decision_t2_side_certain_1 = side_certificates_to_decision_4_q;
     assign sides_to_decision_2_d = plane_side_t1_negative_2;
     assign sides_to_decision_5_d = plane_side_t1_zero_2;
     assign sides_to_decision_8_d = plane_side_t2_negative_2;
     assign sides_to_decision_11_d = plane_side_t2_zero_2;
-    assign sides_to_decision_14_d = plane_side_t1_certain_2;
-    assign sides_to_decision_17_d = plane_side_t2_certain_2;
+    assign side_certificates_to_decision_2_d = plane_side_t1_certain_2;
+    assign side_certificates_to_decision_5_d = plane_side_t2_certain_2;
     assign decision_t1_side_negative_2 = sides_to_decision_2_q;
     assign decision_t1_side_zero_2 = sides_to_decision_5_q;
     assign decision_t2_side_negative_2 = sides_to_decision_8_q;
     assign decision_t2_side_zero_2 = sides_to_decision_11_q;
-    assign decision_t1_side_certain_2 = sides_to_decision_14_q;
-    assign decision_t2_side_certain_2 = sides_to_decision_17_q;
+    assign decision_t1_side_certain_2 = side_certificates_to_decision_2_q;
+    assign decision_t2_side_certain_2 = side_certificates_to_decision_5_q;
     assign decision_t1_degenerate = degenerate_to_decision_0_q;
     assign decision_t2_degenerate = degenerate_to_decision_1_q;
     assign decision_t1_segment_low = segment_ends_to_decision_0_q;
@@ -2094,16 +2070,14 @@ module tritri_pipeline_w24_general_path (
     assign decision_t2_segment_high = segment_ends_to_decision_3_q;
     assign orient_signs_to_decision_0_d = orient3d_0_negative;
     assign orient_signs_to_decision_1_d = orient3d_0_zero;
-    assign orient_signs_to_decision_2_d = orient3d_0_certain;
-    assign orient_signs_to_decision_3_d = orient3d_1_negative;
-    assign orient_signs_to_decision_4_d = orient3d_1_zero;
-    assign orient_signs_to_decision_5_d = orient3d_1_certain;
+    assign orient_signs_to_decision_2_d = orient3d_1_negative;
+    assign orient_signs_to_decision_3_d = orient3d_1_zero;
     assign decision_orient_negative_0 = orient_signs_to_decision_0_q;
     assign decision_orient_zero_0 = orient_signs_to_decision_1_q;
-    assign decision_orient_certain_0 = orient_signs_to_decision_2_q;
-    assign decision_orient_negative_1 = orient_signs_to_decision_3_q;
-    assign decision_orient_zero_1 = orient_signs_to_decision_4_q;
-    assign decision_orient_certain_1 = orient_signs_to_decision_5_q;
+    assign decision_orient_negative_1 = orient_signs_to_decision_2_q;
+    assign decision_orient_zero_1 = orient_signs_to_decision_3_q;
+    assign decision_orient_certain_0 = orient3d_0_certain;
+    assign decision_orient_certain_1 = orient3d_1_certain;
     assign decision_orient_negative_2 = third_determinant_negative;
     assign decision_orient_zero_2 = third_determinant_zero;
     assign decision_coplanar_hit = coplanar_hit;

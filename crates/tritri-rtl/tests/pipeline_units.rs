@@ -16,6 +16,7 @@ use tritri_geom::fixed_point::{
 };
 use tritri_geom::kernel::ExactKernel;
 use tritri_geom::sign::Sign;
+use tritri_rtl::arith::certificate::{CERTAIN_SIGN_LATENCY, CERTIFICATE_LATENCY};
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
 use tritri_rtl::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
 use tritri_rtl::pipeline::align_t2::{AlignT2, ALIGN_T2_LATENCY};
@@ -224,38 +225,49 @@ fn plane_side_signs_and_certificates() {
             (*plane, t)
         })
         .collect();
-    let mut uut = PlaneSide::<24, 25, 49, 74>::default();
-    uut.connect_all();
-    uut.advance.next = true;
-    assert_stream_matches(
-        &mut uut,
-        |u| &mut u.clock,
-        &vectors,
-        PLANE_SIDE_LATENCY,
-        |u, (plane, t)| {
-            for k in 0..3 {
-                u.plane_point[k].next = from_i128(plane[0][k] as i128);
+    // The signs, then the certificates a clock later (`CERTIFICATE_LATENCY`).
+    for certificates in [false, true] {
+        let mut uut = PlaneSide::<24, 25, 49, 74>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        let shown = move |(negative, zero, certain): (bool, bool, bool)| {
+            if certificates {
+                (false, false, certain)
+            } else {
+                (negative, zero, false)
             }
-            // The normal and edges' bit length arrive from the base polygon,
-            // computed by the normal unit (tested above).
-            for (k, n) in normal(plane).iter().enumerate() {
-                u.plane_normal[k].next = from_i128(*n);
-            }
-            u.plane_edges_bits.next = edges_bits(plane).into();
-            set_vertices(&mut u.vertices, t);
-        },
-        |u| {
-            std::array::from_fn::<_, 3, _>(|k| {
-                (u.negative[k].val(), u.zero[k].val(), u.certain[k].val())
-            })
-        },
-        |(plane, t)| {
-            t.map(|v| {
-                let (sign, certain) = orient3d_certified(plane[0], plane[1], plane[2], v);
-                (sign == Sign::Negative, sign == Sign::Zero, certain)
-            })
-        },
-    );
+        };
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            PLANE_SIDE_LATENCY
+                + usize::from(certificates) * (CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY),
+            |u, (plane, t)| {
+                for k in 0..3 {
+                    u.plane_point[k].next = from_i128(plane[0][k] as i128);
+                }
+                // The normal and edges' bit length arrive from the base polygon,
+                // computed by the normal unit (tested above).
+                for (k, n) in normal(plane).iter().enumerate() {
+                    u.plane_normal[k].next = from_i128(*n);
+                }
+                u.plane_edges_bits.next = edges_bits(plane).into();
+                set_vertices(&mut u.vertices, t);
+            },
+            |u| {
+                std::array::from_fn::<_, 3, _>(|k| {
+                    shown((u.negative[k].val(), u.zero[k].val(), u.certain[k].val()))
+                })
+            },
+            |(plane, t)| {
+                t.map(|v| {
+                    let (sign, certain) = orient3d_certified(plane[0], plane[1], plane[2], v);
+                    shown((sign == Sign::Negative, sign == Sign::Zero, certain))
+                })
+            },
+        );
+    }
 }
 
 #[test]
@@ -273,28 +285,39 @@ fn certified_orient3d_is_the_models_sign_and_certificate() {
             [a, b, c, d]
         })
         .collect();
-    let mut uut = CertifiedOrient3d::<24, 25, 49, 74>::default();
-    uut.connect_all();
-    uut.advance.next = true;
-    assert_stream_matches(
-        &mut uut,
-        |u| &mut u.clock,
-        &vectors,
-        CERTIFIED_ORIENT3D_LATENCY,
-        |u, [a, b, c, d]| {
-            for k in 0..3 {
-                u.a[k].next = from_i128(a[k] as i128);
-                u.b[k].next = from_i128(b[k] as i128);
-                u.c[k].next = from_i128(c[k] as i128);
-                u.d[k].next = from_i128(d[k] as i128);
+    // The sign, then the certificate a clock later (`CERTIFICATE_LATENCY`).
+    for certificates in [false, true] {
+        let mut uut = CertifiedOrient3d::<24, 25, 49, 74>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        let shown = move |(negative, zero, certain): (bool, bool, bool)| {
+            if certificates {
+                (false, false, certain)
+            } else {
+                (negative, zero, false)
             }
-        },
-        |u| (u.negative.val(), u.zero.val(), u.certain.val()),
-        |[a, b, c, d]| {
-            let (sign, certain) = orient3d_certified(*a, *b, *c, *d);
-            (sign == Sign::Negative, sign == Sign::Zero, certain)
-        },
-    );
+        };
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            CERTIFIED_ORIENT3D_LATENCY
+                + usize::from(certificates) * (CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY),
+            |u, [a, b, c, d]| {
+                for k in 0..3 {
+                    u.a[k].next = from_i128(a[k] as i128);
+                    u.b[k].next = from_i128(b[k] as i128);
+                    u.c[k].next = from_i128(c[k] as i128);
+                    u.d[k].next = from_i128(d[k] as i128);
+                }
+            },
+            |u| shown((u.negative.val(), u.zero.val(), u.certain.val())),
+            |[a, b, c, d]| {
+                let (sign, certain) = orient3d_certified(*a, *b, *c, *d);
+                shown((sign == Sign::Negative, sign == Sign::Zero, certain))
+            },
+        );
+    }
 }
 
 /// The segment-triangle case's third determinant: `s_b - s_a` of the

@@ -14,10 +14,11 @@
 //!   edges, once per triangle (with its normal) or per determinant.
 //! * [`CertificateThreshold`] (five register stages, beside the dot
 //!   product): `T` from `|w_k|`, `n` and `ke`.
-//! * [`CertainSign`] (one register stage, like [`super::sign::SignOf`]):
-//!   the sign of `P` and whether its ones' complement magnitude
-//!   `P ^ (P >> top)` (`|P|` or `|P| - 1`) is at least `T`, compared as
-//!   `P >= T` or `P <= !T` by the sign.
+//! * [`CertainSign`] (one register stage for the sign, like
+//!   [`super::sign::SignOf`], two for the certificate): the sign of `P` and
+//!   whether its ones' complement magnitude `P ^ (P >> top)` (`|P|` or
+//!   `|P| - 1`) is at least `T`, compared as `P >= T` or `P <= !T` by the
+//!   sign, each in two halves.
 //!
 //! A bit length is read from a leading one: the value smeared downwards
 //! (`t | t >> 1`, `>> 2`, ...), then `t & ~(t >> 1)`; of `2 v + 1`, so that
@@ -35,7 +36,6 @@
 
 use super::convert::{from_i128, to_i128};
 use rust_hdl::prelude::*;
-use rust_hdl::widgets::prelude::DFF;
 use tritri_geom::certificate::{bit_length, ones_complement_magnitude};
 
 /// Clock edges from value and threshold to sign and certificate.
@@ -452,7 +452,22 @@ end
     }
 }
 
-/// The sign of a determinant and its certificate, registered.
+/// The sign of a determinant, registered, and its certificate a clock
+/// later.
+///
+/// `P >= T` and `P <= !T`, compared as unsigned O-bit values (for `P >= 0`,
+/// `|P| >= T`; for `P < 0`, both in the upper half, `!P >= T`), each as
+/// two halves: the upper halves' `>=` and `<=` and the lower halves' `>=`
+/// (or `<=`) are registered with the sign, and the next stage combines
+/// them, `P >= T` being `hi >= & (!(hi <=) | lo >=)`. In one stage the
+/// comparison was a carry chain over all O bits behind a register placed
+/// apart, the clock of the W = 16 plane side on ECP5 (121.7 MHz, 53 logic
+/// levels, the 50-bit chain's cells) and of the W = 8 pipeline (132.6
+/// MHz). The sign's lines to the decision are longer than a clock, so the
+/// certificate's one more costs no latency.
+///
+/// Custom Verilog with an exact model of its registers, like the
+/// threshold's.
 #[derive(LogicBlock)]
 pub struct CertainSign<const O: usize> {
     pub clock: Signal<In, Clock>,
@@ -465,28 +480,23 @@ pub struct CertainSign<const O: usize> {
     pub negative: Signal<Out, Bit>,
     /// `P == 0`.
     pub zero: Signal<Out, Bit>,
-    /// `|P| >= T`: the sign holds for every admissible move.
+    /// `|P| >= T`: the sign holds for every admissible move,
+    /// `CERTIFICATE_LATENCY` enabled edges after the value.
     pub certain: Signal<Out, Bit>,
-    top_bit: Constant<Bits<8>>,
-    /// `P >= T` and `P <= !T` as unsigned O-bit values: for `P >= 0`,
-    /// `|P| >= T`; for `P < 0` (both in the upper half), `!P >= T`.
-    above: Signal<Local, Bit>,
-    below: Signal<Local, Bit>,
-    negative_q: DFF<Bit>,
-    zero_q: DFF<Bit>,
-    certain_q: DFF<Bit>,
+    // Model state: the certificate of the value a clock before.
+    _certain: bool,
 }
+
+/// Clock edges from value and threshold to the certificate.
+pub const CERTIFICATE_LATENCY: usize = CERTAIN_SIGN_LATENCY + 1;
 
 impl<const O: usize> crate::unit::Unit for CertainSign<O> {
     const LATENCY: Option<usize> = Some(CERTAIN_SIGN_LATENCY);
-    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, negative_q, zero_q, certain_q);
-    }
 }
 
 impl<const O: usize> Default for CertainSign<O> {
     fn default() -> Self {
-        assert!(O < 256);
+        assert!((4..128).contains(&O));
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -495,39 +505,81 @@ impl<const O: usize> Default for CertainSign<O> {
             negative: Default::default(),
             zero: Default::default(),
             certain: Default::default(),
-            top_bit: Constant::new(Bits::<8>::from((O - 1) as u64)),
-            above: Default::default(),
-            below: Default::default(),
-            negative_q: Default::default(),
-            zero_q: Default::default(),
-            certain_q: Default::default(),
+            _certain: false,
         }
     }
 }
 
 impl<const O: usize> Logic for CertainSign<O> {
-    #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, negative_q, zero_q, certain_q);
-        // Two comparisons on the value as it comes, each one carry chain,
-        // and the sign picks one. Forming `|P|` first put a LUT per bit,
-        // all on the sign bit, before a single chain: the W = 8
-        // pipeline's critical path on ECP5 (131.8 MHz, 4.9 of 7.6 ns
-        // routing).
-        self.above.next = self.value.val() >= self.threshold.val();
-        self.below.next = self.value.val() <= !self.threshold.val();
-        if self.advance.val() {
-            self.negative_q.d.next = self.value.val().get_bit(self.top_bit.val().index());
-            self.zero_q.d.next = !self.value.val().any();
-            if self.value.val().get_bit(self.top_bit.val().index()) {
-                self.certain_q.d.next = self.below.val();
+        if self.clock.pos_edge() && self.advance.val() {
+            let p = to_i128(self.value.val());
+            let t = to_i128(self.threshold.val()) as u128 & ((1u128 << O) - 1);
+            self.certain.next = self._certain;
+            // As the Verilog compares: P >= T, or P <= !T, unsigned.
+            let mask = (1u128 << O) - 1;
+            let unsigned = p as u128 & mask;
+            self._certain = if p < 0 {
+                unsigned <= !t & mask
             } else {
-                self.certain_q.d.next = self.above.val();
-            }
+                unsigned >= t
+            };
+            self.negative.next = p < 0;
+            self.zero.next = p == 0;
         }
-        self.negative.next = self.negative_q.q.val();
-        self.zero.next = self.zero_q.q.val();
-        self.certain.next = self.certain_q.q.val();
+    }
+
+    fn connect(&mut self) {
+        self.negative.connect();
+        self.zero.connect();
+        self.certain.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        let lo = O / 2;
+        Verilog::Custom(format!(
+            "\
+// The sign of P, registered, and its certificate |P| >= T a clock later:
+// P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
+// two halves whose results are registered, then combined.
+wire [{top}:0] limit = ~threshold;
+reg above_hi_ge_q;
+reg above_hi_le_q;
+reg above_lo_q;
+reg below_hi_ge_q;
+reg below_hi_le_q;
+reg below_lo_q;
+initial begin
+    above_hi_ge_q = 1'b0;
+    above_hi_le_q = 1'b0;
+    above_lo_q = 1'b0;
+    below_hi_ge_q = 1'b0;
+    below_hi_le_q = 1'b0;
+    below_lo_q = 1'b0;
+    negative = 1'b0;
+    zero = 1'b0;
+    certain = 1'b0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        negative <= value[{top}];
+        zero <= ~|value;
+        above_hi_ge_q <= value[{top}:{lo}] >= threshold[{top}:{lo}];
+        above_hi_le_q <= value[{top}:{lo}] <= threshold[{top}:{lo}];
+        above_lo_q <= value[{lo1}:0] >= threshold[{lo1}:0];
+        below_hi_ge_q <= value[{top}:{lo}] >= limit[{top}:{lo}];
+        below_hi_le_q <= value[{top}:{lo}] <= limit[{top}:{lo}];
+        below_lo_q <= value[{lo1}:0] <= limit[{lo1}:0];
+        certain <= negative
+            ? below_hi_le_q & (~below_hi_ge_q | below_lo_q)
+            : above_hi_ge_q & (~above_hi_le_q | above_lo_q);
+    end
+end
+",
+            top = O - 1,
+            lo = lo,
+            lo1 = lo - 1,
+        ))
     }
 }
 
@@ -657,7 +709,7 @@ mod tests {
     }
 
     /// The certificate is `tritri_geom::certificate::clears_threshold`
-    /// around each threshold, at W = 8 and W = 32.
+    /// around each threshold, a clock after the sign, at W = 8 and W = 32.
     #[test]
     fn certain_is_the_models_threshold() {
         check_certain::<26>();
@@ -673,6 +725,7 @@ mod tests {
         uut.connect_all();
         uut.advance.next = true;
         let (lo, hi) = (-(1i128 << (O - 1)), (1i128 << (O - 1)) - 1);
+        let mut last: Option<(i128, i128)> = None;
         for bits in 4..(O as u32 - 2) {
             let t = (1i128 << bits) + 3;
             for p in [
@@ -694,13 +747,17 @@ mod tests {
                 uut.value.next = from_i128::<O>(p);
                 uut.threshold.next = from_i128::<O>(t);
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
-                assert_eq!(
-                    uut.certain.val(),
-                    clears_threshold(p, t as u128),
-                    "T {t} P {p}"
-                );
+                assert_eq!(CERTIFICATE_LATENCY, CERTAIN_SIGN_LATENCY + 1);
+                if let Some((p, t)) = last {
+                    assert_eq!(
+                        uut.certain.val(),
+                        clears_threshold(p, t as u128),
+                        "T {t} P {p}"
+                    );
+                }
                 assert_eq!(uut.negative.val(), p < 0);
                 assert_eq!(uut.zero.val(), p == 0);
+                last = Some((p, t));
             }
         }
     }

@@ -55,7 +55,7 @@ use super::third_determinant::{
 };
 use super::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
 use super::ID_BITS;
-use crate::arith::certificate::CERTAIN_SIGN_LATENCY;
+use crate::arith::certificate::{CERTAIN_SIGN_LATENCY, CERTIFICATE_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::valid_line::ValidLine;
 use rust_hdl::prelude::*;
@@ -79,6 +79,16 @@ const ENDS_DIFFERENCE_STAGE: usize = DISTANCES_STAGE + ENDS_DIFFERENCE_LATENCY;
 /// The third determinant's sign comes last.
 pub const DECISION_STAGE: usize = VALUES_STAGE + THIRD_DETERMINANT_LATENCY;
 const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STAGE < VALUES_STAGE);
+/// The certificates come a clock after their signs (`CertainSign`): the
+/// plane side's wait for the decision in lines a stage shorter than the
+/// signs', and units 0 and 1's reach it as the third determinant's sign
+/// does, wired straight to it.
+const SIDE_CERTIFICATES_STAGE: usize =
+    PLANE_SIDE_LATENCY + CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY;
+const _: () = assert!(
+    DECISION_STAGE > SIDE_CERTIFICATES_STAGE
+        && ORIENT_SIGNS_STAGE + CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY == DECISION_STAGE
+);
 /// From the pair's formation to the output ports.
 const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 
@@ -166,8 +176,8 @@ crate::pipeline_ports! {
         /// plane-side values.
         degenerate_to_distances: DelayLine<Bit, DISTANCES_STAGE>,
         segment_ends_to_distances: [DelayLine<Bits<2>, DISTANCES_STAGE>; 4],
-        /// Units 0 and 1's negative, zero and certain bits, to the third's sign.
-        orient_signs_to_decision: [DelayLine<Bit, { DECISION_STAGE - ORIENT_SIGNS_STAGE }>; 6],
+        /// Units 0 and 1's negative and zero bits, to the third's sign.
+        orient_signs_to_decision: [DelayLine<Bit, { DECISION_STAGE - ORIENT_SIGNS_STAGE }>; 4],
         decision: Decision,
         // Alignment of the operands of later stages:
         t1_vertices_to_operands: [DelayLine<Bits<W>, OPERANDS_STAGE>; 9],
@@ -179,9 +189,11 @@ crate::pipeline_ports! {
         segment_ends_to_operands: [DelayLine<Bits<2>, { OPERANDS_STAGE - 1 }>; 4],
         degenerate_to_decision: [DelayLine<Bit, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 2],
         segment_ends_to_decision: [DelayLine<Bits<2>, { DECISION_STAGE - OPERANDS_STAGE + 1 }>; 4],
-        /// t1 negative, t1 zero, t2 negative, t2 zero, t1 certain, t2 certain
-        /// at `3 j + vertex`.
-        sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 18],
+        /// t1 negative, t1 zero, t2 negative, t2 zero at `3 j + vertex`.
+        sides_to_decision: [DelayLine<Bit, { DECISION_STAGE - PLANE_SIDE_LATENCY }>; 12],
+        /// t1 certain, t2 certain at `3 j + vertex`.
+        side_certificates_to_decision:
+            [DelayLine<Bit, { DECISION_STAGE - SIDE_CERTIFICATES_STAGE }>; 6],
     }
 }
 
@@ -225,7 +237,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             segment_ends_to_operands,
             degenerate_to_decision,
             segment_ends_to_decision,
-            sides_to_decision
+            sides_to_decision,
+            side_certificates_to_decision
         );
     }
 }
@@ -321,13 +334,17 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.segment_ends_to_decision[i].clock.next = self.clock.val();
             self.segment_ends_to_decision[i].advance.next = self.advance_copies[6].val();
         }
-        for i in 0..6 {
+        for i in 0..4 {
             self.orient_signs_to_decision[i].clock.next = self.clock.val();
             self.orient_signs_to_decision[i].advance.next = self.advance_copies[6].val();
         }
-        for i in 0..18 {
+        for i in 0..12 {
             self.sides_to_decision[i].clock.next = self.clock.val();
             self.sides_to_decision[i].advance.next = self.advance_copies[6].val();
+        }
+        for i in 0..6 {
+            self.side_certificates_to_decision[i].clock.next = self.clock.val();
+            self.side_certificates_to_decision[i].advance.next = self.advance_copies[6].val();
         }
 
         // Input registers and the per-triangle front end.
@@ -502,14 +519,15 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.sides_to_decision[3 + v].d.next = self.plane_side_t1.zero[v].val();
             self.sides_to_decision[6 + v].d.next = self.plane_side_t2.negative[v].val();
             self.sides_to_decision[9 + v].d.next = self.plane_side_t2.zero[v].val();
-            self.sides_to_decision[12 + v].d.next = self.plane_side_t1.certain[v].val();
-            self.sides_to_decision[15 + v].d.next = self.plane_side_t2.certain[v].val();
+            self.side_certificates_to_decision[v].d.next = self.plane_side_t1.certain[v].val();
+            self.side_certificates_to_decision[3 + v].d.next = self.plane_side_t2.certain[v].val();
             self.decision.t1_side_negative[v].next = self.sides_to_decision[v].q.val();
             self.decision.t1_side_zero[v].next = self.sides_to_decision[3 + v].q.val();
             self.decision.t2_side_negative[v].next = self.sides_to_decision[6 + v].q.val();
             self.decision.t2_side_zero[v].next = self.sides_to_decision[9 + v].q.val();
-            self.decision.t1_side_certain[v].next = self.sides_to_decision[12 + v].q.val();
-            self.decision.t2_side_certain[v].next = self.sides_to_decision[15 + v].q.val();
+            self.decision.t1_side_certain[v].next = self.side_certificates_to_decision[v].q.val();
+            self.decision.t2_side_certain[v].next =
+                self.side_certificates_to_decision[3 + v].q.val();
         }
         self.decision.t1_degenerate.next = self.degenerate_to_decision[0].q.val();
         self.decision.t2_degenerate.next = self.degenerate_to_decision[1].q.val();
@@ -519,15 +537,14 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.decision.t2_segment_high.next = self.segment_ends_to_decision[3].q.val();
         self.orient_signs_to_decision[0].d.next = self.orient3d_0.negative.val();
         self.orient_signs_to_decision[1].d.next = self.orient3d_0.zero.val();
-        self.orient_signs_to_decision[2].d.next = self.orient3d_0.certain.val();
-        self.orient_signs_to_decision[3].d.next = self.orient3d_1.negative.val();
-        self.orient_signs_to_decision[4].d.next = self.orient3d_1.zero.val();
-        self.orient_signs_to_decision[5].d.next = self.orient3d_1.certain.val();
+        self.orient_signs_to_decision[2].d.next = self.orient3d_1.negative.val();
+        self.orient_signs_to_decision[3].d.next = self.orient3d_1.zero.val();
         for u in 0..2 {
-            self.decision.orient_negative[u].next = self.orient_signs_to_decision[3 * u].q.val();
-            self.decision.orient_zero[u].next = self.orient_signs_to_decision[3 * u + 1].q.val();
-            self.decision.orient_certain[u].next = self.orient_signs_to_decision[3 * u + 2].q.val();
+            self.decision.orient_negative[u].next = self.orient_signs_to_decision[2 * u].q.val();
+            self.decision.orient_zero[u].next = self.orient_signs_to_decision[2 * u + 1].q.val();
         }
+        self.decision.orient_certain[0].next = self.orient3d_0.certain.val();
+        self.decision.orient_certain[1].next = self.orient3d_1.certain.val();
         self.decision.orient_negative[2].next = self.third_determinant.negative.val();
         self.decision.orient_zero[2].next = self.third_determinant.zero.val();
         self.decision.coplanar_hit.next = self.coplanar_hit.val();
