@@ -462,8 +462,9 @@ end
 /// them, `P >= T` being `hi >= & (!(hi <=) | lo >=)`. In one stage the
 /// comparison was a carry chain over all O bits behind a register placed
 /// apart, the clock of the W = 16 plane side on ECP5 (121.7 MHz, 53 logic
-/// levels, the 50-bit chain's cells) and of the W = 8 pipeline (132.6
-/// MHz). The sign's lines to the decision are longer than a clock, so the
+/// levels, the 50-bit chain's cells; 135.9 split) and of the W = 8
+/// pipeline (132.6 MHz; 148.7 split). Every sign waits at least a clock
+/// for the decision (orient3d's for the third determinant's), so the
 /// certificate's one more costs no latency.
 ///
 /// Custom Verilog with an exact model of its registers, like the
