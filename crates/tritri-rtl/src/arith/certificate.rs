@@ -514,11 +514,11 @@ impl<const O: usize> Default for CertainSign<O> {
 impl<const O: usize> Logic for CertainSign<O> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
+            let mask = (1u128 << O) - 1;
             let p = to_i128(self.value.val());
-            let t = to_i128(self.threshold.val()) as u128 & ((1u128 << O) - 1);
+            let t = to_i128(self.threshold.val()) as u128 & mask;
             self.certain.next = self._certain;
             // As the Verilog compares: P >= T, or P <= !T, unsigned.
-            let mask = (1u128 << O) - 1;
             let unsigned = p as u128 & mask;
             self._certain = if p < 0 {
                 unsigned <= !t & mask
@@ -726,6 +726,8 @@ mod tests {
         uut.connect_all();
         uut.advance.next = true;
         let (lo, hi) = (-(1i128 << (O - 1)), (1i128 << (O - 1)) - 1);
+        // The certificate shown is the case before's.
+        assert_eq!(CERTIFICATE_LATENCY, CERTAIN_SIGN_LATENCY + 1);
         let mut last: Option<(i128, i128)> = None;
         for bits in 4..(O as u32 - 2) {
             let t = (1i128 << bits) + 3;
@@ -748,7 +750,6 @@ mod tests {
                 uut.value.next = from_i128::<O>(p);
                 uut.threshold.next = from_i128::<O>(t);
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
-                assert_eq!(CERTIFICATE_LATENCY, CERTAIN_SIGN_LATENCY + 1);
                 if let Some((p, t)) = last {
                     assert_eq!(
                         uut.certain.val(),
