@@ -456,15 +456,18 @@ end
 /// later.
 ///
 /// `P >= T` and `P <= !T`, compared as unsigned O-bit values (for `P >= 0`,
-/// `|P| >= T`; for `P < 0`, both in the upper half, `!P >= T`), each as
-/// two halves: the upper halves' `>=` and `<=` and the lower halves' `>=`
-/// (or `<=`) are registered with the sign, and the next stage combines
-/// them, `P >= T` being `hi >= & (!(hi <=) | lo >=)`. In one stage the
-/// comparison was a carry chain over all O bits behind a register placed
-/// apart, the clock of the W = 16 plane side on ECP5 (121.7 MHz, 53 logic
-/// levels, the 50-bit chain's cells; 135.9 split) and of the W = 8
-/// pipeline (132.6 MHz; 148.7 split). Every sign waits at least a clock
-/// for the decision (orient3d's for the third determinant's), so the
+/// `|P| >= T`; for `P < 0`, both in the upper half, `!P >= T`), each in
+/// parts of at most [`COMPARE_PART_BITS`] bits: every part's `>=` and `<=`
+/// (the lowest part's `>=` or `<=` alone) are registered with the sign,
+/// and the next stage combines them from the top, `P >= T` being
+/// `hi >= & (!(hi <=) | rest)`. In one stage the comparison was a carry
+/// chain over all O bits behind a register placed apart, the clock of the
+/// W = 16 plane side on ECP5 (121.7 MHz, 53 logic levels, the 50-bit
+/// chain's cells) and of the W = 8 pipeline (132.6 MHz). In two halves:
+/// 148.7 MHz at W = 8; at W = 16 a 25-bit half's chain behind the value's
+/// register was the path again (plane side 136.7, orient3d 141.1 MHz,
+/// 26 and 27 logic levels). Every sign waits at least a clock for the
+/// decision (orient3d's for the third determinant's), so the
 /// certificate's one more costs no latency.
 ///
 /// Custom Verilog with an exact model of its registers, like the
@@ -490,6 +493,37 @@ pub struct CertainSign<const O: usize> {
 
 /// Clock edges from value and threshold to the certificate.
 pub const CERTIFICATE_LATENCY: usize = CERTAIN_SIGN_LATENCY + 1;
+
+/// The widest part [`CertainSign`] compares in one carry chain: two halves
+/// at W = 8 (O = 26), four parts at W = 16.
+pub const COMPARE_PART_BITS: usize = 10;
+
+/// `[low, high]` bit ranges of O bits in parts of at most
+/// [`COMPARE_PART_BITS`], as even as they come, lowest first.
+fn compare_parts(o: usize) -> Vec<(usize, usize)> {
+    let count = o.div_ceil(COMPARE_PART_BITS);
+    let mut parts = Vec::with_capacity(count);
+    let mut low = 0;
+    for i in 0..count {
+        let bits = o / count + usize::from(i < o % count);
+        parts.push((low, low + bits - 1));
+        low += bits;
+    }
+    parts
+}
+
+/// Verilog: `a >= b` over parts combined from the top, given each part's
+/// `{ge}{i}` and `{le}{i}` registers (the lowest part's `{last}` alone):
+/// `ge & (~le | rest)` for `>=`; with `ge`, `le` swapped, `<=`.
+fn combined_compare_verilog(ge: &str, le: &str, last: &str, parts: usize) -> String {
+    let mut text = last.to_string();
+    for i in 1..parts {
+        // Parenthesised below the top: `&` within `|` draws a lint warning.
+        let rest = if i == 1 { text } else { format!("({text})") };
+        text = format!("{ge}{i} & (~{le}{i} | {rest})");
+    }
+    text
+}
 
 impl<const O: usize> crate::unit::Unit for CertainSign<O> {
     const LATENCY: Option<usize> = Some(CERTAIN_SIGN_LATENCY);
@@ -537,27 +571,44 @@ impl<const O: usize> Logic for CertainSign<O> {
     }
 
     fn hdl(&self) -> Verilog {
-        let lo = O / 2;
+        let parts = compare_parts(O);
+        let mut regs = String::new();
+        let mut inits = String::new();
+        let mut compares = String::new();
+        for (i, &(low, high)) in parts.iter().enumerate() {
+            let range = format!("[{high}:{low}]");
+            // The lowest part needs one comparison per sign.
+            let names: &[(&str, &str, &str)] = if i == 0 {
+                &[
+                    ("above_ge_q", ">=", "threshold"),
+                    ("below_le_q", "<=", "limit"),
+                ]
+            } else {
+                &[
+                    ("above_ge_q", ">=", "threshold"),
+                    ("above_le_q", "<=", "threshold"),
+                    ("below_ge_q", ">=", "limit"),
+                    ("below_le_q", "<=", "limit"),
+                ]
+            };
+            for (name, op, bound) in names {
+                regs += &format!("reg {name}{i};\n");
+                inits += &format!("    {name}{i} = 1'b0;\n");
+                compares += &format!("        {name}{i} <= value{range} {op} {bound}{range};\n");
+            }
+        }
+        let above =
+            combined_compare_verilog("above_ge_q", "above_le_q", "above_ge_q0", parts.len());
+        let below =
+            combined_compare_verilog("below_le_q", "below_ge_q", "below_le_q0", parts.len());
         Verilog::Custom(format!(
             "\
 // The sign of P, registered, and its certificate |P| >= T a clock later:
 // P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
-// two halves whose results are registered, then combined.
+// {count} parts whose results are registered, then combined from the top.
 wire [{top}:0] limit = ~threshold;
-reg above_hi_ge_q;
-reg above_hi_le_q;
-reg above_lo_q;
-reg below_hi_ge_q;
-reg below_hi_le_q;
-reg below_lo_q;
-initial begin
-    above_hi_ge_q = 1'b0;
-    above_hi_le_q = 1'b0;
-    above_lo_q = 1'b0;
-    below_hi_ge_q = 1'b0;
-    below_hi_le_q = 1'b0;
-    below_lo_q = 1'b0;
-    negative = 1'b0;
+{regs}initial begin
+{inits}    negative = 1'b0;
     zero = 1'b0;
     certain = 1'b0;
 end
@@ -565,21 +616,14 @@ always @(posedge clock) begin
     if (advance) begin
         negative <= value[{top}];
         zero <= ~|value;
-        above_hi_ge_q <= value[{top}:{lo}] >= threshold[{top}:{lo}];
-        above_hi_le_q <= value[{top}:{lo}] <= threshold[{top}:{lo}];
-        above_lo_q <= value[{lo1}:0] >= threshold[{lo1}:0];
-        below_hi_ge_q <= value[{top}:{lo}] >= limit[{top}:{lo}];
-        below_hi_le_q <= value[{top}:{lo}] <= limit[{top}:{lo}];
-        below_lo_q <= value[{lo1}:0] <= limit[{lo1}:0];
-        certain <= negative
-            ? below_hi_le_q & (~below_hi_ge_q | below_lo_q)
-            : above_hi_ge_q & (~above_hi_le_q | above_lo_q);
+{compares}        certain <= negative
+            ? {below}
+            : {above};
     end
 end
 ",
+            count = parts.len(),
             top = O - 1,
-            lo = lo,
-            lo1 = lo - 1,
         ))
     }
 }

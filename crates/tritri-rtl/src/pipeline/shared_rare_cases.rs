@@ -98,14 +98,20 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     axis_q: DFF<Bits<2>>,
     /// T1's normal's negative and zero flags (`k`, `3 + k`), then T2's.
     normal_q: [DFF<Bit>; 12],
-    /// Steps left to issue (the current one included), and its number.
+    /// Steps left to issue (the current one included).
     remaining_q: DFF<Bits<3>>,
-    step_q: DFF<Bits<3>>,
-    /// Copies of `step_q` and `segments_q`, one per destination of stage
-    /// 1 (`u0`, `u1`, then `w0`'s lanes, then `w1`'s). Each counts from its
-    /// own value, so synthesis keeps them apart.
-    step_copy_q: [DFF<Bits<3>>; 8],
-    segments_copy_q: [DFF<Bit>; 8],
+    /// The current step's number, the job's kind and the steps left, in
+    /// copies: `3 d + k` for coordinate `k` of stage 1's destination `d`
+    /// (`u0`, `u1`, `w0`'s lanes, then `w1`'s), and 24 for the lines beside
+    /// the lanes. Each counts from its own value, so synthesis keeps them
+    /// apart, and each loads by its own count (as does point `p`'s
+    /// coordinate `k` by copy `3 p + k`), so that no register drives the
+    /// loads of all of them (W = 16: one step per destination, 48
+    /// bits, was 107.8 MHz; with `remaining_q` deciding the copies' loads,
+    /// 7.4 ns of routing to their resets, 110.5 MHz).
+    step_copy_q: [DFF<Bits<3>>; 25],
+    segments_copy_q: [DFF<Bit>; 25],
+    remaining_copy_q: [DFF<Bits<3>>; 25],
     /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
     /// (coordinate `k` at `3 l + k`), and each lane's axis.
     u0_q: [DFF<Bits<W>>; 3],
@@ -167,9 +173,9 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             axis_q,
             normal_q,
             remaining_q,
-            step_q,
             step_copy_q,
             segments_copy_q,
+            remaining_copy_q,
             u0_q,
             u1_q,
             w0_q,
@@ -224,15 +230,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             done_line,
             segments_line
         );
-        dff_setup!(
-            self,
-            clock,
-            segments_q,
-            axis_q,
-            remaining_q,
-            step_q,
-            decide_q
-        );
+        dff_setup!(self, clock, segments_q, axis_q, remaining_q, decide_q);
         self.u_difference.advance.next = true;
         self.w_difference_0.advance.next = true;
         self.w_difference_1.advance.next = true;
@@ -265,53 +263,14 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         }
         if self.remaining_q.q.val() != 0 {
             self.remaining_q.d.next = self.remaining_q.q.val() - 1;
-            self.step_q.d.next = self.step_q.q.val() + 1;
         }
         if self.in_valid.val() && (self.remaining_q.q.val() == 0 || self.remaining_q.q.val() == 1) {
             self.segments_q.d.next = self.in_segments.val();
             self.axis_q.d.next = self.axis.val();
-            self.step_q.d.next = 0.into();
             if self.in_segments.val() {
                 self.remaining_q.d.next = 4.into();
             } else {
                 self.remaining_q.d.next = 6.into();
-            }
-            for i in 0..9 {
-                self.points_q[i].d.next = self.t1_vertices[i].val();
-                self.points_q[9 + i].d.next = self.t2_vertices[i].val();
-            }
-            if self.in_segments.val() {
-                // a, b = points 0, 1; c, d = points 3, 4.
-                for k in 0..3 {
-                    if self.t1_segment_low.val() == 1 {
-                        self.points_q[k].d.next = self.t1_vertices[3 + k].val();
-                    } else if self.t1_segment_low.val() == 2 {
-                        self.points_q[k].d.next = self.t1_vertices[6 + k].val();
-                    } else {
-                        self.points_q[k].d.next = self.t1_vertices[k].val();
-                    }
-                    if self.t1_segment_high.val() == 1 {
-                        self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
-                    } else if self.t1_segment_high.val() == 2 {
-                        self.points_q[3 + k].d.next = self.t1_vertices[6 + k].val();
-                    } else {
-                        self.points_q[3 + k].d.next = self.t1_vertices[k].val();
-                    }
-                    if self.t2_segment_low.val() == 1 {
-                        self.points_q[9 + k].d.next = self.t2_vertices[3 + k].val();
-                    } else if self.t2_segment_low.val() == 2 {
-                        self.points_q[9 + k].d.next = self.t2_vertices[6 + k].val();
-                    } else {
-                        self.points_q[9 + k].d.next = self.t2_vertices[k].val();
-                    }
-                    if self.t2_segment_high.val() == 1 {
-                        self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
-                    } else if self.t2_segment_high.val() == 2 {
-                        self.points_q[12 + k].d.next = self.t2_vertices[6 + k].val();
-                    } else {
-                        self.points_q[12 + k].d.next = self.t2_vertices[k].val();
-                    }
-                }
             }
             for k in 0..3 {
                 self.normal_q[k].d.next = self.t1_normal_negative[k].val();
@@ -323,19 +282,105 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         if self.reset.val() {
             self.remaining_q.d.next = 0.into();
         }
-        for c in 0..8 {
-            self.step_copy_q[c].clock.next = self.clock.val();
-            self.segments_copy_q[c].clock.next = self.clock.val();
-            self.step_copy_q[c].d.next = self.step_copy_q[c].q.val();
-            self.segments_copy_q[c].d.next = self.segments_copy_q[c].q.val();
-            if self.remaining_q.q.val() != 0 {
-                self.step_copy_q[c].d.next = self.step_copy_q[c].q.val() + 1;
+        // The job's points: point `p`'s coordinate `k` loads by copy
+        // `3 p + k` of the steps left, as the copies do (with `remaining_q`
+        // for all 18, W = 16: 6.8 ns of routing to the clock enables,
+        // 128.9 MHz). Two segments put their ends at points 0, 1 (a, b)
+        // and 3, 4 (c, d).
+        for k in 0..3 {
+            if self.in_valid.val()
+                && (self.remaining_copy_q[k].q.val() == 0 || self.remaining_copy_q[k].q.val() == 1)
+            {
+                if !self.in_segments.val() {
+                    self.points_q[k].d.next = self.t1_vertices[k].val();
+                } else if self.t1_segment_low.val() == 1 {
+                    self.points_q[k].d.next = self.t1_vertices[3 + k].val();
+                } else if self.t1_segment_low.val() == 2 {
+                    self.points_q[k].d.next = self.t1_vertices[6 + k].val();
+                } else {
+                    self.points_q[k].d.next = self.t1_vertices[k].val();
+                }
             }
             if self.in_valid.val()
-                && (self.remaining_q.q.val() == 0 || self.remaining_q.q.val() == 1)
+                && (self.remaining_copy_q[3 + k].q.val() == 0
+                    || self.remaining_copy_q[3 + k].q.val() == 1)
+            {
+                if !self.in_segments.val() {
+                    self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
+                } else if self.t1_segment_high.val() == 1 {
+                    self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
+                } else if self.t1_segment_high.val() == 2 {
+                    self.points_q[3 + k].d.next = self.t1_vertices[6 + k].val();
+                } else {
+                    self.points_q[3 + k].d.next = self.t1_vertices[k].val();
+                }
+            }
+            if self.in_valid.val()
+                && (self.remaining_copy_q[6 + k].q.val() == 0
+                    || self.remaining_copy_q[6 + k].q.val() == 1)
+            {
+                self.points_q[6 + k].d.next = self.t1_vertices[6 + k].val();
+            }
+            if self.in_valid.val()
+                && (self.remaining_copy_q[9 + k].q.val() == 0
+                    || self.remaining_copy_q[9 + k].q.val() == 1)
+            {
+                if !self.in_segments.val() {
+                    self.points_q[9 + k].d.next = self.t2_vertices[k].val();
+                } else if self.t2_segment_low.val() == 1 {
+                    self.points_q[9 + k].d.next = self.t2_vertices[3 + k].val();
+                } else if self.t2_segment_low.val() == 2 {
+                    self.points_q[9 + k].d.next = self.t2_vertices[6 + k].val();
+                } else {
+                    self.points_q[9 + k].d.next = self.t2_vertices[k].val();
+                }
+            }
+            if self.in_valid.val()
+                && (self.remaining_copy_q[12 + k].q.val() == 0
+                    || self.remaining_copy_q[12 + k].q.val() == 1)
+            {
+                if !self.in_segments.val() {
+                    self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
+                } else if self.t2_segment_high.val() == 1 {
+                    self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
+                } else if self.t2_segment_high.val() == 2 {
+                    self.points_q[12 + k].d.next = self.t2_vertices[6 + k].val();
+                } else {
+                    self.points_q[12 + k].d.next = self.t2_vertices[k].val();
+                }
+            }
+            if self.in_valid.val()
+                && (self.remaining_copy_q[15 + k].q.val() == 0
+                    || self.remaining_copy_q[15 + k].q.val() == 1)
+            {
+                self.points_q[15 + k].d.next = self.t2_vertices[6 + k].val();
+            }
+        }
+        // The copies count as `segments_q` and `remaining_q` do.
+        for c in 0..25 {
+            self.step_copy_q[c].clock.next = self.clock.val();
+            self.segments_copy_q[c].clock.next = self.clock.val();
+            self.remaining_copy_q[c].clock.next = self.clock.val();
+            self.step_copy_q[c].d.next = self.step_copy_q[c].q.val();
+            self.segments_copy_q[c].d.next = self.segments_copy_q[c].q.val();
+            self.remaining_copy_q[c].d.next = self.remaining_copy_q[c].q.val();
+            if self.remaining_copy_q[c].q.val() != 0 {
+                self.step_copy_q[c].d.next = self.step_copy_q[c].q.val() + 1;
+                self.remaining_copy_q[c].d.next = self.remaining_copy_q[c].q.val() - 1;
+            }
+            if self.in_valid.val()
+                && (self.remaining_copy_q[c].q.val() == 0 || self.remaining_copy_q[c].q.val() == 1)
             {
                 self.step_copy_q[c].d.next = 0.into();
                 self.segments_copy_q[c].d.next = self.in_segments.val();
+                if self.in_segments.val() {
+                    self.remaining_copy_q[c].d.next = 4.into();
+                } else {
+                    self.remaining_copy_q[c].d.next = 6.into();
+                }
+            }
+            if self.reset.val() {
+                self.remaining_copy_q[c].d.next = 0.into();
             }
         }
 
@@ -359,290 +404,202 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.w0_q[i].clock.next = self.clock.val();
             self.w1_q[i].clock.next = self.clock.val();
         }
-        // Each destination's points, by the program of its kind and step:
-        // its own copy of the step and kind (below), so that no select
-        // reaches all 24 coordinates (ECP5, W = 8: the step's bits through
-        // the program's multiplexers to every point register was the
-        // critical path, 5.3 ns of it one net's routing, 96.7 MHz).
+        // Each destination coordinate's point, by the program of its kind
+        // and step: its own copy of the step and kind, so that a select
+        // reaches W bits. (ECP5, W = 8: one step for all 24 coordinates
+        // was the critical path, 5.3 ns of it one net's routing, 96.7 MHz;
+        // W = 16 with a copy per destination, 48 bits each: 107.8 MHz.)
         // u0
-        if self.segments_copy_q[0].q.val() {
-            if self.step_copy_q[0].q.val() == 0 || self.step_copy_q[0].q.val() == 1 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[k].q.val() {
+                if self.step_copy_q[k].q.val() == 0 || self.step_copy_q[k].q.val() == 1 {
                     self.u0_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.u0_q[k].d.next = self.points_q[9 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[0].q.val() == 0 {
-                for k in 0..3 {
+            } else {
+                if self.step_copy_q[k].q.val() == 0 {
                     self.u0_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else if self.step_copy_q[0].q.val() == 1 {
-                for k in 0..3 {
+                } else if self.step_copy_q[k].q.val() == 1 {
                     self.u0_q[k].d.next = self.points_q[3 + k].q.val();
-                }
-            } else if self.step_copy_q[0].q.val() == 2 {
-                for k in 0..3 {
+                } else if self.step_copy_q[k].q.val() == 2 {
                     self.u0_q[k].d.next = self.points_q[6 + k].q.val();
-                }
-            } else if self.step_copy_q[0].q.val() == 3 {
-                for k in 0..3 {
+                } else if self.step_copy_q[k].q.val() == 3 {
                     self.u0_q[k].d.next = self.points_q[9 + k].q.val();
-                }
-            } else if self.step_copy_q[0].q.val() == 4 {
-                for k in 0..3 {
+                } else if self.step_copy_q[k].q.val() == 4 {
                     self.u0_q[k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.u0_q[k].d.next = self.points_q[15 + k].q.val();
                 }
             }
         }
         // u1
-        if self.segments_copy_q[1].q.val() {
-            if self.step_copy_q[1].q.val() == 0 || self.step_copy_q[1].q.val() == 1 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[3 + k].q.val() {
+                if self.step_copy_q[3 + k].q.val() == 0 || self.step_copy_q[3 + k].q.val() == 1 {
                     self.u1_q[k].d.next = self.points_q[3 + k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.u1_q[k].d.next = self.points_q[12 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[1].q.val() == 0 {
-                for k in 0..3 {
+            } else {
+                if self.step_copy_q[3 + k].q.val() == 0 {
                     self.u1_q[k].d.next = self.points_q[3 + k].q.val();
-                }
-            } else if self.step_copy_q[1].q.val() == 1 {
-                for k in 0..3 {
+                } else if self.step_copy_q[3 + k].q.val() == 1 {
                     self.u1_q[k].d.next = self.points_q[6 + k].q.val();
-                }
-            } else if self.step_copy_q[1].q.val() == 2 {
-                for k in 0..3 {
+                } else if self.step_copy_q[3 + k].q.val() == 2 {
                     self.u1_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else if self.step_copy_q[1].q.val() == 3 {
-                for k in 0..3 {
+                } else if self.step_copy_q[3 + k].q.val() == 3 {
                     self.u1_q[k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else if self.step_copy_q[1].q.val() == 4 {
-                for k in 0..3 {
+                } else if self.step_copy_q[3 + k].q.val() == 4 {
                     self.u1_q[k].d.next = self.points_q[15 + k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.u1_q[k].d.next = self.points_q[9 + k].q.val();
                 }
             }
         }
         // w0 lane 0
-        if self.segments_copy_q[2].q.val() {
-            if self.step_copy_q[2].q.val() == 0 || self.step_copy_q[2].q.val() == 1 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[6 + k].q.val() {
+                if self.step_copy_q[6 + k].q.val() == 0 || self.step_copy_q[6 + k].q.val() == 1 {
                     self.w0_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w0_q[k].d.next = self.points_q[9 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[2].q.val() == 0
-                || self.step_copy_q[2].q.val() == 3
-                || self.step_copy_q[2].q.val() == 4
-                || self.step_copy_q[2].q.val() == 5
-            {
-                for k in 0..3 {
-                    self.w0_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else if self.step_copy_q[2].q.val() == 1 {
-                for k in 0..3 {
-                    self.w0_q[k].d.next = self.points_q[3 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[6 + k].q.val() == 0
+                    || self.step_copy_q[6 + k].q.val() == 3
+                    || self.step_copy_q[6 + k].q.val() == 4
+                    || self.step_copy_q[6 + k].q.val() == 5
+                {
+                    self.w0_q[k].d.next = self.points_q[k].q.val();
+                } else if self.step_copy_q[6 + k].q.val() == 1 {
+                    self.w0_q[k].d.next = self.points_q[3 + k].q.val();
+                } else {
                     self.w0_q[k].d.next = self.points_q[6 + k].q.val();
                 }
             }
         }
         // w0 lane 1
-        if self.segments_copy_q[3].q.val() {
-            if self.step_copy_q[3].q.val() == 0 || self.step_copy_q[3].q.val() == 1 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[9 + k].q.val() {
+                if self.step_copy_q[9 + k].q.val() == 0 || self.step_copy_q[9 + k].q.val() == 1 {
                     self.w0_q[3 + k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w0_q[3 + k].d.next = self.points_q[9 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[3].q.val() == 0 {
-                for k in 0..3 {
-                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
-                }
-            } else if self.step_copy_q[3].q.val() == 1
-                || self.step_copy_q[3].q.val() == 3
-                || self.step_copy_q[3].q.val() == 4
-                || self.step_copy_q[3].q.val() == 5
-            {
-                for k in 0..3 {
-                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[9 + k].q.val() == 0 {
+                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
+                } else if self.step_copy_q[9 + k].q.val() == 1
+                    || self.step_copy_q[9 + k].q.val() == 3
+                    || self.step_copy_q[9 + k].q.val() == 4
+                    || self.step_copy_q[9 + k].q.val() == 5
+                {
+                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                } else {
                     self.w0_q[3 + k].d.next = self.points_q[6 + k].q.val();
                 }
             }
         }
         // w0 lane 2
-        if self.segments_copy_q[4].q.val() {
-            if self.step_copy_q[4].q.val() == 0 || self.step_copy_q[4].q.val() == 1 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[12 + k].q.val() {
+                if self.step_copy_q[12 + k].q.val() == 0 || self.step_copy_q[12 + k].q.val() == 1 {
                     self.w0_q[6 + k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w0_q[6 + k].d.next = self.points_q[9 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[4].q.val() == 0 {
-                for k in 0..3 {
-                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
-                }
-            } else if self.step_copy_q[4].q.val() == 1 {
-                for k in 0..3 {
-                    self.w0_q[6 + k].d.next = self.points_q[3 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[12 + k].q.val() == 0 {
+                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
+                } else if self.step_copy_q[12 + k].q.val() == 1 {
+                    self.w0_q[6 + k].d.next = self.points_q[3 + k].q.val();
+                } else {
                     self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
                 }
             }
         }
         // w1 lane 0
-        if self.segments_copy_q[5].q.val() {
-            if self.step_copy_q[5].q.val() == 0 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[15 + k].q.val() {
+                if self.step_copy_q[15 + k].q.val() == 0 {
                     self.w1_q[k].d.next = self.points_q[9 + k].q.val();
-                }
-            } else if self.step_copy_q[5].q.val() == 1 {
-                for k in 0..3 {
+                } else if self.step_copy_q[15 + k].q.val() == 1 {
                     self.w1_q[k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else if self.step_copy_q[5].q.val() == 2 {
-                for k in 0..3 {
+                } else if self.step_copy_q[15 + k].q.val() == 2 {
                     self.w1_q[k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w1_q[k].d.next = self.points_q[3 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[5].q.val() == 0
-                || self.step_copy_q[5].q.val() == 1
-                || self.step_copy_q[5].q.val() == 2
-                || self.step_copy_q[5].q.val() == 3
-            {
-                for k in 0..3 {
-                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
-                }
-            } else if self.step_copy_q[5].q.val() == 4 {
-                for k in 0..3 {
-                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[15 + k].q.val() == 0
+                    || self.step_copy_q[15 + k].q.val() == 1
+                    || self.step_copy_q[15 + k].q.val() == 2
+                    || self.step_copy_q[15 + k].q.val() == 3
+                {
+                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
+                } else if self.step_copy_q[15 + k].q.val() == 4 {
+                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
+                } else {
                     self.w1_q[k].d.next = self.points_q[15 + k].q.val();
                 }
             }
         }
         // w1 lane 1
-        if self.segments_copy_q[6].q.val() {
-            if self.step_copy_q[6].q.val() == 0 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[18 + k].q.val() {
+                if self.step_copy_q[18 + k].q.val() == 0 {
                     self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
-                }
-            } else if self.step_copy_q[6].q.val() == 1 {
-                for k in 0..3 {
+                } else if self.step_copy_q[18 + k].q.val() == 1 {
                     self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else if self.step_copy_q[6].q.val() == 2 {
-                for k in 0..3 {
+                } else if self.step_copy_q[18 + k].q.val() == 2 {
                     self.w1_q[3 + k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w1_q[3 + k].d.next = self.points_q[3 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[6].q.val() == 0
-                || self.step_copy_q[6].q.val() == 1
-                || self.step_copy_q[6].q.val() == 2
-                || self.step_copy_q[6].q.val() == 4
-            {
-                for k in 0..3 {
-                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else if self.step_copy_q[6].q.val() == 3 {
-                for k in 0..3 {
-                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[18 + k].q.val() == 0
+                    || self.step_copy_q[18 + k].q.val() == 1
+                    || self.step_copy_q[18 + k].q.val() == 2
+                    || self.step_copy_q[18 + k].q.val() == 4
+                {
+                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
+                } else if self.step_copy_q[18 + k].q.val() == 3 {
+                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                } else {
                     self.w1_q[3 + k].d.next = self.points_q[15 + k].q.val();
                 }
             }
         }
         // w1 lane 2
-        if self.segments_copy_q[7].q.val() {
-            if self.step_copy_q[7].q.val() == 0 {
-                for k in 0..3 {
+        for k in 0..3 {
+            if self.segments_copy_q[21 + k].q.val() {
+                if self.step_copy_q[21 + k].q.val() == 0 {
                     self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
-                }
-            } else if self.step_copy_q[7].q.val() == 1 {
-                for k in 0..3 {
+                } else if self.step_copy_q[21 + k].q.val() == 1 {
                     self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
-                }
-            } else if self.step_copy_q[7].q.val() == 2 {
-                for k in 0..3 {
+                } else if self.step_copy_q[21 + k].q.val() == 2 {
                     self.w1_q[6 + k].d.next = self.points_q[k].q.val();
-                }
-            } else {
-                for k in 0..3 {
+                } else {
                     self.w1_q[6 + k].d.next = self.points_q[3 + k].q.val();
                 }
-            }
-        } else {
-            if self.step_copy_q[7].q.val() == 0
-                || self.step_copy_q[7].q.val() == 1
-                || self.step_copy_q[7].q.val() == 2
-                || self.step_copy_q[7].q.val() == 5
-            {
-                for k in 0..3 {
-                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
-                }
-            } else if self.step_copy_q[7].q.val() == 3 {
-                for k in 0..3 {
-                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
-                }
             } else {
-                for k in 0..3 {
+                if self.step_copy_q[21 + k].q.val() == 0
+                    || self.step_copy_q[21 + k].q.val() == 1
+                    || self.step_copy_q[21 + k].q.val() == 2
+                    || self.step_copy_q[21 + k].q.val() == 5
+                {
+                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
+                } else if self.step_copy_q[21 + k].q.val() == 3 {
+                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                } else {
                     self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
                 }
             }
         }
         self.issue_line.d.next = self.remaining_q.q.val() != 0;
         self.last_line.d.next = self.remaining_q.q.val() == 1;
-        self.step_line.d.next = self.step_q.q.val();
+        self.step_line.d.next = self.step_copy_q[24].q.val();
 
         // Stage 2: the differences.
         for k in 0..3 {
@@ -844,7 +801,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         for i in 0..4 {
             self.orientation_line[i].d.next = self.orientation[i].val();
         }
-        self.segments_line.d.next = self.segments_q.q.val();
+        self.segments_line.d.next = self.segments_copy_q[24].q.val();
 
         // The decisions on the file, and the job's.
         for i in 0..18 {
