@@ -30,7 +30,7 @@ module tritri_pipeline_w24_certain_sign (
     // Update code (custom)
     // The sign of P, registered, and its certificate |P| >= T a clock later:
     // P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
-    // 8 parts whose results are registered, then combined from the top.
+    // 6 parts whose results are registered, then combined from the top.
     wire [73:0] limit = ~threshold;
     reg above_ge_q0;
     reg below_le_q0;
@@ -54,14 +54,6 @@ module tritri_pipeline_w24_certain_sign (
     reg above_le_q5;
     reg below_ge_q5;
     reg below_le_q5;
-    reg above_ge_q6;
-    reg above_le_q6;
-    reg below_ge_q6;
-    reg below_le_q6;
-    reg above_ge_q7;
-    reg above_le_q7;
-    reg below_ge_q7;
-    reg below_le_q7;
     initial begin
         above_ge_q0 = 1'b0;
         below_le_q0 = 1'b0;
@@ -85,14 +77,6 @@ module tritri_pipeline_w24_certain_sign (
         above_le_q5 = 1'b0;
         below_ge_q5 = 1'b0;
         below_le_q5 = 1'b0;
-        above_ge_q6 = 1'b0;
-        above_le_q6 = 1'b0;
-        below_ge_q6 = 1'b0;
-        below_le_q6 = 1'b0;
-        above_ge_q7 = 1'b0;
-        above_le_q7 = 1'b0;
-        below_ge_q7 = 1'b0;
-        below_le_q7 = 1'b0;
         negative = 1'b0;
         zero = 1'b0;
         certain = 1'b0;
@@ -101,39 +85,31 @@ module tritri_pipeline_w24_certain_sign (
         if (advance) begin
             negative <= value[73];
             zero <= ~|value;
-            above_ge_q0 <= value[9:0] >= threshold[9:0];
-            below_le_q0 <= value[9:0] <= limit[9:0];
-            above_ge_q1 <= value[19:10] >= threshold[19:10];
-            above_le_q1 <= value[19:10] <= threshold[19:10];
-            below_ge_q1 <= value[19:10] >= limit[19:10];
-            below_le_q1 <= value[19:10] <= limit[19:10];
-            above_ge_q2 <= value[28:20] >= threshold[28:20];
-            above_le_q2 <= value[28:20] <= threshold[28:20];
-            below_ge_q2 <= value[28:20] >= limit[28:20];
-            below_le_q2 <= value[28:20] <= limit[28:20];
-            above_ge_q3 <= value[37:29] >= threshold[37:29];
-            above_le_q3 <= value[37:29] <= threshold[37:29];
-            below_ge_q3 <= value[37:29] >= limit[37:29];
-            below_le_q3 <= value[37:29] <= limit[37:29];
-            above_ge_q4 <= value[46:38] >= threshold[46:38];
-            above_le_q4 <= value[46:38] <= threshold[46:38];
-            below_ge_q4 <= value[46:38] >= limit[46:38];
-            below_le_q4 <= value[46:38] <= limit[46:38];
-            above_ge_q5 <= value[55:47] >= threshold[55:47];
-            above_le_q5 <= value[55:47] <= threshold[55:47];
-            below_ge_q5 <= value[55:47] >= limit[55:47];
-            below_le_q5 <= value[55:47] <= limit[55:47];
-            above_ge_q6 <= value[64:56] >= threshold[64:56];
-            above_le_q6 <= value[64:56] <= threshold[64:56];
-            below_ge_q6 <= value[64:56] >= limit[64:56];
-            below_le_q6 <= value[64:56] <= limit[64:56];
-            above_ge_q7 <= value[73:65] >= threshold[73:65];
-            above_le_q7 <= value[73:65] <= threshold[73:65];
-            below_ge_q7 <= value[73:65] >= limit[73:65];
-            below_le_q7 <= value[73:65] <= limit[73:65];
+            above_ge_q0 <= value[12:0] >= threshold[12:0];
+            below_le_q0 <= value[12:0] <= limit[12:0];
+            above_ge_q1 <= value[25:13] >= threshold[25:13];
+            above_le_q1 <= value[25:13] <= threshold[25:13];
+            below_ge_q1 <= value[25:13] >= limit[25:13];
+            below_le_q1 <= value[25:13] <= limit[25:13];
+            above_ge_q2 <= value[37:26] >= threshold[37:26];
+            above_le_q2 <= value[37:26] <= threshold[37:26];
+            below_ge_q2 <= value[37:26] >= limit[37:26];
+            below_le_q2 <= value[37:26] <= limit[37:26];
+            above_ge_q3 <= value[49:38] >= threshold[49:38];
+            above_le_q3 <= value[49:38] <= threshold[49:38];
+            below_ge_q3 <= value[49:38] >= limit[49:38];
+            below_le_q3 <= value[49:38] <= limit[49:38];
+            above_ge_q4 <= value[61:50] >= threshold[61:50];
+            above_le_q4 <= value[61:50] <= threshold[61:50];
+            below_ge_q4 <= value[61:50] >= limit[61:50];
+            below_le_q4 <= value[61:50] <= limit[61:50];
+            above_ge_q5 <= value[73:62] >= threshold[73:62];
+            above_le_q5 <= value[73:62] <= threshold[73:62];
+            below_ge_q5 <= value[73:62] >= limit[73:62];
+            below_le_q5 <= value[73:62] <= limit[73:62];
             certain <= negative
-                ? below_le_q7 & (~below_ge_q7 | (below_le_q6 & (~below_ge_q6 | (below_le_q5 & (~below_ge_q5 | (below_le_q4 & (~below_ge_q4 | (below_le_q3 & (~below_ge_q3 | (below_le_q2 & (~below_ge_q2 | (below_le_q1 & (~below_ge_q1 | below_le_q0)))))))))))))
-                : above_ge_q7 & (~above_le_q7 | (above_ge_q6 & (~above_le_q6 | (above_ge_q5 & (~above_le_q5 | (above_ge_q4 & (~above_le_q4 | (above_ge_q3 & (~above_le_q3 | (above_ge_q2 & (~above_le_q2 | (above_ge_q1 & (~above_le_q1 | above_ge_q0)))))))))))));
+                ? below_le_q5 & (~below_ge_q5 | (below_le_q4 & (~below_ge_q4 | (below_le_q3 & (~below_ge_q3 | (below_le_q2 & (~below_ge_q2 | (below_le_q1 & (~below_ge_q1 | below_le_q0)))))))))
+                : above_ge_q5 & (~above_le_q5 | (above_ge_q4 & (~above_le_q4 | (above_ge_q3 & (~above_le_q3 | (above_ge_q2 & (~above_le_q2 | (above_ge_q1 & (~above_le_q1 | above_ge_q0)))))))));
         end
     end
 endmodule  // tritri_pipeline_w24_certain_sign

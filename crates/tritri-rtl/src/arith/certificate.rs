@@ -495,8 +495,10 @@ pub struct CertainSign<const O: usize> {
 pub const CERTIFICATE_LATENCY: usize = CERTAIN_SIGN_LATENCY + 1;
 
 /// The widest part [`CertainSign`] compares in one carry chain: two halves
-/// at W = 8 (O = 26), four parts at W = 16.
-pub const COMPARE_PART_BITS: usize = 10;
+/// at W = 8 (O = 26), four parts at W = 16, six at W = 24. (At 10 bits, three
+/// parts at W = 8, that pipeline routed at 141.5 MHz instead of 148.7 on
+/// ECP5, its path elsewhere; the W = 16 units as with 13.)
+pub const COMPARE_PART_BITS: usize = 13;
 
 /// `[low, high]` bit ranges of O bits in parts of at most
 /// [`COMPARE_PART_BITS`], as even as they come, lowest first.
