@@ -112,6 +112,9 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     step_copy_q: [DFF<Bits<3>>; 25],
     segments_copy_q: [DFF<Bit>; 25],
     remaining_copy_q: [DFF<Bits<3>>; 25],
+    /// Copy `c` takes a new job this clock: the input is valid and the copy
+    /// has at most its current step left.
+    copy_loads: [Signal<Local, Bit>; 25],
     /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
     /// (coordinate `k` at `3 l + k`), and each lane's axis.
     u0_q: [DFF<Bits<W>>; 3],
@@ -282,15 +285,17 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         if self.reset.val() {
             self.remaining_q.d.next = 0.into();
         }
+        for c in 0..25 {
+            self.copy_loads[c].next = self.in_valid.val()
+                && (self.remaining_copy_q[c].q.val() == 0 || self.remaining_copy_q[c].q.val() == 1);
+        }
         // The job's points: point `p`'s coordinate `k` loads by copy
         // `3 p + k` of the steps left, as the copies do (with `remaining_q`
         // for all 18, W = 16: 6.8 ns of routing to the clock enables,
         // 128.9 MHz). Two segments put their ends at points 0, 1 (a, b)
         // and 3, 4 (c, d).
         for k in 0..3 {
-            if self.in_valid.val()
-                && (self.remaining_copy_q[k].q.val() == 0 || self.remaining_copy_q[k].q.val() == 1)
-            {
+            if self.copy_loads[k].val() {
                 if !self.in_segments.val() {
                     self.points_q[k].d.next = self.t1_vertices[k].val();
                 } else if self.t1_segment_low.val() == 1 {
@@ -301,10 +306,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                     self.points_q[k].d.next = self.t1_vertices[k].val();
                 }
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[3 + k].q.val() == 0
-                    || self.remaining_copy_q[3 + k].q.val() == 1)
-            {
+            if self.copy_loads[3 + k].val() {
                 if !self.in_segments.val() {
                     self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
                 } else if self.t1_segment_high.val() == 1 {
@@ -315,16 +317,10 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                     self.points_q[3 + k].d.next = self.t1_vertices[k].val();
                 }
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[6 + k].q.val() == 0
-                    || self.remaining_copy_q[6 + k].q.val() == 1)
-            {
+            if self.copy_loads[6 + k].val() {
                 self.points_q[6 + k].d.next = self.t1_vertices[6 + k].val();
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[9 + k].q.val() == 0
-                    || self.remaining_copy_q[9 + k].q.val() == 1)
-            {
+            if self.copy_loads[9 + k].val() {
                 if !self.in_segments.val() {
                     self.points_q[9 + k].d.next = self.t2_vertices[k].val();
                 } else if self.t2_segment_low.val() == 1 {
@@ -335,10 +331,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                     self.points_q[9 + k].d.next = self.t2_vertices[k].val();
                 }
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[12 + k].q.val() == 0
-                    || self.remaining_copy_q[12 + k].q.val() == 1)
-            {
+            if self.copy_loads[12 + k].val() {
                 if !self.in_segments.val() {
                     self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
                 } else if self.t2_segment_high.val() == 1 {
@@ -349,10 +342,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                     self.points_q[12 + k].d.next = self.t2_vertices[k].val();
                 }
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[15 + k].q.val() == 0
-                    || self.remaining_copy_q[15 + k].q.val() == 1)
-            {
+            if self.copy_loads[15 + k].val() {
                 self.points_q[15 + k].d.next = self.t2_vertices[6 + k].val();
             }
         }
@@ -368,9 +358,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                 self.step_copy_q[c].d.next = self.step_copy_q[c].q.val() + 1;
                 self.remaining_copy_q[c].d.next = self.remaining_copy_q[c].q.val() - 1;
             }
-            if self.in_valid.val()
-                && (self.remaining_copy_q[c].q.val() == 0 || self.remaining_copy_q[c].q.val() == 1)
-            {
+            if self.copy_loads[c].val() {
                 self.step_copy_q[c].d.next = 0.into();
                 self.segments_copy_q[c].d.next = self.in_segments.val();
                 if self.in_segments.val() {
