@@ -40,7 +40,7 @@ pub enum Router {
     /// the difference between 143-149 MHz and 151-153 MHz.
     #[default]
     Router2,
-    /// `router1`, nextpnr's older router: slower on small designs, but it
+    /// `router1`, nextpnr's older router (no timing-driven rip-up): it
     /// converges on whole designs where router2 does not (module docs).
     Router1,
 }

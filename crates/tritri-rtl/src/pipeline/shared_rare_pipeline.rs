@@ -21,12 +21,13 @@
 //! `hold` goes into the enable of every register, so it is a register:
 //! [`HoldRegister`] decides it a clock ahead from the rare bits of both
 //! stages and the unit's steps left, and twelve copies of it each enable a
-//! group of units (the last, the unit's input). Pipelines that move in step (a system's) hold together:
-//! each sends its request for next clock (`hold_request`) and takes the
-//! others' (`hold_others`) into its copies in the same clock, so that no
-//! pipeline's enables wait for another's `hold`. (Computed in the clock it acts, from the sides stage's
-//! zeros through the rule to one enable net, it ran at 79 MHz post-route
-//! on ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
+//! group of units (the last, the unit's input). Pipelines that move in
+//! step (a system's) hold together: each sends its request for next clock
+//! (`hold_request`) and takes the others' (`hold_others`) into its copies
+//! in the same clock, so that no pipeline's enables wait for another's
+//! `hold`. (Computed in the clock it acts, from the sides stage's zeros
+//! through the rule to one enable net, it ran at 79 MHz post-route on
+//! ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
 //!
 //! So the latency in advancing clocks is the parallel pipeline's
 //! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
