@@ -58,6 +58,7 @@ module tb_triangle_pipeline #(
 `ifdef TRITRI_HOLD
     wire hold;
     wire hold_request;  // for pipelines in step with this one: none here
+    wire hold_request_still;
 `else
     wire hold = 1'b0;
 `endif
@@ -91,7 +92,9 @@ module tb_triangle_pipeline #(
         ,
         .hold(hold),
         .hold_request(hold_request),
-        .hold_others(1'b0)
+        .hold_request_still(hold_request_still),
+        .hold_others(1'b0),
+        .hold_others_still(1'b0)
 `endif
     );
 

@@ -15,7 +15,7 @@ tritri_pipeline_w24_decision.v
 tritri_pipeline_w24_degenerate_pair.v
 tritri_pipeline_w24_delay_line_w1_n1.v
 tritri_pipeline_w24_delay_line_w1_n10.v
-tritri_pipeline_w24_delay_line_w1_n15.v
+tritri_pipeline_w24_delay_line_w1_n16.v
 tritri_pipeline_w24_delay_line_w1_n17.v
 tritri_pipeline_w24_delay_line_w1_n18.v
 tritri_pipeline_w24_delay_line_w1_n19.v

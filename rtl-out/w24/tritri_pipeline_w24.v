@@ -133,6 +133,8 @@ module tritri_pipeline_w24 (
     wire  path_advance_copies_6;
     wire  path_advance_copies_7;
     wire  path_advance_copies_8;
+    wire  path_advance_copies_9;
+    wire  path_advance_copies_10;
     wire  coplanar_clock;
     wire  coplanar_advance;
     wire  [23:0] coplanar_t1_vertices_0;
@@ -280,7 +282,9 @@ module tritri_pipeline_w24 (
         .advance_copies_5(path_advance_copies_5),
         .advance_copies_6(path_advance_copies_6),
         .advance_copies_7(path_advance_copies_7),
-        .advance_copies_8(path_advance_copies_8)
+        .advance_copies_8(path_advance_copies_8),
+        .advance_copies_9(path_advance_copies_9),
+        .advance_copies_10(path_advance_copies_10)
     );
     tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
@@ -345,13 +349,13 @@ module tritri_pipeline_w24 (
         .t2_segment_high(degenerate_pair_t2_segment_high),
         .hit(degenerate_pair__hit)
     );
-    tritri_pipeline_w24_delay_line_w1_n15 u_coplanar_to_decision(
+    tritri_pipeline_w24_delay_line_w1_n16 u_coplanar_to_decision(
         .clock(coplanar_to_decision_clock),
         .advance(coplanar_to_decision_advance),
         .d(coplanar_to_decision_d),
         .q(coplanar_to_decision_q)
     );
-    tritri_pipeline_w24_delay_line_w1_n17 u_degenerate_pair_to_decision(
+    tritri_pipeline_w24_delay_line_w1_n18 u_degenerate_pair_to_decision(
         .clock(degenerate_pair_to_decision_clock),
         .advance(degenerate_pair_to_decision_advance),
         .d(degenerate_pair_to_decision_d),
@@ -375,6 +379,8 @@ module tritri_pipeline_w24 (
     assign path_advance_copies_6 = advance;
     assign path_advance_copies_7 = advance;
     assign path_advance_copies_8 = advance;
+    assign path_advance_copies_9 = advance;
+    assign path_advance_copies_10 = advance;
     assign coplanar_advance = advance;
     assign degenerate_pair_advance = advance;
     assign coplanar_to_decision_advance = advance;

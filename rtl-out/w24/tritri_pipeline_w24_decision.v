@@ -71,12 +71,18 @@ module tritri_pipeline_w24_decision (
     reg  triangles_hit_d;
     wire  triangles_hit_q;
     wire  triangles_hit_clock;
+    reg  triangles_coplanar_d;
+    wire  triangles_coplanar_q;
+    wire  triangles_coplanar_clock;
     reg  segment_hit_d;
     wire  segment_hit_q;
     wire  segment_hit_clock;
-    reg  degenerate_hit_d;
-    wire  degenerate_hit_q;
-    wire  degenerate_hit_clock;
+    reg  segment_coplanar_d;
+    wire  segment_coplanar_q;
+    wire  segment_coplanar_clock;
+    reg  degenerate_zero_d;
+    wire  degenerate_zero_q;
+    wire  degenerate_zero_clock;
     reg  t1_degenerate_d;
     wire  t1_degenerate_q;
     wire  t1_degenerate_clock;
@@ -98,11 +104,13 @@ module tritri_pipeline_w24_decision (
     wire  orient_positive_1;
     wire  orient_positive_2;
     reg  triangles_hit;
+    reg  triangles_coplanar;
     reg  end_a_negative;
     reg  end_a_zero;
     reg  end_b_negative;
     reg  end_b_zero;
     reg  segment_hit;
+    reg  segment_coplanar;
     wire  t1_sides_certain;
     wire  t2_sides_certain;
 
@@ -127,15 +135,25 @@ module tritri_pipeline_w24_decision (
         .q(triangles_hit_q),
         .clock(triangles_hit_clock)
     );
+    tritri_pipeline_w24_dff_1 u_triangles_coplanar_q(
+        .d(triangles_coplanar_d),
+        .q(triangles_coplanar_q),
+        .clock(triangles_coplanar_clock)
+    );
     tritri_pipeline_w24_dff_1 u_segment_hit_q(
         .d(segment_hit_d),
         .q(segment_hit_q),
         .clock(segment_hit_clock)
     );
-    tritri_pipeline_w24_dff_1 u_degenerate_hit_q(
-        .d(degenerate_hit_d),
-        .q(degenerate_hit_q),
-        .clock(degenerate_hit_clock)
+    tritri_pipeline_w24_dff_1 u_segment_coplanar_q(
+        .d(segment_coplanar_d),
+        .q(segment_coplanar_q),
+        .clock(segment_coplanar_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_degenerate_zero_q(
+        .d(degenerate_zero_d),
+        .q(degenerate_zero_q),
+        .clock(degenerate_zero_clock)
     );
     tritri_pipeline_w24_dff_1 u_t1_degenerate_q(
         .d(t1_degenerate_d),
@@ -166,8 +184,10 @@ module tritri_pipeline_w24_decision (
     assign t1_sides_certain = t1_side_certain_0 && t1_side_certain_1 && t1_side_certain_2;
     assign t2_sides_certain = t2_side_certain_0 && t2_side_certain_1 && t2_side_certain_2;
     assign triangles_hit_clock = clock;
+    assign triangles_coplanar_clock = clock;
     assign segment_hit_clock = clock;
-    assign degenerate_hit_clock = clock;
+    assign segment_coplanar_clock = clock;
+    assign degenerate_zero_clock = clock;
     assign t1_degenerate_clock = clock;
     assign t2_degenerate_clock = clock;
     assign hit_clock = clock;
@@ -179,12 +199,15 @@ module tritri_pipeline_w24_decision (
     always @(*) begin
         if ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2) || (t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)) begin
             triangles_hit = 1'h0;
+            triangles_coplanar = 1'h0;
         end
         else if (t1_side_zero_0 && t1_side_zero_1 && t1_side_zero_2) begin
-            triangles_hit = coplanar_hit;
+            triangles_hit = 1'h0;
+            triangles_coplanar = 1'h1;
         end
         else begin
             triangles_hit = ~orient_positive_0 && ~orient_positive_1;
+            triangles_coplanar = 1'h0;
         end
         end_a_negative = 1'h0;
         end_a_zero = 1'h0;
@@ -244,16 +267,21 @@ module tritri_pipeline_w24_decision (
         end
         if ((end_a_negative && end_b_negative) || (~end_a_negative && ~end_a_zero && ~end_b_negative && ~end_b_zero)) begin
             segment_hit = 1'h0;
+            segment_coplanar = 1'h0;
         end
         else if (end_a_zero && end_b_zero) begin
-            segment_hit = coplanar_hit;
+            segment_hit = 1'h0;
+            segment_coplanar = 1'h1;
         end
         else begin
+            segment_coplanar = 1'h0;
             segment_hit = ~((orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2));
         end
         triangles_hit_d = triangles_hit_q;
+        triangles_coplanar_d = triangles_coplanar_q;
         segment_hit_d = segment_hit_q;
-        degenerate_hit_d = degenerate_hit_q;
+        segment_coplanar_d = segment_coplanar_q;
+        degenerate_zero_d = degenerate_zero_q;
         t1_degenerate_d = t1_degenerate_q;
         t2_degenerate_d = t2_degenerate_q;
         hit_d = hit_q;
@@ -262,21 +290,23 @@ module tritri_pipeline_w24_decision (
         certain_d = certain_q;
         if (advance) begin
             triangles_hit_d = triangles_hit;
+            triangles_coplanar_d = triangles_coplanar;
             segment_hit_d = segment_hit;
-            degenerate_hit_d = orient_zero_0 && degenerate_pair_hit;
+            segment_coplanar_d = segment_coplanar;
+            degenerate_zero_d = orient_zero_0;
             t1_degenerate_d = t1_degenerate;
             t2_degenerate_d = t2_degenerate;
             rejected_certainly_d = (t1_sides_certain && ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2))) || (t2_sides_certain && ((t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)));
             interval_certain_d = t1_sides_certain && t2_sides_certain && ((orient_certain_0 && orient_certain_1) || (orient_certain_0 && orient_positive_0) || (orient_certain_1 && orient_positive_1));
             certain_d = rejected_certainly_q || interval_certain_q;
             if (~t1_degenerate_q && ~t2_degenerate_q) begin
-                hit_d = triangles_hit_q;
+                hit_d = triangles_hit_q || (triangles_coplanar_q && coplanar_hit);
             end
             else if (t1_degenerate_q && t2_degenerate_q) begin
-                hit_d = degenerate_hit_q;
+                hit_d = degenerate_zero_q && degenerate_pair_hit;
             end
             else begin
-                hit_d = segment_hit_q;
+                hit_d = segment_hit_q || (segment_coplanar_q && coplanar_hit);
             end
         end
     end

@@ -10,9 +10,10 @@
 //             on one shared, slower unit (`SharedRarePipeline`, 6 multipliers,
 //             stalling while a rare pair waits for it). The path hands them the
 //             pair as it forms (`pair_*`, stage 0) and its plane-side signs'
-//             zeros (`sides_*`, `SIDES_STAGE`), and takes their verdicts at the
-//             decision (`coplanar_hit`, `degenerate_pair_hit`,
-//             `DECISION_STAGE`). Part of tritri_pipeline_w24. Instance: path.
+//             zeros (`sides_*`, `SIDES_STAGE`), and takes their verdicts in the
+//             decision's second stage (`coplanar_hit`, `degenerate_pair_hit`,
+//             `RARE_VERDICTS_STAGE`). Part of tritri_pipeline_w24. Instance:
+//             path.
 //
 // Rust unit:  GeneralPath<W = 24, D = 25, C = 49, O = 74>
 // Latency:    38 clock cycles
@@ -99,7 +100,9 @@ module tritri_pipeline_w24_general_path (
     input  wire        advance_copies_5,
     input  wire        advance_copies_6,
     input  wire        advance_copies_7,
-    input  wire        advance_copies_8
+    input  wire        advance_copies_8,
+    input  wire        advance_copies_9,
+    input  wire        advance_copies_10
 );
 
     // Stub signals
@@ -1641,57 +1644,57 @@ module tritri_pipeline_w24_general_path (
     assign input_vertices_0_clock = clock;
     assign input_vertices_0_advance = advance_copies_8;
     assign t1_vertices_to_operands_0_clock = clock;
-    assign t1_vertices_to_operands_0_advance = advance_copies_3;
+    assign t1_vertices_to_operands_0_advance = advance_copies_9;
     assign t2_vertices_to_operands_0_clock = clock;
-    assign t2_vertices_to_operands_0_advance = advance_copies_3;
+    assign t2_vertices_to_operands_0_advance = advance_copies_10;
     assign input_vertices_1_clock = clock;
     assign input_vertices_1_advance = advance_copies_8;
     assign t1_vertices_to_operands_1_clock = clock;
-    assign t1_vertices_to_operands_1_advance = advance_copies_3;
+    assign t1_vertices_to_operands_1_advance = advance_copies_9;
     assign t2_vertices_to_operands_1_clock = clock;
-    assign t2_vertices_to_operands_1_advance = advance_copies_3;
+    assign t2_vertices_to_operands_1_advance = advance_copies_10;
     assign input_vertices_2_clock = clock;
     assign input_vertices_2_advance = advance_copies_8;
     assign t1_vertices_to_operands_2_clock = clock;
-    assign t1_vertices_to_operands_2_advance = advance_copies_3;
+    assign t1_vertices_to_operands_2_advance = advance_copies_9;
     assign t2_vertices_to_operands_2_clock = clock;
-    assign t2_vertices_to_operands_2_advance = advance_copies_3;
+    assign t2_vertices_to_operands_2_advance = advance_copies_10;
     assign input_vertices_3_clock = clock;
     assign input_vertices_3_advance = advance_copies_8;
     assign t1_vertices_to_operands_3_clock = clock;
-    assign t1_vertices_to_operands_3_advance = advance_copies_3;
+    assign t1_vertices_to_operands_3_advance = advance_copies_9;
     assign t2_vertices_to_operands_3_clock = clock;
-    assign t2_vertices_to_operands_3_advance = advance_copies_3;
+    assign t2_vertices_to_operands_3_advance = advance_copies_10;
     assign input_vertices_4_clock = clock;
     assign input_vertices_4_advance = advance_copies_8;
     assign t1_vertices_to_operands_4_clock = clock;
-    assign t1_vertices_to_operands_4_advance = advance_copies_3;
+    assign t1_vertices_to_operands_4_advance = advance_copies_9;
     assign t2_vertices_to_operands_4_clock = clock;
-    assign t2_vertices_to_operands_4_advance = advance_copies_3;
+    assign t2_vertices_to_operands_4_advance = advance_copies_10;
     assign input_vertices_5_clock = clock;
     assign input_vertices_5_advance = advance_copies_8;
     assign t1_vertices_to_operands_5_clock = clock;
-    assign t1_vertices_to_operands_5_advance = advance_copies_3;
+    assign t1_vertices_to_operands_5_advance = advance_copies_9;
     assign t2_vertices_to_operands_5_clock = clock;
-    assign t2_vertices_to_operands_5_advance = advance_copies_3;
+    assign t2_vertices_to_operands_5_advance = advance_copies_10;
     assign input_vertices_6_clock = clock;
     assign input_vertices_6_advance = advance_copies_8;
     assign t1_vertices_to_operands_6_clock = clock;
-    assign t1_vertices_to_operands_6_advance = advance_copies_3;
+    assign t1_vertices_to_operands_6_advance = advance_copies_9;
     assign t2_vertices_to_operands_6_clock = clock;
-    assign t2_vertices_to_operands_6_advance = advance_copies_3;
+    assign t2_vertices_to_operands_6_advance = advance_copies_10;
     assign input_vertices_7_clock = clock;
     assign input_vertices_7_advance = advance_copies_8;
     assign t1_vertices_to_operands_7_clock = clock;
-    assign t1_vertices_to_operands_7_advance = advance_copies_3;
+    assign t1_vertices_to_operands_7_advance = advance_copies_9;
     assign t2_vertices_to_operands_7_clock = clock;
-    assign t2_vertices_to_operands_7_advance = advance_copies_3;
+    assign t2_vertices_to_operands_7_advance = advance_copies_10;
     assign input_vertices_8_clock = clock;
     assign input_vertices_8_advance = advance_copies_8;
     assign t1_vertices_to_operands_8_clock = clock;
-    assign t1_vertices_to_operands_8_advance = advance_copies_3;
+    assign t1_vertices_to_operands_8_advance = advance_copies_9;
     assign t2_vertices_to_operands_8_clock = clock;
-    assign t2_vertices_to_operands_8_advance = advance_copies_3;
+    assign t2_vertices_to_operands_8_advance = advance_copies_10;
     assign degenerate_to_operands_0_clock = clock;
     assign degenerate_to_operands_0_advance = advance_copies_3;
     assign degenerate_to_decision_0_clock = clock;

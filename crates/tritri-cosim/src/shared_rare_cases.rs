@@ -129,6 +129,9 @@ pub fn run_rusthdl(jobs: &[RareJob]) -> RareRun {
             "no verdicts after {edge} edges"
         );
         uut.in_valid.next = next < jobs.len();
+        for c in 0..25 {
+            uut.in_valid_copies[c].next = next < jobs.len();
+        }
         if let Some(job) = jobs.get(next) {
             uut.in_segments.next = job.segments;
             for i in 0..9 {
@@ -234,6 +237,9 @@ fn testbench() -> String {
     let open_files = crate::simulator::OPEN_VECTOR_FILES;
     let top = shared_rare_cases_name(16);
     let mut ports = String::new();
+    for c in 0..25 {
+        ports += &format!(".in_valid_copies_{c}(in_valid), ");
+    }
     for t in ["t1", "t2"] {
         for i in 0..9 {
             ports += &format!(".{t}_vertices_{i}({t}_v[{i}]), ");

@@ -31,8 +31,17 @@ pub fn shared_rare_cases(w: usize) -> UnitDescription {
     .parameter("W", &format!("{w}: bits of a coordinate, two's complement"))
     .port("clock", "Clock; every register updates on the rising edge.")
     .port("reset", "Synchronous reset, active high: no job in the unit.")
-    .port("in_valid", "A job is offered; it is taken at the clock edge when ready is high.")
-    .port("in_segments", "The job is two degenerate triangles (else a coplanar pair).");
+    .port("in_valid", "A job is offered; it is taken at the clock edge when ready is high.");
+    for c in 0..25 {
+        unit = unit.port(
+            &format!("in_valid_copies_{c}"),
+            "in_valid again, for one copy of the steps left (equal to in_valid; each from a register of its own).",
+        );
+    }
+    unit = unit.port(
+        "in_segments",
+        "The job is two degenerate triangles (else a coplanar pair).",
+    );
     for t in ["t1", "t2"] {
         for i in 0..9 {
             unit = unit.port(
@@ -70,7 +79,7 @@ pub fn shared_rare_cases(w: usize) -> UnitDescription {
             );
     }
     unit.port("ready", "The unit takes a job at this clock's edge.")
-        .port("idle_next", "ready will be high next clock unless a job is taken at this edge.")
+        .port("idle_in_two", "ready will be high two clocks from now unless a job is taken before.")
         .port("done", &format!("A job's verdict is on hit: {SHARED_RARE_CASES_LATENCY} clocks after a coplanar job was taken, {} after two segments.", SHARED_RARE_CASES_LATENCY - (COPLANAR_STEPS - SEGMENTS_STEPS)))
         .port("hit", "The pair meets.")
         .latency(SHARED_RARE_CASES_LATENCY as u64)

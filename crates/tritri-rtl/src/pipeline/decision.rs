@@ -29,7 +29,11 @@
 //! Two stages: the three cases' verdicts, registered with the case; then
 //! the case's verdict. In one stage, an orient3d sign reached the verdict
 //! register through five LUT levels, the W = 8 pipeline's critical path on
-//! ECP5 (144 MHz).
+//! ECP5 (144 MHz). The rare tests' verdicts (`coplanar_hit`,
+//! `degenerate_pair_hit`) come a clock after the other inputs, into the
+//! second stage: the first registers whether the case needs them. That
+//! clock is the shared rare-case unit's margin
+//! (`super::shared_rare_pipeline`).
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -63,6 +67,8 @@ pub struct Decision {
     pub t1_side_certain: [Signal<In, Bit>; 3],
     pub t2_side_certain: [Signal<In, Bit>; 3],
     pub orient_certain: [Signal<In, Bit>; 2],
+    /// The rare tests' verdicts, a clock after the inputs above (each is
+    /// read only when the pair's case needs it).
     pub coplanar_hit: Signal<In, Bit>,
     pub degenerate_pair_hit: Signal<In, Bit>,
     pub hit: Signal<Out, Bit>,
@@ -71,14 +77,16 @@ pub struct Decision {
     t1_side_positive: [Signal<Local, Bit>; 3],
     t2_side_positive: [Signal<Local, Bit>; 3],
     orient_positive: [Signal<Local, Bit>; 3],
-    /// The triangles' verdict (both proper).
+    /// The triangles' verdict (both proper), unless they are coplanar.
     triangles_hit: Signal<Local, Bit>,
+    triangles_coplanar: Signal<Local, Bit>,
     /// Signs of the degenerate triangle's segment ends against the other plane.
     end_a_negative: Signal<Local, Bit>,
     end_a_zero: Signal<Local, Bit>,
     end_b_negative: Signal<Local, Bit>,
     end_b_zero: Signal<Local, Bit>,
     segment_hit: Signal<Local, Bit>,
+    segment_coplanar: Signal<Local, Bit>,
     /// Every plane sign of T1 (of T2) is certain.
     t1_sides_certain: Signal<Local, Bit>,
     t2_sides_certain: Signal<Local, Bit>,
@@ -86,10 +94,13 @@ pub struct Decision {
     rejected_certainly_q: DFF<Bit>,
     interval_certain_q: DFF<Bit>,
     certain_q: DFF<Bit>,
-    /// Stage 1: each case's verdict, and the case.
+    /// Stage 1: each case's verdict or whether it is the coplanar test's,
+    /// `[a, b, c, d] == 0` for two segments, and the case.
     triangles_hit_q: DFF<Bit>,
+    triangles_coplanar_q: DFF<Bit>,
     segment_hit_q: DFF<Bit>,
-    degenerate_hit_q: DFF<Bit>,
+    segment_coplanar_q: DFF<Bit>,
+    degenerate_zero_q: DFF<Bit>,
     t1_degenerate_q: DFF<Bit>,
     t2_degenerate_q: DFF<Bit>,
     hit_q: DFF<Bit>,
@@ -105,8 +116,10 @@ impl crate::unit::Unit for Decision {
             interval_certain_q,
             certain_q,
             triangles_hit_q,
+            triangles_coplanar_q,
             segment_hit_q,
-            degenerate_hit_q,
+            segment_coplanar_q,
+            degenerate_zero_q,
             t1_degenerate_q,
             t2_degenerate_q,
             hit_q
@@ -140,14 +153,17 @@ impl Logic for Decision {
                 && self.t2_side_negative[2].val())
         {
             self.triangles_hit.next = false;
+            self.triangles_coplanar.next = false;
         } else if self.t1_side_zero[0].val()
             && self.t1_side_zero[1].val()
             && self.t1_side_zero[2].val()
         {
-            self.triangles_hit.next = self.coplanar_hit.val();
+            self.triangles_hit.next = false;
+            self.triangles_coplanar.next = true;
         } else {
             self.triangles_hit.next =
                 !self.orient_positive[0].val() && !self.orient_positive[1].val();
+            self.triangles_coplanar.next = false;
         }
         // segment_triangle: the ends' signs.
         self.end_a_negative.next = false;
@@ -184,9 +200,12 @@ impl Logic for Decision {
                 && !self.end_b_zero.val())
         {
             self.segment_hit.next = false;
+            self.segment_coplanar.next = false;
         } else if self.end_a_zero.val() && self.end_b_zero.val() {
-            self.segment_hit.next = self.coplanar_hit.val();
+            self.segment_hit.next = false;
+            self.segment_coplanar.next = true;
         } else {
+            self.segment_coplanar.next = false;
             self.segment_hit.next = !((self.orient_positive[0].val()
                 || self.orient_positive[1].val()
                 || self.orient_positive[2].val())
@@ -205,8 +224,10 @@ impl Logic for Decision {
             self,
             clock,
             triangles_hit_q,
+            triangles_coplanar_q,
             segment_hit_q,
-            degenerate_hit_q,
+            segment_coplanar_q,
+            degenerate_zero_q,
             t1_degenerate_q,
             t2_degenerate_q,
             hit_q,
@@ -216,9 +237,10 @@ impl Logic for Decision {
         );
         if self.advance.val() {
             self.triangles_hit_q.d.next = self.triangles_hit.val();
+            self.triangles_coplanar_q.d.next = self.triangles_coplanar.val();
             self.segment_hit_q.d.next = self.segment_hit.val();
-            self.degenerate_hit_q.d.next =
-                self.orient_zero[0].val() && self.degenerate_pair_hit.val();
+            self.segment_coplanar_q.d.next = self.segment_coplanar.val();
+            self.degenerate_zero_q.d.next = self.orient_zero[0].val();
             self.t1_degenerate_q.d.next = self.t1_degenerate.val();
             self.t2_degenerate_q.d.next = self.t2_degenerate.val();
             self.rejected_certainly_q.d.next = (self.t1_sides_certain.val()
@@ -243,11 +265,14 @@ impl Logic for Decision {
             self.certain_q.d.next =
                 self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
             if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
-                self.hit_q.d.next = self.triangles_hit_q.q.val();
+                self.hit_q.d.next = self.triangles_hit_q.q.val()
+                    || (self.triangles_coplanar_q.q.val() && self.coplanar_hit.val());
             } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {
-                self.hit_q.d.next = self.degenerate_hit_q.q.val();
+                self.hit_q.d.next =
+                    self.degenerate_zero_q.q.val() && self.degenerate_pair_hit.val();
             } else {
-                self.hit_q.d.next = self.segment_hit_q.q.val();
+                self.hit_q.d.next = self.segment_hit_q.q.val()
+                    || (self.segment_coplanar_q.q.val() && self.coplanar_hit.val());
             }
         }
         self.hit.next = self.hit_q.q.val();

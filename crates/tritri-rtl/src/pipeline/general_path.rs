@@ -7,8 +7,9 @@
 //! ([`super::shared_rare_pipeline::SharedRarePipeline`], 6 multipliers,
 //! stalling while a rare pair waits for it). The path hands them the pair
 //! as it forms (`pair_*`, stage 0) and its plane-side signs' zeros
-//! (`sides_*`, [`SIDES_STAGE`]), and takes their verdicts at the decision
-//! (`coplanar_hit`, `degenerate_pair_hit`, [`DECISION_STAGE`]).
+//! (`sides_*`, [`SIDES_STAGE`]), and takes their verdicts in the decision's
+//! second stage (`coplanar_hit`, `degenerate_pair_hit`,
+//! [`RARE_VERDICTS_STAGE`]).
 //!
 //! Input, one triangle per clock: nine W-bit signed coordinates
 //! `in_x0 in_y0 in_z0 … in_z2`, `in_valid`, `in_bset` and an id. A triangle
@@ -78,6 +79,9 @@ const DISTANCES_STAGE: usize = PLANE_SIDE_LATENCY - CERTAIN_SIGN_LATENCY;
 const ENDS_DIFFERENCE_STAGE: usize = DISTANCES_STAGE + ENDS_DIFFERENCE_LATENCY;
 /// The third determinant's sign comes last.
 pub const DECISION_STAGE: usize = VALUES_STAGE + THIRD_DETERMINANT_LATENCY;
+/// The rare tests' verdicts go into the decision's second stage.
+pub const RARE_VERDICTS_STAGE: usize = DECISION_STAGE + 1;
+const _: () = assert!(DECISION_LATENCY == 2);
 const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STAGE < VALUES_STAGE);
 /// The certificates come a clock after their signs (`CertainSign`): the
 /// plane side's wait for the decision in lines a stage shorter than the
@@ -95,8 +99,9 @@ const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 /// The groups of units with an enable of their own (`advance_copies`):
 /// each plane side (with one of the ids' delay lines), alignment and the
 /// interval overlap, orient3d's operands, each orient3d, the decision,
-/// the front end, the input vertices (the update's literal 9).
-pub const ADVANCE_COPIES: usize = 9;
+/// the front end, the input vertices, T1's and T2's vertices to the
+/// operands (the update's literal 11).
+pub const ADVANCE_COPIES: usize = 11;
 
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
@@ -133,7 +138,7 @@ crate::pipeline_ports! {
         pub sides_valid: Signal<Out, Bit>,
         pub sides_t1_zero: [Signal<Out, Bit>; 3],
         pub sides_t2_zero: [Signal<Out, Bit>; 3],
-        /// The rare tests' verdicts for the pair at [`DECISION_STAGE`]
+        /// The rare tests' verdicts for the pair at [`RARE_VERDICTS_STAGE`]
         /// (each is read only when the pair's case needs it).
         pub coplanar_hit: Signal<In, Bit>,
         pub degenerate_pair_hit: Signal<In, Bit>,
@@ -142,7 +147,7 @@ crate::pipeline_ports! {
         /// the base polygon's load and the valid bits. A top ties them all
         /// to `advance`, or drives each from a register of its own, so that
         /// no one net reaches every register ([`super::hold_register`]).
-        pub advance_copies: [Signal<In, Bit>; 9],
+        pub advance_copies: [Signal<In, Bit>; 11],
         input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
         record_valid: ValidLine<RECORD_STAGE>,
         record_bset: DelayLine<Bit, RECORD_STAGE>,
@@ -318,9 +323,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.input_vertices[i].clock.next = self.clock.val();
             self.input_vertices[i].advance.next = self.advance_copies[8].val();
             self.t1_vertices_to_operands[i].clock.next = self.clock.val();
-            self.t1_vertices_to_operands[i].advance.next = self.advance_copies[3].val();
+            self.t1_vertices_to_operands[i].advance.next = self.advance_copies[9].val();
             self.t2_vertices_to_operands[i].clock.next = self.clock.val();
-            self.t2_vertices_to_operands[i].advance.next = self.advance_copies[3].val();
+            self.t2_vertices_to_operands[i].advance.next = self.advance_copies[10].val();
         }
         for i in 0..2 {
             self.degenerate_to_operands[i].clock.next = self.clock.val();

@@ -10,6 +10,7 @@ pub mod decision;
 pub mod degenerate_pair;
 pub mod dominant_axis;
 pub mod general_path;
+pub mod hold_forecast;
 pub mod hold_register;
 pub mod interval_overlap;
 pub mod normal;

@@ -218,7 +218,10 @@ pipeline_simulation!(
 pipeline_simulation!(
     SharedRarePipeline,
     |p: &SharedRarePipeline<W, D, C, O>| p.hold.val(),
-    |p: &mut SharedRarePipeline<W, D, C, O>| p.hold_others.connect()
+    |p: &mut SharedRarePipeline<W, D, C, O>| {
+        p.hold_others.connect();
+        p.hold_others_still.connect();
+    }
 );
 
 /// Calls `$then!` with the one list of coordinate widths that have

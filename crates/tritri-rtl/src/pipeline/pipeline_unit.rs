@@ -88,13 +88,24 @@ pub fn pipeline_unit_for(
             )
             .port(
                 "hold_request",
-                "This pipeline's rare pair will wait for its unit next clock: for pipelines that move in step \
-                 with this one (a system's), which take the OR of all their requests as `hold_others`.",
+                "This pipeline's rare pair will wait for its unit two clocks from now if `advance` is high next \
+                 clock: for pipelines that move in step with this one (a system's), which take the OR of all \
+                 their requests as `hold_others`.",
+            )
+            .port(
+                "hold_request_still",
+                "The same if `advance` is low next clock; its OR goes to `hold_others_still`.",
             )
             .port(
                 "hold_others",
                 "A pipeline moving in step with this one requests a hold (the OR of their `hold_request`s, this \
-                 one's may be included): `hold` rises with it next clock. Tie to 0 for a pipeline on its own.",
+                 one's may be included): `hold` rises with it two clocks from now if `advance` is high next \
+                 clock. Tie to 0 for a pipeline on its own.",
+            )
+            .port(
+                "hold_others_still",
+                "The same for `advance` low next clock (the OR of the `hold_request_still`s). Tie to 0 for a \
+                 pipeline on its own.",
             );
     }
     Ok(unit)

@@ -11,29 +11,36 @@
 //! case needs one of those tests (the rule of the decision, and of
 //! `system::rare_case_model::rare_kind`): both triangles degenerate, or
 //! the degenerate triangle's vertices (else T2's) all on the other's plane.
-//! That is registered with the pair's job a stage later ([`JOB_STAGE`]),
-//! and the job goes to the unit as the pair leaves that stage. While the
+//! That is registered a stage later, and again with the pair's job two
+//! stages later ([`JOB_STAGE`]), and the job goes to the unit as the pair
+//! leaves that stage. While the
 //! unit cannot take it, `hold` is high and the whole pipeline holds, as if
 //! `advance` were low: the triangle on the input bus is not taken and must
 //! stay there. The unit runs on, free of `advance`, and its verdicts wait
 //! in a [`VerdictQueue`] for their pairs to reach the decision, in order.
 //!
-//! `hold` goes into the enable of every register, so it is a register:
-//! [`HoldRegister`] decides it a clock ahead from the rare bits of both
-//! stages and the unit's steps left, and twelve copies of it each enable a
-//! group of units (the last, the unit's input). Pipelines that move in
-//! step (a system's) hold together: each sends its request for next clock
-//! (`hold_request`) and takes the others' (`hold_others`) into its copies
-//! in the same clock, so that no pipeline's enables wait for another's
-//! `hold`. (Computed in the clock it acts, from the sides stage's zeros
-//! through the rule to one enable net, it ran at 79 MHz post-route on
-//! ECP5 at W = 8, 11.4 of its 12.7 ns routing.)
+//! `hold` goes into the enable of every register, so it is a register, in
+//! copies: [`HoldForecast`] decides it two clocks ahead from the rare bits
+//! of the three stages and the unit's steps left, once for each value
+//! `advance` may take next clock, and thirteen [`HoldRegister`]s pick from
+//! those two registers by `advance`, each the enable of one group of
+//! units. The unit's input is valid by registers of its own, a clock
+//! ahead too (`offer_next`), one beside each group of its loads. Pipelines that move in step (a
+//! system's) hold together: each sends its two requests (`hold_request`,
+//! `hold_request_still`) and takes the others' (`hold_others`,
+//! `hold_others_still`) into its forecast in the same clock, so that no
+//! pipeline's enables wait for another's `hold`. (Computed in the clock it
+//! acts, from the sides stage's zeros through the rule to one enable net,
+//! it ran at 79 MHz post-route on ECP5 at W = 8, 11.4 of its 12.7 ns
+//! routing; decided a clock ahead, one register a group, 105.3 MHz at W =
+//! 16, a copy reaching 4,474 clock enables.)
 //!
 //! So the latency in advancing clocks is the parallel pipeline's
 //! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
 //! `hold` high, which `system::rare_case_model` counts.
 
-use super::general_path::{GeneralPath, ADVANCE_COPIES, DECISION_STAGE, SIDES_STAGE};
+use super::general_path::{GeneralPath, ADVANCE_COPIES, RARE_VERDICTS_STAGE, SIDES_STAGE};
+use super::hold_forecast::HoldForecast;
 use super::hold_register::HoldRegister;
 use super::shared_rare_cases::{SharedRareCases, SHARED_RARE_CASES_LATENCY};
 use super::verdict_queue::{VerdictQueue, VERDICT_QUEUE_DEPTH};
@@ -45,23 +52,27 @@ use rust_hdl::prelude::*;
 pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
 
 /// The stage whose pair offers its job to the unit: the rare bit,
-/// registered a stage after the plane side's zeros.
-pub const JOB_STAGE: usize = SIDES_STAGE + 1;
+/// registered twice after the plane side's zeros, so that the forecast
+/// sees the rare bits of the next two pairs ([`HoldForecast`]).
+pub const JOB_STAGE: usize = SIDES_STAGE + 2;
 
 /// The unit's verdict is at the queue's head by the time its pair reaches
-/// the decision: the job is taken at the edge that moves the pair a stage
-/// past the job stage, `done` rises `SHARED_RARE_CASES_LATENCY` edges
-/// later, and the queue hands it on in that clock (its bypass), when the
-/// pair, never faster than a stage a clock, is at most at `JOB_STAGE +
-/// SHARED_RARE_CASES_LATENCY`. (With the verdict read only from a slot, a
-/// clock later, a pair that found the unit idle and every stage moving
-/// missed it: the rust-hdl test caught 3 of 5,136.)
-const _: () = assert!(DECISION_STAGE - JOB_STAGE >= SHARED_RARE_CASES_LATENCY);
+/// [`RARE_VERDICTS_STAGE`]: the job is taken at the edge that moves the
+/// pair to `JOB_STAGE + 1`, `done` is high `SHARED_RARE_CASES_LATENCY`
+/// edges after that one, and the queue hands the verdict on in that clock
+/// (its bypass), when the pair, never faster than a stage a clock, is at
+/// most at `JOB_STAGE + 1 + SHARED_RARE_CASES_LATENCY`. A stage fewer, and
+/// a pair that found the unit idle and every stage moving missed its
+/// verdict by a clock: the rust-hdl test caught 3 of 5,136, once with the
+/// verdict read only from a slot, and again with the job stage moved a
+/// stage later for the forecast, until the verdicts moved into the
+/// decision's second stage.
+const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENCY);
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
-const _: () = assert!(DECISION_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
-/// The update's literals: copies 1 to 9 are the general path's.
-const _: () = assert!(ADVANCE_COPIES == 9);
+const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
+/// The update's literals: copies 1 to 11 are the general path's.
+const _: () = assert!(ADVANCE_COPIES == 11);
 
 crate::pipeline_ports! {
     // The ports: crate::pipeline::ports, and `hold`.
@@ -71,13 +82,17 @@ crate::pipeline_ports! {
         /// and the input bus is not taken: this pipeline's rare pair or
         /// (`hold_others`) another's waits.
         pub hold: Signal<Out, Bit>,
-        /// This pipeline's rare pair will wait for the unit next clock:
-        /// for the pipelines that move in step with this one.
+        /// This pipeline's rare pair will wait for the unit two clocks from
+        /// now if `advance` is high next clock, and if it is low: for the
+        /// pipelines that move in step with this one.
         pub hold_request: Signal<Out, Bit>,
+        pub hold_request_still: Signal<Out, Bit>,
         /// Another pipeline moving in step with this one raised its
-        /// `hold_request` this clock (this one's may be included): hold
-        /// with it next clock. 0 for a pipeline on its own.
+        /// `hold_request` (`hold_request_still`) this clock, this one's may
+        /// be included: hold with it two clocks from now if `advance` is
+        /// high (low) next clock. 0 for a pipeline on its own.
         pub hold_others: Signal<In, Bit>,
+        pub hold_others_still: Signal<In, Bit>,
         path: GeneralPath<W, D, C, O>,
         rare_cases: SharedRareCases<W, D, C>,
         verdicts: VerdictQueue,
@@ -90,33 +105,43 @@ crate::pipeline_ports! {
         segment_ends_to_job: [DelayLine<Bits<2>, JOB_STAGE>; 4],
         /// The degenerate flags, to the sides stage, for the rule.
         degenerate_to_sides: [DelayLine<Bit, SIDES_STAGE>; 2],
-        /// The rule's outcome, from the sides stage to the job stage.
+        /// The rule's outcome a stage after the sides stage, and at the
+        /// job stage.
+        rare_queued: ValidLine<1>,
         rare_to_job: ValidLine<1>,
-        segments_to_job: DelayLine<Bit, 1>,
-        /// A rare pair, from the job stage to the decision.
-        rare_to_decision: ValidLine<{ DECISION_STAGE - JOB_STAGE }>,
+        segments_to_job: DelayLine<Bit, { JOB_STAGE - SIDES_STAGE }>,
+        /// A rare pair, from the job stage to the decision's second stage.
+        rare_to_decision: ValidLine<{ RARE_VERDICTS_STAGE - JOB_STAGE }>,
         segments: Signal<Local, Bit>,
         coplanar: Signal<Local, Bit>,
         rare: Signal<Local, Bit>,
         /// The job stage's pair is rare.
         job_rare: Signal<Local, Bit>,
-        /// `rare_to_job` again, for the unit's input alone, so that it can
-        /// sit by the unit: the unit's `in_valid` reaches the loads of all
-        /// its copies (W = 16 with every enable `advance`, router1: 119.1
-        /// MHz, `rare_to_job` → `in_valid` → a copy's load, 6.7 ns of
-        /// routing).
-        rare_to_unit: RegisterCopy<Bit>,
-        /// The unit's `ready`: the hold registers predict it instead
-        /// (Verilator's lint: unused on purpose).
+        /// The unit's `in_valid` without `advance`, from the forecast a
+        /// clock ahead: one register for each of the unit's copies of its
+        /// steps left (`in_valid_copies`), and the last for `in_valid`, so
+        /// that each sits by its loads (W = 16, router1: from a copy of
+        /// `hold` and the job stage's rare bit into all of them, 93.0 MHz,
+        /// 9.1 of its 10.8 ns routing).
+        offers: [RegisterCopy<Bit>; 26],
+        /// The offers' next value: next clock, the job stage's pair is rare
+        /// and the pipeline does not hold. Formed here, from the forecast's
+        /// registers and `advance`: through the forecast and back, `advance`
+        /// reached the offers' inputs a delta cycle after their clock edge
+        /// in rust-hdl's simulation (`sim_drive::clock_cycle`), and the
+        /// back-pressure test failed.
+        offer_next: Signal<Local, Bit>,
+        /// The unit's `ready`: the forecast predicts it instead (Verilator's
+        /// lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
-        /// The copies' requests but copy 0's, which is the port: all equal.
-        unused_requests: Signal<Local, Bit>,
-        /// `hold`, registered, one copy per group of registers: the general
-        /// path's `advance` (0, with this top's rare bits and the unit's
-        /// input), its `advance_copies` (1 to 9; the job's vertices, segment
-        /// ends and degenerate flags ride on 4, the operands') and the
-        /// job's normals and axis (10), and the unit's `in_valid` (11).
-        holds: [HoldRegister; 12],
+        forecast: HoldForecast,
+        /// `hold`, one copy per group of registers: the general path's
+        /// `advance` (0, with this top's rare bits), its `advance_copies`
+        /// (1 to 11; the job's segment ends and degenerate flags ride on 4,
+        /// the operands', T1's and T2's vertices on 10 and 11, as the
+        /// general path delays the same fields on them and synthesis shares
+        /// the lines), and the job's normals and axis (12).
+        holds: [HoldRegister; 13],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -133,14 +158,16 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             path,
             rare_cases,
             verdicts,
+            forecast,
             holds,
             vertices_to_job,
             axis_to_job,
             normals_to_job,
             segment_ends_to_job,
             degenerate_to_sides,
+            rare_queued,
             rare_to_job,
-            rare_to_unit,
+            offers,
             segments_to_job,
             rare_to_decision
         );
@@ -170,6 +197,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             rare_cases,
             verdicts,
             axis_to_job,
+            rare_queued,
             rare_to_job,
             segments_to_job,
             rare_to_decision
@@ -192,27 +220,24 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());
         self.job_rare.next = self.rare_to_job.q.val();
-        for i in 0..12 {
+        self.forecast.clock.next = self.clock.val();
+        self.forecast.reset.next = self.reset.val();
+        self.forecast.advance.next = self.advance.val();
+        self.forecast.sides_rare.next = self.rare.val();
+        self.forecast.queued_rare.next = self.rare_queued.q.val();
+        self.forecast.job_rare.next = self.job_rare.val();
+        self.forecast.unit_idle_in_two.next = self.rare_cases.idle_in_two.val();
+        self.forecast.others_if_advance.next = self.hold_others.val();
+        self.forecast.others_if_still.next = self.hold_others_still.val();
+        self.hold_request.next = self.forecast.request_if_advance.val();
+        self.hold_request_still.next = self.forecast.request_if_still.val();
+        for i in 0..13 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
-            self.holds[i].rare.next = self.rare.val();
-            self.holds[i].job_rare.next = self.job_rare.val();
-            self.holds[i].unit_idle_next.next = self.rare_cases.idle_next.val();
-            self.holds[i].others.next = self.hold_others.val();
+            self.holds[i].if_advance.next = self.forecast.if_advance.val();
+            self.holds[i].if_still.next = self.forecast.if_still.val();
         }
-        self.hold_request.next = self.holds[0].request.val();
-        self.unused_requests.next = self.holds[1].request.val()
-            ^ self.holds[2].request.val()
-            ^ self.holds[3].request.val()
-            ^ self.holds[4].request.val()
-            ^ self.holds[5].request.val()
-            ^ self.holds[6].request.val()
-            ^ self.holds[7].request.val()
-            ^ self.holds[8].request.val()
-            ^ self.holds[9].request.val()
-            ^ self.holds[10].request.val()
-            ^ self.holds[11].request.val();
         // Each group's enable: `advance` and its copy of `hold`, formed here
         // (in rust-hdl's simulation an enable formed inside a unit below
         // would reach the registers a delta cycle after the clock edge).
@@ -220,16 +245,20 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unused_ready.next = self.rare_cases.ready.val();
         self.moving.next = self.advance.val() && !self.holds[0].hold.val();
         self.path.advance.next = self.moving.val();
-        for i in 0..9 {
+        for i in 0..11 {
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
         }
 
         // The job's vertices, segment ends and the degenerate flags share
-        // the operand stage's copy: the general path delays the same
-        // fields on it, and synthesis shares lines on one enable.
-        for i in 0..18 {
+        // the copies of the general path's lines to the operands: it
+        // delays the same fields on them, and synthesis shares lines on one
+        // enable.
+        for i in 0..9 {
             self.vertices_to_job[i].clock.next = self.clock.val();
-            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[4].hold.val();
+            self.vertices_to_job[i].advance.next = self.advance.val() && !self.holds[10].hold.val();
+            self.vertices_to_job[9 + i].clock.next = self.clock.val();
+            self.vertices_to_job[9 + i].advance.next =
+                self.advance.val() && !self.holds[11].hold.val();
         }
         for i in 0..4 {
             self.segment_ends_to_job[i].clock.next = self.clock.val();
@@ -243,14 +272,31 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
         for i in 0..12 {
             self.normals_to_job[i].clock.next = self.clock.val();
-            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[10].hold.val();
+            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[12].hold.val();
         }
-        self.axis_to_job.advance.next = self.advance.val() && !self.holds[10].hold.val();
+        self.axis_to_job.advance.next = self.advance.val() && !self.holds[12].hold.val();
+        self.rare_queued.advance.next = self.moving.val();
+        self.rare_queued.reset.next = self.reset.val();
         self.rare_to_job.advance.next = self.moving.val();
         self.rare_to_job.reset.next = self.reset.val();
-        self.rare_to_unit.clock.next = self.clock.val();
-        self.rare_to_unit.advance.next = self.advance.val() && !self.holds[11].hold.val();
-        self.rare_to_unit.reset.next = self.reset.val();
+        // As the forecast works out the job stage's pair and `hold` of the
+        // next clock.
+        if self.moving.val() {
+            self.offer_next.next = self.rare_queued.q.val();
+        } else {
+            self.offer_next.next = self.job_rare.val();
+        }
+        if (self.advance.val() && self.forecast.if_advance.val())
+            || (!self.advance.val() && self.forecast.if_still.val())
+        {
+            self.offer_next.next = false;
+        }
+        for c in 0..26 {
+            self.offers[c].clock.next = self.clock.val();
+            self.offers[c].reset.next = self.reset.val();
+            self.offers[c].advance.next = true;
+            self.offers[c].d.next = self.offer_next.val();
+        }
         self.segments_to_job.advance.next = self.moving.val();
         self.rare_to_decision.advance.next = self.moving.val();
         self.rare_to_decision.reset.next = self.reset.val();
@@ -277,7 +323,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.out_base_id.next = self.path.out_base_id.val();
         self.out_stream_id.next = self.path.out_stream_id.val();
 
-        // The job, to the job stage; the rule's outcome a stage later.
+        // The job, to the job stage; the rule's outcome beside it.
         for i in 0..9 {
             self.vertices_to_job[i].d.next = self.path.pair_t1_vertices[i].val();
             self.vertices_to_job[9 + i].d.next = self.path.pair_t2_vertices[i].val();
@@ -295,13 +341,15 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.segment_ends_to_job[1].d.next = self.path.pair_t1_segment_high.val();
         self.segment_ends_to_job[2].d.next = self.path.pair_t2_segment_low.val();
         self.segment_ends_to_job[3].d.next = self.path.pair_t2_segment_high.val();
-        self.rare_to_job.d.next = self.rare.val();
-        self.rare_to_unit.d.next = self.rare.val();
+        self.rare_queued.d.next = self.rare.val();
+        self.rare_to_job.d.next = self.rare_queued.q.val();
         self.segments_to_job.d.next = self.segments.val();
 
         // The job, taken as the pair leaves the job stage.
-        self.rare_cases.in_valid.next =
-            self.rare_to_unit.q.val() && self.advance.val() && !self.holds[11].hold.val();
+        self.rare_cases.in_valid.next = self.offers[25].q.val() && self.advance.val();
+        for c in 0..25 {
+            self.rare_cases.in_valid_copies[c].next = self.offers[c].q.val() && self.advance.val();
+        }
         self.rare_cases.in_segments.next = self.segments_to_job.q.val();
         for i in 0..9 {
             self.rare_cases.t1_vertices[i].next = self.vertices_to_job[i].q.val();

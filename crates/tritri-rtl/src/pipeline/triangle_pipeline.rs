@@ -23,14 +23,15 @@
 
 use super::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
 use super::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
-use super::general_path::{GeneralPath, DECISION_STAGE};
+use super::general_path::{GeneralPath, RARE_VERDICTS_STAGE};
 use crate::arith::delay_line::DelayLine;
 use rust_hdl::prelude::*;
 
 pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
 
-const _: () =
-    assert!(COPLANAR_TEST_LATENCY < DECISION_STAGE && DEGENERATE_PAIR_LATENCY < DECISION_STAGE);
+const _: () = assert!(
+    COPLANAR_TEST_LATENCY < RARE_VERDICTS_STAGE && DEGENERATE_PAIR_LATENCY < RARE_VERDICTS_STAGE
+);
 
 crate::pipeline_ports! {
     // The ports: crate::pipeline::ports.
@@ -39,8 +40,8 @@ crate::pipeline_ports! {
         path: GeneralPath<W, D, C, O>,
         coplanar: CoplanarTest<W, D, C>,
         degenerate_pair: DegeneratePair<W, D, C>,
-        coplanar_to_decision: DelayLine<Bit, { DECISION_STAGE - COPLANAR_TEST_LATENCY }>,
-        degenerate_pair_to_decision: DelayLine<Bit, { DECISION_STAGE - DEGENERATE_PAIR_LATENCY }>,
+        coplanar_to_decision: DelayLine<Bit, { RARE_VERDICTS_STAGE - COPLANAR_TEST_LATENCY }>,
+        degenerate_pair_to_decision: DelayLine<Bit, { RARE_VERDICTS_STAGE - DEGENERATE_PAIR_LATENCY }>,
         /// The path's `sides_*` outputs and degenerate flags, which only
         /// the shared unit needs, folded into a bit whose name tells
         /// Verilator's lint they are unused on purpose.
@@ -90,7 +91,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         );
         self.path.reset.next = self.reset.val();
         self.path.advance.next = self.advance.val();
-        for i in 0..9 {
+        for i in 0..11 {
             self.path.advance_copies[i].next = self.advance.val();
         }
         self.coplanar.advance.next = self.advance.val();

@@ -45,10 +45,12 @@ use rust_hdl::prelude::*;
 /// in_id in_x0 … in_z2 out_valid out_hit out_certain out_base_id
 /// out_stream_id`) and
 /// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
-/// Pipelines that hold for a shared unit name their three ports for it
-/// (`hold: hold, hold_request: hold_request, hold_others: hold_others`):
-/// the output that says they hold, the request for next clock, and the
-/// input that makes them hold with the others.
+/// Pipelines that hold for a shared unit name their five ports for it
+/// (`hold: hold, hold_request: [hold_request, hold_request_still],
+/// hold_others: [hold_others, hold_others_still]`): the output that says
+/// they hold, the requests two clocks ahead (if `advance` is high next
+/// clock, and if it is low), and the inputs that make them hold with the
+/// others.
 ///
 /// ```text
 /// collision_system!(pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> });
@@ -57,7 +59,8 @@ use rust_hdl::prelude::*;
 macro_rules! collision_system {
     ($(#[$meta:meta])* $vis:vis struct $name:ident < $(const $param:ident : usize),* > {
         coordinate_bits: $w:expr, pipeline: $pipeline:ty
-        $(, hold: $hold:ident, hold_request: $hold_request:ident, hold_others: $hold_others:ident)? $(,)?
+        $(, hold: $hold:ident, hold_request: [$hold_request:ident, $hold_request_still:ident],
+            hold_others: [$hold_others:ident, $hold_others_still:ident])? $(,)?
     }) => {
         $(#[$meta])*
         #[derive(LogicBlock)]
@@ -127,12 +130,14 @@ macro_rules! collision_system {
             /// synthesis removes it.
             hold_chain: Vec<Signal<Local, Bit>>,
             any_hold: Signal<Local, Bit>,
-            /// With shared rare-case units: the chain ORs the pipelines'
-            /// `hold_request`s, and `any_request[0]`, the OR, goes back to
-            /// every pipeline's `hold_others`, so that they hold together
-            /// and each decides its enables from registers of its own. Both
-            /// empty without shared units.
+            /// With shared rare-case units: the chains OR the pipelines'
+            /// requests (`hold_request`, `hold_request_still`), and
+            /// `any_request[0]` and `[1]`, the ORs, go back to every
+            /// pipeline's `hold_others` and `hold_others_still`, so that
+            /// they hold together and each decides its enables from
+            /// registers of its own. All empty without shared units.
             hold_request_chain: Vec<Signal<Local, Bit>>,
+            hold_request_still_chain: Vec<Signal<Local, Bit>>,
             any_request: Vec<Signal<Local, Bit>>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
@@ -215,7 +220,8 @@ macro_rules! collision_system {
                     hold_chain: (0..=p).map(|_| Default::default()).collect(),
                     any_hold: Default::default(),
                     hold_request_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
-                    any_request: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
+                    hold_request_still_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
+                    any_request: (0..2).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -347,13 +353,18 @@ macro_rules! collision_system {
                 }
                 $(
                     self.hold_request_chain[0].next = false;
+                    self.hold_request_still_chain[0].next = false;
                     for i in 0..self.pipelines.len() {
                         self.hold_request_chain[i + 1].next =
                             self.hold_request_chain[i].val() | self.pipelines[i].$hold_request.val();
                         self.any_request[0].next = self.hold_request_chain[i + 1].val();
+                        self.hold_request_still_chain[i + 1].next = self.hold_request_still_chain[i].val()
+                            | self.pipelines[i].$hold_request_still.val();
+                        self.any_request[1].next = self.hold_request_still_chain[i + 1].val();
                     }
                     for i in 0..self.pipelines.len() {
                         self.pipelines[i].$hold_others.next = self.any_request[0].val();
+                        self.pipelines[i].$hold_others_still.next = self.any_request[1].val();
                     }
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
@@ -523,8 +534,8 @@ collision_system!(
         coordinate_bits: W,
         pipeline: SharedRarePipeline<W, D, C, O>,
         hold: hold,
-        hold_request: hold_request,
-        hold_others: hold_others,
+        hold_request: [hold_request, hold_request_still],
+        hold_others: [hold_others, hold_others_still],
     }
 );
 
