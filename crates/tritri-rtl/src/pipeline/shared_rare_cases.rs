@@ -121,6 +121,10 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// Copy `c` takes a new job this clock: the input is valid and the copy
     /// has at most its current step left.
     copy_loads: [Signal<Local, Bit>; 25],
+    /// The job's vertices (T1's, then T2's) and segment ends (T1 low,
+    /// high, T2 low, high), as arrays, so that one loop loads the points.
+    job_vertices: [Signal<Local, Bits<W>>; 18],
+    job_ends: [Signal<Local, Bits<2>>; 4],
     /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
     /// (coordinate `k` at `3 l + k`), and each lane's axis.
     u0_q: [DFF<Bits<W>>; 3],
@@ -301,56 +305,37 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         // for all 18, W = 16: 6.8 ns of routing to the clock enables,
         // 128.9 MHz). Two segments put their ends at points 0, 1 (a, b)
         // and 3, 4 (c, d).
-        for k in 0..3 {
-            if self.copy_loads[k].val() {
-                if !self.in_segments.val() {
-                    self.points_q[k].d.next = self.t1_vertices[k].val();
-                } else if self.t1_segment_low.val() == 1 {
-                    self.points_q[k].d.next = self.t1_vertices[3 + k].val();
-                } else if self.t1_segment_low.val() == 2 {
-                    self.points_q[k].d.next = self.t1_vertices[6 + k].val();
-                } else {
-                    self.points_q[k].d.next = self.t1_vertices[k].val();
+        for i in 0..9 {
+            self.job_vertices[i].next = self.t1_vertices[i].val();
+            self.job_vertices[9 + i].next = self.t2_vertices[i].val();
+        }
+        self.job_ends[0].next = self.t1_segment_low.val();
+        self.job_ends[1].next = self.t1_segment_high.val();
+        self.job_ends[2].next = self.t2_segment_low.val();
+        self.job_ends[3].next = self.t2_segment_high.val();
+        for t in 0..2 {
+            for k in 0..3 {
+                // Triangle `t`'s vertices 0 and 1, or its segment's ends.
+                for e in 0..2 {
+                    if self.copy_loads[9 * t + 3 * e + k].val() {
+                        if !self.in_segments.val() {
+                            self.points_q[9 * t + 3 * e + k].d.next =
+                                self.job_vertices[9 * t + 3 * e + k].val();
+                        } else if self.job_ends[2 * t + e].val() == 1 {
+                            self.points_q[9 * t + 3 * e + k].d.next =
+                                self.job_vertices[9 * t + 3 + k].val();
+                        } else if self.job_ends[2 * t + e].val() == 2 {
+                            self.points_q[9 * t + 3 * e + k].d.next =
+                                self.job_vertices[9 * t + 6 + k].val();
+                        } else {
+                            self.points_q[9 * t + 3 * e + k].d.next =
+                                self.job_vertices[9 * t + k].val();
+                        }
+                    }
                 }
-            }
-            if self.copy_loads[3 + k].val() {
-                if !self.in_segments.val() {
-                    self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
-                } else if self.t1_segment_high.val() == 1 {
-                    self.points_q[3 + k].d.next = self.t1_vertices[3 + k].val();
-                } else if self.t1_segment_high.val() == 2 {
-                    self.points_q[3 + k].d.next = self.t1_vertices[6 + k].val();
-                } else {
-                    self.points_q[3 + k].d.next = self.t1_vertices[k].val();
+                if self.copy_loads[9 * t + 6 + k].val() {
+                    self.points_q[9 * t + 6 + k].d.next = self.job_vertices[9 * t + 6 + k].val();
                 }
-            }
-            if self.copy_loads[6 + k].val() {
-                self.points_q[6 + k].d.next = self.t1_vertices[6 + k].val();
-            }
-            if self.copy_loads[9 + k].val() {
-                if !self.in_segments.val() {
-                    self.points_q[9 + k].d.next = self.t2_vertices[k].val();
-                } else if self.t2_segment_low.val() == 1 {
-                    self.points_q[9 + k].d.next = self.t2_vertices[3 + k].val();
-                } else if self.t2_segment_low.val() == 2 {
-                    self.points_q[9 + k].d.next = self.t2_vertices[6 + k].val();
-                } else {
-                    self.points_q[9 + k].d.next = self.t2_vertices[k].val();
-                }
-            }
-            if self.copy_loads[12 + k].val() {
-                if !self.in_segments.val() {
-                    self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
-                } else if self.t2_segment_high.val() == 1 {
-                    self.points_q[12 + k].d.next = self.t2_vertices[3 + k].val();
-                } else if self.t2_segment_high.val() == 2 {
-                    self.points_q[12 + k].d.next = self.t2_vertices[6 + k].val();
-                } else {
-                    self.points_q[12 + k].d.next = self.t2_vertices[k].val();
-                }
-            }
-            if self.copy_loads[15 + k].val() {
-                self.points_q[15 + k].d.next = self.t2_vertices[6 + k].val();
             }
         }
         // The copies count as `segments_q` and `remaining_q` do.
