@@ -13,10 +13,9 @@
 //! the degenerate triangle's vertices (else T2's) all on the other's plane.
 //! That is registered a stage later, and again with the pair's job two
 //! stages later ([`JOB_STAGE`]), and the job goes to the unit as the pair
-//! leaves that stage. While the
-//! unit cannot take it, `hold` is high and the whole pipeline holds, as if
-//! `advance` were low: the triangle on the input bus is not taken and must
-//! stay there. The unit runs on, free of `advance`, and its verdicts wait
+//! leaves that stage. While the unit cannot take it, `hold` is high and
+//! the whole pipeline holds, as if `advance` were low: the triangle on the
+//! input bus is not taken and must stay there. The unit runs on, free of `advance`, and its verdicts wait
 //! in a [`VerdictQueue`] for their pairs to reach the decision, in order.
 //!
 //! `hold` goes into the enable of every register, so it is a register, in
@@ -25,11 +24,11 @@
 //! `advance` may take next clock, and thirteen [`HoldRegister`]s pick from
 //! those two registers by `advance`, each the enable of one group of
 //! units. The unit's input is valid by registers of its own, a clock
-//! ahead too (`offer_next`), one beside each group of its loads. Pipelines that move in step (a
-//! system's) hold together: each sends its two requests (`hold_request`,
-//! `hold_request_still`) and takes the others' (`hold_others`,
-//! `hold_others_still`) into its forecast in the same clock, so that no
-//! pipeline's enables wait for another's `hold`. (Computed in the clock it
+//! ahead too (`offer_next`), one beside each group of its loads.
+//! Pipelines that move in step (a system's) hold together: each sends its
+//! two requests (`hold_request`, `hold_request_still`) and takes the
+//! others' (`hold_others`, `hold_others_still`) into its forecast in the
+//! same clock, so that no pipeline's enables wait for another's `hold`. (Computed in the clock it
 //! acts, from the sides stage's zeros through the rule to one enable net,
 //! it ran at 79 MHz post-route on ECP5 at W = 8, 11.4 of its 12.7 ns
 //! routing; decided a clock ahead, one register a group, 105.3 MHz at W =
