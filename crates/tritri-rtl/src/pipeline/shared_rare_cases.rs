@@ -33,7 +33,7 @@ use super::rare_decisions::{
     CoplanarContacts, CoplanarDecision, SegmentContacts, SegmentsDecision,
     COPLANAR_DECISION_LATENCY, SEGMENTS_DECISION_LATENCY,
 };
-use crate::arith::compare::CoordinateCompare;
+use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
@@ -54,6 +54,14 @@ const LANE_LATENCY: usize = 1 + SUBTRACTOR_LATENCY + 1 + CROSS_PRODUCT_LATENCY +
 /// signs.
 const CONTEXT_DELAY: usize = LANE_LATENCY + 1;
 const _: () = assert!(SEGMENTS_DECISION_LATENCY < COPLANAR_DECISION_LATENCY);
+/// A job's points load at the edge that takes it, and its first step is
+/// issued at the next; the context is sampled at the edge that issues its
+/// last step. The comparisons there see the points of `1 +
+/// COMPARE_LATENCY` clocks before that clock (`compare_points_q`, then the
+/// comparison), which must be this job's: a job of `S` steps needs
+/// `S >= 2 + COMPARE_LATENCY`.
+const _: () = assert!(SEGMENTS_STEPS >= 2 + COMPARE_LATENCY);
+const _: () = assert!(COPLANAR_STEPS >= SEGMENTS_STEPS);
 /// Clock edges from a coplanar job's acceptance to its `done`: its last
 /// step is issued `COPLANAR_STEPS - 1` clocks after its first, which is
 /// issued a clock after the job is taken; then the lanes, the register
@@ -152,6 +160,14 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     zero_q: [DFF<Bit>; 18],
     /// The job's last signs are in the file.
     decide_q: DFF<Bit>,
+    /// The job's points again, a clock later, for the comparisons alone:
+    /// `points_q` also feeds stage 1's selects, and the placer put it
+    /// between them and the comparisons (W = 16, router1: 3.6 ns of
+    /// routing from `points_q` to a comparison's carry chain, the whole
+    /// shared pipeline's critical path at 116.4 MHz). The comparisons'
+    /// results are read at the job's last step, and the points are
+    /// steady long before that (the assertion after the constants).
+    compare_points_q: [DFF<Bits<W>>; 18],
     /// Coordinate `k` of `A_u` against `B_v` at `9 k + 3 u + v`.
     compare: [CoordinateCompare<W>; 27],
     /// The coplanar comparisons in the projection, `9 c + 3 u + v`.
@@ -208,6 +224,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             negative_q,
             zero_q,
             decide_q,
+            compare_points_q,
             compare,
             coplanar_contacts,
             segment_contacts,
@@ -701,13 +718,19 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         self.decide_q.d.next = self.last_line.q.val() && !self.reset.val();
 
         // The job's context: comparisons (no multipliers) and orientations.
+        for i in 0..18 {
+            self.compare_points_q[i].clock.next = self.clock.val();
+            self.compare_points_q[i].d.next = self.points_q[i].q.val();
+        }
         for k in 0..3 {
             for u in 0..3 {
                 for v in 0..3 {
                     self.compare[9 * k + 3 * u + v].clock.next = self.clock.val();
                     self.compare[9 * k + 3 * u + v].advance.next = true;
-                    self.compare[9 * k + 3 * u + v].a.next = self.points_q[3 * u + k].q.val();
-                    self.compare[9 * k + 3 * u + v].b.next = self.points_q[9 + 3 * v + k].q.val();
+                    self.compare[9 * k + 3 * u + v].a.next =
+                        self.compare_points_q[3 * u + k].q.val();
+                    self.compare[9 * k + 3 * u + v].b.next =
+                        self.compare_points_q[9 + 3 * v + k].q.val();
                 }
             }
         }
