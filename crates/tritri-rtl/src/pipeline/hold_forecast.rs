@@ -115,6 +115,10 @@ impl Logic for HoldForecast {
         // The request at the next clock, by its `advance`.
         self.request_if_still.next = self.job_next.val() && !self.idle_next.val();
         if self.hold_next.val() {
+            // Held, the pipeline stands still whatever `advance` is: the
+            // request is `request_if_still`'s, written again because
+            // reading that output back here puts it in the block that
+            // reads `others_if_still`, a loop to Verilator's lint.
             self.request_if_advance.next = self.job_next.val() && !self.idle_next.val();
         } else {
             self.request_if_advance.next =
