@@ -131,7 +131,7 @@ use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options, Router};
+use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options, Placer, Router};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::{emit_system_with, system_unit_name};
@@ -177,6 +177,11 @@ pub struct Args {
     /// router2 does not (the W = 16 pipeline with --rare-cases shared).
     #[arg(long, value_parser = Router::NAMES)]
     router: Option<String>,
+    /// With --synth ecp5: nextpnr's placer [default: heap]. `static`, its
+    /// electrostatic placer, left a fifth as many paths short of 150 MHz
+    /// on the whole W = 16 pipeline with --rare-cases shared.
+    #[arg(long, value_parser = Placer::NAMES)]
+    placer: Option<String>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
     #[arg(long, conflicts_with_all = ["classifier", "setup"])]
@@ -424,6 +429,9 @@ impl Args {
         }
         if self.router.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--router applies to --synth ecp5".into());
+        }
+        if self.placer.is_some() && self.synth.as_deref() != Some("ecp5") {
+            return Err("--placer applies to --synth ecp5".into());
         }
         if self.dsp.is_some() && !self.has_multipliers() {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
@@ -769,6 +777,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 .router
                 .as_deref()
                 .and_then(Router::from_name)
+                .unwrap_or_default();
+            // And only Placer::NAMES.
+            options.placer = args
+                .placer
+                .as_deref()
+                .and_then(Placer::from_name)
                 .unwrap_or_default();
             let report = route_ecp5(&dir, top, &options)
                 .with_context(|| format!("place and route of {top}"))?;

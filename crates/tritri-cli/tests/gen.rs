@@ -168,6 +168,18 @@ fn dsp_mapping_options_are_checked() {
             "gen",
             "--width",
             "8",
+            "--placer",
+            "static",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--placer applies to --synth ecp5"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
             "--synth",
             "ecp5",
             "--router",
@@ -176,6 +188,20 @@ fn dsp_mapping_options_are_checked() {
             "/nonexistent/x",
         ],
         &["router3", "router1"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--synth",
+            "ecp5",
+            "--placer",
+            "sa",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["sa", "static"],
     );
     refused(
         &[

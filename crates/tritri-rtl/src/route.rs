@@ -66,6 +66,39 @@ impl Router {
     }
 }
 
+/// nextpnr's placer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Placer {
+    /// `heap`, nextpnr's analytic placer and its default.
+    #[default]
+    Heap,
+    /// `static`, nextpnr's electrostatic placer. On the whole W = 16
+    /// pipeline with the rare cases shared (router1, seed 1) it left about
+    /// 400 endpoints short of 150 MHz where heap left 1,900 on the same
+    /// netlist (rtl-out/README.md).
+    Static,
+}
+
+impl Placer {
+    /// The names `tritri gen --placer` takes, nextpnr's own.
+    pub const NAMES: [&'static str; 2] = ["heap", "static"];
+
+    pub fn from_name(name: &str) -> Option<Placer> {
+        match name {
+            "heap" => Some(Placer::Heap),
+            "static" => Some(Placer::Static),
+            _ => None,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Placer::Heap => "heap",
+            Placer::Static => "static",
+        }
+    }
+}
+
 /// How to run nextpnr.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ecp5Options {
@@ -74,6 +107,7 @@ pub struct Ecp5Options {
     pub threads: usize,
     pub seed: u64,
     pub router: Router,
+    pub placer: Placer,
 }
 
 impl Default for Ecp5Options {
@@ -83,6 +117,7 @@ impl Default for Ecp5Options {
             threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
             seed: 1,
             router: Router::default(),
+            placer: Placer::default(),
         }
     }
 }
@@ -108,8 +143,9 @@ pub struct RouteReport {
     /// nextpnr's placement seed: a route's Fmax moves by several per cent
     /// from seed to seed on the same netlist, so a figure names its seed.
     pub seed: u64,
-    /// And its router.
+    /// And its router and placer.
     pub router: Router,
+    pub placer: Placer,
     pub critical_path: Option<CriticalPath>,
     /// LUT4s (nextpnr's TRELLIS_COMB), flip-flops, 18 x 18 multipliers,
     /// 18-kbit block RAMs.
@@ -182,6 +218,7 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
             "--timing-allow-fail",
         ])
         .args(options.router.flags())
+        .args(["--placer", options.placer.name()])
         .args([
             "--json",
             &netlist,
@@ -203,6 +240,7 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     })?;
     Ok(RouteReport {
         router: options.router,
+        placer: options.placer,
         ..report
     })
 }
@@ -247,7 +285,7 @@ struct End {
 }
 
 /// nextpnr's `--report` JSON of a route with `seed`, read into a
-/// [`RouteReport`] (of the default router).
+/// [`RouteReport`] (of the default router and placer).
 pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, String> {
     let report: Report = serde_json::from_str(json).map_err(|e| e.to_string())?;
     let (_, fmax) = report.fmax.iter().next().ok_or("no clock in `fmax`")?;
@@ -275,6 +313,7 @@ pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, Str
         target_mhz: fmax.constraint,
         seed,
         router: Router::default(),
+        placer: Placer::default(),
         critical_path,
         luts: used("TRELLIS_COMB"),
         flip_flops: used("TRELLIS_FF"),
@@ -290,10 +329,14 @@ pub fn route_table(reports: &[RouteReport]) -> String {
          |---|---:|---:|---:|---:|---:|---:|---|---:|---:|\n",
     );
     for r in reports {
-        let seed = match r.router {
-            Router::Router2 => r.seed.to_string(),
-            Router::Router1 => format!("{}, router1", r.seed),
-        };
+        // The seed, and beside it what is not the default.
+        let mut seed = r.seed.to_string();
+        if r.router == Router::Router1 {
+            seed.push_str(", router1");
+        }
+        if r.placer != Placer::default() {
+            seed.push_str(&format!(", {}", r.placer.name()));
+        }
         let (path, levels, split) = match &r.critical_path {
             Some(p) => (
                 format!("`{}` → `{}`", p.from, p.to),
@@ -354,6 +397,21 @@ mod tests {
             ..parse_report("u", 2, json).unwrap()
         };
         assert!(route_table(&[by_router1]).contains("| u | 48.8 | 2, router1 | 643 |"));
+        let static_placed = RouteReport {
+            router: Router::Router1,
+            placer: Placer::Static,
+            ..parse_report("u", 3, json).unwrap()
+        };
+        assert!(route_table(&[static_placed]).contains("| u | 48.8 | 3, router1, static | 643 |"));
+    }
+
+    #[test]
+    fn placers_are_named() {
+        for name in Placer::NAMES {
+            assert_eq!(Placer::from_name(name).unwrap().name(), name);
+        }
+        assert_eq!(Placer::from_name("sa"), None);
+        assert_eq!(Placer::default(), Placer::Heap);
     }
 
     #[test]
