@@ -135,15 +135,19 @@ mod tests {
         };
         queue.reset.next = true;
         clock_cycle(&mut queue, |q| &mut q.clock);
-        let mut reads = 0;
+        let (mut reads, mut deepest) = (0, 0);
         for clock in 0..20_000 {
             let r = random();
             let reset = clock % 5_000 == 4_999;
             let push = r & 3 != 0 && model.len() < VERDICT_QUEUE_DEPTH - 1;
             let push_hit = r & 4 != 0;
             // A pop reads the head: of a queue with a verdict, or of an
-            // empty one being pushed into.
-            let pop = r & 24 != 0 && (!model.is_empty() || push);
+            // empty one being pushed into. Pops are frequent in even
+            // thousands of clocks and rare in odd ones, where the queue
+            // fills to the pipeline's bound.
+            let often = (clock / 1_000) % 2 == 0;
+            let pop =
+                (if often { r & 24 != 0 } else { r & 24 == 24 }) && (!model.is_empty() || push);
             queue.reset.next = reset;
             queue.push.next = push;
             queue.push_hit.next = push_hit;
@@ -158,6 +162,7 @@ mod tests {
             if push {
                 model.push_back(push_hit);
             }
+            deepest = deepest.max(model.len());
             if pop {
                 model.pop_front();
             }
@@ -166,5 +171,6 @@ mod tests {
             }
         }
         assert!(reads > 10_000, "{reads} reads");
+        assert_eq!(deepest, VERDICT_QUEUE_DEPTH - 1);
     }
 }
