@@ -73,8 +73,8 @@ pub enum Placer {
     #[default]
     Heap,
     /// `static`, nextpnr's electrostatic placer. On the whole W = 16
-    /// pipeline with the rare cases shared (router1, seed 1) it left about
-    /// 400 endpoints short of 150 MHz where heap left 1,900 on the same
+    /// pipeline with the rare cases shared (router1, seed 1) it left 281
+    /// register inputs short of 150 MHz where heap left 1,358 on the same
     /// netlist (rtl-out/README.md).
     Static,
 }
