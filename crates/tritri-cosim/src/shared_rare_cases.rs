@@ -129,8 +129,8 @@ pub fn run_rusthdl(jobs: &[RareJob]) -> RareRun {
             "no verdicts after {edge} edges"
         );
         uut.in_valid.next = next < jobs.len();
-        for c in 0..25 {
-            uut.in_valid_copies[c].next = next < jobs.len();
+        for copy in uut.in_valid_copies.iter_mut() {
+            copy.next = next < jobs.len();
         }
         if let Some(job) = jobs.get(next) {
             uut.in_segments.next = job.segments;

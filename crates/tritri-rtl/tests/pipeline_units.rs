@@ -577,8 +577,8 @@ fn shared_rare_cases_equal_the_parallel_tests() {
         // Offer the next job, now and then after a gap.
         let offer = next < jobs.len() && (offered_since.is_some() || rng.gen_bool(0.7));
         uut.in_valid.next = offer;
-        for c in 0..25 {
-            uut.in_valid_copies[c].next = offer;
+        for copy in uut.in_valid_copies.iter_mut() {
+            copy.next = offer;
         }
         if offer {
             let (is_segments, t1, t2) = &jobs[next];

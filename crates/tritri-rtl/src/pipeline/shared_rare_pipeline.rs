@@ -15,8 +15,9 @@
 //! stages later ([`JOB_STAGE`]), and the job goes to the unit as the pair
 //! leaves that stage. While the unit cannot take it, `hold` is high and
 //! the whole pipeline holds, as if `advance` were low: the triangle on the
-//! input bus is not taken and must stay there. The unit runs on, free of `advance`, and its verdicts wait
-//! in a [`VerdictQueue`] for their pairs to reach the decision, in order.
+//! input bus is not taken and must stay there. The unit runs on, free of
+//! `advance`, and its verdicts wait in a [`VerdictQueue`] for their pairs
+//! to reach the decision, in order.
 //!
 //! `hold` goes into the enable of every register, so it is a register, in
 //! copies: [`HoldForecast`] decides it two clocks ahead from the rare bits
@@ -28,11 +29,11 @@
 //! Pipelines that move in step (a system's) hold together: each sends its
 //! two requests (`hold_request`, `hold_request_still`) and takes the
 //! others' (`hold_others`, `hold_others_still`) into its forecast in the
-//! same clock, so that no pipeline's enables wait for another's `hold`. (Computed in the clock it
-//! acts, from the sides stage's zeros through the rule to one enable net,
-//! it ran at 79 MHz post-route on ECP5 at W = 8, 11.4 of its 12.7 ns
-//! routing; decided a clock ahead, one register a group, 105.3 MHz at W =
-//! 16, a copy reaching 4,474 clock enables.)
+//! same clock, so that no pipeline's enables wait for another's `hold`.
+//! (Computed in the clock it acts, from the sides stage's zeros through
+//! the rule to one enable net, it ran at 79 MHz post-route on ECP5 at
+//! W = 8, 11.4 of its 12.7 ns routing; decided a clock ahead, one register
+//! a group, 105.3 MHz at W = 16, a copy reaching 4,474 clock enables.)
 //!
 //! So the latency in advancing clocks is the parallel pipeline's
 //! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
