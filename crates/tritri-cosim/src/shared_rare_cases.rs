@@ -20,7 +20,7 @@ use tritri_geom::kernel::ExactKernel;
 use tritri_rtl::arith::convert::from_i128;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::emit::shared_rare_cases_unit::{emit_shared_rare_cases, shared_rare_cases_name};
-use tritri_rtl::pipeline::shared_rare_cases::SharedRareCases;
+use tritri_rtl::pipeline::shared_rare_cases::{SharedRareCases, IN_VALID_COPIES};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 use tritri_rtl::system::rare_case_model::{degenerate, rare_kind, RareKind};
 
@@ -237,7 +237,7 @@ fn testbench() -> String {
     let open_files = crate::simulator::OPEN_VECTOR_FILES;
     let top = shared_rare_cases_name(16);
     let mut ports = String::new();
-    for c in 0..25 {
+    for c in 0..IN_VALID_COPIES {
         ports += &format!(".in_valid_copies_{c}(in_valid), ");
     }
     for t in ["t1", "t2"] {

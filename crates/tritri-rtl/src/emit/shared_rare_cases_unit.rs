@@ -5,7 +5,7 @@ use super::dsp_mapping::MultiplierMapping;
 use super::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescription};
 use crate::pipeline::pipeline_for_width::UnsupportedWidth;
 use crate::pipeline::shared_rare_cases::{
-    SharedRareCases, COPLANAR_STEPS, SEGMENTS_STEPS, SHARED_RARE_CASES_LATENCY,
+    SharedRareCases, COPLANAR_STEPS, IN_VALID_COPIES, SEGMENTS_STEPS, SHARED_RARE_CASES_LATENCY,
 };
 use rust_hdl::prelude::*;
 
@@ -32,7 +32,7 @@ pub fn shared_rare_cases(w: usize) -> UnitDescription {
     .port("clock", "Clock; every register updates on the rising edge.")
     .port("reset", "Synchronous reset, active high: no job in the unit.")
     .port("in_valid", "A job is offered; it is taken at the clock edge when ready is high.");
-    for c in 0..25 {
+    for c in 0..IN_VALID_COPIES {
         unit = unit.port(
             &format!("in_valid_copies_{c}"),
             "in_valid again, for one copy of the steps left (equal to in_valid; each from a register of its own).",

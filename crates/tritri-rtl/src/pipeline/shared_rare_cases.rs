@@ -69,6 +69,10 @@ const _: () = assert!(COPLANAR_STEPS >= SEGMENTS_STEPS);
 /// pair's job takes `COPLANAR_STEPS - SEGMENTS_STEPS` fewer.
 pub const SHARED_RARE_CASES_LATENCY: usize =
     COPLANAR_STEPS + CONTEXT_DELAY + COPLANAR_DECISION_LATENCY - 1;
+/// Copies of the steps left, each with an `in_valid` of its own: one per
+/// coordinate of stage 1's destinations (`u0`, `u1`, `w0`'s lanes, `w1`'s:
+/// 8 × 3) and one for the lines beside the lanes (the update's literal 25).
+pub const IN_VALID_COPIES: usize = 25;
 
 #[derive(LogicBlock, Default)]
 pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
@@ -82,7 +86,7 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// drives each from a register of its own beside the copy's loads (W =
     /// 16, router1: one `in_valid` net into all 25 copies, 9.1 of 10.8 ns
     /// routing, 93.0 MHz).
-    pub in_valid_copies: [Signal<In, Bit>; 25],
+    pub in_valid_copies: [Signal<In, Bit>; IN_VALID_COPIES],
     /// The job is a degenerate pair (else a coplanar pair).
     pub in_segments: Signal<In, Bit>,
     pub t1_vertices: [Signal<In, Bits<W>>; 9],
@@ -123,12 +127,12 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// loads of all of them (W = 16: one step per destination, 48
     /// bits, was 107.8 MHz; with `remaining_q` deciding the copies' loads,
     /// 7.4 ns of routing to their resets, 110.5 MHz).
-    step_copy_q: [DFF<Bits<3>>; 25],
-    segments_copy_q: [DFF<Bit>; 25],
-    remaining_copy_q: [DFF<Bits<3>>; 25],
+    step_copy_q: [DFF<Bits<3>>; IN_VALID_COPIES],
+    segments_copy_q: [DFF<Bit>; IN_VALID_COPIES],
+    remaining_copy_q: [DFF<Bits<3>>; IN_VALID_COPIES],
     /// Copy `c` takes a new job this clock: the input is valid and the copy
     /// has at most its current step left.
-    copy_loads: [Signal<Local, Bit>; 25],
+    copy_loads: [Signal<Local, Bit>; IN_VALID_COPIES],
     /// The job's vertices (T1's, then T2's) and segment ends (T1 low,
     /// high, T2 low, high), as arrays, so that one loop loads the points.
     job_vertices: [Signal<Local, Bits<W>>; 18],

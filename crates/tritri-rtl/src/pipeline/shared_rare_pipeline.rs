@@ -42,7 +42,7 @@
 use super::general_path::{GeneralPath, ADVANCE_COPIES, RARE_VERDICTS_STAGE, SIDES_STAGE};
 use super::hold_forecast::HoldForecast;
 use super::hold_register::HoldRegister;
-use super::shared_rare_cases::{SharedRareCases, SHARED_RARE_CASES_LATENCY};
+use super::shared_rare_cases::{SharedRareCases, IN_VALID_COPIES, SHARED_RARE_CASES_LATENCY};
 use super::verdict_queue::{VerdictQueue, VERDICT_QUEUE_DEPTH};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::register_copy::RegisterCopy;
@@ -73,6 +73,9 @@ const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENC
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
 /// The update's literals: copies 1 to 11 are the general path's.
 const _: () = assert!(ADVANCE_COPIES == 11);
+/// The update's literals 25 and 26: one offer for each of the unit's
+/// copies, and the last for its `in_valid`.
+const _: () = assert!(IN_VALID_COPIES == 25);
 
 crate::pipeline_ports! {
     // The ports: crate::pipeline::ports, and `hold`.
@@ -123,7 +126,7 @@ crate::pipeline_ports! {
         /// that each sits by its loads (W = 16, router1: from a copy of
         /// `hold` and the job stage's rare bit into all of them, 93.0 MHz,
         /// 9.1 of its 10.8 ns routing).
-        offers: [RegisterCopy<Bit>; 26],
+        offers: [RegisterCopy<Bit>; IN_VALID_COPIES + 1],
         /// The offers' next value: next clock, the job stage's pair is rare
         /// and the pipeline does not hold. Formed here, from the forecast's
         /// registers and `advance`: through the forecast and back, `advance`
