@@ -108,6 +108,7 @@ use tritri_rtl::emit::cell_classifier_unit::{
 };
 use tritri_rtl::emit::cone_unit_unit::{cone_unit_name, emit_cone_unit, CONE_UNIT_WIDTHS};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
+use tritri_rtl::emit::memory_mapping::{map_delay_lines, DelayLineMapping};
 use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::patch_tessellator_unit::{
@@ -161,6 +162,14 @@ pub struct Args {
     /// with --synth ecp5, inferred otherwise].
     #[arg(long, value_parser = MultiplierMapping::NAMES)]
     dsp: Option<String>,
+    /// Where the delay lines keep their stages: `registers` (one per stage
+    /// and bit; Xilinx maps long ones onto SRL LUTs) or `memory` (lines of
+    /// six stages or more in a memory of N - 1 words with two pointers,
+    /// which Yosys puts in ECP5's distributed RAM: a quarter fewer
+    /// flip-flops at W = 16, and nextpnr routes far faster; rtl-out/README.md)
+    /// [default: memory with --synth ecp5, registers otherwise].
+    #[arg(long, value_parser = DelayLineMapping::NAMES)]
+    delay_lines: Option<String>,
     /// With --synth ecp5: place and route this module of the emitted
     /// design on its own instead of the top (a unit of the pipeline, such
     /// as tritri_pipeline_w16_orient3d_operands: minutes where the whole pipeline
@@ -405,6 +414,16 @@ impl Args {
             (Some(name), _) => MultiplierMapping::parse(name).unwrap_or_default(),
             (None, Some("ecp5")) => MultiplierMapping::Ecp5,
             (None, _) => MultiplierMapping::Inferred,
+        }
+    }
+
+    /// The delay lines' mapping (`--delay-lines`, or the device of
+    /// `--synth`).
+    fn delay_lines(&self) -> DelayLineMapping {
+        match (&self.delay_lines, self.synth.as_deref()) {
+            (Some(name), _) => DelayLineMapping::parse(name).unwrap_or_default(),
+            (None, Some("ecp5")) => DelayLineMapping::Memory,
+            (None, _) => DelayLineMapping::Registers,
         }
     }
 
@@ -737,7 +756,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut routes = Vec::new();
     for &w in &args.width {
         let dir = out_dir(&args, w);
-        let design = args.emit(w)?;
+        let mut design = args.emit(w)?;
+        map_delay_lines(&mut design, args.delay_lines());
         design
             .write_to(&dir)
             .with_context(|| format!("writing {}", dir.display()))?;

@@ -242,6 +242,64 @@ fn dsp_mapping_options_are_checked() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `--delay-lines memory` puts the long delay lines (not the valid bits'
+/// lines, which have a reset) in memories and says so in the README; the
+/// default without `--synth ecp5` keeps registers; an unknown mapping is
+/// refused with the names.
+#[test]
+fn delay_lines_go_to_memory_when_asked() {
+    let dir = std::env::temp_dir().join(format!("tritri-gen-lines-{}", std::process::id()));
+    let memories = |extra: &[&str]| {
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = tritri()
+            .args(["gen", "--width", "8"])
+            .args(extra)
+            .arg("--out")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mut count = 0;
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
+            if text.contains("read_q <= words[read_at];") {
+                assert!(!text.contains("ValidLine<"), "a valid line stays registers");
+                count += 1;
+            }
+        }
+        let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        (count, readme.contains("--delay-lines memory"))
+    };
+    let (count, said) = memories(&["--delay-lines", "memory"]);
+    assert!(
+        count >= 5 && said,
+        "{count} memories, README says so: {said}"
+    );
+    assert_eq!(memories(&[]), (0, false));
+    std::fs::remove_dir_all(&dir).ok();
+    let out = tritri()
+        .args([
+            "gen",
+            "--width",
+            "8",
+            "--delay-lines",
+            "srl",
+            "--out",
+            "/nonexistent/x",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("srl") && stderr.contains("memory"),
+        "{stderr}"
+    );
+}
+
 /// Several widths go to `<out>/w<W>`.
 #[test]
 fn several_widths_go_to_subdirectories() {

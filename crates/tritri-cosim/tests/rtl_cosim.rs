@@ -21,7 +21,7 @@ use std::time::Instant;
 use tritri_cosim::engine::{run_pipeline, Engine};
 use tritri_cosim::pipeline_rtl::{
     pipeline_dut, pipeline_dut_for, pipeline_dut_with, run_schedule, run_schedule_on, run_stream,
-    RtlRun,
+    RtlDut, RtlRun,
 };
 use tritri_cosim::simulator::Simulator;
 use tritri_cosim::stream::{group_schedule, shared_path_cost, StreamResult, TriangleStream};
@@ -32,6 +32,7 @@ use tritri_geom::hard_cases::{random_near_degenerate_pairs, random_pairs};
 use tritri_geom::quantize::Frame;
 use tritri_geom::scene::TaggedTriangle;
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, ECP5_MODEL_FILE};
+use tritri_rtl::emit::memory_mapping::{map_delay_lines, DelayLineMapping};
 use tritri_rtl::pipeline::RareCasePath;
 
 fn env_usize(name: &str, default: usize) -> usize {
@@ -199,6 +200,66 @@ fn ecp5_dsp_mapping_matches_fixed_point_model() {
             dut.latency,
         );
     }
+}
+
+/// `dut` with its delay lines in memories (`tritri gen --delay-lines
+/// memory`).
+fn with_delay_lines_in_memory(dut: &RtlDut) -> RtlDut {
+    let mut dut = dut.clone();
+    let mapped = map_delay_lines(&mut dut.design, DelayLineMapping::Memory);
+    let memories = dut
+        .design
+        .verilog_files()
+        .filter(|f| f.contents.contains("read_q <= words[read_at];"))
+        .count();
+    assert!(
+        mapped >= 5 && memories == mapped,
+        "W={}: {mapped} delay lines mapped, {memories} with a memory",
+        dut.width
+    );
+    dut
+}
+
+/// The pipeline as `tritri gen --synth ecp5` emits it, its long delay
+/// lines in memories of `N - 1` words: W = 16 with the rare cases shared
+/// and the multipliers on MULT18X18D in Verilator on the hard cases (every
+/// verdict the model's, and the clocks held the model's count), and W = 8's
+/// parallel pipeline in Icarus on a mixed stream (verdicts and cycles).
+#[test]
+fn delay_lines_in_memory_match_the_model() {
+    let width = 16;
+    let dut = pipeline_dut_for(width, MultiplierMapping::Ecp5, RareCasePath::Shared)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    let dut = with_delay_lines_in_memory(&dut);
+    let groups = hard_case_groups(width as u32, 1);
+    let (schedule, expected) = group_schedule(&groups, certified_intersects);
+    let result = run_schedule_on(Simulator::Verilator, &dut, &schedule, None)
+        .map(|r| r.result)
+        .unwrap_or_else(|e| panic!("{e:#}"));
+    assert_eq!(
+        result.held,
+        shared_path_cost(&groups).stall_cycles,
+        "clocks held"
+    );
+    check_schedule(
+        "Verilator, delay lines in memory",
+        "W=16 hard cases x 72 orderings",
+        &result,
+        &expected,
+        schedule.len() + result.held as usize,
+    );
+
+    let width = 8;
+    let dut = with_delay_lines_in_memory(&pipeline_dut(width).unwrap());
+    let stream = mixed_stream(width as u32, 20, 200, 31);
+    let run = run_stream(Simulator::Icarus, &dut, &stream).unwrap_or_else(|e| panic!("{e:#}"));
+    check(
+        "Icarus (--delay-lines memory)",
+        width,
+        &stream,
+        &run,
+        dut.latency,
+    );
 }
 
 /// The route's one entry point gives the same result on every engine (same

@@ -64,6 +64,7 @@ pub mod cell_classifier_unit;
 pub mod cone_unit_unit;
 pub mod continuous_assigns;
 pub mod dsp_mapping;
+pub mod memory_mapping;
 pub mod modules;
 pub mod octree_builder_unit;
 pub mod owner_filter_unit;

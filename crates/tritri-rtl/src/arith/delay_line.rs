@@ -7,7 +7,9 @@
 //! Datapath only: no reset (docs/ARCHITECTURE.md, conventions). Valid bits use
 //! [`super::valid_line::ValidLine`], which has one.
 //! Verilog: one register per stage, `stage_<i>_q`, the last being `q`;
-//! FPGA tools map long ones onto shift-register LUTs.
+//! FPGA tools map long ones onto shift-register LUTs. ECP5 has none, so
+//! `tritri gen --delay-lines memory` swaps long lines' bodies for
+//! [`delay_line_memory_verilog`] (`crate::emit::memory_mapping`).
 
 use rust_hdl::prelude::*;
 
@@ -105,4 +107,67 @@ pub(crate) fn delay_line_verilog(bits: usize, n: usize, reset: Option<&str>) -> 
     }
     v += "end\n";
     v
+}
+
+/// The fewest stages [`delay_line_memory_verilog`] is used for
+/// (`emit::memory_mapping`): below it, the two pointers and two output
+/// registers cost about what the stages do.
+pub const MEMORY_MIN_STAGES: usize = 6;
+
+/// Verilog of the same `n`-stage, `bits`-wide enabled delay line as
+/// [`delay_line_verilog`] without reset, in a memory of `n - 1` words and
+/// two registers: each enabled edge writes `d` at `write_at`, reads the
+/// oldest word (at `read_at`, the slot after `write_at`, written `n - 2`
+/// edges before) into `read_q`, and moves `read_q` on to `q`. The word
+/// read at edge `k` holds `d` of edge `k - n + 2`; through `read_q` and
+/// `q` it is `d` of edge `k - n + 1` after edge `k`, as the stages give
+/// it. Every word and register starts at zero, as the stages do, so the
+/// two agree from the first clock.
+///
+/// Synthesis maps the words onto distributed RAM (ECP5: `TRELLIS_DPR16X4`,
+/// 16 words of 4 bits in a slice pair) with an asynchronous read, so
+/// `read_q` and `q` are fabric registers and the memory's read has a whole
+/// clock.
+pub(crate) fn delay_line_memory_verilog(bits: usize, n: usize) -> String {
+    assert!(
+        n >= 3,
+        "a memory delay line reads and writes two distinct words"
+    );
+    let words = n - 1;
+    let pointer_bits = (usize::BITS - (words - 1).leading_zeros()).max(1) as usize;
+    let range = if bits == 1 {
+        String::new()
+    } else {
+        format!("[{}:0] ", bits - 1)
+    };
+    let last = words - 1;
+    format!(
+        "\
+// Delay line: {n} stage(s) of {bits} bit(s), in a memory of {words} words:
+// d is written at write_at, the oldest word (at read_at, one slot on) is
+// read into read_q, and read_q moves on to q.
+reg {range}words [0:{last}];
+reg [{pb}:0] write_at;
+reg [{pb}:0] read_at;
+reg {range}read_q;
+integer i;
+initial begin
+    for (i = 0; i < {words}; i = i + 1) words[i] = {bits}'d0;
+    write_at = {pointer_bits}'d0;
+    read_at = {pointer_bits}'d1;
+    read_q = {bits}'d0;
+    q = {bits}'d0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        words[write_at] <= d;
+        read_q <= words[read_at];
+        q <= read_q;
+        write_at <= (write_at == {pointer_bits}'d{last}) ? {pointer_bits}'d0 : write_at + {pointer_bits}'d1;
+        read_at <= (read_at == {pointer_bits}'d{last}) ? {pointer_bits}'d0 : read_at + {pointer_bits}'d1;
+    end
+end
+",
+        pb = pointer_bits - 1,
+    )
 }
