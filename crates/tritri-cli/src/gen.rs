@@ -152,7 +152,8 @@ pub struct Args {
     /// without a value: `xilinx` and `generic`), `xilinx`, `generic`, or
     /// `ecp5`: Yosys and nextpnr-ecp5 place and route (out of context,
     /// LFE5U-85F speed 6, aiming at 150 MHz) and report the post-route
-    /// Fmax, the critical path and LUT4 / FF / MULT18X18D / EBR.
+    /// Fmax, the critical path, the register inputs short of 150 MHz and
+    /// LUT4 / FF / MULT18X18D / EBR.
     #[arg(long, num_args = 0..=1, default_missing_value = "all", value_parser = ["all", "xilinx", "generic", "ecp5"])]
     synth: Option<String>,
     /// How the multipliers reach the DSP blocks: `inferred` (`a * b`
@@ -164,10 +165,11 @@ pub struct Args {
     dsp: Option<String>,
     /// Where the delay lines keep their stages: `registers` (one per stage
     /// and bit; Xilinx maps long ones onto SRL LUTs) or `memory` (lines of
-    /// six stages or more in a memory of N - 1 words with two pointers,
-    /// which Yosys puts in ECP5's distributed RAM: a quarter fewer
-    /// flip-flops at W = 16, and nextpnr routes far faster; rtl-out/README.md)
-    /// [default: memory with --synth ecp5, registers otherwise].
+    /// six stages or more in a memory of at least N - 1 words with two
+    /// counters, which Yosys puts in ECP5's distributed RAM: a quarter
+    /// fewer flip-flops at W = 16, and nextpnr routes it in a quarter of
+    /// the time; rtl-out/README.md) [default: memory with --synth ecp5,
+    /// registers otherwise].
     #[arg(long, value_parser = DelayLineMapping::NAMES)]
     delay_lines: Option<String>,
     /// With --synth ecp5: place and route this module of the emitted

@@ -221,10 +221,11 @@ fn with_delay_lines_in_memory(dut: &RtlDut) -> RtlDut {
 }
 
 /// The pipeline as `tritri gen --synth ecp5` emits it, its long delay
-/// lines in memories of `N - 1` words: W = 16 with the rare cases shared
-/// and the multipliers on MULT18X18D in Verilator on the hard cases (every
-/// verdict the model's, and the clocks held the model's count), and W = 8's
-/// parallel pipeline in Icarus on a mixed stream (verdicts and cycles).
+/// lines in memories (a power of two words, at least `N - 1`): W = 16 with
+/// the rare cases shared and the multipliers on MULT18X18D in Verilator on
+/// the hard cases (every verdict the model's, and the clocks held the
+/// model's count), and W = 8's parallel pipeline in Icarus on a mixed
+/// stream (verdicts and cycles).
 #[test]
 fn delay_lines_in_memory_match_the_model() {
     let width = 16;

@@ -115,14 +115,21 @@ pub(crate) fn delay_line_verilog(bits: usize, n: usize, reset: Option<&str>) -> 
 pub const MEMORY_MIN_STAGES: usize = 6;
 
 /// Verilog of the same `n`-stage, `bits`-wide enabled delay line as
-/// [`delay_line_verilog`] without reset, in a memory of `n - 1` words and
-/// two registers: each enabled edge writes `d` at `write_at`, reads the
-/// oldest word (at `read_at`, the slot after `write_at`, written `n - 2`
-/// edges before) into `read_q`, and moves `read_q` on to `q`. The word
-/// read at edge `k` holds `d` of edge `k - n + 2`; through `read_q` and
-/// `q` it is `d` of edge `k - n + 1` after edge `k`, as the stages give
-/// it. Every word and register starts at zero, as the stages do, so the
-/// two agree from the first clock.
+/// [`delay_line_verilog`] without reset, in a memory and two registers:
+/// each enabled edge writes `d` at `write_at`, reads the word written
+/// `n - 2` edges before (at `read_at`, `n - 2` slots behind) into `read_q`,
+/// and moves `read_q` on to `q`. The word read at edge `k` holds `d` of
+/// edge `k - n + 2`; through `read_q` and `q` it is `d` of edge `k - n + 1`
+/// after edge `k`, as the stages give it. Every word and register starts at
+/// zero, as the stages do, and a word is read before its first write only
+/// while it is zero, so the two agree from the first clock.
+///
+/// The memory has a power of two words, at least `n - 1`, so that both
+/// pointers are plain counters enabled by `advance`. (With `n - 1` words
+/// each pointer wrapped through a synchronous reset, which ECP5 drives as
+/// `advance` and the wrap through a LUT into the registers' LSR: W = 16
+/// with the rare cases shared, that was the critical path, a copy of
+/// `hold` → 8.4 ns of routing → a pointer's LSR, 98.2 MHz.)
 ///
 /// Synthesis maps the words onto distributed RAM (ECP5: `TRELLIS_DPR16X4`,
 /// 16 words of 4 bits in a slice pair) with an asynchronous read, so
@@ -133,19 +140,19 @@ pub(crate) fn delay_line_memory_verilog(bits: usize, n: usize) -> String {
         n >= 3,
         "a memory delay line reads and writes two distinct words"
     );
-    let words = n - 1;
-    let pointer_bits = (usize::BITS - (words - 1).leading_zeros()).max(1) as usize;
+    let words = (n - 1).next_power_of_two();
+    let pointer_bits = words.trailing_zeros().max(1) as usize;
     let range = if bits == 1 {
         String::new()
     } else {
         format!("[{}:0] ", bits - 1)
     };
-    let last = words - 1;
+    let behind = (1usize << pointer_bits) - (n - 2);
     format!(
         "\
 // Delay line: {n} stage(s) of {bits} bit(s), in a memory of {words} words:
-// d is written at write_at, the oldest word (at read_at, one slot on) is
-// read into read_q, and read_q moves on to q.
+// d is written at write_at, the word written {lag} edges before is read
+// (at read_at) into read_q, and read_q moves on to q.
 reg {range}words [0:{last}];
 reg [{pb}:0] write_at;
 reg [{pb}:0] read_at;
@@ -154,7 +161,7 @@ integer i;
 initial begin
     for (i = 0; i < {words}; i = i + 1) words[i] = {bits}'d0;
     write_at = {pointer_bits}'d0;
-    read_at = {pointer_bits}'d1;
+    read_at = {pointer_bits}'d{behind};
     read_q = {bits}'d0;
     q = {bits}'d0;
 end
@@ -163,11 +170,13 @@ always @(posedge clock) begin
         words[write_at] <= d;
         read_q <= words[read_at];
         q <= read_q;
-        write_at <= (write_at == {pointer_bits}'d{last}) ? {pointer_bits}'d0 : write_at + {pointer_bits}'d1;
-        read_at <= (read_at == {pointer_bits}'d{last}) ? {pointer_bits}'d0 : read_at + {pointer_bits}'d1;
+        write_at <= write_at + {pointer_bits}'d1;
+        read_at <= read_at + {pointer_bits}'d1;
     end
 end
 ",
+        lag = n - 2,
+        last = words - 1,
         pb = pointer_bits - 1,
     )
 }

@@ -9,13 +9,13 @@
 //! every route between its arithmetic. `DelayLineMapping::Memory` swaps
 //! the body of each delay line of at least
 //! [`MEMORY_MIN_STAGES`](crate::arith::delay_line::MEMORY_MIN_STAGES)
-//! stages for a memory of `N - 1` words with two pointers
-//! (`delay_line_memory_verilog`): the same ports, latency and values from
-//! the first clock, and synthesis puts the words in distributed RAM. (ECP5,
-//! W = 16, shared rare cases, static placer, router1: 20,266 flip-flops
-//! became 15,020, with 341 `TRELLIS_DPR16X4` and +1,443 LUT4; nextpnr's
-//! router took 430 s instead of more than 1,800.) The valid bits' lines
-//! (`ValidLine`, with a reset) stay registers.
+//! stages for a memory of at least `N - 1` words (a power of two) with two
+//! counters (`delay_line_memory_verilog`): the same ports, latency and
+//! values from the first clock, and synthesis puts the words in
+//! distributed RAM. (ECP5, W = 16, shared rare cases: 20,310 flip-flops
+//! placed became 15,064, with 341 `TRELLIS_DPR16X4`; router1 took 348 s
+//! instead of 1,437 after heap placement, rtl-out/README.md.) The valid
+//! bits' lines (`ValidLine`, with a reset) stay registers.
 
 use super::EmittedDesign;
 use crate::arith::delay_line::{delay_line_memory_verilog, MEMORY_MIN_STAGES};
@@ -75,7 +75,7 @@ pub fn map_delay_lines(design: &mut EmittedDesign, mapping: DelayLineMapping) ->
     }
     let note = format!(
         "- The {mapped} delay-line modules of {MEMORY_MIN_STAGES} stages or more keep their stages in a memory of \
-         N - 1 words with two pointers (`tritri gen --delay-lines memory`): the same latency and values as \
+         at least N - 1 words (a power of two) with two pointers (`tritri gen --delay-lines memory`): the same latency and values as \
          registers, in distributed RAM on ECP5.\n"
     );
     if let Some(readme) = design.files.iter_mut().find(|f| f.path == "README.md") {
@@ -140,7 +140,7 @@ mod tests {
             )
         };
         let long = in_memory(&module("DelayLine<T = Bits<16>, N = 10>", 10)).unwrap();
-        assert!(long.contains("reg [15:0] words [0:8];"), "{long}");
+        assert!(long.contains("reg [15:0] words [0:15];"), "{long}");
         assert!(
             long.ends_with("endmodule\n") && !long.contains("reg x;"),
             "{long}"
