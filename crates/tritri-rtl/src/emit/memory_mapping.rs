@@ -12,10 +12,12 @@
 //! stages for a memory of at least `N - 1` words (a power of two) with two
 //! counters (`delay_line_memory_verilog`): the same ports, latency and
 //! values from the first clock, and synthesis puts the words in
-//! distributed RAM. (ECP5, W = 16, shared rare cases: 20,310 flip-flops
-//! placed became 15,064, with 341 `TRELLIS_DPR16X4`; router1 took 348 s
-//! instead of 1,437 after heap placement, rtl-out/README.md.) The valid
-//! bits' lines (`ValidLine`, with a reset) stay registers.
+//! distributed RAM. (ECP5, W = 16, shared rare cases, heap placement,
+//! router1: 20,310 flip-flops placed became 15,047, with 344
+//! `TRELLIS_DPR16X4`; the route went from 109.3 to 123.7 MHz and from 940
+//! register inputs short of 150 MHz to 323, and router1 took about a
+//! quarter of the time; rtl-out/README.md.) The valid bits' lines
+//! (`ValidLine`, with a reset) stay registers.
 
 use super::EmittedDesign;
 use crate::arith::delay_line::{delay_line_memory_verilog, MEMORY_MIN_STAGES};
