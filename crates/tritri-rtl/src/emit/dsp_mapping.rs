@@ -87,9 +87,15 @@ pub fn map_ecp5(module: &mut Module) -> Result<bool, UnmappedMultiplier> {
         return Ok(false);
     };
     let head = &text[..start + marker.len()];
-    let body = ecp5_verilog(a, b, p).expect("ecp5_maps said yes");
-    let indented: String = body
-        .lines()
+    let indented = indented_body(&ecp5_verilog(a, b, p).expect("ecp5_maps said yes"));
+    module.tokens = tokenize(&format!("{head}\n{indented}{}", &text[end..]));
+    Ok(true)
+}
+
+/// A module body as a custom body sits in an emitted module: every line
+/// but the empty ones indented by four spaces.
+pub(crate) fn indented_body(body: &str) -> String {
+    body.lines()
         .map(|l| {
             if l.is_empty() {
                 "\n".to_string()
@@ -97,9 +103,7 @@ pub fn map_ecp5(module: &mut Module) -> Result<bool, UnmappedMultiplier> {
                 format!("    {l}\n")
             }
         })
-        .collect();
-    module.tokens = tokenize(&format!("{head}\n{indented}{}", &text[end..]));
-    Ok(true)
+        .collect()
 }
 
 #[cfg(test)]

@@ -19,6 +19,7 @@
 //! quarter of the time; rtl-out/README.md.) The valid bits' lines
 //! (`ValidLine`, with a reset) stay registers.
 
+use super::dsp_mapping::indented_body;
 use super::EmittedDesign;
 use crate::arith::delay_line::{delay_line_memory_verilog, MEMORY_MIN_STAGES};
 
@@ -102,16 +103,7 @@ fn in_memory(text: &str) -> Option<String> {
     }
     let start = text.find(BODY_MARKER)? + BODY_MARKER.len();
     let end = text.rfind("endmodule")?;
-    let body: String = delay_line_memory_verilog(bits, n)
-        .lines()
-        .map(|l| {
-            if l.is_empty() {
-                "\n".to_string()
-            } else {
-                format!("    {l}\n")
-            }
-        })
-        .collect();
+    let body = indented_body(&delay_line_memory_verilog(bits, n));
     Some(format!("{}{body}{}", &text[..start], &text[end..]))
 }
 
