@@ -14,10 +14,10 @@
 //! values from the first clock, and synthesis puts the words in
 //! distributed RAM. (ECP5, W = 16, shared rare cases, heap placement,
 //! router1: 20,310 flip-flops placed became 15,047, with 344
-//! `TRELLIS_DPR16X4`; the route went from 109.3 to 123.7 MHz and from 940
-//! register inputs short of 150 MHz to 323, and router1 took about a
-//! quarter of the time; rtl-out/README.md.) The valid bits' lines
-//! (`ValidLine`, with a reset) stay registers.
+//! `TRELLIS_DPR16X4`; seed 1 went from 109.3 to 123.7 MHz and from 940
+//! register inputs short of 150 MHz to 323 (seed 2: 103.8 MHz, 407), and
+//! router1 took about a quarter of the time; rtl-out/README.md.) The valid
+//! bits' lines (`ValidLine`, with a reset) stay registers.
 
 use super::dsp_mapping::indented_body;
 use super::EmittedDesign;
