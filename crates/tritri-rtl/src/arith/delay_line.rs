@@ -60,11 +60,7 @@ impl<T: Synth, const N: usize> Logic for DelayLine<T, N> {
 /// Verilog of an `n`-stage, `bits`-wide enabled shift register ending in `q`;
 /// with `reset = Some(signal)`, a synchronous active-high reset clears it.
 pub(crate) fn delay_line_verilog(bits: usize, n: usize, reset: Option<&str>) -> String {
-    let range = if bits == 1 {
-        String::new()
-    } else {
-        format!("[{}:0] ", bits - 1)
-    };
+    let range = declared_range(bits);
     let name = |i: usize| {
         if i + 1 == n {
             "q".to_string()
@@ -109,6 +105,15 @@ pub(crate) fn delay_line_verilog(bits: usize, n: usize, reset: Option<&str>) -> 
     v
 }
 
+/// A register's range in a declaration, `[bits-1:0] ` (nothing for one bit).
+fn declared_range(bits: usize) -> String {
+    if bits == 1 {
+        String::new()
+    } else {
+        format!("[{}:0] ", bits - 1)
+    }
+}
+
 /// The fewest stages [`delay_line_memory_verilog`] is used for
 /// (`emit::memory_mapping`): below it, the two pointers and two output
 /// registers cost about what the stages do.
@@ -141,13 +146,9 @@ pub(crate) fn delay_line_memory_verilog(bits: usize, n: usize) -> String {
         "a memory delay line reads and writes two distinct words"
     );
     let words = (n - 1).next_power_of_two();
-    let pointer_bits = words.trailing_zeros().max(1) as usize;
-    let range = if bits == 1 {
-        String::new()
-    } else {
-        format!("[{}:0] ", bits - 1)
-    };
-    let behind = (1usize << pointer_bits) - (n - 2);
+    let pointer_bits = words.trailing_zeros() as usize;
+    let range = declared_range(bits);
+    let behind = words - (n - 2);
     format!(
         "\
 // Delay line: {n} stage(s) of {bits} bit(s), in a memory of {words} words:

@@ -76,16 +76,15 @@ pub fn map_delay_lines(design: &mut EmittedDesign, mapping: DelayLineMapping) ->
             mapped += 1;
         }
     }
-    let note = format!(
-        "- The {mapped} delay-line modules of {MEMORY_MIN_STAGES} stages or more keep their stages in a memory of \
-         at least N - 1 words (a power of two) with two pointers (`tritri gen --delay-lines memory`): the same latency and values as \
-         registers, in distributed RAM on ECP5.\n"
-    );
-    if let Some(readme) = design.files.iter_mut().find(|f| f.path == "README.md") {
-        if mapped > 0 {
-            if let Some(at) = readme.contents.find("\n## Use") {
-                readme.contents.insert_str(at, &note);
-            }
+    let readme = design.files.iter_mut().find(|f| f.path == "README.md");
+    if let Some(readme) = readme.filter(|_| mapped > 0) {
+        if let Some(at) = readme.contents.find("\n## Use") {
+            let note = format!(
+                "- The {mapped} delay-line modules of {MEMORY_MIN_STAGES} stages or more keep their stages in a memory of \
+                 at least N - 1 words (a power of two) with two pointers (`tritri gen --delay-lines memory`): the same latency and values as \
+                 registers, in distributed RAM on ECP5.\n"
+            );
+            readme.contents.insert_str(at, &note);
         }
     }
     mapped
