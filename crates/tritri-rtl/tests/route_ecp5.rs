@@ -34,10 +34,39 @@ fn a_small_unit_places_and_routes_on_ecp5() {
     );
     let path = report.critical_path.expect("a critical path");
     assert!(path.logic_levels >= 1 && path.logic_ns > 0.0, "{path:?}");
+    let netlist = dir.join("tritri_owner_filter_s256.ecp5.json");
+    assert!(dir.join("route_ecp5.log").is_file() && netlist.is_file());
+    // The state machine's synchronous reset is data-input logic, not the
+    // flip-flops' LSR (route::FLIP_FLOPS_WITHOUT_SYNC_RESET).
+    let (flip_flops, with_reset) = flip_flops_and_those_with_reset(&netlist);
     assert!(
-        dir.join("route_ecp5.log").is_file()
-            && dir.join("tritri_owner_filter_s256.ecp5.json").is_file()
+        flip_flops > 50 && with_reset == 0,
+        "{with_reset} of {flip_flops} flip-flops use LSR"
     );
+}
+
+/// Yosys' ECP5 netlist: its `TRELLIS_FF` cells, and those whose LSR input
+/// is a net rather than a constant.
+fn flip_flops_and_those_with_reset(netlist: &std::path::Path) -> (usize, usize) {
+    let text = std::fs::read_to_string(netlist).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut counts = (0, 0);
+    for module in json["modules"].as_object().unwrap().values() {
+        let Some(cells) = module["cells"].as_object() else {
+            continue;
+        };
+        for cell in cells.values().filter(|c| c["type"] == "TRELLIS_FF") {
+            counts.0 += 1;
+            // A constant bit is the string "0" or "1", a net a number.
+            if cell["connections"]["LSR"]
+                .as_array()
+                .is_some_and(|bits| bits.iter().any(|b| b.is_number()))
+            {
+                counts.1 += 1;
+            }
+        }
+    }
+    counts
 }
 
 /// `--dsp ecp5`: the W = 16 pipeline's wide multiplier (17 x 33 -> 50

@@ -136,6 +136,16 @@ pub const MEMORY_MIN_STAGES: usize = 6;
 /// with the rare cases shared, that was the critical path, a copy of
 /// `hold` → 8.4 ns of routing → a pointer's LSR, 98.2 MHz.)
 ///
+/// The word at `write_at` is written in every clock, not only on enabled
+/// edges: `read_at` comes to a word `n - 2` enabled edges after it is
+/// written and left the word at `write_at` `words - (n - 2) >= 1` enabled
+/// edges ago, so what a held clock writes there is overwritten by the next
+/// enabled edge before any read, and never seen. The memory's write
+/// enable is then free of `advance`. ECP5 drove it as `advance` and the
+/// bank through a LUT into every RAM's `WRE`: on the W = 16 pipeline with
+/// the rare cases shared, the stream id's memory held 64 of the 323
+/// register inputs short of 150 MHz.
+///
 /// Synthesis maps the words onto distributed RAM (ECP5: `TRELLIS_DPR16X4`,
 /// 16 words of 4 bits in a slice pair) with an asynchronous read, so
 /// `read_q` and `q` are fabric registers and the memory's read has a whole
@@ -167,8 +177,9 @@ initial begin
     q = {bits}'d0;
 end
 always @(posedge clock) begin
+    // Written in every clock: the write enable is free of advance.
+    words[write_at] <= d;
     if (advance) begin
-        words[write_at] <= d;
         read_q <= words[read_at];
         q <= read_q;
         write_at <= write_at + {pointer_bits}'d1;
