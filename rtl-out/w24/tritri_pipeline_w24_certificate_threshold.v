@@ -43,13 +43,36 @@ module tritri_pipeline_w24_certificate_threshold (
     reg [49:0] normal_2_q;
     reg [30:0] edge_term_q;
     reg [7:0] edges_bits_q;
-    wire [26:0] offset_t0 = {offset_l1_q, 1'b1};
-    wire [26:0] offset_t1 = offset_t0 | (offset_t0 >> 1);
-    wire [26:0] offset_t2 = offset_t1 | (offset_t1 >> 2);
-    wire [26:0] offset_t3 = offset_t2 | (offset_t2 >> 4);
-    wire [26:0] offset_t4 = offset_t3 | (offset_t3 >> 8);
-    wire [26:0] offset_t5 = offset_t4 | (offset_t4 >> 16);
-    wire [26:0] offset_lead = offset_t5 & ~(offset_t5 >> 1);
+    wire [26:0] offset_t = {offset_l1_q, 1'b1};
+    wire [26:0] offset_lead = {
+        offset_t[26],
+        offset_t[25] & ~|offset_t[26:26],
+        offset_t[24] & ~|offset_t[26:25],
+        offset_t[23] & ~|offset_t[26:24],
+        offset_t[22] & ~|offset_t[26:23],
+        offset_t[21] & ~|offset_t[26:22],
+        offset_t[20] & ~|offset_t[26:21],
+        offset_t[19] & ~|offset_t[26:20],
+        offset_t[18] & ~|offset_t[26:19],
+        offset_t[17] & ~|offset_t[26:18],
+        offset_t[16] & ~|offset_t[26:17],
+        offset_t[15] & ~|offset_t[26:16],
+        offset_t[14] & ~|offset_t[26:15],
+        offset_t[13] & ~|offset_t[26:14],
+        offset_t[12] & ~|offset_t[26:13],
+        offset_t[11] & ~|offset_t[26:12],
+        offset_t[10] & ~|offset_t[26:11],
+        offset_t[9] & ~|offset_t[26:10],
+        offset_t[8] & ~|offset_t[26:9],
+        offset_t[7] & ~|offset_t[26:8],
+        offset_t[6] & ~|offset_t[26:7],
+        offset_t[5] & ~|offset_t[26:6],
+        offset_t[4] & ~|offset_t[26:5],
+        offset_t[3] & ~|offset_t[26:4],
+        offset_t[2] & ~|offset_t[26:3],
+        offset_t[1] & ~|offset_t[26:2],
+        offset_t[0] & ~|offset_t[26:1]
+    };
     reg [26:0] offset_lead_q;
     reg [49:0] normal_l1_q;
     reg [30:0] small_part_q;

@@ -49,13 +49,37 @@ module tritri_pipeline_w24_edges_bit_length (
     reg [25:0] l1_a_q;
     reg [25:0] l1_b_q;
     reg [26:0] sum_q;
-    wire [27:0] sum_t0 = {sum_q, 1'b1};
-    wire [27:0] sum_t1 = sum_t0 | (sum_t0 >> 1);
-    wire [27:0] sum_t2 = sum_t1 | (sum_t1 >> 2);
-    wire [27:0] sum_t3 = sum_t2 | (sum_t2 >> 4);
-    wire [27:0] sum_t4 = sum_t3 | (sum_t3 >> 8);
-    wire [27:0] sum_t5 = sum_t4 | (sum_t4 >> 16);
-    wire [27:0] sum_lead = sum_t5 & ~(sum_t5 >> 1);
+    wire [27:0] sum_t = {sum_q, 1'b1};
+    wire [27:0] sum_lead = {
+        sum_t[27],
+        sum_t[26] & ~|sum_t[27:27],
+        sum_t[25] & ~|sum_t[27:26],
+        sum_t[24] & ~|sum_t[27:25],
+        sum_t[23] & ~|sum_t[27:24],
+        sum_t[22] & ~|sum_t[27:23],
+        sum_t[21] & ~|sum_t[27:22],
+        sum_t[20] & ~|sum_t[27:21],
+        sum_t[19] & ~|sum_t[27:20],
+        sum_t[18] & ~|sum_t[27:19],
+        sum_t[17] & ~|sum_t[27:18],
+        sum_t[16] & ~|sum_t[27:17],
+        sum_t[15] & ~|sum_t[27:16],
+        sum_t[14] & ~|sum_t[27:15],
+        sum_t[13] & ~|sum_t[27:14],
+        sum_t[12] & ~|sum_t[27:13],
+        sum_t[11] & ~|sum_t[27:12],
+        sum_t[10] & ~|sum_t[27:11],
+        sum_t[9] & ~|sum_t[27:10],
+        sum_t[8] & ~|sum_t[27:9],
+        sum_t[7] & ~|sum_t[27:8],
+        sum_t[6] & ~|sum_t[27:7],
+        sum_t[5] & ~|sum_t[27:6],
+        sum_t[4] & ~|sum_t[27:5],
+        sum_t[3] & ~|sum_t[27:4],
+        sum_t[2] & ~|sum_t[27:3],
+        sum_t[1] & ~|sum_t[27:2],
+        sum_t[0] & ~|sum_t[27:1]
+    };
     reg [27:0] lead_q;
     initial begin
         abs_a0_q = 25'd0;

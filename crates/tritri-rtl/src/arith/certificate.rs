@@ -78,26 +78,31 @@ fn widened_sum_verilog(terms: [String; 3]) -> String {
 }
 
 /// Verilog: `{name}_lead`, the one-hot at bit `bitlen v` of a `width`-bit
-/// `v` (the leading one of `2 v + 1`).
+/// `v` (the leading one of `2 v + 1`): each bit is one where `2 v + 1` is
+/// one and every bit above it zero. Written bit by bit as that wide OR, so
+/// that synthesis builds each as a tree of LUT4s (three levels at the
+/// certificate's widths); written as a smear (`t | t >> 1`, `>> 2`, ...)
+/// it became a chain of six LUTs, the critical path of the whole W = 16
+/// pipeline with the rare cases shared (117.1 MHz, `offset_lead_q`).
 fn leading_one_verilog(name: &str, v: &str, width: usize) -> String {
     let l = width + 1;
-    let mut text = format!("wire [{}:0] {name}_t0 = {{{v}, 1'b1}};\n", l - 1);
-    let mut last = 0;
-    for (i, step) in [1usize, 2, 4, 8, 16, 32, 64].iter().enumerate() {
-        if *step >= l {
-            break;
-        }
-        text += &format!(
-            "wire [{}:0] {name}_t{} = {name}_t{i} | ({name}_t{i} >> {step});\n",
-            l - 1,
-            i + 1
-        );
-        last = i + 1;
-    }
-    text + &format!(
-        "wire [{}:0] {name}_lead = {name}_t{last} & ~({name}_t{last} >> 1);\n",
-        l - 1
-    )
+    let mut text = format!("wire [{}:0] {name}_t = {{{v}, 1'b1}};\n", l - 1);
+    let bits: Vec<String> = (0..l)
+        .rev()
+        .map(|i| {
+            if i == l - 1 {
+                format!("{name}_t[{i}]")
+            } else {
+                format!("{name}_t[{i}] & ~|{name}_t[{}:{}]", l - 1, i + 1)
+            }
+        })
+        .collect();
+    text += &format!(
+        "wire [{}:0] {name}_lead = {{\n    {}\n}};\n",
+        l - 1,
+        bits.join(",\n    ")
+    );
+    text
 }
 
 /// Verilog: the 8-bit index of the `width`-bit one-hot `lead`.

@@ -9,6 +9,7 @@ pub mod cross_product;
 pub mod delay_line;
 pub mod dot_product;
 pub mod multiplier;
+pub mod one_hot_choice;
 pub mod register_copy;
 pub mod sign;
 pub mod subtractor;

@@ -36,6 +36,7 @@ use super::rare_decisions::{
 use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
+use crate::arith::one_hot_choice::OneHotChoice;
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
 use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
 use crate::arith::valid_line::ValidLine;
@@ -139,10 +140,16 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     job_ends: [Signal<Local, Bits<2>>; 4],
     /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
     /// (coordinate `k` at `3 l + k`), and each lane's axis.
-    u0_q: [DFF<Bits<W>>; 3],
-    u1_q: [DFF<Bits<W>>; 3],
-    w0_q: [DFF<Bits<W>>; 9],
-    w1_q: [DFF<Bits<W>>; 9],
+    u0_q: [OneHotChoice<W>; 3],
+    u1_q: [OneHotChoice<W>; 3],
+    w0_q: [OneHotChoice<W>; 9],
+    w1_q: [OneHotChoice<W>; 9],
+    /// The point each of them takes at the next clock edge, one-hot: copy
+    /// `c`'s program at the step and kind that copy `c` holds then.
+    pick_q: [DFF<Bits<6>>; 24],
+    /// Copy `c`'s step and kind after this clock's edge.
+    step_next: [Signal<Local, Bits<3>>; IN_VALID_COPIES],
+    segments_next: [Signal<Local, Bit>; IN_VALID_COPIES],
     lane_axis_q: [DFF<Bits<2>>; 3],
     /// Stage 2: the differences.
     u_difference: VectorSubtractor<W, D>,
@@ -213,6 +220,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             u1_q,
             w0_q,
             w1_q,
+            pick_q,
             lane_axis_q,
             u_difference,
             w_difference_0,
@@ -364,16 +372,16 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.step_copy_q[c].clock.next = self.clock.val();
             self.segments_copy_q[c].clock.next = self.clock.val();
             self.remaining_copy_q[c].clock.next = self.clock.val();
-            self.step_copy_q[c].d.next = self.step_copy_q[c].q.val();
-            self.segments_copy_q[c].d.next = self.segments_copy_q[c].q.val();
+            self.step_next[c].next = self.step_copy_q[c].q.val();
+            self.segments_next[c].next = self.segments_copy_q[c].q.val();
             self.remaining_copy_q[c].d.next = self.remaining_copy_q[c].q.val();
             if self.remaining_copy_q[c].q.val() != 0 {
-                self.step_copy_q[c].d.next = self.step_copy_q[c].q.val() + 1;
+                self.step_next[c].next = self.step_copy_q[c].q.val() + 1;
                 self.remaining_copy_q[c].d.next = self.remaining_copy_q[c].q.val() - 1;
             }
             if self.copy_loads[c].val() {
-                self.step_copy_q[c].d.next = 0.into();
-                self.segments_copy_q[c].d.next = self.in_segments.val();
+                self.step_next[c].next = 0.into();
+                self.segments_next[c].next = self.in_segments.val();
                 if self.in_segments.val() {
                     self.remaining_copy_q[c].d.next = 4.into();
                 } else {
@@ -383,6 +391,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             if self.reset.val() {
                 self.remaining_copy_q[c].d.next = 0.into();
             }
+            self.step_copy_q[c].d.next = self.step_next[c].val();
+            self.segments_copy_q[c].d.next = self.segments_next[c].val();
         }
 
         // Stage 1: the step's points, by the program of its kind.
@@ -405,196 +415,238 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.w0_q[i].clock.next = self.clock.val();
             self.w1_q[i].clock.next = self.clock.val();
         }
-        // Each destination coordinate's point, by the program of its kind
-        // and step: its own copy of the step and kind, so that a select
-        // reaches W bits. (ECP5, W = 8: one step for all 24 coordinates
-        // was the critical path, 5.3 ns of it one net's routing, 96.7 MHz;
-        // W = 16 with a copy per destination, 48 bits each: 107.8 MHz.)
+        // Each destination coordinate's point: a one-hot choice among the
+        // six points, `pick_q`, registered a clock ahead from the next step
+        // and kind by the program of its kind, so that stage 1 is an
+        // AND-OR of six (two LUT levels; decoding the step there was a
+        // chain of six LUTs shared between bits, the whole W = 16 shared
+        // pipeline's critical path at 122.8 MHz). Each destination
+        // coordinate has its own copy of the step and kind, so that a
+        // select reaches W bits. (ECP5, W = 8: one step for all 24
+        // coordinates was the critical path, 5.3 ns of it one net's
+        // routing, 96.7 MHz; W = 16 with a copy per destination, 48 bits
+        // each: 107.8 MHz.)
+        for c in 0..24 {
+            self.pick_q[c].clock.next = self.clock.val();
+        }
+        for k in 0..3 {
+            self.u0_q[k].pick.next = self.pick_q[k].q.val();
+            self.u1_q[k].pick.next = self.pick_q[3 + k].q.val();
+            self.u0_q[k].point_0.next = self.points_q[k].q.val();
+            self.u0_q[k].point_1.next = self.points_q[3 + k].q.val();
+            self.u0_q[k].point_2.next = self.points_q[6 + k].q.val();
+            self.u0_q[k].point_3.next = self.points_q[9 + k].q.val();
+            self.u0_q[k].point_4.next = self.points_q[12 + k].q.val();
+            self.u0_q[k].point_5.next = self.points_q[15 + k].q.val();
+            self.u1_q[k].point_0.next = self.points_q[k].q.val();
+            self.u1_q[k].point_1.next = self.points_q[3 + k].q.val();
+            self.u1_q[k].point_2.next = self.points_q[6 + k].q.val();
+            self.u1_q[k].point_3.next = self.points_q[9 + k].q.val();
+            self.u1_q[k].point_4.next = self.points_q[12 + k].q.val();
+            self.u1_q[k].point_5.next = self.points_q[15 + k].q.val();
+            for l in 0..3 {
+                self.w0_q[3 * l + k].pick.next = self.pick_q[6 + 3 * l + k].q.val();
+                self.w1_q[3 * l + k].pick.next = self.pick_q[15 + 3 * l + k].q.val();
+                self.w0_q[3 * l + k].point_0.next = self.points_q[k].q.val();
+                self.w0_q[3 * l + k].point_1.next = self.points_q[3 + k].q.val();
+                self.w0_q[3 * l + k].point_2.next = self.points_q[6 + k].q.val();
+                self.w0_q[3 * l + k].point_3.next = self.points_q[9 + k].q.val();
+                self.w0_q[3 * l + k].point_4.next = self.points_q[12 + k].q.val();
+                self.w0_q[3 * l + k].point_5.next = self.points_q[15 + k].q.val();
+                self.w1_q[3 * l + k].point_0.next = self.points_q[k].q.val();
+                self.w1_q[3 * l + k].point_1.next = self.points_q[3 + k].q.val();
+                self.w1_q[3 * l + k].point_2.next = self.points_q[6 + k].q.val();
+                self.w1_q[3 * l + k].point_3.next = self.points_q[9 + k].q.val();
+                self.w1_q[3 * l + k].point_4.next = self.points_q[12 + k].q.val();
+                self.w1_q[3 * l + k].point_5.next = self.points_q[15 + k].q.val();
+            }
+        }
+        // The programs: point `p` (bit `p` of the pick) at each step.
         // u0
         for k in 0..3 {
-            if self.segments_copy_q[k].q.val() {
-                if self.step_copy_q[k].q.val() == 0 || self.step_copy_q[k].q.val() == 1 {
-                    self.u0_q[k].d.next = self.points_q[k].q.val();
+            if self.segments_next[k].val() {
+                if self.step_next[k].val() == 0 || self.step_next[k].val() == 1 {
+                    self.pick_q[k].d.next = 1.into();
                 } else {
-                    self.u0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[k].d.next = 8.into();
                 }
             } else {
-                if self.step_copy_q[k].q.val() == 0 {
-                    self.u0_q[k].d.next = self.points_q[k].q.val();
-                } else if self.step_copy_q[k].q.val() == 1 {
-                    self.u0_q[k].d.next = self.points_q[3 + k].q.val();
-                } else if self.step_copy_q[k].q.val() == 2 {
-                    self.u0_q[k].d.next = self.points_q[6 + k].q.val();
-                } else if self.step_copy_q[k].q.val() == 3 {
-                    self.u0_q[k].d.next = self.points_q[9 + k].q.val();
-                } else if self.step_copy_q[k].q.val() == 4 {
-                    self.u0_q[k].d.next = self.points_q[12 + k].q.val();
+                if self.step_next[k].val() == 0 {
+                    self.pick_q[k].d.next = 1.into();
+                } else if self.step_next[k].val() == 1 {
+                    self.pick_q[k].d.next = 2.into();
+                } else if self.step_next[k].val() == 2 {
+                    self.pick_q[k].d.next = 4.into();
+                } else if self.step_next[k].val() == 3 {
+                    self.pick_q[k].d.next = 8.into();
+                } else if self.step_next[k].val() == 4 {
+                    self.pick_q[k].d.next = 16.into();
                 } else {
-                    self.u0_q[k].d.next = self.points_q[15 + k].q.val();
+                    self.pick_q[k].d.next = 32.into();
                 }
             }
         }
         // u1
         for k in 0..3 {
-            if self.segments_copy_q[3 + k].q.val() {
-                if self.step_copy_q[3 + k].q.val() == 0 || self.step_copy_q[3 + k].q.val() == 1 {
-                    self.u1_q[k].d.next = self.points_q[3 + k].q.val();
+            if self.segments_next[3 + k].val() {
+                if self.step_next[3 + k].val() == 0 || self.step_next[3 + k].val() == 1 {
+                    self.pick_q[3 + k].d.next = 2.into();
                 } else {
-                    self.u1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.pick_q[3 + k].d.next = 16.into();
                 }
             } else {
-                if self.step_copy_q[3 + k].q.val() == 0 {
-                    self.u1_q[k].d.next = self.points_q[3 + k].q.val();
-                } else if self.step_copy_q[3 + k].q.val() == 1 {
-                    self.u1_q[k].d.next = self.points_q[6 + k].q.val();
-                } else if self.step_copy_q[3 + k].q.val() == 2 {
-                    self.u1_q[k].d.next = self.points_q[k].q.val();
-                } else if self.step_copy_q[3 + k].q.val() == 3 {
-                    self.u1_q[k].d.next = self.points_q[12 + k].q.val();
-                } else if self.step_copy_q[3 + k].q.val() == 4 {
-                    self.u1_q[k].d.next = self.points_q[15 + k].q.val();
+                if self.step_next[3 + k].val() == 0 {
+                    self.pick_q[3 + k].d.next = 2.into();
+                } else if self.step_next[3 + k].val() == 1 {
+                    self.pick_q[3 + k].d.next = 4.into();
+                } else if self.step_next[3 + k].val() == 2 {
+                    self.pick_q[3 + k].d.next = 1.into();
+                } else if self.step_next[3 + k].val() == 3 {
+                    self.pick_q[3 + k].d.next = 16.into();
+                } else if self.step_next[3 + k].val() == 4 {
+                    self.pick_q[3 + k].d.next = 32.into();
                 } else {
-                    self.u1_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[3 + k].d.next = 8.into();
                 }
             }
         }
         // w0 lane 0
         for k in 0..3 {
-            if self.segments_copy_q[6 + k].q.val() {
-                if self.step_copy_q[6 + k].q.val() == 0 || self.step_copy_q[6 + k].q.val() == 1 {
-                    self.w0_q[k].d.next = self.points_q[k].q.val();
+            if self.segments_next[6 + k].val() {
+                if self.step_next[6 + k].val() == 0 || self.step_next[6 + k].val() == 1 {
+                    self.pick_q[6 + k].d.next = 1.into();
                 } else {
-                    self.w0_q[k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[6 + k].d.next = 8.into();
                 }
             } else {
-                if self.step_copy_q[6 + k].q.val() == 0
-                    || self.step_copy_q[6 + k].q.val() == 3
-                    || self.step_copy_q[6 + k].q.val() == 4
-                    || self.step_copy_q[6 + k].q.val() == 5
+                if self.step_next[6 + k].val() == 0
+                    || self.step_next[6 + k].val() == 3
+                    || self.step_next[6 + k].val() == 4
+                    || self.step_next[6 + k].val() == 5
                 {
-                    self.w0_q[k].d.next = self.points_q[k].q.val();
-                } else if self.step_copy_q[6 + k].q.val() == 1 {
-                    self.w0_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.pick_q[6 + k].d.next = 1.into();
+                } else if self.step_next[6 + k].val() == 1 {
+                    self.pick_q[6 + k].d.next = 2.into();
                 } else {
-                    self.w0_q[k].d.next = self.points_q[6 + k].q.val();
+                    self.pick_q[6 + k].d.next = 4.into();
                 }
             }
         }
         // w0 lane 1
         for k in 0..3 {
-            if self.segments_copy_q[9 + k].q.val() {
-                if self.step_copy_q[9 + k].q.val() == 0 || self.step_copy_q[9 + k].q.val() == 1 {
-                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
+            if self.segments_next[9 + k].val() {
+                if self.step_next[9 + k].val() == 0 || self.step_next[9 + k].val() == 1 {
+                    self.pick_q[9 + k].d.next = 1.into();
                 } else {
-                    self.w0_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[9 + k].d.next = 8.into();
                 }
             } else {
-                if self.step_copy_q[9 + k].q.val() == 0 {
-                    self.w0_q[3 + k].d.next = self.points_q[k].q.val();
-                } else if self.step_copy_q[9 + k].q.val() == 1
-                    || self.step_copy_q[9 + k].q.val() == 3
-                    || self.step_copy_q[9 + k].q.val() == 4
-                    || self.step_copy_q[9 + k].q.val() == 5
+                if self.step_next[9 + k].val() == 0 {
+                    self.pick_q[9 + k].d.next = 1.into();
+                } else if self.step_next[9 + k].val() == 1
+                    || self.step_next[9 + k].val() == 3
+                    || self.step_next[9 + k].val() == 4
+                    || self.step_next[9 + k].val() == 5
                 {
-                    self.w0_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.pick_q[9 + k].d.next = 2.into();
                 } else {
-                    self.w0_q[3 + k].d.next = self.points_q[6 + k].q.val();
+                    self.pick_q[9 + k].d.next = 4.into();
                 }
             }
         }
         // w0 lane 2
         for k in 0..3 {
-            if self.segments_copy_q[12 + k].q.val() {
-                if self.step_copy_q[12 + k].q.val() == 0 || self.step_copy_q[12 + k].q.val() == 1 {
-                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
+            if self.segments_next[12 + k].val() {
+                if self.step_next[12 + k].val() == 0 || self.step_next[12 + k].val() == 1 {
+                    self.pick_q[12 + k].d.next = 1.into();
                 } else {
-                    self.w0_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[12 + k].d.next = 8.into();
                 }
             } else {
-                if self.step_copy_q[12 + k].q.val() == 0 {
-                    self.w0_q[6 + k].d.next = self.points_q[k].q.val();
-                } else if self.step_copy_q[12 + k].q.val() == 1 {
-                    self.w0_q[6 + k].d.next = self.points_q[3 + k].q.val();
+                if self.step_next[12 + k].val() == 0 {
+                    self.pick_q[12 + k].d.next = 1.into();
+                } else if self.step_next[12 + k].val() == 1 {
+                    self.pick_q[12 + k].d.next = 2.into();
                 } else {
-                    self.w0_q[6 + k].d.next = self.points_q[6 + k].q.val();
+                    self.pick_q[12 + k].d.next = 4.into();
                 }
             }
         }
         // w1 lane 0
         for k in 0..3 {
-            if self.segments_copy_q[15 + k].q.val() {
-                if self.step_copy_q[15 + k].q.val() == 0 {
-                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
-                } else if self.step_copy_q[15 + k].q.val() == 1 {
-                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
-                } else if self.step_copy_q[15 + k].q.val() == 2 {
-                    self.w1_q[k].d.next = self.points_q[k].q.val();
+            if self.segments_next[15 + k].val() {
+                if self.step_next[15 + k].val() == 0 {
+                    self.pick_q[15 + k].d.next = 8.into();
+                } else if self.step_next[15 + k].val() == 1 {
+                    self.pick_q[15 + k].d.next = 16.into();
+                } else if self.step_next[15 + k].val() == 2 {
+                    self.pick_q[15 + k].d.next = 1.into();
                 } else {
-                    self.w1_q[k].d.next = self.points_q[3 + k].q.val();
+                    self.pick_q[15 + k].d.next = 2.into();
                 }
             } else {
-                if self.step_copy_q[15 + k].q.val() == 0
-                    || self.step_copy_q[15 + k].q.val() == 1
-                    || self.step_copy_q[15 + k].q.val() == 2
-                    || self.step_copy_q[15 + k].q.val() == 3
+                if self.step_next[15 + k].val() == 0
+                    || self.step_next[15 + k].val() == 1
+                    || self.step_next[15 + k].val() == 2
+                    || self.step_next[15 + k].val() == 3
                 {
-                    self.w1_q[k].d.next = self.points_q[9 + k].q.val();
-                } else if self.step_copy_q[15 + k].q.val() == 4 {
-                    self.w1_q[k].d.next = self.points_q[12 + k].q.val();
+                    self.pick_q[15 + k].d.next = 8.into();
+                } else if self.step_next[15 + k].val() == 4 {
+                    self.pick_q[15 + k].d.next = 16.into();
                 } else {
-                    self.w1_q[k].d.next = self.points_q[15 + k].q.val();
+                    self.pick_q[15 + k].d.next = 32.into();
                 }
             }
         }
         // w1 lane 1
         for k in 0..3 {
-            if self.segments_copy_q[18 + k].q.val() {
-                if self.step_copy_q[18 + k].q.val() == 0 {
-                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
-                } else if self.step_copy_q[18 + k].q.val() == 1 {
-                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
-                } else if self.step_copy_q[18 + k].q.val() == 2 {
-                    self.w1_q[3 + k].d.next = self.points_q[k].q.val();
+            if self.segments_next[18 + k].val() {
+                if self.step_next[18 + k].val() == 0 {
+                    self.pick_q[18 + k].d.next = 8.into();
+                } else if self.step_next[18 + k].val() == 1 {
+                    self.pick_q[18 + k].d.next = 16.into();
+                } else if self.step_next[18 + k].val() == 2 {
+                    self.pick_q[18 + k].d.next = 1.into();
                 } else {
-                    self.w1_q[3 + k].d.next = self.points_q[3 + k].q.val();
+                    self.pick_q[18 + k].d.next = 2.into();
                 }
             } else {
-                if self.step_copy_q[18 + k].q.val() == 0
-                    || self.step_copy_q[18 + k].q.val() == 1
-                    || self.step_copy_q[18 + k].q.val() == 2
-                    || self.step_copy_q[18 + k].q.val() == 4
+                if self.step_next[18 + k].val() == 0
+                    || self.step_next[18 + k].val() == 1
+                    || self.step_next[18 + k].val() == 2
+                    || self.step_next[18 + k].val() == 4
                 {
-                    self.w1_q[3 + k].d.next = self.points_q[12 + k].q.val();
-                } else if self.step_copy_q[18 + k].q.val() == 3 {
-                    self.w1_q[3 + k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[18 + k].d.next = 16.into();
+                } else if self.step_next[18 + k].val() == 3 {
+                    self.pick_q[18 + k].d.next = 8.into();
                 } else {
-                    self.w1_q[3 + k].d.next = self.points_q[15 + k].q.val();
+                    self.pick_q[18 + k].d.next = 32.into();
                 }
             }
         }
         // w1 lane 2
         for k in 0..3 {
-            if self.segments_copy_q[21 + k].q.val() {
-                if self.step_copy_q[21 + k].q.val() == 0 {
-                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
-                } else if self.step_copy_q[21 + k].q.val() == 1 {
-                    self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
-                } else if self.step_copy_q[21 + k].q.val() == 2 {
-                    self.w1_q[6 + k].d.next = self.points_q[k].q.val();
+            if self.segments_next[21 + k].val() {
+                if self.step_next[21 + k].val() == 0 {
+                    self.pick_q[21 + k].d.next = 8.into();
+                } else if self.step_next[21 + k].val() == 1 {
+                    self.pick_q[21 + k].d.next = 16.into();
+                } else if self.step_next[21 + k].val() == 2 {
+                    self.pick_q[21 + k].d.next = 1.into();
                 } else {
-                    self.w1_q[6 + k].d.next = self.points_q[3 + k].q.val();
+                    self.pick_q[21 + k].d.next = 2.into();
                 }
             } else {
-                if self.step_copy_q[21 + k].q.val() == 0
-                    || self.step_copy_q[21 + k].q.val() == 1
-                    || self.step_copy_q[21 + k].q.val() == 2
-                    || self.step_copy_q[21 + k].q.val() == 5
+                if self.step_next[21 + k].val() == 0
+                    || self.step_next[21 + k].val() == 1
+                    || self.step_next[21 + k].val() == 2
+                    || self.step_next[21 + k].val() == 5
                 {
-                    self.w1_q[6 + k].d.next = self.points_q[15 + k].q.val();
-                } else if self.step_copy_q[21 + k].q.val() == 3 {
-                    self.w1_q[6 + k].d.next = self.points_q[9 + k].q.val();
+                    self.pick_q[21 + k].d.next = 32.into();
+                } else if self.step_next[21 + k].val() == 3 {
+                    self.pick_q[21 + k].d.next = 8.into();
                 } else {
-                    self.w1_q[6 + k].d.next = self.points_q[12 + k].q.val();
+                    self.pick_q[21 + k].d.next = 16.into();
                 }
             }
         }
