@@ -7,11 +7,9 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (7), for
-//             example: degenerate_pair_to_decision,
-//             path.side_certificates_to_decision[0],
-//             path.side_certificates_to_decision[1],
-//             path.side_certificates_to_decision[2].
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (3):
+//             coplanar_to_decision, path.degenerate_to_decision[0],
+//             path.degenerate_to_decision[1].
 //
 // Rust unit:  DelayLine<T = bool, N = 18>
 // Latency:    18 clock cycles

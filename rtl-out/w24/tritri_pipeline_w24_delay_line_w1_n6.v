@@ -7,7 +7,7 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (31),
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (30),
 //             for example: coplanar.on_edge_a[0], coplanar.on_edge_a[1],
 //             coplanar.on_edge_a[2], coplanar.on_edge_a[3].
 //

@@ -7,9 +7,8 @@
 //!   certificate those of `certificate::certain`;
 //! * on one batch, the clocks it stalls are exactly those
 //!   `system::rare_case_model` counts for it, and the run takes the cycle
-//!   model's cycles plus those; over several batches the model is an upper
-//!   bound (a unit finishes its job during the idle clocks between
-//!   batches, which the model leaves out);
+//!   model's cycles plus those; over several batches, with the host
+//!   writing on, too;
 //! * Verilator and rust-hdl agree cycle for cycle.
 
 mod system_common;
@@ -67,6 +66,11 @@ fn arrays(seed: u64, shapes: &[(usize, usize)]) -> Vec<system_common::Arrays> {
         .collect()
 }
 
+/// Result FIFO words above the reserve, more than these batches' pairs:
+/// its back-pressure never holds the read side, so every stall is a rare
+/// pair's.
+const FIFO_ROOM: usize = 256;
+
 /// The pairs and uncertain pairs are the models'; returns the run.
 fn run_and_check(
     config: SystemConfig,
@@ -89,7 +93,9 @@ fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
     for (p, shape) in [(1, (7, 40)), (2, (9, 40)), (4, (6, 33))] {
         let arrays = arrays(p as u64, &[shape]);
         let batches = system_common::batches(&arrays);
-        let config = SystemConfig::new(16, p, latency()).with_depth(64);
+        let config = SystemConfig::new(16, p, latency())
+            .with_depth(64)
+            .with_result_fifo_room(FIFO_ROOM);
         let r = run_and_check(config, &batches, false, ReaderBehaviour::AlwaysReady);
         let cost = rare_case_cost(p, &batches);
         let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
@@ -105,16 +111,26 @@ fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
 }
 
 /// Several batches, the host writing on (overlap): with a reader always
-/// ready, the model bounds the stalls; with a result FIFO of two words above its reserve and a
-/// slow reader, its back-pressure and the rare pairs' holds mix. Either
-/// way Verilator running the emitted system equals rust-hdl.
+/// ready and a result FIFO that never fills, the stalls are the model's
+/// count; with a result FIFO of two words above its reserve and a slow
+/// reader, its back-pressure and the rare pairs' holds mix. Either way
+/// Verilator running the emitted system equals rust-hdl.
+///
+/// The stall counter counts every clock the read side holds with work to
+/// do, the FIFO's back-pressure included: these batches' small triangles
+/// hit often, two pairs in a word drain in two clocks, and the default
+/// FIFO (64 words, `L` of them in reserve) filled at `L = 40`, 7 clocks
+/// above the model on the first batch. Hence the room here.
 #[test]
 fn batches_in_verilator_equal_rust_hdl() {
     let arrays = arrays(7, &[(5, 30), (0, 4), (8, 25), (3, 3)]);
     let batches = system_common::batches(&arrays);
     let config = SystemConfig::new(16, 2, latency()).with_depth(32);
     for (config, reader) in [
-        (config, ReaderBehaviour::AlwaysReady),
+        (
+            config.with_result_fifo_room(FIFO_ROOM),
+            ReaderBehaviour::AlwaysReady,
+        ),
         (config.with_result_fifo_room(2), ReaderBehaviour::OneIn(5)),
     ] {
         let hdl = run_and_check(config, &batches, true, reader);
@@ -129,7 +145,7 @@ fn batches_in_verilator_equal_rust_hdl() {
         )
         .unwrap();
         eprintln!(
-            "P=2, 4 batches, {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {} (holds at most {bound})",
+            "P=2, 4 batches, {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {} (the model: {bound})",
             rtl.pairs.len(),
             hdl.pairs.len(),
             rtl.cycles,
@@ -138,7 +154,8 @@ fn batches_in_verilator_equal_rust_hdl() {
             hdl.stall_cycles
         );
         if reader == ReaderBehaviour::AlwaysReady {
-            assert!(hdl.stall_cycles > 50 && hdl.stall_cycles <= bound);
+            assert!(hdl.stall_cycles > 50);
+            assert_eq!(hdl.stall_cycles, bound);
         } else {
             assert!(hdl.stall_cycles > bound);
         }

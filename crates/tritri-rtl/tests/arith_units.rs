@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::cross;
 use tritri_rtl::arith::adder::{
-    RegisteredDifference, RegisteredDifference3, RegisteredSum3, ADDER_LATENCY,
+    RegisteredDifference, RegisteredDifference3, RegisteredSum3, ADDER_LATENCY, SUM3_LATENCY,
 };
 use tritri_rtl::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
@@ -230,7 +230,7 @@ fn adders_wrap_modulo_their_width() {
         &mut uut,
         |u| &mut u.clock,
         &tuples::<3>(11, 50),
-        ADDER_LATENCY,
+        SUM3_LATENCY,
         |u, [a, b, c]| {
             u.a.next = from_i128(*a);
             u.b.next = from_i128(*b);

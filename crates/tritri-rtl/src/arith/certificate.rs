@@ -12,7 +12,7 @@
 //!
 //! * [`EdgesBitLength`] (five register stages): `ke` of a triangle's two
 //!   edges, once per triangle (with its normal) or per determinant.
-//! * [`CertificateThreshold`] (five register stages, beside the dot
+//! * [`CertificateThreshold`] (six register stages, beside the dot
 //!   product): `T` from `|w_k|`, `n` and `ke`.
 //! * [`CertainSign`] (one register stage for the sign, like
 //!   [`super::sign::SignOf`], two for the certificate): the sign of `P` and
@@ -45,7 +45,7 @@ pub const CERTAIN_SIGN_LATENCY: usize = 1;
 pub const EDGES_BIT_LENGTH_LATENCY: usize = 5;
 
 /// Clock edges from `w`, `n` and `ke` to the threshold.
-pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 5;
+pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 6;
 
 /// The magnitudes `|v_k|` of D-bit two's complement values.
 fn magnitudes_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> [u128; 3] {
@@ -103,6 +103,58 @@ fn leading_one_verilog(name: &str, v: &str, width: usize) -> String {
         bits.join(",\n    ")
     );
     text
+}
+
+/// Bits of a group of the two-stage leading one.
+const LEAD_GROUP_BITS: usize = 4;
+
+/// Verilog of a leading one over two register stages:
+/// `{name}_t_q`, the `width + 1` bits of `2 v + 1`, and `{name}_any_q[g]`,
+/// the OR of its group `g` of [`LEAD_GROUP_BITS`] bits (from bit 0; the
+/// lowest group's is never needed), are registered (`{name}_stage_1`, statements for the clocked block); then
+/// `{name}_lead`, the one-hot at bit `bitlen v`, takes each bit from its
+/// group's higher bits and the higher groups' ORs: at most eight inputs,
+/// two LUT levels, where the one-stage form of [`leading_one_verilog`]
+/// has three behind the sum that forms `v` (the whole W = 16 shared
+/// pipeline's critical path at 127.6 MHz, `offset_lead_q`). Returns the
+/// declarations and the stage-1 statements.
+fn two_stage_leading_one_verilog(name: &str, v: &str, width: usize) -> (String, String) {
+    let l = width + 1;
+    let groups = l.div_ceil(LEAD_GROUP_BITS);
+    let top = |g: usize| ((g + 1) * LEAD_GROUP_BITS).min(l) - 1;
+    let mut decl = format!(
+        "wire [{top}:0] {name}_t = {{{v}, 1'b1}};\nreg [{top}:0] {name}_t_q;\nreg [{}:1] {name}_any_q;\n",
+        groups - 1,
+        top = l - 1
+    );
+    let bits: Vec<String> = (0..l)
+        .rev()
+        .map(|i| {
+            let g = i / LEAD_GROUP_BITS;
+            let mut terms = vec![format!("{name}_t_q[{i}]")];
+            if i < top(g) {
+                terms.push(format!("~|{name}_t_q[{}:{}]", top(g), i + 1));
+            }
+            if g + 1 < groups {
+                terms.push(format!("~|{name}_any_q[{}:{}]", groups - 1, g + 1));
+            }
+            terms.join(" & ")
+        })
+        .collect();
+    decl += &format!(
+        "wire [{}:0] {name}_lead = {{\n    {}\n}};\n",
+        l - 1,
+        bits.join(",\n    ")
+    );
+    let any: Vec<String> = (1..groups)
+        .rev()
+        .map(|g| format!("|{name}_t[{}:{}]", top(g), g * LEAD_GROUP_BITS))
+        .collect();
+    let stage = format!(
+        "{name}_t_q <= {name}_t;\n        {name}_any_q <= {{{}}};\n",
+        any.join(", ")
+    );
+    (decl, stage)
 }
 
 /// Verilog: the 8-bit index of the `width`-bit one-hot `lead`.
@@ -238,16 +290,17 @@ end
 
 /// `T` of the module docs from the magnitudes of the offset `w` (`|w_k|`,
 /// D bits unsigned), the normal `n = e1 × e2` (C-bit) and `ke` (all three
-/// in the same clock), in five register stages, each at most one carry
+/// in the same clock), in six register stages, each at most one carry
 /// chain or one LUT tree:
 ///
 /// 1. `Sw = |w|_1`; the ones' complement magnitudes of `n`, the first two
 ///    summed; `2^(ke + 2) + 16`;
-/// 2. the leading one of `2 Sw + 1`; `X` (`tritri_geom::certificate::normal_l1`);
-///    `4 Sw + 2^(ke + 2) + 16`;
-/// 3. the exponent `bitlen Sw + ke`; `X + (X >> 19)`;
-/// 4. `Y + (Y >> 19)`, a one shifted by the exponent; the two parts' sum;
-/// 5. `T`.
+/// 2. `2 Sw + 1` and the ORs of its groups of four bits; `X`
+///    (`tritri_geom::certificate::normal_l1`); `4 Sw + 2^(ke + 2) + 16`;
+/// 3. the leading one of `2 Sw + 1`; `X + (X >> 19)`;
+/// 4. the exponent `bitlen Sw + ke`; the two parts' sum;
+/// 5. `Y + (Y >> 19)`, a one shifted by the exponent;
+/// 6. `T`.
 ///
 /// (A first version took `w` itself and summed its magnitudes in the
 /// stage that formed them, two carry chains in series: the W = 8
@@ -272,15 +325,18 @@ pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> 
     _normal_2: u128,
     _edge_term: u128,
     _edges_bits: u128,
-    _bits_w: u128,
+    _offset_t: u128,
     _normal_l1: u128,
     _small_part: u128,
     _edges_bits_2: u128,
-    _exponent: u128,
+    _bits_w: u128,
     _normal_part: u128,
     _small_part_2: u128,
-    _y: u128,
+    _edges_bits_3: u128,
+    _exponent: u128,
     _partial: u128,
+    _y: u128,
+    _partial_2: u128,
 }
 
 impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit
@@ -305,15 +361,18 @@ impl<const D: usize, const C: usize, const O: usize> Default for CertificateThre
             _normal_2: 0,
             _edge_term: 0,
             _edges_bits: 0,
-            _bits_w: 0,
+            _offset_t: 0,
             _normal_l1: 0,
             _small_part: 0,
             _edges_bits_2: 0,
-            _exponent: 0,
+            _bits_w: 0,
             _normal_part: 0,
             _small_part_2: 0,
-            _y: 0,
+            _edges_bits_3: 0,
+            _exponent: 0,
             _partial: 0,
+            _y: 0,
+            _partial_2: 0,
         }
     }
 }
@@ -324,18 +383,21 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
             let t_mask = (1u128 << (C + 6)) - 1;
             let small_mask = (1u128 << (D + 6)) - 1;
             // Each stage from the one before, last first.
-            self.threshold.next = from_i128::<O>(((self._partial + self._y) & t_mask) as i128);
+            self.threshold.next = from_i128::<O>(((self._partial_2 + self._y) & t_mask) as i128);
             let one = if self._exponent < (C + 6) as u128 {
                 1u128 << self._exponent
             } else {
                 0
             };
             self._y = one | (one >> 19);
+            self._partial_2 = self._partial;
+            self._exponent = (self._bits_w + self._edges_bits_3) & 0xff;
             self._partial = (self._normal_part + self._small_part_2) & t_mask;
-            self._exponent = (self._bits_w + self._edges_bits_2) & 0xff;
+            self._bits_w = bit_length(self._offset_t) as u128;
             self._normal_part = self._normal_l1 + (self._normal_l1 >> 19);
             self._small_part_2 = self._small_part;
-            self._bits_w = bit_length(self._offset_l1) as u128;
+            self._edges_bits_3 = self._edges_bits_2;
+            self._offset_t = self._offset_l1;
             self._normal_l1 = self._normal_01 + self._normal_2;
             self._small_part = (4 * self._offset_l1 + self._edge_term) & small_mask;
             self._edges_bits_2 = self._edges_bits;
@@ -368,26 +430,29 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
         // Sw <= 3 2^(D-1) fits D + 1 bits; X < 3 2^(C-1), C + 1; X + (X >> 19)
         // C + 2; 4 Sw + 2^(ke + 2) + 16 (ke <= D + 2) D + 6; T C + 6.
         let (sw, x, small, t) = (D + 1, C + 1, D + 6, C + 6);
+        let lead = two_stage_leading_one_verilog("offset", "offset_l1_q", sw);
         Verilog::Custom(format!(
             "\
 // The certificate's threshold (tritri_geom::certificate::threshold):
 // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
-// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in five register
+// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in six register
 // stages, each at most one carry chain or one LUT tree.
 reg [{sw1}:0] offset_l1_q;
 reg [{x1}:0] normal_01_q;
 reg [{x1}:0] normal_2_q;
 reg [{small1}:0] edge_term_q;
 reg [7:0] edges_bits_q;
-{lead}reg [{sw}:0] offset_lead_q;
-reg [{x1}:0] normal_l1_q;
+{lead}reg [{x1}:0] normal_l1_q;
 reg [{small1}:0] small_part_q;
 reg [7:0] edges_bits_q2;
-reg [7:0] exponent_q;
+reg [{sw}:0] offset_lead_q;
 reg [{x}:0] normal_part_q;
 reg [{small1}:0] small_part_q2;
-reg [{t1}:0] y_q;
+reg [7:0] edges_bits_q3;
+reg [7:0] exponent_q;
 reg [{t1}:0] partial_q;
+reg [{t1}:0] y_q;
+reg [{t1}:0] partial_q2;
 wire [7:0] offset_bits = {index};
 wire [{t1}:0] y_one = {t}'d1 << exponent_q;
 initial begin
@@ -396,15 +461,19 @@ initial begin
     normal_2_q = {x}'d0;
     edge_term_q = {small}'d0;
     edges_bits_q = 8'd0;
-    offset_lead_q = {sw_p}'d0;
+    offset_t_q = {sw_p}'d0;
+    offset_any_q = {groups}'d0;
     normal_l1_q = {x}'d0;
     small_part_q = {small}'d0;
     edges_bits_q2 = 8'd0;
-    exponent_q = 8'd0;
+    offset_lead_q = {sw_p}'d0;
     normal_part_q = {x_p}'d0;
     small_part_q2 = {small}'d0;
-    y_q = {t}'d0;
+    edges_bits_q3 = 8'd0;
+    exponent_q = 8'd0;
     partial_q = {t}'d0;
+    y_q = {t}'d0;
+    partial_q2 = {t}'d0;
     threshold = {o}'d0;
 end
 always @(posedge clock) begin
@@ -414,16 +483,18 @@ always @(posedge clock) begin
         normal_2_q <= {n2};
         edge_term_q <= ({small}'d4 << edges_bits) + {small}'d16;
         edges_bits_q <= edges_bits;
-        offset_lead_q <= offset_lead;
-        normal_l1_q <= normal_01_q + normal_2_q;
+        {lead_stage}        normal_l1_q <= normal_01_q + normal_2_q;
         small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term_q;
         edges_bits_q2 <= edges_bits_q;
-        exponent_q <= offset_bits + edges_bits_q2;
+        offset_lead_q <= offset_lead;
         normal_part_q <= {normal_part};
         small_part_q2 <= small_part_q;
-        y_q <= y_one | (y_one >> 19);
+        edges_bits_q3 <= edges_bits_q2;
+        exponent_q <= offset_bits + edges_bits_q3;
         partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q2}};
-        threshold <= {{{pad_t}'d0, partial_q + y_q}};
+        y_q <= y_one | (y_one >> 19);
+        partial_q2 <= partial_q;
+        threshold <= {{{pad_t}'d0, partial_q2 + y_q}};
     end
 end
 ",
@@ -432,7 +503,9 @@ end
             n0 = ones_complement_verilog("normal$0", C, x),
             n1 = ones_complement_verilog("normal$1", C, x),
             n2 = ones_complement_verilog("normal$2", C, x),
-            lead = leading_one_verilog("offset", "offset_l1_q", sw),
+            lead = lead.0,
+            lead_stage = lead.1,
+            groups = (sw + 1).div_ceil(LEAD_GROUP_BITS) - 1,
             index = index_verilog("offset_lead_q", sw + 1),
             sw1 = sw - 1,
             x1 = x - 1,

@@ -3,17 +3,18 @@
 //!
 //! Thesis, chapter 3, figure 3.9 (the dot-product unit, 78 bits there; 74
 //! here, the tight bound of `tritri_geom::widths`). Three registered
-//! multipliers `(W+1) x (2W+1) -> 3W+2` and one registered three-input sum.
+//! multipliers `(W+1) x (2W+1) -> 3W+2` and a three-input sum in two
+//! register stages.
 //! The sum is computed modulo `2^(3W+2)`: partial sums may wrap, but the
 //! final value of an orient3d is at most `2 M^3` in magnitude and fits, so
 //! the wrapped result is the exact one (docs/ARCHITECTURE.md, conventions).
 
-use super::adder::{RegisteredSum3, ADDER_LATENCY};
+use super::adder::{RegisteredSum3, SUM3_LATENCY};
 use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from operands to dot product.
-pub const DOT_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + ADDER_LATENCY;
+pub const DOT_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + SUM3_LATENCY;
 
 #[derive(LogicBlock)]
 pub struct DotProduct<const D: usize, const C: usize, const O: usize> {

@@ -18,7 +18,9 @@
 //! one batch, or one pipeline fed without gaps, the clocks they hold are
 //! this count exactly; over several batches it is their upper bound
 //! (`tritri-cosim/tests/system_shared_rare_cases.rs`,
-//! `rusthdl_pipeline.rs`, `rtl_cosim.rs`).
+//! `rusthdl_pipeline.rs`, `rtl_cosim.rs`). It counts holds only: the
+//! system's `stall_cycles` also counts the clocks a filling result FIFO
+//! holds the read side, which the tests rule out with a large FIFO.
 
 use crate::pipeline::shared_rare_cases::{COPLANAR_STEPS, SEGMENTS_STEPS};
 use tritri_geom::devillers_guigue::{shape, Shape};
