@@ -111,9 +111,9 @@ const LEAD_GROUP_BITS: usize = 4;
 /// Verilog of a leading one over two register stages:
 /// `{name}_t_q`, the `width + 1` bits of `2 v + 1`, and `{name}_any_q[g]`,
 /// the OR of its group `g` of [`LEAD_GROUP_BITS`] bits (from bit 0; the
-/// lowest group's is never needed), are registered (`{name}_stage_1`, statements for the clocked block); then
-/// `{name}_lead`, the one-hot at bit `bitlen v`, takes each bit from its
-/// group's higher bits and the higher groups' ORs: at most eight inputs,
+/// lowest group's is never needed), are registered; then `{name}_lead`,
+/// the one-hot at bit `bitlen v`, takes each bit from its group's higher
+/// bits and the higher groups' ORs: at most eight inputs,
 /// two LUT levels, where the one-stage form of [`leading_one_verilog`]
 /// has three behind the sum that forms `v` (the whole W = 16 shared
 /// pipeline's critical path at 127.6 MHz, `offset_lead_q`). Returns the
