@@ -138,12 +138,11 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// high, T2 low, high), as arrays, so that one loop loads the points.
     job_vertices: [Signal<Local, Bits<W>>; 18],
     job_ends: [Signal<Local, Bits<2>>; 4],
-    /// Stage 1: the step's points: `u = u1 - u0`, lane `l`'s `w = w1 - w0`
-    /// (coordinate `k` at `3 l + k`), and each lane's axis.
-    u0_q: [OneHotChoice<W>; 3],
-    u1_q: [OneHotChoice<W>; 3],
-    w0_q: [OneHotChoice<W>; 9],
-    w1_q: [OneHotChoice<W>; 9],
+    /// Stage 1: the step's points, numbered as the copies are (`3 d + k`
+    /// for coordinate `k` of destination `d`: `u0`, `u1`, `w0`'s lanes,
+    /// `w1`'s), for `u = u1 - u0` and lane `l`'s `w = w1 - w0`; and each
+    /// lane's axis.
+    stage1_q: [OneHotChoice<W>; 24],
     /// The point each of them takes at the next clock edge, one-hot: copy
     /// `c`'s program at the step and kind that copy `c` holds then.
     pick_q: [DFF<Bits<6>>; 24],
@@ -216,10 +215,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             step_copy_q,
             segments_copy_q,
             remaining_copy_q,
-            u0_q,
-            u1_q,
-            w0_q,
-            w1_q,
+            stage1_q,
             pick_q,
             lane_axis_q,
             u_difference,
@@ -397,8 +393,6 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
 
         // Stage 1: the step's points, by the program of its kind.
         for i in 0..3 {
-            self.u0_q[i].clock.next = self.clock.val();
-            self.u1_q[i].clock.next = self.clock.val();
             self.lane_axis_q[i].clock.next = self.clock.val();
             self.lane_axis_2q[i].clock.next = self.clock.val();
             self.lane_axis_2q[i].d.next = self.lane_axis_q[i].q.val();
@@ -411,10 +405,6 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.lane_axis_q[1].d.next = 1.into();
             self.lane_axis_q[2].d.next = 2.into();
         }
-        for i in 0..9 {
-            self.w0_q[i].clock.next = self.clock.val();
-            self.w1_q[i].clock.next = self.clock.val();
-        }
         // Each destination coordinate's point: a one-hot choice among the
         // six points, `pick_q`, registered a clock ahead from the next step
         // and kind by the program of its kind, so that stage 1 is an
@@ -426,39 +416,17 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         // coordinates was the critical path, 5.3 ns of it one net's
         // routing, 96.7 MHz; W = 16 with a copy per destination, 48 bits
         // each: 107.8 MHz.)
-        for c in 0..24 {
-            self.pick_q[c].clock.next = self.clock.val();
-        }
-        for k in 0..3 {
-            self.u0_q[k].pick.next = self.pick_q[k].q.val();
-            self.u1_q[k].pick.next = self.pick_q[3 + k].q.val();
-            self.u0_q[k].point_0.next = self.points_q[k].q.val();
-            self.u0_q[k].point_1.next = self.points_q[3 + k].q.val();
-            self.u0_q[k].point_2.next = self.points_q[6 + k].q.val();
-            self.u0_q[k].point_3.next = self.points_q[9 + k].q.val();
-            self.u0_q[k].point_4.next = self.points_q[12 + k].q.val();
-            self.u0_q[k].point_5.next = self.points_q[15 + k].q.val();
-            self.u1_q[k].point_0.next = self.points_q[k].q.val();
-            self.u1_q[k].point_1.next = self.points_q[3 + k].q.val();
-            self.u1_q[k].point_2.next = self.points_q[6 + k].q.val();
-            self.u1_q[k].point_3.next = self.points_q[9 + k].q.val();
-            self.u1_q[k].point_4.next = self.points_q[12 + k].q.val();
-            self.u1_q[k].point_5.next = self.points_q[15 + k].q.val();
-            for l in 0..3 {
-                self.w0_q[3 * l + k].pick.next = self.pick_q[6 + 3 * l + k].q.val();
-                self.w1_q[3 * l + k].pick.next = self.pick_q[15 + 3 * l + k].q.val();
-                self.w0_q[3 * l + k].point_0.next = self.points_q[k].q.val();
-                self.w0_q[3 * l + k].point_1.next = self.points_q[3 + k].q.val();
-                self.w0_q[3 * l + k].point_2.next = self.points_q[6 + k].q.val();
-                self.w0_q[3 * l + k].point_3.next = self.points_q[9 + k].q.val();
-                self.w0_q[3 * l + k].point_4.next = self.points_q[12 + k].q.val();
-                self.w0_q[3 * l + k].point_5.next = self.points_q[15 + k].q.val();
-                self.w1_q[3 * l + k].point_0.next = self.points_q[k].q.val();
-                self.w1_q[3 * l + k].point_1.next = self.points_q[3 + k].q.val();
-                self.w1_q[3 * l + k].point_2.next = self.points_q[6 + k].q.val();
-                self.w1_q[3 * l + k].point_3.next = self.points_q[9 + k].q.val();
-                self.w1_q[3 * l + k].point_4.next = self.points_q[12 + k].q.val();
-                self.w1_q[3 * l + k].point_5.next = self.points_q[15 + k].q.val();
+        for d in 0..8 {
+            for k in 0..3 {
+                self.pick_q[3 * d + k].clock.next = self.clock.val();
+                self.stage1_q[3 * d + k].clock.next = self.clock.val();
+                self.stage1_q[3 * d + k].pick.next = self.pick_q[3 * d + k].q.val();
+                self.stage1_q[3 * d + k].point_0.next = self.points_q[k].q.val();
+                self.stage1_q[3 * d + k].point_1.next = self.points_q[3 + k].q.val();
+                self.stage1_q[3 * d + k].point_2.next = self.points_q[6 + k].q.val();
+                self.stage1_q[3 * d + k].point_3.next = self.points_q[9 + k].q.val();
+                self.stage1_q[3 * d + k].point_4.next = self.points_q[12 + k].q.val();
+                self.stage1_q[3 * d + k].point_5.next = self.points_q[15 + k].q.val();
             }
         }
         // The programs: point `p` (bit `p` of the pick) at each step.
@@ -656,14 +624,14 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
 
         // Stage 2: the differences.
         for k in 0..3 {
-            self.u_difference.a[k].next = self.u1_q[k].q.val();
-            self.u_difference.b[k].next = self.u0_q[k].q.val();
-            self.w_difference_0.a[k].next = self.w1_q[k].q.val();
-            self.w_difference_0.b[k].next = self.w0_q[k].q.val();
-            self.w_difference_1.a[k].next = self.w1_q[3 + k].q.val();
-            self.w_difference_1.b[k].next = self.w0_q[3 + k].q.val();
-            self.w_difference_2.a[k].next = self.w1_q[6 + k].q.val();
-            self.w_difference_2.b[k].next = self.w0_q[6 + k].q.val();
+            self.u_difference.a[k].next = self.stage1_q[3 + k].q.val();
+            self.u_difference.b[k].next = self.stage1_q[k].q.val();
+            self.w_difference_0.a[k].next = self.stage1_q[15 + k].q.val();
+            self.w_difference_0.b[k].next = self.stage1_q[6 + k].q.val();
+            self.w_difference_1.a[k].next = self.stage1_q[18 + k].q.val();
+            self.w_difference_1.b[k].next = self.stage1_q[9 + k].q.val();
+            self.w_difference_2.a[k].next = self.stage1_q[21 + k].q.val();
+            self.w_difference_2.b[k].next = self.stage1_q[12 + k].q.val();
         }
 
         // Stage 3: each lane's projection; then orient2d and its sign.
