@@ -7,8 +7,7 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (3):
-//             path.degenerate_to_operands[0], path.degenerate_to_operands[1],
+//             pipeline stage"). Part of tritri_pipeline_w24. Instance:
 //             path.record_bset.
 //
 // Rust unit:  DelayLine<T = bool, N = 10>

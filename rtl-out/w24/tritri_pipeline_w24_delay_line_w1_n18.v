@@ -7,9 +7,8 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (3):
-//             coplanar_to_decision, path.degenerate_to_decision[0],
-//             path.degenerate_to_decision[1].
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
+//             path.degenerate_to_decision[0], path.degenerate_to_decision[1].
 //
 // Rust unit:  DelayLine<T = bool, N = 18>
 // Latency:    18 clock cycles

@@ -7,11 +7,9 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: path.front_end.segment_high_delay,
-//             path.front_end.segment_low_delay,
-//             path.segment_ends_to_distances[0],
-//             path.segment_ends_to_distances[1].
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (2):
+//             path.front_end.segment_high_delay,
+//             path.front_end.segment_low_delay.
 //
 // Rust unit:  DelayLine<T = Bits<2>, N = 7>
 // Latency:    7 clock cycles

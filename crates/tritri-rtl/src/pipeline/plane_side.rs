@@ -15,12 +15,12 @@ use crate::arith::certificate::{
 };
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::subtractor::{MagnitudeSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{MagnitudeSubtractor, MAGNITUDE_SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from inputs to signs.
 pub const PLANE_SIDE_LATENCY: usize =
-    SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
+    MAGNITUDE_SUBTRACTOR_LATENCY + DOT_PRODUCT_LATENCY + CERTAIN_SIGN_LATENCY;
 
 /// The thresholds, from the offsets and the normal as the dot products
 /// take them, arrive with the distances.
@@ -56,13 +56,13 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     offset_0: MagnitudeSubtractor<W, D>,
     offset_1: MagnitudeSubtractor<W, D>,
     offset_2: MagnitudeSubtractor<W, D>,
-    normal_delay: [DelayLine<Bits<C>, SUBTRACTOR_LATENCY>; 3],
+    normal_delay: [DelayLine<Bits<C>, MAGNITUDE_SUBTRACTOR_LATENCY>; 3],
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
     /// The certificate's threshold per vertex (`arith::certificate`), from
     /// the offset and the normal as the dot product takes them.
-    edges_bits_delay: DelayLine<Bits<8>, SUBTRACTOR_LATENCY>,
+    edges_bits_delay: DelayLine<Bits<8>, MAGNITUDE_SUBTRACTOR_LATENCY>,
     threshold_0: CertificateThreshold<D, C, O>,
     threshold_1: CertificateThreshold<D, C, O>,
     threshold_2: CertificateThreshold<D, C, O>,

@@ -22,7 +22,7 @@
 //! `hold` goes into the enable of every register, so it is a register, in
 //! copies: [`HoldForecast`] decides it two clocks ahead from the rare bits
 //! of the three stages and the unit's steps left, once for each value
-//! `advance` may take next clock, and thirteen [`HoldRegister`]s pick from
+//! `advance` may take next clock, and fifteen [`HoldRegister`]s pick from
 //! those two registers by `advance`, each the enable of one group of
 //! units. The unit's input is valid by registers of its own, a clock
 //! ahead too (`offer_next`), one beside each group of its loads.
@@ -72,7 +72,7 @@ const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENC
 /// stages, at most one a stage.
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
 /// The update's literals: copies 1 to 11 are the general path's.
-const _: () = assert!(ADVANCE_COPIES == 11);
+const _: () = assert!(ADVANCE_COPIES == 13);
 /// The update's literals 25 and 26: one offer for each of the unit's
 /// copies, and the last for its `in_valid`.
 const _: () = assert!(IN_VALID_COPIES == 25);
@@ -140,11 +140,11 @@ crate::pipeline_ports! {
         forecast: HoldForecast,
         /// `hold`, one copy per group of registers: the general path's
         /// `advance` (0, with this top's rare bits), its `advance_copies`
-        /// (1 to 11; the job's segment ends and degenerate flags ride on 4,
+        /// (1 to 13; the job's segment ends and degenerate flags ride on 4,
         /// the operands', T1's and T2's vertices on 10 and 11, as the
         /// general path delays the same fields on them and synthesis shares
-        /// the lines), and the job's normals and axis (12).
-        holds: [HoldRegister; 13],
+        /// the lines), and the job's normals and axis (14).
+        holds: [HoldRegister; 15],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -234,7 +234,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.forecast.others_if_still.next = self.hold_others_still.val();
         self.hold_request.next = self.forecast.request_if_advance.val();
         self.hold_request_still.next = self.forecast.request_if_still.val();
-        for i in 0..13 {
+        for i in 0..15 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -248,7 +248,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unused_ready.next = self.rare_cases.ready.val();
         self.moving.next = self.advance.val() && !self.holds[0].hold.val();
         self.path.advance.next = self.moving.val();
-        for i in 0..11 {
+        for i in 0..13 {
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
         }
 
@@ -275,9 +275,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
         for i in 0..12 {
             self.normals_to_job[i].clock.next = self.clock.val();
-            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[12].hold.val();
+            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[14].hold.val();
         }
-        self.axis_to_job.advance.next = self.advance.val() && !self.holds[12].hold.val();
+        self.axis_to_job.advance.next = self.advance.val() && !self.holds[14].hold.val();
         self.rare_queued.advance.next = self.moving.val();
         self.rare_queued.reset.next = self.reset.val();
         self.rare_to_job.advance.next = self.moving.val();

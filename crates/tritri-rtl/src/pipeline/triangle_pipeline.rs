@@ -91,7 +91,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         );
         self.path.reset.next = self.reset.val();
         self.path.advance.next = self.advance.val();
-        for i in 0..11 {
+        for i in 0..13 {
             self.path.advance_copies[i].next = self.advance.val();
         }
         self.coplanar.advance.next = self.advance.val();

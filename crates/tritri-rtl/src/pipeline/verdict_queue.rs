@@ -19,17 +19,26 @@
 //! the whole shared pipeline with nextpnr's `static` placer: the read
 //! pointer through the 32-way choice, 3.8 ns across the chip, into the
 //! decision's verdict was the critical path, 106.5 MHz.)
+//!
+//! The pointers are one-hot, one bit per slot, and step by rotating: a
+//! slot is then chosen by an AND-OR of the slots with the pointer, and
+//! neither a step nor a comparison needs a carry. (With five-bit pointers
+//! the step, the 32-way choice and the comparisons with the write pointer
+//! were nine levels of logic into `head_q`, the critical path of the whole
+//! W = 16 shared pipeline at 131.6 MHz, router1.)
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
-/// Slots (the pointers' `2^5`; the update's literals follow it).
+/// Slots: one bit of each one-hot pointer per slot (the update's
+/// `Bits<32>` and its rotations' literal 31 follow it).
 pub const VERDICT_QUEUE_DEPTH: usize = 32;
 
 #[derive(LogicBlock, Default)]
 pub struct VerdictQueue {
     pub clock: Signal<In, Clock>,
-    /// Synchronous, active high: empties the queue.
+    /// Synchronous, active high: empties the queue. The queue needs it
+    /// before its first use: the pointers power up with no bit set.
     pub reset: Signal<In, Bit>,
     /// Write `push_hit` at the tail.
     pub push: Signal<In, Bit>,
@@ -38,8 +47,9 @@ pub struct VerdictQueue {
     pub pop: Signal<In, Bit>,
     pub head: Signal<Out, Bit>,
     slots: DFF<Bits<32>>,
-    write_q: DFF<Bits<5>>,
-    read_q: DFF<Bits<5>>,
+    /// One-hot: the slot the next push writes, and the head's slot.
+    write_q: DFF<Bits<32>>,
+    read_q: DFF<Bits<32>>,
     /// The slot at the read pointer, and whether the queue is empty, as
     /// they will be after this clock's push and pop.
     head_q: DFF<Bit>,
@@ -48,11 +58,11 @@ pub struct VerdictQueue {
     /// this clock's push written into either.
     stay_hit: Signal<Local, Bit>,
     step_hit: Signal<Local, Bit>,
-    /// `read_q + 1`, in the pointers' five bits (a Verilog sum in an
-    /// index or a comparison would widen to 32 and not wrap).
-    read_step: Signal<Local, Bits<5>>,
-    read_next: Signal<Local, Bits<5>>,
-    write_next: Signal<Local, Bits<5>>,
+    /// The read pointer rotated one slot on, and the write pointer.
+    read_step: Signal<Local, Bits<32>>,
+    write_step: Signal<Local, Bits<32>>,
+    /// The tail is the slot after the head: the queue holds one verdict.
+    holds_one: Signal<Local, Bit>,
 }
 
 impl crate::unit::Unit for VerdictQueue {
@@ -65,30 +75,27 @@ impl Logic for VerdictQueue {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, slots, write_q, read_q, head_q, empty_q);
+        self.read_step.next = (self.read_q.q.val() << 1) | (self.read_q.q.val() >> 31);
+        self.write_step.next = (self.write_q.q.val() << 1) | (self.write_q.q.val() >> 31);
         if self.push.val() {
-            self.slots.d.next = self
-                .slots
-                .q
-                .val()
-                .replace_bit(self.write_q.q.val().index(), self.push_hit.val());
+            if self.push_hit.val() {
+                self.slots.d.next = self.slots.q.val() | self.write_q.q.val();
+            } else {
+                self.slots.d.next = self.slots.q.val() & !self.write_q.q.val();
+            }
+            self.write_q.d.next = self.write_step.val();
         }
-        self.write_next.next = self.write_q.q.val();
-        if self.push.val() {
-            self.write_next.next = self.write_q.q.val() + 1;
-        }
-        self.read_step.next = self.read_q.q.val() + 1;
-        self.read_next.next = self.read_q.q.val();
         if self.pop.val() {
-            self.read_next.next = self.read_step.val();
+            self.read_q.d.next = self.read_step.val();
         }
-        self.write_q.d.next = self.write_next.val();
-        self.read_q.d.next = self.read_next.val();
-        self.stay_hit.next = self.slots.q.val().get_bit(self.read_q.q.val().index());
-        if self.push.val() && self.write_q.q.val() == self.read_q.q.val() {
+        self.holds_one.next = (self.write_q.q.val() & self.read_step.val()).any();
+        // The pointers meet only when the queue is empty: it never fills.
+        self.stay_hit.next = (self.slots.q.val() & self.read_q.q.val()).any();
+        if self.push.val() && self.empty_q.q.val() {
             self.stay_hit.next = self.push_hit.val();
         }
-        self.step_hit.next = self.slots.q.val().get_bit(self.read_step.val().index());
-        if self.push.val() && self.write_q.q.val() == self.read_step.val() {
+        self.step_hit.next = (self.slots.q.val() & self.read_step.val()).any();
+        if self.push.val() && self.holds_one.val() {
             self.step_hit.next = self.push_hit.val();
         }
         if self.pop.val() {
@@ -96,10 +103,17 @@ impl Logic for VerdictQueue {
         } else {
             self.head_q.d.next = self.stay_hit.val();
         }
-        self.empty_q.d.next = self.read_next.val() == self.write_next.val();
+        // A push alone leaves a verdict; a pop alone of the only one
+        // leaves none; both, or neither, keep the count.
+        if self.push.val() && !self.pop.val() {
+            self.empty_q.d.next = false;
+        }
+        if self.pop.val() && !self.push.val() {
+            self.empty_q.d.next = self.holds_one.val();
+        }
         if self.reset.val() {
-            self.write_q.d.next = 0.into();
-            self.read_q.d.next = 0.into();
+            self.write_q.d.next = 1.into();
+            self.read_q.d.next = 1.into();
             self.empty_q.d.next = true;
         }
         self.head.next = self.head_q.q.val();
@@ -110,7 +124,7 @@ impl Logic for VerdictQueue {
     }
 }
 
-const _: () = assert!(VERDICT_QUEUE_DEPTH == 1 << 5);
+const _: () = assert!(VERDICT_QUEUE_DEPTH == 32);
 
 #[cfg(test)]
 mod tests {
