@@ -71,7 +71,7 @@ const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENC
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
-/// The update's literals: copies 1 to 11 are the general path's.
+/// The update's literals: copies 1 to 13 are the general path's, 14 the job's normals and axis.
 const _: () = assert!(ADVANCE_COPIES == 13);
 /// The update's literals 25 and 26: one offer for each of the unit's
 /// copies, and the last for its `in_valid`.
