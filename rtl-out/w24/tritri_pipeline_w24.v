@@ -136,7 +136,9 @@ module tritri_pipeline_w24 (
     wire  path_advance_copies_9;
     wire  path_advance_copies_10;
     wire  path_advance_copies_11;
-    wire  path_advance_copies_12;
+    wire  path_base_advance;
+    wire  path_base_hold_if_advance;
+    wire  path_base_hold_if_still;
     wire  coplanar_clock;
     wire  coplanar_advance;
     wire  [23:0] coplanar_t1_vertices_0;
@@ -288,7 +290,9 @@ module tritri_pipeline_w24 (
         .advance_copies_9(path_advance_copies_9),
         .advance_copies_10(path_advance_copies_10),
         .advance_copies_11(path_advance_copies_11),
-        .advance_copies_12(path_advance_copies_12)
+        .base_advance(path_base_advance),
+        .base_hold_if_advance(path_base_hold_if_advance),
+        .base_hold_if_still(path_base_hold_if_still)
     );
     tritri_pipeline_w24_coplanar_test u_coplanar(
         .clock(coplanar_clock),
@@ -386,7 +390,9 @@ module tritri_pipeline_w24 (
     assign path_advance_copies_9 = advance;
     assign path_advance_copies_10 = advance;
     assign path_advance_copies_11 = advance;
-    assign path_advance_copies_12 = advance;
+    assign path_base_advance = advance;
+    assign path_base_hold_if_advance = 1'h0;
+    assign path_base_hold_if_still = 1'h0;
     assign coplanar_advance = advance;
     assign degenerate_pair_advance = advance;
     assign coplanar_to_decision_advance = advance;

@@ -24,6 +24,8 @@ module tritri_pipeline_w24_base_polygon (
     input  wire        clock,
     input  wire        reset,
     input  wire        advance,
+    input  wire        hold_if_advance,
+    input  wire        hold_if_still,
     input  wire        load_ahead,
     input  wire [31:0] id_in,
     input  wire [23:0] vertices_in_0,
@@ -148,26 +150,41 @@ module tritri_pipeline_w24_base_polygon (
     reg  [7:0] edges_bits_d;
     wire  [7:0] edges_bits_q;
     wire  edges_bits_clock;
-    wire  load_copy_0_clock;
-    wire  load_copy_0_reset;
-    wire  load_copy_0_advance;
-    wire  load_copy_0_d;
-    wire  load_copy_0_q;
-    wire  load_copy_1_clock;
-    wire  load_copy_1_reset;
-    wire  load_copy_1_advance;
-    wire  load_copy_1_d;
-    wire  load_copy_1_q;
-    wire  load_copy_2_clock;
-    wire  load_copy_2_reset;
-    wire  load_copy_2_advance;
-    wire  load_copy_2_d;
-    wire  load_copy_2_q;
-    wire  load_copy_3_clock;
-    wire  load_copy_3_reset;
-    wire  load_copy_3_advance;
-    wire  load_copy_3_d;
-    wire  load_copy_3_q;
+    wire  loads_0_clock;
+    wire  loads_0_reset;
+    wire  loads_0_advance;
+    wire  loads_0_load_ahead;
+    wire  loads_0_hold_if_advance;
+    wire  loads_0_hold_if_still;
+    wire  loads_0_load;
+    wire  loads_1_clock;
+    wire  loads_1_reset;
+    wire  loads_1_advance;
+    wire  loads_1_load_ahead;
+    wire  loads_1_hold_if_advance;
+    wire  loads_1_hold_if_still;
+    wire  loads_1_load;
+    wire  loads_2_clock;
+    wire  loads_2_reset;
+    wire  loads_2_advance;
+    wire  loads_2_load_ahead;
+    wire  loads_2_hold_if_advance;
+    wire  loads_2_hold_if_still;
+    wire  loads_2_load;
+    wire  loads_3_clock;
+    wire  loads_3_reset;
+    wire  loads_3_advance;
+    wire  loads_3_load_ahead;
+    wire  loads_3_hold_if_advance;
+    wire  loads_3_hold_if_still;
+    wire  loads_3_load;
+    wire  loads_4_clock;
+    wire  loads_4_reset;
+    wire  loads_4_advance;
+    wire  loads_4_load_ahead;
+    wire  loads_4_hold_if_advance;
+    wire  loads_4_hold_if_still;
+    wire  loads_4_load;
 
     // Sub module instances
     tritri_pipeline_w24_dff_32 u_id_q(
@@ -290,33 +307,50 @@ module tritri_pipeline_w24_base_polygon (
         .q(edges_bits_q),
         .clock(edges_bits_clock)
     );
-    tritri_pipeline_w24_register_copy u_load_copy_0(
-        .clock(load_copy_0_clock),
-        .reset(load_copy_0_reset),
-        .advance(load_copy_0_advance),
-        .d(load_copy_0_d),
-        .q(load_copy_0_q)
+    tritri_pipeline_w24_load_enable u_loads_0(
+        .clock(loads_0_clock),
+        .reset(loads_0_reset),
+        .advance(loads_0_advance),
+        .load_ahead(loads_0_load_ahead),
+        .hold_if_advance(loads_0_hold_if_advance),
+        .hold_if_still(loads_0_hold_if_still),
+        .load(loads_0_load)
     );
-    tritri_pipeline_w24_register_copy u_load_copy_1(
-        .clock(load_copy_1_clock),
-        .reset(load_copy_1_reset),
-        .advance(load_copy_1_advance),
-        .d(load_copy_1_d),
-        .q(load_copy_1_q)
+    tritri_pipeline_w24_load_enable u_loads_1(
+        .clock(loads_1_clock),
+        .reset(loads_1_reset),
+        .advance(loads_1_advance),
+        .load_ahead(loads_1_load_ahead),
+        .hold_if_advance(loads_1_hold_if_advance),
+        .hold_if_still(loads_1_hold_if_still),
+        .load(loads_1_load)
     );
-    tritri_pipeline_w24_register_copy u_load_copy_2(
-        .clock(load_copy_2_clock),
-        .reset(load_copy_2_reset),
-        .advance(load_copy_2_advance),
-        .d(load_copy_2_d),
-        .q(load_copy_2_q)
+    tritri_pipeline_w24_load_enable u_loads_2(
+        .clock(loads_2_clock),
+        .reset(loads_2_reset),
+        .advance(loads_2_advance),
+        .load_ahead(loads_2_load_ahead),
+        .hold_if_advance(loads_2_hold_if_advance),
+        .hold_if_still(loads_2_hold_if_still),
+        .load(loads_2_load)
     );
-    tritri_pipeline_w24_register_copy u_load_copy_3(
-        .clock(load_copy_3_clock),
-        .reset(load_copy_3_reset),
-        .advance(load_copy_3_advance),
-        .d(load_copy_3_d),
-        .q(load_copy_3_q)
+    tritri_pipeline_w24_load_enable u_loads_3(
+        .clock(loads_3_clock),
+        .reset(loads_3_reset),
+        .advance(loads_3_advance),
+        .load_ahead(loads_3_load_ahead),
+        .hold_if_advance(loads_3_hold_if_advance),
+        .hold_if_still(loads_3_hold_if_still),
+        .load(loads_3_load)
+    );
+    tritri_pipeline_w24_load_enable u_loads_4(
+        .clock(loads_4_clock),
+        .reset(loads_4_reset),
+        .advance(loads_4_advance),
+        .load_ahead(loads_4_load_ahead),
+        .hold_if_advance(loads_4_hold_if_advance),
+        .hold_if_still(loads_4_hold_if_still),
+        .load(loads_4_load)
     );
 
     // Update code
@@ -344,22 +378,36 @@ module tritri_pipeline_w24_base_polygon (
     assign normal_q_2_clock = clock;
     assign normal_negative_q_2_clock = clock;
     assign normal_zero_q_2_clock = clock;
-    assign load_copy_0_clock = clock;
-    assign load_copy_0_reset = reset;
-    assign load_copy_0_advance = advance;
-    assign load_copy_0_d = load_ahead;
-    assign load_copy_1_clock = clock;
-    assign load_copy_1_reset = reset;
-    assign load_copy_1_advance = advance;
-    assign load_copy_1_d = load_ahead;
-    assign load_copy_2_clock = clock;
-    assign load_copy_2_reset = reset;
-    assign load_copy_2_advance = advance;
-    assign load_copy_2_d = load_ahead;
-    assign load_copy_3_clock = clock;
-    assign load_copy_3_reset = reset;
-    assign load_copy_3_advance = advance;
-    assign load_copy_3_d = load_ahead;
+    assign loads_0_clock = clock;
+    assign loads_0_reset = reset;
+    assign loads_0_advance = advance;
+    assign loads_0_load_ahead = load_ahead;
+    assign loads_0_hold_if_advance = hold_if_advance;
+    assign loads_0_hold_if_still = hold_if_still;
+    assign loads_1_clock = clock;
+    assign loads_1_reset = reset;
+    assign loads_1_advance = advance;
+    assign loads_1_load_ahead = load_ahead;
+    assign loads_1_hold_if_advance = hold_if_advance;
+    assign loads_1_hold_if_still = hold_if_still;
+    assign loads_2_clock = clock;
+    assign loads_2_reset = reset;
+    assign loads_2_advance = advance;
+    assign loads_2_load_ahead = load_ahead;
+    assign loads_2_hold_if_advance = hold_if_advance;
+    assign loads_2_hold_if_still = hold_if_still;
+    assign loads_3_clock = clock;
+    assign loads_3_reset = reset;
+    assign loads_3_advance = advance;
+    assign loads_3_load_ahead = load_ahead;
+    assign loads_3_hold_if_advance = hold_if_advance;
+    assign loads_3_hold_if_still = hold_if_still;
+    assign loads_4_clock = clock;
+    assign loads_4_reset = reset;
+    assign loads_4_advance = advance;
+    assign loads_4_load_ahead = load_ahead;
+    assign loads_4_hold_if_advance = hold_if_advance;
+    assign loads_4_hold_if_still = hold_if_still;
     assign id = id_q;
     assign degenerate = degenerate_q;
     assign dominant_axis = dominant_axis_q;
@@ -409,23 +457,22 @@ module tritri_pipeline_w24_base_polygon (
         normal_q_2_d = normal_q_2_q;
         normal_negative_q_2_d = normal_negative_q_2_q;
         normal_zero_q_2_d = normal_zero_q_2_q;
-        if (advance && load_copy_0_q) begin
+        if (advance && loads_0_load) begin
             vertices_q_0_d = vertices_in_0;
             vertices_q_1_d = vertices_in_1;
             vertices_q_2_d = vertices_in_2;
         end
-        if (advance && load_copy_1_q) begin
+        if (advance && loads_1_load) begin
             vertices_q_3_d = vertices_in_3;
             vertices_q_4_d = vertices_in_4;
             vertices_q_5_d = vertices_in_5;
         end
-        if (advance && load_copy_2_q) begin
+        if (advance && loads_2_load) begin
             vertices_q_6_d = vertices_in_6;
             vertices_q_7_d = vertices_in_7;
             vertices_q_8_d = vertices_in_8;
         end
-        if (advance && load_copy_3_q) begin
-            id_d = id_in;
+        if (advance && loads_3_load) begin
             degenerate_d = degenerate_in;
             dominant_axis_d = dominant_axis_in;
             segment_low_d = segment_low_in;
@@ -440,6 +487,9 @@ module tritri_pipeline_w24_base_polygon (
             normal_q_2_d = normal_in_2;
             normal_negative_q_2_d = normal_negative_in_2;
             normal_zero_q_2_d = normal_zero_in_2;
+        end
+        if (advance && loads_4_load) begin
+            id_d = id_in;
         end
     end
 

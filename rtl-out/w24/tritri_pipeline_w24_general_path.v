@@ -104,7 +104,9 @@ module tritri_pipeline_w24_general_path (
     input  wire        advance_copies_9,
     input  wire        advance_copies_10,
     input  wire        advance_copies_11,
-    input  wire        advance_copies_12
+    input  wire        base_advance,
+    input  wire        base_hold_if_advance,
+    input  wire        base_hold_if_still
 );
 
     // Stub signals
@@ -198,7 +200,9 @@ module tritri_pipeline_w24_general_path (
     wire  [7:0] front_end_edges_bits;
     wire  base_clock;
     wire  base_reset;
-    wire  base_advance;
+    wire  base__advance;
+    wire  base__hold_if_advance;
+    wire  base__hold_if_still;
     wire  base_load_ahead;
     wire  [31:0] base_id_in;
     wire  [23:0] base_vertices_in_0;
@@ -882,7 +886,9 @@ module tritri_pipeline_w24_general_path (
     tritri_pipeline_w24_base_polygon u_base(
         .clock(base_clock),
         .reset(base_reset),
-        .advance(base_advance),
+        .advance(base__advance),
+        .hold_if_advance(base__hold_if_advance),
+        .hold_if_still(base__hold_if_still),
         .load_ahead(base_load_ahead),
         .id_in(base_id_in),
         .vertices_in_0(base_vertices_in_0),
@@ -1628,8 +1634,8 @@ module tritri_pipeline_w24_general_path (
     assign pair_valid_to_sides_advance = advance;
     assign pair_valid_to_out_reset = reset;
     assign pair_valid_to_out_advance = advance;
-    assign base_id_advance = advance_copies_12;
-    assign stream_id_advance = advance_copies_12;
+    assign base_id_advance = advance_copies_11;
+    assign stream_id_advance = advance_copies_11;
     assign plane_side_t1_advance = advance_copies_0;
     assign plane_side_t2_advance = advance_copies_1;
     assign align_t1_advance = advance_copies_2;
@@ -1788,7 +1794,9 @@ module tritri_pipeline_w24_general_path (
     assign front_end_vertices_in_7 = input_vertices_7_q;
     assign front_end_vertices_in_8 = input_vertices_8_q;
     assign base_reset = reset;
-    assign base_advance = advance_copies_11;
+    assign base__advance = base_advance;
+    assign base__hold_if_advance = base_hold_if_advance;
+    assign base__hold_if_still = base_hold_if_still;
     assign base_load_ahead = record_load_q;
     assign base_id_in = record_id_q;
     assign base_degenerate_in = front_end_degenerate;

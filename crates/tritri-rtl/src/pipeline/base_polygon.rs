@@ -7,12 +7,14 @@
 //!
 //! `load_ahead` is the load decision an enabled clock edge early (the
 //! record arriving next is valid and has `BSET`). The registers of each
-//! group below (T1's three vertices, then the rest) take it from a
-//! [`RegisterCopy`] of their own, with `advance`: one load register
-//! drove some 150 enables across the chip (the W = 8 pipeline's critical
-//! path with nextpnr's seed 2, 6.7 of 7.5 ns routing).
+//! group below (each of T1's three vertices, its normal with the rest, and
+//! its id) load when `advance` is high and a [`LoadEnable`] of their own
+//! says so: one load register drove some 150 enables across the chip (the
+//! W = 8 pipeline's critical path with nextpnr's seed 2, 6.7 of 7.5 ns
+//! routing), and with a copy of the load per group, one copy of `hold`
+//! still reached every group (W = 16 shared, seed 2: 7.4 ns of routing).
 
-use crate::arith::register_copy::RegisterCopy;
+use crate::pipeline::load_enable::LoadEnable;
 use crate::pipeline::ID_BITS;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -22,8 +24,14 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     pub clock: Signal<In, Clock>,
     /// Synchronous, active high: no load pending.
     pub reset: Signal<In, Bit>,
+    /// `advance` before `hold`, and `hold` next clock if `advance` is high
+    /// this clock and if it is low (the hold forecast's registers; a top
+    /// that never holds ties both low).
     pub advance: Signal<In, Bit>,
-    /// The next enabled edge brings a record to load (module doc).
+    pub hold_if_advance: Signal<In, Bit>,
+    pub hold_if_still: Signal<In, Bit>,
+    /// The next edge where the pipeline moves brings a record to load
+    /// (module doc).
     pub load_ahead: Signal<In, Bit>,
     pub id_in: Signal<In, Bits<ID_BITS>>,
     pub vertices_in: [Signal<In, Bits<W>>; 9],
@@ -57,9 +65,10 @@ pub struct BasePolygon<const W: usize, const D: usize, const C: usize> {
     segment_low_q: DFF<Bits<2>>,
     segment_high_q: DFF<Bits<2>>,
     edges_bits_q: DFF<Bits<8>>,
-    /// `load_ahead`, registered: for vertex `j` (`j < 3`), then for the
-    /// normal, its flags and the rest.
-    load_copy: [RegisterCopy<Bit>; 4],
+    /// Whether to load at the next edge where `advance` is high: for
+    /// vertex `j` (`j < 3`), then for the normal, its flags and the rest,
+    /// then for the id.
+    loads: [LoadEnable; 5],
 }
 
 impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BasePolygon<W, D, C> {
@@ -77,7 +86,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit for BaseP
             segment_low_q,
             segment_high_q,
             edges_bits_q,
-            load_copy
+            loads
         );
     }
 }
@@ -107,30 +116,31 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
             self.normal_zero_q[k].clock.next = self.clock.val();
             self.normal_zero_q[k].d.next = self.normal_zero_q[k].q.val();
         }
-        for g in 0..4 {
-            self.load_copy[g].clock.next = self.clock.val();
-            self.load_copy[g].reset.next = self.reset.val();
-            self.load_copy[g].advance.next = self.advance.val();
-            self.load_copy[g].d.next = self.load_ahead.val();
+        for g in 0..5 {
+            self.loads[g].clock.next = self.clock.val();
+            self.loads[g].reset.next = self.reset.val();
+            self.loads[g].advance.next = self.advance.val();
+            self.loads[g].load_ahead.next = self.load_ahead.val();
+            self.loads[g].hold_if_advance.next = self.hold_if_advance.val();
+            self.loads[g].hold_if_still.next = self.hold_if_still.val();
         }
         // rust-hdl's hdl_gen takes no computed index: one block per vertex.
-        if self.advance.val() && self.load_copy[0].q.val() {
+        if self.advance.val() && self.loads[0].load.val() {
             for i in 0..3 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
             }
         }
-        if self.advance.val() && self.load_copy[1].q.val() {
+        if self.advance.val() && self.loads[1].load.val() {
             for i in 3..6 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
             }
         }
-        if self.advance.val() && self.load_copy[2].q.val() {
+        if self.advance.val() && self.loads[2].load.val() {
             for i in 6..9 {
                 self.vertices_q[i].d.next = self.vertices_in[i].val();
             }
         }
-        if self.advance.val() && self.load_copy[3].q.val() {
-            self.id_q.d.next = self.id_in.val();
+        if self.advance.val() && self.loads[3].load.val() {
             self.degenerate_q.d.next = self.degenerate_in.val();
             self.dominant_axis_q.d.next = self.dominant_axis_in.val();
             self.segment_low_q.d.next = self.segment_low_in.val();
@@ -141,6 +151,9 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
                 self.normal_negative_q[k].d.next = self.normal_negative_in[k].val();
                 self.normal_zero_q[k].d.next = self.normal_zero_in[k].val();
             }
+        }
+        if self.advance.val() && self.loads[4].load.val() {
+            self.id_q.d.next = self.id_in.val();
         }
         self.id.next = self.id_q.q.val();
         self.degenerate.next = self.degenerate_q.q.val();

@@ -99,9 +99,10 @@ const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 /// The groups of units with an enable of their own (`advance_copies`):
 /// each plane side, alignment and the interval overlap, orient3d's
 /// operands, each orient3d, the decision, the front end, the input
-/// vertices, T1's and T2's vertices to the operands, the base polygon,
-/// and the ids' delay lines (the update's literal 13).
-pub const ADVANCE_COPIES: usize = 13;
+/// vertices, T1's and T2's vertices to the operands, and the ids' delay
+/// lines (the update's literal 12). The base polygon forms its groups'
+/// enables itself (`base_advance`).
+pub const ADVANCE_COPIES: usize = 12;
 
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
@@ -147,7 +148,13 @@ crate::pipeline_ports! {
         /// and the valid bits. A top ties them all to `advance`, or drives
         /// each from a register of its own, so that no one net reaches
         /// every register ([`super::hold_register`]).
-        pub advance_copies: [Signal<In, Bit>; 13],
+        pub advance_copies: [Signal<In, Bit>; 12],
+        /// The base polygon's enables, from their parts: `advance` before
+        /// `hold`, and `hold` next clock if `advance` is high this clock
+        /// and if it is low (a top that never holds ties these two low).
+        pub base_advance: Signal<In, Bit>,
+        pub base_hold_if_advance: Signal<In, Bit>,
+        pub base_hold_if_still: Signal<In, Bit>,
         input_vertices: [DelayLine<Bits<W>, INPUT_LATENCY>; 9],
         record_valid: ValidLine<RECORD_STAGE>,
         record_bset: DelayLine<Bit, RECORD_STAGE>,
@@ -304,8 +311,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.pair_valid_to_sides.advance.next = self.advance.val();
         self.pair_valid_to_out.reset.next = self.reset.val();
         self.pair_valid_to_out.advance.next = self.advance.val();
-        self.base_id.advance.next = self.advance_copies[12].val();
-        self.stream_id.advance.next = self.advance_copies[12].val();
+        self.base_id.advance.next = self.advance_copies[11].val();
+        self.stream_id.advance.next = self.advance_copies[11].val();
         self.plane_side_t1.advance.next = self.advance_copies[0].val();
         self.plane_side_t2.advance.next = self.advance_copies[1].val();
         self.align_t1.advance.next = self.advance_copies[2].val();
@@ -372,7 +379,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
 
         // Base polygon (thesis: BSET latches the record into its registers).
         self.base.reset.next = self.reset.val();
-        self.base.advance.next = self.advance_copies[11].val();
+        self.base.advance.next = self.base_advance.val();
+        self.base.hold_if_advance.next = self.base_hold_if_advance.val();
+        self.base.hold_if_still.next = self.base_hold_if_still.val();
         self.base.load_ahead.next = self.record_load.q.val();
         self.base.id_in.next = self.record_id.q.val();
         self.base.degenerate_in.next = self.front_end.degenerate.val();

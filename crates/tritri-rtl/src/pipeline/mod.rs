@@ -13,6 +13,7 @@ pub mod general_path;
 pub mod hold_forecast;
 pub mod hold_register;
 pub mod interval_overlap;
+pub mod load_enable;
 pub mod normal;
 pub mod orient3d_operands;
 pub mod pipeline_for_width;

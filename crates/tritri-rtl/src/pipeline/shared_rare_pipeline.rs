@@ -71,8 +71,8 @@ const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENC
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
-/// The update's literals: copies 1 to 13 are the general path's, 14 the job's normals and axis.
-const _: () = assert!(ADVANCE_COPIES == 13);
+/// The update's literals: copies 1 to 12 are the general path's, 13 the job's normals and axis.
+const _: () = assert!(ADVANCE_COPIES == 12);
 /// The update's literals 25 and 26: one offer for each of the unit's
 /// copies, and the last for its `in_valid`.
 const _: () = assert!(IN_VALID_COPIES == 25);
@@ -140,11 +140,13 @@ crate::pipeline_ports! {
         forecast: HoldForecast,
         /// `hold`, one copy per group of registers: the general path's
         /// `advance` (0, with this top's rare bits), its `advance_copies`
-        /// (1 to 13; the job's segment ends and degenerate flags ride on 4,
+        /// (1 to 12; the job's segment ends and degenerate flags ride on 4,
         /// the operands', T1's and T2's vertices on 10 and 11, as the
         /// general path delays the same fields on them and synthesis shares
-        /// the lines), and the job's normals and axis (14).
-        holds: [HoldRegister; 15],
+        /// the lines), and the job's normals and axis (13). The base
+        /// polygon works out its own from the forecast, beside each group
+        /// ([`super::load_enable`]).
+        holds: [HoldRegister; 14],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -234,7 +236,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.forecast.others_if_still.next = self.hold_others_still.val();
         self.hold_request.next = self.forecast.request_if_advance.val();
         self.hold_request_still.next = self.forecast.request_if_still.val();
-        for i in 0..15 {
+        for i in 0..14 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -248,9 +250,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unused_ready.next = self.rare_cases.ready.val();
         self.moving.next = self.advance.val() && !self.holds[0].hold.val();
         self.path.advance.next = self.moving.val();
-        for i in 0..13 {
+        for i in 0..12 {
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
         }
+        self.path.base_advance.next = self.advance.val();
+        self.path.base_hold_if_advance.next = self.forecast.if_advance.val();
+        self.path.base_hold_if_still.next = self.forecast.if_still.val();
 
         // The job's vertices, segment ends and the degenerate flags share
         // the copies of the general path's lines to the operands: it
@@ -275,9 +280,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
         for i in 0..12 {
             self.normals_to_job[i].clock.next = self.clock.val();
-            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[14].hold.val();
+            self.normals_to_job[i].advance.next = self.advance.val() && !self.holds[13].hold.val();
         }
-        self.axis_to_job.advance.next = self.advance.val() && !self.holds[14].hold.val();
+        self.axis_to_job.advance.next = self.advance.val() && !self.holds[13].hold.val();
         self.rare_queued.advance.next = self.moving.val();
         self.rare_queued.reset.next = self.reset.val();
         self.rare_to_job.advance.next = self.moving.val();

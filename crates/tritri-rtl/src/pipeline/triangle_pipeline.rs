@@ -91,9 +91,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         );
         self.path.reset.next = self.reset.val();
         self.path.advance.next = self.advance.val();
-        for i in 0..13 {
+        for i in 0..12 {
             self.path.advance_copies[i].next = self.advance.val();
         }
+        self.path.base_advance.next = self.advance.val();
+        self.path.base_hold_if_advance.next = false;
+        self.path.base_hold_if_still.next = false;
         self.coplanar.advance.next = self.advance.val();
         self.degenerate_pair.advance.next = self.advance.val();
         self.coplanar_to_decision.advance.next = self.advance.val();
