@@ -193,6 +193,12 @@ pub struct Args {
     /// on the whole W = 16 pipeline with --rare-cases shared.
     #[arg(long, value_parser = Placer::NAMES)]
     placer: Option<String>,
+    /// With --synth ecp5: the heap placer's weight of timing against wire
+    /// length [default: 10, nextpnr's]. 30 left a ninth as many paths
+    /// short of 150 MHz on the whole W = 16 pipeline with --rare-cases
+    /// shared (router1).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    timing_weight: Option<u32>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
     #[arg(long, conflicts_with_all = ["classifier", "setup"])]
@@ -453,6 +459,12 @@ impl Args {
         }
         if self.placer.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--placer applies to --synth ecp5".into());
+        }
+        if self.timing_weight.is_some() && self.synth.as_deref() != Some("ecp5") {
+            return Err("--timing-weight applies to --synth ecp5".into());
+        }
+        if self.timing_weight.is_some() && self.placer.as_deref() == Some("static") {
+            return Err("--timing-weight is the heap placer's (not --placer static)".into());
         }
         if self.dsp.is_some() && !self.has_multipliers() {
             return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
@@ -806,6 +818,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 .as_deref()
                 .and_then(Placer::from_name)
                 .unwrap_or_default();
+            options.timing_weight = args.timing_weight.unwrap_or(options.timing_weight);
             let report = route_ecp5(&dir, top, &options)
                 .with_context(|| format!("place and route of {top}"))?;
             std::fs::write(

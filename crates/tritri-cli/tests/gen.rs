@@ -183,6 +183,48 @@ fn dsp_mapping_options_are_checked() {
             "gen",
             "--width",
             "8",
+            "--timing-weight",
+            "30",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--timing-weight applies to --synth ecp5"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--synth",
+            "ecp5",
+            "--placer",
+            "static",
+            "--timing-weight",
+            "30",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--timing-weight is the heap placer's"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
+            "--synth",
+            "ecp5",
+            "--timing-weight",
+            "0",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--timing-weight", "0"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
             "--synth",
             "ecp5",
             "--router",

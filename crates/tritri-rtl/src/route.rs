@@ -128,6 +128,10 @@ impl Placer {
     }
 }
 
+/// nextpnr's own weight of timing against wire length in its heap
+/// placer (`--placer-heap-timingweight`), the flow's default.
+pub const NEXTPNR_TIMING_WEIGHT: u32 = 10;
+
 /// How to run nextpnr.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ecp5Options {
@@ -137,6 +141,11 @@ pub struct Ecp5Options {
     pub seed: u64,
     pub router: Router,
     pub placer: Placer,
+    /// The heap placer's timing weight. On the whole W = 16 pipeline with
+    /// the rare cases shared (router1, seed 1), 30 left 9 register inputs
+    /// short of 150 MHz (141.9 MHz) where 10 left 79 (131.1 MHz), on the
+    /// same netlist (rtl-out/README.md).
+    pub timing_weight: u32,
 }
 
 impl Default for Ecp5Options {
@@ -147,6 +156,7 @@ impl Default for Ecp5Options {
             seed: 1,
             router: Router::default(),
             placer: Placer::default(),
+            timing_weight: NEXTPNR_TIMING_WEIGHT,
         }
     }
 }
@@ -172,9 +182,10 @@ pub struct RouteReport {
     /// nextpnr's placement seed: a route's Fmax moves by several per cent
     /// from seed to seed on the same netlist, so a figure names its seed.
     pub seed: u64,
-    /// And its router and placer.
+    /// And its router, placer and the heap placer's timing weight.
     pub router: Router,
     pub placer: Placer,
+    pub timing_weight: u32,
     pub critical_path: Option<CriticalPath>,
     /// Register inputs (each cell's port once) whose latest arrival exceeds
     /// the target period; `None` without nextpnr's detailed timing.
@@ -218,7 +229,11 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     // Deliberate copies of a register stay apart (register_copy.rs), and
     // the copies of `hold` and the base polygon's loads keep their logic to
     // themselves (hold_register.rs, load_enable.rs).
-    for kept in [REGISTER_COPY_MODULE, HOLD_REGISTER_MODULE, LOAD_ENABLE_MODULE] {
+    for kept in [
+        REGISTER_COPY_MODULE,
+        HOLD_REGISTER_MODULE,
+        LOAD_ENABLE_MODULE,
+    ] {
         if files.contains(kept) {
             script.push_str(&format!("setattr -mod -set keep_hierarchy 1 *{kept}*\n"));
         }
@@ -260,6 +275,10 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
         .args(options.router.flags())
         .args(["--placer", options.placer.name()])
         .args([
+            "--placer-heap-timingweight",
+            &options.timing_weight.to_string(),
+        ])
+        .args([
             "--json",
             &netlist,
             "--freq",
@@ -282,6 +301,7 @@ pub fn route_ecp5(dir: &Path, top: &str, options: &Ecp5Options) -> Result<RouteR
     Ok(RouteReport {
         router: options.router,
         placer: options.placer,
+        timing_weight: options.timing_weight,
         ..report
     })
 }
@@ -372,7 +392,7 @@ struct End {
 }
 
 /// nextpnr's `--report` JSON of a route with `seed`, read into a
-/// [`RouteReport`] (of the default router and placer).
+/// [`RouteReport`] (of the default router, placer and timing weight).
 pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, String> {
     let report: Report = serde_json::from_str(json).map_err(|e| e.to_string())?;
     let (_, fmax) = report.fmax.iter().next().ok_or("no clock in `fmax`")?;
@@ -406,6 +426,7 @@ pub fn parse_report(top: &str, seed: u64, json: &str) -> Result<RouteReport, Str
         seed,
         router: Router::default(),
         placer: Placer::default(),
+        timing_weight: NEXTPNR_TIMING_WEIGHT,
         critical_path,
         luts: used("TRELLIS_COMB"),
         flip_flops: used("TRELLIS_FF"),
@@ -428,6 +449,9 @@ pub fn route_table(reports: &[RouteReport]) -> String {
         }
         if r.placer != Placer::default() {
             seed.push_str(&format!(", {}", r.placer.name()));
+        }
+        if r.timing_weight != NEXTPNR_TIMING_WEIGHT {
+            seed.push_str(&format!(", timing weight {}", r.timing_weight));
         }
         let (path, levels, split) = match &r.critical_path {
             Some(p) => (
@@ -513,6 +537,13 @@ mod tests {
         assert!(
             route_table(&[static_placed]).contains("| u | 48.8 | 3, router1, static | - | 643 |")
         );
+        let weighted = RouteReport {
+            router: Router::Router1,
+            timing_weight: 30,
+            ..parse_report("u", 1, json).unwrap()
+        };
+        assert!(route_table(&[weighted])
+            .contains("| u | 48.8 | 1, router1, timing weight 30 | - | 643 |"));
     }
 
     #[test]

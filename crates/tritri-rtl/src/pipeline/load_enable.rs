@@ -105,7 +105,11 @@ mod tests {
             } else {
                 (
                     if advance { if_advance } else { if_still },
-                    if advance && !hold { load_ahead } else { pending },
+                    if advance && !hold {
+                        load_ahead
+                    } else {
+                        pending
+                    },
                 )
             };
             hold = next_hold;
