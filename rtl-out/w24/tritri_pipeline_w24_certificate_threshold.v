@@ -78,7 +78,7 @@ module tritri_pipeline_w24_certificate_threshold (
     reg [49:0] normal_l1_q;
     reg [30:0] small_part_q;
     reg [7:0] edges_bits_q2;
-    reg [26:0] offset_lead_q;
+    reg [7:0] offset_bits_q;
     reg [50:0] normal_part_q;
     reg [30:0] small_part_q2;
     reg [7:0] edges_bits_q3;
@@ -86,7 +86,7 @@ module tritri_pipeline_w24_certificate_threshold (
     reg [54:0] partial_q;
     reg [54:0] y_q;
     reg [54:0] partial_q2;
-    wire [7:0] offset_bits = {3'd0, |(offset_lead_q & 27'h7ff0000), |(offset_lead_q & 27'h700ff00), |(offset_lead_q & 27'hf0f0f0), |(offset_lead_q & 27'h4cccccc), |(offset_lead_q & 27'h2aaaaaa)};
+    wire [7:0] offset_bits = {3'd0, |(offset_lead & 27'h7ff0000), |(offset_lead & 27'h700ff00), |(offset_lead & 27'hf0f0f0), |(offset_lead & 27'h4cccccc), |(offset_lead & 27'h2aaaaaa)};
     wire [54:0] y_one = 55'd1 << exponent_q;
     initial begin
         offset_l1_q = 26'd0;
@@ -99,7 +99,7 @@ module tritri_pipeline_w24_certificate_threshold (
         normal_l1_q = 50'd0;
         small_part_q = 31'd0;
         edges_bits_q2 = 8'd0;
-        offset_lead_q = 27'd0;
+        offset_bits_q = 8'd0;
         normal_part_q = 51'd0;
         small_part_q2 = 31'd0;
         edges_bits_q3 = 8'd0;
@@ -121,11 +121,11 @@ module tritri_pipeline_w24_certificate_threshold (
             normal_l1_q <= normal_01_q + normal_2_q;
             small_part_q <= {3'd0, offset_l1_q, 2'd0} + edge_term_q;
             edges_bits_q2 <= edges_bits_q;
-            offset_lead_q <= offset_lead;
+            offset_bits_q <= offset_bits;
             normal_part_q <= {1'b0, normal_l1_q} + {20'd0, normal_l1_q[49:19]};
             small_part_q2 <= small_part_q;
             edges_bits_q3 <= edges_bits_q2;
-            exponent_q <= offset_bits + edges_bits_q3;
+            exponent_q <= offset_bits_q + edges_bits_q3;
             partial_q <= {4'd0, normal_part_q} + {24'd0, small_part_q2};
             y_q <= y_one | (y_one >> 19);
             partial_q2 <= partial_q;

@@ -62,7 +62,7 @@ module tritri_pipeline_w24_coordinate_compare (
         equal_d = equal_q;
         if (advance) begin
             less_d = (b ^ reversed_order) < (a ^ reversed_order);
-            equal_d = a == b;
+            equal_d = ~|(a ^ b);
         end
     end
 

@@ -4,8 +4,9 @@
 //
 // Purpose:    `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences,
 //             in five register stages, each at most one carry chain: the six
-//             magnitudes; the two sums of magnitudes; their sum; its leading
-//             one; the index. Part of tritri_pipeline_w24. Instances (3):
+//             magnitudes; the two sums of magnitudes; their sum; `2 sum + 1`
+//             and the ORs of its groups of four bits; the leading one and its
+//             index. Part of tritri_pipeline_w24. Instances (3):
 //             path.front_end.normal_unit.edge_bits, path.orient3d_0.edges_bits,
 //             path.orient3d_1.edges_bits.
 //
@@ -50,37 +51,38 @@ module tritri_pipeline_w24_edges_bit_length (
     reg [25:0] l1_b_q;
     reg [26:0] sum_q;
     wire [27:0] sum_t = {sum_q, 1'b1};
+    reg [27:0] sum_t_q;
+    reg [6:1] sum_any_q;
     wire [27:0] sum_lead = {
-        sum_t[27],
-        sum_t[26] & ~|sum_t[27:27],
-        sum_t[25] & ~|sum_t[27:26],
-        sum_t[24] & ~|sum_t[27:25],
-        sum_t[23] & ~|sum_t[27:24],
-        sum_t[22] & ~|sum_t[27:23],
-        sum_t[21] & ~|sum_t[27:22],
-        sum_t[20] & ~|sum_t[27:21],
-        sum_t[19] & ~|sum_t[27:20],
-        sum_t[18] & ~|sum_t[27:19],
-        sum_t[17] & ~|sum_t[27:18],
-        sum_t[16] & ~|sum_t[27:17],
-        sum_t[15] & ~|sum_t[27:16],
-        sum_t[14] & ~|sum_t[27:15],
-        sum_t[13] & ~|sum_t[27:14],
-        sum_t[12] & ~|sum_t[27:13],
-        sum_t[11] & ~|sum_t[27:12],
-        sum_t[10] & ~|sum_t[27:11],
-        sum_t[9] & ~|sum_t[27:10],
-        sum_t[8] & ~|sum_t[27:9],
-        sum_t[7] & ~|sum_t[27:8],
-        sum_t[6] & ~|sum_t[27:7],
-        sum_t[5] & ~|sum_t[27:6],
-        sum_t[4] & ~|sum_t[27:5],
-        sum_t[3] & ~|sum_t[27:4],
-        sum_t[2] & ~|sum_t[27:3],
-        sum_t[1] & ~|sum_t[27:2],
-        sum_t[0] & ~|sum_t[27:1]
+        sum_t_q[27],
+        sum_t_q[26] & ~|sum_t_q[27:27],
+        sum_t_q[25] & ~|sum_t_q[27:26],
+        sum_t_q[24] & ~|sum_t_q[27:25],
+        sum_t_q[23] & ~|sum_any_q[6:6],
+        sum_t_q[22] & ~|sum_t_q[23:23] & ~|sum_any_q[6:6],
+        sum_t_q[21] & ~|sum_t_q[23:22] & ~|sum_any_q[6:6],
+        sum_t_q[20] & ~|sum_t_q[23:21] & ~|sum_any_q[6:6],
+        sum_t_q[19] & ~|sum_any_q[6:5],
+        sum_t_q[18] & ~|sum_t_q[19:19] & ~|sum_any_q[6:5],
+        sum_t_q[17] & ~|sum_t_q[19:18] & ~|sum_any_q[6:5],
+        sum_t_q[16] & ~|sum_t_q[19:17] & ~|sum_any_q[6:5],
+        sum_t_q[15] & ~|sum_any_q[6:4],
+        sum_t_q[14] & ~|sum_t_q[15:15] & ~|sum_any_q[6:4],
+        sum_t_q[13] & ~|sum_t_q[15:14] & ~|sum_any_q[6:4],
+        sum_t_q[12] & ~|sum_t_q[15:13] & ~|sum_any_q[6:4],
+        sum_t_q[11] & ~|sum_any_q[6:3],
+        sum_t_q[10] & ~|sum_t_q[11:11] & ~|sum_any_q[6:3],
+        sum_t_q[9] & ~|sum_t_q[11:10] & ~|sum_any_q[6:3],
+        sum_t_q[8] & ~|sum_t_q[11:9] & ~|sum_any_q[6:3],
+        sum_t_q[7] & ~|sum_any_q[6:2],
+        sum_t_q[6] & ~|sum_t_q[7:7] & ~|sum_any_q[6:2],
+        sum_t_q[5] & ~|sum_t_q[7:6] & ~|sum_any_q[6:2],
+        sum_t_q[4] & ~|sum_t_q[7:5] & ~|sum_any_q[6:2],
+        sum_t_q[3] & ~|sum_any_q[6:1],
+        sum_t_q[2] & ~|sum_t_q[3:3] & ~|sum_any_q[6:1],
+        sum_t_q[1] & ~|sum_t_q[3:2] & ~|sum_any_q[6:1],
+        sum_t_q[0] & ~|sum_t_q[3:1] & ~|sum_any_q[6:1]
     };
-    reg [27:0] lead_q;
     initial begin
         abs_a0_q = 25'd0;
         abs_a1_q = 25'd0;
@@ -91,7 +93,8 @@ module tritri_pipeline_w24_edges_bit_length (
         l1_a_q = 26'd0;
         l1_b_q = 26'd0;
         sum_q = 27'd0;
-        lead_q = 28'd0;
+        sum_t_q = 28'd0;
+        sum_any_q = 6'd0;
         bits = 8'd0;
     end
     always @(posedge clock) begin
@@ -105,8 +108,9 @@ module tritri_pipeline_w24_edges_bit_length (
             l1_a_q <= {1'b0, abs_a0_q} + {1'b0, abs_a1_q} + {1'b0, abs_a2_q};
             l1_b_q <= {1'b0, abs_b0_q} + {1'b0, abs_b1_q} + {1'b0, abs_b2_q};
             sum_q <= {1'b0, l1_a_q} + {1'b0, l1_b_q};
-            lead_q <= sum_lead;
-            bits <= {3'd0, |(lead_q & 28'hfff0000), |(lead_q & 28'hf00ff00), |(lead_q & 28'hf0f0f0), |(lead_q & 28'hccccccc), |(lead_q & 28'haaaaaaa)};
+            sum_t_q <= sum_t;
+            sum_any_q <= {|sum_t[27:24], |sum_t[23:20], |sum_t[19:16], |sum_t[15:12], |sum_t[11:8], |sum_t[7:4]};
+            bits <= {3'd0, |(sum_lead & 28'hfff0000), |(sum_lead & 28'hf00ff00), |(sum_lead & 28'hf0f0f0), |(sum_lead & 28'hccccccc), |(sum_lead & 28'haaaaaaa)};
         end
     end
 endmodule  // tritri_pipeline_w24_edges_bit_length

@@ -20,9 +20,9 @@
 //!   `|P| - 1`) is at least `T`, compared as `P >= T` or `P <= !T` by the
 //!   sign, each in two halves.
 //!
-//! A bit length is read from a leading one: the value smeared downwards
-//! (`t | t >> 1`, `>> 2`, ...), then `t & ~(t >> 1)`; of `2 v + 1`, so that
-//! the one sits at bit `bitlen v`, and each bit of that index is an OR of
+//! A bit length is read from the leading one of `2 v + 1`, so that the one
+//! sits at bit `bitlen v`, found over two stages from groups of four bits
+//! (`two_stage_leading_one_verilog`); each bit of its index is an OR of
 //! the one-hot through a constant mask. The first two blocks are
 //! primitives with custom Verilog and an exact model of each register,
 //! evaluated at clock edges, like the adders (`super::adder`): rust-hdl
@@ -77,34 +77,6 @@ fn widened_sum_verilog(terms: [String; 3]) -> String {
     terms.map(|t| format!("{{1'b0, {t}}}")).join(" + ")
 }
 
-/// Verilog: `{name}_lead`, the one-hot at bit `bitlen v` of a `width`-bit
-/// `v` (the leading one of `2 v + 1`): each bit is one where `2 v + 1` is
-/// one and every bit above it zero. Written bit by bit as that wide OR, so
-/// that synthesis builds each as a tree of LUT4s (three levels at the
-/// certificate's widths); written as a smear (`t | t >> 1`, `>> 2`, ...)
-/// it became a chain of six LUTs, the critical path of the whole W = 16
-/// pipeline with the rare cases shared (117.1 MHz, `offset_lead_q`).
-fn leading_one_verilog(name: &str, v: &str, width: usize) -> String {
-    let l = width + 1;
-    let mut text = format!("wire [{}:0] {name}_t = {{{v}, 1'b1}};\n", l - 1);
-    let bits: Vec<String> = (0..l)
-        .rev()
-        .map(|i| {
-            if i == l - 1 {
-                format!("{name}_t[{i}]")
-            } else {
-                format!("{name}_t[{i}] & ~|{name}_t[{}:{}]", l - 1, i + 1)
-            }
-        })
-        .collect();
-    text += &format!(
-        "wire [{}:0] {name}_lead = {{\n    {}\n}};\n",
-        l - 1,
-        bits.join(",\n    ")
-    );
-    text
-}
-
 /// Bits of a group of the two-stage leading one.
 const LEAD_GROUP_BITS: usize = 4;
 
@@ -113,11 +85,15 @@ const LEAD_GROUP_BITS: usize = 4;
 /// the OR of its group `g` of [`LEAD_GROUP_BITS`] bits (from bit 0; the
 /// lowest group's is never needed), are registered; then `{name}_lead`,
 /// the one-hot at bit `bitlen v`, takes each bit from its group's higher
-/// bits and the higher groups' ORs: at most eight inputs,
-/// two LUT levels, where the one-stage form of [`leading_one_verilog`]
-/// has three behind the sum that forms `v` (the whole W = 16 shared
-/// pipeline's critical path at 127.6 MHz, `offset_lead_q`). Returns the
-/// declarations and the stage-1 statements.
+/// bits and the higher groups' ORs: at most eight inputs, two LUT levels.
+/// The first stage holds the sum that forms `v` and one LUT level.
+///
+/// Written in one stage, each bit a wide OR of all the bits above, it took
+/// three LUT levels behind the sum (the whole W = 16 shared pipeline's
+/// critical path at 127.6 MHz, the threshold's `offset_lead_q`; and at
+/// 138.7 MHz, timing weight 30, `ke`'s `lead_q`); as a smear (`t | t >> 1`,
+/// `>> 2`, ...), a chain of six (117.1 MHz). Returns the declarations and
+/// the first stage's statements.
 fn two_stage_leading_one_verilog(name: &str, v: &str, width: usize) -> (String, String) {
     let l = width + 1;
     let groups = l.div_ceil(LEAD_GROUP_BITS);
@@ -175,7 +151,8 @@ fn index_verilog(lead: &str, width: usize) -> String {
 
 /// `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences, in five
 /// register stages, each at most one carry chain: the six magnitudes; the
-/// two sums of magnitudes; their sum; its leading one; the index.
+/// two sums of magnitudes; their sum; `2 sum + 1` and the ORs of its groups
+/// of four bits; the leading one and its index.
 #[derive(LogicBlock)]
 pub struct EdgesBitLength<const D: usize> {
     pub clock: Signal<In, Clock>,
@@ -251,6 +228,7 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
             }
         }
         let l1 = |v: &str| widened_sum_verilog(std::array::from_fn(|k| format!("abs_{v}{k}_q")));
+        let lead = two_stage_leading_one_verilog("sum", "sum_q", sum_bits);
         Verilog::Custom(format!(
             "\
 // ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in five
@@ -258,12 +236,12 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
 {magnitudes}{registers}reg [{l1m}:0] l1_a_q;
 reg [{l1m}:0] l1_b_q;
 reg [{s1}:0] sum_q;
-{lead}reg [{s1p}:0] lead_q;
-initial begin
+{lead}initial begin
 {initial}    l1_a_q = {l1_bits}'d0;
     l1_b_q = {l1_bits}'d0;
     sum_q = {sum_bits}'d0;
-    lead_q = {sum_bits_p}'d0;
+    sum_t_q = {sum_bits_p}'d0;
+    sum_any_q = {groups}'d0;
     bits = 8'd0;
 end
 always @(posedge clock) begin
@@ -271,18 +249,18 @@ always @(posedge clock) begin
 {updates}        l1_a_q <= {l1_a};
         l1_b_q <= {l1_b};
         sum_q <= {{1'b0, l1_a_q}} + {{1'b0, l1_b_q}};
-        lead_q <= sum_lead;
-        bits <= {index};
+        {lead_stage}        bits <= {index};
     end
 end
 ",
             l1_a = l1("a"),
             l1_b = l1("b"),
-            lead = leading_one_verilog("sum", "sum_q", sum_bits),
-            index = index_verilog("lead_q", sum_bits + 1),
+            lead = lead.0,
+            lead_stage = lead.1,
+            groups = (sum_bits + 1).div_ceil(LEAD_GROUP_BITS) - 1,
+            index = index_verilog("sum_lead", sum_bits + 1),
             l1m = l1_bits - 1,
             s1 = sum_bits - 1,
-            s1p = sum_bits,
             sum_bits_p = sum_bits + 1,
         ))
     }
@@ -297,7 +275,8 @@ end
 ///    summed; `2^(ke + 2) + 16`;
 /// 2. `2 Sw + 1` and the ORs of its groups of four bits; `X`
 ///    (`tritri_geom::certificate::normal_l1`); `4 Sw + 2^(ke + 2) + 16`;
-/// 3. the leading one of `2 Sw + 1`; `X + (X >> 19)`;
+/// 3. `bitlen Sw`, the index of the leading one of `2 Sw + 1` (two LUT
+///    levels each); `X + (X >> 19)`;
 /// 4. the exponent `bitlen Sw + ke`; the two parts' sum;
 /// 5. `Y + (Y >> 19)`, a one shifted by the exponent;
 /// 6. `T`.
@@ -305,7 +284,10 @@ end
 /// (A first version took `w` itself and summed its magnitudes in the
 /// stage that formed them, two carry chains in series: the W = 8
 /// pipeline's critical path on ECP5. The offsets' units now form the
-/// magnitudes beside the differences, `super::subtractor::MagnitudeSubtractor`.)
+/// magnitudes beside the differences, `super::subtractor::MagnitudeSubtractor`.
+/// Stage 3 registered the leading one and stage 4 took its index before
+/// the exponent's carry chain: 5 of the 9 register inputs short of 150 MHz
+/// on the whole W = 16 shared pipeline, timing weight 30.)
 #[derive(LogicBlock)]
 pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> {
     pub clock: Signal<In, Clock>,
@@ -445,7 +427,7 @@ reg [7:0] edges_bits_q;
 {lead}reg [{x1}:0] normal_l1_q;
 reg [{small1}:0] small_part_q;
 reg [7:0] edges_bits_q2;
-reg [{sw}:0] offset_lead_q;
+reg [7:0] offset_bits_q;
 reg [{x}:0] normal_part_q;
 reg [{small1}:0] small_part_q2;
 reg [7:0] edges_bits_q3;
@@ -466,7 +448,7 @@ initial begin
     normal_l1_q = {x}'d0;
     small_part_q = {small}'d0;
     edges_bits_q2 = 8'd0;
-    offset_lead_q = {sw_p}'d0;
+    offset_bits_q = 8'd0;
     normal_part_q = {x_p}'d0;
     small_part_q2 = {small}'d0;
     edges_bits_q3 = 8'd0;
@@ -486,11 +468,11 @@ always @(posedge clock) begin
         {lead_stage}        normal_l1_q <= normal_01_q + normal_2_q;
         small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term_q;
         edges_bits_q2 <= edges_bits_q;
-        offset_lead_q <= offset_lead;
+        offset_bits_q <= offset_bits;
         normal_part_q <= {normal_part};
         small_part_q2 <= small_part_q;
         edges_bits_q3 <= edges_bits_q2;
-        exponent_q <= offset_bits + edges_bits_q3;
+        exponent_q <= offset_bits_q + edges_bits_q3;
         partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q2}};
         y_q <= y_one | (y_one >> 19);
         partial_q2 <= partial_q;
@@ -506,7 +488,7 @@ end
             lead = lead.0,
             lead_stage = lead.1,
             groups = (sw + 1).div_ceil(LEAD_GROUP_BITS) - 1,
-            index = index_verilog("offset_lead_q", sw + 1),
+            index = index_verilog("offset_lead", sw + 1),
             sw1 = sw - 1,
             x1 = x - 1,
             small1 = small - 1,

@@ -67,7 +67,11 @@ impl<const W: usize> Logic for CoordinateCompare<W> {
         if self.advance.val() {
             self.less_q.d.next = (self.b.val() ^ self.reversed_order.val())
                 < (self.a.val() ^ self.reversed_order.val());
-            self.equal_q.d.next = self.a.val() == self.b.val();
+            // As a wide NOR of the differing bits: written `a == b`, Yosys'
+            // `alumacc` took it from the carry chain of `a < b` and then
+            // through three LUTs (W = 16 shared pipeline, timing weight
+            // 30: the critical path, 141.9 MHz, 5.1 of 7.1 ns routing).
+            self.equal_q.d.next = !(self.a.val() ^ self.b.val()).any();
         }
         self.less.next = self.less_q.q.val();
         self.equal.next = self.equal_q.q.val();
