@@ -2,9 +2,10 @@
 //! edge where `advance` is high: a register beside the group, with a copy
 //! of `hold` of its own beside it.
 //!
-//! The load is pending while the record that the pipeline moves next into
-//! the record stage has `BSET`; it moves on with the pipeline (where
-//! `advance` is high and `hold` low), as the record does. The group's
+//! The load is pending while the record at the record stage (the front
+//! end's output, which the base loads) has `BSET`: it is registered from
+//! `load_ahead` where the pipeline moves (`advance` high, `hold` low), as
+//! that record moves in. The group's
 //! enable is then `advance` and the pending load, not `hold`: while the
 //! pipeline holds, the front end's output holds too, so the group loads
 //! the same record again, and the only pair formed with the base then is
