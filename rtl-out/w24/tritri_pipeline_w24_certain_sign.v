@@ -2,8 +2,8 @@
 //
 // Filename:   tritri_pipeline_w24_certain_sign.v
 //
-// Purpose:    The sign of a determinant, registered, and its certificate a
-//             clock later. Part of tritri_pipeline_w24. Instances (8), for
+// Purpose:    The sign of a determinant, registered, and its certificate two
+//             clocks later. Part of tritri_pipeline_w24. Instances (8), for
 //             example: path.orient3d_0.sign, path.orient3d_1.sign,
 //             path.plane_side_t1.sign[0], path.plane_side_t1.sign[1].
 //
@@ -28,10 +28,15 @@ module tritri_pipeline_w24_certain_sign (
 );
 
     // Update code (custom)
-    // The sign of P, registered, and its certificate |P| >= T a clock later:
-    // P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
-    // 6 parts whose results are registered, then combined from the top.
-    wire [73:0] limit = ~threshold;
+    // The sign of P, registered, and its certificate |P| >= T two clocks
+    // later: P and T registered beside the comparisons, then P >= T (P >= 0)
+    // or P <= ~T (P < 0) as unsigned values, each compared in 6 parts
+    // whose results are registered, then combined from the top.
+    reg [73:0] value_q;
+    reg [73:0] threshold_q;
+    wire [73:0] limit = ~threshold_q;
+    // The sign of P registered with the parts' comparisons.
+    reg compared_negative_q;
     reg above_ge_q0;
     reg below_le_q0;
     reg above_ge_q1;
@@ -55,6 +60,9 @@ module tritri_pipeline_w24_certain_sign (
     reg below_ge_q5;
     reg below_le_q5;
     initial begin
+        value_q = 74'd0;
+        threshold_q = 74'd0;
+        compared_negative_q = 1'b0;
         above_ge_q0 = 1'b0;
         below_le_q0 = 1'b0;
         above_ge_q1 = 1'b0;
@@ -85,29 +93,32 @@ module tritri_pipeline_w24_certain_sign (
         if (advance) begin
             negative <= value[73];
             zero <= ~|value;
-            above_ge_q0 <= value[12:0] >= threshold[12:0];
-            below_le_q0 <= value[12:0] <= limit[12:0];
-            above_ge_q1 <= value[25:13] >= threshold[25:13];
-            above_le_q1 <= value[25:13] <= threshold[25:13];
-            below_ge_q1 <= value[25:13] >= limit[25:13];
-            below_le_q1 <= value[25:13] <= limit[25:13];
-            above_ge_q2 <= value[37:26] >= threshold[37:26];
-            above_le_q2 <= value[37:26] <= threshold[37:26];
-            below_ge_q2 <= value[37:26] >= limit[37:26];
-            below_le_q2 <= value[37:26] <= limit[37:26];
-            above_ge_q3 <= value[49:38] >= threshold[49:38];
-            above_le_q3 <= value[49:38] <= threshold[49:38];
-            below_ge_q3 <= value[49:38] >= limit[49:38];
-            below_le_q3 <= value[49:38] <= limit[49:38];
-            above_ge_q4 <= value[61:50] >= threshold[61:50];
-            above_le_q4 <= value[61:50] <= threshold[61:50];
-            below_ge_q4 <= value[61:50] >= limit[61:50];
-            below_le_q4 <= value[61:50] <= limit[61:50];
-            above_ge_q5 <= value[73:62] >= threshold[73:62];
-            above_le_q5 <= value[73:62] <= threshold[73:62];
-            below_ge_q5 <= value[73:62] >= limit[73:62];
-            below_le_q5 <= value[73:62] <= limit[73:62];
-            certain <= negative
+            value_q <= value;
+            threshold_q <= threshold;
+            compared_negative_q <= value_q[73];
+            above_ge_q0 <= value_q[12:0] >= threshold_q[12:0];
+            below_le_q0 <= value_q[12:0] <= limit[12:0];
+            above_ge_q1 <= value_q[25:13] >= threshold_q[25:13];
+            above_le_q1 <= value_q[25:13] <= threshold_q[25:13];
+            below_ge_q1 <= value_q[25:13] >= limit[25:13];
+            below_le_q1 <= value_q[25:13] <= limit[25:13];
+            above_ge_q2 <= value_q[37:26] >= threshold_q[37:26];
+            above_le_q2 <= value_q[37:26] <= threshold_q[37:26];
+            below_ge_q2 <= value_q[37:26] >= limit[37:26];
+            below_le_q2 <= value_q[37:26] <= limit[37:26];
+            above_ge_q3 <= value_q[49:38] >= threshold_q[49:38];
+            above_le_q3 <= value_q[49:38] <= threshold_q[49:38];
+            below_ge_q3 <= value_q[49:38] >= limit[49:38];
+            below_le_q3 <= value_q[49:38] <= limit[49:38];
+            above_ge_q4 <= value_q[61:50] >= threshold_q[61:50];
+            above_le_q4 <= value_q[61:50] <= threshold_q[61:50];
+            below_ge_q4 <= value_q[61:50] >= limit[61:50];
+            below_le_q4 <= value_q[61:50] <= limit[61:50];
+            above_ge_q5 <= value_q[73:62] >= threshold_q[73:62];
+            above_le_q5 <= value_q[73:62] <= threshold_q[73:62];
+            below_ge_q5 <= value_q[73:62] >= limit[73:62];
+            below_le_q5 <= value_q[73:62] <= limit[73:62];
+            certain <= compared_negative_q
                 ? below_le_q5 & (~below_ge_q5 | (below_le_q4 & (~below_ge_q4 | (below_le_q3 & (~below_ge_q3 | (below_le_q2 & (~below_ge_q2 | (below_le_q1 & (~below_ge_q1 | below_le_q0)))))))))
                 : above_ge_q5 & (~above_le_q5 | (above_ge_q4 & (~above_le_q4 | (above_ge_q3 & (~above_le_q3 | (above_ge_q2 & (~above_le_q2 | (above_ge_q1 & (~above_le_q1 | above_ge_q0)))))))));
         end

@@ -7,11 +7,11 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (7), for
-//             example: coplanar_to_decision,
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (8), for
+//             example: path.degenerate_to_decision[0],
+//             path.degenerate_to_decision[1],
 //             path.side_certificates_to_decision[0],
-//             path.side_certificates_to_decision[1],
-//             path.side_certificates_to_decision[2].
+//             path.side_certificates_to_decision[1].
 //
 // Rust unit:  DelayLine<T = bool, N = 19>
 // Latency:    19 clock cycles

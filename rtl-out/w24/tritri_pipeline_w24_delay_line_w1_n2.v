@@ -7,8 +7,8 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (6), for
-//             example: path.front_end.normal_negative_delay[0],
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (10),
+//             for example: path.front_end.normal_negative_delay[0],
 //             path.front_end.normal_negative_delay[1],
 //             path.front_end.normal_negative_delay[2],
 //             path.front_end.normal_zero_delay[0].

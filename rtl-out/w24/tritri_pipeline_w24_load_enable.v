@@ -29,18 +29,24 @@ module tritri_pipeline_w24_load_enable (
 );
 
     // Stub signals
-    reg  hold_d;
-    wire  hold_q;
     wire  hold_clock;
+    wire  hold_reset;
+    wire  hold_advance;
+    wire  hold__if_advance;
+    wire  hold__if_still;
+    wire  hold_hold;
     reg  pending_d;
     wire  pending_q;
     wire  pending_clock;
 
     // Sub module instances
-    tritri_pipeline_w24_dff_1 u_hold_q(
-        .d(hold_d),
-        .q(hold_q),
-        .clock(hold_clock)
+    tritri_pipeline_w24_hold_register u_hold(
+        .clock(hold_clock),
+        .reset(hold_reset),
+        .advance(hold_advance),
+        .if_advance(hold__if_advance),
+        .if_still(hold__if_still),
+        .hold(hold_hold)
     );
     tritri_pipeline_w24_dff_1 u_pending_q(
         .d(pending_d),
@@ -49,14 +55,16 @@ module tritri_pipeline_w24_load_enable (
     );
 
     // Update code
-    assign hold_clock = clock;
     assign pending_clock = clock;
+    assign hold_clock = clock;
+    assign hold_reset = reset;
+    assign hold_advance = advance;
+    assign hold__if_advance = hold_if_advance;
+    assign hold__if_still = hold_if_still;
     assign load = pending_q;
     always @(*) begin
-        hold_d = hold_q;
         pending_d = pending_q;
-        hold_d = ((advance && hold_if_advance) || (~advance && hold_if_still)) && ~reset;
-        if (advance && ~hold_q) begin
+        if (advance && ~hold_hold) begin
             pending_d = load_ahead;
         end
         if (reset) begin

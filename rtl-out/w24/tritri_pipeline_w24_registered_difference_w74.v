@@ -3,7 +3,10 @@
 // Filename:   tritri_pipeline_w24_registered_difference_w74.v
 //
 // Purpose:    `difference = a - b` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instance: path.ends_difference.subtract.
+//             tritri_pipeline_w24. Instances (3):
+//             path.ends_difference.subtract,
+//             path.third_determinant.subtract_first,
+//             path.third_determinant.subtract_second.
 //
 // Rust unit:  RegisteredDifference<N = 74>
 // Latency:    1 clock cycle

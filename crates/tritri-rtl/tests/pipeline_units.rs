@@ -225,7 +225,7 @@ fn plane_side_signs_and_certificates() {
             (*plane, t)
         })
         .collect();
-    // The signs, then the certificates a clock later (`CERTIFICATE_LATENCY`).
+    // The signs, then the certificates two clocks later (`CERTIFICATE_LATENCY`).
     for certificates in [false, true] {
         let mut uut = PlaneSide::<24, 25, 49, 74>::default();
         uut.connect_all();
@@ -285,7 +285,7 @@ fn certified_orient3d_is_the_models_sign_and_certificate() {
             [a, b, c, d]
         })
         .collect();
-    // The sign, then the certificate a clock later (`CERTIFICATE_LATENCY`).
+    // The sign, then the certificate two clocks later (`CERTIFICATE_LATENCY`).
     for certificates in [false, true] {
         let mut uut = CertifiedOrient3d::<24, 25, 49, 74>::default();
         uut.connect_all();

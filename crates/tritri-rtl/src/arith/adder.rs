@@ -1,12 +1,11 @@
-//! Registered wide additions: `a - b`, `a + b + c` and `a - b - c` modulo
-//! `2^N`.
+//! Registered wide additions: `a - b` and `a + b + c` modulo `2^N`.
 //!
 //! The last stage of the cross-product unit (a difference of two products)
 //! and of the dot-product unit (a sum of three products), thesis figures
 //! 3.9, 3.10, 3.12 and 3.13 (adder, subtractor); the segment-triangle
-//! case's third determinant from the other two (`a - b - c`). Results wrap modulo `2^N`,
-//! exact whenever the true value fits in `N` signed bits, which the widths
-//! of `tritri_geom::widths` guarantee.
+//! case's third determinant from the other two (two differences, one a
+//! stage). Results wrap modulo `2^N`, exact whenever the true value fits in
+//! `N` signed bits, which the widths of `tritri_geom::widths` guarantee.
 //!
 //! Like [`super::multiplier::Multiplier`], these are primitives with custom
 //! Verilog and an exact i128 simulation model evaluated only at clock edges:
@@ -118,51 +117,6 @@ always @(posedge clock) begin
 end
 ",
             n1 = N - 1
-        ))
-    }
-}
-
-/// `difference = a - b - c` (mod `2^N`), registered.
-#[derive(LogicBlock, Default)]
-pub struct RegisteredDifference3<const N: usize> {
-    pub clock: Signal<In, Clock>,
-    pub advance: Signal<In, Bit>,
-    pub a: Signal<In, Bits<N>>,
-    pub b: Signal<In, Bits<N>>,
-    pub c: Signal<In, Bits<N>>,
-    pub difference: Signal<Out, Bits<N>>,
-}
-
-impl<const N: usize> crate::unit::Unit for RegisteredDifference3<N> {
-    const LATENCY: Option<usize> = Some(ADDER_LATENCY);
-}
-
-impl<const N: usize> Logic for RegisteredDifference3<N> {
-    fn update(&mut self) {
-        if self.clock.pos_edge() && self.advance.val() {
-            let v = wrap_i128(
-                to_i128(self.a.val()) - to_i128(self.b.val()) - to_i128(self.c.val()),
-                N,
-            );
-            self.difference.next = from_i128::<N>(v);
-        }
-    }
-
-    fn connect(&mut self) {
-        self.difference.connect();
-    }
-
-    fn hdl(&self) -> Verilog {
-        Verilog::Custom(format!(
-            "\
-// Registered {N}-bit difference of three (modulo 2^{N}).
-initial difference = {N}'d0;
-always @(posedge clock) begin
-    if (advance) begin
-        difference <= a - b - c;
-    end
-end
-"
         ))
     }
 }

@@ -15,10 +15,10 @@
 //! * [`CertificateThreshold`] (six register stages, beside the dot
 //!   product): `T` from `|w_k|`, `n` and `ke`.
 //! * [`CertainSign`] (one register stage for the sign, like
-//!   [`super::sign::SignOf`], two for the certificate): the sign of `P` and
-//!   whether its ones' complement magnitude `P ^ (P >> top)` (`|P|` or
+//!   [`super::sign::SignOf`], three for the certificate): the sign of `P`
+//!   and whether its ones' complement magnitude `P ^ (P >> top)` (`|P|` or
 //!   `|P| - 1`) is at least `T`, compared as `P >= T` or `P <= !T` by the
-//!   sign, each in two halves.
+//!   sign, each in parts.
 //!
 //! A bit length is read from the leading one of `2 v + 1`, so that the one
 //! sits at bit `bitlen v`, found over two stages from groups of four bits
@@ -512,23 +512,28 @@ end
     }
 }
 
-/// The sign of a determinant, registered, and its certificate a clock
+/// The sign of a determinant, registered, and its certificate two clocks
 /// later.
 ///
 /// `P >= T` and `P <= !T`, compared as unsigned O-bit values (for `P >= 0`,
 /// `|P| >= T`; for `P < 0`, both in the upper half, `!P >= T`), each in
-/// parts of at most [`COMPARE_PART_BITS`] bits: every part's `>=` and `<=`
-/// (the lowest part's `>=` or `<=` alone) are registered with the sign,
-/// and the next stage combines them from the top, `P >= T` being
-/// `hi >= & (!(hi <=) | rest)`. In one stage the comparison was a carry
+/// parts of at most [`COMPARE_PART_BITS`] bits. `P` and `T` are first
+/// registered beside the comparisons (`value_q`, `threshold_q`, with the
+/// sign); every part's `>=` and `<=` (the lowest part's `>=` or `<=`
+/// alone) are registered from those copies, and the next stage combines
+/// them from the top, `P >= T` being `hi >= & (!(hi <=) | rest)`. In one stage the comparison was a carry
 /// chain over all O bits behind a register placed apart, the clock of the
 /// W = 16 plane side on ECP5 (121.7 MHz, 53 logic levels, the 50-bit
 /// chain's cells) and of the W = 8 pipeline (132.6 MHz). In two halves:
 /// 148.7 MHz at W = 8; at W = 16 a 25-bit half's chain behind the value's
 /// register was the path again (plane side 136.7, orient3d 141.1 MHz,
-/// 26 and 27 logic levels). Every sign waits at least a clock for the
-/// decision (orient3d's for the third determinant's), so the
-/// certificate's one more costs no latency.
+/// 26 and 27 logic levels). In parts read straight from `P`, a part's
+/// chain behind the value's register, placed by the dot product that
+/// computes it, was 7 of the 15 register inputs short of 150 MHz (W = 16,
+/// the rare cases shared, 138.0 MHz). The plane sides' signs wait for the
+/// decision in delay lines; orient3d's wait for the third determinant's
+/// sign, which takes as long as the certificate
+/// (`crate::pipeline::third_determinant`).
 ///
 /// Custom Verilog with an exact model of its registers, like the
 /// threshold's.
@@ -547,12 +552,13 @@ pub struct CertainSign<const O: usize> {
     /// `|P| >= T`: the sign holds for every admissible move,
     /// `CERTIFICATE_LATENCY` enabled edges after the value.
     pub certain: Signal<Out, Bit>,
-    // Model state: the certificate of the value a clock before.
-    _certain: bool,
+    // Model state: the certificates of the values one and two clocks
+    // before, the older first.
+    _certain: [bool; 2],
 }
 
 /// Clock edges from value and threshold to the certificate.
-pub const CERTIFICATE_LATENCY: usize = CERTAIN_SIGN_LATENCY + 1;
+pub const CERTIFICATE_LATENCY: usize = CERTAIN_SIGN_LATENCY + 2;
 
 /// The widest part [`CertainSign`] compares in one carry chain: two halves
 /// at W = 8 (O = 26), four parts at W = 16, six at W = 24. (At 10 bits, three
@@ -602,7 +608,7 @@ impl<const O: usize> Default for CertainSign<O> {
             negative: Default::default(),
             zero: Default::default(),
             certain: Default::default(),
-            _certain: false,
+            _certain: [false; 2],
         }
     }
 }
@@ -613,10 +619,11 @@ impl<const O: usize> Logic for CertainSign<O> {
             let mask = (1u128 << O) - 1;
             let p = to_i128(self.value.val());
             let t = to_i128(self.threshold.val()) as u128 & mask;
-            self.certain.next = self._certain;
+            self.certain.next = self._certain[0];
+            self._certain[0] = self._certain[1];
             // As the Verilog compares: P >= T, or P <= !T, unsigned.
             let unsigned = p as u128 & mask;
-            self._certain = if p < 0 {
+            self._certain[1] = if p < 0 {
                 unsigned <= !t & mask
             } else {
                 unsigned >= t
@@ -642,13 +649,13 @@ impl<const O: usize> Logic for CertainSign<O> {
             // The lowest part needs one comparison per sign.
             let names: &[(&str, &str, &str)] = if i == 0 {
                 &[
-                    ("above_ge_q", ">=", "threshold"),
+                    ("above_ge_q", ">=", "threshold_q"),
                     ("below_le_q", "<=", "limit"),
                 ]
             } else {
                 &[
-                    ("above_ge_q", ">=", "threshold"),
-                    ("above_le_q", "<=", "threshold"),
+                    ("above_ge_q", ">=", "threshold_q"),
+                    ("above_le_q", "<=", "threshold_q"),
                     ("below_ge_q", ">=", "limit"),
                     ("below_le_q", "<=", "limit"),
                 ]
@@ -656,7 +663,7 @@ impl<const O: usize> Logic for CertainSign<O> {
             for (name, op, bound) in names {
                 regs += &format!("reg {name}{i};\n");
                 inits += &format!("    {name}{i} = 1'b0;\n");
-                compares += &format!("        {name}{i} <= value{range} {op} {bound}{range};\n");
+                compares += &format!("        {name}{i} <= value_q{range} {op} {bound}{range};\n");
             }
         }
         let above =
@@ -665,11 +672,19 @@ impl<const O: usize> Logic for CertainSign<O> {
             combined_compare_verilog("below_le_q", "below_ge_q", "below_le_q0", parts.len());
         Verilog::Custom(format!(
             "\
-// The sign of P, registered, and its certificate |P| >= T a clock later:
-// P >= T (P >= 0) or P <= ~T (P < 0) as unsigned values, each compared in
-// {count} parts whose results are registered, then combined from the top.
-wire [{top}:0] limit = ~threshold;
+// The sign of P, registered, and its certificate |P| >= T two clocks
+// later: P and T registered beside the comparisons, then P >= T (P >= 0)
+// or P <= ~T (P < 0) as unsigned values, each compared in {count} parts
+// whose results are registered, then combined from the top.
+reg [{top}:0] value_q;
+reg [{top}:0] threshold_q;
+wire [{top}:0] limit = ~threshold_q;
+// The sign of P registered with the parts' comparisons.
+reg compared_negative_q;
 {regs}initial begin
+    value_q = {o}'d0;
+    threshold_q = {o}'d0;
+    compared_negative_q = 1'b0;
 {inits}    negative = 1'b0;
     zero = 1'b0;
     certain = 1'b0;
@@ -678,7 +693,10 @@ always @(posedge clock) begin
     if (advance) begin
         negative <= value[{top}];
         zero <= ~|value;
-{compares}        certain <= negative
+        value_q <= value;
+        threshold_q <= threshold;
+        compared_negative_q <= value_q[{top}];
+{compares}        certain <= compared_negative_q
             ? {below}
             : {above};
     end
@@ -686,6 +704,7 @@ end
 ",
             count = parts.len(),
             top = O - 1,
+            o = O,
         ))
     }
 }
@@ -816,7 +835,7 @@ mod tests {
     }
 
     /// The certificate is `tritri_geom::certificate::clears_threshold`
-    /// around each threshold, a clock after the sign, at W = 8 and W = 32.
+    /// around each threshold, two clocks after the sign, at W = 8 and W = 32.
     #[test]
     fn certain_is_the_models_threshold() {
         check_certain::<26>();
@@ -832,9 +851,9 @@ mod tests {
         uut.connect_all();
         uut.advance.next = true;
         let (lo, hi) = (-(1i128 << (O - 1)), (1i128 << (O - 1)) - 1);
-        // The certificate shown is the case before's.
-        assert_eq!(CERTIFICATE_LATENCY, CERTAIN_SIGN_LATENCY + 1);
-        let mut last: Option<(i128, i128)> = None;
+        // The certificate shown is that of the case two before.
+        assert_eq!(CERTIFICATE_LATENCY, CERTAIN_SIGN_LATENCY + 2);
+        let mut earlier: std::collections::VecDeque<(i128, i128)> = Default::default();
         for bits in 4..(O as u32 - 2) {
             let t = (1i128 << bits) + 3;
             for p in [
@@ -856,7 +875,8 @@ mod tests {
                 uut.value.next = from_i128::<O>(p);
                 uut.threshold.next = from_i128::<O>(t);
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
-                if let Some((p, t)) = last {
+                if earlier.len() == 2 {
+                    let (p, t) = earlier.pop_front().unwrap();
                     assert_eq!(
                         uut.certain.val(),
                         clears_threshold(p, t as u128),
@@ -865,7 +885,7 @@ mod tests {
                 }
                 assert_eq!(uut.negative.val(), p < 0);
                 assert_eq!(uut.zero.val(), p == 0);
-                last = Some((p, t));
+                earlier.push_back((p, t));
             }
         }
     }

@@ -53,8 +53,8 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     pub negative: Signal<Out, Bit>,
     /// `[a,b,c,d] == 0`.
     pub zero: Signal<Out, Bit>,
-    /// The sign holds for every move of the points by half a grid step (a
-    /// clock after the sign: `CERTIFICATE_LATENCY`,
+    /// The sign holds for every move of the points by half a grid step (two
+    /// clocks after the sign: `CERTIFICATE_LATENCY`,
     /// `crate::arith::certificate`).
     pub certain: Signal<Out, Bit>,
     /// `[a,b,c,d]` itself, `ORIENT3D_VALUE_LATENCY` edges after the points.

@@ -83,10 +83,10 @@ pub const DECISION_STAGE: usize = VALUES_STAGE + THIRD_DETERMINANT_LATENCY;
 pub const RARE_VERDICTS_STAGE: usize = DECISION_STAGE + 1;
 const _: () = assert!(DECISION_LATENCY == 2);
 const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STAGE < VALUES_STAGE);
-/// The certificates come a clock after their signs (`CertainSign`): the
-/// plane side's wait for the decision in lines a stage shorter than the
-/// signs', and units 0 and 1's reach it as the third determinant's sign
-/// does, wired straight to it.
+/// The certificates come two clocks after their signs (`CertainSign`):
+/// the plane side's wait for the decision in lines two stages shorter
+/// than the signs', and units 0 and 1's reach it as the third
+/// determinant's sign does, wired straight to it.
 const SIDE_CERTIFICATES_STAGE: usize =
     PLANE_SIDE_LATENCY + CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY;
 const _: () = assert!(

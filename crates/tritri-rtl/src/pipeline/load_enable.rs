@@ -18,12 +18,11 @@
 //! of the base's id register was the critical path (7.4 ns of routing,
 //! 119.7 MHz), 32 of the 96 register inputs short of 150 MHz on that
 //! register. Here `hold` only decides the pending load's next value, from
-//! a copy worked out beside it as a
-//! [`super::hold_register::HoldRegister`] does (from the forecast's two
-//! registers, picked by `advance`).
+//! a [`HoldRegister`] of the unit's own beside it.
 //!
 //! A top that never holds ties `hold_if_advance` and `hold_if_still` low.
 
+use super::hold_register::HoldRegister;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
@@ -47,24 +46,26 @@ pub struct LoadEnable {
     pub hold_if_still: Signal<In, Bit>,
     /// The group loads at the next edge where `advance` is high.
     pub load: Signal<Out, Bit>,
-    hold_q: DFF<Bit>,
+    hold: HoldRegister,
     pending_q: DFF<Bit>,
 }
 
 impl crate::unit::Unit for LoadEnable {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, hold_q, pending_q);
+        crate::sub_units!(self, units, hold, pending_q);
     }
 }
 
 impl Logic for LoadEnable {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, hold_q, pending_q);
-        self.hold_q.d.next = ((self.advance.val() && self.hold_if_advance.val())
-            || (!self.advance.val() && self.hold_if_still.val()))
-            && !self.reset.val();
-        if self.advance.val() && !self.hold_q.q.val() {
+        dff_setup!(self, clock, pending_q);
+        self.hold.clock.next = self.clock.val();
+        self.hold.reset.next = self.reset.val();
+        self.hold.advance.next = self.advance.val();
+        self.hold.if_advance.next = self.hold_if_advance.val();
+        self.hold.if_still.next = self.hold_if_still.val();
+        if self.advance.val() && !self.hold.hold.val() {
             self.pending_q.d.next = self.load_ahead.val();
         }
         if self.reset.val() {

@@ -43,8 +43,9 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     pub negative: [Signal<Out, Bit>; 3],
     /// Vertex `i` is on the plane.
     pub zero: [Signal<Out, Bit>; 3],
-    /// Vertex `i`'s sign holds for every move by half a grid step (a clock
-    /// after the sign: `CERTIFICATE_LATENCY`, `crate::arith::certificate`).
+    /// Vertex `i`'s sign holds for every move by half a grid step (two
+    /// clocks after the sign: `CERTIFICATE_LATENCY`,
+    /// `crate::arith::certificate`).
     pub certain: [Signal<Out, Bit>; 3],
     /// Vertex `i`'s value `(v - p) · N`, a stage before its sign
     /// (`PLANE_SIDE_LATENCY - CERTAIN_SIGN_LATENCY` edges after the inputs):

@@ -25,9 +25,14 @@
 //! choice and the subtraction were the W = 8 pipeline's critical path on
 //! ECP5, 108 MHz, 13 logic levels);
 //! [`ThirdDeterminant`] the determinant and its sign beside units 0 and
-//! 1's sign stage (2 stages: the subtraction, then the sign).
+//! 1's sign stage (3 stages: `(s_b - s_a) - [a, b, p, q]`, then less
+//! `[a, b, q, r]`, then the sign). With both subtractions in one stage,
+//! their two carry chains in series into the value's register were 6 of
+//! the 15 register inputs short of 150 MHz (W = 16, the rare cases shared,
+//! ECP5, 138.0 MHz). The stage costs no latency of its own: units 0 and
+//! 1's certificates come as late (`crate::arith::certificate::CertainSign`).
 
-use crate::arith::adder::{RegisteredDifference, RegisteredDifference3, ADDER_LATENCY};
+use crate::arith::adder::{RegisteredDifference, ADDER_LATENCY};
 use crate::arith::sign::{SignOf, SIGN_LATENCY};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -35,7 +40,7 @@ use rust_hdl::widgets::prelude::DFF;
 /// Clock edges from the plane-side values to `s_b - s_a`.
 pub const ENDS_DIFFERENCE_LATENCY: usize = 1 + ADDER_LATENCY;
 /// Clock edges from the two determinants to the third's sign.
-pub const THIRD_DETERMINANT_LATENCY: usize = ADDER_LATENCY + SIGN_LATENCY;
+pub const THIRD_DETERMINANT_LATENCY: usize = 2 * ADDER_LATENCY + SIGN_LATENCY;
 
 /// `s_b - s_a` for the degenerate triangle's segment ends `a = low`, `b =
 /// high` (T1's when T1 is degenerate, else T2's), from the plane-side
@@ -124,27 +129,38 @@ pub struct ThirdDeterminant<const O: usize> {
     pub negative: Signal<Out, Bit>,
     /// `[a, b, r, p] == 0`.
     pub zero: Signal<Out, Bit>,
-    subtract: RegisteredDifference3<O>,
+    /// `(s_b - s_a) - [a, b, p, q]`, and `[a, b, q, r]` beside it.
+    subtract_first: RegisteredDifference<O>,
+    second_q: DFF<Bits<O>>,
+    subtract_second: RegisteredDifference<O>,
     sign: SignOf<O>,
 }
 
 impl<const O: usize> crate::unit::Unit for ThirdDeterminant<O> {
     const LATENCY: Option<usize> = Some(THIRD_DETERMINANT_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, subtract, sign);
+        crate::sub_units!(self, units, subtract_first, second_q, subtract_second, sign);
     }
 }
 
 impl<const O: usize> Logic for ThirdDeterminant<O> {
     #[hdl_gen]
     fn update(&mut self) {
-        clock!(self, clock, subtract, sign);
-        self.subtract.advance.next = self.advance.val();
+        clock!(self, clock, subtract_first, subtract_second, sign);
+        dff_setup!(self, clock, second_q);
+        self.subtract_first.advance.next = self.advance.val();
+        self.subtract_second.advance.next = self.advance.val();
         self.sign.advance.next = self.advance.val();
-        self.subtract.a.next = self.ends_difference.val();
-        self.subtract.b.next = self.first.val();
-        self.subtract.c.next = self.second.val();
-        self.sign.value.next = self.subtract.difference.val();
+        // Stage 1: less the first determinant; the second waits beside it.
+        self.subtract_first.a.next = self.ends_difference.val();
+        self.subtract_first.b.next = self.first.val();
+        if self.advance.val() {
+            self.second_q.d.next = self.second.val();
+        }
+        // Stage 2: less the second; stage 3: the sign.
+        self.subtract_second.a.next = self.subtract_first.difference.val();
+        self.subtract_second.b.next = self.second_q.q.val();
+        self.sign.value.next = self.subtract_second.difference.val();
         self.negative.next = self.sign.negative.val();
         self.zero.next = self.sign.zero.val();
     }
