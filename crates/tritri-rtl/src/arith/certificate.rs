@@ -518,13 +518,14 @@ end
 /// `P >= T` and `P <= !T`, compared as unsigned O-bit values (for `P >= 0`,
 /// `|P| >= T`; for `P < 0`, both in the upper half, `!P >= T`), each in
 /// parts of at most [`COMPARE_PART_BITS`] bits. `P` and `T` are first
-/// registered beside the comparisons (`value_q`, `threshold_q`, with the
-/// sign); every part's `>=` and `<=` (the lowest part's `>=` or `<=`
-/// alone) are registered from those copies, and the next stage combines
-/// them from the top, `P >= T` being `hi >= & (!(hi <=) | rest)`. In one stage the comparison was a carry
-/// chain over all O bits behind a register placed apart, the clock of the
-/// W = 16 plane side on ECP5 (121.7 MHz, 53 logic levels, the 50-bit
-/// chain's cells) and of the W = 8 pipeline (132.6 MHz). In two halves:
+/// registered beside the comparisons (`value_q`, `threshold_q`, in the
+/// sign's stage); every part's `>=` and `<=` (the lowest part's `>=` or
+/// `<=` alone) are registered from those copies, and the next stage
+/// combines them from the top, `P >= T` being `hi >= & (!(hi <=) | rest)`.
+/// In one stage the comparison was a carry chain over all O bits behind
+/// a register placed apart, the clock of the W = 16 plane side on ECP5
+/// (121.7 MHz, 53 logic levels, the 50-bit chain's cells) and of the
+/// W = 8 pipeline (132.6 MHz). In two halves:
 /// 148.7 MHz at W = 8; at W = 16 a 25-bit half's chain behind the value's
 /// register was the path again (plane side 136.7, orient3d 141.1 MHz,
 /// 26 and 27 logic levels). In parts read straight from `P`, a part's
