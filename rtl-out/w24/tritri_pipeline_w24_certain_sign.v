@@ -21,6 +21,7 @@ module tritri_pipeline_w24_certain_sign (
     input  wire        clock,
     input  wire        advance,
     input  wire [73:0] value,
+    input  wire [73:0] value_zero_parts,
     input  wire [73:0] threshold,
     output reg         negative,
     output reg         zero,
@@ -92,7 +93,7 @@ module tritri_pipeline_w24_certain_sign (
     always @(posedge clock) begin
         if (advance) begin
             negative <= value[73];
-            zero <= ~|value;
+            zero <= &value_zero_parts;
             value_q <= value;
             threshold_q <= threshold;
             compared_negative_q <= value_q[73];

@@ -116,6 +116,7 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [48:0] determinant_v_1;
     wire  [48:0] determinant_v_2;
     wire  [73:0] determinant_product;
+    wire  [73:0] determinant_zero_parts;
     wire  edges_bits_clock;
     wire  edges_bits_advance;
     wire  [24:0] edges_bits_a_0;
@@ -138,6 +139,7 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  sign_clock;
     wire  sign_advance;
     wire  [73:0] sign_value;
+    wire  [73:0] sign_value_zero_parts;
     wire  [73:0] sign_threshold;
     wire  sign_negative;
     wire  sign_zero;
@@ -236,7 +238,8 @@ module tritri_pipeline_w24_certified_orient3d (
         .v_0(determinant_v_0),
         .v_1(determinant_v_1),
         .v_2(determinant_v_2),
-        .product(determinant_product)
+        .product(determinant_product),
+        .zero_parts(determinant_zero_parts)
     );
     tritri_pipeline_w24_edges_bit_length u_edges_bits(
         .clock(edges_bits_clock),
@@ -265,6 +268,7 @@ module tritri_pipeline_w24_certified_orient3d (
         .clock(sign_clock),
         .advance(sign_advance),
         .value(sign_value),
+        .value_zero_parts(sign_value_zero_parts),
         .threshold(sign_threshold),
         .negative(sign_negative),
         .zero(sign_zero),
@@ -346,6 +350,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edge_ad_delay_1_d = edge_ad_difference_1;
     assign edge_ad_delay_2_d = edge_ad_difference_2;
     assign sign_value = determinant_product;
+    assign sign_value_zero_parts = determinant_zero_parts;
     assign value = determinant_product;
     assign sign_threshold = threshold_threshold;
     assign negative = sign_negative;

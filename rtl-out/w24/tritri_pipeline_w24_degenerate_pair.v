@@ -638,84 +638,84 @@ module tritri_pipeline_w24_degenerate_pair (
         .product_1(orient_cdb_product_1),
         .product_2(orient_cdb_product_2)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_0(
+    tritri_pipeline_w24_sign_of u_sign_0(
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
         .negative(sign_0_negative),
         .zero(sign_0_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_1(
+    tritri_pipeline_w24_sign_of u_sign_1(
         .clock(sign_1_clock),
         .advance(sign_1_advance),
         .value(sign_1_value),
         .negative(sign_1_negative),
         .zero(sign_1_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_2(
+    tritri_pipeline_w24_sign_of u_sign_2(
         .clock(sign_2_clock),
         .advance(sign_2_advance),
         .value(sign_2_value),
         .negative(sign_2_negative),
         .zero(sign_2_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_3(
+    tritri_pipeline_w24_sign_of u_sign_3(
         .clock(sign_3_clock),
         .advance(sign_3_advance),
         .value(sign_3_value),
         .negative(sign_3_negative),
         .zero(sign_3_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_4(
+    tritri_pipeline_w24_sign_of u_sign_4(
         .clock(sign_4_clock),
         .advance(sign_4_advance),
         .value(sign_4_value),
         .negative(sign_4_negative),
         .zero(sign_4_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_5(
+    tritri_pipeline_w24_sign_of u_sign_5(
         .clock(sign_5_clock),
         .advance(sign_5_advance),
         .value(sign_5_value),
         .negative(sign_5_negative),
         .zero(sign_5_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_6(
+    tritri_pipeline_w24_sign_of u_sign_6(
         .clock(sign_6_clock),
         .advance(sign_6_advance),
         .value(sign_6_value),
         .negative(sign_6_negative),
         .zero(sign_6_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_7(
+    tritri_pipeline_w24_sign_of u_sign_7(
         .clock(sign_7_clock),
         .advance(sign_7_advance),
         .value(sign_7_value),
         .negative(sign_7_negative),
         .zero(sign_7_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_8(
+    tritri_pipeline_w24_sign_of u_sign_8(
         .clock(sign_8_clock),
         .advance(sign_8_advance),
         .value(sign_8_value),
         .negative(sign_8_negative),
         .zero(sign_8_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_9(
+    tritri_pipeline_w24_sign_of u_sign_9(
         .clock(sign_9_clock),
         .advance(sign_9_advance),
         .value(sign_9_value),
         .negative(sign_9_negative),
         .zero(sign_9_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_10(
+    tritri_pipeline_w24_sign_of u_sign_10(
         .clock(sign_10_clock),
         .advance(sign_10_advance),
         .value(sign_10_value),
         .negative(sign_10_negative),
         .zero(sign_10_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_sign_11(
+    tritri_pipeline_w24_sign_of u_sign_11(
         .clock(sign_11_clock),
         .advance(sign_11_advance),
         .value(sign_11_value),

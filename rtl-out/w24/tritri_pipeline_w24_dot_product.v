@@ -27,7 +27,8 @@ module tritri_pipeline_w24_dot_product (
     input  wire [48:0] v_0,
     input  wire [48:0] v_1,
     input  wire [48:0] v_2,
-    output wire [73:0] product
+    output wire [73:0] product,
+    output wire [73:0] zero_parts
 );
 
     // Stub signals
@@ -52,6 +53,7 @@ module tritri_pipeline_w24_dot_product (
     wire  [73:0] sum_b;
     wire  [73:0] sum_c;
     wire  [73:0] sum_sum;
+    wire  [73:0] sum_zero_parts;
 
     // Sub module instances
     tritri_pipeline_w24_multiplier_w74 u_multiplier_0(
@@ -81,7 +83,8 @@ module tritri_pipeline_w24_dot_product (
         .a(sum_a),
         .b(sum_b),
         .c(sum_c),
-        .sum(sum_sum)
+        .sum(sum_sum),
+        .zero_parts(sum_zero_parts)
     );
 
     // Update code
@@ -103,6 +106,7 @@ module tritri_pipeline_w24_dot_product (
     assign sum_b = multiplier_1_product;
     assign sum_c = multiplier_2_product;
     assign product = sum_sum;
+    assign zero_parts = sum_zero_parts;
 
 endmodule  // tritri_pipeline_w24_dot_product
 

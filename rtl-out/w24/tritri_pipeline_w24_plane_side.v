@@ -114,6 +114,7 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] distance_0_v_1;
     wire  [48:0] distance_0_v_2;
     wire  [73:0] distance_0_product;
+    wire  [73:0] distance_0_zero_parts;
     wire  distance_1_clock;
     wire  distance_1_advance;
     wire  [24:0] distance_1_u_0;
@@ -123,6 +124,7 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] distance_1_v_1;
     wire  [48:0] distance_1_v_2;
     wire  [73:0] distance_1_product;
+    wire  [73:0] distance_1_zero_parts;
     wire  distance_2_clock;
     wire  distance_2_advance;
     wire  [24:0] distance_2_u_0;
@@ -132,6 +134,7 @@ module tritri_pipeline_w24_plane_side (
     wire  [48:0] distance_2_v_1;
     wire  [48:0] distance_2_v_2;
     wire  [73:0] distance_2_product;
+    wire  [73:0] distance_2_zero_parts;
     wire  edges_bits_delay_clock;
     wire  edges_bits_delay_advance;
     wire  [7:0] edges_bits_delay_d;
@@ -169,6 +172,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_0_clock;
     wire  sign_0_advance;
     wire  [73:0] sign_0_value;
+    wire  [73:0] sign_0_value_zero_parts;
     wire  [73:0] sign_0_threshold;
     wire  sign_0_negative;
     wire  sign_0_zero;
@@ -176,6 +180,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_1_clock;
     wire  sign_1_advance;
     wire  [73:0] sign_1_value;
+    wire  [73:0] sign_1_value_zero_parts;
     wire  [73:0] sign_1_threshold;
     wire  sign_1_negative;
     wire  sign_1_zero;
@@ -183,6 +188,7 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_2_clock;
     wire  sign_2_advance;
     wire  [73:0] sign_2_value;
+    wire  [73:0] sign_2_value_zero_parts;
     wire  [73:0] sign_2_threshold;
     wire  sign_2_negative;
     wire  sign_2_zero;
@@ -264,7 +270,8 @@ module tritri_pipeline_w24_plane_side (
         .v_0(distance_0_v_0),
         .v_1(distance_0_v_1),
         .v_2(distance_0_v_2),
-        .product(distance_0_product)
+        .product(distance_0_product),
+        .zero_parts(distance_0_zero_parts)
     );
     tritri_pipeline_w24_dot_product u_distance_1(
         .clock(distance_1_clock),
@@ -275,7 +282,8 @@ module tritri_pipeline_w24_plane_side (
         .v_0(distance_1_v_0),
         .v_1(distance_1_v_1),
         .v_2(distance_1_v_2),
-        .product(distance_1_product)
+        .product(distance_1_product),
+        .zero_parts(distance_1_zero_parts)
     );
     tritri_pipeline_w24_dot_product u_distance_2(
         .clock(distance_2_clock),
@@ -286,7 +294,8 @@ module tritri_pipeline_w24_plane_side (
         .v_0(distance_2_v_0),
         .v_1(distance_2_v_1),
         .v_2(distance_2_v_2),
-        .product(distance_2_product)
+        .product(distance_2_product),
+        .zero_parts(distance_2_zero_parts)
     );
     tritri_pipeline_w24_delay_line_w8_n2 u_edges_bits_delay(
         .clock(edges_bits_delay_clock),
@@ -334,6 +343,7 @@ module tritri_pipeline_w24_plane_side (
         .clock(sign_0_clock),
         .advance(sign_0_advance),
         .value(sign_0_value),
+        .value_zero_parts(sign_0_value_zero_parts),
         .threshold(sign_0_threshold),
         .negative(sign_0_negative),
         .zero(sign_0_zero),
@@ -343,6 +353,7 @@ module tritri_pipeline_w24_plane_side (
         .clock(sign_1_clock),
         .advance(sign_1_advance),
         .value(sign_1_value),
+        .value_zero_parts(sign_1_value_zero_parts),
         .threshold(sign_1_threshold),
         .negative(sign_1_negative),
         .zero(sign_1_zero),
@@ -352,6 +363,7 @@ module tritri_pipeline_w24_plane_side (
         .clock(sign_2_clock),
         .advance(sign_2_advance),
         .value(sign_2_value),
+        .value_zero_parts(sign_2_value_zero_parts),
         .threshold(sign_2_threshold),
         .negative(sign_2_negative),
         .zero(sign_2_zero),
@@ -434,6 +446,9 @@ module tritri_pipeline_w24_plane_side (
     assign sign_0_value = distance_0_product;
     assign sign_1_value = distance_1_product;
     assign sign_2_value = distance_2_product;
+    assign sign_0_value_zero_parts = distance_0_zero_parts;
+    assign sign_1_value_zero_parts = distance_1_zero_parts;
+    assign sign_2_value_zero_parts = distance_2_zero_parts;
     assign threshold_0_advance = advance;
     assign threshold_1_advance = advance;
     assign threshold_2_advance = advance;

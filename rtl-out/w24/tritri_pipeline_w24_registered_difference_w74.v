@@ -3,10 +3,9 @@
 // Filename:   tritri_pipeline_w24_registered_difference_w74.v
 //
 // Purpose:    `difference = a - b` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instances (3):
+//             tritri_pipeline_w24. Instances (2):
 //             path.ends_difference.subtract,
-//             path.third_determinant.subtract_first,
-//             path.third_determinant.subtract_second.
+//             path.third_determinant.subtract_first.
 //
 // Rust unit:  RegisteredDifference<N = 74>
 // Latency:    1 clock cycle

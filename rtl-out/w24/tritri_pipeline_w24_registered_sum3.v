@@ -29,23 +29,29 @@ module tritri_pipeline_w24_registered_sum3 (
     input  wire [73:0] a,
     input  wire [73:0] b,
     input  wire [73:0] c,
-    output reg  [73:0] sum
+    output reg  [73:0] sum,
+    output reg  [73:0] zero_parts
 );
 
     // Update code (custom)
-    // 74-bit sum of three (modulo 2^74) in two register stages.
+    // 74-bit sum of three (modulo 2^74) in two register stages, and whether
+    // it is 0 in parts of 4 bits: ab_q + c_q is 0 exactly when
+    // ab_q ^ c_q is (ab_q | c_q) << 1.
     reg [73:0] ab_q;
     reg [73:0] c_q;
+    wire [73:0] zero_bits = ~((ab_q ^ c_q) ^ {ab_q[72:0] | c_q[72:0], 1'b0});
     initial begin
         ab_q = 74'd0;
         c_q = 74'd0;
         sum = 74'd0;
+        zero_parts = {74{1'b1}};
     end
     always @(posedge clock) begin
         if (advance) begin
             ab_q <= a + b;
             c_q <= c;
             sum <= ab_q + c_q;
+            zero_parts <= {55'b1111111111111111111111111111111111111111111111111111111, &zero_bits[73:72], &zero_bits[71:68], &zero_bits[67:64], &zero_bits[63:60], &zero_bits[59:56], &zero_bits[55:52], &zero_bits[51:48], &zero_bits[47:44], &zero_bits[43:40], &zero_bits[39:36], &zero_bits[35:32], &zero_bits[31:28], &zero_bits[27:24], &zero_bits[23:20], &zero_bits[19:16], &zero_bits[15:12], &zero_bits[11:8], &zero_bits[7:4], &zero_bits[3:0]};
         end
     end
 endmodule  // tritri_pipeline_w24_registered_sum3

@@ -40,12 +40,14 @@ module tritri_pipeline_w24_third_determinant (
     wire  subtract_second_advance;
     wire  [73:0] subtract_second_a;
     wire  [73:0] subtract_second_b;
-    wire  [73:0] subtract_second_difference;
-    wire  sign_clock;
-    wire  sign_advance;
-    wire  [73:0] sign_value;
-    wire  sign_negative;
-    wire  sign_zero;
+    wire  subtract_second_negative;
+    wire  subtract_second_zero;
+    reg  negative_d;
+    wire  negative_q;
+    wire  negative_clock;
+    reg  zero_d;
+    wire  zero_q;
+    wire  zero_clock;
 
     // Sub module instances
     tritri_pipeline_w24_registered_difference_w74 u_subtract_first(
@@ -60,40 +62,49 @@ module tritri_pipeline_w24_third_determinant (
         .q(second_q),
         .clock(second_clock)
     );
-    tritri_pipeline_w24_registered_difference_w74 u_subtract_second(
+    tritri_pipeline_w24_registered_difference_sign u_subtract_second(
         .clock(subtract_second_clock),
         .advance(subtract_second_advance),
         .a(subtract_second_a),
         .b(subtract_second_b),
-        .difference(subtract_second_difference)
+        .negative(subtract_second_negative),
+        .zero(subtract_second_zero)
     );
-    tritri_pipeline_w24_sign_of_w74 u_sign(
-        .clock(sign_clock),
-        .advance(sign_advance),
-        .value(sign_value),
-        .negative(sign_negative),
-        .zero(sign_zero)
+    tritri_pipeline_w24_dff_1 u_negative_q(
+        .d(negative_d),
+        .q(negative_q),
+        .clock(negative_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_zero_q(
+        .d(zero_d),
+        .q(zero_q),
+        .clock(zero_clock)
     );
 
     // Update code
     assign subtract_first_clock = clock;
     assign subtract_second_clock = clock;
-    assign sign_clock = clock;
     assign second_clock = clock;
+    assign negative_clock = clock;
+    assign zero_clock = clock;
     assign subtract_first_advance = advance;
     assign subtract_second_advance = advance;
-    assign sign_advance = advance;
     assign subtract_first_a = ends_difference;
     assign subtract_first_b = first;
     assign subtract_second_a = subtract_first_difference;
     assign subtract_second_b = second_q;
-    assign sign_value = subtract_second_difference;
-    assign negative = sign_negative;
-    assign zero = sign_zero;
+    assign negative = negative_q;
+    assign zero = zero_q;
     always @(*) begin
         second_d = second_q;
+        negative_d = negative_q;
+        zero_d = zero_q;
         if (advance) begin
             second_d = second;
+        end
+        if (advance) begin
+            negative_d = subtract_second_negative;
+            zero_d = subtract_second_zero;
         end
     end
 

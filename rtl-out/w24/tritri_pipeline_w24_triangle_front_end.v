@@ -211,21 +211,21 @@ module tritri_pipeline_w24_triangle_front_end (
         .normal_2(normal_unit_normal_2),
         .edges_bits(normal_unit_edges_bits)
     );
-    tritri_pipeline_w24_sign_of_w49 u_normal_sign_0(
+    tritri_pipeline_w24_sign_of u_normal_sign_0(
         .clock(normal_sign_0_clock),
         .advance(normal_sign_0_advance),
         .value(normal_sign_0_value),
         .negative(normal_sign_0_negative),
         .zero(normal_sign_0_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_normal_sign_1(
+    tritri_pipeline_w24_sign_of u_normal_sign_1(
         .clock(normal_sign_1_clock),
         .advance(normal_sign_1_advance),
         .value(normal_sign_1_value),
         .negative(normal_sign_1_negative),
         .zero(normal_sign_1_zero)
     );
-    tritri_pipeline_w24_sign_of_w49 u_normal_sign_2(
+    tritri_pipeline_w24_sign_of u_normal_sign_2(
         .clock(normal_sign_2_clock),
         .advance(normal_sign_2_advance),
         .value(normal_sign_2_value),

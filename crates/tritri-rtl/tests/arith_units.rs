@@ -224,18 +224,35 @@ fn adders_wrap_modulo_their_width() {
     let mut uut = RegisteredSum3::<50>::default();
     uut.connect_all();
     uut.advance.next = true;
+    // Random sums, and sums of 0: `c = -(a + b)`, with and without a wrap.
+    let mut sums = tuples::<3>(11, 50);
+    let zeros: Vec<[i128; 3]> = sums
+        .iter()
+        .map(|[a, b, _]| [*a, *b, wrap_i128(-(a + b), 50)])
+        .collect();
+    assert!(zeros.iter().any(|[a, b, _]| wrap_i128(a + b, 50) != a + b));
+    sums.extend(zeros.iter().step_by(3));
+    sums.extend([
+        [0, 0, 0],
+        [1, -1, 0],
+        [0, 1, -1],
+        [-(1 << 49), -(1 << 49), 0],
+    ]);
     assert_stream_matches(
         &mut uut,
         |u| &mut u.clock,
-        &tuples::<3>(11, 50),
+        &sums,
         SUM3_LATENCY,
         |u, [a, b, c]| {
             u.a.next = from_i128(*a);
             u.b.next = from_i128(*b);
             u.c.next = from_i128(*c);
         },
-        |u| to_i128(u.sum.val()),
-        |[a, b, c]| wrap_i128(a + b + c, 50),
+        |u| (to_i128(u.sum.val()), u.zero_parts.val().all()),
+        |[a, b, c]| {
+            let sum = wrap_i128(a + b + c, 50);
+            (sum, sum == 0)
+        },
     );
     let mut uut = RegisteredDifference::<50>::default();
     uut.connect_all();

@@ -401,6 +401,9 @@ fn third_determinant_is_the_models_sign() {
             ]
         })
         .collect();
+    // Zero determinants too: the unit finds them from its operands.
+    assert!(determinants.iter().any(|d| d[3] == 0));
+    assert!(determinants.iter().any(|d| d[3] != 0));
     let mut third = ThirdDeterminant::<74>::default();
     third.connect_all();
     third.advance.next = true;

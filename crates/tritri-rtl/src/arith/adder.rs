@@ -59,6 +59,108 @@ end
     }
 }
 
+/// The sign of `a - b` (mod `2^N`) and whether it is 0 (`a == b`),
+/// registered: a subtraction whose value nobody reads. The test for 0
+/// compares the operands beside the carry chain instead of ORing the
+/// difference's bits behind it.
+#[derive(LogicBlock, Default)]
+pub struct RegisteredDifferenceSign<const N: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub a: Signal<In, Bits<N>>,
+    pub b: Signal<In, Bits<N>>,
+    /// `a - b < 0` and `a - b == 0`, `ADDER_LATENCY` enabled edges later.
+    pub negative: Signal<Out, Bit>,
+    pub zero: Signal<Out, Bit>,
+}
+
+impl<const N: usize> crate::unit::Unit for RegisteredDifferenceSign<N> {
+    const LATENCY: Option<usize> = Some(ADDER_LATENCY);
+}
+
+impl<const N: usize> Logic for RegisteredDifferenceSign<N> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.advance.val() {
+            let v = wrap_i128(to_i128(self.a.val()) - to_i128(self.b.val()), N);
+            self.negative.next = v < 0;
+            self.zero.next = v == 0;
+        }
+    }
+
+    fn connect(&mut self) {
+        self.negative.connect();
+        self.zero.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        Verilog::Custom(format!(
+            "\
+// The sign of the {N}-bit difference a - b (modulo 2^{N}) and whether it
+// is 0, registered; only the difference's top bit is read.
+/* verilator lint_off UNUSEDSIGNAL */
+wire [{n1}:0] difference = a - b;
+/* verilator lint_on UNUSEDSIGNAL */
+initial begin
+    negative = 1'b0;
+    zero = 1'b0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        negative <= difference[{n1}];
+        zero <= a == b;
+    end
+end
+",
+            n1 = N - 1
+        ))
+    }
+}
+
+/// Bits of [`RegisteredSum3::zero_parts`]'s test in one part: one LUT
+/// level for the four bits' tests, one for their AND.
+pub const ZERO_PART_BITS: usize = 4;
+
+/// Parts of an N-bit sum's zero test.
+pub const fn zero_part_count(n: usize) -> usize {
+    n.div_ceil(ZERO_PART_BITS)
+}
+
+/// The model of [`RegisteredSum3::zero_parts`] for the stage's registers
+/// `x` and `y`.
+fn zero_parts<const N: usize>(x: i128, y: i128) -> Bits<N> {
+    let mask = if N == 128 {
+        u128::MAX
+    } else {
+        (1u128 << N) - 1
+    };
+    let (x, y) = (x as u128 & mask, y as u128 & mask);
+    let holds = !((x ^ y) ^ ((x | y) << 1)) & mask;
+    let mut parts = mask;
+    for j in 0..zero_part_count(N) {
+        let group = ((1u128 << ZERO_PART_BITS) - 1) << (ZERO_PART_BITS * j) & mask;
+        if holds & group != group {
+            parts &= !(1u128 << j);
+        }
+    }
+    from_i128::<N>(parts as i128)
+}
+
+/// Verilog: the concatenation of [`RegisteredSum3::zero_parts`], top bit
+/// first, from the wire `zero_bits`.
+fn zero_parts_verilog(n: usize) -> String {
+    let count = zero_part_count(n);
+    let mut fields = Vec::new();
+    if n > count {
+        fields.push(format!("{}'b{}", n - count, "1".repeat(n - count)));
+    }
+    for j in (0..count).rev() {
+        let low = ZERO_PART_BITS * j;
+        let high = (low + ZERO_PART_BITS - 1).min(n - 1);
+        fields.push(format!("&zero_bits[{high}:{low}]"));
+    }
+    fields.join(", ")
+}
+
 /// Clock edges from operands to [`RegisteredSum3::sum`].
 pub const SUM3_LATENCY: usize = 2;
 
@@ -67,6 +169,18 @@ pub const SUM3_LATENCY: usize = 2;
 /// in series behind the multipliers' long wires; the sum then fans out to
 /// the sign, its certificate's comparisons and the third determinant:
 /// W = 16 on ECP5, 6.7 ns of 6.67 at the plane sides' distances.)
+///
+/// Whether the sum is 0 is found beside it without its carry chain:
+/// `x + y` is 0 modulo `2^N` exactly when `x ^ y` equals `(x | y) << 1`
+/// (below the lowest bit of the sum that is not 0, every bit's carry out
+/// is `x_i | y_i`, and each sum bit is `x_i ^ y_i` of it). `zero_parts`
+/// registers that test in parts of [`ZERO_PART_BITS`] bits with the sum,
+/// and the sign that reads the sum ANDs them as it registers its own
+/// `zero`: two levels of logic on each side. (Formed from the sum's
+/// register a stage later, the OR of its N bits was a long route from the
+/// far value register and three levels, up to 7.63 ns; in the sum's stage
+/// as one bit, six levels, 7.59 ns: ECP5, W = 16 shared, the plane sides'
+/// signs.)
 #[derive(LogicBlock, Default)]
 pub struct RegisteredSum3<const N: usize> {
     pub clock: Signal<In, Clock>,
@@ -75,6 +189,10 @@ pub struct RegisteredSum3<const N: usize> {
     pub b: Signal<In, Bits<N>>,
     pub c: Signal<In, Bits<N>>,
     pub sum: Signal<Out, Bits<N>>,
+    /// Bit `j` below `zero_part_count(N)`: bits `[4 j, 4 j + 3]` of the
+    /// test above hold; the bits above are 1. All are 1 exactly when
+    /// `sum == 0`, in the same clock as `sum`.
+    pub zero_parts: Signal<Out, Bits<N>>,
     // Simulation model state: the first stage's registers.
     _ab: i128,
     _c: i128,
@@ -88,6 +206,7 @@ impl<const N: usize> Logic for RegisteredSum3<N> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
             self.sum.next = from_i128::<N>(wrap_i128(self._ab + self._c, N));
+            self.zero_parts.next = zero_parts::<N>(self._ab, self._c);
             self._ab = wrap_i128(to_i128(self.a.val()) + to_i128(self.b.val()), N);
             self._c = to_i128(self.c.val());
         }
@@ -95,28 +214,36 @@ impl<const N: usize> Logic for RegisteredSum3<N> {
 
     fn connect(&mut self) {
         self.sum.connect();
+        self.zero_parts.connect();
     }
 
     fn hdl(&self) -> Verilog {
         Verilog::Custom(format!(
             "\
-// {N}-bit sum of three (modulo 2^{N}) in two register stages.
+// {N}-bit sum of three (modulo 2^{N}) in two register stages, and whether
+// it is 0 in parts of {ZERO_PART_BITS} bits: ab_q + c_q is 0 exactly when
+// ab_q ^ c_q is (ab_q | c_q) << 1.
 reg [{n1}:0] ab_q;
 reg [{n1}:0] c_q;
+wire [{n1}:0] zero_bits = ~((ab_q ^ c_q) ^ {{ab_q[{n2}:0] | c_q[{n2}:0], 1'b0}});
 initial begin
     ab_q = {N}'d0;
     c_q = {N}'d0;
     sum = {N}'d0;
+    zero_parts = {{{N}{{1'b1}}}};
 end
 always @(posedge clock) begin
     if (advance) begin
         ab_q <= a + b;
         c_q <= c;
         sum <= ab_q + c_q;
+        zero_parts <= {{{parts}}};
     end
 end
 ",
-            n1 = N - 1
+            n1 = N - 1,
+            n2 = N - 2,
+            parts = zero_parts_verilog(N),
         ))
     }
 }

@@ -536,6 +536,10 @@ end
 /// sign, which takes as long as the certificate
 /// (`crate::pipeline::third_determinant`).
 ///
+/// Whether `P` is 0 comes with it, in parts, from the sum that computes
+/// it ([`super::adder::RegisteredSum3::zero_parts`]); here their AND is
+/// registered.
+///
 /// Custom Verilog with an exact model of its registers, like the
 /// threshold's.
 #[derive(LogicBlock)]
@@ -544,6 +548,8 @@ pub struct CertainSign<const O: usize> {
     pub advance: Signal<In, Bit>,
     /// The determinant `P`, O-bit two's complement.
     pub value: Signal<In, Bits<O>>,
+    /// All 1 exactly when `P == 0`, in the same clock as `value`.
+    pub value_zero_parts: Signal<In, Bits<O>>,
     /// `T` of the determinant's entries.
     pub threshold: Signal<In, Bits<O>>,
     /// `P < 0`, `CERTAIN_SIGN_LATENCY` enabled edges later.
@@ -605,6 +611,7 @@ impl<const O: usize> Default for CertainSign<O> {
             clock: Default::default(),
             advance: Default::default(),
             value: Default::default(),
+            value_zero_parts: Default::default(),
             threshold: Default::default(),
             negative: Default::default(),
             zero: Default::default(),
@@ -630,7 +637,7 @@ impl<const O: usize> Logic for CertainSign<O> {
                 unsigned >= t
             };
             self.negative.next = p < 0;
-            self.zero.next = p == 0;
+            self.zero.next = self.value_zero_parts.val().all();
         }
     }
 
@@ -693,7 +700,7 @@ end
 always @(posedge clock) begin
     if (advance) begin
         negative <= value[{top}];
-        zero <= ~|value;
+        zero <= &value_zero_parts;
         value_q <= value;
         threshold_q <= threshold;
         compared_negative_q <= value_q[{top}];
@@ -874,6 +881,13 @@ mod tests {
             ] {
                 let p = p.clamp(lo, hi);
                 uut.value.next = from_i128::<O>(p);
+                // Parts as a sum gives them: here all but one (the
+                // part count at O = 26 is 7), or all when P is 0.
+                uut.value_zero_parts.next = if p == 0 {
+                    from_i128::<O>(-1)
+                } else {
+                    from_i128::<O>(!(1 << (p.unsigned_abs() % 7)))
+                };
                 uut.threshold.next = from_i128::<O>(t);
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
                 if earlier.len() == 2 {

@@ -24,6 +24,9 @@ pub struct DotProduct<const D: usize, const C: usize, const O: usize> {
     pub v: [Signal<In, Bits<C>>; 3],
     /// `u · v` modulo `2^O`, `DOT_PRODUCT_LATENCY` enabled edges later.
     pub product: Signal<Out, Bits<O>>,
+    /// All 1 when `product == 0`, in the same clock
+    /// ([`RegisteredSum3::zero_parts`]).
+    pub zero_parts: Signal<Out, Bits<O>>,
     multiplier: [Multiplier<D, C, O>; 3],
     sum: RegisteredSum3<O>,
 }
@@ -48,6 +51,7 @@ impl<const D: usize, const C: usize, const O: usize> Default for DotProduct<D, C
             u: Default::default(),
             v: Default::default(),
             product: Default::default(),
+            zero_parts: Default::default(),
             multiplier: Default::default(),
             sum: Default::default(),
         }
@@ -69,5 +73,6 @@ impl<const D: usize, const C: usize, const O: usize> Logic for DotProduct<D, C, 
         self.sum.b.next = self.multiplier[1].product.val();
         self.sum.c.next = self.multiplier[2].product.val();
         self.product.next = self.sum.sum.val();
+        self.zero_parts.next = self.sum.zero_parts.val();
     }
 }

@@ -161,6 +161,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.edge_ad_delay_1.d.next = self.edge_ad.difference[1].val();
         self.edge_ad_delay_2.d.next = self.edge_ad.difference[2].val();
         self.sign.value.next = self.determinant.product.val();
+        self.sign.value_zero_parts.next = self.determinant.zero_parts.val();
         self.value.next = self.determinant.product.val();
         self.sign.threshold.next = self.threshold.threshold.val();
         self.negative.next = self.sign.negative.val();

@@ -146,6 +146,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.sign[0].value.next = self.distance_0.product.val();
         self.sign[1].value.next = self.distance_1.product.val();
         self.sign[2].value.next = self.distance_2.product.val();
+        self.sign[0].value_zero_parts.next = self.distance_0.zero_parts.val();
+        self.sign[1].value_zero_parts.next = self.distance_1.zero_parts.val();
+        self.sign[2].value_zero_parts.next = self.distance_2.zero_parts.val();
         self.threshold_0.advance.next = self.advance.val();
         self.threshold_1.advance.next = self.advance.val();
         self.threshold_2.advance.next = self.advance.val();

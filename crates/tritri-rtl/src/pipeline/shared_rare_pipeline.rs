@@ -22,10 +22,11 @@
 //! `hold` goes into the enable of every register, so it is a register, in
 //! copies: [`HoldForecast`] decides it two clocks ahead from the rare bits
 //! of the three stages and the unit's steps left, once for each value
-//! `advance` may take next clock, and fifteen [`HoldRegister`]s pick from
+//! `advance` may take next clock, and fourteen [`HoldRegister`]s pick from
 //! those two registers by `advance`, each the enable of one group of
-//! units. The unit's input is valid by registers of its own, a clock
-//! ahead too (`offer_next`), one beside each group of its loads.
+//! units (a fifteenth serves the unit's offers and the queue). The unit's
+//! input is valid by registers of its own, a clock ahead too
+//! (`offer_next`), one beside each group of its loads.
 //! Pipelines that move in step (a system's) hold together: each sends its
 //! two requests (`hold_request`, `hold_request_still`) and takes the
 //! others' (`hold_others`, `hold_others_still`) into its forecast in the
@@ -132,8 +133,14 @@ crate::pipeline_ports! {
         /// registers and `advance`: through the forecast and back, `advance`
         /// reached the offers' inputs a delta cycle after their clock edge
         /// in rust-hdl's simulation (`sim_drive::clock_cycle`), and the
-        /// back-pressure test failed.
+        /// back-pressure test failed. It reads `hold` from a copy of its
+        /// own, `unit_hold`, with the queue's `pop`: from copy 0, synthesis
+        /// shared the term `advance` and not `hold` with the general path's
+        /// enable, a net with thousands of loads, and the offers came a
+        /// level of logic and that net's delay later (7.10 ns, ECP5,
+        /// W = 16, router1).
         offer_next: Signal<Local, Bit>,
+        unit_hold: HoldRegister,
         /// The unit's `ready`: the forecast predicts it instead (Verilator's
         /// lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
@@ -173,6 +180,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             rare_queued,
             rare_to_job,
             offers,
+            unit_hold,
             segments_to_job,
             rare_to_decision
         );
@@ -236,6 +244,11 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.forecast.others_if_still.next = self.hold_others_still.val();
         self.hold_request.next = self.forecast.request_if_advance.val();
         self.hold_request_still.next = self.forecast.request_if_still.val();
+        self.unit_hold.clock.next = self.clock.val();
+        self.unit_hold.reset.next = self.reset.val();
+        self.unit_hold.advance.next = self.advance.val();
+        self.unit_hold.if_advance.next = self.forecast.if_advance.val();
+        self.unit_hold.if_still.next = self.forecast.if_still.val();
         for i in 0..14 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
@@ -289,20 +302,19 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare_to_job.reset.next = self.reset.val();
         // As the forecast works out the job stage's pair and `hold` of the
         // next clock.
-        if self.moving.val() {
+        if self.advance.val() && !self.unit_hold.hold.val() {
             self.offer_next.next = self.rare_queued.q.val();
         } else {
             self.offer_next.next = self.job_rare.val();
         }
         if (self.advance.val() && self.forecast.if_advance.val())
             || (!self.advance.val() && self.forecast.if_still.val())
+            || self.reset.val()
         {
             self.offer_next.next = false;
         }
         for c in 0..26 {
             self.offers[c].clock.next = self.clock.val();
-            self.offers[c].reset.next = self.reset.val();
-            self.offers[c].advance.next = true;
             self.offers[c].d.next = self.offer_next.val();
         }
         self.segments_to_job.advance.next = self.moving.val();
@@ -379,7 +391,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.rare_to_decision.d.next = self.job_rare.val();
         self.verdicts.push.next = self.rare_cases.done.val();
         self.verdicts.push_hit.next = self.rare_cases.hit.val();
-        self.verdicts.pop.next = self.rare_to_decision.q.val() && self.moving.val();
+        self.verdicts.pop.next =
+            self.rare_to_decision.q.val() && self.advance.val() && !self.unit_hold.hold.val();
         self.path.coplanar_hit.next = self.verdicts.head.val();
         self.path.degenerate_pair_hit.next = self.verdicts.head.val();
     }

@@ -1,44 +1,42 @@
 //! The shared rare-case unit's verdicts, waiting for their pairs: a queue of
 //! single bits, written when the unit is done with a job and read when
 //! that job's pair reaches the decision. Both happen in the pairs' order,
-//! so a circular buffer with two pointers is the whole queue.
+//! so a first-in, first-out queue of bits is the whole of it.
 //!
 //! The pipeline bounds what it holds: a verdict is written at most
 //! [`VERDICT_QUEUE_DEPTH`] - 1 rare pairs before it is read, since every
 //! pair between the unit's input and the decision occupies a stage of the
 //! general path (`super::shared_rare_pipeline` asserts that there are
-//! fewer stages than slots). The head is the slot at the read pointer, a
-//! verdict written at least one edge earlier; or, when the queue is empty,
-//! the verdict being pushed, so that a pair meets its verdict in the
-//! clock the unit gives it.
+//! fewer stages than slots). The head is the oldest verdict, written at
+//! least one edge earlier; or, when the queue is empty, the verdict being
+//! pushed, so that a pair meets its verdict in the clock the unit gives
+//! it.
 //!
-//! The head comes from registers: the slot the read pointer will point at
-//! is chosen a clock ahead (`head_q`, with this clock's push and pop), and
-//! so is whether the queue will be empty (`empty_q`); only the bypass of
-//! an empty queue is left between them and the decision. (ECP5, W = 16,
-//! the whole shared pipeline with nextpnr's `static` placer: the read
-//! pointer through the 32-way choice, 3.8 ns across the chip, into the
-//! decision's verdict was the critical path, 106.5 MHz.)
+//! The queue shifts: slot 0 is always the head, a pop moves every slot
+//! down one, and a push writes the slot after the last verdict, which a
+//! one-hot count names. So the head is a register, and every slot's next
+//! value depends only on itself, its neighbour and the count's two bits
+//! beside it, all in the queue's own corner of the chip; only the bypass of
+//! an empty queue is left between them and the decision.
 //!
-//! The pointers are one-hot, one bit per slot, and step by rotating: a
-//! slot is then chosen by an AND-OR of the slots with the pointer, and
-//! neither a step nor a comparison needs a carry. (With five-bit pointers
-//! the step, the 32-way choice and the comparisons with the write pointer
-//! were nine levels of logic into `head_q`, the critical path of the whole
-//! W = 16 shared pipeline at 131.6 MHz, router1.)
+//! (History, ECP5, W = 16 shared pipeline. A circular buffer's head chosen
+//! through a 32-way choice by the read pointer was the critical path:
+//! 106.5 MHz with nextpnr's `static` placer, five-bit pointers. With
+//! one-hot pointers and the next head chosen a clock ahead into a
+//! register, the pointer through that choice was still five levels and
+//! the worst path left, 7.29 ns at 137.2 MHz, router1.)
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
-/// Slots: one bit of each one-hot pointer per slot (the update's
-/// `Bits<32>` and its rotations' literal 31 follow it).
+/// Slots, and positions of the one-hot count (the update's `Bits<32>`).
 pub const VERDICT_QUEUE_DEPTH: usize = 32;
 
 #[derive(LogicBlock, Default)]
 pub struct VerdictQueue {
     pub clock: Signal<In, Clock>,
     /// Synchronous, active high: empties the queue. The queue needs it
-    /// before its first use: the pointers power up with no bit set.
+    /// before its first use: the count powers up with no bit set.
     pub reset: Signal<In, Bit>,
     /// Write `push_hit` at the tail.
     pub push: Signal<In, Bit>,
@@ -46,79 +44,57 @@ pub struct VerdictQueue {
     /// Remove the head.
     pub pop: Signal<In, Bit>,
     pub head: Signal<Out, Bit>,
+    /// The verdicts, oldest in bit 0.
     slots: DFF<Bits<32>>,
-    /// One-hot: the slot the next push writes, and the head's slot.
-    write_q: DFF<Bits<32>>,
-    read_q: DFF<Bits<32>>,
-    /// The slot at the read pointer, and whether the queue is empty, as
-    /// they will be after this clock's push and pop.
-    head_q: DFF<Bit>,
-    empty_q: DFF<Bit>,
-    /// The slot the read pointer stays at, and the one it steps to, with
-    /// this clock's push written into either.
-    stay_hit: Signal<Local, Bit>,
-    step_hit: Signal<Local, Bit>,
-    /// The read pointer rotated one slot on, and the write pointer.
-    read_step: Signal<Local, Bits<32>>,
-    write_step: Signal<Local, Bits<32>>,
-    /// The tail is the slot after the head: the queue holds one verdict.
-    holds_one: Signal<Local, Bit>,
+    /// One-hot: bit `n` when the queue holds `n` verdicts, the slot a push
+    /// writes when nothing is popped.
+    count_q: DFF<Bits<32>>,
+    /// The slots after this clock's pop, and the slot this clock's push
+    /// writes among them.
+    kept: Signal<Local, Bits<32>>,
+    tail: Signal<Local, Bits<32>>,
 }
 
 impl crate::unit::Unit for VerdictQueue {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, slots, write_q, read_q, head_q, empty_q);
+        crate::sub_units!(self, units, slots, count_q);
     }
 }
 
 impl Logic for VerdictQueue {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, slots, write_q, read_q, head_q, empty_q);
-        self.read_step.next = (self.read_q.q.val() << 1) | (self.read_q.q.val() >> 31);
-        self.write_step.next = (self.write_q.q.val() << 1) | (self.write_q.q.val() >> 31);
+        dff_setup!(self, clock, slots, count_q);
+        // A pop of an empty queue takes the verdict being pushed (the
+        // bypass below): the count stays 0 and nothing is written.
+        if self.pop.val() {
+            self.kept.next = self.slots.q.val() >> 1;
+            self.tail.next = self.count_q.q.val() >> 1;
+        } else {
+            self.kept.next = self.slots.q.val();
+            self.tail.next = self.count_q.q.val();
+        }
+        self.slots.d.next = self.kept.val();
         if self.push.val() {
             if self.push_hit.val() {
-                self.slots.d.next = self.slots.q.val() | self.write_q.q.val();
+                self.slots.d.next = self.kept.val() | self.tail.val();
             } else {
-                self.slots.d.next = self.slots.q.val() & !self.write_q.q.val();
+                self.slots.d.next = self.kept.val() & !self.tail.val();
             }
-            self.write_q.d.next = self.write_step.val();
         }
-        if self.pop.val() {
-            self.read_q.d.next = self.read_step.val();
-        }
-        self.holds_one.next = (self.write_q.q.val() & self.read_step.val()).any();
-        // The pointers meet only when the queue is empty: it never fills.
-        self.stay_hit.next = (self.slots.q.val() & self.read_q.q.val()).any();
-        if self.push.val() && self.empty_q.q.val() {
-            self.stay_hit.next = self.push_hit.val();
-        }
-        self.step_hit.next = (self.slots.q.val() & self.read_step.val()).any();
-        if self.push.val() && self.holds_one.val() {
-            self.step_hit.next = self.push_hit.val();
-        }
-        if self.pop.val() {
-            self.head_q.d.next = self.step_hit.val();
-        } else {
-            self.head_q.d.next = self.stay_hit.val();
-        }
-        // A push alone leaves a verdict; a pop alone of the only one
-        // leaves none; both, or neither, keep the count.
+        // The queue never fills: the pipeline bounds it (module doc).
         if self.push.val() && !self.pop.val() {
-            self.empty_q.d.next = false;
+            self.count_q.d.next = self.count_q.q.val() << 1;
         }
         if self.pop.val() && !self.push.val() {
-            self.empty_q.d.next = self.holds_one.val();
+            self.count_q.d.next = self.count_q.q.val() >> 1;
         }
         if self.reset.val() {
-            self.write_q.d.next = 1.into();
-            self.read_q.d.next = 1.into();
-            self.empty_q.d.next = true;
+            self.count_q.d.next = 1.into();
         }
-        self.head.next = self.head_q.q.val();
+        self.head.next = self.slots.q.val().get_bit(0);
         // Empty: the verdict on its way in.
-        if self.push.val() && self.empty_q.q.val() {
+        if self.push.val() && self.count_q.q.val().get_bit(0) {
             self.head.next = self.push_hit.val();
         }
     }

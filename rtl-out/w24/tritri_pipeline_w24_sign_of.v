@@ -1,10 +1,6 @@
----
-source: crates/tritri-rtl/tests/emit_pipeline.rs
-expression: "&f.contents"
----
 ////////////////////////////////////////////////////////////////////////////////
 //
-// Filename:   tritri_pipeline_w24_sign_of_w49.v
+// Filename:   tritri_pipeline_w24_sign_of.v
 //
 // Purpose:    Sign of a two's-complement predicate value, registered: the only
 //             thing the decisions look at (docs/ARCHITECTURE.md, conventions:
@@ -24,7 +20,7 @@ expression: "&f.contents"
 
 `default_nettype none
 
-module tritri_pipeline_w24_sign_of_w49 (
+module tritri_pipeline_w24_sign_of (
     input  wire        clock,
     input  wire        advance,
     input  wire [48:0] value,
@@ -67,6 +63,6 @@ module tritri_pipeline_w24_sign_of_w49 (
         end
     end
 
-endmodule  // tritri_pipeline_w24_sign_of_w49
+endmodule  // tritri_pipeline_w24_sign_of
 
 `default_nettype wire
