@@ -29,17 +29,15 @@ module tritri_pipeline_w24_registered_difference_sign (
 
     // Update code (custom)
     // The sign of the 74-bit difference a - b (modulo 2^74) and whether it
-    // is 0, registered; only the difference's top bit is read.
-    /* verilator lint_off UNUSEDSIGNAL */
-    wire [73:0] difference = a - b;
-    /* verilator lint_on UNUSEDSIGNAL */
+    // is 0, registered. The top bit of a - b is a's top bit ^ b's ^ the
+    // borrow out of the bits below, which is their comparison.
     initial begin
         negative = 1'b0;
         zero = 1'b0;
     end
     always @(posedge clock) begin
         if (advance) begin
-            negative <= difference[73];
+            negative <= a[73] ^ b[73] ^ (a[72:0] < b[72:0]);
             zero <= a == b;
         end
     end

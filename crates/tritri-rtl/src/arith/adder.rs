@@ -96,22 +96,21 @@ impl<const N: usize> Logic for RegisteredDifferenceSign<N> {
         Verilog::Custom(format!(
             "\
 // The sign of the {N}-bit difference a - b (modulo 2^{N}) and whether it
-// is 0, registered; only the difference's top bit is read.
-/* verilator lint_off UNUSEDSIGNAL */
-wire [{n1}:0] difference = a - b;
-/* verilator lint_on UNUSEDSIGNAL */
+// is 0, registered. The top bit of a - b is a's top bit ^ b's ^ the
+// borrow out of the bits below, which is their comparison.
 initial begin
     negative = 1'b0;
     zero = 1'b0;
 end
 always @(posedge clock) begin
     if (advance) begin
-        negative <= difference[{n1}];
+        negative <= a[{n1}] ^ b[{n1}] ^ (a[{n2}:0] < b[{n2}:0]);
         zero <= a == b;
     end
 end
 ",
-            n1 = N - 1
+            n1 = N - 1,
+            n2 = N - 2
         ))
     }
 }
