@@ -2,11 +2,10 @@
 //
 // Filename:   tritri_pipeline_w24_registered_difference_sign.v
 //
-// Purpose:    The sign of `a - b` (mod `2^N`) and whether it is 0 (`a == b`),
-//             registered: a subtraction whose value nobody reads. The test for
-//             0 compares the operands beside the carry chain instead of ORing
-//             the difference's bits behind it. Part of tritri_pipeline_w24.
-//             Instance: path.third_determinant.subtract_second.
+// Purpose:    The sign of `a - b` (mod `2^N`) and whether it is 0 (`a == b`) in
+//             parts, registered: a subtraction whose value nobody reads. Part
+//             of tritri_pipeline_w24. Instance:
+//             path.third_determinant.subtract_second.
 //
 // Rust unit:  RegisteredDifferenceSign<N = 74>
 // Latency:    1 clock cycle
@@ -24,21 +23,22 @@ module tritri_pipeline_w24_registered_difference_sign (
     input  wire [73:0] a,
     input  wire [73:0] b,
     output reg         negative,
-    output reg         zero
+    output reg  [73:0] equal_parts
 );
 
     // Update code (custom)
-    // The sign of the 74-bit difference a - b (modulo 2^74) and whether it
-    // is 0, registered. The top bit of a - b is a's top bit ^ b's ^ the
-    // borrow out of the bits below, which is their comparison.
+    // The sign of the 74-bit difference a - b (modulo 2^74), and whether it
+    // is 0 in parts of 2 bits, registered. The top bit of a - b
+    // is a's top bit ^ b's ^ the borrow out of the bits below, which is their
+    // comparison.
     initial begin
         negative = 1'b0;
-        zero = 1'b0;
+        equal_parts = {74{1'b1}};
     end
     always @(posedge clock) begin
         if (advance) begin
             negative <= a[73] ^ b[73] ^ (a[72:0] < b[72:0]);
-            zero <= a == b;
+            equal_parts <= {37'b1111111111111111111111111111111111111, a[73:72] == b[73:72], a[71:70] == b[71:70], a[69:68] == b[69:68], a[67:66] == b[67:66], a[65:64] == b[65:64], a[63:62] == b[63:62], a[61:60] == b[61:60], a[59:58] == b[59:58], a[57:56] == b[57:56], a[55:54] == b[55:54], a[53:52] == b[53:52], a[51:50] == b[51:50], a[49:48] == b[49:48], a[47:46] == b[47:46], a[45:44] == b[45:44], a[43:42] == b[43:42], a[41:40] == b[41:40], a[39:38] == b[39:38], a[37:36] == b[37:36], a[35:34] == b[35:34], a[33:32] == b[33:32], a[31:30] == b[31:30], a[29:28] == b[29:28], a[27:26] == b[27:26], a[25:24] == b[25:24], a[23:22] == b[23:22], a[21:20] == b[21:20], a[19:18] == b[19:18], a[17:16] == b[17:16], a[15:14] == b[15:14], a[13:12] == b[13:12], a[11:10] == b[11:10], a[9:8] == b[9:8], a[7:6] == b[7:6], a[5:4] == b[5:4], a[3:2] == b[3:2], a[1:0] == b[1:0]};
         end
     end
 endmodule  // tritri_pipeline_w24_registered_difference_sign

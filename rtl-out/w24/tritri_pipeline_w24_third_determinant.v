@@ -41,7 +41,7 @@ module tritri_pipeline_w24_third_determinant (
     wire  [73:0] subtract_second_a;
     wire  [73:0] subtract_second_b;
     wire  subtract_second_negative;
-    wire  subtract_second_zero;
+    wire  [73:0] subtract_second_equal_parts;
     reg  negative_d;
     wire  negative_q;
     wire  negative_clock;
@@ -68,7 +68,7 @@ module tritri_pipeline_w24_third_determinant (
         .a(subtract_second_a),
         .b(subtract_second_b),
         .negative(subtract_second_negative),
-        .zero(subtract_second_zero)
+        .equal_parts(subtract_second_equal_parts)
     );
     tritri_pipeline_w24_dff_1 u_negative_q(
         .d(negative_d),
@@ -104,7 +104,7 @@ module tritri_pipeline_w24_third_determinant (
         end
         if (advance) begin
             negative_d = subtract_second_negative;
-            zero_d = subtract_second_zero;
+            zero_d = &subtract_second_equal_parts;
         end
     end
 

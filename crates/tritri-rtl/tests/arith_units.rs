@@ -8,7 +8,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::cross;
-use tritri_rtl::arith::adder::{RegisteredDifference, RegisteredSum3, ADDER_LATENCY, SUM3_LATENCY};
+use tritri_rtl::arith::adder::{
+    RegisteredDifference, RegisteredDifferenceSign, RegisteredSum3, ADDER_LATENCY, SUM3_LATENCY,
+};
 use tritri_rtl::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
 use tritri_rtl::arith::cross_product::{CrossProduct, CrossProduct2d, CROSS_PRODUCT_LATENCY};
@@ -268,6 +270,36 @@ fn adders_wrap_modulo_their_width() {
         },
         |u| to_i128(u.difference.val()),
         |[a, b]| wrap_i128(a - b, 50),
+    );
+    // The sign and the equality in parts: random pairs, equal pairs, and
+    // pairs that differ in one bit, every bit (each part's test, the sign's
+    // borrow from each bit).
+    let mut uut = RegisteredDifferenceSign::<50>::default();
+    uut.connect_all();
+    uut.advance.next = true;
+    let mut pairs = tuples::<2>(13, 50);
+    let equal: Vec<[i128; 2]> = pairs.iter().map(|[a, _]| [*a, *a]).collect();
+    pairs.extend(equal.iter().step_by(4));
+    for bit in 0..50 {
+        let [a, _] = pairs[bit];
+        pairs.push([a, wrap_i128(a ^ (1 << bit), 50)]);
+    }
+    pairs.extend([
+        [0, 0],
+        [-(1 << 49), (1 << 49) - 1],
+        [(1 << 49) - 1, -(1 << 49)],
+    ]);
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &pairs,
+        ADDER_LATENCY,
+        |u, [a, b]| {
+            u.a.next = from_i128(*a);
+            u.b.next = from_i128(*b);
+        },
+        |u| (u.negative.val(), u.equal_parts.val().all()),
+        |[a, b]| (wrap_i128(a - b, 50) < 0, a == b),
     );
 }
 
