@@ -114,10 +114,9 @@ impl<const N: usize> crate::unit::Unit for RegisteredDifferenceSign<N> {
 impl<const N: usize> Logic for RegisteredDifferenceSign<N> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
-            let v = wrap_i128(to_i128(self.a.val()) - to_i128(self.b.val()), N);
-            self.negative.next = v < 0;
-            let differ = to_i128(self.a.val()) ^ to_i128(self.b.val());
-            self.equal_parts.next = parts_model::<N>(!differ as u128, EQUAL_PART_BITS);
+            let (a, b) = (to_i128(self.a.val()), to_i128(self.b.val()));
+            self.negative.next = wrap_i128(a - b, N) < 0;
+            self.equal_parts.next = parts_model::<N>(!(a ^ b) as u128, EQUAL_PART_BITS);
         }
     }
 
