@@ -330,7 +330,8 @@ pub struct Args {
     #[arg(long, value_name = "RATE", value_parser = parse_rate, requires = "for_scene")]
     max_uncertain: Option<f64>,
     /// With --for-scene: the device whose resources bound the design
-    /// (ecp5-85: LFE5U-85F, post-route figures at W = 8 and 12;
+    /// (ecp5-85: LFE5U-85F, post-route figures at W = 8 and 12, and at
+    /// W = 16 with the rare cases shared, the pipeline it then emits;
     /// artix7-200t: XC7A200T, Yosys synth_xilinx figures at every width).
     #[arg(long, value_name = "NAME", default_value = "artix7-200t", value_parser = parse_device)]
     device: String,

@@ -545,7 +545,9 @@ fn rare_cases_option_chooses_the_top() {
 /// width that meets it is W = 20 (W = 16 sends 2.4 % back), two pipelines
 /// fit the Artix-7 200T and four do not; the README says so and gives the
 /// Verilator command.
-/// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named.
+/// On the ECP5-85 nothing measured meets 0.1 %: status 2, the best named:
+/// W = 16 with its rare cases shared, the pipeline routed there. With a 3 %
+/// budget that pipeline is chosen, and the system emitted shares them.
 #[test]
 fn for_scene_sizes_the_system_and_says_why() {
     let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));
@@ -606,10 +608,49 @@ fn for_scene_sizes_the_system_and_says_why() {
     assert_eq!(run.status.code(), Some(2));
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(
-        err.contains("--max-uncertain 0.001") && err.contains("the best there is W = 12"),
+        err.contains("--max-uncertain 0.001")
+            && err.contains("the best there is W = 16, rare cases shared"),
         "{err}"
     );
     assert!(!out.exists(), "nothing written");
+
+    let run = tritri()
+        .args([
+            "gen",
+            "--for-scene",
+            "@torus",
+            "@sphere",
+            "--device",
+            "ecp5-85",
+            "--max-uncertain",
+            "0.03",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+    for needle in [
+        "**Chosen: W = 16, rare cases shared, P = 2, memory depth",
+        "hold for the rare pairs",
+        "| W = 16, rare cases shared (chosen) | 72 |",
+        "--width 16 --rare-cases shared --pipelines 2",
+    ] {
+        assert!(
+            readme.contains(needle),
+            "README lacks `{needle}`:\n{readme}"
+        );
+    }
+    assert!(std::fs::read_dir(&out).unwrap().any(|e| {
+        let name = e.unwrap().file_name().to_string_lossy().into_owned();
+        name.starts_with("tritri_system_w16_p2_d") && name.ends_with("_shared.v")
+    }));
+    std::fs::remove_dir_all(&out).unwrap();
 
     for (flag, value, says) in [
         ("--device", "virtex", "unknown device `virtex`"),

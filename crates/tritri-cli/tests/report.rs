@@ -5,6 +5,8 @@
 use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
+use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::RareCasePath;
 
 fn tritri(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tritri"))
@@ -132,9 +134,15 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
 
     // Hardware: the measurements `gen --synth` printed (rtl-out/measurements.json,
     // itself held to rtl-out/README.md and to a synthesis run by tritri-rtl's tests).
+    // A width's pipeline is the one routed on ECP5 (W = 16: its rare cases
+    // shared), its Xilinx row that same pipeline's.
     let kept = tritri_rtl::measured::Measurements::committed();
     for row in report["widths"].as_array().unwrap() {
-        let unit = format!("tritri_pipeline_w{}", row["width"]);
+        let width = row["width"].as_u64().unwrap() as u32;
+        let routed = kept.ecp5_pipeline(width);
+        let path = routed.map_or(RareCasePath::Parallel, |(path, _)| path);
+        assert_eq!(row["rare_cases"], path.name(), "W = {width}");
+        let unit = pipeline_unit_name_for(width as usize, path);
         let x = kept.xilinx(&unit).unwrap();
         assert_eq!(
             (
@@ -144,7 +152,7 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
             (Some(x.lut), Some(x.dsp48e1)),
             "{unit}"
         );
-        match kept.ecp5(&unit) {
+        match routed.map(|(_, e)| e) {
             Some(e) => {
                 assert_eq!(row["ecp5"]["fmax_mhz"].as_f64(), Some(e.fmax_mhz), "{unit}");
                 let p = row["ecp5_pipelines"].as_u64().unwrap();
@@ -164,13 +172,24 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
         }
     }
 
-    // The scene: `tritri sim` with the same width, pipelines and clock.
+    // The scene: `tritri sim` with the same width, pipelines, clock and
+    // rare-case path; with the rare cases shared, the report's time adds
+    // the stall model's bound that `sim` prints.
+    assert!(
+        report["scene"]["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r["rare_cases"] == "shared"),
+        "W = 16's routed pipeline shares its rare cases"
+    );
     for row in report["scene"]["rows"].as_array().unwrap() {
         let (w, p, clock) = (
             row["width"].to_string(),
             row["pipelines"].to_string(),
             row["clock_mhz"].as_f64().unwrap().to_string(),
         );
+        let rare_cases = row["rare_cases"].as_str().unwrap();
         let sim = tritri(&[
             "sim",
             "--width",
@@ -179,6 +198,8 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
             &p,
             "--clock-mhz",
             &clock,
+            "--rare-cases",
+            rare_cases,
         ]);
         assert_eq!(sim.status.code(), Some(0), "{}", text(&sim.stderr));
         let sim = text(&sim.stdout);
@@ -204,9 +225,14 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
             "W = {w}"
         );
         assert_eq!(field("cycles"), number_after(&sim, "\ncycles:"), "W = {w}");
+        let stalls = match rare_cases {
+            "shared" => number_after(&sim, "stall model) at most"),
+            _ => 0,
+        };
+        assert_eq!(field("stall_cycles"), stalls, "W = {w}");
         assert_eq!(
             field("whole_cycles"),
-            number_after(&sim, "first triangle in to last pair out:"),
+            number_after(&sim, "first triangle in to last pair out:") + stalls,
             "W = {w}"
         );
         assert_eq!(

@@ -4,6 +4,8 @@
 //! the program, so that `tritri report` and `tritri gen --for-scene` read
 //! measured figures without running Yosys or nextpnr again.
 
+use crate::pipeline::pipeline_unit::pipeline_unit_name_for;
+use crate::pipeline::RareCasePath;
 use serde::{Deserialize, Serialize};
 
 /// The committed measurements (`rtl-out/measurements.json`).
@@ -91,6 +93,19 @@ impl Measurements {
     pub fn ecp5(&self, unit: &str) -> Option<&Ecp5Row> {
         self.ecp5.iter().find(|r| r.unit == unit)
     }
+
+    /// The `width`-bit pipeline routed on ECP5, and where it tests its rare
+    /// pairs: the parallel units (the default, which never stalls) where
+    /// that pipeline was routed, else the shared unit (for widths whose
+    /// parallel units do not route at the clock, such as W = 16:
+    /// rtl-out/README.md). Its stall cost is the scene's; those who run a
+    /// scene on it count it ([`crate::system::rare_case_model`]).
+    pub fn ecp5_pipeline(&self, width: u32) -> Option<(RareCasePath, &Ecp5Row)> {
+        RareCasePath::ALL.into_iter().find_map(|path| {
+            let row = self.ecp5(&pipeline_unit_name_for(width as usize, path))?;
+            Some((path, row))
+        })
+    }
 }
 
 /// A part a design is sized for: its resource budget, written once.
@@ -152,5 +167,34 @@ mod tests {
             .contains("tritri_pipeline_w8: fmax_mhz 0 is not a positive clock"));
         assert!(m.xilinx("tritri_pipeline_w24").is_some());
         assert!(m.ecp5("tritri_pipeline_w8").is_some());
+    }
+
+    #[test]
+    fn the_routed_pipeline_of_a_width_is_parallel_where_routed_else_shared() {
+        let mut m = Measurements::committed();
+        let row = |unit: &str| Ecp5Row {
+            unit: unit.into(),
+            fmax_mhz: 100.0,
+            seed: 1,
+            lut4: 1,
+            ff: 1,
+            mult18x18d: 1,
+            ebr: 0,
+        };
+        m.ecp5 = vec![
+            row("tritri_pipeline_shared_w16"),
+            row("tritri_pipeline_w8"),
+            row("tritri_pipeline_shared_w8"),
+        ];
+        let path = |w| m.ecp5_pipeline(w).map(|(p, r)| (p, r.unit.clone()));
+        assert_eq!(
+            path(8),
+            Some((RareCasePath::Parallel, "tritri_pipeline_w8".into()))
+        );
+        assert_eq!(
+            path(16),
+            Some((RareCasePath::Shared, "tritri_pipeline_shared_w16".into()))
+        );
+        assert_eq!(path(24), None);
     }
 }

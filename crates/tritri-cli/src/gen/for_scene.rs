@@ -22,6 +22,13 @@
 //! "why not one more pipeline". The memory depth is the power of two from
 //! 64 to 1024 with the fewest cycles (the smaller one when within 1 %).
 //!
+//! **Rare cases.** A width's pipeline is the one measured on the device's
+//! flow: on ECP5 the routed one ([`Measurements::ecp5_pipeline`]: W = 16
+//! is routed with its rare pairs on the shared unit), on Xilinx the
+//! default's. With the shared unit, the cycles include the stall model's
+//! bound on the clocks the system holds for the scene's rare pairs, and
+//! the system emitted has that pipeline.
+//!
 //! A candidate is run in the model only where it could be chosen: a width
 //! not measured on the device's flow is not, and neither is one whose host
 //! pairs alone (local frames) already exceed the budget (its share is then
@@ -36,11 +43,15 @@ use std::process::ExitCode;
 use tritri_cosim::engine::{run_scene_with, Engine};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
+use tritri_geom::scene::Batch;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::measured::{Device, Measurements};
 use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
+use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::cycle_model::scene_cycles;
+use tritri_rtl::system::rare_case_model::rare_case_cost;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system_with;
 
@@ -86,6 +97,10 @@ struct Candidate {
     width: u32,
     /// The grid's bits (above `width`: local frames).
     grid_bits: u32,
+    /// Where its pipelines test their rare pairs: that of the pipeline
+    /// measured on the device's flow ([`Measurements::ecp5_pipeline`] on
+    /// ECP5; the default, parallel, on Xilinx).
+    rare_cases: RareCasePath,
     /// Multipliers and LUTs of one pipeline on the device's flow.
     multipliers: u64,
     luts: u64,
@@ -114,21 +129,32 @@ impl Candidate {
     }
 
     fn name(&self) -> String {
+        let rare = match self.rare_cases {
+            RareCasePath::Parallel => "",
+            RareCasePath::Shared => ", rare cases shared",
+        };
         if self.grid_bits > self.width {
             format!(
-                "W = {} in local frames of a {}-bit grid",
+                "W = {} in local frames of a {}-bit grid{rare}",
                 self.width, self.grid_bits
             )
         } else {
-            format!("W = {}", self.width)
+            format!("W = {}{rare}", self.width)
         }
     }
 
     fn sim_flags(&self) -> String {
+        let rare = match self.rare_cases {
+            RareCasePath::Parallel => String::new(),
+            RareCasePath::Shared => " --rare-cases shared".into(),
+        };
         if self.grid_bits > self.width {
-            format!("--width {} --grid-bits {}", self.width, self.grid_bits)
+            format!(
+                "--width {} --grid-bits {}{rare}",
+                self.width, self.grid_bits
+            )
         } else {
-            format!("--width {}", self.width)
+            format!("--width {}{rare}", self.width)
         }
     }
 }
@@ -232,7 +258,9 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     };
 
     let config = hardware.system_config();
-    let mut design = emit_system_with(config, PipelineKind::Real, MultiplierMapping::Inferred)
+    let stalls = stall_bound(candidate.rare_cases, sizing.pipelines, &scene.batches());
+    let kind = PipelineKind::from(candidate.rare_cases);
+    let mut design = emit_system_with(config, kind, MultiplierMapping::Inferred)
         .with_context(|| format!("emitting {}", config.unit_name()))?;
     let why = explain(
         &request,
@@ -242,7 +270,7 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
         chosen,
         &sizing,
         &measured,
-        run.cycles,
+        (run.cycles, stalls),
         &measurements,
     );
     if let Some(readme) = design.files.iter_mut().find(|f| f.path == "README.md") {
@@ -305,18 +333,25 @@ fn measure(
     device: &Device,
     budget: f64,
 ) -> anyhow::Result<Candidate> {
-    let unit = format!("tritri_pipeline_w{width}");
-    let (multipliers, luts, measured) = match device.flow {
+    let (rare_cases, multipliers, luts, measured) = match device.flow {
         "ecp5" => m
-            .ecp5(&unit)
-            .map_or((0, 0, false), |r| (r.mult18x18d, r.lut4, true)),
+            .ecp5_pipeline(width)
+            .map_or((RareCasePath::Parallel, 0, 0, false), |(path, r)| {
+                (path, r.mult18x18d, r.lut4, true)
+            }),
         _ => m
-            .xilinx(&unit)
-            .map_or((0, 0, false), |r| (r.dsp48e1, r.lut, true)),
+            .xilinx(&pipeline_unit_name_for(
+                width as usize,
+                RareCasePath::Parallel,
+            ))
+            .map_or((RareCasePath::Parallel, 0, 0, false), |r| {
+                (RareCasePath::Parallel, r.dsp48e1, r.lut, true)
+            }),
     };
     let mut c = Candidate {
         width,
         grid_bits,
+        rare_cases,
         multipliers,
         luts,
         measured,
@@ -347,6 +382,15 @@ fn measure(
     Ok(c)
 }
 
+/// With the rare pairs on a shared unit, the stall model's bound on the
+/// clocks `pipelines` pipelines hold for them on `batches`; 0 without.
+fn stall_bound(rare_cases: RareCasePath, pipelines: u32, batches: &[Batch]) -> u64 {
+    match rare_cases {
+        RareCasePath::Parallel => 0,
+        RareCasePath::Shared => rare_case_cost(pipelines as usize, batches).stall_cycles,
+    }
+}
+
 /// P and the depth for `c` (module docs).
 fn size(
     a: &SceneObject,
@@ -363,7 +407,10 @@ fn size(
         let mut best: Option<(u64, u64)> = None;
         for depth in DEPTHS {
             let hardware = hardware(c, p, depth);
-            let cycles = scene_cycles(hardware.system_config(), &hardware.prepare(a, b)?.batches());
+            let scene = hardware.prepare(a, b)?;
+            let batches = scene.batches();
+            let cycles = scene_cycles(hardware.system_config(), &batches)
+                + stall_bound(c.rare_cases, p, &batches);
             if best.is_none_or(|(_, b)| (cycles as f64) < 0.99 * b as f64) {
                 best = Some((depth, cycles));
             }
@@ -402,7 +449,7 @@ fn explain(
     chosen: usize,
     sizing: &Sizing,
     measured: &Candidate,
-    cycles: u64,
+    (cycles, stalls): (u64, u64),
     m: &Measurements,
 ) -> String {
     let c = &candidates[chosen];
@@ -426,13 +473,20 @@ fn explain(
     );
     let _ = writeln!(
         s,
-        "**Chosen: {}, P = {}, memory depth {}.** In the model on this scene, so built: {:.4} % of {} pairs go back to the host; {} cycles for the narrow phase.\n",
+        "**Chosen: {}, P = {}, memory depth {}.** In the model on this scene, so built: {:.4} % of {} pairs go back to the host; {} cycles for the narrow phase{}.\n",
         c.name(),
         sizing.pipelines,
         sizing.depth,
         100.0 * measured.host_share(),
         measured.pairs_tested + measured.host_pairs,
-        cycles
+        cycles + stalls,
+        match c.rare_cases {
+            RareCasePath::Parallel => String::new(),
+            RareCasePath::Shared => format!(
+                ", of which at most {stalls} hold for the rare pairs (the pipeline routed on {} tests them on a shared unit: the stall model's bound)",
+                device.flow
+            ),
+        }
     );
     // Every cheaper configuration misses the budget; the closest says by how much.
     let fewer = candidates[..chosen]

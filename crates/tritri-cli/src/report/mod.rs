@@ -44,6 +44,8 @@ use std::process::ExitCode;
 use std::time::Duration;
 use tritri_geom::arithmetic::Arithmetic;
 use tritri_rtl::measured::{device, Device, Ecp5Row, Measurements, XilinxRow};
+use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::RareCasePath;
 
 /// The device the ECP5 figures were routed for.
 pub fn ecp5_device() -> &'static Device {
@@ -111,9 +113,13 @@ pub struct WidthRow {
     pub error: Option<eval::Row>,
     /// Pairs evaluated (the denominators of the rates).
     pub pairs: usize,
-    /// `tritri_pipeline_w<W>` under `synth_xilinx`, where measured.
+    /// Where the pipeline of this row tests its rare pairs (`parallel` or
+    /// `shared`): the one routed on ECP5 ([`Measurements::ecp5_pipeline`]),
+    /// parallel where none was.
+    pub rare_cases: RareCasePath,
+    /// That pipeline under `synth_xilinx`, where measured.
     pub xilinx: Option<XilinxRow>,
-    /// `tritri_pipeline_w<W>` placed and routed on ECP5, where measured.
+    /// That pipeline placed and routed on ECP5, where measured.
     pub ecp5: Option<Ecp5Row>,
     /// Pipelines of this width that fit the ECP5-85's multipliers, at most
     /// P (`None` when not one fits).
@@ -276,8 +282,10 @@ fn width_rows(
     let mut rows: Vec<WidthRow> = widths
         .iter()
         .map(|&width| {
-            let unit = format!("tritri_pipeline_w{width}");
-            let ecp5 = measurements.ecp5(&unit).cloned();
+            let routed = measurements.ecp5_pipeline(width);
+            let rare_cases = routed.map_or(RareCasePath::Parallel, |(path, _)| path);
+            let unit = pipeline_unit_name_for(width as usize, rare_cases);
+            let ecp5 = routed.map(|(_, row)| row.clone());
             // A width whose pipeline does not fit the device has no throughput.
             let fitting = ecp5
                 .as_ref()
@@ -289,6 +297,7 @@ fn width_rows(
                 .map(|(r, p)| r.fmax_mhz * 1e6 * p as f64);
             WidthRow {
                 width,
+                rare_cases,
                 error: errors.and_then(|e| {
                     e.total
                         .rows
@@ -335,14 +344,15 @@ fn print_summary(dir: &Path, report: &Report) {
         );
     }
     println!(
-        "  {:>3} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}",
-        "W", "wrong", "uncert", "uncert %", "LUT", "DSP", "Fmax MHz", "pairs/s"
+        "  {:>3} {:>8} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}",
+        "W", "rare", "wrong", "uncert", "uncert %", "LUT", "DSP", "Fmax MHz", "pairs/s"
     );
     let dash = || "-".to_string();
     for w in &report.widths {
         println!(
-            "  {:>3} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}{}",
+            "  {:>3} {:>8} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}{}",
             w.width,
+            w.rare_cases.name(),
             w.error.as_ref().map_or_else(dash, |e| e.wrong.to_string()),
             w.error
                 .as_ref()
@@ -370,8 +380,22 @@ fn print_summary(dir: &Path, report: &Report) {
         );
         for r in &s.rows {
             println!(
-                "  W = {:>2}: {} pairs tested, {} leaves, {} cycles, {:.3} ms at {:.1} MHz ({}), {:.1} x software; {} uncertain; {} missing / {} extra against exact f64",
-                r.width, r.pairs_tested, r.leaves, r.whole_cycles, 1e3 * r.whole_seconds, r.clock_mhz, r.clock, r.speedup, r.uncertain, r.missing, r.extra
+                "  W = {:>2}: {} pairs tested, {} leaves, {} cycles{}, {:.3} ms at {:.1} MHz ({}), {:.1} x software; {} uncertain; {} missing / {} extra against exact f64",
+                r.width,
+                r.pairs_tested,
+                r.leaves,
+                r.whole_cycles,
+                match r.rare_cases {
+                    RareCasePath::Parallel => String::new(),
+                    RareCasePath::Shared => format!(" ({} stalls at most, rare cases shared)", r.stall_cycles),
+                },
+                1e3 * r.whole_seconds,
+                r.clock_mhz,
+                r.clock,
+                r.speedup,
+                r.uncertain,
+                r.missing,
+                r.extra
             );
         }
     }

@@ -84,6 +84,7 @@ fn widths_table(report: &Report) -> Table {
         "FF (xc7)",
         "DSP48E1 (xc7)",
         "SRL (xc7)",
+        "rare cases",
         "Fmax MHz (ECP5)",
         "LUT4 (ECP5)",
         "MULT18X18D (ECP5)",
@@ -110,6 +111,7 @@ fn widths_table(report: &Report) -> Table {
                 opt(w.xilinx.as_ref().map(|x| x.ff)),
                 opt(w.xilinx.as_ref().map(|x| x.dsp48e1)),
                 opt(w.xilinx.as_ref().map(|x| x.srl)),
+                w.rare_cases.name().into(),
                 fixed(w.ecp5.as_ref().map(|r| r.fmax_mhz), 1),
                 opt(w.ecp5.as_ref().map(|r| r.lut4)),
                 opt(w.ecp5.as_ref().map(|r| r.mult18x18d)),
@@ -127,6 +129,7 @@ fn widths_table(report: &Report) -> Table {
 fn hardware_table(report: &Report) -> Table {
     let header = vec![
         "W",
+        "rare cases",
         "LUT",
         "FF",
         "DSP48E1",
@@ -146,6 +149,7 @@ fn hardware_table(report: &Report) -> Table {
             let e = w.ecp5.as_ref();
             vec![
                 w.width.to_string(),
+                w.rare_cases.name().into(),
                 opt(x.map(|x| x.lut)),
                 opt(x.map(|x| x.ff)),
                 opt(x.map(|x| x.dsp48e1)),
@@ -252,6 +256,8 @@ fn scene_table(report: &Report) -> Option<Table> {
         "first in to last out cycles",
         "clock MHz",
         "clock",
+        "rare cases",
+        "stall cycles (bound)",
         "time ms",
         "x software",
         "intersecting (grid)",
@@ -275,6 +281,8 @@ fn scene_table(report: &Report) -> Option<Table> {
                 r.whole_cycles.to_string(),
                 format!("{:.1}", r.clock_mhz),
                 r.clock.clone(),
+                r.rare_cases.name().into(),
+                r.stall_cycles.to_string(),
                 format!("{:.4}", 1e3 * r.whole_seconds),
                 format!("{:.1}", r.speedup),
                 r.intersecting.to_string(),
@@ -322,7 +330,11 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
     let mut html = format!(
         "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>tritri: speed against error</title><style>{STYLE}</style></head><body>\
          <h1>tritri: speed against error</h1><p class=\"note\"><code>{}</code><br>Hardware figures: {} (measured {}); \
-         hardware speed is one pair per clock per pipeline, at the ECP5 post-route Fmax where the pipeline was routed,          with P = {} pipelines or as many as fit the {}'s {} multipliers.</p>",
+         hardware speed is one pair per clock per pipeline, at the ECP5 post-route Fmax where the pipeline was routed, \
+         with P = {} pipelines or as many as fit the {}'s {} multipliers. \
+         A width's pipeline is the one routed: its rare pairs on parallel units, \
+         or on the shared unit where only that one was routed (\"rare cases\"), \
+         whose stalls the scene's time counts by the stall model's bound.</p>",
         escape(&report.command),
         escape(&report.measurements),
         escape(&report.measured),

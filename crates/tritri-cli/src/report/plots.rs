@@ -6,6 +6,7 @@
 
 use super::{Report, SceneSection, WidthRow};
 use plotters::prelude::*;
+use tritri_rtl::pipeline::RareCasePath;
 
 const SIZE: (u32, u32) = (720, 440);
 const FONT: (&str, u32) = ("sans-serif", 14);
@@ -339,12 +340,15 @@ pub fn speed(report: &Report) -> anyhow::Result<Option<String>> {
 /// Throughput per multiplier against wrong verdicts, the routed widths;
 /// the Pareto front joined.
 pub fn pareto(report: &Report) -> anyhow::Result<Option<String>> {
-    let points: Vec<(u32, f64, f64, bool)> = report
+    let points: Vec<(String, f64, f64, bool)> = report
         .widths
         .iter()
         .filter_map(|r| {
             Some((
-                r.width,
+                match r.rare_cases {
+                    RareCasePath::Parallel => format!("W = {}", r.width),
+                    RareCasePath::Shared => format!("W = {}, rare cases shared", r.width),
+                },
                 100.0 * r.wrong_rate()?,
                 r.pairs_per_second_per_multiplier?,
                 r.pareto,
@@ -388,11 +392,11 @@ pub fn pareto(report: &Report) -> anyhow::Result<Option<String>> {
             .draw_series(LineSeries::new(front, RED.stroke_width(2)))?
             .label("Pareto front")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], RED.stroke_width(2)));
-        chart.draw_series(points.iter().map(|&(w, e, s, on)| {
-            let style = if on { RED.filled() } else { BLUE.filled() };
-            EmptyElement::at((e.max(floor), s))
+        chart.draw_series(points.iter().map(|(name, e, s, on)| {
+            let style = if *on { RED.filled() } else { BLUE.filled() };
+            EmptyElement::at((e.max(floor), *s))
                 + Circle::new((0, 0), 5, style)
-                + Text::new(format!("W = {w}"), (8, -16), FONT)
+                + Text::new(name.clone(), (8, -16), FONT)
         }))?;
         chart
             .configure_series_labels()

@@ -10,6 +10,8 @@ use std::time::Instant;
 use tritri_cosim::engine::{check_quantized, run_scene_with, Engine};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff};
+use tritri_rtl::pipeline::RareCasePath;
+use tritri_rtl::system::rare_case_model::rare_case_cost;
 use tritri_rtl::system::DEFAULT_TRIANGLES_PER_BANK;
 
 /// The clock of a width without a post-route figure (the thesis's).
@@ -46,6 +48,13 @@ pub struct SceneRow {
     pub clock_mhz: f64,
     /// `post-route` (ECP5) or `assumed`.
     pub clock: String,
+    /// Where the pipelines test their rare pairs: those of the width's
+    /// routed pipeline.
+    pub rare_cases: RareCasePath,
+    /// With the rare pairs on the shared unit, the stall model's bound on
+    /// the clocks the system holds for them (in `whole_cycles`); 0 with
+    /// the parallel units.
+    pub stall_cycles: u64,
     pub whole_seconds: f64,
     /// Software time over `whole_seconds`.
     pub speedup: f64,
@@ -98,8 +107,19 @@ pub fn measure(
         if !same.is_empty() {
             bail!("W = {width}: the model differs from the exact model on the quantized coordinates (a bug)");
         }
-        let whole_cycles = first_in_to_last_out(&hardware, &scene, &run, run.cycles)
-            .map_or(run.cycles, |(c, _)| c);
+        // The model engine does not hold for rare pairs; where the routed
+        // pipeline shares their unit, the stall model's bound is added
+        // (an upper bound, as `tritri sim --rare-cases shared` reports).
+        let rare_cases = row.map_or(RareCasePath::Parallel, |r| r.rare_cases);
+        let stall_cycles = match rare_cases {
+            RareCasePath::Parallel => 0,
+            RareCasePath::Shared => {
+                rare_case_cost(hardware.pipelines as usize, &scene.batches()).stall_cycles
+            }
+        };
+        let whole_cycles = stall_cycles
+            + first_in_to_last_out(&hardware, &scene, &run, run.cycles)
+                .map_or(run.cycles, |(c, _)| c);
         let whole_seconds = hardware.time_of(whole_cycles).as_secs_f64();
         let diff = PairDiff::between(&truth.pairs, &quantized);
         let certified = certify(&run.pairs, &run.uncertain, a, b);
@@ -118,6 +138,8 @@ pub fn measure(
             } else {
                 "assumed".into()
             },
+            rare_cases,
+            stall_cycles,
             whole_seconds,
             speedup: software_seconds / whole_seconds.max(f64::MIN_POSITIVE),
             intersecting: run.pairs.len(),

@@ -34,7 +34,8 @@ pub const ID_BITS: usize = 32;
 
 /// Where a pipeline tests its rare pairs (coplanar, and two degenerate
 /// triangles).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum RareCasePath {
     /// Their own units beside the general path: 60 multipliers, no stall
     /// ([`triangle_pipeline::TrianglePipeline`]).
@@ -50,6 +51,14 @@ impl RareCasePath {
     /// The command line's names (`tritri gen --rare-cases`, `tritri sim
     /// --rare-cases`), in the order of the variants.
     pub const NAMES: [&'static str; 2] = ["parallel", "shared"];
+
+    /// The variants, the default first.
+    pub const ALL: [RareCasePath; 2] = [RareCasePath::Parallel, RareCasePath::Shared];
+
+    /// The command line's name.
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
 
     pub fn parse(name: &str) -> Option<Self> {
         match name {
