@@ -159,8 +159,10 @@ pub struct Args {
     /// How the multipliers reach the DSP blocks: `inferred` (`a * b`
     /// between registers, for any flow) or `ecp5` (Lattice MULT18X18D
     /// instances with their input, pipeline and output registers, and a
-    /// simulation model of the primitive; widths up to 17) [default: ecp5
-    /// with --synth ecp5, inferred otherwise].
+    /// simulation model of the primitive; widths up to 17; with --system,
+    /// the triangle memories also as DP16KD instances with their output
+    /// registers, and a model of that primitive) [default: ecp5 with
+    /// --synth ecp5, inferred otherwise].
     #[arg(long, value_parser = MultiplierMapping::NAMES)]
     dsp: Option<String>,
     /// Where the delay lines keep their stages: `registers` (one per stage

@@ -59,6 +59,7 @@
 
 pub mod ansi_ports;
 pub mod binning_unit_unit;
+pub mod block_ram_mapping;
 pub mod broad_phase_system_unit;
 pub mod cell_classifier_unit;
 pub mod cone_unit_unit;
@@ -296,6 +297,8 @@ pub fn emit_with(
         }
     }
     let mut models = Vec::new();
+    // The ECP5 primitives with their registers: the multipliers on
+    // MULT18X18D, and the memories with an output register on DP16KD.
     if options.multipliers == dsp_mapping::MultiplierMapping::Ecp5 {
         let mut mapped = false;
         for m in modules.iter_mut() {
@@ -305,6 +308,16 @@ pub fn emit_with(
             models.push(EmittedFile {
                 path: dsp_mapping::ECP5_MODEL_FILE.into(),
                 contents: dsp_mapping::ECP5_MULT18X18D_MODEL.into(),
+            });
+        }
+        let mut mapped = false;
+        for m in modules.iter_mut() {
+            mapped |= block_ram_mapping::map_ecp5(m);
+        }
+        if mapped {
+            models.push(EmittedFile {
+                path: block_ram_mapping::ECP5_DP16KD_MODEL_FILE.into(),
+                contents: block_ram_mapping::ECP5_DP16KD_MODEL.into(),
             });
         }
     }

@@ -312,11 +312,11 @@ fn fusesoc_core(order: &[String], unit: &UnitDescription) -> String {
         unit.name
     ));
     c.push_str("  lint:\n    <<: *default\n    default_tool: verilator\n    tools:\n      verilator:\n        mode: lint-only\n        verilator_options: [-Wall]\n\n");
-    // MULT18X18D instances (`--dsp ecp5`) synthesize for ECP5 only.
-    let arch = if order
-        .iter()
-        .any(|f| f == super::dsp_mapping::ECP5_MODEL_FILE)
-    {
+    // MULT18X18D and DP16KD instances (`--dsp ecp5`) synthesize for ECP5 only.
+    let arch = if order.iter().any(|f| {
+        f == super::dsp_mapping::ECP5_MODEL_FILE
+            || f == super::block_ram_mapping::ECP5_DP16KD_MODEL_FILE
+    }) {
         "ecp5"
     } else {
         "xilinx"
@@ -418,6 +418,16 @@ fn readme(order: &[String], ports: &[Port], unit: &UnitDescription) -> String {
              (`tritri gen --dsp ecp5`); Yosys skips it (`SYNTHESIS` is defined), so synthesize with an ECP5 flow \
              (`synth_ecp5`), not the two scripts above.\n",
             super::dsp_mapping::ECP5_MODEL_FILE
+        ));
+    }
+    if order
+        .iter()
+        .any(|f| f == super::block_ram_mapping::ECP5_DP16KD_MODEL_FILE)
+    {
+        r.push_str(&format!(
+            "- `{}`: a simulation model of Lattice's DP16KD, which the memories with an output register instantiate \
+             with both their registers (`tritri gen --dsp ecp5`); Yosys skips it, as above.\n",
+            super::block_ram_mapping::ECP5_DP16KD_MODEL_FILE
         ));
     }
     r.push('\n');

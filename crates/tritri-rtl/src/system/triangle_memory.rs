@@ -10,16 +10,19 @@
 //! signed `W`-bit two's complement, as on the pipeline's input bus.
 //!
 //! A read takes [`MEMORY_READ_LATENCY`](super::MEMORY_READ_LATENCY) = 2
-//! clocks: the block RAM's registered read, then a register in fabric.
-//! Yosys maps ECP5 block RAM without its output register (`REGMODE
-//! NOREG`), whose clock-to-output is 5.8 ns; driving the bus choice and
-//! the pipelines' input registers from it limited the system to 86.5 MHz.
-//! Both stages hold while `read_enable` is low.
+//! clocks: the block RAM's registered read, then its output register
+//! (each column [`SimpleDualPortRam::with_output_register`]). Without the
+//! second register an ECP5 block RAM (`REGMODE NOREG`) takes 5.8 ns from
+//! clock to data; driving the bus choice and the pipelines' input
+//! registers from it limited the system to 86.5 MHz. Yosys puts the
+//! second register in fabric, which still leaves those 5.8 ns and a wire
+//! before it (113.8 MHz, W = 16, P = 1); `--dsp ecp5` puts it in the
+//! DP16KD ([`crate::emit::block_ram_mapping`]). Both stages hold while
+//! `read_enable` is low.
 
 use super::dual_port_ram::SimpleDualPortRam;
 use super::{ADDRESS_BITS, ID_BITS};
 use rust_hdl::prelude::*;
-use rust_hdl::widgets::prelude::DFF;
 
 #[derive(LogicBlock)]
 pub struct TriangleMemory<const W: usize> {
@@ -34,21 +37,11 @@ pub struct TriangleMemory<const W: usize> {
     pub read_coordinates: [Signal<Out, Bits<W>>; 9],
     id_column: SimpleDualPortRam<Bits<ID_BITS>, ADDRESS_BITS>,
     coordinate_columns: [SimpleDualPortRam<Bits<W>, ADDRESS_BITS>; 9],
-    /// The output registers, after the block RAMs' read data.
-    id_q: DFF<Bits<ID_BITS>>,
-    coordinates_q: [DFF<Bits<W>>; 9],
 }
 
 impl<const W: usize> crate::unit::Unit for TriangleMemory<W> {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(
-            self,
-            units,
-            id_column,
-            coordinate_columns,
-            id_q,
-            coordinates_q
-        );
+        crate::sub_units!(self, units, id_column, coordinate_columns);
     }
 }
 
@@ -66,10 +59,10 @@ impl<const W: usize> TriangleMemory<W> {
             read_address: Default::default(),
             read_id: Default::default(),
             read_coordinates: Default::default(),
-            id_column: SimpleDualPortRam::new(words),
-            coordinate_columns: std::array::from_fn(|_| SimpleDualPortRam::new(words)),
-            id_q: Default::default(),
-            coordinates_q: Default::default(),
+            id_column: SimpleDualPortRam::with_output_register(words),
+            coordinate_columns: std::array::from_fn(|_| {
+                SimpleDualPortRam::with_output_register(words)
+            }),
         }
     }
 }
@@ -77,17 +70,13 @@ impl<const W: usize> TriangleMemory<W> {
 impl<const W: usize> Logic for TriangleMemory<W> {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, id_q);
         self.id_column.clock.next = self.clock.val();
         self.id_column.write_enable.next = self.write_enable.val();
         self.id_column.write_address.next = self.write_address.val();
         self.id_column.write_data.next = self.write_id.val();
         self.id_column.read_enable.next = self.read_enable.val();
         self.id_column.read_address.next = self.read_address.val();
-        if self.read_enable.val() {
-            self.id_q.d.next = self.id_column.read_data.val();
-        }
-        self.read_id.next = self.id_q.q.val();
+        self.read_id.next = self.id_column.read_data.val();
         for i in 0..9 {
             self.coordinate_columns[i].clock.next = self.clock.val();
             self.coordinate_columns[i].write_enable.next = self.write_enable.val();
@@ -95,12 +84,7 @@ impl<const W: usize> Logic for TriangleMemory<W> {
             self.coordinate_columns[i].write_data.next = self.write_coordinates[i].val();
             self.coordinate_columns[i].read_enable.next = self.read_enable.val();
             self.coordinate_columns[i].read_address.next = self.read_address.val();
-            self.coordinates_q[i].clock.next = self.clock.val();
-            self.coordinates_q[i].d.next = self.coordinates_q[i].q.val();
-            if self.read_enable.val() {
-                self.coordinates_q[i].d.next = self.coordinate_columns[i].read_data.val();
-            }
-            self.read_coordinates[i].next = self.coordinates_q[i].q.val();
+            self.read_coordinates[i].next = self.coordinate_columns[i].read_data.val();
         }
     }
 }
