@@ -3,7 +3,7 @@
 //! pipeline is refused with a message naming it.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
 fn tritri() -> Command {
     Command::new(env!("CARGO_BIN_EXE_tritri"))
@@ -552,39 +552,43 @@ fn rare_cases_option_chooses_the_top() {
 fn for_scene_sizes_the_system_and_says_why() {
     let out = std::env::temp_dir().join(format!("tritri-for-scene-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let run = tritri()
-        .args([
-            "gen",
-            "--for-scene",
-            "@torus",
-            "@sphere",
-            "--max-uncertain",
-            "0.005",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
-    for needle in [
-        "**Chosen: W = 20, P = 2, memory depth",
-        "*Why not one bit fewer:*",
-        "the closest, W = 16 (126 multipliers per pipeline)",
-        "*Why not one more pipeline:* P = 4 does not fit",
-        "| W = 20 (chosen) | 252 |",
-        "--width 20 --pipelines 2 --depth",
-        "--engine verilator --certified",
-    ] {
+    // `gen --for-scene @torus @sphere FLAGS --out <out>`.
+    let for_scene = |flags: &[&str]| {
+        tritri()
+            .args(["gen", "--for-scene", "@torus", "@sphere"])
+            .args(flags)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    // Its README, which must hold every needle.
+    let readme_with = |run: Output, needles: &[&str]| {
         assert!(
-            readme.contains(needle),
-            "README lacks `{needle}`:\n{readme}"
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
         );
-    }
+        let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
+        for needle in needles {
+            assert!(
+                readme.contains(needle),
+                "README lacks `{needle}`:\n{readme}"
+            );
+        }
+    };
+    readme_with(
+        for_scene(&["--max-uncertain", "0.005"]),
+        &[
+            "**Chosen: W = 20, P = 2, memory depth",
+            "*Why not one bit fewer:*",
+            "the closest, W = 16 (126 multipliers per pipeline)",
+            "*Why not one more pipeline:* P = 4 does not fit",
+            "| W = 20 (chosen) | 252 |",
+            "--width 20 --pipelines 2 --depth",
+            "--engine verilator --certified",
+        ],
+    );
     assert!(std::fs::read_dir(&out).unwrap().any(|e| e
         .unwrap()
         .file_name()
@@ -592,19 +596,7 @@ fn for_scene_sizes_the_system_and_says_why() {
         .starts_with("tritri_system_w20_p2_d")));
     std::fs::remove_dir_all(&out).unwrap();
 
-    let run = tritri()
-        .args([
-            "gen",
-            "--for-scene",
-            "@torus",
-            "@sphere",
-            "--device",
-            "ecp5-85",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let run = for_scene(&["--device", "ecp5-85"]);
     assert_eq!(run.status.code(), Some(2));
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(
@@ -614,38 +606,15 @@ fn for_scene_sizes_the_system_and_says_why() {
     );
     assert!(!out.exists(), "nothing written");
 
-    let run = tritri()
-        .args([
-            "gen",
-            "--for-scene",
-            "@torus",
-            "@sphere",
-            "--device",
-            "ecp5-85",
-            "--max-uncertain",
-            "0.03",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
+    readme_with(
+        for_scene(&["--device", "ecp5-85", "--max-uncertain", "0.03"]),
+        &[
+            "**Chosen: W = 16, rare cases shared, P = 2, memory depth",
+            "hold for the rare pairs",
+            "| W = 16, rare cases shared (chosen) | 72 |",
+            "--width 16 --rare-cases shared --pipelines 2",
+        ],
     );
-    let readme = std::fs::read_to_string(out.join("README.md")).unwrap();
-    for needle in [
-        "**Chosen: W = 16, rare cases shared, P = 2, memory depth",
-        "hold for the rare pairs",
-        "| W = 16, rare cases shared (chosen) | 72 |",
-        "--width 16 --rare-cases shared --pipelines 2",
-    ] {
-        assert!(
-            readme.contains(needle),
-            "README lacks `{needle}`:\n{readme}"
-        );
-    }
     assert!(std::fs::read_dir(&out).unwrap().any(|e| {
         let name = e.unwrap().file_name().to_string_lossy().into_owned();
         name.starts_with("tritri_system_w16_p2_d") && name.ends_with("_shared.v")

@@ -160,48 +160,44 @@ impl<T: Synth, const A: usize> Logic for SimpleDualPortRam<T, A> {
         } else {
             ""
         };
-        if self._output_register {
-            // The output register starts at zero, as the model's does.
-            return Verilog::Custom(format!(
-                "\
-{OUTPUT_REGISTER_SHAPE}{words} words of {bits} bit(s), read-first,
-// registered read and an output register, both with enable (block RAM
-// inference; the output register in fabric).
-{style}reg {data_range}memory [0:{last}];
-reg {data_range}read_stage;
-initial read_data = {bits}'d0;
-{unused}
-always @(posedge clock) begin
-    if (write_enable) begin
-        memory[{write_index}] <= write_data;
-    end
-    if (read_enable) begin
-        read_stage <= memory[{read_index}];
-        read_data <= read_stage;
-    end
-end
-",
-                bits = T::BITS,
-                last = words - 1,
-            ));
-        }
+        let bits = T::BITS;
+        let last = words - 1;
+        // With an output register, it starts at zero, as the model's does.
+        let (heading, stage, read) = if self._output_register {
+            (
+                format!(
+                    "{OUTPUT_REGISTER_SHAPE}{words} words of {bits} bit(s), read-first,\n\
+                     // registered read and an output register, both with enable (block RAM\n\
+                     // inference; the output register in fabric)."
+                ),
+                format!("reg {data_range}read_stage;\ninitial read_data = {bits}'d0;\n"),
+                format!(
+                    "        read_stage <= memory[{read_index}];\n        read_data <= read_stage;\n"
+                ),
+            )
+        } else {
+            (
+                format!(
+                    "// Simple dual-port RAM: {words} words of {bits} bit(s), read-first,\n\
+                     // registered read with enable (block RAM inference)."
+                ),
+                String::new(),
+                format!("        read_data <= memory[{read_index}];\n"),
+            )
+        };
         Verilog::Custom(format!(
             "\
-// Simple dual-port RAM: {words} words of {bits} bit(s), read-first,
-// registered read with enable (block RAM inference).
+{heading}
 {style}reg {data_range}memory [0:{last}];
-{unused}
+{stage}{unused}
 always @(posedge clock) begin
     if (write_enable) begin
         memory[{write_index}] <= write_data;
     end
     if (read_enable) begin
-        read_data <= memory[{read_index}];
-    end
+{read}    end
 end
-",
-            bits = T::BITS,
-            last = words - 1,
+"
         ))
     }
 }
