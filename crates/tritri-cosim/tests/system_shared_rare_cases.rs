@@ -145,13 +145,8 @@ fn batches_in_verilator_equal_rust_hdl() {
         )
         .unwrap();
         eprintln!(
-            "P=2, 4 batches, {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {} (the model: {bound})",
-            rtl.pairs.len(),
-            hdl.pairs.len(),
-            rtl.cycles,
-            hdl.cycles,
-            rtl.stall_cycles,
-            hdl.stall_cycles
+            "P=2, 4 batches, {reader:?}: {} (the model: {bound})",
+            system_common::rtl_against_hdl(&rtl, &hdl)
         );
         if reader == ReaderBehaviour::AlwaysReady {
             assert!(hdl.stall_cycles > 50);
@@ -213,13 +208,8 @@ fn batches_on_ecp5_primitives_in_verilator_equal_rust_hdl() {
     )
     .unwrap();
     eprintln!(
-        "ECP5 primitives, P=2, 4 batches, {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {}",
-        rtl.pairs.len(),
-        hdl.pairs.len(),
-        rtl.cycles,
-        hdl.cycles,
-        rtl.stall_cycles,
-        hdl.stall_cycles
+        "ECP5 primitives, P=2, 4 batches, {reader:?}: {}",
+        system_common::rtl_against_hdl(&rtl, &hdl)
     );
     assert!(hdl.stall_cycles > 0);
     assert_eq!(rtl, hdl);

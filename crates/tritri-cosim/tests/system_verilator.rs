@@ -49,13 +49,8 @@ fn stub_system_verilator_matches_rust_hdl() {
         )
         .unwrap();
         eprintln!(
-            "stub P=2 overlap={overlap} {reader:?}: pairs {} / {}, cycles {} / {}, stalls {} / {}",
-            rtl.pairs.len(),
-            hdl.pairs.len(),
-            rtl.cycles,
-            hdl.cycles,
-            rtl.stall_cycles,
-            hdl.stall_cycles
+            "stub P=2 overlap={overlap} {reader:?}: {}",
+            system_common::rtl_against_hdl(&rtl, &hdl)
         );
         assert!(PairDiff::between(&expected, &hdl.pairs).is_empty());
         assert!(PairDiff::between(&uncertain, &hdl.uncertain).is_empty());

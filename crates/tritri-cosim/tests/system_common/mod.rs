@@ -95,3 +95,20 @@ pub fn random_triangles(
 pub fn rng(seed: u64) -> ChaCha8Rng {
     ChaCha8Rng::seed_from_u64(seed)
 }
+
+/// `pairs a / b, cycles c / d, stalls e / f`: the emitted system's run
+/// against rust-hdl's, for a test's log line.
+pub fn rtl_against_hdl(
+    rtl: &tritri_cosim::system_harness::SystemResult,
+    hdl: &tritri_cosim::system_harness::SystemResult,
+) -> String {
+    format!(
+        "pairs {} / {}, cycles {} / {}, stalls {} / {}",
+        rtl.pairs.len(),
+        hdl.pairs.len(),
+        rtl.cycles,
+        hdl.cycles,
+        rtl.stall_cycles,
+        hdl.stall_cycles
+    )
+}
