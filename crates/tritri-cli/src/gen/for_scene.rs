@@ -43,15 +43,14 @@ use std::process::ExitCode;
 use tritri_cosim::engine::{run_scene_with, Engine};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
-use tritri_geom::scene::Batch;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::measured::{Device, Measurements};
 use tritri_rtl::pipeline::pipeline_for_width::SUPPORTED_WIDTHS;
-use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name;
 use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::cycle_model::scene_cycles;
-use tritri_rtl::system::rare_case_model::rare_case_cost;
+use tritri_rtl::system::rare_case_model::stall_bound;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system_with;
 
@@ -258,7 +257,11 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     };
 
     let config = hardware.system_config();
-    let stalls = stall_bound(candidate.rare_cases, sizing.pipelines, &scene.batches());
+    let stalls = stall_bound(
+        candidate.rare_cases,
+        sizing.pipelines as usize,
+        &scene.batches(),
+    );
     let kind = PipelineKind::from(candidate.rare_cases);
     let mut design = emit_system_with(config, kind, MultiplierMapping::Inferred)
         .with_context(|| format!("emitting {}", config.unit_name()))?;
@@ -340,10 +343,7 @@ fn measure(
                 (path, r.mult18x18d, r.lut4, true)
             }),
         _ => m
-            .xilinx(&pipeline_unit_name_for(
-                width as usize,
-                RareCasePath::Parallel,
-            ))
+            .xilinx(&pipeline_unit_name(width as usize))
             .map_or((RareCasePath::Parallel, 0, 0, false), |r| {
                 (RareCasePath::Parallel, r.dsp48e1, r.lut, true)
             }),
@@ -382,15 +382,6 @@ fn measure(
     Ok(c)
 }
 
-/// With the rare pairs on a shared unit, the stall model's bound on the
-/// clocks `pipelines` pipelines hold for them on `batches`; 0 without.
-fn stall_bound(rare_cases: RareCasePath, pipelines: u32, batches: &[Batch]) -> u64 {
-    match rare_cases {
-        RareCasePath::Parallel => 0,
-        RareCasePath::Shared => rare_case_cost(pipelines as usize, batches).stall_cycles,
-    }
-}
-
 /// P and the depth for `c` (module docs).
 fn size(
     a: &SceneObject,
@@ -410,7 +401,7 @@ fn size(
             let scene = hardware.prepare(a, b)?;
             let batches = scene.batches();
             let cycles = scene_cycles(hardware.system_config(), &batches)
-                + stall_bound(c.rare_cases, p, &batches);
+                + stall_bound(c.rare_cases, p as usize, &batches);
             if best.is_none_or(|(_, b)| (cycles as f64) < 0.99 * b as f64) {
                 best = Some((depth, cycles));
             }

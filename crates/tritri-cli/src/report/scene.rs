@@ -11,7 +11,7 @@ use tritri_cosim::engine::{check_quantized, run_scene_with, Engine};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff};
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::system::rare_case_model::rare_case_cost;
+use tritri_rtl::system::rare_case_model::stall_bound;
 use tritri_rtl::system::DEFAULT_TRIANGLES_PER_BANK;
 
 /// The clock of a width without a post-route figure (the thesis's).
@@ -111,12 +111,7 @@ pub fn measure(
         // pipeline shares their unit, the stall model's bound is added
         // (an upper bound, as `tritri sim --rare-cases shared` reports).
         let rare_cases = row.map_or(RareCasePath::Parallel, |r| r.rare_cases);
-        let stall_cycles = match rare_cases {
-            RareCasePath::Parallel => 0,
-            RareCasePath::Shared => {
-                rare_case_cost(hardware.pipelines as usize, &scene.batches()).stall_cycles
-            }
-        };
+        let stall_cycles = stall_bound(rare_cases, hardware.pipelines as usize, &scene.batches());
         let whole_cycles = stall_cycles
             + first_in_to_last_out(&hardware, &scene, &run, run.cycles)
                 .map_or(run.cycles, |(c, _)| c);

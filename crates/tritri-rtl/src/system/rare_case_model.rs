@@ -23,6 +23,7 @@
 //! holds the read side, which the tests rule out with a large FIFO.
 
 use crate::pipeline::shared_rare_cases::{COPLANAR_STEPS, SEGMENTS_STEPS};
+use crate::pipeline::RareCasePath;
 use tritri_geom::devillers_guigue::{shape, Shape};
 use tritri_geom::fixed_point::{orient3d_value, FixedPoint, FixedTriangle};
 use tritri_geom::scene::Batch;
@@ -79,6 +80,16 @@ pub struct RareCaseCost {
     pub segments: u64,
     /// At most this many clocks with every pipeline held.
     pub stall_cycles: u64,
+}
+
+/// The clocks `pipelines` pipelines testing their rare pairs on
+/// `rare_cases` hold for them on `batches`, at most: 0 on parallel units,
+/// [`rare_case_cost`]'s count on a shared unit.
+pub fn stall_bound(rare_cases: RareCasePath, pipelines: usize, batches: &[Batch]) -> u64 {
+    match rare_cases {
+        RareCasePath::Parallel => 0,
+        RareCasePath::Shared => rare_case_cost(pipelines, batches).stall_cycles,
+    }
 }
 
 /// The cost of `batches` on `pipelines` pipelines, each with a shared
