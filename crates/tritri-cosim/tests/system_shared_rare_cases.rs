@@ -160,11 +160,12 @@ fn batches_in_verilator_equal_rust_hdl() {
 
 /// The same system with the ECP5 primitives (`tritri gen --dsp ecp5`, the
 /// default with `--synth ecp5`): the multipliers on MULT18X18D and every
-/// triangle memory column on DP16KD with its read and output registers,
-/// each primitive run on its simulation model. With a small result FIFO
-/// and a slow reader the read side holds often (both memory stages hold on
-/// `read_enable`), and with the rare pairs the pipelines hold too:
-/// Verilator equals rust-hdl cycle for cycle.
+/// triangle memory and result FIFO column on DP16KD with its read and
+/// output registers, each primitive run on its simulation model. With a
+/// small result FIFO and a slow reader the read side holds often (both
+/// memory stages hold on `read_enable`), the FIFO fills and drains, and
+/// with the rare pairs the pipelines hold too: Verilator equals rust-hdl
+/// cycle for cycle.
 #[test]
 fn batches_on_ecp5_primitives_in_verilator_equal_rust_hdl() {
     use tritri_cosim::simulator::compile;
@@ -184,19 +185,20 @@ fn batches_on_ecp5_primitives_in_verilator_equal_rust_hdl() {
     let design = emit_system_with(config, PipelineKind::Shared, MultiplierMapping::Ecp5).unwrap();
     assert!(design.file(ECP5_MODEL_FILE).is_some());
     assert!(design.file(ECP5_DP16KD_MODEL_FILE).is_some());
-    // The column modules (16-bit coordinates, 32-bit ids) are on DP16KD,
-    // the ids on two blocks; no memory with an output register is left
-    // to inference.
+    // The column modules of the triangle memories (16-bit coordinates,
+    // 32-bit ids) and of the result FIFO (16-bit masks, 32-bit ids) are on
+    // DP16KD, the ids on two blocks; no memory with an output register is
+    // left to inference.
     let columns: Vec<(&str, usize)> = design
         .verilog_files()
         .filter(|f| f.contents.contains(OUTPUT_REGISTER_SHAPE))
         .map(|f| (f.path.as_str(), f.contents.matches("DP16KD #(").count()))
         .collect();
-    assert_eq!(columns.len(), 2, "{columns:?}");
-    assert!(
-        columns.iter().any(|&(_, n)| n == 1) && columns.iter().any(|&(_, n)| n == 2),
-        "{columns:?}"
-    );
+    assert_eq!(columns.len(), 4, "{columns:?}");
+    for (path, blocks) in &columns {
+        let expected = if path.contains("_w32_") { 2 } else { 1 };
+        assert_eq!(*blocks, expected, "{columns:?}");
+    }
     let compiled = compile(Simulator::Verilator, &system_testbench(&design, 16, false)).unwrap();
     let rtl = run_compiled_system(
         &compiled,

@@ -85,13 +85,13 @@ impl<T: Synth, const A: usize> SimpleDualPortRam<T, A> {
         }
     }
 
-    /// [`Self::new`] in block RAM whatever its size: a block RAM's address
-    /// pins are a few loads, where a small memory in distributed RAM
-    /// spreads its read address over dozens of LUTs.
-    pub fn new_block_ram(words: usize) -> Self {
+    /// The same memory in block RAM whatever its size: a block RAM's
+    /// address pins are a few loads, where a small memory in distributed
+    /// RAM spreads its read address over dozens of LUTs.
+    pub fn in_block_ram(self) -> Self {
         SimpleDualPortRam {
             _block_ram: true,
-            ..Self::new(words)
+            ..self
         }
     }
 

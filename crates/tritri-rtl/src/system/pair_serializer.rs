@@ -5,10 +5,11 @@
 //!
 //! The serializer takes the head word into registers of its own (popping
 //! it from the FIFO) when it holds none or sends its word's last pair, so
-//! the FIFO's block RAM output goes into those registers and nothing else:
-//! deciding the pop from the RAM's output (unregistered, 5.8 ns clock to
-//! output on ECP5) put the RAM, the pending mask and the FIFO's read
-//! pointer on one path, 60.8 MHz post-route for the W = 8 system.
+//! the FIFO's head goes into those registers and nothing else: deciding
+//! the pop from the head put the FIFO's block RAM, the pending mask and
+//! the FIFO's read pointer on one path, 60.8 MHz post-route for the W = 8
+//! system. The head itself is the block RAM's output register (see
+//! `result_fifo`).
 //!
 //! The pairs of a word leave highest pipeline first; `served` remembers the
 //! ones already sent. With a reader that is always ready, a word of `k`
