@@ -63,3 +63,44 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
         }
     }
 }
+
+/// A batch with more triangles of A and of B than a bank holds: the system
+/// raises the sticky `overflow`, tests the first `depth` triangles of each
+/// array (exactly their pairs come back) and drops the rest, and the next
+/// batch, in the other bank, is tested whole.
+#[test]
+fn arrays_over_the_depth_set_overflow_and_keep_their_first_triangles() {
+    use tritri_geom::scene::Batch;
+    let depth = 8;
+    let (a, b) = system_common::small_scene(24, 12, 6);
+    assert!(
+        a.len() > depth && b.len() > depth,
+        "{} {}",
+        a.len(),
+        b.len()
+    );
+    let over = Batch {
+        a: &a[..a.len().min(depth + 3)],
+        b: &b[..b.len().min(depth + 2)],
+    };
+    let kept = Batch {
+        a: &a[..depth],
+        b: &b[..depth],
+    };
+    let expected = pairs_where(&[kept, kept], |x, y| intersects(&x.triangle, &y.triangle));
+    assert!(!expected.is_empty());
+    let config = SystemConfig::new(24, 2, latency())
+        .with_depth(depth)
+        .with_result_fifo_room(16);
+    let r = run_system_with(
+        config,
+        PipelineKind::Real,
+        &[over, kept],
+        true,
+        ReaderBehaviour::AlwaysReady,
+    )
+    .unwrap();
+    assert!(r.overflow);
+    assert_eq!(PairDiff::between(&expected, &r.pairs).counts(), (0, 0));
+    assert_eq!(r.pairs_tested, 2 * (depth * depth) as u64);
+}

@@ -36,9 +36,15 @@
 //! in advancing cycles after its read).
 //!
 //! The read side counts down what is left of each array (`a_left`,
-//! `b_left`) beside the address pointers, so that its end tests compare a
-//! register with a constant: testing `pointer + 1 == end` put an adder
-//! and a 16-bit comparison before the next state, 110 MHz on ECP5.
+//! `b_left`) beside the address pointers, and keeps its end tests on them
+//! (one left, none left) in registers, set as the counts change, so that
+//! its next state waits on no comparison: testing `pointer + 1 == end` put
+//! an adder and a 16-bit comparison before the next state (110 MHz on
+//! ECP5), and comparing the counts there, with `advance`, still held the
+//! W = 16 system at 128.9 MHz. The write side does the same for a full
+//! array (`a_write_full`): comparing the write pointer with the bank's end
+//! put an adder and four levels of logic between the host's `in_valid` and
+//! the block RAMs' write enables, the system's critical path at 128.9 MHz.
 
 use super::{ADDRESS_BITS, LANE_BITS, MAX_TRIANGLES_PER_BANK, MEMORY_READ_LATENCY};
 use rust_hdl::prelude::*;
@@ -88,6 +94,8 @@ pub struct AddressGenerator {
     pub overflow: Signal<Out, Bit>,
     // Generator parameters.
     bank_size: Constant<Bits<ADDRESS_BITS>>,
+    /// `bank_size - 1`: a write at this count fills the array.
+    last_index: Constant<Bits<ADDRESS_BITS>>,
     last_lane: Constant<Bits<LANE_BITS>>,
     flight_cycles: Constant<Bits<FLIGHT_BITS>>,
     // Write side.
@@ -98,6 +106,10 @@ pub struct AddressGenerator {
     /// Triangles written to each array of the write bank.
     a_write_count: DFF<Bits<ADDRESS_BITS>>,
     b_write_count: DFF<Bits<ADDRESS_BITS>>,
+    /// Each array of the write bank holds `triangles_per_bank` triangles
+    /// (its count equals the depth), decided as the count reaches it.
+    a_write_full: DFF<Bit>,
+    b_write_full: DFF<Bit>,
     // Shared: per bank, full flag, counts and empty flag.
     bank_full: [DFF<Bit>; 2],
     /// Per bank: triangles written to each array, and whether one of the
@@ -109,12 +121,16 @@ pub struct AddressGenerator {
     read_state: DFF<ReadState>,
     read_bank: DFF<Bit>,
     a_read_pointer: DFF<Bits<ADDRESS_BITS>>,
-    /// A triangles not yet loaded as bases.
+    /// A triangles not yet loaded as bases, and whether that is one, or none.
     a_left: DFF<Bits<ADDRESS_BITS>>,
+    a_left_one: DFF<Bit>,
+    a_left_none: DFF<Bit>,
     b_read_pointer: DFF<Bits<ADDRESS_BITS>>,
     /// B triangles in the read bank, and those not yet streamed this pass.
     b_count: DFF<Bits<ADDRESS_BITS>>,
     b_left: DFF<Bits<ADDRESS_BITS>>,
+    /// `b_left == 1`.
+    b_left_one: DFF<Bit>,
     lane: DFF<Bits<LANE_BITS>>,
     lane_active: Vec<DFF<Bit>>,
     /// `lane_valid` and `bset` aligned with the block RAMs' read data, then
@@ -126,9 +142,7 @@ pub struct AddressGenerator {
     flight: DFF<Bits<FLIGHT_BITS>>,
     // Combinational.
     transfer: Signal<Local, Bit>,
-    write_bank_start: Signal<Local, Bits<ADDRESS_BITS>>,
     other_bank_start: Signal<Local, Bits<ADDRESS_BITS>>,
-    write_bank_limit: Signal<Local, Bits<ADDRESS_BITS>>,
     read_bank_start: Signal<Local, Bits<ADDRESS_BITS>>,
     read_bank_full: Signal<Local, Bit>,
     read_bank_a_count: Signal<Local, Bits<ADDRESS_BITS>>,
@@ -150,6 +164,8 @@ impl crate::unit::Unit for AddressGenerator {
             overflow_q,
             a_write_count,
             b_write_count,
+            a_write_full,
+            b_write_full,
             bank_full,
             a_bank_count,
             b_bank_count,
@@ -158,9 +174,12 @@ impl crate::unit::Unit for AddressGenerator {
             read_bank,
             a_read_pointer,
             a_left,
+            a_left_one,
+            a_left_none,
             b_read_pointer,
             b_count,
             b_left,
+            b_left_one,
             lane,
             lane_active,
             lane_valid_read,
@@ -198,6 +217,7 @@ impl AddressGenerator {
             done: Default::default(),
             overflow: Default::default(),
             bank_size: Constant::new((triangles_per_bank as u64).to_bits()),
+            last_index: Constant::new(((triangles_per_bank - 1) as u64).to_bits()),
             last_lane: Constant::new(((pipelines - 1) as u64).to_bits()),
             flight_cycles: Constant::new(
                 ((pipeline_latency + MEMORY_READ_LATENCY) as u64).to_bits(),
@@ -212,13 +232,18 @@ impl AddressGenerator {
             bank_empty: Default::default(),
             a_write_count: Default::default(),
             b_write_count: Default::default(),
+            a_write_full: Default::default(),
+            b_write_full: Default::default(),
             read_state: Default::default(),
             read_bank: Default::default(),
             a_read_pointer: Default::default(),
             a_left: Default::default(),
+            a_left_one: Default::default(),
+            a_left_none: Default::default(),
             b_read_pointer: Default::default(),
             b_count: Default::default(),
             b_left: Default::default(),
+            b_left_one: Default::default(),
             lane: Default::default(),
             lane_active: (0..pipelines).map(|_| Default::default()).collect(),
             lane_valid_read: (0..pipelines).map(|_| Default::default()).collect(),
@@ -227,9 +252,7 @@ impl AddressGenerator {
             bset_q: Default::default(),
             flight: Default::default(),
             transfer: Default::default(),
-            write_bank_start: Default::default(),
             other_bank_start: Default::default(),
-            write_bank_limit: Default::default(),
             read_bank_start: Default::default(),
             read_bank_full: Default::default(),
             read_bank_a_count: Default::default(),
@@ -254,13 +277,18 @@ impl Logic for AddressGenerator {
             overflow_q,
             a_write_count,
             b_write_count,
+            a_write_full,
+            b_write_full,
             read_state,
             read_bank,
             a_read_pointer,
             a_left,
+            a_left_one,
+            a_left_none,
             b_read_pointer,
             b_count,
             b_left,
+            b_left_one,
             lane,
             bset_read,
             bset_q,
@@ -287,15 +315,12 @@ impl Logic for AddressGenerator {
         }
 
         // ---- Write side: host stream into the write bank.
-        self.write_bank_start.next = 0.into();
         self.other_bank_start.next = self.bank_size.val();
         self.in_ready.next = !self.bank_full[0].q.val();
         if self.write_bank.q.val() {
-            self.write_bank_start.next = self.bank_size.val();
             self.other_bank_start.next = 0.into();
             self.in_ready.next = !self.bank_full[1].q.val();
         }
-        self.write_bank_limit.next = self.write_bank_start.val() + self.bank_size.val();
         self.transfer.next = self.in_valid.val() & self.in_ready.val();
         self.a_write_address.next = self.a_write_pointer.q.val();
         self.b_write_address.next = self.b_write_pointer.q.val();
@@ -303,20 +328,22 @@ impl Logic for AddressGenerator {
         self.b_write_enable.next = false;
         if self.transfer.val() & !self.in_end.val() {
             if self.in_object.val() {
-                if self.b_write_pointer.q.val() == self.write_bank_limit.val() {
+                if self.b_write_full.q.val() {
                     self.overflow_q.d.next = true;
                 } else {
                     self.b_write_enable.next = true;
                     self.b_write_pointer.d.next = self.b_write_pointer.q.val() + 1;
                     self.b_write_count.d.next = self.b_write_count.q.val() + 1;
+                    self.b_write_full.d.next = self.b_write_count.q.val() == self.last_index.val();
                 }
             } else {
-                if self.a_write_pointer.q.val() == self.write_bank_limit.val() {
+                if self.a_write_full.q.val() {
                     self.overflow_q.d.next = true;
                 } else {
                     self.a_write_enable.next = true;
                     self.a_write_pointer.d.next = self.a_write_pointer.q.val() + 1;
                     self.a_write_count.d.next = self.a_write_count.q.val() + 1;
+                    self.a_write_full.d.next = self.a_write_count.q.val() == self.last_index.val();
                 }
             }
         }
@@ -340,6 +367,8 @@ impl Logic for AddressGenerator {
             self.b_write_pointer.d.next = self.other_bank_start.val();
             self.a_write_count.d.next = 0.into();
             self.b_write_count.d.next = 0.into();
+            self.a_write_full.d.next = false;
+            self.b_write_full.d.next = false;
         }
 
         // ---- Read side: the nested loop over the read bank.
@@ -367,6 +396,8 @@ impl Logic for AddressGenerator {
                         self.a_read_pointer.d.next = self.read_bank_start.val();
                         self.b_read_pointer.d.next = self.read_bank_start.val();
                         self.a_left.d.next = self.read_bank_a_count.val();
+                        self.a_left_one.d.next = self.read_bank_a_count.val() == 1;
+                        self.a_left_none.d.next = self.read_bank_a_count.val() == 0;
                         self.b_count.d.next = self.read_bank_b_count.val();
                         self.lane.d.next = 0.into();
                         if self.read_bank_empty.val() {
@@ -380,19 +411,23 @@ impl Logic for AddressGenerator {
                     self.load_issue.next = true;
                     self.a_read_pointer.d.next = self.a_read_pointer.q.val() + 1;
                     self.a_left.d.next = self.a_left.q.val() - 1;
+                    self.a_left_one.d.next = self.a_left.q.val() == 2;
+                    self.a_left_none.d.next = self.a_left_one.q.val();
                     self.lane.d.next = self.lane.q.val() + 1;
-                    if (self.lane.q.val() == self.last_lane.val()) | (self.a_left.q.val() == 1) {
+                    if (self.lane.q.val() == self.last_lane.val()) | self.a_left_one.q.val() {
                         self.read_state.d.next = ReadState::StreamB;
                         self.b_read_pointer.d.next = self.read_bank_start.val();
                         self.b_left.d.next = self.b_count.q.val();
+                        self.b_left_one.d.next = self.b_count.q.val() == 1;
                     }
                 }
                 ReadState::StreamB => {
                     self.stream_issue.next = true;
                     self.b_read_pointer.d.next = self.b_read_pointer.q.val() + 1;
                     self.b_left.d.next = self.b_left.q.val() - 1;
-                    if self.b_left.q.val() == 1 {
-                        if self.a_left.q.val() == 0 {
+                    self.b_left_one.d.next = self.b_left.q.val() == 2;
+                    if self.b_left_one.q.val() {
+                        if self.a_left_none.q.val() {
                             self.release_bank.next = true;
                             self.read_state.d.next = ReadState::Idle;
                         } else {
@@ -452,6 +487,8 @@ impl Logic for AddressGenerator {
             self.b_write_pointer.d.next = 0.into();
             self.a_write_count.d.next = 0.into();
             self.b_write_count.d.next = 0.into();
+            self.a_write_full.d.next = false;
+            self.b_write_full.d.next = false;
             self.overflow_q.d.next = false;
             self.read_state.d.next = ReadState::Idle;
             self.read_bank.d.next = false;

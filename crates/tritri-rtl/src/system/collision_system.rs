@@ -102,6 +102,12 @@ macro_rules! collision_system {
             pairs_tested_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             hits_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             stall_cycles_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            /// The last clock was a stall: counted a clock late, so that
+            /// `advance` and `done` reach a flip-flop, not a 32-bit carry
+            /// chain (7.1 ns post-route). A stall is never the clock before
+            /// `done` rises (nothing that ends a batch moves while the read
+            /// side holds), so the count is complete when `done` is seen.
+            stalled: rust_hdl::widgets::prelude::DFF<Bit>,
             /// The read side's clock enable: the FIFO has room and no pipeline holds.
             advance: Signal<Local, Bit>,
             /// The pipelines move this clock: no pipeline holds (constant 1
@@ -202,6 +208,7 @@ macro_rules! collision_system {
                     pairs_tested_q: Default::default(),
                     hits_q: Default::default(),
                     stall_cycles_q: Default::default(),
+                    stalled: Default::default(),
                     advance: Default::default(),
                     pipelines_move: Default::default(),
                     bus_id: Default::default(),
@@ -245,7 +252,8 @@ macro_rules! collision_system {
                     pair_serializer,
                     pairs_tested_q,
                     hits_q,
-                    stall_cycles_q
+                    stall_cycles_q,
+                    stalled
                 );
             }
         }
@@ -300,7 +308,7 @@ macro_rules! collision_system {
         impl<$(const $param: usize),*> Logic for $name<$($param),*> {
             #[hdl_gen]
             fn update(&mut self) {
-                dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q);
+                dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q, stalled);
 
                 // The pipelines' outputs (registers) first: the masks and the
                 // counts of this cycle's verdicts, then the enables.
@@ -483,14 +491,16 @@ macro_rules! collision_system {
                             self.hit_count.val(),
                         );
                 }
-                if !self.advance.val() & !self.address_generator.done.val() {
-                    // Held with work to do: a clock the batch takes longer.
+                // Held with work to do: a clock the batch takes longer.
+                self.stalled.d.next = !self.advance.val() & !self.address_generator.done.val();
+                if self.stalled.q.val() {
                     self.stall_cycles_q.d.next = self.stall_cycles_q.q.val() + 1;
                 }
                 if self.reset.val() {
                     self.pairs_tested_q.d.next = 0.into();
                     self.hits_q.d.next = 0.into();
                     self.stall_cycles_q.d.next = 0.into();
+                    self.stalled.d.next = false;
                 }
                 self.pairs_tested.next = self.pairs_tested_q.q.val();
                 self.hits.next = self.hits_q.q.val();
