@@ -108,7 +108,20 @@ macro_rules! collision_system {
             /// `done` rises (nothing that ends a batch moves while the read
             /// side holds), so the count is complete when `done` is seen.
             stalled: rust_hdl::widgets::prelude::DFF<Bit>,
-            /// The read side's clock enable: the FIFO has room and no pipeline holds.
+            /// The read side's clock enable, a register in copies: `[0]` for
+            /// the address generator, the pipelines' inputs and the stall
+            /// count, `[1]` and `[2]` for the memories of A and B. High
+            /// when the FIFO had room a clock ago and no pipeline holds
+            /// (`hold_next` a clock ahead). Combinational from `room` and a
+            /// `hold` copy, placed apart, into the address generator's next
+            /// state, it crossed the chip (3.7 and 3.9 ns of routing, 125.7
+            /// and 102.8 MHz post-route, W = 16, P = 1). Seeing `room` a
+            /// clock late costs the FIFO one more word of reserve
+            /// ([`SystemConfig::result_fifo_reserve`](crate::system::SystemConfig::result_fifo_reserve)).
+            /// Register copies ([`RegisterCopy`](crate::arith::register_copy::RegisterCopy)),
+            /// so that synthesis keeps them apart.
+            advance_copies: Vec<$crate::arith::register_copy::RegisterCopy<Bit>>,
+            /// `advance_copies[0]`.
             advance: Signal<Local, Bit>,
             /// The pipelines move this clock: no pipeline holds (constant 1
             /// without shared rare-case units). Their `advance` is tied
@@ -146,19 +159,14 @@ macro_rules! collision_system {
             hold_request_still_chain: Vec<Signal<Local, Bit>>,
             any_request: Vec<Signal<Local, Bit>>,
             /// With shared rare-case units: the read side's own copy of the
-            /// pipelines' `hold`, made as each pipeline makes its own from
-            /// `any_request[0]` (their `advance` is tied high): `[0]` the
-            /// forecast (`hold` next clock), `[1]` `hold`. The pipelines'
-            /// copies sit by their groups of units; from one of them,
-            /// `advance` crossed the chip to the address generator (3.7 ns
-            /// of routing, 125.7 MHz post-route, W = 16, P = 1). Register
-            /// copies ([`RegisterCopy`](crate::arith::register_copy::RegisterCopy)),
-            /// so that synthesis keeps them apart from the pipelines'
-            /// equal registers. Empty without shared units.
-            read_side_hold: Vec<$crate::arith::register_copy::RegisterCopy<Bit>>,
-            /// What holds the read side: `read_side_hold[1]`, or `any_hold`
-            /// (0) without shared units.
-            read_hold: Signal<Local, Bit>,
+            /// pipelines' forecast, `hold` next clock, made as each
+            /// pipeline makes its own from `any_request[0]` (their
+            /// `advance` is tied high). A register copy, kept apart from
+            /// the pipelines' equal registers. Empty without shared units.
+            hold_forecast: Vec<$crate::arith::register_copy::RegisterCopy<Bit>>,
+            /// The pipelines hold next clock: `hold_forecast`, or 0 without
+            /// shared units.
+            hold_next: Signal<Local, Bit>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
             /// whose name tells Verilator's lint (`--unused-regexp`, default
@@ -223,6 +231,7 @@ macro_rules! collision_system {
                     hits_q: Default::default(),
                     stall_cycles_q: Default::default(),
                     stalled: Default::default(),
+                    advance_copies: (0..3).map(|_| Default::default()).collect(),
                     advance: Default::default(),
                     pipelines_move: Default::default(),
                     bus_id: Default::default(),
@@ -243,8 +252,8 @@ macro_rules! collision_system {
                     hold_request_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     hold_request_still_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     any_request: (0..2).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
-                    read_side_hold: (0..2).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
-                    read_hold: Default::default(),
+                    hold_forecast: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
+                    hold_next: Default::default(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -270,7 +279,8 @@ macro_rules! collision_system {
                     hits_q,
                     stall_cycles_q,
                     stalled,
-                    read_side_hold
+                    advance_copies,
+                    hold_forecast
                 );
             }
         }
@@ -376,7 +386,7 @@ macro_rules! collision_system {
                     self.hold_chain[i + 1].next = self.hold_chain[i].val() $(| self.pipelines[i].$hold.val())?;
                     self.any_hold.next = self.hold_chain[i + 1].val();
                 }
-                self.read_hold.next = self.any_hold.val();
+                self.hold_next.next = false;
                 $(
                     self.hold_request_chain[0].next = false;
                     self.hold_request_still_chain[0].next = false;
@@ -392,12 +402,11 @@ macro_rules! collision_system {
                         self.pipelines[i].$hold_others.next = self.any_request[0].val();
                         self.pipelines[i].$hold_others_still.next = self.any_request[1].val();
                     }
-                    for i in 0..self.read_side_hold.len() {
-                        self.read_side_hold[i].clock.next = self.clock.val();
+                    for i in 0..self.hold_forecast.len() {
+                        self.hold_forecast[i].clock.next = self.clock.val();
                     }
-                    self.read_side_hold[0].d.next = self.any_request[0].val() & !self.reset.val();
-                    self.read_side_hold[1].d.next = self.read_side_hold[0].q.val() & !self.reset.val();
-                    self.read_hold.next = self.read_side_hold[1].q.val();
+                    self.hold_forecast[0].d.next = self.any_request[0].val() & !self.reset.val();
+                    self.hold_next.next = self.hold_forecast[0].q.val() & !self.reset.val();
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
                 // its mark (`room`, a register) and sends nothing; the
@@ -406,7 +415,11 @@ macro_rules! collision_system {
                 // reach every pipeline register. Shared rare-case units hold
                 // the pipelines (by themselves, `hold_others` above) and the
                 // read side together.
-                self.advance.next = self.result_fifo.room.val() & !self.read_hold.val();
+                for i in 0..self.advance_copies.len() {
+                    self.advance_copies[i].clock.next = self.clock.val();
+                    self.advance_copies[i].d.next = self.result_fifo.room.val() & !self.hold_next.val();
+                }
+                self.advance.next = self.advance_copies[0].q.val();
                 self.pipelines_move.next = !self.any_hold.val();
 
                 // Host stream → write side of the address generator and memories.
@@ -420,12 +433,12 @@ macro_rules! collision_system {
                 self.memory_a.write_enable.next = self.address_generator.a_write_enable.val();
                 self.memory_a.write_address.next = self.address_generator.a_write_address.val();
                 self.memory_a.write_id.next = self.in_id.val();
-                self.memory_a.read_enable.next = self.advance.val();
+                self.memory_a.read_enable.next = self.advance_copies[1].q.val();
                 self.memory_a.read_address.next = self.address_generator.a_read_address.val();
                 self.memory_b.write_enable.next = self.address_generator.b_write_enable.val();
                 self.memory_b.write_address.next = self.address_generator.b_write_address.val();
                 self.memory_b.write_id.next = self.in_id.val();
-                self.memory_b.read_enable.next = self.advance.val();
+                self.memory_b.read_enable.next = self.advance_copies[2].q.val();
                 self.memory_b.read_address.next = self.address_generator.b_read_address.val();
                 self.memory_a.write_coordinates[0].next = self.in_x0.val();
                 self.memory_a.write_coordinates[1].next = self.in_y0.val();

@@ -156,9 +156,10 @@ impl SystemConfig {
 
     /// The words the result FIFO keeps above its mark: the pipelines never
     /// stop, so when the read side stops, the `L` pairs in flight still
-    /// arrive ([`result_fifo`]).
+    /// arrive ([`result_fifo`]), and one more: the read side's enable is a
+    /// register, so it sees `room` fall a clock late ([`collision_system`]).
     pub fn result_fifo_reserve(&self) -> usize {
-        self.pipeline_latency
+        self.pipeline_latency + 1
     }
 
     /// The smallest result FIFO: the reserve, plus one word to write at all.
