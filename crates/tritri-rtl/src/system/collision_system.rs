@@ -409,7 +409,8 @@ macro_rules! collision_system {
                     self.hold_next.next = self.hold_forecast[0].q.val() & !self.reset.val();
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
-                // its mark (`room`, a register) and sends nothing; the
+                // its mark (`room`, seen a clock late through the registered
+                // `advance_copies`) and sends nothing; the
                 // pipelines run on, and their pairs in flight go into the
                 // FIFO's reserve (see `result_fifo`), so an enable need not
                 // reach every pipeline register. Shared rare-case units hold
