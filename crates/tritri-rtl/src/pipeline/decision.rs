@@ -26,13 +26,16 @@
 //! other's plane, or all six plane signs certain and step (7)'s two
 //! determinants certain or one of them certainly positive.
 //!
-//! Two stages: the three cases' verdicts, registered with the case; then
-//! the case's verdict. In one stage, an orient3d sign reached the verdict
-//! register through five LUT levels, the W = 8 pipeline's critical path on
-//! ECP5 (144 MHz). The rare tests' verdicts (`coplanar_hit`,
-//! `degenerate_pair_hit`) come a clock after the other inputs, into the
-//! second stage: the first registers whether the case needs them. That
-//! clock is the shared rare-case unit's margin
+//! Two stages: the case's verdict without the rare tests, and which rare
+//! test's verdict it takes, registered; then the verdict. In one stage, an
+//! orient3d sign reached the verdict register through five LUT levels, the
+//! W = 8 pipeline's critical path on ECP5 (144 MHz). The rare tests'
+//! verdicts (`coplanar_hit`, `degenerate_pair_hit`) come a clock after the
+//! other inputs, into the second stage, which is one LUT: with the three
+//! cases' verdicts and the case registered instead, it was three levels
+//! from the shared unit's verdict, across the chip, to `hit_q` (W = 16
+//! shared system, ECP5: the critical path, 148.3 MHz, 5.3 of 6.7 ns
+//! routing). That clock is the shared rare-case unit's margin
 //! (`super::shared_rare_pipeline`).
 
 use rust_hdl::prelude::*;
@@ -94,15 +97,12 @@ pub struct Decision {
     rejected_certainly_q: DFF<Bit>,
     interval_certain_q: DFF<Bit>,
     certain_q: DFF<Bit>,
-    /// Stage 1: each case's verdict or whether it is the coplanar test's,
-    /// `[a, b, c, d] == 0` for two segments, and the case.
-    triangles_hit_q: DFF<Bit>,
-    triangles_coplanar_q: DFF<Bit>,
-    segment_hit_q: DFF<Bit>,
-    segment_coplanar_q: DFF<Bit>,
-    degenerate_zero_q: DFF<Bit>,
-    t1_degenerate_q: DFF<Bit>,
-    t2_degenerate_q: DFF<Bit>,
+    /// Stage 1: the case's verdict if it needs no rare test, and whether
+    /// it is the coplanar test's or (two segments with `[a, b, c, d] ==
+    /// 0`) the degenerate-pair test's instead.
+    base_hit_q: DFF<Bit>,
+    needs_coplanar_q: DFF<Bit>,
+    needs_degenerate_pair_q: DFF<Bit>,
     hit_q: DFF<Bit>,
 }
 
@@ -115,13 +115,9 @@ impl crate::unit::Unit for Decision {
             rejected_certainly_q,
             interval_certain_q,
             certain_q,
-            triangles_hit_q,
-            triangles_coplanar_q,
-            segment_hit_q,
-            segment_coplanar_q,
-            degenerate_zero_q,
-            t1_degenerate_q,
-            t2_degenerate_q,
+            base_hit_q,
+            needs_coplanar_q,
+            needs_degenerate_pair_q,
             hit_q
         );
     }
@@ -223,26 +219,28 @@ impl Logic for Decision {
         dff_setup!(
             self,
             clock,
-            triangles_hit_q,
-            triangles_coplanar_q,
-            segment_hit_q,
-            segment_coplanar_q,
-            degenerate_zero_q,
-            t1_degenerate_q,
-            t2_degenerate_q,
+            base_hit_q,
+            needs_coplanar_q,
+            needs_degenerate_pair_q,
             hit_q,
             rejected_certainly_q,
             interval_certain_q,
             certain_q
         );
         if self.advance.val() {
-            self.triangles_hit_q.d.next = self.triangles_hit.val();
-            self.triangles_coplanar_q.d.next = self.triangles_coplanar.val();
-            self.segment_hit_q.d.next = self.segment_hit.val();
-            self.segment_coplanar_q.d.next = self.segment_coplanar.val();
-            self.degenerate_zero_q.d.next = self.orient_zero[0].val();
-            self.t1_degenerate_q.d.next = self.t1_degenerate.val();
-            self.t2_degenerate_q.d.next = self.t2_degenerate.val();
+            if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
+                self.base_hit_q.d.next = self.triangles_hit.val();
+                self.needs_coplanar_q.d.next = self.triangles_coplanar.val();
+                self.needs_degenerate_pair_q.d.next = false;
+            } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
+                self.base_hit_q.d.next = false;
+                self.needs_coplanar_q.d.next = false;
+                self.needs_degenerate_pair_q.d.next = self.orient_zero[0].val();
+            } else {
+                self.base_hit_q.d.next = self.segment_hit.val();
+                self.needs_coplanar_q.d.next = self.segment_coplanar.val();
+                self.needs_degenerate_pair_q.d.next = false;
+            }
             self.rejected_certainly_q.d.next = (self.t1_sides_certain.val()
                 && ((self.t1_side_positive[0].val()
                     && self.t1_side_positive[1].val()
@@ -264,16 +262,9 @@ impl Logic for Decision {
                     || (self.orient_certain[1].val() && self.orient_positive[1].val()));
             self.certain_q.d.next =
                 self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
-            if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
-                self.hit_q.d.next = self.triangles_hit_q.q.val()
-                    || (self.triangles_coplanar_q.q.val() && self.coplanar_hit.val());
-            } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {
-                self.hit_q.d.next =
-                    self.degenerate_zero_q.q.val() && self.degenerate_pair_hit.val();
-            } else {
-                self.hit_q.d.next = self.segment_hit_q.q.val()
-                    || (self.segment_coplanar_q.q.val() && self.coplanar_hit.val());
-            }
+            self.hit_q.d.next = self.base_hit_q.q.val()
+                || (self.needs_coplanar_q.q.val() && self.coplanar_hit.val())
+                || (self.needs_degenerate_pair_q.q.val() && self.degenerate_pair_hit.val());
         }
         self.hit.next = self.hit_q.q.val();
         self.certain.next = self.certain_q.q.val();

@@ -57,18 +57,17 @@ pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
 /// sees the rare bits of the next two pairs ([`HoldForecast`]).
 pub const JOB_STAGE: usize = SIDES_STAGE + 2;
 
-/// The unit's verdict is at the queue's head by the time its pair reaches
-/// [`RARE_VERDICTS_STAGE`]: the job is taken at the edge that moves the
-/// pair to `JOB_STAGE + 1`, `done` is high `SHARED_RARE_CASES_LATENCY`
-/// edges after that one, and the queue hands the verdict on in that clock
-/// (its bypass), when the pair, never faster than a stage a clock, is at
-/// most at `JOB_STAGE + 1 + SHARED_RARE_CASES_LATENCY`. A stage fewer, and
-/// a pair that found the unit idle and every stage moving missed its
-/// verdict by a clock: the rust-hdl test caught 3 of 5,136, once with the
-/// verdict read only from a slot, and again with the job stage moved a
-/// stage later for the forecast, until the verdicts moved into the
-/// decision's second stage.
-const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENCY);
+/// The unit's verdict is in the queue's head register by the time its
+/// pair reaches [`RARE_VERDICTS_STAGE`]: the job is taken at the edge that
+/// moves the pair to `JOB_STAGE + 1`, `done` is high
+/// `SHARED_RARE_CASES_LATENCY` edges after that one, and the verdict is
+/// written at the end of that clock, when the pair, never faster than a
+/// stage a clock, is at most at `JOB_STAGE + 1 +
+/// SHARED_RARE_CASES_LATENCY`, a stage before the decision reads it. A
+/// stage fewer, and a pair that found the unit idle and every stage moving
+/// missed its verdict by a clock: the rust-hdl test caught 3 of 5,136,
+/// until the verdicts moved into the decision's second stage.
+const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENCY + 1);
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
