@@ -68,27 +68,15 @@ module tritri_pipeline_w24_decision (
     reg  certain_d;
     wire  certain_q;
     wire  certain_clock;
-    reg  triangles_hit_d;
-    wire  triangles_hit_q;
-    wire  triangles_hit_clock;
-    reg  triangles_coplanar_d;
-    wire  triangles_coplanar_q;
-    wire  triangles_coplanar_clock;
-    reg  segment_hit_d;
-    wire  segment_hit_q;
-    wire  segment_hit_clock;
-    reg  segment_coplanar_d;
-    wire  segment_coplanar_q;
-    wire  segment_coplanar_clock;
-    reg  degenerate_zero_d;
-    wire  degenerate_zero_q;
-    wire  degenerate_zero_clock;
-    reg  t1_degenerate_d;
-    wire  t1_degenerate_q;
-    wire  t1_degenerate_clock;
-    reg  t2_degenerate_d;
-    wire  t2_degenerate_q;
-    wire  t2_degenerate_clock;
+    reg  base_hit_d;
+    wire  base_hit_q;
+    wire  base_hit_clock;
+    reg  needs_coplanar_d;
+    wire  needs_coplanar_q;
+    wire  needs_coplanar_clock;
+    reg  needs_degenerate_pair_d;
+    wire  needs_degenerate_pair_q;
+    wire  needs_degenerate_pair_clock;
     reg  hit_d;
     wire  hit_q;
     wire  hit_clock;
@@ -130,40 +118,20 @@ module tritri_pipeline_w24_decision (
         .q(certain_q),
         .clock(certain_clock)
     );
-    tritri_pipeline_w24_dff_1 u_triangles_hit_q(
-        .d(triangles_hit_d),
-        .q(triangles_hit_q),
-        .clock(triangles_hit_clock)
+    tritri_pipeline_w24_dff_1 u_base_hit_q(
+        .d(base_hit_d),
+        .q(base_hit_q),
+        .clock(base_hit_clock)
     );
-    tritri_pipeline_w24_dff_1 u_triangles_coplanar_q(
-        .d(triangles_coplanar_d),
-        .q(triangles_coplanar_q),
-        .clock(triangles_coplanar_clock)
+    tritri_pipeline_w24_dff_1 u_needs_coplanar_q(
+        .d(needs_coplanar_d),
+        .q(needs_coplanar_q),
+        .clock(needs_coplanar_clock)
     );
-    tritri_pipeline_w24_dff_1 u_segment_hit_q(
-        .d(segment_hit_d),
-        .q(segment_hit_q),
-        .clock(segment_hit_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_segment_coplanar_q(
-        .d(segment_coplanar_d),
-        .q(segment_coplanar_q),
-        .clock(segment_coplanar_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_degenerate_zero_q(
-        .d(degenerate_zero_d),
-        .q(degenerate_zero_q),
-        .clock(degenerate_zero_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_t1_degenerate_q(
-        .d(t1_degenerate_d),
-        .q(t1_degenerate_q),
-        .clock(t1_degenerate_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_t2_degenerate_q(
-        .d(t2_degenerate_d),
-        .q(t2_degenerate_q),
-        .clock(t2_degenerate_clock)
+    tritri_pipeline_w24_dff_1 u_needs_degenerate_pair_q(
+        .d(needs_degenerate_pair_d),
+        .q(needs_degenerate_pair_q),
+        .clock(needs_degenerate_pair_clock)
     );
     tritri_pipeline_w24_dff_1 u_hit_q(
         .d(hit_d),
@@ -183,13 +151,9 @@ module tritri_pipeline_w24_decision (
     assign orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
     assign t1_sides_certain = t1_side_certain_0 && t1_side_certain_1 && t1_side_certain_2;
     assign t2_sides_certain = t2_side_certain_0 && t2_side_certain_1 && t2_side_certain_2;
-    assign triangles_hit_clock = clock;
-    assign triangles_coplanar_clock = clock;
-    assign segment_hit_clock = clock;
-    assign segment_coplanar_clock = clock;
-    assign degenerate_zero_clock = clock;
-    assign t1_degenerate_clock = clock;
-    assign t2_degenerate_clock = clock;
+    assign base_hit_clock = clock;
+    assign needs_coplanar_clock = clock;
+    assign needs_degenerate_pair_clock = clock;
     assign hit_clock = clock;
     assign rejected_certainly_clock = clock;
     assign interval_certain_clock = clock;
@@ -277,37 +241,33 @@ module tritri_pipeline_w24_decision (
             segment_coplanar = 1'h0;
             segment_hit = ~((orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2));
         end
-        triangles_hit_d = triangles_hit_q;
-        triangles_coplanar_d = triangles_coplanar_q;
-        segment_hit_d = segment_hit_q;
-        segment_coplanar_d = segment_coplanar_q;
-        degenerate_zero_d = degenerate_zero_q;
-        t1_degenerate_d = t1_degenerate_q;
-        t2_degenerate_d = t2_degenerate_q;
+        base_hit_d = base_hit_q;
+        needs_coplanar_d = needs_coplanar_q;
+        needs_degenerate_pair_d = needs_degenerate_pair_q;
         hit_d = hit_q;
         rejected_certainly_d = rejected_certainly_q;
         interval_certain_d = interval_certain_q;
         certain_d = certain_q;
         if (advance) begin
-            triangles_hit_d = triangles_hit;
-            triangles_coplanar_d = triangles_coplanar;
-            segment_hit_d = segment_hit;
-            segment_coplanar_d = segment_coplanar;
-            degenerate_zero_d = orient_zero_0;
-            t1_degenerate_d = t1_degenerate;
-            t2_degenerate_d = t2_degenerate;
+            if (~t1_degenerate && ~t2_degenerate) begin
+                base_hit_d = triangles_hit;
+                needs_coplanar_d = triangles_coplanar;
+                needs_degenerate_pair_d = 1'h0;
+            end
+            else if (t1_degenerate && t2_degenerate) begin
+                base_hit_d = 1'h0;
+                needs_coplanar_d = 1'h0;
+                needs_degenerate_pair_d = orient_zero_0;
+            end
+            else begin
+                base_hit_d = segment_hit;
+                needs_coplanar_d = segment_coplanar;
+                needs_degenerate_pair_d = 1'h0;
+            end
             rejected_certainly_d = (t1_sides_certain && ((t1_side_positive_0 && t1_side_positive_1 && t1_side_positive_2) || (t1_side_negative_0 && t1_side_negative_1 && t1_side_negative_2))) || (t2_sides_certain && ((t2_side_positive_0 && t2_side_positive_1 && t2_side_positive_2) || (t2_side_negative_0 && t2_side_negative_1 && t2_side_negative_2)));
             interval_certain_d = t1_sides_certain && t2_sides_certain && ((orient_certain_0 && orient_certain_1) || (orient_certain_0 && orient_positive_0) || (orient_certain_1 && orient_positive_1));
             certain_d = rejected_certainly_q || interval_certain_q;
-            if (~t1_degenerate_q && ~t2_degenerate_q) begin
-                hit_d = triangles_hit_q || (triangles_coplanar_q && coplanar_hit);
-            end
-            else if (t1_degenerate_q && t2_degenerate_q) begin
-                hit_d = degenerate_zero_q && degenerate_pair_hit;
-            end
-            else begin
-                hit_d = segment_hit_q || (segment_coplanar_q && coplanar_hit);
-            end
+            hit_d = base_hit_q || (needs_coplanar_q && coplanar_hit) || (needs_degenerate_pair_q && degenerate_pair_hit);
         end
     end
 
