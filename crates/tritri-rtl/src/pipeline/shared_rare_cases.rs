@@ -74,8 +74,9 @@ pub const SHARED_RARE_CASES_LATENCY: usize =
 /// `done` and `hit` leave from registers: the verdict's way to the
 /// pipeline's queue and on to its decision starts at the unit's edge, not
 /// behind the choice between the kinds' verdicts (ECP5, W = 16 shared,
-/// seed 2: the coplanar verdict through that choice, the queue's bypass (since removed)
-/// and 6.4 ns of routing into the decision's `hit_q`, 123.9 MHz).
+/// seed 2: the coplanar verdict through that choice, the queue's bypass,
+/// since removed, and 6.4 ns of routing into the decision's `hit_q`, 123.9
+/// MHz).
 const OUTPUT_LATENCY: usize = 1;
 /// Copies of the steps left, each with an `in_valid` of its own: one per
 /// coordinate of stage 1's destinations (`u0`, `u1`, `w0`'s lanes, `w1`'s:
