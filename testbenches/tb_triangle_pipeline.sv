@@ -57,8 +57,7 @@ module tb_triangle_pipeline #(
     wire [ID_WIDTH-1:0] out_stream_id;
 `ifdef TRITRI_HOLD
     wire hold;
-    wire hold_request;  // for pipelines in step with this one: none here
-    wire hold_request_still;
+    wire [3:0] hold_request;  // for pipelines in step with this one: none here
 `else
     wire hold = 1'b0;
 `endif
@@ -92,9 +91,7 @@ module tb_triangle_pipeline #(
         ,
         .hold(hold),
         .hold_request(hold_request),
-        .hold_request_still(hold_request_still),
-        .hold_others(1'b0),
-        .hold_others_still(1'b0)
+        .hold_others(4'b0)
 `endif
     );
 

@@ -7,10 +7,9 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (12),
-//             for example: path.sides_to_decision[0],
-//             path.sides_to_decision[1], path.sides_to_decision[10],
-//             path.sides_to_decision[11].
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (13),
+//             for example: coplanar_to_decision, path.sides_to_decision[0],
+//             path.sides_to_decision[1], path.sides_to_decision[10].
 //
 // Rust unit:  DelayLine<T = bool, N = 21>
 // Latency:    21 clock cycles

@@ -190,11 +190,12 @@ fn long_simulation_is_refused_in_under_a_second() {
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    // 969,418,087 + the memories' read latency + the pipeline's latency
-    // (the demo scene's flat estimate).
+    // 969,418,087 + the memories' read latency + the pipeline's latency +
+    // the counters' clock (the demo scene's flat estimate).
     let expected = 969_418_087
         + (tritri_rtl::system::MEMORY_READ_LATENCY
-            + tritri_rtl::pipeline::triangle_pipeline::latency()) as u64;
+            + tritri_rtl::pipeline::triangle_pipeline::latency()
+            + tritri_rtl::system::COUNT_LATENCY) as u64;
     assert!(
         err.contains(&format!("{expected} cycles is above --max-cycles")),
         "{err}"

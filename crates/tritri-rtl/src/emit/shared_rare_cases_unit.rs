@@ -79,7 +79,7 @@ pub fn shared_rare_cases(w: usize) -> UnitDescription {
             );
     }
     unit.port("ready", "The unit takes a job at this clock's edge.")
-        .port("idle_in_two", "ready will be high two clocks from now unless a job is taken before.")
+        .port("idle_in_three", "ready will be high three clocks from now unless a job is taken before.")
         .port("done", &format!("A job's verdict is on hit: {SHARED_RARE_CASES_LATENCY} clocks after a coplanar job was taken, {} after two segments.", SHARED_RARE_CASES_LATENCY - (COPLANAR_STEPS - SEGMENTS_STEPS)))
         .port("hit", "The pair meets.")
         .latency(SHARED_RARE_CASES_LATENCY as u64)

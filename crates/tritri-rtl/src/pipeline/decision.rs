@@ -26,23 +26,25 @@
 //! other's plane, or all six plane signs certain and step (7)'s two
 //! determinants certain or one of them certainly positive.
 //!
-//! Two stages: the case's verdict without the rare tests, and which rare
-//! test's verdict it takes, registered; then the verdict. In one stage, an
-//! orient3d sign reached the verdict register through five LUT levels, the
-//! W = 8 pipeline's critical path on ECP5 (144 MHz). The rare tests'
-//! verdicts (`coplanar_hit`, `degenerate_pair_hit`) come a clock after the
-//! other inputs, into the second stage, which is one LUT: with the three
-//! cases' verdicts and the case registered instead, it was three levels
-//! from the shared unit's verdict, across the chip, to `hit_q` (W = 16
-//! shared system, ECP5: the critical path, 148.3 MHz, 5.3 of 6.7 ns
-//! routing). That clock is the shared rare-case unit's margin
-//! (`super::shared_rare_pipeline`).
+//! Three stages: the case's verdict without the rare tests, and which rare
+//! test's verdict it takes, registered; the same, registered again; then
+//! the verdict. In one stage, an orient3d sign reached the verdict register
+//! through five LUT levels, the W = 8 pipeline's critical path on ECP5 (144
+//! MHz). The rare tests' verdicts (`coplanar_hit`, `degenerate_pair_hit`)
+//! come two clocks after the other inputs, into the last stage, which is
+//! one LUT: with the three cases' verdicts and the case registered instead,
+//! it was three levels from the shared unit's verdict, across the chip, to
+//! `hit_q` (W = 16 shared system, ECP5: the critical path, 148.3 MHz, 5.3
+//! of 6.7 ns routing). Those two clocks are the shared rare-case unit's
+//! time (`super::shared_rare_pipeline`): the middle stage is there for the
+//! unit, whose pairs reach it a stage later since the pipelines hold three
+//! clocks ahead (`super::hold_forecast`).
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
 /// Clock edges from inputs to `hit`.
-pub const DECISION_LATENCY: usize = 2;
+pub const DECISION_LATENCY: usize = 3;
 
 #[derive(LogicBlock, Default)]
 pub struct Decision {
@@ -70,8 +72,8 @@ pub struct Decision {
     pub t1_side_certain: [Signal<In, Bit>; 3],
     pub t2_side_certain: [Signal<In, Bit>; 3],
     pub orient_certain: [Signal<In, Bit>; 2],
-    /// The rare tests' verdicts, a clock after the inputs above (each is
-    /// read only when the pair's case needs it).
+    /// The rare tests' verdicts, two clocks after the inputs above (each
+    /// is read only when the pair's case needs it).
     pub coplanar_hit: Signal<In, Bit>,
     pub degenerate_pair_hit: Signal<In, Bit>,
     pub hit: Signal<Out, Bit>,
@@ -93,16 +95,21 @@ pub struct Decision {
     /// Every plane sign of T1 (of T2) is certain.
     t1_sides_certain: Signal<Local, Bit>,
     t2_sides_certain: Signal<Local, Bit>,
-    /// Stage 1: the certificate's rules 1 or 2, and rule 3; stage 2: either.
+    /// Stage 1: the certificate's rules 1 or 2, and rule 3; stage 2: either;
+    /// stage 3: the same.
     rejected_certainly_q: DFF<Bit>,
     interval_certain_q: DFF<Bit>,
     certain_q: DFF<Bit>,
+    certain_out_q: DFF<Bit>,
     /// Stage 1: the case's verdict if it needs no rare test, and whether
     /// it is the coplanar test's or (two segments with `[a, b, c, d] ==
-    /// 0`) the degenerate-pair test's instead.
+    /// 0`) the degenerate-pair test's instead; stage 2: the same.
     base_hit_q: DFF<Bit>,
     needs_coplanar_q: DFF<Bit>,
     needs_degenerate_pair_q: DFF<Bit>,
+    base_hit_late_q: DFF<Bit>,
+    needs_coplanar_late_q: DFF<Bit>,
+    needs_degenerate_pair_late_q: DFF<Bit>,
     hit_q: DFF<Bit>,
 }
 
@@ -118,7 +125,11 @@ impl crate::unit::Unit for Decision {
             base_hit_q,
             needs_coplanar_q,
             needs_degenerate_pair_q,
-            hit_q
+            base_hit_late_q,
+            needs_coplanar_late_q,
+            needs_degenerate_pair_late_q,
+            hit_q,
+            certain_out_q
         );
     }
 }
@@ -222,10 +233,14 @@ impl Logic for Decision {
             base_hit_q,
             needs_coplanar_q,
             needs_degenerate_pair_q,
+            base_hit_late_q,
+            needs_coplanar_late_q,
+            needs_degenerate_pair_late_q,
             hit_q,
             rejected_certainly_q,
             interval_certain_q,
-            certain_q
+            certain_q,
+            certain_out_q
         );
         if self.advance.val() {
             if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
@@ -262,11 +277,15 @@ impl Logic for Decision {
                     || (self.orient_certain[1].val() && self.orient_positive[1].val()));
             self.certain_q.d.next =
                 self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
-            self.hit_q.d.next = self.base_hit_q.q.val()
-                || (self.needs_coplanar_q.q.val() && self.coplanar_hit.val())
-                || (self.needs_degenerate_pair_q.q.val() && self.degenerate_pair_hit.val());
+            self.certain_out_q.d.next = self.certain_q.q.val();
+            self.base_hit_late_q.d.next = self.base_hit_q.q.val();
+            self.needs_coplanar_late_q.d.next = self.needs_coplanar_q.q.val();
+            self.needs_degenerate_pair_late_q.d.next = self.needs_degenerate_pair_q.q.val();
+            self.hit_q.d.next = self.base_hit_late_q.q.val()
+                || (self.needs_coplanar_late_q.q.val() && self.coplanar_hit.val())
+                || (self.needs_degenerate_pair_late_q.q.val() && self.degenerate_pair_hit.val());
         }
         self.hit.next = self.hit_q.q.val();
-        self.certain.next = self.certain_q.q.val();
+        self.certain.next = self.certain_out_q.q.val();
     }
 }

@@ -8,7 +8,7 @@
 //! stalling while a rare pair waits for it). The path hands them the pair
 //! as it forms (`pair_*`, stage 0) and its plane-side signs' zeros
 //! (`sides_*`, [`SIDES_STAGE`]), and takes their verdicts in the decision's
-//! second stage (`coplanar_hit`, `degenerate_pair_hit`,
+//! last stage (`coplanar_hit`, `degenerate_pair_hit`,
 //! [`RARE_VERDICTS_STAGE`]).
 //!
 //! Input, one triangle per clock: nine W-bit signed coordinates
@@ -34,7 +34,7 @@
 //!   -> the segment-triangle case's third determinant, from the two
 //!      determinants' values and the segment ends' plane-side values (2;
 //!      units 0 and 1's signs, a clock after their values, wait a clock)
-//!   -> decision (2), with the rare tests' verdicts
+//!   -> decision (3), with the rare tests' verdicts
 //! ```
 //!
 //! With the rare tests' verdicts, every verdict equals
@@ -79,9 +79,9 @@ const DISTANCES_STAGE: usize = PLANE_SIDE_LATENCY - CERTAIN_SIGN_LATENCY;
 const ENDS_DIFFERENCE_STAGE: usize = DISTANCES_STAGE + ENDS_DIFFERENCE_LATENCY;
 /// The third determinant's sign comes last.
 pub const DECISION_STAGE: usize = VALUES_STAGE + THIRD_DETERMINANT_LATENCY;
-/// The rare tests' verdicts go into the decision's second stage.
-pub const RARE_VERDICTS_STAGE: usize = DECISION_STAGE + 1;
-const _: () = assert!(DECISION_LATENCY == 2);
+/// The rare tests' verdicts go into the decision's last stage.
+pub const RARE_VERDICTS_STAGE: usize = DECISION_STAGE + DECISION_LATENCY - 1;
+const _: () = assert!(DECISION_LATENCY == 3);
 const _: () = assert!(DECISION_STAGE > ORIENT_SIGNS_STAGE && ENDS_DIFFERENCE_STAGE < VALUES_STAGE);
 /// The certificates come two clocks after their signs (`CertainSign`):
 /// the plane side's wait for the decision in lines two stages shorter

@@ -9,10 +9,11 @@
 //! `hold` a clock ahead from the rare bits and the unit's state, a copy
 //! still reached up to 4,474 clock enables (W = 16, router1: 105.3 MHz, an
 //! enable on the critical path), and a copy cost as much logic as the
-//! decision. Now [`super::hold_forecast::HoldForecast`] decides `hold` two
-//! clocks ahead, once for each value `advance` may take next clock, and a
-//! copy only picks one of its two registers by `advance`: many copies, each
-//! beside a small group, all equal clock by clock.
+//! decision. Now [`super::hold_next::HoldNext`] decides `hold` two clocks
+//! ahead (from the requests [`super::hold_forecast::HoldForecast`] makes a
+//! clock before), once for each value `advance` may take next clock, and
+//! a copy only picks one of its two registers by `advance`: many copies,
+//! each beside a small group, all equal clock by clock.
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;

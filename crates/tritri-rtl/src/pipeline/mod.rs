@@ -11,6 +11,7 @@ pub mod degenerate_pair;
 pub mod dominant_axis;
 pub mod general_path;
 pub mod hold_forecast;
+pub mod hold_next;
 pub mod hold_register;
 pub mod interval_overlap;
 pub mod load_enable;

@@ -220,7 +220,6 @@ pipeline_simulation!(
     |p: &SharedRarePipeline<W, D, C, O>| p.hold.val(),
     |p: &mut SharedRarePipeline<W, D, C, O>| {
         p.hold_others.connect();
-        p.hold_others_still.connect();
     }
 );
 

@@ -88,24 +88,15 @@ pub fn pipeline_unit_for(
             )
             .port(
                 "hold_request",
-                "This pipeline's rare pair will wait for its unit two clocks from now if `advance` is high next \
-                 clock: for pipelines that move in step with this one (a system's), which take the OR of all \
-                 their requests as `hold_others`.",
-            )
-            .port(
-                "hold_request_still",
-                "The same if `advance` is low next clock; its OR goes to `hold_others_still`.",
+                "Four registers: this pipeline's rare pair will wait for its unit three clocks from now if \
+                 `advance` is `a` next clock and the pipeline moves (`m`, `advance` high and `hold` low) two \
+                 clocks from now, at index `2a + m`. For pipelines that move in step with this one (a \
+                 system's), which take the OR of all their requests, index by index, as `hold_others`.",
             )
             .port(
                 "hold_others",
-                "A pipeline moving in step with this one requests a hold (the OR of their `hold_request`s, this \
-                 one's may be included): `hold` rises with it two clocks from now if `advance` is high next \
-                 clock. Tie to 0 for a pipeline on its own.",
-            )
-            .port(
-                "hold_others_still",
-                "The same for `advance` low next clock (the OR of the `hold_request_still`s). Tie to 0 for a \
-                 pipeline on its own.",
+                "Four inputs: the OR of the `hold_request`s of the pipelines moving in step with this one, \
+                 this one's may be included; `hold` rises with them. Tie to 0 for a pipeline on its own.",
             );
     }
     Ok(unit)

@@ -113,9 +113,9 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     pub t2_segment_high: Signal<In, Bits<2>>,
     /// The unit takes a job at this clock's edge.
     pub ready: Signal<Out, Bit>,
-    /// `ready` will be high two clocks from now unless a job is taken
-    /// before: at most three steps of the current job are left.
-    pub idle_in_two: Signal<Out, Bit>,
+    /// `ready` will be high three clocks from now unless a job is taken
+    /// before: at most four steps of the current job are left.
+    pub idle_in_three: Signal<Out, Bit>,
     /// A job's verdict is on `hit`.
     pub done: Signal<Out, Bit>,
     pub hit: Signal<Out, Bit>,
@@ -318,10 +318,11 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
 
         // The job: taken when the last step of the one before is issued.
         self.ready.next = self.remaining_q.q.val() == 0 || self.remaining_q.q.val() == 1;
-        self.idle_in_two.next = self.remaining_q.q.val() == 0
+        self.idle_in_three.next = self.remaining_q.q.val() == 0
             || self.remaining_q.q.val() == 1
             || self.remaining_q.q.val() == 2
-            || self.remaining_q.q.val() == 3;
+            || self.remaining_q.q.val() == 3
+            || self.remaining_q.q.val() == 4;
         for i in 0..18 {
             self.points_q[i].clock.next = self.clock.val();
             self.points_q[i].d.next = self.points_q[i].q.val();

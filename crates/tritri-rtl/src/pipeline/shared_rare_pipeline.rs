@@ -11,8 +11,8 @@
 //! case needs one of those tests (the rule of the decision, and of
 //! `system::rare_case_model::rare_kind`): both triangles degenerate, or
 //! the degenerate triangle's vertices (else T2's) all on the other's plane.
-//! That is registered a stage later, and again with the pair's job two
-//! stages later ([`JOB_STAGE`]), and the job goes to the unit as the pair
+//! That is registered a stage later, twice more, and with the pair's job
+//! three stages later ([`JOB_STAGE`]), and the job goes to the unit as the pair
 //! leaves that stage. While the unit cannot take it, `hold` is high and
 //! the whole pipeline holds, as if `advance` were low: the triangle on the
 //! input bus is not taken and must stay there. The unit runs on, free of
@@ -20,21 +20,25 @@
 //! to reach the decision, in order.
 //!
 //! `hold` goes into the enable of every register, so it is a register, in
-//! copies: [`HoldForecast`] decides it two clocks ahead from the rare bits
-//! of the three stages and the unit's steps left, once for each value
-//! `advance` may take next clock, and fourteen [`HoldRegister`]s pick from
-//! those two registers by `advance`, each the enable of one group of
-//! units (a fifteenth serves the unit's offers and the queue). The unit's
-//! input is valid by registers of its own, a clock ahead too
-//! (`offer_next`), one beside each group of its loads.
+//! copies: [`HoldForecast`] requests it three clocks ahead from the rare
+//! bits of the four stages and the unit's steps left, its [`HoldNext`](super::hold_next::HoldNext)
+//! decides it two clocks ahead, once for each value `advance` may take
+//! next clock, and fourteen [`HoldRegister`]s pick from those two
+//! registers by `advance`, each the enable of one group of units (a
+//! fifteenth serves the unit's offers and the queue). The unit's input is
+//! valid by registers of its own, a clock ahead too (`offer_next`), one
+//! beside each group of its loads.
 //! Pipelines that move in step (a system's) hold together: each sends its
-//! two requests (`hold_request`, `hold_request_still`) and takes the
-//! others' (`hold_others`, `hold_others_still`) into its forecast in the
-//! same clock, so that no pipeline's enables wait for another's `hold`.
+//! requests (`hold_request`, registers) and takes the OR of all of them
+//! (`hold_others`) into its [`HoldNext`](super::hold_next::HoldNext) a clock later, so that no
+//! pipeline's enables wait for another's `hold`.
 //! (Computed in the clock it acts, from the sides stage's zeros through
 //! the rule to one enable net, it ran at 79 MHz post-route on ECP5 at
 //! W = 8, 11.4 of its 12.7 ns routing; decided a clock ahead, one register
-//! a group, 105.3 MHz at W = 16, a copy reaching 4,474 clock enables.)
+//! a group, 105.3 MHz at W = 16, a copy reaching 4,474 clock enables;
+//! requested two clocks ahead and exchanged in the same clock, the
+//! exchange crossed between the pipelines of a P = 2 system behind the
+//! rule, 124.4 MHz at W = 8.)
 //!
 //! So the latency in advancing clocks is the parallel pipeline's
 //! [`latency`]; a run takes `N1 + N1 N2 + L` clocks plus the clocks with
@@ -42,6 +46,7 @@
 
 use super::general_path::{GeneralPath, ADVANCE_COPIES, RARE_VERDICTS_STAGE, SIDES_STAGE};
 use super::hold_forecast::HoldForecast;
+use super::hold_next::HOLD_REQUESTS;
 use super::hold_register::HoldRegister;
 use super::shared_rare_cases::{SharedRareCases, IN_VALID_COPIES, SHARED_RARE_CASES_LATENCY};
 use super::verdict_queue::{VerdictQueue, VERDICT_QUEUE_DEPTH};
@@ -53,9 +58,9 @@ use rust_hdl::prelude::*;
 pub use super::general_path::{latency, TRIANGLE_PIPELINE_LATENCY};
 
 /// The stage whose pair offers its job to the unit: the rare bit,
-/// registered twice after the plane side's zeros, so that the forecast
-/// sees the rare bits of the next two pairs ([`HoldForecast`]).
-pub const JOB_STAGE: usize = SIDES_STAGE + 2;
+/// registered three times after the plane side's zeros, so that the
+/// forecast sees the rare bits of the next three pairs ([`HoldForecast`]).
+pub const JOB_STAGE: usize = SIDES_STAGE + 3;
 
 /// The unit's verdict is in the queue's head register by the time its
 /// pair reaches [`RARE_VERDICTS_STAGE`]: the job is taken at the edge that
@@ -66,7 +71,9 @@ pub const JOB_STAGE: usize = SIDES_STAGE + 2;
 /// SHARED_RARE_CASES_LATENCY`, a stage before the decision reads it. A
 /// stage fewer, and a pair that found the unit idle and every stage moving
 /// missed its verdict by a clock: the rust-hdl test caught 3 of 5,136,
-/// until the verdicts moved into the decision's second stage.
+/// until the verdicts moved into the decision's second stage (now its
+/// third, as the job stage moved a stage later for the three clocks'
+/// forecast).
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENCY + 1);
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
@@ -85,17 +92,15 @@ crate::pipeline_ports! {
         /// and the input bus is not taken: this pipeline's rare pair or
         /// (`hold_others`) another's waits.
         pub hold: Signal<Out, Bit>,
-        /// This pipeline's rare pair will wait for the unit two clocks from
-        /// now if `advance` is high next clock, and if it is low: for the
+        /// This pipeline's rare pair will wait for the unit three clocks
+        /// from now if `advance` is `a` next clock and the pipeline moves
+        /// (`m`) two clocks from now, at `2 a + m` (registers): for the
         /// pipelines that move in step with this one.
-        pub hold_request: Signal<Out, Bit>,
-        pub hold_request_still: Signal<Out, Bit>,
-        /// Another pipeline moving in step with this one raised its
-        /// `hold_request` (`hold_request_still`) this clock, this one's may
-        /// be included: hold with it two clocks from now if `advance` is
-        /// high (low) next clock. 0 for a pipeline on its own.
-        pub hold_others: Signal<In, Bit>,
-        pub hold_others_still: Signal<In, Bit>,
+        pub hold_request: Signal<Out, Bits<HOLD_REQUESTS>>,
+        /// The OR of the `hold_request`s of the pipelines moving in step
+        /// with this one, this one's may be included: hold with them. 0 for
+        /// a pipeline on its own.
+        pub hold_others: Signal<In, Bits<HOLD_REQUESTS>>,
         path: GeneralPath<W, D, C, O>,
         rare_cases: SharedRareCases<W, D, C>,
         verdicts: VerdictQueue,
@@ -108,9 +113,10 @@ crate::pipeline_ports! {
         segment_ends_to_job: [DelayLine<Bits<2>, JOB_STAGE>; 4],
         /// The degenerate flags, to the sides stage, for the rule.
         degenerate_to_sides: [DelayLine<Bit, SIDES_STAGE>; 2],
-        /// The rule's outcome a stage after the sides stage, and at the
-        /// job stage.
+        /// The rule's outcome a stage after the sides stage, two, and at
+        /// the job stage.
         rare_queued: ValidLine<1>,
+        rare_queued_2: ValidLine<1>,
         rare_to_job: ValidLine<1>,
         segments_to_job: DelayLine<Bit, { JOB_STAGE - SIDES_STAGE }>,
         /// A rare pair, from the job stage to the decision's second stage.
@@ -177,6 +183,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             segment_ends_to_job,
             degenerate_to_sides,
             rare_queued,
+            rare_queued_2,
             rare_to_job,
             offers,
             unit_hold,
@@ -210,6 +217,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             verdicts,
             axis_to_job,
             rare_queued,
+            rare_queued_2,
             rare_to_job,
             segments_to_job,
             rare_to_decision
@@ -236,13 +244,12 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.forecast.reset.next = self.reset.val();
         self.forecast.advance.next = self.advance.val();
         self.forecast.sides_rare.next = self.rare.val();
-        self.forecast.queued_rare.next = self.rare_queued.q.val();
+        self.forecast.rare_2.next = self.rare_queued.q.val();
+        self.forecast.rare_1.next = self.rare_queued_2.q.val();
         self.forecast.job_rare.next = self.job_rare.val();
-        self.forecast.unit_idle_in_two.next = self.rare_cases.idle_in_two.val();
-        self.forecast.others_if_advance.next = self.hold_others.val();
-        self.forecast.others_if_still.next = self.hold_others_still.val();
-        self.hold_request.next = self.forecast.request_if_advance.val();
-        self.hold_request_still.next = self.forecast.request_if_still.val();
+        self.forecast.unit_idle_in_three.next = self.rare_cases.idle_in_three.val();
+        self.forecast.others.next = self.hold_others.val();
+        self.hold_request.next = self.forecast.requests.val();
         self.unit_hold.clock.next = self.clock.val();
         self.unit_hold.reset.next = self.reset.val();
         self.unit_hold.advance.next = self.advance.val();
@@ -297,12 +304,14 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.axis_to_job.advance.next = self.advance.val() && !self.holds[13].hold.val();
         self.rare_queued.advance.next = self.moving.val();
         self.rare_queued.reset.next = self.reset.val();
+        self.rare_queued_2.advance.next = self.moving.val();
+        self.rare_queued_2.reset.next = self.reset.val();
         self.rare_to_job.advance.next = self.moving.val();
         self.rare_to_job.reset.next = self.reset.val();
         // As the forecast works out the job stage's pair and `hold` of the
         // next clock.
         if self.advance.val() && !self.unit_hold.hold.val() {
-            self.offer_next.next = self.rare_queued.q.val();
+            self.offer_next.next = self.rare_queued_2.q.val();
         } else {
             self.offer_next.next = self.job_rare.val();
         }
@@ -361,7 +370,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.segment_ends_to_job[2].d.next = self.path.pair_t2_segment_low.val();
         self.segment_ends_to_job[3].d.next = self.path.pair_t2_segment_high.val();
         self.rare_queued.d.next = self.rare.val();
-        self.rare_to_job.d.next = self.rare_queued.q.val();
+        self.rare_queued_2.d.next = self.rare_queued.q.val();
+        self.rare_to_job.d.next = self.rare_queued_2.q.val();
         self.segments_to_job.d.next = self.segments.val();
 
         // The job, taken as the pair leaves the job stage.

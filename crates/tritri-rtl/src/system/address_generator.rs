@@ -62,7 +62,8 @@ pub enum ReadState {
 /// once per clock of the memories' read.
 const _: () = assert!(MEMORY_READ_LATENCY == 2);
 
-/// Width of the in-flight countdown (pipeline latency + read latency < 256).
+/// Width of the in-flight countdown (read latency + pipeline latency + the
+/// counters' < 256).
 pub const FLIGHT_BITS: usize = 8;
 
 #[derive(LogicBlock)]
@@ -192,12 +193,14 @@ impl crate::unit::Unit for AddressGenerator {
 }
 
 impl AddressGenerator {
-    /// `pipelines` pipelines of latency `pipeline_latency`, memories of
-    /// `triangles_per_bank` triangles per array per bank.
-    pub fn new(pipelines: usize, triangles_per_bank: usize, pipeline_latency: usize) -> Self {
+    /// `pipelines` pipelines, memories of `triangles_per_bank` triangles
+    /// per array per bank, and `done` rising `flight_cycles + 1` clocks
+    /// after the last streamed read
+    /// ([`SystemConfig::read_to_counted_cycles`](super::SystemConfig::read_to_counted_cycles)).
+    pub fn new(pipelines: usize, triangles_per_bank: usize, flight_cycles: usize) -> Self {
         assert!(pipelines >= 1 && pipelines <= 1 << LANE_BITS);
         assert!((1..=MAX_TRIANGLES_PER_BANK).contains(&triangles_per_bank));
-        assert!(pipeline_latency + MEMORY_READ_LATENCY < 1 << FLIGHT_BITS);
+        assert!(flight_cycles < 1 << FLIGHT_BITS);
         AddressGenerator {
             clock: Default::default(),
             reset: Default::default(),
@@ -219,9 +222,7 @@ impl AddressGenerator {
             bank_size: Constant::new((triangles_per_bank as u64).to_bits()),
             last_index: Constant::new(((triangles_per_bank - 1) as u64).to_bits()),
             last_lane: Constant::new(((pipelines - 1) as u64).to_bits()),
-            flight_cycles: Constant::new(
-                ((pipeline_latency + MEMORY_READ_LATENCY) as u64).to_bits(),
-            ),
+            flight_cycles: Constant::new((flight_cycles as u64).to_bits()),
             write_bank: Default::default(),
             a_write_pointer: Default::default(),
             b_write_pointer: Default::default(),
@@ -457,8 +458,8 @@ impl Logic for AddressGenerator {
                     }
                 }
             }
-            // Pairs in flight: the last streamed read leaves the pipelines
-            // L + MEMORY_READ_LATENCY advancing cycles later.
+            // Pairs in flight: the last streamed read's verdicts are
+            // counted `flight_cycles` advancing cycles later.
             if self.stream_issue.val() {
                 self.flight.d.next = self.flight_cycles.val();
             } else if self.flight.q.val() != 0 {

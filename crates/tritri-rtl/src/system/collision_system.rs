@@ -45,12 +45,11 @@ use rust_hdl::prelude::*;
 /// in_id in_x0 … in_z2 out_valid out_hit out_certain out_base_id
 /// out_stream_id`) and
 /// `W`-bit coordinates. The caller must have `rust_hdl::prelude::*` in scope.
-/// Pipelines that hold for a shared unit name their five ports for it
-/// (`hold: hold, hold_request: [hold_request, hold_request_still],
-/// hold_others: [hold_others, hold_others_still]`): the output that says
-/// they hold, the requests two clocks ahead (if `advance` is high next
-/// clock, and if it is low), and the inputs that make them hold with the
-/// others.
+/// Pipelines that hold for a shared unit name their three ports for it
+/// (`hold: hold, hold_request: hold_request, hold_others: hold_others`):
+/// the output that says they hold, their requests three clocks ahead
+/// (four bits, registers), and the input that makes them hold with the
+/// others (the requests' OR, [`HoldNext`](crate::pipeline::hold_next::HoldNext)).
 ///
 /// ```text
 /// collision_system!(pub struct StubCollisionSystem<const W: usize> { coordinate_bits: W, pipeline: StubPipeline<W> });
@@ -59,8 +58,7 @@ use rust_hdl::prelude::*;
 macro_rules! collision_system {
     ($(#[$meta:meta])* $vis:vis struct $name:ident < $(const $param:ident : usize),* > {
         coordinate_bits: $w:expr, pipeline: $pipeline:ty
-        $(, hold: $hold:ident, hold_request: [$hold_request:ident, $hold_request_still:ident],
-            hold_others: [$hold_others:ident, $hold_others_still:ident])? $(,)?
+        $(, hold: $hold:ident, hold_request: $hold_request:ident, hold_others: $hold_others:ident)? $(,)?
     }) => {
         $(#[$meta])*
         #[derive(LogicBlock)]
@@ -101,6 +99,16 @@ macro_rules! collision_system {
             pair_serializer: $crate::system::pair_serializer::PairSerializer,
             pairs_tested_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             hits_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
+            /// The verdicts of the last clock the pipelines moved, and how
+            /// many were hits: the counters add them a clock late
+            /// ([`COUNT_LATENCY`](crate::system::COUNT_LATENCY)), so that
+            /// the pipelines' output registers reach a register, not a
+            /// 32-bit carry chain (W = 16, P = 1, seed 2: the decision's
+            /// `hit_q`, 2.7 ns of routing, then 33 levels into `hits`, 7.16
+            /// ns). `done` rises a clock later for it, so the counts are
+            /// complete when it is seen.
+            tested_increment: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::LANE_BITS }>>,
+            hit_increment: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::LANE_BITS }>>,
             stall_cycles_q: rust_hdl::widgets::prelude::DFF<Bits<{ $crate::system::COUNTER_BITS }>>,
             /// The last clock was a stall: counted a clock late, so that
             /// `advance` and `done` reach a flip-flop, not a 32-bit carry
@@ -149,23 +157,20 @@ macro_rules! collision_system {
             /// synthesis removes it.
             hold_chain: Vec<Signal<Local, Bit>>,
             any_hold: Signal<Local, Bit>,
-            /// With shared rare-case units: the chains OR the pipelines'
-            /// requests (`hold_request`, `hold_request_still`), and
-            /// `any_request[0]` and `[1]`, the ORs, go back to every
-            /// pipeline's `hold_others` and `hold_others_still`, so that
-            /// they hold together and each decides its enables from
-            /// registers of its own. All empty without shared units.
-            hold_request_chain: Vec<Signal<Local, Bit>>,
-            hold_request_still_chain: Vec<Signal<Local, Bit>>,
-            any_request: Vec<Signal<Local, Bit>>,
+            /// With shared rare-case units: the chain ORs the pipelines'
+            /// requests (`hold_request`), and `any_request`, the OR, goes
+            /// back to every pipeline's `hold_others`, so that they hold
+            /// together and each decides its enables from registers of its
+            /// own. Both empty without shared units.
+            hold_request_chain: Vec<Signal<Local, Bits<{ $crate::pipeline::hold_next::HOLD_REQUESTS }>>>,
+            any_request: Vec<Signal<Local, Bits<{ $crate::pipeline::hold_next::HOLD_REQUESTS }>>>,
             /// With shared rare-case units: the read side's own copy of the
-            /// pipelines' forecast, `hold` next clock, made as each
-            /// pipeline makes its own from `any_request[0]` (their
-            /// `advance` is tied high). A register copy, kept apart from
-            /// the pipelines' equal registers. Empty without shared units.
-            hold_forecast: Vec<$crate::arith::register_copy::RegisterCopy<Bit>>,
-            /// The pipelines hold next clock: `hold_forecast`, or 0 without
-            /// shared units.
+            /// pipelines' `hold` two clocks ahead, made as each pipeline
+            /// makes its own from `any_request` (their `advance` is tied
+            /// high). Empty without shared units.
+            hold_forecast: Vec<$crate::pipeline::hold_next::HoldNext>,
+            /// The pipelines hold next clock: `hold_forecast`'s register for
+            /// `advance` high, or 0 without shared units.
             hold_next: Signal<Local, Bit>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
@@ -216,7 +221,7 @@ macro_rules! collision_system {
                     address_generator: $crate::system::address_generator::AddressGenerator::new(
                         p,
                         config.triangles_per_bank,
-                        config.pipeline_latency,
+                        config.read_to_counted_cycles(),
                     ),
                     memory_a: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
                     memory_b: $crate::system::triangle_memory::TriangleMemory::new(config.triangles_per_bank),
@@ -229,6 +234,8 @@ macro_rules! collision_system {
                     pair_serializer: $crate::system::pair_serializer::PairSerializer::new(p),
                     pairs_tested_q: Default::default(),
                     hits_q: Default::default(),
+                    tested_increment: Default::default(),
+                    hit_increment: Default::default(),
                     stall_cycles_q: Default::default(),
                     stalled: Default::default(),
                     advance_copies: (0..3).map(|_| Default::default()).collect(),
@@ -250,8 +257,7 @@ macro_rules! collision_system {
                     hold_chain: (0..=p).map(|_| Default::default()).collect(),
                     any_hold: Default::default(),
                     hold_request_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
-                    hold_request_still_chain: (0..=p).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
-                    any_request: (0..2).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
+                    any_request: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     hold_forecast: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     hold_next: Default::default(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
@@ -277,6 +283,8 @@ macro_rules! collision_system {
                     pair_serializer,
                     pairs_tested_q,
                     hits_q,
+                    tested_increment,
+                    hit_increment,
                     stall_cycles_q,
                     stalled,
                     advance_copies,
@@ -335,7 +343,16 @@ macro_rules! collision_system {
         impl<$(const $param: usize),*> Logic for $name<$($param),*> {
             #[hdl_gen]
             fn update(&mut self) {
-                dff_setup!(self, clock, pairs_tested_q, hits_q, stall_cycles_q, stalled);
+                dff_setup!(
+                    self,
+                    clock,
+                    pairs_tested_q,
+                    hits_q,
+                    tested_increment,
+                    hit_increment,
+                    stall_cycles_q,
+                    stalled
+                );
 
                 // The pipelines' outputs (registers) first: the masks and the
                 // counts of this cycle's verdicts, then the enables.
@@ -388,25 +405,22 @@ macro_rules! collision_system {
                 }
                 self.hold_next.next = false;
                 $(
-                    self.hold_request_chain[0].next = false;
-                    self.hold_request_still_chain[0].next = false;
+                    self.hold_request_chain[0].next = 0.into();
                     for i in 0..self.pipelines.len() {
                         self.hold_request_chain[i + 1].next =
                             self.hold_request_chain[i].val() | self.pipelines[i].$hold_request.val();
                         self.any_request[0].next = self.hold_request_chain[i + 1].val();
-                        self.hold_request_still_chain[i + 1].next = self.hold_request_still_chain[i].val()
-                            | self.pipelines[i].$hold_request_still.val();
-                        self.any_request[1].next = self.hold_request_still_chain[i + 1].val();
                     }
                     for i in 0..self.pipelines.len() {
                         self.pipelines[i].$hold_others.next = self.any_request[0].val();
-                        self.pipelines[i].$hold_others_still.next = self.any_request[1].val();
                     }
                     for i in 0..self.hold_forecast.len() {
                         self.hold_forecast[i].clock.next = self.clock.val();
+                        self.hold_forecast[i].reset.next = self.reset.val();
+                        self.hold_forecast[i].advance.next = true;
+                        self.hold_forecast[i].requests.next = self.any_request[0].val();
                     }
-                    self.hold_forecast[0].d.next = self.any_request[0].val() & !self.reset.val();
-                    self.hold_next.next = self.hold_forecast[0].q.val() & !self.reset.val();
+                    self.hold_next.next = self.hold_forecast[0].if_advance.val() & !self.reset.val();
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
                 // its mark (`room`, seen a clock late through the registered
@@ -519,16 +533,20 @@ macro_rules! collision_system {
                 self.done.next = self.address_generator.done.val();
                 self.results_empty.next = self.result_fifo.empty.val() & !self.pair_serializer.holding.val();
                 self.overflow.next = self.address_generator.overflow.val();
+                self.tested_increment.d.next = 0.into();
+                self.hit_increment.d.next = 0.into();
                 if self.pipelines_move.val() {
-                    self.pairs_tested_q.d.next = self.pairs_tested_q.q.val()
-                        + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
-                            self.tested_count.val(),
-                        );
-                    self.hits_q.d.next = self.hits_q.q.val()
-                        + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
-                            self.hit_count.val(),
-                        );
+                    self.tested_increment.d.next = self.tested_count.val();
+                    self.hit_increment.d.next = self.hit_count.val();
                 }
+                self.pairs_tested_q.d.next = self.pairs_tested_q.q.val()
+                    + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
+                        self.tested_increment.q.val(),
+                    );
+                self.hits_q.d.next = self.hits_q.q.val()
+                    + bit_cast::<{ $crate::system::COUNTER_BITS }, { $crate::system::LANE_BITS }>(
+                        self.hit_increment.q.val(),
+                    );
                 // Held with work to do: a clock the batch takes longer.
                 self.stalled.d.next = !self.advance.val() & !self.address_generator.done.val();
                 if self.stalled.q.val() {
@@ -537,6 +555,8 @@ macro_rules! collision_system {
                 if self.reset.val() {
                     self.pairs_tested_q.d.next = 0.into();
                     self.hits_q.d.next = 0.into();
+                    self.tested_increment.d.next = 0.into();
+                    self.hit_increment.d.next = 0.into();
                     self.stall_cycles_q.d.next = 0.into();
                     self.stalled.d.next = false;
                 }
@@ -582,8 +602,8 @@ collision_system!(
         coordinate_bits: W,
         pipeline: SharedRarePipeline<W, D, C, O>,
         hold: hold,
-        hold_request: [hold_request, hold_request_still],
-        hold_others: [hold_others, hold_others_still],
+        hold_request: hold_request,
+        hold_others: hold_others,
     }
 );
 

@@ -27,12 +27,14 @@
 //!   bases is loaded one per cycle, then B streams past all of them; `I = 0`
 //!   when an array is empty);
 //! * `M = 2` cycles of memory read latency
-//!   ([`MEMORY_READ_LATENCY`](super::MEMORY_READ_LATENCY)) and `L` cycles of
-//!   pipeline latency after the last read, then `done` rises.
+//!   ([`MEMORY_READ_LATENCY`](super::MEMORY_READ_LATENCY)), `L` cycles of
+//!   pipeline latency after the last read and `K = 1` in which the last
+//!   verdicts are counted ([`COUNT_LATENCY`](super::COUNT_LATENCY)), then
+//!   `done` rises.
 //!
-//! One batch: `cycles = (N1 + N2 + 1) + 1 + N1 + ceil(N1 / P) · N2 + M + L`
+//! One batch: `cycles = (N1 + N2 + 1) + 1 + N1 + ceil(N1 / P) · N2 + M + L + K`
 //! (for `P = 1` the thesis's `N1 + N1 · N2 + L` plus the write phase and
-//! three cycles); an empty batch costs `N1 + N2 + 2`. Without overlap the
+//! four cycles); an empty batch costs `N1 + N2 + 2`. Without overlap the
 //! batches add up, plus one cycle each for the host to see `done`. With
 //! overlap the recurrence below applies: batch `k` is written while batch
 //! `k − 1` is read, into the bank that batch `k − 2` released.
@@ -44,7 +46,7 @@
 //! C_k = T_k + N1_k + N2_k              end-of-batch word accepted
 //! Q_k = max(C_k + 1, R_{k-1} + 1)      idle cycle that takes the bank
 //! R_k = Q_k + I_k                      last read; the bank is released
-//! D   = max(R_last + 1, X + M + L + 1) X: the last cycle that read B
+//! D   = max(R_last + 1, X + M + L + K + 1) X: the last cycle that read B
 //! ```
 
 use super::SystemConfig;
@@ -138,7 +140,7 @@ fn recurrence(
     first: i64,
     gap: i64,
 ) -> i64 {
-    let latency = config.read_to_verdict_cycles() as i64;
+    let latency = config.read_to_counted_cycles() as i64;
     // Cycle indices; -1 stands for "before cycle 0".
     let mut commit_previous: i64 = -1; // C_{k-1}
     let mut done_previous: i64 = -1; // D_{k-1}
@@ -198,7 +200,7 @@ pub fn single_batch_cycles(config: SystemConfig, batch: BatchSizes) -> u64 {
     if reads == 0 {
         writes + 1
     } else {
-        writes + 1 + reads + config.read_to_verdict_cycles() as u64
+        writes + 1 + reads + config.read_to_counted_cycles() as u64
     }
 }
 
@@ -246,13 +248,13 @@ mod tests {
     }
 
     /// Thesis check: one batch, one pipeline: N1 + N1*N2 + L plus the write
-    /// phase (N1 + N2 + 1) and three cycles (bank take-over, the memories'
-    /// two read clocks).
+    /// phase (N1 + N2 + 1) and four cycles (bank take-over, the memories'
+    /// two read clocks, the counters' clock).
     #[test]
     fn one_pipeline_is_the_thesis_formula_plus_overheads() {
         let config = SystemConfig::new(24, 1, 32);
         let (n1, n2) = (10u64, 20u64);
-        let expected = (n1 + n2 + 1) + n1 + n1 * n2 + 32 + 3;
+        let expected = (n1 + n2 + 1) + n1 + n1 * n2 + 32 + 4;
         assert_eq!(
             single_batch_cycles(config, BatchSizes { a: 10, b: 20 }),
             expected

@@ -66,6 +66,10 @@ pub const MAX_TRIANGLES_PER_BANK: usize = (1 << (ADDRESS_BITS - 1)) - 1;
 /// bus: the block RAM's registered read, then an output register in fabric
 /// ([`triangle_memory`]).
 pub const MEMORY_READ_LATENCY: usize = 2;
+/// Clocks from a verdict on the pipelines' outputs to the counters
+/// (`pairs_tested`, `hits`): they add increments registered a clock
+/// before ([`collision_system`]).
+pub const COUNT_LATENCY: usize = 1;
 /// Width of the result FIFO's pointers and fill count.
 pub const FIFO_POINTER_BITS: usize = 16;
 /// Width of the triangle ids carried through memories and pipelines (the
@@ -167,10 +171,11 @@ impl SystemConfig {
         self.result_fifo_reserve() + 1
     }
 
-    /// Clocks from a streamed triangle's read address to its verdict on the
-    /// pipelines' outputs: the memories' read latency and `L`.
-    pub fn read_to_verdict_cycles(&self) -> usize {
-        MEMORY_READ_LATENCY + self.pipeline_latency
+    /// Clocks from a streamed triangle's read address until its verdict is
+    /// counted: the memories' read latency, `L`, and the counters'; `done`
+    /// rises the clock after (the address generator's `flight_cycles`).
+    pub fn read_to_counted_cycles(&self) -> usize {
+        MEMORY_READ_LATENCY + self.pipeline_latency + COUNT_LATENCY
     }
 
     /// The unit name of the emitted top: `tritri_system_w24_p2_d256`.
