@@ -172,6 +172,10 @@ macro_rules! collision_system {
             /// The pipelines hold next clock: `hold_forecast`'s register for
             /// `advance` high, or 0 without shared units.
             hold_next: Signal<Local, Bit>,
+            /// Its register for `advance` low: the pipelines' `advance` is
+            /// tied high (unused on purpose, for Verilator's lint). Empty
+            /// without shared units.
+            unused_hold_if_still: Vec<Signal<Local, Bit>>,
             /// Every lane tests the same streamed triangle, so only lane 0's
             /// stream id is stored; the others are folded into this chain,
             /// whose name tells Verilator's lint (`--unused-regexp`, default
@@ -260,6 +264,7 @@ macro_rules! collision_system {
                     any_request: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     hold_forecast: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     hold_next: Default::default(),
+                    unused_hold_if_still: (0..1).filter(|_| Self::SHARED_UNITS).map(|_| Default::default()).collect(),
                     unused_stream_ids: (0..=p).map(|_| Default::default()).collect(),
                     _config: config,
                 }
@@ -421,6 +426,7 @@ macro_rules! collision_system {
                         self.hold_forecast[i].requests.next = self.any_request[0].val();
                     }
                     self.hold_next.next = self.hold_forecast[0].if_advance.val() & !self.reset.val();
+                    self.unused_hold_if_still[0].next = self.hold_forecast[0].if_still.val();
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
                 // its mark (`room`, seen a clock late through the registered
