@@ -119,7 +119,7 @@ crate::pipeline_ports! {
         rare_queued_2: ValidLine<1>,
         rare_to_job: ValidLine<1>,
         segments_to_job: DelayLine<Bit, { JOB_STAGE - SIDES_STAGE }>,
-        /// A rare pair, from the job stage to the decision's second stage.
+        /// A rare pair, from the job stage to the decision's last stage.
         rare_to_decision: ValidLine<{ RARE_VERDICTS_STAGE - JOB_STAGE }>,
         segments: Signal<Local, Bit>,
         coplanar: Signal<Local, Bit>,
