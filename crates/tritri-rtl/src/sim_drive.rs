@@ -35,6 +35,14 @@ pub fn settle<B: Block>(uut: &mut B) {
 /// register before its rising edge. The previous settle left everything
 /// stable, so no register can see a value from the wrong cycle. This saves
 /// about a third of the delta cycles.
+///
+/// That holds for an input's paths that only go down the hierarchy. A unit
+/// reads a sub-unit's output a delta cycle after the sub-unit computes it,
+/// so an input that goes into a sub-unit and comes back out to a register
+/// of the unit arrives a delta cycle after that register's edge, and the
+/// register takes the input's old value. Designs driven this way keep such
+/// round trips off their input paths (`HoldForecast` chooses by `advance`
+/// itself for this reason).
 pub fn clock_cycle<B: Block>(uut: &mut B, clock: fn(&mut B) -> &mut Signal<In, Clock>) {
     clock(uut).next = Clock { clk: false };
     uut.update_all();

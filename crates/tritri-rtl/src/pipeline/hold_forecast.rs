@@ -128,6 +128,10 @@ impl Logic for HoldForecast {
 
         // Now, and at t + 1.
         self.moving.next = self.advance.val() && !self.hold.hold.val();
+        // `HoldNext` makes the same choice inside; made here from its
+        // registers, `advance` reaches the request registers without going
+        // into a unit and back out, a path direct-drive simulation would
+        // see a delta cycle after the clock edge (`sim_drive::clock_cycle`).
         if self.advance.val() {
             self.hold_1.next = self.next.if_advance.val();
         } else {

@@ -116,9 +116,10 @@ macro_rules! collision_system {
             /// `done` rises (nothing that ends a batch moves while the read
             /// side holds), so the count is complete when `done` is seen.
             stalled: rust_hdl::widgets::prelude::DFF<Bit>,
-            /// The read side's clock enable, a register in copies: `[0]` for
-            /// the address generator, the pipelines' inputs and the stall
-            /// count, `[1]` and `[2]` for the memories of A and B. High
+            /// The read side's clock enable, a register in copies:
+            /// `advance_q` for the address generator, the pipelines' inputs
+            /// and the stall count, `read_enable_a` and `read_enable_b` for
+            /// the memories of A and B. High
             /// when the FIFO had room a clock ago and no pipeline holds
             /// (`hold_next` a clock ahead). Combinational from `room` and a
             /// `hold` copy, placed apart, into the address generator's next
@@ -128,8 +129,13 @@ macro_rules! collision_system {
             /// ([`SystemConfig::result_fifo_reserve`](crate::system::SystemConfig::result_fifo_reserve)).
             /// Register copies ([`RegisterCopy`](crate::arith::register_copy::RegisterCopy)),
             /// so that synthesis keeps them apart.
-            advance_copies: Vec<$crate::arith::register_copy::RegisterCopy<Bit>>,
-            /// `advance_copies[0]`.
+            advance_q: $crate::arith::register_copy::RegisterCopy<Bit>,
+            read_enable_a: $crate::arith::register_copy::RegisterCopy<Bit>,
+            read_enable_b: $crate::arith::register_copy::RegisterCopy<Bit>,
+            /// What the copies take: the FIFO has room and no pipeline
+            /// holds next clock.
+            advance_next: Signal<Local, Bit>,
+            /// `advance_q`'s register.
             advance: Signal<Local, Bit>,
             /// The pipelines move this clock: no pipeline holds (constant 1
             /// without shared rare-case units). Their `advance` is tied
@@ -242,7 +248,10 @@ macro_rules! collision_system {
                     hit_increment: Default::default(),
                     stall_cycles_q: Default::default(),
                     stalled: Default::default(),
-                    advance_copies: (0..3).map(|_| Default::default()).collect(),
+                    advance_q: Default::default(),
+                    read_enable_a: Default::default(),
+                    read_enable_b: Default::default(),
+                    advance_next: Default::default(),
                     advance: Default::default(),
                     pipelines_move: Default::default(),
                     bus_id: Default::default(),
@@ -292,7 +301,9 @@ macro_rules! collision_system {
                     hit_increment,
                     stall_cycles_q,
                     stalled,
-                    advance_copies,
+                    advance_q,
+                    read_enable_a,
+                    read_enable_b,
                     hold_forecast
                 );
             }
@@ -430,17 +441,18 @@ macro_rules! collision_system {
                 )?
                 // Back-pressure: the read side holds while the FIFO is above
                 // its mark (`room`, seen a clock late through the registered
-                // `advance_copies`) and sends nothing; the
+                // copies of `advance`) and sends nothing; the
                 // pipelines run on, and their pairs in flight go into the
                 // FIFO's reserve (see `result_fifo`), so an enable need not
                 // reach every pipeline register. Shared rare-case units hold
                 // the pipelines (by themselves, `hold_others` above) and the
                 // read side together.
-                for i in 0..self.advance_copies.len() {
-                    self.advance_copies[i].clock.next = self.clock.val();
-                    self.advance_copies[i].d.next = self.result_fifo.room.val() & !self.hold_next.val();
-                }
-                self.advance.next = self.advance_copies[0].q.val();
+                clock!(self, clock, advance_q, read_enable_a, read_enable_b);
+                self.advance_next.next = self.result_fifo.room.val() & !self.hold_next.val();
+                self.advance_q.d.next = self.advance_next.val();
+                self.read_enable_a.d.next = self.advance_next.val();
+                self.read_enable_b.d.next = self.advance_next.val();
+                self.advance.next = self.advance_q.q.val();
                 self.pipelines_move.next = !self.any_hold.val();
 
                 // Host stream → write side of the address generator and memories.
@@ -454,12 +466,12 @@ macro_rules! collision_system {
                 self.memory_a.write_enable.next = self.address_generator.a_write_enable.val();
                 self.memory_a.write_address.next = self.address_generator.a_write_address.val();
                 self.memory_a.write_id.next = self.in_id.val();
-                self.memory_a.read_enable.next = self.advance_copies[1].q.val();
+                self.memory_a.read_enable.next = self.read_enable_a.q.val();
                 self.memory_a.read_address.next = self.address_generator.a_read_address.val();
                 self.memory_b.write_enable.next = self.address_generator.b_write_enable.val();
                 self.memory_b.write_address.next = self.address_generator.b_write_address.val();
                 self.memory_b.write_id.next = self.in_id.val();
-                self.memory_b.read_enable.next = self.advance_copies[2].q.val();
+                self.memory_b.read_enable.next = self.read_enable_b.q.val();
                 self.memory_b.read_address.next = self.address_generator.b_read_address.val();
                 self.memory_a.write_coordinates[0].next = self.in_x0.val();
                 self.memory_a.write_coordinates[1].next = self.in_y0.val();
