@@ -70,6 +70,7 @@ tritri_pipeline_w24_sign_of.v
 tritri_pipeline_w24_subtractor.v
 tritri_pipeline_w24_third_determinant.v
 tritri_pipeline_w24_triangle_front_end.v
+tritri_pipeline_w24_two_way_subtractor.v
 tritri_pipeline_w24_valid_line_n10.v
 tritri_pipeline_w24_valid_line_n24.v
 tritri_pipeline_w24_valid_line_n9.v

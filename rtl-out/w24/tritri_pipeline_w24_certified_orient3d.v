@@ -51,6 +51,9 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edge_ab_difference_0;
     wire  [24:0] edge_ab_difference_1;
     wire  [24:0] edge_ab_difference_2;
+    wire  [24:0] edge_ab_negated_0;
+    wire  [24:0] edge_ab_negated_1;
+    wire  [24:0] edge_ab_negated_2;
     wire  edge_ac_clock;
     wire  edge_ac_advance;
     wire  [23:0] edge_ac_a_0;
@@ -62,6 +65,9 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edge_ac_difference_0;
     wire  [24:0] edge_ac_difference_1;
     wire  [24:0] edge_ac_difference_2;
+    wire  [24:0] edge_ac_negated_0;
+    wire  [24:0] edge_ac_negated_1;
+    wire  [24:0] edge_ac_negated_2;
     wire  edge_ad_clock;
     wire  edge_ad_advance;
     wire  [23:0] edge_ad_a_0;
@@ -122,9 +128,15 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edges_bits_a_0;
     wire  [24:0] edges_bits_a_1;
     wire  [24:0] edges_bits_a_2;
+    wire  [24:0] edges_bits_a_negated_0;
+    wire  [24:0] edges_bits_a_negated_1;
+    wire  [24:0] edges_bits_a_negated_2;
     wire  [24:0] edges_bits_b_0;
     wire  [24:0] edges_bits_b_1;
     wire  [24:0] edges_bits_b_2;
+    wire  [24:0] edges_bits_b_negated_0;
+    wire  [24:0] edges_bits_b_negated_1;
+    wire  [24:0] edges_bits_b_negated_2;
     wire  [7:0] edges_bits_bits;
     wire  threshold_clock;
     wire  threshold_advance;
@@ -146,7 +158,7 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  sign_certain;
 
     // Sub module instances
-    tritri_pipeline_w24_vector_subtractor u_edge_ab(
+    tritri_pipeline_w24_two_way_subtractor u_edge_ab(
         .clock(edge_ab_clock),
         .advance(edge_ab_advance),
         .a_0(edge_ab_a_0),
@@ -157,9 +169,12 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_2(edge_ab_b_2),
         .difference__0(edge_ab_difference_0),
         .difference__1(edge_ab_difference_1),
-        .difference__2(edge_ab_difference_2)
+        .difference__2(edge_ab_difference_2),
+        .negated_0(edge_ab_negated_0),
+        .negated_1(edge_ab_negated_1),
+        .negated_2(edge_ab_negated_2)
     );
-    tritri_pipeline_w24_vector_subtractor u_edge_ac(
+    tritri_pipeline_w24_two_way_subtractor u_edge_ac(
         .clock(edge_ac_clock),
         .advance(edge_ac_advance),
         .a_0(edge_ac_a_0),
@@ -170,7 +185,10 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_2(edge_ac_b_2),
         .difference__0(edge_ac_difference_0),
         .difference__1(edge_ac_difference_1),
-        .difference__2(edge_ac_difference_2)
+        .difference__2(edge_ac_difference_2),
+        .negated_0(edge_ac_negated_0),
+        .negated_1(edge_ac_negated_1),
+        .negated_2(edge_ac_negated_2)
     );
     tritri_pipeline_w24_vector_subtractor u_edge_ad(
         .clock(edge_ad_clock),
@@ -247,9 +265,15 @@ module tritri_pipeline_w24_certified_orient3d (
         .a_0(edges_bits_a_0),
         .a_1(edges_bits_a_1),
         .a_2(edges_bits_a_2),
+        .a_negated_0(edges_bits_a_negated_0),
+        .a_negated_1(edges_bits_a_negated_1),
+        .a_negated_2(edges_bits_a_negated_2),
         .b_0(edges_bits_b_0),
         .b_1(edges_bits_b_1),
         .b_2(edges_bits_b_2),
+        .b_negated_0(edges_bits_b_negated_0),
+        .b_negated_1(edges_bits_b_negated_1),
+        .b_negated_2(edges_bits_b_negated_2),
         .bits(edges_bits_bits)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold(
@@ -329,12 +353,18 @@ module tritri_pipeline_w24_certified_orient3d (
     assign determinant_v_2 = normal_product_2;
     assign edges_bits_a_0 = edge_ab_difference_0;
     assign edges_bits_b_0 = edge_ac_difference_0;
+    assign edges_bits_a_negated_0 = edge_ab_negated_0;
+    assign edges_bits_b_negated_0 = edge_ac_negated_0;
     assign threshold_normal_0 = normal_product_0;
     assign edges_bits_a_1 = edge_ab_difference_1;
     assign edges_bits_b_1 = edge_ac_difference_1;
+    assign edges_bits_a_negated_1 = edge_ab_negated_1;
+    assign edges_bits_b_negated_1 = edge_ac_negated_1;
     assign threshold_normal_1 = normal_product_1;
     assign edges_bits_a_2 = edge_ab_difference_2;
     assign edges_bits_b_2 = edge_ac_difference_2;
+    assign edges_bits_a_negated_2 = edge_ab_negated_2;
+    assign edges_bits_b_negated_2 = edge_ac_negated_2;
     assign threshold_normal_2 = normal_product_2;
     assign threshold_edges_bits = edges_bits_bits;
     assign edge_ad_last_v_0 = edge_ad_delay_0_q;

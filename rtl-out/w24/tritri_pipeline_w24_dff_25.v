@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_25.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (156), for example: coplanar.edge_a[0].difference_q,
+//             (174), for example: coplanar.edge_a[0].difference_q,
 //             coplanar.edge_a[1].difference_q, coplanar.edge_a[2].difference_q,
 //             coplanar.edge_a[3].difference_q.
 //

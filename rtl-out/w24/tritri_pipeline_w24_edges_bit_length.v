@@ -4,9 +4,11 @@
 //
 // Purpose:    `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences,
 //             in five register stages, each at most one carry chain: the six
-//             magnitudes; the two sums of magnitudes; their sum; `2 sum + 1`
-//             and the ORs of its groups of four bits; the leading one and its
-//             index. Part of tritri_pipeline_w24. Instances (3):
+//             magnitudes (each a choice between the edge and its negation,
+//             which the edge's subtractor forms on a chain of its own,
+//             `TwoWaySubtractor`); the two sums of magnitudes; their sum; `2
+//             sum + 1` and the ORs of its groups of four bits; the leading one
+//             and its index. Part of tritri_pipeline_w24. Instances (3):
 //             path.front_end.normal_unit.edge_bits, path.orient3d_0.edges_bits,
 //             path.orient3d_1.edges_bits.
 //
@@ -26,21 +28,27 @@ module tritri_pipeline_w24_edges_bit_length (
     input  wire [24:0] a_0,
     input  wire [24:0] a_1,
     input  wire [24:0] a_2,
+    input  wire [24:0] a_negated_0,
+    input  wire [24:0] a_negated_1,
+    input  wire [24:0] a_negated_2,
     input  wire [24:0] b_0,
     input  wire [24:0] b_1,
     input  wire [24:0] b_2,
+    input  wire [24:0] b_negated_0,
+    input  wire [24:0] b_negated_1,
+    input  wire [24:0] b_negated_2,
     output reg  [7:0]  bits
 );
 
     // Update code (custom)
     // ke = bitlen(|a|_1 + |b|_1) of two edges (tritri_geom::certificate), in five
     // register stages.
-    wire [24:0] abs_a0 = a_0[24] ? ~a_0 + 25'd1 : a_0;
-    wire [24:0] abs_a1 = a_1[24] ? ~a_1 + 25'd1 : a_1;
-    wire [24:0] abs_a2 = a_2[24] ? ~a_2 + 25'd1 : a_2;
-    wire [24:0] abs_b0 = b_0[24] ? ~b_0 + 25'd1 : b_0;
-    wire [24:0] abs_b1 = b_1[24] ? ~b_1 + 25'd1 : b_1;
-    wire [24:0] abs_b2 = b_2[24] ? ~b_2 + 25'd1 : b_2;
+    wire [24:0] abs_a0 = a_0[24] ? a_negated_0 : a_0;
+    wire [24:0] abs_a1 = a_1[24] ? a_negated_1 : a_1;
+    wire [24:0] abs_a2 = a_2[24] ? a_negated_2 : a_2;
+    wire [24:0] abs_b0 = b_0[24] ? b_negated_0 : b_0;
+    wire [24:0] abs_b1 = b_1[24] ? b_negated_1 : b_1;
+    wire [24:0] abs_b2 = b_2[24] ? b_negated_2 : b_2;
     reg [24:0] abs_a0_q;
     reg [24:0] abs_a1_q;
     reg [24:0] abs_a2_q;

@@ -4,18 +4,18 @@
 //
 // Purpose:    `VectorSubtractor` that also gives each component's magnitude
 //             `|a_k - b_k|` (at most `2^W - 1`, in D bits, the top one zero):
-//             both differences `a - b` and `b - a` on their own carry chains,
-//             registered, then a choice by the first's sign, registered with
-//             the difference (`MAGNITUDE_SUBTRACTOR_LATENCY`). The
-//             certificate's threshold (`CertificateThreshold`) takes the
-//             magnitudes of an offset where the offset has no clock to spare
-//             before it (the plane side's `v - p`). (In one stage, the inputs'
-//             wires across the chip, a chain, the sign out to 17 choices and on
-//             to the register were the critical path of the W = 16 pipeline
-//             with the rare cases shared, 7.4 ns, 134.5 MHz.) Part of
-//             tritri_pipeline_w24. Instances (6), for example:
-//             path.plane_side_t1.offset_0, path.plane_side_t1.offset_1,
-//             path.plane_side_t1.offset_2, path.plane_side_t2.offset_0.
+//             both differences on their own carry chains (`TwoWaySubtractor`),
+//             then a choice by the first's sign, registered with the difference
+//             (`MAGNITUDE_SUBTRACTOR_LATENCY`). The certificate's threshold
+//             (`CertificateThreshold`) takes the magnitudes of an offset where
+//             the offset has no clock to spare before it (the plane side's `v -
+//             p`). (In one stage, the inputs' wires across the chip, a chain,
+//             the sign out to 17 choices and on to the register were the
+//             critical path of the W = 16 pipeline with the rare cases shared,
+//             7.4 ns, 134.5 MHz.) Part of tritri_pipeline_w24. Instances (6),
+//             for example: path.plane_side_t1.offset_0,
+//             path.plane_side_t1.offset_1, path.plane_side_t1.offset_2,
+//             path.plane_side_t2.offset_0.
 //
 // Rust unit:  MagnitudeSubtractor<W = 24, D = 25>
 // Latency:    2 clock cycles
@@ -45,26 +45,21 @@ module tritri_pipeline_w24_magnitude_subtractor (
 );
 
     // Constant declarations
-    localparam  sign_flip = 24'h800000;
     // Stub signals
-    reg  [24:0] forward_0_d;
-    wire  [24:0] forward_0_q;
-    wire  forward_0_clock;
-    reg  [24:0] forward_1_d;
-    wire  [24:0] forward_1_q;
-    wire  forward_1_clock;
-    reg  [24:0] forward_2_d;
-    wire  [24:0] forward_2_q;
-    wire  forward_2_clock;
-    reg  [24:0] backward_0_d;
-    wire  [24:0] backward_0_q;
-    wire  backward_0_clock;
-    reg  [24:0] backward_1_d;
-    wire  [24:0] backward_1_q;
-    wire  backward_1_clock;
-    reg  [24:0] backward_2_d;
-    wire  [24:0] backward_2_q;
-    wire  backward_2_clock;
+    wire  both_clock;
+    wire  both_advance;
+    wire  [23:0] both_a_0;
+    wire  [23:0] both_a_1;
+    wire  [23:0] both_a_2;
+    wire  [23:0] both_b_0;
+    wire  [23:0] both_b_1;
+    wire  [23:0] both_b_2;
+    wire  [24:0] both_difference_0;
+    wire  [24:0] both_difference_1;
+    wire  [24:0] both_difference_2;
+    wire  [24:0] both_negated_0;
+    wire  [24:0] both_negated_1;
+    wire  [24:0] both_negated_2;
     reg  [24:0] difference_q_0_d;
     wire  [24:0] difference_q_0_q;
     wire  difference_q_0_clock;
@@ -85,35 +80,21 @@ module tritri_pipeline_w24_magnitude_subtractor (
     wire  magnitude_q_2_clock;
 
     // Sub module instances
-    tritri_pipeline_w24_dff_25 u_forward_0(
-        .d(forward_0_d),
-        .q(forward_0_q),
-        .clock(forward_0_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_forward_1(
-        .d(forward_1_d),
-        .q(forward_1_q),
-        .clock(forward_1_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_forward_2(
-        .d(forward_2_d),
-        .q(forward_2_q),
-        .clock(forward_2_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_0(
-        .d(backward_0_d),
-        .q(backward_0_q),
-        .clock(backward_0_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_1(
-        .d(backward_1_d),
-        .q(backward_1_q),
-        .clock(backward_1_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_2(
-        .d(backward_2_d),
-        .q(backward_2_q),
-        .clock(backward_2_clock)
+    tritri_pipeline_w24_two_way_subtractor u_both(
+        .clock(both_clock),
+        .advance(both_advance),
+        .a_0(both_a_0),
+        .a_1(both_a_1),
+        .a_2(both_a_2),
+        .b_0(both_b_0),
+        .b_1(both_b_1),
+        .b_2(both_b_2),
+        .difference__0(both_difference_0),
+        .difference__1(both_difference_1),
+        .difference__2(both_difference_2),
+        .negated_0(both_negated_0),
+        .negated_1(both_negated_1),
+        .negated_2(both_negated_2)
     );
     tritri_pipeline_w24_dff_25 u_difference_q_0(
         .d(difference_q_0_d),
@@ -147,64 +128,58 @@ module tritri_pipeline_w24_magnitude_subtractor (
     );
 
     // Update code
-    assign forward_0_clock = clock;
-    assign backward_0_clock = clock;
+    assign both_clock = clock;
+    assign both_advance = advance;
+    assign both_a_0 = a_0;
+    assign both_b_0 = b_0;
     assign difference_q_0_clock = clock;
     assign magnitude_q_0_clock = clock;
     assign difference__0 = difference_q_0_q;
     assign magnitude_0 = magnitude_q_0_q;
-    assign forward_1_clock = clock;
-    assign backward_1_clock = clock;
+    assign both_a_1 = a_1;
+    assign both_b_1 = b_1;
     assign difference_q_1_clock = clock;
     assign magnitude_q_1_clock = clock;
     assign difference__1 = difference_q_1_q;
     assign magnitude_1 = magnitude_q_1_q;
-    assign forward_2_clock = clock;
-    assign backward_2_clock = clock;
+    assign both_a_2 = a_2;
+    assign both_b_2 = b_2;
     assign difference_q_2_clock = clock;
     assign magnitude_q_2_clock = clock;
     assign difference__2 = difference_q_2_q;
     assign magnitude_2 = magnitude_q_2_q;
     always @(*) begin
-        forward_0_d = forward_0_q;
-        backward_0_d = backward_0_q;
         difference_q_0_d = difference_q_0_q;
         magnitude_q_0_d = magnitude_q_0_q;
-        forward_1_d = forward_1_q;
-        backward_1_d = backward_1_q;
+        if (advance) begin
+            difference_q_0_d = both_difference_0;
+            if (both_difference_0[24]) begin
+                magnitude_q_0_d = both_negated_0;
+            end
+            else begin
+                magnitude_q_0_d = both_difference_0;
+            end
+        end
         difference_q_1_d = difference_q_1_q;
         magnitude_q_1_d = magnitude_q_1_q;
-        forward_2_d = forward_2_q;
-        backward_2_d = backward_2_q;
+        if (advance) begin
+            difference_q_1_d = both_difference_1;
+            if (both_difference_1[24]) begin
+                magnitude_q_1_d = both_negated_1;
+            end
+            else begin
+                magnitude_q_1_d = both_difference_1;
+            end
+        end
         difference_q_2_d = difference_q_2_q;
         magnitude_q_2_d = magnitude_q_2_q;
         if (advance) begin
-            forward_0_d = {1'h0, a_0 ^ sign_flip} - {1'h0, b_0 ^ sign_flip};
-            backward_0_d = {1'h0, b_0 ^ sign_flip} - {1'h0, a_0 ^ sign_flip};
-            forward_1_d = {1'h0, a_1 ^ sign_flip} - {1'h0, b_1 ^ sign_flip};
-            backward_1_d = {1'h0, b_1 ^ sign_flip} - {1'h0, a_1 ^ sign_flip};
-            forward_2_d = {1'h0, a_2 ^ sign_flip} - {1'h0, b_2 ^ sign_flip};
-            backward_2_d = {1'h0, b_2 ^ sign_flip} - {1'h0, a_2 ^ sign_flip};
-            difference_q_0_d = forward_0_q;
-            if (forward_0_q[24]) begin
-                magnitude_q_0_d = backward_0_q;
+            difference_q_2_d = both_difference_2;
+            if (both_difference_2[24]) begin
+                magnitude_q_2_d = both_negated_2;
             end
             else begin
-                magnitude_q_0_d = forward_0_q;
-            end
-            difference_q_1_d = forward_1_q;
-            if (forward_1_q[24]) begin
-                magnitude_q_1_d = backward_1_q;
-            end
-            else begin
-                magnitude_q_1_d = forward_1_q;
-            end
-            difference_q_2_d = forward_2_q;
-            if (forward_2_q[24]) begin
-                magnitude_q_2_d = backward_2_q;
-            end
-            else begin
-                magnitude_q_2_d = forward_2_q;
+                magnitude_q_2_d = both_difference_2;
             end
         end
     end

@@ -46,6 +46,9 @@ module tritri_pipeline_w24_normal_unit (
     wire  [24:0] edge_pq_difference_0;
     wire  [24:0] edge_pq_difference_1;
     wire  [24:0] edge_pq_difference_2;
+    wire  [24:0] edge_pq_negated_0;
+    wire  [24:0] edge_pq_negated_1;
+    wire  [24:0] edge_pq_negated_2;
     wire  edge_pr_clock;
     wire  edge_pr_advance;
     wire  [23:0] edge_pr_a_0;
@@ -57,6 +60,9 @@ module tritri_pipeline_w24_normal_unit (
     wire  [24:0] edge_pr_difference_0;
     wire  [24:0] edge_pr_difference_1;
     wire  [24:0] edge_pr_difference_2;
+    wire  [24:0] edge_pr_negated_0;
+    wire  [24:0] edge_pr_negated_1;
+    wire  [24:0] edge_pr_negated_2;
     wire  edge_cross_clock;
     wire  edge_cross_advance;
     wire  [24:0] edge_cross_u_0;
@@ -73,13 +79,19 @@ module tritri_pipeline_w24_normal_unit (
     wire  [24:0] edge_bits_a_0;
     wire  [24:0] edge_bits_a_1;
     wire  [24:0] edge_bits_a_2;
+    wire  [24:0] edge_bits_a_negated_0;
+    wire  [24:0] edge_bits_a_negated_1;
+    wire  [24:0] edge_bits_a_negated_2;
     wire  [24:0] edge_bits_b_0;
     wire  [24:0] edge_bits_b_1;
     wire  [24:0] edge_bits_b_2;
+    wire  [24:0] edge_bits_b_negated_0;
+    wire  [24:0] edge_bits_b_negated_1;
+    wire  [24:0] edge_bits_b_negated_2;
     wire  [7:0] edge_bits_bits;
 
     // Sub module instances
-    tritri_pipeline_w24_vector_subtractor u_edge_pq(
+    tritri_pipeline_w24_two_way_subtractor u_edge_pq(
         .clock(edge_pq_clock),
         .advance(edge_pq_advance),
         .a_0(edge_pq_a_0),
@@ -90,9 +102,12 @@ module tritri_pipeline_w24_normal_unit (
         .b_2(edge_pq_b_2),
         .difference__0(edge_pq_difference_0),
         .difference__1(edge_pq_difference_1),
-        .difference__2(edge_pq_difference_2)
+        .difference__2(edge_pq_difference_2),
+        .negated_0(edge_pq_negated_0),
+        .negated_1(edge_pq_negated_1),
+        .negated_2(edge_pq_negated_2)
     );
-    tritri_pipeline_w24_vector_subtractor u_edge_pr(
+    tritri_pipeline_w24_two_way_subtractor u_edge_pr(
         .clock(edge_pr_clock),
         .advance(edge_pr_advance),
         .a_0(edge_pr_a_0),
@@ -103,7 +118,10 @@ module tritri_pipeline_w24_normal_unit (
         .b_2(edge_pr_b_2),
         .difference__0(edge_pr_difference_0),
         .difference__1(edge_pr_difference_1),
-        .difference__2(edge_pr_difference_2)
+        .difference__2(edge_pr_difference_2),
+        .negated_0(edge_pr_negated_0),
+        .negated_1(edge_pr_negated_1),
+        .negated_2(edge_pr_negated_2)
     );
     tritri_pipeline_w24_cross_product u_edge_cross(
         .clock(edge_cross_clock),
@@ -124,9 +142,15 @@ module tritri_pipeline_w24_normal_unit (
         .a_0(edge_bits_a_0),
         .a_1(edge_bits_a_1),
         .a_2(edge_bits_a_2),
+        .a_negated_0(edge_bits_a_negated_0),
+        .a_negated_1(edge_bits_a_negated_1),
+        .a_negated_2(edge_bits_a_negated_2),
         .b_0(edge_bits_b_0),
         .b_1(edge_bits_b_1),
         .b_2(edge_bits_b_2),
+        .b_negated_0(edge_bits_b_negated_0),
+        .b_negated_1(edge_bits_b_negated_1),
+        .b_negated_2(edge_bits_b_negated_2),
         .bits(edge_bits_bits)
     );
 
@@ -148,6 +172,8 @@ module tritri_pipeline_w24_normal_unit (
     assign normal_0 = edge_cross_product_0;
     assign edge_bits_a_0 = edge_pq_difference_0;
     assign edge_bits_b_0 = edge_pr_difference_0;
+    assign edge_bits_a_negated_0 = edge_pq_negated_0;
+    assign edge_bits_b_negated_0 = edge_pr_negated_0;
     assign edge_pq_a_1 = vertices_4;
     assign edge_pq_b_1 = vertices_1;
     assign edge_pr_a_1 = vertices_7;
@@ -157,6 +183,8 @@ module tritri_pipeline_w24_normal_unit (
     assign normal_1 = edge_cross_product_1;
     assign edge_bits_a_1 = edge_pq_difference_1;
     assign edge_bits_b_1 = edge_pr_difference_1;
+    assign edge_bits_a_negated_1 = edge_pq_negated_1;
+    assign edge_bits_b_negated_1 = edge_pr_negated_1;
     assign edge_pq_a_2 = vertices_5;
     assign edge_pq_b_2 = vertices_2;
     assign edge_pr_a_2 = vertices_8;
@@ -166,6 +194,8 @@ module tritri_pipeline_w24_normal_unit (
     assign normal_2 = edge_cross_product_2;
     assign edge_bits_a_2 = edge_pq_difference_2;
     assign edge_bits_b_2 = edge_pr_difference_2;
+    assign edge_bits_a_negated_2 = edge_pq_negated_2;
+    assign edge_bits_b_negated_2 = edge_pr_negated_2;
     assign edges_bits = edge_bits_bits;
 
 endmodule  // tritri_pipeline_w24_normal_unit

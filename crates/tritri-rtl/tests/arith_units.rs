@@ -11,7 +11,9 @@ use tritri_geom::fixed_point::cross;
 use tritri_rtl::arith::adder::{
     RegisteredDifference, RegisteredDifferenceSign, RegisteredSum3, ADDER_LATENCY, SUM3_LATENCY,
 };
-use tritri_rtl::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
+use tritri_rtl::arith::compare::{
+    CoordinateCompare, SplitCompare, COMPARE_LATENCY, SPLIT_COMPARE_LATENCY,
+};
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
 use tritri_rtl::arith::cross_product::{CrossProduct, CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use tritri_rtl::arith::delay_line::DelayLine;
@@ -212,6 +214,35 @@ fn sign_and_comparison() {
         |u| &mut u.clock,
         &tuples::<2>(10, 24),
         COMPARE_LATENCY,
+        |u, [a, b]| {
+            u.a.next = from_i128(*a);
+            u.b.next = from_i128(*b);
+        },
+        |u| (u.less.val(), u.equal.val()),
+        |[a, b]| (a < b, a == b),
+    );
+    // Odd widths split unevenly: 11 bits as 6 + 5.
+    let mut uut = SplitCompare::<24>::default();
+    uut.connect_all();
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &tuples::<2>(10, 24),
+        SPLIT_COMPARE_LATENCY,
+        |u, [a, b]| {
+            u.a.next = from_i128(*a);
+            u.b.next = from_i128(*b);
+        },
+        |u| (u.less.val(), u.equal.val()),
+        |[a, b]| (a < b, a == b),
+    );
+    let mut uut = SplitCompare::<11>::default();
+    uut.connect_all();
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &tuples::<2>(11, 11),
+        SPLIT_COMPARE_LATENCY,
         |u, [a, b]| {
             u.a.next = from_i128(*a);
             u.b.next = from_i128(*b);

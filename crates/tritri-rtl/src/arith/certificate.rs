@@ -47,18 +47,29 @@ pub const EDGES_BIT_LENGTH_LATENCY: usize = 5;
 /// Clock edges from `w`, `n` and `ke` to the threshold.
 pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 6;
 
-/// The magnitudes `|v_k|` of D-bit two's complement values.
-fn magnitudes_of<const D: usize>(v: &[Signal<In, Bits<D>>; 3]) -> [u128; 3] {
-    std::array::from_fn(|k| to_i128(v[k].val()).unsigned_abs())
+/// The magnitudes `|v_k|` of D-bit two's complement values as the
+/// hardware takes them: `negated_k` (`-v_k` modulo `2^D`, unsigned) where
+/// `v_k` is negative, else `v_k`.
+fn magnitudes_of<const D: usize>(
+    v: &[Signal<In, Bits<D>>; 3],
+    negated: &[Signal<In, Bits<D>>; 3],
+) -> [u128; 3] {
+    std::array::from_fn(|k| {
+        if to_i128(v[k].val()) < 0 {
+            to_i128(negated[k].val()) as u128 & ((1u128 << D) - 1)
+        } else {
+            to_i128(v[k].val()) as u128
+        }
+    })
 }
 
 /// Verilog: `{name}` = `|v|` of the `bits`-bit two's complement array port
 /// element `v` (rust-hdl names the elements `{prefix}$k`, which the
-/// emitter renames), `bits` bits wide: `|-2^(bits-1)|` is `2^(bits-1)`
-/// unsigned.
-fn magnitude_verilog(name: &str, v: &str, bits: usize) -> String {
+/// emitter renames), chosen by its sign from `v` and the element `negated`
+/// (`-v`), `bits` bits wide: `|-2^(bits-1)|` is `2^(bits-1)` unsigned.
+fn magnitude_verilog(name: &str, v: &str, negated: &str, bits: usize) -> String {
     let top = bits - 1;
-    format!("wire [{top}:0] {name} = {v}[{top}] ? ~{v} + {bits}'d1 : {v};\n")
+    format!("wire [{top}:0] {name} = {v}[{top}] ? {negated} : {v};\n")
 }
 
 /// Verilog: `|v| - [v < 0]` of the `bits`-bit element `v`, `v ^ {bits{v[top]}}`
@@ -150,15 +161,22 @@ fn index_verilog(lead: &str, width: usize) -> String {
 }
 
 /// `ke = bitlen(|a|_1 + |b|_1)` of two edges of D-bit differences, in five
-/// register stages, each at most one carry chain: the six magnitudes; the
-/// two sums of magnitudes; their sum; `2 sum + 1` and the ORs of its groups
-/// of four bits; the leading one and its index.
+/// register stages, each at most one carry chain: the six magnitudes (each
+/// a choice between the edge and its negation, which the edge's
+/// subtractor forms on a chain of its own,
+/// `super::subtractor::TwoWaySubtractor`); the two sums of magnitudes;
+/// their sum; `2 sum + 1` and the ORs of its groups of four bits; the
+/// leading one and its index.
 #[derive(LogicBlock)]
 pub struct EdgesBitLength<const D: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
     pub a: [Signal<In, Bits<D>>; 3],
+    /// `-a`, modulo `2^D`.
+    pub a_negated: [Signal<In, Bits<D>>; 3],
     pub b: [Signal<In, Bits<D>>; 3],
+    /// `-b`, modulo `2^D`.
+    pub b_negated: [Signal<In, Bits<D>>; 3],
     /// `ke`, `EDGES_BIT_LENGTH_LATENCY` enabled edges later.
     pub bits: Signal<Out, Bits<8>>,
     // Simulation model state (the Verilog's registers; the leading one as
@@ -182,7 +200,9 @@ impl<const D: usize> Default for EdgesBitLength<D> {
             clock: Default::default(),
             advance: Default::default(),
             a: Default::default(),
+            a_negated: Default::default(),
             b: Default::default(),
+            b_negated: Default::default(),
             bits: Default::default(),
             _abs_a: [0; 3],
             _abs_b: [0; 3],
@@ -202,8 +222,8 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
             self._sum = self._l1_a + self._l1_b;
             self._l1_a = self._abs_a.iter().sum();
             self._l1_b = self._abs_b.iter().sum();
-            self._abs_a = magnitudes_of(&self.a);
-            self._abs_b = magnitudes_of(&self.b);
+            self._abs_a = magnitudes_of(&self.a, &self.a_negated);
+            self._abs_b = magnitudes_of(&self.b, &self.b_negated);
         }
     }
 
@@ -221,7 +241,12 @@ impl<const D: usize> Logic for EdgesBitLength<D> {
         let mut updates = String::new();
         for v in ["a", "b"] {
             for k in 0..3 {
-                magnitudes += &magnitude_verilog(&format!("abs_{v}{k}"), &format!("{v}${k}"), D);
+                magnitudes += &magnitude_verilog(
+                    &format!("abs_{v}{k}"),
+                    &format!("{v}${k}"),
+                    &format!("{v}_negated${k}"),
+                    D,
+                );
                 registers += &format!("reg [{}:0] abs_{v}{k}_q;\n", D - 1);
                 initial += &format!("    abs_{v}{k}_q = {D}'d0;\n");
                 updates += &format!("        abs_{v}{k}_q <= abs_{v}{k};\n");
@@ -739,7 +764,9 @@ mod tests {
         uut.advance.connect();
         uut.a
             .iter_mut()
+            .chain(uut.a_negated.iter_mut())
             .chain(uut.b.iter_mut())
+            .chain(uut.b_negated.iter_mut())
             .for_each(|s| s.connect());
         uut.connect_all();
         uut.advance.next = true;
@@ -755,7 +782,9 @@ mod tests {
         };
         for case in &cases {
             set_vector(&mut uut.a, case.0);
+            set_vector(&mut uut.a_negated, case.0.map(|x| -x));
             set_vector(&mut uut.b, case.1);
+            set_vector(&mut uut.b_negated, case.1.map(|x| -x));
             for _ in 0..EDGES_BIT_LENGTH_LATENCY {
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
             }
@@ -766,7 +795,9 @@ mod tests {
         uut.advance.connect();
         uut.a
             .iter_mut()
+            .chain(uut.a_negated.iter_mut())
             .chain(uut.b.iter_mut())
+            .chain(uut.b_negated.iter_mut())
             .for_each(|s| s.connect());
         uut.connect_all();
         uut.advance.next = true;
@@ -774,7 +805,9 @@ mod tests {
             let x = (1i128 << bits) >> 1;
             let case = ([x, -x, x], [-(1i128 << 32), 0, x]);
             set_vector(&mut uut.a, case.0);
+            set_vector(&mut uut.a_negated, case.0.map(|x| -x));
             set_vector(&mut uut.b, case.1);
+            set_vector(&mut uut.b_negated, case.1.map(|x| -x));
             for _ in 0..EDGES_BIT_LENGTH_LATENCY {
                 crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
             }

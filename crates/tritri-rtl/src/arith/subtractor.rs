@@ -132,13 +132,96 @@ impl<const W: usize, const D: usize> Logic for Subtractor<W, D> {
     }
 }
 
+/// [`VectorSubtractor`] in both directions: `a - b` and `b - a`, each on
+/// its own carry chain, registered. A magnitude `|a - b|` is then a choice
+/// between two registers by the first's sign, one LUT, rather than a
+/// negation (`~v + 1`, a second chain) behind the difference register.
+/// [`MagnitudeSubtractor`] is its first stage; the edges of the normal and
+/// of the certified orient3d feed their `ke`
+/// (`super::certificate::EdgesBitLength`) this way. (That negation behind
+/// the edge register, which also feeds the cross product's multipliers,
+/// was the W = 16 pipeline's critical path at 153.1 MHz on ECP5.)
+#[derive(LogicBlock)]
+pub struct TwoWaySubtractor<const W: usize, const D: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub a: [Signal<In, Bits<W>>; 3],
+    pub b: [Signal<In, Bits<W>>; 3],
+    /// `a - b`, exact, `SUBTRACTOR_LATENCY` enabled edges later.
+    pub difference: [Signal<Out, Bits<D>>; 3],
+    /// `b - a`, with it.
+    pub negated: [Signal<Out, Bits<D>>; 3],
+    sign_flip: Constant<Bits<W>>,
+    forward: [DFF<Bits<D>>; 3],
+    backward: [DFF<Bits<D>>; 3],
+}
+
+impl<const W: usize, const D: usize> crate::unit::Unit for TwoWaySubtractor<W, D> {
+    const LATENCY: Option<usize> = Some(SUBTRACTOR_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, forward, backward);
+    }
+}
+
+impl<const W: usize, const D: usize> Default for TwoWaySubtractor<W, D> {
+    fn default() -> Self {
+        assert_eq!(
+            D,
+            tritri_geom::widths::difference_bits(W),
+            "a difference of {W}-bit values has {} bits",
+            W + 1
+        );
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            a: Default::default(),
+            b: Default::default(),
+            difference: Default::default(),
+            negated: Default::default(),
+            sign_flip: Constant::new(Bits::<W>::from(1u64 << (W - 1))),
+            forward: Default::default(),
+            backward: Default::default(),
+        }
+    }
+}
+
+impl<const W: usize, const D: usize> Logic for TwoWaySubtractor<W, D> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        for k in 0..3 {
+            self.forward[k].clock.next = self.clock.val();
+            self.backward[k].clock.next = self.clock.val();
+            self.forward[k].d.next = self.forward[k].q.val();
+            self.backward[k].d.next = self.backward[k].q.val();
+            self.difference[k].next = self.forward[k].q.val();
+            self.negated[k].next = self.backward[k].q.val();
+        }
+        // (hdl_gen takes no loop index inside `bit_cast`: one line per
+        // component.)
+        if self.advance.val() {
+            self.forward[0].d.next = bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val());
+            self.backward[0].d.next = bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val());
+            self.forward[1].d.next = bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val());
+            self.backward[1].d.next = bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val());
+            self.forward[2].d.next = bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val());
+            self.backward[2].d.next = bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val())
+                - bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val());
+        }
+    }
+}
+
 /// Clock edges from inputs to [`MagnitudeSubtractor`]'s outputs.
-pub const MAGNITUDE_SUBTRACTOR_LATENCY: usize = 2;
+pub const MAGNITUDE_SUBTRACTOR_LATENCY: usize = SUBTRACTOR_LATENCY + 1;
 
 /// [`VectorSubtractor`] that also gives each component's magnitude
 /// `|a_k - b_k|` (at most `2^W - 1`, in D bits, the top one zero): both
-/// differences `a - b` and `b - a` on their own carry chains, registered,
-/// then a choice by the first's sign, registered with the difference
+/// differences on their own carry chains ([`TwoWaySubtractor`]), then a
+/// choice by the first's sign, registered with the difference
 /// ([`MAGNITUDE_SUBTRACTOR_LATENCY`]). The certificate's threshold
 /// (`super::certificate::CertificateThreshold`) takes the magnitudes of an
 /// offset where the offset has no clock to spare before it (the plane
@@ -156,11 +239,9 @@ pub struct MagnitudeSubtractor<const W: usize, const D: usize> {
     pub difference: [Signal<Out, Bits<D>>; 3],
     /// `|a - b|`, with the difference.
     pub magnitude: [Signal<Out, Bits<D>>; 3],
-    sign_flip: Constant<Bits<W>>,
     top_bit: Constant<Bits<8>>,
     /// Stage 1: `a - b` and `b - a`.
-    forward: [DFF<Bits<D>>; 3],
-    backward: [DFF<Bits<D>>; 3],
+    both: TwoWaySubtractor<W, D>,
     /// Stage 2.
     difference_q: [DFF<Bits<D>>; 3],
     magnitude_q: [DFF<Bits<D>>; 3],
@@ -169,18 +250,12 @@ pub struct MagnitudeSubtractor<const W: usize, const D: usize> {
 impl<const W: usize, const D: usize> crate::unit::Unit for MagnitudeSubtractor<W, D> {
     const LATENCY: Option<usize> = Some(MAGNITUDE_SUBTRACTOR_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, forward, backward, difference_q, magnitude_q);
+        crate::sub_units!(self, units, both, difference_q, magnitude_q);
     }
 }
 
 impl<const W: usize, const D: usize> Default for MagnitudeSubtractor<W, D> {
     fn default() -> Self {
-        assert_eq!(
-            D,
-            tritri_geom::widths::difference_bits(W),
-            "a difference of {W}-bit values has {} bits",
-            W + 1
-        );
         Self {
             clock: Default::default(),
             advance: Default::default(),
@@ -188,10 +263,8 @@ impl<const W: usize, const D: usize> Default for MagnitudeSubtractor<W, D> {
             b: Default::default(),
             difference: Default::default(),
             magnitude: Default::default(),
-            sign_flip: Constant::new(Bits::<W>::from(1u64 << (W - 1))),
             top_bit: Constant::new(Bits::<8>::from((D - 1) as u64)),
-            forward: Default::default(),
-            backward: Default::default(),
+            both: Default::default(),
             difference_q: Default::default(),
             magnitude_q: Default::default(),
         }
@@ -201,39 +274,26 @@ impl<const W: usize, const D: usize> Default for MagnitudeSubtractor<W, D> {
 impl<const W: usize, const D: usize> Logic for MagnitudeSubtractor<W, D> {
     #[hdl_gen]
     fn update(&mut self) {
+        self.both.clock.next = self.clock.val();
+        self.both.advance.next = self.advance.val();
         for k in 0..3 {
-            self.forward[k].clock.next = self.clock.val();
-            self.backward[k].clock.next = self.clock.val();
+            self.both.a[k].next = self.a[k].val();
+            self.both.b[k].next = self.b[k].val();
             self.difference_q[k].clock.next = self.clock.val();
             self.magnitude_q[k].clock.next = self.clock.val();
-            self.forward[k].d.next = self.forward[k].q.val();
-            self.backward[k].d.next = self.backward[k].q.val();
             self.difference_q[k].d.next = self.difference_q[k].q.val();
             self.magnitude_q[k].d.next = self.magnitude_q[k].q.val();
             self.difference[k].next = self.difference_q[k].q.val();
             self.magnitude[k].next = self.magnitude_q[k].q.val();
-        }
-        // (hdl_gen takes no loop index inside `bit_cast`: one line per
-        // component.)
-        if self.advance.val() {
-            self.forward[0].d.next = bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val());
-            self.backward[0].d.next = bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val());
-            self.forward[1].d.next = bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val());
-            self.backward[1].d.next = bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val());
-            self.forward[2].d.next = bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val());
-            self.backward[2].d.next = bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val());
-            for k in 0..3 {
-                self.difference_q[k].d.next = self.forward[k].q.val();
-                if self.forward[k].q.val().get_bit(self.top_bit.val().index()) {
-                    self.magnitude_q[k].d.next = self.backward[k].q.val();
+            if self.advance.val() {
+                self.difference_q[k].d.next = self.both.difference[k].val();
+                if self.both.difference[k]
+                    .val()
+                    .get_bit(self.top_bit.val().index())
+                {
+                    self.magnitude_q[k].d.next = self.both.negated[k].val();
                 } else {
-                    self.magnitude_q[k].d.next = self.forward[k].q.val();
+                    self.magnitude_q[k].d.next = self.both.difference[k].val();
                 }
             }
         }

@@ -26,7 +26,9 @@ use crate::arith::certificate::{
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
-use crate::arith::subtractor::{VectorMagnitude, VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{
+    TwoWaySubtractor, VectorMagnitude, VectorSubtractor, SUBTRACTOR_LATENCY,
+};
 use rust_hdl::prelude::*;
 
 /// Clock edges from the four points to the sign and certificate.
@@ -59,8 +61,10 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     pub certain: Signal<Out, Bit>,
     /// `[a,b,c,d]` itself, `ORIENT3D_VALUE_LATENCY` edges after the points.
     pub value: Signal<Out, Bits<O>>,
-    edge_ab: VectorSubtractor<W, D>,
-    edge_ac: VectorSubtractor<W, D>,
+    /// The edges of the normal, each also negated for its magnitudes in
+    /// `edges_bits`.
+    edge_ab: TwoWaySubtractor<W, D>,
+    edge_ac: TwoWaySubtractor<W, D>,
     edge_ad: VectorSubtractor<W, D>,
     normal: CrossProduct<D, C>,
     edge_ad_delay_0: DelayLine<Bits<D>, { CROSS_PRODUCT_LATENCY - SUBTRACTOR_LATENCY }>,
@@ -147,6 +151,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         for i in 0..3 {
             self.edges_bits.a[i].next = self.edge_ab.difference[i].val();
             self.edges_bits.b[i].next = self.edge_ac.difference[i].val();
+            self.edges_bits.a_negated[i].next = self.edge_ab.negated[i].val();
+            self.edges_bits.b_negated[i].next = self.edge_ac.negated[i].val();
             self.threshold.normal[i].next = self.normal.product[i].val();
         }
         self.threshold.edges_bits.next = self.edges_bits.bits.val();

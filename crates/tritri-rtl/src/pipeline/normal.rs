@@ -8,7 +8,7 @@
 
 use crate::arith::certificate::{EdgesBitLength, EDGES_BIT_LENGTH_LATENCY};
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
-use crate::arith::subtractor::{VectorSubtractor, SUBTRACTOR_LATENCY};
+use crate::arith::subtractor::{TwoWaySubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from vertices to normal.
@@ -28,8 +28,9 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     /// `ke = bitlen(|q - p|_1 + |r - p|_1)`, the certificates' (see
     /// `arith::certificate`), `EDGES_BITS_LATENCY` enabled edges later.
     pub edges_bits: Signal<Out, Bits<8>>,
-    edge_pq: VectorSubtractor<W, D>,
-    edge_pr: VectorSubtractor<W, D>,
+    /// The edges, each also negated for its magnitudes in `edge_bits`.
+    edge_pq: TwoWaySubtractor<W, D>,
+    edge_pr: TwoWaySubtractor<W, D>,
     edge_cross: CrossProduct<D, C>,
     edge_bits: EdgesBitLength<D>,
 }
@@ -59,6 +60,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
             self.normal[k].next = self.edge_cross.product[k].val();
             self.edge_bits.a[k].next = self.edge_pq.difference[k].val();
             self.edge_bits.b[k].next = self.edge_pr.difference[k].val();
+            self.edge_bits.a_negated[k].next = self.edge_pq.negated[k].val();
+            self.edge_bits.b_negated[k].next = self.edge_pr.negated[k].val();
         }
         self.edges_bits.next = self.edge_bits.bits.val();
     }

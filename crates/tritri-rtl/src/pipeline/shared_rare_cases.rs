@@ -33,7 +33,7 @@ use super::rare_decisions::{
     CoplanarContacts, CoplanarDecision, SegmentContacts, SegmentsDecision,
     COPLANAR_DECISION_LATENCY, SEGMENTS_DECISION_LATENCY,
 };
-use crate::arith::compare::{CoordinateCompare, COMPARE_LATENCY};
+use crate::arith::compare::{SplitCompare, SPLIT_COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
 use crate::arith::one_hot_choice::OneHotChoice;
@@ -58,10 +58,10 @@ const _: () = assert!(SEGMENTS_DECISION_LATENCY < COPLANAR_DECISION_LATENCY);
 /// A job's points load at the edge that takes it, and its first step is
 /// issued at the next; the context is sampled at the edge that issues its
 /// last step. The comparisons there see the points of `1 +
-/// COMPARE_LATENCY` clocks before that clock (`compare_points_q`, then the
-/// comparison), which must be this job's: a job of `S` steps needs
-/// `S >= 2 + COMPARE_LATENCY`.
-const _: () = assert!(SEGMENTS_STEPS >= 2 + COMPARE_LATENCY);
+/// SPLIT_COMPARE_LATENCY` clocks before that clock (`compare_points_q`,
+/// then the comparison's two stages), which must be this job's: a job of
+/// `S` steps needs `S >= 2 + SPLIT_COMPARE_LATENCY`.
+const _: () = assert!(SEGMENTS_STEPS >= 2 + SPLIT_COMPARE_LATENCY);
 const _: () = assert!(COPLANAR_STEPS >= SEGMENTS_STEPS);
 /// Clock edges from a coplanar job's acceptance to its `done`: its last
 /// step is issued `COPLANAR_STEPS - 1` clocks after its first, which is
@@ -200,7 +200,7 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// steady long before that (the assertion after the constants).
     compare_points_q: [DFF<Bits<W>>; 18],
     /// Coordinate `k` of `A_u` against `B_v` at `9 k + 3 u + v`.
-    compare: [CoordinateCompare<W>; 27],
+    compare: [SplitCompare<W>; 27],
     /// The coplanar comparisons in the projection, `9 c + 3 u + v`.
     projected_less: [Signal<Local, Bit>; 18],
     projected_equal: [Signal<Local, Bit>; 18],
@@ -828,7 +828,6 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             for u in 0..3 {
                 for v in 0..3 {
                     self.compare[9 * k + 3 * u + v].clock.next = self.clock.val();
-                    self.compare[9 * k + 3 * u + v].advance.next = true;
                     self.compare[9 * k + 3 * u + v].a.next =
                         self.compare_points_q[3 * u + k].q.val();
                     self.compare[9 * k + 3 * u + v].b.next =

@@ -155,10 +155,13 @@ crate::pipeline_ports! {
         /// (1 to 12; the job's segment ends and degenerate flags ride on 4,
         /// the operands', T1's and T2's vertices on 10 and 11, as the
         /// general path delays the same fields on them and synthesis shares
-        /// the lines), and the job's normals and axis (13). The base
-        /// polygon works out its own from the forecast, beside each group
-        /// ([`super::load_enable`]).
-        holds: [HoldRegister; 14],
+        /// the lines), the job's normals and axis (13), and the `hold`
+        /// port (14): the system's result FIFO counts and writes on it, and
+        /// through copy 0, which also enables the general path, its counts
+        /// were 25 of the 31 register inputs short of 150 MHz (ECP5, W =
+        /// 16, P = 1, seed 3: 128.6 MHz). The base polygon works out its
+        /// own from the forecast, beside each group ([`super::load_enable`]).
+        holds: [HoldRegister; 15],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -255,7 +258,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unit_hold.advance.next = self.advance.val();
         self.unit_hold.if_advance.next = self.forecast.if_advance.val();
         self.unit_hold.if_still.next = self.forecast.if_still.val();
-        for i in 0..14 {
+        for i in 0..15 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -265,7 +268,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         // Each group's enable: `advance` and its copy of `hold`, formed here
         // (in rust-hdl's simulation an enable formed inside a unit below
         // would reach the registers a delta cycle after the clock edge).
-        self.hold.next = self.holds[0].hold.val();
+        self.hold.next = self.holds[14].hold.val();
         self.unused_ready.next = self.rare_cases.ready.val();
         self.moving.next = self.advance.val() && !self.holds[0].hold.val();
         self.path.advance.next = self.moving.val();
