@@ -103,7 +103,8 @@ pub struct SplitCompare<const W: usize> {
     /// As [`CoordinateCompare`]'s: the keys `x ^ reversed_order` are in the
     /// reverse of the signed order, and so is each half of them.
     reversed_order: Constant<Bits<W>>,
-    /// The low half's width, `W / 2`, the high half's, and the low mask.
+    /// The low half's width, `W / 2`, the high half's, and the mask of
+    /// the low half (for its `==`).
     low_bits: Constant<Bits<8>>,
     high_bits: Constant<Bits<8>>,
     low_mask: Constant<Bits<W>>,
@@ -170,9 +171,6 @@ impl<const W: usize> Logic for SplitCompare<W> {
             less_q,
             equal_q
         );
-        // (Written out rather than through local signals: a local set here
-        // would reach the registers a delta cycle late in rust-hdl's
-        // simulation of a falling edge, `crate::sim_drive`.)
         self.less_high_q.d.next = ((self.b.val() ^ self.reversed_order.val())
             >> self.low_bits.val())
             < ((self.a.val() ^ self.reversed_order.val()) >> self.low_bits.val());
