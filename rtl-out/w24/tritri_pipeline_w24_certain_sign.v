@@ -32,7 +32,9 @@ module tritri_pipeline_w24_certain_sign (
     // The sign of P, registered, and its certificate |P| >= T two clocks
     // later: P and T registered beside the comparisons, then P >= T (P >= 0)
     // or P <= ~T (P < 0) as unsigned values, each compared in 6 parts
-    // whose results are registered, then combined from the top.
+    // whose results are registered, then combined from the top. x <= y is
+    // written {y, 1} > {x, 0}, so that synthesis gives it a carry chain of
+    // its own rather than x >= y's chain and an equality.
     reg [73:0] value_q;
     reg [73:0] threshold_q;
     wire [73:0] limit = ~threshold_q;
@@ -98,27 +100,27 @@ module tritri_pipeline_w24_certain_sign (
             threshold_q <= threshold;
             compared_negative_q <= value_q[73];
             above_ge_q0 <= value_q[12:0] >= threshold_q[12:0];
-            below_le_q0 <= value_q[12:0] <= limit[12:0];
+            below_le_q0 <= {limit[12:0], 1'b1} > {value_q[12:0], 1'b0};
             above_ge_q1 <= value_q[25:13] >= threshold_q[25:13];
-            above_le_q1 <= value_q[25:13] <= threshold_q[25:13];
+            above_le_q1 <= {threshold_q[25:13], 1'b1} > {value_q[25:13], 1'b0};
             below_ge_q1 <= value_q[25:13] >= limit[25:13];
-            below_le_q1 <= value_q[25:13] <= limit[25:13];
+            below_le_q1 <= {limit[25:13], 1'b1} > {value_q[25:13], 1'b0};
             above_ge_q2 <= value_q[37:26] >= threshold_q[37:26];
-            above_le_q2 <= value_q[37:26] <= threshold_q[37:26];
+            above_le_q2 <= {threshold_q[37:26], 1'b1} > {value_q[37:26], 1'b0};
             below_ge_q2 <= value_q[37:26] >= limit[37:26];
-            below_le_q2 <= value_q[37:26] <= limit[37:26];
+            below_le_q2 <= {limit[37:26], 1'b1} > {value_q[37:26], 1'b0};
             above_ge_q3 <= value_q[49:38] >= threshold_q[49:38];
-            above_le_q3 <= value_q[49:38] <= threshold_q[49:38];
+            above_le_q3 <= {threshold_q[49:38], 1'b1} > {value_q[49:38], 1'b0};
             below_ge_q3 <= value_q[49:38] >= limit[49:38];
-            below_le_q3 <= value_q[49:38] <= limit[49:38];
+            below_le_q3 <= {limit[49:38], 1'b1} > {value_q[49:38], 1'b0};
             above_ge_q4 <= value_q[61:50] >= threshold_q[61:50];
-            above_le_q4 <= value_q[61:50] <= threshold_q[61:50];
+            above_le_q4 <= {threshold_q[61:50], 1'b1} > {value_q[61:50], 1'b0};
             below_ge_q4 <= value_q[61:50] >= limit[61:50];
-            below_le_q4 <= value_q[61:50] <= limit[61:50];
+            below_le_q4 <= {limit[61:50], 1'b1} > {value_q[61:50], 1'b0};
             above_ge_q5 <= value_q[73:62] >= threshold_q[73:62];
-            above_le_q5 <= value_q[73:62] <= threshold_q[73:62];
+            above_le_q5 <= {threshold_q[73:62], 1'b1} > {value_q[73:62], 1'b0};
             below_ge_q5 <= value_q[73:62] >= limit[73:62];
-            below_le_q5 <= value_q[73:62] <= limit[73:62];
+            below_le_q5 <= {limit[73:62], 1'b1} > {value_q[73:62], 1'b0};
             certain <= compared_negative_q
                 ? below_le_q5 & (~below_ge_q5 | (below_le_q4 & (~below_ge_q4 | (below_le_q3 & (~below_ge_q3 | (below_le_q2 & (~below_ge_q2 | (below_le_q1 & (~below_ge_q1 | below_le_q0)))))))))
                 : above_ge_q5 & (~above_le_q5 | (above_ge_q4 & (~above_le_q4 | (above_ge_q3 & (~above_le_q3 | (above_ge_q2 & (~above_le_q2 | (above_ge_q1 & (~above_le_q1 | above_ge_q0)))))))));

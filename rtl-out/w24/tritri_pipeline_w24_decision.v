@@ -71,6 +71,36 @@ module tritri_pipeline_w24_decision (
     reg  certain_out_d;
     wire  certain_out_q;
     wire  certain_out_clock;
+    reg  triangles_hit_d;
+    wire  triangles_hit_q;
+    wire  triangles_hit_clock;
+    reg  triangles_coplanar_d;
+    wire  triangles_coplanar_q;
+    wire  triangles_coplanar_clock;
+    reg  end_a_negative_d;
+    wire  end_a_negative_q;
+    wire  end_a_negative_clock;
+    reg  end_a_zero_d;
+    wire  end_a_zero_q;
+    wire  end_a_zero_clock;
+    reg  end_b_negative_d;
+    wire  end_b_negative_q;
+    wire  end_b_negative_clock;
+    reg  end_b_zero_d;
+    wire  end_b_zero_q;
+    wire  end_b_zero_clock;
+    reg  orient_mixed_d;
+    wire  orient_mixed_q;
+    wire  orient_mixed_clock;
+    reg  t1_degenerate_d;
+    wire  t1_degenerate_q;
+    wire  t1_degenerate_clock;
+    reg  t2_degenerate_d;
+    wire  t2_degenerate_q;
+    wire  t2_degenerate_clock;
+    reg  segments_touch_d;
+    wire  segments_touch_q;
+    wire  segments_touch_clock;
     reg  base_hit_d;
     wire  base_hit_q;
     wire  base_hit_clock;
@@ -80,15 +110,6 @@ module tritri_pipeline_w24_decision (
     reg  needs_degenerate_pair_d;
     wire  needs_degenerate_pair_q;
     wire  needs_degenerate_pair_clock;
-    reg  base_hit_late_d;
-    wire  base_hit_late_q;
-    wire  base_hit_late_clock;
-    reg  needs_coplanar_late_d;
-    wire  needs_coplanar_late_q;
-    wire  needs_coplanar_late_clock;
-    reg  needs_degenerate_pair_late_d;
-    wire  needs_degenerate_pair_late_q;
-    wire  needs_degenerate_pair_late_clock;
     reg  hit_d;
     wire  hit_q;
     wire  hit_clock;
@@ -109,6 +130,7 @@ module tritri_pipeline_w24_decision (
     reg  end_a_zero;
     reg  end_b_negative;
     reg  end_b_zero;
+    wire  orient_mixed;
     reg  segment_hit;
     reg  segment_coplanar;
     wire  t1_sides_certain;
@@ -135,6 +157,56 @@ module tritri_pipeline_w24_decision (
         .q(certain_out_q),
         .clock(certain_out_clock)
     );
+    tritri_pipeline_w24_dff_1 u_triangles_hit_q(
+        .d(triangles_hit_d),
+        .q(triangles_hit_q),
+        .clock(triangles_hit_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_triangles_coplanar_q(
+        .d(triangles_coplanar_d),
+        .q(triangles_coplanar_q),
+        .clock(triangles_coplanar_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_end_a_negative_q(
+        .d(end_a_negative_d),
+        .q(end_a_negative_q),
+        .clock(end_a_negative_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_end_a_zero_q(
+        .d(end_a_zero_d),
+        .q(end_a_zero_q),
+        .clock(end_a_zero_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_end_b_negative_q(
+        .d(end_b_negative_d),
+        .q(end_b_negative_q),
+        .clock(end_b_negative_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_end_b_zero_q(
+        .d(end_b_zero_d),
+        .q(end_b_zero_q),
+        .clock(end_b_zero_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_orient_mixed_q(
+        .d(orient_mixed_d),
+        .q(orient_mixed_q),
+        .clock(orient_mixed_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_t1_degenerate_q(
+        .d(t1_degenerate_d),
+        .q(t1_degenerate_q),
+        .clock(t1_degenerate_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_t2_degenerate_q(
+        .d(t2_degenerate_d),
+        .q(t2_degenerate_q),
+        .clock(t2_degenerate_clock)
+    );
+    tritri_pipeline_w24_dff_1 u_segments_touch_q(
+        .d(segments_touch_d),
+        .q(segments_touch_q),
+        .clock(segments_touch_clock)
+    );
     tritri_pipeline_w24_dff_1 u_base_hit_q(
         .d(base_hit_d),
         .q(base_hit_q),
@@ -149,21 +221,6 @@ module tritri_pipeline_w24_decision (
         .d(needs_degenerate_pair_d),
         .q(needs_degenerate_pair_q),
         .clock(needs_degenerate_pair_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_base_hit_late_q(
-        .d(base_hit_late_d),
-        .q(base_hit_late_q),
-        .clock(base_hit_late_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_needs_coplanar_late_q(
-        .d(needs_coplanar_late_d),
-        .q(needs_coplanar_late_q),
-        .clock(needs_coplanar_late_clock)
-    );
-    tritri_pipeline_w24_dff_1 u_needs_degenerate_pair_late_q(
-        .d(needs_degenerate_pair_late_d),
-        .q(needs_degenerate_pair_late_q),
-        .clock(needs_degenerate_pair_late_clock)
     );
     tritri_pipeline_w24_dff_1 u_hit_q(
         .d(hit_d),
@@ -181,14 +238,22 @@ module tritri_pipeline_w24_decision (
     assign t1_side_positive_2 = ~t1_side_negative_2 && ~t1_side_zero_2;
     assign t2_side_positive_2 = ~t2_side_negative_2 && ~t2_side_zero_2;
     assign orient_positive_2 = ~orient_negative_2 && ~orient_zero_2;
+    assign orient_mixed = (orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2);
     assign t1_sides_certain = t1_side_certain_0 && t1_side_certain_1 && t1_side_certain_2;
     assign t2_sides_certain = t2_side_certain_0 && t2_side_certain_1 && t2_side_certain_2;
+    assign triangles_hit_clock = clock;
+    assign triangles_coplanar_clock = clock;
+    assign end_a_negative_clock = clock;
+    assign end_a_zero_clock = clock;
+    assign end_b_negative_clock = clock;
+    assign end_b_zero_clock = clock;
+    assign orient_mixed_clock = clock;
+    assign t1_degenerate_clock = clock;
+    assign t2_degenerate_clock = clock;
+    assign segments_touch_clock = clock;
     assign base_hit_clock = clock;
     assign needs_coplanar_clock = clock;
     assign needs_degenerate_pair_clock = clock;
-    assign base_hit_late_clock = clock;
-    assign needs_coplanar_late_clock = clock;
-    assign needs_degenerate_pair_late_clock = clock;
     assign hit_clock = clock;
     assign rejected_certainly_clock = clock;
     assign interval_certain_clock = clock;
@@ -265,39 +330,56 @@ module tritri_pipeline_w24_decision (
                 end_b_zero = t2_side_zero_2;
             end
         end
-        if ((end_a_negative && end_b_negative) || (~end_a_negative && ~end_a_zero && ~end_b_negative && ~end_b_zero)) begin
+        if ((end_a_negative_q && end_b_negative_q) || (~end_a_negative_q && ~end_a_zero_q && ~end_b_negative_q && ~end_b_zero_q)) begin
             segment_hit = 1'h0;
             segment_coplanar = 1'h0;
         end
-        else if (end_a_zero && end_b_zero) begin
+        else if (end_a_zero_q && end_b_zero_q) begin
             segment_hit = 1'h0;
             segment_coplanar = 1'h1;
         end
         else begin
             segment_coplanar = 1'h0;
-            segment_hit = ~((orient_positive_0 || orient_positive_1 || orient_positive_2) && (orient_negative_0 || orient_negative_1 || orient_negative_2));
+            segment_hit = ~orient_mixed_q;
         end
+        triangles_hit_d = triangles_hit_q;
+        triangles_coplanar_d = triangles_coplanar_q;
+        end_a_negative_d = end_a_negative_q;
+        end_a_zero_d = end_a_zero_q;
+        end_b_negative_d = end_b_negative_q;
+        end_b_zero_d = end_b_zero_q;
+        orient_mixed_d = orient_mixed_q;
+        t1_degenerate_d = t1_degenerate_q;
+        t2_degenerate_d = t2_degenerate_q;
+        segments_touch_d = segments_touch_q;
         base_hit_d = base_hit_q;
         needs_coplanar_d = needs_coplanar_q;
         needs_degenerate_pair_d = needs_degenerate_pair_q;
-        base_hit_late_d = base_hit_late_q;
-        needs_coplanar_late_d = needs_coplanar_late_q;
-        needs_degenerate_pair_late_d = needs_degenerate_pair_late_q;
         hit_d = hit_q;
         rejected_certainly_d = rejected_certainly_q;
         interval_certain_d = interval_certain_q;
         certain_d = certain_q;
         certain_out_d = certain_out_q;
         if (advance) begin
-            if (~t1_degenerate && ~t2_degenerate) begin
-                base_hit_d = triangles_hit;
-                needs_coplanar_d = triangles_coplanar;
+            triangles_hit_d = triangles_hit;
+            triangles_coplanar_d = triangles_coplanar;
+            end_a_negative_d = end_a_negative;
+            end_a_zero_d = end_a_zero;
+            end_b_negative_d = end_b_negative;
+            end_b_zero_d = end_b_zero;
+            orient_mixed_d = orient_mixed;
+            t1_degenerate_d = t1_degenerate;
+            t2_degenerate_d = t2_degenerate;
+            segments_touch_d = orient_zero_0;
+            if (~t1_degenerate_q && ~t2_degenerate_q) begin
+                base_hit_d = triangles_hit_q;
+                needs_coplanar_d = triangles_coplanar_q;
                 needs_degenerate_pair_d = 1'h0;
             end
-            else if (t1_degenerate && t2_degenerate) begin
+            else if (t1_degenerate_q && t2_degenerate_q) begin
                 base_hit_d = 1'h0;
                 needs_coplanar_d = 1'h0;
-                needs_degenerate_pair_d = orient_zero_0;
+                needs_degenerate_pair_d = segments_touch_q;
             end
             else begin
                 base_hit_d = segment_hit;
@@ -308,10 +390,7 @@ module tritri_pipeline_w24_decision (
             interval_certain_d = t1_sides_certain && t2_sides_certain && ((orient_certain_0 && orient_certain_1) || (orient_certain_0 && orient_positive_0) || (orient_certain_1 && orient_positive_1));
             certain_d = rejected_certainly_q || interval_certain_q;
             certain_out_d = certain_q;
-            base_hit_late_d = base_hit_q;
-            needs_coplanar_late_d = needs_coplanar_q;
-            needs_degenerate_pair_late_d = needs_degenerate_pair_q;
-            hit_d = base_hit_late_q || (needs_coplanar_late_q && coplanar_hit) || (needs_degenerate_pair_late_q && degenerate_pair_hit);
+            hit_d = base_hit_q || (needs_coplanar_q && coplanar_hit) || (needs_degenerate_pair_q && degenerate_pair_hit);
         end
     end
 

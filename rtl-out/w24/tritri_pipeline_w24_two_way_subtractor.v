@@ -43,90 +43,81 @@ module tritri_pipeline_w24_two_way_subtractor (
     output wire [24:0] negated_2
 );
 
-    // Constant declarations
-    localparam  sign_flip = 24'h800000;
-
     // Stub signals
-    reg  [24:0] forward_0_d;
-    wire  [24:0] forward_0_q;
-    wire  forward_0_clock;
-    reg  [24:0] forward_1_d;
-    wire  [24:0] forward_1_q;
-    wire  forward_1_clock;
-    reg  [24:0] forward_2_d;
-    wire  [24:0] forward_2_q;
-    wire  forward_2_clock;
-    reg  [24:0] backward_0_d;
-    wire  [24:0] backward_0_q;
-    wire  backward_0_clock;
-    reg  [24:0] backward_1_d;
-    wire  [24:0] backward_1_q;
-    wire  backward_1_clock;
-    reg  [24:0] backward_2_d;
-    wire  [24:0] backward_2_q;
-    wire  backward_2_clock;
+    wire  forward_clock;
+    wire  forward_advance;
+    wire  [23:0] forward_a_0;
+    wire  [23:0] forward_a_1;
+    wire  [23:0] forward_a_2;
+    wire  [23:0] forward_b_0;
+    wire  [23:0] forward_b_1;
+    wire  [23:0] forward_b_2;
+    wire  [24:0] forward_difference_0;
+    wire  [24:0] forward_difference_1;
+    wire  [24:0] forward_difference_2;
+    wire  backward_clock;
+    wire  backward_advance;
+    wire  [23:0] backward_a_0;
+    wire  [23:0] backward_a_1;
+    wire  [23:0] backward_a_2;
+    wire  [23:0] backward_b_0;
+    wire  [23:0] backward_b_1;
+    wire  [23:0] backward_b_2;
+    wire  [24:0] backward_difference_0;
+    wire  [24:0] backward_difference_1;
+    wire  [24:0] backward_difference_2;
 
     // Sub module instances
-    tritri_pipeline_w24_dff_25 u_forward_0(
-        .d(forward_0_d),
-        .q(forward_0_q),
-        .clock(forward_0_clock)
+    tritri_pipeline_w24_vector_subtractor u_forward(
+        .clock(forward_clock),
+        .advance(forward_advance),
+        .a_0(forward_a_0),
+        .a_1(forward_a_1),
+        .a_2(forward_a_2),
+        .b_0(forward_b_0),
+        .b_1(forward_b_1),
+        .b_2(forward_b_2),
+        .difference__0(forward_difference_0),
+        .difference__1(forward_difference_1),
+        .difference__2(forward_difference_2)
     );
-    tritri_pipeline_w24_dff_25 u_forward_1(
-        .d(forward_1_d),
-        .q(forward_1_q),
-        .clock(forward_1_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_forward_2(
-        .d(forward_2_d),
-        .q(forward_2_q),
-        .clock(forward_2_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_0(
-        .d(backward_0_d),
-        .q(backward_0_q),
-        .clock(backward_0_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_1(
-        .d(backward_1_d),
-        .q(backward_1_q),
-        .clock(backward_1_clock)
-    );
-    tritri_pipeline_w24_dff_25 u_backward_2(
-        .d(backward_2_d),
-        .q(backward_2_q),
-        .clock(backward_2_clock)
+    tritri_pipeline_w24_vector_subtractor u_backward(
+        .clock(backward_clock),
+        .advance(backward_advance),
+        .a_0(backward_a_0),
+        .a_1(backward_a_1),
+        .a_2(backward_a_2),
+        .b_0(backward_b_0),
+        .b_1(backward_b_1),
+        .b_2(backward_b_2),
+        .difference__0(backward_difference_0),
+        .difference__1(backward_difference_1),
+        .difference__2(backward_difference_2)
     );
 
     // Update code
-    assign forward_0_clock = clock;
-    assign backward_0_clock = clock;
-    assign difference__0 = forward_0_q;
-    assign negated_0 = backward_0_q;
-    assign forward_1_clock = clock;
-    assign backward_1_clock = clock;
-    assign difference__1 = forward_1_q;
-    assign negated_1 = backward_1_q;
-    assign forward_2_clock = clock;
-    assign backward_2_clock = clock;
-    assign difference__2 = forward_2_q;
-    assign negated_2 = backward_2_q;
-    always @(*) begin
-        forward_0_d = forward_0_q;
-        backward_0_d = backward_0_q;
-        forward_1_d = forward_1_q;
-        backward_1_d = backward_1_q;
-        forward_2_d = forward_2_q;
-        backward_2_d = backward_2_q;
-        if (advance) begin
-            forward_0_d = {1'h0, a_0 ^ sign_flip} - {1'h0, b_0 ^ sign_flip};
-            backward_0_d = {1'h0, b_0 ^ sign_flip} - {1'h0, a_0 ^ sign_flip};
-            forward_1_d = {1'h0, a_1 ^ sign_flip} - {1'h0, b_1 ^ sign_flip};
-            backward_1_d = {1'h0, b_1 ^ sign_flip} - {1'h0, a_1 ^ sign_flip};
-            forward_2_d = {1'h0, a_2 ^ sign_flip} - {1'h0, b_2 ^ sign_flip};
-            backward_2_d = {1'h0, b_2 ^ sign_flip} - {1'h0, a_2 ^ sign_flip};
-        end
-    end
+    assign forward_clock = clock;
+    assign backward_clock = clock;
+    assign forward_advance = advance;
+    assign backward_advance = advance;
+    assign forward_a_0 = a_0;
+    assign forward_b_0 = b_0;
+    assign backward_a_0 = b_0;
+    assign backward_b_0 = a_0;
+    assign difference__0 = forward_difference_0;
+    assign negated_0 = backward_difference_0;
+    assign forward_a_1 = a_1;
+    assign forward_b_1 = b_1;
+    assign backward_a_1 = b_1;
+    assign backward_b_1 = a_1;
+    assign difference__1 = forward_difference_1;
+    assign negated_1 = backward_difference_1;
+    assign forward_a_2 = a_2;
+    assign forward_b_2 = b_2;
+    assign backward_a_2 = b_2;
+    assign backward_b_2 = a_2;
+    assign difference__2 = forward_difference_2;
+    assign negated_2 = backward_difference_2;
 
 endmodule  // tritri_pipeline_w24_two_way_subtractor
 

@@ -4,7 +4,7 @@
 //
 // Purpose:    Vector subtractor: `a - b` for two points of W-bit signed
 //             coordinates, giving an exact (W+1)-bit difference vector,
-//             registered. Part of tritri_pipeline_w24. Instances (8), for
+//             registered. Part of tritri_pipeline_w24. Instances (32), for
 //             example: degenerate_pair.edge_ab, degenerate_pair.edge_cd,
 //             degenerate_pair.offset_ac, degenerate_pair.offset_ad.
 //

@@ -547,6 +547,13 @@ end
 /// sign's stage); every part's `>=` and `<=` (the lowest part's `>=` or
 /// `<=` alone) are registered from those copies, and the next stage
 /// combines them from the top, `P >= T` being `hi >= & (!(hi <=) | rest)`.
+/// A part's `x <= y` is written `{y, 1} > {x, 0}`: written as `>=` and
+/// `<=` on the same operands, Yosys made the two one carry chain and took
+/// `<=` from it through an equality's LUTs, two levels and 3.5 ns of
+/// routing more (W = 16 shared pipeline, ECP5, router1: orient3d's
+/// `threshold_q` to `above_le_q1`, the critical path at 141.2 MHz with
+/// seed 1; a plane side's, 138.3 MHz with seed 3, 8 of the 13 register
+/// inputs short of 150 MHz in such parts).
 /// In one stage the comparison was a carry chain over all O bits behind
 /// a register placed apart, the clock of the W = 16 plane side on ECP5
 /// (121.7 MHz, 53 logic levels, the 50-bit chain's cells) and of the
@@ -679,24 +686,32 @@ impl<const O: usize> Logic for CertainSign<O> {
         let mut compares = String::new();
         for (i, &(low, high)) in parts.iter().enumerate() {
             let range = format!("[{high}:{low}]");
-            // The lowest part needs one comparison per sign.
-            let names: &[(&str, &str, &str)] = if i == 0 {
+            // The lowest part needs one comparison per sign. `x <= y` is
+            // written `{y, 1} > {x, 0}`: on the same operands as `x >= y`,
+            // synthesis would share one carry chain (class doc).
+            let names: &[(&str, bool, &str)] = if i == 0 {
                 &[
-                    ("above_ge_q", ">=", "threshold_q"),
-                    ("below_le_q", "<=", "limit"),
+                    ("above_ge_q", true, "threshold_q"),
+                    ("below_le_q", false, "limit"),
                 ]
             } else {
                 &[
-                    ("above_ge_q", ">=", "threshold_q"),
-                    ("above_le_q", "<=", "threshold_q"),
-                    ("below_ge_q", ">=", "limit"),
-                    ("below_le_q", "<=", "limit"),
+                    ("above_ge_q", true, "threshold_q"),
+                    ("above_le_q", false, "threshold_q"),
+                    ("below_ge_q", true, "limit"),
+                    ("below_le_q", false, "limit"),
                 ]
             };
-            for (name, op, bound) in names {
+            for &(name, at_least, bound) in names {
                 regs += &format!("reg {name}{i};\n");
                 inits += &format!("    {name}{i} = 1'b0;\n");
-                compares += &format!("        {name}{i} <= value_q{range} {op} {bound}{range};\n");
+                compares += &if at_least {
+                    format!("        {name}{i} <= value_q{range} >= {bound}{range};\n")
+                } else {
+                    format!(
+                        "        {name}{i} <= {{{bound}{range}, 1'b1}} > {{value_q{range}, 1'b0}};\n"
+                    )
+                };
             }
         }
         let above =
@@ -708,7 +723,9 @@ impl<const O: usize> Logic for CertainSign<O> {
 // The sign of P, registered, and its certificate |P| >= T two clocks
 // later: P and T registered beside the comparisons, then P >= T (P >= 0)
 // or P <= ~T (P < 0) as unsigned values, each compared in {count} parts
-// whose results are registered, then combined from the top.
+// whose results are registered, then combined from the top. x <= y is
+// written {{y, 1}} > {{x, 0}}, so that synthesis gives it a carry chain of
+// its own rather than x >= y's chain and an equality.
 reg [{top}:0] value_q;
 reg [{top}:0] threshold_q;
 wire [{top}:0] limit = ~threshold_q;

@@ -141,7 +141,7 @@ impl<const W: usize, const D: usize> Logic for Subtractor<W, D> {
 /// (`super::certificate::EdgesBitLength`) this way. (That negation behind
 /// the edge register, which also feeds the cross product's multipliers,
 /// was the W = 16 pipeline's critical path at 153.1 MHz on ECP5.)
-#[derive(LogicBlock)]
+#[derive(LogicBlock, Default)]
 pub struct TwoWaySubtractor<const W: usize, const D: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
@@ -151,9 +151,8 @@ pub struct TwoWaySubtractor<const W: usize, const D: usize> {
     pub difference: [Signal<Out, Bits<D>>; 3],
     /// `b - a`, with it.
     pub negated: [Signal<Out, Bits<D>>; 3],
-    sign_flip: Constant<Bits<W>>,
-    forward: [DFF<Bits<D>>; 3],
-    backward: [DFF<Bits<D>>; 3],
+    forward: VectorSubtractor<W, D>,
+    backward: VectorSubtractor<W, D>,
 }
 
 impl<const W: usize, const D: usize> crate::unit::Unit for TwoWaySubtractor<W, D> {
@@ -163,54 +162,20 @@ impl<const W: usize, const D: usize> crate::unit::Unit for TwoWaySubtractor<W, D
     }
 }
 
-impl<const W: usize, const D: usize> Default for TwoWaySubtractor<W, D> {
-    fn default() -> Self {
-        assert_eq!(
-            D,
-            tritri_geom::widths::difference_bits(W),
-            "a difference of {W}-bit values has {} bits",
-            W + 1
-        );
-        Self {
-            clock: Default::default(),
-            advance: Default::default(),
-            a: Default::default(),
-            b: Default::default(),
-            difference: Default::default(),
-            negated: Default::default(),
-            sign_flip: Constant::new(Bits::<W>::from(1u64 << (W - 1))),
-            forward: Default::default(),
-            backward: Default::default(),
-        }
-    }
-}
-
 impl<const W: usize, const D: usize> Logic for TwoWaySubtractor<W, D> {
     #[hdl_gen]
     fn update(&mut self) {
+        self.forward.clock.next = self.clock.val();
+        self.backward.clock.next = self.clock.val();
+        self.forward.advance.next = self.advance.val();
+        self.backward.advance.next = self.advance.val();
         for k in 0..3 {
-            self.forward[k].clock.next = self.clock.val();
-            self.backward[k].clock.next = self.clock.val();
-            self.forward[k].d.next = self.forward[k].q.val();
-            self.backward[k].d.next = self.backward[k].q.val();
-            self.difference[k].next = self.forward[k].q.val();
-            self.negated[k].next = self.backward[k].q.val();
-        }
-        // (hdl_gen takes no loop index inside `bit_cast`: one line per
-        // component.)
-        if self.advance.val() {
-            self.forward[0].d.next = bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val());
-            self.backward[0].d.next = bit_cast::<D, W>(self.b[0].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[0].val() ^ self.sign_flip.val());
-            self.forward[1].d.next = bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val());
-            self.backward[1].d.next = bit_cast::<D, W>(self.b[1].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[1].val() ^ self.sign_flip.val());
-            self.forward[2].d.next = bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val());
-            self.backward[2].d.next = bit_cast::<D, W>(self.b[2].val() ^ self.sign_flip.val())
-                - bit_cast::<D, W>(self.a[2].val() ^ self.sign_flip.val());
+            self.forward.a[k].next = self.a[k].val();
+            self.forward.b[k].next = self.b[k].val();
+            self.backward.a[k].next = self.b[k].val();
+            self.backward.b[k].next = self.a[k].val();
+            self.difference[k].next = self.forward.difference[k].val();
+            self.negated[k].next = self.backward.difference[k].val();
         }
     }
 }

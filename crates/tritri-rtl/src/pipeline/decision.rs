@@ -26,19 +26,24 @@
 //! other's plane, or all six plane signs certain and step (7)'s two
 //! determinants certain or one of them certainly positive.
 //!
-//! Three stages: the case's verdict without the rare tests, and which rare
-//! test's verdict it takes, registered; the same, registered again; then
-//! the verdict. In one stage, an orient3d sign reached the verdict register
-//! through five LUT levels, the W = 8 pipeline's critical path on ECP5 (144
-//! MHz). The rare tests' verdicts (`coplanar_hit`, `degenerate_pair_hit`)
-//! come two clocks after the other inputs, into the last stage, which is
-//! one LUT: with the three cases' verdicts and the case registered instead,
-//! it was three levels from the shared unit's verdict, across the chip, to
-//! `hit_q` (W = 16 shared system, ECP5: the critical path, 148.3 MHz, 5.3
-//! of 6.7 ns routing). Those two clocks are the shared rare-case unit's
-//! time (`super::shared_rare_pipeline`): the middle stage is there for the
-//! unit, whose pairs reach it a stage later since the pipelines hold three
-//! clocks ahead (`super::hold_forecast`).
+//! Three stages: each case's parts (the triangles' verdict, the segment
+//! ends' signs, whether the segment case's signs are mixed, the flags),
+//! registered; the case's verdict without the rare tests, and which rare
+//! test's verdict it takes; then the verdict. In one stage, an orient3d
+//! sign reached the verdict register through five LUT levels, the W = 8
+//! pipeline's critical path on ECP5 (144 MHz); with the case chosen in the
+//! first stage, a segment end's index reached the second through five
+//! (W = 16, P = 1 shared system, seed 3: its worst path at 153.7 MHz, and
+//! the last input short of 150 MHz at W = 8, P = 2). The rare tests'
+//! verdicts (`coplanar_hit`, `degenerate_pair_hit`) come two clocks after
+//! the other inputs, into the last stage, which is one LUT: with the
+//! three cases' verdicts and the case registered instead, it was three
+//! levels from the shared unit's verdict, across the chip, to `hit_q`
+//! (W = 16 shared system, ECP5: the critical path, 148.3 MHz, 5.3 of 6.7
+//! ns routing). Those two clocks are the shared rare-case unit's time
+//! (`super::shared_rare_pipeline`): the middle stage is there for the
+//! unit, whose pairs reach it a stage later since the pipelines hold
+//! three clocks ahead (`super::hold_forecast`).
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -90,6 +95,8 @@ pub struct Decision {
     end_a_zero: Signal<Local, Bit>,
     end_b_negative: Signal<Local, Bit>,
     end_b_zero: Signal<Local, Bit>,
+    /// The three signs of the segment case are not strictly opposite.
+    orient_mixed: Signal<Local, Bit>,
     segment_hit: Signal<Local, Bit>,
     segment_coplanar: Signal<Local, Bit>,
     /// Every plane sign of T1 (of T2) is certain.
@@ -101,15 +108,25 @@ pub struct Decision {
     interval_certain_q: DFF<Bit>,
     certain_q: DFF<Bit>,
     certain_out_q: DFF<Bit>,
-    /// Stage 1: the case's verdict if it needs no rare test, and whether
+    /// Stage 1: each case's parts: the triangles' verdict, the segment
+    /// ends' signs, whether the segment case's signs are mixed, the
+    /// degenerate flags and `[a, b, c, d] == 0`.
+    triangles_hit_q: DFF<Bit>,
+    triangles_coplanar_q: DFF<Bit>,
+    end_a_negative_q: DFF<Bit>,
+    end_a_zero_q: DFF<Bit>,
+    end_b_negative_q: DFF<Bit>,
+    end_b_zero_q: DFF<Bit>,
+    orient_mixed_q: DFF<Bit>,
+    t1_degenerate_q: DFF<Bit>,
+    t2_degenerate_q: DFF<Bit>,
+    segments_touch_q: DFF<Bit>,
+    /// Stage 2: the case's verdict if it needs no rare test, and whether
     /// it is the coplanar test's or (two segments with `[a, b, c, d] ==
-    /// 0`) the degenerate-pair test's instead; stage 2: the same.
+    /// 0`) the degenerate-pair test's instead.
     base_hit_q: DFF<Bit>,
     needs_coplanar_q: DFF<Bit>,
     needs_degenerate_pair_q: DFF<Bit>,
-    base_hit_late_q: DFF<Bit>,
-    needs_coplanar_late_q: DFF<Bit>,
-    needs_degenerate_pair_late_q: DFF<Bit>,
     hit_q: DFF<Bit>,
 }
 
@@ -122,12 +139,19 @@ impl crate::unit::Unit for Decision {
             rejected_certainly_q,
             interval_certain_q,
             certain_q,
+            triangles_hit_q,
+            triangles_coplanar_q,
+            end_a_negative_q,
+            end_a_zero_q,
+            end_b_negative_q,
+            end_b_zero_q,
+            orient_mixed_q,
+            t1_degenerate_q,
+            t2_degenerate_q,
+            segments_touch_q,
             base_hit_q,
             needs_coplanar_q,
             needs_degenerate_pair_q,
-            base_hit_late_q,
-            needs_coplanar_late_q,
-            needs_degenerate_pair_late_q,
             hit_q,
             certain_out_q
         );
@@ -200,25 +224,27 @@ impl Logic for Decision {
                 }
             }
         }
-        if (self.end_a_negative.val() && self.end_b_negative.val())
-            || (!self.end_a_negative.val()
-                && !self.end_a_zero.val()
-                && !self.end_b_negative.val()
-                && !self.end_b_zero.val())
+        self.orient_mixed.next = (self.orient_positive[0].val()
+            || self.orient_positive[1].val()
+            || self.orient_positive[2].val())
+            && (self.orient_negative[0].val()
+                || self.orient_negative[1].val()
+                || self.orient_negative[2].val());
+        // segment_triangle's verdict, from stage 1's registers.
+        if (self.end_a_negative_q.q.val() && self.end_b_negative_q.q.val())
+            || (!self.end_a_negative_q.q.val()
+                && !self.end_a_zero_q.q.val()
+                && !self.end_b_negative_q.q.val()
+                && !self.end_b_zero_q.q.val())
         {
             self.segment_hit.next = false;
             self.segment_coplanar.next = false;
-        } else if self.end_a_zero.val() && self.end_b_zero.val() {
+        } else if self.end_a_zero_q.q.val() && self.end_b_zero_q.q.val() {
             self.segment_hit.next = false;
             self.segment_coplanar.next = true;
         } else {
             self.segment_coplanar.next = false;
-            self.segment_hit.next = !((self.orient_positive[0].val()
-                || self.orient_positive[1].val()
-                || self.orient_positive[2].val())
-                && (self.orient_negative[0].val()
-                    || self.orient_negative[1].val()
-                    || self.orient_negative[2].val()));
+            self.segment_hit.next = !self.orient_mixed_q.q.val();
         }
         // The certificate's rules 1 and 2, and rule 3.
         self.t1_sides_certain.next = self.t1_side_certain[0].val()
@@ -230,12 +256,19 @@ impl Logic for Decision {
         dff_setup!(
             self,
             clock,
+            triangles_hit_q,
+            triangles_coplanar_q,
+            end_a_negative_q,
+            end_a_zero_q,
+            end_b_negative_q,
+            end_b_zero_q,
+            orient_mixed_q,
+            t1_degenerate_q,
+            t2_degenerate_q,
+            segments_touch_q,
             base_hit_q,
             needs_coplanar_q,
             needs_degenerate_pair_q,
-            base_hit_late_q,
-            needs_coplanar_late_q,
-            needs_degenerate_pair_late_q,
             hit_q,
             rejected_certainly_q,
             interval_certain_q,
@@ -243,14 +276,24 @@ impl Logic for Decision {
             certain_out_q
         );
         if self.advance.val() {
-            if !self.t1_degenerate.val() && !self.t2_degenerate.val() {
-                self.base_hit_q.d.next = self.triangles_hit.val();
-                self.needs_coplanar_q.d.next = self.triangles_coplanar.val();
+            self.triangles_hit_q.d.next = self.triangles_hit.val();
+            self.triangles_coplanar_q.d.next = self.triangles_coplanar.val();
+            self.end_a_negative_q.d.next = self.end_a_negative.val();
+            self.end_a_zero_q.d.next = self.end_a_zero.val();
+            self.end_b_negative_q.d.next = self.end_b_negative.val();
+            self.end_b_zero_q.d.next = self.end_b_zero.val();
+            self.orient_mixed_q.d.next = self.orient_mixed.val();
+            self.t1_degenerate_q.d.next = self.t1_degenerate.val();
+            self.t2_degenerate_q.d.next = self.t2_degenerate.val();
+            self.segments_touch_q.d.next = self.orient_zero[0].val();
+            if !self.t1_degenerate_q.q.val() && !self.t2_degenerate_q.q.val() {
+                self.base_hit_q.d.next = self.triangles_hit_q.q.val();
+                self.needs_coplanar_q.d.next = self.triangles_coplanar_q.q.val();
                 self.needs_degenerate_pair_q.d.next = false;
-            } else if self.t1_degenerate.val() && self.t2_degenerate.val() {
+            } else if self.t1_degenerate_q.q.val() && self.t2_degenerate_q.q.val() {
                 self.base_hit_q.d.next = false;
                 self.needs_coplanar_q.d.next = false;
-                self.needs_degenerate_pair_q.d.next = self.orient_zero[0].val();
+                self.needs_degenerate_pair_q.d.next = self.segments_touch_q.q.val();
             } else {
                 self.base_hit_q.d.next = self.segment_hit.val();
                 self.needs_coplanar_q.d.next = self.segment_coplanar.val();
@@ -278,12 +321,9 @@ impl Logic for Decision {
             self.certain_q.d.next =
                 self.rejected_certainly_q.q.val() || self.interval_certain_q.q.val();
             self.certain_out_q.d.next = self.certain_q.q.val();
-            self.base_hit_late_q.d.next = self.base_hit_q.q.val();
-            self.needs_coplanar_late_q.d.next = self.needs_coplanar_q.q.val();
-            self.needs_degenerate_pair_late_q.d.next = self.needs_degenerate_pair_q.q.val();
-            self.hit_q.d.next = self.base_hit_late_q.q.val()
-                || (self.needs_coplanar_late_q.q.val() && self.coplanar_hit.val())
-                || (self.needs_degenerate_pair_late_q.q.val() && self.degenerate_pair_hit.val());
+            self.hit_q.d.next = self.base_hit_q.q.val()
+                || (self.needs_coplanar_q.q.val() && self.coplanar_hit.val())
+                || (self.needs_degenerate_pair_q.q.val() && self.degenerate_pair_hit.val());
         }
         self.hit.next = self.hit_q.q.val();
         self.certain.next = self.certain_out_q.q.val();

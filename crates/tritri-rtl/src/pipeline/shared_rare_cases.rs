@@ -209,8 +209,13 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     /// Orientation of A (negative, zero) and of B in the projection.
     orientation: [Signal<Local, Bit>; 4],
     /// The job's context beside the lanes: on-edge A (9), on-edge B (9),
-    /// within (12); the orientations; the kind.
-    contacts_line: [DelayLine<Bit, CONTEXT_DELAY>; 30],
+    /// within (12), registered where they are formed and then delayed (a
+    /// line that long is distributed RAM on ECP5, and from the axis
+    /// through the projection's choice and the contacts into its write
+    /// port, five levels, was the W = 16 shared pipeline's critical path
+    /// with seed 1, 138.1 MHz); the orientations; the kind.
+    contacts_q: [DFF<Bit>; 30],
+    contacts_line: [DelayLine<Bit, { CONTEXT_DELAY - 1 }>; 30],
     orientation_line: [DelayLine<Bit, CONTEXT_DELAY>; 4],
     segments_line: DelayLine<Bit, CONTEXT_DELAY>,
     coplanar_decision: CoplanarDecision,
@@ -257,6 +262,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             compare,
             coplanar_contacts,
             segment_contacts,
+            contacts_q,
             contacts_line,
             orientation_line,
             segments_line,
@@ -888,19 +894,21 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.orientation[3].next = self.normal_q[11].q.val();
         }
         for i in 0..30 {
+            self.contacts_q[i].clock.next = self.clock.val();
             self.contacts_line[i].clock.next = self.clock.val();
             self.contacts_line[i].advance.next = true;
+            self.contacts_line[i].d.next = self.contacts_q[i].q.val();
         }
         for i in 0..4 {
             self.orientation_line[i].clock.next = self.clock.val();
             self.orientation_line[i].advance.next = true;
         }
         for i in 0..9 {
-            self.contacts_line[i].d.next = self.coplanar_contacts.on_edge_a[i].val();
-            self.contacts_line[9 + i].d.next = self.coplanar_contacts.on_edge_b[i].val();
+            self.contacts_q[i].d.next = self.coplanar_contacts.on_edge_a[i].val();
+            self.contacts_q[9 + i].d.next = self.coplanar_contacts.on_edge_b[i].val();
         }
         for i in 0..12 {
-            self.contacts_line[18 + i].d.next = self.segment_contacts.within[i].val();
+            self.contacts_q[18 + i].d.next = self.segment_contacts.within[i].val();
         }
         for i in 0..4 {
             self.orientation_line[i].d.next = self.orientation[i].val();
