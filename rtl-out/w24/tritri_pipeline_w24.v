@@ -116,12 +116,8 @@ module tritri_pipeline_w24 (
     wire  [1:0] path_pair_t2_segment_low;
     wire  [1:0] path_pair_t2_segment_high;
     wire  path_sides_valid;
-    wire  path_sides_t1_zero_0;
-    wire  path_sides_t1_zero_1;
-    wire  path_sides_t1_zero_2;
-    wire  path_sides_t2_zero_0;
-    wire  path_sides_t2_zero_1;
-    wire  path_sides_t2_zero_2;
+    wire  path_sides_t1_all_zero;
+    wire  path_sides_t2_all_zero;
     wire  path_coplanar_hit;
     wire  path_degenerate_pair_hit;
     wire  path_advance_copies_0;
@@ -270,12 +266,8 @@ module tritri_pipeline_w24 (
         .pair_t2_segment_low(path_pair_t2_segment_low),
         .pair_t2_segment_high(path_pair_t2_segment_high),
         .sides_valid(path_sides_valid),
-        .sides_t1_zero_0(path_sides_t1_zero_0),
-        .sides_t1_zero_1(path_sides_t1_zero_1),
-        .sides_t1_zero_2(path_sides_t1_zero_2),
-        .sides_t2_zero_0(path_sides_t2_zero_0),
-        .sides_t2_zero_1(path_sides_t2_zero_1),
-        .sides_t2_zero_2(path_sides_t2_zero_2),
+        .sides_t1_all_zero(path_sides_t1_all_zero),
+        .sides_t2_all_zero(path_sides_t2_all_zero),
         .coplanar_hit(path_coplanar_hit),
         .degenerate_pair_hit(path_degenerate_pair_hit),
         .advance_copies_0(path_advance_copies_0),
@@ -471,7 +463,7 @@ module tritri_pipeline_w24 (
     assign degenerate_pair_to_decision_d = degenerate_pair__hit;
     assign path_coplanar_hit = coplanar_to_decision_q;
     assign path_degenerate_pair_hit = degenerate_pair_to_decision_q;
-    assign unused_sides = path_sides_valid || path_sides_t1_zero_0 || path_sides_t1_zero_1 || path_sides_t1_zero_2 || path_sides_t2_zero_0 || path_sides_t2_zero_1 || path_sides_t2_zero_2 || path_pair_t1_degenerate || path_pair_t2_degenerate;
+    assign unused_sides = path_sides_valid || path_sides_t1_all_zero || path_sides_t2_all_zero || path_pair_t1_degenerate || path_pair_t2_degenerate;
 
 endmodule  // tritri_pipeline_w24
 

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_dff_1.v
 //
 // Purpose:    A D flip-flop register (rust-hdl's DFF) without reset. Instances
-//             (235), for example: coplanar.compare[0].equal_q,
+//             (237), for example: coplanar.compare[0].equal_q,
 //             coplanar.compare[0].less_q, coplanar.compare[1].equal_q,
 //             coplanar.compare[1].less_q.
 //

@@ -84,12 +84,8 @@ module tritri_pipeline_w24_general_path (
     output wire [1:0]  pair_t2_segment_low,
     output wire [1:0]  pair_t2_segment_high,
     output wire        sides_valid,
-    output wire        sides_t1_zero_0,
-    output wire        sides_t1_zero_1,
-    output wire        sides_t1_zero_2,
-    output wire        sides_t2_zero_0,
-    output wire        sides_t2_zero_1,
-    output wire        sides_t2_zero_2,
+    output wire        sides_t1_all_zero,
+    output wire        sides_t2_all_zero,
     input  wire        coplanar_hit,
     input  wire        degenerate_pair_hit,
     input  wire        advance_copies_0,
@@ -294,6 +290,7 @@ module tritri_pipeline_w24_general_path (
     wire  plane_side_t1_zero_0;
     wire  plane_side_t1_zero_1;
     wire  plane_side_t1_zero_2;
+    wire  plane_side_t1_all_zero;
     wire  plane_side_t1_certain_0;
     wire  plane_side_t1_certain_1;
     wire  plane_side_t1_certain_2;
@@ -324,6 +321,7 @@ module tritri_pipeline_w24_general_path (
     wire  plane_side_t2_zero_0;
     wire  plane_side_t2_zero_1;
     wire  plane_side_t2_zero_2;
+    wire  plane_side_t2_all_zero;
     wire  plane_side_t2_certain_0;
     wire  plane_side_t2_certain_1;
     wire  plane_side_t2_certain_2;
@@ -990,6 +988,7 @@ module tritri_pipeline_w24_general_path (
         .zero_0(plane_side_t1_zero_0),
         .zero_1(plane_side_t1_zero_1),
         .zero_2(plane_side_t1_zero_2),
+        .all_zero(plane_side_t1_all_zero),
         .certain_0(plane_side_t1_certain_0),
         .certain_1(plane_side_t1_certain_1),
         .certain_2(plane_side_t1_certain_2),
@@ -1022,6 +1021,7 @@ module tritri_pipeline_w24_general_path (
         .zero_0(plane_side_t2_zero_0),
         .zero_1(plane_side_t2_zero_1),
         .zero_2(plane_side_t2_zero_2),
+        .all_zero(plane_side_t2_all_zero),
         .certain_0(plane_side_t2_certain_0),
         .certain_1(plane_side_t2_certain_1),
         .certain_2(plane_side_t2_certain_2),
@@ -2012,20 +2012,14 @@ module tritri_pipeline_w24_general_path (
     assign pair_t1_normal_zero_0 = base_normal_zero_0;
     assign pair_t2_normal_negative_0 = front_end_normal_negative_0;
     assign pair_t2_normal_zero_0 = front_end_normal_zero_0;
-    assign sides_t1_zero_0 = plane_side_t1_zero_0;
-    assign sides_t2_zero_0 = plane_side_t2_zero_0;
     assign pair_t1_normal_negative_1 = base_normal_negative_1;
     assign pair_t1_normal_zero_1 = base_normal_zero_1;
     assign pair_t2_normal_negative_1 = front_end_normal_negative_1;
     assign pair_t2_normal_zero_1 = front_end_normal_zero_1;
-    assign sides_t1_zero_1 = plane_side_t1_zero_1;
-    assign sides_t2_zero_1 = plane_side_t2_zero_1;
     assign pair_t1_normal_negative_2 = base_normal_negative_2;
     assign pair_t1_normal_zero_2 = base_normal_zero_2;
     assign pair_t2_normal_negative_2 = front_end_normal_negative_2;
     assign pair_t2_normal_zero_2 = front_end_normal_zero_2;
-    assign sides_t1_zero_2 = plane_side_t1_zero_2;
-    assign sides_t2_zero_2 = plane_side_t2_zero_2;
     assign pair_t1_degenerate = base_degenerate;
     assign pair_t2_degenerate = front_end_degenerate;
     assign pair_t1_segment_low = base_segment_low;
@@ -2033,6 +2027,8 @@ module tritri_pipeline_w24_general_path (
     assign pair_t2_segment_low = front_end_segment_low;
     assign pair_t2_segment_high = front_end_segment_high;
     assign sides_valid = pair_valid_to_sides_q;
+    assign sides_t1_all_zero = plane_side_t1_all_zero;
+    assign sides_t2_all_zero = plane_side_t2_all_zero;
     assign degenerate_to_decision_0_d = degenerate_to_operands_0_q;
     assign degenerate_to_decision_1_d = degenerate_to_operands_1_q;
     assign segment_ends_to_decision_0_d = segment_ends_to_operands_0_q;

@@ -42,6 +42,7 @@ module tritri_pipeline_w24_plane_side (
     output wire        zero_0,
     output wire        zero_1,
     output wire        zero_2,
+    output wire        all_zero,
     output wire        certain_0,
     output wire        certain_1,
     output wire        certain_2,
@@ -193,6 +194,9 @@ module tritri_pipeline_w24_plane_side (
     wire  sign_2_negative;
     wire  sign_2_zero;
     wire  sign_2_certain;
+    reg  all_zero_d;
+    wire  all_zero_q;
+    wire  all_zero_clock;
 
     // Sub module instances
     tritri_pipeline_w24_magnitude_subtractor u_offset_0(
@@ -369,6 +373,11 @@ module tritri_pipeline_w24_plane_side (
         .zero(sign_2_zero),
         .certain(sign_2_certain)
     );
+    tritri_pipeline_w24_dff_1 u_all_zero_q(
+        .d(all_zero_d),
+        .q(all_zero_q),
+        .clock(all_zero_clock)
+    );
 
     // Update code
     assign offset_0_clock = clock;
@@ -381,6 +390,7 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_0_clock = clock;
     assign threshold_1_clock = clock;
     assign threshold_2_clock = clock;
+    assign all_zero_clock = clock;
     assign offset_0_advance = advance;
     assign offset_1_advance = advance;
     assign offset_2_advance = advance;
@@ -449,6 +459,7 @@ module tritri_pipeline_w24_plane_side (
     assign sign_0_value_zero_parts = distance_0_zero_parts;
     assign sign_1_value_zero_parts = distance_1_zero_parts;
     assign sign_2_value_zero_parts = distance_2_zero_parts;
+    assign all_zero = all_zero_q;
     assign threshold_0_advance = advance;
     assign threshold_1_advance = advance;
     assign threshold_2_advance = advance;
@@ -485,6 +496,12 @@ module tritri_pipeline_w24_plane_side (
     assign negative_2 = sign_2_negative;
     assign zero_2 = sign_2_zero;
     assign certain_2 = sign_2_certain;
+    always @(*) begin
+        all_zero_d = all_zero_q;
+        if (advance) begin
+            all_zero_d = &distance_0_zero_parts && &distance_1_zero_parts && &distance_2_zero_parts;
+        end
+    end
 
 endmodule  // tritri_pipeline_w24_plane_side
 

@@ -135,10 +135,11 @@ crate::pipeline_ports! {
         pub pair_t2_segment_low: Signal<Out, Bits<2>>,
         pub pair_t2_segment_high: Signal<Out, Bits<2>>,
         /// Beside the plane-side signs ([`SIDES_STAGE`]): whether a pair
-        /// is there, and which of its vertices lie on the other plane.
+        /// is there, and whether all of a triangle's vertices lie on the
+        /// other plane.
         pub sides_valid: Signal<Out, Bit>,
-        pub sides_t1_zero: [Signal<Out, Bit>; 3],
-        pub sides_t2_zero: [Signal<Out, Bit>; 3],
+        pub sides_t1_all_zero: Signal<Out, Bit>,
+        pub sides_t2_all_zero: Signal<Out, Bit>,
         /// The rare tests' verdicts for the pair at [`RARE_VERDICTS_STAGE`]
         /// (each is read only when the pair's case needs it).
         pub coplanar_hit: Signal<In, Bit>,
@@ -510,8 +511,6 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.pair_t1_normal_zero[k].next = self.base.normal_zero[k].val();
             self.pair_t2_normal_negative[k].next = self.front_end.normal_negative[k].val();
             self.pair_t2_normal_zero[k].next = self.front_end.normal_zero[k].val();
-            self.sides_t1_zero[k].next = self.plane_side_t1.zero[k].val();
-            self.sides_t2_zero[k].next = self.plane_side_t2.zero[k].val();
         }
         self.pair_t1_degenerate.next = self.base.degenerate.val();
         self.pair_t2_degenerate.next = self.front_end.degenerate.val();
@@ -520,6 +519,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.pair_t2_segment_low.next = self.front_end.segment_low.val();
         self.pair_t2_segment_high.next = self.front_end.segment_high.val();
         self.sides_valid.next = self.pair_valid_to_sides.q.val();
+        self.sides_t1_all_zero.next = self.plane_side_t1.all_zero.val();
+        self.sides_t2_all_zero.next = self.plane_side_t2.all_zero.val();
 
         // The decision.
         for i in 0..2 {

@@ -232,13 +232,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.segments.next =
             self.degenerate_to_sides[0].q.val() && self.degenerate_to_sides[1].q.val();
         if self.degenerate_to_sides[0].q.val() {
-            self.coplanar.next = self.path.sides_t1_zero[0].val()
-                && self.path.sides_t1_zero[1].val()
-                && self.path.sides_t1_zero[2].val();
+            self.coplanar.next = self.path.sides_t1_all_zero.val();
         } else {
-            self.coplanar.next = self.path.sides_t2_zero[0].val()
-                && self.path.sides_t2_zero[1].val()
-                && self.path.sides_t2_zero[2].val();
+            self.coplanar.next = self.path.sides_t2_all_zero.val();
         }
         self.rare.next =
             self.path.sides_valid.val() && (self.segments.val() || self.coplanar.val());

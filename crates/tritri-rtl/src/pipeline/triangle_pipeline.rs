@@ -145,12 +145,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.path.degenerate_pair_hit.next = self.degenerate_pair_to_decision.q.val();
 
         self.unused_sides.next = self.path.sides_valid.val()
-            || self.path.sides_t1_zero[0].val()
-            || self.path.sides_t1_zero[1].val()
-            || self.path.sides_t1_zero[2].val()
-            || self.path.sides_t2_zero[0].val()
-            || self.path.sides_t2_zero[1].val()
-            || self.path.sides_t2_zero[2].val()
+            || self.path.sides_t1_all_zero.val()
+            || self.path.sides_t2_all_zero.val()
             || self.path.pair_t1_degenerate.val()
             || self.path.pair_t2_degenerate.val();
     }
