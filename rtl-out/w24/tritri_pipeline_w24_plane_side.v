@@ -94,18 +94,57 @@ module tritri_pipeline_w24_plane_side (
     wire  [24:0] offset_2_magnitude_0;
     wire  [24:0] offset_2_magnitude_1;
     wire  [24:0] offset_2_magnitude_2;
-    wire  normal_delay_0_clock;
-    wire  normal_delay_0_advance;
-    wire  [48:0] normal_delay_0_d;
-    wire  [48:0] normal_delay_0_q;
-    wire  normal_delay_1_clock;
-    wire  normal_delay_1_advance;
-    wire  [48:0] normal_delay_1_d;
-    wire  [48:0] normal_delay_1_q;
-    wire  normal_delay_2_clock;
-    wire  normal_delay_2_advance;
-    wire  [48:0] normal_delay_2_d;
-    wire  [48:0] normal_delay_2_q;
+    wire  normal_early_0_clock;
+    wire  normal_early_0_advance;
+    wire  [48:0] normal_early_0_d;
+    wire  [48:0] normal_early_0_q;
+    wire  normal_early_1_clock;
+    wire  normal_early_1_advance;
+    wire  [48:0] normal_early_1_d;
+    wire  [48:0] normal_early_1_q;
+    wire  normal_early_2_clock;
+    wire  normal_early_2_advance;
+    wire  [48:0] normal_early_2_d;
+    wire  [48:0] normal_early_2_q;
+    wire  normal_for_products_0_clock;
+    wire  normal_for_products_0_advance;
+    wire  [48:0] normal_for_products_0_d;
+    wire  [48:0] normal_for_products_0_q;
+    wire  normal_for_products_1_clock;
+    wire  normal_for_products_1_advance;
+    wire  [48:0] normal_for_products_1_d;
+    wire  [48:0] normal_for_products_1_q;
+    wire  normal_for_products_2_clock;
+    wire  normal_for_products_2_advance;
+    wire  [48:0] normal_for_products_2_d;
+    wire  [48:0] normal_for_products_2_q;
+    wire  normal_copies_0_clock;
+    reg  [48:0] normal_copies_0_d;
+    wire  [48:0] normal_copies_0_q;
+    wire  normal_copies_1_clock;
+    reg  [48:0] normal_copies_1_d;
+    wire  [48:0] normal_copies_1_q;
+    wire  normal_copies_2_clock;
+    reg  [48:0] normal_copies_2_d;
+    wire  [48:0] normal_copies_2_q;
+    wire  normal_copies_3_clock;
+    reg  [48:0] normal_copies_3_d;
+    wire  [48:0] normal_copies_3_q;
+    wire  normal_copies_4_clock;
+    reg  [48:0] normal_copies_4_d;
+    wire  [48:0] normal_copies_4_q;
+    wire  normal_copies_5_clock;
+    reg  [48:0] normal_copies_5_d;
+    wire  [48:0] normal_copies_5_q;
+    wire  normal_copies_6_clock;
+    reg  [48:0] normal_copies_6_d;
+    wire  [48:0] normal_copies_6_q;
+    wire  normal_copies_7_clock;
+    reg  [48:0] normal_copies_7_d;
+    wire  [48:0] normal_copies_7_q;
+    wire  normal_copies_8_clock;
+    reg  [48:0] normal_copies_8_d;
+    wire  [48:0] normal_copies_8_q;
     wire  distance_0_clock;
     wire  distance_0_advance;
     wire  [24:0] distance_0_u_0;
@@ -247,23 +286,86 @@ module tritri_pipeline_w24_plane_side (
         .magnitude_1(offset_2_magnitude_1),
         .magnitude_2(offset_2_magnitude_2)
     );
-    tritri_pipeline_w24_delay_line_w49_n2 u_normal_delay_0(
-        .clock(normal_delay_0_clock),
-        .advance(normal_delay_0_advance),
-        .d(normal_delay_0_d),
-        .q(normal_delay_0_q)
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_early_0(
+        .clock(normal_early_0_clock),
+        .advance(normal_early_0_advance),
+        .d(normal_early_0_d),
+        .q(normal_early_0_q)
     );
-    tritri_pipeline_w24_delay_line_w49_n2 u_normal_delay_1(
-        .clock(normal_delay_1_clock),
-        .advance(normal_delay_1_advance),
-        .d(normal_delay_1_d),
-        .q(normal_delay_1_q)
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_early_1(
+        .clock(normal_early_1_clock),
+        .advance(normal_early_1_advance),
+        .d(normal_early_1_d),
+        .q(normal_early_1_q)
     );
-    tritri_pipeline_w24_delay_line_w49_n2 u_normal_delay_2(
-        .clock(normal_delay_2_clock),
-        .advance(normal_delay_2_advance),
-        .d(normal_delay_2_d),
-        .q(normal_delay_2_q)
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_early_2(
+        .clock(normal_early_2_clock),
+        .advance(normal_early_2_advance),
+        .d(normal_early_2_d),
+        .q(normal_early_2_q)
+    );
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_for_products_0(
+        .clock(normal_for_products_0_clock),
+        .advance(normal_for_products_0_advance),
+        .d(normal_for_products_0_d),
+        .q(normal_for_products_0_q)
+    );
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_for_products_1(
+        .clock(normal_for_products_1_clock),
+        .advance(normal_for_products_1_advance),
+        .d(normal_for_products_1_d),
+        .q(normal_for_products_1_q)
+    );
+    tritri_pipeline_w24_delay_line_w49_n1 u_normal_for_products_2(
+        .clock(normal_for_products_2_clock),
+        .advance(normal_for_products_2_advance),
+        .d(normal_for_products_2_d),
+        .q(normal_for_products_2_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_0(
+        .clock(normal_copies_0_clock),
+        .d(normal_copies_0_d),
+        .q(normal_copies_0_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_1(
+        .clock(normal_copies_1_clock),
+        .d(normal_copies_1_d),
+        .q(normal_copies_1_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_2(
+        .clock(normal_copies_2_clock),
+        .d(normal_copies_2_d),
+        .q(normal_copies_2_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_3(
+        .clock(normal_copies_3_clock),
+        .d(normal_copies_3_d),
+        .q(normal_copies_3_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_4(
+        .clock(normal_copies_4_clock),
+        .d(normal_copies_4_d),
+        .q(normal_copies_4_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_5(
+        .clock(normal_copies_5_clock),
+        .d(normal_copies_5_d),
+        .q(normal_copies_5_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_6(
+        .clock(normal_copies_6_clock),
+        .d(normal_copies_6_d),
+        .q(normal_copies_6_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_7(
+        .clock(normal_copies_7_clock),
+        .d(normal_copies_7_d),
+        .q(normal_copies_7_q)
+    );
+    tritri_pipeline_w24_register_copy u_normal_copies_8(
+        .clock(normal_copies_8_clock),
+        .d(normal_copies_8_d),
+        .q(normal_copies_8_q)
     );
     tritri_pipeline_w24_dot_product u_distance_0(
         .clock(distance_0_clock),
@@ -399,9 +501,12 @@ module tritri_pipeline_w24_plane_side (
     assign distance_2_advance = advance;
     assign edges_bits_delay_advance = advance;
     assign edges_bits_delay_d = plane_edges_bits;
-    assign normal_delay_0_clock = clock;
-    assign normal_delay_0_advance = advance;
-    assign normal_delay_0_d = plane_normal_0;
+    assign normal_early_0_clock = clock;
+    assign normal_early_0_advance = advance;
+    assign normal_early_0_d = plane_normal_0;
+    assign normal_for_products_0_clock = clock;
+    assign normal_for_products_0_advance = advance;
+    assign normal_for_products_0_d = normal_early_0_q;
     assign sign_0_clock = clock;
     assign sign_0_advance = advance;
     assign offset_0_a_0 = vertices_0;
@@ -413,12 +518,15 @@ module tritri_pipeline_w24_plane_side (
     assign distance_0_u_0 = offset_0_difference_0;
     assign distance_1_u_0 = offset_1_difference_0;
     assign distance_2_u_0 = offset_2_difference_0;
-    assign distance_0_v_0 = normal_delay_0_q;
-    assign distance_1_v_0 = normal_delay_0_q;
-    assign distance_2_v_0 = normal_delay_0_q;
-    assign normal_delay_1_clock = clock;
-    assign normal_delay_1_advance = advance;
-    assign normal_delay_1_d = plane_normal_1;
+    assign distance_0_v_0 = normal_for_products_0_q;
+    assign distance_1_v_0 = normal_for_products_0_q;
+    assign distance_2_v_0 = normal_for_products_0_q;
+    assign normal_early_1_clock = clock;
+    assign normal_early_1_advance = advance;
+    assign normal_early_1_d = plane_normal_1;
+    assign normal_for_products_1_clock = clock;
+    assign normal_for_products_1_advance = advance;
+    assign normal_for_products_1_d = normal_early_1_q;
     assign sign_1_clock = clock;
     assign sign_1_advance = advance;
     assign offset_0_a_1 = vertices_1;
@@ -430,12 +538,15 @@ module tritri_pipeline_w24_plane_side (
     assign distance_0_u_1 = offset_0_difference_1;
     assign distance_1_u_1 = offset_1_difference_1;
     assign distance_2_u_1 = offset_2_difference_1;
-    assign distance_0_v_1 = normal_delay_1_q;
-    assign distance_1_v_1 = normal_delay_1_q;
-    assign distance_2_v_1 = normal_delay_1_q;
-    assign normal_delay_2_clock = clock;
-    assign normal_delay_2_advance = advance;
-    assign normal_delay_2_d = plane_normal_2;
+    assign distance_0_v_1 = normal_for_products_1_q;
+    assign distance_1_v_1 = normal_for_products_1_q;
+    assign distance_2_v_1 = normal_for_products_1_q;
+    assign normal_early_2_clock = clock;
+    assign normal_early_2_advance = advance;
+    assign normal_early_2_d = plane_normal_2;
+    assign normal_for_products_2_clock = clock;
+    assign normal_for_products_2_advance = advance;
+    assign normal_for_products_2_d = normal_early_2_q;
     assign sign_2_clock = clock;
     assign sign_2_advance = advance;
     assign offset_0_a_2 = vertices_2;
@@ -447,9 +558,9 @@ module tritri_pipeline_w24_plane_side (
     assign distance_0_u_2 = offset_0_difference_2;
     assign distance_1_u_2 = offset_1_difference_2;
     assign distance_2_u_2 = offset_2_difference_2;
-    assign distance_0_v_2 = normal_delay_2_q;
-    assign distance_1_v_2 = normal_delay_2_q;
-    assign distance_2_v_2 = normal_delay_2_q;
+    assign distance_0_v_2 = normal_for_products_2_q;
+    assign distance_1_v_2 = normal_for_products_2_q;
+    assign distance_2_v_2 = normal_for_products_2_q;
     assign distance__0 = distance_0_product;
     assign distance__1 = distance_1_product;
     assign distance__2 = distance_2_product;
@@ -469,21 +580,30 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_0_offset_magnitude_0 = offset_0_magnitude_0;
     assign threshold_1_offset_magnitude_0 = offset_1_magnitude_0;
     assign threshold_2_offset_magnitude_0 = offset_2_magnitude_0;
-    assign threshold_0_normal_0 = normal_delay_0_q;
-    assign threshold_1_normal_0 = normal_delay_0_q;
-    assign threshold_2_normal_0 = normal_delay_0_q;
+    assign threshold_0_normal_0 = normal_copies_0_q;
+    assign threshold_1_normal_0 = normal_copies_3_q;
+    assign threshold_2_normal_0 = normal_copies_6_q;
     assign threshold_0_offset_magnitude_1 = offset_0_magnitude_1;
     assign threshold_1_offset_magnitude_1 = offset_1_magnitude_1;
     assign threshold_2_offset_magnitude_1 = offset_2_magnitude_1;
-    assign threshold_0_normal_1 = normal_delay_1_q;
-    assign threshold_1_normal_1 = normal_delay_1_q;
-    assign threshold_2_normal_1 = normal_delay_1_q;
+    assign threshold_0_normal_1 = normal_copies_1_q;
+    assign threshold_1_normal_1 = normal_copies_4_q;
+    assign threshold_2_normal_1 = normal_copies_7_q;
     assign threshold_0_offset_magnitude_2 = offset_0_magnitude_2;
     assign threshold_1_offset_magnitude_2 = offset_1_magnitude_2;
     assign threshold_2_offset_magnitude_2 = offset_2_magnitude_2;
-    assign threshold_0_normal_2 = normal_delay_2_q;
-    assign threshold_1_normal_2 = normal_delay_2_q;
-    assign threshold_2_normal_2 = normal_delay_2_q;
+    assign threshold_0_normal_2 = normal_copies_2_q;
+    assign threshold_1_normal_2 = normal_copies_5_q;
+    assign threshold_2_normal_2 = normal_copies_8_q;
+    assign normal_copies_0_clock = clock;
+    assign normal_copies_1_clock = clock;
+    assign normal_copies_2_clock = clock;
+    assign normal_copies_3_clock = clock;
+    assign normal_copies_4_clock = clock;
+    assign normal_copies_5_clock = clock;
+    assign normal_copies_6_clock = clock;
+    assign normal_copies_7_clock = clock;
+    assign normal_copies_8_clock = clock;
     assign sign_0_threshold = threshold_0_threshold;
     assign sign_1_threshold = threshold_1_threshold;
     assign sign_2_threshold = threshold_2_threshold;
@@ -500,6 +620,26 @@ module tritri_pipeline_w24_plane_side (
         all_zero_d = all_zero_q;
         if (advance) begin
             all_zero_d = &distance_0_zero_parts && &distance_1_zero_parts && &distance_2_zero_parts;
+        end
+        normal_copies_0_d = normal_copies_0_q;
+        normal_copies_1_d = normal_copies_1_q;
+        normal_copies_2_d = normal_copies_2_q;
+        normal_copies_3_d = normal_copies_3_q;
+        normal_copies_4_d = normal_copies_4_q;
+        normal_copies_5_d = normal_copies_5_q;
+        normal_copies_6_d = normal_copies_6_q;
+        normal_copies_7_d = normal_copies_7_q;
+        normal_copies_8_d = normal_copies_8_q;
+        if (advance) begin
+            normal_copies_0_d = normal_early_0_q;
+            normal_copies_3_d = normal_early_0_q;
+            normal_copies_6_d = normal_early_0_q;
+            normal_copies_1_d = normal_early_1_q;
+            normal_copies_4_d = normal_early_1_q;
+            normal_copies_7_d = normal_early_1_q;
+            normal_copies_2_d = normal_early_2_q;
+            normal_copies_5_d = normal_early_2_q;
+            normal_copies_8_d = normal_early_2_q;
         end
     end
 

@@ -25,7 +25,7 @@
 //! decides it two clocks ahead, once for each value `advance` may take
 //! next clock, and fourteen [`HoldRegister`]s pick from those two
 //! registers by `advance`, each the enable of one group of units (a
-//! fifteenth serves the unit's offers and the queue). The unit's input is
+//! fifteenth serves the unit's offers, a sixteenth the queue). The unit's input is
 //! valid by registers of its own, a clock ahead too (`offer_next`), one
 //! beside each group of its loads.
 //! Pipelines that move in step (a system's) hold together: each sends its
@@ -139,13 +139,18 @@ crate::pipeline_ports! {
         /// reached the offers' inputs a delta cycle after their clock edge
         /// in rust-hdl's simulation (`sim_drive::clock_cycle`), and the
         /// back-pressure test failed. It reads `hold` from a copy of its
-        /// own, `unit_hold`, with the queue's `pop`: from copy 0, synthesis
+        /// own, `unit_hold` (the queue has another): from copy 0, synthesis
         /// shared the term `advance` and not `hold` with the general path's
         /// enable, a net with thousands of loads, and the offers came a
         /// level of logic and that net's delay later (7.10 ns, ECP5,
         /// W = 16, router1).
         offer_next: Signal<Local, Bit>,
         unit_hold: HoldRegister,
+        /// `hold` for the verdict queue's `pop`, a copy of its own beside
+        /// the queue: read from `unit_hold`, 3.9 ns of routing from that
+        /// register by the offers to the queue's slots and count (ECP5,
+        /// W = 16 alone, router1, seed 1: 133.7 MHz, 74 inputs short).
+        queue_hold: HoldRegister,
         /// The unit's `ready`: the forecast predicts it instead (Verilator's
         /// lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
@@ -190,6 +195,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             rare_to_job,
             offers,
             unit_hold,
+            queue_hold,
             segments_to_job,
             rare_to_decision
         );
@@ -254,6 +260,11 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unit_hold.advance.next = self.advance.val();
         self.unit_hold.if_advance.next = self.forecast.if_advance.val();
         self.unit_hold.if_still.next = self.forecast.if_still.val();
+        self.queue_hold.clock.next = self.clock.val();
+        self.queue_hold.reset.next = self.reset.val();
+        self.queue_hold.advance.next = self.advance.val();
+        self.queue_hold.if_advance.next = self.forecast.if_advance.val();
+        self.queue_hold.if_still.next = self.forecast.if_still.val();
         for i in 0..15 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
@@ -400,7 +411,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.verdicts.push.next = self.rare_cases.done.val();
         self.verdicts.push_hit.next = self.rare_cases.hit.val();
         self.verdicts.pop.next =
-            self.rare_to_decision.q.val() && self.advance.val() && !self.unit_hold.hold.val();
+            self.rare_to_decision.q.val() && self.advance.val() && !self.queue_hold.hold.val();
         self.path.coplanar_hit.next = self.verdicts.head.val();
         self.path.degenerate_pair_hit.next = self.verdicts.head.val();
     }
