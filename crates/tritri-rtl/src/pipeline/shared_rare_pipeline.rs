@@ -139,18 +139,13 @@ crate::pipeline_ports! {
         /// reached the offers' inputs a delta cycle after their clock edge
         /// in rust-hdl's simulation (`sim_drive::clock_cycle`), and the
         /// back-pressure test failed. It reads `hold` from a copy of its
-        /// own, `unit_hold` (the queue has another): from copy 0, synthesis
+        /// own, `unit_hold` (the queue has another, `holds[15]`): from copy 0, synthesis
         /// shared the term `advance` and not `hold` with the general path's
         /// enable, a net with thousands of loads, and the offers came a
         /// level of logic and that net's delay later (7.10 ns, ECP5,
         /// W = 16, router1).
         offer_next: Signal<Local, Bit>,
         unit_hold: HoldRegister,
-        /// `hold` for the verdict queue's `pop`, a copy of its own beside
-        /// the queue: read from `unit_hold`, 3.9 ns of routing from that
-        /// register by the offers to the queue's slots and count (ECP5,
-        /// W = 16 alone, router1, seed 1: 133.7 MHz, 74 inputs short).
-        queue_hold: HoldRegister,
         /// The unit's `ready`: the forecast predicts it instead (Verilator's
         /// lint: unused on purpose).
         unused_ready: Signal<Local, Bit>,
@@ -164,9 +159,13 @@ crate::pipeline_ports! {
         /// port (14): the system's result FIFO counts and writes on it, and
         /// through copy 0, which also enables the general path, its counts
         /// were 25 of the 31 register inputs short of 150 MHz (ECP5, W =
-        /// 16, P = 1, seed 3: 128.6 MHz). The base polygon works out its
-        /// own from the forecast, beside each group ([`super::load_enable`]).
-        holds: [HoldRegister; 15],
+        /// 16, P = 1, seed 3: 128.6 MHz), and the verdict queue's `pop`
+        /// (15): read from `unit_hold`, 3.9 ns of routing from that register
+        /// by the offers to the queue's slots and count (ECP5, W = 16 alone,
+        /// router1, seed 1: 133.7 MHz, 74 inputs short). The base polygon
+        /// works out its own from the forecast, beside each group
+        /// ([`super::load_enable`]).
+        holds: [HoldRegister; 16],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -195,7 +194,6 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             rare_to_job,
             offers,
             unit_hold,
-            queue_hold,
             segments_to_job,
             rare_to_decision
         );
@@ -260,12 +258,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unit_hold.advance.next = self.advance.val();
         self.unit_hold.if_advance.next = self.forecast.if_advance.val();
         self.unit_hold.if_still.next = self.forecast.if_still.val();
-        self.queue_hold.clock.next = self.clock.val();
-        self.queue_hold.reset.next = self.reset.val();
-        self.queue_hold.advance.next = self.advance.val();
-        self.queue_hold.if_advance.next = self.forecast.if_advance.val();
-        self.queue_hold.if_still.next = self.forecast.if_still.val();
-        for i in 0..15 {
+        for i in 0..16 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -411,7 +404,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.verdicts.push.next = self.rare_cases.done.val();
         self.verdicts.push_hit.next = self.rare_cases.hit.val();
         self.verdicts.pop.next =
-            self.rare_to_decision.q.val() && self.advance.val() && !self.queue_hold.hold.val();
+            self.rare_to_decision.q.val() && self.advance.val() && !self.holds[15].hold.val();
         self.path.coplanar_hit.next = self.verdicts.head.val();
         self.path.degenerate_pair_hit.next = self.verdicts.head.val();
     }
