@@ -56,6 +56,7 @@ tritri_pipeline_w24_load_enable.v
 tritri_pipeline_w24_magnitude_subtractor.v
 tritri_pipeline_w24_multiplier_w49.v
 tritri_pipeline_w24_multiplier_w74.v
+tritri_pipeline_w24_normal_part.v
 tritri_pipeline_w24_normal_unit.v
 tritri_pipeline_w24_orient3d_operands.v
 tritri_pipeline_w24_plane_side.v

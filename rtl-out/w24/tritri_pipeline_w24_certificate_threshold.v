@@ -3,9 +3,10 @@
 // Filename:   tritri_pipeline_w24_certificate_threshold.v
 //
 // Purpose:    `T` of the module docs from the magnitudes of the offset `w`
-//             (`|w_k|`, D bits unsigned), the normal `n = e1 x e2` (C-bit) and
-//             `ke` (all three in the same clock), in six register stages, each
-//             at most one carry chain or one LUT tree: Part of
+//             (`|w_k|`, D bits unsigned) and `ke` (in the same clock), and the
+//             normal's part `X + (X >> 19)` (`NormalPart`) three clocks later,
+//             as the fourth stage takes it, in six register stages, each at
+//             most one carry chain or one LUT tree: Part of
 //             tritri_pipeline_w24. Instances (8), for example:
 //             path.orient3d_0.threshold, path.orient3d_1.threshold,
 //             path.plane_side_t1.threshold_0, path.plane_side_t1.threshold_1.
@@ -26,21 +27,18 @@ module tritri_pipeline_w24_certificate_threshold (
     input  wire [24:0] offset_magnitude_0,
     input  wire [24:0] offset_magnitude_1,
     input  wire [24:0] offset_magnitude_2,
-    input  wire [48:0] normal_0,
-    input  wire [48:0] normal_1,
-    input  wire [48:0] normal_2,
     input  wire [7:0]  edges_bits,
+    input  wire [73:0] normal_part,
     output reg  [73:0] threshold
 );
 
     // Update code (custom)
     // The certificate's threshold (tritri_geom::certificate::threshold):
     // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
-    // X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in six register
-    // stages, each at most one carry chain or one LUT tree.
+    // Sw = |w|_1, Y = 2^(bitlen Sw + ke), with X + (X >> 19) from the normal's
+    // own unit (NormalPart), in six register stages, each at most one carry
+    // chain or one LUT tree.
     reg [25:0] offset_l1_q;
-    reg [49:0] normal_01_q;
-    reg [49:0] normal_2_q;
     reg [30:0] edge_term_q;
     reg [7:0] edges_bits_q;
     wire [26:0] offset_t = {offset_l1_q, 1'b1};
@@ -75,11 +73,9 @@ module tritri_pipeline_w24_certificate_threshold (
         offset_t_q[1] & ~|offset_t_q[3:2] & ~|offset_any_q[6:1],
         offset_t_q[0] & ~|offset_t_q[3:1] & ~|offset_any_q[6:1]
     };
-    reg [49:0] normal_l1_q;
     reg [30:0] small_part_q;
     reg [7:0] edges_bits_q2;
     reg [7:0] offset_bits_q;
-    reg [50:0] normal_part_q;
     reg [30:0] small_part_q2;
     reg [7:0] edges_bits_q3;
     reg [7:0] exponent_q;
@@ -88,19 +84,18 @@ module tritri_pipeline_w24_certificate_threshold (
     reg [54:0] partial_q2;
     wire [7:0] offset_bits = {3'd0, |(offset_lead & 27'h7ff0000), |(offset_lead & 27'h700ff00), |(offset_lead & 27'hf0f0f0), |(offset_lead & 27'h4cccccc), |(offset_lead & 27'h2aaaaaa)};
     wire [54:0] y_one = 55'd1 << exponent_q;
+    // The normal's part is below 2^(C + 2): its higher bits are zero (a
+    // wire named unused, which Verilator's lint leaves alone).
+    wire unused_normal_part_bits = |normal_part[73:51];
     initial begin
         offset_l1_q = 26'd0;
-        normal_01_q = 50'd0;
-        normal_2_q = 50'd0;
         edge_term_q = 31'd0;
         edges_bits_q = 8'd0;
         offset_t_q = 27'd0;
         offset_any_q = 6'd0;
-        normal_l1_q = 50'd0;
         small_part_q = 31'd0;
         edges_bits_q2 = 8'd0;
         offset_bits_q = 8'd0;
-        normal_part_q = 51'd0;
         small_part_q2 = 31'd0;
         edges_bits_q3 = 8'd0;
         exponent_q = 8'd0;
@@ -112,21 +107,17 @@ module tritri_pipeline_w24_certificate_threshold (
     always @(posedge clock) begin
         if (advance) begin
             offset_l1_q <= {1'b0, offset_magnitude_0} + {1'b0, offset_magnitude_1} + {1'b0, offset_magnitude_2};
-            normal_01_q <= {1'd0, normal_0 ^ {49{normal_0[48]}}} + {1'd0, normal_1 ^ {49{normal_1[48]}}};
-            normal_2_q <= {1'd0, normal_2 ^ {49{normal_2[48]}}};
             edge_term_q <= (31'd4 << edges_bits) + 31'd16;
             edges_bits_q <= edges_bits;
             offset_t_q <= offset_t;
             offset_any_q <= {|offset_t[26:24], |offset_t[23:20], |offset_t[19:16], |offset_t[15:12], |offset_t[11:8], |offset_t[7:4]};
-            normal_l1_q <= normal_01_q + normal_2_q;
             small_part_q <= {3'd0, offset_l1_q, 2'd0} + edge_term_q;
             edges_bits_q2 <= edges_bits_q;
             offset_bits_q <= offset_bits;
-            normal_part_q <= {1'b0, normal_l1_q} + {20'd0, normal_l1_q[49:19]};
             small_part_q2 <= small_part_q;
             edges_bits_q3 <= edges_bits_q2;
             exponent_q <= offset_bits_q + edges_bits_q3;
-            partial_q <= {4'd0, normal_part_q} + {24'd0, small_part_q2};
+            partial_q <= {4'd0, normal_part[50:0]} + {24'd0, small_part_q2};
             y_q <= y_one | (y_one >> 19);
             partial_q2 <= partial_q;
             threshold <= {19'd0, partial_q2 + y_q};

@@ -138,15 +138,19 @@ module tritri_pipeline_w24_certified_orient3d (
     wire  [24:0] edges_bits_b_negated_1;
     wire  [24:0] edges_bits_b_negated_2;
     wire  [7:0] edges_bits_bits;
+    wire  normal_part_clock;
+    wire  normal_part_advance;
+    wire  [48:0] normal_part_normal_0;
+    wire  [48:0] normal_part_normal_1;
+    wire  [48:0] normal_part_normal_2;
+    wire  [73:0] normal_part_part;
     wire  threshold_clock;
     wire  threshold_advance;
     wire  [24:0] threshold_offset_magnitude_0;
     wire  [24:0] threshold_offset_magnitude_1;
     wire  [24:0] threshold_offset_magnitude_2;
-    wire  [48:0] threshold_normal_0;
-    wire  [48:0] threshold_normal_1;
-    wire  [48:0] threshold_normal_2;
     wire  [7:0] threshold_edges_bits;
+    wire  [73:0] threshold_normal_part;
     wire  [73:0] threshold_threshold;
     wire  sign_clock;
     wire  sign_advance;
@@ -276,16 +280,22 @@ module tritri_pipeline_w24_certified_orient3d (
         .b_negated_2(edges_bits_b_negated_2),
         .bits(edges_bits_bits)
     );
+    tritri_pipeline_w24_normal_part u_normal_part(
+        .clock(normal_part_clock),
+        .advance(normal_part_advance),
+        .normal_0(normal_part_normal_0),
+        .normal_1(normal_part_normal_1),
+        .normal_2(normal_part_normal_2),
+        .part(normal_part_part)
+    );
     tritri_pipeline_w24_certificate_threshold u_threshold(
         .clock(threshold_clock),
         .advance(threshold_advance),
         .offset_magnitude_0(threshold_offset_magnitude_0),
         .offset_magnitude_1(threshold_offset_magnitude_1),
         .offset_magnitude_2(threshold_offset_magnitude_2),
-        .normal_0(threshold_normal_0),
-        .normal_1(threshold_normal_1),
-        .normal_2(threshold_normal_2),
         .edges_bits(threshold_edges_bits),
+        .normal_part(threshold_normal_part),
         .threshold(threshold_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign(
@@ -311,6 +321,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign determinant_clock = clock;
     assign sign_clock = clock;
     assign edges_bits_clock = clock;
+    assign normal_part_clock = clock;
     assign threshold_clock = clock;
     assign edge_ab_advance = advance;
     assign edge_ac_advance = advance;
@@ -323,6 +334,7 @@ module tritri_pipeline_w24_certified_orient3d (
     assign determinant_advance = advance;
     assign sign_advance = advance;
     assign edges_bits_advance = advance;
+    assign normal_part_advance = advance;
     assign threshold_advance = advance;
     assign edge_ab_a_0 = b_0;
     assign edge_ab_b_0 = a_0;
@@ -355,18 +367,19 @@ module tritri_pipeline_w24_certified_orient3d (
     assign edges_bits_b_0 = edge_ac_difference_0;
     assign edges_bits_a_negated_0 = edge_ab_negated_0;
     assign edges_bits_b_negated_0 = edge_ac_negated_0;
-    assign threshold_normal_0 = normal_product_0;
+    assign normal_part_normal_0 = normal_product_0;
     assign edges_bits_a_1 = edge_ab_difference_1;
     assign edges_bits_b_1 = edge_ac_difference_1;
     assign edges_bits_a_negated_1 = edge_ab_negated_1;
     assign edges_bits_b_negated_1 = edge_ac_negated_1;
-    assign threshold_normal_1 = normal_product_1;
+    assign normal_part_normal_1 = normal_product_1;
     assign edges_bits_a_2 = edge_ab_difference_2;
     assign edges_bits_b_2 = edge_ac_difference_2;
     assign edges_bits_a_negated_2 = edge_ab_negated_2;
     assign edges_bits_b_negated_2 = edge_ac_negated_2;
-    assign threshold_normal_2 = normal_product_2;
+    assign normal_part_normal_2 = normal_product_2;
     assign threshold_edges_bits = edges_bits_bits;
+    assign threshold_normal_part = normal_part_part;
     assign edge_ad_last_v_0 = edge_ad_delay_0_q;
     assign edge_ad_last_v_1 = edge_ad_delay_1_q;
     assign edge_ad_last_v_2 = edge_ad_delay_2_q;

@@ -118,33 +118,21 @@ module tritri_pipeline_w24_plane_side (
     wire  normal_for_products_2_advance;
     wire  [48:0] normal_for_products_2_d;
     wire  [48:0] normal_for_products_2_q;
-    wire  normal_copies_0_clock;
-    reg  [48:0] normal_copies_0_d;
-    wire  [48:0] normal_copies_0_q;
-    wire  normal_copies_1_clock;
-    reg  [48:0] normal_copies_1_d;
-    wire  [48:0] normal_copies_1_q;
-    wire  normal_copies_2_clock;
-    reg  [48:0] normal_copies_2_d;
-    wire  [48:0] normal_copies_2_q;
-    wire  normal_copies_3_clock;
-    reg  [48:0] normal_copies_3_d;
-    wire  [48:0] normal_copies_3_q;
-    wire  normal_copies_4_clock;
-    reg  [48:0] normal_copies_4_d;
-    wire  [48:0] normal_copies_4_q;
-    wire  normal_copies_5_clock;
-    reg  [48:0] normal_copies_5_d;
-    wire  [48:0] normal_copies_5_q;
-    wire  normal_copies_6_clock;
-    reg  [48:0] normal_copies_6_d;
-    wire  [48:0] normal_copies_6_q;
-    wire  normal_copies_7_clock;
-    reg  [48:0] normal_copies_7_d;
-    wire  [48:0] normal_copies_7_q;
-    wire  normal_copies_8_clock;
-    reg  [48:0] normal_copies_8_d;
-    wire  [48:0] normal_copies_8_q;
+    wire  normal_part_clock;
+    wire  normal_part_advance;
+    wire  [48:0] normal_part_normal_0;
+    wire  [48:0] normal_part_normal_1;
+    wire  [48:0] normal_part_normal_2;
+    wire  [73:0] normal_part_part;
+    wire  normal_part_copies_0_clock;
+    reg  [73:0] normal_part_copies_0_d;
+    wire  [73:0] normal_part_copies_0_q;
+    wire  normal_part_copies_1_clock;
+    reg  [73:0] normal_part_copies_1_d;
+    wire  [73:0] normal_part_copies_1_q;
+    wire  normal_part_copies_2_clock;
+    reg  [73:0] normal_part_copies_2_d;
+    wire  [73:0] normal_part_copies_2_q;
     wire  distance_0_clock;
     wire  distance_0_advance;
     wire  [24:0] distance_0_u_0;
@@ -184,30 +172,24 @@ module tritri_pipeline_w24_plane_side (
     wire  [24:0] threshold_0_offset_magnitude_0;
     wire  [24:0] threshold_0_offset_magnitude_1;
     wire  [24:0] threshold_0_offset_magnitude_2;
-    wire  [48:0] threshold_0_normal_0;
-    wire  [48:0] threshold_0_normal_1;
-    wire  [48:0] threshold_0_normal_2;
     wire  [7:0] threshold_0_edges_bits;
+    wire  [73:0] threshold_0_normal_part;
     wire  [73:0] threshold_0_threshold;
     wire  threshold_1_clock;
     wire  threshold_1_advance;
     wire  [24:0] threshold_1_offset_magnitude_0;
     wire  [24:0] threshold_1_offset_magnitude_1;
     wire  [24:0] threshold_1_offset_magnitude_2;
-    wire  [48:0] threshold_1_normal_0;
-    wire  [48:0] threshold_1_normal_1;
-    wire  [48:0] threshold_1_normal_2;
     wire  [7:0] threshold_1_edges_bits;
+    wire  [73:0] threshold_1_normal_part;
     wire  [73:0] threshold_1_threshold;
     wire  threshold_2_clock;
     wire  threshold_2_advance;
     wire  [24:0] threshold_2_offset_magnitude_0;
     wire  [24:0] threshold_2_offset_magnitude_1;
     wire  [24:0] threshold_2_offset_magnitude_2;
-    wire  [48:0] threshold_2_normal_0;
-    wire  [48:0] threshold_2_normal_1;
-    wire  [48:0] threshold_2_normal_2;
     wire  [7:0] threshold_2_edges_bits;
+    wire  [73:0] threshold_2_normal_part;
     wire  [73:0] threshold_2_threshold;
     wire  sign_0_clock;
     wire  sign_0_advance;
@@ -322,50 +304,28 @@ module tritri_pipeline_w24_plane_side (
         .d(normal_for_products_2_d),
         .q(normal_for_products_2_q)
     );
-    tritri_pipeline_w24_register_copy u_normal_copies_0(
-        .clock(normal_copies_0_clock),
-        .d(normal_copies_0_d),
-        .q(normal_copies_0_q)
+    tritri_pipeline_w24_normal_part u_normal_part(
+        .clock(normal_part_clock),
+        .advance(normal_part_advance),
+        .normal_0(normal_part_normal_0),
+        .normal_1(normal_part_normal_1),
+        .normal_2(normal_part_normal_2),
+        .part(normal_part_part)
     );
-    tritri_pipeline_w24_register_copy u_normal_copies_1(
-        .clock(normal_copies_1_clock),
-        .d(normal_copies_1_d),
-        .q(normal_copies_1_q)
+    tritri_pipeline_w24_register_copy u_normal_part_copies_0(
+        .clock(normal_part_copies_0_clock),
+        .d(normal_part_copies_0_d),
+        .q(normal_part_copies_0_q)
     );
-    tritri_pipeline_w24_register_copy u_normal_copies_2(
-        .clock(normal_copies_2_clock),
-        .d(normal_copies_2_d),
-        .q(normal_copies_2_q)
+    tritri_pipeline_w24_register_copy u_normal_part_copies_1(
+        .clock(normal_part_copies_1_clock),
+        .d(normal_part_copies_1_d),
+        .q(normal_part_copies_1_q)
     );
-    tritri_pipeline_w24_register_copy u_normal_copies_3(
-        .clock(normal_copies_3_clock),
-        .d(normal_copies_3_d),
-        .q(normal_copies_3_q)
-    );
-    tritri_pipeline_w24_register_copy u_normal_copies_4(
-        .clock(normal_copies_4_clock),
-        .d(normal_copies_4_d),
-        .q(normal_copies_4_q)
-    );
-    tritri_pipeline_w24_register_copy u_normal_copies_5(
-        .clock(normal_copies_5_clock),
-        .d(normal_copies_5_d),
-        .q(normal_copies_5_q)
-    );
-    tritri_pipeline_w24_register_copy u_normal_copies_6(
-        .clock(normal_copies_6_clock),
-        .d(normal_copies_6_d),
-        .q(normal_copies_6_q)
-    );
-    tritri_pipeline_w24_register_copy u_normal_copies_7(
-        .clock(normal_copies_7_clock),
-        .d(normal_copies_7_d),
-        .q(normal_copies_7_q)
-    );
-    tritri_pipeline_w24_register_copy u_normal_copies_8(
-        .clock(normal_copies_8_clock),
-        .d(normal_copies_8_d),
-        .q(normal_copies_8_q)
+    tritri_pipeline_w24_register_copy u_normal_part_copies_2(
+        .clock(normal_part_copies_2_clock),
+        .d(normal_part_copies_2_d),
+        .q(normal_part_copies_2_q)
     );
     tritri_pipeline_w24_dot_product u_distance_0(
         .clock(distance_0_clock),
@@ -415,10 +375,8 @@ module tritri_pipeline_w24_plane_side (
         .offset_magnitude_0(threshold_0_offset_magnitude_0),
         .offset_magnitude_1(threshold_0_offset_magnitude_1),
         .offset_magnitude_2(threshold_0_offset_magnitude_2),
-        .normal_0(threshold_0_normal_0),
-        .normal_1(threshold_0_normal_1),
-        .normal_2(threshold_0_normal_2),
         .edges_bits(threshold_0_edges_bits),
+        .normal_part(threshold_0_normal_part),
         .threshold(threshold_0_threshold)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_1(
@@ -427,10 +385,8 @@ module tritri_pipeline_w24_plane_side (
         .offset_magnitude_0(threshold_1_offset_magnitude_0),
         .offset_magnitude_1(threshold_1_offset_magnitude_1),
         .offset_magnitude_2(threshold_1_offset_magnitude_2),
-        .normal_0(threshold_1_normal_0),
-        .normal_1(threshold_1_normal_1),
-        .normal_2(threshold_1_normal_2),
         .edges_bits(threshold_1_edges_bits),
+        .normal_part(threshold_1_normal_part),
         .threshold(threshold_1_threshold)
     );
     tritri_pipeline_w24_certificate_threshold u_threshold_2(
@@ -439,10 +395,8 @@ module tritri_pipeline_w24_plane_side (
         .offset_magnitude_0(threshold_2_offset_magnitude_0),
         .offset_magnitude_1(threshold_2_offset_magnitude_1),
         .offset_magnitude_2(threshold_2_offset_magnitude_2),
-        .normal_0(threshold_2_normal_0),
-        .normal_1(threshold_2_normal_1),
-        .normal_2(threshold_2_normal_2),
         .edges_bits(threshold_2_edges_bits),
+        .normal_part(threshold_2_normal_part),
         .threshold(threshold_2_threshold)
     );
     tritri_pipeline_w24_certain_sign u_sign_0(
@@ -489,6 +443,7 @@ module tritri_pipeline_w24_plane_side (
     assign distance_1_clock = clock;
     assign distance_2_clock = clock;
     assign edges_bits_delay_clock = clock;
+    assign normal_part_clock = clock;
     assign threshold_0_clock = clock;
     assign threshold_1_clock = clock;
     assign threshold_2_clock = clock;
@@ -507,6 +462,7 @@ module tritri_pipeline_w24_plane_side (
     assign normal_for_products_0_clock = clock;
     assign normal_for_products_0_advance = advance;
     assign normal_for_products_0_d = normal_early_0_q;
+    assign normal_part_normal_0 = normal_early_0_q;
     assign sign_0_clock = clock;
     assign sign_0_advance = advance;
     assign offset_0_a_0 = vertices_0;
@@ -527,6 +483,7 @@ module tritri_pipeline_w24_plane_side (
     assign normal_for_products_1_clock = clock;
     assign normal_for_products_1_advance = advance;
     assign normal_for_products_1_d = normal_early_1_q;
+    assign normal_part_normal_1 = normal_early_1_q;
     assign sign_1_clock = clock;
     assign sign_1_advance = advance;
     assign offset_0_a_1 = vertices_1;
@@ -547,6 +504,7 @@ module tritri_pipeline_w24_plane_side (
     assign normal_for_products_2_clock = clock;
     assign normal_for_products_2_advance = advance;
     assign normal_for_products_2_d = normal_early_2_q;
+    assign normal_part_normal_2 = normal_early_2_q;
     assign sign_2_clock = clock;
     assign sign_2_advance = advance;
     assign offset_0_a_2 = vertices_2;
@@ -580,30 +538,19 @@ module tritri_pipeline_w24_plane_side (
     assign threshold_0_offset_magnitude_0 = offset_0_magnitude_0;
     assign threshold_1_offset_magnitude_0 = offset_1_magnitude_0;
     assign threshold_2_offset_magnitude_0 = offset_2_magnitude_0;
-    assign threshold_0_normal_0 = normal_copies_0_q;
-    assign threshold_1_normal_0 = normal_copies_3_q;
-    assign threshold_2_normal_0 = normal_copies_6_q;
     assign threshold_0_offset_magnitude_1 = offset_0_magnitude_1;
     assign threshold_1_offset_magnitude_1 = offset_1_magnitude_1;
     assign threshold_2_offset_magnitude_1 = offset_2_magnitude_1;
-    assign threshold_0_normal_1 = normal_copies_1_q;
-    assign threshold_1_normal_1 = normal_copies_4_q;
-    assign threshold_2_normal_1 = normal_copies_7_q;
     assign threshold_0_offset_magnitude_2 = offset_0_magnitude_2;
     assign threshold_1_offset_magnitude_2 = offset_1_magnitude_2;
     assign threshold_2_offset_magnitude_2 = offset_2_magnitude_2;
-    assign threshold_0_normal_2 = normal_copies_2_q;
-    assign threshold_1_normal_2 = normal_copies_5_q;
-    assign threshold_2_normal_2 = normal_copies_8_q;
-    assign normal_copies_0_clock = clock;
-    assign normal_copies_1_clock = clock;
-    assign normal_copies_2_clock = clock;
-    assign normal_copies_3_clock = clock;
-    assign normal_copies_4_clock = clock;
-    assign normal_copies_5_clock = clock;
-    assign normal_copies_6_clock = clock;
-    assign normal_copies_7_clock = clock;
-    assign normal_copies_8_clock = clock;
+    assign normal_part_advance = advance;
+    assign threshold_0_normal_part = normal_part_copies_0_q;
+    assign threshold_1_normal_part = normal_part_copies_1_q;
+    assign threshold_2_normal_part = normal_part_copies_2_q;
+    assign normal_part_copies_0_clock = clock;
+    assign normal_part_copies_1_clock = clock;
+    assign normal_part_copies_2_clock = clock;
     assign sign_0_threshold = threshold_0_threshold;
     assign sign_1_threshold = threshold_1_threshold;
     assign sign_2_threshold = threshold_2_threshold;
@@ -621,25 +568,17 @@ module tritri_pipeline_w24_plane_side (
         if (advance) begin
             all_zero_d = &distance_0_zero_parts && &distance_1_zero_parts && &distance_2_zero_parts;
         end
-        normal_copies_0_d = normal_copies_0_q;
-        normal_copies_1_d = normal_copies_1_q;
-        normal_copies_2_d = normal_copies_2_q;
-        normal_copies_3_d = normal_copies_3_q;
-        normal_copies_4_d = normal_copies_4_q;
-        normal_copies_5_d = normal_copies_5_q;
-        normal_copies_6_d = normal_copies_6_q;
-        normal_copies_7_d = normal_copies_7_q;
-        normal_copies_8_d = normal_copies_8_q;
+        normal_part_copies_0_d = normal_part_copies_0_q;
         if (advance) begin
-            normal_copies_0_d = normal_early_0_q;
-            normal_copies_3_d = normal_early_0_q;
-            normal_copies_6_d = normal_early_0_q;
-            normal_copies_1_d = normal_early_1_q;
-            normal_copies_4_d = normal_early_1_q;
-            normal_copies_7_d = normal_early_1_q;
-            normal_copies_2_d = normal_early_2_q;
-            normal_copies_5_d = normal_early_2_q;
-            normal_copies_8_d = normal_early_2_q;
+            normal_part_copies_0_d = normal_part_part;
+        end
+        normal_part_copies_1_d = normal_part_copies_1_q;
+        if (advance) begin
+            normal_part_copies_1_d = normal_part_part;
+        end
+        normal_part_copies_2_d = normal_part_copies_2_q;
+        if (advance) begin
+            normal_part_copies_2_d = normal_part_part;
         end
     end
 

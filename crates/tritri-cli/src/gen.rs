@@ -185,9 +185,10 @@ pub struct Args {
     /// the table names the seed of each route.
     #[arg(long, value_name = "N")]
     seed: Option<u64>,
-    /// With --synth ecp5: nextpnr's router [default: router2, with
-    /// timing-driven rip-up]. router1 converges on whole designs where
-    /// router2 does not (the W = 16 pipeline with --rare-cases shared).
+    /// With --synth ecp5: nextpnr's router [default: router1 for the
+    /// emitted top, router2 with timing-driven rip-up for a --synth-top
+    /// module inside it]. router1 converges on whole designs where router2 does not
+    /// (the W = 16 pipeline with --rare-cases shared).
     #[arg(long, value_parser = Router::NAMES)]
     router: Option<String>,
     /// With --synth ecp5: nextpnr's placer [default: heap]. `static`, its
@@ -196,9 +197,9 @@ pub struct Args {
     #[arg(long, value_parser = Placer::NAMES)]
     placer: Option<String>,
     /// With --synth ecp5: the heap placer's weight of timing against wire
-    /// length [default: 10, nextpnr's]. 30 left a ninth as many paths
-    /// short of 150 MHz on the whole W = 16 pipeline with --rare-cases
-    /// shared (router1).
+    /// length [default: 30 for the emitted top, 10 (nextpnr's) for a
+    /// --synth-top module inside it]. 30 left a ninth as many paths short of 150 MHz
+    /// on the whole W = 16 pipeline with --rare-cases shared (router1).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
     timing_weight: Option<u32>,
     /// Emit the whole system (memories, address generator, pipelines,
@@ -807,14 +808,18 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 dir.display(),
                 dir.join("route_ecp5.log").display()
             );
-            let mut options = Ecp5Options::default();
+            let mut options = if top == design.top {
+                Ecp5Options::whole_design()
+            } else {
+                Ecp5Options::default()
+            };
             options.seed = args.seed.unwrap_or(options.seed);
             // clap's value_parser admits only Router::NAMES.
             options.router = args
                 .router
                 .as_deref()
                 .and_then(Router::from_name)
-                .unwrap_or_default();
+                .unwrap_or(options.router);
             // And only Placer::NAMES.
             options.placer = args
                 .placer

@@ -26,7 +26,9 @@
 //! [`Router::Router1`] is there for whole designs that router2 does not
 //! route: on the W = 16 pipeline with the rare cases shared, router2's
 //! overused wires grew from its iteration 59 on (2,119 to 4,628 by 73,
-//! stopped after 35 minutes), while router1 finished in 11 to 17.
+//! stopped after 35 minutes), while router1 finished in 11 to 17; `tritri
+//! gen` routes an emitted top with it ([`Ecp5Options::whole_design`]) and a
+//! unit on its own with router2.
 //!
 //! Synthesis uses no flip-flop with a synchronous reset
 //! ([`FLIP_FLOPS_WITHOUT_SYNC_RESET`]): a register set to a constant under a
@@ -157,6 +159,26 @@ impl Default for Ecp5Options {
             router: Router::default(),
             placer: Placer::default(),
             timing_weight: NEXTPNR_TIMING_WEIGHT,
+        }
+    }
+}
+
+/// The heap placer's timing weight for a whole pipeline or system
+/// ([`Ecp5Options::whole_design`]).
+pub const WHOLE_DESIGN_TIMING_WEIGHT: u32 = 30;
+
+impl Ecp5Options {
+    /// The options for a whole pipeline or system rather than one of its
+    /// units: [`Router::Router1`], which converges on them where router2
+    /// does not, and timing weight [`WHOLE_DESIGN_TIMING_WEIGHT`], which
+    /// left a ninth as many register inputs short (the fields' docs); the
+    /// whole designs' routes in rtl-out/README.md's later timing tables
+    /// ran with these.
+    pub fn whole_design() -> Self {
+        Ecp5Options {
+            router: Router::Router1,
+            timing_weight: WHOLE_DESIGN_TIMING_WEIGHT,
+            ..Ecp5Options::default()
         }
     }
 }

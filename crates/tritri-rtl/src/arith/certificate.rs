@@ -8,12 +8,14 @@
 //! Y = 2^(bitlen Sw + ke)?
 //! ```
 //!
-//! Three blocks, none with a multiplier:
+//! Four blocks, none with a multiplier:
 //!
 //! * [`EdgesBitLength`] (five register stages): `ke` of a triangle's two
 //!   edges, once per triangle (with its normal) or per determinant.
+//! * [`NormalPart`] (three register stages): `X + (X >> 19)` of a normal,
+//!   once for every threshold on it.
 //! * [`CertificateThreshold`] (six register stages, beside the dot
-//!   product): `T` from `|w_k|`, `n` and `ke`.
+//!   product): `T` from `|w_k|`, `ke` and the normal's part.
 //! * [`CertainSign`] (one register stage for the sign, like
 //!   [`super::sign::SignOf`], three for the certificate): the sign of `P`
 //!   and whether its ones' complement magnitude `P ^ (P >> top)` (`|P|` or
@@ -23,7 +25,7 @@
 //! A bit length is read from the leading one of `2 v + 1`, so that the one
 //! sits at bit `bitlen v`, found over two stages from groups of four bits
 //! (`two_stage_leading_one_verilog`); each bit of its index is an OR of
-//! the one-hot through a constant mask. The first two blocks are
+//! the one-hot through a constant mask. The first three blocks are
 //! primitives with custom Verilog and an exact model of each register,
 //! evaluated at clock edges, like the adders (`super::adder`): rust-hdl
 //! simulates values wider than 32 bits as bit arrays. They compute in the
@@ -291,18 +293,132 @@ end
     }
 }
 
-/// `T` of the module docs from the magnitudes of the offset `w` (`|w_k|`,
-/// D bits unsigned), the normal `n = e1 × e2` (C-bit) and `ke` (all three
-/// in the same clock), in six register stages, each at most one carry
-/// chain or one LUT tree:
+/// `X + (X >> 19)` of the module docs from a normal `n = e1 × e2` (C-bit),
+/// in three register stages, each one carry chain: the ones' complement
+/// magnitudes of `n`, the first two summed; `X`
+/// (`tritri_geom::certificate::normal_l1`); `X + (X >> 19)`.
 ///
-/// 1. `Sw = |w|_1`; the ones' complement magnitudes of `n`, the first two
-///    summed; `2^(ke + 2) + 16`;
-/// 2. `2 Sw + 1` and the ORs of its groups of four bits; `X`
-///    (`tritri_geom::certificate::normal_l1`); `4 Sw + 2^(ke + 2) + 16`;
+/// Once per normal, for every threshold on it: a plane side's three
+/// thresholds share their plane's. (Each threshold summed the normal
+/// itself, three times the same stages, from one register placed by the
+/// multipliers or from a copy of its own, and its later stages spread
+/// out: the W = 16, P = 1 shared system on ECP5 routed at 144.1 MHz with
+/// 8 of its 11 short register inputs in those stages, `normal_part_q` to
+/// `partial_q`, 5.3 ns of routing.)
+#[derive(LogicBlock)]
+pub struct NormalPart<const C: usize, const O: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub normal: [Signal<In, Bits<C>>; 3],
+    /// `X + (X >> 19)`, below `2^(C + 2)`, zero-extended to O bits (the
+    /// threshold's input, [`CertificateThreshold::normal_part`]),
+    /// `NORMAL_PART_LATENCY` enabled edges later.
+    pub part: Signal<Out, Bits<O>>,
+    // Simulation model state (the Verilog's registers by stage).
+    _normal_01: u128,
+    _normal_2: u128,
+    _normal_l1: u128,
+}
+
+/// Clock edges from a normal to its part of the threshold.
+pub const NORMAL_PART_LATENCY: usize = 3;
+
+impl<const C: usize, const O: usize> crate::unit::Unit for NormalPart<C, O> {
+    const LATENCY: Option<usize> = Some(NORMAL_PART_LATENCY);
+}
+
+impl<const C: usize, const O: usize> Default for NormalPart<C, O> {
+    fn default() -> Self {
+        // X + (X >> 19) < 2^(C + 2) fits the threshold's O bits.
+        assert!(C + 2 <= O && O <= 120);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            normal: Default::default(),
+            part: Default::default(),
+            _normal_01: 0,
+            _normal_2: 0,
+            _normal_l1: 0,
+        }
+    }
+}
+
+impl<const C: usize, const O: usize> Logic for NormalPart<C, O> {
+    fn update(&mut self) {
+        if self.clock.pos_edge() && self.advance.val() {
+            // Each stage from the one before, last first.
+            let l1 = self._normal_l1;
+            self.part.next = from_i128::<O>((l1 + (l1 >> 19)) as i128);
+            self._normal_l1 = self._normal_01 + self._normal_2;
+            // X (normal_l1) as the Verilog sums it.
+            let n: [u128; 3] =
+                std::array::from_fn(|k| ones_complement_magnitude(to_i128(self.normal[k].val())));
+            self._normal_01 = n[0] + n[1];
+            self._normal_2 = n[2];
+        }
+    }
+
+    fn connect(&mut self) {
+        self.part.connect();
+    }
+
+    fn hdl(&self) -> Verilog {
+        // X < 3 2^(C-1) fits C + 1 bits; X + (X >> 19) C + 2.
+        let x = C + 1;
+        Verilog::Custom(format!(
+            "\
+// The normal's part of the certificate's threshold: X + (X >> 19),
+// X = sum (|n_k| - [n_k < 0]), in three register stages.
+reg [{x1}:0] normal_01_q;
+reg [{x1}:0] normal_2_q;
+reg [{x1}:0] normal_l1_q;
+initial begin
+    normal_01_q = {x}'d0;
+    normal_2_q = {x}'d0;
+    normal_l1_q = {x}'d0;
+    part = {o}'d0;
+end
+always @(posedge clock) begin
+    if (advance) begin
+        normal_01_q <= {n0} + {n1};
+        normal_2_q <= {n2};
+        normal_l1_q <= normal_01_q + normal_2_q;
+        part <= {{{pad}'d0, {normal_part}}};
+    end
+end
+",
+            n0 = ones_complement_verilog("normal$0", C, x),
+            n1 = ones_complement_verilog("normal$1", C, x),
+            n2 = ones_complement_verilog("normal$2", C, x),
+            x1 = x - 1,
+            o = O,
+            pad = O - (x + 1),
+            // X >> 19 is zero below 20 bits.
+            normal_part = if x > 19 {
+                format!(
+                    "{{1'b0, normal_l1_q}} + {{20'd0, normal_l1_q[{}:19]}}",
+                    x - 1
+                )
+            } else {
+                "{1'b0, normal_l1_q}".to_string()
+            },
+        ))
+    }
+}
+
+/// `T` of the module docs from the magnitudes of the offset `w` (`|w_k|`,
+/// D bits unsigned) and `ke` (in the same clock), and the normal's part
+/// `X + (X >> 19)` ([`NormalPart`]) three clocks later, as the fourth
+/// stage takes it, in six register stages, each at most one carry chain or
+/// one LUT tree:
+///
+/// 1. `Sw = |w|_1`; `2^(ke + 2) + 16`;
+/// 2. `2 Sw + 1` and the ORs of its groups of four bits;
+///    `4 Sw + 2^(ke + 2) + 16`;
 /// 3. `bitlen Sw`, the index of the leading one of `2 Sw + 1` (two LUT
-///    levels each); `X + (X >> 19)`;
-/// 4. the exponent `bitlen Sw + ke`; the two parts' sum;
+///    levels each);
+/// 4. the exponent `bitlen Sw + ke`; the two parts' sum (the normal's
+///    straight from the input: a register beside this unit forms it);
 /// 5. `Y + (Y >> 19)`, a one shifted by the exponent;
 /// 6. `T`.
 ///
@@ -319,25 +435,22 @@ pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> 
     pub advance: Signal<In, Bit>,
     /// `|w_k|` of the offset `w = d - a`, at most `2^(D-1)`.
     pub offset_magnitude: [Signal<In, Bits<D>>; 3],
-    /// `n = (b - a) × (c - a)`.
-    pub normal: [Signal<In, Bits<C>>; 3],
     /// `ke` of `b - a`, `c - a` ([`EdgesBitLength`]).
     pub edges_bits: Signal<In, Bits<8>>,
-    /// `T`, `CERTIFICATE_THRESHOLD_LATENCY` enabled edges later.
+    /// `X + (X >> 19)` of `n = (b - a) × (c - a)` ([`NormalPart`]),
+    /// `NORMAL_PART_DELAY` enabled edges after the offset.
+    pub normal_part: Signal<In, Bits<O>>,
+    /// `T`, `CERTIFICATE_THRESHOLD_LATENCY` enabled edges after the offset.
     pub threshold: Signal<Out, Bits<O>>,
     // Simulation model state (the Verilog's registers by stage; the
     // leading one as its index).
     _offset_l1: u128,
-    _normal_01: u128,
-    _normal_2: u128,
     _edge_term: u128,
     _edges_bits: u128,
     _offset_t: u128,
-    _normal_l1: u128,
     _small_part: u128,
     _edges_bits_2: u128,
     _bits_w: u128,
-    _normal_part: u128,
     _small_part_2: u128,
     _edges_bits_3: u128,
     _exponent: u128,
@@ -345,6 +458,11 @@ pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> 
     _y: u128,
     _partial_2: u128,
 }
+
+/// Clock edges from the offset to the normal's part at the threshold's
+/// input (its fourth stage adds it): a normal taken with the offset goes
+/// through [`NormalPart`] first.
+pub const NORMAL_PART_DELAY: usize = 3;
 
 impl<const D: usize, const C: usize, const O: usize> crate::unit::Unit
     for CertificateThreshold<D, C, O>
@@ -360,20 +478,16 @@ impl<const D: usize, const C: usize, const O: usize> Default for CertificateThre
             clock: Default::default(),
             advance: Default::default(),
             offset_magnitude: Default::default(),
-            normal: Default::default(),
             edges_bits: Default::default(),
+            normal_part: Default::default(),
             threshold: Default::default(),
             _offset_l1: 0,
-            _normal_01: 0,
-            _normal_2: 0,
             _edge_term: 0,
             _edges_bits: 0,
             _offset_t: 0,
-            _normal_l1: 0,
             _small_part: 0,
             _edges_bits_2: 0,
             _bits_w: 0,
-            _normal_part: 0,
             _small_part_2: 0,
             _edges_bits_3: 0,
             _exponent: 0,
@@ -399,13 +513,13 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
             self._y = one | (one >> 19);
             self._partial_2 = self._partial;
             self._exponent = (self._bits_w + self._edges_bits_3) & 0xff;
-            self._partial = (self._normal_part + self._small_part_2) & t_mask;
+            // The part's bits above the sum's are zero.
+            let normal_part = to_i128(self.normal_part.val()) as u128 & t_mask;
+            self._partial = (normal_part + self._small_part_2) & t_mask;
             self._bits_w = bit_length(self._offset_t) as u128;
-            self._normal_part = self._normal_l1 + (self._normal_l1 >> 19);
             self._small_part_2 = self._small_part;
             self._edges_bits_3 = self._edges_bits_2;
             self._offset_t = self._offset_l1;
-            self._normal_l1 = self._normal_01 + self._normal_2;
             self._small_part = (4 * self._offset_l1 + self._edge_term) & small_mask;
             self._edges_bits_2 = self._edges_bits;
             self._offset_l1 = self
@@ -413,11 +527,6 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
                 .iter()
                 .map(|m| m.val().to_u128())
                 .sum();
-            // X (normal_l1) as the Verilog sums it.
-            let n: [u128; 3] =
-                std::array::from_fn(|k| ones_complement_magnitude(to_i128(self.normal[k].val())));
-            self._normal_01 = n[0] + n[1];
-            self._normal_2 = n[2];
             let ke = self.edges_bits.val().to_u64() as u128;
             let edge_term = if ke + 2 < (D + 6) as u128 {
                 4u128 << ke
@@ -434,26 +543,24 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
     }
 
     fn hdl(&self) -> Verilog {
-        // Sw <= 3 2^(D-1) fits D + 1 bits; X < 3 2^(C-1), C + 1; X + (X >> 19)
-        // C + 2; 4 Sw + 2^(ke + 2) + 16 (ke <= D + 2) D + 6; T C + 6.
-        let (sw, x, small, t) = (D + 1, C + 1, D + 6, C + 6);
+        // Sw <= 3 2^(D-1) fits D + 1 bits; X + (X >> 19) C + 2; 4 Sw +
+        // 2^(ke + 2) + 16 (ke <= D + 2) D + 6; T C + 6.
+        let (sw, small, t) = (D + 1, D + 6, C + 6);
+        let part = C + 2;
         let lead = two_stage_leading_one_verilog("offset", "offset_l1_q", sw);
         Verilog::Custom(format!(
             "\
 // The certificate's threshold (tritri_geom::certificate::threshold):
 // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
-// X = sum (|n_k| - [n_k < 0]), Sw = |w|_1, Y = 2^(bitlen Sw + ke), in six register
-// stages, each at most one carry chain or one LUT tree.
+// Sw = |w|_1, Y = 2^(bitlen Sw + ke), with X + (X >> 19) from the normal's
+// own unit (NormalPart), in six register stages, each at most one carry
+// chain or one LUT tree.
 reg [{sw1}:0] offset_l1_q;
-reg [{x1}:0] normal_01_q;
-reg [{x1}:0] normal_2_q;
 reg [{small1}:0] edge_term_q;
 reg [7:0] edges_bits_q;
-{lead}reg [{x1}:0] normal_l1_q;
-reg [{small1}:0] small_part_q;
+{lead}reg [{small1}:0] small_part_q;
 reg [7:0] edges_bits_q2;
 reg [7:0] offset_bits_q;
-reg [{x}:0] normal_part_q;
 reg [{small1}:0] small_part_q2;
 reg [7:0] edges_bits_q3;
 reg [7:0] exponent_q;
@@ -462,19 +569,18 @@ reg [{t1}:0] y_q;
 reg [{t1}:0] partial_q2;
 wire [7:0] offset_bits = {index};
 wire [{t1}:0] y_one = {t}'d1 << exponent_q;
+// The normal's part is below 2^(C + 2): its higher bits are zero (a
+// wire named unused, which Verilator's lint leaves alone).
+wire unused_normal_part_bits = |normal_part[{o1}:{part}];
 initial begin
     offset_l1_q = {sw}'d0;
-    normal_01_q = {x}'d0;
-    normal_2_q = {x}'d0;
     edge_term_q = {small}'d0;
     edges_bits_q = 8'd0;
     offset_t_q = {sw_p}'d0;
     offset_any_q = {groups}'d0;
-    normal_l1_q = {x}'d0;
     small_part_q = {small}'d0;
     edges_bits_q2 = 8'd0;
     offset_bits_q = 8'd0;
-    normal_part_q = {x_p}'d0;
     small_part_q2 = {small}'d0;
     edges_bits_q3 = 8'd0;
     exponent_q = 8'd0;
@@ -486,19 +592,15 @@ end
 always @(posedge clock) begin
     if (advance) begin
         offset_l1_q <= {offset_l1};
-        normal_01_q <= {n0} + {n1};
-        normal_2_q <= {n2};
         edge_term_q <= ({small}'d4 << edges_bits) + {small}'d16;
         edges_bits_q <= edges_bits;
-        {lead_stage}        normal_l1_q <= normal_01_q + normal_2_q;
-        small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term_q;
+        {lead_stage}        small_part_q <= {{3'd0, offset_l1_q, 2'd0}} + edge_term_q;
         edges_bits_q2 <= edges_bits_q;
         offset_bits_q <= offset_bits;
-        normal_part_q <= {normal_part};
         small_part_q2 <= small_part_q;
         edges_bits_q3 <= edges_bits_q2;
         exponent_q <= offset_bits_q + edges_bits_q3;
-        partial_q <= {{{pad_x}'d0, normal_part_q}} + {{{pad_small}'d0, small_part_q2}};
+        partial_q <= {{{pad_part}'d0, normal_part[{part1}:0]}} + {{{pad_small}'d0, small_part_q2}};
         y_q <= y_one | (y_one >> 19);
         partial_q2 <= partial_q;
         threshold <= {{{pad_t}'d0, partial_q2 + y_q}};
@@ -507,32 +609,20 @@ end
 ",
             offset_l1 =
                 widened_sum_verilog(std::array::from_fn(|k| format!("offset_magnitude${k}"))),
-            n0 = ones_complement_verilog("normal$0", C, x),
-            n1 = ones_complement_verilog("normal$1", C, x),
-            n2 = ones_complement_verilog("normal$2", C, x),
             lead = lead.0,
             lead_stage = lead.1,
             groups = (sw + 1).div_ceil(LEAD_GROUP_BITS) - 1,
             index = index_verilog("offset_lead", sw + 1),
             sw1 = sw - 1,
-            x1 = x - 1,
             small1 = small - 1,
+            part1 = part - 1,
             t1 = t - 1,
+            o1 = O - 1,
             sw_p = sw + 1,
-            x_p = x + 1,
-            pad_x = t - (x + 1),
+            pad_part = t - part,
             pad_small = t - small,
             pad_t = O - t,
             o = O,
-            // X >> 19 is zero below 20 bits.
-            normal_part = if x > 19 {
-                format!(
-                    "{{1'b0, normal_l1_q}} + {{20'd0, normal_l1_q[{}:19]}}",
-                    x - 1
-                )
-            } else {
-                "{1'b0, normal_l1_q}".to_string()
-            },
         ))
     }
 }
@@ -835,7 +925,9 @@ mod tests {
     /// The threshold is `tritri_geom::certificate::threshold` of the same
     /// `w`, `n` and `ke`, for offsets of every bit length, normals around
     /// the `>> 19` and `ke` across its range, at W = 8 (D = 9) and W = 32
-    /// (D = 33), the pipeline's inputs streaming a clock apart.
+    /// (D = 33), the pipeline's inputs streaming a clock apart: the normal
+    /// goes through a `NormalPart` taken with the offset, whose part the
+    /// threshold reads as it comes.
     #[test]
     fn threshold_is_the_models() {
         check_threshold::<9, 17, 26>();
@@ -843,14 +935,21 @@ mod tests {
     }
 
     fn check_threshold<const D: usize, const C: usize, const O: usize>() {
+        const _: () = assert!(NORMAL_PART_LATENCY == NORMAL_PART_DELAY);
         let mut uut = CertificateThreshold::<D, C, O>::default();
         uut.clock.connect();
         uut.advance.connect();
         uut.offset_magnitude.iter_mut().for_each(|s| s.connect());
-        uut.normal.iter_mut().for_each(|s| s.connect());
+        uut.normal_part.connect();
         uut.edges_bits.connect();
         uut.connect_all();
         uut.advance.next = true;
+        let mut part = NormalPart::<C, O>::default();
+        part.clock.connect();
+        part.advance.connect();
+        part.normal.iter_mut().for_each(|s| s.connect());
+        part.connect_all();
+        part.advance.next = true;
         let w_top = (1i128 << (D - 1)) - 1;
         let n_top = (1i128 << (C - 1)) - 1;
         let mut cases = Vec::new();
@@ -881,9 +980,12 @@ mod tests {
             for k in 0..3 {
                 uut.offset_magnitude[k].next = Bits::from(case.0[k].unsigned_abs() as u64);
             }
-            set_vector(&mut uut.normal, case.1);
+            set_vector(&mut part.normal, case.1);
             uut.edges_bits.next = Bits::from(case.2 as u64);
+            // The part before this edge, as a wire between the two gives it.
+            uut.normal_part.next = part.part.val();
             crate::sim_drive::clock_cycle(&mut uut, |u| &mut u.clock);
+            crate::sim_drive::clock_cycle(&mut part, |u| &mut u.clock);
             if i + 1 >= CERTIFICATE_THRESHOLD_LATENCY {
                 let earlier = &cases[i + 1 - CERTIFICATE_THRESHOLD_LATENCY];
                 let t = to_i128(uut.threshold.val()) as u128;

@@ -20,8 +20,9 @@
 //! the edges' `ke`.
 
 use crate::arith::certificate::{
-    CertainSign, CertificateThreshold, EdgesBitLength, CERTAIN_SIGN_LATENCY,
-    CERTIFICATE_THRESHOLD_LATENCY, EDGES_BIT_LENGTH_LATENCY,
+    CertainSign, CertificateThreshold, EdgesBitLength, NormalPart, CERTAIN_SIGN_LATENCY,
+    CERTIFICATE_THRESHOLD_LATENCY, EDGES_BIT_LENGTH_LATENCY, NORMAL_PART_DELAY,
+    NORMAL_PART_LATENCY,
 };
 use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
@@ -42,6 +43,9 @@ pub const ORIENT3D_VALUE_LATENCY: usize = CERTIFIED_ORIENT3D_LATENCY - CERTAIN_S
 const _: () = assert!(CERTIFICATE_THRESHOLD_LATENCY == DOT_PRODUCT_LATENCY);
 /// The edges' `ke` arrives with the cross product.
 const _: () = assert!(EDGES_BIT_LENGTH_LATENCY == CROSS_PRODUCT_LATENCY);
+/// The normal's part, from the cross product as the threshold takes the
+/// offset, arrives as the threshold adds it.
+const _: () = assert!(NORMAL_PART_LATENCY == NORMAL_PART_DELAY);
 
 #[derive(LogicBlock, Default)]
 pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, const O: usize> {
@@ -74,8 +78,9 @@ pub struct CertifiedOrient3d<const W: usize, const D: usize, const C: usize, con
     edge_ad_last: VectorMagnitude<D>,
     determinant: DotProduct<D, C, O>,
     /// The certificate's threshold: `ke` of the edges `b - a`, `c - a`,
-    /// then the threshold from `d - a` and the normal.
+    /// then the threshold from `d - a` and the normal's part.
     edges_bits: EdgesBitLength<D>,
+    normal_part: NormalPart<C, O>,
     threshold: CertificateThreshold<D, C, O>,
     sign: CertainSign<O>,
 }
@@ -98,6 +103,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             edge_ad_last,
             determinant,
             edges_bits,
+            normal_part,
             threshold,
             sign
         );
@@ -123,6 +129,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             determinant,
             sign,
             edges_bits,
+            normal_part,
             threshold
         );
         self.edge_ab.advance.next = self.advance.val();
@@ -136,6 +143,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.determinant.advance.next = self.advance.val();
         self.sign.advance.next = self.advance.val();
         self.edges_bits.advance.next = self.advance.val();
+        self.normal_part.advance.next = self.advance.val();
         self.threshold.advance.next = self.advance.val();
         for i in 0..3 {
             self.edge_ab.a[i].next = self.b[i].val();
@@ -153,9 +161,10 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.edges_bits.b[i].next = self.edge_ac.difference[i].val();
             self.edges_bits.a_negated[i].next = self.edge_ab.negated[i].val();
             self.edges_bits.b_negated[i].next = self.edge_ac.negated[i].val();
-            self.threshold.normal[i].next = self.normal.product[i].val();
+            self.normal_part.normal[i].next = self.normal.product[i].val();
         }
         self.threshold.edges_bits.next = self.edges_bits.bits.val();
+        self.threshold.normal_part.next = self.normal_part.part.val();
         self.edge_ad_last.v[0].next = self.edge_ad_delay_0.q.val();
         self.edge_ad_last.v[1].next = self.edge_ad_delay_1.q.val();
         self.edge_ad_last.v[2].next = self.edge_ad_delay_2.q.val();

@@ -6,12 +6,13 @@
 //! then the signs). The two instances run in parallel (thesis 3.4.1).
 //! Software model: `plane_side` in devillers_guigue.rs; the certificates
 //! are `tritri_geom::certificate::orient3d_certified` of each vertex: its
-//! threshold from the normal, the offset `v - p` and the bit length of the
-//! plane's edges' `|e1|_1 + |e2|_1` (computed once per triangle, with its
-//! normal), beside the dot products.
+//! threshold from the normal's part (once for the three), the offset
+//! `v - p` and the bit length of the plane's edges' `|e1|_1 + |e2|_1`
+//! (computed once per triangle, with its normal), beside the dot products.
 
 use crate::arith::certificate::{
-    CertainSign, CertificateThreshold, CERTAIN_SIGN_LATENCY, CERTIFICATE_THRESHOLD_LATENCY,
+    CertainSign, CertificateThreshold, NormalPart, CERTAIN_SIGN_LATENCY,
+    CERTIFICATE_THRESHOLD_LATENCY, NORMAL_PART_DELAY, NORMAL_PART_LATENCY,
 };
 use crate::arith::delay_line::DelayLine;
 use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
@@ -27,6 +28,13 @@ pub const PLANE_SIDE_LATENCY: usize =
 /// The thresholds, from the offsets and the normal as the dot products
 /// take them, arrive with the distances.
 const _: () = assert!(CERTIFICATE_THRESHOLD_LATENCY == DOT_PRODUCT_LATENCY);
+
+/// The normal's part, from the shared stage of the normal's delay and
+/// then a copy, arrives as each threshold adds it.
+const _: () = assert!(
+    MAGNITUDE_SUBTRACTOR_LATENCY - 1 + NORMAL_PART_LATENCY + 1
+        == MAGNITUDE_SUBTRACTOR_LATENCY + NORMAL_PART_DELAY
+);
 
 /// `all_zero`'s one register comes with the signs.
 const _: () = assert!(CERTAIN_SIGN_LATENCY == 1);
@@ -70,21 +78,23 @@ pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: us
     offset_1: MagnitudeSubtractor<W, D>,
     offset_2: MagnitudeSubtractor<W, D>,
     /// The normal waits for the offsets: a stage shared, then a last
-    /// stage for the dot products and a copy of it for each threshold
-    /// (`normal_copies[3 i + k]`, component `k` for threshold `i`), so
-    /// that each threshold's first carry chain starts at a register beside
-    /// it. (From the dot products' register, placed by the multipliers,
-    /// 3.7 ns of routing went to a threshold's first LUT: 12 register
-    /// inputs short of 150 MHz, ECP5, W = 16, P = 1 shared system, seed
-    /// 3, 141.6 MHz.)
+    /// stage for the dot products; the thresholds' part of it (once for
+    /// the three) starts from the shared stage, and each threshold adds a
+    /// copy of its own (`normal_part_copies[i]`), which sits beside it.
+    /// (Each threshold summed the normal from the dot products' register,
+    /// placed by the multipliers, 3.7 ns of routing to its first LUT: 12
+    /// register inputs short of 150 MHz, ECP5, W = 16, P = 1 shared
+    /// system, seed 3, 141.6 MHz; from nine copies of the normal, a later
+    /// stage of the same sums, 8 of 11 at 144.1 MHz.)
     normal_early: [DelayLine<Bits<C>, { MAGNITUDE_SUBTRACTOR_LATENCY - 1 }>; 3],
     normal_for_products: [DelayLine<Bits<C>, 1>; 3],
-    normal_copies: [RegisterCopy<Bits<C>>; 9],
+    normal_part: NormalPart<C, O>,
+    normal_part_copies: [RegisterCopy<Bits<O>>; 3],
     distance_0: DotProduct<D, C, O>,
     distance_1: DotProduct<D, C, O>,
     distance_2: DotProduct<D, C, O>,
     /// The certificate's threshold per vertex (`arith::certificate`), from
-    /// the offset and the normal as the dot product takes them.
+    /// the offset as the dot product takes it.
     edges_bits_delay: DelayLine<Bits<8>, MAGNITUDE_SUBTRACTOR_LATENCY>,
     threshold_0: CertificateThreshold<D, C, O>,
     threshold_1: CertificateThreshold<D, C, O>,
@@ -106,7 +116,8 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> crate::unit
             offset_2,
             normal_early,
             normal_for_products,
-            normal_copies,
+            normal_part,
+            normal_part_copies,
             distance_0,
             distance_1,
             distance_2,
@@ -135,6 +146,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             distance_1,
             distance_2,
             edges_bits_delay,
+            normal_part,
             threshold_0,
             threshold_1,
             threshold_2
@@ -155,6 +167,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.normal_for_products[k].clock.next = self.clock.val();
             self.normal_for_products[k].advance.next = self.advance.val();
             self.normal_for_products[k].d.next = self.normal_early[k].q.val();
+            self.normal_part.normal[k].next = self.normal_early[k].q.val();
             self.sign[k].clock.next = self.clock.val();
             self.sign[k].advance.next = self.advance.val();
             self.offset_0.a[k].next = self.vertices[k].val();
@@ -195,20 +208,17 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
             self.threshold_0.offset_magnitude[k].next = self.offset_0.magnitude[k].val();
             self.threshold_1.offset_magnitude[k].next = self.offset_1.magnitude[k].val();
             self.threshold_2.offset_magnitude[k].next = self.offset_2.magnitude[k].val();
-            self.threshold_0.normal[k].next = self.normal_copies[k].q.val();
-            self.threshold_1.normal[k].next = self.normal_copies[3 + k].q.val();
-            self.threshold_2.normal[k].next = self.normal_copies[6 + k].q.val();
         }
+        self.normal_part.advance.next = self.advance.val();
+        self.threshold_0.normal_part.next = self.normal_part_copies[0].q.val();
+        self.threshold_1.normal_part.next = self.normal_part_copies[1].q.val();
+        self.threshold_2.normal_part.next = self.normal_part_copies[2].q.val();
         // The copies have no enable: `advance` is folded into `d`.
-        for c in 0..9 {
-            self.normal_copies[c].clock.next = self.clock.val();
-            self.normal_copies[c].d.next = self.normal_copies[c].q.val();
-        }
-        if self.advance.val() {
-            for k in 0..3 {
-                self.normal_copies[k].d.next = self.normal_early[k].q.val();
-                self.normal_copies[3 + k].d.next = self.normal_early[k].q.val();
-                self.normal_copies[6 + k].d.next = self.normal_early[k].q.val();
+        for i in 0..3 {
+            self.normal_part_copies[i].clock.next = self.clock.val();
+            self.normal_part_copies[i].d.next = self.normal_part_copies[i].q.val();
+            if self.advance.val() {
+                self.normal_part_copies[i].d.next = self.normal_part.part.val();
             }
         }
         self.sign[0].threshold.next = self.threshold_0.threshold.val();
