@@ -6,7 +6,11 @@ use serde_json::Value;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::pipeline::RareCasePath;
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::system_unit_name;
+use tritri_rtl::system::SystemConfig;
 
 fn tritri(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tritri"))
@@ -160,9 +164,21 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
                     p >= 1 && p * e.mult18x18d <= 156,
                     "{unit}: {p} pipelines on the ECP5-85"
                 );
+                // At the clock of the system of those p pipelines where it
+                // was routed (W = 16, P = 2: slower than one pipeline alone).
+                let kind = match path {
+                    RareCasePath::Parallel => PipelineKind::Real,
+                    RareCasePath::Shared => PipelineKind::Shared,
+                };
+                let config = SystemConfig::new(width as usize, p as usize, latency());
+                let system = kept
+                    .ecp5(&system_unit_name(config, kind))
+                    .map(|s| s.fmax_mhz);
+                assert_eq!(row["system_fmax_mhz"].as_f64(), system, "{unit}");
+                let clock = system.unwrap_or(e.fmax_mhz);
                 assert_eq!(
                     row["pairs_per_second"].as_f64(),
-                    Some(e.fmax_mhz * 1e6 * p as f64)
+                    Some(clock * 1e6 * p as f64)
                 );
             }
             None => assert!(

@@ -45,7 +45,11 @@ use std::time::Duration;
 use tritri_geom::arithmetic::Arithmetic;
 use tritri_rtl::measured::{device, Device, Ecp5Row, Measurements, XilinxRow};
 use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
+use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::pipeline::RareCasePath;
+use tritri_rtl::system::system_for_width::PipelineKind;
+use tritri_rtl::system::system_unit::system_unit_name;
+use tritri_rtl::system::SystemConfig;
 
 /// The device the ECP5 figures were routed for.
 pub fn ecp5_device() -> &'static Device {
@@ -124,7 +128,13 @@ pub struct WidthRow {
     /// Pipelines of this width that fit the ECP5-85's multipliers, at most
     /// P (`None` when not one fits).
     pub ecp5_pipelines: Option<u32>,
-    /// Fmax x those pipelines (one pair per clock each), at the post-route clock.
+    /// The post-route clock of the system of those pipelines
+    /// (`tritri_system_w<W>_p<P>_d256`, `_shared` with the shared unit),
+    /// where it was routed: pipelines that crowd the device route slower
+    /// together than one alone (W = 16, P = 2).
+    pub system_fmax_mhz: Option<f64>,
+    /// The clock x those pipelines (one pair per clock each): the clock is
+    /// [`WidthRow::clock_mhz`].
     pub pairs_per_second: Option<f64>,
     /// `pairs_per_second` over those pipelines' MULT18X18D blocks.
     pub pairs_per_second_per_multiplier: Option<f64>,
@@ -133,6 +143,13 @@ pub struct WidthRow {
 }
 
 impl WidthRow {
+    /// The post-route clock of this width's hardware: its system of
+    /// `ecp5_pipelines` where that was routed, else its pipeline alone.
+    pub fn clock_mhz(&self) -> Option<f64> {
+        self.system_fmax_mhz
+            .or(self.ecp5.as_ref().map(|r| r.fmax_mhz))
+    }
+
     /// Wrong verdicts without certificates, as a fraction of the pairs.
     pub fn wrong_rate(&self) -> Option<f64> {
         self.error
@@ -291,10 +308,18 @@ fn width_rows(
                 .as_ref()
                 .map(|r| pipelines.min((ecp5_device().dsps / r.mult18x18d.max(1)) as u32))
                 .filter(|&p| p >= 1);
-            let pairs_per_second = ecp5
-                .as_ref()
-                .zip(fitting)
-                .map(|(r, p)| r.fmax_mhz * 1e6 * p as f64);
+            let system_fmax_mhz = fitting.and_then(|p| {
+                let config = SystemConfig::new(width as usize, p as usize, latency());
+                let kind = match rare_cases {
+                    RareCasePath::Parallel => PipelineKind::Real,
+                    RareCasePath::Shared => PipelineKind::Shared,
+                };
+                measurements
+                    .ecp5(&system_unit_name(config, kind))
+                    .map(|r| r.fmax_mhz)
+            });
+            let clock = system_fmax_mhz.or(ecp5.as_ref().map(|r| r.fmax_mhz));
+            let pairs_per_second = clock.zip(fitting).map(|(f, p)| f * 1e6 * p as f64);
             WidthRow {
                 width,
                 rare_cases,
@@ -314,6 +339,7 @@ fn width_rows(
                     .map(|((r, p), n)| p / (r.mult18x18d * n as u64).max(1) as f64),
                 ecp5,
                 ecp5_pipelines: fitting,
+                system_fmax_mhz,
                 pairs_per_second,
                 pareto: false,
             }

@@ -330,8 +330,9 @@ pub fn write_all(dir: &Path, report: &Report) -> anyhow::Result<()> {
     let mut html = format!(
         "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>tritri: speed against error</title><style>{STYLE}</style></head><body>\
          <h1>tritri: speed against error</h1><p class=\"note\"><code>{}</code><br>Hardware figures: {} (measured {}); \
-         hardware speed is one pair per clock per pipeline, at the ECP5 post-route Fmax where the pipeline was routed, \
-         with P = {} pipelines or as many as fit the {}'s {} multipliers. \
+         hardware speed is one pair per clock per pipeline, \
+         with P = {} pipelines or as many as fit the {}'s {} multipliers, \
+         at the ECP5 post-route clock of the system of those pipelines where it was routed, else of the pipeline alone. \
          A width's pipeline is the one routed: its rare pairs on parallel units, \
          or on the shared unit where only that one was routed (\"rare cases\"), \
          whose stalls the scene's time counts by the stall model's bound.</p>",

@@ -46,7 +46,8 @@ pub struct SceneRow {
     pub cycles: u64,
     pub whole_cycles: u64,
     pub clock_mhz: f64,
-    /// `post-route` (ECP5) or `assumed`.
+    /// `post-route, system` (ECP5, the system of those pipelines routed),
+    /// `post-route, pipeline` (one pipeline routed alone) or `assumed`.
     pub clock: String,
     /// Where the pipelines test their rare pairs: those of the width's
     /// routed pipeline.
@@ -88,9 +89,10 @@ pub fn measure(
     for &width in widths {
         eprintln!("report: scene at W = {width}");
         // Where W was routed, the system has the pipelines that fit the
-        // device at its clock; elsewhere P at the assumed clock.
+        // device at its clock (the system's where it was routed, else the
+        // pipeline's); elsewhere P at the assumed clock.
         let row = rows.iter().find(|r| r.width == width);
-        let routed = row.and_then(|r| r.ecp5.as_ref()).map(|r| r.fmax_mhz);
+        let routed = row.and_then(WidthRow::clock_mhz);
         let hardware = HardwareArgs {
             width,
             pipelines: row.and_then(|r| r.ecp5_pipelines).unwrap_or(pipelines),
@@ -128,10 +130,10 @@ pub fn measure(
             cycles: run.cycles,
             whole_cycles,
             clock_mhz: hardware.clock_mhz,
-            clock: if routed.is_some() {
-                "post-route".into()
-            } else {
-                "assumed".into()
+            clock: match (routed, row.and_then(|r| r.system_fmax_mhz)) {
+                (Some(_), Some(_)) => "post-route, system".into(),
+                (Some(_), None) => "post-route, pipeline".into(),
+                _ => "assumed".into(),
             },
             rare_cases,
             stall_cycles,
