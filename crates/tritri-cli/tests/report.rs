@@ -166,13 +166,9 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
                 );
                 // At the clock of the system of those p pipelines where it
                 // was routed (W = 16, P = 2: slower than one pipeline alone).
-                let kind = match path {
-                    RareCasePath::Parallel => PipelineKind::Real,
-                    RareCasePath::Shared => PipelineKind::Shared,
-                };
                 let config = SystemConfig::new(width as usize, p as usize, latency());
                 let system = kept
-                    .ecp5(&system_unit_name(config, kind))
+                    .ecp5(&system_unit_name(config, PipelineKind::from(path)))
                     .map(|s| s.fmax_mhz);
                 assert_eq!(row["system_fmax_mhz"].as_f64(), system, "{unit}");
                 let clock = system.unwrap_or(e.fmax_mhz);

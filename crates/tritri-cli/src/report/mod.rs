@@ -310,17 +310,11 @@ fn width_rows(
                 .filter(|&p| p >= 1);
             let system_fmax_mhz = fitting.and_then(|p| {
                 let config = SystemConfig::new(width as usize, p as usize, latency());
-                let kind = match rare_cases {
-                    RareCasePath::Parallel => PipelineKind::Real,
-                    RareCasePath::Shared => PipelineKind::Shared,
-                };
                 measurements
-                    .ecp5(&system_unit_name(config, kind))
+                    .ecp5(&system_unit_name(config, PipelineKind::from(rare_cases)))
                     .map(|r| r.fmax_mhz)
             });
-            let clock = system_fmax_mhz.or(ecp5.as_ref().map(|r| r.fmax_mhz));
-            let pairs_per_second = clock.zip(fitting).map(|(f, p)| f * 1e6 * p as f64);
-            WidthRow {
+            let mut row = WidthRow {
                 width,
                 rare_cases,
                 error: errors.and_then(|e| {
@@ -332,17 +326,24 @@ fn width_rows(
                 }),
                 pairs: errors.map_or(0, |e| e.total.pairs),
                 xilinx: measurements.xilinx(&unit).cloned(),
-                pairs_per_second_per_multiplier: ecp5
-                    .as_ref()
-                    .zip(pairs_per_second)
-                    .zip(fitting)
-                    .map(|((r, p), n)| p / (r.mult18x18d * n as u64).max(1) as f64),
                 ecp5,
                 ecp5_pipelines: fitting,
                 system_fmax_mhz,
-                pairs_per_second,
+                pairs_per_second: None,
+                pairs_per_second_per_multiplier: None,
                 pareto: false,
-            }
+            };
+            row.pairs_per_second = row
+                .clock_mhz()
+                .zip(fitting)
+                .map(|(f, p)| f * 1e6 * p as f64);
+            row.pairs_per_second_per_multiplier = row
+                .ecp5
+                .as_ref()
+                .zip(row.pairs_per_second)
+                .zip(fitting)
+                .map(|((r, p), n)| p / (r.mult18x18d * n as u64).max(1) as f64);
+            row
         })
         .collect();
     let points: Vec<(usize, f64, f64)> = rows
