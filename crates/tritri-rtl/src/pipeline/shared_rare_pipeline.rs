@@ -25,7 +25,8 @@
 //! decides it two clocks ahead, once for each value `advance` may take
 //! next clock, and fourteen [`HoldRegister`]s pick from those two
 //! registers by `advance`, each the enable of one group of units (a
-//! fifteenth serves the unit's offers, a sixteenth the queue). The unit's input is
+//! fifteenth drives the `hold` port, a sixteenth the verdict queue's
+//! `pop`, and `unit_hold` the unit's offers). The unit's input is
 //! valid by registers of its own, a clock ahead too (`offer_next`), one
 //! beside each group of its loads.
 //! Pipelines that move in step (a system's) hold together: each sends its
