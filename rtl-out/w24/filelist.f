@@ -11,6 +11,7 @@ tritri_pipeline_w24_coplanar_decision.v
 tritri_pipeline_w24_coplanar_test.v
 tritri_pipeline_w24_cross_product.v
 tritri_pipeline_w24_cross_product2d.v
+tritri_pipeline_w24_cross_terms.v
 tritri_pipeline_w24_decision.v
 tritri_pipeline_w24_degenerate_pair.v
 tritri_pipeline_w24_delay_line_w1_n10.v
@@ -72,6 +73,7 @@ tritri_pipeline_w24_sign_of.v
 tritri_pipeline_w24_subtractor.v
 tritri_pipeline_w24_third_determinant.v
 tritri_pipeline_w24_triangle_front_end.v
+tritri_pipeline_w24_two_way_cross_product.v
 tritri_pipeline_w24_two_way_subtractor.v
 tritri_pipeline_w24_valid_line_n10.v
 tritri_pipeline_w24_valid_line_n24.v

@@ -4,7 +4,7 @@
 //
 // Purpose:    Cross product `u x v` of two (W+1)-bit difference vectors, exact
 //             in 2W+1 bits per component. Part of tritri_pipeline_w24.
-//             Instances (7), for example: degenerate_pair.orient_abc,
+//             Instances (6), for example: degenerate_pair.orient_abc,
 //             degenerate_pair.orient_abd, degenerate_pair.orient_cda,
 //             degenerate_pair.orient_cdb.
 //
@@ -33,36 +33,20 @@ module tritri_pipeline_w24_cross_product (
 );
 
     // Stub signals
-    wire  multiplier_0_clock;
-    wire  multiplier_0_advance;
-    wire  [24:0] multiplier_0_a;
-    wire  [24:0] multiplier_0_b;
-    wire  [48:0] multiplier_0_product;
-    wire  multiplier_1_clock;
-    wire  multiplier_1_advance;
-    wire  [24:0] multiplier_1_a;
-    wire  [24:0] multiplier_1_b;
-    wire  [48:0] multiplier_1_product;
-    wire  multiplier_2_clock;
-    wire  multiplier_2_advance;
-    wire  [24:0] multiplier_2_a;
-    wire  [24:0] multiplier_2_b;
-    wire  [48:0] multiplier_2_product;
-    wire  multiplier_3_clock;
-    wire  multiplier_3_advance;
-    wire  [24:0] multiplier_3_a;
-    wire  [24:0] multiplier_3_b;
-    wire  [48:0] multiplier_3_product;
-    wire  multiplier_4_clock;
-    wire  multiplier_4_advance;
-    wire  [24:0] multiplier_4_a;
-    wire  [24:0] multiplier_4_b;
-    wire  [48:0] multiplier_4_product;
-    wire  multiplier_5_clock;
-    wire  multiplier_5_advance;
-    wire  [24:0] multiplier_5_a;
-    wire  [24:0] multiplier_5_b;
-    wire  [48:0] multiplier_5_product;
+    wire  terms_clock;
+    wire  terms_advance;
+    wire  [24:0] terms_u_0;
+    wire  [24:0] terms_u_1;
+    wire  [24:0] terms_u_2;
+    wire  [24:0] terms_v_0;
+    wire  [24:0] terms_v_1;
+    wire  [24:0] terms_v_2;
+    wire  [48:0] terms_term_0;
+    wire  [48:0] terms_term_1;
+    wire  [48:0] terms_term_2;
+    wire  [48:0] terms_term_3;
+    wire  [48:0] terms_term_4;
+    wire  [48:0] terms_term_5;
     wire  component_0_clock;
     wire  component_0_advance;
     wire  [48:0] component_0_a;
@@ -80,47 +64,21 @@ module tritri_pipeline_w24_cross_product (
     wire  [48:0] component_2_difference;
 
     // Sub module instances
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_0(
-        .clock(multiplier_0_clock),
-        .advance(multiplier_0_advance),
-        .a(multiplier_0_a),
-        .b(multiplier_0_b),
-        .product(multiplier_0_product)
-    );
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_1(
-        .clock(multiplier_1_clock),
-        .advance(multiplier_1_advance),
-        .a(multiplier_1_a),
-        .b(multiplier_1_b),
-        .product(multiplier_1_product)
-    );
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_2(
-        .clock(multiplier_2_clock),
-        .advance(multiplier_2_advance),
-        .a(multiplier_2_a),
-        .b(multiplier_2_b),
-        .product(multiplier_2_product)
-    );
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_3(
-        .clock(multiplier_3_clock),
-        .advance(multiplier_3_advance),
-        .a(multiplier_3_a),
-        .b(multiplier_3_b),
-        .product(multiplier_3_product)
-    );
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_4(
-        .clock(multiplier_4_clock),
-        .advance(multiplier_4_advance),
-        .a(multiplier_4_a),
-        .b(multiplier_4_b),
-        .product(multiplier_4_product)
-    );
-    tritri_pipeline_w24_multiplier_w49 u_multiplier_5(
-        .clock(multiplier_5_clock),
-        .advance(multiplier_5_advance),
-        .a(multiplier_5_a),
-        .b(multiplier_5_b),
-        .product(multiplier_5_product)
+    tritri_pipeline_w24_cross_terms u_terms(
+        .clock(terms_clock),
+        .advance(terms_advance),
+        .u_0(terms_u_0),
+        .u_1(terms_u_1),
+        .u_2(terms_u_2),
+        .v_0(terms_v_0),
+        .v_1(terms_v_1),
+        .v_2(terms_v_2),
+        .term_0(terms_term_0),
+        .term_1(terms_term_1),
+        .term_2(terms_term_2),
+        .term_3(terms_term_3),
+        .term_4(terms_term_4),
+        .term_5(terms_term_5)
     );
     tritri_pipeline_w24_registered_difference_w49 u_component_0(
         .clock(component_0_clock),
@@ -145,44 +103,28 @@ module tritri_pipeline_w24_cross_product (
     );
 
     // Update code
-    assign multiplier_0_clock = clock;
-    assign multiplier_0_advance = advance;
-    assign multiplier_1_clock = clock;
-    assign multiplier_1_advance = advance;
-    assign multiplier_2_clock = clock;
-    assign multiplier_2_advance = advance;
-    assign multiplier_3_clock = clock;
-    assign multiplier_3_advance = advance;
-    assign multiplier_4_clock = clock;
-    assign multiplier_4_advance = advance;
-    assign multiplier_5_clock = clock;
-    assign multiplier_5_advance = advance;
-    assign multiplier_0_a = u_1;
-    assign multiplier_0_b = v_2;
-    assign multiplier_1_a = u_2;
-    assign multiplier_1_b = v_1;
-    assign multiplier_2_a = u_2;
-    assign multiplier_2_b = v_0;
-    assign multiplier_3_a = u_0;
-    assign multiplier_3_b = v_2;
-    assign multiplier_4_a = u_0;
-    assign multiplier_4_b = v_1;
-    assign multiplier_5_a = u_1;
-    assign multiplier_5_b = v_0;
+    assign terms_clock = clock;
+    assign terms_advance = advance;
+    assign terms_u_0 = u_0;
+    assign terms_v_0 = v_0;
     assign component_0_clock = clock;
     assign component_0_advance = advance;
-    assign component_0_a = multiplier_0_product;
-    assign component_0_b = multiplier_1_product;
+    assign component_0_a = terms_term_0;
+    assign component_0_b = terms_term_1;
     assign product_0 = component_0_difference;
+    assign terms_u_1 = u_1;
+    assign terms_v_1 = v_1;
     assign component_1_clock = clock;
     assign component_1_advance = advance;
-    assign component_1_a = multiplier_2_product;
-    assign component_1_b = multiplier_3_product;
+    assign component_1_a = terms_term_2;
+    assign component_1_b = terms_term_3;
     assign product_1 = component_1_difference;
+    assign terms_u_2 = u_2;
+    assign terms_v_2 = v_2;
     assign component_2_clock = clock;
     assign component_2_advance = advance;
-    assign component_2_a = multiplier_4_product;
-    assign component_2_b = multiplier_5_product;
+    assign component_2_a = terms_term_4;
+    assign component_2_b = terms_term_5;
     assign product_2 = component_2_difference;
 
 endmodule  // tritri_pipeline_w24_cross_product

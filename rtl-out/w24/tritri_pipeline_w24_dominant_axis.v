@@ -23,6 +23,9 @@ module tritri_pipeline_w24_dominant_axis (
     input  wire [48:0] normal_0,
     input  wire [48:0] normal_1,
     input  wire [48:0] normal_2,
+    input  wire [48:0] negated_0,
+    input  wire [48:0] negated_1,
+    input  wire [48:0] negated_2,
     output wire [1:0]  axis
 );
 
@@ -100,7 +103,7 @@ module tritri_pipeline_w24_dominant_axis (
         magnitude_0_d = magnitude_0_q;
         if (advance) begin
             if (normal_0[48]) begin
-                magnitude_0_d = ~normal_0 + 49'h1;
+                magnitude_0_d = negated_0;
             end
             else begin
                 magnitude_0_d = normal_0;
@@ -109,7 +112,7 @@ module tritri_pipeline_w24_dominant_axis (
         magnitude_1_d = magnitude_1_q;
         if (advance) begin
             if (normal_1[48]) begin
-                magnitude_1_d = ~normal_1 + 49'h1;
+                magnitude_1_d = negated_1;
             end
             else begin
                 magnitude_1_d = normal_1;
@@ -118,7 +121,7 @@ module tritri_pipeline_w24_dominant_axis (
         magnitude_2_d = magnitude_2_q;
         if (advance) begin
             if (normal_2[48]) begin
-                magnitude_2_d = ~normal_2 + 49'h1;
+                magnitude_2_d = negated_2;
             end
             else begin
                 magnitude_2_d = normal_2;

@@ -31,6 +31,9 @@ module tritri_pipeline_w24_normal_unit (
     output wire [48:0] normal_0,
     output wire [48:0] normal_1,
     output wire [48:0] normal_2,
+    output wire [48:0] negated_normal_0,
+    output wire [48:0] negated_normal_1,
+    output wire [48:0] negated_normal_2,
     output wire [7:0]  edges_bits
 );
 
@@ -74,6 +77,9 @@ module tritri_pipeline_w24_normal_unit (
     wire  [48:0] edge_cross_product_0;
     wire  [48:0] edge_cross_product_1;
     wire  [48:0] edge_cross_product_2;
+    wire  [48:0] edge_cross_negated_0;
+    wire  [48:0] edge_cross_negated_1;
+    wire  [48:0] edge_cross_negated_2;
     wire  edge_bits_clock;
     wire  edge_bits_advance;
     wire  [24:0] edge_bits_a_0;
@@ -123,7 +129,7 @@ module tritri_pipeline_w24_normal_unit (
         .negated_1(edge_pr_negated_1),
         .negated_2(edge_pr_negated_2)
     );
-    tritri_pipeline_w24_cross_product u_edge_cross(
+    tritri_pipeline_w24_two_way_cross_product u_edge_cross(
         .clock(edge_cross_clock),
         .advance(edge_cross_advance),
         .u_0(edge_cross_u_0),
@@ -134,7 +140,10 @@ module tritri_pipeline_w24_normal_unit (
         .v_2(edge_cross_v_2),
         .product_0(edge_cross_product_0),
         .product_1(edge_cross_product_1),
-        .product_2(edge_cross_product_2)
+        .product_2(edge_cross_product_2),
+        .negated_0(edge_cross_negated_0),
+        .negated_1(edge_cross_negated_1),
+        .negated_2(edge_cross_negated_2)
     );
     tritri_pipeline_w24_edges_bit_length u_edge_bits(
         .clock(edge_bits_clock),
@@ -170,6 +179,7 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_0 = edge_pq_difference_0;
     assign edge_cross_v_0 = edge_pr_difference_0;
     assign normal_0 = edge_cross_product_0;
+    assign negated_normal_0 = edge_cross_negated_0;
     assign edge_bits_a_0 = edge_pq_difference_0;
     assign edge_bits_b_0 = edge_pr_difference_0;
     assign edge_bits_a_negated_0 = edge_pq_negated_0;
@@ -181,6 +191,7 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_1 = edge_pq_difference_1;
     assign edge_cross_v_1 = edge_pr_difference_1;
     assign normal_1 = edge_cross_product_1;
+    assign negated_normal_1 = edge_cross_negated_1;
     assign edge_bits_a_1 = edge_pq_difference_1;
     assign edge_bits_b_1 = edge_pr_difference_1;
     assign edge_bits_a_negated_1 = edge_pq_negated_1;
@@ -192,6 +203,7 @@ module tritri_pipeline_w24_normal_unit (
     assign edge_cross_u_2 = edge_pq_difference_2;
     assign edge_cross_v_2 = edge_pr_difference_2;
     assign normal_2 = edge_cross_product_2;
+    assign negated_normal_2 = edge_cross_negated_2;
     assign edge_bits_a_2 = edge_pq_difference_2;
     assign edge_bits_b_2 = edge_pr_difference_2;
     assign edge_bits_a_negated_2 = edge_pq_negated_2;

@@ -3,7 +3,7 @@
 // Filename:   tritri_pipeline_w24_registered_difference_w49.v
 //
 // Purpose:    `difference = a - b` (mod `2^N`), registered. Part of
-//             tritri_pipeline_w24. Instances (39), for example:
+//             tritri_pipeline_w24. Instances (42), for example:
 //             coplanar.orient[0].difference, coplanar.orient[1].difference,
 //             coplanar.orient[10].difference, coplanar.orient[11].difference.
 //

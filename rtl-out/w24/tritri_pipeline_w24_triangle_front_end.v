@@ -73,6 +73,9 @@ module tritri_pipeline_w24_triangle_front_end (
     wire  [48:0] normal_unit_normal_0;
     wire  [48:0] normal_unit_normal_1;
     wire  [48:0] normal_unit_normal_2;
+    wire  [48:0] normal_unit_negated_normal_0;
+    wire  [48:0] normal_unit_negated_normal_1;
+    wire  [48:0] normal_unit_negated_normal_2;
     wire  [7:0] normal_unit_edges_bits;
     wire  normal_sign_0_clock;
     wire  normal_sign_0_advance;
@@ -94,6 +97,9 @@ module tritri_pipeline_w24_triangle_front_end (
     wire  [48:0] axis_normal_0;
     wire  [48:0] axis_normal_1;
     wire  [48:0] axis_normal_2;
+    wire  [48:0] axis_negated_0;
+    wire  [48:0] axis_negated_1;
+    wire  [48:0] axis_negated_2;
     wire  [1:0] axis_axis;
     wire  ends_clock;
     wire  ends_advance;
@@ -209,6 +215,9 @@ module tritri_pipeline_w24_triangle_front_end (
         .normal_0(normal_unit_normal_0),
         .normal_1(normal_unit_normal_1),
         .normal_2(normal_unit_normal_2),
+        .negated_normal_0(normal_unit_negated_normal_0),
+        .negated_normal_1(normal_unit_negated_normal_1),
+        .negated_normal_2(normal_unit_negated_normal_2),
         .edges_bits(normal_unit_edges_bits)
     );
     tritri_pipeline_w24_sign_of u_normal_sign_0(
@@ -238,6 +247,9 @@ module tritri_pipeline_w24_triangle_front_end (
         .normal_0(axis_normal_0),
         .normal_1(axis_normal_1),
         .normal_2(axis_normal_2),
+        .negated_0(axis_negated_0),
+        .negated_1(axis_negated_1),
+        .negated_2(axis_negated_2),
         .axis(axis_axis)
     );
     tritri_pipeline_w24_segment_ends u_ends(
@@ -461,6 +473,7 @@ module tritri_pipeline_w24_triangle_front_end (
     assign normal_zero_delay_0_advance = advance;
     assign normal_sign_0_value = normal_unit_normal_0;
     assign axis_normal_0 = normal_unit_normal_0;
+    assign axis_negated_0 = normal_unit_negated_normal_0;
     assign normal_delay_0_d = normal_unit_normal_0;
     assign normal_negative_delay_0_d = normal_sign_0_negative;
     assign normal_zero_delay_0_d = normal_sign_0_zero;
@@ -477,6 +490,7 @@ module tritri_pipeline_w24_triangle_front_end (
     assign normal_zero_delay_1_advance = advance;
     assign normal_sign_1_value = normal_unit_normal_1;
     assign axis_normal_1 = normal_unit_normal_1;
+    assign axis_negated_1 = normal_unit_negated_normal_1;
     assign normal_delay_1_d = normal_unit_normal_1;
     assign normal_negative_delay_1_d = normal_sign_1_negative;
     assign normal_zero_delay_1_d = normal_sign_1_zero;
@@ -493,6 +507,7 @@ module tritri_pipeline_w24_triangle_front_end (
     assign normal_zero_delay_2_advance = advance;
     assign normal_sign_2_value = normal_unit_normal_2;
     assign axis_normal_2 = normal_unit_normal_2;
+    assign axis_negated_2 = normal_unit_negated_normal_2;
     assign normal_delay_2_d = normal_unit_normal_2;
     assign normal_negative_delay_2_d = normal_sign_2_negative;
     assign normal_zero_delay_2_d = normal_sign_2_zero;

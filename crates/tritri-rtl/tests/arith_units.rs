@@ -15,7 +15,9 @@ use tritri_rtl::arith::compare::{
     CoordinateCompare, SplitCompare, COMPARE_LATENCY, SPLIT_COMPARE_LATENCY,
 };
 use tritri_rtl::arith::convert::{from_i128, to_i128, wrap_i128};
-use tritri_rtl::arith::cross_product::{CrossProduct, CrossProduct2d, CROSS_PRODUCT_LATENCY};
+use tritri_rtl::arith::cross_product::{
+    CrossProduct, CrossProduct2d, TwoWayCrossProduct, CROSS_PRODUCT_LATENCY,
+};
 use tritri_rtl::arith::delay_line::DelayLine;
 use tritri_rtl::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
 use tritri_rtl::arith::multiplier::{Multiplier, MULTIPLIER_LATENCY};
@@ -147,6 +149,32 @@ fn cross_products_are_exact() {
         },
         |u| u.product.each_ref().map(|p| to_i128(p.val())),
         |[e1, e2, _]| cross(narrow(*e1), narrow(*e2)),
+    );
+    // Both ways: the product and its negation from the same stage.
+    let mut uut = TwoWayCrossProduct::<25, 49>::default();
+    uut.connect_all();
+    uut.advance.next = true;
+    assert_stream_matches(
+        &mut uut,
+        |u| &mut u.clock,
+        &edge_vectors(8),
+        CROSS_PRODUCT_LATENCY,
+        |u, [e1, e2, _]| {
+            for k in 0..3 {
+                u.u[k].next = from_i128(e1[k]);
+                u.v[k].next = from_i128(e2[k]);
+            }
+        },
+        |u| {
+            (
+                u.product.each_ref().map(|p| to_i128(p.val())),
+                u.negated.each_ref().map(|p| to_i128(p.val())),
+            )
+        },
+        |[e1, e2, _]| {
+            let n = cross(narrow(*e1), narrow(*e2));
+            (n, n.map(|c| -c))
+        },
     );
     let mut uut = CrossProduct2d::<25, 49>::default();
     uut.connect_all();

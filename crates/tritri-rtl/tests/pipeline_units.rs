@@ -118,7 +118,7 @@ fn edges_bits(t: &FixedTriangle) -> u64 {
 }
 
 #[test]
-fn normal_unit_gives_the_cross_product_and_its_edges_bit_length() {
+fn normal_unit_gives_the_cross_product_its_negation_and_its_edges_bit_length() {
     let vectors = triangles(1);
     let mut uut = NormalUnit::<24, 25, 49>::default();
     uut.connect_all();
@@ -129,8 +129,16 @@ fn normal_unit_gives_the_cross_product_and_its_edges_bit_length() {
         &vectors,
         NORMAL_LATENCY,
         |u, t| set_vertices(&mut u.vertices, t),
-        |u| u.normal.each_ref().map(|n| to_i128(n.val())),
-        normal,
+        |u| {
+            (
+                u.normal.each_ref().map(|n| to_i128(n.val())),
+                u.negated_normal.each_ref().map(|n| to_i128(n.val())),
+            )
+        },
+        |t| {
+            let n = normal(t);
+            (n, n.map(|c| -c))
+        },
     );
     let mut uut = NormalUnit::<24, 25, 49>::default();
     uut.connect_all();
@@ -168,6 +176,7 @@ fn dominant_axis_is_the_largest_component_ties_low() {
         |u, n| {
             for k in 0..3 {
                 u.normal[k].next = from_i128(n[k]);
+                u.negated[k].next = from_i128(-n[k]);
             }
         },
         |u| u.axis.val().to_u64() as usize,

@@ -15,52 +15,35 @@ use rust_hdl::prelude::*;
 /// Clock edges from operands to cross product.
 pub const CROSS_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + ADDER_LATENCY;
 
-#[derive(LogicBlock)]
-pub struct CrossProduct<const D: usize, const C: usize> {
+/// The six products of `u × v`, `u1 v2, u2 v1, u2 v0, u0 v2, u0 v1, u1 v0`:
+/// component `k` is `term[2k] - term[2k + 1]`. One place for the
+/// multipliers' wiring, shared by [`CrossProduct`] and
+/// [`TwoWayCrossProduct`].
+#[derive(LogicBlock, Default)]
+pub struct CrossTerms<const D: usize, const C: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
     pub u: [Signal<In, Bits<D>>; 3],
     pub v: [Signal<In, Bits<D>>; 3],
-    /// `u × v`, `CROSS_PRODUCT_LATENCY` enabled edges later.
-    pub product: [Signal<Out, Bits<C>>; 3],
-    /// Products `u1 v2, u2 v1, u2 v0, u0 v2, u0 v1, u1 v0`.
+    /// `MULTIPLIER_LATENCY` enabled edges later.
+    pub term: [Signal<Out, Bits<C>>; 6],
     multiplier: [Multiplier<D, D, C>; 6],
-    component: [RegisteredDifference<C>; 3],
 }
 
-impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct<D, C> {
-    const LATENCY: Option<usize> = Some(CROSS_PRODUCT_LATENCY);
+impl<const D: usize, const C: usize> crate::unit::Unit for CrossTerms<D, C> {
+    const LATENCY: Option<usize> = Some(MULTIPLIER_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, multiplier, component);
+        crate::sub_units!(self, units, multiplier);
     }
 }
 
-impl<const D: usize, const C: usize> Default for CrossProduct<D, C> {
-    fn default() -> Self {
-        assert_eq!(
-            C,
-            2 * D - 1,
-            "a cross product of {D}-bit differences has {} bits",
-            2 * D - 1
-        );
-        Self {
-            clock: Default::default(),
-            advance: Default::default(),
-            u: Default::default(),
-            v: Default::default(),
-            product: Default::default(),
-            multiplier: Default::default(),
-            component: Default::default(),
-        }
-    }
-}
-
-impl<const D: usize, const C: usize> Logic for CrossProduct<D, C> {
+impl<const D: usize, const C: usize> Logic for CrossTerms<D, C> {
     #[hdl_gen]
     fn update(&mut self) {
         for i in 0..6 {
             self.multiplier[i].clock.next = self.clock.val();
             self.multiplier[i].advance.next = self.advance.val();
+            self.term[i].next = self.multiplier[i].product.val();
         }
         self.multiplier[0].a.next = self.u[1].val();
         self.multiplier[0].b.next = self.v[2].val();
@@ -74,12 +57,132 @@ impl<const D: usize, const C: usize> Logic for CrossProduct<D, C> {
         self.multiplier[4].b.next = self.v[1].val();
         self.multiplier[5].a.next = self.u[1].val();
         self.multiplier[5].b.next = self.v[0].val();
+    }
+}
+
+fn assert_cross_width(d: usize, c: usize) {
+    assert_eq!(
+        c,
+        2 * d - 1,
+        "a cross product of {d}-bit differences has {} bits",
+        2 * d - 1
+    );
+}
+
+#[derive(LogicBlock)]
+pub struct CrossProduct<const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub u: [Signal<In, Bits<D>>; 3],
+    pub v: [Signal<In, Bits<D>>; 3],
+    /// `u × v`, `CROSS_PRODUCT_LATENCY` enabled edges later.
+    pub product: [Signal<Out, Bits<C>>; 3],
+    terms: CrossTerms<D, C>,
+    component: [RegisteredDifference<C>; 3],
+}
+
+impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct<D, C> {
+    const LATENCY: Option<usize> = Some(CROSS_PRODUCT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, terms, component);
+    }
+}
+
+impl<const D: usize, const C: usize> Default for CrossProduct<D, C> {
+    fn default() -> Self {
+        assert_cross_width(D, C);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            u: Default::default(),
+            v: Default::default(),
+            product: Default::default(),
+            terms: Default::default(),
+            component: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize, const C: usize> Logic for CrossProduct<D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.terms.clock.next = self.clock.val();
+        self.terms.advance.next = self.advance.val();
         for k in 0..3 {
+            self.terms.u[k].next = self.u[k].val();
+            self.terms.v[k].next = self.v[k].val();
             self.component[k].clock.next = self.clock.val();
             self.component[k].advance.next = self.advance.val();
-            self.component[k].a.next = self.multiplier[2 * k].product.val();
-            self.component[k].b.next = self.multiplier[2 * k + 1].product.val();
+            self.component[k].a.next = self.terms.term[2 * k].val();
+            self.component[k].b.next = self.terms.term[2 * k + 1].val();
             self.product[k].next = self.component[k].difference.val();
+        }
+    }
+}
+
+/// `u × v` and `v × u = -(u × v)`, both from the same products in the same
+/// stage, as [`super::subtractor::TwoWaySubtractor`] gives an edge both ways:
+/// a reader that wants a component's magnitude then selects one of two
+/// registers by the sign instead of negating behind the multipliers (the
+/// triangle's dominant axis; a 2W + 1-bit negation there, behind 4.5 ns of
+/// routing from the products, was the W = 16 pipeline's worst path on ECP5).
+#[derive(LogicBlock)]
+pub struct TwoWayCrossProduct<const D: usize, const C: usize> {
+    pub clock: Signal<In, Clock>,
+    pub advance: Signal<In, Bit>,
+    pub u: [Signal<In, Bits<D>>; 3],
+    pub v: [Signal<In, Bits<D>>; 3],
+    /// `u × v`, `CROSS_PRODUCT_LATENCY` enabled edges later.
+    pub product: [Signal<Out, Bits<C>>; 3],
+    /// `v × u`, with it.
+    pub negated: [Signal<Out, Bits<C>>; 3],
+    terms: CrossTerms<D, C>,
+    component: [RegisteredDifference<C>; 3],
+    negated_component: [RegisteredDifference<C>; 3],
+}
+
+impl<const D: usize, const C: usize> crate::unit::Unit for TwoWayCrossProduct<D, C> {
+    const LATENCY: Option<usize> = Some(CROSS_PRODUCT_LATENCY);
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(self, units, terms, component, negated_component);
+    }
+}
+
+impl<const D: usize, const C: usize> Default for TwoWayCrossProduct<D, C> {
+    fn default() -> Self {
+        assert_cross_width(D, C);
+        Self {
+            clock: Default::default(),
+            advance: Default::default(),
+            u: Default::default(),
+            v: Default::default(),
+            product: Default::default(),
+            negated: Default::default(),
+            terms: Default::default(),
+            component: Default::default(),
+            negated_component: Default::default(),
+        }
+    }
+}
+
+impl<const D: usize, const C: usize> Logic for TwoWayCrossProduct<D, C> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.terms.clock.next = self.clock.val();
+        self.terms.advance.next = self.advance.val();
+        for k in 0..3 {
+            self.terms.u[k].next = self.u[k].val();
+            self.terms.v[k].next = self.v[k].val();
+            self.component[k].clock.next = self.clock.val();
+            self.component[k].advance.next = self.advance.val();
+            self.component[k].a.next = self.terms.term[2 * k].val();
+            self.component[k].b.next = self.terms.term[2 * k + 1].val();
+            self.product[k].next = self.component[k].difference.val();
+            self.negated_component[k].clock.next = self.clock.val();
+            self.negated_component[k].advance.next = self.advance.val();
+            self.negated_component[k].a.next = self.terms.term[2 * k + 1].val();
+            self.negated_component[k].b.next = self.terms.term[2 * k].val();
+            self.negated[k].next = self.negated_component[k].difference.val();
         }
     }
 }
@@ -111,12 +214,7 @@ impl<const D: usize, const C: usize> crate::unit::Unit for CrossProduct2d<D, C> 
 
 impl<const D: usize, const C: usize> Default for CrossProduct2d<D, C> {
     fn default() -> Self {
-        assert_eq!(
-            C,
-            2 * D - 1,
-            "a cross product of {D}-bit differences has {} bits",
-            2 * D - 1
-        );
+        assert_cross_width(D, C);
         Self {
             clock: Default::default(),
             advance: Default::default(),

@@ -7,8 +7,11 @@
 //! and `segment_triangle` in devillers_guigue.rs). Three stages:
 //! magnitudes, the three comparisons, the axis. (Comparisons and axis in
 //! one stage were a 2W + 1-bit carry chain into a select, 137 MHz on ECP5.)
-//! A component's magnitude is at most `M^2 < 2^(2W)`, so
-//! the negation never overflows.
+//! The magnitudes are selected from the normal and its negation, both
+//! registered by the cross product: negating here was a 2W + 1-bit carry
+//! chain behind 4.5 ns of routing from the cross product's registers, the
+//! W = 16 pipeline's worst path on ECP5 (137.7 MHz, seed 3). A component's
+//! magnitude is at most `M^2 < 2^(2W)`, so the negation never overflows.
 
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -21,6 +24,8 @@ pub struct DominantAxis<const C: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
     pub normal: [Signal<In, Bits<C>>; 3],
+    /// `-normal`.
+    pub negated: [Signal<In, Bits<C>>; 3],
     /// 0, 1 or 2.
     pub axis: Signal<Out, Bits<2>>,
     top_bit: Constant<Bits<8>>,
@@ -43,6 +48,7 @@ impl<const C: usize> Default for DominantAxis<C> {
             clock: Default::default(),
             advance: Default::default(),
             normal: Default::default(),
+            negated: Default::default(),
             axis: Default::default(),
             top_bit: Constant::new(Bits::<8>::from((C - 1) as u64)),
             magnitude: Default::default(),
@@ -60,7 +66,7 @@ impl<const C: usize> Logic for DominantAxis<C> {
             self.magnitude[k].d.next = self.magnitude[k].q.val();
             if self.advance.val() {
                 if self.normal[k].val().get_bit(self.top_bit.val().index()) {
-                    self.magnitude[k].d.next = !self.normal[k].val() + 1;
+                    self.magnitude[k].d.next = self.negated[k].val();
                 } else {
                     self.magnitude[k].d.next = self.normal[k].val();
                 }

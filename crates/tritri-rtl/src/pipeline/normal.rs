@@ -7,7 +7,7 @@
 //! Software model: `tritri_geom::fixed_point::cross`.
 
 use crate::arith::certificate::{EdgesBitLength, EDGES_BIT_LENGTH_LATENCY};
-use crate::arith::cross_product::{CrossProduct, CROSS_PRODUCT_LATENCY};
+use crate::arith::cross_product::{TwoWayCrossProduct, CROSS_PRODUCT_LATENCY};
 use crate::arith::subtractor::{TwoWaySubtractor, SUBTRACTOR_LATENCY};
 use rust_hdl::prelude::*;
 
@@ -25,13 +25,15 @@ pub struct NormalUnit<const W: usize, const D: usize, const C: usize> {
     pub vertices: [Signal<In, Bits<W>>; 9],
     /// `(q - p) × (r - p)`, `NORMAL_LATENCY` enabled edges later.
     pub normal: [Signal<Out, Bits<C>>; 3],
+    /// `-normal`, with it: the dominant axis takes magnitudes from the two.
+    pub negated_normal: [Signal<Out, Bits<C>>; 3],
     /// `ke = bitlen(|q - p|_1 + |r - p|_1)`, the certificates' (see
     /// `arith::certificate`), `EDGES_BITS_LATENCY` enabled edges later.
     pub edges_bits: Signal<Out, Bits<8>>,
     /// The edges, each also negated for its magnitudes in `edge_bits`.
     edge_pq: TwoWaySubtractor<W, D>,
     edge_pr: TwoWaySubtractor<W, D>,
-    edge_cross: CrossProduct<D, C>,
+    edge_cross: TwoWayCrossProduct<D, C>,
     edge_bits: EdgesBitLength<D>,
 }
 
@@ -58,6 +60,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
             self.edge_cross.u[k].next = self.edge_pq.difference[k].val();
             self.edge_cross.v[k].next = self.edge_pr.difference[k].val();
             self.normal[k].next = self.edge_cross.product[k].val();
+            self.negated_normal[k].next = self.edge_cross.negated[k].val();
             self.edge_bits.a[k].next = self.edge_pq.difference[k].val();
             self.edge_bits.b[k].next = self.edge_pr.difference[k].val();
             self.edge_bits.a_negated[k].next = self.edge_pq.negated[k].val();

@@ -116,6 +116,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<
             self.normal_zero_delay[k].advance.next = self.advance.val();
             self.normal_sign[k].value.next = self.normal_unit.normal[k].val();
             self.axis.normal[k].next = self.normal_unit.normal[k].val();
+            self.axis.negated[k].next = self.normal_unit.negated_normal[k].val();
             self.normal_delay[k].d.next = self.normal_unit.normal[k].val();
             self.normal_negative_delay[k].d.next = self.normal_sign[k].negative.val();
             self.normal_zero_delay[k].d.next = self.normal_sign[k].zero.val();
