@@ -5,8 +5,9 @@
 //! unit); `tritri_geom::fixed_point::cross` is the software model. Six
 //! registered multipliers `(W+1) x (W+1) -> 2W+1` (each product is at most
 //! `(2^W - 1)^2 < 2^(2W)` in magnitude, so it fits) and one registered
-//! subtraction per component, modulo `2^(2W+1)`, exact because every
-//! component is at most `M^2` in magnitude (`tritri_geom::widths`).
+//! subtraction per component (two in [`TwoWayCrossProduct`], one each
+//! way), modulo `2^(2W+1)`, exact because every component is at most
+//! `M^2` in magnitude (`tritri_geom::widths`).
 
 use super::adder::{RegisteredDifference, ADDER_LATENCY};
 use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};
