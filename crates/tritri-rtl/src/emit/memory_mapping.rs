@@ -12,12 +12,13 @@
 //! stages for a memory of at least `N - 1` words (a power of two) with two
 //! counters (`delay_line_memory_verilog`): the same ports, latency and
 //! values from the first clock, and synthesis puts the words in
-//! distributed RAM. (ECP5, W = 16, shared rare cases, heap placement,
-//! router1: 20,310 flip-flops placed became 15,047, with 344
-//! `TRELLIS_DPR16X4`; seed 1 went from 109.3 to 123.7 MHz and from 940
-//! register inputs short of 150 MHz to 323 (seed 2: 103.8 MHz, 407), and
-//! router1 took about a quarter of the time; rtl-out/README.md.) The valid
-//! bits' lines (`ValidLine`, with a reset) stay registers.
+//! distributed RAM (the memory's `ram_style` attribute asks for it).
+//! (ECP5, W = 16, shared rare cases, heap placement, router1: 20,310
+//! flip-flops placed became 15,047, with 344 `TRELLIS_DPR16X4`; seed 1
+//! went from 109.3 to 123.7 MHz and from 940 register inputs short of
+//! 150 MHz to 323 (seed 2: 103.8 MHz, 407), and router1 took about a
+//! quarter of the time; rtl-out/README.md.) The valid bits' lines
+//! (`ValidLine`, with a reset) stay registers.
 
 use super::dsp_mapping::indented_body;
 use super::EmittedDesign;
@@ -133,7 +134,10 @@ mod tests {
             )
         };
         let long = in_memory(&module("DelayLine<T = Bits<16>, N = 10>", 10)).unwrap();
-        assert!(long.contains("reg [15:0] words [0:15];"), "{long}");
+        assert!(
+            long.contains("(* ram_style = \"distributed\" *)\n    reg [15:0] words [0:15];"),
+            "{long}"
+        );
         assert!(
             long.ends_with("endmodule\n") && !long.contains("reg x;"),
             "{long}"
