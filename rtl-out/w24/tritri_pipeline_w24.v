@@ -132,6 +132,8 @@ module tritri_pipeline_w24 (
     wire  path_advance_copies_9;
     wire  path_advance_copies_10;
     wire  path_advance_copies_11;
+    wire  path_advance_copies_12;
+    wire  path_advance_copies_13;
     wire  path_base_advance;
     wire  path_base_hold_if_advance;
     wire  path_base_hold_if_still;
@@ -282,6 +284,8 @@ module tritri_pipeline_w24 (
         .advance_copies_9(path_advance_copies_9),
         .advance_copies_10(path_advance_copies_10),
         .advance_copies_11(path_advance_copies_11),
+        .advance_copies_12(path_advance_copies_12),
+        .advance_copies_13(path_advance_copies_13),
         .base_advance(path_base_advance),
         .base_hold_if_advance(path_base_hold_if_advance),
         .base_hold_if_still(path_base_hold_if_still)
@@ -382,6 +386,8 @@ module tritri_pipeline_w24 (
     assign path_advance_copies_9 = advance;
     assign path_advance_copies_10 = advance;
     assign path_advance_copies_11 = advance;
+    assign path_advance_copies_12 = advance;
+    assign path_advance_copies_13 = advance;
     assign path_base_advance = advance;
     assign path_base_hold_if_advance = 1'h0;
     assign path_base_hold_if_still = 1'h0;

@@ -100,6 +100,8 @@ module tritri_pipeline_w24_general_path (
     input  wire        advance_copies_9,
     input  wire        advance_copies_10,
     input  wire        advance_copies_11,
+    input  wire        advance_copies_12,
+    input  wire        advance_copies_13,
     input  wire        base_advance,
     input  wire        base_hold_if_advance,
     input  wire        base_hold_if_still
@@ -268,6 +270,7 @@ module tritri_pipeline_w24_general_path (
     wire  [31:0] stream_id_q;
     wire  plane_side_t1_clock;
     wire  plane_side_t1_advance;
+    wire  plane_side_t1_advance_products;
     wire  [23:0] plane_side_t1_plane_point_0;
     wire  [23:0] plane_side_t1_plane_point_1;
     wire  [23:0] plane_side_t1_plane_point_2;
@@ -299,6 +302,7 @@ module tritri_pipeline_w24_general_path (
     wire  [73:0] plane_side_t1_distance_2;
     wire  plane_side_t2_clock;
     wire  plane_side_t2_advance;
+    wire  plane_side_t2_advance_products;
     wire  [23:0] plane_side_t2_plane_point_0;
     wire  [23:0] plane_side_t2_plane_point_1;
     wire  [23:0] plane_side_t2_plane_point_2;
@@ -966,6 +970,7 @@ module tritri_pipeline_w24_general_path (
     tritri_pipeline_w24_plane_side u_plane_side_t1(
         .clock(plane_side_t1_clock),
         .advance(plane_side_t1_advance),
+        .advance_products(plane_side_t1_advance_products),
         .plane_point_0(plane_side_t1_plane_point_0),
         .plane_point_1(plane_side_t1_plane_point_1),
         .plane_point_2(plane_side_t1_plane_point_2),
@@ -999,6 +1004,7 @@ module tritri_pipeline_w24_general_path (
     tritri_pipeline_w24_plane_side u_plane_side_t2(
         .clock(plane_side_t2_clock),
         .advance(plane_side_t2_advance),
+        .advance_products(plane_side_t2_advance_products),
         .plane_point_0(plane_side_t2_plane_point_0),
         .plane_point_1(plane_side_t2_plane_point_1),
         .plane_point_2(plane_side_t2_plane_point_2),
@@ -1638,6 +1644,8 @@ module tritri_pipeline_w24_general_path (
     assign stream_id_advance = advance_copies_11;
     assign plane_side_t1_advance = advance_copies_0;
     assign plane_side_t2_advance = advance_copies_1;
+    assign plane_side_t1_advance_products = advance_copies_12;
+    assign plane_side_t2_advance_products = advance_copies_13;
     assign align_t1_advance = advance_copies_2;
     assign align_t2_advance = advance_copies_2;
     assign interval_overlap_advance = advance_copies_2;

@@ -20,6 +20,7 @@
 module tritri_pipeline_w24_plane_side (
     input  wire        clock,
     input  wire        advance,
+    input  wire        advance_products,
     input  wire [23:0] plane_point_0,
     input  wire [23:0] plane_point_1,
     input  wire [23:0] plane_point_2,
@@ -451,9 +452,9 @@ module tritri_pipeline_w24_plane_side (
     assign offset_0_advance = advance;
     assign offset_1_advance = advance;
     assign offset_2_advance = advance;
-    assign distance_0_advance = advance;
-    assign distance_1_advance = advance;
-    assign distance_2_advance = advance;
+    assign distance_0_advance = advance_products;
+    assign distance_1_advance = advance_products;
+    assign distance_2_advance = advance_products;
     assign edges_bits_delay_advance = advance;
     assign edges_bits_delay_d = plane_edges_bits;
     assign normal_early_0_clock = clock;
