@@ -8,7 +8,7 @@
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
 //             pipeline stage"). Part of tritri_pipeline_w24. Instance:
-//             coplanar_to_decision.
+//             degenerate_pair_to_decision.
 //
 // Rust unit:  DelayLine<T = bool, N = 23>
 // Latency:    23 clock cycles

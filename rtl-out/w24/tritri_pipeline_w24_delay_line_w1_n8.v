@@ -7,8 +7,8 @@
 //             flags and ids alongside the arithmetic so that every unit sees
 //             the operands of the same pair (thesis, chapter 3: the
 //             base-polygon values "are passed on to the registers of the next
-//             pipeline stage"). Part of tritri_pipeline_w24. Instances (4):
-//             coplanar.orientation[0], coplanar.orientation[1],
+//             pipeline stage"). Part of tritri_pipeline_w24. Instances (5), for
+//             example: coplanar.orientation[0], coplanar.orientation[1],
 //             coplanar.orientation[2], coplanar.orientation[3].
 //
 // Rust unit:  DelayLine<T = bool, N = 8>

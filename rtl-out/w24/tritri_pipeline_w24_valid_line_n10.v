@@ -6,8 +6,7 @@
 //             shift register of one bit with a synchronous active-high reset
 //             (control state is reset, docs/ARCHITECTURE.md, conventions). It
 //             marks which pipeline slots hold a pair. Part of
-//             tritri_pipeline_w24. Instances (2): path.pair_valid_to_sides,
-//             path.record_valid.
+//             tritri_pipeline_w24. Instance: path.record_valid.
 //
 // Rust unit:  ValidLine<N = 10>
 // Latency:    10 clock cycles

@@ -239,7 +239,6 @@ fn plane_side_signs_and_certificates() {
         let mut uut = PlaneSide::<24, 25, 49, 74>::default();
         uut.connect_all();
         uut.advance.next = true;
-        uut.advance_products.next = true;
         let shown = move |(negative, zero, certain): (bool, bool, bool)| {
             if certificates {
                 (false, false, certain)

@@ -14,7 +14,7 @@
 //!   edges, once per triangle (with its normal) or per determinant.
 //! * [`NormalPart`] (three register stages): `X + (X >> 19)` of a normal,
 //!   once for every threshold on it.
-//! * [`CertificateThreshold`] (seven register stages, beside the dot
+//! * [`CertificateThreshold`] (six register stages, beside the dot
 //!   product): `T` from `|w_k|`, `ke` and the normal's part.
 //! * [`CertainSign`] (one register stage for the sign, like
 //!   [`super::sign::SignOf`], three for the certificate): the sign of `P`
@@ -46,9 +46,8 @@ pub const CERTAIN_SIGN_LATENCY: usize = 1;
 /// Clock edges from two edges to their `ke`.
 pub const EDGES_BIT_LENGTH_LATENCY: usize = 5;
 
-/// Clock edges from `w`, `n` and `ke` to the threshold: the dot product's
-/// (`super::dot_product::DOT_PRODUCT_LATENCY`), beside which it runs.
-pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 7;
+/// Clock edges from `w`, `n` and `ke` to the threshold.
+pub const CERTIFICATE_THRESHOLD_LATENCY: usize = 6;
 
 /// The magnitudes `|v_k|` of D-bit two's complement values as the
 /// hardware takes them: `negated_k` (`-v_k` modulo `2^D`, unsigned) where
@@ -411,8 +410,7 @@ end
 /// D bits unsigned) and `ke` (in the same clock), and the normal's part
 /// `X + (X >> 19)` ([`NormalPart`]) three clocks later, as the fourth
 /// stage takes it, in six register stages, each at most one carry chain or
-/// one LUT tree, and a seventh that copies `T` (the dot products beside
-/// it take seven, `crate::arith::multiplier::WIDE_MULTIPLIER_LATENCY`):
+/// one LUT tree:
 ///
 /// 1. `Sw = |w|_1`; `2^(ke + 2) + 16`;
 /// 2. `2 Sw + 1` and the ORs of its groups of four bits;
@@ -422,8 +420,7 @@ end
 /// 4. the exponent `bitlen Sw + ke`; the two parts' sum (the normal's
 ///    straight from the input: a register beside this unit forms it);
 /// 5. `Y + (Y >> 19)`, a one shifted by the exponent;
-/// 6. `T`;
-/// 7. its copy, the output.
+/// 6. `T`.
 ///
 /// (A first version took `w` itself and summed its magnitudes in the
 /// stage that formed them, two carry chains in series: the W = 8
@@ -460,7 +457,6 @@ pub struct CertificateThreshold<const D: usize, const C: usize, const O: usize> 
     _partial: u128,
     _y: u128,
     _partial_2: u128,
-    _sum: u128,
 }
 
 /// Clock edges from the offset to the normal's part at the threshold's
@@ -498,7 +494,6 @@ impl<const D: usize, const C: usize, const O: usize> Default for CertificateThre
             _partial: 0,
             _y: 0,
             _partial_2: 0,
-            _sum: 0,
         }
     }
 }
@@ -509,8 +504,7 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
             let t_mask = (1u128 << (C + 6)) - 1;
             let small_mask = (1u128 << (D + 6)) - 1;
             // Each stage from the one before, last first.
-            self.threshold.next = from_i128::<O>(self._sum as i128);
-            self._sum = (self._partial_2 + self._y) & t_mask;
+            self.threshold.next = from_i128::<O>(((self._partial_2 + self._y) & t_mask) as i128);
             let one = if self._exponent < (C + 6) as u128 {
                 1u128 << self._exponent
             } else {
@@ -560,8 +554,7 @@ impl<const D: usize, const C: usize, const O: usize> Logic for CertificateThresh
 // T = X + (X >> 19) + Y + (Y >> 19) + 4 Sw + 2^(ke + 2) + 16,
 // Sw = |w|_1, Y = 2^(bitlen Sw + ke), with X + (X >> 19) from the normal's
 // own unit (NormalPart), in six register stages, each at most one carry
-// chain or one LUT tree, and a copy (the dot product beside it takes
-// seven).
+// chain or one LUT tree.
 reg [{sw1}:0] offset_l1_q;
 reg [{small1}:0] edge_term_q;
 reg [7:0] edges_bits_q;
@@ -574,7 +567,6 @@ reg [7:0] exponent_q;
 reg [{t1}:0] partial_q;
 reg [{t1}:0] y_q;
 reg [{t1}:0] partial_q2;
-reg [{t1}:0] sum_q;
 wire [7:0] offset_bits = {index};
 wire [{t1}:0] y_one = {t}'d1 << exponent_q;
 // The normal's part is below 2^(C + 2): its higher bits are zero (a
@@ -595,7 +587,6 @@ initial begin
     partial_q = {t}'d0;
     y_q = {t}'d0;
     partial_q2 = {t}'d0;
-    sum_q = {t}'d0;
     threshold = {o}'d0;
 end
 always @(posedge clock) begin
@@ -612,8 +603,7 @@ always @(posedge clock) begin
         partial_q <= {{{pad_part}'d0, normal_part[{part1}:0]}} + {{{pad_small}'d0, small_part_q2}};
         y_q <= y_one | (y_one >> 19);
         partial_q2 <= partial_q;
-        sum_q <= partial_q2 + y_q;
-        threshold <= {{{pad_t}'d0, sum_q}};
+        threshold <= {{{pad_t}'d0, partial_q2 + y_q}};
     end
 end
 ",

@@ -28,7 +28,7 @@ pub struct CrossTerms<const D: usize, const C: usize> {
     pub v: [Signal<In, Bits<D>>; 3],
     /// `MULTIPLIER_LATENCY` enabled edges later.
     pub term: [Signal<Out, Bits<C>>; 6],
-    multiplier: [Multiplier<D, D, C, MULTIPLIER_LATENCY>; 6],
+    multiplier: [Multiplier<D, D, C>; 6],
 }
 
 impl<const D: usize, const C: usize> crate::unit::Unit for CrossTerms<D, C> {
@@ -202,7 +202,7 @@ pub struct CrossProduct2d<const D: usize, const C: usize> {
     pub w_y: Signal<In, Bits<D>>,
     /// `u.x w.y - u.y w.x`, `CROSS_PRODUCT_LATENCY` enabled edges later.
     pub product: Signal<Out, Bits<C>>,
-    multiplier: [Multiplier<D, D, C, MULTIPLIER_LATENCY>; 2],
+    multiplier: [Multiplier<D, D, C>; 2],
     difference: RegisteredDifference<C>,
 }
 

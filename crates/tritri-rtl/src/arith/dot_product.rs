@@ -3,19 +3,18 @@
 //!
 //! Thesis, chapter 3, figure 3.9 (the dot-product unit, 78 bits there; 74
 //! here, the tight bound of `tritri_geom::widths`). Three registered
-//! multipliers `(W+1) x (2W+1) -> 3W+2`, each with a register between its
-//! DSP blocks and their partial products' sum (`WIDE_MULTIPLIER_LATENCY`),
-//! and a three-input sum in two register stages.
+//! multipliers `(W+1) x (2W+1) -> 3W+2` and a three-input sum in two
+//! register stages.
 //! The sum is computed modulo `2^(3W+2)`: partial sums may wrap, but the
 //! final value of an orient3d is at most `2 M^3` in magnitude and fits, so
 //! the wrapped result is the exact one (docs/ARCHITECTURE.md, conventions).
 
 use super::adder::{RegisteredSum3, SUM3_LATENCY};
-use super::multiplier::{Multiplier, WIDE_MULTIPLIER_LATENCY};
+use super::multiplier::{Multiplier, MULTIPLIER_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clock edges from operands to dot product.
-pub const DOT_PRODUCT_LATENCY: usize = WIDE_MULTIPLIER_LATENCY + SUM3_LATENCY;
+pub const DOT_PRODUCT_LATENCY: usize = MULTIPLIER_LATENCY + SUM3_LATENCY;
 
 #[derive(LogicBlock)]
 pub struct DotProduct<const D: usize, const C: usize, const O: usize> {
@@ -28,7 +27,7 @@ pub struct DotProduct<const D: usize, const C: usize, const O: usize> {
     /// All 1 when `product == 0`, in the same clock
     /// ([`RegisteredSum3::zero_parts`]).
     pub zero_parts: Signal<Out, Bits<O>>,
-    multiplier: [Multiplier<D, C, O, WIDE_MULTIPLIER_LATENCY>; 3],
+    multiplier: [Multiplier<D, C, O>; 3],
     sum: RegisteredSum3<O>,
 }
 

@@ -8,18 +8,15 @@
 //! most `2^W - 1` in magnitude, so a `(W+1) x (W+1)` product fits in
 //! `2W + 1` bits; see `tritri_geom::widths`).
 //!
-//! The Verilog is `S` register stages around `$signed(a) * $signed(b)`
-//! ([`MULTIPLIER_LATENCY`] or [`WIDE_MULTIPLIER_LATENCY`]): operand
-//! registers, product register, output register and one or two registers
+//! The Verilog is four register stages around `$signed(a) * $signed(b)`:
+//! operand registers, product register, output register and a register
 //! in fabric, all gated by `advance` (the global clock enable). The first
 //! three are the shape FPGA synthesis maps onto DSP blocks with their
 //! internal A/B, M and P registers; the fourth lets the wide products that
 //! take two DSP blocks add their partial products after the blocks'
 //! output registers (see [`ecp5_verilog`]), so every multiplier has the
-//! same latency whatever the mapping; a fifth, where the caller asks for
-//! it, takes the partial products into fabric before that sum, so that
-//! the route from a block and the sum's carry chain have a clock each.
-//! The simulation model is exact: i128 products of sign-extended operands.
+//! same latency whatever the mapping. The simulation model is exact: i128
+//! products of sign-extended operands.
 //!
 //! Yosys maps `*` onto ECP5's MULT18X18D without its registers, and
 //! post-route that path (an operand register in fabric, across the chip
@@ -31,55 +28,34 @@
 use super::convert::{from_i128, to_i128, wrap_i128};
 use rust_hdl::prelude::*;
 
-/// Clock edges from operands to product: the cross products', whose
-/// operands fit one DSP block each at the widths that map onto ECP5.
+/// Clock edges from operands to product.
 pub const MULTIPLIER_LATENCY: usize = 4;
 
-/// Clock edges from operands to product with a register between the DSP
-/// blocks and the sum of their partial products: the dot products'
-/// `(W+1) x (2W+1)`, two MULT18X18D each on ECP5. (With four stages the
-/// sum's carry chain came behind the route from the blocks: in a W = 16
-/// system whose pipelines fill the DSP columns, most of the register
-/// inputs short of 150 MHz; 128.9 MHz at P = 2, 141.9 at P = 1 with
-/// seed 3.)
-pub const WIDE_MULTIPLIER_LATENCY: usize = 5;
-
-/// The most registers between the operands' and `product` (`S - 2`).
-const MAX_INNER_STAGES: usize = WIDE_MULTIPLIER_LATENCY - 2;
-
 #[derive(LogicBlock)]
-pub struct Multiplier<const A: usize, const B: usize, const P: usize, const S: usize> {
+pub struct Multiplier<const A: usize, const B: usize, const P: usize> {
     pub clock: Signal<In, Clock>,
     /// Global clock enable: when low, every register holds.
     pub advance: Signal<In, Bit>,
     pub a: Signal<In, Bits<A>>,
     pub b: Signal<In, Bits<B>>,
-    /// `a * b` modulo `2^P`, `S` enabled edges after `a`, `b`.
+    /// `a * b` modulo `2^P`, `MULTIPLIER_LATENCY` enabled edges after `a`, `b`.
     pub product: Signal<Out, Bits<P>>,
-    // Simulation model state (mirrors the Verilog's a_q, b_q and the
-    // product's registers before `product`, m_q first).
+    // Simulation model state (mirrors a_q, b_q, m_q, p_q of the Verilog).
     _a_q: i128,
     _b_q: i128,
-    _products: [i128; MAX_INNER_STAGES],
+    _m_q: i128,
+    _p_q: i128,
 }
 
-impl<const A: usize, const B: usize, const P: usize, const S: usize> crate::unit::Unit
-    for Multiplier<A, B, P, S>
-{
-    const LATENCY: Option<usize> = Some(S);
+impl<const A: usize, const B: usize, const P: usize> crate::unit::Unit for Multiplier<A, B, P> {
+    const LATENCY: Option<usize> = Some(MULTIPLIER_LATENCY);
 }
 
-impl<const A: usize, const B: usize, const P: usize, const S: usize> Default
-    for Multiplier<A, B, P, S>
-{
+impl<const A: usize, const B: usize, const P: usize> Default for Multiplier<A, B, P> {
     fn default() -> Self {
         assert!(
             P <= A + B && A + B <= 126,
             "multiplier {A} x {B} -> {P} bits is not supported"
-        );
-        assert!(
-            S == MULTIPLIER_LATENCY || S == WIDE_MULTIPLIER_LATENCY,
-            "a multiplier has {MULTIPLIER_LATENCY} or {WIDE_MULTIPLIER_LATENCY} stages, not {S}"
         );
         Self {
             clock: Default::default(),
@@ -89,23 +65,18 @@ impl<const A: usize, const B: usize, const P: usize, const S: usize> Default
             product: Default::default(),
             _a_q: 0,
             _b_q: 0,
-            _products: [0; MAX_INNER_STAGES],
+            _m_q: 0,
+            _p_q: 0,
         }
     }
 }
 
-impl<const A: usize, const B: usize, const P: usize, const S: usize> Logic
-    for Multiplier<A, B, P, S>
-{
+impl<const A: usize, const B: usize, const P: usize> Logic for Multiplier<A, B, P> {
     fn update(&mut self) {
         if self.clock.pos_edge() && self.advance.val() {
-            // The registers between the operands' and `product`: S - 2.
-            let last = S - 3;
-            self.product.next = from_i128::<P>(self._products[last]);
-            for i in (1..=last).rev() {
-                self._products[i] = self._products[i - 1];
-            }
-            self._products[0] = wrap_i128(self._a_q * self._b_q, P);
+            self.product.next = from_i128::<P>(self._p_q);
+            self._p_q = self._m_q;
+            self._m_q = wrap_i128(self._a_q * self._b_q, P);
             self._a_q = to_i128(self.a.val());
             self._b_q = to_i128(self.b.val());
         }
@@ -116,52 +87,36 @@ impl<const A: usize, const B: usize, const P: usize, const S: usize> Logic
     }
 
     fn hdl(&self) -> Verilog {
-        // m_q, p_q, and with five stages f_q, each a copy of the one before.
-        let stages = &["m_q", "p_q", "f_q"][..S - 2];
-        let declarations: String = stages
-            .iter()
-            .map(|r| format!("reg signed [{}:0] {r};\n", P - 1))
-            .collect();
-        let initial: String = stages
-            .iter()
-            .map(|r| format!("    {r} = {P}'d0;\n"))
-            .collect();
-        let copies: String = stages
-            .windows(2)
-            .map(|w| format!("        {} <= {};\n", w[1], w[0]))
-            .collect();
         Verilog::Custom(format!(
             "\
-{header}
+// Registered signed multiplier {A} x {B} -> {P} bits (product modulo 2^{P}).
 reg signed [{a1}:0] a_q;
 reg signed [{b1}:0] b_q;
-{declarations}initial begin
+reg signed [{p1}:0] m_q;
+reg signed [{p1}:0] p_q;
+initial begin
     a_q = {A}'d0;
     b_q = {B}'d0;
-{initial}    product = {P}'d0;
+    m_q = {P}'d0;
+    p_q = {P}'d0;
+    product = {P}'d0;
 end
 always @(posedge clock) begin
     if (advance) begin
         a_q <= $signed(a);
         b_q <= $signed(b);
         m_q <= {operands};
-{copies}        product <= $unsigned({last});
+        p_q <= m_q;
+        product <= $unsigned(p_q);
     end
 end
 ",
-            header = shape_comment(A, B, P, S),
             a1 = A - 1,
             b1 = B - 1,
+            p1 = P - 1,
             operands = signed_operands(A, B),
-            last = stages[S - 3],
         ))
     }
-}
-
-/// The comment a multiplier's body starts with, from which the emitter
-/// reads its shape (`crate::emit::dsp_mapping`).
-fn shape_comment(a: usize, b: usize, p: usize, s: usize) -> String {
-    format!("// Registered signed multiplier {a} x {b} -> {p} bits in {s} stages (product modulo 2^{p}).")
 }
 
 /// `a_q * b_q` with the narrower operand sign-extended to the wider one's
@@ -194,29 +149,22 @@ pub fn ecp5_maps(a: usize, b: usize) -> bool {
     narrow <= DSP_BITS && wide <= DSP_BITS + LOW_LIMB_BITS
 }
 
-/// The body of `Multiplier<A, B, P, S>` for ECP5 (after the port list),
-/// or `None` where [`ecp5_maps`] says no. Same ports, same `S` clocks of
+/// The body of `Multiplier<A, B, P>` for ECP5 (after the port list), or
+/// `None` where [`ecp5_maps`] says no. Same ports, same four clocks of
 /// latency, same product modulo `2^P` as the inferred body:
 ///
 /// * one block when both operands fit 18 bits: its input, pipeline and
-///   output registers are the first three stages, `product` the last (with
-///   five stages, a copy in fabric before it);
+///   output registers are the first three stages, `product` the fourth;
 /// * otherwise the wider operand splits into a low limb of 17 unsigned
-///   bits and a signed high limb, one block each, and the last stage adds
-///   the two partial products, `(hi << 17) + lo`; with five stages, from
-///   copies of them in fabric.
+///   bits and a signed high limb, one block each, and the fourth stage adds
+///   the two partial products, `(hi << 17) + lo`.
 ///
 /// Simulators need [`ECP5_MULT18X18D_MODEL`]; synthesis reads the
 /// primitive from Yosys's ECP5 cell library.
-pub fn ecp5_verilog(a: usize, b: usize, p: usize, s: usize) -> Option<String> {
+pub fn ecp5_verilog(a: usize, b: usize, p: usize) -> Option<String> {
     if !ecp5_maps(a, b) {
         return None;
     }
-    assert!(
-        s == MULTIPLIER_LATENCY || s == WIDE_MULTIPLIER_LATENCY,
-        "a multiplier has {MULTIPLIER_LATENCY} or {WIDE_MULTIPLIER_LATENCY} stages, not {s}"
-    );
-    let in_fabric = s == WIDE_MULTIPLIER_LATENCY;
     // `x` is the operand that stays whole, `y` the one that may split.
     let (x, xb, y, yb) = if a > DSP_BITS {
         ("b", b, "a", a)
@@ -224,8 +172,8 @@ pub fn ecp5_verilog(a: usize, b: usize, p: usize, s: usize) -> Option<String> {
         ("a", a, "b", b)
     };
     let mut v = format!(
-        "{}\n// MULT18X18D blocks with their input, pipeline and output registers.\n",
-        shape_comment(a, b, p, s)
+        "// Registered signed multiplier {a} x {b} -> {p} bits (product modulo 2^{p}), on ECP5\n\
+         // MULT18X18D blocks with their input, pipeline and output registers.\n"
     );
     v.push_str(&format!(
         "wire [17:0] {x}_x = {};\n",
@@ -265,59 +213,25 @@ pub fn ecp5_verilog(a: usize, b: usize, p: usize, s: usize) -> Option<String> {
             &format!("m{}", limb(suffix)),
         ));
     }
-    // The terms of the product: (name, bits, the block's output bits);
-    // the last stage reads the outputs, or with five stages their copies
-    // in fabric. lo is 35 significant signed bits, hi lands at bit 17.
-    let terms: Vec<(&str, usize, String)> = if two {
-        let lo_bits = p.min(36);
-        vec![
-            ("_lo", lo_bits, format!("m_lo[{}:0]", lo_bits - 1)),
-            (
-                "_hi",
-                p - LOW_LIMB_BITS,
-                format!("m_hi[{}:0]", p - LOW_LIMB_BITS - 1),
-            ),
-        ]
-    } else {
-        vec![("", p, format!("m[{}:0]", p - 1))]
-    };
-    let mut initial = String::new();
-    let mut stage = String::new();
-    let read: Vec<String> = terms
-        .iter()
-        .map(|(name, bits, outputs)| {
-            if in_fabric {
-                let q = format!("m{name}_q");
-                v.push_str(&format!("reg [{}:0] {q};\n", bits - 1));
-                initial.push_str(&format!("    {q} = {bits}'d0;\n"));
-                stage.push_str(&format!("        {q} <= {outputs};\n"));
-                q
-            } else {
-                outputs.clone()
-            }
-        })
-        .collect();
-    let sum = if two {
-        let (lo, hi) = (&read[0], &read[1]);
-        let lo = if p <= 36 {
-            lo.clone()
-        } else {
-            // The sign of the low term, bit 35 of the block's output.
-            let sign = if in_fabric {
-                format!("{lo}[35]")
-            } else {
-                "m_lo[35]".to_string()
-            };
-            format!("{{{{{}{{{sign}}}}}, {lo}}}", p - 36)
-        };
-        format!("{{{hi}, {LOW_LIMB_BITS}'d0}} + {lo}")
-    } else {
-        read[0].clone()
-    };
     v.push_str(&format!(
-        "initial begin\n{initial}    product = {p}'d0;\nend\n\
-         always @(posedge clock) begin\n    if (advance) begin\n{stage}        product <= {sum};\n    end\nend\n"
+        "initial product = {p}'d0;\nalways @(posedge clock) begin\n    if (advance) begin\n"
     ));
+    if two {
+        // lo is 35 significant signed bits, hi lands at bit 17.
+        let lo = if p <= 36 {
+            format!("m_lo[{}:0]", p - 1)
+        } else {
+            format!("{{{{{}{{m_lo[35]}}}}, m_lo}}", p - 36)
+        };
+        v.push_str(&format!(
+            "        product <= {{m_hi[{}:0], {}'d0}} + {lo};\n",
+            p - LOW_LIMB_BITS - 1,
+            LOW_LIMB_BITS
+        ));
+    } else {
+        v.push_str(&format!("        product <= m[{}:0];\n", p - 1));
+    }
+    v.push_str("    end\nend\n");
     Some(v)
 }
 

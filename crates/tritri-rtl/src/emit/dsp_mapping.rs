@@ -55,37 +55,24 @@ pub struct UnmappedMultiplier {
     pub b: usize,
 }
 
-/// A multiplier's `A x B -> P` bits and its `S` stages.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Shape {
-    a: usize,
-    b: usize,
-    p: usize,
-    s: usize,
-}
-
-/// The multiplier's shape from the comment its body starts with,
-/// `A x B -> P bits in S stages`.
-fn multiplier_shape(text: &str) -> Option<Shape> {
+/// The multiplier's `A x B -> P` from the comment its body starts with.
+fn multiplier_shape(text: &str) -> Option<(usize, usize, usize)> {
     let rest = text.split("// Registered signed multiplier ").nth(1)?;
     let line = rest.lines().next()?;
-    let words: Vec<&str> = line.split_whitespace().collect();
-    let [a, "x", b, "->", p, "bits", "in", s, "stages", ..] = words[..] else {
-        return None;
-    };
-    Some(Shape {
-        a: a.parse().ok()?,
-        b: b.parse().ok()?,
-        p: p.parse().ok()?,
-        s: s.parse().ok()?,
-    })
+    let mut words = line.split_whitespace();
+    let a = words.next()?.parse().ok()?;
+    let _x = words.next()?;
+    let b = words.next()?.parse().ok()?;
+    let _arrow = words.next()?;
+    let p = words.next()?.parse().ok()?;
+    Some((a, b, p))
 }
 
 /// Swaps `module`'s body for its ECP5 form when it is a multiplier; returns
 /// whether it was one.
 pub fn map_ecp5(module: &mut Module) -> Result<bool, UnmappedMultiplier> {
     let text = module.text();
-    let Some(Shape { a, b, p, s }) = multiplier_shape(&text) else {
+    let Some((a, b, p)) = multiplier_shape(&text) else {
         return Ok(false);
     };
     if !ecp5_maps(a, b) {
@@ -100,7 +87,7 @@ pub fn map_ecp5(module: &mut Module) -> Result<bool, UnmappedMultiplier> {
         return Ok(false);
     };
     let head = &text[..start + marker.len()];
-    let indented = indented_body(&ecp5_verilog(a, b, p, s).expect("ecp5_maps said yes"));
+    let indented = indented_body(&ecp5_verilog(a, b, p).expect("ecp5_maps said yes"));
     module.tokens = tokenize(&format!("{head}\n{indented}{}", &text[end..]));
     Ok(true)
 }
@@ -136,16 +123,8 @@ mod tests {
 
     #[test]
     fn shape_is_read_from_the_comment() {
-        let text = "module m (\n);\n    // Update code (custom)\n    // Registered signed multiplier 17 x 33 -> 50 bits in 5 stages (product modulo 2^50).\nendmodule";
-        assert_eq!(
-            multiplier_shape(text),
-            Some(Shape {
-                a: 17,
-                b: 33,
-                p: 50,
-                s: 5
-            })
-        );
+        let text = "module m (\n);\n    // Update code (custom)\n    // Registered signed multiplier 17 x 33 -> 50 bits (product modulo 2^50).\nendmodule";
+        assert_eq!(multiplier_shape(text), Some((17, 33, 50)));
         assert_eq!(multiplier_shape("module m ();\nendmodule"), None);
     }
 
@@ -153,7 +132,7 @@ mod tests {
     fn wide_operands_are_refused_by_name() {
         let mut m = Module {
             name: "tritri_pipeline_w24_multiplier_w74".into(),
-            tokens: tokenize("module x ();\n    // Update code (custom)\n    // Registered signed multiplier 25 x 49 -> 74 bits in 5 stages\nendmodule"),
+            tokens: tokenize("module x ();\n    // Update code (custom)\n    // Registered signed multiplier 25 x 49 -> 74 bits\nendmodule"),
             instances: vec![],
             unit: None,
         };

@@ -99,10 +99,10 @@ const PAIR_LATENCY: usize = DECISION_STAGE + DECISION_LATENCY;
 /// The groups of units with an enable of their own (`advance_copies`):
 /// each plane side, alignment and the interval overlap, orient3d's
 /// operands, each orient3d, the decision, the front end, the input
-/// vertices, T1's and T2's vertices to the operands, the ids' delay
-/// lines, and each plane side's dot products (the update's literal 14). The base polygon forms its groups'
+/// vertices, T1's and T2's vertices to the operands, and the ids' delay
+/// lines (the update's literal 12). The base polygon forms its groups'
 /// enables itself (`base_advance`).
-pub const ADVANCE_COPIES: usize = 14;
+pub const ADVANCE_COPIES: usize = 12;
 
 /// Clock edges (with `advance` high) from a triangle on the input ports to
 /// its verdict on the output ports.
@@ -149,7 +149,7 @@ crate::pipeline_ports! {
         /// and the valid bits. A top ties them all to `advance`, or drives
         /// each from a register of its own, so that no one net reaches
         /// every register ([`super::hold_register`]).
-        pub advance_copies: [Signal<In, Bit>; 14],
+        pub advance_copies: [Signal<In, Bit>; 12],
         /// The base polygon's enables, from their parts: `advance` before
         /// `hold`, and `hold` next clock if `advance` is high this clock
         /// and if it is low (a top that never holds ties these two low).
@@ -316,8 +316,6 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.stream_id.advance.next = self.advance_copies[11].val();
         self.plane_side_t1.advance.next = self.advance_copies[0].val();
         self.plane_side_t2.advance.next = self.advance_copies[1].val();
-        self.plane_side_t1.advance_products.next = self.advance_copies[12].val();
-        self.plane_side_t2.advance_products.next = self.advance_copies[13].val();
         self.align_t1.advance.next = self.advance_copies[2].val();
         self.align_t2.advance.next = self.advance_copies[2].val();
         self.interval_overlap.advance.next = self.advance_copies[2].val();

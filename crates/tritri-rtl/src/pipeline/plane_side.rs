@@ -43,12 +43,6 @@ const _: () = assert!(CERTAIN_SIGN_LATENCY == 1);
 pub struct PlaneSide<const W: usize, const D: usize, const C: usize, const O: usize> {
     pub clock: Signal<In, Clock>,
     pub advance: Signal<In, Bit>,
-    /// The dot products' enable: `advance`, from a copy of its own. (With
-    /// one enable for the whole plane side, its net reached every register
-    /// and DSP block of it, after the dot products' multipliers took their
-    /// partial products into fabric: 1,389 register inputs short of
-    /// 150 MHz behind it, 111.3 MHz, ECP5, W = 16 shared pipeline, seed 1.)
-    pub advance_products: Signal<In, Bit>,
     /// A vertex `p` of the plane's triangle.
     pub plane_point: [Signal<In, Bits<W>>; 3],
     /// The plane's triangle's normal `(q - p) × (r - p)`.
@@ -161,9 +155,9 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.offset_0.advance.next = self.advance.val();
         self.offset_1.advance.next = self.advance.val();
         self.offset_2.advance.next = self.advance.val();
-        self.distance_0.advance.next = self.advance_products.val();
-        self.distance_1.advance.next = self.advance_products.val();
-        self.distance_2.advance.next = self.advance_products.val();
+        self.distance_0.advance.next = self.advance.val();
+        self.distance_1.advance.next = self.advance.val();
+        self.distance_2.advance.next = self.advance.val();
         self.edges_bits_delay.advance.next = self.advance.val();
         self.edges_bits_delay.d.next = self.plane_edges_bits.val();
         for k in 0..3 {

@@ -79,9 +79,8 @@ const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE > SHARED_RARE_CASES_LATENC
 /// Every verdict waiting or in the unit belongs to a pair between the two
 /// stages, at most one a stage.
 const _: () = assert!(RARE_VERDICTS_STAGE - JOB_STAGE < VERDICT_QUEUE_DEPTH);
-/// The update's literals: copies 1 to 12, 16 and 17 are the general
-/// path's, 13 the job's normals and axis.
-const _: () = assert!(ADVANCE_COPIES == 14);
+/// The update's literals: copies 1 to 12 are the general path's, 13 the job's normals and axis.
+const _: () = assert!(ADVANCE_COPIES == 12);
 /// The update's literals 25 and 26: one offer for each of the unit's
 /// copies, and the last for its `in_valid`.
 const _: () = assert!(IN_VALID_COPIES == 25);
@@ -154,11 +153,10 @@ crate::pipeline_ports! {
         forecast: HoldForecast,
         /// `hold`, one copy per group of registers: the general path's
         /// `advance` (0, with this top's rare bits), its `advance_copies`
-        /// (1 to 12, and 16 and 17 for the plane sides' dot products; the
-        /// job's segment ends and degenerate flags ride on 4, the
-        /// operands', T1's and T2's vertices on 10 and 11, as the general
-        /// path delays the same fields on them and synthesis shares the
-        /// lines), the job's normals and axis (13), and the `hold`
+        /// (1 to 12; the job's segment ends and degenerate flags ride on 4,
+        /// the operands', T1's and T2's vertices on 10 and 11, as the
+        /// general path delays the same fields on them and synthesis shares
+        /// the lines), the job's normals and axis (13), and the `hold`
         /// port (14): the system's result FIFO counts and writes on it, and
         /// through copy 0, which also enables the general path, its counts
         /// were 25 of the 31 register inputs short of 150 MHz (ECP5, W =
@@ -168,7 +166,7 @@ crate::pipeline_ports! {
         /// router1, seed 1: 133.7 MHz, 74 inputs short). The base polygon
         /// works out its own from the forecast, beside each group
         /// ([`super::load_enable`]).
-        holds: [HoldRegister; 18],
+        holds: [HoldRegister; 16],
         /// `advance`, unless a rare pair waits (copy 0's).
         moving: Signal<Local, Bit>,
     }
@@ -261,7 +259,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.unit_hold.advance.next = self.advance.val();
         self.unit_hold.if_advance.next = self.forecast.if_advance.val();
         self.unit_hold.if_still.next = self.forecast.if_still.val();
-        for i in 0..18 {
+        for i in 0..16 {
             self.holds[i].clock.next = self.clock.val();
             self.holds[i].reset.next = self.reset.val();
             self.holds[i].advance.next = self.advance.val();
@@ -277,9 +275,6 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.path.advance.next = self.moving.val();
         for i in 0..12 {
             self.path.advance_copies[i].next = self.advance.val() && !self.holds[1 + i].hold.val();
-        }
-        for i in 12..14 {
-            self.path.advance_copies[i].next = self.advance.val() && !self.holds[4 + i].hold.val();
         }
         self.path.base_advance.next = self.advance.val();
         self.path.base_hold_if_advance.next = self.forecast.if_advance.val();

@@ -91,7 +91,7 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         );
         self.path.reset.next = self.reset.val();
         self.path.advance.next = self.advance.val();
-        for i in 0..14 {
+        for i in 0..12 {
             self.path.advance_copies[i].next = self.advance.val();
         }
         self.path.base_advance.next = self.advance.val();
