@@ -149,10 +149,11 @@ pub const MEMORY_MIN_STAGES: usize = 6;
 /// Synthesis maps the words onto distributed RAM (ECP5: `TRELLIS_DPR16X4`,
 /// 16 words of 4 bits in a slice pair) with an asynchronous read, so
 /// `read_q` and `q` are fabric registers and the memory's read has a whole
-/// clock. The `ram_style` attribute says so: Yosys's own choice put the
-/// ids' lines of 35 stages (64 words of 32 bits) into block RAM, whose
-/// read came 6.1 ns after the clock (W = 16, P = 1 shared system, ECP5,
-/// seed 3: 53 of the 65 register inputs short of 150 MHz).
+/// clock. The `ram_style` attribute says so: Yosys's own choice put lines
+/// of 64 words of 32 bits into block RAM, whose read came 6.1 ns after the
+/// clock (the ids' lines at 35 stages, in a W = 16 system at a latency of
+/// 45 tried on 2026-11-30: 53 of the 65 register inputs short of
+/// 150 MHz, ECP5, seed 3).
 pub(crate) fn delay_line_memory_verilog(bits: usize, n: usize) -> String {
     assert!(
         n >= 3,
