@@ -7,7 +7,9 @@
 #   bash scripts/reports.sh          # about a minute; needs chromium (apt-get install chromium)
 #
 # The screenshots are build/reports/<name>.png; docs/report/ keeps a crop
-# of two of them.
+# of two of them: shen.png the page's top 1400 x 1300 pixels, and
+# camel-elephant-scene.png the camel-elephant page's Scene section (rows
+# 1760 to 2575 on 2026-11-30: its heading to the end of its table).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 m=build/meshes

@@ -195,6 +195,20 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
             .any(|r| r["rare_cases"] == "shared"),
         "W = 16's routed pipeline shares its rare cases"
     );
+    // Its plot draws the rows at a routed clock as a line of their own
+    // (a series with no point has no legend entry).
+    assert!(
+        report["scene"]["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r["clock"].as_str().unwrap().starts_with("post-route")),
+        "W = 8 and 16 were routed"
+    );
+    assert!(
+        html.contains("hardware at the post-route Fmax"),
+        "the scene plot's line at the routed clocks"
+    );
     for row in report["scene"]["rows"].as_array().unwrap() {
         let (w, p, clock) = (
             row["width"].to_string(),

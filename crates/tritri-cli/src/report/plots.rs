@@ -110,7 +110,8 @@ fn width_plot(
                     PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3))
                 });
         }
-        for s in series {
+        // A series with no point has no line, so it gets no legend entry.
+        for s in series.iter().filter(|s| !s.points.is_empty()) {
             let colour = s.colour;
             let points: Vec<(u32, f64)> = s
                 .points
@@ -420,7 +421,7 @@ pub fn scene(scene: &SceneSection, rows: &[WidthRow]) -> anyhow::Result<String> 
     let routed: Vec<(u32, f64)> = scene
         .rows
         .iter()
-        .filter(|r| r.clock == "post-route")
+        .filter(|r| r.clock.is_post_route())
         .map(|r| (r.width, 1e3 * r.whole_seconds))
         .collect();
     let assumed: Vec<(u32, f64)> = scene

@@ -31,6 +31,44 @@ pub struct SceneSection {
     pub rows: Vec<SceneRow>,
 }
 
+/// Where a scene row's clock comes from; report.json and the table give
+/// its name.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum SceneClock {
+    /// The ECP5 post-route clock of the system of those pipelines.
+    PostRouteSystem,
+    /// The post-route clock of one pipeline routed alone.
+    PostRoutePipeline,
+    /// Nothing routed at this width: [`ASSUMED_CLOCK_MHZ`].
+    Assumed,
+}
+
+impl SceneClock {
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneClock::PostRouteSystem => "post-route, system",
+            SceneClock::PostRoutePipeline => "post-route, pipeline",
+            SceneClock::Assumed => "assumed",
+        }
+    }
+
+    pub fn is_post_route(self) -> bool {
+        self != SceneClock::Assumed
+    }
+}
+
+impl std::fmt::Display for SceneClock {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for SceneClock {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
 /// `tritri sim --scene A B --width W --pipelines P` in the model.
 #[derive(Serialize, Clone)]
 pub struct SceneRow {
@@ -46,9 +84,7 @@ pub struct SceneRow {
     pub cycles: u64,
     pub whole_cycles: u64,
     pub clock_mhz: f64,
-    /// `post-route, system` (ECP5, the system of those pipelines routed),
-    /// `post-route, pipeline` (one pipeline routed alone) or `assumed`.
-    pub clock: String,
+    pub clock: SceneClock,
     /// Where the pipelines test their rare pairs: those of the width's
     /// routed pipeline.
     pub rare_cases: RareCasePath,
@@ -131,9 +167,9 @@ pub fn measure(
             whole_cycles,
             clock_mhz: hardware.clock_mhz,
             clock: match (routed, row.and_then(|r| r.system_fmax_mhz)) {
-                (Some(_), Some(_)) => "post-route, system".into(),
-                (Some(_), None) => "post-route, pipeline".into(),
-                _ => "assumed".into(),
+                (Some(_), Some(_)) => SceneClock::PostRouteSystem,
+                (Some(_), None) => SceneClock::PostRoutePipeline,
+                _ => SceneClock::Assumed,
             },
             rare_cases,
             stall_cycles,
