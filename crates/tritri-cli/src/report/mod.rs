@@ -418,7 +418,7 @@ fn print_summary(dir: &Path, report: &Report) {
                 },
                 1e3 * r.whole_seconds,
                 r.clock_mhz,
-                r.clock,
+                r.clock.name(),
                 r.speedup,
                 r.uncertain,
                 r.missing,

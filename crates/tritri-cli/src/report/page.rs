@@ -280,7 +280,7 @@ fn scene_table(report: &Report) -> Option<Table> {
                 r.cycles.to_string(),
                 r.whole_cycles.to_string(),
                 format!("{:.1}", r.clock_mhz),
-                r.clock.to_string(),
+                r.clock.name().into(),
                 r.rare_cases.name().into(),
                 r.stall_cycles.to_string(),
                 format!("{:.4}", 1e3 * r.whole_seconds),
