@@ -25,7 +25,9 @@
 //!
 //! `--synth-top MODULE` places and routes one module of the emitted design
 //! instead of its top, for the critical path of one unit in minutes;
-//! `--seed N` sets nextpnr's placement seed (default 1).
+//! `--seed N` sets nextpnr's placement seed (default 1); `--seed 1,2,3`
+//! routes the one netlist with each seed, side by side, and names the
+//! best (`route_ecp5_seed<N>.log` and `.json` for each).
 //!
 //! `--dsp ecp5` (the default with `--synth ecp5`) writes each multiplier as
 //! Lattice MULT18X18D blocks with their input, pipeline and output
@@ -96,7 +98,7 @@ mod for_scene;
 
 use crate::scene_input::SceneArgs;
 use anyhow::Context;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use tritri_geom::scene::load::Pose;
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
@@ -132,7 +134,10 @@ use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::route::{route_ecp5, route_table, Ecp5Options, Placer, Router};
+use tritri_rtl::route::{
+    best_route, route_ecp5, route_ecp5_seeds, route_table, Ecp5Options, Placer, RouteError,
+    RouteReport, Router,
+};
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::{emit_system_with, system_unit_name};
@@ -181,10 +186,15 @@ pub struct Args {
     #[arg(long, value_name = "MODULE")]
     synth_top: Option<String>,
     /// With --synth ecp5: nextpnr's placement seed [default: 1]. The same
-    /// netlist routes some per cent faster or slower from seed to seed;
-    /// the table names the seed of each route.
-    #[arg(long, value_name = "N")]
-    seed: Option<u64>,
+    /// netlist routes some per cent faster or slower from seed to seed
+    /// (13 % and more on the W = 16 pipeline); the table names the seed of
+    /// each route. Several (`--seed 1,2,3`) route the one netlist with
+    /// each, side by side on the machine's cores, into
+    /// route_ecp5_seed<N>.log and .json, and the table has a row for each
+    /// and names the best: a seed sweep, the usual last step of closing
+    /// timing.
+    #[arg(long, value_name = "N", value_delimiter = ',')]
+    seed: Vec<u64>,
     /// With --synth ecp5: nextpnr's router [default: router1 for the
     /// emitted top, router2 with timing-driven rip-up for a --synth-top
     /// module inside it]. router1 converges on whole designs where router2 does not
@@ -455,8 +465,15 @@ impl Args {
         if self.synth_top.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--synth-top applies to --synth ecp5".into());
         }
-        if self.seed.is_some() && self.synth.as_deref() != Some("ecp5") {
+        if !self.seed.is_empty() && self.synth.as_deref() != Some("ecp5") {
             return Err("--seed applies to --synth ecp5".into());
+        }
+        if let Some(seed) = (1..self.seed.len()).find_map(|i| {
+            self.seed[..i]
+                .contains(&self.seed[i])
+                .then_some(self.seed[i])
+        }) {
+            return Err(format!("--seed {seed} is given twice"));
         }
         if self.router.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--router applies to --synth ecp5".into());
@@ -713,6 +730,114 @@ fn out_dir(args: &Args, width: usize) -> PathBuf {
     }
 }
 
+/// `--synth ecp5`: synthesis and a route of `top` in `dir` for each
+/// `--seed` (seed 1 without one), writing `route_ecp5.md`; several seeds
+/// route side by side ([`route_ecp5_seeds`]), each into files of its own,
+/// and the table is written again as each finishes, so that what is done
+/// stays when the rest is stopped. `whole` is whether `top` is the emitted
+/// top rather than a unit inside it.
+fn place_and_route(
+    args: &Args,
+    dir: &Path,
+    top: &str,
+    whole: bool,
+) -> anyhow::Result<Vec<RouteReport>> {
+    let mut options = if whole {
+        Ecp5Options::whole_design()
+    } else {
+        Ecp5Options::default()
+    };
+    // clap's value_parser admits only Router::NAMES.
+    options.router = args
+        .router
+        .as_deref()
+        .and_then(Router::from_name)
+        .unwrap_or(options.router);
+    // And only Placer::NAMES.
+    options.placer = args
+        .placer
+        .as_deref()
+        .and_then(Placer::from_name)
+        .unwrap_or_default();
+    options.timing_weight = args.timing_weight.unwrap_or(options.timing_weight);
+    let table = dir.join("route_ecp5.md");
+    if let [] | [_] = args.seed.as_slice() {
+        options.seed = args.seed.first().copied().unwrap_or(options.seed);
+        eprintln!(
+            "yosys synth_ecp5 and nextpnr-ecp5 of {top} (out of context, LFE5U-85F, speed 6) in {} (progress: {}) ...",
+            dir.display(),
+            dir.join("route_ecp5.log").display()
+        );
+        let report =
+            route_ecp5(dir, top, &options).with_context(|| format!("place and route of {top}"))?;
+        std::fs::write(&table, route_table(std::slice::from_ref(&report)))
+            .with_context(|| format!("writing {}", table.display()))?;
+        return Ok(vec![report]);
+    }
+    eprintln!(
+        "yosys synth_ecp5, then nextpnr-ecp5 of {top} with seeds {} (out of context, LFE5U-85F, speed 6, {} at once) in {} (progress: route_ecp5_seed<N>.log) ...",
+        seeds_list(&args.seed),
+        options.threads.max(1).min(args.seed.len()),
+        dir.display()
+    );
+    let done = std::sync::Mutex::new(Vec::new());
+    let on_route = |seed: u64, outcome: &Result<RouteReport, RouteError>| {
+        let Ok(mut done) = done.lock() else { return };
+        match outcome {
+            Ok(report) => {
+                done.push(report.clone());
+                done.sort_by_key(|r: &RouteReport| r.seed);
+                eprintln!(
+                    "seed {seed}: {:.1} MHz ({} of {} seeds routed)",
+                    report.fmax_mhz,
+                    done.len(),
+                    args.seed.len()
+                );
+                if let Err(e) = std::fs::write(&table, route_table(&done)) {
+                    eprintln!("error: writing {}: {e}", table.display());
+                }
+            }
+            Err(e) => eprintln!("error: seed {seed}: place and route of {top}: {e}"),
+        }
+    };
+    let outcomes = route_ecp5_seeds(dir, top, &options, &args.seed, &on_route)
+        .with_context(|| format!("synthesis of {top}"))?;
+    let mut reports = Vec::new();
+    let mut failed = Vec::new();
+    for (seed, outcome) in args.seed.iter().zip(outcomes) {
+        match outcome {
+            Ok(report) => reports.push(report),
+            Err(_) => failed.push(*seed),
+        }
+    }
+    if let Some((best, meeting)) = best_route(&reports) {
+        eprintln!(
+            "{top}: best {:.1} MHz (seed {}); {meeting} of {} seeds at {} MHz or more",
+            best.fmax_mhz,
+            best.seed,
+            reports.len(),
+            best.target_mhz
+        );
+    }
+    if !failed.is_empty() {
+        anyhow::bail!(
+            "place and route of {top} failed with seed(s) {} (above); the others are in {}",
+            seeds_list(&failed),
+            table.display()
+        );
+    }
+    Ok(reports)
+}
+
+/// `1, 2, 3`.
+fn seeds_list(seeds: &[u64]) -> String {
+    seeds
+        .iter()
+        .map(u64::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if let Err(e) = args.check_usage() {
         eprintln!("error: {e}");
@@ -803,37 +928,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 );
                 return Ok(ExitCode::from(2));
             }
-            eprintln!(
-                "yosys synth_ecp5 and nextpnr-ecp5 of {top} (out of context, LFE5U-85F, speed 6) in {} (progress: {}) ...",
-                dir.display(),
-                dir.join("route_ecp5.log").display()
-            );
-            let mut options = if top == design.top {
-                Ecp5Options::whole_design()
-            } else {
-                Ecp5Options::default()
-            };
-            options.seed = args.seed.unwrap_or(options.seed);
-            // clap's value_parser admits only Router::NAMES.
-            options.router = args
-                .router
-                .as_deref()
-                .and_then(Router::from_name)
-                .unwrap_or(options.router);
-            // And only Placer::NAMES.
-            options.placer = args
-                .placer
-                .as_deref()
-                .and_then(Placer::from_name)
-                .unwrap_or_default();
-            options.timing_weight = args.timing_weight.unwrap_or(options.timing_weight);
-            let report = route_ecp5(&dir, top, &options)
-                .with_context(|| format!("place and route of {top}"))?;
-            std::fs::write(
-                dir.join("route_ecp5.md"),
-                route_table(std::slice::from_ref(&report)),
-            )?;
-            routes.push(report);
+            routes.extend(place_and_route(&args, &dir, top, top == design.top)?);
         } else if let Some(which) = &args.synth {
             let mut row = ResourceRow {
                 unit: args.unit_name(w),

@@ -159,6 +159,20 @@ fn dsp_mapping_options_are_checked() {
             "gen",
             "--width",
             "8",
+            "--seed",
+            "1,2,1",
+            "--synth",
+            "ecp5",
+            "--out",
+            "/nonexistent/x",
+        ],
+        &["--seed 1 is given twice"],
+    );
+    refused(
+        &[
+            "gen",
+            "--width",
+            "8",
             "--router",
             "router1",
             "--out",
@@ -645,4 +659,74 @@ fn for_scene_sizes_the_system_and_says_why() {
         Some(2),
         "--width conflicts with --for-scene"
     );
+}
+
+/// `--seed 1,2,3`, a seed sweep: one synthesis, a route per seed into
+/// files of its own, a table row per seed, and the best named. On the set
+/// operation unit (67 LUT4), seconds.
+#[test]
+fn a_seed_sweep_routes_each_seed_and_names_the_best() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-sweep-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = tritri()
+        .args([
+            "gen",
+            "--set-operation",
+            "--synth",
+            "ecp5",
+            "--seed",
+            "3,1,2",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr),
+    );
+    assert!(run.status.success(), "{stderr}");
+    let rows: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.starts_with("| tritri_set_operation |"))
+        .collect();
+    assert_eq!(rows.len(), 3, "{stdout}");
+    let fmax = |row: &str| -> (f64, String) {
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        (
+            cells[2].parse().unwrap(),
+            cells[3].split(',').next().unwrap().to_string(),
+        )
+    };
+    let routes: Vec<(f64, String)> = rows.iter().map(|r| fmax(r)).collect();
+    // In the order given, each with its seed.
+    assert_eq!(
+        routes.iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
+        ["3", "1", "2"],
+        "{stdout}"
+    );
+    let best = routes.iter().map(|r| r.0).fold(f64::NEG_INFINITY, f64::max);
+    let best_seed = &routes.iter().find(|r| r.0 == best).unwrap().1;
+    assert!(
+        stderr.contains(&format!(
+            "tritri_set_operation: best {best:.1} MHz (seed {best_seed}); 3 of 3 seeds at 150 MHz or more"
+        )),
+        "{stderr}"
+    );
+    for seed in 1..=3 {
+        for ext in ["log", "json"] {
+            let file = out.join(format!("route_ecp5_seed{seed}.{ext}"));
+            assert!(file.is_file(), "{} is written", file.display());
+        }
+    }
+    // The table on disk, sorted by seed as the routes finished.
+    let table = std::fs::read_to_string(out.join("route_ecp5.md")).unwrap();
+    assert_eq!(
+        table
+            .lines()
+            .filter(|l| l.starts_with("| tritri_set_operation |"))
+            .count(),
+        3
+    );
+    std::fs::remove_dir_all(&out).unwrap();
 }
