@@ -820,10 +820,14 @@ fn place_and_route(
         );
     }
     if !failed.is_empty() {
+        let others = if reports.is_empty() {
+            String::new()
+        } else {
+            format!("; the others' routes are in {}", table.display())
+        };
         anyhow::bail!(
-            "place and route of {top} failed with seed(s) {} (above); the others are in {}",
-            seeds_list(&failed),
-            table.display()
+            "place and route of {top} failed with seed(s) {} (above){others}",
+            seeds_list(&failed)
         );
     }
     Ok(reports)
