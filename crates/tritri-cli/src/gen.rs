@@ -135,8 +135,8 @@ use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::route::{
-    best_route, route_ecp5, route_ecp5_seeds, route_table, Ecp5Options, Placer, RouteError,
-    RouteReport, Router,
+    best_route, route_ecp5, route_ecp5_seeds, route_table, routes_at_once, Ecp5Options, Placer,
+    RouteError, RouteReport, Router,
 };
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -777,7 +777,7 @@ fn place_and_route(
     eprintln!(
         "yosys synth_ecp5, then nextpnr-ecp5 of {top} with seeds {} (out of context, LFE5U-85F, speed 6, {} at once) in {} (progress: route_ecp5_seed<N>.log) ...",
         seeds_list(&args.seed),
-        options.threads.max(1).min(args.seed.len()),
+        routes_at_once(&options, args.seed.len()),
         dir.display()
     );
     let done = std::sync::Mutex::new(Vec::new());

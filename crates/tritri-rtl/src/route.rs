@@ -398,7 +398,7 @@ pub fn route_ecp5_seeds(
     on_route: &(dyn Fn(u64, &Result<RouteReport, RouteError>) + Sync),
 ) -> Result<Vec<Result<RouteReport, RouteError>>, RouteError> {
     synth_ecp5(dir, top)?;
-    let at_once = options.threads.max(1).min(seeds.len().max(1));
+    let at_once = routes_at_once(options, seeds.len());
     let per_route = Ecp5Options {
         threads: (options.threads / at_once).max(1),
         ..*options
@@ -429,6 +429,12 @@ pub fn route_ecp5_seeds(
     // panic would have ended the scope above with that panic.
     let outcomes = outcomes.into_inner().unwrap_or_else(|e| e.into_inner());
     Ok(outcomes.into_iter().flatten().collect())
+}
+
+/// How many of `seeds` routes [`route_ecp5_seeds`] runs at once: one a
+/// thread of `options`, at least one.
+pub fn routes_at_once(options: &Ecp5Options, seeds: usize) -> usize {
+    options.threads.max(1).min(seeds.max(1))
 }
 
 /// The best of several routes of one netlist (highest Fmax, the first of
