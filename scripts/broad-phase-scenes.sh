@@ -35,8 +35,8 @@ echo "|---|---|---:|---:|---:|---:|---|---:|---|---|---:|---:|---:|---:|---:|---
 for entry in "${scenes[@]}"; do
   name=${entry%%|*}
   read -r -a args <<<"${entry#*|}"
-  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --broad-phase flat --out "$work/flat.txt" >"$work/flat.log"
-  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --broad-phase octree --out "$work/octree.txt" >"$work/octree.log"
+  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --verbose --broad-phase flat --out "$work/flat.txt" >"$work/flat.log"
+  $tritri sim --scene "${args[@]:0:2}" "${args[@]:2}" "$@" --verbose --broad-phase octree --out "$work/octree.txt" >"$work/octree.log"
   same=$(cmp -s "$work/flat.txt" "$work/octree.txt" && echo yes || echo NO)
   grep -q "engine = exact model on the quantized coordinates.*equal" "$work/octree.log" || same="NO (model)"
   n1=$(grep -m1 "^scene:" "$work/octree.log" | sed -E 's/.*A = [^(]*\(([0-9]+) triangles.*/\1/')
@@ -47,16 +47,16 @@ for entry in "${scenes[@]}"; do
   per_box=$(field "^work:" "$work/octree.log" '= ([0-9.]+) x the box-overlap.*')
   leaves=$(field "^broad phase:" "$work/octree.log" ' ([0-9]+) leaves with both objects.*')
   depth=$(field "^broad phase:" "$work/octree.log" 'depth ([0-9]+),.*')
-  hits=$(field "^intersecting pairs:" "$work/octree.log" 'intersecting pairs: ([0-9]+)')
+  hits=$(field "^intersecting pairs on the grid:" "$work/octree.log" 'intersecting pairs on the grid: ([0-9]+)')
   quant=$(field "^quantization error" "$work/octree.log" ': ([0-9]+ pairs missing, [0-9]+ extra).*')
-  flat_time=$(field "^cycles:" "$work/flat.log" 'time at [0-9.]+ MHz: (.*)')
-  octree_time=$(field "^cycles:" "$work/octree.log" 'time at [0-9.]+ MHz: (.*)')
+  flat_time=$(field "^cycles:" "$work/flat.log" 'time at [^:]*: (.*)')
+  octree_time=$(field "^cycles:" "$work/octree.log" 'time at [^:]*: (.*)')
   software=$(field "^speed:" "$work/octree.log" 'one thread, triangles in memory\) ([0-9.]+ [a-z]+);.*')
-  ratio=$(field "^speed:" "$work/octree.log" ': ([0-9.]+) x$')
+  ratio=$(field "^speed:" "$work/octree.log" ': ([0-9.]+) x; first.*')
   binning=$(field "^binning unit" "$work/octree.log" ': ([0-9]+) cycles;.*')
   memory=$(field "^binning unit" "$work/octree.log" 'memories ([0-9.]+ Mbit).*')
   owner=$(grep -m1 "^owner filter" "$work/octree.log" | sed -E 's/.*: ([0-9]+) hits from the leaves, ([0-9]+) duplicates dropped, [0-9]+ pairs through; ([0-9]+) cycles.*/\1 \/ \2 \/ \3/')
-  whole=$(field "^speed, first triangle in" "$work/octree.log" '\): (.*) at [0-9.]+ MHz.*')
-  whole_ratio=$(field "^speed, first triangle in" "$work/octree.log" ', ([0-9.]+) x$')
+  whole=$(field "^first triangle in to last pair out:" "$work/octree.log" '\), ([0-9.]+ [a-z]+) at .*')
+  whole_ratio=$(field "^speed:" "$work/octree.log" ': ([0-9.]+) x$')
   echo "| $name | $n1 x $n2 | $box | $flat_tested | $tested | $per_box | $leaves, $depth | $hits | $same | $quant | $flat_time | $octree_time | $binning | $memory | $owner | $whole | $software | $ratio | $whole_ratio |"
 done

@@ -2,6 +2,9 @@
 # The project's test command (README): every test that needs nothing outside this repository.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# What the tests need, installed when missing (idempotent; the same setup
+# as scripts/demo.sh and .ci/run).
+bash scripts/setup.sh
 for tool in iverilog verilator yosys; do
   command -v "$tool" >/dev/null 2>&1 || { echo "error: $tool not found; install it with: apt-get install iverilog verilator yosys" >&2; exit 1; }
 done

@@ -31,13 +31,14 @@ while IFS='|' read -r name args needs; do
   case $name in ''|'#'*) continue ;; esac
   if [ "$want" = shared ] && [ "$needs" != shared ]; then continue; fi
   if [ "$want" = own ] && [ "$needs" = shared ]; then continue; fi
-  # The README shows each command as it is run here.
+  # The README shows each command as it is run here (with --verbose added
+  # for the lines this script reads).
   grep -qF -- "-- sim $(echo "$args" | xargs) --out" examples/scenes/README.md \
     || { echo "error: examples/scenes/README.md does not show the command of scene $name" >&2; exit 1; }
   report=$out/$name.txt
   # shellcheck disable=SC2086
-  $tritri sim $args --out "$out/$name.pairs" > "$report"
-  grep -E '^(scene|intersecting pairs|pairs tested|quantization error)' "$report" | sed "s/^/$name: /"
+  $tritri sim $args --verbose --out "$out/$name.pairs" > "$report"
+  grep -E '^(scene|intersecting pairs on the grid|pairs tested|quantization error)' "$report" | sed "s/^/$name: /"
   grep -q '^check: engine = exact model on the quantized coordinates .*: equal$' "$report" \
     || { echo "error: $name: the engine differs from the exact model ($report)" >&2; exit 1; }
   grep -q '^quantization error (grid of [0-9]* bits): 0 pairs missing, 0 extra against exact f64$' "$report" \

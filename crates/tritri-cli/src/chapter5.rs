@@ -188,6 +188,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let ratio = |sw: Duration| ratio_to(sw, hw);
         let octree = args
             .hardware
+            .accelerator()
             .prepare_with(BroadPhase::Octree, &a, &b_placed)?;
         let octree_hw = args
             .hardware

@@ -401,9 +401,7 @@ impl Args {
 
     /// The system configuration at `width` (with --system).
     fn system_config(&self, width: usize) -> SystemConfig {
-        let latency = tritri_rtl::pipeline::triangle_pipeline::latency();
-        SystemConfig::new(width, self.pipelines() as usize, latency)
-            .with_depth(self.depth() as usize)
+        SystemConfig::new(width, self.pipelines() as usize).with_depth(self.depth() as usize)
     }
 
     /// The binning unit's configuration for a `grid_bits`-bit grid (with

@@ -6,12 +6,13 @@ use anyhow::Context as _;
 use std::time::Duration;
 use tritri_cosim::engine::Engine;
 use tritri_cosim::patch_triangles::tessellate_pieces;
+use tritri_cosim::scene_query::{Accelerator, Clock, ClockSource};
 use tritri_geom::bezier::query::{patches_box, query_pieces, tessellate_for_query, MAX_SPLITS};
 use tritri_geom::bezier::{read_bpt, BezierPatch};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
-use tritri_geom::scene::octree::LocalFrames;
-use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError};
+use tritri_geom::scene::{PreparedScene, SceneError};
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::{
     SystemConfig, DEFAULT_TRIANGLES_PER_BANK, MAX_PIPELINES, MAX_TRIANGLES_PER_BANK,
 };
@@ -239,89 +240,50 @@ pub struct HardwareArgs {
     pub grid_bits: Option<u32>,
 }
 
-/// Which pairs the system is given.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum BroadPhase {
-    /// Every pair of triangles in the common box (thesis, chapter 4).
-    Flat,
-    /// Octree leaves over the common box, costed by the cycle model.
-    Octree,
-}
+pub use tritri_cosim::scene_query::BroadPhase;
 
 impl HardwareArgs {
-    pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
-        tritri_geom::scene::SceneOptions {
-            width: self.grid_bits(),
-            depth: self.depth as usize,
+    /// The accelerator these options describe (the rare pairs on parallel
+    /// units; `tritri sim --rare-cases` sets them), at `--clock-mhz`,
+    /// assumed. Every other fact below is the accelerator's.
+    pub fn accelerator(&self) -> Accelerator {
+        Accelerator {
+            width: self.width,
+            grid_bits: self.grid_bits.unwrap_or(self.width),
+            pipelines: self.pipelines,
+            depth: self.depth as u32,
             split: !self.no_split,
+            broad_phase: self.broad_phase,
+            rare_cases: RareCasePath::Parallel,
+            clock: Clock {
+                mhz: self.clock_mhz,
+                source: ClockSource::Assumed,
+            },
         }
     }
 
-    /// The grid's width G (W unless `--grid-bits` says more).
-    pub fn grid_bits(&self) -> u32 {
-        self.grid_bits.unwrap_or(self.width).max(self.width)
-    }
-
-    /// Leaves in frames of their own when the grid is finer than W.
-    pub fn local_frames(&self) -> Option<LocalFrames> {
-        (self.grid_bits() > self.width).then_some(LocalFrames { width: self.width })
-    }
-
-    /// A grid finer than W needs the octree's local frames.
-    pub fn validate(&self) -> Result<(), String> {
-        match self.grid_bits {
-            Some(g) if g < self.width => Err(format!("--grid-bits {g} is below --width {}: the grid needs at least W bits", self.width)),
-            Some(g) if g > self.width && self.broad_phase == BroadPhase::Flat => Err(format!(
-                "--grid-bits {g} above --width {} needs --broad-phase octree (the flat system sends the whole box in one W-bit frame)",
-                self.width
-            )),
-            _ => Ok(()),
-        }
+    pub fn scene_options(&self) -> tritri_geom::scene::SceneOptions {
+        self.accelerator().scene_options()
     }
 
     /// The scene prepared for this hardware with the chosen broad phase.
     pub fn prepare(&self, a: &SceneObject, b: &SceneObject) -> Result<PreparedScene, SceneError> {
-        self.prepare_with(self.broad_phase, a, b)
-    }
-
-    pub fn prepare_with(
-        &self,
-        broad_phase: BroadPhase,
-        a: &SceneObject,
-        b: &SceneObject,
-    ) -> Result<PreparedScene, SceneError> {
-        match broad_phase {
-            BroadPhase::Flat => prepare(a, b, &self.scene_options()),
-            BroadPhase::Octree => prepare_octree(
-                a,
-                b,
-                &self.scene_options(),
-                &self.system_config(),
-                self.local_frames(),
-            ),
-        }
+        self.accelerator().prepare(a, b)
     }
 
     pub fn time_of(&self, cycles: u64) -> Duration {
-        Duration::from_secs_f64(cycles as f64 / (self.clock_mhz * 1e6))
+        self.accelerator().time_of(cycles)
+    }
+
+    /// The generator parameters of the system these options describe.
+    pub fn system_config(&self) -> SystemConfig {
+        self.accelerator().system_config()
     }
 }
 
 /// Pipeline latency `L` of the generated triangle pipeline.
 pub fn pipeline_latency() -> u64 {
     tritri_rtl::pipeline::triangle_pipeline::latency() as u64
-}
-
-impl HardwareArgs {
-    /// The generator parameters of the system these options describe.
-    pub fn system_config(&self) -> SystemConfig {
-        SystemConfig::new(
-            self.width as usize,
-            self.pipelines as usize,
-            pipeline_latency() as usize,
-        )
-        .with_depth(self.depth as usize)
-    }
 }
 
 /// A duration in the unit that reads best.

@@ -1,21 +1,27 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
 //! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
 //! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
-//! [--clock-mhz F] [--out PAIRS] [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]
-//! [--tolerance T] [--broad-phase-top] [--certified] [--rare-cases parallel|shared]`
+//! [--clock-mhz F] [--out PAIRS] [--grid-verdicts] [--verbose] [--json FILE]
+//! [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]
+//! [--tolerance T] [--broad-phase-top] [--rare-cases parallel|shared]`
+//!
+//! Two objects (without `--scene`, the built-in torus and sphere) to their
+//! exact intersecting pairs through the accelerator. The route is the
+//! library's, `tritri_cosim::scene_query::find_pairs`: the host prepares
+//! the scene (common box, one grid of G bits, the broad phase: octree
+//! leaves by default, or the thesis's flat common box;
+//! `docs/broad-phase.md`), the engine runs the accelerator, and the
+//! verdicts without a certificate (`out_certain = 0`,
+//! docs/certificates.md) are decided again on the original coordinates.
+//! This command parses the options and prints the answer: four lines by
+//! default (the scene, the exact pairs, the time against the software
+//! baseline, the checks), every line of the run with `--verbose`, every
+//! figure as JSON with `--json`. The report goes to stdout, or to stderr
+//! when the pairs go to stdout with `--out -`.
 //!
 //! `--tolerance T` tessellates `.bpt` objects for the query
 //! (`tritri_geom::bezier::query`): only the patches that can meet the
 //! other object, each as finely as `T` asks.
-//!
-//! Runs the whole bounding-volume-aware system on two objects (without
-//! `--scene`, the built-in torus and sphere): common BV, the arrays of
-//! triangles touching it, one W-bit frame (or a G-bit grid with leaves in
-//! W-bit frames of their own), the broad phase (octree leaves by default,
-//! or the thesis's flat common box; `docs/broad-phase.md`), batches of at
-//! most D triangles, the engine, and the comparison with the exact models
-//! and with the software box sweep's time. Prints a report (on stdout, or
-//! on stderr when the pairs go to stdout with `--out -`).
 //!
 //! `--broad-phase-top` (with a hardware engine) runs the broad-phase top
 //! instead: the binning unit, the system and the owner filter in one
@@ -24,27 +30,22 @@
 //! the binning unit and system's cycle model and that plus the owner
 //! filter's clocks). W = 24, or W = 16 with `--grid-bits 24`.
 //!
-//! Every pair whose verdict has no certificate (`out_certain = 0`,
-//! docs/certificates.md) is counted in the report. With `--certified`
-//! those pairs are decided again with exact predicates on the original
-//! coordinates, and the answer (what `--out` writes) is the grid's certain
-//! hits plus the uncertain pairs that intersect on the originals.
+//! `--out PAIRS` writes the exact pairs, one `i j` per line in ascending
+//! order: `i` indexes A's triangles and `j` B's, in file order with
+//! polygons split into fans (`--indices faces` reports face indices
+//! instead, deduplicated). `--grid-verdicts` writes the grid's raw
+//! verdicts instead, for studying quantization.
 //!
 //! `--png FILE` renders both objects from the direction `--eye` (from the
 //! scene's centre; `--up` names the axis pointing up) with the triangles
-//! of the answer's pairs highlighted: A's in red, B's in magenta.
+//! of the written pairs highlighted: A's in red, B's in magenta.
 //!
-//! `--out PAIRS` writes the intersecting pairs, one `i j` per line in
-//! ascending order: `i` indexes A's triangles and `j` B's, in file order
-//! with polygons split into fans (`--indices faces` reports face indices
-//! instead, deduplicated).
-//!
-//! Engines (`tritri_cosim::engine`, the route this command only prints):
-//! `model` is the bit-exact fixed-point model with the system's exact
-//! cycle model; `rusthdl` simulates the system (memories, address
-//! generator, P Devillers–Guigue pipelines, result FIFO) in rust-hdl, and
-//! `icarus` and `verilator` run its emitted Verilog, all cycle by cycle
-//! (slow: use small scenes), reporting the simulated cycle count.
+//! Engines (`tritri_cosim::engine`): `model` is the bit-exact fixed-point
+//! model with the system's exact cycle model; `rusthdl` simulates the
+//! system (memories, address generator, P Devillers–Guigue pipelines,
+//! result FIFO) in rust-hdl, and `icarus` and `verilator` run its emitted
+//! Verilog, all cycle by cycle (slow: use small scenes), reporting the
+//! simulated cycle count.
 //!
 //! Before a cycle-by-cycle run (`rusthdl`, `icarus`, `verilator`) the report gives
 //! an estimate (cycles from the cycle model, time at the engine's measured
@@ -53,44 +54,44 @@
 //! streamed to the simulator through a pipe, so nothing grows with the
 //! run but the pairs. Progress shows as a bar on a terminal and as a line
 //! every ten seconds otherwise (pairs for the model, cycles for the
-//! others). `--out` and `--vcd` are checked before any work and written
-//! atomically; `--vcd FILE` records the system's waveform (Icarus or
-//! Verilator, runs of at most `--vcd-max-cycles`).
+//! others). `--out`, `--json` and `--vcd` are checked before any work and
+//! written atomically; `--vcd FILE` records the system's waveform (Icarus
+//! or Verilator, runs of at most `--vcd-max-cycles`).
 //!
-//! Exit status: 0 done; 1 the engine disagrees with the exact model on the
-//! quantized coordinates, or its cycle count with the cycle model (a bug),
-//! or a runtime failure; 2 a scene file cannot be read (the error names the
-//! file and line), an unwritable `--out`, a width without hardware, a run
-//! above `--max-cycles`, the arrays exceed D with `--no-split`, or bad
-//! usage; 130 / 143 interrupted (simulators stopped, temporaries removed).
+//! Exit status: 0 done; 1 a fault (`tritri_cosim::fault::Fault`: the
+//! engine disagrees with the exact model on the quantized coordinates, its
+//! cycle count with the cycle model, a simulation with its model, the
+//! binning unit's model with the planner; each a bug, named on stderr as
+//! `fault: ...`), a simulator that failed, or a runtime failure; 2 a scene
+//! file cannot be read (the error names the file and line), an unwritable
+//! `--out`, a width without hardware, a run above `--max-cycles`, the
+//! arrays exceed D with `--no-split`, or bad usage; 130 / 143 interrupted
+//! (simulators stopped, temporaries removed).
 
 use crate::model_files::write_png;
 use crate::output_file::OutputFile;
 use crate::progress::Progress;
-use crate::scene_input::{human, pipeline_latency, HardwareArgs, SceneArgs};
+use crate::scene_input::{human, pipeline_latency, BroadPhase, HardwareArgs, SceneArgs};
 use crate::voxelize::ViewArgs;
 use clap::ValueEnum;
 use std::collections::BTreeSet;
 use std::io::Write;
 use std::process::ExitCode;
-use std::time::Instant;
-use tritri_cosim::binning_unit::{bin_scene, SceneBinning};
-use tritri_cosim::broad_phase_system::{run_scene_on_top, top_model};
-use tritri_cosim::engine::{check_quantized, run_scene_on, Engine, SceneRun};
+use std::time::Duration;
+use tritri_cosim::binning_unit::SceneBinning;
+use tritri_cosim::engine::Engine;
+use tritri_cosim::scene_query::{
+    prepare_query, Accelerator, Binning, HardwareRun, PreparedQuery, QueryError, QueryOptions,
+    SceneAnswer, WholeCount,
+};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::octree::OctreeSchedule;
-use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff, PairSet};
+use tritri_geom::scene::reference::{PairDiff, PairSet};
 use tritri_geom::scene::render::render_pairs;
 use tritri_geom::scene::PreparedScene;
-use tritri_geom::scene::TaggedTriangle;
-use tritri_rtl::octree::binning_model::{binning_cycles, BinningWork};
-use tritri_rtl::octree::broad_phase_system::broad_phase_cycles;
 use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::system::cycle_model::scene_cycles;
-use tritri_rtl::system::rare_case_model::rare_case_cost;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -110,10 +111,21 @@ pub struct Args {
     /// Skip the comparison with the exact models.
     #[arg(long)]
     no_compare: bool,
-    /// Decide every pair without a certificate (`out_certain = 0`) again on
-    /// the original coordinates; the answer written by --out is then that one.
-    #[arg(long)]
+    /// The default, kept for scripts: every pair without a certificate
+    /// (`out_certain = 0`) is decided again on the original coordinates.
+    #[arg(long, hide = true, conflicts_with = "grid_verdicts")]
     certified: bool,
+    /// Write the grid's raw verdicts with --out (and highlight them with
+    /// --png) instead of the exact answer: for studying quantization.
+    #[arg(long)]
+    grid_verdicts: bool,
+    /// Print the broad phase, the binning unit, the engine's counters, the
+    /// cycles and the certificates line by line.
+    #[arg(long, short)]
+    verbose: bool,
+    /// Write every figure of the run as JSON here (`-`: stdout).
+    #[arg(long, value_name = "FILE")]
+    json: Option<String>,
     /// Refuse a cycle-by-cycle simulation (rusthdl, icarus, verilator) longer than
     /// this many system cycles [default: what the engine runs in about
     /// five minutes here]; the estimate is printed either way.
@@ -171,7 +183,12 @@ pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@sphere"];
 const PROGRESS_THRESHOLD: u64 = 5_000_000;
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
-    if let Err(e) = args.hardware.validate() {
+    let rare_cases = RareCasePath::parse(&args.rare_cases).unwrap_or_default();
+    let accelerator = Accelerator {
+        rare_cases,
+        ..args.hardware.accelerator()
+    };
+    if let Err(e) = accelerator.validate() {
         eprintln!("error: {e}");
         return Ok(ExitCode::from(2));
     }
@@ -189,7 +206,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if args.broad_phase_top
         && (!args.engine.is_hardware()
             || args.vcd.is_some()
-            || args.hardware.broad_phase != crate::scene_input::BroadPhase::Octree)
+            || args.hardware.broad_phase != BroadPhase::Octree)
     {
         eprintln!("error: --broad-phase-top runs the emitted top: it needs --engine rusthdl, icarus or verilator, the octree broad phase, and no --vcd");
         return Ok(ExitCode::from(2));
@@ -202,6 +219,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         Ok(output) => output,
         Err(e) => {
             eprintln!("error: --out: {e:#}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let json = match args.json.as_deref().map(OutputFile::reserve).transpose() {
+        Ok(json) => json,
+        Err(e) => {
+            eprintln!("error: --json: {e:#}");
             return Ok(ExitCode::from(2));
         }
     };
@@ -261,45 +285,40 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for note in notes {
         writeln!(report, "{note}")?;
     }
-    writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
-    writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
+    if args.verbose {
+        writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
+        writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
+    }
 
-    let started = Instant::now();
-    let scene = match args.hardware.prepare(&a, &b) {
-        Ok(s) => s,
-        Err(e @ tritri_geom::scene::SceneError::ExceedsDepth { .. }) => {
+    let prepared = match prepare_query(&a, &b, &accelerator) {
+        Ok(prepared) => prepared,
+        Err(QueryError::Scene(e @ tritri_geom::scene::SceneError::ExceedsDepth { .. }))
+        | Err(QueryError::Scene(e @ tritri_geom::scene::SceneError::ZeroDepth)) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+        Err(QueryError::Unsupported(e)) => {
             eprintln!("error: {e}");
             return Ok(ExitCode::from(2));
         }
         Err(e) => return Err(e.into()),
     };
-    let Some(common) = scene.common else {
+    if prepared.scene.common.is_none() {
         writeln!(report, "no overlap: the bounding boxes of A and B do not meet, so no triangle pair can intersect; zero pairs tested")?;
         write_pairs(output, args.indices, &a, &b, &PairSet::new())?;
         write_render(png, &args, &a, &b, &PairSet::new(), &mut report)?;
         return Ok(ExitCode::SUCCESS);
-    };
-    let host_time = started.elapsed();
-    print_filter(&mut report, &args, &scene, &common)?;
-    writeln!(
-        report,
-        "host: common box, quantization and broad phase in software took {} (this machine)",
-        human(host_time)
-    )?;
+    }
+    if args.verbose {
+        print_filter(&mut report, &prepared)?;
+    }
 
-    let pairs_tested = scene.pairs_tested();
-    let mut status = ExitCode::SUCCESS;
-    let config = args.hardware.system_config();
-    let model_cycles = if args.engine.is_hardware() {
-        scene_cycles(config, &scene.batches())
-    } else {
-        0
-    };
+    let model_cycles = prepared.model_cycles(args.broad_phase_top);
     if args.engine.is_hardware() {
         writeln!(
             report,
             "estimate: {}",
-            estimate(args.engine, model_cycles, &scene)
+            estimate(args.engine, model_cycles, &prepared.scene)
         )?;
         if vcd.is_some() && model_cycles > args.vcd_max_cycles {
             eprintln!(
@@ -331,53 +350,176 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         Progress::new(model_cycles, args.engine.progress_unit(), threshold)
     } else {
         Progress::new(
-            pairs_tested,
+            prepared.scene.pairs_tested(),
             args.engine.progress_unit(),
             PROGRESS_THRESHOLD,
         )
     };
-    // The value parser admits only the names.
-    let rare_cases = RareCasePath::parse(&args.rare_cases).unwrap_or_default();
-    let run = if args.broad_phase_top {
-        run_on_top(&args, &scene, &mut report, &mut status)
-    } else {
-        run_scene_on(
-            args.engine,
-            rare_cases.into(),
-            &scene,
-            config,
-            &|n| progress.inc(n),
-            vcd.as_ref().and_then(OutputFile::temporary),
-        )
+    let options = QueryOptions {
+        engine: args.engine,
+        on_top: args.broad_phase_top,
+        progress: &|n| progress.inc(n),
+        vcd: vcd.as_ref().and_then(OutputFile::temporary),
+        check: !args.no_compare,
     };
+    let answer = prepared.run(&options);
     progress.finish();
-    let run = match run {
-        Ok(run) => run,
-        Err(e) => {
-            eprintln!("error: --engine {}: {e:#}", args.engine.name());
+    let answer = match answer {
+        Ok(answer) => answer,
+        Err(QueryError::Unsupported(e)) => {
+            eprintln!("error: --engine {}: {e}", args.engine.name());
             return Ok(ExitCode::from(2));
         }
+        Err(e) => {
+            // A simulator that failed, or disagreed with its model on the
+            // way: a bug, not bad usage.
+            eprintln!("error: --engine {}: {e}", args.engine.name());
+            return Ok(ExitCode::from(1));
+        }
     };
-    let (pairs, cycles) = (&run.pairs, run.cycles);
-    writeln!(report, "engine: {}", args.engine.describe())?;
+    let Some(hardware) = &answer.hardware else {
+        unreachable!("the boxes meet, so the accelerator ran");
+    };
     if let (Some(vcd), Some(path)) = (vcd, &args.vcd) {
         let size = vcd.commit_written()?;
         writeln!(
             report,
-            "waveform: {path} ({:.1} MB, {cycles} cycles)",
-            size as f64 / 1e6
+            "waveform: {path} ({:.1} MB, {} cycles)",
+            size as f64 / 1e6,
+            hardware.run.cycles
         )?;
     }
+    let written = if args.grid_verdicts {
+        &hardware.run.pairs
+    } else {
+        &answer.pairs
+    };
+    if args.verbose {
+        print_run(&mut report, &args, &answer, hardware)?;
+    } else {
+        print_summary(&mut report, &args, &answer, hardware)?;
+    }
+    write_pairs(output, args.indices, &a, &b, written)?;
+    write_render(png, &args, &a, &b, written, &mut report)?;
+    if let Some(json) = json {
+        let value = answer_json(&args, &answer, hardware);
+        json.commit(|w| {
+            serde_json::to_writer_pretty(&mut *w, &value)?;
+            writeln!(w)?;
+            Ok(())
+        })?;
+    }
+    let mut status = ExitCode::SUCCESS;
+    for fault in &answer.faults {
+        eprintln!("fault: {fault}");
+        status = ExitCode::from(1);
+    }
+    report.flush()?;
+    Ok(status)
+}
+
+/// The default report: the answer, the time against software, the checks.
+fn print_summary(
+    report: &mut dyn Write,
+    args: &Args,
+    answer: &SceneAnswer,
+    hardware: &HardwareRun,
+) -> anyhow::Result<()> {
+    let grid = &hardware.run.pairs;
+    let redecided = &hardware.redecided;
+    writeln!(
+        report,
+        "exact pairs: {} (the grid's {} hits; {} verdicts without a certificate decided again on the original coordinates, {} changed){}",
+        answer.pairs.len(),
+        grid.len(),
+        hardware.run.uncertain.len(),
+        redecided.changed,
+        if args.grid_verdicts { "; --out has the grid's verdicts" } else { "" }
+    )?;
+    let clock = answer.accelerator.clock;
+    if let Some(whole) = answer.end_to_end() {
+        let software = answer.check.as_ref().map(|c| c.software);
+        let ratio = |t: Duration| {
+            software.map_or(String::new(), |s| {
+                format!(
+                    ": {:.1} x",
+                    s.as_secs_f64() / t.as_secs_f64().max(f64::MIN_POSITIVE)
+                )
+            })
+        };
+        writeln!(
+            report,
+            "time: accelerator {} cycles first triangle in to last pair out = {} at {} MHz ({}){}{}; end to end {} (host {}, re-decisions {}){}",
+            whole.cycles,
+            human(whole.accelerator),
+            clock.mhz,
+            clock.source.name(),
+            ratio(whole.accelerator),
+            software.map_or(String::new(), |s| format!(" the software baseline {} (box sweep + exact predicates, one thread)", human(s))),
+            human(whole.total()),
+            human(whole.host),
+            human(whole.redecide),
+            ratio(whole.total()),
+        )?;
+    }
+    match &answer.check {
+        Some(check) => writeln!(
+            report,
+            "check: {} = exact model on the grid ({}); exact pairs = exact f64 on the original coordinates ({} missing, {} extra)",
+            answer.engine.name(),
+            if check.engine_vs_grid.is_empty() { "equal".to_string() } else { format!("{} missing, {} extra: a bug", check.engine_vs_grid.missing.len(), check.engine_vs_grid.extra.len()) },
+            check.answer_vs_truth.missing.len(),
+            check.answer_vs_truth.extra.len()
+        )?,
+        None => writeln!(report, "check: skipped (--no-compare)")?,
+    }
+    writeln!(
+        report,
+        "details: --verbose (broad phase, binning, cycles, certificates); every figure: --json FILE"
+    )?;
+    Ok(())
+}
+
+/// `--verbose`: the engine's run line by line.
+fn print_run(
+    report: &mut dyn Write,
+    args: &Args,
+    answer: &SceneAnswer,
+    hardware: &HardwareRun,
+) -> anyhow::Result<()> {
+    let run = &hardware.run;
+    let scene = &answer.scene;
+    let clock = answer.accelerator.clock;
+    let at = format!("{} MHz ({})", clock.mhz, clock.source.name());
+    writeln!(
+        report,
+        "host: common box, quantization and broad phase in software took {} (this machine)",
+        human(answer.host)
+    )?;
+    if let Some(top) = &hardware.top {
+        writeln!(
+            report,
+            "broad-phase top {} in {}: {} pairs tested, {} hits, {} pairs out once each, {} without a certificate; binned at clock {}, done at {} (its models: {} to {}){}",
+            top.config.unit_name(),
+            args.engine.name(),
+            top.output.pairs_tested,
+            top.output.hits,
+            top.pairs.len(),
+            top.uncertain.len(),
+            top.output.binned_at,
+            top.output.cycles,
+            top.model_cycles,
+            top.model_cycles + top.model.filter_clocks,
+            if top.faults().is_empty() { "; its pairs equal its model's" } else { "" }
+        )?;
+    }
+    writeln!(report, "engine: {}", args.engine.describe())?;
     if let Some(c) = run.counters {
-        let mut notes = format!(
-            "{} pairs tested by the hardware's counter (wraps at 2^32), {} hits, {} stall cycles; cycle model {}",
+        writeln!(
+            report,
+            "hardware: {} pairs tested by the hardware's counter (wraps at 2^32), {} hits, {} stall cycles; cycle model {}",
             c.pairs_tested, c.hits, c.stall_cycles, run.model_cycles
-        );
-        for fault in run.faults() {
-            notes.push_str(&format!("; {fault}"));
-            status = ExitCode::from(1);
-        }
-        writeln!(report, "hardware: {notes}")?;
+        )?;
     }
     if let Some(owner) = run.owner {
         writeln!(
@@ -392,18 +534,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             (owner.slots.0 + owner.slots.1) as f64 * SLOT_WORD_BITS as f64 / 1e6,
             if args.engine.is_hardware() { format!("; simulated in {}: equal to its model", args.engine.name()) } else { String::new() }
         )?;
-        for fault in run
-            .faults()
-            .into_iter()
-            .filter(|f| f.contains("owner filter"))
-        {
-            if run.counters.is_none() {
-                writeln!(report, "owner filter: {fault}")?;
-                status = ExitCode::from(1);
-            }
-        }
     }
-    writeln!(report, "intersecting pairs: {}", pairs.len())?;
+    writeln!(
+        report,
+        "intersecting pairs on the grid: {}",
+        run.pairs.len()
+    )?;
     // Pairs too long for a leaf's local frame are decided by the host on
     // the grid, with certificates too.
     let decided = scene.pairs_tested() + scene.host_pairs();
@@ -415,36 +551,31 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         decided,
         if scene.host_pairs() > 0 { format!(": {} in leaves, {} by the host", scene.pairs_tested(), scene.host_pairs()) } else { String::new() }
     )?;
-    let certified = args
-        .certified
-        .then(|| certify(pairs, &run.uncertain, &a, &b));
-    if let Some(c) = &certified {
-        writeln!(
-            report,
-            "certified: the {} pairs without a certificate decided again on the original coordinates ({} verdicts changed): {} intersecting pairs",
-            run.uncertain.len(),
-            c.changed,
-            c.pairs.len()
-        )?;
-    }
-    let pairs = certified.as_ref().map_or(pairs, |c| &c.pairs);
-    let time = args.hardware.time_of(cycles);
     writeln!(
         report,
-        "cycles: {cycles} ({} pipelines, pipeline latency {}, banks overlapped), time at {} MHz: {}",
-        args.hardware.pipelines,
-        pipeline_latency(),
-        args.hardware.clock_mhz,
-        human(time)
+        "exact pairs: the {} pairs without a certificate decided again on the original coordinates in {} ({} verdicts changed): {} intersecting pairs",
+        run.uncertain.len(),
+        human(hardware.redecided.host),
+        hardware.redecided.changed,
+        answer.pairs.len()
     )?;
-    let rare = rare_case_cost(args.hardware.pipelines as usize, &scene.batches());
-    let simulated = match (rare_cases == RareCasePath::Shared, run.counters) {
+    let cycles = &hardware.cycles;
+    writeln!(
+        report,
+        "cycles: {} ({} pipelines, pipeline latency {}, banks overlapped), time at {at}: {}",
+        cycles.narrow,
+        answer.accelerator.pipelines,
+        pipeline_latency(),
+        human(answer.accelerator.time_of(cycles.narrow))
+    )?;
+    let rare = &hardware.rare;
+    let simulated = match (answer.accelerator.rare_cases == RareCasePath::Shared, run.counters) {
         (true, Some(c)) => format!(
             "; simulated with them there ({}): {} stall cycles",
             args.engine.name(),
             c.stall_cycles
         ),
-        (true, None) => "; the model engine does not simulate the stalls".to_string(),
+        (true, None) => "; the model engine does not simulate the stalls: the first-in-to-last-out count adds the bound".to_string(),
         (false, _) => "; these pipelines test them on parallel units, without a stall".to_string(),
     };
     writeln!(
@@ -457,119 +588,180 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         100.0 * rare.stall_cycles as f64 / run.model_cycles.max(1) as f64,
         run.model_cycles
     )?;
-    write_pairs(output, args.indices, &a, &b, pairs)?;
-    write_render(png, &args, &a, &b, pairs, &mut report)?;
-
-    if !args.no_compare {
-        let (quantized, same) = check_quantized(&scene, &run.pairs);
-        if same.is_empty() {
-            writeln!(
-                report,
-                "check: engine = exact model on the quantized coordinates ({} pairs): equal",
-                quantized.len()
-            )?;
-        } else {
-            writeln!(
-                report,
-                "check: engine DIFFERS from the exact model on the quantized coordinates: {} missing, {} extra (a bug) e.g. {:?} {:?}",
-                same.missing.len(),
-                same.extra.len(),
-                &same.missing[..same.missing.len().min(5)],
-                &same.extra[..same.extra.len().min(5)]
-            )?;
-            status = ExitCode::from(1);
-        }
-        let started = Instant::now();
-        let truth = exact_f64_pairs(&a.triangles, &b.triangles);
-        let software = started.elapsed();
-        let diff = PairDiff::between(&truth.pairs, &quantized);
+    let how = match cycles.count {
+        WholeCount::NarrowPhase => "the flat system's narrow phase".to_string(),
+        WholeCount::TopModel { top, filter } => format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"),
+        WholeCount::Sum { binning, narrow, owner } => format!("binning {binning} (cost formula) + narrow phase {narrow} + owner filter {owner} cycles, not overlapped"),
+        WholeCount::SimulatedTop { binned_at } => format!("simulated: the broad-phase top in {}, binned at clock {binned_at}", args.engine.name()),
+    };
+    let stalls = if cycles.stall_bound > 0 {
+        format!(
+            " + at most {} stall cycles for the shared rare-case units",
+            cycles.stall_bound
+        )
+    } else {
+        String::new()
+    };
+    writeln!(
+        report,
+        "first triangle in to last pair out: {} cycles ({how}{stalls}), {} at {at}",
+        cycles.whole,
+        human(answer.accelerator.time_of(cycles.whole))
+    )?;
+    if let Some(whole) = answer.end_to_end() {
         writeln!(
             report,
-            "exact f64 on the original coordinates, all {} pairs ({} with overlapping triangle boxes decided): {} intersecting",
-            scene.all_pairs(),
-            truth.pairs_decided,
-            truth.pairs.len()
+            "end to end, first f64 triangle in to last exact pair out: host {} + accelerator {} + re-decisions {} = {} (the transfer to the board not counted)",
+            human(whole.host),
+            human(whole.accelerator),
+            human(whole.redecide),
+            human(whole.total())
         )?;
-        writeln!(
-            report,
-            "work: pairs tested {} = {:.2} x the box-overlap pairs ({}) = {:.2e} of N1*N2",
-            scene.pairs_tested(),
-            scene.pairs_tested() as f64 / truth.pairs_decided.max(1) as f64,
-            truth.pairs_decided,
-            scene.pairs_tested() as f64 / scene.all_pairs().max(1) as f64
-        )?;
-        let ratio = |hardware: std::time::Duration| {
-            software.as_secs_f64() / hardware.as_secs_f64().max(f64::MIN_POSITIVE)
-        };
-        let narrow = args.hardware.time_of(cycles);
-        writeln!(
-            report,
-            "speed: software (box sweep + exact predicates, one thread, triangles in memory) {}; the system's cycles {} at {} MHz: {:.1} x",
-            human(software),
-            human(narrow),
-            args.hardware.clock_mhz,
-            ratio(narrow)
-        )?;
-        let whole = match args.broad_phase_top {
-            true => Some((
-                cycles,
-                format!("simulated: the broad-phase top in {}", args.engine.name()),
-            )),
-            false => first_in_to_last_out(&args.hardware, &scene, &run, cycles),
-        };
-        if let Some((whole, how)) = whole {
-            let whole_time = args.hardware.time_of(whole);
-            writeln!(
-                report,
-                "speed, first triangle in to last pair out: {whole} cycles ({how}), {} at {} MHz, {:.1} x",
-                human(whole_time),
-                args.hardware.clock_mhz,
-                ratio(whole_time)
-            )?;
-        }
-        writeln!(
-            report,
-            "quantization error (grid of {} bits): {} pairs missing, {} extra against exact f64{}",
-            args.hardware.grid_bits(),
-            diff.missing.len(),
-            diff.extra.len(),
-            examples(&diff)
-        )?;
-        if let Some(c) = &certified {
-            let diff = PairDiff::between(&truth.pairs, &c.pairs);
-            writeln!(
-                report,
-                "certified answer: {} pairs missing, {} extra against exact f64{}",
-                diff.missing.len(),
-                diff.extra.len(),
-                examples(&diff)
-            )?;
-        }
     }
-    report.flush()?;
-    Ok(status)
+    let Some(check) = &answer.check else {
+        return Ok(());
+    };
+    if check.engine_vs_grid.is_empty() {
+        writeln!(
+            report,
+            "check: engine = exact model on the quantized coordinates ({} pairs): equal",
+            check.quantized.len()
+        )?;
+    } else {
+        writeln!(
+            report,
+            "check: engine DIFFERS from the exact model on the quantized coordinates: {} missing, {} extra (a bug){}",
+            check.engine_vs_grid.missing.len(),
+            check.engine_vs_grid.extra.len(),
+            examples(&check.engine_vs_grid)
+        )?;
+    }
+    writeln!(
+        report,
+        "exact f64 on the original coordinates, all {} pairs ({} with overlapping triangle boxes decided): {} intersecting",
+        scene.all_pairs(),
+        check.truth.pairs_decided,
+        check.truth.pairs.len()
+    )?;
+    writeln!(
+        report,
+        "work: pairs tested {} = {:.2} x the box-overlap pairs ({}) = {:.2e} of N1*N2",
+        scene.pairs_tested(),
+        scene.pairs_tested() as f64 / check.truth.pairs_decided.max(1) as f64,
+        check.truth.pairs_decided,
+        scene.pairs_tested() as f64 / scene.all_pairs().max(1) as f64
+    )?;
+    let ratio = |hardware: Duration| {
+        check.software.as_secs_f64() / hardware.as_secs_f64().max(f64::MIN_POSITIVE)
+    };
+    let narrow = answer.accelerator.time_of(cycles.narrow);
+    let whole = answer.accelerator.time_of(cycles.whole);
+    writeln!(
+        report,
+        "speed: software (box sweep + exact predicates, one thread, triangles in memory) {}; the system's cycles {} at {at}: {:.1} x; first triangle in to last pair out {}: {:.1} x",
+        human(check.software),
+        human(narrow),
+        ratio(narrow),
+        human(whole),
+        ratio(whole)
+    )?;
+    writeln!(
+        report,
+        "quantization error (grid of {} bits): {} pairs missing, {} extra against exact f64{}",
+        answer.accelerator.grid_bits,
+        check.grid_vs_truth.missing.len(),
+        check.grid_vs_truth.extra.len(),
+        examples(&check.grid_vs_truth)
+    )?;
+    writeln!(
+        report,
+        "exact pairs: {} missing, {} extra against exact f64{}",
+        check.answer_vs_truth.missing.len(),
+        check.answer_vs_truth.extra.len(),
+        examples(&check.answer_vs_truth)
+    )?;
+    Ok(())
 }
 
-/// The answer on the original coordinates: `grid`'s hits that carry a
-/// certificate, and the `uncertain` pairs that intersect on the originals.
-pub struct Certified {
-    pub pairs: PairSet,
-    /// Uncertain pairs whose verdict on the originals differs from the grid's.
-    pub changed: usize,
+/// `--json`: every figure of the answer, for scripts.
+fn answer_json(args: &Args, answer: &SceneAnswer, hardware: &HardwareRun) -> serde_json::Value {
+    let pairs = |set: &PairSet| set.iter().map(|&(i, j)| [i, j]).collect::<Vec<_>>();
+    let diff =
+        |d: &PairDiff| serde_json::json!({ "missing": d.missing.len(), "extra": d.extra.len() });
+    let acc = &answer.accelerator;
+    let scene = &answer.scene;
+    let whole = answer.end_to_end();
+    let binning = match &answer.binning {
+        Binning::None => serde_json::Value::Null,
+        Binning::Unit(unit) => serde_json::json!({
+            "model": "clock-exact",
+            "cycles": unit.run.cycles,
+            "leaves": unit.run.leaves.len(),
+            "memory_bits": unit.config.memory_bits(),
+        }),
+        Binning::Formula { why, cycles, .. } => serde_json::json!({
+            "model": "cost formula",
+            "why": why.to_string(),
+            "cycles": cycles,
+        }),
+    };
+    serde_json::json!({
+        "scene": {
+            "a": answer_name(&args.scene, 0),
+            "b": answer_name(&args.scene, 1),
+            "triangles_a": scene.n_a,
+            "triangles_b": scene.n_b,
+            "kept_a": scene.kept_a.len(),
+            "kept_b": scene.kept_b.len(),
+            "pairs_tested": scene.pairs_tested(),
+            "all_pairs": scene.all_pairs(),
+            "leaves": scene.octree.as_ref().map(|o| o.leaves.len()),
+        },
+        "accelerator": {
+            "width": acc.width,
+            "grid_bits": acc.grid_bits,
+            "pipelines": acc.pipelines,
+            "depth": acc.depth,
+            "broad_phase": if acc.broad_phase == BroadPhase::Octree { "octree" } else { "flat" },
+            "rare_cases": acc.rare_cases.name(),
+            "clock_mhz": acc.clock.mhz,
+            "clock": acc.clock.source.name(),
+        },
+        "engine": answer.engine.name(),
+        "pairs": pairs(&answer.pairs),
+        "grid_pairs": pairs(&hardware.run.pairs),
+        "uncertain": pairs(&hardware.run.uncertain),
+        "changed": hardware.redecided.changed,
+        "binning": binning,
+        "cycles": {
+            "narrow_phase": hardware.cycles.narrow,
+            "first_in_to_last_out": hardware.cycles.whole,
+            "stall_bound": hardware.cycles.stall_bound,
+            "cycle_model": hardware.run.model_cycles,
+        },
+        "seconds": {
+            "host": answer.host.as_secs_f64(),
+            "accelerator": whole.map(|w| w.accelerator.as_secs_f64()),
+            "redecide": hardware.redecided.host.as_secs_f64(),
+            "end_to_end": whole.map(|w| w.total().as_secs_f64()),
+            "software": answer.check.as_ref().map(|c| c.software.as_secs_f64()),
+        },
+        "check": answer.check.as_ref().map(|c| serde_json::json!({
+            "engine_vs_grid": diff(&c.engine_vs_grid),
+            "grid_vs_exact_f64": diff(&c.grid_vs_truth),
+            "pairs_vs_exact_f64": diff(&c.answer_vs_truth),
+            "exact_f64_pairs": c.truth.pairs.len(),
+        })),
+        "faults": answer.faults.iter().map(|f| f.to_string()).collect::<Vec<_>>(),
+    })
 }
 
-pub fn certify(grid: &PairSet, uncertain: &PairSet, a: &SceneObject, b: &SceneObject) -> Certified {
-    let mut pairs: PairSet = grid.difference(uncertain).copied().collect();
-    let mut changed = 0;
-    for &(i, j) in uncertain {
-        let exact =
-            tritri_geom::exact_f64::intersects(&a.triangles[i as usize], &b.triangles[j as usize]);
-        changed += (exact != grid.contains(&(i, j))) as usize;
-        if exact {
-            pairs.insert((i, j));
-        }
-    }
-    Certified { pairs, changed }
+/// The name of object `k` as given (the built-in scene without `--scene`).
+fn answer_name(scene: &SceneArgs, k: usize) -> String {
+    scene
+        .scene
+        .as_ref()
+        .map_or(DEFAULT_SCENE[k].to_string(), |v| v[k].clone())
 }
 
 fn scene_box(o: &SceneObject) -> Option<Aabb<f64>> {
@@ -586,13 +778,9 @@ fn show_box(b: &Option<Aabb<f64>>) -> String {
     }
 }
 
-fn print_filter(
-    report: &mut dyn Write,
-    args: &Args,
-    scene: &PreparedScene,
-    common: &Aabb<f64>,
-) -> anyhow::Result<()> {
-    writeln!(report, "common BV: {}", show_box(&Some(*common)))?;
+fn print_filter(report: &mut dyn Write, prepared: &PreparedQuery) -> anyhow::Result<()> {
+    let scene = &prepared.scene;
+    writeln!(report, "common BV: {}", show_box(&scene.common))?;
     writeln!(
         report,
         "in the common BV: A {} of {} (f64 box filter {}), B {} of {} (f64 box filter {}): {:.1} % of all triangles",
@@ -608,11 +796,9 @@ fn print_filter(
         writeln!(
             report,
             "frame: {} bits, step h = {:e}, centre {:?}",
-            args.hardware.grid_bits(),
-            frame.step,
-            frame.centre
+            prepared.accelerator.grid_bits, frame.step, frame.centre
         )?;
-        if let Some(local) = args.hardware.local_frames() {
+        if let Some(local) = prepared.accelerator.local_frames() {
             writeln!(
                 report,
                 "local frames: leaves go to the {}-bit hardware as grid coordinates minus the leaf's centre; {} pairs with a triangle too long for a leaf's window decided by the host",
@@ -660,8 +846,8 @@ fn print_filter(
             octree.b.len(),
             if octree.oversized_leaves > 0 { format!(", {} leaves over the depth (tiled)", octree.oversized_leaves) } else { String::new() }
         )?;
-        match scene_binning(&args.hardware, scene) {
-            Ok(SceneBinning { config, run }) => writeln!(
+        match &prepared.binning {
+            Binning::Unit(SceneBinning { config, run }) => writeln!(
                 report,
                 "binning unit (built; its cycle-exact model here, equal to its Verilog in co-simulation): {} triangles in, {} cell passes over {} entries, {} leaves (the planner's), at most {} frames deep: {} cycles; memories {:.2} Mbit for {} triangles per object, {} list words, {} leaves (tritri gen --binning-unit --width {} --triangles {} --list-words {} --leaves {} --depth {} --pipelines {})",
                 scene.kept_a.len() + scene.kept_b.len(),
@@ -681,17 +867,15 @@ fn print_filter(
                 1u64 << config.log_depth,
                 1u64 << config.log_pipelines
             )?,
-            Err(why) => {
-                let work = binning_work(octree);
-                writeln!(
-                    report,
-                    "binning unit: not built for this configuration ({why}); its cost formula: {} triangles in, {} entries classified in {} cells: {} cycles",
-                    work.triangles,
-                    work.entries,
-                    work.cells,
-                    binning_cycles(&work)
-                )?
-            }
+            Binning::Formula { why, work, cycles } => writeln!(
+                report,
+                "binning unit: {why}; its cost formula: {} triangles in, {} entries classified in {} cells: {} cycles",
+                work.triangles,
+                work.entries,
+                work.cells,
+                cycles
+            )?,
+            Binning::None => {}
         }
     } else {
         writeln!(report, "broad phase: flat (every pair in the common box)")?;
@@ -704,70 +888,6 @@ fn print_filter(
         100.0 - percent(tested, all)
     )?;
     Ok(())
-}
-
-/// Cycles from the first triangle in to the last pair out with the octree
-/// broad phase (`None` for the flat one), and how they were counted.
-pub fn first_in_to_last_out(
-    hardware: &HardwareArgs,
-    scene: &PreparedScene,
-    run: &SceneRun,
-    cycles: u64,
-) -> Option<(u64, String)> {
-    let octree = scene.octree.as_ref()?;
-    Some(match scene_binning(hardware, scene) {
-        // The broad-phase top: the leaves go from the binning unit into the
-        // system's banks as they stream (its cycle model), and its owner
-        // filter decides the hits as they come; the filter's clocks for
-        // the hits back to back bound what it adds (co-simulation holds the
-        // emitted top within both).
-        Ok(unit) => {
-            let config = hardware.system_config();
-            let top = broad_phase_cycles(config, &unit.run);
-            let arrays =
-                |kept: &[TaggedTriangle]| kept.iter().map(|t| t.triangle).collect::<Vec<_>>();
-            let filter = top_model(
-                &unit.run,
-                config.triangles_per_bank,
-                &arrays(&scene.kept_a),
-                &arrays(&scene.kept_b),
-            )
-            .filter_clocks;
-            (top + filter, format!("the broad-phase top: binning and narrow phase {top} + its owner filter at most {filter} cycles"))
-        }
-        Err(_) => {
-            let owner = run.owner.map_or(0, |o| o.cycles);
-            let binning = binning_cycles(&binning_work(octree));
-            (binning + cycles + owner, format!("binning {binning} (cost formula) + narrow phase {cycles} + owner filter {owner} cycles, not overlapped"))
-        }
-    })
-}
-
-/// The binning unit on the scene's broad phase (the cycle-exact model of
-/// the unit built for it), or why the unit does not apply.
-pub fn scene_binning(
-    hardware: &HardwareArgs,
-    scene: &PreparedScene,
-) -> Result<SceneBinning, String> {
-    let max_leaf_level = hardware.local_frames().map(|l| l.max_leaf_level());
-    bin_scene(
-        scene,
-        hardware.grid_bits() as usize,
-        hardware.depth as usize,
-        hardware.pipelines as usize,
-        max_leaf_level,
-    )
-}
-
-/// What the broad phase's plan asks of the binning unit (its cost formula,
-/// where the unit does not apply).
-fn binning_work(octree: &OctreeSchedule) -> BinningWork {
-    BinningWork {
-        triangles: octree.binned,
-        cells: octree.cells_visited,
-        entries: octree.classifications,
-        cell_cycles: octree.classify_cycles,
-    }
 }
 
 fn percent(part: u64, whole: u64) -> f64 {
@@ -826,54 +946,6 @@ fn write_pairs(
             writeln!(w, "{i} {j}")?;
         }
         Ok(())
-    })
-}
-
-/// The scene through the broad-phase top on the chosen engine, as a
-/// [`SceneRun`]; what the top's models say is reported, and a fault sets
-/// `status` to 1.
-fn run_on_top(
-    args: &Args,
-    scene: &PreparedScene,
-    report: &mut dyn Write,
-    status: &mut ExitCode,
-) -> anyhow::Result<SceneRun> {
-    let max_leaf_level = args.hardware.local_frames().map(|l| l.max_leaf_level());
-    let config = args.hardware.system_config();
-    let top = run_scene_on_top(
-        scene,
-        config,
-        args.hardware.grid_bits() as usize,
-        max_leaf_level,
-        args.engine.simulator(),
-    )?;
-    writeln!(
-        report,
-        "broad-phase top {} in {}: {} pairs tested, {} hits, {} pairs out once each, {} without a certificate; binned at clock {}, done at {} (its models: {} to {}){}",
-        top.config.unit_name(),
-        args.engine.name(),
-        top.output.pairs_tested,
-        top.output.hits,
-        top.pairs.len(),
-        top.uncertain.len(),
-        top.output.binned_at,
-        top.output.cycles,
-        top.model_cycles,
-        top.model_cycles + top.model.filter_clocks,
-        if top.faults().is_empty() { "; its pairs equal its model's".to_string() } else { String::new() }
-    )?;
-    for fault in top.faults() {
-        writeln!(report, "broad-phase top: {fault}")?;
-        *status = ExitCode::from(1);
-    }
-    Ok(SceneRun {
-        engine: args.engine,
-        pairs: top.pairs,
-        uncertain: top.uncertain,
-        owner: None,
-        cycles: top.output.cycles,
-        model_cycles: top.model_cycles,
-        counters: None,
     })
 }
 

@@ -83,19 +83,52 @@ fn classify_certified_is_exact_where_the_grid_is_not() {
 }
 
 /// The built-in scene: the grid reports one pair too many against exact
-/// f64, the certified answer none.
+/// f64; the default answer, the uncertain verdicts decided again, none.
+/// `--grid-verdicts` writes the grid's own answer, and `--json` both.
 #[test]
-fn sim_certified_answer_equals_exact_f64_on_the_built_in_scene() {
-    let out = tritri(&["sim", "--certified"]);
+fn sim_answer_is_exact_by_default_on_the_built_in_scene() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("certified-sim");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (exact, grid, json) = (
+        dir.join("exact.txt"),
+        dir.join("grid.txt"),
+        dir.join("run.json"),
+    );
+    let out = tritri(&[
+        "sim",
+        "--out",
+        exact.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
     assert!(
-        report.contains("certificates: 4 pairs without one"),
+        report.contains("exact pairs: 113 (the grid's 114 hits; 4 verdicts without a certificate"),
         "{report}"
     );
-    assert!(report.contains("1 extra against exact f64"), "{report}");
+    assert!(report.contains("(0 missing, 0 extra)"), "{report}");
+    assert_eq!(report.lines().count(), 5, "the short summary: {report}");
+    let verbose = tritri(&["sim", "--verbose"]);
+    let verbose = text(&verbose.stdout);
     assert!(
-        report.contains("certified answer: 0 pairs missing, 0 extra against exact f64"),
-        "{report}"
+        verbose.contains("certificates: 4 pairs without one"),
+        "{verbose}"
     );
+    assert!(verbose.contains("1 extra against exact f64"), "{verbose}");
+    assert!(
+        verbose.contains("exact pairs: 0 missing, 0 extra against exact f64"),
+        "{verbose}"
+    );
+    let out = tritri(&["sim", "--grid-verdicts", "--out", grid.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let lines = |p: &std::path::Path| std::fs::read_to_string(p).unwrap().lines().count();
+    assert_eq!((lines(&exact), lines(&grid)), (113, 114));
+    let figures: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(figures["pairs"].as_array().unwrap().len(), 113);
+    assert_eq!(figures["grid_pairs"].as_array().unwrap().len(), 114);
+    assert_eq!(figures["check"]["pairs_vs_exact_f64"]["extra"], 0);
+    assert_eq!(figures["check"]["grid_vs_exact_f64"]["extra"], 1);
+    assert!(figures["faults"].as_array().unwrap().is_empty());
 }

@@ -501,6 +501,30 @@ pub(crate) fn input_testbench(
     }
 }
 
+/// Why [`bin_scene`] has no run of the binning unit.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BinningError {
+    /// The unit is not built for this configuration; the reason.
+    NotBuilt(String),
+    /// The unit's clock-exact model streams other leaves than the broad
+    /// phase's planner (a bug in one of them).
+    DiffersFromPlanner { unit: usize, planner: usize },
+}
+
+impl std::fmt::Display for BinningError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BinningError::NotBuilt(why) => write!(f, "not built for this configuration: {why}"),
+            BinningError::DiffersFromPlanner { unit, planner } => write!(
+                f,
+                "the binning unit's model streams other leaves than the broad phase's planner ({unit} against {planner}; a bug)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for BinningError {}
+
 /// The binning unit on a scene's broad phase: the unit built for it and
 /// its run (the cycle-exact model, which the rust-hdl model and the
 /// emitted Verilog equal: tests/binning_unit.rs).
@@ -514,32 +538,36 @@ pub struct SceneBinning {
 /// broad phase's planner bins into `scene.octree`) as the unit does, for a system of
 /// `depth` triangles per array and `pipelines` pipelines on a `grid_bits`
 /// grid (leaves at most `max_leaf_level` with local frames). An error says
-/// why the unit does not apply: a depth or pipeline count that is not a
-/// power of two, a grid it is not built for, triangles left to the host,
-/// or (a bug) leaves other than the planner's.
+/// why the unit does not apply ([`BinningError::NotBuilt`]: a depth or
+/// pipeline count that is not a power of two, a grid it is not built for,
+/// triangles left to the host), or that its leaves differ from the
+/// planner's ([`BinningError::DiffersFromPlanner`], a bug).
 pub fn bin_scene(
     scene: &PreparedScene,
     grid_bits: usize,
     depth: usize,
     pipelines: usize,
     max_leaf_level: Option<u32>,
-) -> Result<SceneBinning, String> {
+) -> Result<SceneBinning, BinningError> {
+    use BinningError::NotBuilt;
     if !depth.is_power_of_two() || !pipelines.is_power_of_two() {
-        return Err(format!("its split rule takes a power-of-two depth and pipeline count, not depth {depth}, P = {pipelines}"));
+        return Err(NotBuilt(format!("its split rule takes a power-of-two depth and pipeline count, not depth {depth}, P = {pipelines}")));
     }
     if !BINNING_GRID_WIDTHS.contains(&grid_bits) {
-        return Err(format!(
+        return Err(NotBuilt(format!(
             "it is built for {BINNING_GRID_WIDTHS:?}-bit grids, not {grid_bits}"
-        ));
+        )));
     }
     let Some(octree) = &scene.octree else {
-        return Err("the scene has no octree broad phase".into());
+        return Err(NotBuilt("the scene has no octree broad phase".into()));
     };
     if !octree.host_arrays.is_empty() {
-        return Err("some triangles are too long for a leaf's window and go to the host".into());
+        return Err(NotBuilt(
+            "some triangles are too long for a leaf's window and go to the host".into(),
+        ));
     }
     let Some(root) = octree.root else {
-        return Err("the common box is empty".into());
+        return Err(NotBuilt("the common box is empty".into()));
     };
     let params = BinningParams {
         log_depth: depth.trailing_zeros(),
@@ -556,13 +584,12 @@ pub fn bin_scene(
         .map(|l| l.cell)
         .ne(planned.iter().copied())
     {
-        return Err(format!(
-            "its {} leaves differ from the planner's {} (a bug)",
-            run.leaves.len(),
-            planned.len()
-        ));
+        return Err(BinningError::DiffersFromPlanner {
+            unit: run.leaves.len(),
+            planner: planned.len(),
+        });
     }
     let config = BinningUnitConfig::sized_for(grid_bits, params, a.len().max(b.len()), &run);
-    config.check()?;
+    config.check().map_err(NotBuilt)?;
     Ok(SceneBinning { config, run })
 }

@@ -390,55 +390,50 @@ pub struct TopSceneRun {
 impl TopSceneRun {
     /// What says the top is wrong: its pairs against its model's, `done`
     /// outside the models' window, the overflow flag (each a bug).
-    pub fn faults(&self) -> Vec<String> {
+    pub fn faults(&self) -> Vec<crate::fault::Fault> {
+        use crate::fault::Fault;
         let mut faults = Vec::new();
         let mut got = self.output.pairs.clone();
         got.sort_unstable();
         if got != self.model.pairs {
-            faults.push(format!(
-                "the top's {} pairs differ from its model's {} (a bug)",
-                got.len(),
-                self.model.pairs.len()
-            ));
+            faults.push(Fault::TopPairs {
+                top: got.len(),
+                model: self.model.pairs.len(),
+            });
         }
-        let (lo, hi) = (
+        let (low, high) = (
             self.model_cycles,
             self.model_cycles + self.model.filter_clocks,
         );
-        if !(lo..=hi).contains(&self.output.cycles) {
-            faults.push(format!(
-                "done after {} clocks, outside the models' {lo} to {hi} (a bug)",
-                self.output.cycles
-            ));
+        if !(low..=high).contains(&self.output.cycles) {
+            faults.push(Fault::Cycles {
+                simulated: self.output.cycles,
+                low,
+                high,
+            });
         }
         if self.output.overflow {
-            faults.push(
-                "OVERFLOW flag set (a memory of the top was too small: a bug in its sizing)".into(),
-            );
+            faults.push(Fault::Overflow {
+                what: "a memory of the broad-phase top was too small (its sizing)",
+            });
         }
         faults
     }
 }
 
 /// Runs `scene` (prepared with the octree broad phase on a grid the binning
-/// unit is built for) through the broad-phase top sized for it, in
-/// rust-hdl (`simulator` `None`) or in the emitted Verilog; `system` is the
-/// collision system it feeds, `max_leaf_level` the local frames' bound.
+/// unit is built for, and `binning` its run of the binning unit,
+/// `crate::binning_unit::bin_scene`) through the broad-phase top sized for
+/// it, in rust-hdl (`simulator` `None`) or in the emitted Verilog; `system`
+/// is the collision system it feeds, `max_leaf_level` the local frames'
+/// bound.
 pub fn run_scene_on_top(
     scene: &tritri_geom::scene::PreparedScene,
+    binning: &crate::binning_unit::SceneBinning,
     system: tritri_rtl::system::SystemConfig,
-    grid_bits: usize,
     max_leaf_level: Option<u32>,
     simulator: Option<Simulator>,
 ) -> anyhow::Result<TopSceneRun> {
-    let binning = crate::binning_unit::bin_scene(
-        scene,
-        grid_bits,
-        system.triangles_per_bank,
-        system.pipelines,
-        max_leaf_level,
-    )
-    .map_err(|why| anyhow::anyhow!("the broad-phase top does not apply: {why}"))?;
     let root = scene
         .octree
         .as_ref()

@@ -11,16 +11,17 @@
 //!   exact model on the same quantized coordinates.
 //!
 //! ```
-//! use tritri_cosim::engine::{run_scene, Engine};
+//! use tritri_cosim::engine::{run_scene, Engine, SceneRunOptions};
 //! use tritri_geom::scene::{load::load_object, prepare, SceneOptions};
 //! use tritri_rtl::system::SystemConfig;
 //! let (a, b) = (load_object("@torus", 8).unwrap(), load_object("@sphere", 8).unwrap());
-//! let scene = prepare(&a, &b, &SceneOptions { width: 24, depth: 256, split: true }).unwrap();
-//! let config = SystemConfig::new(24, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(256);
-//! let run = run_scene(Engine::Model, &scene, config, &|_| {}).unwrap();
+//! let scene = prepare(&a, &b, &SceneOptions { grid_bits: 24, depth: 256, split: true }).unwrap();
+//! let config = SystemConfig::new(24, 2).with_depth(256);
+//! let run = run_scene(Engine::Model, &scene, config, &SceneRunOptions::default()).unwrap();
 //! assert_eq!(run.cycles, run.model_cycles);
 //! ```
 
+use crate::fault::Fault;
 use crate::owner_filter;
 use crate::pipeline_rtl;
 use crate::rusthdl_harness::{run_schedule_on, HarnessOptions};
@@ -37,6 +38,7 @@ use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, Pa
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;
 
@@ -259,29 +261,59 @@ impl SceneRun {
     /// What says the hardware is wrong, apart from its pairs: the overflow
     /// flag, a cycle count off the cycle model without a stall, or a pair
     /// the owner filter let through twice (each a bug).
-    pub fn faults(&self) -> Vec<String> {
+    pub fn faults(&self) -> Vec<Fault> {
         let mut faults = Vec::new();
         if let Some(c) = self.counters {
             if c.overflow {
-                faults.push("OVERFLOW flag set (an array exceeded the memory depth)".to_string());
+                faults.push(Fault::Overflow {
+                    what: "an array exceeded the memory depth",
+                });
             }
             if c.stall_cycles == 0 && self.cycles != self.model_cycles {
-                faults.push(format!(
-                    "{} cycles simulated, the cycle model says {} (a bug)",
-                    self.cycles, self.model_cycles
-                ));
+                faults.push(Fault::Cycles {
+                    simulated: self.cycles,
+                    low: self.model_cycles,
+                    high: self.model_cycles,
+                });
             }
         }
         if let Some(owner) = self.owner {
             if owner.pairs > self.pairs.len() as u64 {
-                faults.push(format!(
-                    "the owner filter let {} pairs through for {} distinct pairs (a bug)",
-                    owner.pairs,
-                    self.pairs.len()
-                ));
+                faults.push(Fault::OwnerDuplicates {
+                    through: owner.pairs,
+                    distinct: self.pairs.len() as u64,
+                });
             }
         }
         faults
+    }
+}
+
+/// How [`run_scene`] runs: the pipelines' rare-case path, progress and a
+/// waveform.
+#[derive(Clone, Copy)]
+pub struct SceneRunOptions<'a> {
+    /// Where the system's pipelines test their rare pairs; a hardware
+    /// engine simulates that system (the model's pairs and cycles are the
+    /// same for both: its cycle model has no stalls).
+    pub rare_cases: RareCasePath,
+    /// Told of work done as it is done: pairs for the model, simulated
+    /// cycles for a hardware engine ([`Engine::progress_unit`]).
+    pub progress: &'a (dyn Fn(u64) + Sync),
+    /// The system's waveform is written here (Icarus and Verilator only:
+    /// a traced build).
+    pub vcd: Option<&'a Path>,
+}
+
+fn no_progress(_: u64) {}
+
+impl Default for SceneRunOptions<'static> {
+    fn default() -> Self {
+        SceneRunOptions {
+            rare_cases: RareCasePath::Parallel,
+            progress: &no_progress,
+            vcd: None,
+        }
     }
 }
 
@@ -289,40 +321,18 @@ impl SceneRun {
 /// on `engine`, the host's pairs (triangles too long for a leaf's local
 /// frame) through the model. With the octree broad phase the leaves'
 /// arrays carry slots and the hits go through the owner filter's rule.
-/// `progress` is told of work done as it is done: pairs for the model,
-/// simulated cycles for a hardware engine ([`Engine::progress_unit`]).
 pub fn run_scene(
     engine: Engine,
     scene: &PreparedScene,
     config: SystemConfig,
-    progress: &(dyn Fn(u64) + Sync),
+    options: &SceneRunOptions,
 ) -> anyhow::Result<SceneRun> {
-    run_scene_with(engine, scene, config, progress, None)
-}
-
-/// [`run_scene`], and with `vcd` the system's waveform written there
-/// (Icarus and Verilator only: a traced build).
-pub fn run_scene_with(
-    engine: Engine,
-    scene: &PreparedScene,
-    config: SystemConfig,
-    progress: &(dyn Fn(u64) + Sync),
-    vcd: Option<&Path>,
-) -> anyhow::Result<SceneRun> {
-    run_scene_on(engine, PipelineKind::Real, scene, config, progress, vcd)
-}
-
-/// [`run_scene_with`] on a system of `kind`'s pipelines (a hardware
-/// engine; `PipelineKind::Shared` tests the rare pairs on the shared unit
-/// and stalls for them).
-pub fn run_scene_on(
-    engine: Engine,
-    kind: PipelineKind,
-    scene: &PreparedScene,
-    config: SystemConfig,
-    progress: &(dyn Fn(u64) + Sync),
-    vcd: Option<&Path>,
-) -> anyhow::Result<SceneRun> {
+    let SceneRunOptions {
+        rare_cases,
+        progress,
+        vcd,
+    } = *options;
+    let kind = PipelineKind::from(rare_cases);
     anyhow::ensure!(
         vcd.is_none() || engine.simulator().is_some(),
         "a waveform needs --engine icarus or verilator, not {}",

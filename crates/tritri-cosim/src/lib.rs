@@ -1,11 +1,15 @@
 //! Co-simulation of tritri's hardware against the software models, and the
 //! route from a scene or a list of pairs to verdicts.
 //!
-//! * [`engine`]: the route as a library. One [`engine::Engine`] (model,
-//!   rusthdl, icarus, verilator) and one function per kind of work:
-//!   [`engine::run_pipeline`] for a schedule of pairs through a pipeline,
-//!   [`engine::run_scene`] for a prepared scene through the system. The
-//!   command line only parses arguments and prints what these return.
+//! * [`scene_query`]: the route from two objects to their exact pairs as
+//!   one call, [`scene_query::find_pairs`]: the host's preparation, the
+//!   accelerator on an engine, the uncertain verdicts decided again, the
+//!   cycles first in to last out, the checks; typed [`fault::Fault`]s.
+//! * [`engine`]: one [`engine::Engine`] (model, rusthdl, icarus,
+//!   verilator) and one function per kind of work: [`engine::run_pipeline`]
+//!   for a schedule of pairs through a pipeline, [`engine::run_scene`] for
+//!   a prepared scene's batches through the system. The command line only
+//!   parses arguments and prints what these return.
 //! * The pipeline: [`rusthdl_harness`] drives the rust-hdl pipeline
 //!   directly; [`pipeline_rtl`] runs its emitted Verilog with
 //!   `testbenches/tb_triangle_pipeline.sv` on vector files ([`vectors`]).
@@ -25,6 +29,7 @@ pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod cone_unit;
 pub mod engine;
+pub mod fault;
 pub mod octree_builder;
 pub mod owner_filter;
 pub mod patch_tessellator;
@@ -32,6 +37,7 @@ pub mod patch_triangles;
 pub mod pipeline_rtl;
 pub mod plane_traversal;
 pub mod rusthdl_harness;
+pub mod scene_query;
 pub mod shared_rare_cases;
 pub mod simulator;
 pub mod stream;

@@ -111,7 +111,7 @@ pub fn run_system(
     batches: &[Batch],
     reader: ReaderBehaviour,
 ) -> anyhow::Result<SystemResult> {
-    run_system_with(config, PipelineKind::Real, batches, true, reader)
+    run_system_with(config, PipelineKind::Parallel, batches, true, reader)
 }
 
 /// Runs the batches through a fresh system of `kind` for `config`.

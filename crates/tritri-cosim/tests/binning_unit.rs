@@ -15,7 +15,6 @@ use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, PreparedScene, SceneOptions};
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
 use tritri_rtl::octree::binning_unit::BinningUnitConfig;
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
 /// A torus and a sphere in contact, at memory depth `depth` (small: many
@@ -35,12 +34,12 @@ fn scene(depth: usize, torus_segments: usize, sphere_segments: usize) -> Prepare
         "sphere",
         sphere([1.0, 0.0, 0.55], 0.4, sphere_segments, sphere_segments / 2),
     );
-    let config = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let config = SystemConfig::new(24, 2).with_depth(depth);
     prepare_octree(
         &a,
         &b,
         &SceneOptions {
-            width: 24,
+            grid_bits: 24,
             depth,
             split: true,
         },
@@ -182,12 +181,12 @@ fn the_emitted_unit_bins_a_large_scene_as_the_model_in_verilator() {
     // frames (cells above level 18 always split).
     let a = SceneObject::from_triangles("sphere a", sphere([0.0, 0.0, 0.0], 1.0, 112, 56));
     let b = SceneObject::from_triangles("sphere b", sphere([0.6, 0.2, 0.1], 0.9, 112, 56));
-    let system = SystemConfig::new(24, 2, latency()).with_depth(256);
+    let system = SystemConfig::new(24, 2).with_depth(256);
     let scene = prepare_octree(
         &a,
         &b,
         &SceneOptions {
-            width: 24,
+            grid_bits: 24,
             depth: 256,
             split: true,
         },

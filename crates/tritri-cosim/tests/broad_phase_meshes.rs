@@ -43,9 +43,9 @@ fn the_emitted_top_on_camel_and_elephant_in_verilator() {
         .unwrap()
         .posed(&Pose::translation([0.3, 0.0, 0.0]));
     let depth = 256;
-    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let system = SystemConfig::new(24, 2).with_depth(depth);
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth,
         split: true,
     };

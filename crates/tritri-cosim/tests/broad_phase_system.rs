@@ -23,7 +23,6 @@ use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
 use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
 use tritri_rtl::octree::binning_unit::BinningUnitConfig;
 use tritri_rtl::octree::broad_phase_system::{broad_phase_cycles, leaf_batches, stream_slots};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::cycle_model::BatchSizes;
 use tritri_rtl::system::SystemConfig;
 
@@ -142,9 +141,9 @@ fn top_for(
 fn the_top_gives_each_pair_once_in_rust_hdl() {
     let (torus, sphere) = objects(48, 32);
     let depth = 16;
-    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let system = SystemConfig::new(24, 2).with_depth(depth);
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth,
         split: true,
     };
@@ -209,9 +208,9 @@ fn with_local_frames_the_top_keeps_the_fine_grids_pairs_in_rust_hdl() {
     // (a finer torus, so that most of its triangles fit a leaf's window).
     let (torus, sphere) = objects(128, 48);
     let depth = 16;
-    let system = SystemConfig::new(16, 2, latency()).with_depth(depth);
+    let system = SystemConfig::new(16, 2).with_depth(depth);
     let options = SceneOptions {
-        width: 18,
+        grid_bits: 18,
         depth,
         split: true,
     };
@@ -246,9 +245,9 @@ fn leaves_over_the_depth_reach_the_system_as_tiles_in_rust_hdl() {
     // and a triangle comes back in several tiles of its leaf.
     let (torus, sphere) = objects(48, 32);
     let depth = 4;
-    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let system = SystemConfig::new(24, 2).with_depth(depth);
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth,
         split: true,
     };
@@ -290,9 +289,9 @@ fn the_emitted_top_gives_each_pair_once_on_a_large_scene_in_verilator() {
     let a = SceneObject::from_triangles("sphere a", sphere([0.0, 0.0, 0.0], 1.0, 112, 56));
     let b = SceneObject::from_triangles("sphere b", sphere([0.6, 0.2, 0.1], 0.9, 112, 56));
     let depth = 256;
-    let system = SystemConfig::new(24, 2, latency()).with_depth(depth);
+    let system = SystemConfig::new(24, 2).with_depth(depth);
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth,
         split: true,
     };

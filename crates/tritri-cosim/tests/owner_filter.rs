@@ -11,7 +11,6 @@ use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::reference::{fixed_point_pairs, PairSet};
 use tritri_geom::scene::{prepare_octree, PreparedScene, SceneOptions};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
 /// A torus and a sphere in contact, cut into small leaves (memory depth
@@ -20,12 +19,12 @@ use tritri_rtl::system::SystemConfig;
 fn scene() -> PreparedScene {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
-    let config = SystemConfig::new(24, 2, latency()).with_depth(16);
+    let config = SystemConfig::new(24, 2).with_depth(16);
     prepare_octree(
         &a,
         &b,
         &SceneOptions {
-            width: 24,
+            grid_bits: 24,
             depth: 16,
             split: true,
         },

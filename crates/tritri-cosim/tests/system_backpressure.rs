@@ -22,7 +22,8 @@ fn tiny_fifo_slow_reader_loses_nothing() {
     let sizes: Vec<_> = batches.iter().map(BatchSizes::of).collect();
     for p in [1, 2, 4] {
         for overlap in [false, true] {
-            let config = SystemConfig::new(24, p, 6)
+            let config = SystemConfig::new(24, p)
+                .with_pipeline_latency(6)
                 .with_depth(8)
                 .with_result_fifo_room(2);
             let r = run_stub_system(config, &batches, overlap, ReaderBehaviour::OneIn(7));
@@ -56,12 +57,12 @@ fn tiny_fifo_slow_reader_loses_nothing_with_real_pipelines() {
     let expected = pairs_where(&batches, |x, y| {
         tritri_geom::fixed_point::intersects(&x.triangle, &y.triangle)
     });
-    let config = SystemConfig::new(24, 4, tritri_rtl::pipeline::triangle_pipeline::latency())
+    let config = SystemConfig::new(24, 4)
         .with_depth(8)
         .with_result_fifo_room(2);
     let r = run_system_with(
         config,
-        PipelineKind::Real,
+        PipelineKind::Parallel,
         &batches,
         true,
         ReaderBehaviour::OneIn(7),

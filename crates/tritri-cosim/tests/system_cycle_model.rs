@@ -37,7 +37,8 @@ fn cycles_equal_the_model_for_p_1_2_4_with_and_without_overlap() {
     for latency in [1, 9] {
         for p in [1, 2, 4] {
             for overlap in [false, true] {
-                let config = SystemConfig::new(24, p, latency)
+                let config = SystemConfig::new(24, p)
+                    .with_pipeline_latency(latency)
                     .with_depth(8)
                     .with_result_fifo_depth(16);
                 let r = run_stub_system(config, &batches, overlap, ReaderBehaviour::AlwaysReady);

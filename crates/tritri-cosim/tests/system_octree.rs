@@ -14,7 +14,6 @@ use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{fixed_point_pairs, PairSet};
 use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::cycle_model::scene_cycles;
 use tritri_rtl::system::SystemConfig;
 
@@ -28,9 +27,9 @@ fn octree_leaves_through_rust_hdl_and_verilator_give_the_flat_pairs() {
         a.triangles.len(),
         b.triangles.len()
     );
-    let config = SystemConfig::new(24, 2, latency()).with_depth(64);
+    let config = SystemConfig::new(24, 2).with_depth(64);
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth: 64,
         split: true,
     };
@@ -53,7 +52,7 @@ fn octree_leaves_through_rust_hdl_and_verilator_give_the_flat_pairs() {
     let rtl = run_system_rtl(
         Simulator::Verilator,
         config,
-        PipelineKind::Real,
+        PipelineKind::Parallel,
         &batches,
         true,
         ReaderBehaviour::AlwaysReady,

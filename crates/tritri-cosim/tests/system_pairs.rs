@@ -13,7 +13,6 @@ use std::time::Instant;
 use tritri_cosim::system_harness::*;
 use tritri_geom::fixed_point::intersects;
 use tritri_geom::scene::reference::{pairs_where, PairDiff};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 
 #[test]
 fn real_pipelines_return_exactly_the_intersecting_pairs() {
@@ -32,13 +31,13 @@ fn real_pipelines_return_exactly_the_intersecting_pairs() {
     assert!(!expected.is_empty());
     for p in [1, 2, 4] {
         for overlap in [false, true] {
-            let config = SystemConfig::new(24, p, latency())
+            let config = SystemConfig::new(24, p)
                 .with_depth(8)
                 .with_result_fifo_room(16);
             let started = Instant::now();
             let r = run_system_with(
                 config,
-                PipelineKind::Real,
+                PipelineKind::Parallel,
                 &batches,
                 overlap,
                 ReaderBehaviour::AlwaysReady,
@@ -89,12 +88,12 @@ fn arrays_over_the_depth_set_overflow_and_keep_their_first_triangles() {
     };
     let expected = pairs_where(&[kept, kept], |x, y| intersects(&x.triangle, &y.triangle));
     assert!(!expected.is_empty());
-    let config = SystemConfig::new(24, 2, latency())
+    let config = SystemConfig::new(24, 2)
         .with_depth(depth)
         .with_result_fifo_room(16);
     let r = run_system_with(
         config,
-        PipelineKind::Real,
+        PipelineKind::Parallel,
         &[over, kept],
         true,
         ReaderBehaviour::AlwaysReady,

@@ -22,7 +22,6 @@ use tritri_geom::certificate::certain;
 use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::scene::reference::{pairs_where, PairDiff};
 use tritri_geom::scene::{Batch, TaggedTriangle};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::rare_case_model::rare_case_cost;
 
 /// Small integer triangles: most on the plane z = x (coplanar pairs with
@@ -93,7 +92,7 @@ fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
     for (p, shape) in [(1, (7, 40)), (2, (9, 40)), (4, (6, 33))] {
         let arrays = arrays(p as u64, &[shape]);
         let batches = system_common::batches(&arrays);
-        let config = SystemConfig::new(16, p, latency())
+        let config = SystemConfig::new(16, p)
             .with_depth(64)
             .with_result_fifo_room(FIFO_ROOM);
         let r = run_and_check(config, &batches, false, ReaderBehaviour::AlwaysReady);
@@ -125,7 +124,7 @@ fn one_batch_stalls_exactly_as_the_rare_case_model_counts() {
 fn batches_in_verilator_equal_rust_hdl() {
     let arrays = arrays(7, &[(5, 30), (0, 4), (8, 25), (3, 3)]);
     let batches = system_common::batches(&arrays);
-    let config = SystemConfig::new(16, 2, latency()).with_depth(32);
+    let config = SystemConfig::new(16, 2).with_depth(32);
     for (config, reader) in [
         (
             config.with_result_fifo_room(FIFO_ROOM),
@@ -177,7 +176,7 @@ fn batches_on_ecp5_primitives_in_verilator_equal_rust_hdl() {
 
     let arrays = arrays(7, &[(5, 30), (0, 4), (8, 25), (3, 3)]);
     let batches = system_common::batches(&arrays);
-    let config = SystemConfig::new(16, 2, latency())
+    let config = SystemConfig::new(16, 2)
         .with_depth(32)
         .with_result_fifo_room(2);
     let reader = ReaderBehaviour::OneIn(5);

@@ -5,17 +5,16 @@
 //! pipeline has its own snapshot. Any change to the emitted system RTL
 //! shows up here for review. And the emitted system is lint-clean.
 
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::emit_system;
 use tritri_rtl::system::SystemConfig;
 
 #[test]
 fn emitted_system_w24_p2_d64() {
-    let config = SystemConfig::new(24, 2, latency())
+    let config = SystemConfig::new(24, 2)
         .with_depth(64)
         .with_result_fifo_room(8);
-    let design = emit_system(config, PipelineKind::Real).unwrap();
+    let design = emit_system(config, PipelineKind::Parallel).unwrap();
     assert_eq!(design.top, "tritri_system_w24_p2_d64");
     let system_module = |path: &str| {
         path == format!("{}.v", design.top)
@@ -44,11 +43,11 @@ fn emitted_system_w24_p2_d64() {
 fn emitted_system_is_lint_clean() {
     use tritri_rtl::tools::{lint, run, IVERILOG};
     for (kind, pipelines) in [1, 2, 4]
-        .map(|p| (PipelineKind::Real, p))
+        .map(|p| (PipelineKind::Parallel, p))
         .into_iter()
         .chain([1, 2].map(|p| (PipelineKind::Shared, p)))
     {
-        let config = SystemConfig::new(8, pipelines, latency()).with_depth(16);
+        let config = SystemConfig::new(8, pipelines).with_depth(16);
         let design = emit_system(config, kind).unwrap();
         let dir = std::env::temp_dir().join(format!(
             "tritri-system-lint-{}-{kind:?}-{pipelines}",

@@ -14,7 +14,6 @@ use tritri_cosim::system_rtl::run_system_rtl;
 use tritri_geom::certificate::certain;
 use tritri_geom::fixed_point::intersects;
 use tritri_geom::scene::reference::{pairs_where, PairDiff};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::stub_pipeline::{stub_certain, stub_hit};
 
 /// Stub pipelines, tiny FIFO, slow reader, both host modes: Verilator ==
@@ -31,7 +30,8 @@ fn stub_system_verilator_matches_rust_hdl() {
         !stub_certain(a.id, a.triangle[0][0], b.id, b.triangle[2][2])
     });
     assert!(!uncertain.is_empty());
-    let config = SystemConfig::new(24, 2, 4)
+    let config = SystemConfig::new(24, 2)
+        .with_pipeline_latency(4)
         .with_depth(8)
         .with_result_fifo_room(2);
     for (overlap, reader) in [
@@ -65,13 +65,13 @@ fn system_verilator_matches_rust_hdl_on_a_small_scene() {
     let batches = tritri_geom::scene::tile(&a, &b, 16);
     let expected = pairs_where(&batches, |x, y| intersects(&x.triangle, &y.triangle));
     let uncertain = pairs_where(&batches, |x, y| !certain(&x.triangle, &y.triangle));
-    let config = SystemConfig::new(24, 2, latency())
+    let config = SystemConfig::new(24, 2)
         .with_depth(16)
         .with_result_fifo_room(4);
     let started = Instant::now();
     let hdl = run_system_with(
         config,
-        PipelineKind::Real,
+        PipelineKind::Parallel,
         &batches,
         true,
         ReaderBehaviour::AlwaysReady,
@@ -82,7 +82,7 @@ fn system_verilator_matches_rust_hdl_on_a_small_scene() {
     let rtl = run_system_rtl(
         Simulator::Verilator,
         config,
-        PipelineKind::Real,
+        PipelineKind::Parallel,
         &batches,
         true,
         ReaderBehaviour::AlwaysReady,

@@ -17,7 +17,6 @@ use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::triangle_cell::{TriangleCellTest, BROAD_PHASE_MARGIN};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, SceneOptions};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 
 /// The built-in scene's kept triangles and the octree's root, plus points
@@ -26,11 +25,11 @@ fn scene_triangles() -> (Vec<FixedTriangle>, Cell) {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 16));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 24));
     let options = SceneOptions {
-        width: 24,
+        grid_bits: 24,
         depth: 64,
         split: true,
     };
-    let config = SystemConfig::new(24, 2, latency()).with_depth(64);
+    let config = SystemConfig::new(24, 2).with_depth(64);
     let scene = prepare_octree(&a, &b, &options, &config, None).unwrap();
     let root = scene
         .octree

@@ -75,6 +75,7 @@
 
 use crate::devillers_guigue::{align_t1, align_t2};
 use crate::fixed_point::{cross, orient3d_value, sub, FixedPoint3, FixedTriangle};
+use crate::scene::reference::PairSet;
 use crate::sign::Sign;
 
 /// A fixed-point verdict and its certificate.
@@ -202,8 +203,15 @@ pub struct CertifiedRun {
     pub changed: usize,
 }
 
-/// Decides every uncertain verdict again with the exact predicates on the
-/// original coordinates (`crate::exact_f64`); `grid[i]` belongs to `pairs[i]`.
+/// The host's share of a certified answer: an uncertain verdict decided
+/// again with the exact predicates on the original coordinates
+/// (`crate::exact_f64`). Every route to an exact answer calls this one.
+pub fn decide_again(t1: &crate::Triangle, t2: &crate::Triangle) -> bool {
+    crate::exact_f64::intersects(t1, t2)
+}
+
+/// Decides every uncertain verdict again ([`decide_again`]); `grid[i]`
+/// belongs to `pairs[i]`.
 pub fn recheck(pairs: &[crate::TrianglePair], grid: &[CertifiedVerdict]) -> CertifiedRun {
     assert_eq!(pairs.len(), grid.len(), "one grid verdict per pair");
     let mut run = CertifiedRun {
@@ -214,13 +222,44 @@ pub fn recheck(pairs: &[crate::TrianglePair], grid: &[CertifiedVerdict]) -> Cert
         if v.certain {
             run.verdicts.push(v.hit);
         } else {
-            let exact = crate::exact_f64::intersects(&pair.t1, &pair.t2);
+            let exact = decide_again(&pair.t1, &pair.t2);
             run.uncertain += 1;
             run.changed += (exact != v.hit) as usize;
             run.verdicts.push(exact);
         }
     }
     run
+}
+
+/// A scene's answer on the original coordinates, from the grid's pairs.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct CertifiedPairs {
+    /// The grid's hits that carry a certificate, and the uncertain pairs
+    /// that intersect on the originals.
+    pub pairs: PairSet,
+    /// Uncertain pairs whose verdict on the originals differs from the grid's.
+    pub changed: usize,
+}
+
+/// [`recheck`] for a scene: `grid` holds the pairs `(i, j)` that intersect
+/// on the grid, `uncertain` every pair whose verdict (hit or not) has no
+/// certificate; `a[i]` and `b[j]` are the original triangles.
+pub fn recheck_pairs(
+    grid: &PairSet,
+    uncertain: &PairSet,
+    a: &[crate::Triangle],
+    b: &[crate::Triangle],
+) -> CertifiedPairs {
+    let mut pairs: PairSet = grid.difference(uncertain).copied().collect();
+    let mut changed = 0;
+    for &(i, j) in uncertain {
+        let exact = decide_again(&a[i as usize], &b[j as usize]);
+        changed += (exact != grid.contains(&(i, j))) as usize;
+        if exact {
+            pairs.insert((i, j));
+        }
+    }
+    CertifiedPairs { pairs, changed }
 }
 
 #[cfg(test)]

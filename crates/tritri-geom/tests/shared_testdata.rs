@@ -339,7 +339,7 @@ fn teapot_scene_flows_through_filters_and_tiles() {
             &teapot,
             &posed,
             &SceneOptions {
-                width,
+                grid_bits: width,
                 depth: 64,
                 split: true,
             },
@@ -349,7 +349,7 @@ fn teapot_scene_flows_through_filters_and_tiles() {
             &teapot,
             &posed,
             &SceneOptions {
-                width,
+                grid_bits: width,
                 depth: 1 << 15,
                 split: true,
             },
@@ -370,7 +370,7 @@ fn teapot_scene_flows_through_filters_and_tiles() {
             &teapot,
             &posed,
             &SceneOptions {
-                width,
+                grid_bits: width,
                 depth: 64,
                 split: true,
             },
@@ -401,7 +401,7 @@ fn teapot_scene_flows_through_filters_and_tiles() {
         &teapot,
         &teapot,
         &SceneOptions {
-            width: 8,
+            grid_bits: 8,
             depth: 256,
             split: true,
         },
@@ -413,7 +413,7 @@ fn teapot_scene_flows_through_filters_and_tiles() {
         &teapot,
         &teapot,
         &SceneOptions {
-            width: 8,
+            grid_bits: 8,
             depth: 256,
             split: true,
         },

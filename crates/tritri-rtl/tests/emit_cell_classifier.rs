@@ -19,7 +19,6 @@ use tritri_rtl::emit::triangle_voxelizer_unit::emit_triangle_voxelizer;
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
 
@@ -58,7 +57,7 @@ fn the_broad_phase_top_is_lint_clean_at_both_widths() {
             log_depth: 6,
             log_pipelines: 1,
         };
-        let system = SystemConfig::new(w, 2, latency()).with_depth(64);
+        let system = SystemConfig::new(w, 2).with_depth(64);
         check(
             w,
             emit_broad_phase_system(&BroadPhaseConfig {

@@ -292,10 +292,9 @@ fn emission_passes_are_formally_equivalent() {
     use tritri_rtl::system::system_for_width::{system_for_config, PipelineKind};
     use tritri_rtl::system::system_unit::system_unit;
     use tritri_rtl::system::SystemConfig;
-    let system =
-        SystemConfig::new(8, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(16);
+    let system = SystemConfig::new(8, 2).with_depth(16);
     let raw_system = {
-        let mut s = system_for_config(system, PipelineKind::Real).unwrap();
+        let mut s = system_for_config(system, PipelineKind::Parallel).unwrap();
         s.connect_all();
         s.raw_design()
     };
@@ -313,7 +312,7 @@ fn emission_passes_are_formally_equivalent() {
         (
             "system".to_string(),
             raw_system,
-            system_unit(system, PipelineKind::Real),
+            system_unit(system, PipelineKind::Parallel),
         ),
     ];
     for (width, raw, unit) in cases {

@@ -40,7 +40,7 @@ use anyhow::Context;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use tritri_cosim::engine::{run_scene_with, Engine};
+use tritri_cosim::engine::{run_scene, Engine, SceneRunOptions};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
 use tritri_geom::scene::PreparedScene;
@@ -242,12 +242,11 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     let sizing = size(&a, &b, &candidate, &measurements, device)?;
     let hardware = hardware(&candidate, sizing.pipelines, sizing.depth);
     let scene = hardware.prepare(&a, &b)?;
-    let run = run_scene_with(
+    let run = run_scene(
         Engine::Model,
         &scene,
         hardware.system_config(),
-        &|_| {},
-        None,
+        &SceneRunOptions::default(),
     )?;
     let measured = Candidate {
         pairs_tested: scene.pairs_tested(),
@@ -364,12 +363,11 @@ fn measure(
     c.pairs_tested = scene.pairs_tested();
     c.host_pairs = scene.host_pairs();
     if measured && c.host_share() <= budget {
-        let run = run_scene_with(
+        let run = run_scene(
             Engine::Model,
             &scene,
             hardware.system_config(),
-            &|_| {},
-            None,
+            &SceneRunOptions::default(),
         )?;
         c.uncertain = Some(uncertain_in_leaves(&scene, &run.uncertain));
     }

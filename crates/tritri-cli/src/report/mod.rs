@@ -45,7 +45,6 @@ use std::time::Duration;
 use tritri_geom::arithmetic::Arithmetic;
 use tritri_rtl::measured::{device, Device, Ecp5Row, Measurements, XilinxRow};
 use tritri_rtl::pipeline::pipeline_unit::pipeline_unit_name_for;
-use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::system::system_for_width::PipelineKind;
 use tritri_rtl::system::system_unit::system_unit_name;
@@ -309,7 +308,7 @@ fn width_rows(
                 .map(|r| pipelines.min((ecp5_device().dsps / r.mult18x18d.max(1)) as u32))
                 .filter(|&p| p >= 1);
             let system_fmax_mhz = fitting.and_then(|p| {
-                let config = SystemConfig::new(width as usize, p as usize, latency());
+                let config = SystemConfig::new(width as usize, p as usize);
                 measurements
                     .ecp5(&system_unit_name(config, PipelineKind::from(rare_cases)))
                     .map(|r| r.fmax_mhz)

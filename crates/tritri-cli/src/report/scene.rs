@@ -2,17 +2,15 @@
 //! phase) at each width, from the same code.
 
 use super::WidthRow;
-use crate::scene_input::{BroadPhase, HardwareArgs, SceneArgs};
-use crate::sim::{certify, first_in_to_last_out};
+use crate::scene_input::SceneArgs;
 use anyhow::bail;
 use serde::Serialize;
 use std::time::Instant;
-use tritri_cosim::engine::{check_quantized, run_scene_with, Engine};
+use tritri_cosim::engine::check_quantized;
+use tritri_cosim::scene_query::{find_pairs, Accelerator, Clock, QueryOptions};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, PairDiff};
 use tritri_rtl::pipeline::RareCasePath;
-use tritri_rtl::system::rare_case_model::stall_bound;
-use tritri_rtl::system::DEFAULT_TRIANGLES_PER_BANK;
 
 /// The clock of a width without a post-route figure (the thesis's).
 pub const ASSUMED_CLOCK_MHZ: f64 = 100.0;
@@ -31,37 +29,9 @@ pub struct SceneSection {
     pub rows: Vec<SceneRow>,
 }
 
-/// Where a scene row's clock comes from; report.json and the table give
-/// its name.
-#[derive(Clone, Copy, PartialEq, Eq, Debug)]
-pub enum SceneClock {
-    /// The ECP5 post-route clock of the system of those pipelines.
-    PostRouteSystem,
-    /// The post-route clock of one pipeline routed alone.
-    PostRoutePipeline,
-    /// Nothing routed at this width: [`ASSUMED_CLOCK_MHZ`].
-    Assumed,
-}
-
-impl SceneClock {
-    pub fn name(self) -> &'static str {
-        match self {
-            SceneClock::PostRouteSystem => "post-route, system",
-            SceneClock::PostRoutePipeline => "post-route, pipeline",
-            SceneClock::Assumed => "assumed",
-        }
-    }
-
-    pub fn is_post_route(self) -> bool {
-        self != SceneClock::Assumed
-    }
-}
-
-impl Serialize for SceneClock {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
+/// Where a scene row's clock comes from (the library's); report.json and
+/// the table give its name.
+pub use tritri_cosim::scene_query::ClockSource as SceneClock;
 
 /// `tritri sim --scene A B --width W --pipelines P` in the model.
 #[derive(Serialize, Clone)]
@@ -78,6 +48,7 @@ pub struct SceneRow {
     pub cycles: u64,
     pub whole_cycles: u64,
     pub clock_mhz: f64,
+    #[serde(serialize_with = "clock_name")]
     pub clock: SceneClock,
     /// Where the pipelines test their rare pairs: those of the width's
     /// routed pipeline.
@@ -120,57 +91,67 @@ pub fn measure(
         eprintln!("report: scene at W = {width}");
         // Where W was routed, the system has the pipelines that fit the
         // device at its clock (the system's where it was routed, else the
-        // pipeline's); elsewhere P at the assumed clock.
+        // pipeline's), and the rare pairs where the routed pipeline tests
+        // them; elsewhere P at the assumed clock.
         let row = rows.iter().find(|r| r.width == width);
         let routed = row.and_then(WidthRow::clock_mhz);
-        let hardware = HardwareArgs {
-            width,
-            pipelines: row.and_then(|r| r.ecp5_pipelines).unwrap_or(pipelines),
-            depth: DEFAULT_TRIANGLES_PER_BANK as u64,
-            no_split: false,
-            clock_mhz: routed.unwrap_or(ASSUMED_CLOCK_MHZ),
-            broad_phase: BroadPhase::Octree,
-            grid_bits: None,
+        let clock = match (routed, row.and_then(|r| r.system_fmax_mhz)) {
+            (Some(mhz), Some(_)) => Clock {
+                mhz,
+                source: SceneClock::PostRouteSystem,
+            },
+            (Some(mhz), None) => Clock {
+                mhz,
+                source: SceneClock::PostRoutePipeline,
+            },
+            _ => Clock {
+                mhz: ASSUMED_CLOCK_MHZ,
+                source: SceneClock::Assumed,
+            },
         };
-        let scene = hardware.prepare(a, b)?;
-        let config = hardware.system_config();
-        let run = run_scene_with(Engine::Model, &scene, config, &|_| {}, None)?;
-        let (quantized, same) = check_quantized(&scene, &run.pairs);
+        let accelerator = Accelerator {
+            pipelines: row.and_then(|r| r.ecp5_pipelines).unwrap_or(pipelines),
+            rare_cases: row.map_or(RareCasePath::Parallel, |r| r.rare_cases),
+            clock,
+            ..Accelerator::new(width)
+        };
+        // The software baseline is timed once above, not per width.
+        let options = QueryOptions {
+            check: false,
+            ..QueryOptions::default()
+        };
+        let answer = find_pairs(a, b, &accelerator, &options)?;
+        if let Some(fault) = answer.faults.first() {
+            bail!("W = {width}: {fault}");
+        }
+        let (quantized, same) = check_quantized(&answer.scene, &answer.grid_pairs());
         if !same.is_empty() {
             bail!("W = {width}: the model differs from the exact model on the quantized coordinates (a bug)");
         }
-        // The model engine does not hold for rare pairs; where the routed
-        // pipeline shares their unit, the stall model's bound is added
-        // (an upper bound, as `tritri sim --rare-cases shared` reports).
-        let rare_cases = row.map_or(RareCasePath::Parallel, |r| r.rare_cases);
-        let stall_cycles = stall_bound(rare_cases, hardware.pipelines as usize, &scene.batches());
-        let whole_cycles = stall_cycles
-            + first_in_to_last_out(&hardware, &scene, &run, run.cycles)
-                .map_or(run.cycles, |(c, _)| c);
-        let whole_seconds = hardware.time_of(whole_cycles).as_secs_f64();
+        let Some(hardware) = &answer.hardware else {
+            bail!("W = {width}: the objects' boxes do not meet");
+        };
+        let whole_cycles = hardware.cycles.whole;
+        let whole_seconds = accelerator.time_of(whole_cycles).as_secs_f64();
         let diff = PairDiff::between(&truth.pairs, &quantized);
-        let certified = certify(&run.pairs, &run.uncertain, a, b);
-        let certified_diff = PairDiff::between(&truth.pairs, &certified.pairs);
+        let certified_diff = PairDiff::between(&truth.pairs, &answer.pairs);
+        let scene = &answer.scene;
         out.push(SceneRow {
             width,
-            pipelines: hardware.pipelines,
+            pipelines: accelerator.pipelines,
             pairs_tested: scene.pairs_tested(),
             leaves: scene.octree.as_ref().map_or(0, |o| o.leaves.len()),
             cells: scene.octree.as_ref().map_or(0, |o| o.cells_visited as u64),
-            cycles: run.cycles,
+            cycles: hardware.cycles.narrow,
             whole_cycles,
-            clock_mhz: hardware.clock_mhz,
-            clock: match (routed, row.and_then(|r| r.system_fmax_mhz)) {
-                (Some(_), Some(_)) => SceneClock::PostRouteSystem,
-                (Some(_), None) => SceneClock::PostRoutePipeline,
-                _ => SceneClock::Assumed,
-            },
-            rare_cases,
-            stall_cycles,
+            clock_mhz: clock.mhz,
+            clock: clock.source,
+            rare_cases: accelerator.rare_cases,
+            stall_cycles: hardware.cycles.stall_bound,
             whole_seconds,
             speedup: software_seconds / whole_seconds.max(f64::MIN_POSITIVE),
-            intersecting: run.pairs.len(),
-            uncertain: run.uncertain.len(),
+            intersecting: hardware.run.pairs.len(),
+            uncertain: hardware.run.uncertain.len(),
             missing: diff.missing.len(),
             extra: diff.extra.len(),
             certified_missing: certified_diff.missing.len(),
@@ -187,6 +168,11 @@ pub fn measure(
         software_seconds,
         rows: out,
     })
+}
+
+/// report.json gives a clock by its name.
+fn clock_name<S: serde::Serializer>(clock: &SceneClock, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(clock.name())
 }
 
 impl SceneRow {

@@ -21,7 +21,7 @@
 //! use tritri_geom::scene::{load::load_object, prepare, SceneOptions};
 //! let a = load_object("@torus", 8).unwrap();
 //! let b = load_object("@sphere", 8).unwrap();
-//! let scene = prepare(&a, &b, &SceneOptions { width: 24, depth: 4096, split: true }).unwrap();
+//! let scene = prepare(&a, &b, &SceneOptions { grid_bits: 24, depth: 4096, split: true }).unwrap();
 //! assert!(scene.common.is_some());
 //! assert!(scene.pairs_tested() < (a.triangles.len() * b.triangles.len()) as u64);
 //! ```
@@ -67,7 +67,7 @@ impl Batch<'_> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SceneOptions {
     /// Coordinate width W.
-    pub width: u32,
+    pub grid_bits: u32,
     /// Memory depth: the most triangles one array memory holds.
     pub depth: usize,
     /// Split arrays longer than `depth` into tiles; if false, refuse them.
@@ -276,7 +276,7 @@ pub fn prepare(
             .iter()
             .map(|&i| &a.triangles[i as usize])
             .chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
-        options.width,
+        options.grid_bits,
     )?;
     let quantize = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
         ids.iter()
@@ -325,7 +325,7 @@ pub fn prepare(
 /// [`prepare`], then the octree broad phase ([`octree`]) over the kept
 /// arrays inside the integer common box, its leaves costed by `cost` (the
 /// system's cycle model). With `split: false`, a leaf that still exceeds
-/// the memory depth is refused. With `local_frames`, `options.width` is
+/// the memory depth is refused. With `local_frames`, `options.grid_bits` is
 /// the grid's width and the leaves go to hardware of `local_frames.width`
 /// bits in frames of their own ([`LocalFrames`]).
 pub fn prepare_octree(

@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 
 fn options(width: u32, depth: usize) -> SceneOptions {
     SceneOptions {
-        width,
+        grid_bits: width,
         depth,
         split: true,
     }
@@ -191,7 +191,7 @@ fn no_split_refuses_arrays_deeper_than_the_memory() {
         &a,
         &b,
         &SceneOptions {
-            width: 16,
+            grid_bits: 16,
             depth: 4,
             split: false,
         },

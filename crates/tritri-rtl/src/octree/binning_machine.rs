@@ -414,7 +414,7 @@ mod tests {
         ] {
             let a = scene(seed, n, spread, size);
             let b = scene(seed + 100, n, spread, size);
-            let mut config = SystemConfig::new(24, 2, 30);
+            let mut config = SystemConfig::new(24, 2).with_pipeline_latency(30);
             config.triangles_per_bank = 1 << log_depth;
             let lo = [0, 1, 2].map(|k| {
                 a.iter()

@@ -190,7 +190,7 @@ mod tests {
     fn closed_form_equals_the_tiled_batch_cost() {
         for (log_depth, log_pipelines) in [(2, 0), (3, 1), (4, 2), (8, 1)] {
             let depth = 1usize << log_depth;
-            let mut config = SystemConfig::new(24, 1 << log_pipelines, 30);
+            let mut config = SystemConfig::new(24, 1 << log_pipelines).with_pipeline_latency(30);
             config.triangles_per_bank = depth;
             let tiles = |n: usize| (0..n.div_ceil(depth)).map(move |t| (n - t * depth).min(depth));
             for a in 0..(3 * depth + 2) {

@@ -213,7 +213,7 @@ mod tests {
     #[test]
     fn recurrence_matches_closed_forms() {
         for p in [1, 2, 4] {
-            let config = SystemConfig::new(24, p, 7);
+            let config = SystemConfig::new(24, p).with_pipeline_latency(7);
             let sizes = [
                 (0, 0),
                 (0, 3),
@@ -252,7 +252,7 @@ mod tests {
     /// two read clocks, the counters' clock).
     #[test]
     fn one_pipeline_is_the_thesis_formula_plus_overheads() {
-        let config = SystemConfig::new(24, 1, 32);
+        let config = SystemConfig::new(24, 1).with_pipeline_latency(32);
         let (n1, n2) = (10u64, 20u64);
         let expected = (n1 + n2 + 1) + n1 + n1 * n2 + 32 + 4;
         assert_eq!(
@@ -274,7 +274,7 @@ mod tests {
             10
         ];
         let batch = Batch { a: &ts, b: &ts };
-        let config = |p| SystemConfig::new(24, p, 30);
+        let config = |p| SystemConfig::new(24, p).with_pipeline_latency(30);
         let one = scene_cycles(config(1), &[batch]);
         assert_eq!(one, single_batch_cycles(config(1), BatchSizes::of(&batch)));
         assert!(scene_cycles(config(1), &[batch, batch]) < 2 * one);

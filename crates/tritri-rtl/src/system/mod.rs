@@ -105,14 +105,25 @@ pub struct SystemConfig {
 }
 
 impl SystemConfig {
-    pub fn new(coordinate_bits: usize, pipelines: usize, pipeline_latency: usize) -> Self {
+    /// The system of `pipelines` Devillers–Guigue pipelines on `W`-bit
+    /// coordinates; its pipeline latency is theirs
+    /// ([`crate::pipeline::triangle_pipeline::latency`]), the memories and
+    /// the result FIFO of the default depths.
+    pub fn new(coordinate_bits: usize, pipelines: usize) -> Self {
         SystemConfig {
             coordinate_bits,
             pipelines,
             triangles_per_bank: DEFAULT_TRIANGLES_PER_BANK,
             result_fifo_depth: DEFAULT_RESULT_FIFO_DEPTH,
-            pipeline_latency,
+            pipeline_latency: crate::pipeline::triangle_pipeline::latency(),
         }
+    }
+    /// Another pipeline latency: for systems of stub pipelines
+    /// ([`stub_pipeline`]) and for the cycle model's tests; a system of
+    /// Devillers–Guigue pipelines refuses any latency but theirs.
+    pub fn with_pipeline_latency(mut self, latency: usize) -> Self {
+        self.pipeline_latency = latency;
+        self
     }
     pub fn with_depth(mut self, triangles_per_bank: usize) -> Self {
         self.triangles_per_bank = triangles_per_bank;

@@ -5,8 +5,8 @@
 //! use tritri_rtl::system::system_unit::emit_system;
 //! use tritri_rtl::system::system_for_width::PipelineKind;
 //! use tritri_rtl::system::SystemConfig;
-//! let config = SystemConfig::new(24, 2, tritri_rtl::pipeline::triangle_pipeline::latency()).with_depth(64);
-//! let design = emit_system(config, PipelineKind::Real).unwrap();
+//! let config = SystemConfig::new(24, 2).with_depth(64);
+//! let design = emit_system(config, PipelineKind::Parallel).unwrap();
 //! assert_eq!(design.top, "tritri_system_w24_p2_d64");
 //! ```
 
@@ -19,7 +19,7 @@ use crate::emit::{emit_with, EmitError, EmitOptions, EmittedDesign, UnitDescript
 /// pipelines and `_shared` for pipelines with the shared rare-case unit.
 pub fn system_unit_name(config: SystemConfig, kind: PipelineKind) -> String {
     match kind {
-        PipelineKind::Real => config.unit_name(),
+        PipelineKind::Parallel => config.unit_name(),
         PipelineKind::Stub => format!("{}_stub", config.unit_name()),
         PipelineKind::Shared => format!("{}_shared", config.unit_name()),
     }

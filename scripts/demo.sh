@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job (README): installs what it needs first (scripts/setup.sh,
+# idempotent: a second run installs nothing), then `tritri demo`: the
+# pipeline's and the system's Verilog, and the built-in scene through the
+# bit-exact model and through the emitted system in Verilator.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cargo run --release -p tritri-cli -- demo "$@"
