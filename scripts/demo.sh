@@ -6,4 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cargo run --release -p tritri-cli -- demo "$@"
+# The whole workspace, as the test command builds it: a build of one package
+# resolves other features and would compile the hardware crates again.
+cargo build --release --quiet --workspace
+target/release/tritri demo "$@"

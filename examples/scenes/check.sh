@@ -19,7 +19,9 @@ for arg in "$@"; do
     *) echo "error: unknown option $arg (--shared, --update)" >&2; exit 2 ;;
   esac
 done
-cargo build --release --quiet -p tritri-cli
+# The whole workspace, as the test command builds it: a build of one package
+# resolves other features and would compile the hardware crates again.
+cargo build --release --quiet --workspace
 tritri=target/release/tritri
 out=build/examples/scenes
 mkdir -p "$out"

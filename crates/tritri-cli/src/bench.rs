@@ -28,6 +28,7 @@
 //! a certain verdict that is wrong, or a tool failure; 2 bad usage (the
 //! message names the value).
 
+use crate::stdout::outln;
 use anyhow::Context;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -162,8 +163,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     let mut failed = false;
-    println!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rusthdl |");
-    println!("|---:|---|---:|---:|---|---:|---:|---:|---:|");
+    outln!("| W | engine | pairs | mismatches | cycles (N1+N1*N2+L) | build s | run s | pairs/s | speed / rusthdl |")?;
+    outln!("|---:|---|---:|---:|---|---:|---:|---:|---:|")?;
     let mut audits = Vec::new();
     for &width in &args.width {
         let bench = stream_for(width, args.pairs, args.bases, args.seed)?;
@@ -218,7 +219,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 None => "-".into(),
             };
             failed |= m.mismatches != 0 || m.pairs != expected.len();
-            println!(
+            outln!(
                 "| {width} | {} | {} | {} | {cycles} | {} | {:.2} | {:.0} | {} |",
                 m.engine,
                 m.pairs,
@@ -227,15 +228,15 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 m.seconds,
                 m.pairs_per_second(),
                 reference.map_or("-".into(), |r| format!("{:.2}", m.pairs_per_second() / r)),
-            );
+            )?;
         }
     }
-    println!();
-    println!("| W | pairs | grid verdicts wrong on the originals | uncertain (out_certain = 0) | certain and wrong |");
-    println!("|---:|---:|---:|---:|---:|");
+    outln!()?;
+    outln!("| W | pairs | grid verdicts wrong on the originals | uncertain (out_certain = 0) | certain and wrong |")?;
+    outln!("|---:|---:|---:|---:|---:|")?;
     for (width, a) in &audits {
         let percent = |n: usize| 100.0 * n as f64 / a.pairs.max(1) as f64;
-        println!(
+        outln!(
             "| {width} | {} | {} ({:.3} %) | {} ({:.3} %) | {} |",
             a.pairs,
             a.wrong,
@@ -243,7 +244,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             a.uncertain,
             percent(a.uncertain),
             a.certain_and_wrong
-        );
+        )?;
     }
     if failed {
         eprintln!("error: an engine disagreed with the model or with the cycle formula, or a certain verdict is wrong (see the tables)");

@@ -14,6 +14,7 @@
 use crate::input;
 use crate::model_files::write_png;
 use crate::output_file::OutputFile;
+use crate::stdout::outln;
 use clap::Subcommand;
 use std::process::ExitCode;
 use tritri_cosim::engine::Engine;
@@ -182,7 +183,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|p| p.tessellate(20).len())
         .sum::<usize>();
-    println!(
+    outln!(
         "{}: {} patches from eye {:?}: {culled} culled (back-facing by their cone of normals), {silhouettes} may hold a silhouette (refined, outlined in red); \
          samples per side 5 / 10 / 15 / 20: {} / {} / {} / {} patches; {triangles} triangles against {uniform} for every patch at 20{}",
         a.file,
@@ -193,10 +194,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         per_level[2],
         per_level[3],
         if turned { " (the file's d_u x d_v points inwards: patches turned round)" } else { "" }
-    );
+    )?;
     let image = canvas.image;
     output.commit(|w| write_png(&image, w))?;
-    println!("wrote {}", a.png);
+    outln!("wrote {}", a.png)?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -258,12 +259,12 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
                 })
                 .count();
             let clocks: u64 = runs.iter().map(|r| r.clocks).sum();
-            println!(
+            outln!(
                 "engine: {}: {} of {} patches differ from the fixed-point model; {clocks} clocks (formula: {formula})",
                 engine.name(),
                 wrong,
                 patches.len()
-            );
+            )?;
             if wrong > 0 || clocks != formula {
                 status = ExitCode::from(1);
             }
@@ -278,7 +279,7 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|grid| assembled_triangles(grid, side))
         .sum();
-    println!(
+    outln!(
         "{}: {} patches at {} steps a side on a {}-bit grid (step {:.3e}): {} vertices, {triangles} triangles (degenerate ones left out)",
         a.file,
         patches.len(),
@@ -286,12 +287,12 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
         a.width,
         frame.step,
         patches.len() * side * side
-    );
-    println!("error against the f64 patches: at most {worst:.3} grid steps per coordinate ({:.3e} in the file's units; the bound is 1 step)", worst * frame.step);
-    println!(
+    )?;
+    outln!("error against the f64 patches: at most {worst:.3} grid steps per coordinate ({:.3e} in the file's units; the bound is 1 step)", worst * frame.step)?;
+    outln!(
         "clocks: {clocks}, one vertex per clock after 2 a patch; {:.2} us at an assumed 100 MHz",
         clocks as f64 / 100.0
-    );
+    )?;
     Ok(status)
 }
 
@@ -362,7 +363,7 @@ fn cones(a: ConesArgs) -> anyhow::Result<ExitCode> {
         .zip(&classes)
         .filter(|(&f, &c)| f != (c == Facing::Back))
         .count();
-    println!(
+    outln!(
         "{} patches from ({}, {}, {}) on a {}-bit grid: {} culled, {} front-facing, {} possible silhouettes; the f64 guarantee culls {}, {differ} answers differ",
         patches.len(),
         a.eye[0],
@@ -373,15 +374,15 @@ fn cones(a: ConesArgs) -> anyhow::Result<ExitCode> {
         count(Facing::Front),
         count(Facing::Silhouette),
         f64_culled.iter().filter(|&&c| c).count(),
-    );
+    )?;
     if a.engine != Engine::Model {
         let cycles = patches.len() + CONE_UNIT_LATENCY;
-        println!(
+        outln!(
             "hardware ({}): the model's classes, one patch a clock: {cycles} cycles = {:.3} us at an assumed 100 MHz (not routed; simulated in {:.1} s)",
             a.engine.name(),
             cycles as f64 / 100.0,
             started.elapsed().as_secs_f64()
-        );
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -28,6 +28,7 @@
 
 use crate::input;
 use crate::scene_input::{human, pipeline_latency, BroadPhase, HardwareArgs, SceneArgs};
+use crate::stdout::outln;
 use clap::ValueEnum;
 use std::hint::black_box;
 use std::process::ExitCode;
@@ -107,7 +108,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         Ok((b, s))
     };
 
-    println!(
+    outln!(
         "chapter 5: A = {} ({} triangles), B = {} ({} triangles) slid along {:?}; W = {}, P = {}, depth {}, {} MHz, latency {}",
         a.name,
         a.triangles.len(),
@@ -119,13 +120,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         args.hardware.depth,
         args.hardware.clock_mhz,
         pipeline_latency()
-    );
-    println!("software: measured on this machine, one thread; hardware: cycle model of the system at the clock");
-    println!();
-    println!(
+    )?;
+    outln!("software: measured on this machine, one thread; hardware: cycle model of the system at the clock")?;
+    outln!()?;
+    outln!(
         "| target | in BV (A+B) | offset | pairs tested | of N1*N2 | hw cycles | hw time | exact f64, all pairs (AABB) | ratio | published f64, same pairs | ratio | fixed point, same pairs | ratio | octree: pairs tested | octree: hw time | ratio |"
-    );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    )?;
+    outln!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")?;
     for &target in &args.fractions {
         let goal = target / 100.0;
         // Bisection: the share falls as the offset grows (the common box shrinks).
@@ -193,7 +194,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         let octree_hw = args
             .hardware
             .time_of(scene_cycles(config, &octree.batches()));
-        println!(
+        outln!(
             "| {target} % | {} + {} = {:.1} %{} | {:.4} | {} | {:.2} % | {cycles} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             scene.kept_a.len(),
             scene.kept_b.len(),
@@ -212,7 +213,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             octree.pairs_tested(),
             human(octree_hw),
             ratio_to(exact, octree_hw),
-        );
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -142,7 +142,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             frame.centre
         );
     }
-    let mut out = BufWriter::new(std::io::stdout().lock());
+    let mut out = BufWriter::new(crate::stdout::Stdout);
     for v in &result.verdicts {
         writeln!(out, "{}", u8::from(*v))?;
     }

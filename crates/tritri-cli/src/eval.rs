@@ -36,6 +36,7 @@
 //! batch per category; `@hard/<category>` for one category.
 
 use crate::input;
+use crate::stdout::outln;
 use anyhow::bail;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -118,7 +119,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for batch in &batches {
         reports.push(evaluate(batch, &arithmetics, min_time)?);
         if !args.json {
-            print_table(reports.last().unwrap());
+            print_table(reports.last().unwrap())?;
         }
     }
     let total = total(&reports, &arithmetics);
@@ -133,9 +134,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             batches: reports,
             total,
         };
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else if reports.len() > 1 {
-        print_table(&total);
+        print_table(&total)?;
     }
 
     if grid_bugs > 0 {
@@ -379,12 +380,14 @@ pub fn total(reports: &[BatchReport], arithmetics: &[Arithmetic]) -> BatchReport
     }
 }
 
-fn print_table(r: &BatchReport) {
-    println!(
+fn print_table(r: &BatchReport) -> std::io::Result<()> {
+    outln!(
         "{}: {} pairs, {} intersect (exact)",
-        r.name, r.pairs, r.exact_intersecting
-    );
-    println!(
+        r.name,
+        r.pairs,
+        r.exact_intersecting
+    )?;
+    outln!(
         "  {:<10} {:>6} {:>7} {:>7} {:>9} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
         "arithmetic",
         "wrong",
@@ -397,7 +400,7 @@ fn print_table(r: &BatchReport) {
         "uncert",
         "recheck",
         "step h"
-    );
+    )?;
     let f64_ns = r
         .rows
         .iter()
@@ -409,7 +412,7 @@ fn print_table(r: &BatchReport) {
             .filter(|&f| f > 0.0)
             .map(|f| format!("{:.2}", row.ns_per_pair / f))
             .unwrap_or_else(dash);
-        println!(
+        outln!(
             "  {:<10} {:>6} {:>7} {:>7} {:>9.1} {:>6} {:>9} {:>5} {:>7} {:>8} {:>10}",
             row.arithmetic,
             row.wrong,
@@ -428,7 +431,7 @@ fn print_table(r: &BatchReport) {
                 .map(|k| format!("{k:.1}"))
                 .unwrap_or_else(dash),
             row.step.map(|s| format!("{s:.2e}")).unwrap_or_else(dash),
-        );
+        )?;
     }
-    println!();
+    outln!()
 }

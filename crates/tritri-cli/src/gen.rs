@@ -91,10 +91,18 @@
 //! reasons in its README (`gen/for_scene.rs`). A budget that nothing on the
 //! device meets is an error (status 2) naming the best there is.
 //!
+//! The designs and the options each takes are one table (`gen/design.rs`):
+//! an option that does not apply to the design chosen is refused, naming
+//! it and what the design does take, before anything is written.
+//!
 //! Exit status: 0 done; 1 a tool failed; 2 a width without a pipeline (the
 //! message names it and lists the supported widths) or bad usage.
 
+mod design;
 mod for_scene;
+
+use crate::stdout::out;
+use design::{Design, DesignOption, WidthMeaning};
 
 use crate::scene_input::SceneArgs;
 use anyhow::Context;
@@ -127,7 +135,7 @@ use tritri_rtl::emit::voxel_units::{
     emit_octant_clipper, emit_set_operation, emit_voxel_fill, OCTANT_CLIPPER_NAME,
     SET_OPERATION_NAME, VOXEL_FILL_NAME,
 };
-use tritri_rtl::emit::{pipeline_unit_name, EmittedDesign};
+use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::measured::{device, DEVICES};
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
@@ -147,9 +155,10 @@ use tritri_rtl::system::{
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Coordinate width in bits; repeat or separate with commas for several.
-    #[arg(long, value_delimiter = ',', default_value = "24")]
-    width: Vec<usize>,
+    /// Coordinate width in bits (the grid's for the octree units); repeat
+    /// or separate with commas for several [default: 24].
+    #[arg(long, value_delimiter = ',')]
+    width: Option<Vec<usize>>,
     /// Output directory (one width) or parent directory (several widths).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -214,12 +223,12 @@ pub struct Args {
     timing_weight: Option<u32>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
-    #[arg(long, conflicts_with_all = ["classifier", "setup"])]
+    #[arg(long)]
     system: bool,
     /// Emit the octree engine's triangle classifier step instead (the
     /// broad phase's binning unit); --width is then the grid's width (16,
     /// 24 or 32).
-    #[arg(long, conflicts_with = "setup")]
+    #[arg(long)]
     classifier: bool,
     /// Emit the classifier's setup instead (a triangle's test functions at
     /// the root cell); --width is the grid's width (16, 24 or 32).
@@ -228,34 +237,34 @@ pub struct Args {
     /// Emit the octree broad phase's owner filter instead (each
     /// intersecting pair reported once, from its first leaf); --width does
     /// not apply.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "width"])]
+    #[arg(long)]
     owner_filter: bool,
     /// Emit the octree engine's plane classification instead (the grid
     /// against a plane, one octant per clock); --width does not apply.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "width"])]
+    #[arg(long)]
     plane_traversal: bool,
     /// Emit the octree engine's set-operation unit instead (union,
     /// intersection, difference of two voxel models, a word per clock).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "width"])]
+    #[arg(long)]
     set_operation: bool,
     /// Emit the octree engine's clipping unit instead (one octant per clock
     /// against a box).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "width"])]
+    #[arg(long)]
     octant_clipper: bool,
     /// Emit the Bezier system's patch tessellation unit instead (a patch
     /// on the grid, forward differences, one vertex per clock); --width is
     /// the coordinates' (16 or 24), --steps the log2 of the steps a side.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase"])]
+    #[arg(long)]
     patch_tessellator: bool,
     /// Emit the Bezier system's cone-of-normals unit instead (one patch and
     /// eye a clock: culled, front-facing or a possible silhouette); --width
     /// is the control points' (16 or 24).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator"])]
+    #[arg(long)]
     cone_unit: bool,
     /// Emit the pipeline's rare cases on one shared path instead: the
     /// coplanar and degenerate-pair tests on three orient2d lanes (six
     /// multipliers), a pair every 4 or 6 clocks; --width 8, 16 or 24.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit"])]
+    #[arg(long)]
     shared_rare_cases: bool,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
     /// triangles): `parallel`, their own units (60 multipliers, never a
@@ -264,26 +273,27 @@ pub struct Args {
     /// waits for it), top `tritri_pipeline_shared_w<W>`; with --system,
     /// the system's pipelines (the read side holds with them), top
     /// `tritri_system_..._shared`.
-    #[arg(long, value_name = "PATH", default_value = "parallel", value_parser = RareCasePath::NAMES, conflicts_with_all = ["classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "binning_unit", "broad_phase", "patch_tessellator", "cone_unit", "shared_rare_cases"])]
-    rare_cases: String,
+    /// [default: parallel]
+    #[arg(long, value_name = "PATH", value_parser = RareCasePath::NAMES)]
+    rare_cases: Option<String>,
     /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
-    #[arg(long, value_name = "K", requires = "patch_tessellator")]
+    #[arg(long, value_name = "K")]
     steps: Option<usize>,
     /// With --patch-tessellator: the unit with its triangles assembled (two
     /// a clock, in the collision system's triangle format).
-    #[arg(long, requires = "patch_tessellator")]
+    #[arg(long)]
     assemble: bool,
     /// Emit the octree engine's voxel fill instead (cells' children
     /// written into the voxel memory, a word per clock).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "width"])]
+    #[arg(long)]
     voxel_fill: bool,
     /// Emit the octree engine's surface voxelization instead (triangles
     /// in, the voxels each meets out; grids up to 1024^3).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "width"])]
+    #[arg(long)]
     triangle_voxelizer: bool,
     /// Emit the octree engine's voxel → octree conversion instead (a
     /// 4x4x4 brick of voxels in per clock, the canonical tree's nodes out).
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "triangle_voxelizer", "width"])]
+    #[arg(long)]
     octree_builder: bool,
     /// With --owner-filter or --broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
@@ -300,14 +310,14 @@ pub struct Args {
     /// Emit the octree broad phase's binning unit instead (triangles in,
     /// leaves out); --width is the grid's width (16, 24 or 32), --depth and
     /// --pipelines the system it feeds.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill"])]
+    #[arg(long)]
     binning_unit: bool,
     /// Emit the broad-phase top instead: the binning unit on a 24-bit grid
     /// feeding the collision system (triangles in, each leaf's pairs out);
     /// --width is the system's (24, or 16 with leaves in frames of their
     /// own), --depth and --pipelines the system's, --triangles,
     /// --list-words and --leaves the binning unit's memories.
-    #[arg(long, conflicts_with_all = ["system", "classifier", "setup", "owner_filter", "plane_traversal", "set_operation", "octant_clipper", "voxel_fill", "binning_unit"])]
+    #[arg(long)]
     broad_phase: bool,
     /// With --binning-unit or --broad-phase: triangles per object (1 to
     /// 262144) [default: 8192].
@@ -447,19 +457,73 @@ impl Args {
         }
     }
 
-    /// Whether the unit has multipliers (`--dsp` applies).
-    fn has_multipliers(&self) -> bool {
-        !(self.classifier
-            || self.setup
-            || self.owner_filter
-            || self.binning_unit
-            || self.patch_tessellator
-            || self.cone_unit
-            || self.engine_unit())
+    /// The design the options pick ([`design::DESIGNS`]), or an error
+    /// naming the design options given together.
+    fn design(&self) -> Result<Design, String> {
+        design::picked(&[
+            (Design::System, self.system),
+            (Design::Classifier, self.classifier),
+            (Design::Setup, self.setup),
+            (Design::BinningUnit, self.binning_unit),
+            (Design::BroadPhase, self.broad_phase),
+            (Design::OwnerFilter, self.owner_filter),
+            (Design::PlaneTraversal, self.plane_traversal),
+            (Design::SetOperation, self.set_operation),
+            (Design::OctantClipper, self.octant_clipper),
+            (Design::VoxelFill, self.voxel_fill),
+            (Design::TriangleVoxelizer, self.triangle_voxelizer),
+            (Design::OctreeBuilder, self.octree_builder),
+            (Design::PatchTessellator, self.patch_tessellator),
+            (Design::ConeUnit, self.cone_unit),
+            (Design::SharedRareCases, self.shared_rare_cases),
+        ])
+    }
+
+    /// The design options given on the command line.
+    fn design_options_given(&self) -> Vec<DesignOption> {
+        [
+            (self.width.is_some(), DesignOption::Width),
+            (self.dsp.is_some(), DesignOption::Dsp),
+            (self.rare_cases.is_some(), DesignOption::RareCases),
+            (self.pipelines.is_some(), DesignOption::Pipelines),
+            (self.depth.is_some(), DesignOption::Depth),
+            (self.triangles.is_some(), DesignOption::Triangles),
+            (self.list_words.is_some(), DesignOption::ListWords),
+            (self.leaves.is_some(), DesignOption::Leaves),
+            (self.slots.is_some(), DesignOption::Slots),
+            (self.steps.is_some(), DesignOption::Steps),
+            (self.assemble, DesignOption::Assemble),
+        ]
+        .into_iter()
+        .filter_map(|(given, option)| given.then_some(option))
+        .collect()
+    }
+
+    /// The widths to emit: `--width`, or 24; one pass for a design that
+    /// takes none.
+    fn widths(&self) -> Vec<usize> {
+        self.width.clone().unwrap_or_else(|| vec![24])
     }
 
     /// An error for options that do not go together, naming them.
-    fn check_usage(&self) -> Result<(), String> {
+    fn check_usage(&self) -> Result<Design, String> {
+        let design = self.design()?;
+        if self.for_scene.is_some() {
+            // --for-scene chooses the system itself.
+            if design != Design::Pipeline {
+                return Err(format!(
+                    "--for-scene sizes the system itself; {} does not go with it",
+                    design.named()
+                ));
+            }
+            if let Some(option) = self.design_options_given().first() {
+                return Err(format!(
+                    "--for-scene sizes the system itself; {} does not go with it",
+                    option.flag()
+                ));
+            }
+        }
+        design.refuse(&self.design_options_given())?;
         if self.synth_top.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--synth-top applies to --synth ecp5".into());
         }
@@ -485,16 +549,13 @@ impl Args {
         if self.timing_weight.is_some() && self.placer.as_deref() == Some("static") {
             return Err("--timing-weight is the heap placer's (not --placer static)".into());
         }
-        if self.dsp.is_some() && !self.has_multipliers() {
-            return Err("--dsp applies to the pipeline, --system and --broad-phase (the units with multipliers)".into());
-        }
         // The width check is the multipliers' (the octree engine's units and
         // the tessellator map none onto MULT18X18D).
-        if self.multipliers() == MultiplierMapping::Ecp5 && self.has_multipliers() {
+        if self.multipliers() == MultiplierMapping::Ecp5 && design.has_multipliers() {
             if let Some(flow) = self.synth.as_deref().filter(|&s| s != "ecp5") {
                 return Err(format!("--dsp ecp5 with --synth {flow}: the multipliers are ECP5 primitives; synthesize them with --synth ecp5"));
             }
-            if let Some(&w) = self.width.iter().find(|&&w| w > MAX_ECP5_DSP_WIDTH) {
+            if let Some(&w) = self.widths().iter().find(|&&w| w > MAX_ECP5_DSP_WIDTH) {
                 let how = if self.dsp.is_some() {
                     "--dsp ecp5"
                 } else {
@@ -505,33 +566,7 @@ impl Args {
                 ));
             }
         }
-        if !(self.system || self.binning_unit || self.broad_phase) {
-            if self.pipelines.is_some() {
-                return Err(
-                    "--pipelines applies to --system, --binning-unit and --broad-phase".into(),
-                );
-            }
-            if self.depth.is_some() {
-                return Err("--depth applies to --system, --binning-unit and --broad-phase".into());
-            }
-        }
-        if !(self.binning_unit || self.broad_phase) {
-            for (given, name) in [
-                (self.triangles.is_some(), "--triangles"),
-                (self.list_words.is_some(), "--list-words"),
-                (self.leaves.is_some(), "--leaves"),
-            ] {
-                if given {
-                    return Err(format!(
-                        "{name} applies to --binning-unit and --broad-phase"
-                    ));
-                }
-            }
-        }
-        if self.slots.is_some() && !(self.owner_filter || self.broad_phase) {
-            return Err("--slots applies to --owner-filter and --broad-phase".into());
-        }
-        if self.binning_unit || self.broad_phase {
+        if matches!(design, Design::BinningUnit | Design::BroadPhase) {
             if !self.pipelines().is_power_of_two() {
                 return Err(format!(
                     "--pipelines {}: the binning unit's split rule takes a power of two",
@@ -544,187 +579,146 @@ impl Args {
                     self.depth()
                 ));
             }
-            if self.binning_unit {
-                for &w in &self.width {
-                    self.binning_config(w)
-                        .check()
-                        .map_err(|e| format!("--binning-unit --width {w}: {e}"))?;
-                }
-            }
         }
-        if self.broad_phase {
-            for &w in &self.width {
-                self.broad_phase_config(w)
-                    .check()
-                    .map_err(|e| format!("--broad-phase --width {w}: {e}"))?;
-            }
+        for w in self.widths() {
+            self.check_width(design, w)?;
         }
-        Ok(())
+        Ok(design)
     }
 
-    /// The design for `width`: the pipeline, or the system with --system.
-    fn emit(&self, width: usize) -> anyhow::Result<EmittedDesign> {
-        if self.patch_tessellator {
-            let k = self.steps.unwrap_or(3);
-            if self.assemble {
-                return emit_patch_triangles(width, k)
-                    .with_context(|| format!("emitting {}", patch_triangles_unit_name(width, k)));
+    /// An error unless `design` is built for `width` (what `--width` means
+    /// to it: [`WidthMeaning`]).
+    fn check_width(&self, design: Design, w: usize) -> Result<(), String> {
+        let flag = design.named();
+        match design {
+            Design::Pipeline | Design::System => {
+                check_width(w).map_err(|e| format!("--width {w}: {e}"))
             }
-            return emit_patch_tessellator(width, k)
-                .with_context(|| format!("emitting {}", patch_tessellator_unit_name(width, k)));
+            Design::Classifier | Design::Setup if !CLASSIFIER_GRID_WIDTHS.contains(&w) => Err(format!(
+                "{flag} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits"
+            )),
+            Design::BinningUnit => self
+                .binning_config(w)
+                .check()
+                .map_err(|e| format!("{flag} --width {w}: {e}")),
+            Design::BroadPhase => self
+                .broad_phase_config(w)
+                .check()
+                .map_err(|e| format!("{flag} --width {w}: {e}")),
+            Design::PatchTessellator
+                if !TESSELLATOR_CONFIGURATIONS.contains(&(w, self.steps())) =>
+            {
+                Err(format!(
+                    "{flag} --width {w} --steps {}: the unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}",
+                    self.steps()
+                ))
+            }
+            Design::ConeUnit if !CONE_UNIT_WIDTHS.contains(&w) => Err(format!(
+                "{flag} --width {w}: the unit is built for W in {CONE_UNIT_WIDTHS:?}"
+            )),
+            Design::SharedRareCases if !SHARED_RARE_CASES_WIDTHS.contains(&w) => Err(format!(
+                "{flag} --width {w}: the unit is emitted for W in {SHARED_RARE_CASES_WIDTHS:?}"
+            )),
+            _ => Ok(()),
         }
-        if self.cone_unit {
-            return emit_cone_unit(width)
-                .with_context(|| format!("emitting {}", cone_unit_name(width)));
-        }
-        if self.shared_rare_cases {
-            return emit_shared_rare_cases(width, self.multipliers())
-                .with_context(|| format!("emitting {}", shared_rare_cases_name(width)));
-        }
-        if self.plane_traversal {
-            return emit_plane_traversal()
-                .with_context(|| format!("emitting {PLANE_TRAVERSAL_NAME}"));
-        }
-        if self.set_operation {
-            return emit_set_operation().with_context(|| format!("emitting {SET_OPERATION_NAME}"));
-        }
-        if self.octant_clipper {
-            return emit_octant_clipper()
-                .with_context(|| format!("emitting {OCTANT_CLIPPER_NAME}"));
-        }
-        if self.voxel_fill {
-            return emit_voxel_fill().with_context(|| format!("emitting {VOXEL_FILL_NAME}"));
-        }
-        if self.triangle_voxelizer {
-            return emit_triangle_voxelizer()
-                .with_context(|| format!("emitting {TRIANGLE_VOXELIZER_NAME}"));
-        }
-        if self.octree_builder {
-            return emit_octree_builder()
-                .with_context(|| format!("emitting {OCTREE_BUILDER_NAME}"));
-        }
-        if self.binning_unit {
-            let config = self.binning_config(width);
-            return emit_binning_unit(&config)
-                .with_context(|| format!("emitting {}", config.unit_name()));
-        }
-        if self.broad_phase {
-            let config = self.broad_phase_config(width);
-            return emit_broad_phase_system_with(&config, self.multipliers())
-                .with_context(|| format!("emitting {}", config.unit_name()));
-        }
-        if self.owner_filter {
-            return emit_owner_filter(self.slots())
-                .with_context(|| format!("emitting {}", owner_filter_unit_name(self.slots())));
-        }
-        if self.classifier {
-            return emit_cell_classifier(width)
-                .with_context(|| format!("emitting the {width}-bit grid's classifier"));
-        }
-        if self.setup {
-            return emit_triangle_setup(width)
-                .with_context(|| format!("emitting the {width}-bit grid's setup"));
-        }
-        if self.system {
-            let config = self.system_config(width);
-            let kind = PipelineKind::from(self.rare_case_path());
-            return emit_system_with(config, kind, self.multipliers())
-                .with_context(|| format!("emitting {}", system_unit_name(config, kind)));
-        }
-        emit_pipeline_for(width, self.multipliers(), self.rare_case_path())
-            .with_context(|| format!("emitting the {width}-bit pipeline"))
+    }
+
+    /// `--steps` of the patch tessellator (its value: 2^K steps a side).
+    fn steps(&self) -> usize {
+        self.steps.unwrap_or(3)
+    }
+
+    /// The design for `width`.
+    fn emit(&self, design: Design, width: usize) -> anyhow::Result<EmittedDesign> {
+        let name = self.unit_name(design, width);
+        let emitted = match design {
+            Design::Pipeline => emit_pipeline_for(width, self.multipliers(), self.rare_case_path())
+                .map_err(anyhow::Error::from),
+            Design::System => {
+                let kind = PipelineKind::from(self.rare_case_path());
+                emit_system_with(self.system_config(width), kind, self.multipliers())
+                    .map_err(anyhow::Error::from)
+            }
+            Design::Classifier => emit_cell_classifier(width).map_err(anyhow::Error::from),
+            Design::Setup => emit_triangle_setup(width).map_err(anyhow::Error::from),
+            Design::BinningUnit => {
+                emit_binning_unit(&self.binning_config(width)).map_err(anyhow::Error::from)
+            }
+            Design::BroadPhase => {
+                emit_broad_phase_system_with(&self.broad_phase_config(width), self.multipliers())
+                    .map_err(anyhow::Error::from)
+            }
+            Design::OwnerFilter => emit_owner_filter(self.slots()).map_err(anyhow::Error::from),
+            Design::PlaneTraversal => emit_plane_traversal().map_err(anyhow::Error::from),
+            Design::SetOperation => emit_set_operation().map_err(anyhow::Error::from),
+            Design::OctantClipper => emit_octant_clipper().map_err(anyhow::Error::from),
+            Design::VoxelFill => emit_voxel_fill().map_err(anyhow::Error::from),
+            Design::TriangleVoxelizer => emit_triangle_voxelizer().map_err(anyhow::Error::from),
+            Design::OctreeBuilder => emit_octree_builder().map_err(anyhow::Error::from),
+            Design::PatchTessellator if self.assemble => {
+                emit_patch_triangles(width, self.steps()).map_err(anyhow::Error::from)
+            }
+            Design::PatchTessellator => {
+                emit_patch_tessellator(width, self.steps()).map_err(anyhow::Error::from)
+            }
+            Design::ConeUnit => emit_cone_unit(width).map_err(anyhow::Error::from),
+            Design::SharedRareCases => {
+                emit_shared_rare_cases(width, self.multipliers()).map_err(anyhow::Error::from)
+            }
+        };
+        emitted.with_context(|| format!("emitting {name}"))
     }
 
     /// `--rare-cases` (its value parser admits only the names).
     fn rare_case_path(&self) -> RareCasePath {
-        RareCasePath::parse(&self.rare_cases).unwrap_or_default()
-    }
-
-    /// The pipeline alone, with the shared rare-case unit.
-    fn shared_pipeline(&self) -> bool {
-        self.rare_case_path() == RareCasePath::Shared && !self.system
-    }
-
-    /// Everything but the pipeline goes into a directory named after its top.
-    fn named_by_unit(&self) -> bool {
-        self.patch_tessellator
-            || self.cone_unit
-            || self.shared_rare_cases
-            || self.shared_pipeline()
-            || self.system
-            || self.classifier
-            || self.setup
-            || self.owner_filter
-            || self.binning_unit
-            || self.broad_phase
-            || self.engine_unit()
-    }
-
-    /// The octree engine's units that take no width.
-    fn engine_unit(&self) -> bool {
-        self.plane_traversal
-            || self.set_operation
-            || self.octant_clipper
-            || self.voxel_fill
-            || self.triangle_voxelizer
-            || self.octree_builder
-    }
-
-    /// The grid-width units of the octree engine.
-    fn octree_unit(&self) -> bool {
-        self.classifier || self.setup
+        self.rare_cases
+            .as_deref()
+            .and_then(RareCasePath::parse)
+            .unwrap_or_default()
     }
 
     /// The top module's name for `width`.
-    fn unit_name(&self, width: usize) -> String {
-        if self.patch_tessellator && self.assemble {
-            patch_triangles_unit_name(width, self.steps.unwrap_or(3))
-        } else if self.patch_tessellator {
-            patch_tessellator_unit_name(width, self.steps.unwrap_or(3))
-        } else if self.cone_unit {
-            cone_unit_name(width)
-        } else if self.shared_rare_cases {
-            shared_rare_cases_name(width)
-        } else if self.shared_pipeline() {
-            pipeline_unit_name_for(width, RareCasePath::Shared)
-        } else if self.plane_traversal {
-            PLANE_TRAVERSAL_NAME.to_string()
-        } else if self.set_operation {
-            SET_OPERATION_NAME.to_string()
-        } else if self.octant_clipper {
-            OCTANT_CLIPPER_NAME.to_string()
-        } else if self.voxel_fill {
-            VOXEL_FILL_NAME.to_string()
-        } else if self.triangle_voxelizer {
-            TRIANGLE_VOXELIZER_NAME.to_string()
-        } else if self.octree_builder {
-            OCTREE_BUILDER_NAME.to_string()
-        } else if self.owner_filter {
-            owner_filter_unit_name(self.slots())
-        } else if self.binning_unit {
-            self.binning_config(width).unit_name()
-        } else if self.broad_phase {
-            self.broad_phase_config(width).unit_name()
-        } else if self.classifier {
-            cell_classifier_unit_name(width)
-        } else if self.setup {
-            triangle_setup_unit_name(width)
-        } else if self.system {
-            system_unit_name(self.system_config(width), self.rare_case_path().into())
-        } else {
-            pipeline_unit_name(width)
+    fn unit_name(&self, design: Design, width: usize) -> String {
+        match design {
+            Design::Pipeline => pipeline_unit_name_for(width, self.rare_case_path()),
+            Design::System => {
+                system_unit_name(self.system_config(width), self.rare_case_path().into())
+            }
+            Design::Classifier => cell_classifier_unit_name(width),
+            Design::Setup => triangle_setup_unit_name(width),
+            Design::BinningUnit => self.binning_config(width).unit_name(),
+            Design::BroadPhase => self.broad_phase_config(width).unit_name(),
+            Design::OwnerFilter => owner_filter_unit_name(self.slots()),
+            Design::PlaneTraversal => PLANE_TRAVERSAL_NAME.to_string(),
+            Design::SetOperation => SET_OPERATION_NAME.to_string(),
+            Design::OctantClipper => OCTANT_CLIPPER_NAME.to_string(),
+            Design::VoxelFill => VOXEL_FILL_NAME.to_string(),
+            Design::TriangleVoxelizer => TRIANGLE_VOXELIZER_NAME.to_string(),
+            Design::OctreeBuilder => OCTREE_BUILDER_NAME.to_string(),
+            Design::PatchTessellator if self.assemble => {
+                patch_triangles_unit_name(width, self.steps())
+            }
+            Design::PatchTessellator => patch_tessellator_unit_name(width, self.steps()),
+            Design::ConeUnit => cone_unit_name(width),
+            Design::SharedRareCases => shared_rare_cases_name(width),
         }
     }
 }
 
-/// Where width `width` goes.
-fn out_dir(args: &Args, width: usize) -> PathBuf {
-    match (&args.out, args.width.len()) {
-        (Some(dir), 1) => dir.clone(),
-        (Some(parent), _) if args.named_by_unit() => parent.join(args.unit_name(width)),
-        (Some(parent), _) => parent.join(format!("w{width}")),
-        (None, _) if args.named_by_unit() => PathBuf::from("rtl-out").join(args.unit_name(width)),
-        (None, _) => PathBuf::from("rtl-out").join(format!("w{width}")),
+/// Where width `width` of `design` goes: `--out` with one width; otherwise
+/// `w<W>` for the parallel pipeline and the top's name for every other
+/// design, under `--out` or `rtl-out`.
+fn out_dir(args: &Args, design: Design, width: usize) -> PathBuf {
+    let several = args.width.as_ref().is_some_and(|w| w.len() > 1);
+    let parent = match (&args.out, several) {
+        (Some(dir), false) => return dir.clone(),
+        (Some(parent), true) => parent.clone(),
+        (None, _) => PathBuf::from("rtl-out"),
+    };
+    if design == Design::Pipeline && args.rare_case_path() == RareCasePath::Parallel {
+        parent.join(format!("w{width}"))
+    } else {
+        parent.join(args.unit_name(design, width))
     }
 }
 
@@ -841,10 +835,13 @@ fn seeds_list(seeds: &[u64]) -> String {
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
-    if let Err(e) = args.check_usage() {
-        eprintln!("error: {e}");
-        return Ok(ExitCode::from(2));
-    }
+    let design = match args.check_usage() {
+        Ok(design) => design,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     if let Some(scene) = args.for_scene() {
         let device = device(&args.device).expect("checked by parse_device");
         let request = for_scene::Request {
@@ -855,68 +852,31 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         };
         return for_scene::run(request);
     }
-    for &w in &args.width {
-        if args.patch_tessellator
-            && !TESSELLATOR_CONFIGURATIONS.contains(&(w, args.steps.unwrap_or(3)))
-        {
-            eprintln!("error: --patch-tessellator --width {w} --steps {}: the unit is built for (W, K) in {TESSELLATOR_CONFIGURATIONS:?}", args.steps.unwrap_or(3));
-            return Ok(ExitCode::from(2));
-        }
-        if args.cone_unit && !CONE_UNIT_WIDTHS.contains(&w) {
-            eprintln!(
-                "error: --cone-unit --width {w}: the unit is built for W in {CONE_UNIT_WIDTHS:?}"
-            );
-            return Ok(ExitCode::from(2));
-        }
-        if args.shared_rare_cases && !SHARED_RARE_CASES_WIDTHS.contains(&w) {
-            eprintln!(
-                "error: --shared-rare-cases --width {w}: the unit is emitted for W in {SHARED_RARE_CASES_WIDTHS:?}"
-            );
-            return Ok(ExitCode::from(2));
-        }
-        if args.octree_unit() && !CLASSIFIER_GRID_WIDTHS.contains(&w) {
-            let unit = if args.setup {
-                "--setup"
-            } else {
-                "--classifier"
-            };
-            eprintln!("error: {unit} --width {w}: the octree engine's units are emitted for grids of {CLASSIFIER_GRID_WIDTHS:?} bits");
-            return Ok(ExitCode::from(2));
-        }
-        if let (false, Err(e)) = (
-            args.patch_tessellator
-                || args.cone_unit
-                || args.octree_unit()
-                || args.binning_unit
-                || args.broad_phase
-                || args.owner_filter
-                || args.engine_unit(),
-            check_width(w),
-        ) {
-            eprintln!("error: --width {w}: {e}");
-            return Ok(ExitCode::from(2));
-        }
-    }
     let mut rows = Vec::new();
     let mut routes = Vec::new();
-    for &w in &args.width {
-        let dir = out_dir(&args, w);
-        let mut design = args.emit(w)?;
-        map_delay_lines(&mut design, args.delay_lines());
-        design
+    // A design without a width is written once.
+    let widths = match design.row().width {
+        WidthMeaning::None => vec![0],
+        _ => args.widths(),
+    };
+    for w in widths {
+        let dir = out_dir(&args, design, w);
+        let mut emitted = args.emit(design, w)?;
+        map_delay_lines(&mut emitted, args.delay_lines());
+        emitted
             .write_to(&dir)
             .with_context(|| format!("writing {}", dir.display()))?;
         eprintln!(
             "wrote {} ({} modules, {} files) to {}",
-            design.top,
-            design.modules.len(),
-            design.files.len(),
+            emitted.top,
+            emitted.modules.len(),
+            emitted.files.len(),
             dir.display()
         );
         if args.synth.as_deref() == Some("ecp5") {
-            let top = args.synth_top.as_deref().unwrap_or(&design.top);
-            if !design.modules.iter().any(|m| m == top) {
-                let units: Vec<&str> = design
+            let top = args.synth_top.as_deref().unwrap_or(&emitted.top);
+            if !emitted.modules.iter().any(|m| m == top) {
+                let units: Vec<&str> = emitted
                     .modules
                     .iter()
                     .map(String::as_str)
@@ -925,15 +885,15 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                     .collect();
                 eprintln!(
                     "error: --synth-top {top}: {} has no such module; it has {}, ...",
-                    design.top,
+                    emitted.top,
                     units.join(", ")
                 );
                 return Ok(ExitCode::from(2));
             }
-            routes.extend(place_and_route(&args, &dir, top, top == design.top)?);
+            routes.extend(place_and_route(&args, &dir, top, top == emitted.top)?);
         } else if let Some(which) = &args.synth {
             let mut row = ResourceRow {
-                unit: args.unit_name(w),
+                unit: args.unit_name(design, w),
                 generic: None,
                 xilinx: None,
             };
@@ -953,10 +913,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     }
     if !rows.is_empty() {
-        print!("{}", resource_table(&rows));
+        out!("{}", resource_table(&rows))?;
     }
     if !routes.is_empty() {
-        print!("{}", route_table(&routes));
+        out!("{}", route_table(&routes))?;
     }
     Ok(ExitCode::SUCCESS)
 }

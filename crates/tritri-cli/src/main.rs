@@ -26,6 +26,7 @@ mod progress;
 mod report;
 mod scene_input;
 mod sim;
+mod stdout;
 mod voxelize;
 
 #[derive(Parser)]

@@ -4,6 +4,7 @@
 
 use crate::input;
 use crate::model_files::{read_octree, ModelOutput};
+use crate::stdout::outln;
 use crate::voxelize::ViewArgs;
 use anyhow::Context as _;
 use clap::Subcommand;
@@ -178,7 +179,7 @@ fn reserve(paths: &[String], side: usize) -> anyhow::Result<Vec<ModelOutput>> {
 fn open(path: &str, outputs: &[String]) -> anyhow::Result<(OctreeFile, Vec<ModelOutput>)> {
     let model = read_octree(path)?;
     let outputs = reserve(outputs, 1 << model.tree.level())?;
-    describe(path, &model);
+    describe(path, &model)?;
     Ok((model, outputs))
 }
 
@@ -191,18 +192,18 @@ fn write_all(outputs: Vec<ModelOutput>, model: &OctreeFile, view: &ViewArgs) -> 
     for output in outputs {
         let path = output.path.clone();
         let bytes = output.write(&model.tree, &grid, &model.placement, &view.view())?;
-        println!("wrote {path} ({bytes} bytes)");
+        outln!("wrote {path} ({bytes} bytes)")?;
     }
     Ok(())
 }
 
-fn describe(name: &str, model: &OctreeFile) {
+fn describe(name: &str, model: &OctreeFile) -> std::io::Result<()> {
     let n = 1u64 << model.tree.level();
-    println!(
+    outln!(
         "{name}: {n}^3 grid, {} voxels, {} octree nodes",
         model.tree.voxel_count(),
         model.tree.nodes().len()
-    );
+    )
 }
 
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
@@ -261,7 +262,7 @@ fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result
         hardware.engine.name()
     );
     let (clock, _) = unit_clock(hardware, VOXEL_FILL_NAME);
-    println!(
+    outln!(
         "hardware ({}): {} fill records, {} word writes into the voxel memory, the model's voxels; {} cycles (a write per clock) = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
         hardware.engine.name(),
         records.len(),
@@ -269,7 +270,7 @@ fn fill_in_hardware(model: &OctreeFile, hardware: &EngineArgs) -> anyhow::Result
         run.writes + 1,
         (run.writes + 1) as f64 / (clock * 1e3),
         started.elapsed().as_secs_f64()
-    );
+    )?;
     Ok(())
 }
 
@@ -288,7 +289,7 @@ pub fn build_in_hardware(
         hardware.engine.name()
     );
     let (clock, how) = unit_clock(hardware, OCTREE_BUILDER_NAME);
-    println!(
+    outln!(
         "hardware ({}): octree builder, {} bricks in, the model's {} nodes out; {} cycles = {:.3} ms at {clock} MHz{how} (simulated in {:.1} s)",
         hardware.engine.name(),
         1u64 << (3 * grid.level().saturating_sub(2)),
@@ -296,7 +297,7 @@ pub fn build_in_hardware(
         run.cycles,
         run.cycles as f64 / (clock * 1e3),
         started.elapsed().as_secs_f64()
-    );
+    )?;
     Ok(())
 }
 
@@ -323,7 +324,7 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
     let c = classify_plane(level, a.normal, a.offset);
     let took = started.elapsed();
     let n = 1u64 << level;
-    println!(
+    outln!(
         "plane {:?}·p = {} on {n}^3: {} voxels crossed, {} cells split, half-space {} voxels in {} octree nodes; {:.3} ms",
         a.normal,
         a.offset,
@@ -332,7 +333,7 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         c.half_space.voxel_count(),
         c.half_space.nodes().len(),
         took.as_secs_f64() * 1e3
-    );
+    )?;
     // The hardware: its records must describe the model's half-space.
     let engine = a.hardware.engine;
     let (clock, _) = unit_clock(&a.hardware, PLANE_TRAVERSAL_NAME);
@@ -347,7 +348,7 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         engine.name()
     );
     let words = hardware.fill_words(64);
-    println!(
+    outln!(
         "hardware ({}): {} cells classified, {} records, {} cycles = {:.3} ms at {} MHz{}; the same half-space and crossed voxels as the model; \
          filling a voxel memory of 64-bit words takes {words} writes ({:.3} ms at one write per clock, overlapped with the traversal)",
         engine.name(),
@@ -358,16 +359,16 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
         clock,
         if engine == Engine::Model { String::new() } else { format!(" (simulated in {:.1} s)", simulated.as_secs_f64()) },
         words as f64 / (clock * 1e3)
-    );
+    )?;
     let result = match model {
         Some(m) => {
-            describe(a.model.as_deref().unwrap_or(""), &m);
+            describe(a.model.as_deref().unwrap_or(""), &m)?;
             let cut = m.tree.combine(SetOperation::Intersection, &c.half_space);
-            println!(
+            outln!(
                 "cut: {} voxels kept of {}",
                 cut.voxel_count(),
                 m.tree.voxel_count()
-            );
+            )?;
             OctreeFile {
                 tree: cut,
                 placement: m.placement,
@@ -407,7 +408,7 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         clip_logged(&model.tree, lo, hi)
     };
     let took = started.elapsed();
-    println!(
+    outln!(
         "clip to [{}, {}) x [{}, {}) x [{}, {}): {} octants ({} inside, {} outside, {} crossing) in {:.3} ms, {:.1} ns per octant; {} voxels kept",
         b[0],
         b[3],
@@ -422,7 +423,7 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         took.as_secs_f64() * 1e3,
         took.as_secs_f64() * 1e9 / counts.octants() as f64,
         clipped.voxel_count()
-    );
+    )?;
     if a.hardware.engine != Engine::Model {
         // The clipper takes the box clamped to the grid (no octant changes class).
         let n = 1i64 << model.tree.level();
@@ -444,14 +445,14 @@ fn clip_model(a: ClipArgs) -> anyhow::Result<ExitCode> {
         anyhow::ensure!(wrong == 0, "the octant clipper in {} classified {wrong} octants differently from the model (a bug)", a.hardware.engine.name());
         let (clock, _) = unit_clock(&a.hardware, OCTANT_CLIPPER_NAME);
         let cycles = cells.len() as u64 + CLIPPER_LATENCY as u64;
-        println!(
+        outln!(
             "hardware ({}): the model's {} classes, one octant per clock: {cycles} cycles = {:.3} ms at {clock} MHz ({:.1} ns per octant; simulated in {:.1} s)",
             a.hardware.engine.name(),
             cells.len(),
             cycles as f64 / (clock * 1e3),
             1e3 / clock,
             started.elapsed().as_secs_f64()
-        );
+        )?;
     }
     write_all(
         outputs,
@@ -484,14 +485,14 @@ fn write_clipped_segments(
         .collect();
     let took = started.elapsed();
     let whole = clipped.iter().filter(|(_, c)| c.is_whole()).count();
-    println!(
+    outln!(
         "segments: {} boundary edges clipped in {:.3} ms, {:.1} ns per segment: {whole} inside, {} cut or touching it, {} outside",
         edges.len(),
         took.as_secs_f64() * 1e3,
         took.as_secs_f64() * 1e9 / edges.len().max(1) as f64,
         clipped.len() - whole,
         edges.len() - clipped.len()
-    );
+    )?;
     let p = &model.placement;
     let mut text =
         String::from("# boundary edges of a voxel model clipped to a box, written by tritri\n");
@@ -509,7 +510,7 @@ fn write_clipped_segments(
         text += &format!("l {} {}\n", 2 * i + 1, 2 * i + 2);
     }
     std::fs::write(path, text).with_context(|| format!("writing {path}"))?;
-    println!("wrote {path} ({} segments)", clipped.len());
+    outln!("wrote {path} ({} segments)", clipped.len())?;
     Ok(())
 }
 
@@ -537,17 +538,17 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    describe(&a.a, &ma);
-    describe(&a.b, &mb);
+    describe(&a.a, &ma)?;
+    describe(&a.b, &mb)?;
     let started = Instant::now();
     let result = ma.tree.combine(op, &mb.tree);
     let took = started.elapsed();
-    println!(
+    outln!(
         "{op:?}: {} voxels, {} octree nodes, {:.3} ms (on the trees, no voxels expanded)",
         result.voxel_count(),
         result.nodes().len(),
         took.as_secs_f64() * 1e3
-    );
+    )?;
     if a.hardware.engine != Engine::Model {
         // The unit streams both voxel memories a word per clock.
         let (va, vb) = (ma.tree.to_voxels(), mb.tree.to_voxels());
@@ -567,13 +568,13 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
         );
         let (clock, _) = unit_clock(&a.hardware, SET_OPERATION_NAME);
         let cycles = words.len() as u64 + 1;
-        println!(
+        outln!(
             "hardware ({}): {} words of 64 voxels, the model's result; {cycles} cycles = {:.3} ms at {clock} MHz (simulated in {:.1} s)",
             a.hardware.engine.name(),
             words.len(),
             cycles as f64 / (clock * 1e3),
             started.elapsed().as_secs_f64()
-        );
+        )?;
     }
     write_all(
         outputs,

@@ -49,7 +49,7 @@ impl OutputFile {
     ) -> anyhow::Result<()> {
         match &self {
             OutputFile::Stdout => {
-                let mut w = BufWriter::new(std::io::stdout().lock());
+                let mut w = BufWriter::new(crate::stdout::Stdout);
                 fill(&mut w)?;
                 w.flush()?;
             }

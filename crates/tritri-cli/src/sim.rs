@@ -271,7 +271,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut report: Box<dyn Write> = if pairs_to_stdout {
         Box::new(std::io::stderr())
     } else {
-        Box::new(std::io::stdout())
+        Box::new(crate::stdout::Stdout)
     };
     let pose = args.scene.pose_b.unwrap_or_default();
     writeln!(
@@ -378,7 +378,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     };
     let Some(hardware) = &answer.hardware else {
-        unreachable!("the boxes meet, so the accelerator ran");
+        anyhow::bail!(
+            "the boxes meet, yet the accelerator's run is missing from the answer (a bug)"
+        );
     };
     if let (Some(vcd), Some(path)) = (vcd, &args.vcd) {
         let size = vcd.commit_written()?;

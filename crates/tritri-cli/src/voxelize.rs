@@ -6,6 +6,7 @@ use crate::input;
 use crate::model_files::ModelOutput;
 use crate::octree::EngineArgs;
 use crate::progress::Progress;
+use crate::stdout::outln;
 use std::process::ExitCode;
 use std::time::Instant;
 use tritri_cosim::engine::Engine;
@@ -111,8 +112,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         }
     };
     let triangles: Vec<_> = object.triangles.iter().map(|t| frame.quantize(t)).collect();
-    println!("mesh: {} ({} triangles)", object.name, triangles.len());
-    println!(
+    outln!("mesh: {} ({} triangles)", object.name, triangles.len())?;
+    outln!(
         "grid: {n}^3 voxels of {:.6} units from ({:.6}, {:.6}, {:.6}); vertices rounded to 1/{} voxel ({:.3e} units, error at most half of it)",
         frame.voxel_size,
         frame.origin[0],
@@ -121,7 +122,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         1u64 << SUB_BITS,
         frame.fine_step(),
         n = side,
-    );
+    )?;
     let started = Instant::now();
     let progress = Progress::new(triangles.len() as u64, "triangles", 200_000);
     let mut done = 0usize;
@@ -146,7 +147,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let tree = Octree::from_voxels(&grid);
     let bitmap_bytes = (side * side * side).div_ceil(8);
     let tree_bytes = tree.nodes().len().div_ceil(4);
-    println!(
+    outln!(
         "{}: {} voxels in {:.3} s; octree {} nodes, {} bytes of nodes against a {} byte bitmap ({:.1} %)",
         if args.solid { "solid" } else { "surface" },
         grid.count(),
@@ -155,13 +156,13 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         tree_bytes,
         bitmap_bytes,
         100.0 * tree_bytes as f64 / bitmap_bytes as f64
-    );
+    )?;
     if !args.solid {
         match voxelize_in_hardware(&triangles, level, &grid, &args.hardware) {
             // The model's voxels are the answer; the hardware's figures are
             // extra when no hardware was asked for.
             Err(e) if args.hardware.engine == Engine::Model => {
-                println!("hardware: no cycle count: {e:#}")
+                outln!("hardware: no cycle count: {e:#}")?
             }
             result => result?,
         }
@@ -172,7 +173,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     for output in outputs {
         let path = output.path.clone();
         let bytes = output.write(&tree, &grid, &frame.placement(), &args.view.view())?;
-        println!("wrote {path} ({bytes} bytes)");
+        outln!("wrote {path} ({bytes} bytes)")?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -186,11 +187,11 @@ fn voxelize_in_hardware(
     hardware: &EngineArgs,
 ) -> anyhow::Result<()> {
     if hardware.engine != Engine::Model {
-        println!(
+        outln!(
             "hardware ({}): simulating {} triangles ...",
             hardware.engine.name(),
             triangles.len()
-        );
+        )?;
     }
     let started = Instant::now();
     let run = tritri_cosim::triangle_voxelizer::run(hardware.engine, triangles, level)?;
@@ -205,12 +206,12 @@ fn voxelize_in_hardware(
     } else {
         format!(" (simulated in {:.1} s)", started.elapsed().as_secs_f64())
     };
-    println!(
+    outln!(
         "hardware ({}): {} records of 8 voxels, the model's voxels; {} cycles = {:.3} ms at {clock} MHz{how}{simulated}",
         hardware.engine.name(),
         run.records.len(),
         run.cycles,
         run.cycles as f64 / (clock * 1e3),
-    );
+    )?;
     Ok(())
 }

@@ -211,3 +211,34 @@ fn long_simulation_is_refused_in_under_a_second() {
         started.elapsed()
     );
 }
+
+/// A full disk behind standard output is an error that names it, status 1,
+/// not a panic (issue 68, item 2).
+#[test]
+fn a_full_standard_output_is_an_error_naming_it() {
+    let pairs = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/data/six_pairs.txt"
+    );
+    for args in [
+        &["eval", pairs][..],
+        &["classify", pairs][..],
+        &["sim", "--no-compare"][..],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tritri"))
+            .args(args)
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains("writing to standard output: No space left on device"),
+            "{args:?}: {err}"
+        );
+    }
+}

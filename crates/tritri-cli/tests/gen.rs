@@ -126,7 +126,7 @@ fn dsp_mapping_options_are_checked() {
             "--out",
             "/nonexistent/x",
         ],
-        &["--dsp applies"],
+        &["--dsp does not apply to --plane-traversal"],
     );
     refused(
         &[
@@ -507,6 +507,48 @@ fn system_is_emitted_with_its_parameters() {
         Some(2),
         "--pipelines without --system"
     );
+}
+
+/// An option the chosen design does not take is refused by name before
+/// anything is written (it was ignored, and `--voxel-fill --rare-cases
+/// shared` wrote into a pipeline's directory); so are two designs at once.
+#[test]
+fn options_a_design_does_not_take_are_refused_by_name() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-refused-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let out_arg = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            &["--voxel-fill", "--rare-cases", "shared"][..],
+            "--rare-cases does not apply to --voxel-fill (it takes none of the design options)",
+        ),
+        (
+            &["--owner-filter", "--width", "16"][..],
+            "--width does not apply to --owner-filter (it takes --slots)",
+        ),
+        (
+            &["--classifier", "--depth", "64"][..],
+            "--depth does not apply to --classifier (it takes --width)",
+        ),
+        (
+            &["--steps", "2"][..],
+            "--steps does not apply to the pipeline (it takes --width, --dsp, --rare-cases)",
+        ),
+        (
+            &["--system", "--setup"][..],
+            "--system and --setup: gen writes one design at a time",
+        ),
+        (
+            &["--for-scene", "@torus", "@sphere", "--cone-unit"][..],
+            "--for-scene sizes the system itself; --cone-unit does not go with it",
+        ),
+    ] {
+        let mut all = vec!["gen"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["--out", out_arg]);
+        refused(&all, &[says]);
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
 }
 
 /// `--rare-cases shared` writes the pipeline with the shared rare-case

@@ -305,7 +305,8 @@ pub struct SceneRunOptions<'a> {
     pub vcd: Option<&'a Path>,
 }
 
-fn no_progress(_: u64) {}
+/// A progress callback that is told nothing (the options' default).
+pub(crate) fn no_progress(_: u64) {}
 
 impl Default for SceneRunOptions<'static> {
     fn default() -> Self {

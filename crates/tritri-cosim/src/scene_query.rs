@@ -33,7 +33,7 @@
 
 use crate::binning_unit::{bin_scene, BinningError, SceneBinning};
 use crate::broad_phase_system::{run_scene_on_top, top_model, TopSceneRun};
-use crate::engine::{check_quantized, run_scene, Engine, SceneRun, SceneRunOptions};
+use crate::engine::{check_quantized, no_progress, run_scene, Engine, SceneRun, SceneRunOptions};
 use crate::fault::Fault;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -230,8 +230,6 @@ pub struct QueryOptions<'a> {
     /// pair on the originals in software (the check and the baseline).
     pub check: bool,
 }
-
-fn no_progress(_: u64) {}
 
 impl Default for QueryOptions<'static> {
     fn default() -> Self {

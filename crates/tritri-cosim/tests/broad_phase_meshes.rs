@@ -6,8 +6,8 @@
 //! grid, `binned` comes at the binning unit's modelled clock and `done`
 //! after the system's modelled clock by at most the owner filter's clocks.
 //!
-//! Run by `scripts/test-shared.sh` (cargo feature `shared-testdata`, as it
-//! fetches the meshes); a missing mesh is a failure, not a skip.
+//! Run by `scripts/test-shared.sh` (`test = false`: `cargo test` runs it only
+//! when named; the script fetches the meshes); a missing mesh is a failure, not a skip.
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;

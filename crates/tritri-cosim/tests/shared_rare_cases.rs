@@ -1,15 +1,16 @@
 //! The shared rare-case unit (`tritri_rtl::pipeline::shared_rare_cases`)
 //! on the hard-case suite's rare pairs (coplanar, a segment in the other's
-//! plane, two segments) at W = 16, in all orderings: the rust-hdl model
+//! plane, two segments) at W = 16, in all orderings (every
+//! `suites::hard_case_step()`-th case; `scripts/test-long.sh` takes all): the rust-hdl model
 //! gives the models' verdicts, and Icarus and Verilator run the emitted
 //! unit to the same verdicts at the same edges.
 
 use tritri_cosim::shared_rare_cases::{run_emitted, run_rusthdl, RareJob};
 use tritri_cosim::simulator::Simulator;
-use tritri_cosim::suites::hard_case_groups;
+use tritri_cosim::suites::{hard_case_groups, hard_case_step};
 
 fn jobs() -> Vec<RareJob> {
-    hard_case_groups(16, 1)
+    hard_case_groups(16, hard_case_step())
         .iter()
         .flat_map(|(base, streamed)| {
             streamed

@@ -8,8 +8,8 @@
 //! * `shen_intersected.txt` and `shen_separated.txt` (5,000 pairs each),
 //!   each pair quantized in its own frame.
 //!
-//! Run by `scripts/test-shared.sh` (cargo feature `shared-testdata`); a
-//! missing directory is a failure, not a skip.
+//! Run by `scripts/test-shared.sh` (`test = false`: `cargo test` runs it
+//! only when named); a missing directory is a failure, not a skip.
 
 use std::path::PathBuf;
 use tritri_cosim::rusthdl_harness::{run_schedule_on, HarnessOptions};

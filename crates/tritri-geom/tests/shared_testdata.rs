@@ -1,6 +1,6 @@
 //! Checks against external cases with exact answers, in `../shared/testdata`
-//! (see its README). Run by `scripts/test-shared.sh`; needs the cargo feature
-//! `shared-testdata`. A missing directory is a failure, not a skip.
+//! (see its README). Run by `scripts/test-shared.sh` (`test = false`: `cargo
+//! test` runs it only when named). A missing directory is a failure, not a skip.
 //!
 //! * `peer_cases.json` (147 pairs from five libraries' unit tests and two bug
 //!   reports): the exact model and the independent oracle both equal

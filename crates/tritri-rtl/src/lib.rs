@@ -35,4 +35,5 @@ pub mod synth;
 pub mod system;
 pub mod tools;
 pub mod unit;
+pub mod utilisation;
 pub use pipeline::pipeline_for_width::raw_design;

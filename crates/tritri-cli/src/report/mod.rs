@@ -38,6 +38,7 @@ mod scene;
 use crate::eval::{self, Batch, BatchReport};
 use crate::input;
 use crate::scene_input::SceneArgs;
+use crate::stdout::outln;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -251,7 +252,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         scene,
     };
     page::write_all(&args.out, &report)?;
-    print_summary(&args.out, &report);
+    print_summary(&args.out, &report)?;
 
     let bugs: usize = report
         .widths
@@ -359,23 +360,31 @@ fn width_rows(
     rows
 }
 
-fn print_summary(dir: &Path, report: &Report) {
-    println!("report: {}", dir.join("report.html").display());
+fn print_summary(dir: &Path, report: &Report) -> std::io::Result<()> {
+    outln!("report: {}", dir.join("report.html").display())?;
     if let Some(e) = &report.errors {
-        println!(
+        outln!(
             "pairs: {} in {} batch(es) ({} intersect, exact)",
             e.total.pairs,
             e.batches.len(),
             e.total.exact_intersecting
-        );
+        )?;
     }
-    println!(
+    outln!(
         "  {:>3} {:>8} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}",
-        "W", "rare", "wrong", "uncert", "uncert %", "LUT", "DSP", "Fmax MHz", "pairs/s"
-    );
+        "W",
+        "rare",
+        "wrong",
+        "uncert",
+        "uncert %",
+        "LUT",
+        "DSP",
+        "Fmax MHz",
+        "pairs/s"
+    )?;
     let dash = || "-".to_string();
     for w in &report.widths {
-        println!(
+        outln!(
             "  {:>3} {:>8} {:>7} {:>8} {:>9} {:>8} {:>6} {:>9} {:>12}{}",
             w.width,
             w.rare_cases.name(),
@@ -395,17 +404,17 @@ fn print_summary(dir: &Path, report: &Report) {
                 .map_or_else(dash, |r| format!("{:.1}", r.fmax_mhz)),
             w.pairs_per_second.map_or_else(dash, |p| format!("{p:.3e}")),
             if w.pareto { "  (Pareto)" } else { "" }
-        );
+        )?;
     }
     if let Some(s) = &report.scene {
-        println!(
+        outln!(
             "scene: {} x {}: software {:.3} ms",
             s.a,
             s.b,
             1e3 * s.software_seconds
-        );
+        )?;
         for r in &s.rows {
-            println!(
+            outln!(
                 "  W = {:>2}: {} pairs tested, {} leaves, {} cycles{}, {:.3} ms at {:.1} MHz ({}), {:.1} x software; {} uncertain; {} missing / {} extra against exact f64",
                 r.width,
                 r.pairs_tested,
@@ -422,7 +431,8 @@ fn print_summary(dir: &Path, report: &Report) {
                 r.uncertain,
                 r.missing,
                 r.extra
-            );
+            )?;
         }
     }
+    Ok(())
 }
