@@ -16,9 +16,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 m=build/meshes
 [ -s "$m/camel.off" ] || { echo "error: $m/camel.off missing; run: bash scripts/fetch-meshes.sh" >&2; exit 1; }
-# The whole workspace, as the test command builds it: a build of one package
-# resolves other features and would compile the hardware crates again.
-cargo build --release -q --workspace
+# The whole workspace with its examples, as the test command builds it: a build
+# of one package, or without the examples (their dev-dependencies), resolves
+# other features and would compile the hardware crates again.
+cargo build --release -q --workspace --examples
 tritri=target/release/tritri
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-# The whole workspace, as the test command builds it: a build of one package
-# resolves other features and would compile the hardware crates again.
-cargo build --release --quiet --workspace
+# The whole workspace with its examples, as the test command builds it: a build
+# of one package, or without the examples (their dev-dependencies), resolves
+# other features and would compile the hardware crates again.
+cargo build --release --quiet --workspace --examples
 target/release/tritri demo "$@"

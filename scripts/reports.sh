@@ -17,9 +17,10 @@ t=../shared/testdata
 [ -s "$m/camel.off" ] || { echo "error: $m/camel.off missing; run: bash scripts/fetch-meshes.sh" >&2; exit 1; }
 [ -s "$t/shen_intersected.txt" ] || { echo "error: $t/shen_intersected.txt missing (the shared test data)" >&2; exit 1; }
 command -v chromium >/dev/null || { echo "error: chromium not found; install it with: apt-get install chromium" >&2; exit 1; }
-# The whole workspace, as the test command builds it: a build of one package
-# resolves other features and would compile the hardware crates again.
-cargo build --release -q --workspace
+# The whole workspace with its examples, as the test command builds it: a build
+# of one package, or without the examples (their dev-dependencies), resolves
+# other features and would compile the hardware crates again.
+cargo build --release -q --workspace --examples
 tritri=target/release/tritri
 out=build/reports
 mkdir -p "$out"

@@ -15,9 +15,10 @@ fusesoc=$root/build/venv/bin/fusesoc
 # The configuration tritri_fpga_top.v and tritri_fpga_top.core name.
 rm -rf "$out"
 mkdir -p "$out"
-# The whole workspace, as the test command builds it: a build of one package
-# resolves other features and would compile the hardware crates again.
-(cd "$root" && cargo build --release --quiet --workspace && target/release/tritri gen --system --width 16 --pipelines 1 --depth 64 --out "$out/system")
+# The whole workspace with its examples, as the test command builds it: a build
+# of one package, or without the examples (their dev-dependencies), resolves
+# other features and would compile the hardware crates again.
+(cd "$root" && cargo build --release --quiet --workspace --examples && target/release/tritri gen --system --width 16 --pipelines 1 --depth 64 --out "$out/system")
 
 run() {
   local target=$1

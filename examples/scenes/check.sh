@@ -19,9 +19,10 @@ for arg in "$@"; do
     *) echo "error: unknown option $arg (--shared, --update)" >&2; exit 2 ;;
   esac
 done
-# The whole workspace, as the test command builds it: a build of one package
-# resolves other features and would compile the hardware crates again.
-cargo build --release --quiet --workspace
+# The whole workspace with its examples, as the test command builds it: a build
+# of one package, or without the examples (their dev-dependencies), resolves
+# other features and would compile the hardware crates again.
+cargo build --release --quiet --workspace --examples
 tritri=target/release/tritri
 out=build/examples/scenes
 mkdir -p "$out"
