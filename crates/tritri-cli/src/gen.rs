@@ -102,7 +102,7 @@ mod design;
 mod for_scene;
 
 use crate::stdout::out;
-use design::{Design, DesignOption, WidthMeaning};
+use design::{Design, DesignOption};
 
 use crate::scene_input::SceneArgs;
 use anyhow::Context;
@@ -586,8 +586,9 @@ impl Args {
         Ok(design)
     }
 
-    /// An error unless `design` is built for `width` (what `--width` means
-    /// to it: [`WidthMeaning`]).
+    /// An error unless `design` is built for `width` (the coordinates' for
+    /// the pipeline, the system and the broad-phase top, the grid's for the
+    /// octree units, a unit's own list for the others).
     fn check_width(&self, design: Design, w: usize) -> Result<(), String> {
         let flag = design.named();
         match design {
@@ -631,42 +632,38 @@ impl Args {
     /// The design for `width`.
     fn emit(&self, design: Design, width: usize) -> anyhow::Result<EmittedDesign> {
         let name = self.unit_name(design, width);
-        let emitted = match design {
-            Design::Pipeline => emit_pipeline_for(width, self.multipliers(), self.rare_case_path())
-                .map_err(anyhow::Error::from),
+        self.emit_unnamed(design, width)
+            .with_context(|| format!("emitting {name}"))
+    }
+
+    /// [`Args::emit`] without the top's name in the error.
+    fn emit_unnamed(&self, design: Design, width: usize) -> anyhow::Result<EmittedDesign> {
+        Ok(match design {
+            Design::Pipeline => {
+                emit_pipeline_for(width, self.multipliers(), self.rare_case_path())?
+            }
             Design::System => {
                 let kind = PipelineKind::from(self.rare_case_path());
-                emit_system_with(self.system_config(width), kind, self.multipliers())
-                    .map_err(anyhow::Error::from)
+                emit_system_with(self.system_config(width), kind, self.multipliers())?
             }
-            Design::Classifier => emit_cell_classifier(width).map_err(anyhow::Error::from),
-            Design::Setup => emit_triangle_setup(width).map_err(anyhow::Error::from),
-            Design::BinningUnit => {
-                emit_binning_unit(&self.binning_config(width)).map_err(anyhow::Error::from)
-            }
+            Design::Classifier => emit_cell_classifier(width)?,
+            Design::Setup => emit_triangle_setup(width)?,
+            Design::BinningUnit => emit_binning_unit(&self.binning_config(width))?,
             Design::BroadPhase => {
-                emit_broad_phase_system_with(&self.broad_phase_config(width), self.multipliers())
-                    .map_err(anyhow::Error::from)
+                emit_broad_phase_system_with(&self.broad_phase_config(width), self.multipliers())?
             }
-            Design::OwnerFilter => emit_owner_filter(self.slots()).map_err(anyhow::Error::from),
-            Design::PlaneTraversal => emit_plane_traversal().map_err(anyhow::Error::from),
-            Design::SetOperation => emit_set_operation().map_err(anyhow::Error::from),
-            Design::OctantClipper => emit_octant_clipper().map_err(anyhow::Error::from),
-            Design::VoxelFill => emit_voxel_fill().map_err(anyhow::Error::from),
-            Design::TriangleVoxelizer => emit_triangle_voxelizer().map_err(anyhow::Error::from),
-            Design::OctreeBuilder => emit_octree_builder().map_err(anyhow::Error::from),
-            Design::PatchTessellator if self.assemble => {
-                emit_patch_triangles(width, self.steps()).map_err(anyhow::Error::from)
-            }
-            Design::PatchTessellator => {
-                emit_patch_tessellator(width, self.steps()).map_err(anyhow::Error::from)
-            }
-            Design::ConeUnit => emit_cone_unit(width).map_err(anyhow::Error::from),
-            Design::SharedRareCases => {
-                emit_shared_rare_cases(width, self.multipliers()).map_err(anyhow::Error::from)
-            }
-        };
-        emitted.with_context(|| format!("emitting {name}"))
+            Design::OwnerFilter => emit_owner_filter(self.slots())?,
+            Design::PlaneTraversal => emit_plane_traversal()?,
+            Design::SetOperation => emit_set_operation()?,
+            Design::OctantClipper => emit_octant_clipper()?,
+            Design::VoxelFill => emit_voxel_fill()?,
+            Design::TriangleVoxelizer => emit_triangle_voxelizer()?,
+            Design::OctreeBuilder => emit_octree_builder()?,
+            Design::PatchTessellator if self.assemble => emit_patch_triangles(width, self.steps())?,
+            Design::PatchTessellator => emit_patch_tessellator(width, self.steps())?,
+            Design::ConeUnit => emit_cone_unit(width)?,
+            Design::SharedRareCases => emit_shared_rare_cases(width, self.multipliers())?,
+        })
     }
 
     /// `--rare-cases` (its value parser admits only the names).
@@ -855,9 +852,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let mut rows = Vec::new();
     let mut routes = Vec::new();
     // A design without a width is written once.
-    let widths = match design.row().width {
-        WidthMeaning::None => vec![0],
-        _ => args.widths(),
+    let widths = if design.takes(DesignOption::Width) {
+        args.widths()
+    } else {
+        vec![0]
     };
     for w in widths {
         let dir = out_dir(&args, design, w);

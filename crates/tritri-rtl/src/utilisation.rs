@@ -69,8 +69,10 @@ fn utilisation_line(text: &str) -> Option<Utilisation> {
 mod tests {
     use super::*;
 
-    /// The table as nextpnr-ecp5 0.7 prints it after packing, for a
-    /// design with eleven times the multipliers of an ECP5-85.
+    /// A table in the format of this flow's nextpnr-ecp5 log (as the
+    /// owner filter's route_ecp5.log has it), with the counts the issue
+    /// reports for the broad-phase top: eleven times the multipliers of an
+    /// ECP5-85.
     const LOG: &str = "Info: Packing IOs..\n\
 Info: Device utilisation:\n\
 Info: \t          TRELLIS_IO:     0/  365     0%\n\

@@ -1,5 +1,5 @@
 //! The designs `tritri gen` writes, as one table: the option that picks
-//! each, the design options it takes, and what its `--width` means.
+//! each and the design options it takes.
 //! Everything else `gen` decides about a design (its top's name, its
 //! directory, how it is emitted and which widths it is built for) is a
 //! `match` on [`Design`] in `gen.rs`, so that adding a design is adding a
@@ -81,26 +81,14 @@ impl DesignOption {
     }
 }
 
-/// What `--width` is to a design.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WidthMeaning {
-    /// The collision system's coordinates (the pipeline's widths).
-    Coordinates,
-    /// The octree grid's (16, 24 or 32 bits).
-    Grid,
-    /// The unit's own list of widths.
-    Unit,
-    /// The design takes no width.
-    None,
-}
-
 /// A row of the table.
 pub struct Row {
     pub design: Design,
     /// The option that picks the design (none for the pipeline).
     pub flag: Option<&'static str>,
-    pub width: WidthMeaning,
-    /// The design options it takes besides `--width`.
+    /// The design options it takes. What `--width` means differs (the
+    /// coordinates', the octree grid's, a unit's own list) and is checked
+    /// per design in `gen.rs` (`check_width`).
     pub takes: &'static [DesignOption],
 }
 
@@ -112,98 +100,84 @@ pub const DESIGNS: [Row; 16] = [
     Row {
         design: Design::Pipeline,
         flag: None,
-        width: WidthMeaning::Coordinates,
-        takes: &[Dsp, RareCases],
+        takes: &[Width, Dsp, RareCases],
     },
     Row {
         design: Design::System,
         flag: Some("--system"),
-        width: WidthMeaning::Coordinates,
-        takes: &[Dsp, RareCases, Pipelines, Depth],
+        takes: &[Width, Dsp, RareCases, Pipelines, Depth],
     },
     Row {
         design: Design::Classifier,
         flag: Some("--classifier"),
-        width: WidthMeaning::Grid,
-        takes: &[],
+        takes: &[Width],
     },
     Row {
         design: Design::Setup,
         flag: Some("--setup"),
-        width: WidthMeaning::Grid,
-        takes: &[],
+        takes: &[Width],
     },
     Row {
         design: Design::BinningUnit,
         flag: Some("--binning-unit"),
-        width: WidthMeaning::Grid,
-        takes: &[Pipelines, Depth, Triangles, ListWords, Leaves],
+        takes: &[Width, Pipelines, Depth, Triangles, ListWords, Leaves],
     },
     Row {
         design: Design::BroadPhase,
         flag: Some("--broad-phase"),
-        width: WidthMeaning::Coordinates,
-        takes: &[Dsp, Pipelines, Depth, Triangles, ListWords, Leaves, Slots],
+        takes: &[
+            Width, Dsp, Pipelines, Depth, Triangles, ListWords, Leaves, Slots,
+        ],
     },
     Row {
         design: Design::OwnerFilter,
         flag: Some("--owner-filter"),
-        width: WidthMeaning::None,
         takes: &[Slots],
     },
     Row {
         design: Design::PlaneTraversal,
         flag: Some("--plane-traversal"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::SetOperation,
         flag: Some("--set-operation"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::OctantClipper,
         flag: Some("--octant-clipper"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::VoxelFill,
         flag: Some("--voxel-fill"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::TriangleVoxelizer,
         flag: Some("--triangle-voxelizer"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::OctreeBuilder,
         flag: Some("--octree-builder"),
-        width: WidthMeaning::None,
         takes: &[],
     },
     Row {
         design: Design::PatchTessellator,
         flag: Some("--patch-tessellator"),
-        width: WidthMeaning::Unit,
-        takes: &[Steps, Assemble],
+        takes: &[Width, Steps, Assemble],
     },
     Row {
         design: Design::ConeUnit,
         flag: Some("--cone-unit"),
-        width: WidthMeaning::Unit,
-        takes: &[],
+        takes: &[Width],
     },
     Row {
         design: Design::SharedRareCases,
         flag: Some("--shared-rare-cases"),
-        width: WidthMeaning::Unit,
-        takes: &[Dsp],
+        takes: &[Width, Dsp],
     },
 ];
 
@@ -218,11 +192,7 @@ impl Design {
 
     /// Whether the design takes `option`.
     pub fn takes(self, option: DesignOption) -> bool {
-        let row = self.row();
-        match option {
-            Width => row.width != WidthMeaning::None,
-            _ => row.takes.contains(&option),
-        }
+        self.row().takes.contains(&option)
     }
 
     /// Whether the design has multipliers (`--dsp` applies).
@@ -244,12 +214,7 @@ impl Design {
         let Some(option) = given.iter().find(|&&o| !self.takes(o)) else {
             return Ok(());
         };
-        let row = self.row();
-        let takes: Vec<&str> = (row.width != WidthMeaning::None)
-            .then_some("--width")
-            .into_iter()
-            .chain(row.takes.iter().map(|o| o.flag()))
-            .collect();
+        let takes: Vec<&str> = self.row().takes.iter().map(|o| o.flag()).collect();
         let takes = if takes.is_empty() {
             "it takes none of the design options".to_string()
         } else {
