@@ -24,6 +24,7 @@
 //!   voxel → octree conversion: [`octree_builder`].
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
+pub mod axi_copy;
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;

@@ -58,6 +58,7 @@
 //! ```
 
 pub mod ansi_ports;
+pub mod axi_copy_unit;
 pub mod binning_unit_unit;
 pub mod block_ram_mapping;
 pub mod broad_phase_system_unit;

@@ -24,6 +24,7 @@
 //!
 //! docs/ARCHITECTURE.md puts each unit beside its software model and test.
 pub mod arith;
+pub mod axi;
 pub mod bezier;
 pub mod emit;
 pub mod measured;

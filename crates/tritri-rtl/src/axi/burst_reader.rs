@@ -1,0 +1,278 @@
+//! A region of external memory read over AXI4 and streamed out a beat at
+//! a time: `start` with a base address (aligned to the beat) and a number
+//! of beats, and the unit issues INCR bursts ([`super::burst_beats`]: at
+//! most `max_burst` beats, cut at 4 KB boundaries), at most `outstanding`
+//! in flight, each only when its queue has room for all its beats, so
+//! `rready` is always high and the memory never waits on the reader.
+//!
+//! Clocks: an AR request is issued (`arvalid` rises) the clock after the
+//! unit decides it, and the next request is decided the clock after the
+//! memory took it, so a request goes out at most every second clock. A
+//! beat taken at edge `t` leaves the queue from the clock after edge
+//! `t + 2` ([`super::beat_fifo`]). [`super::transfer_machine`] is the
+//! clock-exact model.
+
+use super::beat_fifo::BeatFifo;
+use super::{ADDRESS_BITS, MAX_OUTSTANDING};
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+/// Bits of a beat count.
+pub const BEAT_BITS: usize = 32;
+/// Bits of the count of bursts in flight.
+pub const OUTSTANDING_BITS: usize = 4;
+const _: () = assert!(MAX_OUTSTANDING < 1 << OUTSTANDING_BITS);
+
+#[derive(LogicBlock)]
+pub struct BurstReader<const DW: usize, const A: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high.
+    pub reset: Signal<In, Bit>,
+    /// One clock high while not busy: read `beats` beats from `base`.
+    pub start: Signal<In, Bit>,
+    pub base: Signal<In, Bits<ADDRESS_BITS>>,
+    pub beats: Signal<In, Bits<BEAT_BITS>>,
+    pub m_axi_araddr: Signal<Out, Bits<ADDRESS_BITS>>,
+    pub m_axi_arlen: Signal<Out, Bits<8>>,
+    pub m_axi_arsize: Signal<Out, Bits<3>>,
+    pub m_axi_arburst: Signal<Out, Bits<2>>,
+    pub m_axi_arcache: Signal<Out, Bits<4>>,
+    pub m_axi_arprot: Signal<Out, Bits<3>>,
+    pub m_axi_arvalid: Signal<Out, Bit>,
+    pub m_axi_arready: Signal<In, Bit>,
+    pub m_axi_rdata: Signal<In, Bits<DW>>,
+    pub m_axi_rresp: Signal<In, Bits<2>>,
+    pub m_axi_rlast: Signal<In, Bit>,
+    pub m_axi_rvalid: Signal<In, Bit>,
+    pub m_axi_rready: Signal<Out, Bit>,
+    /// The beats, in address order.
+    pub out_valid: Signal<Out, Bit>,
+    pub out_ready: Signal<In, Bit>,
+    pub out_data: Signal<Out, Bits<DW>>,
+    /// With the region's last beat.
+    pub out_last: Signal<Out, Bit>,
+    /// From the clock after `start` until the last beat has left.
+    pub busy: Signal<Out, Bit>,
+    /// A read response was not OKAY since `start` (sticky).
+    pub error: Signal<Out, Bit>,
+    queue: BeatFifo<DW, A>,
+    /// `max_burst`, the bursts in flight allowed, the beats the queue
+    /// holds, `log2(DW / 8)` and the beats of a 4 KB page.
+    max_burst: Constant<Bits<BEAT_BITS>>,
+    outstanding: Constant<Bits<OUTSTANDING_BITS>>,
+    capacity: Constant<Bits<BEAT_BITS>>,
+    size: Constant<Bits<3>>,
+    page_beats: Constant<Bits<BEAT_BITS>>,
+    running: DFF<Bit>,
+    failed: DFF<Bit>,
+    next_address: DFF<Bits<ADDRESS_BITS>>,
+    /// Beats not yet requested, and not yet delivered.
+    to_request: DFF<Bits<BEAT_BITS>>,
+    to_deliver: DFF<Bits<BEAT_BITS>>,
+    in_flight: DFF<Bits<OUTSTANDING_BITS>>,
+    /// Beats requested and not yet delivered: the queue's room they hold.
+    committed: DFF<Bits<BEAT_BITS>>,
+    ar_valid: DFF<Bit>,
+    ar_address: DFF<Bits<ADDRESS_BITS>>,
+    ar_length: DFF<Bits<8>>,
+    page_left: Signal<Local, Bits<BEAT_BITS>>,
+    burst: Signal<Local, Bits<BEAT_BITS>>,
+    issue: Signal<Local, Bit>,
+    burst_done: Signal<Local, Bit>,
+    delivered: Signal<Local, Bit>,
+}
+
+impl<const DW: usize, const A: usize> crate::unit::Unit for BurstReader<DW, A> {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            queue,
+            running,
+            failed,
+            next_address,
+            to_request,
+            to_deliver,
+            in_flight,
+            committed,
+            ar_valid,
+            ar_address,
+            ar_length
+        );
+    }
+    fn settings(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("max_burst", self.max_burst.val().index().to_string()),
+            ("outstanding", self.outstanding.val().index().to_string()),
+        ]
+    }
+}
+
+impl<const DW: usize, const A: usize> BurstReader<DW, A> {
+    /// A reader issuing bursts of at most `max_burst` beats, at most
+    /// `outstanding` in flight.
+    pub fn new(max_burst: usize, outstanding: usize) -> Self {
+        let config = super::TransferConfig {
+            data_bits: DW,
+            max_burst,
+            outstanding,
+            queue_beats: BeatFifo::<DW, A>::CAPACITY,
+        };
+        if let Err(e) = config.check() {
+            panic!("BurstReader: {e}");
+        }
+        let beat_bytes = (DW / 8) as u64;
+        BurstReader {
+            clock: Default::default(),
+            reset: Default::default(),
+            start: Default::default(),
+            base: Default::default(),
+            beats: Default::default(),
+            m_axi_araddr: Default::default(),
+            m_axi_arlen: Default::default(),
+            m_axi_arsize: Default::default(),
+            m_axi_arburst: Default::default(),
+            m_axi_arcache: Default::default(),
+            m_axi_arprot: Default::default(),
+            m_axi_arvalid: Default::default(),
+            m_axi_arready: Default::default(),
+            m_axi_rdata: Default::default(),
+            m_axi_rresp: Default::default(),
+            m_axi_rlast: Default::default(),
+            m_axi_rvalid: Default::default(),
+            m_axi_rready: Default::default(),
+            out_valid: Default::default(),
+            out_ready: Default::default(),
+            out_data: Default::default(),
+            out_last: Default::default(),
+            busy: Default::default(),
+            error: Default::default(),
+            queue: Default::default(),
+            max_burst: Constant::new((max_burst as u64).into()),
+            outstanding: Constant::new((outstanding as u64).into()),
+            capacity: Constant::new((BeatFifo::<DW, A>::CAPACITY as u64).into()),
+            size: Constant::new((beat_bytes.trailing_zeros() as u64).into()),
+            page_beats: Constant::new((super::PAGE_BYTES / beat_bytes).into()),
+            running: Default::default(),
+            failed: Default::default(),
+            next_address: Default::default(),
+            to_request: Default::default(),
+            to_deliver: Default::default(),
+            in_flight: Default::default(),
+            committed: Default::default(),
+            ar_valid: Default::default(),
+            ar_address: Default::default(),
+            ar_length: Default::default(),
+            page_left: Default::default(),
+            burst: Default::default(),
+            issue: Default::default(),
+            burst_done: Default::default(),
+            delivered: Default::default(),
+        }
+    }
+}
+
+impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            running,
+            failed,
+            next_address,
+            to_request,
+            to_deliver,
+            in_flight,
+            committed,
+            ar_valid,
+            ar_address,
+            ar_length
+        );
+        clock!(self, clock, queue);
+        self.queue.reset.next = self.reset.val();
+        self.m_axi_araddr.next = self.ar_address.q.val();
+        self.m_axi_arlen.next = self.ar_length.q.val();
+        self.m_axi_arsize.next = self.size.val();
+        self.m_axi_arburst.next = 1.into();
+        self.m_axi_arcache.next = 3.into();
+        self.m_axi_arprot.next = 0.into();
+        self.m_axi_arvalid.next = self.ar_valid.q.val();
+        self.m_axi_rready.next = true;
+        self.busy.next = self.running.q.val();
+        self.error.next = self.failed.q.val();
+        // Every beat goes into the queue: the credits kept room for it.
+        self.queue.push.next = self.m_axi_rvalid.val();
+        self.queue.push_data.next = self.m_axi_rdata.val();
+        if self.m_axi_rvalid.val() & (self.m_axi_rresp.val() != 0) {
+            self.failed.d.next = true;
+        }
+        self.burst_done.next = self.m_axi_rvalid.val() & self.m_axi_rlast.val();
+        self.out_valid.next = self.queue.out_valid.val();
+        self.out_data.next = self.queue.out_data.val();
+        self.out_last.next = self.to_deliver.q.val() == 1;
+        self.delivered.next = self.queue.out_valid.val() & self.out_ready.val();
+        self.queue.pop.next = self.delivered.val();
+        if self.delivered.val() {
+            self.to_deliver.d.next = self.to_deliver.q.val() - 1;
+        }
+        if self.ar_valid.q.val() & self.m_axi_arready.val() {
+            self.ar_valid.d.next = false;
+        }
+        // The next burst: at most max_burst beats, to the page's end, and
+        // what is left.
+        self.page_left.next = self.page_beats.val()
+            - ((self.next_address.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
+        self.burst.next = self.max_burst.val();
+        if self.page_left.val() < self.burst.val() {
+            self.burst.next = self.page_left.val();
+        }
+        if self.to_request.q.val() < self.burst.val() {
+            self.burst.next = self.to_request.q.val();
+        }
+        self.issue.next = self.running.q.val()
+            & !self.ar_valid.q.val()
+            & (self.to_request.q.val() != 0)
+            & (self.in_flight.q.val() < self.outstanding.val())
+            & (self.committed.q.val() + self.burst.val() <= self.capacity.val());
+        if self.issue.val() {
+            self.ar_valid.d.next = true;
+            self.ar_address.d.next = self.next_address.q.val();
+            self.ar_length.d.next = bit_cast::<8, BEAT_BITS>(self.burst.val() - 1);
+            self.next_address.d.next =
+                self.next_address.q.val() + (self.burst.val() << self.size.val());
+            self.to_request.d.next = self.to_request.q.val() - self.burst.val();
+        }
+        if self.issue.val() & !self.burst_done.val() {
+            self.in_flight.d.next = self.in_flight.q.val() + 1;
+        } else if !self.issue.val() & self.burst_done.val() {
+            self.in_flight.d.next = self.in_flight.q.val() - 1;
+        }
+        if self.issue.val() & self.delivered.val() {
+            self.committed.d.next = self.committed.q.val() + self.burst.val() - 1;
+        } else if self.issue.val() {
+            self.committed.d.next = self.committed.q.val() + self.burst.val();
+        } else if self.delivered.val() {
+            self.committed.d.next = self.committed.q.val() - 1;
+        }
+        if self.running.q.val() & (self.to_deliver.q.val() == 0) {
+            self.running.d.next = false;
+        }
+        if self.start.val() & !self.running.q.val() {
+            self.running.d.next = true;
+            self.failed.d.next = false;
+            self.next_address.d.next = self.base.val();
+            self.to_request.d.next = self.beats.val();
+            self.to_deliver.d.next = self.beats.val();
+        }
+        if self.reset.val() {
+            self.running.d.next = false;
+            self.failed.d.next = false;
+            self.to_request.d.next = 0.into();
+            self.to_deliver.d.next = 0.into();
+            self.in_flight.d.next = 0.into();
+            self.committed.d.next = 0.into();
+            self.ar_valid.d.next = false;
+        }
+    }
+}

@@ -1,0 +1,317 @@
+//! A stream of beats written to external memory over AXI4: `start` with a
+//! base address (aligned to the beat), then the beats (`in_last` with the
+//! last, or `flush` after it), and the unit writes them in INCR bursts
+//! ([`super::burst_beats`]: at most `max_burst` beats, cut at 4 KB
+//! boundaries), at most `outstanding` without their write response.
+//!
+//! A burst is issued only when the queue holds every beat of it: a full
+//! burst while the stream runs, the rest once it has ended. So `wvalid`
+//! never falls inside a burst for want of data, and the stream's length
+//! need not be known at `start`. Every byte of a beat is written (`wstrb`
+//! all ones): a region is a whole number of beats.
+//!
+//! The W channel cuts the beats into bursts by the same rule as the AW
+//! channel, from its own address: every burst but the last is as long as
+//! the rule allows, and the last is what was left when the stream ended.
+//! `busy` falls when every burst's response has come back.
+
+use super::beat_fifo::BeatFifo;
+use super::burst_reader::{BEAT_BITS, OUTSTANDING_BITS};
+use super::ADDRESS_BITS;
+use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
+
+#[derive(LogicBlock)]
+pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
+    pub clock: Signal<In, Clock>,
+    /// Synchronous, active high.
+    pub reset: Signal<In, Bit>,
+    /// One clock high while not busy: a stream to write from `base` begins.
+    pub start: Signal<In, Bit>,
+    pub base: Signal<In, Bits<ADDRESS_BITS>>,
+    pub in_valid: Signal<In, Bit>,
+    pub in_ready: Signal<Out, Bit>,
+    pub in_data: Signal<In, Bits<DW>>,
+    /// With the stream's last beat.
+    pub in_last: Signal<In, Bit>,
+    /// The stream has ended (after its last beat, or with none at all).
+    pub flush: Signal<In, Bit>,
+    pub m_axi_awaddr: Signal<Out, Bits<ADDRESS_BITS>>,
+    pub m_axi_awlen: Signal<Out, Bits<8>>,
+    pub m_axi_awsize: Signal<Out, Bits<3>>,
+    pub m_axi_awburst: Signal<Out, Bits<2>>,
+    pub m_axi_awcache: Signal<Out, Bits<4>>,
+    pub m_axi_awprot: Signal<Out, Bits<3>>,
+    pub m_axi_awvalid: Signal<Out, Bit>,
+    pub m_axi_awready: Signal<In, Bit>,
+    pub m_axi_wdata: Signal<Out, Bits<DW>>,
+    pub m_axi_wstrb: Signal<Out, Bits<S>>,
+    pub m_axi_wlast: Signal<Out, Bit>,
+    pub m_axi_wvalid: Signal<Out, Bit>,
+    pub m_axi_wready: Signal<In, Bit>,
+    pub m_axi_bresp: Signal<In, Bits<2>>,
+    pub m_axi_bvalid: Signal<In, Bit>,
+    pub m_axi_bready: Signal<Out, Bit>,
+    /// From the clock after `start` until the last write response.
+    pub busy: Signal<Out, Bit>,
+    /// A write response was not OKAY since `start` (sticky).
+    pub error: Signal<Out, Bit>,
+    /// Beats taken since `start`.
+    pub written: Signal<Out, Bits<BEAT_BITS>>,
+    queue: BeatFifo<DW, A>,
+    max_burst: Constant<Bits<BEAT_BITS>>,
+    outstanding: Constant<Bits<OUTSTANDING_BITS>>,
+    capacity: Constant<Bits<BEAT_BITS>>,
+    size: Constant<Bits<3>>,
+    page_beats: Constant<Bits<BEAT_BITS>>,
+    strobes: Constant<Bits<S>>,
+    beat_bytes: Constant<Bits<ADDRESS_BITS>>,
+    running: DFF<Bit>,
+    failed: DFF<Bit>,
+    ended: DFF<Bit>,
+    /// Beats taken, beats given to an AW burst, beats sent on W.
+    received: DFF<Bits<BEAT_BITS>>,
+    issued: DFF<Bits<BEAT_BITS>>,
+    sent: DFF<Bits<BEAT_BITS>>,
+    aw_next: DFF<Bits<ADDRESS_BITS>>,
+    w_address: DFF<Bits<ADDRESS_BITS>>,
+    /// Beats left in the W burst under way (0 between bursts).
+    w_left: DFF<Bits<BEAT_BITS>>,
+    unanswered: DFF<Bits<OUTSTANDING_BITS>>,
+    aw_valid: DFF<Bit>,
+    aw_address: DFF<Bits<ADDRESS_BITS>>,
+    aw_length: DFF<Bits<8>>,
+    taken: Signal<Local, Bit>,
+    pending: Signal<Local, Bits<BEAT_BITS>>,
+    aw_full: Signal<Local, Bits<BEAT_BITS>>,
+    aw_page: Signal<Local, Bits<BEAT_BITS>>,
+    aw_burst: Signal<Local, Bits<BEAT_BITS>>,
+    issue: Signal<Local, Bit>,
+    w_page: Signal<Local, Bits<BEAT_BITS>>,
+    w_burst: Signal<Local, Bits<BEAT_BITS>>,
+    beat_out: Signal<Local, Bit>,
+    answered: Signal<Local, Bit>,
+}
+
+impl<const DW: usize, const S: usize, const A: usize> crate::unit::Unit for BurstWriter<DW, S, A> {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self, units, queue, running, failed, ended, received, issued, sent, aw_next, w_address,
+            w_left, unanswered, aw_valid, aw_address, aw_length
+        );
+    }
+    fn settings(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("max_burst", self.max_burst.val().index().to_string()),
+            ("outstanding", self.outstanding.val().index().to_string()),
+        ]
+    }
+}
+
+impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
+    /// A writer issuing bursts of at most `max_burst` beats, at most
+    /// `outstanding` awaiting their response.
+    pub fn new(max_burst: usize, outstanding: usize) -> Self {
+        assert_eq!(S * 8, DW, "BurstWriter: S is the bytes of a beat");
+        let config = super::TransferConfig {
+            data_bits: DW,
+            max_burst,
+            outstanding,
+            queue_beats: BeatFifo::<DW, A>::CAPACITY,
+        };
+        if let Err(e) = config.check() {
+            panic!("BurstWriter: {e}");
+        }
+        let beat_bytes = S as u64;
+        BurstWriter {
+            clock: Default::default(),
+            reset: Default::default(),
+            start: Default::default(),
+            base: Default::default(),
+            in_valid: Default::default(),
+            in_ready: Default::default(),
+            in_data: Default::default(),
+            in_last: Default::default(),
+            flush: Default::default(),
+            m_axi_awaddr: Default::default(),
+            m_axi_awlen: Default::default(),
+            m_axi_awsize: Default::default(),
+            m_axi_awburst: Default::default(),
+            m_axi_awcache: Default::default(),
+            m_axi_awprot: Default::default(),
+            m_axi_awvalid: Default::default(),
+            m_axi_awready: Default::default(),
+            m_axi_wdata: Default::default(),
+            m_axi_wstrb: Default::default(),
+            m_axi_wlast: Default::default(),
+            m_axi_wvalid: Default::default(),
+            m_axi_wready: Default::default(),
+            m_axi_bresp: Default::default(),
+            m_axi_bvalid: Default::default(),
+            m_axi_bready: Default::default(),
+            busy: Default::default(),
+            error: Default::default(),
+            written: Default::default(),
+            queue: Default::default(),
+            max_burst: Constant::new((max_burst as u64).into()),
+            outstanding: Constant::new((outstanding as u64).into()),
+            capacity: Constant::new((BeatFifo::<DW, A>::CAPACITY as u64).into()),
+            size: Constant::new((beat_bytes.trailing_zeros() as u64).into()),
+            page_beats: Constant::new((super::PAGE_BYTES / beat_bytes).into()),
+            strobes: Constant::new(!Bits::<S>::default()),
+            beat_bytes: Constant::new(beat_bytes.into()),
+            running: Default::default(),
+            failed: Default::default(),
+            ended: Default::default(),
+            received: Default::default(),
+            issued: Default::default(),
+            sent: Default::default(),
+            aw_next: Default::default(),
+            w_address: Default::default(),
+            w_left: Default::default(),
+            unanswered: Default::default(),
+            aw_valid: Default::default(),
+            aw_address: Default::default(),
+            aw_length: Default::default(),
+            taken: Default::default(),
+            pending: Default::default(),
+            aw_full: Default::default(),
+            aw_page: Default::default(),
+            aw_burst: Default::default(),
+            issue: Default::default(),
+            w_page: Default::default(),
+            w_burst: Default::default(),
+            beat_out: Default::default(),
+            answered: Default::default(),
+        }
+    }
+}
+
+impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, S, A> {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clock, running, failed, ended, received, issued, sent, aw_next, w_address,
+            w_left, unanswered, aw_valid, aw_address, aw_length
+        );
+        clock!(self, clock, queue);
+        self.queue.reset.next = self.reset.val();
+        self.busy.next = self.running.q.val();
+        self.error.next = self.failed.q.val();
+        self.written.next = self.received.q.val();
+        // Beats in: while the stream runs and the queue has room.
+        self.in_ready.next = self.running.q.val()
+            & !self.ended.q.val()
+            & (bit_cast::<BEAT_BITS, 16>(self.queue.count.val()) < self.capacity.val());
+        self.taken.next = self.in_valid.val() & self.in_ready.val();
+        self.queue.push.next = self.taken.val();
+        self.queue.push_data.next = self.in_data.val();
+        if self.taken.val() {
+            self.received.d.next = self.received.q.val() + 1;
+        }
+        if (self.taken.val() & self.in_last.val()) | (self.running.q.val() & self.flush.val()) {
+            self.ended.d.next = true;
+        }
+        // AW: a full burst once the queue holds it, the rest at the end.
+        self.m_axi_awaddr.next = self.aw_address.q.val();
+        self.m_axi_awlen.next = self.aw_length.q.val();
+        self.m_axi_awsize.next = self.size.val();
+        self.m_axi_awburst.next = 1.into();
+        self.m_axi_awcache.next = 3.into();
+        self.m_axi_awprot.next = 0.into();
+        self.m_axi_awvalid.next = self.aw_valid.q.val();
+        if self.aw_valid.q.val() & self.m_axi_awready.val() {
+            self.aw_valid.d.next = false;
+        }
+        self.pending.next = self.received.q.val() - self.issued.q.val();
+        self.aw_page.next = self.page_beats.val()
+            - ((self.aw_next.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
+        self.aw_full.next = self.max_burst.val();
+        if self.aw_page.val() < self.aw_full.val() {
+            self.aw_full.next = self.aw_page.val();
+        }
+        self.aw_burst.next = self.aw_full.val();
+        if self.pending.val() < self.aw_full.val() {
+            self.aw_burst.next = self.pending.val();
+        }
+        self.issue.next = self.running.q.val()
+            & !self.aw_valid.q.val()
+            & (self.unanswered.q.val() < self.outstanding.val())
+            & ((self.pending.val() >= self.aw_full.val())
+                | (self.ended.q.val() & (self.pending.val() != 0)));
+        if self.issue.val() {
+            self.aw_valid.d.next = true;
+            self.aw_address.d.next = self.aw_next.q.val();
+            self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.aw_burst.val() - 1);
+            self.aw_next.d.next = self.aw_next.q.val() + (self.aw_burst.val() << self.size.val());
+            self.issued.d.next = self.issued.q.val() + self.aw_burst.val();
+        }
+        // W: the beats of issued bursts, cut by the same rule.
+        self.w_page.next = self.page_beats.val()
+            - ((self.w_address.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
+        self.w_burst.next = self.max_burst.val();
+        if self.w_page.val() < self.w_burst.val() {
+            self.w_burst.next = self.w_page.val();
+        }
+        if self.issued.q.val() - self.sent.q.val() < self.w_burst.val() {
+            self.w_burst.next = self.issued.q.val() - self.sent.q.val();
+        }
+        self.m_axi_wdata.next = self.queue.out_data.val();
+        self.m_axi_wstrb.next = self.strobes.val();
+        self.m_axi_wvalid.next =
+            self.queue.out_valid.val() & (self.sent.q.val() != self.issued.q.val());
+        self.m_axi_wlast.next = self.w_left.q.val() == 1;
+        if self.w_left.q.val() == 0 {
+            self.m_axi_wlast.next = self.w_burst.val() == 1;
+        }
+        self.beat_out.next = self.m_axi_wvalid.val() & self.m_axi_wready.val();
+        self.queue.pop.next = self.beat_out.val();
+        if self.beat_out.val() {
+            self.sent.d.next = self.sent.q.val() + 1;
+            self.w_address.d.next = self.w_address.q.val() + self.beat_bytes.val();
+            if self.w_left.q.val() == 0 {
+                self.w_left.d.next = self.w_burst.val() - 1;
+            } else {
+                self.w_left.d.next = self.w_left.q.val() - 1;
+            }
+        }
+        // B: every response taken at once.
+        self.m_axi_bready.next = true;
+        self.answered.next = self.m_axi_bvalid.val();
+        if self.m_axi_bvalid.val() & (self.m_axi_bresp.val() != 0) {
+            self.failed.d.next = true;
+        }
+        if self.issue.val() & !self.answered.val() {
+            self.unanswered.d.next = self.unanswered.q.val() + 1;
+        } else if !self.issue.val() & self.answered.val() {
+            self.unanswered.d.next = self.unanswered.q.val() - 1;
+        }
+        if self.running.q.val()
+            & self.ended.q.val()
+            & (self.sent.q.val() == self.received.q.val())
+            & (self.unanswered.q.val() == 0)
+            & !self.aw_valid.q.val()
+        {
+            self.running.d.next = false;
+        }
+        if self.start.val() & !self.running.q.val() {
+            self.running.d.next = true;
+            self.failed.d.next = false;
+            self.ended.d.next = self.flush.val();
+            self.received.d.next = 0.into();
+            self.issued.d.next = 0.into();
+            self.sent.d.next = 0.into();
+            self.aw_next.d.next = self.base.val();
+            self.w_address.d.next = self.base.val();
+            self.w_left.d.next = 0.into();
+        }
+        if self.reset.val() {
+            self.running.d.next = false;
+            self.failed.d.next = false;
+            self.ended.d.next = false;
+            self.unanswered.d.next = 0.into();
+            self.aw_valid.d.next = false;
+            self.w_left.d.next = 0.into();
+        }
+    }
+}
