@@ -19,7 +19,7 @@ m=build/meshes
 # The whole workspace with its examples, as the test command builds it: a build
 # of one package, or without the examples (their dev-dependencies), resolves
 # other features and would compile the hardware crates again.
-cargo build --release -q --workspace --examples
+cargo build --release -q --workspace --bins --examples
 tritri=target/release/tritri
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

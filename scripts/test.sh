@@ -16,7 +16,7 @@ cargo test --release --workspace
 
 # The examples (examples/README.md): each checks what it shows and fails
 # otherwise. Built with the workspace's features, as the tests were.
-cargo build --release --workspace --examples
+cargo build --release --workspace --bins --examples
 for example in classify_pairs scene_pairs emit_and_synthesize; do
   echo "example: $example"
   target/release/examples/$example
@@ -25,5 +25,7 @@ echo "example: fpga-top"
 bash examples/fpga-top/run.sh
 echo "example: cocotb"
 bash examples/cocotb/run.sh
+echo "example: axi-copy (cocotb, cocotbext-axi's AxiRam)"
+bash examples/axi-copy/run.sh
 echo "example: scenes"
 bash examples/scenes/check.sh

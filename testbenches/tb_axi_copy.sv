@@ -42,6 +42,7 @@ module tb_axi_copy #(
     wire [2:0] arsize, awsize, arprot, awprot;
     wire [1:0] arburst, awburst, rresp, bresp;
     wire [3:0] arcache, awcache;
+    wire arid, awid;
     wire arvalid, arready, rlast, rvalid, rready, awvalid, awready;
     wire wlast, wvalid, wready, bvalid, bready;
     wire [DATA_BITS-1:0] rdata, wdata;
@@ -50,6 +51,7 @@ module tb_axi_copy #(
     `TRITRI_DUT dut (
         .clock(clock), .reset(reset), .start(start), .source(source),
         .destination(destination), .beats(beats), .busy(busy), .done(done), .error(error),
+.m_axi_arid(arid), .m_axi_rid(1'b0), .m_axi_awid(awid), .m_axi_bid(1'b0),
         .m_axi_araddr(araddr), .m_axi_arlen(arlen), .m_axi_arsize(arsize),
         .m_axi_arburst(arburst), .m_axi_arcache(arcache), .m_axi_arprot(arprot),
         .m_axi_arvalid(arvalid), .m_axi_arready(arready), .m_axi_rdata(rdata),
@@ -79,7 +81,7 @@ module tb_axi_copy #(
 
     // The unused manager signals, folded into one bit on purpose.
     // verilator lint_off UNUSEDSIGNAL
-    wire unused = ^{busy, arcache, awcache, arprot, awprot};
+    wire unused = ^{busy, arcache, awcache, arprot, awprot, arid, awid};
     // verilator lint_on UNUSEDSIGNAL
 
     always #5 clock = ~clock;

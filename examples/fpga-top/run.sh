@@ -18,7 +18,7 @@ mkdir -p "$out"
 # The whole workspace with its examples, as the test command builds it: a build
 # of one package, or without the examples (their dev-dependencies), resolves
 # other features and would compile the hardware crates again.
-(cd "$root" && cargo build --release --quiet --workspace --examples && target/release/tritri gen --system --width 16 --pipelines 1 --depth 64 --out "$out/system")
+(cd "$root" && cargo build --release --quiet --workspace --bins --examples && target/release/tritri gen --system --width 16 --pipelines 1 --depth 64 --out "$out/system")
 
 run() {
   local target=$1

@@ -22,7 +22,7 @@ done
 # The whole workspace with its examples, as the test command builds it: a build
 # of one package, or without the examples (their dev-dependencies), resolves
 # other features and would compile the hardware crates again.
-cargo build --release --quiet --workspace --examples
+cargo build --release --quiet --workspace --bins --examples
 tritri=target/release/tritri
 out=build/examples/scenes
 mkdir -p "$out"

@@ -109,6 +109,7 @@ use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use tritri_geom::scene::load::Pose;
+use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{
     emit_broad_phase_system_with, BroadPhaseConfig, BROAD_PHASE_GRID_BITS,
@@ -266,6 +267,12 @@ pub struct Args {
     /// multipliers), a pair every 4 or 6 clocks; --width 8, 16 or 24.
     #[arg(long)]
     shared_rare_cases: bool,
+    /// Emit the AXI4 memory port's copy unit instead: a burst reader
+    /// streaming a region into a burst writer, the port every DRAM-backed
+    /// unit uses; --width is the port's data width (64, 128, 256 or 512,
+    /// default 64).
+    #[arg(long)]
+    axi_copy: bool,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
     /// triangles): `parallel`, their own units (60 multipliers, never a
     /// stall), or `shared`, the shared unit inside the pipeline (6
@@ -476,6 +483,7 @@ impl Args {
             (Design::PatchTessellator, self.patch_tessellator),
             (Design::ConeUnit, self.cone_unit),
             (Design::SharedRareCases, self.shared_rare_cases),
+            (Design::AxiCopy, self.axi_copy),
         ])
     }
 
@@ -502,7 +510,8 @@ impl Args {
     /// The widths to emit: `--width`, or 24; one pass for a design that
     /// takes none.
     fn widths(&self) -> Vec<usize> {
-        self.width.clone().unwrap_or_else(|| vec![24])
+        let default = if self.axi_copy { 64 } else { 24 };
+        self.width.clone().unwrap_or_else(|| vec![default])
     }
 
     /// An error for options that do not go together, naming them.
@@ -620,6 +629,10 @@ impl Args {
             Design::SharedRareCases if !SHARED_RARE_CASES_WIDTHS.contains(&w) => Err(format!(
                 "{flag} --width {w}: the unit is emitted for W in {SHARED_RARE_CASES_WIDTHS:?}"
             )),
+            Design::AxiCopy => axi_copy_config(w)
+                .transfer()
+                .check()
+                .map_err(|e| format!("{flag} --width {w}: {e}")),
             _ => Ok(()),
         }
     }
@@ -663,6 +676,7 @@ impl Args {
             Design::PatchTessellator => emit_patch_tessellator(width, self.steps())?,
             Design::ConeUnit => emit_cone_unit(width)?,
             Design::SharedRareCases => emit_shared_rare_cases(width, self.multipliers())?,
+            Design::AxiCopy => emit_axi_copy(&axi_copy_config(width))?,
         })
     }
 
@@ -698,7 +712,19 @@ impl Args {
             Design::PatchTessellator => patch_tessellator_unit_name(width, self.steps()),
             Design::ConeUnit => cone_unit_name(width),
             Design::SharedRareCases => shared_rare_cases_name(width),
+            Design::AxiCopy => axi_copy_config(width).unit_name(),
         }
+    }
+}
+
+/// The copy unit `tritri gen --axi-copy` writes: a `data_bits` port, bursts
+/// of up to 16 beats, 4 in flight each way (what
+/// `crates/tritri-cosim/tests/axi_copy.rs` co-simulates).
+fn axi_copy_config(data_bits: usize) -> AxiCopyConfig {
+    AxiCopyConfig {
+        data_bits,
+        max_burst: 16,
+        outstanding: 4,
     }
 }
 

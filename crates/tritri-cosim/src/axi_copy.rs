@@ -105,6 +105,8 @@ pub fn run_rusthdl(case: &CopyCase) -> anyhow::Result<CopyOutcome> {
             uut.m_axi_rdata.next = bits_of::<DW>(&out.rdata);
             uut.m_axi_rlast.next = out.rlast;
             uut.m_axi_rresp.next = 0.into();
+            uut.m_axi_rid.next = false;
+            uut.m_axi_bid.next = false;
             uut.m_axi_awready.next = out.awready;
             uut.m_axi_wready.next = out.wready;
             uut.m_axi_bvalid.next = out.bvalid;

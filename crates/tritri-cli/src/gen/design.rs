@@ -42,6 +42,8 @@ pub enum Design {
     ConeUnit,
     /// The pipeline's rare cases on one shared path.
     SharedRareCases,
+    /// The AXI4 port's copy unit (burst reader into burst writer).
+    AxiCopy,
 }
 
 /// An option that shapes a design; each design takes the ones its row
@@ -96,7 +98,7 @@ use DesignOption::*;
 
 /// Every design, once. `--dsp` is taken by the designs with multipliers
 /// (the MULT18X18D mapping applies to them).
-pub const DESIGNS: [Row; 16] = [
+pub const DESIGNS: [Row; 17] = [
     Row {
         design: Design::Pipeline,
         flag: None,
@@ -178,6 +180,11 @@ pub const DESIGNS: [Row; 16] = [
         design: Design::SharedRareCases,
         flag: Some("--shared-rare-cases"),
         takes: &[Width, Dsp],
+    },
+    Row {
+        design: Design::AxiCopy,
+        flag: Some("--axi-copy"),
+        takes: &[Width],
     },
 ];
 

@@ -35,6 +35,7 @@ pub struct AxiCopy<const DW: usize, const S: usize, const A: usize> {
     pub done: Signal<Out, Bit>,
     /// A read or write response was not OKAY in the last copy.
     pub error: Signal<Out, Bit>,
+    pub m_axi_arid: Signal<Out, Bit>,
     pub m_axi_araddr: Signal<Out, Bits<ADDRESS_BITS>>,
     pub m_axi_arlen: Signal<Out, Bits<8>>,
     pub m_axi_arsize: Signal<Out, Bits<3>>,
@@ -43,11 +44,13 @@ pub struct AxiCopy<const DW: usize, const S: usize, const A: usize> {
     pub m_axi_arprot: Signal<Out, Bits<3>>,
     pub m_axi_arvalid: Signal<Out, Bit>,
     pub m_axi_arready: Signal<In, Bit>,
+    pub m_axi_rid: Signal<In, Bit>,
     pub m_axi_rdata: Signal<In, Bits<DW>>,
     pub m_axi_rresp: Signal<In, Bits<2>>,
     pub m_axi_rlast: Signal<In, Bit>,
     pub m_axi_rvalid: Signal<In, Bit>,
     pub m_axi_rready: Signal<Out, Bit>,
+    pub m_axi_awid: Signal<Out, Bit>,
     pub m_axi_awaddr: Signal<Out, Bits<ADDRESS_BITS>>,
     pub m_axi_awlen: Signal<Out, Bits<8>>,
     pub m_axi_awsize: Signal<Out, Bits<3>>,
@@ -61,6 +64,7 @@ pub struct AxiCopy<const DW: usize, const S: usize, const A: usize> {
     pub m_axi_wlast: Signal<Out, Bit>,
     pub m_axi_wvalid: Signal<Out, Bit>,
     pub m_axi_wready: Signal<In, Bit>,
+    pub m_axi_bid: Signal<In, Bit>,
     pub m_axi_bresp: Signal<In, Bits<2>>,
     pub m_axi_bvalid: Signal<In, Bit>,
     pub m_axi_bready: Signal<Out, Bit>,
@@ -90,6 +94,7 @@ impl<const DW: usize, const S: usize, const A: usize> AxiCopy<DW, S, A> {
             busy: Default::default(),
             done: Default::default(),
             error: Default::default(),
+            m_axi_arid: Default::default(),
             m_axi_araddr: Default::default(),
             m_axi_arlen: Default::default(),
             m_axi_arsize: Default::default(),
@@ -98,11 +103,13 @@ impl<const DW: usize, const S: usize, const A: usize> AxiCopy<DW, S, A> {
             m_axi_arprot: Default::default(),
             m_axi_arvalid: Default::default(),
             m_axi_arready: Default::default(),
+            m_axi_rid: Default::default(),
             m_axi_rdata: Default::default(),
             m_axi_rresp: Default::default(),
             m_axi_rlast: Default::default(),
             m_axi_rvalid: Default::default(),
             m_axi_rready: Default::default(),
+            m_axi_awid: Default::default(),
             m_axi_awaddr: Default::default(),
             m_axi_awlen: Default::default(),
             m_axi_awsize: Default::default(),
@@ -116,6 +123,7 @@ impl<const DW: usize, const S: usize, const A: usize> AxiCopy<DW, S, A> {
             m_axi_wlast: Default::default(),
             m_axi_wvalid: Default::default(),
             m_axi_wready: Default::default(),
+            m_axi_bid: Default::default(),
             m_axi_bresp: Default::default(),
             m_axi_bvalid: Default::default(),
             m_axi_bready: Default::default(),
@@ -149,6 +157,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for AxiCopy<DW, S, A
         self.writer.in_last.next = self.reader.out_last.val();
         self.reader.out_ready.next = self.writer.in_ready.val();
         // The port: AR and R are the reader's, AW, W and B the writer's.
+        self.m_axi_arid.next = self.reader.m_axi_arid.val();
         self.m_axi_araddr.next = self.reader.m_axi_araddr.val();
         self.m_axi_arlen.next = self.reader.m_axi_arlen.val();
         self.m_axi_arsize.next = self.reader.m_axi_arsize.val();
@@ -157,11 +166,13 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for AxiCopy<DW, S, A
         self.m_axi_arprot.next = self.reader.m_axi_arprot.val();
         self.m_axi_arvalid.next = self.reader.m_axi_arvalid.val();
         self.reader.m_axi_arready.next = self.m_axi_arready.val();
+        self.reader.m_axi_rid.next = self.m_axi_rid.val();
         self.reader.m_axi_rdata.next = self.m_axi_rdata.val();
         self.reader.m_axi_rresp.next = self.m_axi_rresp.val();
         self.reader.m_axi_rlast.next = self.m_axi_rlast.val();
         self.reader.m_axi_rvalid.next = self.m_axi_rvalid.val();
         self.m_axi_rready.next = self.reader.m_axi_rready.val();
+        self.m_axi_awid.next = self.writer.m_axi_awid.val();
         self.m_axi_awaddr.next = self.writer.m_axi_awaddr.val();
         self.m_axi_awlen.next = self.writer.m_axi_awlen.val();
         self.m_axi_awsize.next = self.writer.m_axi_awsize.val();
@@ -175,6 +186,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for AxiCopy<DW, S, A
         self.m_axi_wlast.next = self.writer.m_axi_wlast.val();
         self.m_axi_wvalid.next = self.writer.m_axi_wvalid.val();
         self.writer.m_axi_wready.next = self.m_axi_wready.val();
+        self.writer.m_axi_bid.next = self.m_axi_bid.val();
         self.writer.m_axi_bresp.next = self.m_axi_bresp.val();
         self.writer.m_axi_bvalid.next = self.m_axi_bvalid.val();
         self.m_axi_bready.next = self.writer.m_axi_bready.val();

@@ -13,6 +13,7 @@
 //! clock-exact model.
 
 use super::beat_fifo::BeatFifo;
+use super::burst_rule::BurstRule;
 use super::{ADDRESS_BITS, MAX_OUTSTANDING};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -32,6 +33,8 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     pub start: Signal<In, Bit>,
     pub base: Signal<In, Bits<ADDRESS_BITS>>,
     pub beats: Signal<In, Bits<BEAT_BITS>>,
+    /// Always 0: one ID, so responses come in order.
+    pub m_axi_arid: Signal<Out, Bit>,
     pub m_axi_araddr: Signal<Out, Bits<ADDRESS_BITS>>,
     pub m_axi_arlen: Signal<Out, Bits<8>>,
     pub m_axi_arsize: Signal<Out, Bits<3>>,
@@ -40,6 +43,8 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     pub m_axi_arprot: Signal<Out, Bits<3>>,
     pub m_axi_arvalid: Signal<Out, Bit>,
     pub m_axi_arready: Signal<In, Bit>,
+    /// A beat with another ID than 0 is a fault (`error`).
+    pub m_axi_rid: Signal<In, Bit>,
     pub m_axi_rdata: Signal<In, Bits<DW>>,
     pub m_axi_rresp: Signal<In, Bits<2>>,
     pub m_axi_rlast: Signal<In, Bit>,
@@ -53,16 +58,17 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     pub out_last: Signal<Out, Bit>,
     /// From the clock after `start` until the last beat has left.
     pub busy: Signal<Out, Bit>,
-    /// A read response was not OKAY since `start` (sticky).
+    /// A read response was not OKAY, or not for ID 0, since `start`
+    /// (sticky).
     pub error: Signal<Out, Bit>,
     queue: BeatFifo<DW, A>,
-    /// `max_burst`, the bursts in flight allowed, the beats the queue
-    /// holds, `log2(DW / 8)` and the beats of a 4 KB page.
-    max_burst: Constant<Bits<BEAT_BITS>>,
+    /// The next burst's beats.
+    rule: BurstRule,
+    /// The bursts in flight allowed, the beats the queue holds and
+    /// `log2(DW / 8)`.
     outstanding: Constant<Bits<OUTSTANDING_BITS>>,
     capacity: Constant<Bits<BEAT_BITS>>,
     size: Constant<Bits<3>>,
-    page_beats: Constant<Bits<BEAT_BITS>>,
     running: DFF<Bit>,
     failed: DFF<Bit>,
     next_address: DFF<Bits<ADDRESS_BITS>>,
@@ -75,8 +81,6 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     ar_valid: DFF<Bit>,
     ar_address: DFF<Bits<ADDRESS_BITS>>,
     ar_length: DFF<Bits<8>>,
-    page_left: Signal<Local, Bits<BEAT_BITS>>,
-    burst: Signal<Local, Bits<BEAT_BITS>>,
     issue: Signal<Local, Bit>,
     burst_done: Signal<Local, Bit>,
     delivered: Signal<Local, Bit>,
@@ -88,6 +92,7 @@ impl<const DW: usize, const A: usize> crate::unit::Unit for BurstReader<DW, A> {
             self,
             units,
             queue,
+            rule,
             running,
             failed,
             next_address,
@@ -102,7 +107,7 @@ impl<const DW: usize, const A: usize> crate::unit::Unit for BurstReader<DW, A> {
     }
     fn settings(&self) -> Vec<(&'static str, String)> {
         vec![
-            ("max_burst", self.max_burst.val().index().to_string()),
+            ("max_burst", self.rule.max_burst().to_string()),
             ("outstanding", self.outstanding.val().index().to_string()),
         ]
     }
@@ -128,6 +133,7 @@ impl<const DW: usize, const A: usize> BurstReader<DW, A> {
             start: Default::default(),
             base: Default::default(),
             beats: Default::default(),
+            m_axi_arid: Default::default(),
             m_axi_araddr: Default::default(),
             m_axi_arlen: Default::default(),
             m_axi_arsize: Default::default(),
@@ -136,6 +142,7 @@ impl<const DW: usize, const A: usize> BurstReader<DW, A> {
             m_axi_arprot: Default::default(),
             m_axi_arvalid: Default::default(),
             m_axi_arready: Default::default(),
+            m_axi_rid: Default::default(),
             m_axi_rdata: Default::default(),
             m_axi_rresp: Default::default(),
             m_axi_rlast: Default::default(),
@@ -148,11 +155,10 @@ impl<const DW: usize, const A: usize> BurstReader<DW, A> {
             busy: Default::default(),
             error: Default::default(),
             queue: Default::default(),
-            max_burst: Constant::new((max_burst as u64).into()),
+            rule: BurstRule::new(beat_bytes, max_burst),
             outstanding: Constant::new((outstanding as u64).into()),
             capacity: Constant::new((BeatFifo::<DW, A>::CAPACITY as u64).into()),
             size: Constant::new((beat_bytes.trailing_zeros() as u64).into()),
-            page_beats: Constant::new((super::PAGE_BYTES / beat_bytes).into()),
             running: Default::default(),
             failed: Default::default(),
             next_address: Default::default(),
@@ -163,8 +169,6 @@ impl<const DW: usize, const A: usize> BurstReader<DW, A> {
             ar_valid: Default::default(),
             ar_address: Default::default(),
             ar_length: Default::default(),
-            page_left: Default::default(),
-            burst: Default::default(),
             issue: Default::default(),
             burst_done: Default::default(),
             delivered: Default::default(),
@@ -191,6 +195,7 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
         );
         clock!(self, clock, queue);
         self.queue.reset.next = self.reset.val();
+        self.m_axi_arid.next = false;
         self.m_axi_araddr.next = self.ar_address.q.val();
         self.m_axi_arlen.next = self.ar_length.q.val();
         self.m_axi_arsize.next = self.size.val();
@@ -204,7 +209,7 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
         // Every beat goes into the queue: the credits kept room for it.
         self.queue.push.next = self.m_axi_rvalid.val();
         self.queue.push_data.next = self.m_axi_rdata.val();
-        if self.m_axi_rvalid.val() & (self.m_axi_rresp.val() != 0) {
+        if self.m_axi_rvalid.val() & ((self.m_axi_rresp.val() != 0) | self.m_axi_rid.val()) {
             self.failed.d.next = true;
         }
         self.burst_done.next = self.m_axi_rvalid.val() & self.m_axi_rlast.val();
@@ -221,27 +226,20 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
         }
         // The next burst: at most max_burst beats, to the page's end, and
         // what is left.
-        self.page_left.next = self.page_beats.val()
-            - ((self.next_address.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
-        self.burst.next = self.max_burst.val();
-        if self.page_left.val() < self.burst.val() {
-            self.burst.next = self.page_left.val();
-        }
-        if self.to_request.q.val() < self.burst.val() {
-            self.burst.next = self.to_request.q.val();
-        }
+        self.rule.address.next = self.next_address.q.val();
+        self.rule.left.next = self.to_request.q.val();
         self.issue.next = self.running.q.val()
             & !self.ar_valid.q.val()
             & (self.to_request.q.val() != 0)
             & (self.in_flight.q.val() < self.outstanding.val())
-            & (self.committed.q.val() + self.burst.val() <= self.capacity.val());
+            & (self.committed.q.val() + self.rule.beats.val() <= self.capacity.val());
         if self.issue.val() {
             self.ar_valid.d.next = true;
             self.ar_address.d.next = self.next_address.q.val();
-            self.ar_length.d.next = bit_cast::<8, BEAT_BITS>(self.burst.val() - 1);
+            self.ar_length.d.next = bit_cast::<8, BEAT_BITS>(self.rule.beats.val() - 1);
             self.next_address.d.next =
-                self.next_address.q.val() + (self.burst.val() << self.size.val());
-            self.to_request.d.next = self.to_request.q.val() - self.burst.val();
+                self.next_address.q.val() + (self.rule.beats.val() << self.size.val());
+            self.to_request.d.next = self.to_request.q.val() - self.rule.beats.val();
         }
         if self.issue.val() & !self.burst_done.val() {
             self.in_flight.d.next = self.in_flight.q.val() + 1;
@@ -249,9 +247,9 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
             self.in_flight.d.next = self.in_flight.q.val() - 1;
         }
         if self.issue.val() & self.delivered.val() {
-            self.committed.d.next = self.committed.q.val() + self.burst.val() - 1;
+            self.committed.d.next = self.committed.q.val() + self.rule.beats.val() - 1;
         } else if self.issue.val() {
-            self.committed.d.next = self.committed.q.val() + self.burst.val();
+            self.committed.d.next = self.committed.q.val() + self.rule.beats.val();
         } else if self.delivered.val() {
             self.committed.d.next = self.committed.q.val() - 1;
         }

@@ -17,6 +17,7 @@
 
 use super::beat_fifo::BeatFifo;
 use super::burst_reader::{BEAT_BITS, OUTSTANDING_BITS};
+use super::burst_rule::BurstRule;
 use super::ADDRESS_BITS;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -36,6 +37,8 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
     pub in_last: Signal<In, Bit>,
     /// The stream has ended (after its last beat, or with none at all).
     pub flush: Signal<In, Bit>,
+    /// Always 0: one ID, so responses come in order.
+    pub m_axi_awid: Signal<Out, Bit>,
     pub m_axi_awaddr: Signal<Out, Bits<ADDRESS_BITS>>,
     pub m_axi_awlen: Signal<Out, Bits<8>>,
     pub m_axi_awsize: Signal<Out, Bits<3>>,
@@ -49,21 +52,26 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
     pub m_axi_wlast: Signal<Out, Bit>,
     pub m_axi_wvalid: Signal<Out, Bit>,
     pub m_axi_wready: Signal<In, Bit>,
+    /// A response with another ID than 0 is a fault (`error`).
+    pub m_axi_bid: Signal<In, Bit>,
     pub m_axi_bresp: Signal<In, Bits<2>>,
     pub m_axi_bvalid: Signal<In, Bit>,
     pub m_axi_bready: Signal<Out, Bit>,
     /// From the clock after `start` until the last write response.
     pub busy: Signal<Out, Bit>,
-    /// A write response was not OKAY since `start` (sticky).
+    /// A write response was not OKAY, or not for ID 0, since `start`
+    /// (sticky).
     pub error: Signal<Out, Bit>,
     /// Beats taken since `start`.
     pub written: Signal<Out, Bits<BEAT_BITS>>,
     queue: BeatFifo<DW, A>,
-    max_burst: Constant<Bits<BEAT_BITS>>,
+    /// The longest burst at the AW side's address, and the W side's next
+    /// burst.
+    aw_rule: BurstRule,
+    w_rule: BurstRule,
     outstanding: Constant<Bits<OUTSTANDING_BITS>>,
     capacity: Constant<Bits<BEAT_BITS>>,
     size: Constant<Bits<3>>,
-    page_beats: Constant<Bits<BEAT_BITS>>,
     strobes: Constant<Bits<S>>,
     beat_bytes: Constant<Bits<ADDRESS_BITS>>,
     running: DFF<Bit>,
@@ -83,12 +91,7 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
     aw_length: DFF<Bits<8>>,
     taken: Signal<Local, Bit>,
     pending: Signal<Local, Bits<BEAT_BITS>>,
-    aw_full: Signal<Local, Bits<BEAT_BITS>>,
-    aw_page: Signal<Local, Bits<BEAT_BITS>>,
-    aw_burst: Signal<Local, Bits<BEAT_BITS>>,
     issue: Signal<Local, Bit>,
-    w_page: Signal<Local, Bits<BEAT_BITS>>,
-    w_burst: Signal<Local, Bits<BEAT_BITS>>,
     beat_out: Signal<Local, Bit>,
     answered: Signal<Local, Bit>,
 }
@@ -96,13 +99,13 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
 impl<const DW: usize, const S: usize, const A: usize> crate::unit::Unit for BurstWriter<DW, S, A> {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
-            self, units, queue, running, failed, ended, received, issued, sent, aw_next, w_address,
-            w_left, unanswered, aw_valid, aw_address, aw_length
+            self, units, queue, aw_rule, w_rule, running, failed, ended, received, issued, sent,
+            aw_next, w_address, w_left, unanswered, aw_valid, aw_address, aw_length
         );
     }
     fn settings(&self) -> Vec<(&'static str, String)> {
         vec![
-            ("max_burst", self.max_burst.val().index().to_string()),
+            ("max_burst", self.aw_rule.max_burst().to_string()),
             ("outstanding", self.outstanding.val().index().to_string()),
         ]
     }
@@ -133,6 +136,7 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             in_data: Default::default(),
             in_last: Default::default(),
             flush: Default::default(),
+            m_axi_awid: Default::default(),
             m_axi_awaddr: Default::default(),
             m_axi_awlen: Default::default(),
             m_axi_awsize: Default::default(),
@@ -146,6 +150,7 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             m_axi_wlast: Default::default(),
             m_axi_wvalid: Default::default(),
             m_axi_wready: Default::default(),
+            m_axi_bid: Default::default(),
             m_axi_bresp: Default::default(),
             m_axi_bvalid: Default::default(),
             m_axi_bready: Default::default(),
@@ -153,11 +158,11 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             error: Default::default(),
             written: Default::default(),
             queue: Default::default(),
-            max_burst: Constant::new((max_burst as u64).into()),
+            aw_rule: BurstRule::new(beat_bytes, max_burst),
+            w_rule: BurstRule::new(beat_bytes, max_burst),
             outstanding: Constant::new((outstanding as u64).into()),
             capacity: Constant::new((BeatFifo::<DW, A>::CAPACITY as u64).into()),
             size: Constant::new((beat_bytes.trailing_zeros() as u64).into()),
-            page_beats: Constant::new((super::PAGE_BYTES / beat_bytes).into()),
             strobes: Constant::new(!Bits::<S>::default()),
             beat_bytes: Constant::new(beat_bytes.into()),
             running: Default::default(),
@@ -175,12 +180,7 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             aw_length: Default::default(),
             taken: Default::default(),
             pending: Default::default(),
-            aw_full: Default::default(),
-            aw_page: Default::default(),
-            aw_burst: Default::default(),
             issue: Default::default(),
-            w_page: Default::default(),
-            w_burst: Default::default(),
             beat_out: Default::default(),
             answered: Default::default(),
         }
@@ -213,6 +213,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.ended.d.next = true;
         }
         // AW: a full burst once the queue holds it, the rest at the end.
+        self.m_axi_awid.next = false;
         self.m_axi_awaddr.next = self.aw_address.q.val();
         self.m_axi_awlen.next = self.aw_length.q.val();
         self.m_axi_awsize.next = self.size.val();
@@ -224,45 +225,39 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.aw_valid.d.next = false;
         }
         self.pending.next = self.received.q.val() - self.issued.q.val();
-        self.aw_page.next = self.page_beats.val()
-            - ((self.aw_next.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
-        self.aw_full.next = self.max_burst.val();
-        if self.aw_page.val() < self.aw_full.val() {
-            self.aw_full.next = self.aw_page.val();
-        }
-        self.aw_burst.next = self.aw_full.val();
-        if self.pending.val() < self.aw_full.val() {
-            self.aw_burst.next = self.pending.val();
-        }
+        self.aw_rule.address.next = self.aw_next.q.val();
+        self.aw_rule.left.next = 0xFFFF_FFFF_u64.into();
         self.issue.next = self.running.q.val()
             & !self.aw_valid.q.val()
             & (self.unanswered.q.val() < self.outstanding.val())
-            & ((self.pending.val() >= self.aw_full.val())
+            & ((self.pending.val() >= self.aw_rule.beats.val())
                 | (self.ended.q.val() & (self.pending.val() != 0)));
         if self.issue.val() {
             self.aw_valid.d.next = true;
             self.aw_address.d.next = self.aw_next.q.val();
-            self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.aw_burst.val() - 1);
-            self.aw_next.d.next = self.aw_next.q.val() + (self.aw_burst.val() << self.size.val());
-            self.issued.d.next = self.issued.q.val() + self.aw_burst.val();
+            // A full burst, or what is left at the end.
+            if self.pending.val() >= self.aw_rule.beats.val() {
+                self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.aw_rule.beats.val() - 1);
+                self.aw_next.d.next =
+                    self.aw_next.q.val() + (self.aw_rule.beats.val() << self.size.val());
+                self.issued.d.next = self.issued.q.val() + self.aw_rule.beats.val();
+            } else {
+                self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.pending.val() - 1);
+                self.aw_next.d.next =
+                    self.aw_next.q.val() + (self.pending.val() << self.size.val());
+                self.issued.d.next = self.issued.q.val() + self.pending.val();
+            }
         }
         // W: the beats of issued bursts, cut by the same rule.
-        self.w_page.next = self.page_beats.val()
-            - ((self.w_address.q.val() >> self.size.val()) & (self.page_beats.val() - 1));
-        self.w_burst.next = self.max_burst.val();
-        if self.w_page.val() < self.w_burst.val() {
-            self.w_burst.next = self.w_page.val();
-        }
-        if self.issued.q.val() - self.sent.q.val() < self.w_burst.val() {
-            self.w_burst.next = self.issued.q.val() - self.sent.q.val();
-        }
+        self.w_rule.address.next = self.w_address.q.val();
+        self.w_rule.left.next = self.issued.q.val() - self.sent.q.val();
         self.m_axi_wdata.next = self.queue.out_data.val();
         self.m_axi_wstrb.next = self.strobes.val();
         self.m_axi_wvalid.next =
             self.queue.out_valid.val() & (self.sent.q.val() != self.issued.q.val());
         self.m_axi_wlast.next = self.w_left.q.val() == 1;
         if self.w_left.q.val() == 0 {
-            self.m_axi_wlast.next = self.w_burst.val() == 1;
+            self.m_axi_wlast.next = self.w_rule.beats.val() == 1;
         }
         self.beat_out.next = self.m_axi_wvalid.val() & self.m_axi_wready.val();
         self.queue.pop.next = self.beat_out.val();
@@ -270,7 +265,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.sent.d.next = self.sent.q.val() + 1;
             self.w_address.d.next = self.w_address.q.val() + self.beat_bytes.val();
             if self.w_left.q.val() == 0 {
-                self.w_left.d.next = self.w_burst.val() - 1;
+                self.w_left.d.next = self.w_rule.beats.val() - 1;
             } else {
                 self.w_left.d.next = self.w_left.q.val() - 1;
             }
@@ -278,7 +273,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
         // B: every response taken at once.
         self.m_axi_bready.next = true;
         self.answered.next = self.m_axi_bvalid.val();
-        if self.m_axi_bvalid.val() & (self.m_axi_bresp.val() != 0) {
+        if self.m_axi_bvalid.val() & ((self.m_axi_bresp.val() != 0) | self.m_axi_bid.val()) {
             self.failed.d.next = true;
         }
         if self.issue.val() & !self.answered.val() {

@@ -22,9 +22,9 @@
 //! `arready`; `rdata`, `rresp`, `rlast`, `rvalid`, `rready`; `awaddr`,
 //! `awlen`, `awsize`, `awburst`, `awcache`, `awprot`, `awvalid`,
 //! `awready`; `wdata`, `wstrb`, `wlast`, `wvalid`, `wready`; `bresp`,
-//! `bvalid`, `bready`. IDs are left out (every transaction has ID 0, so
-//! responses come in order, which the units rely on); an interconnect
-//! ties a missing ID to 0.
+//! `bvalid`, `bready`, and one-bit IDs `arid`, `rid`, `awid`, `bid`: every
+//! request has ID 0, so responses come in order, which the units rely on;
+//! a response for another ID sets `error`.
 //!
 //! * The data width `DW` is a parameter: 64, 128, 256 or 512 bits.
 //! * Addresses are 32 bits of bytes; every address the units issue is
@@ -45,6 +45,7 @@
 pub mod axi_copy;
 pub mod beat_fifo;
 pub mod burst_reader;
+pub mod burst_rule;
 pub mod burst_writer;
 pub mod memory_model;
 pub mod transfer_machine;

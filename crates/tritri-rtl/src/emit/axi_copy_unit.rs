@@ -90,6 +90,7 @@ pub fn axi_copy_unit(config: &AxiCopyConfig) -> UnitDescription {
 /// [`crate::axi`]).
 pub fn axi_manager_ports() -> Vec<(&'static str, &'static str)> {
     vec![
+        ("m_axi_arid", "AXI4 AR: 0 (one ID: responses in order)."),
         ("m_axi_araddr", "AXI4 AR: byte address of a read burst."),
         ("m_axi_arlen", "AXI4 AR: beats of the burst, minus one."),
         (
@@ -104,6 +105,7 @@ pub fn axi_manager_ports() -> Vec<(&'static str, &'static str)> {
         ("m_axi_arprot", "AXI4 AR: 000."),
         ("m_axi_arvalid", "AXI4 AR: a read burst is requested."),
         ("m_axi_arready", "AXI4 AR: the memory takes the request."),
+        ("m_axi_rid", "AXI4 R: the beat's ID; not 0 sets `error`."),
         (
             "m_axi_rdata",
             "AXI4 R: a beat, lowest address in the lowest byte.",
@@ -118,6 +120,7 @@ pub fn axi_manager_ports() -> Vec<(&'static str, &'static str)> {
             "m_axi_rready",
             "AXI4 R: always high (the reader's queue has room for every beat it asked for).",
         ),
+        ("m_axi_awid", "AXI4 AW: 0 (one ID: responses in order)."),
         ("m_axi_awaddr", "AXI4 AW: byte address of a write burst."),
         ("m_axi_awlen", "AXI4 AW: beats of the burst, minus one."),
         (
@@ -143,6 +146,10 @@ pub fn axi_manager_ports() -> Vec<(&'static str, &'static str)> {
             "AXI4 W: a beat is offered (only beats of requested bursts).",
         ),
         ("m_axi_wready", "AXI4 W: the memory takes the beat."),
+        (
+            "m_axi_bid",
+            "AXI4 B: the response's ID; not 0 sets `error`.",
+        ),
         (
             "m_axi_bresp",
             "AXI4 B: the burst's response; not OKAY sets `error`.",
