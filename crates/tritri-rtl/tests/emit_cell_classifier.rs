@@ -1,6 +1,6 @@
 //! The emitted octree classifier step, its setup, the binning unit, the
 //! broad-phase top, the owner filter, the plane traversal, the triangle voxelizer and the
-//! octree builder:
+//! octree builder, and the AXI4 port's copy unit:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
@@ -8,6 +8,8 @@
 //! tests/binning_unit.rs, tests/owner_filter.rs, tests/plane_traversal.rs,
 //! tests/triangle_voxelizer.rs and tests/octree_builder.rs.)
 
+use tritri_rtl::axi::DATA_WIDTHS;
+use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
@@ -129,6 +131,18 @@ fn the_patch_tessellator_is_lint_clean() {
     for (w, k) in TESSELLATOR_CONFIGURATIONS {
         check(w, emit_patch_tessellator(w, k).unwrap());
         check(w, emit_patch_triangles(w, k).unwrap());
+    }
+}
+
+#[test]
+fn the_axi_copy_unit_is_lint_clean_at_every_data_width() {
+    for &data_bits in &DATA_WIDTHS {
+        let config = AxiCopyConfig {
+            data_bits,
+            max_burst: 256,
+            outstanding: 8,
+        };
+        check(data_bits, emit_axi_copy(&config).unwrap());
     }
 }
 

@@ -72,6 +72,8 @@ pub struct AxiCopy<const DW: usize, const S: usize, const A: usize> {
     writer: BurstWriter<DW, S, A>,
     active: DFF<Bit>,
     finished: DFF<Bit>,
+    /// The writer's count of beats, not needed (the copy knows its beats).
+    unused_written: Signal<Local, Bit>,
 }
 
 impl<const DW: usize, const S: usize, const A: usize> crate::unit::Unit for AxiCopy<DW, S, A> {
@@ -131,6 +133,7 @@ impl<const DW: usize, const S: usize, const A: usize> AxiCopy<DW, S, A> {
             writer: BurstWriter::new(max_burst, outstanding),
             active: Default::default(),
             finished: Default::default(),
+            unused_written: Default::default(),
         }
     }
 
@@ -190,6 +193,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for AxiCopy<DW, S, A
         self.writer.m_axi_bresp.next = self.m_axi_bresp.val();
         self.writer.m_axi_bvalid.next = self.m_axi_bvalid.val();
         self.m_axi_bready.next = self.writer.m_axi_bready.val();
+        self.unused_written.next = self.writer.written.val().any();
         self.busy.next = self.active.q.val();
         self.done.next = self.finished.q.val();
         self.error.next = self.reader.error.val() | self.writer.error.val();

@@ -95,6 +95,17 @@ impl<const DW: usize, const A: usize> Default for BeatFifo<DW, A> {
     }
 }
 
+impl<const DW: usize, const A: usize> BeatFifo<DW, A> {
+    /// The queue with its words in distributed RAM (LUTs): for a few
+    /// words, where a block RAM would be wasted.
+    pub fn in_distributed_ram() -> Self {
+        BeatFifo {
+            memory: SimpleDualPortRam::new(1 << A),
+            ..Default::default()
+        }
+    }
+}
+
 impl<const DW: usize, const A: usize> Logic for BeatFifo<DW, A> {
     #[hdl_gen]
     fn update(&mut self) {

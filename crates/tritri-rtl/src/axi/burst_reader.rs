@@ -12,8 +12,8 @@
 //! `t + 2` ([`super::beat_fifo`]). [`super::transfer_machine`] is the
 //! clock-exact model.
 
-use super::beat_fifo::BeatFifo;
-use super::burst_rule::BurstRule;
+use super::beat_fifo::{BeatFifo, COUNT_BITS};
+use super::burst_rule::{BurstRule, RULE_BITS};
 use super::{ADDRESS_BITS, MAX_OUTSTANDING};
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -23,6 +23,8 @@ pub const BEAT_BITS: usize = 32;
 /// Bits of the count of bursts in flight.
 pub const OUTSTANDING_BITS: usize = 4;
 const _: () = assert!(MAX_OUTSTANDING < 1 << OUTSTANDING_BITS);
+// The credits add the rule's burst to the queue's count.
+const _: () = assert!(RULE_BITS == COUNT_BITS);
 
 #[derive(LogicBlock)]
 pub struct BurstReader<const DW: usize, const A: usize> {
@@ -67,7 +69,7 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     /// The bursts in flight allowed, the beats the queue holds and
     /// `log2(DW / 8)`.
     outstanding: Constant<Bits<OUTSTANDING_BITS>>,
-    capacity: Constant<Bits<BEAT_BITS>>,
+    capacity: Constant<Bits<COUNT_BITS>>,
     size: Constant<Bits<3>>,
     running: DFF<Bit>,
     failed: DFF<Bit>,
@@ -77,11 +79,19 @@ pub struct BurstReader<const DW: usize, const A: usize> {
     to_deliver: DFF<Bits<BEAT_BITS>>,
     in_flight: DFF<Bits<OUTSTANDING_BITS>>,
     /// Beats requested and not yet delivered: the queue's room they hold.
-    committed: DFF<Bits<BEAT_BITS>>,
+    committed: DFF<Bits<COUNT_BITS>>,
     ar_valid: DFF<Bit>,
     ar_address: DFF<Bits<ADDRESS_BITS>>,
     ar_length: DFF<Bits<8>>,
+    /// The next burst's beats, a clock behind the registers it is computed
+    /// from (the rule's minimum is too long a path to also decide the
+    /// issue in the same clock), and whether it is up to date: not in the
+    /// clock after a start or an issue, which change those registers.
+    burst_q: DFF<Bits<COUNT_BITS>>,
+    burst_ok: DFF<Bit>,
     issue: Signal<Local, Bit>,
+    /// The queue's count, not needed here (the credits are `committed`).
+    unused_count: Signal<Local, Bit>,
     burst_done: Signal<Local, Bit>,
     delivered: Signal<Local, Bit>,
 }
@@ -102,7 +112,9 @@ impl<const DW: usize, const A: usize> crate::unit::Unit for BurstReader<DW, A> {
             committed,
             ar_valid,
             ar_address,
-            ar_length
+            ar_length,
+            burst_q,
+            burst_ok
         );
     }
     fn settings(&self) -> Vec<(&'static str, String)> {
@@ -169,7 +181,10 @@ impl<const DW: usize, const A: usize> BurstReader<DW, A> {
             ar_valid: Default::default(),
             ar_address: Default::default(),
             ar_length: Default::default(),
+            burst_q: Default::default(),
+            burst_ok: Default::default(),
             issue: Default::default(),
+            unused_count: Default::default(),
             burst_done: Default::default(),
             delivered: Default::default(),
         }
@@ -191,10 +206,13 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
             committed,
             ar_valid,
             ar_address,
-            ar_length
+            ar_length,
+            burst_q,
+            burst_ok
         );
         clock!(self, clock, queue);
         self.queue.reset.next = self.reset.val();
+        self.unused_count.next = self.queue.count.val().any();
         self.m_axi_arid.next = false;
         self.m_axi_araddr.next = self.ar_address.q.val();
         self.m_axi_arlen.next = self.ar_length.q.val();
@@ -226,20 +244,25 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
         }
         // The next burst: at most max_burst beats, to the page's end, and
         // what is left.
-        self.rule.address.next = self.next_address.q.val();
+        self.rule.address.next = bit_cast::<RULE_BITS, ADDRESS_BITS>(self.next_address.q.val());
         self.rule.left.next = self.to_request.q.val();
+        self.burst_q.d.next = self.rule.beats.val();
+        self.burst_ok.d.next = true;
         self.issue.next = self.running.q.val()
             & !self.ar_valid.q.val()
+            & self.burst_ok.q.val()
             & (self.to_request.q.val() != 0)
             & (self.in_flight.q.val() < self.outstanding.val())
-            & (self.committed.q.val() + self.rule.beats.val() <= self.capacity.val());
+            & (self.committed.q.val() + self.burst_q.q.val() <= self.capacity.val());
         if self.issue.val() {
+            self.burst_ok.d.next = false;
             self.ar_valid.d.next = true;
             self.ar_address.d.next = self.next_address.q.val();
-            self.ar_length.d.next = bit_cast::<8, BEAT_BITS>(self.rule.beats.val() - 1);
-            self.next_address.d.next =
-                self.next_address.q.val() + (self.rule.beats.val() << self.size.val());
-            self.to_request.d.next = self.to_request.q.val() - self.rule.beats.val();
+            self.ar_length.d.next = bit_cast::<8, COUNT_BITS>(self.burst_q.q.val() - 1);
+            self.next_address.d.next = self.next_address.q.val()
+                + (bit_cast::<BEAT_BITS, COUNT_BITS>(self.burst_q.q.val()) << self.size.val());
+            self.to_request.d.next =
+                self.to_request.q.val() - bit_cast::<BEAT_BITS, COUNT_BITS>(self.burst_q.q.val());
         }
         if self.issue.val() & !self.burst_done.val() {
             self.in_flight.d.next = self.in_flight.q.val() + 1;
@@ -247,9 +270,9 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
             self.in_flight.d.next = self.in_flight.q.val() - 1;
         }
         if self.issue.val() & self.delivered.val() {
-            self.committed.d.next = self.committed.q.val() + self.rule.beats.val() - 1;
+            self.committed.d.next = self.committed.q.val() + self.burst_q.q.val() - 1;
         } else if self.issue.val() {
-            self.committed.d.next = self.committed.q.val() + self.rule.beats.val();
+            self.committed.d.next = self.committed.q.val() + self.burst_q.q.val();
         } else if self.delivered.val() {
             self.committed.d.next = self.committed.q.val() - 1;
         }
@@ -257,6 +280,7 @@ impl<const DW: usize, const A: usize> Logic for BurstReader<DW, A> {
             self.running.d.next = false;
         }
         if self.start.val() & !self.running.q.val() {
+            self.burst_ok.d.next = false;
             self.running.d.next = true;
             self.failed.d.next = false;
             self.next_address.d.next = self.base.val();

@@ -6,19 +6,28 @@
 //! refuses to order, UNOPTFLAT).
 
 use super::burst_reader::BEAT_BITS;
-use super::ADDRESS_BITS;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
 pub struct BurstRule {
-    pub address: Signal<In, Bits<ADDRESS_BITS>>,
+    /// The low bits of the burst's address (a page is 4 KB).
+    pub address: Signal<In, Bits<RULE_BITS>>,
     pub left: Signal<In, Bits<BEAT_BITS>>,
-    pub beats: Signal<Out, Bits<BEAT_BITS>>,
-    max_burst: Constant<Bits<BEAT_BITS>>,
+    /// At most 256: [`RULE_BITS`] wide.
+    pub beats: Signal<Out, Bits<RULE_BITS>>,
+    max_burst: Constant<Bits<RULE_BITS>>,
     size: Constant<Bits<3>>,
-    page_beats: Constant<Bits<BEAT_BITS>>,
-    page_left: Signal<Local, Bits<BEAT_BITS>>,
+    page_beats: Constant<Bits<RULE_BITS>>,
+    page_mask: Constant<Bits<RULE_BITS>>,
+    index: Signal<Local, Bits<RULE_BITS>>,
+    page_left: Signal<Local, Bits<RULE_BITS>>,
+    short: Signal<Local, Bits<RULE_BITS>>,
+    left_short: Signal<Local, Bits<RULE_BITS>>,
 }
+
+/// Bits the rule computes in: a page holds at most 512 beats (64-bit
+/// beats), a burst at most 256, so 16 bits leave the carry chains short.
+pub const RULE_BITS: usize = 16;
 
 impl crate::unit::Unit for BurstRule {}
 
@@ -32,7 +41,11 @@ impl BurstRule {
             max_burst: Constant::new((max_burst as u64).into()),
             size: Constant::new(u64::from(beat_bytes.trailing_zeros()).into()),
             page_beats: Constant::new((super::PAGE_BYTES / beat_bytes).into()),
+            page_mask: Constant::new((super::PAGE_BYTES / beat_bytes - 1).into()),
+            index: Default::default(),
             page_left: Default::default(),
+            short: Default::default(),
+            left_short: Default::default(),
         }
     }
 }
@@ -47,14 +60,17 @@ impl BurstRule {
 impl Logic for BurstRule {
     #[hdl_gen]
     fn update(&mut self) {
-        self.page_left.next = self.page_beats.val()
-            - ((self.address.val() >> self.size.val()) & (self.page_beats.val() - 1));
-        self.beats.next = self.max_burst.val();
-        if self.page_left.val() < self.beats.val() {
-            self.beats.next = self.page_left.val();
+        // The beat's index in its page.
+        self.index.next = (self.address.val() >> self.size.val()) & self.page_mask.val();
+        self.page_left.next = self.page_beats.val() - self.index.val();
+        self.short.next = self.max_burst.val();
+        if self.page_left.val() < self.short.val() {
+            self.short.next = self.page_left.val();
         }
-        if self.left.val() < self.beats.val() {
-            self.beats.next = self.left.val();
+        self.left_short.next = bit_cast::<RULE_BITS, BEAT_BITS>(self.left.val());
+        if ((self.left.val() >> 16) == 0) & (self.left_short.val() < self.short.val()) {
+            self.short.next = self.left_short.val();
         }
+        self.beats.next = self.short.val();
     }
 }

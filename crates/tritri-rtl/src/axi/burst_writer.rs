@@ -10,15 +10,21 @@
 //! need not be known at `start`. Every byte of a beat is written (`wstrb`
 //! all ones): a region is a whole number of beats.
 //!
-//! The W channel cuts the beats into bursts by the same rule as the AW
-//! channel, from its own address: every burst but the last is as long as
-//! the rule allows, and the last is what was left when the stream ended.
+//! The W channel takes each burst's length from a small queue the AW side
+//! writes as it issues the burst, so `wlast` is a register compare.
 //! `busy` falls when every burst's response has come back.
 
 use super::beat_fifo::BeatFifo;
 use super::burst_reader::{BEAT_BITS, OUTSTANDING_BITS};
-use super::burst_rule::BurstRule;
+use super::burst_rule::{BurstRule, RULE_BITS};
 use super::ADDRESS_BITS;
+
+/// Bits of a burst length (1 to 256 beats).
+pub const LENGTH_BITS: usize = 9;
+/// Address bits of the queue of burst lengths: 16 words, more than the
+/// bursts that can be in flight.
+const LENGTH_QUEUE_ADDRESS_BITS: usize = 4;
+const _: () = assert!(super::MAX_OUTSTANDING < 1 << LENGTH_QUEUE_ADDRESS_BITS);
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
 
@@ -65,15 +71,14 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
     /// Beats taken since `start`.
     pub written: Signal<Out, Bits<BEAT_BITS>>,
     queue: BeatFifo<DW, A>,
-    /// The longest burst at the AW side's address, and the W side's next
-    /// burst.
+    /// The longest burst at the AW side's address.
     aw_rule: BurstRule,
-    w_rule: BurstRule,
+    /// The length of each burst issued on AW and not yet begun on W.
+    lengths: BeatFifo<LENGTH_BITS, LENGTH_QUEUE_ADDRESS_BITS>,
     outstanding: Constant<Bits<OUTSTANDING_BITS>>,
     capacity: Constant<Bits<BEAT_BITS>>,
     size: Constant<Bits<3>>,
     strobes: Constant<Bits<S>>,
-    beat_bytes: Constant<Bits<ADDRESS_BITS>>,
     running: DFF<Bit>,
     failed: DFF<Bit>,
     ended: DFF<Bit>,
@@ -82,16 +87,22 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
     issued: DFF<Bits<BEAT_BITS>>,
     sent: DFF<Bits<BEAT_BITS>>,
     aw_next: DFF<Bits<ADDRESS_BITS>>,
-    w_address: DFF<Bits<ADDRESS_BITS>>,
     /// Beats left in the W burst under way (0 between bursts).
-    w_left: DFF<Bits<BEAT_BITS>>,
+    w_left: DFF<Bits<LENGTH_BITS>>,
     unanswered: DFF<Bits<OUTSTANDING_BITS>>,
     aw_valid: DFF<Bit>,
     aw_address: DFF<Bits<ADDRESS_BITS>>,
     aw_length: DFF<Bits<8>>,
+    /// The longest burst at `aw_next`, a clock behind it, and whether it
+    /// is up to date (not in the clock after a start or an issue).
+    aw_full: DFF<Bits<BEAT_BITS>>,
+    aw_full_ok: DFF<Bit>,
     taken: Signal<Local, Bit>,
     pending: Signal<Local, Bits<BEAT_BITS>>,
     issue: Signal<Local, Bit>,
+    /// The length queue's count, not needed (it never holds more than the
+    /// bursts in flight).
+    unused_count: Signal<Local, Bit>,
     beat_out: Signal<Local, Bit>,
     answered: Signal<Local, Bit>,
 }
@@ -99,8 +110,8 @@ pub struct BurstWriter<const DW: usize, const S: usize, const A: usize> {
 impl<const DW: usize, const S: usize, const A: usize> crate::unit::Unit for BurstWriter<DW, S, A> {
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(
-            self, units, queue, aw_rule, w_rule, running, failed, ended, received, issued, sent,
-            aw_next, w_address, w_left, unanswered, aw_valid, aw_address, aw_length
+            self, units, queue, aw_rule, lengths, running, failed, ended, received, issued, sent,
+            aw_next, w_left, unanswered, aw_valid, aw_address, aw_length, aw_full, aw_full_ok
         );
     }
     fn settings(&self) -> Vec<(&'static str, String)> {
@@ -159,12 +170,11 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             written: Default::default(),
             queue: Default::default(),
             aw_rule: BurstRule::new(beat_bytes, max_burst),
-            w_rule: BurstRule::new(beat_bytes, max_burst),
+            lengths: BeatFifo::in_distributed_ram(),
             outstanding: Constant::new((outstanding as u64).into()),
             capacity: Constant::new((BeatFifo::<DW, A>::CAPACITY as u64).into()),
             size: Constant::new((beat_bytes.trailing_zeros() as u64).into()),
             strobes: Constant::new(!Bits::<S>::default()),
-            beat_bytes: Constant::new(beat_bytes.into()),
             running: Default::default(),
             failed: Default::default(),
             ended: Default::default(),
@@ -172,15 +182,17 @@ impl<const DW: usize, const S: usize, const A: usize> BurstWriter<DW, S, A> {
             issued: Default::default(),
             sent: Default::default(),
             aw_next: Default::default(),
-            w_address: Default::default(),
             w_left: Default::default(),
             unanswered: Default::default(),
             aw_valid: Default::default(),
             aw_address: Default::default(),
             aw_length: Default::default(),
+            aw_full: Default::default(),
+            aw_full_ok: Default::default(),
             taken: Default::default(),
             pending: Default::default(),
             issue: Default::default(),
+            unused_count: Default::default(),
             beat_out: Default::default(),
             answered: Default::default(),
         }
@@ -191,10 +203,10 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, running, failed, ended, received, issued, sent, aw_next, w_address,
-            w_left, unanswered, aw_valid, aw_address, aw_length
+            self, clock, running, failed, ended, received, issued, sent, aw_next, w_left,
+            unanswered, aw_valid, aw_address, aw_length, aw_full, aw_full_ok
         );
-        clock!(self, clock, queue);
+        clock!(self, clock, queue, lengths);
         self.queue.reset.next = self.reset.val();
         self.busy.next = self.running.q.val();
         self.error.next = self.failed.q.val();
@@ -225,47 +237,57 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.aw_valid.d.next = false;
         }
         self.pending.next = self.received.q.val() - self.issued.q.val();
-        self.aw_rule.address.next = self.aw_next.q.val();
+        self.aw_rule.address.next = bit_cast::<RULE_BITS, ADDRESS_BITS>(self.aw_next.q.val());
         self.aw_rule.left.next = 0xFFFF_FFFF_u64.into();
+        self.aw_full.d.next = bit_cast::<BEAT_BITS, RULE_BITS>(self.aw_rule.beats.val());
+        self.aw_full_ok.d.next = true;
         self.issue.next = self.running.q.val()
             & !self.aw_valid.q.val()
+            & self.aw_full_ok.q.val()
             & (self.unanswered.q.val() < self.outstanding.val())
-            & ((self.pending.val() >= self.aw_rule.beats.val())
+            & ((self.pending.val() >= self.aw_full.q.val())
                 | (self.ended.q.val() & (self.pending.val() != 0)));
+        self.lengths.push_data.next = 0.into();
         if self.issue.val() {
+            self.aw_full_ok.d.next = false;
             self.aw_valid.d.next = true;
             self.aw_address.d.next = self.aw_next.q.val();
             // A full burst, or what is left at the end.
-            if self.pending.val() >= self.aw_rule.beats.val() {
-                self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.aw_rule.beats.val() - 1);
+            if self.pending.val() >= self.aw_full.q.val() {
+                self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.aw_full.q.val() - 1);
+                self.lengths.push_data.next =
+                    bit_cast::<LENGTH_BITS, BEAT_BITS>(self.aw_full.q.val());
                 self.aw_next.d.next =
-                    self.aw_next.q.val() + (self.aw_rule.beats.val() << self.size.val());
-                self.issued.d.next = self.issued.q.val() + self.aw_rule.beats.val();
+                    self.aw_next.q.val() + (self.aw_full.q.val() << self.size.val());
+                self.issued.d.next = self.issued.q.val() + self.aw_full.q.val();
             } else {
                 self.aw_length.d.next = bit_cast::<8, BEAT_BITS>(self.pending.val() - 1);
+                self.lengths.push_data.next =
+                    bit_cast::<LENGTH_BITS, BEAT_BITS>(self.pending.val());
                 self.aw_next.d.next =
                     self.aw_next.q.val() + (self.pending.val() << self.size.val());
                 self.issued.d.next = self.issued.q.val() + self.pending.val();
             }
         }
         // W: the beats of issued bursts, cut by the same rule.
-        self.w_rule.address.next = self.w_address.q.val();
-        self.w_rule.left.next = self.issued.q.val() - self.sent.q.val();
         self.m_axi_wdata.next = self.queue.out_data.val();
         self.m_axi_wstrb.next = self.strobes.val();
-        self.m_axi_wvalid.next =
-            self.queue.out_valid.val() & (self.sent.q.val() != self.issued.q.val());
+        self.lengths.reset.next = self.reset.val();
+        self.unused_count.next = self.lengths.count.val().any();
+        self.lengths.push.next = self.issue.val();
+        self.m_axi_wvalid.next = self.queue.out_valid.val()
+            & ((self.w_left.q.val() != 0) | self.lengths.out_valid.val());
         self.m_axi_wlast.next = self.w_left.q.val() == 1;
         if self.w_left.q.val() == 0 {
-            self.m_axi_wlast.next = self.w_rule.beats.val() == 1;
+            self.m_axi_wlast.next = self.lengths.out_data.val() == 1;
         }
         self.beat_out.next = self.m_axi_wvalid.val() & self.m_axi_wready.val();
         self.queue.pop.next = self.beat_out.val();
+        self.lengths.pop.next = self.beat_out.val() & (self.w_left.q.val() == 0);
         if self.beat_out.val() {
             self.sent.d.next = self.sent.q.val() + 1;
-            self.w_address.d.next = self.w_address.q.val() + self.beat_bytes.val();
             if self.w_left.q.val() == 0 {
-                self.w_left.d.next = self.w_rule.beats.val() - 1;
+                self.w_left.d.next = self.lengths.out_data.val() - 1;
             } else {
                 self.w_left.d.next = self.w_left.q.val() - 1;
             }
@@ -290,6 +312,7 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.running.d.next = false;
         }
         if self.start.val() & !self.running.q.val() {
+            self.aw_full_ok.d.next = false;
             self.running.d.next = true;
             self.failed.d.next = false;
             self.ended.d.next = self.flush.val();
@@ -297,7 +320,6 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
             self.issued.d.next = 0.into();
             self.sent.d.next = 0.into();
             self.aw_next.d.next = self.base.val();
-            self.w_address.d.next = self.base.val();
             self.w_left.d.next = 0.into();
         }
         if self.reset.val() {

@@ -16,19 +16,29 @@ use std::collections::VecDeque;
 pub type Beat = Vec<u8>;
 
 /// [`super::beat_fifo`]: the RAM's words, the stage and the head.
-#[derive(Clone, Debug, Default)]
-struct Queue {
-    stored: VecDeque<Beat>,
-    stage: Option<Beat>,
-    head: Option<Beat>,
+#[derive(Clone, Debug)]
+struct Queue<T> {
+    stored: VecDeque<T>,
+    stage: Option<T>,
+    head: Option<T>,
 }
 
-impl Queue {
+impl<T> Default for Queue<T> {
+    fn default() -> Self {
+        Queue {
+            stored: VecDeque::new(),
+            stage: None,
+            head: None,
+        }
+    }
+}
+
+impl<T> Queue<T> {
     fn count(&self) -> usize {
         self.stored.len() + self.stage.is_some() as usize + self.head.is_some() as usize
     }
 
-    fn edge(&mut self, push: Option<Beat>, pop: bool) {
+    fn edge(&mut self, push: Option<T>, pop: bool) {
         let popped = pop && self.head.is_some();
         let head_free = self.head.is_none() || popped;
         let fetch = (self.stage.is_none() || head_free) && !self.stored.is_empty();
@@ -54,7 +64,7 @@ fn next_burst(config: &TransferConfig, address: u64, left: u64) -> u64 {
 #[derive(Clone, Debug)]
 pub struct ReaderModel {
     config: TransferConfig,
-    queue: Queue,
+    queue: Queue<Beat>,
     running: bool,
     pub failed: bool,
     next_address: u64,
@@ -63,6 +73,8 @@ pub struct ReaderModel {
     in_flight: usize,
     committed: u64,
     ar: Option<(u64, u64)>,
+    burst_q: u64,
+    burst_ok: bool,
 }
 
 impl ReaderModel {
@@ -78,6 +90,8 @@ impl ReaderModel {
             in_flight: 0,
             committed: 0,
             ar: None,
+            burst_q: 0,
+            burst_ok: false,
         }
     }
 
@@ -121,9 +135,11 @@ impl ReaderModel {
         if delivered {
             self.to_deliver -= 1;
         }
-        let burst = next_burst(&self.config, self.next_address, self.to_request);
+        let burst = self.burst_q;
+        let next_burst_q = next_burst(&self.config, self.next_address, self.to_request);
         let issue = self.running
             && self.ar.is_none()
+            && self.burst_ok
             && self.to_request != 0
             && self.in_flight < self.config.outstanding
             && self.committed + burst <= self.config.queue_beats as u64;
@@ -146,7 +162,10 @@ impl ReaderModel {
         if finish {
             self.running = false;
         }
+        self.burst_q = next_burst_q;
+        self.burst_ok = !issue;
         if let Some((base, beats)) = start.filter(|_| !self.running) {
+            self.burst_ok = false;
             self.running = true;
             self.failed = false;
             self.next_address = base;
@@ -161,7 +180,9 @@ impl ReaderModel {
 #[derive(Clone, Debug)]
 pub struct WriterModel {
     config: TransferConfig,
-    queue: Queue,
+    queue: Queue<Beat>,
+    /// The lengths of bursts issued on AW and not yet begun on W.
+    lengths: Queue<u64>,
     running: bool,
     pub failed: bool,
     ended: bool,
@@ -169,10 +190,11 @@ pub struct WriterModel {
     issued: u64,
     sent: u64,
     aw_next: u64,
-    w_address: u64,
     w_left: u64,
     unanswered: usize,
     aw: Option<(u64, u64)>,
+    aw_full: u64,
+    aw_full_ok: bool,
 }
 
 impl WriterModel {
@@ -180,6 +202,7 @@ impl WriterModel {
         WriterModel {
             config,
             queue: Queue::default(),
+            lengths: Queue::default(),
             running: false,
             failed: false,
             ended: false,
@@ -187,10 +210,11 @@ impl WriterModel {
             issued: 0,
             sent: 0,
             aw_next: 0,
-            w_address: 0,
             w_left: 0,
             unanswered: 0,
             aw: None,
+            aw_full: 0,
+            aw_full_ok: false,
         }
     }
 
@@ -202,8 +226,13 @@ impl WriterModel {
         self.running && !self.ended && self.queue.count() < self.config.queue_beats
     }
 
-    fn w_burst(&self) -> u64 {
-        next_burst(&self.config, self.w_address, self.issued - self.sent)
+    fn wvalid(&self) -> bool {
+        self.queue.head.is_some() && (self.w_left != 0 || self.lengths.head.is_some())
+    }
+
+    /// The length at the head of the queue of lengths (0 when empty).
+    fn next_length(&self) -> u64 {
+        self.lengths.head.unwrap_or(0)
     }
 
     /// The AW, W and B signals of this clock into `m`.
@@ -214,10 +243,10 @@ impl WriterModel {
         m.awlen = length;
         m.awsize = u64::from(self.config.beat_bytes().trailing_zeros());
         m.awburst = 1;
-        m.wvalid = self.queue.head.is_some() && self.sent != self.issued;
+        m.wvalid = self.wvalid();
         m.wdata = self.queue.head.clone().unwrap_or_default();
         m.wlast = if self.w_left == 0 {
-            self.w_burst() == 1
+            self.next_length() == 1
         } else {
             self.w_left == 1
         };
@@ -245,14 +274,17 @@ impl WriterModel {
             && self.aw.is_none();
         let taken = offered.filter(|_| self.in_ready());
         let pending = self.received - self.issued;
-        let full = next_burst(&self.config, self.aw_next, u64::MAX);
+        let full = self.aw_full;
+        let next_full = next_burst(&self.config, self.aw_next, u64::MAX);
         let issue = self.running
             && self.aw.is_none()
+            && self.aw_full_ok
             && self.unanswered < self.config.outstanding
             && (pending >= full || (self.ended && pending != 0));
-        let wvalid = self.queue.head.is_some() && self.sent != self.issued;
-        let beat_out = wvalid && wready;
-        let w_burst = self.w_burst();
+        let beat_out = self.wvalid() && wready;
+        let starts_burst = beat_out && self.w_left == 0;
+        let length = self.next_length();
+        let mut issued_length = None;
         if taken.as_ref().is_some_and(|&(_, last)| last) || (self.running && flush) {
             self.ended = true;
         }
@@ -264,6 +296,7 @@ impl WriterModel {
         }
         if issue {
             let burst = full.min(pending);
+            issued_length = Some(burst);
             self.aw = Some((self.aw_next, burst - 1));
             self.aw_next += burst * self.config.beat_bytes();
             self.issued += burst;
@@ -271,9 +304,8 @@ impl WriterModel {
         }
         if beat_out {
             self.sent += 1;
-            self.w_address += self.config.beat_bytes();
             self.w_left = if self.w_left == 0 {
-                w_burst - 1
+                length - 1
             } else {
                 self.w_left - 1
             };
@@ -285,7 +317,10 @@ impl WriterModel {
         if finish {
             self.running = false;
         }
+        self.aw_full = next_full;
+        self.aw_full_ok = !issue;
         if let Some(base) = start.filter(|_| !self.running) {
+            self.aw_full_ok = false;
             self.running = true;
             self.failed = false;
             self.ended = flush;
@@ -293,10 +328,10 @@ impl WriterModel {
             self.issued = 0;
             self.sent = 0;
             self.aw_next = base;
-            self.w_address = base;
             self.w_left = 0;
         }
         self.queue.edge(taken.map(|(beat, _)| beat), beat_out);
+        self.lengths.edge(issued_length, starts_burst);
     }
 }
 
