@@ -289,7 +289,7 @@ mod tests {
         let refused = Design::OwnerFilter.refuse(&[Slots, Width]).unwrap_err();
         assert_eq!(
             refused,
-            "--width does not apply to --owner-filter (it takes --slots); it is for the pipeline, --system, --classifier, --setup, --binning-unit, --broad-phase, --patch-tessellator, --cone-unit, --shared-rare-cases"
+            "--width does not apply to --owner-filter (it takes --slots); it is for the pipeline, --system, --classifier, --setup, --binning-unit, --broad-phase, --patch-tessellator, --cone-unit, --shared-rare-cases, --axi-copy"
         );
         assert_eq!(Design::System.refuse(&[Width, Depth, Dsp]), Ok(()));
     }
