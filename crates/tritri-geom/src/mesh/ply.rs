@@ -108,6 +108,16 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                     }
                     Property::List { name, count, item } => {
                         let n = reader.read(*count).map_err(context)?;
+                        let left = reader.values_left(*item);
+                        if n < 0.0 || n.fract() != 0.0 {
+                            let why =
+                                format!("list `{name}`: length {n} is not a non-negative integer");
+                            return Err(context(line_error(line, why)));
+                        }
+                        if n > left as f64 {
+                            let why = format!("list `{name}` claims {n} items, but the file holds at most {left} more");
+                            return Err(context(line_error(line, why)));
+                        }
                         let mut items = Vec::with_capacity(n as usize);
                         for _ in 0..n as usize {
                             items.push(reader.read(*item).map_err(context)?);
@@ -242,6 +252,10 @@ trait ValueReader {
     fn start_record(&mut self) -> Result<(), LineError>;
     fn read(&mut self, ty: Scalar) -> Result<f64, LineError>;
     fn line(&self) -> usize;
+    /// How many more values of `ty` the record can hold at most: a list's
+    /// length is checked against it before anything is allocated, so a
+    /// file that claims 4294967295 items fails with an error, not an abort.
+    fn values_left(&self, ty: Scalar) -> usize;
 }
 
 struct AsciiReader<'a> {
@@ -308,6 +322,9 @@ impl ValueReader for AsciiReader<'_> {
     fn line(&self) -> usize {
         self.line
     }
+    fn values_left(&self, _ty: Scalar) -> usize {
+        self.fields.len() - self.next_field
+    }
 }
 
 struct BinaryReader<'a> {
@@ -319,6 +336,9 @@ struct BinaryReader<'a> {
 }
 
 impl ValueReader for BinaryReader<'_> {
+    fn values_left(&self, ty: Scalar) -> usize {
+        (self.bytes.len() - self.at) / ty.size()
+    }
     fn start_record(&mut self) -> Result<(), LineError> {
         Ok(())
     }

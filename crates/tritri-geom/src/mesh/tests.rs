@@ -148,3 +148,35 @@ fn unknown_extension_is_refused() {
         .unwrap_err()
         .contains("unknown mesh format"));
 }
+
+#[test]
+fn a_ply_list_longer_than_the_file_is_an_error_not_an_abort() {
+    // 4294967295 items would be a 34 GB allocation.
+    let ascii = PLY_HEADER
+        .replace("{}", "ascii")
+        .replace("uchar int", "uint int")
+        + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4294967295 0 1 2\n";
+    let e = parse("huge.ply", ascii.as_bytes()).unwrap_err().to_string();
+    assert!(
+        e.contains("claims 4294967295 items") && e.contains("at most 3"),
+        "{e}"
+    );
+    let mut bytes = PLY_HEADER
+        .replace("{}", "binary_little_endian")
+        .replace("uchar int", "uint int")
+        .into_bytes();
+    for v in [[0f32, 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]] {
+        for c in v {
+            bytes.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    bytes.extend_from_slice(&u32::MAX.to_le_bytes());
+    for i in [0i32, 1, 2] {
+        bytes.extend_from_slice(&i.to_le_bytes());
+    }
+    let e = parse("huge.ply", &bytes).unwrap_err().to_string();
+    assert!(
+        e.contains("claims 4294967295 items") && e.contains("at most 3"),
+        "{e}"
+    );
+}

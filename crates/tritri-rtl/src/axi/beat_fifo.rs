@@ -1,5 +1,5 @@
-//! A first-word-fall-through queue of beats: a block RAM of `2^A` words,
-//! its read register (the *stage*) and a head register, so the reader of
+//! A first-word-fall-through queue of beats: a RAM of `2^A` words (block
+//! RAM, or LUTs with [`BeatFifo::in_distributed_ram`]), its read register (the *stage*) and a head register, so the reader of
 //! the queue sees a registered word and a pop reaches the RAM only through
 //! its read enable.
 //!

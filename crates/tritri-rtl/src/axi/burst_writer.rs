@@ -269,7 +269,8 @@ impl<const DW: usize, const S: usize, const A: usize> Logic for BurstWriter<DW, 
                 self.issued.d.next = self.issued.q.val() + self.pending.val();
             }
         }
-        // W: the beats of issued bursts, cut by the same rule.
+        // W: the beats of issued bursts; a burst's length from the queue
+        // of lengths as it begins.
         self.m_axi_wdata.next = self.queue.out_data.val();
         self.m_axi_wstrb.next = self.strobes.val();
         self.lengths.reset.next = self.reset.val();

@@ -54,8 +54,8 @@ impl<T> Queue<T> {
     }
 }
 
-/// What a reader's or writer's burst rule needs: bytes per beat, the
-/// longest burst, the bursts in flight, the queue's beats.
+/// [`super::burst_rule`]: the next burst's beats at `address` with `left`
+/// beats to go.
 fn next_burst(config: &TransferConfig, address: u64, left: u64) -> u64 {
     burst_beats(address, config.beat_bytes(), config.max_burst as u64).min(left)
 }
