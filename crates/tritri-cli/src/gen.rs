@@ -352,7 +352,7 @@ pub struct Args {
     )]
     pose_b: Option<Pose>,
     /// With --for-scene: uniform scale of B about its origin, before the pose.
-    #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = crate::input::parse_scale)]
+    #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = crate::input::parse_scale)]
     scale_b: f64,
     /// With --for-scene: the largest share of the pairs tested that may go
     /// back to the host (verdicts without a certificate, and pairs too long

@@ -88,6 +88,17 @@ pub fn parse_scale(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A count of clocks: a whole number written in digits, so `1e3` and `-1`
+/// are refused with the range instead of "invalid digit found in string".
+pub fn parse_cycles(s: &str) -> Result<u64, String> {
+    s.trim().parse::<u64>().map_err(|_| {
+        format!(
+            "`{s}` is not a count of clocks (a whole number from 0 to {}, in digits)",
+            u64::MAX
+        )
+    })
+}
+
 /// A clock frequency in MHz: a finite number from 0.001 (1 kHz) to 100000
 /// (100 GHz), so every time printed is a finite duration.
 pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {

@@ -33,7 +33,7 @@ pub struct SceneArgs {
     pub pose_b: Option<Pose>,
     /// Uniform scale of B about its own origin, applied before the pose
     /// (the bunny is about 1 unit across, the armadillo about 127).
-    #[arg(long, default_value_t = 1.0, value_name = "S", value_parser = input::parse_scale)]
+    #[arg(long, default_value_t = 1.0, value_name = "S", allow_negative_numbers = true, value_parser = input::parse_scale)]
     pub scale_b: f64,
     /// Cut every triangle of both objects into 4^K by edge midpoints (the
     /// same surfaces with more triangles, for scaling studies; 0 to 4).

@@ -129,7 +129,7 @@ pub struct Args {
     /// Refuse a cycle-by-cycle simulation (rusthdl, icarus, verilator) longer than
     /// this many system cycles [default: what the engine runs in about
     /// five minutes here]; the estimate is printed either way.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = crate::input::parse_cycles)]
     max_cycles: Option<u64>,
     /// Write the system's waveform (every signal, VCD) here; with --engine
     /// icarus or verilator, for runs of at most --vcd-max-cycles cycles.
@@ -156,7 +156,7 @@ pub struct Args {
     rare_cases: String,
     /// The longest run --vcd records (every signal and memory word: the
     /// file grows by about 55 kB per cycle at W = 24, P = 2, depth 256).
-    #[arg(long, value_name = "N", default_value_t = 10_000)]
+    #[arg(long, value_name = "N", default_value_t = 10_000, allow_negative_numbers = true, value_parser = crate::input::parse_cycles)]
     vcd_max_cycles: u64,
 }
 

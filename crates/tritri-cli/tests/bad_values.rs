@@ -31,6 +31,13 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
             "--depth",
         ),
         (&["sim", "--scale-b", "0"], "--scale-b"),
+        // A negative number is the option's value, refused by its rule
+        // (it was "unexpected argument '-1'").
+        (&["sim", "--scale-b", "-1"], "--scale-b"),
+        // Counts of clocks name their range ("invalid digit" did not).
+        (&["sim", "--max-cycles", "1e3"], "a whole number from 0 to"),
+        (&["sim", "--max-cycles", "-1"], "a whole number from 0 to"),
+        (&["sim", "--vcd-max-cycles", "x"], "--vcd-max-cycles"),
         (&["sim", "--subdivide", "9"], "--subdivide"),
         (&["sim", "--grid-bits", "40"], "--grid-bits"),
         (&["sim", "--tessellation", "0"], "--tessellation"),
