@@ -533,6 +533,13 @@ impl Args {
             }
         }
         design.refuse(&self.design_options_given())?;
+        // Checked before anything is built: the design goes into a directory.
+        if let Some(out) = self.out.as_ref().filter(|o| o.exists() && !o.is_dir()) {
+            return Err(format!(
+                "--out {}: a file is there; gen writes a directory of Verilog files",
+                out.display()
+            ));
+        }
         if self.synth_top.is_some() && self.synth.as_deref() != Some("ecp5") {
             return Err("--synth-top applies to --synth ecp5".into());
         }

@@ -772,3 +772,24 @@ fn a_seed_sweep_routes_each_seed_and_names_the_best() {
     );
     std::fs::remove_dir_all(&out).unwrap();
 }
+
+/// `--out` naming a file is refused before anything is built, and the file
+/// is left as it was (it was "writing FILE: File exists", exit 1, after
+/// the emission).
+#[test]
+fn an_out_that_is_a_file_is_refused_at_once() {
+    let file = std::env::temp_dir().join(format!("tritri-gen-out-file-{}", std::process::id()));
+    std::fs::write(&file, "the user's\n").unwrap();
+    let out = tritri()
+        .args(["gen", "--out", file.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--out") && err.contains("a file is there"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "the user's\n");
+    std::fs::remove_file(&file).unwrap();
+}
