@@ -102,6 +102,15 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     let pairs = loaded.good_pairs();
+    if pairs.is_empty() {
+        // Not an error (an empty list has an empty answer), but said, so
+        // that a wrong file name or an empty export is not mistaken for
+        // "no pair intersects".
+        eprintln!(
+            "note: {}: no pairs in the file, so no verdicts",
+            args.file.display()
+        );
+    }
     let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
     let model_alone = args.engine == Engine::Model && !args.certified;
     if let (Arithmetic::Fixed(width), Some(frame), false) = (arith, result.frame, model_alone) {

@@ -249,3 +249,17 @@ fn a_full_standard_output_is_an_error_naming_it() {
         );
     }
 }
+
+/// An empty pair file is an empty answer, exit 0, with a note that says so
+/// (it was silent: no output and no note).
+#[test]
+fn an_empty_pair_file_is_said_to_be_empty() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("empty-pairs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("none.txt");
+    std::fs::write(&file, "").unwrap();
+    let out = tritri(&["classify", file.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("no pairs in the file"), "{err}");
+}
