@@ -68,7 +68,7 @@ pub fn run_model(case: &CopyCase) -> anyhow::Result<CopyOutcome> {
     })
 }
 
-fn bits_of<const N: usize>(bytes: &[u8]) -> Bits<N> {
+pub(crate) fn bits_of<const N: usize>(bytes: &[u8]) -> Bits<N> {
     let mut b = Bits::<N>::default();
     for (i, chunk) in bytes.chunks(8).enumerate() {
         let mut word = [0u8; 8];
@@ -78,7 +78,7 @@ fn bits_of<const N: usize>(bytes: &[u8]) -> Bits<N> {
     b
 }
 
-fn bytes_of<const N: usize>(b: Bits<N>) -> Vec<u8> {
+pub(crate) fn bytes_of<const N: usize>(b: Bits<N>) -> Vec<u8> {
     (0..N / 64)
         .flat_map(|i| b.get_bits::<64>(64 * i).to_u64().to_le_bytes())
         .collect()
@@ -225,12 +225,7 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
     if field("done")? != 1 {
         bail!("the emitted copy did not end within {} clocks", case.limit);
     }
-    let bytes = std::fs::read_to_string(&memory_out)?
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with('@'))
-        .map(|l| u8::from_str_radix(l, 16).with_context(|| format!("memory dump line {l:?}")))
-        .collect::<anyhow::Result<Vec<u8>>>()?;
+    let bytes = read_memory_dump(&memory_out)?;
     Ok(CopyOutcome {
         cycles: field("cycles")?,
         stalled: field("stalled")?,
@@ -238,4 +233,15 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
         faults: field("faults")? as usize,
         bytes,
     })
+}
+
+/// The bytes of a memory written by `$writememh`, a byte a line.
+pub(crate) fn read_memory_dump(path: &std::path::Path) -> anyhow::Result<Vec<u8>> {
+    std::fs::read_to_string(path)
+        .with_context(|| format!("the memory dump {}", path.display()))?
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with('@'))
+        .map(|l| u8::from_str_radix(l, 16).with_context(|| format!("memory dump line {l:?}")))
+        .collect()
 }

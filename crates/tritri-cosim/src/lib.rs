@@ -22,6 +22,10 @@
 //! * The octree classifier and its setup: [`cell_classifier`],
 //!   [`triangle_setup`]; surface voxelization: [`triangle_voxelizer`];
 //!   voxel → octree conversion: [`octree_builder`].
+//! * The AXI4 memory port: [`axi_copy`] (the copy unit that proves the
+//!   port) and [`list_pass`] (a cell's pass with its lists in external
+//!   memory), each in the clock-exact model, rust-hdl and the emitted
+//!   Verilog against `testbenches/axi_memory.sv`.
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod axi_copy;
@@ -31,6 +35,7 @@ pub mod cell_classifier;
 pub mod cone_unit;
 pub mod engine;
 pub mod fault;
+pub mod list_pass;
 pub mod octree_builder;
 pub mod owner_filter;
 pub mod patch_tessellator;

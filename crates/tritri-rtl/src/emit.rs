@@ -66,6 +66,7 @@ pub mod cell_classifier_unit;
 pub mod cone_unit_unit;
 pub mod continuous_assigns;
 pub mod dsp_mapping;
+pub mod list_pass_unit;
 pub mod memory_mapping;
 pub mod modules;
 pub mod octree_builder_unit;

@@ -1,6 +1,7 @@
 //! The emitted octree classifier step, its setup, the binning unit, the
 //! broad-phase top, the owner filter, the plane traversal, the triangle voxelizer and the
-//! octree builder, and the AXI4 port's copy unit:
+//! octree builder, the AXI4 port's copy unit and the pass over lists in
+//! external memory:
 //! lint-clean under `verilator --lint-only -Wall` and compiled by Icarus
 //! at every grid width (table size for the filter), following the
 //! emitter's naming conventions. (Their behaviour is co-simulated in
@@ -13,6 +14,7 @@ use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::list_pass_unit::{emit_list_pass, LIST_PASS_GRID_WIDTHS};
 use tritri_rtl::emit::octree_builder_unit::emit_octree_builder;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
 use tritri_rtl::emit::plane_traversal_unit::emit_plane_traversal;
@@ -21,6 +23,7 @@ use tritri_rtl::emit::triangle_voxelizer_unit::emit_triangle_voxelizer;
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
 
@@ -143,6 +146,21 @@ fn the_axi_copy_unit_is_lint_clean_at_every_data_width() {
             outstanding: 8,
         };
         check(data_bits, emit_axi_copy(&config).unwrap());
+    }
+}
+
+#[test]
+fn the_list_pass_unit_is_lint_clean_at_every_grid_and_data_width() {
+    for &grid_bits in &LIST_PASS_GRID_WIDTHS {
+        for data_bits in [64, 128, 256] {
+            let config = ListPassConfig {
+                grid_bits,
+                data_bits,
+                max_read_burst: 16,
+                outstanding: 4,
+            };
+            check(grid_bits, emit_list_pass(&config).unwrap());
+        }
     }
 }
 

@@ -17,10 +17,10 @@ pub type Beat = Vec<u8>;
 
 /// [`super::beat_fifo`]: the RAM's words, the stage and the head.
 #[derive(Clone, Debug)]
-struct Queue<T> {
+pub(crate) struct Queue<T> {
     stored: VecDeque<T>,
     stage: Option<T>,
-    head: Option<T>,
+    pub(crate) head: Option<T>,
 }
 
 impl<T> Default for Queue<T> {
@@ -34,11 +34,11 @@ impl<T> Default for Queue<T> {
 }
 
 impl<T> Queue<T> {
-    fn count(&self) -> usize {
+    pub(crate) fn count(&self) -> usize {
         self.stored.len() + self.stage.is_some() as usize + self.head.is_some() as usize
     }
 
-    fn edge(&mut self, push: Option<T>, pop: bool) {
+    pub(crate) fn edge(&mut self, push: Option<T>, pop: bool) {
         let popped = pop && self.head.is_some();
         let head_free = self.head.is_none() || popped;
         let fetch = (self.stage.is_none() || head_free) && !self.stored.is_empty();

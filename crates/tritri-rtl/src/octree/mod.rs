@@ -22,6 +22,11 @@
 //!   system's batches (a leaf's frame, an end word per leaf);
 //!   [`broad_phase_system`]: the binning unit, the batcher and the system
 //!   in one top, triangles in, each leaf's pairs out;
+//! * [`list_pass`]: a cell's pass with its lists in external memory over
+//!   AXI4, its A and B lists read in bursts and each entry appended to the
+//!   lists of the children it meets; [`list_entry`] is the 32-byte entry
+//!   (vertices and index), [`child_select`] the child written each clock,
+//!   [`list_pass_machine`] the clock-exact model;
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -47,10 +52,14 @@ pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod centre_test;
+pub mod child_select;
 pub mod classify_lane;
 pub mod leaf_batcher;
 pub mod leaf_cost;
+pub mod list_entry;
 pub mod list_packer;
+pub mod list_pass;
+pub mod list_pass_machine;
 pub mod octant_clipper;
 pub mod octree_builder;
 pub mod octree_builder_machine;
