@@ -80,7 +80,11 @@
 //! degenerate-pair tests on three orient2d lanes), top
 //! `tritri_shared_rare_cases_w<W>`; `--rare-cases shared` the pipeline
 //! with that unit inside (it holds, output `hold`, while a rare pair
-//! waits), top `tritri_pipeline_shared_w<W>`.
+//! waits), top `tritri_pipeline_shared_w<W>`. `--axi-copy [--width DW]`
+//! writes the AXI4 port's copy unit, top `tritri_axi_copy_d<DW>_…`;
+//! `--list-pass [--width 16|24] [--data-bits 64|128|256]` the broad
+//! phase's pass of one cell with its lists in external memory, top
+//! `tritri_list_pass_g<G>_d<DW>_r16_o4`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -119,6 +123,9 @@ use tritri_rtl::emit::cell_classifier_unit::{
 };
 use tritri_rtl::emit::cone_unit_unit::{cone_unit_name, emit_cone_unit, CONE_UNIT_WIDTHS};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
+use tritri_rtl::emit::list_pass_unit::{
+    emit_list_pass, list_pass_unit_name, LIST_PASS_GRID_WIDTHS,
+};
 use tritri_rtl::emit::memory_mapping::{map_delay_lines, DelayLineMapping};
 use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
@@ -140,6 +147,7 @@ use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::measured::{device, DEVICES};
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;
@@ -273,6 +281,16 @@ pub struct Args {
     /// default 64).
     #[arg(long)]
     axi_copy: bool,
+    /// Emit the broad phase's pass of one cell with its lists in external
+    /// memory instead: the cell's two lists read over AXI4, each entry
+    /// classified against the eight children and appended to their lists;
+    /// --width is the grid's (16 or 24), --data-bits the port's.
+    #[arg(long)]
+    list_pass: bool,
+    /// With --list-pass: the AXI4 port's data width (64, 128 or 256)
+    /// [default: 64].
+    #[arg(long, value_name = "BITS")]
+    data_bits: Option<usize>,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
     /// triangles): `parallel`, their own units (60 multipliers, never a
     /// stall), or `shared`, the shared unit inside the pipeline (6
@@ -484,6 +502,7 @@ impl Args {
             (Design::ConeUnit, self.cone_unit),
             (Design::SharedRareCases, self.shared_rare_cases),
             (Design::AxiCopy, self.axi_copy),
+            (Design::ListPass, self.list_pass),
         ])
     }
 
@@ -501,6 +520,7 @@ impl Args {
             (self.slots.is_some(), DesignOption::Slots),
             (self.steps.is_some(), DesignOption::Steps),
             (self.assemble, DesignOption::Assemble),
+            (self.data_bits.is_some(), DesignOption::DataBits),
         ]
         .into_iter()
         .filter_map(|(given, option)| given.then_some(option))
@@ -640,6 +660,13 @@ impl Args {
                 .transfer()
                 .check()
                 .map_err(|e| format!("{flag} --width {w}: {e}")),
+            Design::ListPass if !LIST_PASS_GRID_WIDTHS.contains(&w) => Err(format!(
+                "{flag} --width {w}: the unit is built for grids of {LIST_PASS_GRID_WIDTHS:?} bits"
+            )),
+            Design::ListPass => self
+                .list_pass_config(w)
+                .check()
+                .map_err(|e| format!("{flag} --data-bits {}: {e}", self.list_pass_config(w).data_bits)),
             _ => Ok(()),
         }
     }
@@ -684,6 +711,7 @@ impl Args {
             Design::ConeUnit => emit_cone_unit(width)?,
             Design::SharedRareCases => emit_shared_rare_cases(width, self.multipliers())?,
             Design::AxiCopy => emit_axi_copy(&axi_copy_config(width))?,
+            Design::ListPass => emit_list_pass(&self.list_pass_config(width))?,
         })
     }
 
@@ -720,6 +748,19 @@ impl Args {
             Design::ConeUnit => cone_unit_name(width),
             Design::SharedRareCases => shared_rare_cases_name(width),
             Design::AxiCopy => axi_copy_config(width).unit_name(),
+            Design::ListPass => list_pass_unit_name(&self.list_pass_config(width)),
+        }
+    }
+
+    /// The pass unit `tritri gen --list-pass` writes for a `grid_bits`
+    /// grid: `--data-bits`, reads of up to 16 beats, 4 bursts in flight each
+    /// way (what `crates/tritri-cosim/tests/list_pass.rs` co-simulates).
+    fn list_pass_config(&self, grid_bits: usize) -> ListPassConfig {
+        ListPassConfig {
+            grid_bits,
+            data_bits: self.data_bits.unwrap_or(64),
+            max_read_burst: 16,
+            outstanding: 4,
         }
     }
 }

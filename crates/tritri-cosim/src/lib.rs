@@ -25,7 +25,8 @@
 //! * The AXI4 memory port: [`axi_copy`] (the copy unit that proves the
 //!   port) and [`list_pass`] (a cell's pass with its lists in external
 //!   memory), each in the clock-exact model, rust-hdl and the emitted
-//!   Verilog against `testbenches/axi_memory.sv`.
+//!   Verilog against `testbenches/axi_memory.sv`; [`dram_binning`] the
+//!   planner's tree walked pass by pass with every list in that memory.
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod axi_copy;
@@ -33,6 +34,7 @@ pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod cone_unit;
+pub mod dram_binning;
 pub mod engine;
 pub mod fault;
 pub mod list_pass;

@@ -44,6 +44,8 @@ pub enum Design {
     SharedRareCases,
     /// The AXI4 port's copy unit (burst reader into burst writer).
     AxiCopy,
+    /// The broad phase's pass of a cell with its lists in external memory.
+    ListPass,
 }
 
 /// An option that shapes a design; each design takes the ones its row
@@ -62,6 +64,7 @@ pub enum DesignOption {
     Slots,
     Steps,
     Assemble,
+    DataBits,
 }
 
 impl DesignOption {
@@ -79,6 +82,7 @@ impl DesignOption {
             DesignOption::Slots => "--slots",
             DesignOption::Steps => "--steps",
             DesignOption::Assemble => "--assemble",
+            DesignOption::DataBits => "--data-bits",
         }
     }
 }
@@ -98,7 +102,7 @@ use DesignOption::*;
 
 /// Every design, once. `--dsp` is taken by the designs with multipliers
 /// (the MULT18X18D mapping applies to them).
-pub const DESIGNS: [Row; 17] = [
+pub const DESIGNS: [Row; 18] = [
     Row {
         design: Design::Pipeline,
         flag: None,
@@ -185,6 +189,11 @@ pub const DESIGNS: [Row; 17] = [
         design: Design::AxiCopy,
         flag: Some("--axi-copy"),
         takes: &[Width],
+    },
+    Row {
+        design: Design::ListPass,
+        flag: Some("--list-pass"),
+        takes: &[Width, DataBits],
     },
 ];
 

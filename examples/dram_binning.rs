@@ -1,0 +1,114 @@
+//! The broad phase's binning with its lists in external memory, beside the
+//! on-chip binning unit, on a scene of your own: the planner's tree walked
+//! pass by pass (`tritri_cosim::dram_binning::walk`), each pass the list
+//! pass unit's clock-exact model against the AXI4 memory model, which its
+//! Verilog equals in co-simulation (crates/tritri-cosim/tests/list_pass.rs).
+//!
+//! ```sh
+//! cargo run --release --example dram_binning [-- A B [SCALE_B TX TY TZ]]
+//! ```
+//!
+//! A and B are mesh files (.obj, .ply, .off), Bezier patches (.bpt) or the
+//! built-ins `@torus` and `@sphere` (the default); B is scaled by SCALE_B
+//! and moved by (TX, TY, TZ). The accelerator is `Accelerator::new(24)`:
+//! a 24-bit grid, two pipelines, 256 triangles per array. Every figure is
+//! in clocks of the unit's port, with the memory's bandwidth in bytes per
+//! clock beside it; no clock frequency is assumed.
+
+use anyhow::Context as _;
+use tritri_cosim::binning_unit::bin_scene;
+use tritri_cosim::dram_binning::walk;
+use tritri_cosim::scene_query::Accelerator;
+use tritri_geom::scene::load::{load_object, Pose};
+use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let number = |s: &str| -> anyhow::Result<f64> {
+        s.parse().with_context(|| format!("{s:?} is not a number"))
+    };
+    let (a, b, scale, pose) = match args.as_slice() {
+        [] => ("@torus", "@sphere", 1.0, [0.0; 3]),
+        [a, b] => (a.as_str(), b.as_str(), 1.0, [0.0; 3]),
+        [a, b, s, x, y, z] => (
+            a.as_str(),
+            b.as_str(),
+            number(s)?,
+            [number(x)?, number(y)?, number(z)?],
+        ),
+        _ => anyhow::bail!("usage: dram_binning [A B [SCALE_B TX TY TZ]]"),
+    };
+    let a = load_object(a, 8)?;
+    let b = load_object(b, 8)?
+        .scaled(scale)
+        .posed(&Pose::translation(pose));
+
+    let accelerator = Accelerator::new(24);
+    let scene = accelerator.prepare(&a, &b)?;
+    let schedule = scene
+        .octree
+        .as_ref()
+        .filter(|o| o.root.is_some() && !o.leaves.is_empty())
+        .context("the objects' boxes do not meet: nothing to bin")?;
+    let on_chip = bin_scene(
+        &scene,
+        accelerator.grid_bits as usize,
+        accelerator.depth as usize,
+        accelerator.pipelines as usize,
+        None,
+    )
+    .map_err(|e| anyhow::anyhow!("the on-chip binning unit: {e}"))?;
+    println!(
+        "{} x {} triangles, {} + {} in the common box; the planner: {} leaves, depth {}, {} cells classified",
+        a.triangles.len(),
+        b.triangles.len(),
+        scene.kept_a.len(),
+        scene.kept_b.len(),
+        schedule.leaves.len(),
+        schedule.tree_depth,
+        schedule.cells_visited
+    );
+    println!(
+        "on-chip binning unit (scene in block RAM): {} clocks",
+        on_chip.run.cycles
+    );
+    println!();
+    println!("| port | memory | passes | read | written | clocks | / on-chip |");
+    println!("|---:|---|---:|---:|---:|---:|---:|");
+    for data_bits in [64, 128, 256] {
+        let beat = data_bits as u64 / 8;
+        let memories = [
+            (
+                format!("ideal: 2 beats a clock, {} clocks latency", 24),
+                MemoryParams::ideal(beat, 24),
+            ),
+            (
+                "16 B a clock shared, 40 clocks latency".to_string(),
+                MemoryParams {
+                    bytes_per_clock: (16, 1),
+                    write_latency: 40,
+                    ..MemoryParams::ideal(beat, 40)
+                },
+            ),
+        ];
+        for (name, params) in memories {
+            let config = ListPassConfig {
+                grid_bits: accelerator.grid_bits as usize,
+                data_bits,
+                max_read_burst: 16,
+                outstanding: 4,
+            };
+            let run = walk(schedule, [&scene.kept_a, &scene.kept_b], config, params)?;
+            println!(
+                "| {data_bits} bits | {name} | {} | {} KiB | {} KiB | {} | {:.2} |",
+                run.passes,
+                run.bytes_read / 1024,
+                run.bytes_written / 1024,
+                run.cycles,
+                run.cycles as f64 / on_chip.run.cycles as f64
+            );
+        }
+    }
+    Ok(())
+}
