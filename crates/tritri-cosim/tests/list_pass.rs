@@ -13,6 +13,7 @@ use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, SceneOptions, TaggedTriangle};
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::classify_lane::LANE_LATENCY;
 use tritri_rtl::octree::list_entry::{pack, ENTRY_BYTES};
 use tritri_rtl::octree::list_pass_machine::{child_lists, ListPassConfig};
 use tritri_rtl::system::SystemConfig;
@@ -217,4 +218,30 @@ fn a_child_list_written_by_one_pass_is_the_next_levels_input() {
     let child = root.child(octant);
     let next = case(64, c.params, [list(octant), list(8 + octant)], child);
     all_engines(&next, true, &[]);
+}
+
+/// A pass's clocks beyond its beats: one entry of each object, so nearly
+/// all of it is the memory's latencies, the lane's and the flush. The
+/// binning over external memory pays it once per split cell
+/// (docs/axi-port.md).
+#[test]
+fn a_pass_of_one_entry_each_costs_its_latencies() {
+    let (lists, root) = scene(24, 16);
+    let one = [vec![lists[0][0]], vec![lists[1][0]]];
+    let latency = 24;
+    let c = case(64, MemoryParams::ideal(8, latency), one, root);
+    let out = all_engines(&c, true, &[Simulator::Verilator]);
+    // At least: A's read (its latency, its beats), then B's (the reader
+    // takes B's region once A's beats have left it), the lane, the flush
+    // of the sixteen children (a clock each) and the last write's
+    // response.
+    let per_entry = c.config.beats_per_entry();
+    let floor = 2 * (latency + per_entry) + LANE_LATENCY as u64 + 16 + latency;
+    eprintln!("one entry each: {} clocks, floor {floor}", out.cycles);
+    assert!(out.cycles >= floor, "{} clocks, under {floor}", out.cycles);
+    assert!(
+        out.cycles <= floor + 40,
+        "{} clocks, over {floor} + 40",
+        out.cycles
+    );
 }
