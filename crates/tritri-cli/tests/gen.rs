@@ -539,6 +539,22 @@ fn options_a_design_does_not_take_are_refused_by_name() {
             "--system and --setup: gen writes one design at a time",
         ),
         (
+            &["--list-pass", "--slots", "3"][..],
+            "--slots does not apply to --list-pass (it takes --width, --data-bits)",
+        ),
+        (
+            &["--list-pass", "--width", "12"][..],
+            "--list-pass --width 12: the unit is built for grids of [16, 24] bits",
+        ),
+        (
+            &["--list-pass", "--data-bits", "512"][..],
+            "--list-pass --data-bits 512: a pass's port is 64, 128 or 256 bits wide, not 512",
+        ),
+        (
+            &["--axi-copy", "--data-bits", "128"][..],
+            "--data-bits does not apply to --axi-copy (it takes --width); it is for --list-pass",
+        ),
+        (
             &["--for-scene", "@torus", "@sphere", "--cone-unit"][..],
             "--for-scene sizes the system itself; --cone-unit does not go with it",
         ),
@@ -792,4 +808,34 @@ fn an_out_that_is_a_file_is_refused_at_once() {
     );
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "the user's\n");
     std::fs::remove_file(&file).unwrap();
+}
+
+/// `--list-pass` writes the pass unit for the grid and port asked, named
+/// by both, into a directory named for its top.
+#[test]
+fn list_pass_is_emitted_for_its_grid_and_data_width() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-list-pass-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri()
+        .args([
+            "gen",
+            "--list-pass",
+            "--width",
+            "16",
+            "--data-bits",
+            "128",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let top = "tritri_list_pass_g16_d128_r16_o4";
+    let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
+    assert!(
+        verilog.contains(&format!("module {top}")),
+        "no module {top}"
+    );
+    assert!(verilog.contains("m_axi_rdata"), "no AXI4 port");
+    let _ = std::fs::remove_dir_all(&out);
 }
