@@ -74,7 +74,9 @@ fn main() -> anyhow::Result<()> {
         on_chip.run.cycles
     );
     println!();
-    println!("| port | memory | passes | read | written | clocks | / on-chip |");
+    println!(
+        "| port | memory | passes | read | written (to one-object children) | clocks | / on-chip |"
+    );
     println!("|---:|---|---:|---:|---:|---:|---:|");
     for data_bits in [64, 128, 256] {
         let beat = data_bits as u64 / 8;
@@ -101,10 +103,11 @@ fn main() -> anyhow::Result<()> {
             };
             let run = walk(schedule, [&scene.kept_a, &scene.kept_b], config, params)?;
             println!(
-                "| {data_bits} bits | {name} | {} | {} KiB | {} KiB | {} | {:.2} |",
+                "| {data_bits} bits | {name} | {} | {} KiB | {} KiB ({} KiB) | {} | {:.2} |",
                 run.passes,
                 run.bytes_read / 1024,
                 run.bytes_written / 1024,
+                run.bytes_dropped / 1024,
                 run.cycles,
                 run.cycles as f64 / on_chip.run.cycles as f64
             );

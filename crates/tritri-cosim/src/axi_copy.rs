@@ -225,7 +225,7 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
     if field("done")? != 1 {
         bail!("the emitted copy did not end within {} clocks", case.limit);
     }
-    let bytes = read_memory_dump(&memory_out)?;
+    let bytes = read_memory_dump(&memory_out, case.bytes.len())?;
     Ok(CopyOutcome {
         cycles: field("cycles")?,
         stalled: field("stalled")?,
@@ -235,13 +235,15 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
     })
 }
 
-/// The bytes of a memory written by `$writememh`, a byte a line.
-pub(crate) fn read_memory_dump(path: &std::path::Path) -> anyhow::Result<Vec<u8>> {
+/// The first `bytes` bytes of a memory written by `$writememh`, a byte a
+/// line (the rest, which the testbench never loaded, may be unknown).
+pub(crate) fn read_memory_dump(path: &std::path::Path, bytes: usize) -> anyhow::Result<Vec<u8>> {
     std::fs::read_to_string(path)
         .with_context(|| format!("the memory dump {}", path.display()))?
         .lines()
         .map(str::trim)
         .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with('@'))
+        .take(bytes)
         .map(|l| u8::from_str_radix(l, 16).with_context(|| format!("memory dump line {l:?}")))
         .collect()
 }

@@ -41,6 +41,9 @@ pub struct DramBinning {
     /// (every entry of every child).
     pub bytes_read: u64,
     pub bytes_written: u64,
+    /// Of those, the bytes written to children that hold one object only,
+    /// which no later pass or leaf reads.
+    pub bytes_dropped: u64,
     /// The leaves reached, as the planner's leaves were checked against.
     pub leaves: u64,
     /// The largest list a pass read (entries of both objects): what the
@@ -88,12 +91,22 @@ pub fn walk(
             continue;
         }
         if lists[0].is_empty() || lists[1].is_empty() {
+            run.bytes_dropped += ((lists[0].len() + lists[1].len()) * ENTRY_BYTES) as u64;
             continue;
         }
         if !cell.splittable() {
             bail!("cell {cell:?} holds both objects, cannot be split, and is not a leaf");
         }
         let entries_in = (lists[0].len() + lists[1].len()) as u64;
+        // The shorter list goes first: the unit writes the second only to
+        // children the first reached (`list_pass`), so the longer is cut.
+        let swapped = lists[1].len() < lists[0].len();
+        let [first, second] = lists;
+        let lists = if swapped {
+            [second, first]
+        } else {
+            [first, second]
+        };
         let case = PassCase {
             config,
             params,
@@ -109,7 +122,10 @@ pub fn walk(
                 out.faults
             );
         }
-        let children = case.child_lists(&out)?;
+        let mut children = case.child_lists(&out)?;
+        if swapped {
+            children.rotate_left(8);
+        }
         run.passes += 1;
         run.cycles += out.cycles;
         run.stalled += out.stalled;

@@ -29,6 +29,10 @@
 //!   child goes on in its other slot, waiting only when that one has not
 //!   yet been read out. The next entry is taken in the clock the last
 //!   beat of the last child is written.
+//! * A B entry goes only to the children an A entry went to: a child
+//!   without A is dropped by the split rule, and its B list would never be
+//!   read. The controller gives the shorter of a cell's lists as A, so the
+//!   longer is the one cut down.
 //! * Child `o` of object `k` is the list at `child_base[k] + o ·
 //!   child_stride[k]`; a slot goes to its list's next burst. The unit needs
 //!   `child_base` and `child_stride` aligned to a burst ([`WRITE_BURST_BEATS`]
@@ -214,6 +218,13 @@ pub struct ListPass<
     entry: DFF<Bits<ENTRY_BITS>>,
     object: DFF<Bit>,
     mask_left: DFF<Bits<8>>,
+    /// The children an entry of object A has been written to in this pass.
+    reached: DFF<Bits<8>>,
+    /// The children an entry in the distributor may go to: all of them for
+    /// an A entry, those in `reached` for a B entry (`reached` as of this
+    /// clock: the register is kept equal to that function of `object` and
+    /// `reached`, so that `live` is a continuous assignment).
+    gate: DFF<Bits<8>>,
     beat: DFF<Bits<3>>,
     // Where the next beat starts in the entry: 0 to 192, so 8 bits index
     // the 256-bit entry without a width mismatch.
@@ -249,6 +260,10 @@ pub struct ListPass<
     tagged: Signal<Local, Bits<TAGGED_ENTRY_BITS>>,
     sel_address: Signal<Local, Bits<BA>>,
     write: Signal<Local, Bit>,
+    /// The octants left of the entry in the distributor, gated.
+    live: Signal<Local, Bits<8>>,
+    /// The chosen child among A's (zero for a B entry).
+    target_low: Signal<Local, Bits<8>>,
     entry_done: Signal<Local, Bit>,
     last_child: Signal<Local, Bit>,
     slot_full: Signal<Local, Bit>,
@@ -314,6 +329,8 @@ impl<
             entry,
             object,
             mask_left,
+            reached,
+            gate,
             beat,
             beat_offset,
             flushing,
@@ -471,6 +488,8 @@ impl<
             entry: Default::default(),
             object: Default::default(),
             mask_left: Default::default(),
+            reached: Default::default(),
+            gate: Default::default(),
             beat: Default::default(),
             beat_offset: Default::default(),
             flushing: Default::default(),
@@ -499,6 +518,8 @@ impl<
             tagged: Default::default(),
             sel_address: Default::default(),
             write: Default::default(),
+            live: Default::default(),
+            target_low: Default::default(),
             entry_done: Default::default(),
             last_child: Default::default(),
             slot_full: Default::default(),
@@ -554,6 +575,8 @@ impl<
             entry,
             object,
             mask_left,
+            reached,
+            gate,
             beat,
             beat_offset,
             flushing,
@@ -667,7 +690,11 @@ impl<
         self.masks.push_data.next = self.lane.out_mask.val();
 
         // The distributor: the lowest octant left, in its child's slot.
-        self.select.mask_left.next = self.mask_left.q.val();
+        // A B entry goes only to children that A's entries reached: a child
+        // without A is dropped by the split rule, so its B list would never
+        // be read (the controller reads the shorter list as A).
+        self.live.next = self.mask_left.q.val() & self.gate.q.val();
+        self.select.mask_left.next = self.live.val();
         self.select.object.next = self.object.q.val();
         self.select.flushing.next = self.flushing.q.val();
         self.select.flush_child.next = self.flush_child.q.val();
@@ -682,9 +709,9 @@ impl<
             << self.log_burst_beats.val())
             + bit_cast::<BA, 9>(self.select.fill_of.val());
         self.write.next =
-            (self.mask_left.q.val() != 0) & !self.select.blocked.val() & !self.flushing.q.val();
+            (self.live.val() != 0) & !self.select.blocked.val() & !self.flushing.q.val();
         self.entry_done.next = self.write.val() & (self.beat.q.val() == self.last_beat.val());
-        self.last_child.next = (self.mask_left.q.val() & (self.mask_left.q.val() - 1)) == 0;
+        self.last_child.next = (self.live.val() & (self.live.val() - 1)) == 0;
         self.slot_full.next =
             self.write.val() & (self.select.fill_of.val() == self.slot_full_beats.val());
         self.flush_out.next = self.flushing.q.val() & (self.select.fill_of.val() != 0);
@@ -699,7 +726,7 @@ impl<
             if self.entry_done.val() {
                 self.beat.d.next = 0.into();
                 self.beat_offset.d.next = 0.into();
-                self.mask_left.d.next = self.mask_left.q.val() & !self.select.lowest.val();
+                self.mask_left.d.next = self.live.val() & !self.select.lowest.val();
             } else {
                 self.beat.d.next = self.beat.q.val() + 1;
                 self.beat_offset.d.next = self.beat_offset.q.val() + self.beat_step.val();
@@ -725,10 +752,14 @@ impl<
                 }
             }
         }
+        self.target_low.next = bit_cast::<8, CHILDREN>(self.select.target.val());
+        if self.write.val() {
+            self.reached.d.next = self.reached.q.val() | self.target_low.val();
+        }
         // The next entry, in the clock the last beat of the last child goes.
         self.load.next = self.masks.out_valid.val()
             & self.entries.out_valid.val()
-            & ((self.mask_left.q.val() == 0) | (self.entry_done.val() & self.last_child.val()));
+            & ((self.live.val() == 0) | (self.entry_done.val() & self.last_child.val()));
         self.entries.pop.next = self.load.val();
         self.masks.pop.next = self.load.val();
         if self.load.val() {
@@ -742,7 +773,7 @@ impl<
         if self.running.q.val()
             & (self.read_stage.q.val() == 3)
             & (self.entries.count.val() == 0)
-            & (self.mask_left.q.val() == 0)
+            & (self.live.val() == 0)
             & !self.flushing.q.val()
             & !self.flushed.q.val()
         {
@@ -897,6 +928,7 @@ impl<
             self.entries_in.d.next = 0.into();
             self.flushing.d.next = false;
             self.flushed.d.next = false;
+            self.reached.d.next = 0.into();
             for i in 0..16 {
                 self.fill[i].d.next = 0.into();
                 self.half[i].d.next = false;
@@ -920,6 +952,11 @@ impl<
             self.unanswered.d.next = 0.into();
             self.feed_left.d.next = 0.into();
             self.read_valid.d.next = false;
+        }
+        // `gate` follows `object` and `reached` (see its field).
+        self.gate.d.next = 255.into();
+        if self.object.d.val() {
+            self.gate.d.next = self.reached.d.val();
         }
         self.unused_outputs.next = self.reader.out_last.val()
             ^ self.lane.out_index.val().any()

@@ -137,6 +137,8 @@ struct Machine {
     entry: Vec<u8>,
     object: bool,
     mask_left: u8,
+    /// The children an A entry has been written to in this pass.
+    reached: u8,
     beat: u64,
     flushing: bool,
     flushed: bool,
@@ -188,6 +190,7 @@ impl Machine {
             entry: vec![0; ENTRY_BYTES],
             object: false,
             mask_left: 0,
+            reached: 0,
             beat: 0,
             flushing: false,
             flushed: false,
@@ -270,11 +273,16 @@ impl Machine {
         let entry_in = push.then(|| (assembled.clone().unwrap(), object_in));
         let mask_out = self.lane.front().copied().flatten();
 
-        // The distributor.
+        // The distributor: a B entry only to the children A reached.
+        let live = if self.object {
+            self.mask_left & self.reached
+        } else {
+            self.mask_left
+        };
         let target = if self.flushing {
             Some(self.flush_child)
-        } else if self.mask_left != 0 {
-            Some(usize::from(self.object) * 8 + self.mask_left.trailing_zeros() as usize)
+        } else if live != 0 {
+            Some(usize::from(self.object) * 8 + live.trailing_zeros() as usize)
         } else {
             None
         };
@@ -289,18 +297,18 @@ impl Machine {
             None => (0, false, false, 0, 0),
         };
         let _ = sel_half;
-        let write = self.mask_left != 0 && !sel_blocked && !self.flushing;
+        let write = live != 0 && !sel_blocked && !self.flushing;
         let entry_done = write && self.beat == per_entry - 1;
-        let last_child = self.mask_left & self.mask_left.wrapping_sub(1) == 0;
+        let last_child = live & live.wrapping_sub(1) == 0;
         let slot_full = write && sel_fill == burst - 1;
         let flush_out = self.flushing && sel_fill != 0;
         let load = self.masks.head.is_some()
             && self.entries.head.is_some()
-            && (self.mask_left == 0 || (entry_done && last_child));
+            && (live == 0 || (entry_done && last_child));
         let flush_begins = self.running
             && self.read_stage == 3
             && self.entries.count() == 0
-            && self.mask_left == 0
+            && live == 0
             && !self.flushing
             && !self.flushed;
         let command = (slot_full || flush_out).then(|| {
@@ -349,7 +357,7 @@ impl Machine {
             self.buffer[at] = self.entry[offset..offset + bytes].to_vec();
             if entry_done {
                 self.beat = 0;
-                self.mask_left &= !(self.mask_left & self.mask_left.wrapping_neg());
+                self.mask_left = live & !(live & live.wrapping_neg());
             } else {
                 self.beat += 1;
             }
@@ -357,6 +365,9 @@ impl Machine {
         if let Some(i) = target {
             if write {
                 self.fill[i] += 1;
+                if i < 8 {
+                    self.reached |= 1 << i;
+                }
             }
             if entry_done {
                 self.count[i] += 1;
@@ -447,6 +458,7 @@ impl Machine {
             self.entries_in = 0;
             self.flushing = false;
             self.flushed = false;
+            self.reached = 0;
             self.fill = [0; CHILDREN];
             self.half = [false; CHILDREN];
             self.pending = [[false; 2]; CHILDREN];
@@ -497,6 +509,8 @@ pub fn run_pass(
 
 /// The pass's answer without clocks: each child's list, in the order the
 /// entries are read (what the unit writes, checked against in the tests).
+/// A's entries go to every child they meet, B's only to children that
+/// hold an A entry.
 pub fn child_lists(
     grid_bits: usize,
     cell: &Cell,
@@ -508,9 +522,10 @@ pub fn child_lists(
             let (_, triangle) = unpack(entry, grid_bits);
             let mask =
                 TriangleCellTest::widened(&triangle, BROAD_PHASE_MARGIN).children_of_cell(cell);
-            for (o, child) in children[8 * k..8 * k + 8].iter_mut().enumerate() {
-                if mask >> o & 1 == 1 {
-                    child.push(entry.clone());
+            for o in 0..8 {
+                let reached = k == 0 || !children[o].is_empty();
+                if mask >> o & 1 == 1 && reached {
+                    children[8 * k + o].push(entry.clone());
                 }
             }
         }
