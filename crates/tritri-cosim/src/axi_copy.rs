@@ -6,12 +6,13 @@
 //! ([`tritri_rtl::axi::transfer_machine`]): all three give a
 //! [`CopyOutcome`], so they compare with `==`.
 
+use crate::axi_drive::{drive_from_memory, manager_signals};
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use std::fmt::Write as _;
 use tritri_rtl::axi::axi_copy::{AxiCopy, COPY_QUEUE_ADDRESS_BITS};
-use tritri_rtl::axi::memory_model::{AxiMemory, ManagerSignals, MemoryParams};
+use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::axi::transfer_machine::copy_cycles;
 use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -100,35 +101,9 @@ pub fn run_rusthdl(case: &CopyCase) -> anyhow::Result<CopyOutcome> {
         loop {
             let out = memory.outputs();
             uut.start.next = cycles == 0;
-            uut.m_axi_arready.next = out.arready;
-            uut.m_axi_rvalid.next = out.rvalid;
-            uut.m_axi_rdata.next = bits_of::<DW>(&out.rdata);
-            uut.m_axi_rlast.next = out.rlast;
-            uut.m_axi_rresp.next = 0.into();
-            uut.m_axi_rid.next = false;
-            uut.m_axi_bid.next = false;
-            uut.m_axi_awready.next = out.awready;
-            uut.m_axi_wready.next = out.wready;
-            uut.m_axi_bvalid.next = out.bvalid;
-            uut.m_axi_bresp.next = 0.into();
+            drive_from_memory!(uut, &out, DW);
             settle(&mut uut);
-            let manager = ManagerSignals {
-                arvalid: uut.m_axi_arvalid.val(),
-                araddr: uut.m_axi_araddr.val().to_u64(),
-                arlen: uut.m_axi_arlen.val().to_u64(),
-                arsize: uut.m_axi_arsize.val().to_u64(),
-                arburst: uut.m_axi_arburst.val().to_u64(),
-                rready: uut.m_axi_rready.val(),
-                awvalid: uut.m_axi_awvalid.val(),
-                awaddr: uut.m_axi_awaddr.val().to_u64(),
-                awlen: uut.m_axi_awlen.val().to_u64(),
-                awsize: uut.m_axi_awsize.val().to_u64(),
-                awburst: uut.m_axi_awburst.val().to_u64(),
-                wvalid: uut.m_axi_wvalid.val(),
-                wdata: bytes_of::<DW>(uut.m_axi_wdata.val()),
-                wlast: uut.m_axi_wlast.val(),
-                bready: uut.m_axi_bready.val(),
-            };
+            let manager = manager_signals!(uut, DW);
             memory.edge(&manager);
             clock_cycle(&mut uut, |u| &mut u.clock);
             cycles += 1;

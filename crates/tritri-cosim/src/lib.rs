@@ -30,6 +30,7 @@
 //! * [`simulator`]: the one place that compiles and runs a testbench in
 //!   Icarus or Verilator; [`suites`]: vector sets every engine's tests share.
 pub mod axi_copy;
+mod axi_drive;
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;

@@ -8,14 +8,15 @@
 //! reads the children's lists out of the memory afterwards, to compare with
 //! the software answer ([`tritri_rtl::octree::list_pass_machine::child_lists`]).
 
-use crate::axi_copy::{bits_of, bytes_of, read_memory_dump, AXI_MEMORY};
+use crate::axi_copy::{read_memory_dump, AXI_MEMORY};
+use crate::axi_drive::{drive_from_memory, manager_signals};
 use crate::binning_unit::grid_value;
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use std::fmt::Write as _;
 use tritri_geom::octree::cell::Cell;
-use tritri_rtl::axi::memory_model::{AxiMemory, ManagerSignals, MemoryParams};
+use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::emit::list_pass_unit::{
     emit_list_pass, list_pass_unit_name, with_list_pass, ListPassVisitor,
 };
@@ -191,35 +192,9 @@ impl ListPassVisitor for RustHdlPass<'_> {
         loop {
             let out = memory.outputs();
             uut.start.next = cycles == 0;
-            uut.m_axi_arready.next = out.arready;
-            uut.m_axi_rvalid.next = out.rvalid;
-            uut.m_axi_rdata.next = bits_of::<DW>(&out.rdata);
-            uut.m_axi_rlast.next = out.rlast;
-            uut.m_axi_rresp.next = 0.into();
-            uut.m_axi_rid.next = false;
-            uut.m_axi_bid.next = false;
-            uut.m_axi_awready.next = out.awready;
-            uut.m_axi_wready.next = out.wready;
-            uut.m_axi_bvalid.next = out.bvalid;
-            uut.m_axi_bresp.next = 0.into();
+            drive_from_memory!(uut, &out, DW);
             settle(&mut uut);
-            let manager = ManagerSignals {
-                arvalid: uut.m_axi_arvalid.val(),
-                araddr: uut.m_axi_araddr.val().to_u64(),
-                arlen: uut.m_axi_arlen.val().to_u64(),
-                arsize: uut.m_axi_arsize.val().to_u64(),
-                arburst: uut.m_axi_arburst.val().to_u64(),
-                rready: uut.m_axi_rready.val(),
-                awvalid: uut.m_axi_awvalid.val(),
-                awaddr: uut.m_axi_awaddr.val().to_u64(),
-                awlen: uut.m_axi_awlen.val().to_u64(),
-                awsize: uut.m_axi_awsize.val().to_u64(),
-                awburst: uut.m_axi_awburst.val().to_u64(),
-                wvalid: uut.m_axi_wvalid.val(),
-                wdata: bytes_of::<DW>(uut.m_axi_wdata.val()),
-                wlast: uut.m_axi_wlast.val(),
-                bready: uut.m_axi_bready.val(),
-            };
+            let manager = manager_signals!(uut, DW);
             memory.edge(&manager);
             clock_cycle(&mut uut, |u| &mut u.clock);
             cycles += 1;
