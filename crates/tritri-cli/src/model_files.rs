@@ -54,7 +54,7 @@ pub struct ModelOutput {
 impl ModelOutput {
     /// Checks the extension, and for `.vox` the grid's side, before any
     /// work is done; reserves the file.
-    pub fn reserve(path: &str, side: usize) -> anyhow::Result<ModelOutput> {
+    pub fn reserve(path: &str, side: usize, inputs: &[&str]) -> anyhow::Result<ModelOutput> {
         let format = ModelFormat::of(path)?;
         if format == ModelFormat::MagicaVoxel && side > VOX_MAX_SIDE {
             anyhow::bail!("{path}: MagicaVoxel .vox models hold at most {VOX_MAX_SIDE}^3 voxels, this grid is {side}^3 (write .oct or .binvox)");
@@ -65,7 +65,7 @@ impl ModelOutput {
         Ok(ModelOutput {
             path: path.to_string(),
             format,
-            file: OutputFile::reserve(path)?,
+            file: OutputFile::reserve_apart(path, inputs)?,
         })
     }
 

@@ -167,18 +167,18 @@ fn bad(e: anyhow::Error) -> anyhow::Result<ExitCode> {
     Ok(ExitCode::from(2))
 }
 
-/// Reserves every output for a grid of `side`.
-fn reserve(paths: &[String], side: usize) -> anyhow::Result<Vec<ModelOutput>> {
+/// Reserves every output for a grid of `side`, none over an input.
+fn reserve(paths: &[String], side: usize, inputs: &[&str]) -> anyhow::Result<Vec<ModelOutput>> {
     paths
         .iter()
-        .map(|p| ModelOutput::reserve(p, side))
+        .map(|p| ModelOutput::reserve(p, side, inputs))
         .collect()
 }
 
 /// Reads a model and reserves its outputs (errors: bad input).
 fn open(path: &str, outputs: &[String]) -> anyhow::Result<(OctreeFile, Vec<ModelOutput>)> {
     let model = read_octree(path)?;
-    let outputs = reserve(outputs, 1 << model.tree.level())?;
+    let outputs = reserve(outputs, 1 << model.tree.level(), &[path])?;
     describe(path, &model)?;
     Ok((model, outputs))
 }
@@ -316,7 +316,8 @@ fn plane(a: PlaneArgs) -> anyhow::Result<ExitCode> {
     if let Err(e) = PlaneInputs::new(level, a.normal, a.offset) {
         return bad(anyhow::anyhow!("--normal {:?}: {e}", a.normal));
     }
-    let outputs = match reserve(&a.outputs.out, 1 << level) {
+    let inputs: Vec<&str> = a.model.iter().map(String::as_str).collect();
+    let outputs = match reserve(&a.outputs.out, 1 << level, &inputs) {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
@@ -534,7 +535,7 @@ fn combine(a: PairArgs, op: SetOperation) -> anyhow::Result<ExitCode> {
             a.a, a.b, a.a
         );
     }
-    let outputs = match reserve(&a.outputs.out, 1 << ma.tree.level()) {
+    let outputs = match reserve(&a.outputs.out, 1 << ma.tree.level(), &[&a.a, &a.b]) {
         Ok(o) => o,
         Err(e) => return bad(e),
     };

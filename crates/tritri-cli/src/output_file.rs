@@ -42,6 +42,14 @@ impl OutputFile {
         })
     }
 
+    /// [`OutputFile::reserve`], refused when `path` is one of `inputs` (the
+    /// same file, by any name), so an output never replaces what the run
+    /// reads.
+    pub fn reserve_apart(path: &str, inputs: &[&str]) -> anyhow::Result<OutputFile> {
+        refuse_input(path, inputs)?;
+        OutputFile::reserve(path)
+    }
+
     /// Writes the contents with `fill` and puts the file in place.
     pub fn commit(
         self,
@@ -109,4 +117,22 @@ impl Drop for OutputFile {
             interrupt::unregister_temporary(temporary);
         }
     }
+}
+
+/// An error when `path` names the same file as one of `inputs` (compared
+/// by device and inode, so `./a.off` and `a.off` are one file; names
+/// that do not exist, `-` and the built-ins like `@torus` are no file).
+pub fn refuse_input(path: &str, inputs: &[&str]) -> anyhow::Result<()> {
+    use std::os::unix::fs::MetadataExt;
+    let Ok(out) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    for input in inputs {
+        if let Ok(meta) = std::fs::metadata(input) {
+            if meta.dev() == out.dev() && meta.ino() == out.ino() {
+                anyhow::bail!("cannot write {path}: it is the input {input}, which this run reads");
+            }
+        }
+    }
+    Ok(())
 }

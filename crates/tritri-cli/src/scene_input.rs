@@ -58,6 +58,12 @@ pub struct SceneArgs {
 const UNIT_GRID_BITS: usize = 24;
 
 impl SceneArgs {
+    /// The files `--scene` names (none for the built-in scene), which no
+    /// output of the run may replace.
+    pub fn files(&self) -> Vec<&str> {
+        self.scene.iter().flatten().map(String::as_str).collect()
+    }
+
     /// Loads A and B (B posed); `default` names the objects when `--scene`
     /// is not given.
     pub fn load(&self, default: [&str; 2]) -> anyhow::Result<(SceneObject, SceneObject)> {

@@ -215,14 +215,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         eprintln!("error: --vcd needs --engine icarus or verilator (the emitted Verilog), not --engine {}", args.engine.name());
         return Ok(ExitCode::from(2));
     }
-    let output = match args.out.as_deref().map(OutputFile::reserve).transpose() {
+    let inputs: Vec<&str> = args.scene.files();
+    let reserve = |path: &str| OutputFile::reserve_apart(path, &inputs);
+    let output = match args.out.as_deref().map(reserve).transpose() {
         Ok(output) => output,
         Err(e) => {
             eprintln!("error: --out: {e:#}");
             return Ok(ExitCode::from(2));
         }
     };
-    let json = match args.json.as_deref().map(OutputFile::reserve).transpose() {
+    let json = match args.json.as_deref().map(reserve).transpose() {
         Ok(json) => json,
         Err(e) => {
             eprintln!("error: --json: {e:#}");
@@ -233,7 +235,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         .vcd
         .as_deref()
         .filter(|p| *p != "-")
-        .map(OutputFile::reserve)
+        .map(reserve)
         .transpose()
     {
         Ok(vcd) => vcd,
@@ -242,7 +244,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             return Ok(ExitCode::from(2));
         }
     };
-    let png = match args.png.as_deref().map(reserve_png).transpose() {
+    let png = match args
+        .png
+        .as_deref()
+        .map(|p| crate::output_file::refuse_input(p, &inputs).and_then(|()| reserve_png(p)))
+        .transpose()
+    {
         Ok(png) => png,
         Err(e) => {
             eprintln!("error: --png: {e:#}");

@@ -89,7 +89,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     // Outputs are checked before the work.
     let mut outputs = Vec::new();
     for path in args.out.iter().chain(&args.png) {
-        match ModelOutput::reserve(path, side) {
+        match ModelOutput::reserve(path, side, &[&args.mesh]) {
             Ok(o) => outputs.push(o),
             Err(e) => {
                 eprintln!("error: {e:#}");

@@ -263,3 +263,46 @@ fn an_empty_pair_file_is_said_to_be_empty() {
     assert_eq!(out.status.code(), Some(0), "{err}");
     assert!(err.contains("no pairs in the file"), "{err}");
 }
+
+/// An output that names an input (by any path to the same file) is
+/// refused before the work, and the input is left as it was.
+#[test]
+fn an_output_over_an_input_is_refused_and_the_input_kept() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("output-over-input");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mesh = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n";
+    let a = dir.join("a.obj");
+    let b = dir.join("b.obj");
+    std::fs::write(&a, mesh).unwrap();
+    std::fs::write(&b, mesh).unwrap();
+    let (a_s, b_s) = (a.to_str().unwrap(), b.to_str().unwrap());
+    // The same file by another name.
+    let b_other = format!("{}/./b.obj", dir.display());
+    let cases: &[(&[&str], &str)] = &[
+        (&["sim", "--scene", a_s, b_s, "--out", a_s], "--out"),
+        (&["sim", "--scene", a_s, b_s, "--out", &b_other], "--out"),
+        (&["sim", "--scene", a_s, b_s, "--json", a_s], "--json"),
+        (
+            &["voxelize", a_s, "--resolution", "8", "--out", a_s],
+            "it is the input",
+        ),
+    ];
+    for (args, names) in cases {
+        let out = tritri(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(names) && stderr.contains("it is the input"),
+            "{args:?}: {stderr}"
+        );
+        for input in [&a, &b] {
+            assert_eq!(
+                std::fs::read_to_string(input).unwrap(),
+                mesh,
+                "{args:?} changed {}",
+                input.display()
+            );
+        }
+    }
+}
