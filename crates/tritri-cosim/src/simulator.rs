@@ -296,7 +296,8 @@ pub fn fingerprint<'a>(parts: impl IntoIterator<Item = &'a str>) -> u64 {
 }
 
 /// A directory removed on drop (unless `TRITRI_KEEP_WORK` is set, for
-/// debugging), and on an interrupt.
+/// debugging), and on an interrupt. The first one a process makes also
+/// removes those a killed run left behind ([`sweep_abandoned`]).
 pub struct WorkDir {
     pub path: PathBuf,
 }
@@ -304,6 +305,8 @@ pub struct WorkDir {
 impl WorkDir {
     pub fn new(label: &str) -> std::io::Result<Self> {
         static COUNTER: AtomicU64 = AtomicU64::new(0);
+        static SWEEP: std::sync::Once = std::sync::Once::new();
+        SWEEP.call_once(|| sweep_abandoned(&std::env::temp_dir()));
         let path = std::env::temp_dir().join(format!(
             "tritri-{label}-{}-{}",
             std::process::id(),
@@ -326,8 +329,80 @@ impl Drop for WorkDir {
         if std::env::var_os("TRITRI_KEEP_WORK").is_none() {
             let _ = std::fs::remove_dir_all(&self.path);
         } else {
+            // Kept on purpose: a later run's sweep leaves it.
+            let _ = std::fs::write(self.path.join(KEPT_MARKER), "");
             eprintln!("tritri: kept work directory {}", self.path.display());
         }
+    }
+}
+
+/// The file that marks a work directory kept with `TRITRI_KEEP_WORK`.
+const KEPT_MARKER: &str = ".tritri-kept";
+
+/// Removes the work directories under `dir` that a run killed without a
+/// chance to clean up left behind: named `tritri-<label>-<pid>-<n>`
+/// ([`WorkDir::new`]), their process gone (no `/proc/<pid>`), and not
+/// kept on purpose. A directory whose process may still run is left, so a
+/// reused process id errs on the side of keeping.
+pub fn sweep_abandoned(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = name.strip_prefix("tritri-") else {
+            continue;
+        };
+        let mut fields = rest.rsplit('-');
+        let (Some(counter), Some(pid)) = (fields.next(), fields.next()) else {
+            continue;
+        };
+        let numeric = |f: &str| !f.is_empty() && f.bytes().all(|b| b.is_ascii_digit());
+        if !numeric(counter) || !numeric(pid) || fields.next().is_none() {
+            continue;
+        }
+        let path = entry.path();
+        let alive = Path::new("/proc").join(pid).exists();
+        if !alive && path.is_dir() && !path.join(KEPT_MARKER).exists() {
+            let _ = std::fs::remove_dir_all(&path);
+        }
+    }
+}
+
+#[cfg(test)]
+mod sweep_tests {
+    use super::*;
+
+    #[test]
+    fn only_work_directories_of_gone_processes_are_swept() {
+        let root = std::env::temp_dir().join(format!("sweep-test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        std::fs::create_dir_all(&root).unwrap();
+        // A process id that is gone: a child that has exited.
+        let mut child = Command::new("true").spawn().unwrap();
+        let gone = child.id();
+        child.wait().unwrap();
+        let me = std::process::id();
+        let make = |name: String| {
+            let p = root.join(name);
+            std::fs::create_dir_all(&p).unwrap();
+            p
+        };
+        let abandoned = make(format!("tritri-verilator-build-x-{gone}-3"));
+        let running = make(format!("tritri-list-pass-{me}-0"));
+        let kept = make(format!("tritri-list-pass-{gone}-1"));
+        std::fs::write(kept.join(KEPT_MARKER), "").unwrap();
+        let cache = make("tritri-cache".to_string());
+        let foreign = make(format!("other-{gone}-0"));
+        sweep_abandoned(&root);
+        assert!(
+            !abandoned.exists(),
+            "the abandoned directory is still there"
+        );
+        for p in [&running, &kept, &cache, &foreign] {
+            assert!(p.exists(), "{} was removed", p.display());
+        }
+        let _ = std::fs::remove_dir_all(&root);
     }
 }
 
