@@ -153,7 +153,7 @@ use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_
 use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::route::{
     best_route, route_ecp5, route_ecp5_seeds, route_table, routes_at_once, Ecp5Options, Placer,
-    RouteError, RouteReport, Router,
+    RouteError, RouteFiles, RouteReport, Router,
 };
 use tritri_rtl::synth::{resource_table, synthesize, ResourceRow, Target};
 use tritri_rtl::system::system_for_width::PipelineKind;
@@ -829,7 +829,7 @@ fn place_and_route(
         eprintln!(
             "yosys synth_ecp5 and nextpnr-ecp5 of {top} (out of context, LFE5U-85F, speed 6) in {} (progress: {}) ...",
             dir.display(),
-            dir.join("route_ecp5.log").display()
+            dir.join(RouteFiles::single().partial().log).display()
         );
         let report =
             route_ecp5(dir, top, &options).with_context(|| format!("place and route of {top}"))?;
@@ -838,7 +838,7 @@ fn place_and_route(
         return Ok(vec![report]);
     }
     eprintln!(
-        "yosys synth_ecp5, then nextpnr-ecp5 of {top} with seeds {} (out of context, LFE5U-85F, speed 6, {} at once) in {} (progress: route_ecp5_seed<N>.log) ...",
+        "yosys synth_ecp5, then nextpnr-ecp5 of {top} with seeds {} (out of context, LFE5U-85F, speed 6, {} at once) in {} (progress: route_ecp5_seed<N>.partial.log) ...",
         seeds_list(&args.seed),
         routes_at_once(&options, args.seed.len()),
         dir.display()

