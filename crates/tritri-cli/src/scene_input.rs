@@ -7,7 +7,9 @@ use std::time::Duration;
 use tritri_cosim::engine::Engine;
 use tritri_cosim::patch_triangles::tessellate_pieces;
 use tritri_cosim::scene_query::{Accelerator, Clock, ClockSource};
-use tritri_geom::bezier::query::{patches_box, query_pieces, tessellate_for_query, MAX_SPLITS};
+use tritri_geom::bezier::query::{
+    patches_box, query_pieces, tessellate_for_query, MAX_SAMPLES, MAX_SPLITS,
+};
 use tritri_geom::bezier::{read_bpt, BezierPatch};
 use tritri_geom::bounding_volume::Aabb;
 use tritri_geom::scene::load::{load_object, LoadError, Pose, SceneObject};
@@ -142,8 +144,18 @@ impl SceneArgs {
                 }
                 Shape::Patches(patches) => {
                     let q = tessellate_for_query(&patches, region.as_ref(), tolerance, MAX_SPLITS);
+                    // What the tessellation reached: the tolerance, or (a
+                    // piece capped at MAX_SAMPLES a side) its own bound.
+                    let within = if q.bound <= tolerance {
+                        format!("within {tolerance} of the surface")
+                    } else {
+                        format!(
+                            "within {:.3e} of the surface (not the tolerance {tolerance}: a piece stops at {MAX_SAMPLES} samples a side)",
+                            q.bound
+                        )
+                    };
                     notes.push(format!(
-                    "tessellation for the query: {name}: {} of {} patches can meet the other object, cut into {} pieces: {} triangles within {tolerance} of the surface, against {} for every patch at {} samples a side (the same tolerance)",
+                    "tessellation for the query: {name}: {} of {} patches can meet the other object, cut into {} pieces: {} triangles {within}, against {} for every patch at {} samples a side (the same tolerance)",
                     q.patches_kept,
                     patches.len(),
                     q.pieces,

@@ -18,7 +18,7 @@
 //! (`teapot_patches_left_out_touch_nothing` in `tests/shared_testdata.rs`
 //! checks it on the teapot against spheres).
 
-use super::lod::error_level;
+use super::lod::{deviation_bound, error_level};
 use super::BezierPatch;
 use crate::bounding_volume::Aabb;
 use crate::triangle::Triangle;
@@ -42,6 +42,10 @@ pub struct QueryTessellation {
     /// of every patch gives.
     pub uniform_samples: usize,
     pub uniform_triangles: usize,
+    /// The largest deviation bound of a tessellated piece at its samples:
+    /// at most the tolerance, unless a piece needed more than
+    /// [`MAX_SAMPLES`] a side.
+    pub bound: f64,
 }
 
 /// The box of a patch's control net.
@@ -172,8 +176,10 @@ pub fn tessellate_for_query(
         pieces: pieces.len(),
         uniform_samples,
         uniform_triangles,
+        bound: 0.0,
     };
     for p in &pieces {
+        out.bound = out.bound.max(deviation_bound(&p.piece, p.samples));
         let triangles = p.piece.tessellate(p.samples);
         out.face_of
             .extend(std::iter::repeat_n(p.patch, triangles.len()));
@@ -184,7 +190,6 @@ pub fn tessellate_for_query(
 
 #[cfg(test)]
 mod tests {
-    use super::super::lod::deviation_bound;
     use super::super::tests::wavy_patch;
     use super::*;
 
@@ -207,6 +212,11 @@ mod tests {
             (n, all.triangles.len())
         );
         assert!(deviation_bound(&patch, n) <= tolerance);
+        assert!(all.bound <= tolerance && all.bound == deviation_bound(&patch, n));
+        // A tolerance no piece can meet at MAX_SAMPLES a side: the bound
+        // says what was reached instead.
+        let tight = tessellate_for_query(&[patch], Some(&whole.expanded(1.0)), 1e-12, 0);
+        assert!(tight.bound > 1e-12, "{}", tight.bound);
 
         let beside = Aabb {
             lo: whole.hi.map(|c| c + 1.0),
