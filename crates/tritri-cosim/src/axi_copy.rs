@@ -6,16 +6,18 @@
 //! ([`tritri_rtl::axi::transfer_machine`]): all three give a
 //! [`CopyOutcome`], so they compare with `==`.
 
-use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::axi_drive::{
+    clock_until_done, drive_from_memory, manager_signals, memory_parameters, parse_status,
+    read_memory_dump, write_memory_hex,
+};
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
-use anyhow::{bail, Context as _};
+use anyhow::bail;
 use rust_hdl::prelude::*;
-use std::fmt::Write as _;
 use tritri_rtl::axi::axi_copy::{AxiCopy, COPY_QUEUE_ADDRESS_BITS};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::axi::transfer_machine::copy_cycles;
 use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
-use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+use tritri_rtl::sim_drive::reset_one_clock;
 
 /// The Verilog memory model and the copy unit's testbench.
 pub const AXI_MEMORY: &str = include_str!("../../../testbenches/axi_memory.sv");
@@ -97,23 +99,7 @@ pub fn run_rusthdl(case: &CopyCase) -> anyhow::Result<CopyOutcome> {
         uut.source.next = (case.source).into();
         uut.destination.next = (case.destination).into();
         uut.beats.next = (case.beats).into();
-        let mut cycles = 0u64;
-        loop {
-            let out = memory.outputs();
-            uut.start.next = cycles == 0;
-            drive_from_memory!(uut, &out, DW);
-            settle(&mut uut);
-            let manager = manager_signals!(uut, DW);
-            memory.edge(&manager);
-            clock_cycle(&mut uut, |u| &mut u.clock);
-            cycles += 1;
-            if uut.done.val() {
-                break;
-            }
-            if cycles >= case.limit {
-                bail!("the rust-hdl copy did not end within {} clocks", case.limit);
-            }
-        }
+        let cycles = clock_until_done!(uut, memory, DW, case.limit, "copy");
         Ok(CopyOutcome {
             cycles,
             stalled: memory.stalled,
@@ -140,27 +126,14 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
     for f in design.verilog_files() {
         files.push((f.path.clone(), f.contents.clone()));
     }
-    let p = &case.params;
-    let parameters = [
-        ("DATA_BITS", case.config.data_bits as u64),
-        ("BYTES", case.bytes.len() as u64),
-        ("READ_LATENCY", p.read_latency),
-        ("WRITE_LATENCY", p.write_latency),
-        ("OUTSTANDING", p.outstanding as u64),
-        ("BPC_NUM", p.bytes_per_clock.0),
-        ("BPC_DEN", p.bytes_per_clock.1),
-        ("STALL_PERCENT", u64::from(p.stall_percent)),
-        ("SEED", u64::from(p.seed)),
-        ("LIMIT", case.limit),
-    ];
+    let mut parameters = vec![("DATA_BITS".to_string(), case.config.data_bits.to_string())];
+    parameters.extend(memory_parameters(&case.params, case.bytes.len() as u64));
+    parameters.push(("LIMIT".to_string(), case.limit.to_string()));
     let testbench = Testbench {
         top: "tb_axi_copy".to_string(),
         files,
         defines: vec![format!("TRITRI_DUT={}", case.config.unit_name())],
-        parameters: parameters
-            .iter()
-            .map(|(n, v)| (n.to_string(), v.to_string()))
-            .collect(),
+        parameters,
         c_optimization: 2,
         trace: false,
     };
@@ -168,11 +141,7 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
     let work = WorkDir::new("axi-copy")?;
     let memory_in = work.join("memory.hex");
     let memory_out = work.join("memory_out.hex");
-    let mut hex = String::with_capacity(3 * case.bytes.len());
-    for b in &case.bytes {
-        let _ = writeln!(hex, "{b:02x}");
-    }
-    std::fs::write(&memory_in, hex)?;
+    write_memory_hex(&memory_in, &case.bytes)?;
     let output = compiled.run(&[
         format!("+memory={}", memory_in.display()),
         format!("+out={}", memory_out.display()),
@@ -180,45 +149,16 @@ pub fn run_simulator(simulator: Simulator, case: &CopyCase) -> anyhow::Result<Co
         format!("+destination={}", case.destination),
         format!("+beats={}", case.beats),
     ])?;
-    let text = String::from_utf8_lossy(&output.stdout);
-    let line = text
-        .lines()
-        .find(|l| l.starts_with("# cycles "))
-        .with_context(|| format!("the testbench printed no cycles:\n{text}"))?;
-    let field = |name: &str| -> anyhow::Result<u64> {
-        let mut words = line.split_whitespace();
-        while let Some(w) = words.next() {
-            if w == name {
-                return words
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .with_context(|| format!("no number after {name} in {line:?}"));
-            }
-        }
-        bail!("no {name} in {line:?}")
-    };
-    if field("done")? != 1 {
+    let status = parse_status(&String::from_utf8_lossy(&output.stdout))?;
+    if !status.done {
         bail!("the emitted copy did not end within {} clocks", case.limit);
     }
     let bytes = read_memory_dump(&memory_out, case.bytes.len())?;
     Ok(CopyOutcome {
-        cycles: field("cycles")?,
-        stalled: field("stalled")?,
-        error: field("error")? != 0,
-        faults: field("faults")? as usize,
+        cycles: status.cycles,
+        stalled: status.stalled,
+        error: status.error,
+        faults: status.faults,
         bytes,
     })
-}
-
-/// The first `bytes` bytes of a memory written by `$writememh`, a byte a
-/// line (the rest, which the testbench never loaded, may be unknown).
-pub(crate) fn read_memory_dump(path: &std::path::Path, bytes: usize) -> anyhow::Result<Vec<u8>> {
-    std::fs::read_to_string(path)
-        .with_context(|| format!("the memory dump {}", path.display()))?
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with('@'))
-        .take(bytes)
-        .map(|l| u8::from_str_radix(l, 16).with_context(|| format!("memory dump line {l:?}")))
-        .collect()
 }

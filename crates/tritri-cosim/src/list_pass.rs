@@ -8,13 +8,15 @@
 //! reads the children's lists out of the memory afterwards, to compare with
 //! the software answer ([`tritri_rtl::octree::list_pass_machine::child_lists`]).
 
-use crate::axi_copy::{read_memory_dump, AXI_MEMORY};
-use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::axi_copy::AXI_MEMORY;
+use crate::axi_drive::{
+    clock_until_done, drive_from_memory, manager_signals, memory_parameters, parse_status,
+    read_memory_dump, write_memory_hex,
+};
 use crate::binning_unit::grid_value;
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
-use std::fmt::Write as _;
 use tritri_geom::octree::cell::Cell;
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::emit::list_pass_unit::{
@@ -23,7 +25,7 @@ use tritri_rtl::emit::list_pass_unit::{
 use tritri_rtl::octree::list_entry::ENTRY_BYTES;
 use tritri_rtl::octree::list_pass::{ListPass, CHILDREN};
 use tritri_rtl::octree::list_pass_machine::{run_pass, ListPassConfig, PassRequest};
-use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+use tritri_rtl::sim_drive::reset_one_clock;
 
 /// The pass unit's testbench.
 pub const LIST_PASS_TESTBENCH: &str = include_str!("../../../testbenches/tb_list_pass.sv");
@@ -188,23 +190,7 @@ impl ListPassVisitor for RustHdlPass<'_> {
             uut.child_base[k].next = request.children[k].0.into();
             uut.child_stride[k].next = request.children[k].1.into();
         }
-        let mut cycles = 0u64;
-        loop {
-            let out = memory.outputs();
-            uut.start.next = cycles == 0;
-            drive_from_memory!(uut, &out, DW);
-            settle(&mut uut);
-            let manager = manager_signals!(uut, DW);
-            memory.edge(&manager);
-            clock_cycle(&mut uut, |u| &mut u.clock);
-            cycles += 1;
-            if uut.done.val() {
-                break;
-            }
-            if cycles >= case.limit {
-                bail!("the rust-hdl pass did not end within {} clocks", case.limit);
-            }
-        }
+        let cycles = clock_until_done!(uut, memory, DW, case.limit, "pass");
         let mut child_counts = [0u64; CHILDREN];
         for (i, c) in child_counts.iter_mut().enumerate() {
             *c = uut.child_count[i].val().to_u64();
@@ -234,33 +220,20 @@ pub fn run_simulator(simulator: Simulator, case: &PassCase) -> anyhow::Result<Pa
         files.push((f.path.clone(), f.contents.clone()));
     }
     let memory = case.memory();
-    let p = &case.params;
-    let parameters = [
-        ("GRID_BITS", case.config.grid_bits as u64),
-        ("DATA_BITS", case.config.data_bits as u64),
-        // A power of two, so that cases of about one size share one
-        // Verilator build; the bytes past the case's memory are not compared.
-        (
-            "BYTES",
-            (memory.len() as u64).next_power_of_two().max(1 << 16),
-        ),
-        ("READ_LATENCY", p.read_latency),
-        ("WRITE_LATENCY", p.write_latency),
-        ("OUTSTANDING", p.outstanding as u64),
-        ("BPC_NUM", p.bytes_per_clock.0),
-        ("BPC_DEN", p.bytes_per_clock.1),
-        ("STALL_PERCENT", u64::from(p.stall_percent)),
-        ("SEED", u64::from(p.seed)),
-        ("LIMIT", case.limit),
+    let mut parameters = vec![
+        ("GRID_BITS".to_string(), case.config.grid_bits.to_string()),
+        ("DATA_BITS".to_string(), case.config.data_bits.to_string()),
     ];
+    // A power of two, so that cases of about one size share one Verilator
+    // build; the bytes past the case's memory are not compared.
+    let bytes = (memory.len() as u64).next_power_of_two().max(1 << 16);
+    parameters.extend(memory_parameters(&case.params, bytes));
+    parameters.push(("LIMIT".to_string(), case.limit.to_string()));
     let testbench = Testbench {
         top: "tb_list_pass".to_string(),
         files,
         defines: vec![format!("TRITRI_DUT={}", list_pass_unit_name(&case.config))],
-        parameters: parameters
-            .iter()
-            .map(|(n, v)| (n.to_string(), v.to_string()))
-            .collect(),
+        parameters,
         c_optimization: 2,
         trace: false,
     };
@@ -268,11 +241,7 @@ pub fn run_simulator(simulator: Simulator, case: &PassCase) -> anyhow::Result<Pa
     let work = WorkDir::new("list-pass")?;
     let memory_in = work.join("memory.hex");
     let memory_out = work.join("memory_out.hex");
-    let mut hex = String::with_capacity(3 * memory.len());
-    for b in &memory {
-        let _ = writeln!(hex, "{b:02x}");
-    }
-    std::fs::write(&memory_in, hex)?;
+    write_memory_hex(&memory_in, &memory)?;
     let request = case.request();
     let g = case.config.grid_bits;
     let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
@@ -292,32 +261,8 @@ pub fn run_simulator(simulator: Simulator, case: &PassCase) -> anyhow::Result<Pa
     }
     let output = compiled.run(&plusargs)?;
     let text = String::from_utf8_lossy(&output.stdout);
-    let numbers = |prefix: &str| -> anyhow::Result<Vec<(String, u64)>> {
-        let line = text
-            .lines()
-            .find(|l| l.starts_with(prefix))
-            .with_context(|| format!("the testbench printed no {prefix:?} line:\n{text}"))?;
-        let words: Vec<&str> = line.split_whitespace().skip(1).collect();
-        words
-            .chunks(2)
-            .map(|w| match w {
-                [name, value] => value
-                    .parse()
-                    .map(|v| (name.to_string(), v))
-                    .with_context(|| format!("{name} in {line:?}")),
-                _ => bail!("an odd word in {line:?}"),
-            })
-            .collect()
-    };
-    let status = numbers("# cycles ")?;
-    let field = |name: &str| -> anyhow::Result<u64> {
-        status
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, v)| *v)
-            .with_context(|| format!("the testbench printed no {name}"))
-    };
-    if field("done")? != 1 {
+    let status = parse_status(&text)?;
+    if !status.done {
         bail!("the emitted pass did not end within {} clocks", case.limit);
     }
     let counts: Vec<u64> = text
@@ -335,10 +280,10 @@ pub fn run_simulator(simulator: Simulator, case: &PassCase) -> anyhow::Result<Pa
     })?;
     let bytes = read_memory_dump(&memory_out, memory.len())?;
     Ok(PassOutcome {
-        cycles: field("cycles")?,
-        stalled: field("stalled")?,
-        error: field("error")? != 0,
-        faults: field("faults")? as usize,
+        cycles: status.cycles,
+        stalled: status.stalled,
+        error: status.error,
+        faults: status.faults,
         child_counts,
         bytes,
     })
