@@ -17,11 +17,27 @@
 
 use anyhow::Context as _;
 use tritri_cosim::binning_unit::bin_scene;
-use tritri_cosim::dram_binning::walk;
+use tritri_cosim::dram_binning::bin_in_dram;
 use tritri_cosim::scene_query::Accelerator;
 use tritri_geom::scene::load::{load_object, Pose};
+use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::leaf_cost::leaf_cost;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+
+/// The collision system's clocks on the leaves of `schedule`, as the
+/// split rule counts them.
+fn narrow_phase(schedule: &OctreeSchedule, accelerator: &Accelerator) -> u64 {
+    let (log_depth, log_pipelines) = (accelerator.depth.ilog2(), accelerator.pipelines.ilog2());
+    schedule
+        .leaves
+        .iter()
+        .map(|l| leaf_cost(l.a.len() as u64, l.b.len() as u64, log_depth, log_pipelines))
+        .sum()
+}
+
+/// The memory the children's lists may take.
+const ARENA_BYTES: u64 = 256 << 20;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -75,9 +91,9 @@ fn main() -> anyhow::Result<()> {
     );
     println!();
     println!(
-        "| port | memory | passes | read | written (to one-object children) | clocks | / on-chip |"
+        "| port | memory | passes | leaves | first leaf out | read | written (to one-object children) | arena | clocks | of them in passes | / on-chip |"
     );
-    println!("|---:|---|---:|---:|---:|---:|---:|");
+    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for data_bits in [64, 128, 256] {
         let beat = data_bits as u64 / 8;
         let memories = [
@@ -101,14 +117,35 @@ fn main() -> anyhow::Result<()> {
                 max_read_burst: 16,
                 outstanding: 4,
             };
-            let run = walk(schedule, [&scene.kept_a, &scene.kept_b], config, params)?;
+            let got = bin_in_dram(&accelerator, &scene, config, params, ARENA_BYTES)?;
+            let run = &got.run;
+            if data_bits == 64 && name.starts_with("ideal") {
+                println!(
+                    "the streaming split rule: {} leaves, narrow phase {} clocks; the planner's: {} leaves, {} clocks",
+                    got.schedule.leaves.len(),
+                    narrow_phase(&got.schedule, &accelerator),
+                    schedule.leaves.len(),
+                    narrow_phase(schedule, &accelerator)
+                );
+            }
+            if run.arena_full > 0 {
+                println!(
+                    "({} cells found the {} MiB arena full and stayed leaves)",
+                    run.arena_full,
+                    ARENA_BYTES >> 20
+                );
+            }
             println!(
-                "| {data_bits} bits | {name} | {} | {} KiB | {} KiB ({} KiB) | {} | {:.2} |",
+                "| {data_bits} bits | {name} | {} | {} | clock {} | {} KiB | {} KiB ({} KiB) | {} KiB | {} | {} | {:.2} |",
                 run.passes,
+                run.leaves.len(),
+                run.leaves.first().map_or(0, |l| l.clock),
                 run.bytes_read / 1024,
                 run.bytes_written / 1024,
                 run.bytes_dropped / 1024,
+                run.peak_arena / 1024,
                 run.cycles,
+                run.pass_cycles,
                 run.cycles as f64 / on_chip.run.cycles as f64
             );
         }

@@ -1,70 +1,152 @@
-//! The broad phase's binning with every list in external memory, pass by
-//! pass in the list pass unit's clock-exact model: the lists that reach the
-//! leaves are the planner's, every entry is read once per split cell and
-//! written once per child it meets, and the clocks stay within the beats
-//! the passes move.
+//! The broad phase's binning with every list in external memory, in the
+//! controller's clock-exact model over the list pass unit's: the leaves are
+//! the streaming planner's, they go out while the walk goes on, a memory
+//! that stalls changes the clocks and nothing else, and an arena too small
+//! for the tree loses no pair.
 
-use tritri_cosim::dram_binning::walk;
+use std::collections::HashSet;
+use tritri_cosim::dram_binning::bin_in_dram;
+use tritri_cosim::scene_query::Accelerator;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::{prepare_octree, SceneOptions};
+use tritri_geom::scene::PreparedScene;
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::list_entry::unpack;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
-use tritri_rtl::system::SystemConfig;
 
-#[test]
-fn the_lists_that_reach_the_leaves_are_the_planners() {
+fn scene() -> (Accelerator, PreparedScene) {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
-    let depth = 32;
-    let options = SceneOptions {
+    let mut accelerator = Accelerator::new(24);
+    accelerator.depth = 32;
+    let prepared = accelerator.prepare(&a, &b).unwrap();
+    (accelerator, prepared)
+}
+
+fn pass(data_bits: usize) -> ListPassConfig {
+    ListPassConfig {
         grid_bits: 24,
-        depth,
-        split: true,
-    };
-    let config = SystemConfig::new(24, 2).with_depth(depth);
-    let prepared = prepare_octree(&a, &b, &options, &config, None).unwrap();
-    let schedule = prepared.octree.as_ref().unwrap();
-    assert!(
-        schedule.tree_depth >= 2,
-        "a tree of depth {}",
-        schedule.tree_depth
-    );
+        data_bits,
+        max_read_burst: 16,
+        outstanding: 4,
+    }
+}
+
+/// Every (A, B) pair of triangle indices that some leaf holds.
+fn pairs(leaves: impl Iterator<Item = [Vec<u32>; 2]>) -> HashSet<(u32, u32)> {
+    let mut out = HashSet::new();
+    for [a, b] in leaves {
+        for &i in &a {
+            out.extend(b.iter().map(|&j| (i, j)));
+        }
+    }
+    out
+}
+
+#[test]
+fn the_leaves_are_the_streaming_planners_and_go_out_as_decided() {
+    let (accelerator, prepared) = scene();
     for data_bits in [64, 256] {
-        let pass = ListPassConfig {
-            grid_bits: 24,
-            data_bits,
-            max_read_burst: 16,
-            outstanding: 4,
-        };
-        let run = walk(
-            schedule,
-            [&prepared.kept_a, &prepared.kept_b],
-            pass,
-            MemoryParams::ideal(data_bits as u64 / 8, 24),
-        )
-        .unwrap();
-        assert_eq!(run.leaves, schedule.leaves.len() as u64);
-        assert!(run.passes >= schedule.tree_depth as u64);
-        // The planner also classifies the subtrees it tries and gives up.
-        assert!(run.passes <= schedule.cells_visited, "{run:?}");
+        let params = MemoryParams::ideal(data_bits as u64 / 8, 24);
+        let got = bin_in_dram(&accelerator, &prepared, pass(data_bits), params, 1 << 24).unwrap();
+        let run = &got.run;
+        assert_eq!(run.arena_full, 0);
+        assert!(
+            got.schedule.tree_depth >= 2,
+            "depth {}",
+            got.schedule.tree_depth
+        );
+        assert!(run.leaves.len() > 8, "{} leaves", run.leaves.len());
+        assert!(run.passes >= got.schedule.tree_depth as u64);
+        // A streaming binner classifies only the cells it splits or tries.
+        assert_eq!(run.passes, got.schedule.cells_visited);
+        // Leaves go out one after another while the walk goes on.
+        assert!(run.leaves.windows(2).all(|w| w[0].clock < w[1].clock));
+        let first = &run.leaves[0];
+        assert!(
+            first.after_passes < run.passes / 2,
+            "the first leaf after {} of {} passes",
+            first.after_passes,
+            run.passes
+        );
         let beat = data_bits as u64 / 8;
         let (read, written) = (run.bytes_read / beat, run.bytes_written / beat);
         // Reads and writes go on their own channels: at least the larger,
         // at most both and a pass's latencies.
-        assert!(run.cycles >= read.max(written), "{run:?}");
+        assert!(run.pass_cycles >= read.max(written), "{run:?}");
         assert!(run.cycles <= read + written + 300 * run.passes, "{run:?}");
+        assert!(run.peak_arena > 0 && run.peak_arena <= 1 << 24);
         eprintln!(
-            "{data_bits}-bit port: {} passes (the planner classified {} cells), {} leaves, {} clocks; {} KiB read, {} KiB written \
-             ({} beats / {} clocks)",
+            "{data_bits}-bit port: {} passes, {} leaves (first out at clock {}), {} clocks ({} in passes); \
+             {} KiB read, {} KiB written, arena peak {} KiB, {} frames",
             run.passes,
-            schedule.cells_visited,
-            run.leaves,
+            run.leaves.len(),
+            run.leaves[0].clock,
             run.cycles,
+            run.pass_cycles,
             run.bytes_read / 1024,
             run.bytes_written / 1024,
-            read + written,
-            run.cycles
+            run.peak_arena / 1024,
+            run.peak_frames
         );
     }
+}
+
+#[test]
+fn a_memory_that_stalls_changes_the_clocks_only() {
+    let (accelerator, prepared) = scene();
+    let ideal = MemoryParams::ideal(8, 24);
+    let calm = bin_in_dram(&accelerator, &prepared, pass(64), ideal, 1 << 24).unwrap();
+    let stalls = bin_in_dram(
+        &accelerator,
+        &prepared,
+        pass(64),
+        ideal.with_stalls(20, 7),
+        1 << 24,
+    )
+    .unwrap();
+    let places = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+        run.leaves
+            .iter()
+            .map(|l| (l.cell, l.lists, l.entries.clone()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(places(&calm.run), places(&stalls.run));
+    assert!(stalls.run.stalled > 0 && calm.run.stalled == 0);
+    assert!(stalls.run.cycles > calm.run.cycles);
+    // A stalled clock delays the port by at most that clock.
+    assert!(stalls.run.cycles <= calm.run.cycles + stalls.run.stalled);
+}
+
+#[test]
+fn an_arena_too_small_for_the_tree_raises_its_flag_and_loses_no_pair() {
+    let (accelerator, prepared) = scene();
+    let params = MemoryParams::ideal(8, 24);
+    let full = bin_in_dram(&accelerator, &prepared, pass(64), params, 1 << 24).unwrap();
+    // Three quarters of the arena the tree needs: the root still splits, deeper cells
+    // find it full.
+    let arena = full.run.peak_arena * 3 / 4;
+    let small = bin_in_dram(&accelerator, &prepared, pass(64), params, arena).unwrap();
+    assert!(small.run.arena_full > 0, "{:?}", small.run.arena_full);
+    assert!(
+        small.run.passes > 1 && small.run.peak_arena <= arena,
+        "{} passes, arena {} of {arena}, full {}",
+        small.run.passes,
+        small.run.peak_arena,
+        full.run.peak_arena
+    );
+    let ids = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+        pairs(run.leaves.iter().map(|l| {
+            l.entries
+                .clone()
+                .map(|list| list.iter().map(|e| unpack(e, 24).0).collect())
+        }))
+    };
+    let wanted = ids(&full.run);
+    let kept = ids(&small.run);
+    assert!(
+        wanted.is_subset(&kept),
+        "{} pairs lost",
+        wanted.difference(&kept).count()
+    );
 }

@@ -35,7 +35,11 @@
 //! narrow-phase cycles than its children take to classify. Splitting that does
 //! not pay at once is still tried [`LOOKAHEAD`] levels deeper (a triangle
 //! straddling the centre planes only separates one level down), and kept
-//! only if the subtree is cheaper. A leaf over the memory depth does not
+//! only if the subtree is cheaper. A binner that sends leaves on as it
+//! decides them ([`BatchCost::streams_leaves`]) keeps every split that
+//! paid at once (its children as leaves cost less) without looking back;
+//! only the subtrees it tries on lookahead are compared after the fact,
+//! and their leaves wait until then. A leaf over the memory depth does not
 //! force a split: triangles that overlap over an area (coplanar, or many
 //! sharing a point) stay in every cell around them however deep the tree
 //! goes, so forcing would multiply cells without end; such a leaf is tiled
@@ -62,6 +66,12 @@ pub trait BatchCost {
     /// bins).
     fn classify_cycles(&self, _a: usize, _b: usize) -> u64 {
         0
+    }
+
+    /// Does the binner send leaves on as it decides them (so a split that
+    /// paid at once is never turned back into a leaf)?
+    fn streams_leaves(&self) -> bool {
+        false
     }
 }
 
@@ -427,7 +437,9 @@ impl Planner<'_> {
             subtree.cost += child.cost;
             subtree.leaves.extend(child.leaves);
         }
-        if !forced && subtree.cost >= leaf_cost {
+        // A streaming binner has sent on the leaves of a split that paid.
+        let kept = improving && self.cost.streams_leaves();
+        if !forced && !kept && subtree.cost >= leaf_cost {
             self.leaf(cell, level, &a, &b)
         } else {
             subtree

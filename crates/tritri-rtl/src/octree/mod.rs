@@ -27,6 +27,8 @@
 //!   lists of the children it meets; [`list_entry`] is the 32-byte entry
 //!   (vertices and index), [`child_select`] the child written each clock,
 //!   [`list_pass_machine`] the clock-exact model;
+//!   [`dram_binning_machine`]: the controller that walks the octree over
+//!   such passes, every list in external memory, leaves out as decided;
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -54,6 +56,7 @@ pub mod cell_classifier;
 pub mod centre_test;
 pub mod child_select;
 pub mod classify_lane;
+pub mod dram_binning_machine;
 pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_entry;

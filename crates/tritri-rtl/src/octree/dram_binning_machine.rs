@@ -1,0 +1,469 @@
+//! The clock-exact model of the broad phase's binning with every list in
+//! external memory: a controller that walks the octree depth first and
+//! runs one pass of the list pass unit ([`super::list_pass_machine`]) per
+//! cell it classifies, all against one memory ([`crate::axi::memory_model`]).
+//!
+//! # How the controller bins
+//!
+//! * **The stack** (block RAM on chip) holds two kinds of entry: a cell
+//!   still to visit (the cell, its two lists `(address, entries)`, the
+//!   arena's top to restore, the lookahead's slack) and a split cell
+//!   waiting for its children's costs (its leaf cost, its pass's cost, the
+//!   sum of its children's so far). The root's lists are the ones the host
+//!   wrote.
+//! * **The split rule** is the planner's (`tritri_geom::scene::octree`)
+//!   for a binner that streams its leaves ([`DramSplitRule`]). Popped, a
+//!   cell's leaf cost is queried ([`super::leaf_cost`]); a cell that cannot
+//!   be split, or whose leaf costs no more than its triangles' batch
+//!   writes and an estimate of its pass ([`pass_estimate`]), is a leaf at
+//!   once (the root is always passed). Otherwise its children's regions
+//!   are allocated and the cell is passed; then the eight children's leaf
+//!   costs, one query a clock. When they sum below the cell's own (or the
+//!   level forces a split, local frames) the split *pays* and is kept;
+//!   when it does not pay and the slack is 0, the cell is a leaf (its own
+//!   lists, which the pass left in place); otherwise the split is *tried*:
+//!   its children are visited with one level less of slack, and when the
+//!   subtree cost at least the cell as a leaf, the subtree's leaves are
+//!   dropped and the cell is a leaf. Each child holding both objects is
+//!   pushed, octant 7 first, above its parent's entry.
+//! * **Leaves** go out as they are decided, the cell and its two lists'
+//!   places, except under a tried split: there they wait on chip until the
+//!   outermost tried split is decided, then go out or are dropped. A
+//!   leaf's lists are read before the next pass writes (it may reuse the
+//!   region); here they are read from the memory when the leaf goes out,
+//!   outside the port's clocks (the narrow phase's loads are not yet on
+//!   the port).
+//! * **The arena.** Children's lists go above the arena's top, each child
+//!   list as long as its parent's (a child holds at most every entry),
+//!   rounded up to a write burst. A cell to visit remembers the top above
+//!   its siblings' regions and restores it when popped, so a subtree's
+//!   regions are free again when the next sibling is popped; under a tried
+//!   split the top only rises, since waiting leaves' lists must survive. A
+//!   cell whose children would not fit the arena is made a leaf instead
+//!   and counted ([`DramBinningRun::arena_full`]): the flag is raised and
+//!   no triangle is lost (the leaf is tiled by the narrow phase like any
+//!   oversized leaf).
+//!
+//! # Clocks
+//!
+//! Between passes the port is idle and the memory is clocked with nothing
+//! asked of it. Per cell popped: [`POP_CLOCKS`] to read its entry, then
+//! [`DECIDE_CLOCKS`] for its leaf cost and the cannot-pay test; a leaf
+//! takes [`LEAF_CLOCKS`]; a pass takes its own clocks
+//! ([`super::list_pass_machine::run_pass`]), then [`COSTS_CLOCKS`] for the
+//! children's costs and the decision, then [`PUSH_CLOCKS`] to push the
+//! children (or [`LEAF_CLOCKS`] for the leaf). A split cell's entry,
+//! popped after its children, takes [`POP_CLOCKS`] and [`CLOSE_CLOCKS`];
+//! waiting leaves go out at [`LEAF_CLOCKS`] each.
+
+use super::binning_machine::BinningParams;
+use super::leaf_cost::{leaf_cost, LEAF_COST_LATENCY};
+use super::list_entry::ENTRY_BYTES;
+use super::list_pass_machine::{run_pass, ListPassConfig, PassRequest};
+use crate::axi::memory_model::{AxiMemory, ManagerSignals};
+use crate::system::SystemConfig;
+use tritri_geom::octree::cell::Cell;
+use tritri_geom::scene::octree::{BatchCost, LOOKAHEAD};
+
+/// Clocks to read the top frame off the stack.
+pub const POP_CLOCKS: u64 = 1;
+/// Clocks of the popped cell's leaf cost and the cannot-pay test.
+pub const DECIDE_CLOCKS: u64 = LEAF_COST_LATENCY as u64 + 1;
+/// Clocks to send a leaf on.
+pub const LEAF_CLOCKS: u64 = 1;
+/// Clocks after a pass: the eight children's leaf costs, one query a clock,
+/// the last one's latency, and the decision.
+pub const COSTS_CLOCKS: u64 = 8 + LEAF_COST_LATENCY as u64 + 1;
+/// Clocks to push the children, one octant a clock.
+pub const PUSH_CLOCKS: u64 = 8;
+/// Clocks to decide a split cell whose children are done.
+pub const CLOSE_CLOCKS: u64 = 1;
+/// The split rule's estimate of a pass's clocks besides its beats (the
+/// reader's and the lane's latencies, the slots' flush, the last
+/// responses): a pass of one entry each takes 137 clocks on a 64-bit port
+/// against a memory of latency 24 (tests/list_pass.rs), 8 of them beats.
+pub const PASS_FIXED_CLOCKS: u64 = 128;
+
+/// The clocks the split rule charges a pass of `a + b` entries: one beat
+/// each way per entry's beats, and the fixed cost.
+pub fn pass_estimate(config: &ListPassConfig, a: u64, b: u64) -> u64 {
+    PASS_FIXED_CLOCKS + (a + b) * config.beats_per_entry()
+}
+
+/// The split rule of the binning in external memory as the planner's cost
+/// (`tritri_geom::scene::octree::BatchCost`): a leaf costs the system's
+/// batches, a cell its pass's estimate, and leaves stream.
+pub struct DramSplitRule {
+    pub system: SystemConfig,
+    pub pass: ListPassConfig,
+}
+
+impl BatchCost for DramSplitRule {
+    fn batch_cycles(&self, a: usize, b: usize) -> u64 {
+        self.system.batch_cycles(a, b)
+    }
+
+    fn classify_cycles(&self, a: usize, b: usize) -> u64 {
+        pass_estimate(&self.pass, a as u64, b as u64)
+    }
+
+    fn streams_leaves(&self) -> bool {
+        true
+    }
+}
+
+/// How the binning is built and where its memory lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DramBinningConfig {
+    pub pass: ListPassConfig,
+    pub rule: BinningParams,
+    /// The arena for children's lists: `[start, end)` bytes of the memory,
+    /// `start` on a write burst.
+    pub arena: (u64, u64),
+}
+
+/// One list in the memory: `(address, entries)`.
+pub type ListPlace = (u64, u64);
+
+/// A leaf as it goes out: the cell, its lists' places, and the entries
+/// read from them when it was sent.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DramLeaf {
+    pub cell: Cell,
+    pub lists: [ListPlace; 2],
+    /// The clock it went out on.
+    pub clock: u64,
+    /// Passes finished by then.
+    pub after_passes: u64,
+    pub entries: [Vec<[u8; ENTRY_BYTES]>; 2],
+}
+
+/// What a run took and gave.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DramBinningRun {
+    pub leaves: Vec<DramLeaf>,
+    /// Clocks from the root's pop to the last leaf out, every clock.
+    pub cycles: u64,
+    /// Of them, the passes' own.
+    pub pass_cycles: u64,
+    /// Clocks the memory stalled.
+    pub stalled: u64,
+    /// Cells passed.
+    pub passes: u64,
+    /// Bytes the passes read and wrote.
+    pub bytes_read: u64,
+    pub bytes_written: u64,
+    /// Of those written, the bytes in children no pass or leaf reads
+    /// (one object absent).
+    pub bytes_dropped: u64,
+    /// The arena's highest top above its start.
+    pub peak_arena: u64,
+    /// Most frames on the stack at once.
+    pub peak_frames: usize,
+    /// Cells made leaves because their children would not fit the arena.
+    pub arena_full: u64,
+    /// Leaves decided under tried splits and dropped with them.
+    pub leaves_dropped: u64,
+    /// Most leaves waiting on chip at once.
+    pub peak_waiting: usize,
+    /// The largest pass (entries of both objects).
+    pub largest_pass: u64,
+}
+
+/// A cell still to visit.
+struct Visit {
+    cell: Cell,
+    lists: [ListPlace; 2],
+    /// The arena's top above its siblings' regions.
+    top: u64,
+    /// Levels of lookahead left.
+    slack: u32,
+}
+
+/// A split cell waiting for its children's costs.
+struct Split {
+    visit: Visit,
+    /// Its cost as a leaf, and its pass's (the rule's estimate).
+    leaf_cost: u64,
+    classify: u64,
+    /// Its children's costs so far.
+    subtree: u64,
+    /// Tried, not paid: its subtree may still be dropped.
+    tried: bool,
+    /// The waiting leaves before its children's.
+    waiting_mark: usize,
+}
+
+enum Entry {
+    Visit(Visit),
+    Split(Split),
+}
+
+/// The walk's state besides the stack.
+struct Walk<'m> {
+    config: DramBinningConfig,
+    memory: &'m mut AxiMemory,
+    run: DramBinningRun,
+    /// The arena's top.
+    top: u64,
+    /// Leaves decided under a tried split.
+    waiting: Vec<(Cell, [ListPlace; 2])>,
+    /// Tried splits on the stack.
+    tried: usize,
+}
+
+impl Walk<'_> {
+    /// The controller's clocks between passes: the memory sees an idle port.
+    fn idle(&mut self, clocks: u64) {
+        let quiet = ManagerSignals::default();
+        let stalled = self.memory.stalled;
+        for _ in 0..clocks {
+            self.memory.edge(&quiet);
+        }
+        self.run.stalled += self.memory.stalled - stalled;
+        self.run.cycles += clocks;
+    }
+
+    /// A leaf decided: out at once, or waiting under a tried split.
+    fn leaf(&mut self, cell: Cell, lists: [ListPlace; 2]) {
+        if self.tried > 0 {
+            self.waiting.push((cell, lists));
+            self.run.peak_waiting = self.run.peak_waiting.max(self.waiting.len());
+        } else {
+            self.send(cell, lists);
+        }
+    }
+
+    fn send(&mut self, cell: Cell, lists: [ListPlace; 2]) {
+        self.idle(LEAF_CLOCKS);
+        let entries = lists.map(|place| read_list(self.memory, place));
+        self.run.leaves.push(DramLeaf {
+            cell,
+            lists,
+            clock: self.run.cycles,
+            after_passes: self.run.passes,
+            entries,
+        });
+    }
+
+    fn cost(&self, a: u64, b: u64) -> u64 {
+        leaf_cost(
+            a,
+            b,
+            self.config.rule.log_depth,
+            self.config.rule.log_pipelines,
+        )
+    }
+
+    /// Visits a cell: a leaf (its cost returned), or a pass and its
+    /// children pushed (`None`: the cost comes when its split closes).
+    fn visit(
+        &mut self,
+        visit: Visit,
+        root: Cell,
+        stack: &mut Vec<Entry>,
+    ) -> Result<Option<u64>, String> {
+        let [a, b] = visit.lists.map(|(_, n)| n);
+        let cell = visit.cell;
+        let rule = self.config.rule;
+        let pass = self.config.pass;
+        self.top = if self.tried > 0 {
+            self.top.max(visit.top)
+        } else {
+            visit.top
+        };
+        self.idle(POP_CLOCKS + DECIDE_CLOCKS);
+        let forced = rule.max_leaf_level.is_some_and(|m| cell.level > m);
+        let leaf_cost = self.cost(a, b);
+        let is_root = cell == root;
+        let classify = if is_root {
+            pass_estimate(&pass, 0, 0)
+        } else {
+            pass_estimate(&pass, a, b)
+        };
+        let cannot_pay = !is_root && !forced && leaf_cost <= a + b + 1 + classify;
+        // Each child list is as long as the parent's, on a write burst.
+        let burst = pass.burst_bytes();
+        let stride = |n: u64| (n * ENTRY_BYTES as u64).div_ceil(burst).max(1) * burst;
+        let children_at = [self.top, self.top + 8 * stride(a)];
+        let top = children_at[1] + 8 * stride(b);
+        let fits = top <= self.config.arena.1;
+        if !cell.splittable() || cannot_pay || !fits {
+            self.run.arena_full += u64::from(cell.splittable() && !cannot_pay && !fits);
+            self.leaf(cell, visit.lists);
+            return Ok(Some(leaf_cost));
+        }
+        self.run.peak_arena = self.run.peak_arena.max(top - self.config.arena.0);
+        // The shorter list goes first: the unit writes the second only to
+        // children the first reached (`list_pass`).
+        let swapped = b < a;
+        let order = if swapped { [1, 0] } else { [0, 1] };
+        let request = PassRequest {
+            cell,
+            lists: order.map(|k| visit.lists[k]),
+            children: order.map(|k| (children_at[k], stride(visit.lists[k].1))),
+        };
+        let entries = a + b;
+        let limit = 64 * (entries + 64) * pass.beats_per_entry();
+        let out = run_pass(pass, self.memory, &request, limit)
+            .ok_or_else(|| format!("the pass of cell {cell:?} did not finish in {limit} clocks"))?;
+        if out.error {
+            return Err(format!("the pass of cell {cell:?} raised its error"));
+        }
+        let mut counts = out.child_counts;
+        if swapped {
+            counts.rotate_left(8);
+        }
+        let run = &mut self.run;
+        run.passes += 1;
+        run.cycles += out.cycles;
+        run.pass_cycles += out.cycles;
+        run.stalled += out.stalled;
+        run.largest_pass = run.largest_pass.max(entries);
+        run.bytes_read += entries * ENTRY_BYTES as u64;
+        run.bytes_written += counts.iter().sum::<u64>() * ENTRY_BYTES as u64;
+        let children: [[ListPlace; 2]; 8] = std::array::from_fn(|o| {
+            [0, 1].map(|k| {
+                let (at, n) = (children_at[k], visit.lists[k].1);
+                (at + o as u64 * stride(n), counts[8 * k + o])
+            })
+        });
+        self.idle(COSTS_CLOCKS);
+        let children_cost: u64 = children.iter().map(|[a, b]| self.cost(a.1, b.1)).sum();
+        let pays = forced || children_cost < leaf_cost;
+        if !pays && visit.slack == 0 {
+            self.leaf(cell, visit.lists);
+            return Ok(Some(leaf_cost + classify));
+        }
+        self.idle(PUSH_CLOCKS);
+        let slack = if pays { LOOKAHEAD } else { visit.slack - 1 };
+        let tried = !pays;
+        self.tried += usize::from(tried);
+        let waiting_mark = self.waiting.len();
+        stack.push(Entry::Split(Split {
+            visit,
+            leaf_cost,
+            classify,
+            subtree: 0,
+            tried,
+            waiting_mark,
+        }));
+        for (o, lists) in children.iter().enumerate().rev() {
+            if lists[0].1 == 0 || lists[1].1 == 0 {
+                self.run.bytes_dropped += (lists[0].1 + lists[1].1) * ENTRY_BYTES as u64;
+                continue;
+            }
+            stack.push(Entry::Visit(Visit {
+                cell: cell.child(o),
+                lists: *lists,
+                top,
+                slack,
+            }));
+        }
+        self.run.peak_frames = self.run.peak_frames.max(stack.len());
+        Ok(None)
+    }
+
+    /// A split cell whose children are done: its cost. A tried split that
+    /// cost at least the cell as a leaf drops its subtree's waiting leaves
+    /// for the cell; when the outermost tried split is decided, the waiting
+    /// leaves go out.
+    fn close(&mut self, split: Split) -> u64 {
+        self.idle(POP_CLOCKS + CLOSE_CLOCKS);
+        let forced = self
+            .config
+            .rule
+            .max_leaf_level
+            .is_some_and(|m| split.visit.cell.level > m);
+        let mut cost = split.subtree;
+        if split.tried {
+            self.tried -= 1;
+            if !forced && split.subtree >= split.leaf_cost {
+                self.run.leaves_dropped += (self.waiting.len() - split.waiting_mark) as u64;
+                self.waiting.truncate(split.waiting_mark);
+                self.leaf(split.visit.cell, split.visit.lists);
+                cost = split.leaf_cost;
+            }
+            if self.tried == 0 {
+                for (cell, lists) in std::mem::take(&mut self.waiting) {
+                    self.send(cell, lists);
+                }
+            }
+        }
+        cost + split.classify
+    }
+}
+
+/// The entries of a list in the memory.
+fn read_list(memory: &AxiMemory, (at, count): ListPlace) -> Vec<[u8; ENTRY_BYTES]> {
+    (0..count as usize)
+        .map(|i| {
+            let from = at as usize + i * ENTRY_BYTES;
+            memory.bytes[from..from + ENTRY_BYTES]
+                .try_into()
+                .expect("entry-sized slice")
+        })
+        .collect()
+}
+
+/// Bins from `root` with the lists `root_lists` already in `memory`; an
+/// error names a pass that failed, or the arena that does not fit the
+/// memory.
+pub fn run_dram_binning(
+    config: DramBinningConfig,
+    memory: &mut AxiMemory,
+    root: Cell,
+    root_lists: [ListPlace; 2],
+) -> Result<DramBinningRun, String> {
+    config.pass.check()?;
+    let (arena_start, arena_end) = config.arena;
+    let burst = config.pass.burst_bytes();
+    if arena_start % burst != 0 || arena_end > memory.bytes.len() as u64 {
+        return Err(format!(
+            "the arena {arena_start:#x}..{arena_end:#x} is not on a {burst}-byte burst or not in the {}-byte memory",
+            memory.bytes.len()
+        ));
+    }
+    let mut walk = Walk {
+        config,
+        memory,
+        run: DramBinningRun::default(),
+        top: arena_start,
+        waiting: Vec::new(),
+        tried: 0,
+    };
+    let mut stack = Vec::new();
+    // Only the root can lack an object: no child without both is pushed.
+    if root_lists.iter().all(|&(_, n)| n > 0) {
+        stack.push(Entry::Visit(Visit {
+            cell: root,
+            lists: root_lists,
+            top: arena_start,
+            slack: LOOKAHEAD,
+        }));
+    }
+    while let Some(entry) = stack.pop() {
+        let cost = match entry {
+            Entry::Visit(visit) => walk.visit(visit, root, &mut stack)?,
+            Entry::Split(split) => Some(walk.close(split)),
+        };
+        // A finished cell's cost goes to its parent's split.
+        if let (Some(cost), Some(Entry::Split(parent))) = (
+            cost,
+            stack
+                .iter_mut()
+                .rev()
+                .find(|e| matches!(e, Entry::Split(_))),
+        ) {
+            parent.subtree += cost;
+        }
+    }
+    if !walk.memory.faults().is_empty() {
+        return Err(format!(
+            "{} protocol faults, the first: {}",
+            walk.memory.faults().len(),
+            walk.memory.faults()[0]
+        ));
+    }
+    Ok(walk.run)
+}
