@@ -5,8 +5,8 @@
 //! module, a variant to [`Command`] and an arm to the `match` in `main`.
 //!
 //! Exit codes: 0 success; 1 a failed check, a runtime or I/O failure; 2
-//! bad input or bad usage (nothing is computed); 130 / 143 interrupted by
-//! SIGINT / SIGTERM (running tools stopped, work directories removed).
+//! bad input or bad usage (nothing is computed); 129 / 130 / 143 interrupted by
+//! SIGHUP / SIGINT / SIGTERM (running tools stopped, work directories removed).
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -35,7 +35,7 @@ mod voxelize;
     version,
     about = "Devillers-Guigue triangle-triangle tests in exact, float and fixed-point arithmetic",
     after_help = "Exit status: 0 done; 1 a failed check or a runtime / I/O failure; 2 bad input or usage (nothing computed); \
-                  130 / 143 interrupted by SIGINT / SIGTERM (tools stopped, temporary files removed)."
+                  129 / 130 / 143 interrupted by SIGHUP / SIGINT / SIGTERM (tools stopped, temporary files removed)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -93,9 +93,10 @@ fn end_quietly_on_closed_pipe() {
     }
 }
 
-/// Ctrl-C (SIGINT) and SIGTERM stop the simulators and tools `tritri`
+/// Ctrl-C (SIGINT), SIGTERM and SIGHUP (the terminal closed) stop the
+/// simulators and tools `tritri`
 /// started and remove its work directories (`tools::interrupt`), then end
-/// with the conventional status 128 + signal. The two signals are blocked
+/// with the conventional status 128 + signal. The signals are blocked
 /// in every thread (the mask is inherited; children get a clean one) and
 /// taken by one thread with `sigwait`, where cleaning up may lock and
 /// allocate, which a signal handler may not.
@@ -108,6 +109,7 @@ fn clean_up_on_interrupt() {
         libc::sigemptyset(&mut set);
         libc::sigaddset(&mut set, libc::SIGINT);
         libc::sigaddset(&mut set, libc::SIGTERM);
+        libc::sigaddset(&mut set, libc::SIGHUP);
         libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut());
         std::thread::spawn(move || {
             let mut signal: libc::c_int = 0;
@@ -115,10 +117,10 @@ fn clean_up_on_interrupt() {
                 return;
             }
             let (groups, temporaries) = tritri_rtl::tools::interrupt::clean_up();
-            let name = if signal == libc::SIGINT {
-                "SIGINT"
-            } else {
-                "SIGTERM"
+            let name = match signal {
+                libc::SIGINT => "SIGINT",
+                libc::SIGHUP => "SIGHUP",
+                _ => "SIGTERM",
             };
             eprintln!("\ntritri: {name}: stopped {groups} running tool(s), removed {temporaries} temporary file(s) and directory(ies)");
             std::process::exit(128 + signal);

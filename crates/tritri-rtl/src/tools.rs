@@ -250,11 +250,35 @@ pub mod interrupt {
     static GROUPS: Mutex<(Vec<u32>, bool)> = Mutex::new((Vec::new(), false));
     static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-    fn kill_group(pid: u32) {
+    /// How long a tool has after SIGINT to clean up before SIGKILL.
+    pub const GRACE: std::time::Duration = std::time::Duration::from_secs(2);
+
+    fn signal_group(pid: u32, signal: libc::c_int) -> bool {
         // SAFETY: killpg only sends a signal; the group was created for a
         // child of this process by `run_with_lines`.
-        unsafe {
-            libc::killpg(pid as libc::pid_t, libc::SIGKILL);
+        unsafe { libc::killpg(pid as libc::pid_t, signal) == 0 }
+    }
+
+    /// Is any process of the group left? (Signal 0 only checks.)
+    fn group_alive(pid: u32) -> bool {
+        signal_group(pid, 0)
+    }
+
+    /// SIGINT to each group, then SIGKILL to those still there after
+    /// [`GRACE`]. SIGINT, not SIGTERM, since it is what the tools clean
+    /// up on: yowasp removes its `yowasp_*` directory on SIGINT only (its
+    /// KeyboardInterrupt), make deletes the target it was building, and
+    /// the simulators end at once on either.
+    fn stop_groups(groups: &[u32]) {
+        for &pid in groups {
+            signal_group(pid, libc::SIGINT);
+        }
+        let deadline = std::time::Instant::now() + GRACE;
+        while groups.iter().any(|&pid| group_alive(pid)) && std::time::Instant::now() < deadline {
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        for &pid in groups {
+            signal_group(pid, libc::SIGKILL);
         }
     }
 
@@ -265,7 +289,7 @@ pub mod interrupt {
         pub fn register(pid: u32) -> ChildGroup {
             let mut groups = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
             if groups.1 {
-                kill_group(pid);
+                stop_groups(&[pid]);
             } else {
                 groups.0.push(pid);
             }
@@ -283,12 +307,19 @@ pub mod interrupt {
         }
     }
 
-    /// Records a temporary file or directory to remove on interruption.
-    pub fn register_temporary(path: &Path) {
-        TEMPORARIES
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push(path.to_path_buf());
+    /// Makes a temporary file or directory with `make` and records it, to
+    /// be removed on interruption. Both happen under the lock that
+    /// [`clean_up`] takes and never gives back, so a temporary is either
+    /// made before the clean-up (and removed by it) or not at all: once
+    /// the clean-up has begun, this waits for the exit that follows it.
+    pub fn make_temporary<T>(
+        path: &Path,
+        make: impl FnOnce(&Path) -> std::io::Result<T>,
+    ) -> std::io::Result<T> {
+        let mut temporaries = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let made = make(path)?;
+        temporaries.push(path.to_path_buf());
+        Ok(made)
     }
 
     /// Forgets a temporary its owner has removed, renamed or kept.
@@ -299,30 +330,49 @@ pub mod interrupt {
             .retain(|p| p != path);
     }
 
-    /// Kills every registered process group (SIGKILL: a simulator
-    /// mid-cycle has nothing to save) and removes every registered
-    /// temporary. Returns how many of each it found.
+    /// Removes `paths`, again while any is still there: the thread that
+    /// made a work directory may be writing into it meanwhile (removing a
+    /// directory another thread fills fails, not empty), until it reaches
+    /// a tool (stopped as it registers) or a temporary (blocked). Settled
+    /// when nothing is left twice in a row, given up after [`GRACE`].
+    fn remove_all(paths: &[PathBuf]) {
+        let deadline = std::time::Instant::now() + GRACE;
+        let mut clear_rounds = 0;
+        while clear_rounds < 2 && std::time::Instant::now() < deadline {
+            let mut found = false;
+            for path in paths {
+                if std::fs::symlink_metadata(path).is_ok() {
+                    found = true;
+                    let _ = if path.is_dir() {
+                        std::fs::remove_dir_all(path)
+                    } else {
+                        std::fs::remove_file(path)
+                    };
+                }
+            }
+            clear_rounds = if found { 0 } else { clear_rounds + 1 };
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+    }
+
+    /// Stops every registered process group (SIGINT, then SIGKILL after
+    /// [`GRACE`], so a tool may remove its own temporaries) and removes
+    /// every registered temporary. Returns how many of each it found. The
+    /// last thing a program does before it exits: from then on, making or
+    /// forgetting a temporary blocks.
     pub fn clean_up() -> (usize, usize) {
         let groups: Vec<u32> = {
             let mut registered = GROUPS.lock().unwrap_or_else(|e| e.into_inner());
             registered.1 = true;
             registered.0.drain(..).collect()
         };
-        for &pid in &groups {
-            kill_group(pid);
-        }
-        let temporaries: Vec<PathBuf> = TEMPORARIES
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .drain(..)
-            .collect();
-        for path in &temporaries {
-            let _ = if path.is_dir() {
-                std::fs::remove_dir_all(path)
-            } else {
-                std::fs::remove_file(path)
-            };
-        }
+        stop_groups(&groups);
+        let mut registered = TEMPORARIES.lock().unwrap_or_else(|e| e.into_inner());
+        let temporaries: Vec<PathBuf> = registered.drain(..).collect();
+        remove_all(&temporaries);
+        // Held until the process exits: a thread still at work can make
+        // no temporary that would outlive it (see `make_temporary`).
+        std::mem::forget(registered);
         (groups.len(), temporaries.len())
     }
 }
