@@ -9,16 +9,24 @@
 //! The memory: A's root list at 0, B's after it on a write burst, then
 //! the arena for the children's lists.
 
+use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::binning_unit::grid_value;
 use anyhow::{bail, Context as _};
+use rust_hdl::prelude::*;
+use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{schedule, OctreeSchedule};
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::emit::dram_binning_unit_unit::{with_dram_binning, DramBinningVisitor};
 use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::dram_binning_machine::{
-    run_dram_binning, DramBinningConfig, DramBinningRun, DramSplitRule,
+    read_list, run_dram_binning, DramBinningConfig, DramBinningRun, DramLeaf, DramSplitRule,
+    ListPlace,
 };
+use tritri_rtl::octree::dram_binning_unit::DramBinningUnit;
 use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 use crate::scene_query::Accelerator;
 
@@ -31,16 +39,28 @@ pub struct DramBinning {
     pub root_bytes: u64,
 }
 
-/// Bins `scene` (prepared for `accelerator`) with its lists in a memory of
-/// `params`, the arena `arena_bytes` long. When no cell found the arena
-/// full, an error unless the leaves are the planner's.
-pub fn bin_in_dram(
+/// A binning to run: the memory as the host leaves it (A's root list at
+/// 0, B's after it on a write burst, then the arena), the controller's
+/// configuration, the root and its lists.
+#[derive(Clone, Debug)]
+pub struct DramCase {
+    pub config: DramBinningConfig,
+    pub params: MemoryParams,
+    pub bytes: Vec<u8>,
+    pub root: Cell,
+    pub root_lists: [ListPlace; 2],
+}
+
+/// The case of `scene` (prepared for `accelerator`) with its lists in a
+/// memory of `params`, the arena `arena_bytes` long, and the planner's
+/// tree for the same rule.
+pub fn dram_case(
     accelerator: &Accelerator,
     scene: &PreparedScene,
     pass: ListPassConfig,
     params: MemoryParams,
     arena_bytes: u64,
-) -> anyhow::Result<DramBinning> {
+) -> anyhow::Result<(DramCase, OctreeSchedule)> {
     let root_box = scene
         .integer_box
         .context("the objects' boxes do not meet: nothing to bin")?;
@@ -86,7 +106,6 @@ pub fn bin_in_dram(
             bytes[from..from + ENTRY_BYTES].copy_from_slice(entry);
         }
     }
-    let mut memory = AxiMemory::new(params, bytes);
     let config = DramBinningConfig {
         pass,
         rule: BinningParams {
@@ -96,21 +115,209 @@ pub fn bin_in_dram(
         },
         arena: (arena_start, arena_end),
     };
-    let run = run_dram_binning(
+    let case = DramCase {
         config,
-        &mut memory,
+        params,
+        bytes,
         root,
-        [(0, lists[0].len() as u64), (b_at, lists[1].len() as u64)],
-    )
-    .map_err(anyhow::Error::msg)?;
+        root_lists: [(0, lists[0].len() as u64), (b_at, lists[1].len() as u64)],
+    };
+    Ok((case, schedule))
+}
+
+/// The controller's clock-exact model on `case`, and the memory after it.
+pub fn run_model(case: &DramCase) -> anyhow::Result<(DramBinningRun, Vec<u8>)> {
+    let mut memory = AxiMemory::new(case.params, case.bytes.clone());
+    let run = run_dram_binning(case.config, &mut memory, case.root, case.root_lists)
+        .map_err(anyhow::Error::msg)?;
+    Ok((run, memory.bytes))
+}
+
+/// Bins `scene` (prepared for `accelerator`) with its lists in a memory of
+/// `params`, the arena `arena_bytes` long, in the controller's model. When
+/// no cell found the arena full, an error unless the leaves are the
+/// planner's.
+pub fn bin_in_dram(
+    accelerator: &Accelerator,
+    scene: &PreparedScene,
+    pass: ListPassConfig,
+    params: MemoryParams,
+    arena_bytes: u64,
+) -> anyhow::Result<DramBinning> {
+    let (case, schedule) = dram_case(accelerator, scene, pass, params, arena_bytes)?;
+    let (run, _) = run_model(&case)?;
     if run.arena_full == 0 {
         leaves_are_the_planners(&run, &schedule, pass.grid_bits)?;
     }
     Ok(DramBinning {
         run,
         schedule,
-        root_bytes: arena_start,
+        root_bytes: case.config.arena.0,
     })
+}
+
+/// What the emitted or rust-hdl controller gave: the same fields as the
+/// model's run where they can be seen at the unit's ports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UnitRun {
+    pub leaves: Vec<DramLeaf>,
+    /// Clocks from `start` to `done`.
+    pub cycles: u64,
+    pub stalled: u64,
+    pub passes: u64,
+    pub arena_full: u64,
+    pub error: bool,
+    pub faults: usize,
+    pub bytes: Vec<u8>,
+}
+
+impl UnitRun {
+    /// The model's run as the unit's ports would show it, and an error
+    /// naming the first thing in which `self` differs.
+    pub fn check_against(&self, model: &DramBinningRun, bytes: &[u8]) -> anyhow::Result<()> {
+        for (i, (got, want)) in self.leaves.iter().zip(&model.leaves).enumerate() {
+            if (got.cell, got.lists, got.clock) != (want.cell, want.lists, want.clock) {
+                bail!(
+                    "leaf {i}: {:?} {:?} at clock {}, the model's {:?} {:?} at clock {}",
+                    got.cell,
+                    got.lists,
+                    got.clock,
+                    want.cell,
+                    want.lists,
+                    want.clock
+                );
+            }
+            if !got.entries[0].is_empty() && got.entries != want.entries {
+                bail!(
+                    "leaf {i} ({:?}): its lists' entries differ from the model's",
+                    got.cell
+                );
+            }
+        }
+        let seen = (
+            self.leaves.len(),
+            self.cycles,
+            self.stalled,
+            self.passes,
+            self.arena_full,
+        );
+        let expected = (
+            model.leaves.len(),
+            model.cycles,
+            model.stalled,
+            model.passes,
+            model.arena_full,
+        );
+        if seen != expected {
+            bail!(
+                "(leaves, clocks, stalled, passes, arena full) = {seen:?}, the model's {expected:?}"
+            );
+        }
+        if self.error || self.faults != 0 {
+            bail!("error {} and {} protocol faults", self.error, self.faults);
+        }
+        if let Some(at) = self.bytes.iter().zip(bytes).position(|(a, b)| a != b) {
+            bail!("the memory differs from the model's at byte {at:#x}");
+        }
+        Ok(())
+    }
+}
+
+/// The rust-hdl controller on `case`, against the Rust memory model; each
+/// leaf's entries read from the memory in the clock it goes out.
+pub fn run_rusthdl(case: &DramCase, limit: u64) -> anyhow::Result<UnitRun> {
+    with_dram_binning(&case.config, RustHdlBinning { case, limit }).map_err(anyhow::Error::msg)?
+}
+
+struct RustHdlBinning<'c> {
+    case: &'c DramCase,
+    limit: u64,
+}
+
+impl DramBinningVisitor for RustHdlBinning<'_> {
+    type Output = anyhow::Result<UnitRun>;
+    fn visit<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+    >(
+        self,
+        mut uut: DramBinningUnit<G, V, N, T, DW, S>,
+    ) -> Self::Output {
+        let case = self.case;
+        uut.connect_all();
+        let mut memory = AxiMemory::new(case.params, case.bytes.clone());
+        reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
+        uut.corner_x.next = grid_value::<G>(case.root.lo[0]);
+        uut.corner_y.next = grid_value::<G>(case.root.lo[1]);
+        uut.corner_z.next = grid_value::<G>(case.root.lo[2]);
+        uut.level.next = u64::from(case.root.level).into();
+        for k in 0..2 {
+            uut.list_base[k].next = case.root_lists[k].0.into();
+            uut.list_count[k].next = case.root_lists[k].1.into();
+        }
+        uut.arena_start.next = case.config.arena.0.into();
+        uut.arena_end.next = case.config.arena.1.into();
+        let mut leaves = Vec::new();
+        let mut cycles = 0u64;
+        loop {
+            let out = memory.outputs();
+            uut.start.next = cycles == 0;
+            drive_from_memory!(uut, &out, DW);
+            settle(&mut uut);
+            if uut.leaf_valid.val() {
+                let cell = Cell {
+                    lo: [uut.leaf_x.val(), uut.leaf_y.val(), uut.leaf_z.val()]
+                        .map(|v| signed_value::<G>(v.to_u64())),
+                    level: uut.leaf_level.val().to_u64() as u32,
+                };
+                let lists: [ListPlace; 2] = std::array::from_fn(|k| {
+                    (
+                        uut.leaf_base[k].val().to_u64(),
+                        uut.leaf_count[k].val().to_u64(),
+                    )
+                });
+                leaves.push(DramLeaf {
+                    cell,
+                    lists,
+                    clock: cycles + 1,
+                    after_passes: uut.passes.val().to_u64(),
+                    entries: lists.map(|place| read_list(&memory, place)),
+                });
+            }
+            let manager = manager_signals!(uut, DW);
+            memory.edge(&manager);
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            cycles += 1;
+            if uut.done.val() {
+                break;
+            }
+            if cycles >= self.limit {
+                bail!(
+                    "the rust-hdl binning did not end within {} clocks",
+                    self.limit
+                );
+            }
+        }
+        Ok(UnitRun {
+            leaves,
+            cycles,
+            stalled: memory.stalled,
+            passes: uut.passes.val().to_u64(),
+            arena_full: uut.arena_full.val().to_u64(),
+            error: uut.error.val(),
+            faults: memory.faults().len(),
+            bytes: memory.bytes,
+        })
+    }
+}
+
+/// A `G`-bit two's complement grid coordinate as a number.
+fn signed_value<const G: usize>(v: u64) -> i64 {
+    ((v << (64 - G)) as i64) >> (64 - G)
 }
 
 /// An error naming the first leaf that is not the planner's.

@@ -5,7 +5,7 @@
 //! for the tree loses no pair.
 
 use std::collections::HashSet;
-use tritri_cosim::dram_binning::bin_in_dram;
+use tritri_cosim::dram_binning::{bin_in_dram, dram_case, run_model, run_rusthdl};
 use tritri_cosim::scene_query::Accelerator;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
@@ -149,4 +149,32 @@ fn an_arena_too_small_for_the_tree_raises_its_flag_and_loses_no_pair() {
         "{} pairs lost",
         wanted.difference(&kept).count()
     );
+}
+
+/// The controller in rust-hdl, over the list pass unit and against the
+/// memory model, equals its clock-exact model: every leaf (cell, lists'
+/// places, clock, and the entries in the memory when it goes out), the
+/// clocks to `done`, the stalled clocks, the passes and every byte of the
+/// memory, with an ideal memory and with one that stalls.
+#[test]
+fn the_rust_hdl_controller_is_its_model() {
+    let (accelerator, prepared) = scene();
+    let ideal = MemoryParams::ideal(8, 24);
+    for params in [ideal, ideal.with_stalls(20, 7)] {
+        let (case, _) = dram_case(&accelerator, &prepared, pass(64), params, 1 << 24).unwrap();
+        let (model, bytes) = run_model(&case).unwrap();
+        let unit = run_rusthdl(&case, 2 * model.cycles + 100).unwrap();
+        unit.check_against(&model, &bytes).unwrap();
+        assert!(model.passes > 4 && model.leaves.len() > 8, "{model:?}");
+        eprintln!(
+            "rust-hdl = model: {} passes, {} leaves, {} clocks, {} stalled; {} leaves dropped, {} waiting at most, {} frames",
+            model.passes,
+            model.leaves.len(),
+            model.cycles,
+            model.stalled,
+            model.leaves_dropped,
+            model.peak_waiting,
+            model.peak_frames
+        );
+    }
 }

@@ -65,6 +65,7 @@ pub mod broad_phase_system_unit;
 pub mod cell_classifier_unit;
 pub mod cone_unit_unit;
 pub mod continuous_assigns;
+pub mod dram_binning_unit_unit;
 pub mod dsp_mapping;
 pub mod list_pass_unit;
 pub mod memory_mapping;

@@ -51,8 +51,8 @@
 //! [`DECIDE_CLOCKS`] for its leaf cost and the cannot-pay test; a leaf
 //! takes [`LEAF_CLOCKS`]; a pass takes its own clocks
 //! ([`super::list_pass_machine::run_pass`]), then [`COSTS_CLOCKS`] for the
-//! children's costs and the decision, then [`PUSH_CLOCKS`] to push the
-//! children (or [`LEAF_CLOCKS`] for the leaf). A split cell's entry,
+//! children's costs and the decision (then [`LEAF_CLOCKS`] if the cell is
+//! a leaf after all). A split cell's entry,
 //! popped after its children, takes [`POP_CLOCKS`] and [`CLOSE_CLOCKS`];
 //! waiting leaves go out at [`LEAF_CLOCKS`] each.
 
@@ -71,11 +71,11 @@ pub const POP_CLOCKS: u64 = 1;
 pub const DECIDE_CLOCKS: u64 = LEAF_COST_LATENCY as u64 + 1;
 /// Clocks to send a leaf on.
 pub const LEAF_CLOCKS: u64 = 1;
-/// Clocks after a pass: the eight children's leaf costs, one query a clock,
-/// the last one's latency, and the decision.
-pub const COSTS_CLOCKS: u64 = 8 + LEAF_COST_LATENCY as u64 + 1;
-/// Clocks to push the children, one octant a clock.
-pub const PUSH_CLOCKS: u64 = 8;
+/// Clocks after a pass: the clock that sees it done, the eight children's
+/// leaf costs, one query a clock (each child's list places written to the
+/// children memory beside it), the last one's latency, and the decision.
+/// Pushing the cell's frame takes no clock more (it is the decision's).
+pub const COSTS_CLOCKS: u64 = 1 + 8 + LEAF_COST_LATENCY as u64 + 1;
 /// Clocks to decide a split cell whose children are done.
 pub const CLOSE_CLOCKS: u64 = 1;
 /// The split rule's estimate of a pass's clocks besides its beats (the
@@ -335,7 +335,6 @@ impl Walk<'_> {
             self.leaf(cell, visit.lists);
             return Ok(Some(leaf_cost + classify));
         }
-        self.idle(PUSH_CLOCKS);
         let slack = if pays { LOOKAHEAD } else { visit.slack - 1 };
         let tried = !pays;
         self.tried += usize::from(tried);
@@ -395,7 +394,7 @@ impl Walk<'_> {
 }
 
 /// The entries of a list in the memory.
-fn read_list(memory: &AxiMemory, (at, count): ListPlace) -> Vec<[u8; ENTRY_BYTES]> {
+pub fn read_list(memory: &AxiMemory, (at, count): ListPlace) -> Vec<[u8; ENTRY_BYTES]> {
     (0..count as usize)
         .map(|i| {
             let from = at as usize + i * ENTRY_BYTES;
@@ -434,7 +433,10 @@ pub fn run_dram_binning(
     };
     let mut stack = Vec::new();
     // Only the root can lack an object: no child without both is pushed.
-    if root_lists.iter().all(|&(_, n)| n > 0) {
+    // A root without both takes the clock that finds it so.
+    if root_lists.iter().any(|&(_, n)| n == 0) {
+        walk.idle(POP_CLOCKS);
+    } else {
         stack.push(Entry::Visit(Visit {
             cell: root,
             lists: root_lists,
