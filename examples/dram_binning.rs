@@ -14,11 +14,18 @@
 //! a 24-bit grid, two pipelines, 256 triangles per array. Every figure is
 //! in clocks of the unit's port, with the memory's bandwidth in bytes per
 //! clock beside it; no clock frequency is assumed.
+//!
+//! Then the controller itself (`tritri_rtl::octree::dram_binning_unit`)
+//! runs on the same scene, 64-bit port, in rust-hdl and, emitted, in
+//! Verilator against `axi_memory.sv`, with an ideal memory and with one
+//! that stalls 20 % of clocks; each must equal the clock-exact model in
+//! every leaf, clock and byte of the memory, or the example fails.
 
 use anyhow::Context as _;
 use tritri_cosim::binning_unit::bin_scene;
-use tritri_cosim::dram_binning::bin_in_dram;
+use tritri_cosim::dram_binning::{bin_in_dram, dram_case, run_model, run_rusthdl, run_simulator};
 use tritri_cosim::scene_query::Accelerator;
+use tritri_cosim::simulator::Simulator;
 use tritri_geom::scene::load::{load_object, Pose};
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_rtl::axi::memory_model::MemoryParams;
@@ -149,6 +156,61 @@ fn main() -> anyhow::Result<()> {
                 run.cycles as f64 / on_chip.run.cycles as f64
             );
         }
+    }
+    cosimulate(&accelerator, &scene)
+}
+
+/// The controller in rust-hdl and in Verilator against its model, on a
+/// 64-bit port with an arena as large as the model's walk needs.
+fn cosimulate(
+    accelerator: &Accelerator,
+    scene: &tritri_geom::scene::PreparedScene,
+) -> anyhow::Result<()> {
+    let config = ListPassConfig {
+        grid_bits: accelerator.grid_bits as usize,
+        data_bits: 64,
+        max_read_burst: 16,
+        outstanding: 4,
+    };
+    let ideal = MemoryParams::ideal(8, 24);
+    println!();
+    println!("| the controller, 64-bit port | passes | leaves | clocks | stalled | model = rust-hdl = Verilator | rust-hdl | Verilator |");
+    println!("|---|---:|---:|---:|---:|---|---:|---:|");
+    for (name, params) in [
+        ("ideal, latency 24", ideal),
+        ("20 % of clocks stalled (seed 7)", ideal.with_stalls(20, 7)),
+    ] {
+        let (wide, _) = dram_case(accelerator, scene, config, params, ARENA_BYTES)?;
+        let (first, _) = run_model(&wide)?;
+        // The same walk in an arena just large enough for it.
+        let (case, _) = dram_case(accelerator, scene, config, params, first.peak_arena.max(1))?;
+        let (model, bytes) = run_model(&case)?;
+        anyhow::ensure!(
+            model.leaves.len() == first.leaves.len() && model.cycles == first.cycles,
+            "the walk changed with the arena cut to its peak"
+        );
+        let limit = 2 * model.cycles + 1000;
+        let started = std::time::Instant::now();
+        let rust_hdl = run_rusthdl(&case, limit)?;
+        let rust_hdl_time = started.elapsed();
+        rust_hdl
+            .check_against(&model, &bytes)
+            .context("rust-hdl against the model")?;
+        let started = std::time::Instant::now();
+        let verilator = run_simulator(Simulator::Verilator, &case, limit)?;
+        let verilator_time = started.elapsed();
+        verilator
+            .check_against(&model, &bytes)
+            .context("Verilator against the model")?;
+        println!(
+            "| {name} | {} | {} | {} | {} | yes | {:.1} s | {:.1} s |",
+            model.passes,
+            model.leaves.len(),
+            model.cycles,
+            model.stalled,
+            rust_hdl_time.as_secs_f64(),
+            verilator_time.as_secs_f64()
+        );
     }
     Ok(())
 }

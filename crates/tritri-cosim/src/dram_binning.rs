@@ -9,10 +9,17 @@
 //! The memory: A's root list at 0, B's after it on a write burst, then
 //! the arena for the children's lists.
 
+use crate::axi_copy::AXI_MEMORY;
 use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::axi_drive::{memory_parameters, parse_status, read_memory_dump, write_memory_hex};
 use crate::binning_unit::grid_value;
+use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
+use tritri_rtl::emit::dram_binning_unit_unit::{dram_binning_unit_name, emit_dram_binning};
+
+/// The testbench of the emitted controller against the memory model.
+pub const DRAM_BINNING_TESTBENCH: &str = include_str!("../../../testbenches/tb_dram_binning.sv");
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{schedule, OctreeSchedule};
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
@@ -271,7 +278,7 @@ impl DramBinningVisitor for RustHdlBinning<'_> {
             if uut.leaf_valid.val() {
                 let cell = Cell {
                     lo: [uut.leaf_x.val(), uut.leaf_y.val(), uut.leaf_z.val()]
-                        .map(|v| signed_value::<G>(v.to_u64())),
+                        .map(|v| signed_grid_value(G)(v.to_u64())),
                     level: uut.leaf_level.val().to_u64() as u32,
                 };
                 let lists: [ListPlace; 2] = std::array::from_fn(|k| {
@@ -315,9 +322,116 @@ impl DramBinningVisitor for RustHdlBinning<'_> {
     }
 }
 
-/// A `G`-bit two's complement grid coordinate as a number.
-fn signed_value<const G: usize>(v: u64) -> i64 {
-    ((v << (64 - G)) as i64) >> (64 - G)
+/// The emitted controller in `simulator`, against `axi_memory.sv`: the
+/// leaves it printed (without their entries: the final memory is compared
+/// instead), the clocks and the memory after the walk.
+pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyhow::Result<UnitRun> {
+    let design = emit_dram_binning(&case.config)?;
+    let mut files = vec![
+        (
+            "tb_dram_binning.sv".to_string(),
+            DRAM_BINNING_TESTBENCH.to_string(),
+        ),
+        ("axi_memory.sv".to_string(), AXI_MEMORY.to_string()),
+    ];
+    for f in design.verilog_files() {
+        files.push((f.path.clone(), f.contents.clone()));
+    }
+    let pass = case.config.pass;
+    let mut parameters = vec![
+        ("GRID_BITS".to_string(), pass.grid_bits.to_string()),
+        ("DATA_BITS".to_string(), pass.data_bits.to_string()),
+    ];
+    // A power of two, so that cases of about one size share one Verilator
+    // build; the bytes past the case's memory are not compared.
+    let bytes = (case.bytes.len() as u64).next_power_of_two().max(1 << 16);
+    parameters.extend(memory_parameters(&case.params, bytes));
+    parameters.push(("LIMIT".to_string(), limit.to_string()));
+    let testbench = Testbench {
+        top: "tb_dram_binning".to_string(),
+        files,
+        defines: vec![format!(
+            "TRITRI_DUT={}",
+            dram_binning_unit_name(&case.config)
+        )],
+        parameters,
+        c_optimization: 2,
+        trace: false,
+    };
+    let compiled = compile(simulator, &testbench)?;
+    let work = WorkDir::new("dram-binning")?;
+    let memory_in = work.join("memory.hex");
+    let memory_out = work.join("memory_out.hex");
+    write_memory_hex(&memory_in, &case.bytes)?;
+    let g = pass.grid_bits;
+    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
+    let mut plusargs = vec![
+        format!("+memory={}", memory_in.display()),
+        format!("+out={}", memory_out.display()),
+        format!("+corner_x={}", corner(case.root.lo[0])),
+        format!("+corner_y={}", corner(case.root.lo[1])),
+        format!("+corner_z={}", corner(case.root.lo[2])),
+        format!("+level={}", case.root.level),
+        format!("+arena_start={}", case.config.arena.0),
+        format!("+arena_end={}", case.config.arena.1),
+    ];
+    for k in 0..2 {
+        plusargs.push(format!("+list_base_{k}={}", case.root_lists[k].0));
+        plusargs.push(format!("+list_count_{k}={}", case.root_lists[k].1));
+    }
+    let output = compiled.run(&plusargs)?;
+    let text = String::from_utf8_lossy(&output.stdout);
+    let status = parse_status(&text)?;
+    if !status.done {
+        bail!("the emitted binning did not end within {limit} clocks");
+    }
+    let numbers = |line: &str| -> anyhow::Result<Vec<u64>> {
+        line.split_whitespace()
+            .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
+            .map(|w| w.parse().with_context(|| format!("{w:?} in {line:?}")))
+            .collect()
+    };
+    let mut leaves = Vec::new();
+    for line in text.lines().filter_map(|l| l.strip_prefix("# leaf ")) {
+        let v = numbers(line)?;
+        let [clock, x, y, z, level, b0, n0, b1, n1] = v[..] else {
+            bail!("a leaf line of {} numbers: {line:?}", v.len());
+        };
+        leaves.push(DramLeaf {
+            cell: Cell {
+                lo: [x, y, z].map(signed_grid_value(g)),
+                level: level as u32,
+            },
+            lists: [(b0, n0), (b1, n1)],
+            clock,
+            after_passes: 0,
+            entries: [Vec::new(), Vec::new()],
+        });
+    }
+    let counts = text
+        .lines()
+        .find_map(|l| l.strip_prefix("# passes "))
+        .with_context(|| format!("the testbench printed no passes:\n{text}"))?;
+    let counts = numbers(counts)?;
+    let [passes, arena_full, overflow] = counts[..] else {
+        bail!("the testbench's passes line holds {} numbers", counts.len());
+    };
+    let bytes = read_memory_dump(&memory_out, case.bytes.len())?;
+    Ok(UnitRun {
+        leaves,
+        cycles: status.cycles,
+        stalled: status.stalled,
+        passes,
+        arena_full,
+        error: status.error || overflow != 0,
+        faults: status.faults,
+        bytes,
+    })
+}
+
+/// A `bits`-wide two's complement grid coordinate as a number.
+fn signed_grid_value(bits: usize) -> impl Fn(u64) -> i64 {
+    move |v| ((v << (64 - bits)) as i64) >> (64 - bits)
 }
 
 /// An error naming the first leaf that is not the planner's.
