@@ -1,8 +1,9 @@
 //! The broad phase's binning with its lists in external memory, beside the
-//! on-chip binning unit, on a scene of your own: the planner's tree walked
-//! pass by pass (`tritri_cosim::dram_binning::walk`), each pass the list
-//! pass unit's clock-exact model against the AXI4 memory model, which its
-//! Verilog equals in co-simulation (crates/tritri-cosim/tests/list_pass.rs).
+//! on-chip binning unit, on a scene of your own: the octree walked by the
+//! controller's clock-exact model (`tritri_cosim::dram_binning::bin_in_dram`),
+//! a pass per cell split, each pass the list pass unit's clock-exact model
+//! against the AXI4 memory model, which its Verilog equals in
+//! co-simulation (crates/tritri-cosim/tests/list_pass.rs).
 //!
 //! ```sh
 //! cargo run --release --example dram_binning [-- A B [SCALE_B TX TY TZ]]

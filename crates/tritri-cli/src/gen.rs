@@ -84,7 +84,10 @@
 //! writes the AXI4 port's copy unit, top `tritri_axi_copy_d<DW>_…`;
 //! `--list-pass [--width 16|24] [--data-bits 64|128|256]` the broad
 //! phase's pass of one cell with its lists in external memory, top
-//! `tritri_list_pass_g<G>_d<DW>_r16_o4`.
+//! `tritri_list_pass_g<G>_d<DW>_r16_o4`; `--dram-binning [--width 16|24]
+//! [--data-bits 64|128|256] [--pipelines P] [--depth D]` the binning over
+//! such passes, the pass unit inside, top
+//! `tritri_dram_binning_g<G>_d<DW>_r16_o4_t<D>_p<P>`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -122,6 +125,7 @@ use tritri_rtl::emit::cell_classifier_unit::{
     cell_classifier_unit_name, emit_cell_classifier, CLASSIFIER_GRID_WIDTHS,
 };
 use tritri_rtl::emit::cone_unit_unit::{cone_unit_name, emit_cone_unit, CONE_UNIT_WIDTHS};
+use tritri_rtl::emit::dram_binning_unit_unit::{dram_binning_unit_name, emit_dram_binning};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
 use tritri_rtl::emit::list_pass_unit::{
     emit_list_pass, list_pass_unit_name, LIST_PASS_GRID_WIDTHS,
@@ -145,7 +149,9 @@ use tritri_rtl::emit::voxel_units::{
 };
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::measured::{device, DEVICES};
+use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
+use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
@@ -287,8 +293,15 @@ pub struct Args {
     /// --width is the grid's (16 or 24), --data-bits the port's.
     #[arg(long)]
     list_pass: bool,
-    /// With --list-pass: the AXI4 port's data width (64, 128 or 256)
-    /// [default: 64].
+    /// Emit the broad phase's binning with every list in external memory
+    /// instead: the octree walked from the root's lists, a list pass per
+    /// cell split, each leaf out as it is decided; --width is the grid's
+    /// (16 or 24), --data-bits the port's, --pipelines and --depth the
+    /// collision system's its split rule counts for.
+    #[arg(long)]
+    dram_binning: bool,
+    /// With --list-pass or --dram-binning: the AXI4 port's data width (64,
+    /// 128 or 256) [default: 64].
     #[arg(long, value_name = "BITS")]
     data_bits: Option<usize>,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
@@ -503,6 +516,7 @@ impl Args {
             (Design::SharedRareCases, self.shared_rare_cases),
             (Design::AxiCopy, self.axi_copy),
             (Design::ListPass, self.list_pass),
+            (Design::DramBinning, self.dram_binning),
         ])
     }
 
@@ -602,7 +616,10 @@ impl Args {
                 ));
             }
         }
-        if matches!(design, Design::BinningUnit | Design::BroadPhase) {
+        if matches!(
+            design,
+            Design::BinningUnit | Design::BroadPhase | Design::DramBinning
+        ) {
             if !self.pipelines().is_power_of_two() {
                 return Err(format!(
                     "--pipelines {}: the binning unit's split rule takes a power of two",
@@ -660,10 +677,10 @@ impl Args {
                 .transfer()
                 .check()
                 .map_err(|e| format!("{flag} --width {w}: {e}")),
-            Design::ListPass if !LIST_PASS_GRID_WIDTHS.contains(&w) => Err(format!(
+            Design::ListPass | Design::DramBinning if !LIST_PASS_GRID_WIDTHS.contains(&w) => Err(format!(
                 "{flag} --width {w}: the unit is built for grids of {LIST_PASS_GRID_WIDTHS:?} bits"
             )),
-            Design::ListPass => self
+            Design::ListPass | Design::DramBinning => self
                 .list_pass_config(w)
                 .check()
                 .map_err(|e| format!("{flag} --data-bits {}: {e}", self.list_pass_config(w).data_bits)),
@@ -712,6 +729,7 @@ impl Args {
             Design::SharedRareCases => emit_shared_rare_cases(width, self.multipliers())?,
             Design::AxiCopy => emit_axi_copy(&axi_copy_config(width))?,
             Design::ListPass => emit_list_pass(&self.list_pass_config(width))?,
+            Design::DramBinning => emit_dram_binning(&self.dram_binning_config(width))?,
         })
     }
 
@@ -749,6 +767,23 @@ impl Args {
             Design::SharedRareCases => shared_rare_cases_name(width),
             Design::AxiCopy => axi_copy_config(width).unit_name(),
             Design::ListPass => list_pass_unit_name(&self.list_pass_config(width)),
+            Design::DramBinning => dram_binning_unit_name(&self.dram_binning_config(width)),
+        }
+    }
+
+    /// The binning controller `tritri gen --dram-binning` writes for a
+    /// `grid_bits` grid: the pass unit of `--list-pass`, the split rule of
+    /// `--pipelines` and `--depth` in one frame (no level forced to split;
+    /// the arena is an input).
+    fn dram_binning_config(&self, grid_bits: usize) -> DramBinningConfig {
+        DramBinningConfig {
+            pass: self.list_pass_config(grid_bits),
+            rule: BinningParams {
+                log_depth: self.depth().trailing_zeros(),
+                log_pipelines: self.pipelines().trailing_zeros(),
+                max_leaf_level: None,
+            },
+            arena: (0, 0),
         }
     }
 

@@ -552,7 +552,19 @@ fn options_a_design_does_not_take_are_refused_by_name() {
         ),
         (
             &["--axi-copy", "--data-bits", "128"][..],
-            "--data-bits does not apply to --axi-copy (it takes --width); it is for --list-pass",
+            "--data-bits does not apply to --axi-copy (it takes --width); it is for --list-pass, --dram-binning",
+        ),
+        (
+            &["--dram-binning", "--slots", "3"][..],
+            "--slots does not apply to --dram-binning (it takes --width, --data-bits, --pipelines, --depth)",
+        ),
+        (
+            &["--dram-binning", "--width", "32"][..],
+            "--dram-binning --width 32: the unit is built for grids of [16, 24] bits",
+        ),
+        (
+            &["--dram-binning", "--depth", "100"][..],
+            "--depth 100: the binning unit's split rule takes a power of two",
         ),
         (
             &["--for-scene", "@torus", "@sphere", "--cone-unit"][..],
@@ -837,5 +849,43 @@ fn list_pass_is_emitted_for_its_grid_and_data_width() {
         "no module {top}"
     );
     assert!(verilog.contains("m_axi_rdata"), "no AXI4 port");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// `--dram-binning` writes the binning controller for the grid, port and
+/// system asked, named by all of them, with the pass unit inside.
+#[test]
+fn dram_binning_is_emitted_for_its_grid_port_and_system() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-dram-binning-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri()
+        .args([
+            "gen",
+            "--dram-binning",
+            "--width",
+            "16",
+            "--data-bits",
+            "256",
+            "--pipelines",
+            "1",
+            "--depth",
+            "128",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let top = "tritri_dram_binning_g16_d256_r16_o4_t128_p1";
+    let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
+    assert!(
+        verilog.contains(&format!("module {top}")),
+        "no module {top}"
+    );
+    assert!(verilog.contains("m_axi_rdata") && verilog.contains("leaf_valid"));
+    assert!(
+        out.join(format!("{top}_list_pass.v")).is_file(),
+        "no pass unit inside"
+    );
     let _ = std::fs::remove_dir_all(&out);
 }

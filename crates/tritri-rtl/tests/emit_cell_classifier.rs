@@ -14,6 +14,7 @@ use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
+use tritri_rtl::emit::dram_binning_unit_unit::emit_dram_binning;
 use tritri_rtl::emit::list_pass_unit::{emit_list_pass, LIST_PASS_GRID_WIDTHS};
 use tritri_rtl::emit::octree_builder_unit::emit_octree_builder;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
@@ -22,7 +23,9 @@ use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::triangle_voxelizer_unit::emit_triangle_voxelizer;
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::EmittedDesign;
+use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
+use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
@@ -161,6 +164,27 @@ fn the_list_pass_unit_is_lint_clean_at_every_grid_and_data_width() {
             };
             check(grid_bits, emit_list_pass(&config).unwrap());
         }
+    }
+}
+
+#[test]
+fn the_dram_binning_controller_is_lint_clean_at_both_grids() {
+    for (grid_bits, data_bits, max_leaf_level) in [(24, 64, None), (16, 256, Some(20))] {
+        let config = DramBinningConfig {
+            pass: ListPassConfig {
+                grid_bits,
+                data_bits,
+                max_read_burst: 16,
+                outstanding: 4,
+            },
+            rule: BinningParams {
+                log_depth: 8,
+                log_pipelines: 1,
+                max_leaf_level,
+            },
+            arena: (0, 1 << 24),
+        };
+        check(grid_bits, emit_dram_binning(&config).unwrap());
     }
 }
 

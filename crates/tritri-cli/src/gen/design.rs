@@ -46,6 +46,9 @@ pub enum Design {
     AxiCopy,
     /// The broad phase's pass of a cell with its lists in external memory.
     ListPass,
+    /// The broad phase's binning over such passes, every list in external
+    /// memory.
+    DramBinning,
 }
 
 /// An option that shapes a design; each design takes the ones its row
@@ -102,7 +105,7 @@ use DesignOption::*;
 
 /// Every design, once. `--dsp` is taken by the designs with multipliers
 /// (the MULT18X18D mapping applies to them).
-pub const DESIGNS: [Row; 18] = [
+pub const DESIGNS: [Row; 19] = [
     Row {
         design: Design::Pipeline,
         flag: None,
@@ -194,6 +197,11 @@ pub const DESIGNS: [Row; 18] = [
         design: Design::ListPass,
         flag: Some("--list-pass"),
         takes: &[Width, DataBits],
+    },
+    Row {
+        design: Design::DramBinning,
+        flag: Some("--dram-binning"),
+        takes: &[Width, DataBits, Pipelines, Depth],
     },
 ];
 

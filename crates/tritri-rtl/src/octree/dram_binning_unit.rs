@@ -25,10 +25,10 @@
 //! The leaf cost takes 20-bit counts ([`super::leaf_cost::COUNT_BITS`]);
 //! the lists' counts are 32 bits.
 
-use super::dram_binning_machine::PASS_FIXED_CLOCKS;
+use super::dram_split_terms::SplitTerms;
 use super::leaf_cost::{LeafCost, COST_BITS, COUNT_BITS};
 use super::list_entry::ENTRY_BYTES;
-use super::list_pass::{ListPass, CHILDREN, ENTRY_COUNT_BITS, WRITE_BURST_BEATS};
+use super::list_pass::{ListPass, CHILDREN, ENTRY_COUNT_BITS};
 use crate::axi::ADDRESS_BITS;
 use crate::system::dual_port_ram::SimpleDualPortRam;
 use rust_hdl::prelude::*;
@@ -207,16 +207,13 @@ pub struct DramBinningUnit<
     pub m_axi_bready: Signal<Out, Bit>,
     pass: ListPass<G, V, N, T, DW, S>,
     cost: LeafCost,
+    terms: SplitTerms,
     frames: SimpleDualPortRam<DramFrame, DRAM_FRAME_ADDRESS_BITS>,
     children: SimpleDualPortRam<ChildPlaces, CHILD_ADDRESS_BITS>,
     waiting: SimpleDualPortRam<DramCell, WAITING_ADDRESS_BITS>,
     // Constants of the build.
-    pass_fixed: Constant<Bits<48>>,
-    log_beats_per_entry: Constant<Bits<48>>,
-    entries_per_burst_less_one: Constant<Bits<48>>,
-    log_entries_per_burst: Constant<Bits<48>>,
-    log_burst_bytes: Constant<Bits<48>>,
     lookahead: Constant<Bits<2>>,
+    grid_bits: Constant<Bits<6>>,
     max_leaf_enable: Constant<Bit>,
     max_leaf_level: Constant<Bits<6>>,
     octant_number: [Constant<Bits<9>>; 8],
@@ -254,15 +251,6 @@ pub struct DramBinningUnit<
     failed: DFF<Bit>,
     overflow: DFF<Bit>,
     // Between the parts.
-    sum: Signal<Local, Bits<48>>,
-    classify: Signal<Local, Bits<48>>,
-    forced: Signal<Local, Bit>,
-    cannot_pay: Signal<Local, Bit>,
-    bursts: [Signal<Local, Bits<48>>; 2],
-    stride: [Signal<Local, Bits<48>>; 2],
-    children_b: Signal<Local, Bits<48>>,
-    new_top: Signal<Local, Bits<48>>,
-    fits: Signal<Local, Bit>,
     swapped: Signal<Local, Bit>,
     child_a: Signal<Local, Bits<32>>,
     child_b: Signal<Local, Bits<32>>,
@@ -280,6 +268,9 @@ pub struct DramBinningUnit<
     wait_data: Signal<Local, DramCell>,
     wait_address: Signal<Local, Bits<11>>,
     out_cell: Signal<Local, DramCell>,
+    /// What the controller does not read of its parts (the pass's `busy`,
+    /// the leaf's coordinates above the grid's bits), folded into one bit.
+    unused_outputs: Signal<Local, Bit>,
 }
 
 impl<
@@ -297,6 +288,7 @@ impl<
             units,
             pass,
             cost,
+            terms,
             frames,
             children,
             waiting,
@@ -349,10 +341,6 @@ impl<
         log_pipelines: u32,
         max_leaf_level: Option<u32>,
     ) -> Self {
-        let beat_bytes = (DW / 8) as u64;
-        let beats_per_entry = ENTRY_BYTES as u64 / beat_bytes;
-        let burst_bytes = WRITE_BURST_BEATS as u64 * beat_bytes;
-        let entries_per_burst = burst_bytes / ENTRY_BYTES as u64;
         let max_level = max_leaf_level.unwrap_or(0);
         assert!(max_level < 64, "a leaf level of 6 bits, not {max_level}");
         DramBinningUnit {
@@ -414,14 +402,11 @@ impl<
             m_axi_bready: Default::default(),
             pass: ListPass::new(max_read_burst, outstanding),
             cost: LeafCost::new(log_depth, log_pipelines),
+            terms: SplitTerms::new(DW, max_leaf_level),
             frames: SimpleDualPortRam::new(1 << DRAM_FRAME_ADDRESS_BITS),
             children: SimpleDualPortRam::new(1 << CHILD_ADDRESS_BITS),
             waiting: SimpleDualPortRam::new(WAITING_CAPACITY),
-            pass_fixed: Constant::new(PASS_FIXED_CLOCKS.into()),
-            log_beats_per_entry: Constant::new(u64::from(beats_per_entry.ilog2()).into()),
-            entries_per_burst_less_one: Constant::new((entries_per_burst - 1).into()),
-            log_entries_per_burst: Constant::new(u64::from(entries_per_burst.ilog2()).into()),
-            log_burst_bytes: Constant::new(u64::from(burst_bytes.ilog2()).into()),
+            grid_bits: Constant::new((G as u64).into()),
             lookahead: Constant::new(u64::from(tritri_geom::scene::octree::LOOKAHEAD).into()),
             max_leaf_enable: Constant::new(max_leaf_level.is_some()),
             max_leaf_level: Constant::new(u64::from(max_level).into()),
@@ -452,15 +437,6 @@ impl<
             arena_full_q: Default::default(),
             failed: Default::default(),
             overflow: Default::default(),
-            sum: Default::default(),
-            classify: Default::default(),
-            forced: Default::default(),
-            cannot_pay: Default::default(),
-            bursts: Default::default(),
-            stride: Default::default(),
-            children_b: Default::default(),
-            new_top: Default::default(),
-            fits: Default::default(),
             swapped: Default::default(),
             child_a: Default::default(),
             child_b: Default::default(),
@@ -478,6 +454,7 @@ impl<
             wait_data: Default::default(),
             wait_address: Default::default(),
             out_cell: Default::default(),
+            unused_outputs: Default::default(),
         }
     }
 }
@@ -565,42 +542,20 @@ impl<
         self.pass.m_axi_bvalid.next = self.m_axi_bvalid.val();
         self.m_axi_bready.next = self.pass.m_axi_bready.val();
 
-        // ---- The split rule's quantities for the current cell.
+        // ---- The split rule's terms for the current cell.
         self.leaf_cost_now.next = self.cost.cost.val();
-        self.sum.next = bit_cast::<48, 32>(self.cur.q.val().count_a)
-            + bit_cast::<48, 32>(self.cur.q.val().count_b);
-        self.classify.next =
-            self.pass_fixed.val() + (self.sum.val() << self.log_beats_per_entry.val());
-        if self.at_root.q.val() {
-            self.classify.next = self.pass_fixed.val();
-        }
-        self.forced.next =
-            self.max_leaf_enable.val() & (self.cur.q.val().level > self.max_leaf_level.val());
-        self.cannot_pay.next = !self.at_root.q.val()
-            & !self.forced.val()
-            & (self.leaf_cost_now.val() <= self.sum.val() + 1 + self.classify.val());
-        // Each child list as long as its parent's, on a write burst.
-        self.bursts[0].next = (bit_cast::<48, 32>(self.cur.q.val().count_a)
-            + self.entries_per_burst_less_one.val())
-            >> self.log_entries_per_burst.val();
-        self.bursts[1].next = (bit_cast::<48, 32>(self.cur.q.val().count_b)
-            + self.entries_per_burst_less_one.val())
-            >> self.log_entries_per_burst.val();
-        for k in 0..2 {
-            self.stride[k].next = self.bursts[k].val() << self.log_burst_bytes.val();
-            if self.bursts[k].val() == 0 {
-                self.stride[k].next = bits::<48>(1) << self.log_burst_bytes.val();
-            }
-        }
-        self.children_b.next =
-            bit_cast::<48, 32>(self.arena_top.q.val()) + (self.stride[0].val() << 3);
-        self.new_top.next = self.children_b.val() + (self.stride[1].val() << 3);
-        self.fits.next = self.new_top.val() <= bit_cast::<48, 32>(self.arena_end.val());
+        self.terms.count_a.next = self.cur.q.val().count_a;
+        self.terms.count_b.next = self.cur.q.val().count_b;
+        self.terms.level.next = self.cur.q.val().level;
+        self.terms.at_root.next = self.at_root.q.val();
+        self.terms.leaf_cost.next = self.leaf_cost_now.val();
+        self.terms.arena_top.next = self.arena_top.q.val();
+        self.terms.arena_end.next = self.arena_end.val();
         // The shorter list goes first: the pass writes the second only to
         // children the first reached.
         self.swapped.next = self.cur.q.val().count_b < self.cur.q.val().count_a;
         self.pays.next =
-            self.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
+            self.terms.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
 
         // ---- The pass unit, started from Pass at counter 0.
         self.pass.start.next =
@@ -710,8 +665,13 @@ impl<
                 self.counter.d.next = self.counter.q.val() + 1;
                 if self.counter.q.val() == 4 {
                     self.counter.d.next = 0.into();
-                    if (self.cur.q.val().level == 0) | self.cannot_pay.val() | !self.fits.val() {
-                        if (self.cur.q.val().level != 0) & !self.cannot_pay.val() & !self.fits.val()
+                    if (self.cur.q.val().level == 0)
+                        | self.terms.cannot_pay.val()
+                        | !self.terms.fits.val()
+                    {
+                        if (self.cur.q.val().level != 0)
+                            & !self.terms.cannot_pay.val()
+                            & !self.terms.fits.val()
                         {
                             self.arena_full_q.d.next = self.arena_full_q.q.val() + 1;
                         }
@@ -726,12 +686,12 @@ impl<
                         }
                     } else {
                         self.cur_leaf_cost.d.next = self.leaf_cost_now.val();
-                        self.cur_classify.d.next = self.classify.val();
+                        self.cur_classify.d.next = self.terms.classify.val();
                         self.cur_children[0].d.next = self.arena_top.q.val();
-                        self.cur_children[1].d.next = bit_cast::<32, 48>(self.children_b.val());
-                        self.cur_stride[0].d.next = bit_cast::<32, 48>(self.stride[0].val());
-                        self.cur_stride[1].d.next = bit_cast::<32, 48>(self.stride[1].val());
-                        self.cur_new_top.d.next = bit_cast::<32, 48>(self.new_top.val());
+                        self.cur_children[1].d.next = self.terms.children_b.val();
+                        self.cur_stride[0].d.next = self.terms.stride_a.val();
+                        self.cur_stride[1].d.next = self.terms.stride_b.val();
+                        self.cur_new_top.d.next = self.terms.new_top.val();
                         self.state.d.next = DramBinState::Pass;
                     }
                 }
@@ -1010,5 +970,9 @@ impl<
         self.waiting_overflow.next = self.overflow.q.val();
         self.passes.next = self.passes_q.q.val();
         self.arena_full.next = self.arena_full_q.q.val();
+        self.unused_outputs.next = self.pass.busy.val()
+            ^ (self.out_cell.val().x >> self.grid_bits.val()).any()
+            ^ (self.out_cell.val().y >> self.grid_bits.val()).any()
+            ^ (self.out_cell.val().z >> self.grid_bits.val()).any();
     }
 }

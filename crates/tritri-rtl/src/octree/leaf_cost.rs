@@ -114,68 +114,105 @@ impl Logic for LeafCost {
     }
 
     fn hdl(&self) -> Verilog {
-        let (ld, lp) = (self._log_depth, self._log_pipelines);
-        let depth = 1u64 << ld;
-        let per_group = depth.div_ceil(1 << lp);
-        let f_dd = 1 + depth + per_group * depth;
-        let (c1, k1) = (COUNT_BITS - 1, COST_BITS - 1);
-        let k = COST_BITS;
-        let text = format!(
-            "\
+        Verilog::Custom(leaf_cost_verilog(self._log_depth, self._log_pipelines))
+    }
+}
+
+/// The leaf cost's Verilog body for depth `2^ld` and `2^lp` pipelines.
+/// Every register is as wide as its largest value for counts below
+/// 2^[`COUNT_BITS`] (worked out below), so that synthesis sees products of
+/// those widths and not of the cost's 48 bits: a quotient has `COUNT_BITS
+/// - ld` bits, a remainder `ld`, an `f` at most `1 + D + D^2`, so `2 ld +
+/// 2` bits (given one more); the largest term, `qa qb f(D, D)`, has `2
+/// (COUNT_BITS - ld) + 2 ld + 3 = 43` bits, within the cost's 48.
+pub fn leaf_cost_verilog(ld: u32, lp: u32) -> String {
+    let depth = 1u64 << ld;
+    let per_group = depth.div_ceil(1 << lp);
+    let f_dd = 1 + depth + per_group * depth;
+    let c = COUNT_BITS;
+    let k = COST_BITS;
+    let q = COUNT_BITS - ld as usize; // quotient bits
+    let r = (ld as usize).max(1); // remainder bits
+    let g = r + 1; // ceil(remainder / P) bits
+    let f = 2 * ld as usize + 3; // bits of an f, one spare (so g < f at D = 1)
+    let qq = 2 * q; // bits of qa qb
+    debug_assert!(qq + f <= k && 1u64 << f > f_dd);
+    format!(
+        "\
 // Leaf cost for depth D = {depth}, P = {p}: f(x, y) = 1 + x + ceil(x / P) * y per tile pair.
-localparam [{k1}:0] F_DD = {k}'d{f_dd};      // f(D, D)
-localparam [{k1}:0] PER_GROUP = {k}'d{per_group}; // ceil(D / P)
+// Each register as wide as its largest value for counts below 2^{c}.
+localparam [{f1}:0] F_DD = {f}'d{f_dd};      // f(D, D)
+localparam [{f1}:0] PER_GROUP = {f}'d{per_group}; // ceil(D / P)
 // Stage 1: quotients, remainders, ceil(ra / P).
-reg [{c1}:0] qa_1, qb_1, ra_1, rb_1, groups_1;
+reg [{q1}:0] qa_1, qb_1;
+reg [{r1}:0] ra_1, rb_1;
+reg [{g1}:0] groups_1;
 reg zero_1;
 // Stage 2: qa qb and the three f.
-reg [{k1}:0] qq_2, f_d_rb_2, f_ra_d_2, f_ra_rb_2, qa_2, qb_2;
+reg [{qq1}:0] qq_2;
+reg [{f1}:0] f_d_rb_2, f_ra_d_2, f_ra_rb_2;
+reg [{q1}:0] qa_2, qb_2;
 reg ra_2, rb_2, zero_2;
 // Stage 3: the four terms.
 reg [{k1}:0] t1_3, t2_3, t3_3, t4_3;
 reg zero_3;
 initial begin
-    qa_1 = {COUNT_BITS}'d0; qb_1 = {COUNT_BITS}'d0; ra_1 = {COUNT_BITS}'d0; rb_1 = {COUNT_BITS}'d0; groups_1 = {COUNT_BITS}'d0; zero_1 = 1'b1;
-    qq_2 = {k}'d0; f_d_rb_2 = {k}'d0; f_ra_d_2 = {k}'d0; f_ra_rb_2 = {k}'d0; qa_2 = {k}'d0; qb_2 = {k}'d0;
+    qa_1 = {q}'d0; qb_1 = {q}'d0; ra_1 = {r}'d0; rb_1 = {r}'d0; groups_1 = {g}'d0; zero_1 = 1'b1;
+    qq_2 = {qq}'d0; f_d_rb_2 = {f}'d0; f_ra_d_2 = {f}'d0; f_ra_rb_2 = {f}'d0; qa_2 = {q}'d0; qb_2 = {q}'d0;
     ra_2 = 1'b0; rb_2 = 1'b0; zero_2 = 1'b1;
     t1_3 = {k}'d0; t2_3 = {k}'d0; t3_3 = {k}'d0; t4_3 = {k}'d0; zero_3 = 1'b1;
     cost = {k}'d0;
 end
+// The quotients and remainders as slices of the counts.
+wire [{c1}:0] a_high = a >> {ld};
+wire [{c1}:0] b_high = b >> {ld};
+wire [{c1}:0] a_low = a & {c}'d{mask};
+wire [{c1}:0] b_low = b & {c}'d{mask};
+wire [{c1}:0] a_groups = (a_low + {c}'d{p_minus_1}) >> {lp};
 always @(posedge clock) begin
-    qa_1 <= a >> {ld};
-    qb_1 <= b >> {ld};
-    ra_1 <= a & {COUNT_BITS}'d{mask};
-    rb_1 <= b & {COUNT_BITS}'d{mask};
-    groups_1 <= ((a & {COUNT_BITS}'d{mask}) + {COUNT_BITS}'d{p_minus_1}) >> {lp};
-    zero_1 <= (a == {COUNT_BITS}'d0) || (b == {COUNT_BITS}'d0);
+    qa_1 <= a_high[{q1}:0];
+    qb_1 <= b_high[{q1}:0];
+    ra_1 <= a_low[{r1}:0];
+    rb_1 <= b_low[{r1}:0];
+    groups_1 <= a_groups[{g1}:0];
+    zero_1 <= (a == {c}'d0) || (b == {c}'d0);
 
-    qq_2 <= {{{pad}'d0, qa_1}} * {{{pad}'d0, qb_1}};
-    f_d_rb_2 <= {k}'d{one_plus_depth} + PER_GROUP * {{{pad}'d0, rb_1}};
-    f_ra_d_2 <= {k}'d1 + {{{pad}'d0, ra_1}} + ({{{pad}'d0, groups_1}} << {ld});
-    f_ra_rb_2 <= {k}'d1 + {{{pad}'d0, ra_1}} + {{{pad}'d0, groups_1}} * {{{pad}'d0, rb_1}};
-    qa_2 <= {{{pad}'d0, qa_1}};
-    qb_2 <= {{{pad}'d0, qb_1}};
-    ra_2 <= ra_1 != {COUNT_BITS}'d0;
-    rb_2 <= rb_1 != {COUNT_BITS}'d0;
+    qq_2 <= {{{q}'d0, qa_1}} * {{{q}'d0, qb_1}};
+    f_d_rb_2 <= {f}'d{one_plus_depth} + PER_GROUP * {{{fr}'d0, rb_1}};
+    f_ra_d_2 <= {f}'d1 + {{{fr}'d0, ra_1}} + ({{{fg}'d0, groups_1}} << {ld});
+    f_ra_rb_2 <= {f}'d1 + {{{fr}'d0, ra_1}} + {{{fg}'d0, groups_1}} * {{{fr}'d0, rb_1}};
+    qa_2 <= qa_1;
+    qb_2 <= qb_1;
+    ra_2 <= ra_1 != {r}'d0;
+    rb_2 <= rb_1 != {r}'d0;
     zero_2 <= zero_1;
 
-    t1_3 <= qq_2 * F_DD;
-    t2_3 <= rb_2 ? qa_2 * f_d_rb_2 : {k}'d0;
-    t3_3 <= ra_2 ? qb_2 * f_ra_d_2 : {k}'d0;
-    t4_3 <= (ra_2 && rb_2) ? f_ra_rb_2 : {k}'d0;
+    t1_3 <= {{{kqq}'d0, qq_2}} * {{{kf}'d0, F_DD}};
+    t2_3 <= rb_2 ? {{{kq}'d0, qa_2}} * {{{kf}'d0, f_d_rb_2}} : {k}'d0;
+    t3_3 <= ra_2 ? {{{kq}'d0, qb_2}} * {{{kf}'d0, f_ra_d_2}} : {k}'d0;
+    t4_3 <= (ra_2 && rb_2) ? {{{kf}'d0, f_ra_rb_2}} : {k}'d0;
     zero_3 <= zero_2;
 
     cost <= zero_3 ? {k}'d0 : t1_3 + t2_3 + t3_3 + t4_3;
 end
 ",
-            p = 1u64 << lp,
-            mask = depth - 1,
-            p_minus_1 = (1u64 << lp) - 1,
-            pad = COST_BITS - COUNT_BITS,
-            one_plus_depth = 1 + depth,
-        );
-        Verilog::Custom(text)
-    }
+        p = 1u64 << lp,
+        mask = depth - 1,
+        p_minus_1 = (1u64 << lp) - 1,
+        one_plus_depth = 1 + depth,
+        c1 = c - 1,
+        k1 = k - 1,
+        q1 = q - 1,
+        r1 = r - 1,
+        g1 = g - 1,
+        f1 = f - 1,
+        qq1 = qq - 1,
+        fr = f - r,
+        fg = f - g,
+        kqq = k - qq,
+        kf = k - f,
+        kq = k - q,
+    )
 }
 
 #[cfg(test)]

@@ -29,7 +29,8 @@
 //!   [`list_pass_machine`] the clock-exact model;
 //!   [`dram_binning_machine`]: the controller that walks the octree over
 //!   such passes, every list in external memory, leaves out as decided,
-//!   and [`dram_binning_unit`] that controller in rust-hdl;
+//!   and [`dram_binning_unit`] that controller in rust-hdl
+//!   ([`dram_split_terms`]: its split rule's terms);
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -59,6 +60,7 @@ pub mod child_select;
 pub mod classify_lane;
 pub mod dram_binning_machine;
 pub mod dram_binning_unit;
+pub mod dram_split_terms;
 pub mod leaf_batcher;
 pub mod leaf_cost;
 pub mod list_entry;
