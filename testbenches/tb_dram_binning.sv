@@ -21,7 +21,7 @@
 // Clocks: one reset clock, then clock 0 presents start; "# leaf C X Y Z L
 // B0 N0 B1 N1": a leaf out in clock C - 1 (C counts the clocks up to and
 // including it, as the model's leaf clock does); "# cycles N": done is
-// first high in clock N; "# passes P arena_full F overflow O".
+// first high in clock N; "# passes P arena_full F commits C".
 
 `timescale 1ns / 1ps
 `default_nettype none
@@ -47,10 +47,11 @@ module tb_dram_binning #(
     reg [5:0] level = 1;
     reg [31:0] list_base_0 = 0, list_base_1 = 0, list_count_0 = 0, list_count_1 = 0;
     reg [31:0] arena_start = 0, arena_end = 0;
-    wire done, error, waiting_overflow, leaf_valid;
+    wire done, error, leaf_valid;
     wire [GRID_BITS-1:0] leaf_x, leaf_y, leaf_z;
     wire [5:0] leaf_level;
     wire [31:0] leaf_base_0, leaf_base_1, leaf_count_0, leaf_count_1, passes, arena_full;
+    wire [31:0] waiting_commits;
     wire [31:0] araddr, awaddr;
     wire [7:0] arlen, awlen;
     wire [2:0] arsize, awsize, arprot, awprot;
@@ -68,7 +69,7 @@ module tb_dram_binning #(
         .list_base_0(list_base_0), .list_base_1(list_base_1),
         .list_count_0(list_count_0), .list_count_1(list_count_1),
         .arena_start(arena_start), .arena_end(arena_end),
-        .done(done), .error(error), .waiting_overflow(waiting_overflow),
+        .done(done), .error(error), .waiting_commits(waiting_commits),
         .leaf_valid(leaf_valid), .leaf_x(leaf_x), .leaf_y(leaf_y), .leaf_z(leaf_z),
         .leaf_level(leaf_level), .leaf_base_0(leaf_base_0), .leaf_base_1(leaf_base_1),
         .leaf_count_0(leaf_count_0), .leaf_count_1(leaf_count_1),
@@ -148,8 +149,8 @@ module tb_dram_binning #(
         end
         $display("# cycles %0d stalled %0d faults %0d error %0d done %0d", cycles,
                  memory.stalled, memory.faults, error, done);
-        $display("# passes %0d arena_full %0d overflow %0d", passes, arena_full,
-                 waiting_overflow);
+        $display("# passes %0d arena_full %0d commits %0d", passes, arena_full,
+                 waiting_commits);
         $writememh(out_file, memory.mem);
         $finish;
     end

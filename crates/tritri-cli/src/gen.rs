@@ -152,6 +152,7 @@ use tritri_rtl::measured::{device, DEVICES};
 use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
 use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
+use tritri_rtl::octree::dram_binning_unit::WAITING_CAPACITY;
 use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
@@ -784,6 +785,7 @@ impl Args {
                 max_leaf_level: None,
             },
             arena: (0, 0),
+            waiting_capacity: WAITING_CAPACITY,
         }
     }
 

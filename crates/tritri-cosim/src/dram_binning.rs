@@ -30,7 +30,7 @@ use tritri_rtl::octree::dram_binning_machine::{
     read_list, run_dram_binning, DramBinningConfig, DramBinningRun, DramLeaf, DramSplitRule,
     ListPlace,
 };
-use tritri_rtl::octree::dram_binning_unit::DramBinningUnit;
+use tritri_rtl::octree::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
 use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -121,6 +121,7 @@ pub fn dram_case(
             max_leaf_level: local_frames.map(|l| l.max_leaf_level()),
         },
         arena: (arena_start, arena_end),
+        waiting_capacity: WAITING_CAPACITY,
     };
     let case = DramCase {
         config,
@@ -173,6 +174,7 @@ pub struct UnitRun {
     pub stalled: u64,
     pub passes: u64,
     pub arena_full: u64,
+    pub waiting_commits: u64,
     pub error: bool,
     pub faults: usize,
     pub bytes: Vec<u8>,
@@ -207,6 +209,7 @@ impl UnitRun {
             self.stalled,
             self.passes,
             self.arena_full,
+            self.waiting_commits,
         );
         let expected = (
             model.leaves.len(),
@@ -214,10 +217,11 @@ impl UnitRun {
             model.stalled,
             model.passes,
             model.arena_full,
+            model.waiting_commits,
         );
         if seen != expected {
             bail!(
-                "(leaves, clocks, stalled, passes, arena full) = {seen:?}, the model's {expected:?}"
+                "(leaves, clocks, stalled, passes, arena full, waiting commits) = {seen:?}, the model's {expected:?}"
             );
         }
         if self.error || self.faults != 0 {
@@ -315,6 +319,7 @@ impl DramBinningVisitor for RustHdlBinning<'_> {
             stalled: memory.stalled,
             passes: uut.passes.val().to_u64(),
             arena_full: uut.arena_full.val().to_u64(),
+            waiting_commits: uut.waiting_commits.val().to_u64(),
             error: uut.error.val(),
             faults: memory.faults().len(),
             bytes: memory.bytes,
@@ -413,7 +418,7 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
         .find_map(|l| l.strip_prefix("# passes "))
         .with_context(|| format!("the testbench printed no passes:\n{text}"))?;
     let counts = numbers(counts)?;
-    let [passes, arena_full, overflow] = counts[..] else {
+    let [passes, arena_full, waiting_commits] = counts[..] else {
         bail!("the testbench's passes line holds {} numbers", counts.len());
     };
     let bytes = read_memory_dump(&memory_out, case.bytes.len())?;
@@ -423,7 +428,8 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
         stalled: status.stalled,
         passes,
         arena_full,
-        error: status.error || overflow != 0,
+        waiting_commits,
+        error: status.error,
         faults: status.faults,
         bytes,
     })

@@ -211,3 +211,51 @@ fn the_emitted_controller_in_verilator_is_its_model() {
         assert!(model.leaves_dropped > 0);
     }
 }
+
+/// A waiting memory too small for a tried split's leaves loses nothing:
+/// the leaf that finds it full keeps every tried split on the stack, the
+/// waiting leaves go out, then it; the leaves still hold every
+/// intersecting pair the roomy memory's leaves hold, and rust-hdl and
+/// Verilator do the same as the model, clock for clock.
+#[test]
+fn a_full_waiting_memory_keeps_the_tried_splits_and_loses_no_pair() {
+    let (mut accelerator, prepared) = scene();
+    accelerator.pipelines = 1;
+    let ideal = MemoryParams::ideal(8, 24);
+    let (roomy, _) = dram_case(&accelerator, &prepared, pass(64), ideal, 1 << 24).unwrap();
+    let (full, _) = run_model(&roomy).unwrap();
+    assert!(
+        full.peak_waiting >= 2 && full.waiting_commits == 0,
+        "{} waiting at most",
+        full.peak_waiting
+    );
+    let mut small = roomy.clone();
+    small.config.waiting_capacity = 1;
+    let (model, bytes) = run_model(&small).unwrap();
+    assert!(model.waiting_commits > 0 && model.peak_waiting <= 1);
+    let held = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+        pairs(run.leaves.iter().map(|l| {
+            l.entries
+                .clone()
+                .map(|list| list.iter().map(|e| unpack(e, 24).0).collect())
+        }))
+    };
+    // The kept splits' leaves hold fewer pairs than the dropped splits'
+    // cells did, but every pair that intersects.
+    let triangles = |list: &[tritri_geom::scene::TaggedTriangle]| {
+        list.iter()
+            .map(|t| (t.id, t.triangle))
+            .collect::<std::collections::HashMap<_, _>>()
+    };
+    let (ta, tb) = (triangles(&prepared.kept_a), triangles(&prepared.kept_b));
+    let meeting: HashSet<(u32, u32)> = held(&full)
+        .into_iter()
+        .filter(|(a, b)| tritri_geom::fixed_point::intersects(&ta[a], &tb[b]))
+        .collect();
+    assert!(!meeting.is_empty());
+    assert!(meeting.is_subset(&held(&model)));
+    let unit = run_rusthdl(&small, 2 * model.cycles + 100).unwrap();
+    unit.check_against(&model, &bytes).unwrap();
+    let emitted = run_simulator(Simulator::Verilator, &small, 2 * model.cycles + 100).unwrap();
+    emitted.check_against(&model, &bytes).unwrap();
+}

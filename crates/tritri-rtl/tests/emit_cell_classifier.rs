@@ -26,6 +26,7 @@ use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
 use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
+use tritri_rtl::octree::dram_binning_unit::WAITING_CAPACITY;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
@@ -183,6 +184,7 @@ fn the_dram_binning_controller_is_lint_clean_at_both_grids() {
                 max_leaf_level,
             },
             arena: (0, 1 << 24),
+            waiting_capacity: WAITING_CAPACITY,
         };
         check(grid_bits, emit_dram_binning(&config).unwrap());
     }

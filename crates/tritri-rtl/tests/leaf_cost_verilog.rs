@@ -16,7 +16,17 @@ use tritri_rtl::tools::{run, IVERILOG, VVP};
 fn counts(log_depth: u32, rng: &mut ChaCha8Rng) -> Vec<u64> {
     let max = (1u64 << COUNT_BITS) - 1;
     let depth = 1u64 << log_depth;
-    let mut out = vec![0, 1, 2, max, max - 1, depth - 1, depth, depth + 1, 2 * depth - 1];
+    let mut out = vec![
+        0,
+        1,
+        2,
+        max,
+        max - 1,
+        depth - 1,
+        depth,
+        depth + 1,
+        2 * depth - 1,
+    ];
     out.extend((0..12).map(|_| rng.gen_range(0..=max)));
     out.retain(|&c| c <= max);
     out
@@ -27,7 +37,16 @@ fn the_verilog_equals_the_closed_form_at_the_ends_of_its_ranges() {
     let dir = std::env::temp_dir().join(format!("tritri-leaf-cost-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(5);
-    for (ld, lp) in [(0, 0), (1, 1), (4, 2), (8, 1), (8, 4), (12, 0), (16, 3), (16, 4)] {
+    for (ld, lp) in [
+        (0, 0),
+        (1, 1),
+        (4, 2),
+        (8, 1),
+        (8, 4),
+        (12, 0),
+        (16, 3),
+        (16, 4),
+    ] {
         let values = counts(ld, &mut rng);
         let pairs: Vec<(u64, u64)> = values
             .iter()
@@ -47,7 +66,10 @@ fn the_verilog_equals_the_closed_form_at_the_ends_of_its_ranges() {
         ));
         // A query a clock; the cost of the query `LATENCY` clocks back is
         // printed in each clock.
-        for (a, b) in pairs.iter().chain(std::iter::repeat_n(&(0, 0), LEAF_COST_LATENCY)) {
+        for (a, b) in pairs
+            .iter()
+            .chain(std::iter::repeat_n(&(0, 0), LEAF_COST_LATENCY))
+        {
             let _ = writeln!(
                 tb,
                 "a = {a}; b = {b}; #1 clock = 1; #1 clock = 0; $display(\"%0d\", cost);"

@@ -67,25 +67,35 @@ pub fn with_dram_binning<R>(
     const V16: usize = value_bits(16);
     const V24: usize = value_bits(24);
     let (r, o) = (pass.max_read_burst, pass.outstanding);
-    let (d, p, m) = (rule.log_depth, rule.log_pipelines, rule.max_leaf_level);
+    let (d, p, m, w) = (
+        rule.log_depth,
+        rule.log_pipelines,
+        rule.max_leaf_level,
+        config.waiting_capacity,
+    );
+    if !(1..=WAITING_CAPACITY).contains(&w) {
+        return Err(format!(
+            "a waiting memory of 1 to {WAITING_CAPACITY} leaves, not {w}"
+        ));
+    }
     Ok(match (pass.grid_bits, pass.data_bits) {
         (16, 64) => f.visit(DramBinningUnit::<16, V16, { 13 * V16 }, 144, 64, 8>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
         (16, 128) => f.visit(DramBinningUnit::<16, V16, { 13 * V16 }, 144, 128, 16>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
         (16, _) => f.visit(DramBinningUnit::<16, V16, { 13 * V16 }, 144, 256, 32>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
         (_, 64) => f.visit(DramBinningUnit::<24, V24, { 13 * V24 }, 216, 64, 8>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
         (_, 128) => f.visit(DramBinningUnit::<24, V24, { 13 * V24 }, 216, 128, 16>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
         _ => f.visit(DramBinningUnit::<24, V24, { 13 * V24 }, 216, 256, 32>::new(
-            r, o, d, p, m,
+            r, o, d, p, m, w,
         )),
     })
 }
@@ -141,7 +151,9 @@ pub fn dram_binning_unit(config: &DramBinningConfig) -> UnitDescription {
     .detail(&format!(
         "One AXI4 manager port of {dw}-bit beats (the list pass unit's). Children's lists go to the arena \
          [arena_start, arena_end); a cell whose children would not fit is made a leaf and counted in \
-         arena_full. Up to {WAITING_CAPACITY} leaves wait on chip under a tried split."
+         arena_full. Up to {} leaves wait on chip under a tried split; one more keeps every tried split \
+         on the stack (the waiting leaves go out, nothing is lost) and counts in waiting_commits.",
+        config.waiting_capacity
     ))
     .detail(
         "Cycles: tritri_rtl::octree::dram_binning_machine, clock-exact against the memory model \
@@ -161,8 +173,8 @@ pub fn dram_binning_unit(config: &DramBinningConfig) -> UnitDescription {
     .port("arena_start", "First byte of the arena for the children's lists, aligned to a write burst.")
     .port("arena_end", "The byte after the arena.")
     .port("done", "High from the clock the walk ends until the next `start`.")
-    .port("error", "A pass raised its error (the walk stopped), or a leaf found the waiting memory full.")
-    .port("waiting_overflow", "A leaf found the waiting memory full and was lost.")
+    .port("error", "A pass raised its error (the walk stopped).")
+    .port("waiting_commits", "Times since `start` a leaf found the waiting memory full and every tried split on the stack was kept.")
     .port("leaf_valid", "A leaf goes out in this clock.")
     .port("leaf_x", "The leaf's low corner, x.")
     .port("leaf_y", "The leaf's low corner, y.")

@@ -28,7 +28,10 @@
 //!   pushed, octant 7 first, above its parent's entry.
 //! * **Leaves** go out as they are decided, the cell and its two lists'
 //!   places, except under a tried split: there they wait on chip until the
-//!   outermost tried split is decided, then go out or are dropped. A
+//!   outermost tried split is decided, then go out or are dropped (a leaf
+//!   that finds the waiting memory full keeps every tried split on the
+//!   stack instead: the waiting leaves go out, then it, and nothing is
+//!   lost). A
 //!   leaf's lists are read before the next pass writes (it may reuse the
 //!   region); here they are read from the memory when the leaf goes out,
 //!   outside the port's clocks (the narrow phase's loads are not yet on
@@ -120,6 +123,9 @@ pub struct DramBinningConfig {
     /// The arena for children's lists: `[start, end)` bytes of the memory,
     /// `start` on a write burst.
     pub arena: (u64, u64),
+    /// Leaves that can wait under tried splits (the unit's waiting memory,
+    /// at most [`super::dram_binning_unit::WAITING_CAPACITY`]).
+    pub waiting_capacity: usize,
 }
 
 /// One list in the memory: `(address, entries)`.
@@ -166,6 +172,9 @@ pub struct DramBinningRun {
     pub leaves_dropped: u64,
     /// Most leaves waiting on chip at once.
     pub peak_waiting: usize,
+    /// Times a leaf found the waiting memory full, and every tried split
+    /// on the stack was kept instead (the leaves waiting went out).
+    pub waiting_commits: u64,
     /// The largest pass (entries of both objects).
     pub largest_pass: u64,
 }
@@ -208,8 +217,12 @@ struct Walk<'m> {
     top: u64,
     /// Leaves decided under a tried split.
     waiting: Vec<(Cell, [ListPlace; 2])>,
-    /// Tried splits on the stack.
+    /// Tried splits on the stack, not committed.
     tried: usize,
+    /// Split cells on the stack, and how many of the lowest were kept
+    /// when the waiting memory filled (their tried flag no longer counts).
+    splits: usize,
+    committed: usize,
 }
 
 impl Walk<'_> {
@@ -224,12 +237,23 @@ impl Walk<'_> {
         self.run.cycles += clocks;
     }
 
-    /// A leaf decided: out at once, or waiting under a tried split.
+    /// A leaf decided: out at once, or waiting under a tried split. A leaf
+    /// that finds the waiting memory full keeps every tried split on the
+    /// stack as split: the waiting leaves go out, then this one, and
+    /// nothing is lost (the splits cost what their subtrees cost).
     fn leaf(&mut self, cell: Cell, lists: [ListPlace; 2]) {
-        if self.tried > 0 {
+        if self.tried == 0 {
+            self.send(cell, lists);
+        } else if self.waiting.len() < self.config.waiting_capacity {
             self.waiting.push((cell, lists));
             self.run.peak_waiting = self.run.peak_waiting.max(self.waiting.len());
         } else {
+            self.run.waiting_commits += 1;
+            self.tried = 0;
+            self.committed = self.splits;
+            for (cell, lists) in std::mem::take(&mut self.waiting) {
+                self.send(cell, lists);
+            }
             self.send(cell, lists);
         }
     }
@@ -338,6 +362,7 @@ impl Walk<'_> {
         let slack = if pays { LOOKAHEAD } else { visit.slack - 1 };
         let tried = !pays;
         self.tried += usize::from(tried);
+        self.splits += 1;
         let waiting_mark = self.waiting.len();
         stack.push(Entry::Split(Split {
             visit,
@@ -375,7 +400,11 @@ impl Walk<'_> {
             .max_leaf_level
             .is_some_and(|m| split.visit.cell.level > m);
         let mut cost = split.subtree;
-        if split.tried {
+        // A split below the last commit was kept: it is tried no more.
+        self.splits -= 1;
+        let tried = split.tried && self.splits >= self.committed;
+        self.committed = self.committed.min(self.splits);
+        if tried {
             self.tried -= 1;
             if !forced && split.subtree >= split.leaf_cost {
                 self.run.leaves_dropped += (self.waiting.len() - split.waiting_mark) as u64;
@@ -415,6 +444,13 @@ pub fn run_dram_binning(
     root_lists: [ListPlace; 2],
 ) -> Result<DramBinningRun, String> {
     config.pass.check()?;
+    let capacity = super::dram_binning_unit::WAITING_CAPACITY;
+    if !(1..=capacity).contains(&config.waiting_capacity) {
+        return Err(format!(
+            "a waiting memory of 1 to {capacity} leaves, not {}",
+            config.waiting_capacity
+        ));
+    }
     let (arena_start, arena_end) = config.arena;
     let burst = config.pass.burst_bytes();
     if arena_start % burst != 0 || arena_end > memory.bytes.len() as u64 {
@@ -430,6 +466,8 @@ pub fn run_dram_binning(
         top: arena_start,
         waiting: Vec::new(),
         tried: 0,
+        splits: 0,
+        committed: 0,
     };
     let mut stack = Vec::new();
     // Only the root can lack an object: no child without both is pushed.

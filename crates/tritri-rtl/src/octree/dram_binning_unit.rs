@@ -156,10 +156,12 @@ pub struct DramBinningUnit<
     pub arena_end: Signal<In, Bits<ADDRESS_BITS>>,
     /// High from the clock the walk ends until the next `start`.
     pub done: Signal<Out, Bit>,
-    /// A pass raised its error (the walk stopped), or a leaf found the
-    /// waiting memory full (it was lost).
+    /// A pass raised its error (the walk stopped).
     pub error: Signal<Out, Bit>,
-    pub waiting_overflow: Signal<Out, Bit>,
+    /// Times a leaf found the waiting memory full: every tried split on
+    /// the stack was kept, the waiting leaves went out, then it (nothing
+    /// is lost).
+    pub waiting_commits: Signal<Out, Bits<32>>,
     /// A leaf goes out in each clock this is high.
     pub leaf_valid: Signal<Out, Bit>,
     pub leaf_x: Signal<Out, Bits<G>>,
@@ -218,6 +220,7 @@ pub struct DramBinningUnit<
     max_leaf_level: Constant<Bits<6>>,
     octant_number: [Constant<Bits<9>>; 8],
     octant_bit: [Constant<Bits<8>>; 8],
+    waiting_capacity: Constant<Bits<11>>,
     // The walk.
     state: DFF<DramBinState>,
     counter: DFF<Bits<4>>,
@@ -238,8 +241,13 @@ pub struct DramBinningUnit<
     live: DFF<Bits<8>>,
     top_frame: DFF<DramFrame>,
     depth: DFF<Bits<7>>,
-    /// Tried splits on the stack.
+    /// Tried splits on the stack, and how many of the lowest frames were
+    /// kept when the waiting memory filled (tried no more).
     tried: DFF<Bits<7>>,
+    committed: DFF<Bits<7>>,
+    /// Sending the waiting leaves, then the current cell (a commit).
+    then_cur: DFF<Bit>,
+    commits: DFF<Bits<32>>,
     waiting_count: DFF<Bits<11>>,
     send_index: DFF<Bits<11>>,
     /// What a close gives its parent, and does next (0: pop, 1: send the
@@ -249,7 +257,6 @@ pub struct DramBinningUnit<
     passes_q: DFF<Bits<32>>,
     arena_full_q: DFF<Bits<32>>,
     failed: DFF<Bit>,
-    overflow: DFF<Bit>,
     // Between the parts.
     swapped: Signal<Local, Bit>,
     child_a: Signal<Local, Bits<32>>,
@@ -258,6 +265,8 @@ pub struct DramBinningUnit<
     frame_forced: Signal<Local, Bit>,
     dropped: Signal<Local, Bit>,
     tried_after: Signal<Local, Bits<7>>,
+    frame_tried: Signal<Local, Bit>,
+    depth_after: Signal<Local, Bits<7>>,
     lowest: Signal<Local, Bits<8>>,
     octant: Signal<Local, Bits<9>>,
     half: Signal<Local, Bits<32>>,
@@ -309,14 +318,16 @@ impl<
             top_frame,
             depth,
             tried,
+            committed,
+            then_cur,
+            commits,
             waiting_count,
             send_index,
             close_cost,
             close_action,
             passes_q,
             arena_full_q,
-            failed,
-            overflow
+            failed
         );
     }
 }
@@ -340,7 +351,12 @@ impl<
         log_depth: u32,
         log_pipelines: u32,
         max_leaf_level: Option<u32>,
+        waiting_capacity: usize,
     ) -> Self {
+        assert!(
+            (1..=WAITING_CAPACITY).contains(&waiting_capacity),
+            "a waiting memory of 1 to {WAITING_CAPACITY} leaves, not {waiting_capacity}"
+        );
         let max_level = max_leaf_level.unwrap_or(0);
         assert!(max_level < 64, "a leaf level of 6 bits, not {max_level}");
         DramBinningUnit {
@@ -357,7 +373,7 @@ impl<
             arena_end: Default::default(),
             done: Default::default(),
             error: Default::default(),
-            waiting_overflow: Default::default(),
+            waiting_commits: Default::default(),
             leaf_valid: Default::default(),
             leaf_x: Default::default(),
             leaf_y: Default::default(),
@@ -412,6 +428,7 @@ impl<
             max_leaf_level: Constant::new(u64::from(max_level).into()),
             octant_number: std::array::from_fn(|o| Constant::new((o as u64).into())),
             octant_bit: std::array::from_fn(|o| Constant::new((1u64 << o).into())),
+            waiting_capacity: Constant::new((waiting_capacity as u64).into()),
             state: Default::default(),
             counter: Default::default(),
             cur: Default::default(),
@@ -429,6 +446,9 @@ impl<
             top_frame: Default::default(),
             depth: Default::default(),
             tried: Default::default(),
+            committed: Default::default(),
+            then_cur: Default::default(),
+            commits: Default::default(),
             waiting_count: Default::default(),
             send_index: Default::default(),
             close_cost: Default::default(),
@@ -436,7 +456,6 @@ impl<
             passes_q: Default::default(),
             arena_full_q: Default::default(),
             failed: Default::default(),
-            overflow: Default::default(),
             swapped: Default::default(),
             child_a: Default::default(),
             child_b: Default::default(),
@@ -444,6 +463,8 @@ impl<
             frame_forced: Default::default(),
             dropped: Default::default(),
             tried_after: Default::default(),
+            frame_tried: Default::default(),
+            depth_after: Default::default(),
             lowest: Default::default(),
             octant: Default::default(),
             half: Default::default(),
@@ -487,14 +508,16 @@ impl<
             top_frame,
             depth,
             tried,
+            committed,
+            then_cur,
+            commits,
             waiting_count,
             send_index,
             close_cost,
             close_action,
             passes_q,
             arena_full_q,
-            failed,
-            overflow
+            failed
         );
         for k in 0..2 {
             self.cur_children[k].clock.next = self.clock.val();
@@ -621,11 +644,14 @@ impl<
         self.half.next = bits::<32>(1) << (self.top_frame.q.val().level - 1);
         self.frame_forced.next =
             self.max_leaf_enable.val() & (self.top_frame.q.val().level > self.max_leaf_level.val());
-        self.dropped.next = self.top_frame.q.val().tried
+        // A frame below the last commit was kept: it is tried no more.
+        self.frame_tried.next =
+            self.top_frame.q.val().tried & ((self.depth.q.val() - 1) >= self.committed.q.val());
+        self.dropped.next = self.frame_tried.val()
             & !self.frame_forced.val()
             & (self.top_frame.q.val().subtree >= self.top_frame.q.val().leaf_cost);
         self.tried_after.next = self.tried.q.val();
-        if self.top_frame.q.val().tried {
+        if self.frame_tried.val() {
             self.tried_after.next = self.tried.q.val() - 1;
         }
 
@@ -652,6 +678,7 @@ impl<
         self.wait_address.next = self.waiting_count.q.val();
         self.give_to_parent.next = false;
         self.to_parent.next = self.leaf_cost_now.val();
+        self.depth_after.next = self.depth.q.val();
 
         match self.state.q.val() {
             DramBinState::Query => {
@@ -816,7 +843,7 @@ impl<
                         } else {
                             self.close_action.d.next = 1.into();
                         }
-                    } else if self.top_frame.q.val().tried
+                    } else if self.frame_tried.val()
                         & (self.tried_after.val() == 0)
                         & (self.waiting_count.q.val() != 0)
                     {
@@ -825,6 +852,10 @@ impl<
                     self.send_index.d.next = 0.into();
                     self.frames.read_enable.next = true;
                     self.depth.d.next = self.depth.q.val() - 1;
+                    self.depth_after.next = self.depth.q.val() - 1;
+                    if self.committed.q.val() > self.depth.q.val() - 1 {
+                        self.committed.d.next = self.depth.q.val() - 1;
+                    }
                     self.state.d.next = DramBinState::Close;
                 } else {
                     // Visit the lowest child left: its lists are read from
@@ -881,8 +912,9 @@ impl<
                 if self.close_action.q.val() == 1 {
                     self.state.d.next = DramBinState::SendCur;
                 }
-                if self.close_action.q.val() == 2 {
+                if self.close_action.q.val() >= 2 {
                     self.send_index.d.next = 1.into();
+                    self.then_cur.d.next = self.close_action.q.val() == 3;
                     self.state.d.next = DramBinState::SendWaiting;
                 }
             }
@@ -896,6 +928,10 @@ impl<
                 if self.send_index.q.val() == self.waiting_count.q.val() {
                     self.waiting_count.d.next = 0.into();
                     self.state.d.next = DramBinState::Next;
+                    if self.then_cur.q.val() {
+                        self.then_cur.d.next = false;
+                        self.state.d.next = DramBinState::SendCur;
+                    }
                 }
             }
             _ => {}
@@ -921,7 +957,9 @@ impl<
             self.passes_q.d.next = 0.into();
             self.arena_full_q.d.next = 0.into();
             self.failed.d.next = false;
-            self.overflow.d.next = false;
+            self.committed.d.next = 0.into();
+            self.then_cur.d.next = false;
+            self.commits.d.next = 0.into();
             self.counter.d.next = 0.into();
             // Only the root can lack an object: no child without
             // both is visited.
@@ -938,8 +976,21 @@ impl<
         self.waiting.write_address.next = bit_cast::<10, 11>(self.wait_address.val());
         self.waiting.write_data.next = self.wait_data.val();
         if self.wait_write.val() {
-            if self.wait_address.val() == 1024 {
-                self.overflow.d.next = true;
+            if self.wait_address.val() == self.waiting_capacity.val() {
+                // Full: every tried split on the stack is kept; the waiting
+                // leaves go out (the first read now), then the leaf.
+                self.commits.d.next = self.commits.q.val() + 1;
+                self.tried.d.next = 0.into();
+                self.committed.d.next = self.depth_after.val();
+                if self.state.q.val() == DramBinState::Next {
+                    self.close_action.d.next = 3.into();
+                } else {
+                    self.waiting.read_enable.next = true;
+                    self.waiting.read_address.next = 0.into();
+                    self.send_index.d.next = 1.into();
+                    self.then_cur.d.next = true;
+                    self.state.d.next = DramBinState::SendWaiting;
+                }
             } else {
                 self.waiting.write_enable.next = true;
                 self.waiting_count.d.next = self.wait_address.val() + 1;
@@ -966,8 +1017,8 @@ impl<
         self.leaf_count[1].next = self.out_cell.val().count_b;
         self.done.next = (self.state.q.val() == DramBinState::Done)
             | ((self.state.q.val() == DramBinState::Next) & (self.depth.q.val() == 0));
-        self.error.next = self.failed.q.val() | self.overflow.q.val();
-        self.waiting_overflow.next = self.overflow.q.val();
+        self.error.next = self.failed.q.val();
+        self.waiting_commits.next = self.commits.q.val();
         self.passes.next = self.passes_q.q.val();
         self.arena_full.next = self.arena_full_q.q.val();
         self.unused_outputs.next = self.pass.busy.val()

@@ -163,12 +163,15 @@ initial begin
     t1_3 = {k}'d0; t2_3 = {k}'d0; t3_3 = {k}'d0; t4_3 = {k}'d0; zero_3 = 1'b1;
     cost = {k}'d0;
 end
-// The quotients and remainders as slices of the counts.
+// The quotients and remainders, at the counts' width; the registers
+// below take the bits their values can have, so the rest is unread.
+// verilator lint_off UNUSEDSIGNAL
 wire [{c1}:0] a_high = a >> {ld};
 wire [{c1}:0] b_high = b >> {ld};
 wire [{c1}:0] a_low = a & {c}'d{mask};
 wire [{c1}:0] b_low = b & {c}'d{mask};
 wire [{c1}:0] a_groups = (a_low + {c}'d{p_minus_1}) >> {lp};
+// verilator lint_on UNUSEDSIGNAL
 always @(posedge clock) begin
     qa_1 <= a_high[{q1}:0];
     qb_1 <= b_high[{q1}:0];
