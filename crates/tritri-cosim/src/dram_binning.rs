@@ -6,25 +6,31 @@
 //! and its leaves held to the planner's for a binner that streams its
 //! leaves ([`DramSplitRule`]), cell for cell and triangle for triangle.
 //!
+//! The controller itself (`tritri_rtl::octree::dram_binning_unit`) runs on
+//! the same case in rust-hdl against the Rust memory model
+//! ([`run_rusthdl`]) and, emitted, in Verilator or Icarus against
+//! `axi_memory.sv` ([`run_simulator`]); [`UnitRun::check_against`] holds
+//! either to the model.
+//!
 //! The memory: A's root list at 0, B's after it on a write burst, then
 //! the arena for the children's lists.
 
 use crate::axi_copy::AXI_MEMORY;
-use crate::axi_drive::{drive_from_memory, manager_signals};
-use crate::axi_drive::{memory_parameters, parse_status, read_memory_dump, write_memory_hex};
+use crate::axi_drive::{
+    drive_from_memory, manager_signals, memory_parameters, parse_status, read_memory_dump,
+    write_memory_hex,
+};
 use crate::binning_unit::grid_value;
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
-use tritri_rtl::emit::dram_binning_unit_unit::{dram_binning_unit_name, emit_dram_binning};
-
-/// The testbench of the emitted controller against the memory model.
-pub const DRAM_BINNING_TESTBENCH: &str = include_str!("../../../testbenches/tb_dram_binning.sv");
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{schedule, OctreeSchedule};
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
-use tritri_rtl::emit::dram_binning_unit_unit::{with_dram_binning, DramBinningVisitor};
+use tritri_rtl::emit::dram_binning_unit_unit::{
+    dram_binning_unit_name, emit_dram_binning, with_dram_binning, DramBinningVisitor,
+};
 use tritri_rtl::octree::binning_machine::BinningParams;
 use tritri_rtl::octree::dram_binning_machine::{
     read_list, run_dram_binning, DramBinningConfig, DramBinningRun, DramLeaf, DramSplitRule,
@@ -36,6 +42,9 @@ use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 use crate::scene_query::Accelerator;
+
+/// The testbench of the emitted controller against the memory model.
+pub const DRAM_BINNING_TESTBENCH: &str = include_str!("../../../testbenches/tb_dram_binning.sv");
 
 /// A run and what it was held to.
 pub struct DramBinning {
@@ -181,8 +190,12 @@ pub struct UnitRun {
 }
 
 impl UnitRun {
-    /// The model's run as the unit's ports would show it, and an error
-    /// naming the first thing in which `self` differs.
+    /// Nothing, when `self` equals the model's run and the memory after it
+    /// (`bytes`) in everything the unit's ports show; else an error naming
+    /// the first difference. A leaf's entries are compared where they were
+    /// read (rust-hdl reads them from the memory in the leaf's clock; the
+    /// simulators leave them empty, and their memory is compared at the
+    /// end).
     pub fn check_against(&self, model: &DramBinningRun, bytes: &[u8]) -> anyhow::Result<()> {
         for (i, (got, want)) in self.leaves.iter().zip(&model.leaves).enumerate() {
             if (got.cell, got.lists, got.clock) != (want.cell, want.lists, want.clock) {

@@ -194,12 +194,13 @@ fn the_rust_hdl_controller_is_its_model() {
     }
 }
 
-/// The emitted controller in Verilator, against `axi_memory.sv`, equals
+/// The emitted controller in Verilator (and, with the ideal memory, in
+/// Icarus), against `axi_memory.sv`, equals
 /// the model in every leaf's cell, places and clock, the clocks to `done`,
 /// the stalled clocks, the passes and every byte of the memory at the end,
 /// with an ideal memory and with one that stalls.
 #[test]
-fn the_emitted_controller_in_verilator_is_its_model() {
+fn the_emitted_controller_in_verilator_and_icarus_is_its_model() {
     let (mut accelerator, prepared) = scene();
     accelerator.pipelines = 1;
     let ideal = MemoryParams::ideal(8, 24);
@@ -209,6 +210,10 @@ fn the_emitted_controller_in_verilator_is_its_model() {
         let unit = run_simulator(Simulator::Verilator, &case, 2 * model.cycles + 100).unwrap();
         unit.check_against(&model, &bytes).unwrap();
         assert!(model.leaves_dropped > 0);
+        if params.stall_percent == 0 {
+            let icarus = run_simulator(Simulator::Icarus, &case, 2 * model.cycles + 100).unwrap();
+            icarus.check_against(&model, &bytes).unwrap();
+        }
     }
 }
 
