@@ -415,7 +415,7 @@ fn print_summary(dir: &Path, report: &Report) -> std::io::Result<()> {
         )?;
         for r in &s.rows {
             outln!(
-                "  W = {:>2}: {} pairs tested, {} leaves, {} cycles{}, {:.3} ms at {:.1} MHz ({}), {:.1} x software; {} uncertain; {} missing / {} extra against exact f64",
+                "  W = {:>2}: {} pairs tested, {} leaves, {} cycles{}, {:.3} ms at {:.1} MHz ({}), {} software; {} uncertain; {} missing / {} extra against exact f64",
                 r.width,
                 r.pairs_tested,
                 r.leaves,
@@ -427,7 +427,8 @@ fn print_summary(dir: &Path, report: &Report) -> std::io::Result<()> {
                 1e3 * r.whole_seconds,
                 r.clock_mhz,
                 r.clock.name(),
-                r.speedup,
+                r.speedup
+                    .map_or_else(|| "no time, so no ratio to".to_string(), |x| format!("{x:.1} x")),
                 r.uncertain,
                 r.missing,
                 r.extra

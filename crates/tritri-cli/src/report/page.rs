@@ -284,7 +284,8 @@ fn scene_table(report: &Report) -> Option<Table> {
                 r.rare_cases.name().into(),
                 r.stall_cycles.to_string(),
                 format!("{:.4}", 1e3 * r.whole_seconds),
-                format!("{:.1}", r.speedup),
+                r.speedup
+                    .map_or_else(|| "-".to_string(), |x| format!("{x:.1}")),
                 r.intersecting.to_string(),
                 r.uncertain.to_string(),
                 r.missing.to_string(),

@@ -58,8 +58,9 @@ pub struct SceneRow {
     /// the parallel units.
     pub stall_cycles: u64,
     pub whole_seconds: f64,
-    /// Software time over `whole_seconds`.
-    pub speedup: f64,
+    /// Software time over `whole_seconds`; none when the hardware took no
+    /// time (no ratio to give; it was 1.2e302 once).
+    pub speedup: Option<f64>,
     /// Intersecting pairs on the grid.
     pub intersecting: usize,
     pub uncertain: usize,
@@ -149,7 +150,7 @@ pub fn measure(
             rare_cases: accelerator.rare_cases,
             stall_cycles: hardware.cycles.stall_bound,
             whole_seconds,
-            speedup: software_seconds / whole_seconds.max(f64::MIN_POSITIVE),
+            speedup: speedup(software_seconds, whole_seconds),
             intersecting: hardware.run.pairs.len(),
             uncertain: hardware.run.uncertain.len(),
             missing: diff.missing.len(),
@@ -179,5 +180,24 @@ impl SceneRow {
     /// Seconds of `whole_cycles` at `mhz`.
     pub fn cycles_at(&self, mhz: f64) -> f64 {
         self.whole_cycles as f64 / (mhz * 1e6)
+    }
+}
+
+/// Software time over hardware time, or none when the hardware took no
+/// time (a ratio over 0 is no figure: it was printed as 1.2e302).
+fn speedup(software_seconds: f64, hardware_seconds: f64) -> Option<f64> {
+    (hardware_seconds > 0.0 && software_seconds.is_finite())
+        .then(|| software_seconds / hardware_seconds)
+}
+
+#[cfg(test)]
+mod speedup_tests {
+    use super::speedup;
+
+    #[test]
+    fn no_time_gives_no_ratio() {
+        assert_eq!(speedup(2.0, 0.5), Some(4.0));
+        assert_eq!(speedup(2.0, 0.0), None);
+        assert_eq!(speedup(f64::INFINITY, 1.0), None);
     }
 }
