@@ -57,7 +57,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', value_parser = input::parse_width, default_values_t = [8, 12, 16, 20, 24, 32])]
     widths: Vec<u32>,
     /// Minimum time spent timing each arithmetic on each file, in ms.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, allow_hyphen_values = true, value_parser = input::parse_min_time_ms)]
     min_time_ms: u64,
     /// Pair files (18 numbers per line, or a JSON array of {t1, t2}); `-` for standard input, `@hard` for the hard-case suite.
     #[arg(required = true)]

@@ -99,6 +99,21 @@ pub fn parse_cycles(s: &str) -> Result<u64, String> {
     })
 }
 
+/// The longest `--min-time-ms` taken: ten minutes per arithmetic and file
+/// (a larger value runs for hours or, near u64::MAX, without end).
+pub const MAX_MIN_TIME_MS: u64 = 600_000;
+
+/// A minimum timing time in ms: a whole number from 0 to
+/// [`MAX_MIN_TIME_MS`].
+pub fn parse_min_time_ms(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(v) if v <= MAX_MIN_TIME_MS => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not a timing time in ms (a whole number from 0 to {MAX_MIN_TIME_MS}, ten minutes)"
+        )),
+    }
+}
+
 /// A clock frequency in MHz: a finite number from 0.001 (1 kHz) to 100000
 /// (100 GHz), so every time printed is a finite duration.
 pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {

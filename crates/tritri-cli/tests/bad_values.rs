@@ -38,6 +38,12 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["sim", "--max-cycles", "1e3"], "a whole number from 0 to"),
         (&["sim", "--max-cycles", "-1"], "a whole number from 0 to"),
         (&["sim", "--vcd-max-cycles", "x"], "--vcd-max-cycles"),
+        // A timing time that would run without end (issue 68, item 7).
+        (
+            &["report", "--min-time-ms", "1099511627776", "--out", out_dir],
+            "--min-time-ms",
+        ),
+        (&["eval", "--min-time-ms", "-1", "@hard"], "--min-time-ms"),
         (&["sim", "--subdivide", "9"], "--subdivide"),
         (&["sim", "--grid-bits", "40"], "--grid-bits"),
         (&["sim", "--tessellation", "0"], "--tessellation"),

@@ -77,7 +77,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     measurements: Option<PathBuf>,
     /// Minimum time spent timing each arithmetic on each pair file, in ms.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, allow_hyphen_values = true, value_parser = input::parse_min_time_ms)]
     min_time_ms: u64,
     /// The directory the report is written to (created if missing).
     #[arg(long, value_name = "DIR")]
