@@ -234,14 +234,20 @@ fn hex_fields(text: &str, grid_bits: usize) -> anyhow::Result<Vec<i64>> {
     Ok((0..9)
         .map(|k| {
             let raw = (0..grid_bits).fold(0u64, |v, i| v | (bit(k * grid_bits + i) as u64) << i);
-            ((raw as i64) << (64 - grid_bits)) >> (64 - grid_bits)
+            signed_grid_value(raw, grid_bits)
         })
         .collect())
 }
 
 /// A `G`-bit two's complement value.
 fn signed<const G: usize>(v: u64) -> i64 {
-    ((v as i64) << (64 - G)) >> (64 - G)
+    signed_grid_value(v, G)
+}
+
+/// The `bits`-bit two's complement value in the low bits of `v` (a grid
+/// coordinate as the units write it).
+pub(crate) fn signed_grid_value(v: u64, bits: usize) -> i64 {
+    ((v as i64) << (64 - bits)) >> (64 - bits)
 }
 
 /// The scene through the emitted unit built for `config` in `simulator`
@@ -300,7 +306,7 @@ fn parse_outputs(
                 .with_context(|| format!("binning unit output line `{line}` has no field {k}"))?;
             u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
         };
-        let coordinate = |v: u64| ((v as i64) << (64 - grid_bits)) >> (64 - grid_bits);
+        let coordinate = |v: u64| signed_grid_value(v, grid_bits);
         match fields.first().copied() {
             Some("H") => {
                 out.leaves.extend(current.take());

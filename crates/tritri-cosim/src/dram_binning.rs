@@ -20,7 +20,7 @@ use crate::axi_drive::{
     drive_from_memory, manager_signals, memory_parameters, parse_status, read_memory_dump,
     write_memory_hex,
 };
-use crate::binning_unit::grid_value;
+use crate::binning_unit::{grid_value, signed_grid_value};
 use crate::simulator::{compile, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
@@ -295,7 +295,7 @@ impl DramBinningVisitor for RustHdlBinning<'_> {
             if uut.leaf_valid.val() {
                 let cell = Cell {
                     lo: [uut.leaf_x.val(), uut.leaf_y.val(), uut.leaf_z.val()]
-                        .map(|v| signed_grid_value(G)(v.to_u64())),
+                        .map(|v| signed_grid_value(v.to_u64(), G)),
                     level: uut.leaf_level.val().to_u64() as u32,
                 };
                 let lists: [ListPlace; 2] = std::array::from_fn(|k| {
@@ -417,7 +417,7 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
         };
         leaves.push(DramLeaf {
             cell: Cell {
-                lo: [x, y, z].map(signed_grid_value(g)),
+                lo: [x, y, z].map(|v| signed_grid_value(v, g)),
                 level: level as u32,
             },
             lists: [(b0, n0), (b1, n1)],
@@ -446,11 +446,6 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
         faults: status.faults,
         bytes,
     })
-}
-
-/// A `bits`-wide two's complement grid coordinate as a number.
-fn signed_grid_value(bits: usize) -> impl Fn(u64) -> i64 {
-    move |v| ((v << (64 - bits)) as i64) >> (64 - bits)
 }
 
 /// An error naming the first leaf that is not the planner's.
