@@ -35,8 +35,9 @@
 //! the edge starts (3); the plane's products, the opposite ends and the
 //! margins (4); the plane's sum, minima and maxima, grown by the margins,
 //! into the output registers (5).
-//! `V`-bit two's complement throughout, `V = 3G + 6` ([`super::value_bits`]),
-//! which holds every value exactly.
+//! Two's complement, each register as wide as its value needs (`SetupWidths`),
+//! the outputs `V = 3G + 6` bits ([`super::value_bits`]), which hold every
+//! value exactly.
 //!
 //! A custom-Verilog primitive with an exact i128 model evaluated only at
 //! clock edges, like [`super::axis_step::AxisStep`]. The outputs are packed:
@@ -293,19 +294,77 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
     }
 }
 
+/// Register widths per stage of the setup's Verilog, for `g`-bit signed
+/// inputs, each the smallest that holds its value exactly (the bounds are
+/// on magnitudes, with `2^g - 1` for a difference of two inputs). Without
+/// them every register would be `V` bits wide and Yosys, which narrows a
+/// multiplier only from what drives it, cannot see through a register that
+/// its top bits are sign copies: the lane inside the binning controller
+/// took 162 MULT18X18D where 40 suffice (docs/axi-port.md).
+struct SetupWidths {
+    /// `p_i`, `e_j`: a difference of two inputs, `< 2^g`.
+    difference: usize,
+    /// One product of two differences, `< 2^(2g)`.
+    product: usize,
+    /// `n_k`, the edge starts: a difference of two products, `< 2^(2g+1)`.
+    normal: usize,
+    /// The opposite ends `s - n_k`, `< 2^(2g+2)`.
+    opposite: usize,
+    /// The plane's products `n_k p0_k`, `< 2^(3g+1)`.
+    plane: usize,
+    /// `|n|_1 < 3 * 2^(2g+1)`.
+    plane_margin: usize,
+    /// `|e_a| + |e_b| < 2^(g+1)`.
+    edge_margin: usize,
+}
+
+impl SetupWidths {
+    fn new(g: usize) -> Self {
+        Self {
+            difference: g + 1,
+            product: 2 * g + 1,
+            normal: 2 * g + 2,
+            opposite: 2 * g + 3,
+            plane: 3 * g + 2,
+            plane_margin: 2 * g + 4,
+            edge_margin: g + 2,
+        }
+    }
+}
+
+/// `x`, a `from`-bit signed register, sign-extended to `to` bits, so that
+/// every operand of an expression has the expression's width (Verilator's
+/// WIDTH lint) and a `$unsigned` never evaluates at a narrower one.
+fn sign_extend(x: &str, from: usize, to: usize) -> String {
+    assert!(from <= to, "{x}: {from} bits into {to}");
+    if from == to {
+        x.to_string()
+    } else {
+        format!("$signed({{{{{}{{{x}[{}]}}}}, {x}}})", to - from, from - 1)
+    }
+}
+
 /// The Verilog of the setup (module docs), for `g`-bit grids and `v`-bit values.
 fn setup_verilog(g: usize, v: usize) -> String {
     let v1 = v - 1;
+    let wd = SetupWidths::new(g);
+    assert!(wd.plane + 2 < v, "the plane's sum of three products fits V");
     let mut text = String::new();
     let mut line = |s: String| {
         text.push_str(&s);
         text.push('\n');
     };
     let xyz = ["x", "y", "z"];
-    let extend = |port: String| format!("$signed({{{{{}{{{port}[{}]}}}}, {port}}})", v - g, g - 1);
-    let regs = |names: Vec<String>| format!("reg signed [{v1}:0] {};", names.join(", "));
+    let regs = |bits: usize, names: Vec<String>| {
+        format!("reg signed [{}:0] {};", bits - 1, names.join(", "))
+    };
     let per = |stage: usize, what: &str, n: usize| {
         (0..n)
+            .map(|i| format!("{what}{i}_{stage}"))
+            .collect::<Vec<_>>()
+    };
+    let per_from = |stage: usize, what: &str, from: usize, n: usize| {
+        (from..from + n)
             .map(|i| format!("{what}{i}_{stage}"))
             .collect::<Vec<_>>()
     };
@@ -314,43 +373,32 @@ fn setup_verilog(g: usize, v: usize) -> String {
             .flat_map(|i| xyz.map(|c| format!("{what}{i}{c}_{stage}")))
             .collect::<Vec<_>>()
     };
+    let points = |stage: usize| [coords(stage, "p"), coords(stage, "e")].concat();
+    line("// Register widths per stage: the smallest that hold each value exactly.".into());
     line("// Stage 1: p_i = v_i - root, e_j = v_{j+1} - v_j.".into());
-    line(regs([coords(1, "p"), coords(1, "e")].concat()));
+    line(regs(wd.difference, points(1)));
     line("// Stage 2: the products of the normal and of the edge starts.".into());
     line(regs(
+        wd.product,
         [
             per(2, "na", 3),
             per(2, "nb", 3),
             per(2, "sa", 9),
             per(2, "sb", 9),
-            coords(2, "p"),
-            coords(2, "e"),
         ]
         .concat(),
     ));
+    line(regs(wd.difference, points(2)));
     line("// Stage 3: the normal and the edge starts.".into());
-    line(regs(
-        [
-            per(3, "n", 3),
-            per(3, "s", 9),
-            coords(3, "p"),
-            coords(3, "e"),
-        ]
-        .concat(),
-    ));
+    line(regs(wd.normal, [per(3, "n", 3), per(3, "s", 9)].concat()));
+    line(regs(wd.difference, points(3)));
     line("// Stage 4: the plane's products, the opposite ends, the margins |g|_1.".into());
-    line(regs(
-        [
-            per(4, "pl", 3),
-            per(4, "n", 3),
-            per(4, "s", 9),
-            per(4, "o", 9),
-            per(4, "m", 10),
-            coords(4, "p"),
-            coords(4, "e"),
-        ]
-        .concat(),
-    ));
+    line(regs(wd.plane, per(4, "pl", 3)));
+    line(regs(wd.normal, [per(4, "n", 3), per(4, "s", 9)].concat()));
+    line(regs(wd.opposite, per(4, "o", 9)));
+    line(regs(wd.plane_margin, per(4, "m", 1)));
+    line(regs(wd.edge_margin, per_from(4, "m", 1, 9)));
+    line(regs(wd.difference, points(4)));
     line(format!(
         "reg [{}:0] tag_1, tag_2, tag_3, tag_4;",
         TAG_BITS - 1
@@ -364,26 +412,35 @@ fn setup_verilog(g: usize, v: usize) -> String {
     line("    end".into());
     line("    if (advance) begin".into());
     line("        tag_1 <= in_tag; tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3; out_tag <= tag_4;".into());
+    let input = |port: String| sign_extend(&port, g, wd.difference);
     for i in 0..3 {
         for c in xyz {
             line(format!(
                 "        p{i}{c}_1 <= {} - {};",
-                extend(format!("in_{c}{i}")),
-                extend(format!("in_root_{c}"))
+                input(format!("in_{c}{i}")),
+                input(format!("in_root_{c}"))
             ));
             let next = (i + 1) % 3;
             line(format!(
                 "        e{i}{c}_1 <= {} - {};",
-                extend(format!("in_{c}{next}")),
-                extend(format!("in_{c}{i}"))
+                input(format!("in_{c}{next}")),
+                input(format!("in_{c}{i}"))
             ));
         }
     }
     // Stage 2. n_k = e0_a e1_b - e0_b e1_a with (a, b) = (k+1, k+2) mod 3.
+    let difference = |x: String| sign_extend(&x, wd.difference, wd.product);
+    let product = |a: String, b: String| format!("{} * {}", difference(a), difference(b));
     for k in 0..3 {
         let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
-        line(format!("        na{k}_2 <= e0{a}_1 * e1{b}_1;"));
-        line(format!("        nb{k}_2 <= e0{b}_1 * e1{a}_1;"));
+        line(format!(
+            "        na{k}_2 <= {};",
+            product(format!("e0{a}_1"), format!("e1{b}_1"))
+        ));
+        line(format!(
+            "        nb{k}_2 <= {};",
+            product(format!("e0{b}_1"), format!("e1{a}_1"))
+        ));
     }
     // Edge j across axis k: g = e_j × u_k, start = g · p_j as two products
     // (x: e_z p_y - e_y p_z; y: e_x p_z - e_z p_x; z: e_y p_x - e_x p_y).
@@ -391,12 +448,14 @@ fn setup_verilog(g: usize, v: usize) -> String {
         for k in 0..3 {
             let (a, b) = (xyz[(k + 2) % 3], xyz[(k + 1) % 3]);
             line(format!(
-                "        sa{}_2 <= e{j}{a}_1 * p{j}{b}_1;",
-                3 * j + k
+                "        sa{}_2 <= {};",
+                3 * j + k,
+                product(format!("e{j}{a}_1"), format!("p{j}{b}_1"))
             ));
             line(format!(
-                "        sb{}_2 <= e{j}{b}_1 * p{j}{a}_1;",
-                3 * j + k
+                "        sb{}_2 <= {};",
+                3 * j + k,
+                product(format!("e{j}{b}_1"), format!("p{j}{a}_1"))
             ));
         }
     }
@@ -409,46 +468,81 @@ fn setup_verilog(g: usize, v: usize) -> String {
         }
     };
     pass(&mut line, 1, 2);
+    let of_products = |x: String| sign_extend(&x, wd.product, wd.normal);
     for k in 0..3 {
-        line(format!("        n{k}_3 <= na{k}_2 - nb{k}_2;"));
+        line(format!(
+            "        n{k}_3 <= {} - {};",
+            of_products(format!("na{k}_2")),
+            of_products(format!("nb{k}_2"))
+        ));
     }
     for i in 0..9 {
-        line(format!("        s{i}_3 <= sa{i}_2 - sb{i}_2;"));
+        line(format!(
+            "        s{i}_3 <= {} - {};",
+            of_products(format!("sa{i}_2")),
+            of_products(format!("sb{i}_2"))
+        ));
     }
     pass(&mut line, 2, 3);
     for k in 0..3 {
-        line(format!("        pl{k}_4 <= n{k}_3 * p0{}_3;", xyz[k]));
+        line(format!(
+            "        pl{k}_4 <= {} * {};",
+            sign_extend(&format!("n{k}_3"), wd.normal, wd.plane),
+            sign_extend(&format!("p0{}_3", xyz[k]), wd.difference, wd.plane)
+        ));
         line(format!("        n{k}_4 <= n{k}_3;"));
     }
     for i in 0..9 {
         line(format!("        s{i}_4 <= s{i}_3;"));
-        line(format!("        o{i}_4 <= s{i}_3 - n{}_3;", i % 3));
+        line(format!(
+            "        o{i}_4 <= {} - {};",
+            sign_extend(&format!("s{i}_3"), wd.normal, wd.opposite),
+            sign_extend(&format!("n{}_3", i % 3), wd.normal, wd.opposite)
+        ));
     }
     // Margins: m0 = |n|_1 (the plane); m(1 + 3j + k) = |e_j| over the two
-    // axes other than k (the edge function's gradient e_j x u_k).
-    let abs = |x: String| format!("(({x} < 0) ? -{x} : {x})");
+    // axes other than k (the edge function's gradient e_j x u_k). Each
+    // operand is widened first, so that negating the most negative value
+    // cannot overflow.
+    let abs = |x: String, bits: usize| format!("(({x} < {bits}'sd0) ? -{x} : {x})");
+    let plane_term = |k: usize| {
+        let n = sign_extend(&format!("n{k}_3"), wd.normal, wd.plane_margin);
+        abs(n, wd.plane_margin)
+    };
     line(format!(
         "        m0_4 <= {} + {} + {};",
-        abs("n0_3".into()),
-        abs("n1_3".into()),
-        abs("n2_3".into())
+        plane_term(0),
+        plane_term(1),
+        plane_term(2)
     ));
     for j in 0..3 {
         for k in 0..3 {
             let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
+            let term = |c: &str| {
+                let e = sign_extend(&format!("e{j}{c}_3"), wd.difference, wd.edge_margin);
+                abs(e, wd.edge_margin)
+            };
             line(format!(
                 "        m{}_4 <= {} + {};",
                 1 + 3 * j + k,
-                abs(format!("e{j}{a}_3")),
-                abs(format!("e{j}{b}_3"))
+                term(a),
+                term(b)
             ));
         }
     }
     pass(&mut line, 3, 4);
-    // Stage 5: the packed outputs, function i at [i V +: V].
-    // The margins apply only while `grow` is high.
+    // Stage 5: the packed outputs, function i at [i V +: V], every operand
+    // widened to V. The margins apply only while `grow` is high.
+    let at_v = |name: String, bits: usize| sign_extend(&name, bits, v);
     let one = format!("(grow ? {v}'sd1 : {v}'sd0)");
-    let margin = |i: usize| format!("(grow ? m{i}_4 : {v}'sd0)");
+    let margin = |i: usize| {
+        let bits = if i == 0 {
+            wd.plane_margin
+        } else {
+            wd.edge_margin
+        };
+        format!("(grow ? {} : {v}'sd0)", at_v(format!("m{i}_4"), bits))
+    };
     let min = |a: &str, b: &str| format!("(({a} < {b}) ? {a} : {b})");
     let max = |a: &str, b: &str| format!("(({a} < {b}) ? {b} : {a})");
     let mut gradient: [Vec<String>; 3] = Default::default();
@@ -457,18 +551,22 @@ fn setup_verilog(g: usize, v: usize) -> String {
         for (d, g) in gradient.iter_mut().enumerate() {
             g.push(format!("{v}'sd{}", u8::from(d == k)));
         }
-        let (c0, c1, c2) = (format!("p0{c}_4"), format!("p1{c}_4"), format!("p2{c}_4"));
+        let [c0, c1, c2] = [0, 1, 2].map(|i| at_v(format!("p{i}{c}_4"), wd.difference));
         low.push(format!("{} - {one}", min(&min(&c0, &c1), &c2)));
         high.push(format!("{} + {one}", max(&max(&c0, &c1), &c2)));
     }
     for (k, g) in gradient.iter_mut().enumerate() {
-        g.push(format!("n{k}_4"));
+        g.push(at_v(format!("n{k}_4"), wd.normal));
     }
-    low.push(format!("pl0_4 + pl1_4 + pl2_4 - {}", margin(0)));
-    high.push(format!("pl0_4 + pl1_4 + pl2_4 + {}", margin(0)));
+    let plane = (0..3)
+        .map(|k| at_v(format!("pl{k}_4"), wd.plane))
+        .collect::<Vec<_>>()
+        .join(" + ");
+    low.push(format!("{plane} - {}", margin(0)));
+    high.push(format!("{plane} + {}", margin(0)));
     for j in 0..3 {
         for k in 0..3 {
-            let e = |c: usize| format!("e{j}{}_4", xyz[c]);
+            let e = |c: usize| at_v(format!("e{j}{}_4", xyz[c]), wd.difference);
             let zero = format!("{v}'sd0");
             let g = match k {
                 0 => [zero.clone(), e(2), format!("-{}", e(1))],
@@ -479,16 +577,10 @@ fn setup_verilog(g: usize, v: usize) -> String {
                 gradient[d].push(component);
             }
             let i = 3 * j + k;
-            low.push(format!(
-                "{} - {}",
-                min(&format!("s{i}_4"), &format!("o{i}_4")),
-                margin(i + 1)
-            ));
-            high.push(format!(
-                "{} + {}",
-                max(&format!("s{i}_4"), &format!("o{i}_4")),
-                margin(i + 1)
-            ));
+            let start = at_v(format!("s{i}_4"), wd.normal);
+            let opposite = at_v(format!("o{i}_4"), wd.opposite);
+            low.push(format!("{} - {}", min(&start, &opposite), margin(i + 1)));
+            high.push(format!("{} + {}", max(&start, &opposite), margin(i + 1)));
         }
     }
     // Each field is a V-bit signed expression written into its slice.
