@@ -38,6 +38,7 @@ pub mod cone_unit;
 pub mod dram_binning;
 pub mod engine;
 pub mod fault;
+pub mod leaf_reader;
 pub mod list_pass;
 pub mod octree_builder;
 pub mod owner_filter;

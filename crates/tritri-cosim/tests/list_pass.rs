@@ -6,52 +6,22 @@
 //! protocol's rules; and a child's list, written by one pass, is the next
 //! level's input.
 
+mod list_scene;
+
+use list_scene::scene as scene_on;
 use tritri_cosim::list_pass::{run_model, run_rusthdl, run_simulator, PassCase, PassOutcome};
 use tritri_cosim::simulator::Simulator;
-use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::octree::cell::Cell;
-use tritri_geom::scene::load::SceneObject;
-use tritri_geom::scene::{prepare_octree, SceneOptions, TaggedTriangle};
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::octree::classify_lane::LANE_LATENCY;
-use tritri_rtl::octree::list_entry::{pack, ENTRY_BYTES};
+use tritri_rtl::octree::list_entry::ENTRY_BYTES;
 use tritri_rtl::octree::list_pass_machine::{child_lists, ListPassConfig};
-use tritri_rtl::system::SystemConfig;
 
 const GRID_BITS: usize = 24;
 
-/// A torus and a sphere in contact: each object's kept triangles as list
-/// entries, and the root cell of the broad phase.
+/// The torus and sphere's lists on the grid of these tests.
 fn scene(torus_segments: usize, sphere_segments: usize) -> ([Vec<[u8; ENTRY_BYTES]>; 2], Cell) {
-    let a = SceneObject::from_triangles(
-        "torus",
-        torus(
-            [0.0, 0.0, 0.0],
-            1.0,
-            0.35,
-            torus_segments,
-            torus_segments / 2,
-        ),
-    );
-    let b = SceneObject::from_triangles(
-        "sphere",
-        sphere([1.0, 0.0, 0.55], 0.4, sphere_segments, sphere_segments / 2),
-    );
-    let depth = 8;
-    let options = SceneOptions {
-        grid_bits: GRID_BITS as u32,
-        depth,
-        split: true,
-    };
-    let config = SystemConfig::new(GRID_BITS, 2).with_depth(depth);
-    let prepared = prepare_octree(&a, &b, &options, &config, None).unwrap();
-    let entries = |kept: &[TaggedTriangle]| {
-        kept.iter()
-            .map(|t| pack(t.id, &t.triangle, GRID_BITS))
-            .collect::<Vec<_>>()
-    };
-    let root = prepared.octree.as_ref().unwrap().root.unwrap();
-    ([entries(&prepared.kept_a), entries(&prepared.kept_b)], root)
+    scene_on(GRID_BITS, torus_segments, sphere_segments)
 }
 
 fn case(

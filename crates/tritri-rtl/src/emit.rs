@@ -67,6 +67,7 @@ pub mod cone_unit_unit;
 pub mod continuous_assigns;
 pub mod dram_binning_unit_unit;
 pub mod dsp_mapping;
+pub mod leaf_reader_unit;
 pub mod list_pass_unit;
 pub mod memory_mapping;
 pub mod modules;

@@ -15,6 +15,7 @@ use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::emit::cell_classifier_unit::{emit_cell_classifier, CLASSIFIER_GRID_WIDTHS};
 use tritri_rtl::emit::dram_binning_unit_unit::emit_dram_binning;
+use tritri_rtl::emit::leaf_reader_unit::emit_leaf_reader;
 use tritri_rtl::emit::list_pass_unit::{emit_list_pass, LIST_PASS_GRID_WIDTHS};
 use tritri_rtl::emit::octree_builder_unit::emit_octree_builder;
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
@@ -164,6 +165,21 @@ fn the_list_pass_unit_is_lint_clean_at_every_grid_and_data_width() {
                 outstanding: 4,
             };
             check(grid_bits, emit_list_pass(&config).unwrap());
+        }
+    }
+}
+
+#[test]
+fn the_leaf_reader_is_lint_clean_at_every_grid_and_data_width() {
+    for &grid_bits in &LIST_PASS_GRID_WIDTHS {
+        for data_bits in [64, 128, 256] {
+            let config = ListPassConfig {
+                grid_bits,
+                data_bits,
+                max_read_burst: 16,
+                outstanding: 4,
+            };
+            check(grid_bits, emit_leaf_reader(&config).unwrap());
         }
     }
 }

@@ -31,6 +31,8 @@
 //!   such passes, every list in external memory, leaves out as decided,
 //!   and [`dram_binning_unit`] that controller in rust-hdl
 //!   ([`dram_split_terms`]: its split rule's terms);
+//!   [`leaf_reader`]: a leaf's two lists read back for the narrow phase, as
+//!   the binning unit's leaf stream ([`leaf_reader_machine`], its model);
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -63,6 +65,8 @@ pub mod dram_binning_unit;
 pub mod dram_split_terms;
 pub mod leaf_batcher;
 pub mod leaf_cost;
+pub mod leaf_reader;
+pub mod leaf_reader_machine;
 pub mod list_entry;
 pub mod list_packer;
 pub mod list_pass;
