@@ -91,7 +91,10 @@ pub enum OctreeFormatError {
     NotCanonical { index: u64, kind: &'static str },
     #[error("the header says {declared} nodes but the tree has {actual}")]
     Count { declared: u64, actual: u64 },
-    #[error("the origin or the voxel size is not a finite number (the size must be positive)")]
+    #[error(
+        "the origin or the voxel size is not a finite number (the size must be positive), \
+         or the tree's far corner, origin + 2^level * size, is not"
+    )]
     Placement,
     #[error("{0} bytes after the tree")]
     Trailing(usize),
@@ -359,7 +362,14 @@ impl OctreeFile {
             w
         };
         let [x, y, z, size] = [0, 1, 2, 3].map(|k| f64::from_le_bytes(word(k)));
-        if ![x, y, z].iter().all(|v| v.is_finite()) || !(size.is_finite() && size > 0.0) {
+        // Every corner a converter writes lies between the origin and the
+        // far corner: both finite, or the OBJ and binvox files get `inf`.
+        let side = size * f64::from(1u32 << level);
+        let far_corner_finite = [x, y, z].iter().all(|v| (v + side).is_finite());
+        if ![x, y, z].iter().all(|v| v.is_finite())
+            || !(size.is_finite() && size > 0.0)
+            || !far_corner_finite
+        {
             return Err(OctreeFormatError::Placement);
         }
         let declared = u64::from_le_bytes(word(4));
@@ -668,8 +678,17 @@ mod tests {
         let mut level = bytes.clone();
         level[8] = 11;
         assert_eq!(read(&level), Err(OctreeFormatError::Level(11)));
-        let mut size = bytes;
+        let mut size = bytes.clone();
         size[8 + 1 + 24..8 + 1 + 32].copy_from_slice(&(-1.0f64).to_le_bytes());
         assert_eq!(read(&size), Err(OctreeFormatError::Placement));
+        // A finite size whose tree reaches past f64's range: the exports
+        // would write `inf` coordinates (issue 68, item 7).
+        let mut overflow = bytes.clone();
+        overflow[8 + 1 + 24..8 + 1 + 32].copy_from_slice(&1e308f64.to_le_bytes());
+        assert_eq!(read(&overflow), Err(OctreeFormatError::Placement));
+        let mut far = bytes;
+        far[8 + 1..8 + 1 + 8].copy_from_slice(&f64::MAX.to_le_bytes());
+        far[8 + 1 + 24..8 + 1 + 32].copy_from_slice(&1e300f64.to_le_bytes());
+        assert_eq!(read(&far), Err(OctreeFormatError::Placement));
     }
 }
