@@ -5,7 +5,8 @@
 //!
 //! The camera looks from a direction (the voxel renders' [`View`]) at the
 //! centre of both objects' box, far enough for the box's sphere to fit a
-//! 40° field of view, with the chosen axis up.
+//! 40° field of view, with the chosen axis up; the scene is drawn scaled
+//! to that sphere, so its size in units does not matter.
 
 use super::reference::PairSet;
 use crate::octree::render::View;
@@ -37,14 +38,29 @@ pub fn render_pairs(a: &[Triangle], b: &[Triangle], pairs: &PairSet, view: &View
     if lo.x > hi.x {
         return Image::background(view.size, view.size);
     }
-    let centre = Point3::from((lo + hi) / 2.0);
-    let radius = ((hi - lo).norm() / 2.0).max(f64::MIN_POSITIVE);
-    let distance = radius / (0.5 * FOV.to_radians()).sin();
+    // The picture is drawn in the box's own frame, centred and scaled to a
+    // unit sphere: perspective does not change with scale, and the
+    // rasterizer's depths and areas then stay in range for a model of
+    // 1e-12 units or of 1e300 (computed by halves, so that nothing
+    // overflows on the way).
+    let centre = lo / 2.0 + hi / 2.0;
+    let half = hi / 2.0 - lo / 2.0;
+    let largest = half.amax();
+    let radius = if largest > 0.0 {
+        largest * (half / largest).norm()
+    } else {
+        1.0
+    };
+    let frame =
+        |t: &Triangle| -> Triangle { t.map(|p| ((Vector3::from(p) - centre) / radius).into()) };
+    let a: Vec<Triangle> = a.iter().map(frame).collect();
+    let b: Vec<Triangle> = b.iter().map(frame).collect();
+    let distance = 1.0 / (0.5 * FOV.to_radians()).sin();
     let mut up = Vector3::zeros();
     up[view.up.min(2)] = 1.0;
     let camera = Camera {
-        eye: centre + view.eye.normalize() * distance,
-        target: centre,
+        eye: Point3::origin() + view.eye.normalize() * distance,
+        target: Point3::origin(),
         up,
         fov_degrees: FOV,
     };
@@ -121,5 +137,52 @@ mod tests {
             render_pairs(&[], &[], &PairSet::new(), &view),
             Image::background(96, 96)
         );
+    }
+
+    /// The picture does not depend on the model's units: scaled by a power
+    /// of two it is the same to the pixel, and a model of 1e-12 or 1e300
+    /// units (which rendered background only, issue 68) is drawn.
+    #[test]
+    fn a_model_of_any_size_is_drawn() {
+        let a: Vec<Triangle> = vec![[[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]]];
+        let b: Vec<Triangle> = vec![[[0.0, -1.0, -1.0], [0.0, 1.0, -1.0], [0.0, 1.0, 1.0]]];
+        let view = View {
+            size: 64,
+            ..View::default()
+        };
+        let scaled = |s: f64, shift: f64| {
+            let f = |t: &Triangle| t.map(|p| p.map(|c| c * s + shift));
+            (
+                a.iter().map(f).collect::<Vec<_>>(),
+                b.iter().map(f).collect::<Vec<_>>(),
+            )
+        };
+        let unit = render_pairs(&a, &b, &PairSet::from([(0, 0)]), &view);
+        let drawn = |img: &Image| {
+            let background = Image::background(64, 64);
+            img.pixels
+                .iter()
+                .zip(&background.pixels)
+                .filter(|(p, q)| p != q)
+                .count()
+        };
+        assert!(drawn(&unit) > 200, "{} pixels drawn", drawn(&unit));
+        for s in [2f64.powi(-40), 2f64.powi(500)] {
+            let (sa, sb) = scaled(s, 0.0);
+            assert_eq!(
+                render_pairs(&sa, &sb, &PairSet::from([(0, 0)]), &view),
+                unit,
+                "scale {s}"
+            );
+        }
+        for (s, shift) in [(1e-12, 3e-12), (1e300, -2e300)] {
+            let (sa, sb) = scaled(s, shift);
+            let n = drawn(&render_pairs(&sa, &sb, &PairSet::from([(0, 0)]), &view));
+            let m = drawn(&unit);
+            assert!(
+                n.abs_diff(m) * 50 <= m,
+                "scale {s}: {n} pixels drawn, {m} at unit scale"
+            );
+        }
     }
 }
