@@ -12,7 +12,7 @@ use crate::axi_drive::{
     drive_from_memory, manager_signals, memory_parameters, parse_status, write_memory_hex,
 };
 use crate::binning_unit::{grid_value, signed_grid_value};
-use crate::simulator::{compile, Simulator, Testbench, WorkDir};
+use crate::simulator::{compile, signed_hex_fields, Simulator, Testbench, WorkDir};
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
@@ -269,26 +269,10 @@ impl LeafReaderVisitor for RustHdlLeaf<'_> {
 
 /// A `9 g`-bit vertices word printed in hex, as a triangle.
 fn triangle_from_hex(hex: &str, g: usize) -> anyhow::Result<FixedTriangle> {
-    let nibbles: Vec<u8> = hex
-        .chars()
-        .rev()
-        .map(|c| {
-            c.to_digit(16)
-                .map(|d| d as u8)
-                .with_context(|| format!("vertices {hex:?}: {c:?} is not a hex digit"))
-        })
-        .collect::<anyhow::Result<_>>()?;
-    let bit = |at: usize| {
-        nibbles
-            .get(at / 4)
-            .map_or(0, |n| u64::from(n >> (at % 4) & 1))
-    };
-    let mut triangle = [[0i64; 3]; 3];
-    for k in 0..9 {
-        let raw = (0..g).fold(0u64, |v, b| v | bit(k * g + b) << b);
-        triangle[k / 3][k % 3] = signed_grid_value(raw, g);
-    }
-    Ok(triangle)
+    let c = signed_hex_fields(hex, g, 9).with_context(|| format!("vertices {hex:?}"))?;
+    Ok(std::array::from_fn(|i| {
+        std::array::from_fn(|k| c[3 * i + k] as i64)
+    }))
 }
 
 /// The emitted unit's run in `simulator`, against `axi_memory.sv`.

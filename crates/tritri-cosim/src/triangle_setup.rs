@@ -190,26 +190,8 @@ fn parse_answer(line: &str, v: usize) -> anyhow::Result<SetupAnswer> {
         .with_context(|| format!("tag `{}` in `{line}`", fields[0]))?;
     // A bus is AXES * V bits of hex, most significant first.
     let bus = |s: &str| -> anyhow::Result<[i128; AXES]> {
-        let digits: Vec<u8> = s
-            .chars()
-            .map(|c| {
-                c.to_digit(16)
-                    .map(|d| d as u8)
-                    .with_context(|| format!("`{s}` is not hexadecimal"))
-            })
-            .collect::<anyhow::Result<_>>()?;
-        let bit = |k: usize| -> bool {
-            let (digit, within) = (k / 4, k % 4);
-            digit < digits.len() && digits[digits.len() - 1 - digit] >> within & 1 == 1
-        };
-        Ok(std::array::from_fn(|i| {
-            let raw: i128 = (0..v).filter(|&b| bit(i * v + b)).map(|b| 1i128 << b).sum();
-            if raw >> (v - 1) & 1 == 1 {
-                raw - (1i128 << v)
-            } else {
-                raw
-            }
-        }))
+        let fields = crate::simulator::signed_hex_fields(s, v, AXES)?;
+        Ok(std::array::from_fn(|i| fields[i]))
     };
     let (gx, gy, gz, low, high) = (
         bus(fields[1])?,
