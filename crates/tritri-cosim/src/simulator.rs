@@ -370,6 +370,40 @@ pub fn sweep_abandoned(dir: &Path) {
     }
 }
 
+/// Fields `0 .. count` of `width` bits each, two's complement, of a bus a
+/// testbench printed with `%h` (most significant digit first; digits the
+/// printout drops at the top count as zero).
+pub(crate) fn signed_hex_fields(
+    hex: &str,
+    width: usize,
+    count: usize,
+) -> anyhow::Result<Vec<i128>> {
+    use anyhow::Context as _;
+    assert!((1..=127).contains(&width), "a field of {width} bits");
+    let digits: Vec<u32> = hex
+        .chars()
+        .rev()
+        .map(|c| {
+            c.to_digit(16)
+                .with_context(|| format!("`{hex}` is not hexadecimal"))
+        })
+        .collect::<anyhow::Result<_>>()?;
+    let bit = |at: usize| digits.get(at / 4).is_some_and(|d| d >> (at % 4) & 1 == 1);
+    Ok((0..count)
+        .map(|f| {
+            let raw: i128 = (0..width)
+                .filter(|&b| bit(f * width + b))
+                .map(|b| 1i128 << b)
+                .sum();
+            if raw >> (width - 1) & 1 == 1 {
+                raw - (1i128 << width)
+            } else {
+                raw
+            }
+        })
+        .collect())
+}
+
 #[cfg(test)]
 mod sweep_tests {
     use super::*;
@@ -559,38 +593,4 @@ module {name};
 endmodule
 "
     )
-}
-
-/// Fields `0 .. count` of `width` bits each, two's complement, of a bus a
-/// testbench printed with `%h` (most significant digit first; digits the
-/// printout drops at the top count as zero).
-pub(crate) fn signed_hex_fields(
-    hex: &str,
-    width: usize,
-    count: usize,
-) -> anyhow::Result<Vec<i128>> {
-    use anyhow::Context as _;
-    assert!((1..=127).contains(&width), "a field of {width} bits");
-    let digits: Vec<u32> = hex
-        .chars()
-        .rev()
-        .map(|c| {
-            c.to_digit(16)
-                .with_context(|| format!("`{hex}` is not hexadecimal"))
-        })
-        .collect::<anyhow::Result<_>>()?;
-    let bit = |at: usize| digits.get(at / 4).is_some_and(|d| d >> (at % 4) & 1 == 1);
-    Ok((0..count)
-        .map(|f| {
-            let raw: i128 = (0..width)
-                .filter(|&b| bit(f * width + b))
-                .map(|b| 1i128 << b)
-                .sum();
-            if raw >> (width - 1) & 1 == 1 {
-                raw - (1i128 << width)
-            } else {
-                raw
-            }
-        })
-        .collect())
 }
