@@ -37,7 +37,10 @@ module tb_dram_binning #(
     parameter integer BPC_DEN = 1,
     parameter integer STALL_PERCENT = 0,
     parameter integer SEED = 1,
-    parameter integer LIMIT = 10000000
+    parameter integer LIMIT = 10000000,
+    // 1: push back on the controller with cosim::dram_binning::pushed_back's
+    // pattern (a leaf refused one clock in three, a pass held three in seven).
+    parameter integer PUSHBACK = 0
 );
     reg clock = 0;
     reg reset = 1;
@@ -48,6 +51,17 @@ module tb_dram_binning #(
     reg [31:0] list_base_0 = 0, list_base_1 = 0, list_count_0 = 0, list_count_1 = 0;
     reg [31:0] arena_start = 0, arena_end = 0;
     wire done, error, leaf_valid;
+    integer cycles = 0;
+    // Functions of the clock, not wires read in the loop below: a wire
+    // read just after `cycles` changes still shows the old clock's value.
+    function automatic ready_at(input integer t);
+        ready_at = (PUSHBACK == 0) || (t % 3 != 1);
+    endfunction
+    function automatic hold_at(input integer t);
+        hold_at = (PUSHBACK != 0) && (t % 7 < 3);
+    endfunction
+    wire leaf_ready = ready_at(cycles);
+    wire pass_hold = hold_at(cycles);
     wire [GRID_BITS-1:0] leaf_x, leaf_y, leaf_z;
     wire [5:0] leaf_level;
     wire [31:0] leaf_base_0, leaf_base_1, leaf_count_0, leaf_count_1, passes, arena_full;
@@ -70,7 +84,7 @@ module tb_dram_binning #(
         .list_count_0(list_count_0), .list_count_1(list_count_1),
         .arena_start(arena_start), .arena_end(arena_end),
         .done(done), .error(error), .waiting_commits(waiting_commits),
-        .leaf_valid(leaf_valid), .leaf_x(leaf_x), .leaf_y(leaf_y), .leaf_z(leaf_z),
+        .leaf_valid(leaf_valid), .leaf_ready(leaf_ready), .pass_hold(pass_hold), .leaf_x(leaf_x), .leaf_y(leaf_y), .leaf_z(leaf_z),
         .leaf_level(leaf_level), .leaf_base_0(leaf_base_0), .leaf_base_1(leaf_base_1),
         .leaf_count_0(leaf_count_0), .leaf_count_1(leaf_count_1),
         .passes(passes), .arena_full(arena_full),
@@ -110,7 +124,6 @@ module tb_dram_binning #(
     always #5 clock = ~clock;
 
     reg [1023:0] memory_file, out_file;
-    integer cycles;
     initial begin
         if (!$value$plusargs("memory=%s", memory_file)) begin
             $display("error: +memory=FILE is required");
@@ -140,7 +153,7 @@ module tb_dram_binning #(
         start = 0;
         cycles = 1;
         while (!done && cycles < LIMIT) begin
-            if (leaf_valid)
+            if (leaf_valid && ready_at(cycles))
                 $display("# leaf %0d %0d %0d %0d %0d %0d %0d %0d %0d", cycles + 1, leaf_x,
                          leaf_y, leaf_z, leaf_level, leaf_base_0, leaf_count_0, leaf_base_1,
                          leaf_count_1);

@@ -32,9 +32,10 @@ use tritri_rtl::emit::dram_binning_unit_unit::{
     dram_binning_unit_name, emit_dram_binning, with_dram_binning, DramBinningVisitor,
 };
 use tritri_rtl::octree::binning_machine::BinningParams;
+use tritri_rtl::axi::memory_model::{ManagerSignals, MemoryOutputs};
 use tritri_rtl::octree::dram_binning_machine::{
-    read_list, run_dram_binning, DramBinningConfig, DramBinningRun, DramLeaf, DramSplitRule,
-    ListPlace,
+    read_list, run_dram_binning_beside, Beside, DramBinningConfig, DramBinningRun, DramLeaf,
+    DramSplitRule, ListPlace,
 };
 use tritri_rtl::octree::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
 use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
@@ -65,6 +66,35 @@ pub struct DramCase {
     pub bytes: Vec<u8>,
     pub root: Cell,
     pub root_lists: [ListPlace; 2],
+    /// Push back on the controller with [`pushed_back`]'s pattern
+    /// (otherwise every leaf is taken at once and no pass is held).
+    pub pushback: bool,
+}
+
+/// The pattern of `pushback` in clock `t` (the start's clock is 0):
+/// `(leaf_ready, pass_hold)`. A leaf is refused one clock in three and a
+/// pass held three clocks in seven, so that a leaf and a pass each meet
+/// both values (testbenches/tb_dram_binning.sv drives the same).
+pub fn pushed_back(t: u64) -> (bool, bool) {
+    (t % 3 != 1, t % 7 < 3)
+}
+
+/// What the testbench's pattern is to the model.
+struct Pushback {
+    t: u64,
+}
+
+impl Beside for Pushback {
+    fn hold(&self) -> bool {
+        pushed_back(self.t).1
+    }
+    fn ready(&self) -> bool {
+        pushed_back(self.t).0
+    }
+    fn drive(&self, _m: &mut ManagerSignals) {}
+    fn clock(&mut self, _mem: &MemoryOutputs, _leaf: Option<(Cell, [ListPlace; 2])>) {
+        self.t += 1;
+    }
 }
 
 /// The case of `scene` (prepared for `accelerator`) with its lists in a
@@ -138,6 +168,7 @@ pub fn dram_case(
         bytes,
         root,
         root_lists: [(0, lists[0].len() as u64), (b_at, lists[1].len() as u64)],
+        pushback: false,
     };
     Ok((case, schedule))
 }
@@ -145,7 +176,14 @@ pub fn dram_case(
 /// The controller's clock-exact model on `case`, and the memory after it.
 pub fn run_model(case: &DramCase) -> anyhow::Result<(DramBinningRun, Vec<u8>)> {
     let mut memory = AxiMemory::new(case.params, case.bytes.clone());
-    let run = run_dram_binning(case.config, &mut memory, case.root, case.root_lists)
+    let mut pushback = Pushback { t: 0 };
+    let mut takes_every_leaf = tritri_rtl::octree::dram_binning_machine::TakesEveryLeaf;
+    let beside: &mut dyn Beside = if case.pushback {
+        &mut pushback
+    } else {
+        &mut takes_every_leaf
+    };
+    let run = run_dram_binning_beside(case.config, &mut memory, case.root, case.root_lists, beside)
         .map_err(anyhow::Error::msg)?;
     Ok((run, memory.bytes))
 }
@@ -290,9 +328,16 @@ impl DramBinningVisitor for RustHdlBinning<'_> {
         loop {
             let out = memory.outputs();
             uut.start.next = cycles == 0;
+            let (ready, hold) = if case.pushback {
+                pushed_back(cycles)
+            } else {
+                (true, false)
+            };
+            uut.leaf_ready.next = ready;
+            uut.pass_hold.next = hold;
             drive_from_memory!(uut, &out, DW);
             settle(&mut uut);
-            if uut.leaf_valid.val() {
+            if uut.leaf_valid.val() & ready {
                 let cell = Cell {
                     lo: [uut.leaf_x.val(), uut.leaf_y.val(), uut.leaf_z.val()]
                         .map(|v| signed_grid_value(v.to_u64(), G)),
@@ -365,6 +410,7 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
     let bytes = (case.bytes.len() as u64).next_power_of_two().max(1 << 16);
     parameters.extend(memory_parameters(&case.params, bytes));
     parameters.push(("LIMIT".to_string(), limit.to_string()));
+    parameters.push(("PUSHBACK".to_string(), u8::from(case.pushback).to_string()));
     let testbench = Testbench {
         top: "tb_dram_binning".to_string(),
         files,

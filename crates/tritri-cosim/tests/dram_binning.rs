@@ -264,3 +264,45 @@ fn a_full_waiting_memory_keeps_the_tried_splits_and_loses_no_pair() {
     let emitted = run_simulator(Simulator::Verilator, &small, 2 * model.cycles + 100).unwrap();
     emitted.check_against(&model, &bytes).unwrap();
 }
+
+/// A narrow phase that pushes back (a leaf refused one clock in three, a
+/// pass held three clocks in seven) changes when leaves go out and passes
+/// start, and nothing else: the same leaves with the same lists, and every
+/// byte of the memory the same. rust-hdl and Verilator equal the model
+/// clock for clock, leaves sent from the waiting memory and from a commit
+/// included.
+#[test]
+fn a_narrow_phase_that_pushes_back_delays_the_walk_only() {
+    let (mut accelerator, prepared) = scene();
+    accelerator.pipelines = 1;
+    let ideal = MemoryParams::ideal(8, 24);
+    let (free, _) = dram_case(&accelerator, &prepared, pass(64), ideal, 1 << 24).unwrap();
+    for waiting_capacity in [free.config.waiting_capacity, 1] {
+        let mut taken = free.clone();
+        taken.config.waiting_capacity = waiting_capacity;
+        let mut held = taken.clone();
+        held.pushback = true;
+        let (at_once, at_once_bytes) = run_model(&taken).unwrap();
+        let (model, bytes) = run_model(&held).unwrap();
+        assert!(model.leaves_dropped > 0 || model.waiting_commits > 0);
+        let places = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+            run.leaves
+                .iter()
+                .map(|l| (l.cell, l.lists))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(places(&model), places(&at_once));
+        assert_eq!(bytes, at_once_bytes);
+        assert!(model.cycles > at_once.cycles + model.passes);
+        let unit = run_rusthdl(&held, 2 * model.cycles + 100).unwrap();
+        unit.check_against(&model, &bytes).unwrap();
+        if waiting_capacity == 1 {
+            let emitted = run_simulator(Simulator::Verilator, &held, 2 * model.cycles + 100).unwrap();
+            emitted.check_against(&model, &bytes).unwrap();
+        }
+        eprintln!(
+            "waiting memory of {waiting_capacity}: pushed back, {} clocks where leaves taken at once take {}",
+            model.cycles, at_once.cycles
+        );
+    }
+}

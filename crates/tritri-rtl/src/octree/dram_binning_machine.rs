@@ -31,11 +31,13 @@
 //!   outermost tried split is decided, then go out or are dropped (a leaf
 //!   that finds the waiting memory full keeps every tried split on the
 //!   stack instead: the waiting leaves go out, then it, and nothing is
-//!   lost). A
-//!   leaf's lists are read before the next pass writes (it may reuse the
-//!   region); here they are read from the memory when the leaf goes out,
-//!   outside the port's clocks (the narrow phase's loads are not yet on
-//!   the port).
+//!   lost). A leaf goes out when what takes the leaves is ready
+//!   ([`Beside::ready`]; it is held meanwhile). A leaf's lists must be
+//!   read before the next pass writes (it may reuse the region): a pass
+//!   starts only in a clock without [`Beside::hold`], and between passes
+//!   the port's read channel may be the narrow phase's ([`Beside::drive`]).
+//!   [`DramLeaf::entries`] are the lists as they are when the leaf goes
+//!   out, read outside the port's clocks.
 //! * **The arena.** Children's lists go above the arena's top, each child
 //!   list as long as its parent's (a child holds at most every entry),
 //!   rounded up to a write burst. A cell to visit remembers the top above
@@ -49,10 +51,11 @@
 //!
 //! # Clocks
 //!
-//! Between passes the port is idle and the memory is clocked with nothing
-//! asked of it. Per cell popped: [`POP_CLOCKS`] to read its entry, then
+//! Between passes the controller asks nothing of the port (what is beside
+//! it may read). Per cell popped: [`POP_CLOCKS`] to read its entry, then
 //! [`DECIDE_CLOCKS`] for its leaf cost and the cannot-pay test; a leaf
-//! takes [`LEAF_CLOCKS`]; a pass takes its own clocks
+//! takes [`LEAF_CLOCKS`] and every clock it is held; a pass waits while
+//! it is held ([`Beside::hold`]), then takes its own clocks
 //! ([`super::list_pass_machine::run_pass`]), then [`COSTS_CLOCKS`] for the
 //! children's costs and the decision (then [`LEAF_CLOCKS`] if the cell is
 //! a leaf after all). A split cell's entry,
@@ -62,8 +65,8 @@
 use super::binning_machine::BinningParams;
 use super::leaf_cost::{leaf_cost, LEAF_COST_LATENCY};
 use super::list_entry::ENTRY_BYTES;
-use super::list_pass_machine::{run_pass, ListPassConfig, PassRequest};
-use crate::axi::memory_model::{AxiMemory, ManagerSignals};
+use super::list_pass_machine::{run_pass_beside, ListPassConfig, PassRequest};
+use crate::axi::memory_model::{AxiMemory, ManagerSignals, MemoryOutputs};
 use crate::system::SystemConfig;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{BatchCost, LOOKAHEAD};
@@ -179,6 +182,36 @@ pub struct DramBinningRun {
     pub largest_pass: u64,
 }
 
+/// What sits beside the controller and takes its leaves: in the AXI top,
+/// the narrow phase, which reads each leaf's lists over the same port
+/// between passes. Clocked in every clock of the walk.
+pub trait Beside {
+    /// `pass_hold` in this clock: no pass starts.
+    fn hold(&self) -> bool;
+    /// `leaf_ready` in this clock: a leaf offered is taken.
+    fn ready(&self) -> bool;
+    /// Its AR and R signals in a clock between passes (nothing when the
+    /// port is not its own).
+    fn drive(&self, m: &mut ManagerSignals);
+    /// One clock: the memory's outputs `mem` (quiet during a pass) and the
+    /// leaf the controller offers, taken if [`Beside::ready`].
+    fn clock(&mut self, mem: &MemoryOutputs, leaf: Option<(Cell, [ListPlace; 2])>);
+}
+
+/// Nothing beside the controller: every leaf taken at once, no pass held.
+pub struct TakesEveryLeaf;
+
+impl Beside for TakesEveryLeaf {
+    fn hold(&self) -> bool {
+        false
+    }
+    fn ready(&self) -> bool {
+        true
+    }
+    fn drive(&self, _m: &mut ManagerSignals) {}
+    fn clock(&mut self, _mem: &MemoryOutputs, _leaf: Option<(Cell, [ListPlace; 2])>) {}
+}
+
 /// A cell still to visit.
 struct Visit {
     cell: Cell,
@@ -212,6 +245,7 @@ enum Entry {
 struct Walk<'m> {
     config: DramBinningConfig,
     memory: &'m mut AxiMemory,
+    beside: &'m mut dyn Beside,
     run: DramBinningRun,
     /// The arena's top.
     top: u64,
@@ -228,13 +262,22 @@ struct Walk<'m> {
 impl Walk<'_> {
     /// The controller's clocks between passes: the memory sees an idle port.
     fn idle(&mut self, clocks: u64) {
-        let quiet = ManagerSignals::default();
-        let stalled = self.memory.stalled;
         for _ in 0..clocks {
-            self.memory.edge(&quiet);
+            self.clock_beside(None);
         }
+    }
+
+    /// One clock between passes, with `leaf` offered: the port's read
+    /// channel is what is beside the controller's.
+    fn clock_beside(&mut self, leaf: Option<(Cell, [ListPlace; 2])>) {
+        let stalled = self.memory.stalled;
+        let mem = self.memory.outputs();
+        let mut m = ManagerSignals::default();
+        self.beside.drive(&mut m);
+        self.beside.clock(&mem, leaf);
+        self.memory.edge(&m);
         self.run.stalled += self.memory.stalled - stalled;
-        self.run.cycles += clocks;
+        self.run.cycles += 1;
     }
 
     /// A leaf decided: out at once, or waiting under a tried split. A leaf
@@ -259,7 +302,15 @@ impl Walk<'_> {
     }
 
     fn send(&mut self, cell: Cell, lists: [ListPlace; 2]) {
-        self.idle(LEAF_CLOCKS);
+        // Offered until taken; the clock it is taken in is its own.
+        const _: () = assert!(LEAF_CLOCKS == 1);
+        loop {
+            let taken = self.beside.ready();
+            self.clock_beside(Some((cell, lists)));
+            if taken {
+                break;
+            }
+        }
         let entries = lists.map(|place| read_list(self.memory, place));
         self.run.leaves.push(DramLeaf {
             cell,
@@ -328,8 +379,15 @@ impl Walk<'_> {
             children: order.map(|k| (children_at[k], stride(visit.lists[k].1))),
         };
         let entries = a + b;
+        while self.beside.hold() {
+            self.idle(1);
+        }
         let limit = 64 * (entries + 64) * pass.beats_per_entry();
-        let out = run_pass(pass, self.memory, &request, limit)
+        let beside = &mut *self.beside;
+        let quiet = MemoryOutputs::default();
+        let out = run_pass_beside(pass, self.memory, &request, limit, || {
+            beside.clock(&quiet, None)
+        })
             .ok_or_else(|| format!("the pass of cell {cell:?} did not finish in {limit} clocks"))?;
         if out.error {
             return Err(format!("the pass of cell {cell:?} raised its error"));
@@ -443,6 +501,18 @@ pub fn run_dram_binning(
     root: Cell,
     root_lists: [ListPlace; 2],
 ) -> Result<DramBinningRun, String> {
+    run_dram_binning_beside(config, memory, root, root_lists, &mut TakesEveryLeaf)
+}
+
+/// [`run_dram_binning`] with `beside` taking the leaves, holding passes
+/// and sharing the port between them.
+pub fn run_dram_binning_beside(
+    config: DramBinningConfig,
+    memory: &mut AxiMemory,
+    root: Cell,
+    root_lists: [ListPlace; 2],
+    beside: &mut dyn Beside,
+) -> Result<DramBinningRun, String> {
     config.pass.check()?;
     let capacity = super::dram_binning_unit::WAITING_CAPACITY;
     if !(1..=capacity).contains(&config.waiting_capacity) {
@@ -462,6 +532,7 @@ pub fn run_dram_binning(
     let mut walk = Walk {
         config,
         memory,
+        beside,
         run: DramBinningRun::default(),
         top: arena_start,
         waiting: Vec::new(),

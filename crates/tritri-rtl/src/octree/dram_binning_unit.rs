@@ -162,8 +162,13 @@ pub struct DramBinningUnit<
     /// the stack was kept, the waiting leaves went out, then it (nothing
     /// is lost).
     pub waiting_commits: Signal<Out, Bits<32>>,
-    /// A leaf goes out in each clock this is high.
+    /// A leaf is offered in each clock this is high, and goes out in a
+    /// clock that also has `leaf_ready`; until then it is held.
     pub leaf_valid: Signal<Out, Bit>,
+    pub leaf_ready: Signal<In, Bit>,
+    /// While high, no pass starts (the narrow phase still reads leaves'
+    /// lists the pass may overwrite, or holds the read channel).
+    pub pass_hold: Signal<In, Bit>,
     pub leaf_x: Signal<Out, Bits<G>>,
     pub leaf_y: Signal<Out, Bits<G>>,
     pub leaf_z: Signal<Out, Bits<G>>,
@@ -375,6 +380,8 @@ impl<
             error: Default::default(),
             waiting_commits: Default::default(),
             leaf_valid: Default::default(),
+            leaf_ready: Default::default(),
+            pass_hold: Default::default(),
             leaf_x: Default::default(),
             leaf_y: Default::default(),
             leaf_z: Default::default(),
@@ -581,8 +588,9 @@ impl<
             self.terms.forced.val() | (self.children_cost.q.val() < self.cur_leaf_cost.q.val());
 
         // ---- The pass unit, started from Pass at counter 0.
-        self.pass.start.next =
-            (self.state.q.val() == DramBinState::Pass) & (self.counter.q.val() == 0);
+        self.pass.start.next = (self.state.q.val() == DramBinState::Pass)
+            & (self.counter.q.val() == 0)
+            & !self.pass_hold.val();
         self.pass.corner_x.next = bit_cast::<G, 32>(self.cur.q.val().x);
         self.pass.corner_y.next = bit_cast::<G, 32>(self.cur.q.val().y);
         self.pass.corner_z.next = bit_cast::<G, 32>(self.cur.q.val().z);
@@ -724,7 +732,10 @@ impl<
                 }
             }
             DramBinState::Pass => {
-                self.counter.d.next = 1.into();
+                // Counter 0 waits while the pass is held.
+                if (self.counter.q.val() != 0) | !self.pass_hold.val() {
+                    self.counter.d.next = 1.into();
+                }
                 // Counter 0 is the start: `done` still holds the last pass's.
                 if (self.counter.q.val() == 1) & self.pass.done.val() {
                     self.passes_q.d.next = self.passes_q.q.val() + 1;
@@ -919,18 +930,23 @@ impl<
                 }
             }
             DramBinState::SendCur => {
-                self.state.d.next = DramBinState::Next;
+                if self.leaf_ready.val() {
+                    self.state.d.next = DramBinState::Next;
+                }
             }
             DramBinState::SendWaiting => {
                 // The leaf at `send_index - 1` is out; the next is read.
-                self.waiting.read_enable.next = true;
-                self.send_index.d.next = self.send_index.q.val() + 1;
-                if self.send_index.q.val() == self.waiting_count.q.val() {
-                    self.waiting_count.d.next = 0.into();
-                    self.state.d.next = DramBinState::Next;
-                    if self.then_cur.q.val() {
-                        self.then_cur.d.next = false;
-                        self.state.d.next = DramBinState::SendCur;
+                // Not taken, it stays: the memory's read data holds.
+                if self.leaf_ready.val() {
+                    self.waiting.read_enable.next = true;
+                    self.send_index.d.next = self.send_index.q.val() + 1;
+                    if self.send_index.q.val() == self.waiting_count.q.val() {
+                        self.waiting_count.d.next = 0.into();
+                        self.state.d.next = DramBinState::Next;
+                        if self.then_cur.q.val() {
+                            self.then_cur.d.next = false;
+                            self.state.d.next = DramBinState::SendCur;
+                        }
                     }
                 }
             }

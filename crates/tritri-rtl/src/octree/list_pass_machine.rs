@@ -488,14 +488,28 @@ pub fn run_pass(
     request: &PassRequest,
     limit: u64,
 ) -> Option<PassRun> {
+    run_pass_beside(config, memory, request, limit, || {})
+}
+
+/// [`run_pass`], calling `beside` once in every clock of the pass (what
+/// shares the clock but not the port: the AXI top's narrow phase).
+pub fn run_pass_beside(
+    config: ListPassConfig,
+    memory: &mut AxiMemory,
+    request: &PassRequest,
+    limit: u64,
+    mut beside: impl FnMut(),
+) -> Option<PassRun> {
     let mut machine = Machine::new(config);
     let stalled_before = memory.stalled;
+    beside();
     machine.clock(memory, Some(request));
     let mut cycles = 1;
     while !machine.finished {
         if cycles >= limit {
             return None;
         }
+        beside();
         machine.clock(memory, None);
         cycles += 1;
     }
