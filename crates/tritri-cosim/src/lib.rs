@@ -36,6 +36,7 @@ pub mod broad_phase_system;
 pub mod cell_classifier;
 pub mod cone_unit;
 pub mod dram_binning;
+pub mod dram_broad_phase;
 pub mod engine;
 pub mod fault;
 pub mod leaf_reader;

@@ -66,6 +66,7 @@ pub mod cell_classifier_unit;
 pub mod cone_unit_unit;
 pub mod continuous_assigns;
 pub mod dram_binning_unit_unit;
+pub mod dram_broad_phase_unit;
 pub mod dsp_mapping;
 pub mod leaf_reader_unit;
 pub mod list_pass_unit;

@@ -62,6 +62,7 @@ pub mod child_select;
 pub mod classify_lane;
 pub mod dram_binning_machine;
 pub mod dram_binning_unit;
+pub mod dram_broad_phase;
 pub mod dram_split_terms;
 pub mod leaf_batcher;
 pub mod leaf_cost;

@@ -1,0 +1,226 @@
+//! The broad-phase accelerator with its scene in DRAM
+//! ([`tritri_rtl::octree::dram_broad_phase`]) on a prepared scene: the
+//! host's root lists in the memory model, the top run in rust-hdl until
+//! `done`, each pair it streams recorded; and the exact answer on the grid
+//! it is held to, every pair of A's and B's kept triangles decided by the
+//! certified predicate.
+
+use crate::dram_binning::{dram_case, run_model, DramCase};
+use crate::scene_query::Accelerator;
+use anyhow::{bail, Context as _};
+use rust_hdl::prelude::*;
+use std::collections::BTreeSet;
+use tritri_geom::certificate::certified_intersects;
+use tritri_geom::scene::octree::OctreeSchedule;
+use tritri_geom::scene::{PreparedScene, TaggedTriangle};
+use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::emit::dram_broad_phase_unit::{
+    with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
+};
+use tritri_rtl::octree::dram_broad_phase::DramBroadPhase;
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
+
+use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::binning_unit::grid_value;
+
+/// A run of the top to make: the controller's case (the memory as the
+/// host leaves it) and the top around it.
+#[derive(Clone, Debug)]
+pub struct TopCase {
+    pub binning: DramCase,
+    pub config: DramBroadPhaseConfig,
+    /// Each object's triangle indices are below this.
+    pub index_count: [u64; 2],
+}
+
+/// The case of `scene` (prepared for `accelerator`): the controller's
+/// ([`dram_case`]), the owner filter's tables sized for the leaves the
+/// controller's model makes (every tile's entries), and the planner's
+/// tree.
+pub fn top_case(
+    accelerator: &Accelerator,
+    scene: &PreparedScene,
+    pass: ListPassConfig,
+    params: MemoryParams,
+    arena_bytes: u64,
+) -> anyhow::Result<(TopCase, OctreeSchedule)> {
+    let (binning, schedule) = dram_case(accelerator, scene, pass, params, arena_bytes)?;
+    let system = accelerator.system_config();
+    let (model, _) = run_model(&binning)?;
+    let depth = system.triangles_per_bank as u64;
+    let slots = model.leaves.iter().fold([0u64, 0], |[a, b], leaf| {
+        let [na, nb] = leaf.lists.map(|(_, n)| n);
+        [a + na * nb.div_ceil(depth), b + nb * na.div_ceil(depth)]
+    });
+    let bound = |list: &[TaggedTriangle]| list.iter().map(|t| u64::from(t.id) + 1).max().unwrap_or(0);
+    let index_count = [bound(&scene.kept_a), bound(&scene.kept_b)];
+    let config = DramBroadPhaseConfig {
+        binning: binning.config,
+        system,
+        triangles: index_count.into_iter().max().unwrap_or(1).max(1) as usize,
+        slots: slots.into_iter().max().unwrap_or(1).max(1) as usize,
+        local_frames: accelerator.local_frames().is_some(),
+    };
+    Ok((
+        TopCase {
+            binning,
+            config,
+            index_count,
+        },
+        schedule,
+    ))
+}
+
+/// The exact answer on the grid: every (A, B) pair of kept triangles that
+/// intersects, and every pair without a certificate, each sorted.
+pub fn exact_on_grid(scene: &PreparedScene) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let boxes = |list: &[TaggedTriangle]| -> Vec<([i64; 3], [i64; 3])> {
+        list.iter()
+            .map(|t| {
+                let v = t.triangle;
+                let lo = std::array::from_fn(|k| v.iter().map(|p| p[k]).min().unwrap());
+                let hi = std::array::from_fn(|k| v.iter().map(|p| p[k]).max().unwrap());
+                (lo, hi)
+            })
+            .collect()
+    };
+    let (box_a, box_b) = (boxes(&scene.kept_a), boxes(&scene.kept_b));
+    let (mut pairs, mut uncertain) = (BTreeSet::new(), BTreeSet::new());
+    for (ta, ba) in scene.kept_a.iter().zip(&box_a) {
+        for (tb, bb) in scene.kept_b.iter().zip(&box_b) {
+            // Boxes apart: the certified predicate says no, certainly.
+            if (0..3).any(|k| ba.1[k] < bb.0[k] || bb.1[k] < ba.0[k]) {
+                continue;
+            }
+            let verdict = certified_intersects(&ta.triangle, &tb.triangle);
+            if verdict.hit {
+                pairs.insert((ta.id, tb.id));
+            }
+            if !verdict.certain {
+                uncertain.insert((ta.id, tb.id));
+            }
+        }
+    }
+    (pairs.into_iter().collect(), uncertain.into_iter().collect())
+}
+
+/// What a run of the top gave.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct TopRun {
+    /// The pairs streamed with `out_hit`, and those without a certificate,
+    /// in stream order.
+    pub pairs: Vec<(u32, u32)>,
+    pub uncertain: Vec<(u32, u32)>,
+    /// Clocks from `start` (clock 0) to the first clock with `binned`,
+    /// `tested` and `done` high.
+    pub binned_at: u64,
+    pub tested_at: u64,
+    pub cycles: u64,
+    pub leaves: u64,
+    pub passes: u64,
+    pub pairs_tested: u64,
+    pub hits: u64,
+    pub stalled: u64,
+    pub error: bool,
+    pub overflow: bool,
+    pub faults: usize,
+}
+
+/// The rust-hdl top on `case` against the Rust memory model, the pairs'
+/// reader always ready; an error past `limit` clocks.
+pub fn run_top_rusthdl(case: &TopCase, limit: u64) -> anyhow::Result<TopRun> {
+    with_dram_broad_phase(&case.config, RustHdlTop { case, limit }).map_err(anyhow::Error::msg)?
+}
+
+struct RustHdlTop<'c> {
+    case: &'c TopCase,
+    limit: u64,
+}
+
+impl DramBroadPhaseVisitor for RustHdlTop<'_> {
+    type Output = anyhow::Result<TopRun>;
+    fn visit<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        mut uut: DramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> Self::Output {
+        let case = &self.case.binning;
+        uut.connect_all();
+        let mut memory = AxiMemory::new(case.params, case.bytes.clone());
+        reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
+        uut.corner_x.next = grid_value::<G>(case.root.lo[0]);
+        uut.corner_y.next = grid_value::<G>(case.root.lo[1]);
+        uut.corner_z.next = grid_value::<G>(case.root.lo[2]);
+        uut.level.next = u64::from(case.root.level).into();
+        for k in 0..2 {
+            uut.list_base[k].next = case.root_lists[k].0.into();
+            uut.list_count[k].next = case.root_lists[k].1.into();
+            uut.index_count[k].next = self.case.index_count[k].into();
+        }
+        uut.arena_start.next = case.config.arena.0.into();
+        uut.arena_end.next = case.config.arena.1.into();
+        uut.out_ready.next = true;
+        let mut run = TopRun::default();
+        let (mut binned, mut tested) = (None, None);
+        let mut cycles = 0u64;
+        loop {
+            let out = memory.outputs();
+            uut.start.next = cycles == 0;
+            drive_from_memory!(uut, &out, DW);
+            settle(&mut uut);
+            if uut.out_valid.val() {
+                let pair = (
+                    uut.out_index_a.val().to_u64() as u32,
+                    uut.out_index_b.val().to_u64() as u32,
+                );
+                if uut.out_hit.val() {
+                    run.pairs.push(pair);
+                }
+                if !uut.out_certain.val() {
+                    run.uncertain.push(pair);
+                }
+            }
+            if cycles > 0 {
+                if uut.binned.val() && binned.is_none() {
+                    binned = Some(cycles);
+                }
+                if uut.tested.val() && tested.is_none() {
+                    tested = Some(cycles);
+                }
+                if uut.done.val() {
+                    break;
+                }
+            }
+            let manager = manager_signals!(uut, DW);
+            memory.edge(&manager);
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            cycles += 1;
+            if cycles >= self.limit {
+                bail!("the rust-hdl top did not end within {} clocks", self.limit);
+            }
+        }
+        run.binned_at = binned.context("done before binned")?;
+        run.tested_at = tested.context("done before tested")?;
+        run.cycles = cycles;
+        run.leaves = uut.leaves.val().to_u64();
+        run.passes = uut.passes.val().to_u64();
+        run.pairs_tested = uut.pairs_tested.val().to_u64();
+        run.hits = uut.hits.val().to_u64();
+        run.stalled = memory.stalled;
+        run.error = uut.error.val();
+        run.overflow = uut.overflow.val();
+        run.faults = memory.faults().len();
+        Ok(run)
+    }
+}

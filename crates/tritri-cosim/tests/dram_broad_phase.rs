@@ -1,0 +1,65 @@
+//! The broad-phase accelerator with its scene in DRAM, in rust-hdl against
+//! the memory model: the controller's passes and the leaf reader share one
+//! AXI4 port, and the pairs it streams are the exact answer on the grid,
+//! each once.
+
+use std::collections::BTreeSet;
+use tritri_cosim::dram_broad_phase::{exact_on_grid, run_top_rusthdl, top_case};
+use tritri_cosim::scene_query::Accelerator;
+use tritri_geom::builtin_scene::{sphere, torus};
+use tritri_geom::scene::load::SceneObject;
+use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+
+fn pass() -> ListPassConfig {
+    ListPassConfig {
+        grid_bits: 24,
+        data_bits: 64,
+        max_read_burst: 16,
+        outstanding: 4,
+    }
+}
+
+/// Each pair once, and the set equal to the exact one.
+fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) {
+    let set: BTreeSet<_> = got.iter().copied().collect();
+    assert_eq!(set.len(), got.len(), "{what}: a pair came out twice");
+    let want: BTreeSet<_> = want.iter().copied().collect();
+    assert_eq!(set, want, "{what}: not the exact answer on the grid");
+}
+
+/// The torus and sphere of the controller's tests, the system's depth cut
+/// to 16 so that leaves come as several tiles; ideal memory and one that
+/// stalls.
+#[test]
+fn the_rust_hdl_top_streams_the_exact_pairs_once() {
+    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
+    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    let mut accelerator = Accelerator::new(24);
+    accelerator.depth = 16;
+    accelerator.pipelines = 1;
+    let prepared = accelerator.prepare(&a, &b).unwrap();
+    let (pairs, uncertain) = exact_on_grid(&prepared);
+    assert!(pairs.len() > 20, "{} pairs", pairs.len());
+    let ideal = MemoryParams::ideal(8, 24);
+    for params in [ideal, ideal.with_stalls(20, 7)] {
+        let (case, _) = top_case(&accelerator, &prepared, pass(), params, 1 << 24).unwrap();
+        let run = run_top_rusthdl(&case, 5_000_000).unwrap();
+        assert!(!run.error && !run.overflow && run.faults == 0, "{run:?}");
+        once_and_exact(&run.pairs, &pairs, "intersecting");
+        once_and_exact(&run.uncertain, &uncertain, "without a certificate");
+        assert!(run.binned_at <= run.tested_at && run.tested_at <= run.cycles);
+        eprintln!(
+            "stalls {}%: {} pairs ({} uncertain), {} leaves, {} passes, binned at {}, tested at {}, done at {} ({} stalled)",
+            params.stall_percent,
+            run.pairs.len(),
+            run.uncertain.len(),
+            run.leaves,
+            run.passes,
+            run.binned_at,
+            run.tested_at,
+            run.cycles,
+            run.stalled
+        );
+    }
+}
