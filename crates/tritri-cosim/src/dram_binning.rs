@@ -27,15 +27,14 @@ use rust_hdl::prelude::*;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{schedule, OctreeSchedule};
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
-use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::axi::memory_model::{AxiMemory, ManagerSignals, MemoryOutputs, MemoryParams};
 use tritri_rtl::emit::dram_binning_unit_unit::{
     dram_binning_unit_name, emit_dram_binning, with_dram_binning, DramBinningVisitor,
 };
 use tritri_rtl::octree::binning_machine::BinningParams;
-use tritri_rtl::axi::memory_model::{ManagerSignals, MemoryOutputs};
 use tritri_rtl::octree::dram_binning_machine::{
     read_list, run_dram_binning_beside, Beside, DramBinningConfig, DramBinningRun, DramLeaf,
-    DramSplitRule, ListPlace,
+    DramSplitRule, ListPlace, TakesEveryLeaf,
 };
 use tritri_rtl::octree::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
 use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
@@ -177,7 +176,7 @@ pub fn dram_case(
 pub fn run_model(case: &DramCase) -> anyhow::Result<(DramBinningRun, Vec<u8>)> {
     let mut memory = AxiMemory::new(case.params, case.bytes.clone());
     let mut pushback = Pushback { t: 0 };
-    let mut takes_every_leaf = tritri_rtl::octree::dram_binning_machine::TakesEveryLeaf;
+    let mut takes_every_leaf = TakesEveryLeaf;
     let beside: &mut dyn Beside = if case.pushback {
         &mut pushback
     } else {

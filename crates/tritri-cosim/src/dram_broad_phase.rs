@@ -17,6 +17,7 @@ use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::emit::dram_broad_phase_unit::{
     with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
+use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
 use tritri_rtl::octree::dram_broad_phase::DramBroadPhase;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -48,18 +49,17 @@ pub fn top_case(
     let (binning, schedule) = dram_case(accelerator, scene, pass, params, arena_bytes)?;
     let system = accelerator.system_config();
     let (model, _) = run_model(&binning)?;
-    let depth = system.triangles_per_bank as u64;
-    let slots = model.leaves.iter().fold([0u64, 0], |[a, b], leaf| {
-        let [na, nb] = leaf.lists.map(|(_, n)| n);
-        [a + na * nb.div_ceil(depth), b + nb * na.div_ceil(depth)]
-    });
+    let slots = slots_of_leaves(
+        system.triangles_per_bank,
+        model.leaves.iter().map(|l| l.lists.map(|(_, n)| n as usize)),
+    );
     let bound = |list: &[TaggedTriangle]| list.iter().map(|t| u64::from(t.id) + 1).max().unwrap_or(0);
     let index_count = [bound(&scene.kept_a), bound(&scene.kept_b)];
     let config = DramBroadPhaseConfig {
         binning: binning.config,
         system,
         triangles: index_count.into_iter().max().unwrap_or(1).max(1) as usize,
-        slots: slots.into_iter().max().unwrap_or(1).max(1) as usize,
+        slots: slots.into_iter().max().unwrap_or(1).max(1),
         local_frames: accelerator.local_frames().is_some(),
     };
     Ok((

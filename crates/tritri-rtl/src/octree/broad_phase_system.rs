@@ -324,8 +324,18 @@ pub fn leaf_batches(depth: usize, run: &BinningRun) -> Vec<BatchSizes> {
 /// Entries each object streams into the system (A's repeated for every
 /// B tile of a leaf, B's for every A tile): the owner filter's slots.
 pub fn stream_slots(depth: usize, run: &BinningRun) -> [usize; 2] {
-    run.leaves.iter().fold([0, 0], |[a, b], l| {
-        let (na, nb) = (l.a.count as usize, l.b.count as usize);
+    slots_of_leaves(
+        depth,
+        run.leaves
+            .iter()
+            .map(|l| [l.a.count as usize, l.b.count as usize]),
+    )
+}
+
+/// [`stream_slots`] of leaves given by their two counts (the DRAM top's
+/// leaves too).
+pub fn slots_of_leaves(depth: usize, counts: impl IntoIterator<Item = [usize; 2]>) -> [usize; 2] {
+    counts.into_iter().fold([0, 0], |[a, b], [na, nb]| {
         [a + na * nb.div_ceil(depth), b + nb * na.div_ceil(depth)]
     })
 }
