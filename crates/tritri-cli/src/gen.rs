@@ -87,7 +87,12 @@
 //! `tritri_list_pass_g<G>_d<DW>_r16_o4`; `--dram-binning [--width 16|24]
 //! [--data-bits 64|128|256] [--pipelines P] [--depth D]` the binning over
 //! such passes, the pass unit inside, top
-//! `tritri_dram_binning_g<G>_d<DW>_r16_o4_t<D>_p<P>`.
+//! `tritri_dram_binning_g<G>_d<DW>_r16_o4_t<D>_p<P>`;
+//! `--dram-broad-phase [--width 16|24] [--pipelines P] [--depth D]
+//! [--rare-cases shared] [--triangles N] [--slots N]` the accelerator with
+//! its scene in external memory (that binning, the leaf reader, the system
+//! and the owner filter on one port), top
+//! `tritri_dram_broad_phase_g<G>_w<W>_d64_p<P>_t<D>_i<N>_s<N>[_shared]`.
 //!
 //! `--for-scene A B [--pose-b ...] [--max-uncertain RATE] [--device NAME]`
 //! sizes the system for a scene and an error budget instead: it runs the
@@ -126,6 +131,7 @@ use tritri_rtl::emit::cell_classifier_unit::{
 };
 use tritri_rtl::emit::cone_unit_unit::{cone_unit_name, emit_cone_unit, CONE_UNIT_WIDTHS};
 use tritri_rtl::emit::dram_binning_unit_unit::{dram_binning_unit_name, emit_dram_binning};
+use tritri_rtl::emit::dram_broad_phase_unit::{emit_dram_broad_phase, DramBroadPhaseConfig};
 use tritri_rtl::emit::dsp_mapping::{MultiplierMapping, MAX_ECP5_DSP_WIDTH};
 use tritri_rtl::emit::list_pass_unit::{
     emit_list_pass, list_pass_unit_name, LIST_PASS_GRID_WIDTHS,
@@ -301,6 +307,13 @@ pub struct Args {
     /// collision system's its split rule counts for.
     #[arg(long)]
     dram_binning: bool,
+    /// Emit the broad-phase accelerator with its scene in external memory
+    /// instead: that binning, the leaf reader, the collision system and the
+    /// owner filter on one 64-bit AXI4 port; --width is the grid's and the
+    /// system's (16 or 24), --pipelines, --depth and --rare-cases the
+    /// system's, --triangles and --slots the owner filter's tables.
+    #[arg(long)]
+    dram_broad_phase: bool,
     /// With --list-pass or --dram-binning: the AXI4 port's data width (64,
     /// 128 or 256) [default: 64].
     #[arg(long, value_name = "BITS")]
@@ -334,7 +347,7 @@ pub struct Args {
     /// 4x4x4 brick of voxels in per clock, the canonical tree's nodes out).
     #[arg(long)]
     octree_builder: bool,
-    /// With --owner-filter or --broad-phase: words of each object's slot
+    /// With --owner-filter, --broad-phase or --dram-broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
     slots: Option<u64>,
@@ -358,7 +371,7 @@ pub struct Args {
     /// --list-words and --leaves the binning unit's memories.
     #[arg(long)]
     broad_phase: bool,
-    /// With --binning-unit or --broad-phase: triangles per object (1 to
+    /// With --binning-unit, --broad-phase or --dram-broad-phase: triangles per object (1 to
     /// 262144) [default: 8192].
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << INDEX_BITS))]
     triangles: Option<u64>,
@@ -518,6 +531,7 @@ impl Args {
             (Design::AxiCopy, self.axi_copy),
             (Design::ListPass, self.list_pass),
             (Design::DramBinning, self.dram_binning),
+            (Design::DramBroadPhase, self.dram_broad_phase),
         ])
     }
 
@@ -619,7 +633,7 @@ impl Args {
         }
         if matches!(
             design,
-            Design::BinningUnit | Design::BroadPhase | Design::DramBinning
+            Design::BinningUnit | Design::BroadPhase | Design::DramBinning | Design::DramBroadPhase
         ) {
             if !self.pipelines().is_power_of_two() {
                 return Err(format!(
@@ -658,6 +672,10 @@ impl Args {
                 .map_err(|e| format!("{flag} --width {w}: {e}")),
             Design::BroadPhase => self
                 .broad_phase_config(w)
+                .check()
+                .map_err(|e| format!("{flag} --width {w}: {e}")),
+            Design::DramBroadPhase => self
+                .dram_broad_phase_config(w)
                 .check()
                 .map_err(|e| format!("{flag} --width {w}: {e}")),
             Design::PatchTessellator
@@ -731,6 +749,9 @@ impl Args {
             Design::AxiCopy => emit_axi_copy(&axi_copy_config(width))?,
             Design::ListPass => emit_list_pass(&self.list_pass_config(width))?,
             Design::DramBinning => emit_dram_binning(&self.dram_binning_config(width))?,
+            Design::DramBroadPhase => {
+                emit_dram_broad_phase(&self.dram_broad_phase_config(width), self.multipliers())?
+            }
         })
     }
 
@@ -769,6 +790,23 @@ impl Args {
             Design::AxiCopy => axi_copy_config(width).unit_name(),
             Design::ListPass => list_pass_unit_name(&self.list_pass_config(width)),
             Design::DramBinning => dram_binning_unit_name(&self.dram_binning_config(width)),
+            Design::DramBroadPhase => self.dram_broad_phase_config(width).unit_name(),
+        }
+    }
+
+    /// The accelerator `tritri gen --dram-broad-phase` writes for a
+    /// `width`-bit grid and system: the controller of `--dram-binning` on a
+    /// 64-bit port, the system of `--pipelines`, `--depth` and
+    /// `--rare-cases`, the owner filter's tables of `--triangles` and
+    /// `--slots`.
+    fn dram_broad_phase_config(&self, width: usize) -> DramBroadPhaseConfig {
+        DramBroadPhaseConfig {
+            binning: self.dram_binning_config(width),
+            system: self.system_config(width),
+            triangles: self.triangles.unwrap_or(8192) as usize,
+            slots: self.slots(),
+            local_frames: false,
+            rare_cases: self.rare_case_path(),
         }
     }
 

@@ -15,15 +15,21 @@ use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
 use tritri_rtl::emit::dram_broad_phase_unit::{
-    with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
+    emit_dram_broad_phase, with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
 use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
-use tritri_rtl::octree::dram_broad_phase::DramBroadPhase;
+use tritri_rtl::octree::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
-use crate::axi_drive::{drive_from_memory, manager_signals};
+use crate::axi_copy::AXI_MEMORY;
+use crate::axi_drive::{
+    drive_from_memory, manager_signals, memory_parameters, parse_status, write_memory_hex,
+};
 use crate::binning_unit::grid_value;
+use crate::simulator::{compile, Simulator, Testbench, WorkDir};
+use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 
 /// A run of the top to make: the controller's case (the memory as the
 /// host leaves it) and the top around it.
@@ -51,9 +57,13 @@ pub fn top_case(
     let (model, _) = run_model(&binning)?;
     let slots = slots_of_leaves(
         system.triangles_per_bank,
-        model.leaves.iter().map(|l| l.lists.map(|(_, n)| n as usize)),
+        model
+            .leaves
+            .iter()
+            .map(|l| l.lists.map(|(_, n)| n as usize)),
     );
-    let bound = |list: &[TaggedTriangle]| list.iter().map(|t| u64::from(t.id) + 1).max().unwrap_or(0);
+    let bound =
+        |list: &[TaggedTriangle]| list.iter().map(|t| u64::from(t.id) + 1).max().unwrap_or(0);
     let index_count = [bound(&scene.kept_a), bound(&scene.kept_b)];
     let config = DramBroadPhaseConfig {
         binning: binning.config,
@@ -61,6 +71,7 @@ pub fn top_case(
         triangles: index_count.into_iter().max().unwrap_or(1).max(1) as usize,
         slots: slots.into_iter().max().unwrap_or(1).max(1),
         local_frames: accelerator.local_frames().is_some(),
+        rare_cases: RareCasePath::Parallel,
     };
     Ok((
         TopCase {
@@ -138,24 +149,12 @@ struct RustHdlTop<'c> {
     limit: u64,
 }
 
-impl DramBroadPhaseVisitor for RustHdlTop<'_> {
-    type Output = anyhow::Result<TopRun>;
-    fn visit<
-        const G: usize,
-        const V: usize,
-        const N: usize,
-        const T: usize,
-        const DW: usize,
-        const S: usize,
-        const W: usize,
-        const D: usize,
-        const C: usize,
-        const O: usize,
-    >(
-        self,
-        mut uut: DramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
-    ) -> Self::Output {
-        let case = &self.case.binning;
+// Both tops have the same ports: one body, in a macro since the two are
+// distinct types with no trait over their signals.
+macro_rules! run_top {
+    ($visitor:ident, $uut:ident) => {{
+        let (mut uut, this) = ($uut, $visitor);
+        let case = &this.case.binning;
         uut.connect_all();
         let mut memory = AxiMemory::new(case.params, case.bytes.clone());
         reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
@@ -166,7 +165,7 @@ impl DramBroadPhaseVisitor for RustHdlTop<'_> {
         for k in 0..2 {
             uut.list_base[k].next = case.root_lists[k].0.into();
             uut.list_count[k].next = case.root_lists[k].1.into();
-            uut.index_count[k].next = self.case.index_count[k].into();
+            uut.index_count[k].next = this.case.index_count[k].into();
         }
         uut.arena_start.next = case.config.arena.0.into();
         uut.arena_end.next = case.config.arena.1.into();
@@ -206,8 +205,8 @@ impl DramBroadPhaseVisitor for RustHdlTop<'_> {
             memory.edge(&manager);
             clock_cycle(&mut uut, |u| &mut u.clock);
             cycles += 1;
-            if cycles >= self.limit {
-                bail!("the rust-hdl top did not end within {} clocks", self.limit);
+            if cycles >= this.limit {
+                bail!("the rust-hdl top did not end within {} clocks", this.limit);
             }
         }
         run.binned_at = binned.context("done before binned")?;
@@ -222,5 +221,160 @@ impl DramBroadPhaseVisitor for RustHdlTop<'_> {
         run.overflow = uut.overflow.val();
         run.faults = memory.faults().len();
         Ok(run)
+    }};
+}
+
+impl DramBroadPhaseVisitor for RustHdlTop<'_> {
+    type Output = anyhow::Result<TopRun>;
+    fn visit<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        uut: DramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> Self::Output {
+        run_top!(self, uut)
     }
+    fn visit_shared<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        uut: SharedDramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> Self::Output {
+        run_top!(self, uut)
+    }
+}
+
+/// testbenches/tb_dram_broad_phase.sv: the top against `axi_memory.sv`.
+pub const DRAM_BROAD_PHASE_TESTBENCH: &str =
+    include_str!("../../../testbenches/tb_dram_broad_phase.sv");
+
+/// The emitted top in `simulator`, against `axi_memory.sv`, the pairs'
+/// reader always ready: what it printed, as [`run_top_rusthdl`] records it.
+pub fn run_top_simulator(
+    simulator: Simulator,
+    case: &TopCase,
+    limit: u64,
+) -> anyhow::Result<TopRun> {
+    let design = emit_dram_broad_phase(&case.config, MultiplierMapping::Inferred)?;
+    let binning = &case.binning;
+    let mut files = vec![
+        (
+            "tb_dram_broad_phase.sv".to_string(),
+            DRAM_BROAD_PHASE_TESTBENCH.to_string(),
+        ),
+        ("axi_memory.sv".to_string(), AXI_MEMORY.to_string()),
+    ];
+    for f in design.verilog_files() {
+        files.push((f.path.clone(), f.contents.clone()));
+    }
+    let pass = binning.config.pass;
+    let mut parameters = vec![
+        ("GRID_BITS".to_string(), pass.grid_bits.to_string()),
+        ("DATA_BITS".to_string(), pass.data_bits.to_string()),
+    ];
+    // The arena's end bounds every address the top reads or writes.
+    let bytes = binning
+        .config
+        .arena
+        .1
+        .max(binning.bytes.len() as u64)
+        .next_power_of_two()
+        .max(1 << 16);
+    parameters.extend(memory_parameters(&binning.params, bytes));
+    parameters.push(("LIMIT".to_string(), limit.to_string()));
+    let testbench = Testbench {
+        top: "tb_dram_broad_phase".to_string(),
+        files,
+        defines: vec![format!("TRITRI_DUT={}", case.config.unit_name())],
+        parameters,
+        c_optimization: 2,
+        trace: false,
+    };
+    let compiled = compile(simulator, &testbench)?;
+    let work = WorkDir::new("dram-broad-phase")?;
+    let memory_in = work.join("memory.hex");
+    write_memory_hex(&memory_in, &binning.bytes)?;
+    let g = pass.grid_bits;
+    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
+    let mut plusargs = vec![
+        format!("+memory={}", memory_in.display()),
+        format!("+corner_x={}", corner(binning.root.lo[0])),
+        format!("+corner_y={}", corner(binning.root.lo[1])),
+        format!("+corner_z={}", corner(binning.root.lo[2])),
+        format!("+level={}", binning.root.level),
+        format!("+arena_start={}", binning.config.arena.0),
+        format!("+arena_end={}", binning.config.arena.1),
+    ];
+    for k in 0..2 {
+        plusargs.push(format!("+list_base_{k}={}", binning.root_lists[k].0));
+        plusargs.push(format!("+list_count_{k}={}", binning.root_lists[k].1));
+        plusargs.push(format!("+index_count_{k}={}", case.index_count[k]));
+    }
+    let output = compiled.run(&plusargs)?;
+    let text = String::from_utf8_lossy(&output.stdout);
+    let status = parse_status(&text)?;
+    if !status.done {
+        bail!("the emitted top did not end within {limit} clocks");
+    }
+    // The words that are numbers; -1 (a flag never seen) is not one.
+    let numbers = |line: &str| -> anyhow::Result<Vec<u64>> {
+        line.split_whitespace()
+            .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
+            .map(|w| w.parse().with_context(|| format!("{w:?} in {line:?}")))
+            .collect()
+    };
+    let mut run = TopRun::default();
+    for line in text.lines().filter_map(|l| l.strip_prefix("# pair ")) {
+        let v = numbers(line)?;
+        let [_clock, a, b, hit, certain] = v[..] else {
+            bail!("a pair line of {} numbers: {line:?}", v.len());
+        };
+        let pair = (a as u32, b as u32);
+        if hit != 0 {
+            run.pairs.push(pair);
+        }
+        if certain == 0 {
+            run.uncertain.push(pair);
+        }
+    }
+    let line = |prefix: &str| -> anyhow::Result<Vec<u64>> {
+        let l = text
+            .lines()
+            .find_map(|l| l.strip_prefix(prefix))
+            .with_context(|| format!("the testbench printed no {prefix:?}:\n{text}"))?;
+        numbers(l)
+    };
+    run.binned_at = *line("# binned ")?.first().context("done before binned")?;
+    run.tested_at = *line("# tested ")?.first().context("done before tested")?;
+    let [leaves, passes, pairs_tested, hits, overflow] = line("# counts ")?[..] else {
+        bail!("the testbench's counts line is not 5 numbers");
+    };
+    run.cycles = status.cycles;
+    run.leaves = leaves;
+    run.passes = passes;
+    run.pairs_tested = pairs_tested;
+    run.hits = hits;
+    run.stalled = status.stalled;
+    run.error = status.error;
+    run.overflow = overflow != 0;
+    run.faults = status.faults;
+    Ok(run)
 }

@@ -297,7 +297,8 @@ fn a_narrow_phase_that_pushes_back_delays_the_walk_only() {
         let unit = run_rusthdl(&held, 2 * model.cycles + 100).unwrap();
         unit.check_against(&model, &bytes).unwrap();
         if waiting_capacity == 1 {
-            let emitted = run_simulator(Simulator::Verilator, &held, 2 * model.cycles + 100).unwrap();
+            let emitted =
+                run_simulator(Simulator::Verilator, &held, 2 * model.cycles + 100).unwrap();
             emitted.check_against(&model, &bytes).unwrap();
         }
         eprintln!(

@@ -4,8 +4,9 @@
 //! each once.
 
 use std::collections::BTreeSet;
-use tritri_cosim::dram_broad_phase::{exact_on_grid, run_top_rusthdl, top_case};
+use tritri_cosim::dram_broad_phase::{exact_on_grid, run_top_rusthdl, run_top_simulator, top_case};
 use tritri_cosim::scene_query::Accelerator;
+use tritri_cosim::simulator::Simulator;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_rtl::axi::memory_model::MemoryParams;
@@ -60,6 +61,33 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
             run.tested_at,
             run.cycles,
             run.stalled
+        );
+    }
+}
+
+/// The emitted top in Verilator against `axi_memory.sv`, on the same
+/// scene: the rust-hdl run's pairs in the same order, and its clocks.
+#[test]
+fn the_verilated_top_is_the_rust_hdl_top_clock_for_clock() {
+    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
+    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    let mut accelerator = Accelerator::new(24);
+    accelerator.depth = 16;
+    accelerator.pipelines = 1;
+    let prepared = accelerator.prepare(&a, &b).unwrap();
+    let ideal = MemoryParams::ideal(8, 24);
+    for params in [ideal, ideal.with_stalls(20, 7)] {
+        let (case, _) = top_case(&accelerator, &prepared, pass(), params, 1 << 24).unwrap();
+        let rusthdl = run_top_rusthdl(&case, 5_000_000).unwrap();
+        let verilated = run_top_simulator(Simulator::Verilator, &case, 5_000_000).unwrap();
+        assert_eq!(verilated, rusthdl, "stalls {}%", params.stall_percent);
+        eprintln!(
+            "stalls {}%: Verilator = rust-hdl: {} pairs, binned at {}, tested at {}, done at {}",
+            params.stall_percent,
+            rusthdl.pairs.len(),
+            rusthdl.binned_at,
+            rusthdl.tested_at,
+            rusthdl.cycles
         );
     }
 }

@@ -49,6 +49,10 @@ pub enum Design {
     /// The broad phase's binning over such passes, every list in external
     /// memory.
     DramBinning,
+    /// The broad-phase accelerator with its scene in external memory:
+    /// that binning, the leaf reader, the collision system and the owner
+    /// filter on one AXI4 port.
+    DramBroadPhase,
 }
 
 /// An option that shapes a design; each design takes the ones its row
@@ -105,7 +109,7 @@ use DesignOption::*;
 
 /// Every design, once. `--dsp` is taken by the designs with multipliers
 /// (the MULT18X18D mapping applies to them).
-pub const DESIGNS: [Row; 19] = [
+pub const DESIGNS: [Row; 20] = [
     Row {
         design: Design::Pipeline,
         flag: None,
@@ -202,6 +206,11 @@ pub const DESIGNS: [Row; 19] = [
         design: Design::DramBinning,
         flag: Some("--dram-binning"),
         takes: &[Width, DataBits, Pipelines, Depth],
+    },
+    Row {
+        design: Design::DramBroadPhase,
+        flag: Some("--dram-broad-phase"),
+        takes: &[Width, Dsp, RareCases, Pipelines, Depth, Triangles, Slots],
     },
 ];
 

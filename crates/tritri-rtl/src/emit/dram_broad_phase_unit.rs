@@ -2,13 +2,18 @@
 //! ([`crate::octree::dram_broad_phase`]): what it is built for, and the
 //! dispatch from run-time widths to the type's constants.
 
+use super::axi_copy_unit::axi_manager_ports;
+use super::dsp_mapping::MultiplierMapping;
+use super::{emit_with, EmitOptions, EmittedDesign, UnitDescription};
 use crate::octree::binning_unit::on_unit_stack;
 use crate::octree::dram_binning_machine::DramBinningConfig;
 use crate::octree::dram_binning_unit::WAITING_CAPACITY;
-use crate::octree::dram_broad_phase::{DramBroadPhase, DramBroadPhaseBuild};
+use crate::octree::dram_broad_phase::{DramBroadPhase, DramBroadPhaseBuild, SharedDramBroadPhase};
 use crate::octree::owner_chain_filter::CHAIN_SLOT_BITS;
 use crate::octree::value_bits;
+use crate::pipeline::RareCasePath;
 use crate::system::SystemConfig;
+use rust_hdl::prelude::*;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 
 /// (grid bits, system width, port bits) the top is instantiated for: the
@@ -28,13 +33,16 @@ pub struct DramBroadPhaseConfig {
     pub triangles: usize,
     pub slots: usize,
     pub local_frames: bool,
+    /// Where the pipelines decide their rare pairs (`_shared` in the name:
+    /// on one shared unit each, the choice that fits the ECP5-85).
+    pub rare_cases: RareCasePath,
 }
 
 impl DramBroadPhaseConfig {
-    /// `tritri_dram_broad_phase_g<G>_w<W>_d<DW>_p<P>_t<depth>_i<triangles>_s<slots>[_local]`.
+    /// `tritri_dram_broad_phase_g<G>_w<W>_d<DW>_p<P>_t<depth>_i<triangles>_s<slots>[_local][_shared]`.
     pub fn unit_name(&self) -> String {
         format!(
-            "tritri_dram_broad_phase_g{}_w{}_d{}_p{}_t{}_i{}_s{}{}",
+            "tritri_dram_broad_phase_g{}_w{}_d{}_p{}_t{}_i{}_s{}{}{}",
             self.binning.pass.grid_bits,
             self.system.coordinate_bits,
             self.binning.pass.data_bits,
@@ -42,7 +50,11 @@ impl DramBroadPhaseConfig {
             self.system.triangles_per_bank,
             self.triangles,
             self.slots,
-            if self.local_frames { "_local" } else { "" }
+            if self.local_frames { "_local" } else { "" },
+            match self.rare_cases {
+                RareCasePath::Parallel => "",
+                RareCasePath::Shared => "_shared",
+            }
         )
     }
 
@@ -122,6 +134,23 @@ pub trait DramBroadPhaseVisitor {
         self,
         top: DramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
     ) -> Self::Output;
+    /// The same for the top whose pipelines share a rare-case unit.
+    #[allow(clippy::too_many_arguments)]
+    fn visit_shared<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        top: SharedDramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> Self::Output;
 }
 
 /// The top for `config`, handed to `f` on a stack deep enough for it.
@@ -133,30 +162,165 @@ pub fn with_dram_broad_phase<R: Send>(
     const V16: usize = value_bits(16);
     const V24: usize = value_bits(24);
     let (build, system) = (config.build(), config.system);
-    Ok(on_unit_stack(move || match config.binning.pass.grid_bits {
-        24 => f.visit(DramBroadPhase::<
-            24,
-            V24,
-            { 13 * V24 },
-            216,
-            64,
-            8,
-            24,
-            { difference_bits(24) },
-            { cross_bits(24) },
-            { orient3d_bits(24) },
-        >::new(build, system)),
-        _ => f.visit(DramBroadPhase::<
-            16,
-            V16,
-            { 13 * V16 },
-            144,
-            64,
-            8,
-            16,
-            { difference_bits(16) },
-            { cross_bits(16) },
-            { orient3d_bits(16) },
-        >::new(build, system)),
+    // One arm per (grid, kind); the widths are DRAM_BROAD_PHASE_WIDTHS'.
+    macro_rules! top {
+        ($top:ident, $visit:ident, $g:literal, $v:ident) => {
+            f.$visit($top::<
+                $g,
+                $v,
+                { 13 * $v },
+                { 9 * $g },
+                64,
+                8,
+                $g,
+                { difference_bits($g) },
+                { cross_bits($g) },
+                { orient3d_bits($g) },
+            >::new(build, system))
+        };
+    }
+    Ok(on_unit_stack(move || {
+        match (config.binning.pass.grid_bits, config.rare_cases) {
+            (24, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 24, V24),
+            (24, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 24, V24),
+            (_, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 16, V16),
+            (_, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 16, V16),
+        }
     }))
+}
+
+struct Raw;
+
+impl DramBroadPhaseVisitor for Raw {
+    type Output = crate::unit::RawDesign;
+    fn visit<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        mut top: DramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> crate::unit::RawDesign {
+        top.connect_all();
+        crate::unit::RawDesign::of(&top)
+    }
+    fn visit_shared<
+        const G: usize,
+        const V: usize,
+        const N: usize,
+        const T: usize,
+        const DW: usize,
+        const S: usize,
+        const W: usize,
+        const D: usize,
+        const C: usize,
+        const O: usize,
+    >(
+        self,
+        mut top: SharedDramBroadPhase<G, V, N, T, DW, S, W, D, C, O>,
+    ) -> crate::unit::RawDesign {
+        top.connect_all();
+        crate::unit::RawDesign::of(&top)
+    }
+}
+
+/// The description of the top for the emitter.
+pub fn dram_broad_phase(config: &DramBroadPhaseConfig) -> UnitDescription {
+    let (g, w) = (config.binning.pass.grid_bits, config.system.coordinate_bits);
+    let dw = config.binning.pass.data_bits;
+    let mut unit = UnitDescription::new(
+        &config.unit_name(),
+        &format!(
+            "Collision detection with the scene in external memory: the octree broad phase's binning controller \
+             walks the octree in passes over DRAM ({g}-bit grid), each leaf is read back into the collision \
+             system ({w}-bit pipelines, {} per bank), and each intersecting pair comes out once.",
+            config.system.triangles_per_bank
+        ),
+    )
+    .detail(&format!(
+        "One AXI4 manager port of {dw}-bit beats. The host writes each object's root list (32-byte entries: \
+         the triangle's vertices on the grid and its index) into the memory, gives the root cell, the lists' \
+         places and the arena for the children's lists, and pulses start. The read channel is the leaf reader's \
+         while a leaf is held, the controller's otherwise; the writes are the controller's. A leaf with more \
+         triangles of one object than a bank holds is read as tiles, every A tile with every B tile."
+    ))
+    .detail(&format!(
+        "On chip: the controller's frame stack and {} waiting leaves, the system's two banks, the owner filter's \
+         head table of {} indices per object and record tables of {} entries per object.",
+        config.binning.waiting_capacity, config.triangles, config.slots
+    ))
+    .detail(match config.rare_cases {
+        RareCasePath::Parallel => "The pipelines test their rare pairs (coplanar, or two degenerate triangles) on units of their own: no stall.",
+        RareCasePath::Shared => "The pipelines test their rare pairs (coplanar, or two degenerate triangles) on one shared unit each: the system holds while a rare pair waits for it.",
+    })
+    .port("clock", "Clock; every register updates on the rising edge.")
+    .port("reset", "Synchronous reset, active high.")
+    .port("start", "One clock high while idle or done: a run from the inputs below, which are held until done.")
+    .port("corner_x", "The root cell's low corner, x (two's complement grid coordinate).")
+    .port("corner_y", "The root cell's low corner, y.")
+    .port("corner_z", "The root cell's low corner, z.")
+    .port("level", "The root cell's level: its side is 2^level grid steps.")
+    .port("list_base_0", "Byte address of A's root list, aligned to the beat.")
+    .port("list_base_1", "Byte address of B's root list, aligned to the beat.")
+    .port("list_count_0", "Entries of A's root list.")
+    .port("list_count_1", "Entries of B's root list.")
+    .port("index_count_0", "A's triangle indices are below this (the owner filter clears that many heads after start).")
+    .port("index_count_1", "B's triangle indices are below this.")
+    .port("arena_start", "First byte of the arena for the children's lists, aligned to a write burst.")
+    .port("arena_end", "The byte after the arena.")
+    .port("out_valid", "A pair is offered, once per pair: every intersecting pair and every pair whose verdict has no certificate.")
+    .port("out_ready", "The reader takes it.")
+    .port("out_index_a", "The pair's A triangle: the index in its list entry.")
+    .port("out_index_b", "The pair's B triangle.")
+    .port("out_hit", "The pair intersects on the grid (touching counts).")
+    .port("out_certain", "The verdict is provably the verdict before quantization; with 0 the host decides the pair again on its own coordinates.")
+    .port("binned", "The walk is over: every leaf is decided.")
+    .port("tested", "Every leaf is read and tested: the system's last verdict is in.")
+    .port("done", "Every pair is decided and the last one taken.")
+    .port("error", "Sticky: a pass or a leaf read saw a response that was not OKAY.")
+    .port("overflow", "Sticky: the system's bank or the owner filter's tables were too small for this run.")
+    .port("passes", "Cells passed since start.")
+    .port("leaves", "Leaves taken since start.")
+    .port("arena_full", "Cells made leaves since start because their children would not fit the arena.")
+    .port("waiting_commits", "Times since start a leaf found the waiting memory full and every tried split was kept.")
+    .port("pairs_tested", "Triangle pairs the pipelines have tested (32 bits).")
+    .port("hits", "Intersecting pairs the pipelines found, once per tile holding them, before the owner filter (32 bits).");
+    for (name, meaning) in axi_manager_ports() {
+        unit = unit.port(name, meaning);
+    }
+    unit.throughput("per leaf tile of a and b triangles: its a + b entries read at the port's rate, and the system's a + ceil(a / P) * b reads, overlapped with the next tile's")
+}
+
+/// A top that cannot be built, or could not be emitted.
+#[derive(Debug, thiserror::Error)]
+pub enum DramBroadPhaseEmitError {
+    #[error("DRAM broad-phase top: {0}")]
+    Config(String),
+    #[error(transparent)]
+    Emit(#[from] super::EmitError),
+}
+
+/// The emitted top built for `config`, its multipliers mapped as
+/// `multipliers` says.
+pub fn emit_dram_broad_phase(
+    config: &DramBroadPhaseConfig,
+    multipliers: MultiplierMapping,
+) -> Result<EmittedDesign, DramBroadPhaseEmitError> {
+    let raw = with_dram_broad_phase(config, Raw).map_err(DramBroadPhaseEmitError::Config)?;
+    let options = EmitOptions {
+        multipliers,
+        ..EmitOptions::default()
+    };
+    // The passes recurse over the text's expressions, deeper here than a
+    // test thread's stack allows.
+    Ok(on_unit_stack(|| {
+        emit_with(&raw, &dram_broad_phase(config), options)
+    })?)
 }

@@ -388,7 +388,7 @@ impl Walk<'_> {
         let out = run_pass_beside(pass, self.memory, &request, limit, || {
             beside.clock(&quiet, None)
         })
-            .ok_or_else(|| format!("the pass of cell {cell:?} did not finish in {limit} clocks"))?;
+        .ok_or_else(|| format!("the pass of cell {cell:?} did not finish in {limit} clocks"))?;
         if out.error {
             return Err(format!("the pass of cell {cell:?} raised its error"));
         }
