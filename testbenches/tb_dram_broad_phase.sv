@@ -22,7 +22,8 @@
 // a pair taken in clock C (out_ready is always high), its indices, out_hit
 // and out_certain; "# binned N" and "# tested N": the first clock from 1
 // with that output high; "# cycles N ...": done is first high in clock N;
-// "# counts ...": the top's counters at done.
+// "# counts ...": the top's counters at done; "# memory ...": the beats
+// the memory read and wrote.
 
 `timescale 1ns / 1ps
 `default_nettype none
@@ -157,6 +158,8 @@ module tb_dram_broad_phase #(
                  memory.stalled, memory.faults, error, done);
         $display("# counts leaves %0d passes %0d pairs_tested %0d hits %0d overflow %0d",
                  leaves, passes, pairs_tested, hits, overflow);
+        $display("# memory beats_read %0d beats_written %0d", memory.beats_read,
+                 memory.beats_written);
         $finish;
     end
 endmodule

@@ -2,15 +2,16 @@
 //! ([`tritri_rtl::octree::dram_broad_phase`]) on a prepared scene: the
 //! host's root lists in the memory model, the top run in rust-hdl until
 //! `done`, each pair it streams recorded; and the exact answer on the grid
-//! it is held to, every pair of A's and B's kept triangles decided by the
-//! certified predicate.
+//! it is held to: every intersecting pair of A's and B's kept triangles,
+//! and every pair its leaves hold whose verdict has no certificate.
 
 use crate::dram_binning::{dram_case, run_model, DramCase};
 use crate::scene_query::Accelerator;
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use std::collections::BTreeSet;
-use tritri_geom::certificate::certified_intersects;
+use tritri_geom::certificate::certain;
+use tritri_geom::fixed_point::intersects;
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
@@ -18,9 +19,9 @@ use tritri_rtl::emit::dram_broad_phase_unit::{
     emit_dram_broad_phase, with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
 use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
+use tritri_rtl::octree::list_entry::unpack;
 use tritri_rtl::octree::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
-use tritri_rtl::pipeline::RareCasePath;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 use crate::axi_copy::AXI_MEMORY;
@@ -71,7 +72,7 @@ pub fn top_case(
         triangles: index_count.into_iter().max().unwrap_or(1).max(1) as usize,
         slots: slots.into_iter().max().unwrap_or(1).max(1),
         local_frames: accelerator.local_frames().is_some(),
-        rare_cases: RareCasePath::Parallel,
+        rare_cases: accelerator.rare_cases,
     };
     Ok((
         TopCase {
@@ -84,8 +85,9 @@ pub fn top_case(
 }
 
 /// The exact answer on the grid: every (A, B) pair of kept triangles that
-/// intersects, and every pair without a certificate, each sorted.
-pub fn exact_on_grid(scene: &PreparedScene) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+/// intersects, sorted. (Two triangles that meet share a leaf, so the top
+/// must stream each of these.)
+pub fn exact_on_grid(scene: &PreparedScene) -> Vec<(u32, u32)> {
     let boxes = |list: &[TaggedTriangle]| -> Vec<([i64; 3], [i64; 3])> {
         list.iter()
             .map(|t| {
@@ -97,23 +99,45 @@ pub fn exact_on_grid(scene: &PreparedScene) -> (Vec<(u32, u32)>, Vec<(u32, u32)>
             .collect()
     };
     let (box_a, box_b) = (boxes(&scene.kept_a), boxes(&scene.kept_b));
-    let (mut pairs, mut uncertain) = (BTreeSet::new(), BTreeSet::new());
+    let mut pairs = BTreeSet::new();
     for (ta, ba) in scene.kept_a.iter().zip(&box_a) {
         for (tb, bb) in scene.kept_b.iter().zip(&box_b) {
-            // Boxes apart: the certified predicate says no, certainly.
+            // Boxes apart on the grid: no intersection on the grid.
             if (0..3).any(|k| ba.1[k] < bb.0[k] || bb.1[k] < ba.0[k]) {
                 continue;
             }
-            let verdict = certified_intersects(&ta.triangle, &tb.triangle);
-            if verdict.hit {
+            if intersects(&ta.triangle, &tb.triangle) {
                 pairs.insert((ta.id, tb.id));
-            }
-            if !verdict.certain {
-                uncertain.insert((ta.id, tb.id));
             }
         }
     }
-    (pairs.into_iter().collect(), uncertain.into_iter().collect())
+    pairs.into_iter().collect()
+}
+
+/// The pairs without a certificate that the top must stream: every (A, B)
+/// pair that shares a leaf of the controller's walk (the model's, on the
+/// case's memory) whose verdict the certified predicate cannot certify,
+/// sorted. This depends on the leaves: two triangles a step apart on the
+/// grid may be uncertain (their originals may touch) and be tested only
+/// where they share a leaf.
+pub fn uncertain_in_leaves(case: &TopCase) -> anyhow::Result<Vec<(u32, u32)>> {
+    let (walk, _) = run_model(&case.binning)?;
+    let g = case.binning.config.pass.grid_bits;
+    let mut uncertain = BTreeSet::new();
+    for leaf in &walk.leaves {
+        let [a, b] = leaf
+            .entries
+            .each_ref()
+            .map(|list| list.iter().map(|e| unpack(e, g)).collect::<Vec<_>>());
+        for (ia, ta) in &a {
+            for (ib, tb) in &b {
+                if !certain(ta, tb) {
+                    uncertain.insert((*ia, *ib));
+                }
+            }
+        }
+    }
+    Ok(uncertain.into_iter().collect())
 }
 
 /// What a run of the top gave.
@@ -133,6 +157,10 @@ pub struct TopRun {
     pub pairs_tested: u64,
     pub hits: u64,
     pub stalled: u64,
+    /// Beats the memory read and wrote over the run (the port's width
+    /// each): the DRAM traffic.
+    pub beats_read: u64,
+    pub beats_written: u64,
     pub error: bool,
     pub overflow: bool,
     pub faults: usize,
@@ -217,6 +245,8 @@ macro_rules! run_top {
         run.pairs_tested = uut.pairs_tested.val().to_u64();
         run.hits = uut.hits.val().to_u64();
         run.stalled = memory.stalled;
+        run.beats_read = memory.beats_read;
+        run.beats_written = memory.beats_written;
         run.error = uut.error.val();
         run.overflow = uut.overflow.val();
         run.faults = memory.faults().len();
@@ -373,6 +403,11 @@ pub fn run_top_simulator(
     run.pairs_tested = pairs_tested;
     run.hits = hits;
     run.stalled = status.stalled;
+    let [beats_read, beats_written] = line("# memory ")?[..] else {
+        bail!("the testbench's memory line is not 2 numbers");
+    };
+    run.beats_read = beats_read;
+    run.beats_written = beats_written;
     run.error = status.error;
     run.overflow = overflow != 0;
     run.faults = status.faults;

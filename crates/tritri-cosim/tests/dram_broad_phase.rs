@@ -4,7 +4,9 @@
 //! each once.
 
 use std::collections::BTreeSet;
-use tritri_cosim::dram_broad_phase::{exact_on_grid, run_top_rusthdl, run_top_simulator, top_case};
+use tritri_cosim::dram_broad_phase::{
+    exact_on_grid, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves,
+};
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::builtin_scene::{sphere, torus};
@@ -40,11 +42,12 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
     accelerator.depth = 16;
     accelerator.pipelines = 1;
     let prepared = accelerator.prepare(&a, &b).unwrap();
-    let (pairs, uncertain) = exact_on_grid(&prepared);
+    let pairs = exact_on_grid(&prepared);
     assert!(pairs.len() > 20, "{} pairs", pairs.len());
     let ideal = MemoryParams::ideal(8, 24);
     for params in [ideal, ideal.with_stalls(20, 7)] {
         let (case, _) = top_case(&accelerator, &prepared, pass(), params, 1 << 24).unwrap();
+        let uncertain = uncertain_in_leaves(&case).unwrap();
         let run = run_top_rusthdl(&case, 5_000_000).unwrap();
         assert!(!run.error && !run.overflow && run.faults == 0, "{run:?}");
         once_and_exact(&run.pairs, &pairs, "intersecting");

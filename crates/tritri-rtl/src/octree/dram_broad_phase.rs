@@ -92,7 +92,7 @@ pub struct DramBroadPhaseBuild {
 /// The top around a system of type `$system` (whose pipelines decide the
 /// rare cases in parallel or on a shared unit), written once for both.
 macro_rules! dram_broad_phase {
-    ($(#[$meta:meta])* pub struct $name:ident { system: $system:ident }) => {
+    ($(#[$meta:meta])* pub struct $name:ident { system: $system:ident $(,)? }) => {
         $(#[$meta])*
         #[derive(LogicBlock)]
         pub struct $name<

@@ -1,0 +1,168 @@
+//! The broad-phase accelerator with its scene in DRAM on a scene of your
+//! own: the design `tritri gen --dram-broad-phase --width 16 --pipelines 1
+//! --rare-cases shared --triangles 8192 --slots 8192` writes (the one
+//! routed on the ECP5-85, rtl-out/README.md), emitted and run in Verilator
+//! against the AXI4 memory model `axi_memory.sv`, with an ideal memory and
+//! with one that stalls 20 % of clocks.
+//!
+//! ```sh
+//! cargo run --release --example dram_broad_phase [-- A B [SCALE_B TX TY TZ]]
+//! TRITRI_RUSTHDL=1 cargo run --release --example dram_broad_phase   # rust-hdl too
+//! ```
+//!
+//! A and B are as `examples/dram_binning.rs` takes them (default: the
+//! built-in torus and sphere). The host's part is what the top expects:
+//! the common box quantized onto the 16-bit grid, each object's kept
+//! triangles written as a root list into the memory. The example fails
+//! unless the pairs the top streams are the exact answer on the grid
+//! (every kept pair that intersects, and every pair its leaves hold whose
+//! verdict has no certificate), each once, with both memories; with TRITRI_RUSTHDL=1, unless rust-hdl's run equals
+//! Verilator's clock for clock. Every figure is in clocks of the port;
+//! the memory's bandwidth is given in bytes per clock.
+
+use anyhow::Context as _;
+use std::collections::BTreeSet;
+use tritri_cosim::dram_binning::{dram_case, run_model};
+use tritri_cosim::dram_broad_phase::{
+    exact_on_grid, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves, TopCase,
+};
+use tritri_cosim::scene_query::Accelerator;
+use tritri_cosim::simulator::Simulator;
+use tritri_geom::scene::load::{load_object, Pose};
+use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::pipeline::RareCasePath;
+
+/// The owner filter's tables of the routed design.
+const TABLE: usize = 8192;
+
+/// An error unless `got` holds each pair once and is `want` as a set.
+fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) -> anyhow::Result<()> {
+    let set: BTreeSet<_> = got.iter().copied().collect();
+    anyhow::ensure!(set.len() == got.len(), "{what}: a pair came out twice");
+    let want: BTreeSet<_> = want.iter().copied().collect();
+    anyhow::ensure!(
+        set == want,
+        "{what}: {} pairs, the exact answer on the grid has {} ({} missing, {} extra)",
+        set.len(),
+        want.len(),
+        want.difference(&set).count(),
+        set.difference(&want).count()
+    );
+    Ok(())
+}
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let number = |s: &str| -> anyhow::Result<f64> {
+        s.parse().with_context(|| format!("{s:?} is not a number"))
+    };
+    let (a, b, scale, pose) = match args.as_slice() {
+        [] => ("@torus", "@sphere", 1.0, [0.0; 3]),
+        [a, b] => (a.as_str(), b.as_str(), 1.0, [0.0; 3]),
+        [a, b, s, x, y, z] => (
+            a.as_str(),
+            b.as_str(),
+            number(s)?,
+            [number(x)?, number(y)?, number(z)?],
+        ),
+        _ => anyhow::bail!("usage: dram_broad_phase [A B [SCALE_B TX TY TZ]]"),
+    };
+    let with_rusthdl = std::env::var_os("TRITRI_RUSTHDL").is_some_and(|v| v == "1");
+    let a = load_object(a, 8)?;
+    let b = load_object(b, 8)?
+        .scaled(scale)
+        .posed(&Pose::translation(pose));
+
+    let mut accelerator = Accelerator::new(16);
+    accelerator.pipelines = 1;
+    accelerator.rare_cases = RareCasePath::Shared;
+    let scene = accelerator.prepare(&a, &b)?;
+    let pairs = exact_on_grid(&scene);
+    println!(
+        "{} x {} triangles, {} + {} in the common box on a 16-bit grid; the exact answer on the grid: {} pairs",
+        a.triangles.len(),
+        b.triangles.len(),
+        scene.kept_a.len(),
+        scene.kept_b.len(),
+        pairs.len(),
+    );
+    let pass = ListPassConfig {
+        grid_bits: 16,
+        data_bits: 64,
+        max_read_burst: 16,
+        outstanding: 4,
+    };
+    let ideal = MemoryParams::ideal(8, 24);
+    println!();
+    println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    for (name, params) in [
+        ("ideal: 16 B a clock, latency 24", ideal),
+        ("the same, 20 % of clocks stalled (seed 7)", ideal.with_stalls(20, 7)),
+    ] {
+        let case = routed_case(&accelerator, &scene, pass, params)?;
+        let uncertain = uncertain_in_leaves(&case)?;
+        let started = std::time::Instant::now();
+        let verilator = run_top_simulator(Simulator::Verilator, &case, 100_000_000)?;
+        let verilator_time = started.elapsed();
+        anyhow::ensure!(
+            !verilator.error && !verilator.overflow && verilator.faults == 0,
+            "{name}: error {}, overflow {}, {} faults",
+            verilator.error,
+            verilator.overflow,
+            verilator.faults
+        );
+        once_and_exact(&verilator.pairs, &pairs, "intersecting")?;
+        once_and_exact(&verilator.uncertain, &uncertain, "without a certificate")?;
+        let same = if with_rusthdl {
+            let rusthdl = run_top_rusthdl(&case, 100_000_000)?;
+            anyhow::ensure!(rusthdl == verilator, "{name}: rust-hdl's run is not Verilator's");
+            "yes"
+        } else {
+            "(TRITRI_RUSTHDL=1)"
+        };
+        let (read, written) = (verilator.beats_read * 8, verilator.beats_written * 8);
+        println!(
+            "| {name} | yes | {} | {} | {} | {} | {} | {} | {} | {} KiB | {} KiB | {:.2} | {:.1} s | {same} |",
+            verilator.uncertain.len(),
+            verilator.leaves,
+            verilator.passes,
+            verilator.binned_at,
+            verilator.tested_at,
+            verilator.cycles,
+            verilator.stalled,
+            read / 1024,
+            written / 1024,
+            (read + written) as f64 / verilator.cycles as f64,
+            verilator_time.as_secs_f64()
+        );
+    }
+    Ok(())
+}
+
+/// The top of the routed design on `scene`: the arena cut to what the
+/// controller's walk takes (so that the Verilog memory stays small), the
+/// owner filter's tables of [`TABLE`] words.
+fn routed_case(
+    accelerator: &Accelerator,
+    scene: &tritri_geom::scene::PreparedScene,
+    pass: ListPassConfig,
+    params: MemoryParams,
+) -> anyhow::Result<TopCase> {
+    let (wide, _) = dram_case(accelerator, scene, pass, params, 256 << 20)?;
+    let (walk, _) = run_model(&wide)?;
+    let (mut case, _) = top_case(accelerator, scene, pass, params, walk.peak_arena.max(1))?;
+    for (what, need) in [
+        ("triangle indices", case.config.triangles),
+        ("entries streamed per object", case.config.slots),
+    ] {
+        anyhow::ensure!(
+            need <= TABLE,
+            "the scene needs {need} {what}; the routed design's owner filter holds {TABLE}"
+        );
+    }
+    case.config.triangles = TABLE;
+    case.config.slots = TABLE;
+    Ok(case)
+}
