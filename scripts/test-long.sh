@@ -10,3 +10,13 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export TRITRI_LONG=1 TRITRI_HARD_CASES=1 TRITRI_PAIRS=100000
 cargo test --release --workspace --test rusthdl_pipeline --test shared_rare_cases --test emit_pipeline -- --nocapture
+
+# The broad-phase accelerator with its scene in DRAM (the routed design),
+# in Verilator against the memory model, on two of CGAL's meshes in
+# contact: the pairs must be the exact answer on the grid, each once, with
+# an ideal memory and one that stalls (examples/dram_broad_phase.rs).
+# About 3 minutes.
+bash scripts/fetch-meshes.sh
+cargo build --release --workspace --examples
+target/release/examples/dram_broad_phase build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0
+target/release/examples/dram_broad_phase build/meshes/armadillo.off build/meshes/camel.off 127 55 0 0

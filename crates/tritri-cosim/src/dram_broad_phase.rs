@@ -19,7 +19,7 @@ use tritri_rtl::emit::dram_broad_phase_unit::{
     emit_dram_broad_phase, with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
 use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
-use tritri_rtl::octree::list_entry::unpack;
+use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
 use tritri_rtl::octree::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
@@ -40,6 +40,44 @@ pub struct TopCase {
     pub config: DramBroadPhaseConfig,
     /// Each object's triangle indices are below this.
     pub index_count: [u64; 2],
+    /// The host numbers each root list's entries 0, 1, ... (so that the
+    /// owner filter's head table holds the triangles in the common box, not
+    /// the whole mesh): entry `i` of object `k` is triangle `ids[k][i]`.
+    pub ids: [Vec<u32>; 2],
+}
+
+impl TopCase {
+    /// The pairs of `run` as the meshes number their triangles; an error
+    /// names an index the host never wrote.
+    fn to_originals(&self, run: &mut TopRun) -> anyhow::Result<()> {
+        let original = |&(a, b): &(u32, u32)| -> anyhow::Result<(u32, u32)> {
+            match (self.ids[0].get(a as usize), self.ids[1].get(b as usize)) {
+                (Some(&a), Some(&b)) => Ok((a, b)),
+                _ => bail!("the top streamed the pair ({a}, {b}); the lists hold {} and {} entries", self.ids[0].len(), self.ids[1].len()),
+            }
+        };
+        run.pairs = run.pairs.iter().map(original).collect::<Result<_, _>>()?;
+        run.uncertain = run.uncertain.iter().map(original).collect::<Result<_, _>>()?;
+        Ok(())
+    }
+}
+
+/// Numbers the entries of each root list in `case`'s memory by their place
+/// in the list; gives the triangles' own numbers, list by list.
+fn number_root_entries(case: &mut DramCase) -> [Vec<u32>; 2] {
+    let g = case.config.pass.grid_bits;
+    std::array::from_fn(|k| {
+        let (at, count) = case.root_lists[k];
+        (0..count as usize)
+            .map(|i| {
+                let from = at as usize + i * ENTRY_BYTES;
+                let entry = &mut case.bytes[from..from + ENTRY_BYTES];
+                let (id, triangle) = unpack(entry, g);
+                entry.copy_from_slice(&pack(i as u32, &triangle, g));
+                id
+            })
+            .collect()
+    })
 }
 
 /// The case of `scene` (prepared for `accelerator`): the controller's
@@ -53,7 +91,8 @@ pub fn top_case(
     params: MemoryParams,
     arena_bytes: u64,
 ) -> anyhow::Result<(TopCase, OctreeSchedule)> {
-    let (binning, schedule) = dram_case(accelerator, scene, pass, params, arena_bytes)?;
+    let (mut binning, schedule) = dram_case(accelerator, scene, pass, params, arena_bytes)?;
+    let ids = number_root_entries(&mut binning);
     let system = accelerator.system_config();
     let (model, _) = run_model(&binning)?;
     let slots = slots_of_leaves(
@@ -63,9 +102,7 @@ pub fn top_case(
             .iter()
             .map(|l| l.lists.map(|(_, n)| n as usize)),
     );
-    let bound =
-        |list: &[TaggedTriangle]| list.iter().map(|t| u64::from(t.id) + 1).max().unwrap_or(0);
-    let index_count = [bound(&scene.kept_a), bound(&scene.kept_b)];
+    let index_count = binning.root_lists.map(|(_, count)| count);
     let config = DramBroadPhaseConfig {
         binning: binning.config,
         system,
@@ -79,6 +116,7 @@ pub fn top_case(
             binning,
             config,
             index_count,
+            ids,
         },
         schedule,
     ))
@@ -132,7 +170,7 @@ pub fn uncertain_in_leaves(case: &TopCase) -> anyhow::Result<Vec<(u32, u32)>> {
         for (ia, ta) in &a {
             for (ib, tb) in &b {
                 if !certain(ta, tb) {
-                    uncertain.insert((*ia, *ib));
+                    uncertain.insert((case.ids[0][*ia as usize], case.ids[1][*ib as usize]));
                 }
             }
         }
@@ -250,6 +288,7 @@ macro_rules! run_top {
         run.error = uut.error.val();
         run.overflow = uut.overflow.val();
         run.faults = memory.faults().len();
+        this.case.to_originals(&mut run)?;
         Ok(run)
     }};
 }
@@ -411,5 +450,6 @@ pub fn run_top_simulator(
     run.error = status.error;
     run.overflow = overflow != 0;
     run.faults = status.faults;
+    case.to_originals(&mut run)?;
     Ok(run)
 }
