@@ -8,7 +8,16 @@
 //! ```sh
 //! cargo run --release --example dram_broad_phase [-- A B [SCALE_B TX TY TZ]]
 //! TRITRI_RUSTHDL=1 cargo run --release --example dram_broad_phase   # rust-hdl too
+//! cargo run --release --example dram_broad_phase -- --write-case DIR [A B ...]
 //! ```
+//!
+//! `--write-case DIR` writes the ideal memory's case for another testbench
+//! instead (examples/dram-broad-phase, cocotb against cocotbext-axi's
+//! AxiRam): the emitted top in `DIR/rtl`, the memory as the host leaves it
+//! in `DIR/memory.bin`, and in `DIR/case.txt` the top's inputs (a name and
+//! a number a line), each list's triangle numbers (`ids_0`, `ids_1`), and
+//! the pairs the top must stream (`pair A B`, `uncertain A B`, as the
+//! meshes number their triangles) with the clock of `done` in Verilator.
 //!
 //! A and B are as `examples/dram_binning.rs` takes them (default: the
 //! built-in torus and sphere). The host's part is what the top expects:
@@ -30,6 +39,8 @@ use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::scene::load::{load_object, Pose};
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::emit::dram_broad_phase_unit::emit_dram_broad_phase;
+use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::RareCasePath;
 
@@ -53,7 +64,16 @@ fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) -> anyhow
 }
 
 fn main() -> anyhow::Result<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let write_case = match args.iter().position(|a| a == "--write-case") {
+        Some(i) if i + 1 < args.len() => {
+            let dir = std::path::PathBuf::from(args.remove(i + 1));
+            args.remove(i);
+            Some(dir)
+        }
+        Some(_) => anyhow::bail!("--write-case takes a directory"),
+        None => None,
+    };
     let number = |s: &str| -> anyhow::Result<f64> {
         s.parse().with_context(|| format!("{s:?} is not a number"))
     };
@@ -94,6 +114,10 @@ fn main() -> anyhow::Result<()> {
         outstanding: 4,
     };
     let ideal = MemoryParams::ideal(8, 24);
+    if let Some(dir) = write_case {
+        let case = routed_case(&accelerator, &scene, pass, ideal)?;
+        return write_case_files(&dir, &case);
+    }
     println!();
     println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
@@ -165,4 +189,63 @@ fn routed_case(
     case.config.triangles = TABLE;
     case.config.slots = TABLE;
     Ok(case)
+}
+
+/// The files of `--write-case` in `dir`.
+fn write_case_files(dir: &std::path::Path, case: &TopCase) -> anyhow::Result<()> {
+    use std::fmt::Write as _;
+    let design = emit_dram_broad_phase(&case.config, MultiplierMapping::Inferred)?;
+    design
+        .write_to(&dir.join("rtl"))
+        .with_context(|| format!("writing {}", dir.join("rtl").display()))?;
+    let run = run_top_simulator(Simulator::Verilator, case, 100_000_000)?;
+    let uncertain = uncertain_in_leaves(case)?;
+    once_and_exact(&run.uncertain, &uncertain, "without a certificate")?;
+    let binning = &case.binning;
+    let g = binning.config.pass.grid_bits;
+    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
+    let mut text = String::new();
+    writeln!(text, "unit {}", case.config.unit_name())?;
+    for (name, value) in [
+        ("corner_x", corner(binning.root.lo[0])),
+        ("corner_y", corner(binning.root.lo[1])),
+        ("corner_z", corner(binning.root.lo[2])),
+        ("level", u64::from(binning.root.level)),
+        ("list_base_0", binning.root_lists[0].0),
+        ("list_count_0", binning.root_lists[0].1),
+        ("list_base_1", binning.root_lists[1].0),
+        ("list_count_1", binning.root_lists[1].1),
+        ("index_count_0", case.index_count[0]),
+        ("index_count_1", case.index_count[1]),
+        ("arena_start", binning.config.arena.0),
+        ("arena_end", binning.config.arena.1),
+        ("done_at", run.cycles),
+    ] {
+        writeln!(text, "{name} {value}")?;
+    }
+    for (k, ids) in case.ids.iter().enumerate() {
+        let ids: Vec<String> = ids.iter().map(u32::to_string).collect();
+        writeln!(text, "ids_{k} {}", ids.join(" "))?;
+    }
+    for (a, b) in &run.pairs {
+        writeln!(text, "pair {a} {b}")?;
+    }
+    for (a, b) in &run.uncertain {
+        writeln!(text, "uncertain {a} {b}")?;
+    }
+    std::fs::write(dir.join("case.txt"), text)
+        .with_context(|| format!("writing {}", dir.join("case.txt").display()))?;
+    // The arena starts empty: the memory up to it is what the host writes.
+    let host = &binning.bytes[..binning.config.arena.0 as usize];
+    std::fs::write(dir.join("memory.bin"), host)
+        .with_context(|| format!("writing {}", dir.join("memory.bin").display()))?;
+    println!(
+        "wrote {} in {}: {} pairs, {} without a certificate, done at clock {} in Verilator",
+        case.config.unit_name(),
+        dir.display(),
+        run.pairs.len(),
+        run.uncertain.len(),
+        run.cycles
+    );
+    Ok(())
 }

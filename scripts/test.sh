@@ -27,5 +27,7 @@ echo "example: cocotb"
 bash examples/cocotb/run.sh
 echo "example: axi-copy (cocotb, cocotbext-axi's AxiRam)"
 bash examples/axi-copy/run.sh
+echo "example: dram-broad-phase (cocotb, the accelerator against cocotbext-axi's AxiRam)"
+bash examples/dram-broad-phase/run.sh
 echo "example: scenes"
 bash examples/scenes/check.sh
