@@ -34,13 +34,17 @@ use std::collections::BTreeSet;
 use tritri_cosim::dram_binning::{dram_case, run_model};
 use tritri_cosim::dram_broad_phase::{
     exact_on_grid, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves, TopCase,
+    TopRun,
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
-use tritri_geom::scene::load::{load_object, Pose};
+use tritri_geom::certificate::decide_again;
+use tritri_geom::scene::load::{load_object, Pose, SceneObject};
+use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::emit::dram_broad_phase_unit::emit_dram_broad_phase;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
+use tritri_rtl::measured::Measurements;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::RareCasePath;
 
@@ -121,6 +125,7 @@ fn main() -> anyhow::Result<()> {
     println!();
     println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    let mut ideal_run = None;
     for (name, params) in [
         ("ideal: 16 B a clock, latency 24", ideal),
         ("the same, 20 % of clocks stalled (seed 7)", ideal.with_stalls(20, 7)),
@@ -161,6 +166,85 @@ fn main() -> anyhow::Result<()> {
             (read + written) as f64 / verilator.cycles as f64,
             verilator_time.as_secs_f64()
         );
+        ideal_run.get_or_insert((verilator, case));
+    }
+    let (run, case) = ideal_run.expect("the ideal memory ran");
+    exact_answer_and_speed(&a, &b, &run, &case, &ideal)
+}
+
+/// The route's end on the host and the speed against software: the
+/// certain hits with the uncertain pairs decided again on the f64 meshes
+/// must be the software's exact answer; then the clocks against the
+/// memory's bound and, at the routed clock, the time against software.
+fn exact_answer_and_speed(
+    a: &SceneObject,
+    b: &SceneObject,
+    run: &TopRun,
+    case: &TopCase,
+    memory: &MemoryParams,
+) -> anyhow::Result<()> {
+    let started = std::time::Instant::now();
+    let software = exact_f64_pairs(&a.triangles, &b.triangles);
+    let software_time = started.elapsed();
+    let started = std::time::Instant::now();
+    let uncertain: BTreeSet<_> = run.uncertain.iter().copied().collect();
+    let mut answer: BTreeSet<(u32, u32)> = run
+        .pairs
+        .iter()
+        .copied()
+        .filter(|p| !uncertain.contains(p))
+        .collect();
+    answer.extend(uncertain.iter().copied().filter(|&(i, j)| {
+        decide_again(&a.triangles[i as usize], &b.triangles[j as usize])
+    }));
+    let host_time = started.elapsed();
+    anyhow::ensure!(
+        answer == software.pairs,
+        "the exact answer: {} pairs, the software's {} ({} missing, {} extra)",
+        answer.len(),
+        software.pairs.len(),
+        software.pairs.difference(&answer).count(),
+        answer.difference(&software.pairs).count()
+    );
+    println!();
+    println!(
+        "exact answer on the f64 meshes: {} pairs, equal to the software's (box sweep + exact predicates, one thread: {:.2} ms); the host decided {} pairs again in {:.1} us",
+        answer.len(),
+        software_time.as_secs_f64() * 1e3,
+        uncertain.len(),
+        host_time.as_secs_f64() * 1e6
+    );
+    // The port moves a beat a clock each way; the memory `bytes_per_clock`
+    // in all.
+    let beat = memory.beat_bytes as f64;
+    let (read, written) = ((run.beats_read as f64) * beat, (run.beats_written as f64) * beat);
+    let (num, den) = memory.bytes_per_clock;
+    let bound = (read / beat)
+        .max(written / beat)
+        .max((read + written) * den as f64 / num as f64);
+    println!(
+        "memory: {:.0} KiB read, {:.0} KiB written; the port's bound {:.0} clocks; the top {} clocks, {:.2} x the bound",
+        read / 1024.0,
+        written / 1024.0,
+        bound,
+        run.cycles,
+        run.cycles as f64 / bound
+    );
+    let unit = case.config.unit_name();
+    match Measurements::committed().ecp5(&unit) {
+        Some(row) => {
+            let seconds = run.cycles as f64 / (row.fmax_mhz * 1e6);
+            // The ideal memory's bytes a clock at the routed clock.
+            let gbytes = num as f64 / den as f64 * row.fmax_mhz * 1e6 / 1e9;
+            println!(
+                "at the post-route clock on the ECP5-85, {:.1} MHz (rtl-out/measurements.json), with a memory of {:.2} GB/s: {:.3} ms, {:.1} x the software",
+                row.fmax_mhz,
+                gbytes,
+                seconds * 1e3,
+                software_time.as_secs_f64() / seconds
+            );
+        }
+        None => println!("{unit} has no post-route clock in rtl-out/measurements.json"),
     }
     Ok(())
 }

@@ -567,6 +567,14 @@ fn options_a_design_does_not_take_are_refused_by_name() {
             "--depth 100: the binning unit's split rule takes a power of two",
         ),
         (
+            &["--dram-broad-phase", "--data-bits", "128"][..],
+            "--data-bits does not apply to --dram-broad-phase (it takes --width, --dsp, --rare-cases, --pipelines, --depth, --triangles, --slots)",
+        ),
+        (
+            &["--dram-broad-phase", "--width", "8"][..],
+            "--dram-broad-phase --width 8: ",
+        ),
+        (
             &["--for-scene", "@torus", "@sphere", "--cone-unit"][..],
             "--for-scene sizes the system itself; --cone-unit does not go with it",
         ),
@@ -887,5 +895,51 @@ fn dram_binning_is_emitted_for_its_grid_port_and_system() {
         out.join(format!("{top}_list_pass.v")).is_file(),
         "no pass unit inside"
     );
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// `--dram-broad-phase` writes the accelerator with its scene in DRAM for
+/// the grid, system and tables asked, named by all of them, with the
+/// controller, the leaf reader, the system and the owner filter inside.
+#[test]
+fn dram_broad_phase_is_emitted_for_its_system_and_tables() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-dram-broad-phase-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let status = tritri()
+        .args([
+            "gen",
+            "--dram-broad-phase",
+            "--width",
+            "16",
+            "--pipelines",
+            "1",
+            "--rare-cases",
+            "shared",
+            "--triangles",
+            "4096",
+            "--slots",
+            "2048",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let top = "tritri_dram_broad_phase_g16_w16_d64_p1_t256_i4096_s2048_shared";
+    let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
+    assert!(verilog.contains(&format!("module {top}")), "no module {top}");
+    assert!(verilog.contains("m_axi_rdata") && verilog.contains("out_index_a"));
+    for unit in [
+        "dram_binning_unit",
+        "leaf_reader",
+        "leaf_batcher",
+        "shared_collision_system",
+        "owner_chain_filter",
+    ] {
+        assert!(
+            out.join(format!("{top}_{unit}.v")).is_file(),
+            "no {unit} inside"
+        );
+    }
     let _ = std::fs::remove_dir_all(&out);
 }
