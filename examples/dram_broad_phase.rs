@@ -128,7 +128,10 @@ fn main() -> anyhow::Result<()> {
     let mut ideal_run = None;
     for (name, params) in [
         ("ideal: 16 B a clock, latency 24", ideal),
-        ("the same, 20 % of clocks stalled (seed 7)", ideal.with_stalls(20, 7)),
+        (
+            "the same, 20 % of clocks stalled (seed 7)",
+            ideal.with_stalls(20, 7),
+        ),
     ] {
         let case = routed_case(&accelerator, &scene, pass, params)?;
         let uncertain = uncertain_in_leaves(&case)?;
@@ -146,7 +149,10 @@ fn main() -> anyhow::Result<()> {
         once_and_exact(&verilator.uncertain, &uncertain, "without a certificate")?;
         let same = if with_rusthdl {
             let rusthdl = run_top_rusthdl(&case, 100_000_000)?;
-            anyhow::ensure!(rusthdl == verilator, "{name}: rust-hdl's run is not Verilator's");
+            anyhow::ensure!(
+                rusthdl == verilator,
+                "{name}: rust-hdl's run is not Verilator's"
+            );
             "yes"
         } else {
             "(TRITRI_RUSTHDL=1)"
@@ -194,9 +200,12 @@ fn exact_answer_and_speed(
         .copied()
         .filter(|p| !uncertain.contains(p))
         .collect();
-    answer.extend(uncertain.iter().copied().filter(|&(i, j)| {
-        decide_again(&a.triangles[i as usize], &b.triangles[j as usize])
-    }));
+    answer.extend(
+        uncertain
+            .iter()
+            .copied()
+            .filter(|&(i, j)| decide_again(&a.triangles[i as usize], &b.triangles[j as usize])),
+    );
     let host_time = started.elapsed();
     anyhow::ensure!(
         answer == software.pairs,
@@ -217,7 +226,10 @@ fn exact_answer_and_speed(
     // The port moves a beat a clock each way; the memory `bytes_per_clock`
     // in all.
     let beat = memory.beat_bytes as f64;
-    let (read, written) = ((run.beats_read as f64) * beat, (run.beats_written as f64) * beat);
+    let (read, written) = (
+        (run.beats_read as f64) * beat,
+        (run.beats_written as f64) * beat,
+    );
     let (num, den) = memory.bytes_per_clock;
     let bound = (read / beat)
         .max(written / beat)

@@ -903,7 +903,10 @@ fn dram_binning_is_emitted_for_its_grid_port_and_system() {
 /// controller, the leaf reader, the system and the owner filter inside.
 #[test]
 fn dram_broad_phase_is_emitted_for_its_system_and_tables() {
-    let out = std::env::temp_dir().join(format!("tritri-gen-dram-broad-phase-{}", std::process::id()));
+    let out = std::env::temp_dir().join(format!(
+        "tritri-gen-dram-broad-phase-{}",
+        std::process::id()
+    ));
     let _ = std::fs::remove_dir_all(&out);
     let status = tritri()
         .args([
@@ -927,7 +930,10 @@ fn dram_broad_phase_is_emitted_for_its_system_and_tables() {
     assert!(status.success());
     let top = "tritri_dram_broad_phase_g16_w16_d64_p1_t256_i4096_s2048_shared";
     let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
-    assert!(verilog.contains(&format!("module {top}")), "no module {top}");
+    assert!(
+        verilog.contains(&format!("module {top}")),
+        "no module {top}"
+    );
     assert!(verilog.contains("m_axi_rdata") && verilog.contains("out_index_a"));
     for unit in [
         "dram_binning_unit",

@@ -19,8 +19,9 @@ use tritri_rtl::emit::dram_broad_phase_unit::{
     emit_dram_broad_phase, with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
 use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
-use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
 use tritri_rtl::octree::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
+use tritri_rtl::octree::dram_broad_phase_machine::run_dram_broad_phase;
+use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
@@ -53,11 +54,19 @@ impl TopCase {
         let original = |&(a, b): &(u32, u32)| -> anyhow::Result<(u32, u32)> {
             match (self.ids[0].get(a as usize), self.ids[1].get(b as usize)) {
                 (Some(&a), Some(&b)) => Ok((a, b)),
-                _ => bail!("the top streamed the pair ({a}, {b}); the lists hold {} and {} entries", self.ids[0].len(), self.ids[1].len()),
+                _ => bail!(
+                    "the top streamed the pair ({a}, {b}); the lists hold {} and {} entries",
+                    self.ids[0].len(),
+                    self.ids[1].len()
+                ),
             }
         };
         run.pairs = run.pairs.iter().map(original).collect::<Result<_, _>>()?;
-        run.uncertain = run.uncertain.iter().map(original).collect::<Result<_, _>>()?;
+        run.uncertain = run
+            .uncertain
+            .iter()
+            .map(original)
+            .collect::<Result<_, _>>()?;
         Ok(())
     }
 }
@@ -452,4 +461,30 @@ pub fn run_top_simulator(
     run.faults = status.faults;
     case.to_originals(&mut run)?;
     Ok(run)
+}
+
+/// The top's clock-exact model ([`run_dram_broad_phase`]) on `case`: the
+/// clocks of `binned` and `tested` and the leaves, as the runs above
+/// record them.
+pub fn run_top_model(case: &TopCase, limit: u64) -> anyhow::Result<TopRun> {
+    let binning = &case.binning;
+    let mut memory = AxiMemory::new(binning.params, binning.bytes.clone());
+    let times = run_dram_broad_phase(
+        binning.config,
+        case.config.system,
+        &mut memory,
+        binning.root,
+        binning.root_lists,
+        case.index_count,
+        limit,
+    )
+    .map_err(anyhow::Error::msg)?;
+    Ok(TopRun {
+        binned_at: times.binned_at,
+        tested_at: times.tested_at,
+        leaves: times.leaves,
+        passes: times.walk.passes,
+        stalled: memory.stalled,
+        ..TopRun::default()
+    })
 }

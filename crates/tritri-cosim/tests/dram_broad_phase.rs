@@ -5,7 +5,7 @@
 
 use std::collections::BTreeSet;
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves,
+    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves,
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
@@ -53,6 +53,25 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
         once_and_exact(&run.pairs, &pairs, "intersecting");
         once_and_exact(&run.uncertain, &uncertain, "without a certificate");
         assert!(run.binned_at <= run.tested_at && run.tested_at <= run.cycles);
+        // The clock-exact model to the last verdict.
+        let model = run_top_model(&case, 5_000_000).unwrap();
+        assert_eq!(
+            (
+                model.binned_at,
+                model.tested_at,
+                model.leaves,
+                model.passes,
+                model.stalled
+            ),
+            (
+                run.binned_at,
+                run.tested_at,
+                run.leaves,
+                run.passes,
+                run.stalled
+            ),
+            "the model against rust-hdl (binned, tested, leaves, passes, stalled)"
+        );
         eprintln!(
             "stalls {}%: {} pairs ({} uncertain), {} leaves, {} passes, binned at {}, tested at {}, done at {} ({} stalled)",
             params.stall_percent,

@@ -33,6 +33,9 @@
 //!   ([`dram_split_terms`]: its split rule's terms);
 //!   [`leaf_reader`]: a leaf's two lists read back for the narrow phase, as
 //!   the binning unit's leaf stream ([`leaf_reader_machine`], its model);
+//!   [`dram_broad_phase`]: the accelerator with its scene in DRAM, all of
+//!   these and the system on one port ([`dram_broad_phase_machine`], its
+//!   model to the last verdict);
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -63,6 +66,7 @@ pub mod classify_lane;
 pub mod dram_binning_machine;
 pub mod dram_binning_unit;
 pub mod dram_broad_phase;
+pub mod dram_broad_phase_machine;
 pub mod dram_split_terms;
 pub mod leaf_batcher;
 pub mod leaf_cost;
