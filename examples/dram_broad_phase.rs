@@ -33,7 +33,7 @@ use anyhow::Context as _;
 use std::collections::BTreeSet;
 use tritri_cosim::dram_binning::{dram_case, run_model};
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves, TopCase,
+    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves, TopCase,
     TopRun,
 };
 use tritri_cosim::scene_query::Accelerator;
@@ -123,8 +123,8 @@ fn main() -> anyhow::Result<()> {
         return write_case_files(&dir, &case);
     }
     println!();
-    println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | model: tested at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|");
     let mut ideal_run = None;
     for (name, params) in [
         ("ideal: 16 B a clock, latency 24", ideal),
@@ -157,9 +157,21 @@ fn main() -> anyhow::Result<()> {
         } else {
             "(TRITRI_RUSTHDL=1)"
         };
+        let model = run_top_model(&case, 100_000_000)?;
+        anyhow::ensure!(
+            (model.binned_at, model.leaves, model.passes)
+                == (verilator.binned_at, verilator.leaves, verilator.passes)
+                && model.tested_at <= verilator.tested_at,
+            "{name}: the model's walk is not Verilator's, or it tests later"
+        );
+        // The model has no shared rare-case unit: the clocks it held.
+        let model_tested = match verilator.tested_at - model.tested_at {
+            0 => format!("{} (= Verilator)", model.tested_at),
+            held => format!("{} (Verilator + {held}: shared unit's holds)", model.tested_at),
+        };
         let (read, written) = (verilator.beats_read * 8, verilator.beats_written * 8);
         println!(
-            "| {name} | yes | {} | {} | {} | {} | {} | {} | {} | {} KiB | {} KiB | {:.2} | {:.1} s | {same} |",
+            "| {name} | yes | {} | {} | {} | {} | {} | {} | {model_tested} | {} | {} KiB | {} KiB | {:.2} | {:.1} s | {same} |",
             verilator.uncertain.len(),
             verilator.leaves,
             verilator.passes,
@@ -255,8 +267,34 @@ fn exact_answer_and_speed(
                 seconds * 1e3,
                 software_time.as_secs_f64() / seconds
             );
+            bandwidth_table(case, row.fmax_mhz, software_time.as_secs_f64())?;
         }
         None => println!("{unit} has no post-route clock in rtl-out/measurements.json"),
+    }
+    Ok(())
+}
+
+/// The top's clocks to its last verdict (its model) and time at the routed
+/// clock `mhz`, for memories of 0.4 to 25.6 GB/s (latency 24 clocks); the
+/// 64-bit port moves at most a beat a clock each way.
+fn bandwidth_table(case: &TopCase, mhz: f64, software: f64) -> anyhow::Result<()> {
+    println!();
+    println!("| memory (GB/s) | bytes a clock at {mhz:.1} MHz | clocks to the last verdict (model) | time | / software |");
+    println!("|---:|---:|---:|---:|---:|");
+    for gbytes in [0.4, 0.8, 1.6, 3.2, 6.4, 12.8, 25.6] {
+        let mut case = case.clone();
+        // Bytes a clock = GB/s * 1000 / MHz, as a fraction.
+        case.binning.params.bytes_per_clock =
+            ((gbytes * 1000.0_f64).round() as u64, mhz.round() as u64);
+        let model = run_top_model(&case, 1_000_000_000)?;
+        let seconds = model.tested_at as f64 / (mhz * 1e6);
+        println!(
+            "| {gbytes} | {:.2} | {} | {:.3} ms | {:.1} x |",
+            gbytes * 1000.0 / mhz.round(),
+            model.tested_at,
+            seconds * 1e3,
+            software / seconds
+        );
     }
     Ok(())
 }
