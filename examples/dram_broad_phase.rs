@@ -33,8 +33,8 @@ use anyhow::Context as _;
 use std::collections::BTreeSet;
 use tritri_cosim::dram_binning::{dram_case, run_model};
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves, TopCase,
-    TopRun,
+    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
+    uncertain_in_leaves, TopCase, TopRun,
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
@@ -167,7 +167,10 @@ fn main() -> anyhow::Result<()> {
         // The model has no shared rare-case unit: the clocks it held.
         let model_tested = match verilator.tested_at - model.tested_at {
             0 => format!("{} (= Verilator)", model.tested_at),
-            held => format!("{} (Verilator + {held}: shared unit's holds)", model.tested_at),
+            held => format!(
+                "{} (Verilator + {held}: shared unit's holds)",
+                model.tested_at
+            ),
         };
         let (read, written) = (verilator.beats_read * 8, verilator.beats_written * 8);
         println!(

@@ -25,6 +25,9 @@ impl OutputFile {
         if path == "-" {
             return Ok(OutputFile::Stdout);
         }
+        if path.is_empty() {
+            anyhow::bail!("an empty path: give a file name, or - for standard output");
+        }
         let destination = PathBuf::from(path);
         if destination.is_dir() {
             anyhow::bail!("cannot write {path}: it is a directory");
@@ -134,5 +137,19 @@ pub fn refuse_input(path: &str, inputs: &[&str]) -> anyhow::Result<()> {
             }
         }
     }
+    Ok(())
+}
+
+/// Checks before the work that files can be written into the directory
+/// `dir`, creating it if needed (a probe file is made and removed).
+pub fn check_directory(dir: &std::path::Path) -> anyhow::Result<()> {
+    if dir.as_os_str().is_empty() {
+        anyhow::bail!("an empty path: give a directory");
+    }
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let probe = dir.join(format!(".tritri-probe-{}", std::process::id()));
+    std::fs::File::create(&probe)
+        .with_context(|| format!("cannot write into {}", dir.display()))?;
+    let _ = std::fs::remove_file(&probe);
     Ok(())
 }

@@ -312,3 +312,41 @@ fn an_output_over_an_input_is_refused_and_the_input_kept() {
         }
     }
 }
+
+/// An output path that cannot be written (empty, or a directory that
+/// cannot be made) is refused before the work, naming the option.
+#[test]
+fn an_unwritable_output_is_refused_before_the_work() {
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &["sim", "--scene", "@torus", "@sphere", "--out", ""],
+            "--out: an empty path",
+        ),
+        (
+            &["sim", "--scene", "@torus", "@sphere", "--json", ""],
+            "--json: an empty path",
+        ),
+        (
+            &[
+                "sim", "--scene", "@torus", "@sphere", "--engine", "icarus", "--vcd", "",
+            ],
+            "--vcd: an empty path",
+        ),
+        (
+            &["report", "@hard", "--out", "/proc/x"],
+            "--out /proc/x: cannot create",
+        ),
+    ];
+    for (args, says) in cases {
+        let out = tritri(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        // Refused before the work: nothing was loaded, run or measured.
+        assert!(
+            out.stdout.is_empty(),
+            "{args:?} printed {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+    }
+}

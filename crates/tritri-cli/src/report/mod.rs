@@ -194,6 +194,11 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         );
         return Ok(ExitCode::from(2));
     }
+    // Before the measurements, which take minutes.
+    if let Err(e) = crate::output_file::check_directory(&args.out) {
+        eprintln!("error: --out {}: {e:#}", args.out.display());
+        return Ok(ExitCode::from(2));
+    }
     let batches = match eval::load_batches(&args.files, "reported") {
         Ok(b) => b,
         Err(code) => return Ok(code),
