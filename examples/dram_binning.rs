@@ -27,7 +27,6 @@ use tritri_cosim::binning_unit::bin_scene;
 use tritri_cosim::dram_binning::{bin_in_dram, dram_case, run_model, run_rusthdl, run_simulator};
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
-use tritri_geom::scene::load::{load_object, Pose};
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::octree::leaf_cost::leaf_cost;
@@ -49,24 +48,7 @@ const ARENA_BYTES: u64 = 256 << 20;
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let number = |s: &str| -> anyhow::Result<f64> {
-        s.parse().with_context(|| format!("{s:?} is not a number"))
-    };
-    let (a, b, scale, pose) = match args.as_slice() {
-        [] => ("@torus", "@sphere", 1.0, [0.0; 3]),
-        [a, b] => (a.as_str(), b.as_str(), 1.0, [0.0; 3]),
-        [a, b, s, x, y, z] => (
-            a.as_str(),
-            b.as_str(),
-            number(s)?,
-            [number(x)?, number(y)?, number(z)?],
-        ),
-        _ => anyhow::bail!("usage: dram_binning [A B [SCALE_B TX TY TZ]]"),
-    };
-    let a = load_object(a, 8)?;
-    let b = load_object(b, 8)?
-        .scaled(scale)
-        .posed(&Pose::translation(pose));
+    let (a, b) = tritri_examples::scene_objects(&args, "dram_binning")?;
 
     let accelerator = Accelerator::new(24);
     let scene = accelerator.prepare(&a, &b)?;

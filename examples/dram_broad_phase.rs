@@ -39,7 +39,7 @@ use tritri_cosim::dram_broad_phase::{
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::certificate::decide_again;
-use tritri_geom::scene::load::{load_object, Pose, SceneObject};
+use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::emit::dram_broad_phase_unit::emit_dram_broad_phase;
@@ -78,25 +78,8 @@ fn main() -> anyhow::Result<()> {
         Some(_) => anyhow::bail!("--write-case takes a directory"),
         None => None,
     };
-    let number = |s: &str| -> anyhow::Result<f64> {
-        s.parse().with_context(|| format!("{s:?} is not a number"))
-    };
-    let (a, b, scale, pose) = match args.as_slice() {
-        [] => ("@torus", "@sphere", 1.0, [0.0; 3]),
-        [a, b] => (a.as_str(), b.as_str(), 1.0, [0.0; 3]),
-        [a, b, s, x, y, z] => (
-            a.as_str(),
-            b.as_str(),
-            number(s)?,
-            [number(x)?, number(y)?, number(z)?],
-        ),
-        _ => anyhow::bail!("usage: dram_broad_phase [A B [SCALE_B TX TY TZ]]"),
-    };
     let with_rusthdl = std::env::var_os("TRITRI_RUSTHDL").is_some_and(|v| v == "1");
-    let a = load_object(a, 8)?;
-    let b = load_object(b, 8)?
-        .scaled(scale)
-        .posed(&Pose::translation(pose));
+    let (a, b) = tritri_examples::scene_objects(&args, "dram_broad_phase [--write-case DIR]")?;
 
     let mut accelerator = Accelerator::new(16);
     accelerator.pipelines = 1;

@@ -1,2 +1,30 @@
 //! The examples' package: the programs are its examples (`cargo run
-//! --release --example NAME`, see README.md); this library is empty.
+//! --release --example NAME`, see README.md); this library holds what
+//! several of them share.
+
+use anyhow::Context as _;
+use tritri_geom::scene::load::{load_object, Pose, SceneObject};
+
+/// The two objects of `A B [SCALE_B TX TY TZ]` (none: the built-in torus
+/// and sphere), B scaled and moved; `usage` names the program in the error.
+pub fn scene_objects(args: &[String], usage: &str) -> anyhow::Result<(SceneObject, SceneObject)> {
+    let number = |s: &str| -> anyhow::Result<f64> {
+        s.parse().with_context(|| format!("{s:?} is not a number"))
+    };
+    let (a, b, scale, pose) = match args {
+        [] => ("@torus", "@sphere", 1.0, [0.0; 3]),
+        [a, b] => (a.as_str(), b.as_str(), 1.0, [0.0; 3]),
+        [a, b, s, x, y, z] => (
+            a.as_str(),
+            b.as_str(),
+            number(s)?,
+            [number(x)?, number(y)?, number(z)?],
+        ),
+        _ => anyhow::bail!("usage: {usage} [A B [SCALE_B TX TY TZ]]"),
+    };
+    let a = load_object(a, 8)?;
+    let b = load_object(b, 8)?
+        .scaled(scale)
+        .posed(&Pose::translation(pose));
+    Ok((a, b))
+}

@@ -11,6 +11,7 @@ use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::PreparedScene;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 
@@ -31,17 +32,23 @@ fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) {
     assert_eq!(set, want, "{what}: not the exact answer on the grid");
 }
 
-/// The torus and sphere of the controller's tests, the system's depth cut
-/// to 16 so that leaves come as several tiles; ideal memory and one that
-/// stalls.
-#[test]
-fn the_rust_hdl_top_streams_the_exact_pairs_once() {
+/// The torus and sphere of the controller's tests on a 24-bit grid, one
+/// pipeline, the system's depth cut to 16 so that leaves come as several
+/// tiles.
+fn torus_and_sphere() -> (Accelerator, PreparedScene) {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
     let mut accelerator = Accelerator::new(24);
     accelerator.depth = 16;
     accelerator.pipelines = 1;
     let prepared = accelerator.prepare(&a, &b).unwrap();
+    (accelerator, prepared)
+}
+
+/// The scene above with an ideal memory and one that stalls.
+#[test]
+fn the_rust_hdl_top_streams_the_exact_pairs_once() {
+    let (accelerator, prepared) = torus_and_sphere();
     let pairs = exact_on_grid(&prepared);
     assert!(pairs.len() > 20, "{} pairs", pairs.len());
     let ideal = MemoryParams::ideal(8, 24);
@@ -91,12 +98,7 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
 /// scene: the rust-hdl run's pairs in the same order, and its clocks.
 #[test]
 fn the_verilated_top_is_the_rust_hdl_top_clock_for_clock() {
-    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
-    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
-    let mut accelerator = Accelerator::new(24);
-    accelerator.depth = 16;
-    accelerator.pipelines = 1;
-    let prepared = accelerator.prepare(&a, &b).unwrap();
+    let (accelerator, prepared) = torus_and_sphere();
     let ideal = MemoryParams::ideal(8, 24);
     for params in [ideal, ideal.with_stalls(20, 7)] {
         let (case, _) = top_case(&accelerator, &prepared, pass(), params, 1 << 24).unwrap();
