@@ -28,13 +28,16 @@
 //!   index a clock (`index_count_0` indices of A, then B's), while the
 //!   root's pass runs.
 //!
-//! Its clock-exact model is still to come: the controller's
-//! ([`super::dram_binning_machine`]) takes what is beside it through
-//! [`super::dram_binning_machine::Beside`], which the sequencer, the leaf
-//! reader's model ([`super::leaf_reader_machine`]) and the system's bank
-//! recurrence are to implement. The co-simulation
+//! * **Two systems.** [`DramBroadPhase`] holds pipelines with their rare
+//!   pairs on units of their own; [`SharedDramBroadPhase`] pipelines that
+//!   share one (it fits the ECP5-85 beside the controller). One macro
+//!   writes both.
+//!
+//! Its clock-exact model to the last verdict is
+//! [`super::dram_broad_phase_machine`]. The co-simulation
 //! (`tritri-cosim/tests/dram_broad_phase.rs`) holds the pairs to the exact
-//! answer on the grid.
+//! answer on the grid and rust-hdl, Verilator and the model to one
+//! another.
 
 use super::dram_binning_unit::{DramBinningUnit, DramCell};
 use super::leaf_batcher::LeafBatcher;
