@@ -949,3 +949,51 @@ fn dram_broad_phase_is_emitted_for_its_system_and_tables() {
     }
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// A second design into the same directory leaves no core of the first
+/// (it would list deleted files), and a README.md of the user's is not
+/// overwritten: the run is refused and the directory left as it was.
+#[test]
+fn a_second_design_leaves_no_stale_core_and_a_users_readme_is_kept() {
+    let out = std::env::temp_dir().join(format!("tritri-gen-second-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    for w in ["8", "12"] {
+        let status = tritri()
+            .args(["gen", "--width", w, "--out"])
+            .arg(&out)
+            .status()
+            .unwrap();
+        assert!(status.success());
+    }
+    let cores: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".core"))
+        .collect();
+    assert_eq!(cores, ["tritri_pipeline_w12.core"], "{cores:?}");
+    let _ = std::fs::remove_dir_all(&out);
+
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("README.md"), "my notes\n").unwrap();
+    let run = tritri()
+        .args(["gen", "--width", "8", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("README.md was not written by tritri"),
+        "{stderr}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("README.md")).unwrap(),
+        "my notes\n"
+    );
+    assert_eq!(
+        std::fs::read_dir(&out).unwrap().count(),
+        1,
+        "files were written"
+    );
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -347,14 +347,43 @@ impl EmittedDesign {
 
     /// Writes every file into `dir` (created if needed). Files that a
     /// previous emission listed in `dir/filelist.f` and this one does not
-    /// produce are removed, so the directory never holds stale modules.
+    /// produce are removed, and so is that emission's FuseSoC core (named
+    /// by its top, the list's shortest name), so the directory never holds
+    /// stale modules or a core listing them. A README.md that no emission
+    /// wrote (there is no `filelist.f` beside it) is the user's: an error,
+    /// and nothing is written.
     pub fn write_to(&self, dir: &Path) -> std::io::Result<()> {
+        let old = std::fs::read_to_string(dir.join("filelist.f")).ok();
+        let readme = dir.join("README.md");
+        if old.is_none() && readme.exists() && self.file("README.md").is_some() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!(
+                    "{} was not written by tritri (no filelist.f beside it): not overwriting it; write into another directory",
+                    readme.display()
+                ),
+            ));
+        }
         std::fs::create_dir_all(dir)?;
-        if let Ok(old) = std::fs::read_to_string(dir.join("filelist.f")) {
-            for line in old.lines().map(str::trim).filter(|l| l.ends_with(".v")) {
-                let stale = !self.files.iter().any(|f| f.path == line);
+        if let Some(old) = old {
+            let listed: Vec<&str> = old
+                .lines()
+                .map(str::trim)
+                .filter(|l| l.ends_with(".v"))
+                .collect();
+            for line in &listed {
+                let stale = !self.files.iter().any(|f| f.path == *line);
                 if stale && !line.contains('/') {
                     let _ = std::fs::remove_file(dir.join(line));
+                }
+            }
+            // Every module's file is `<top>_<module>.v`: the top's is the
+            // shortest name.
+            let top = listed.iter().min_by_key(|l| l.len());
+            if let Some(top) = top.and_then(|l| l.strip_suffix(".v")) {
+                let core = format!("{top}.core");
+                if !top.contains('/') && self.file(&core).is_none() {
+                    let _ = std::fs::remove_file(dir.join(core));
                 }
             }
         }
