@@ -54,7 +54,7 @@ use tritri_rtl::measured::Measurements;
 use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::RareCasePath;
 
-/// The owner filter's tables of the routed design.
+/// The owner filter's tables of the design that fits the ECP5-85.
 const TABLE: usize = 8192;
 
 /// An error unless `got` holds each pair once and is `want` as a set.
@@ -108,7 +108,7 @@ fn main() -> anyhow::Result<()> {
     };
     let ideal = MemoryParams::ideal(8, 24);
     if let Some(dir) = write_case {
-        let case = routed_case(&accelerator, &scene, pass, ideal)?;
+        let case = device_case(&accelerator, &scene, pass, ideal)?;
         return write_case_files(&dir, &case);
     }
     println!();
@@ -122,7 +122,7 @@ fn main() -> anyhow::Result<()> {
             ideal.with_stalls(20, 7),
         ),
     ] {
-        let case = routed_case(&accelerator, &scene, pass, params)?;
+        let case = device_case(&accelerator, &scene, pass, params)?;
         let uncertain = uncertain_in_leaves(&case)?;
         let started = std::time::Instant::now();
         let verilator = run_top_simulator(Simulator::Verilator, &case, 100_000_000)?;
@@ -291,10 +291,10 @@ fn bandwidth_table(case: &TopCase, mhz: f64, software: f64) -> anyhow::Result<()
     Ok(())
 }
 
-/// The top of the routed design on `scene`: the arena cut to what the
+/// The top of the design that fits the ECP5-85 on `scene`: the arena cut to what the
 /// controller's walk takes (so that the Verilog memory stays small), the
 /// owner filter's tables of [`TABLE`] words.
-fn routed_case(
+fn device_case(
     accelerator: &Accelerator,
     scene: &tritri_geom::scene::PreparedScene,
     pass: ListPassConfig,
@@ -309,7 +309,7 @@ fn routed_case(
     ] {
         anyhow::ensure!(
             need <= TABLE,
-            "the scene needs {need} {what}; the routed design's owner filter holds {TABLE}"
+            "the scene needs {need} {what}; the ECP5-85 design's owner filter holds {TABLE}"
         );
     }
     case.config.triangles = TABLE;

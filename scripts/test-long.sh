@@ -13,7 +13,7 @@ bash scripts/setup.sh
 export TRITRI_LONG=1 TRITRI_HARD_CASES=1 TRITRI_PAIRS=100000
 cargo test --release --workspace --test rusthdl_pipeline --test shared_rare_cases --test emit_pipeline -- --nocapture
 
-# The broad-phase accelerator with its scene in DRAM (the routed design),
+# The broad-phase accelerator with its scene in DRAM (the design that fits the ECP5-85),
 # in Verilator against the memory model, on two of CGAL's meshes in
 # contact: the pairs must be the exact answer on the grid, each once, with
 # an ideal memory and one that stalls (examples/dram_broad_phase.rs).

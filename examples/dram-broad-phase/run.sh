@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Writes a case of the broad-phase accelerator with its scene in DRAM
-# (examples/dram_broad_phase.rs --write-case: the routed design, the
+# (examples/dram_broad_phase.rs --write-case: the design that fits the ECP5-85, the
 # built-in torus and sphere, or A B [SCALE_B TX TY TZ] given here) and runs
 # its cocotb test against cocotbext-axi's AxiRam in Icarus; fails unless
 # both tests pass (cocotb's make exits 0 when a test fails, so the results

@@ -1,5 +1,5 @@
 """cocotb test of the broad-phase accelerator with its scene in DRAM
-(`tritri gen --dram-broad-phase`, the design routed on the ECP5-85) against
+(`tritri gen --dram-broad-phase`, the design that fits the ECP5-85) against
 cocotbext-axi's AxiRam, a memory written by other people: the host's root
 lists are written into the RAM, the top is started, and the pairs it
 streams must be the ones the case lists (the exact answer on the grid,
