@@ -39,7 +39,7 @@ use anyhow::Context as _;
 use std::collections::BTreeSet;
 use tritri_cosim::dram_binning::{dram_case, run_model};
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
+    exact_on_grid, once_and_exact, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
     uncertain_in_leaves, TopCase, TopRun,
 };
 use tritri_cosim::scene_query::Accelerator;
@@ -56,22 +56,6 @@ use tritri_rtl::pipeline::RareCasePath;
 
 /// The owner filter's tables of the design that fits the ECP5-85.
 const TABLE: usize = 8192;
-
-/// An error unless `got` holds each pair once and is `want` as a set.
-fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) -> anyhow::Result<()> {
-    let set: BTreeSet<_> = got.iter().copied().collect();
-    anyhow::ensure!(set.len() == got.len(), "{what}: a pair came out twice");
-    let want: BTreeSet<_> = want.iter().copied().collect();
-    anyhow::ensure!(
-        set == want,
-        "{what}: {} pairs, the exact answer on the grid has {} ({} missing, {} extra)",
-        set.len(),
-        want.len(),
-        want.difference(&set).count(),
-        set.difference(&want).count()
-    );
-    Ok(())
-}
 
 fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
@@ -328,27 +312,12 @@ fn write_case_files(dir: &std::path::Path, case: &TopCase) -> anyhow::Result<()>
     let uncertain = uncertain_in_leaves(case)?;
     once_and_exact(&run.uncertain, &uncertain, "without a certificate")?;
     let binning = &case.binning;
-    let g = binning.config.pass.grid_bits;
-    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
     let mut text = String::new();
     writeln!(text, "unit {}", case.config.unit_name())?;
-    for (name, value) in [
-        ("corner_x", corner(binning.root.lo[0])),
-        ("corner_y", corner(binning.root.lo[1])),
-        ("corner_z", corner(binning.root.lo[2])),
-        ("level", u64::from(binning.root.level)),
-        ("list_base_0", binning.root_lists[0].0),
-        ("list_count_0", binning.root_lists[0].1),
-        ("list_base_1", binning.root_lists[1].0),
-        ("list_count_1", binning.root_lists[1].1),
-        ("index_count_0", case.index_count[0]),
-        ("index_count_1", case.index_count[1]),
-        ("arena_start", binning.config.arena.0),
-        ("arena_end", binning.config.arena.1),
-        ("done_at", run.cycles),
-    ] {
+    for (name, value) in case.inputs() {
         writeln!(text, "{name} {value}")?;
     }
+    writeln!(text, "done_at {}", run.cycles)?;
     for (k, ids) in case.ids.iter().enumerate() {
         let ids: Vec<String> = ids.iter().map(u32::to_string).collect();
         writeln!(text, "ids_{k} {}", ids.join(" "))?;

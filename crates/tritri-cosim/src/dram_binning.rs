@@ -70,6 +70,38 @@ pub struct DramCase {
     pub pushback: bool,
 }
 
+impl DramCase {
+    /// The controller's inputs for this case, by their port names, as the
+    /// testbenches take them (`+name=value`): the root's corner as
+    /// unsigned grid-bit numbers, its level, the root lists, the arena.
+    pub fn inputs(&self) -> Vec<(String, u64)> {
+        let g = self.config.pass.grid_bits;
+        let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
+        let mut inputs = vec![
+            ("corner_x".to_string(), corner(self.root.lo[0])),
+            ("corner_y".to_string(), corner(self.root.lo[1])),
+            ("corner_z".to_string(), corner(self.root.lo[2])),
+            ("level".to_string(), u64::from(self.root.level)),
+            ("arena_start".to_string(), self.config.arena.0),
+            ("arena_end".to_string(), self.config.arena.1),
+        ];
+        for k in 0..2 {
+            inputs.push((format!("list_base_{k}"), self.root_lists[k].0));
+            inputs.push((format!("list_count_{k}"), self.root_lists[k].1));
+        }
+        inputs
+    }
+}
+
+/// The words of a testbench's line that are numbers (a negative one is
+/// not), in order.
+pub(crate) fn numbers(line: &str) -> anyhow::Result<Vec<u64>> {
+    line.split_whitespace()
+        .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
+        .map(|w| w.parse().with_context(|| format!("{w:?} in {line:?}")))
+        .collect()
+}
+
 /// The pattern of `pushback` in clock `t` (the start's clock is 0):
 /// `(leaf_ready, pass_hold)`. A leaf is refused one clock in three and a
 /// pass held three clocks in seven, so that a leaf and a pass each meet
@@ -427,33 +459,17 @@ pub fn run_simulator(simulator: Simulator, case: &DramCase, limit: u64) -> anyho
     let memory_out = work.join("memory_out.hex");
     write_memory_hex(&memory_in, &case.bytes)?;
     let g = pass.grid_bits;
-    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
     let mut plusargs = vec![
         format!("+memory={}", memory_in.display()),
         format!("+out={}", memory_out.display()),
-        format!("+corner_x={}", corner(case.root.lo[0])),
-        format!("+corner_y={}", corner(case.root.lo[1])),
-        format!("+corner_z={}", corner(case.root.lo[2])),
-        format!("+level={}", case.root.level),
-        format!("+arena_start={}", case.config.arena.0),
-        format!("+arena_end={}", case.config.arena.1),
     ];
-    for k in 0..2 {
-        plusargs.push(format!("+list_base_{k}={}", case.root_lists[k].0));
-        plusargs.push(format!("+list_count_{k}={}", case.root_lists[k].1));
-    }
+    plusargs.extend(case.inputs().iter().map(|(name, v)| format!("+{name}={v}")));
     let output = compiled.run(&plusargs)?;
     let text = String::from_utf8_lossy(&output.stdout);
     let status = parse_status(&text)?;
     if !status.done {
         bail!("the emitted binning did not end within {limit} clocks");
     }
-    let numbers = |line: &str| -> anyhow::Result<Vec<u64>> {
-        line.split_whitespace()
-            .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
-            .map(|w| w.parse().with_context(|| format!("{w:?} in {line:?}")))
-            .collect()
-    };
     let mut leaves = Vec::new();
     for line in text.lines().filter_map(|l| l.strip_prefix("# leaf ")) {
         let v = numbers(line)?;

@@ -5,7 +5,7 @@
 //! it is held to: every intersecting pair of A's and B's kept triangles,
 //! and every pair its leaves hold whose verdict has no certificate.
 
-use crate::dram_binning::{dram_case, run_model, DramCase};
+use crate::dram_binning::{dram_case, numbers, run_model, DramCase};
 use crate::scene_query::Accelerator;
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
@@ -48,6 +48,16 @@ pub struct TopCase {
 }
 
 impl TopCase {
+    /// The top's inputs for this case, by their port names: the
+    /// controller's ([`DramCase::inputs`]) and each object's index bound.
+    pub fn inputs(&self) -> Vec<(String, u64)> {
+        let mut inputs = self.binning.inputs();
+        for k in 0..2 {
+            inputs.push((format!("index_count_{k}"), self.index_count[k]));
+        }
+        inputs
+    }
+
     /// The pairs of `run` as the meshes number their triangles; an error
     /// names an index the host never wrote.
     fn to_originals(&self, run: &mut TopRun) -> anyhow::Result<()> {
@@ -159,6 +169,23 @@ pub fn exact_on_grid(scene: &PreparedScene) -> Vec<(u32, u32)> {
         }
     }
     pairs.into_iter().collect()
+}
+
+/// An error unless `got` holds each pair once and is `want` as a set,
+/// naming `what` and the pairs missing and extra.
+pub fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) -> anyhow::Result<()> {
+    let set: BTreeSet<_> = got.iter().copied().collect();
+    anyhow::ensure!(set.len() == got.len(), "{what}: a pair came out twice");
+    let want: BTreeSet<_> = want.iter().copied().collect();
+    anyhow::ensure!(
+        set == want,
+        "{what}: {} pairs, the exact answer on the grid has {} ({} missing, {} extra)",
+        set.len(),
+        want.len(),
+        want.difference(&set).count(),
+        set.difference(&want).count()
+    );
+    Ok(())
 }
 
 /// The pairs without a certificate that the top must stream: every (A, B)
@@ -390,35 +417,15 @@ pub fn run_top_simulator(
     let work = WorkDir::new("dram-broad-phase")?;
     let memory_in = work.join("memory.hex");
     write_memory_hex(&memory_in, &binning.bytes)?;
-    let g = pass.grid_bits;
-    let corner = |v: i64| (v as u64) & ((1u64 << g) - 1);
-    let mut plusargs = vec![
-        format!("+memory={}", memory_in.display()),
-        format!("+corner_x={}", corner(binning.root.lo[0])),
-        format!("+corner_y={}", corner(binning.root.lo[1])),
-        format!("+corner_z={}", corner(binning.root.lo[2])),
-        format!("+level={}", binning.root.level),
-        format!("+arena_start={}", binning.config.arena.0),
-        format!("+arena_end={}", binning.config.arena.1),
-    ];
-    for k in 0..2 {
-        plusargs.push(format!("+list_base_{k}={}", binning.root_lists[k].0));
-        plusargs.push(format!("+list_count_{k}={}", binning.root_lists[k].1));
-        plusargs.push(format!("+index_count_{k}={}", case.index_count[k]));
-    }
+    let mut plusargs = vec![format!("+memory={}", memory_in.display())];
+    plusargs.extend(case.inputs().iter().map(|(name, v)| format!("+{name}={v}")));
     let output = compiled.run(&plusargs)?;
     let text = String::from_utf8_lossy(&output.stdout);
     let status = parse_status(&text)?;
     if !status.done {
         bail!("the emitted top did not end within {limit} clocks");
     }
-    // The words that are numbers; -1 (a flag never seen) is not one.
-    let numbers = |line: &str| -> anyhow::Result<Vec<u64>> {
-        line.split_whitespace()
-            .filter(|w| w.chars().all(|c| c.is_ascii_digit()))
-            .map(|w| w.parse().with_context(|| format!("{w:?} in {line:?}")))
-            .collect()
-    };
+    // (-1, a flag never seen, is not a number: the line gives none.)
     let mut run = TopRun::default();
     for line in text.lines().filter_map(|l| l.strip_prefix("# pair ")) {
         let v = numbers(line)?;
