@@ -310,7 +310,7 @@ mod tests {
         let refused = Design::VoxelFill.refuse(&[RareCases]).unwrap_err();
         assert_eq!(
             refused,
-            "--rare-cases does not apply to --voxel-fill (it takes none of the design options); it is for the pipeline, --system"
+            "--rare-cases does not apply to --voxel-fill (it takes none of the design options); it is for the pipeline, --system, --dram-broad-phase"
         );
         let refused = Design::OwnerFilter.refuse(&[Slots, Width]).unwrap_err();
         // The list of designs that take --width grows with the table; the
