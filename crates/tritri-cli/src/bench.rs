@@ -44,13 +44,13 @@ use tritri_rtl::pipeline::pipeline_for_width::{check_width, PipelineInput};
 #[derive(clap::Args)]
 pub struct Args {
     /// Coordinate width in bits; repeat or separate with commas for several.
-    #[arg(long, value_delimiter = ',', default_value = "24")]
+    #[arg(long, value_delimiter = ',', default_value = "24", value_parser = crate::input::whole::<usize>(tritri_geom::widths::MIN_WIDTH as usize..=tritri_geom::widths::MAX_WIDTH as usize))]
     width: Vec<usize>,
     /// Number of pairs per width (rounded up to a multiple of --bases).
-    #[arg(long, default_value_t = 20_000)]
+    #[arg(long, default_value_t = 20_000, value_parser = crate::input::whole::<usize>(1..=100_000_000))]
     pairs: usize,
     /// Number of base triangles N1.
-    #[arg(long, default_value_t = 50)]
+    #[arg(long, default_value_t = 50, value_parser = crate::input::whole::<usize>(1..=1_000_000))]
     bases: usize,
     /// Engines to run, the model always first as the baseline.
     #[arg(
@@ -61,7 +61,7 @@ pub struct Args {
     )]
     engines: Vec<Engine>,
     /// Seed of the random triangles.
-    #[arg(long, default_value_t = 2005)]
+    #[arg(long, default_value_t = 2005, value_parser = crate::input::whole::<u64>(0..=u64::MAX))]
     seed: u64,
 }
 

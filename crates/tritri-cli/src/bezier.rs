@@ -55,10 +55,10 @@ struct ConesArgs {
     #[arg(long, default_value = "7,-10,6", value_name = "X,Y,Z", allow_hyphen_values = true, value_parser = input::parse_point)]
     eye: [f64; 3],
     /// Bits of a control point's coordinate on the patches' grid (16 or 24).
-    #[arg(long, default_value_t = 24)]
+    #[arg(long, default_value_t = 24, value_parser = crate::input::whole::<usize>(16..=24))]
     width: usize,
     /// Cut every patch in two this many times first (0 to 6).
-    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=6))]
     subdivide: u32,
     /// What classifies: the exact fixed-point model, or the unit in
     /// rust-hdl, Icarus or Verilator (checked against the model).
@@ -71,13 +71,13 @@ struct TessellateArgs {
     /// The patches (.bpt).
     file: String,
     /// Bits of a grid coordinate (16 or 24).
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = crate::input::whole::<usize>(16..=24))]
     width: usize,
     /// 2^K steps a side (1 to 4).
-    #[arg(long, default_value_t = 3, value_name = "K")]
+    #[arg(long, default_value_t = 3, value_name = "K", value_parser = crate::input::whole::<usize>(1..=4))]
     steps: usize,
     /// Cut every patch in two this many times first (0 to 6).
-    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=6))]
     subdivide: u32,
     /// What tessellates: the exact fixed-point model, or the unit in
     /// rust-hdl, Icarus or Verilator (checked against the model).
@@ -97,7 +97,7 @@ struct RenderArgs {
     target: [f64; 3],
     /// Cut every patch in two this many times first (32 teapot patches
     /// become 64 to 512 for 1 to 4), 0 to 6.
-    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=6))]
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=6))]
     subdivide: u32,
     /// Patches nearer than this get 20 samples per side; to twice it 15, to
     /// four times 10, beyond 5.
@@ -107,7 +107,7 @@ struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     png: String,
     /// Picture size in pixels (16 to 4096).
-    #[arg(long, default_value_t = 640, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=4096))]
+    #[arg(long, default_value_t = 640, value_name = "PX", value_parser = crate::input::whole::<u32>(16..=4096))]
     size: u32,
 }
 

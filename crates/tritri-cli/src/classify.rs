@@ -94,11 +94,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     let loaded = input::load(&args.file);
     if loaded.errors > 0 {
-        eprintln!(
-            "error: {}: no verdicts: {} record(s) could not be read",
-            args.file.display(),
-            loaded.errors
-        );
+        // A file that could not be read at all has said so already.
+        if loaded.file.is_some() {
+            eprintln!(
+                "error: {}: no verdicts: {} record(s) could not be read",
+                args.file.display(),
+                loaded.errors
+            );
+        }
         return Ok(ExitCode::from(2));
     }
     let pairs = loaded.good_pairs();

@@ -179,7 +179,7 @@ use tritri_rtl::system::{
 pub struct Args {
     /// Coordinate width in bits (the grid's for the octree units); repeat
     /// or separate with commas for several [default: 24].
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', value_parser = crate::input::whole::<usize>(tritri_geom::widths::MIN_WIDTH as usize..=tritri_geom::widths::MAX_WIDTH as usize))]
     width: Option<Vec<usize>>,
     /// Output directory (one width) or parent directory (several widths).
     #[arg(long)]
@@ -224,7 +224,7 @@ pub struct Args {
     /// route_ecp5_seed<N>.log and .json, and the table has a row for each
     /// and names the best: a seed sweep, the usual last step of closing
     /// timing.
-    #[arg(long, value_name = "N", value_delimiter = ',')]
+    #[arg(long, value_name = "N", value_delimiter = ',', value_parser = crate::input::whole::<u64>(0..=u64::MAX))]
     seed: Vec<u64>,
     /// With --synth ecp5: nextpnr's router [default: router1 for the
     /// emitted top, router2 with timing-driven rip-up for a --synth-top
@@ -241,7 +241,7 @@ pub struct Args {
     /// length [default: 30 for the emitted top, 10 (nextpnr's) for a
     /// --synth-top module inside it]. 30 left a ninth as many paths short of 150 MHz
     /// on the whole W = 16 pipeline with --rare-cases shared (router1).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    #[arg(long, value_name = "N", value_parser = crate::input::whole::<u32>(1..=1000))]
     timing_weight: Option<u32>,
     /// Emit the whole system (memories, address generator, pipelines,
     /// result FIFO) instead of the pipeline alone.
@@ -316,7 +316,7 @@ pub struct Args {
     dram_broad_phase: bool,
     /// With --list-pass or --dram-binning: the AXI4 port's data width (64,
     /// 128 or 256) [default: 64].
-    #[arg(long, value_name = "BITS")]
+    #[arg(long, value_name = "BITS", value_parser = crate::input::whole::<usize>(64..=512))]
     data_bits: Option<usize>,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
     /// triangles): `parallel`, their own units (60 multipliers, never a
@@ -329,7 +329,7 @@ pub struct Args {
     #[arg(long, value_name = "PATH", value_parser = RareCasePath::NAMES)]
     rare_cases: Option<String>,
     /// With --patch-tessellator: 2^K steps a side (1 to 4) [default: 3].
-    #[arg(long, value_name = "K")]
+    #[arg(long, value_name = "K", value_parser = crate::input::whole::<usize>(1..=4))]
     steps: Option<usize>,
     /// With --patch-tessellator: the unit with its triangles assembled (two
     /// a clock, in the collision system's triangle format).
@@ -349,15 +349,15 @@ pub struct Args {
     octree_builder: bool,
     /// With --owner-filter, --broad-phase or --dram-broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_SLOTS as u64))]
+    #[arg(long, value_parser = crate::input::whole::<u64>(1..=MAX_SLOTS as u64))]
     slots: Option<u64>,
     /// With --system or --binning-unit: pipelines working in parallel (1
     /// to 16; a power of two for the binning unit's split rule) [default: 2].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
+    #[arg(long, value_parser = crate::input::whole::<u32>(1..=MAX_PIPELINES as u32))]
     pipelines: Option<u32>,
     /// With --system or --binning-unit: memory depth, triangles per array
     /// per bank (1 to 32767; a power of two for the binning unit) [default: 256].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
+    #[arg(long, value_parser = crate::input::whole::<u64>(1..=MAX_TRIANGLES_PER_BANK as u64))]
     depth: Option<u64>,
     /// Emit the octree broad phase's binning unit instead (triangles in,
     /// leaves out); --width is the grid's width (16, 24 or 32), --depth and
@@ -373,15 +373,15 @@ pub struct Args {
     broad_phase: bool,
     /// With --binning-unit, --broad-phase or --dram-broad-phase: triangles per object (1 to
     /// 262144) [default: 8192].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << INDEX_BITS))]
+    #[arg(long, value_parser = crate::input::whole::<u64>(1..=1 << INDEX_BITS))]
     triangles: Option<u64>,
     /// With --binning-unit or --broad-phase: words of each of the sixteen
     /// list memories, two indices a word (1 to 1048576) [default: 16384].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << LIST_ADDRESS_BITS))]
+    #[arg(long, value_parser = crate::input::whole::<u64>(1..=1 << LIST_ADDRESS_BITS))]
     list_words: Option<u64>,
     /// With --binning-unit or --broad-phase: leaf descriptors (1 to
     /// 1048576) [default: 4096].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1 << LEAF_ADDRESS_BITS))]
+    #[arg(long, value_parser = crate::input::whole::<u64>(1..=1 << LEAF_ADDRESS_BITS))]
     leaves: Option<u64>,
     /// Size the system for this scene (objects A and B as `tritri sim`
     /// takes them) and an error budget: W, P, the memory depth and the

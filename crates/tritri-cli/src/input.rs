@@ -58,6 +58,25 @@ pub fn load(path: &Path) -> Loaded {
     }
 }
 
+/// A whole number in `range`, in digits. The refusal names the range:
+/// Rust's own parse messages ("invalid digit found in string") do not,
+/// and clap's ranged parsers use them for text that is not a number.
+pub fn whole<T>(
+    range: std::ops::RangeInclusive<T>,
+) -> impl Fn(&str) -> Result<T, String> + Clone + Send + Sync + 'static
+where
+    T: std::str::FromStr + PartialOrd + std::fmt::Display + Clone + Send + Sync + 'static,
+{
+    move |s: &str| match s.trim().parse::<T>() {
+        Ok(v) if range.contains(&v) => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not a whole number from {} to {} (in digits)",
+            range.start(),
+            range.end()
+        )),
+    }
+}
+
 /// clap value parser for a coordinate width: names the value when it is
 /// out of range.
 pub fn parse_width(s: &str) -> Result<u32, String> {

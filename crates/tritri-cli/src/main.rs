@@ -8,7 +8,7 @@
 //! bad input or bad usage (nothing is computed); 129 / 130 / 143 interrupted by
 //! SIGHUP / SIGINT / SIGTERM (running tools stopped, work directories removed).
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
 
 mod bench;
@@ -71,7 +71,9 @@ enum Command {
 fn main() -> ExitCode {
     end_quietly_on_closed_pipe();
     clean_up_on_interrupt();
-    let result = dispatch(Cli::parse());
+    let matches = command_line().get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
+    let result = dispatch(cli);
     match result {
         Ok(code) => code,
         Err(e) => {
@@ -79,6 +81,25 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// The command line, where every option that takes a value takes a
+/// negative number too: `--depth -1` is then refused by the option's own
+/// parser, which names the valid range, instead of by clap as "unexpected
+/// argument '-1'".
+fn command_line() -> clap::Command {
+    fn negative_numbers_are_values(command: clap::Command) -> clap::Command {
+        command
+            .mut_args(|arg| {
+                if arg.get_action().takes_values() {
+                    arg.allow_negative_numbers(true)
+                } else {
+                    arg
+                }
+            })
+            .mut_subcommands(negative_numbers_are_values)
+    }
+    negative_numbers_are_values(Cli::command())
 }
 
 /// `tritri eval @hard | head -1`: when the reader closes the pipe, end as
@@ -143,7 +164,65 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Octree(args) => octree::run(args),
         Command::Demo(args) => demo::run(args, |words| {
             let argv = std::iter::once("tritri".to_string()).chain(words);
-            dispatch(Cli::try_parse_from(argv)?)
+            let matches = command_line().try_get_matches_from(argv)?;
+            dispatch(Cli::from_arg_matches(&matches)?)
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every option that takes a value, with the subcommands that lead to
+    /// it: `(["octree", "clip"], "--plane")`.
+    fn options(command: &clap::Command, path: &[String], out: &mut Vec<(Vec<String>, String)>) {
+        for arg in command.get_arguments() {
+            if let (Some(long), true) = (arg.get_long(), arg.get_action().takes_values()) {
+                out.push((path.to_vec(), format!("--{long}")));
+            }
+        }
+        for sub in command.get_subcommands() {
+            let mut path = path.to_vec();
+            path.push(sub.get_name().to_string());
+            options(sub, &path, out);
+        }
+    }
+
+    /// A value an option refuses is refused with what it takes: Rust's
+    /// bare parse messages ("invalid digit found in string") name no
+    /// range, and a negative number is the option's value, not a flag.
+    #[test]
+    fn every_option_refuses_a_bad_number_by_naming_what_it_takes() {
+        let mut all = Vec::new();
+        options(&command_line(), &[], &mut all);
+        assert!(all.len() > 50, "{} options", all.len());
+        let mut unclear = Vec::new();
+        for (path, option) in &all {
+            for value in ["-1", "1e3", "x"] {
+                let argv = std::iter::once("tritri".to_string())
+                    .chain(path.iter().cloned())
+                    .chain([option.clone(), value.to_string()]);
+                let Err(e) = command_line().try_get_matches_from(argv) else {
+                    continue;
+                };
+                let message = e.to_string();
+                let bare = [
+                    "invalid digit",
+                    "invalid float literal",
+                    "unexpected argument '-1'",
+                    "too large",
+                    "too small",
+                ];
+                if bare.iter().any(|b| message.contains(b)) {
+                    unclear.push(format!(
+                        "{} {option} {value}: {}",
+                        path.join(" "),
+                        message.lines().next().unwrap_or("")
+                    ));
+                }
+            }
+        }
+        assert!(unclear.is_empty(), "{}", unclear.join("\n"));
     }
 }

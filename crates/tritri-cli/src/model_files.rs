@@ -107,8 +107,10 @@ impl ModelOutput {
 
 /// Reads a `.oct` file.
 pub fn read_octree(path: &str) -> anyhow::Result<OctreeFile> {
-    if ModelFormat::of(path)? != ModelFormat::Octree {
-        anyhow::bail!("{path}: models are read from .oct files (tritri octree format)");
+    // Only `.oct` is read: the error must not list the formats that are
+    // only written (ModelFormat::of's list).
+    if !matches!(ModelFormat::of(path), Ok(ModelFormat::Octree)) {
+        anyhow::bail!("{path}: models are read from .oct files only (tritri octree format; `tritri voxelize` makes one from a mesh)");
     }
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {path}"))?;
     OctreeFile::from_bytes(&bytes).with_context(|| format!("{path}"))

@@ -70,7 +70,7 @@ struct PlaneArgs {
     #[arg(long, value_name = "A,B,C", allow_hyphen_values = true, value_parser = input::parse_normal)]
     normal: [i64; 3],
     /// The plane's offset d (an integer).
-    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true, value_parser = crate::input::whole::<i64>(i64::MIN..=i64::MAX))]
     offset: i64,
     /// Who classifies (with `model`, the hardware's figures come from its
     /// cycle model), and the clock for the hardware's time.

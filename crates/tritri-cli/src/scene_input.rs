@@ -39,11 +39,11 @@ pub struct SceneArgs {
     pub scale_b: f64,
     /// Cut every triangle of both objects into 4^K by edge midpoints (the
     /// same surfaces with more triangles, for scaling studies; 0 to 4).
-    #[arg(long, default_value_t = 0, value_name = "K", value_parser = clap::value_parser!(u32).range(0..=4))]
+    #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=4))]
     pub subdivide: u32,
     /// Samples per side of each Bezier patch (.bpt): 2 n^2 triangles per
     /// patch (1 to 256: the teapot's 32 patches at 256 are 4.2 M triangles).
-    #[arg(long, default_value_t = 8, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_TESSELLATION))]
+    #[arg(long, default_value_t = 8, value_name = "N", value_parser = crate::input::whole::<u64>(1..=MAX_TESSELLATION))]
     pub tessellation: u64,
     /// Tessellate `.bpt` objects for the query instead of uniformly: only
     /// the patches (cut into quarters up to 4 times) whose control nets
@@ -233,12 +233,12 @@ pub struct HardwareArgs {
     #[arg(long, default_value_t = 24, value_parser = input::parse_width)]
     pub width: u32,
     /// Pipelines working in parallel (1 to 16).
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=MAX_PIPELINES as i64))]
+    #[arg(long, default_value_t = 2, value_parser = crate::input::whole::<u32>(1..=MAX_PIPELINES as u32))]
     pub pipelines: u32,
     /// Memory depth: triangles per array per bank (1 to 32767); longer
     /// arrays are split into tiles.
     #[arg(long, default_value_t = DEFAULT_TRIANGLES_PER_BANK as u64,
-          value_parser = clap::value_parser!(u64).range(1..=MAX_TRIANGLES_PER_BANK as u64))]
+          value_parser = crate::input::whole::<u64>(1..=MAX_TRIANGLES_PER_BANK as u64))]
     pub depth: u64,
     /// Refuse scenes whose arrays exceed D instead of splitting them.
     #[arg(long)]

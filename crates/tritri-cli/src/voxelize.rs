@@ -30,7 +30,7 @@ pub struct Args {
     #[arg(long)]
     solid: bool,
     /// Samples per side of each Bezier patch (.bpt), 1 to 256.
-    #[arg(long, default_value_t = 8, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=crate::scene_input::MAX_TESSELLATION))]
+    #[arg(long, default_value_t = 8, value_name = "N", value_parser = crate::input::whole::<u64>(1..=crate::scene_input::MAX_TESSELLATION))]
     tessellation: u64,
     /// Write the model: .oct (octree), .binvox, .vox (up to 256^3), .obj
     /// (boundary faces) or .png (render); may be given several times.
@@ -58,7 +58,7 @@ pub struct ViewArgs {
     #[arg(long, value_enum, default_value_t = UpAxis::Y)]
     pub up: UpAxis,
     /// Render size in pixels (16 to 4096).
-    #[arg(long, default_value_t = 512, value_name = "PX", value_parser = clap::value_parser!(u32).range(16..=4096))]
+    #[arg(long, default_value_t = 512, value_name = "PX", value_parser = crate::input::whole::<u32>(16..=4096))]
     pub size: u32,
 }
 

@@ -37,6 +37,16 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         // Counts of clocks name their range ("invalid digit" did not).
         (&["sim", "--max-cycles", "1e3"], "a whole number from 0 to"),
         (&["sim", "--max-cycles", "-1"], "a whole number from 0 to"),
+        // So does every other whole-number option (issue 68, item 9; the
+        // rule for all of them is a unit test of the command line).
+        (
+            &["sim", "--depth", "-1"],
+            "`-1` is not a whole number from 1 to 32767",
+        ),
+        (
+            &["gen", "--pipelines", "x", "--out", out_dir],
+            "`x` is not a whole number from 1 to 16",
+        ),
         (&["sim", "--vcd-max-cycles", "x"], "--vcd-max-cycles"),
         // A timing time that would run without end (issue 68, item 7).
         (
@@ -349,4 +359,65 @@ fn an_unwritable_output_is_refused_before_the_work() {
             String::from_utf8_lossy(&out.stdout)
         );
     }
+}
+
+/// A file that holds more or other than it declares is refused at its
+/// line, and errors say what the user needs (issue 68, items 8 and 9).
+#[test]
+fn files_that_say_more_than_they_declare_are_refused_at_the_line() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("extra-input");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n";
+    let off_junk = write("junk.off", &format!("{tet}3 1 2 3 junk\n"));
+    let off_extra = write("extra.off", &format!("{tet}3 1 2 3\n3 1 2 3\n"));
+    let ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let ply_extra = write("extra.ply", &format!("{ply}3 0 1 2\n"));
+    let obj = write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    let pairs_object = write("object.json", "{\"t1\": 1}\n");
+    let cases: &[(Vec<&str>, String)] = &[
+        (
+            vec!["voxelize", &off_junk, "--out", "x.oct"],
+            format!("{off_junk}:10: `junk` after the face's 3 vertex indices"),
+        ),
+        (
+            vec!["voxelize", &off_extra, "--out", "x.oct"],
+            format!("{off_extra}:11: more lines after the 4 faces"),
+        ),
+        (
+            vec!["voxelize", &ply_extra, "--out", "x.oct"],
+            format!("{ply_extra}:14: more data after the elements"),
+        ),
+        (
+            vec!["voxelize", &obj, "--out", "x.oct"],
+            format!(
+                "{obj}:4: vertex index 4 out of range (the file has 3 vertices, numbered from 1)"
+            ),
+        ),
+        (
+            vec!["classify", &pairs_object],
+            "must be an array of objects".to_string(),
+        ),
+        (
+            vec!["octree", "render", &off_junk, "--png", "x.png"],
+            "read from .oct files only".to_string(),
+        ),
+    ];
+    for (args, expected) in cases {
+        let out = tritri(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(expected.as_str()), "{args:?}: {stderr}");
+    }
+    // A file that cannot be read at all is told once, as that.
+    let out = tritri(&["classify", dir.join("missing.txt").to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("No such file"), "{stderr}");
 }

@@ -39,4 +39,7 @@ pub mod sign;
 pub mod triangle;
 pub mod widths;
 
+#[cfg(test)]
+mod reader_fuzz;
+
 pub use triangle::{Point, Triangle, TrianglePair};

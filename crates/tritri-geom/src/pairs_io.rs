@@ -111,6 +111,8 @@ pub enum FileError {
     },
     #[error("{file}: the JSON document must be an array of objects with `t1` and `t2`")]
     NotAnArray { file: String },
+    #[error("{file}:{line}: not UTF-8 text")]
+    NotText { file: String, line: usize },
 }
 
 /// The records of one file.
@@ -139,17 +141,26 @@ impl PairsFile {
 pub fn read_pairs(path: impl AsRef<Path>) -> Result<PairsFile, FileError> {
     let path = path.as_ref();
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+    let bytes = std::fs::read(path).map_err(|source| FileError::Io {
         file: file.clone(),
         source,
     })?;
-    let records = parse_pairs(&file, &text)?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| FileError::NotText {
+        file: file.clone(),
+        line: 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count(),
+    })?;
+    let records = parse_pairs(&file, text)?;
     Ok(PairsFile { file, records })
 }
 
 /// Parses the text of a file named `file` (used in error messages).
 pub fn parse_pairs(file: &str, text: &str) -> Result<Vec<Record>, FileError> {
-    if text.trim_start().starts_with('[') {
+    // A JSON document of any other shape (an object, say) is told as
+    // JSON, not as a text line whose first "number" is a brace.
+    if text.trim_start().starts_with(['[', '{']) {
         parse_json(file, text)
     } else {
         Ok(parse_text(file, text))
@@ -512,5 +523,23 @@ mod tests {
                 .starts_with("/nonexistent/pairs.txt: cannot read"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_json_object_is_told_as_json_not_as_a_number() {
+        let e = parse_pairs("p.json", r#"{"t1": 1}"#).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "p.json: the JSON document must be an array of objects with `t1` and `t2`"
+        );
+    }
+
+    #[test]
+    fn a_file_that_is_not_utf8_is_refused_at_its_line() {
+        let path = std::env::temp_dir().join(format!("tritri-pairs-{}.txt", std::process::id()));
+        std::fs::write(&path, b"# pairs\n0 0 0 \xff\n").unwrap();
+        let e = read_pairs(&path).unwrap_err().to_string();
+        std::fs::remove_file(&path).ok();
+        assert!(e.ends_with(":2: not UTF-8 text"), "{e}");
     }
 }

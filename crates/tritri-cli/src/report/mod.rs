@@ -70,7 +70,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', value_parser = input::parse_width, default_values_t = [8, 12, 16, 18, 20, 24, 28, 32])]
     widths: Vec<u32>,
     /// Pipelines P of the system whose speed is reported (pairs/s = Fmax x P).
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=tritri_rtl::system::MAX_PIPELINES as i64))]
+    #[arg(long, default_value_t = 2, value_parser = crate::input::whole::<u32>(1..=tritri_rtl::system::MAX_PIPELINES as u32))]
     pipelines: u32,
     /// The measurements of synthesis and place and route to read [default:
     /// the built-in copy of rtl-out/measurements.json].

@@ -150,11 +150,21 @@ pub fn oriented_outwards(patches: &[BezierPatch]) -> (Vec<BezierPatch>, bool) {
 /// Reads a `.bpt` file.
 pub fn read_bpt(path: &Path) -> Result<Vec<BezierPatch>, BptError> {
     let name = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| BptError::Io {
+    let bytes = std::fs::read(path).map_err(|source| BptError::Io {
         path: name.clone(),
         source,
     })?;
-    parse_bpt(&text).map_err(|(line, message)| BptError::Parse {
+    // Not UTF-8: the line of the first byte that is not, like any other
+    // error in the file.
+    let text = std::str::from_utf8(&bytes).map_err(|e| BptError::Parse {
+        path: name.clone(),
+        line: 1 + bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count(),
+        message: "not UTF-8 text".to_string(),
+    })?;
+    parse_bpt(text).map_err(|(line, message)| BptError::Parse {
         path: name,
         line,
         message,
@@ -211,6 +221,14 @@ pub fn parse_bpt(text: &str) -> Result<Vec<BezierPatch>, (usize, String)> {
             }
         }
         patches.push(BezierPatch { net });
+    }
+    // A file that holds more than it declares is not what its writer
+    // meant: reading the first `count` would drop the rest in silence.
+    if let Some((line, _)) = lines.next() {
+        return Err((
+            line,
+            format!("more data after the {count} patch(es) the first line declares"),
+        ));
     }
     Ok(patches)
 }
@@ -286,5 +304,27 @@ pub(crate) mod tests {
             parse_bpt(&text).unwrap_err(),
             (18, "coordinate `nan` is not finite".into())
         );
+    }
+
+    #[test]
+    fn a_file_with_more_patches_than_it_declares_is_refused() {
+        let patch = format!("3 3\n{}", "0 0 0\n".repeat(16));
+        assert_eq!(parse_bpt(&format!("1\n{patch}")).unwrap().len(), 1);
+        assert_eq!(
+            parse_bpt(&format!("1\n{patch}{patch}")).unwrap_err(),
+            (
+                19,
+                "more data after the 1 patch(es) the first line declares".into()
+            )
+        );
+    }
+
+    #[test]
+    fn a_file_that_is_not_utf8_is_refused_at_its_line() {
+        let path = std::env::temp_dir().join(format!("tritri-bpt-{}.bpt", std::process::id()));
+        std::fs::write(&path, b"1\n3 3\n0 0 \xff\n").unwrap();
+        let e = read_bpt(&path).unwrap_err().to_string();
+        std::fs::remove_file(&path).ok();
+        assert!(e.ends_with(":3: not UTF-8 text"), "{e}");
     }
 }

@@ -63,16 +63,11 @@ impl Mesh {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let parsed = match ext.as_deref() {
-            Some("obj") => obj::parse(&bytes),
-            Some("off") => off::parse(&bytes),
-            Some("ply") => ply::parse(&bytes),
-            _ => {
-                return Err(MeshError::UnknownFormat {
-                    path: path.to_owned(),
-                })
+        let parsed = parse_as(ext.as_deref().unwrap_or(""), &bytes).ok_or_else(|| {
+            MeshError::UnknownFormat {
+                path: path.to_owned(),
             }
-        };
+        })?;
         parsed.map_err(|e| MeshError::Parse {
             path: path.to_owned(),
             line: e.line,
@@ -81,10 +76,13 @@ impl Mesh {
     }
 
     /// Builds a mesh from vertices and polygons, checking indices and
-    /// coordinates; `line_of_face` tells errors where the face was.
+    /// coordinates; each face's line tells errors where it was. Indices
+    /// are 0-based here; errors number them from `first_index`, as the
+    /// file does (OBJ counts from 1).
     pub(crate) fn from_polygons(
         vertices: &[Point],
         faces: &[(usize, Vec<usize>)],
+        first_index: usize,
     ) -> Result<Mesh, LineError> {
         let mut mesh = Mesh::default();
         for (face_index, (line, polygon)) in faces.iter().enumerate() {
@@ -99,8 +97,8 @@ impl Mesh {
                     return Err(line_error(
                         *line,
                         format!(
-                            "vertex index {} out of range (the file has {} vertices)",
-                            v,
+                            "vertex index {} out of range (the file has {} vertices, numbered from {first_index})",
+                            v + first_index,
                             vertices.len()
                         ),
                     ));
@@ -116,6 +114,17 @@ impl Mesh {
             }
         }
         Ok(mesh)
+    }
+}
+
+/// Parses `bytes` as the format of `extension` (lower case, no dot);
+/// `None` for an extension that names no mesh format.
+pub(crate) fn parse_as(extension: &str, bytes: &[u8]) -> Option<Result<Mesh, LineError>> {
+    match extension {
+        "obj" => Some(obj::parse(bytes)),
+        "off" => Some(off::parse(bytes)),
+        "ply" => Some(ply::parse(bytes)),
+        _ => None,
     }
 }
 

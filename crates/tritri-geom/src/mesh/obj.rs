@@ -61,7 +61,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
             _ => {}
         }
     }
-    Mesh::from_polygons(&vertices, &faces)
+    Mesh::from_polygons(&vertices, &faces, 1)
 }
 
 fn count_lines(bytes: &[u8]) -> usize {

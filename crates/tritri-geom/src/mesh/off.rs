@@ -86,7 +86,28 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                     })
             })
             .collect();
+        // What may follow the indices is a colour: a colour-map index, or
+        // 3 or 4 components. Anything else is not OFF, and dropping it in
+        // silence could hide a face written wrong.
+        let colour: Vec<&str> = fields.collect();
+        if !matches!(colour.len(), 0 | 1 | 3 | 4)
+            || colour.iter().any(|c| c.parse::<f64>().is_err())
+        {
+            return Err(line_error(
+                line,
+                format!(
+                    "`{}` after the face's {k} vertex indices is not a colour (1, 3 or 4 numbers)",
+                    colour.join(" ")
+                ),
+            ));
+        }
         faces.push((line, polygon?));
     }
-    Mesh::from_polygons(&vertices, &faces)
+    if let Some((line, _)) = lines.next() {
+        return Err(line_error(
+            line,
+            format!("more lines after the {face_count} faces the counts declare"),
+        ));
+    }
+    Mesh::from_polygons(&vertices, &faces, 0)
 }

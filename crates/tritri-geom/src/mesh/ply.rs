@@ -165,7 +165,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
             }
         }
     }
-    Mesh::from_polygons(&vertices, &faces)
+    reader.finish()?;
+    Mesh::from_polygons(&vertices, &faces, 0)
 }
 
 /// Returns the elements, the encoding, where the body starts and how many
@@ -256,6 +257,9 @@ trait ValueReader {
     /// length is checked against it before anything is allocated, so a
     /// file that claims 4294967295 items fails with an error, not an abort.
     fn values_left(&self, ty: Scalar) -> usize;
+    /// After the last element: nothing may be left. Faces beyond the
+    /// declared count would otherwise be dropped in silence.
+    fn finish(&mut self) -> Result<(), LineError>;
 }
 
 struct AsciiReader<'a> {
@@ -325,6 +329,28 @@ impl ValueReader for AsciiReader<'_> {
     fn values_left(&self, _ty: Scalar) -> usize {
         self.fields.len() - self.next_field
     }
+    fn finish(&mut self) -> Result<(), LineError> {
+        // The last record's line must be used up, like every other's.
+        if self.next_field < self.fields.len() {
+            return Err(line_error(
+                self.line,
+                format!(
+                    "{} extra values on the line",
+                    self.fields.len() - self.next_field
+                ),
+            ));
+        }
+        for (i, l) in self.lines.by_ref() {
+            let l = l.trim();
+            if !l.is_empty() && !l.starts_with("comment") {
+                return Err(line_error(
+                    self.first_line + i,
+                    "more data after the elements the header declares",
+                ));
+            }
+        }
+        Ok(())
+    }
 }
 
 struct BinaryReader<'a> {
@@ -338,6 +364,17 @@ struct BinaryReader<'a> {
 impl ValueReader for BinaryReader<'_> {
     fn values_left(&self, ty: Scalar) -> usize {
         (self.bytes.len() - self.at) / ty.size()
+    }
+    fn finish(&mut self) -> Result<(), LineError> {
+        let left = self.bytes.len() - self.at;
+        if left == 0 {
+            Ok(())
+        } else {
+            Err(line_error(
+                self.line,
+                format!("{left} bytes after the elements the header declares"),
+            ))
+        }
     }
     fn start_record(&mut self) -> Result<(), LineError> {
         Ok(())

@@ -49,7 +49,7 @@ fn obj_errors_name_the_line() {
     );
     assert_eq!(
         parse("d.obj", b"v 0 0 0\nf 1 2 3\n").unwrap_err(),
-        "FILE:2: vertex index 1 out of range (the file has 1 vertices)"
+        "FILE:2: vertex index 2 out of range (the file has 1 vertices, numbered from 1)"
     );
     assert_eq!(
         parse("e.obj", b"v 0 0 0\nv x 0 0\n").unwrap_err(),
@@ -79,7 +79,7 @@ fn off_errors_name_the_line() {
     );
     assert_eq!(
         parse("c.off", b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n").unwrap_err(),
-        "FILE:6: vertex index 7 out of range (the file has 3 vertices)"
+        "FILE:6: vertex index 7 out of range (the file has 3 vertices, numbered from 0)"
     );
     assert_eq!(
         parse("d.off", b"COFF\n").unwrap_err(),
@@ -88,6 +88,33 @@ fn off_errors_name_the_line() {
     assert_eq!(
         parse("e.off", b"OFF\n3 1 0\n0 0 0\n").unwrap_err(),
         "FILE:2: file ends after 1 of 3 vertices"
+    );
+}
+
+#[test]
+fn off_takes_a_face_colour_and_nothing_else_beyond_its_faces() {
+    let tri = b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+    for colour in ["", " 7", " 0.5 0.5 0.5", " 255 0 0 255"] {
+        let text = [&tri[..], format!("3 0 1 2{colour}\n").as_bytes()].concat();
+        assert_eq!(
+            parse("f.off", &text).unwrap().triangles.len(),
+            1,
+            "{colour}"
+        );
+    }
+    let junk = [&tri[..], b"3 0 1 2 junk\n"].concat();
+    assert_eq!(
+        parse("g.off", &junk).unwrap_err(),
+        "FILE:6: `junk` after the face's 3 vertex indices is not a colour (1, 3 or 4 numbers)"
+    );
+    let two = [&tri[..], b"3 0 1 2 1 1\n"].concat();
+    assert!(parse("h.off", &two)
+        .unwrap_err()
+        .starts_with("FILE:6: `1 1` after"));
+    let extra = [&tri[..], b"3 0 1 2\n3 2 1 0\n"].concat();
+    assert_eq!(
+        parse("i.off", &extra).unwrap_err(),
+        "FILE:7: more lines after the 1 faces the counts declare"
     );
 }
 
@@ -178,5 +205,35 @@ fn a_ply_list_longer_than_the_file_is_an_error_not_an_abort() {
     assert!(
         e.contains("claims 4294967295 items") && e.contains("at most 3"),
         "{e}"
+    );
+}
+
+#[test]
+fn a_ply_that_holds_more_than_its_header_declares_is_refused() {
+    let quad = PLY_HEADER.replace("{}", "ascii") + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+    let extra_face = quad.clone() + "3 0 1 2\n";
+    assert_eq!(
+        parse("f.ply", extra_face.as_bytes()).unwrap_err(),
+        "FILE:15: more data after the elements the header declares"
+    );
+    let extra_value = quad.replace("4 0 1 2 3\n", "4 0 1 2 3 9\n");
+    assert_eq!(
+        parse("g.ply", extra_value.as_bytes()).unwrap_err(),
+        "FILE:14: 1 extra values on the line"
+    );
+    let mut bytes = PLY_HEADER
+        .replace("{}", "binary_little_endian")
+        .into_bytes();
+    bytes.extend(
+        QUAD.iter()
+            .flatten()
+            .flat_map(|&v| (v as f32).to_le_bytes()),
+    );
+    bytes.push(4);
+    bytes.extend((0..4i32).flat_map(i32::to_le_bytes));
+    bytes.extend([0u8; 5]);
+    assert_eq!(
+        parse("h.ply", &bytes).unwrap_err(),
+        "FILE:9: 5 bytes after the elements the header declares"
     );
 }
