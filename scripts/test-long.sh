@@ -16,9 +16,11 @@ cargo test --release --workspace --test rusthdl_pipeline --test shared_rare_case
 # The broad-phase accelerator with its scene in DRAM (the design that fits the ECP5-85),
 # in Verilator against the memory model, on two of CGAL's meshes in
 # contact: the pairs must be the exact answer on the grid, each once, with
-# an ideal memory and one that stalls (examples/dram_broad_phase.rs).
-# About 3 minutes.
+# an ideal memory and one that stalls (examples/dram_broad_phase.rs), on
+# its 64-bit port and on its 256-bit one. About 6 minutes.
 bash scripts/fetch-meshes.sh
 cargo build --release --workspace --examples
-target/release/examples/dram_broad_phase build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0
-target/release/examples/dram_broad_phase build/meshes/armadillo.off build/meshes/camel.off 127 55 0 0
+for bits in 64 256; do
+    target/release/examples/dram_broad_phase --data-bits $bits build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0
+    target/release/examples/dram_broad_phase --data-bits $bits build/meshes/armadillo.off build/meshes/camel.off 127 55 0 0
+done

@@ -315,7 +315,8 @@ pub struct Args {
     #[arg(long)]
     dram_broad_phase: bool,
     /// With --list-pass or --dram-binning: the AXI4 port's data width (64,
-    /// 128 or 256) [default: 64].
+    /// 128 or 256); with --dram-broad-phase 64, or 256 with --width 16
+    /// --rare-cases shared [default: 64].
     #[arg(long, value_name = "BITS", value_parser = crate::input::whole::<usize>(64..=512))]
     data_bits: Option<usize>,
     /// Where the pipeline tests its rare pairs (coplanar, or two degenerate
@@ -795,8 +796,9 @@ impl Args {
     }
 
     /// The accelerator `tritri gen --dram-broad-phase` writes for a
-    /// `width`-bit grid and system: the controller of `--dram-binning` on a
-    /// 64-bit port, the system of `--pipelines`, `--depth` and
+    /// `width`-bit grid and system: the controller of `--dram-binning` on
+    /// its port of `--data-bits` (64, or 256 with the rare cases shared),
+    /// the system of `--pipelines`, `--depth` and
     /// `--rare-cases`, the owner filter's tables of `--triangles` and
     /// `--slots`.
     fn dram_broad_phase_config(&self, width: usize) -> DramBroadPhaseConfig {

@@ -567,8 +567,16 @@ fn options_a_design_does_not_take_are_refused_by_name() {
             "--depth 100: the binning unit's split rule takes a power of two",
         ),
         (
-            &["--dram-broad-phase", "--data-bits", "128"][..],
-            "--data-bits does not apply to --dram-broad-phase (it takes --width, --dsp, --rare-cases, --pipelines, --depth, --triangles, --slots)",
+            &["--dram-broad-phase", "--list-words", "128"][..],
+            "--list-words does not apply to --dram-broad-phase (it takes --width, --data-bits, --dsp, --rare-cases, --pipelines, --depth, --triangles, --slots)",
+        ),
+        (
+            &["--dram-broad-phase", "--width", "16", "--data-bits", "128", "--rare-cases", "shared"][..],
+            "not (16, 16, 128)",
+        ),
+        (
+            &["--dram-broad-phase", "--width", "16", "--data-bits", "256"][..],
+            "256-bit port is built with the rare cases shared",
         ),
         (
             &["--dram-broad-phase", "--width", "8"][..],
@@ -907,45 +915,51 @@ fn dram_broad_phase_is_emitted_for_its_system_and_tables() {
         "tritri-gen-dram-broad-phase-{}",
         std::process::id()
     ));
-    let _ = std::fs::remove_dir_all(&out);
-    let status = tritri()
-        .args([
-            "gen",
-            "--dram-broad-phase",
-            "--width",
-            "16",
-            "--pipelines",
-            "1",
-            "--rare-cases",
-            "shared",
-            "--triangles",
-            "4096",
-            "--slots",
-            "2048",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let top = "tritri_dram_broad_phase_g16_w16_d64_p1_t256_i4096_s2048_shared";
-    let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
-    assert!(
-        verilog.contains(&format!("module {top}")),
-        "no module {top}"
-    );
-    assert!(verilog.contains("m_axi_rdata") && verilog.contains("out_index_a"));
-    for unit in [
-        "dram_binning_unit",
-        "leaf_reader",
-        "leaf_batcher",
-        "shared_collision_system",
-        "owner_chain_filter",
-    ] {
+    // The 64-bit port, then the 256-bit one into the same directory.
+    for bits in ["64", "256"] {
+        let status = tritri()
+            .args([
+                "gen",
+                "--dram-broad-phase",
+                "--width",
+                "16",
+                "--data-bits",
+                bits,
+                "--pipelines",
+                "1",
+                "--rare-cases",
+                "shared",
+                "--triangles",
+                "4096",
+                "--slots",
+                "2048",
+                "--out",
+            ])
+            .arg(&out)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let top = format!("tritri_dram_broad_phase_g16_w16_d{bits}_p1_t256_i4096_s2048_shared");
+        let verilog = std::fs::read_to_string(out.join(format!("{top}.v"))).unwrap();
         assert!(
-            out.join(format!("{top}_{unit}.v")).is_file(),
-            "no {unit} inside"
+            verilog.contains(&format!("module {top}")),
+            "no module {top}"
         );
+        assert!(verilog.contains("out_index_a"));
+        let port = format!("[{}:0] m_axi_rdata", bits.parse::<usize>().unwrap() - 1);
+        assert!(verilog.contains(&port), "no {port}");
+        for unit in [
+            "dram_binning_unit",
+            "leaf_reader",
+            "leaf_batcher",
+            "shared_collision_system",
+            "owner_chain_filter",
+        ] {
+            assert!(
+                out.join(format!("{top}_{unit}.v")).is_file(),
+                "no {unit} inside"
+            );
+        }
     }
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -107,3 +107,72 @@ fn the_verilated_top_is_the_rust_hdl_top_clock_for_clock() {
         );
     }
 }
+
+/// The top that fits the ECP5-85 (16-bit grid, one pipeline, the rare
+/// cases shared) on its 256-bit port, emitted and run in Verilator: the
+/// exact pairs once, the model's walk and clocks, and the passes' speed-up
+/// over the 64-bit port that the wider port is for.
+#[test]
+fn the_256_bit_top_streams_the_exact_pairs_at_the_models_clocks() {
+    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
+    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    let mut accelerator = Accelerator::new(16);
+    accelerator.pipelines = 1;
+    accelerator.rare_cases = tritri_rtl::pipeline::RareCasePath::Shared;
+    let prepared = accelerator.prepare(&a, &b).unwrap();
+    let pairs = exact_on_grid(&prepared);
+    let port = |data_bits| ListPassConfig {
+        grid_bits: 16,
+        data_bits,
+        ..pass()
+    };
+    // The 64-bit port's passes on a memory with a beat each way a clock.
+    let (narrow, _) = top_case(
+        &accelerator,
+        &prepared,
+        port(64),
+        MemoryParams::ideal(8, 24),
+        1 << 24,
+    )
+    .unwrap();
+    let narrow = run_top_model(&narrow, 5_000_000).unwrap();
+    let ideal = MemoryParams::ideal(32, 24);
+    for params in [ideal, ideal.with_stalls(20, 7)] {
+        let (case, _) = top_case(&accelerator, &prepared, port(256), params, 1 << 24).unwrap();
+        let uncertain = uncertain_in_leaves(&case).unwrap();
+        let run = run_top_simulator(Simulator::Verilator, &case, 5_000_000).unwrap();
+        assert!(!run.error && !run.overflow && run.faults == 0, "{run:?}");
+        once_and_exact(&run.pairs, &pairs, "intersecting").unwrap();
+        once_and_exact(&run.uncertain, &uncertain, "without a certificate").unwrap();
+        // The model has no shared rare-case unit: its walk is the top's,
+        // its last verdict no later.
+        let model = run_top_model(&case, 5_000_000).unwrap();
+        assert_eq!(
+            (model.binned_at, model.leaves, model.passes, model.stalled),
+            (run.binned_at, run.leaves, run.passes, run.stalled),
+            "the model against Verilator (binned, leaves, passes, stalled)"
+        );
+        assert!(model.tested_at <= run.tested_at);
+        eprintln!(
+            "256-bit port, stalls {}%: {} pairs ({} uncertain), {} leaves, {} passes, binned at {} (64-bit port: {}), tested at {} (model {}), done at {}",
+            params.stall_percent,
+            run.pairs.len(),
+            run.uncertain.len(),
+            run.leaves,
+            run.passes,
+            run.binned_at,
+            narrow.binned_at,
+            run.tested_at,
+            model.tested_at,
+            run.cycles
+        );
+        if params.stall_percent == 0 {
+            assert!(
+                (run.binned_at as f64) < 0.6 * narrow.binned_at as f64,
+                "binned at {} on the 256-bit port, {} on the 64-bit one",
+                run.binned_at,
+                narrow.binned_at
+            );
+        }
+    }
+}

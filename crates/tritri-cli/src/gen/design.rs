@@ -210,7 +210,9 @@ pub const DESIGNS: [Row; 20] = [
     Row {
         design: Design::DramBroadPhase,
         flag: Some("--dram-broad-phase"),
-        takes: &[Width, Dsp, RareCases, Pipelines, Depth, Triangles, Slots],
+        takes: &[
+            Width, DataBits, Dsp, RareCases, Pipelines, Depth, Triangles, Slots,
+        ],
     },
 ];
 

@@ -18,8 +18,12 @@ use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 
 /// (grid bits, system width, port bits) the top is instantiated for: the
 /// torus and sphere of the tests on a 24-bit grid, and the 16-bit grid the
-/// controller routes at on the ECP5-85.
-pub const DRAM_BROAD_PHASE_WIDTHS: [(usize, usize, usize); 2] = [(24, 24, 64), (16, 16, 64)];
+/// controller routes at on the ECP5-85, on a 64-bit port and on a 256-bit
+/// one. A 256-bit port takes an entry a clock, where the 64-bit port takes
+/// one every four: the passes, which are most of a run, go up to four
+/// times as fast on a memory that keeps up.
+pub const DRAM_BROAD_PHASE_WIDTHS: [(usize, usize, usize); 3] =
+    [(24, 24, 64), (16, 16, 64), (16, 16, 256)];
 
 /// What the top is built for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,6 +70,12 @@ impl DramBroadPhaseConfig {
         if !DRAM_BROAD_PHASE_WIDTHS.contains(&widths) {
             return Err(format!(
                 "the DRAM broad-phase top is built for (grid, width, port bits) {DRAM_BROAD_PHASE_WIDTHS:?}, not {widths:?}"
+            ));
+        }
+        if pass.data_bits != 64 && self.rare_cases != RareCasePath::Shared {
+            return Err(format!(
+                "the DRAM broad-phase top's {}-bit port is built with the rare cases shared (--rare-cases shared), the design for the ECP5-85",
+                pass.data_bits
             ));
         }
         if 1usize << rule.log_depth != self.system.triangles_per_bank
@@ -162,16 +172,16 @@ pub fn with_dram_broad_phase<R: Send>(
     const V16: usize = value_bits(16);
     const V24: usize = value_bits(24);
     let (build, system) = (config.build(), config.system);
-    // One arm per (grid, kind); the widths are DRAM_BROAD_PHASE_WIDTHS'.
+    // One arm per (grid, kind, port); the widths are DRAM_BROAD_PHASE_WIDTHS'.
     macro_rules! top {
-        ($top:ident, $visit:ident, $g:literal, $v:ident) => {
+        ($top:ident, $visit:ident, $g:literal, $v:ident, $dw:literal) => {
             f.$visit($top::<
                 $g,
                 $v,
                 { 13 * $v },
                 { 9 * $g },
-                64,
-                8,
+                $dw,
+                { $dw / 8 },
                 $g,
                 { difference_bits($g) },
                 { cross_bits($g) },
@@ -180,11 +190,15 @@ pub fn with_dram_broad_phase<R: Send>(
         };
     }
     Ok(on_unit_stack(move || {
+        let port = config.binning.pass.data_bits;
         match (config.binning.pass.grid_bits, config.rare_cases) {
-            (24, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 24, V24),
-            (24, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 24, V24),
-            (_, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 16, V16),
-            (_, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 16, V16),
+            (24, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 24, V24, 64),
+            (24, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 24, V24, 64),
+            (_, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 16, V16, 64),
+            (_, RareCasePath::Shared) if port == 256 => {
+                top!(SharedDramBroadPhase, visit_shared, 16, V16, 256)
+            }
+            (_, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 16, V16, 64),
         }
     }))
 }
