@@ -197,8 +197,10 @@ fn main() -> anyhow::Result<()> {
         );
         runs.push((verilator, case, params));
     }
-    let (run, case, params) = runs.swap_remove(0);
-    let at_versa = runs.into_iter().nth(1);
+    // The ideal memory's run, then (past the stalled one) the Versa's.
+    let mut runs = runs.into_iter();
+    let (run, case, params) = runs.next().expect("the ideal memory ran");
+    let at_versa = runs.nth(1).map(|(run, _, _)| run);
     exact_answer_and_speed(&a, &b, &run, &case, &params, routed.zip(at_versa))
 }
 
@@ -217,14 +219,15 @@ fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams {
 /// The route's end on the host and the speed against software: the
 /// certain hits with the uncertain pairs decided again on the f64 meshes
 /// must be the software's exact answer; then the clocks against the
-/// memory's bound and, at the routed clock, the time against software.
+/// memory's bound and, at the routed clock (`routed`: that clock and the
+/// run at the Versa's bandwidth), the time against software.
 fn exact_answer_and_speed(
     a: &SceneObject,
     b: &SceneObject,
     run: &TopRun,
     case: &TopCase,
     memory: &MemoryParams,
-    routed: Option<(f64, (TopRun, TopCase, MemoryParams))>,
+    routed: Option<(f64, TopRun)>,
 ) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let software = exact_f64_pairs(&a.triangles, &b.triangles);
@@ -281,7 +284,7 @@ fn exact_answer_and_speed(
     );
     let software = software_time.as_secs_f64();
     match routed {
-        Some((mhz, (versa, _, _))) => {
+        Some((mhz, versa)) => {
             let time = |clocks: u64| clocks as f64 / (mhz * 1e6);
             // The ideal memory's bytes a clock at the routed clock.
             let gbytes = num as f64 / den as f64 * mhz * 1e6 / 1e9;

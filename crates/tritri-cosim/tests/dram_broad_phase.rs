@@ -24,12 +24,17 @@ fn pass() -> ListPassConfig {
     }
 }
 
-/// The torus and sphere of the controller's tests on a 24-bit grid, one
-/// pipeline, the system's depth cut to 16 so that leaves come as several
-/// tiles.
-fn torus_and_sphere() -> (Accelerator, PreparedScene) {
+/// The torus and sphere of the controller's tests.
+fn torus_and_sphere_objects() -> (SceneObject, SceneObject) {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
     let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    (a, b)
+}
+
+/// Them on a 24-bit grid, one pipeline, the system's depth cut to 16 so
+/// that leaves come as several tiles.
+fn torus_and_sphere() -> (Accelerator, PreparedScene) {
+    let (a, b) = torus_and_sphere_objects();
     let mut accelerator = Accelerator::new(24);
     accelerator.depth = 16;
     accelerator.pipelines = 1;
@@ -114,8 +119,7 @@ fn the_verilated_top_is_the_rust_hdl_top_clock_for_clock() {
 /// over the 64-bit port that the wider port is for.
 #[test]
 fn the_256_bit_top_streams_the_exact_pairs_at_the_models_clocks() {
-    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
-    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 32, 16));
+    let (a, b) = torus_and_sphere_objects();
     let mut accelerator = Accelerator::new(16);
     accelerator.pipelines = 1;
     accelerator.rare_cases = tritri_rtl::pipeline::RareCasePath::Shared;

@@ -284,8 +284,9 @@ impl<'a> AsciiReader<'a> {
     }
 }
 
-impl ValueReader for AsciiReader<'_> {
-    fn start_record(&mut self) -> Result<(), LineError> {
+impl AsciiReader<'_> {
+    /// A record's line holds its values and no more.
+    fn line_used_up(&self) -> Result<(), LineError> {
         if self.next_field < self.fields.len() {
             return Err(line_error(
                 self.line,
@@ -295,6 +296,13 @@ impl ValueReader for AsciiReader<'_> {
                 ),
             ));
         }
+        Ok(())
+    }
+}
+
+impl ValueReader for AsciiReader<'_> {
+    fn start_record(&mut self) -> Result<(), LineError> {
+        self.line_used_up()?;
         loop {
             let (i, l) = self.lines.next().ok_or_else(|| {
                 line_error(self.line + 1, "file ends before all elements are read")
@@ -331,15 +339,7 @@ impl ValueReader for AsciiReader<'_> {
     }
     fn finish(&mut self) -> Result<(), LineError> {
         // The last record's line must be used up, like every other's.
-        if self.next_field < self.fields.len() {
-            return Err(line_error(
-                self.line,
-                format!(
-                    "{} extra values on the line",
-                    self.fields.len() - self.next_field
-                ),
-            ));
-        }
+        self.line_used_up()?;
         for (i, l) in self.lines.by_ref() {
             let l = l.trim();
             if !l.is_empty() && !l.starts_with("comment") {
