@@ -36,6 +36,7 @@ pub mod quantize;
 pub mod raster;
 pub mod scene;
 pub mod sign;
+mod text;
 pub mod triangle;
 pub mod widths;
 

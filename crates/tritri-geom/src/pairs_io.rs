@@ -145,12 +145,9 @@ pub fn read_pairs(path: impl AsRef<Path>) -> Result<PairsFile, FileError> {
         file: file.clone(),
         source,
     })?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| FileError::NotText {
+    let text = crate::text::utf8_text(&bytes).map_err(|line| FileError::NotText {
         file: file.clone(),
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
+        line,
     })?;
     let records = parse_pairs(&file, text)?;
     Ok(PairsFile { file, records })

@@ -154,14 +154,9 @@ pub fn read_bpt(path: &Path) -> Result<Vec<BezierPatch>, BptError> {
         path: name.clone(),
         source,
     })?;
-    // Not UTF-8: the line of the first byte that is not, like any other
-    // error in the file.
-    let text = std::str::from_utf8(&bytes).map_err(|e| BptError::Parse {
+    let text = crate::text::utf8_text(&bytes).map_err(|line| BptError::Parse {
         path: name.clone(),
-        line: 1 + bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count(),
+        line,
         message: "not UTF-8 text".to_string(),
     })?;
     parse_bpt(text).map_err(|(line, message)| BptError::Parse {

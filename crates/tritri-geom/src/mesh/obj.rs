@@ -5,8 +5,7 @@
 use super::{line_error, numbered_lines, parse_coordinate, LineError, Mesh};
 
 pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| line_error(1 + count_lines(&bytes[..e.valid_up_to()]), "not UTF-8 text"))?;
+    let text = crate::text::utf8_text(bytes).map_err(|line| line_error(line, "not UTF-8 text"))?;
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     for (line, content) in numbered_lines(text, '#') {
@@ -62,8 +61,4 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
         }
     }
     Mesh::from_polygons(&vertices, &faces, 1)
-}
-
-fn count_lines(bytes: &[u8]) -> usize {
-    bytes.iter().filter(|&&b| b == b'\n').count()
 }
