@@ -86,6 +86,8 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                     })
             })
             .collect();
+        // A bad index is told as that, before what follows it.
+        let polygon = polygon?;
         // What may follow the indices is a colour: a colour-map index, or
         // 3 or 4 components. Anything else is not OFF, and dropping it in
         // silence could hide a face written wrong.
@@ -101,7 +103,7 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Mesh, LineError> {
                 ),
             ));
         }
-        faces.push((line, polygon?));
+        faces.push((line, polygon));
     }
     if let Some((line, _)) = lines.next() {
         return Err(line_error(

@@ -107,6 +107,12 @@ fn off_takes_a_face_colour_and_nothing_else_beyond_its_faces() {
         parse("g.off", &junk).unwrap_err(),
         "FILE:6: `junk` after the face's 3 vertex indices is not a colour (1, 3 or 4 numbers)"
     );
+    // A bad index is the error, not the fields after it.
+    let bad_index = [&tri[..], b"3 0 1.5 2 junk\n"].concat();
+    assert_eq!(
+        parse("j.off", &bad_index).unwrap_err(),
+        "FILE:6: face vertex index is not a non-negative integer"
+    );
     let two = [&tri[..], b"3 0 1 2 1 1\n"].concat();
     assert!(parse("h.off", &two)
         .unwrap_err()
