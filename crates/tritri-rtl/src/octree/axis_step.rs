@@ -18,9 +18,13 @@
 //! adds `Σ_{k in o} 2 q_k` to the value: the same interpolation.
 //!
 //! Stages: shifts (1); descent, subset sums and range ends (2); `δ`, `ε`
-//! (3); comparisons (4). `V`-bit two's complement throughout, modulo
-//! `2^V`: exact while every value fits `V` signed bits, which
-//! [`super::value_bits`] guarantees for the grid width.
+//! (3); comparisons (4). Two's complement at the step's width `bits`
+//! (at most the ports' `V`), modulo `2^bits`: exact while every value of
+//! its function fits `bits` signed bits. [`super::value_bits`] guarantees
+//! that at `V` for any function of the grid; a function with small
+//! gradients (an axis, an edge) fits fewer, and a step built for it
+//! ([`AxisStep::with_bits`]) reads the low `bits` bits of its inputs and
+//! is that much smaller.
 //!
 //! A custom-Verilog primitive with an exact i128 model evaluated only at
 //! clock edges, like [`crate::arith::multiplier::Multiplier`].
@@ -55,10 +59,15 @@ pub struct AxisStep<const V: usize> {
     _s1: Stage1,
     _s2: Stage2,
     _s3: Stage3,
+    /// The width the step computes at (see the module's doc).
+    _bits: usize,
 }
 
 impl<const V: usize> crate::unit::Unit for AxisStep<V> {
     const LATENCY: Option<usize> = Some(AXIS_STEP_LATENCY);
+    fn settings(&self) -> Vec<(&'static str, String)> {
+        vec![("bits", self._bits.to_string())]
+    }
 }
 
 #[derive(Clone, Copy, Default)]
@@ -90,9 +99,19 @@ struct Stage3 {
 
 impl<const V: usize> Default for AxisStep<V> {
     fn default() -> Self {
+        Self::with_bits(V)
+    }
+}
+
+impl<const V: usize> AxisStep<V> {
+    /// A step computing at `bits` of its `V`-bit ports: for a function
+    /// whose every value (at a corner, its interval's ends, `δ`, `ε`, the
+    /// sums) fits `bits` signed bits, so its inputs' higher bits are only
+    /// their sign; its `value` is sign-extended back to `V`.
+    pub fn with_bits(bits: usize) -> Self {
         assert!(
-            (8..=127).contains(&V),
-            "axis step of {V} bits is not supported"
+            (8..=127).contains(&V) && (8..=V).contains(&bits),
+            "axis step of {bits} bits in {V} is not supported"
         );
         Self {
             clock: Default::default(),
@@ -111,6 +130,7 @@ impl<const V: usize> Default for AxisStep<V> {
             _s1: Stage1::default(),
             _s2: Stage2::default(),
             _s3: Stage3::default(),
+            _bits: bits,
         }
     }
 }
@@ -129,6 +149,7 @@ impl<const V: usize> Logic for AxisStep<V> {
         if !(self.clock.pos_edge() && self.advance.val()) {
             return;
         }
+        let bits = self._bits;
         // Stage 4: comparisons.
         let s3 = self._s3;
         let mask = (0..8)
@@ -141,8 +162,8 @@ impl<const V: usize> Logic for AxisStep<V> {
         self._s3 = Stage3 {
             sums: s2.sums,
             value: s2.value,
-            delta: wrap_i128(s2.high - s2.value - s2.negative, V),
-            epsilon: wrap_i128(s2.low - s2.value - s2.positive, V),
+            delta: wrap_i128(s2.high - s2.value - s2.negative, bits),
+            epsilon: wrap_i128(s2.low - s2.value - s2.positive, bits),
         };
         // Stage 2: descent, subset sums, range ends.
         let s1 = self._s1;
@@ -151,14 +172,15 @@ impl<const V: usize> Logic for AxisStep<V> {
             .map(|k| s1.q[k] << 1)
             .sum();
         self._s2 = Stage2 {
-            sums: subset_sums(s1.q, V),
-            value: wrap_i128(s1.at_lo + descent, V),
-            negative: wrap_i128(s1.q.iter().filter(|q| **q < 0).sum(), V),
-            positive: wrap_i128(s1.q.iter().filter(|q| **q > 0).sum(), V),
+            sums: subset_sums(s1.q, bits),
+            value: wrap_i128(s1.at_lo + descent, bits),
+            negative: wrap_i128(s1.q.iter().filter(|q| **q < 0).sum(), bits),
+            positive: wrap_i128(s1.q.iter().filter(|q| **q > 0).sum(), bits),
             low: s1.low,
             high: s1.high,
         };
-        // Stage 1: shifts (Verilog's `<<` by `level - 1`, six bits, modulo 2^V).
+        // Stage 1: shifts (Verilog's `<<` by `level - 1`, six bits, modulo
+        // 2^bits), of the inputs' low `bits` bits.
         let shift = (self.level.val().index() as u32).wrapping_sub(1) & 63;
         let octant = self.octant.val().index() as u8;
         let gradient = [
@@ -168,16 +190,16 @@ impl<const V: usize> Logic for AxisStep<V> {
         ];
         self._s1 = Stage1 {
             q: gradient.map(|g| {
-                if shift >= V as u32 {
+                if shift >= bits as u32 {
                     0
                 } else {
-                    wrap_i128(to_i128(g) << shift, V)
+                    wrap_i128(to_i128(g) << shift, bits)
                 }
             }),
             step: if self.descend.val() { octant } else { 0 },
-            at_lo: to_i128(self.at_lo.val()),
-            low: to_i128(self.low.val()),
-            high: to_i128(self.high.val()),
+            at_lo: wrap_i128(to_i128(self.at_lo.val()), bits),
+            low: wrap_i128(to_i128(self.low.val()), bits),
+            high: wrap_i128(to_i128(self.high.val()), bits),
         };
     }
 
@@ -187,47 +209,81 @@ impl<const V: usize> Logic for AxisStep<V> {
     }
 
     fn hdl(&self) -> Verilog {
-        let v1 = V - 1;
+        let w = self._bits;
+        let w1 = w - 1;
+        // The inputs at the step's width: their low `w` bits (the rest is
+        // their sign), and the value back at the ports' width.
+        let (narrow, widen) = if w == V {
+            (
+                "wire [{w1}:0] gradient_x_w = gradient_x;\n\
+                 wire [{w1}:0] gradient_y_w = gradient_y;\n\
+                 wire [{w1}:0] gradient_z_w = gradient_z;\n\
+                 wire [{w1}:0] at_lo_w = at_lo;\n\
+                 wire [{w1}:0] low_w = low;\n\
+                 wire [{w1}:0] high_w = high;\n"
+                    .replace("{w1}", &w1.to_string()),
+                "value_3".to_string(),
+            )
+        } else {
+            (
+                // The higher bits, only signs, fold into a wire whose name
+                // tells Verilator's lint they are unread on purpose.
+                "wire [{w1}:0] gradient_x_w = gradient_x[{w1}:0];\n\
+                 wire [{w1}:0] gradient_y_w = gradient_y[{w1}:0];\n\
+                 wire [{w1}:0] gradient_z_w = gradient_z[{w1}:0];\n\
+                 wire [{w1}:0] at_lo_w = at_lo[{w1}:0];\n\
+                 wire [{w1}:0] low_w = low[{w1}:0];\n\
+                 wire [{w1}:0] high_w = high[{w1}:0];\n\
+                 wire unused_signs = ^{gradient_x[{v1}:{w}], gradient_y[{v1}:{w}], \
+                 gradient_z[{v1}:{w}], at_lo[{v1}:{w}], low[{v1}:{w}], high[{v1}:{w}]};\n"
+                    .replace("{w1}", &w1.to_string())
+                    .replace("{v1}", &(V - 1).to_string())
+                    .replace("{w}", &w.to_string()),
+                format!("{{{{{}{{value_3[{w1}]}}}}, value_3}}", V - w),
+            )
+        };
         let text = format!(
             "\
+// The step computes at {w} of the ports' {V} bits.
+{narrow}\
 // Stage 1: the increments of the children, q_k = g_k << (level - 1).
-reg [{v1}:0] q0_1, q1_1, q2_1, at_lo_1, low_1, high_1;
+reg [{w1}:0] q0_1, q1_1, q2_1, at_lo_1, low_1, high_1;
 reg [2:0] step_1;
 // Stage 2: descent, subset sums S_o, range ends.
-reg [{v1}:0] s_2 [0:7];
-reg [{v1}:0] value_2, negative_2, positive_2, low_2, high_2;
+reg [{w1}:0] s_2 [0:7];
+reg [{w1}:0] value_2, negative_2, positive_2, low_2, high_2;
 // Stage 3: delta = high - value - negative, epsilon = low - value - positive.
-reg [{v1}:0] s_3 [0:7];
-reg [{v1}:0] value_3, delta_3, epsilon_3;
+reg [{w1}:0] s_3 [0:7];
+reg [{w1}:0] value_3, delta_3, epsilon_3;
 wire [5:0] shift = level - 6'd1;
 integer i;
 initial begin
-    q0_1 = {V}'d0; q1_1 = {V}'d0; q2_1 = {V}'d0; at_lo_1 = {V}'d0; low_1 = {V}'d0; high_1 = {V}'d0; step_1 = 3'd0;
-    value_2 = {V}'d0; negative_2 = {V}'d0; positive_2 = {V}'d0; low_2 = {V}'d0; high_2 = {V}'d0;
-    value_3 = {V}'d0; delta_3 = {V}'d0; epsilon_3 = {V}'d0;
+    q0_1 = {w}'d0; q1_1 = {w}'d0; q2_1 = {w}'d0; at_lo_1 = {w}'d0; low_1 = {w}'d0; high_1 = {w}'d0; step_1 = 3'd0;
+    value_2 = {w}'d0; negative_2 = {w}'d0; positive_2 = {w}'d0; low_2 = {w}'d0; high_2 = {w}'d0;
+    value_3 = {w}'d0; delta_3 = {w}'d0; epsilon_3 = {w}'d0;
     for (i = 0; i < 8; i = i + 1) begin
-        s_2[i] = {V}'d0;
-        s_3[i] = {V}'d0;
+        s_2[i] = {w}'d0;
+        s_3[i] = {w}'d0;
     end
     value = {V}'d0;
     mask = 8'd0;
 end
 always @(posedge clock) begin
     if (advance) begin
-        q0_1 <= gradient_x << shift;
-        q1_1 <= gradient_y << shift;
-        q2_1 <= gradient_z << shift;
-        at_lo_1 <= at_lo;
-        low_1 <= low;
-        high_1 <= high;
+        q0_1 <= gradient_x_w << shift;
+        q1_1 <= gradient_y_w << shift;
+        q2_1 <= gradient_z_w << shift;
+        at_lo_1 <= at_lo_w;
+        low_1 <= low_w;
+        high_1 <= high_w;
         step_1 <= descend ? octant : 3'd0;
 
-        value_2 <= at_lo_1 + (step_1[0] ? {{q0_1[{v2}:0], 1'b0}} : {V}'d0)
-                           + (step_1[1] ? {{q1_1[{v2}:0], 1'b0}} : {V}'d0)
-                           + (step_1[2] ? {{q2_1[{v2}:0], 1'b0}} : {V}'d0);
-        negative_2 <= (q0_1[{v1}] ? q0_1 : {V}'d0) + (q1_1[{v1}] ? q1_1 : {V}'d0) + (q2_1[{v1}] ? q2_1 : {V}'d0);
-        positive_2 <= (q0_1[{v1}] ? {V}'d0 : q0_1) + (q1_1[{v1}] ? {V}'d0 : q1_1) + (q2_1[{v1}] ? {V}'d0 : q2_1);
-        s_2[0] <= {V}'d0;
+        value_2 <= at_lo_1 + (step_1[0] ? {{q0_1[{w2}:0], 1'b0}} : {w}'d0)
+                           + (step_1[1] ? {{q1_1[{w2}:0], 1'b0}} : {w}'d0)
+                           + (step_1[2] ? {{q2_1[{w2}:0], 1'b0}} : {w}'d0);
+        negative_2 <= (q0_1[{w1}] ? q0_1 : {w}'d0) + (q1_1[{w1}] ? q1_1 : {w}'d0) + (q2_1[{w1}] ? q2_1 : {w}'d0);
+        positive_2 <= (q0_1[{w1}] ? {w}'d0 : q0_1) + (q1_1[{w1}] ? {w}'d0 : q1_1) + (q2_1[{w1}] ? {w}'d0 : q2_1);
+        s_2[0] <= {w}'d0;
         s_2[1] <= q0_1;
         s_2[2] <= q1_1;
         s_2[3] <= q0_1 + q1_1;
@@ -245,14 +301,14 @@ always @(posedge clock) begin
             s_3[i] <= s_2[i];
         end
 
-        value <= value_3;
+        value <= {widen};
         for (i = 0; i < 8; i = i + 1) begin
             mask[i] <= $signed(epsilon_3) <= $signed(s_3[i]) && $signed(s_3[i]) <= $signed(delta_3);
         end
     end
 end
 ",
-            v2 = V - 2,
+            w2 = w - 2,
         );
         Verilog::Custom(text)
     }

@@ -29,7 +29,7 @@ pub const TAG_BITS: usize = 16;
 /// Clock edges from an entry to its mask: the axis steps, then the AND.
 pub const CELL_CLASSIFIER_LATENCY: usize = AXIS_STEP_LATENCY + 1;
 
-#[derive(LogicBlock, Default)]
+#[derive(LogicBlock)]
 pub struct CellClassifier<const V: usize> {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
@@ -64,6 +64,62 @@ impl<const V: usize> crate::unit::Unit for CellClassifier<V> {
     const LATENCY: Option<usize> = Some(CELL_CLASSIFIER_LATENCY);
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
         crate::sub_units!(self, units, axis, mask_q, value_q, tag, valid);
+    }
+}
+
+/// The width each of the thirteen functions is computed at, in the
+/// setup's order ([`super::triangle_setup`]: the axes, the plane, the
+/// edges), for the `V`-bit values of `G = (V - 6) / 3`-bit grids.
+///
+/// Over the root cube (corners within `2^G` of its low corner, coordinates
+/// differing by less than `2^G`):
+/// * an axis (`g` a unit vector): values, interval ends and `q_k` below
+///   `2^G + 1`, so `δ` and `ε` below `2^(G+2)`: `G + 3` signed bits;
+/// * an edge (`g = e × u_k`, two components below `2^G`): values and
+///   interval ends below `2^(2G+1) + 2^(G+1)`, the `q_k` below `2^(2G-1)`,
+///   so `δ`, `ε` below `2^(2G+3)`: `2G + 4` signed bits;
+/// * the plane: the full `V` ([`super::value_bits`]).
+///
+/// One bit of slack on each; a padding function (zero) fits any width.
+pub fn function_bits(v: usize) -> [usize; AXES] {
+    let g = (v - 6) / 3;
+    let axis = (g + 4).min(v);
+    let edge = (2 * g + 5).min(v);
+    std::array::from_fn(|i| match i {
+        0..=2 => axis,
+        3 => v,
+        _ => edge,
+    })
+}
+
+impl<const V: usize> Default for CellClassifier<V> {
+    fn default() -> Self {
+        let bits = function_bits(V);
+        CellClassifier {
+            clock: Default::default(),
+            reset: Default::default(),
+            advance: Default::default(),
+            in_valid: Default::default(),
+            in_tag: Default::default(),
+            in_level: Default::default(),
+            in_descend: Default::default(),
+            in_octant: Default::default(),
+            in_at_lo: Default::default(),
+            in_gradient_x: Default::default(),
+            in_gradient_y: Default::default(),
+            in_gradient_z: Default::default(),
+            in_low: Default::default(),
+            in_high: Default::default(),
+            out_valid: Default::default(),
+            out_tag: Default::default(),
+            out_mask: Default::default(),
+            out_at_lo: Default::default(),
+            axis: std::array::from_fn(|i| AxisStep::with_bits(bits[i])),
+            mask_q: Default::default(),
+            value_q: Default::default(),
+            tag: Default::default(),
+            valid: Default::default(),
+        }
     }
 }
 

@@ -44,6 +44,11 @@ pub struct ChildSelect {
     child_slot: [Constant<Bits<SLOT_BITS>>; CHILDREN],
     lowest_wide: Signal<Local, Bits<CHILDREN>>,
     chosen: Signal<Local, Bits<CHILDREN>>,
+    /// Child `i`'s state where it is chosen, else zero.
+    fill_term: [Signal<Local, Bits<9>>; CHILDREN],
+    blocked_term: [Signal<Local, Bit>; CHILDREN],
+    region_term: [Signal<Local, Bits<ADDRESS_BITS>>; CHILDREN],
+    slot_term: [Signal<Local, Bits<SLOT_BITS>>; CHILDREN],
 }
 
 impl crate::unit::Unit for ChildSelect {}
@@ -71,6 +76,10 @@ impl Default for ChildSelect {
             child_slot: std::array::from_fn(|i| Constant::new((2 * i as u64).into())),
             lowest_wide: Default::default(),
             chosen: Default::default(),
+            fill_term: Default::default(),
+            blocked_term: Default::default(),
+            region_term: Default::default(),
+            slot_term: Default::default(),
         }
     }
 }
@@ -93,21 +102,31 @@ impl Logic for ChildSelect {
             }
         }
         self.target.next = self.chosen.val();
+        for i in 0..16 {
+            self.fill_term[i].next = 0.into();
+            self.blocked_term[i].next = false;
+            self.region_term[i].next = 0.into();
+            self.slot_term[i].next = 0.into();
+            if self.chosen.val().get_bit(i) {
+                self.fill_term[i].next = self.fill[i].val();
+                self.blocked_term[i].next = self.pending_low[i].val();
+                self.slot_term[i].next = self.child_slot[i].val();
+                if self.half[i].val() {
+                    self.blocked_term[i].next = self.pending_high[i].val();
+                    self.slot_term[i].next = self.child_slot[i].val() + 1;
+                }
+                self.region_term[i].next = self.region[i].val();
+            }
+        }
         self.fill_of.next = 0.into();
         self.blocked.next = false;
         self.region_of.next = 0.into();
         self.slot.next = 0.into();
         for i in 0..16 {
-            if self.chosen.val().get_bit(i) {
-                self.fill_of.next = self.fill[i].val();
-                self.blocked.next = self.pending_low[i].val();
-                self.slot.next = self.child_slot[i].val();
-                if self.half[i].val() {
-                    self.blocked.next = self.pending_high[i].val();
-                    self.slot.next = self.child_slot[i].val() + 1;
-                }
-                self.region_of.next = self.region[i].val();
-            }
+            self.fill_of.next = self.fill_of.val() | self.fill_term[i].val();
+            self.blocked.next = self.blocked.val() | self.blocked_term[i].val();
+            self.region_of.next = self.region_of.val() | self.region_term[i].val();
+            self.slot.next = self.slot.val() | self.slot_term[i].val();
         }
     }
 }

@@ -179,9 +179,9 @@ pub struct ListPass<
     strobes: Constant<Bits<S>>,
     log_beats_per_entry: Constant<Bits<2>>,
     last_beat: Constant<Bits<3>>,
-    /// A beat's bits, as a shift and an offset in the entry: 0 at DW =
-    /// 256, where an entry is one beat and nothing is shifted or stepped
-    /// (a shift by 256 would be out of the operand's range).
+    /// A beat's bits, as a shift: 0 at DW = 256, where an entry is one
+    /// beat and nothing is shifted (a shift by 256 would be out of the
+    /// operand's range).
     beat_step: Constant<Bits<8>>,
     /// What the gearbox keeps of its earlier beats: nothing at DW = 256.
     gear_keep: Constant<Bits<ENTRY_BITS>>,
@@ -226,9 +226,10 @@ pub struct ListPass<
     /// `reached`, so that `live` is a continuous assignment).
     gate: DFF<Bits<8>>,
     beat: DFF<Bits<3>>,
-    // Where the next beat starts in the entry: 0 to 192, so 8 bits index
-    // the 256-bit entry without a width mismatch.
-    beat_offset: DFF<Bits<8>>,
+    /// The entry's beats not yet written to this child, next at bit 0: a
+    /// shift by a constant a beat, where indexing the entry by the beat
+    /// would be a 256-bit barrel shifter.
+    beat_data: DFF<Bits<ENTRY_BITS>>,
     flushing: DFF<Bit>,
     flushed: DFF<Bit>,
     flush_child: DFF<Bits<4>>,
@@ -332,7 +333,7 @@ impl<
             reached,
             gate,
             beat,
-            beat_offset,
+            beat_data,
             flushing,
             flushed,
             flush_child,
@@ -491,7 +492,7 @@ impl<
             reached: Default::default(),
             gate: Default::default(),
             beat: Default::default(),
-            beat_offset: Default::default(),
+            beat_data: Default::default(),
             flushing: Default::default(),
             flushed: Default::default(),
             flush_child: Default::default(),
@@ -578,7 +579,7 @@ impl<
             reached,
             gate,
             beat,
-            beat_offset,
+            beat_data,
             flushing,
             flushed,
             flush_child,
@@ -717,19 +718,15 @@ impl<
         self.flush_out.next = self.flushing.q.val() & (self.select.fill_of.val() != 0);
         self.buffer.write_enable.next = self.write.val();
         self.buffer.write_address.next = self.sel_address.val();
-        self.buffer.write_data.next = self
-            .entry
-            .q
-            .val()
-            .get_bits::<DW>(self.beat_offset.q.val().index());
+        self.buffer.write_data.next = self.beat_data.q.val().get_bits::<DW>(0);
         if self.write.val() {
             if self.entry_done.val() {
                 self.beat.d.next = 0.into();
-                self.beat_offset.d.next = 0.into();
+                self.beat_data.d.next = self.entry.q.val();
                 self.mask_left.d.next = self.live.val() & !self.select.lowest.val();
             } else {
                 self.beat.d.next = self.beat.q.val() + 1;
-                self.beat_offset.d.next = self.beat_offset.q.val() + self.beat_step.val();
+                self.beat_data.d.next = self.beat_data.q.val() >> self.beat_step.val();
             }
         }
         for i in 0..16 {
@@ -767,7 +764,7 @@ impl<
             self.object.d.next = self.entries.out_data.val().get_bit(256);
             self.mask_left.d.next = self.masks.out_data.val();
             self.beat.d.next = 0.into();
-            self.beat_offset.d.next = 0.into();
+            self.beat_data.d.next = self.entries.out_data.val().get_bits::<ENTRY_BITS>(0);
         }
         // After the last entry: the partly filled slots, one child a clock.
         if self.running.q.val()
