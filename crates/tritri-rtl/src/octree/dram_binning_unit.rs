@@ -534,7 +534,7 @@ impl<
             self.run_base[k].clock.next = self.clock.val();
             self.run_base[k].d.next = self.run_base[k].q.val();
         }
-        clock!(self, clock, pass, cost, frames, children, waiting);
+        clock!(self, clock, pass, cost, terms, frames, children, waiting);
         self.pass.reset.next = self.reset.val();
 
         // ---- The port is the pass unit's.

@@ -6,24 +6,34 @@
 //! [`PASS_FIXED_CLOCKS`] and its entries' beats; each child's list is as
 //! long as its parent's, rounded up to a write burst.
 //!
-//! Combinational, and a block of its own: in the controller's one
-//! combinational block, a term read back through a continuous assignment
-//! looks like a loop to Verilator (UNOPTFLAT).
+//! Registered: the outputs are the terms of the inputs one clock earlier.
+//! The controller reads them at its query's last counter, three clocks
+//! after the cell's counts settled, so the register costs no clock; it
+//! cuts the chain of 48-bit carries (sums, strides, the arena's new top,
+//! the compare) that was the controller's critical path. Only `cannot_pay`
+//! reads an input of its own clock, the leaf cost, which arrives at that
+//! last counter: it compares the cost with a registered bound.
+//!
+//! A block of its own: in the controller's one combinational block, a term
+//! read back through a continuous assignment looks like a loop to Verilator
+//! (UNOPTFLAT).
 
 use super::dram_binning_machine::PASS_FIXED_CLOCKS;
 use super::list_entry::ENTRY_BYTES;
 use super::list_pass::WRITE_BURST_BEATS;
 use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
 
 #[derive(LogicBlock)]
 pub struct SplitTerms {
+    pub clock: Signal<In, Clock>,
     /// The cell's entries of each object, its level, and whether it is the
     /// root (whose pass is charged as empty and which is always passed).
     pub count_a: Signal<In, Bits<32>>,
     pub count_b: Signal<In, Bits<32>>,
     pub level: Signal<In, Bits<6>>,
     pub at_root: Signal<In, Bit>,
-    /// The cell's cost as a leaf.
+    /// The cell's cost as a leaf (read in its own clock).
     pub leaf_cost: Signal<In, Bits<48>>,
     /// The arena's top and end.
     pub arena_top: Signal<In, Bits<32>>,
@@ -50,6 +60,18 @@ pub struct SplitTerms {
     log_burst_bytes: Constant<Bits<48>>,
     max_leaf_enable: Constant<Bit>,
     max_leaf_level: Constant<Bits<6>>,
+    classify_q: DFF<Bits<48>>,
+    forced_q: DFF<Bit>,
+    /// A leaf cost at most this cannot pay for a split, where `payable`.
+    bound_q: DFF<Bits<48>>,
+    payable_q: DFF<Bit>,
+    stride_a_q: DFF<Bits<32>>,
+    stride_b_q: DFF<Bits<32>>,
+    children_b_q: DFF<Bits<32>>,
+    new_top_q: DFF<Bits<32>>,
+    fits_q: DFF<Bit>,
+    classify_now: Signal<Local, Bits<48>>,
+    forced_now: Signal<Local, Bit>,
     sum: Signal<Local, Bits<48>>,
     wide_a: Signal<Local, Bits<48>>,
     wide_b: Signal<Local, Bits<48>>,
@@ -61,7 +83,23 @@ pub struct SplitTerms {
     wide_new_top: Signal<Local, Bits<48>>,
 }
 
-impl crate::unit::Unit for SplitTerms {}
+impl crate::unit::Unit for SplitTerms {
+    fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
+        crate::sub_units!(
+            self,
+            units,
+            classify_q,
+            forced_q,
+            bound_q,
+            payable_q,
+            stride_a_q,
+            stride_b_q,
+            children_b_q,
+            new_top_q,
+            fits_q
+        );
+    }
+}
 
 impl SplitTerms {
     /// For a port of `data_bits`-bit beats; cells above `max_leaf_level`
@@ -72,6 +110,7 @@ impl SplitTerms {
         let burst_bytes = WRITE_BURST_BEATS as u64 * beat_bytes;
         let entries_per_burst = burst_bytes / ENTRY_BYTES as u64;
         SplitTerms {
+            clock: Default::default(),
             count_a: Default::default(),
             count_b: Default::default(),
             level: Default::default(),
@@ -94,6 +133,17 @@ impl SplitTerms {
             log_burst_bytes: Constant::new(u64::from(burst_bytes.ilog2()).into()),
             max_leaf_enable: Constant::new(max_leaf_level.is_some()),
             max_leaf_level: Constant::new(u64::from(max_leaf_level.unwrap_or(0)).into()),
+            classify_q: Default::default(),
+            forced_q: Default::default(),
+            bound_q: Default::default(),
+            payable_q: Default::default(),
+            stride_a_q: Default::default(),
+            stride_b_q: Default::default(),
+            children_b_q: Default::default(),
+            new_top_q: Default::default(),
+            fits_q: Default::default(),
+            classify_now: Default::default(),
+            forced_now: Default::default(),
             sum: Default::default(),
             wide_a: Default::default(),
             wide_b: Default::default(),
@@ -110,19 +160,37 @@ impl SplitTerms {
 impl Logic for SplitTerms {
     #[hdl_gen]
     fn update(&mut self) {
+        dff_setup!(
+            self,
+            clock,
+            classify_q,
+            forced_q,
+            bound_q,
+            payable_q,
+            stride_a_q,
+            stride_b_q,
+            children_b_q,
+            new_top_q,
+            fits_q
+        );
         self.wide_a.next = bit_cast::<48, 32>(self.count_a.val());
         self.wide_b.next = bit_cast::<48, 32>(self.count_b.val());
         self.sum.next = self.wide_a.val() + self.wide_b.val();
-        self.classify.next =
+        self.classify_now.next =
             self.pass_fixed.val() + (self.sum.val() << self.log_beats_per_entry.val());
         if self.at_root.val() {
-            self.classify.next = self.pass_fixed.val();
+            self.classify_now.next = self.pass_fixed.val();
         }
-        self.forced.next =
+        self.forced_now.next =
             self.max_leaf_enable.val() & (self.level.val() > self.max_leaf_level.val());
-        self.cannot_pay.next = !self.at_root.val()
-            & !self.forced.val()
-            & (self.leaf_cost.val() <= self.sum.val() + 1 + self.classify.val());
+        self.classify_q.d.next = self.classify_now.val();
+        self.forced_q.d.next = self.forced_now.val();
+        self.bound_q.d.next = self.sum.val() + 1 + self.classify_now.val();
+        self.payable_q.d.next = !self.at_root.val() & !self.forced_now.val();
+        self.classify.next = self.classify_q.q.val();
+        self.forced.next = self.forced_q.q.val();
+        self.cannot_pay.next =
+            self.payable_q.q.val() & (self.leaf_cost.val() <= self.bound_q.q.val());
         // Each child list as long as its parent's, on a write burst; an
         // empty one still takes a burst.
         self.bursts_a.next = (self.wide_a.val() + self.entries_per_burst_less_one.val())
@@ -140,10 +208,15 @@ impl Logic for SplitTerms {
         self.wide_children_b.next =
             bit_cast::<48, 32>(self.arena_top.val()) + (self.wide_stride_a.val() << 3);
         self.wide_new_top.next = self.wide_children_b.val() + (self.wide_stride_b.val() << 3);
-        self.fits.next = self.wide_new_top.val() <= bit_cast::<48, 32>(self.arena_end.val());
-        self.stride_a.next = self.wide_stride_a.val().get_bits::<32>(0);
-        self.stride_b.next = self.wide_stride_b.val().get_bits::<32>(0);
-        self.children_b.next = self.wide_children_b.val().get_bits::<32>(0);
-        self.new_top.next = self.wide_new_top.val().get_bits::<32>(0);
+        self.fits_q.d.next = self.wide_new_top.val() <= bit_cast::<48, 32>(self.arena_end.val());
+        self.stride_a_q.d.next = self.wide_stride_a.val().get_bits::<32>(0);
+        self.stride_b_q.d.next = self.wide_stride_b.val().get_bits::<32>(0);
+        self.children_b_q.d.next = self.wide_children_b.val().get_bits::<32>(0);
+        self.new_top_q.d.next = self.wide_new_top.val().get_bits::<32>(0);
+        self.fits.next = self.fits_q.q.val();
+        self.stride_a.next = self.stride_a_q.q.val();
+        self.stride_b.next = self.stride_b_q.q.val();
+        self.children_b.next = self.children_b_q.q.val();
+        self.new_top.next = self.new_top_q.q.val();
     }
 }
