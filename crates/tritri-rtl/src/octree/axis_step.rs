@@ -61,12 +61,19 @@ pub struct AxisStep<const V: usize> {
     _s3: Stage3,
     /// The width the step computes at (see the module's doc).
     _bits: usize,
+    /// Bits of the shift `level - 1` (modulo `2^shift_bits`): 6, or as
+    /// many as the largest level a caller gives needs, each bit one stage
+    /// of the three barrel shifters.
+    _shift_bits: usize,
 }
 
 impl<const V: usize> crate::unit::Unit for AxisStep<V> {
     const LATENCY: Option<usize> = Some(AXIS_STEP_LATENCY);
     fn settings(&self) -> Vec<(&'static str, String)> {
-        vec![("bits", self._bits.to_string())]
+        vec![
+            ("bits", self._bits.to_string()),
+            ("shift_bits", self._shift_bits.to_string()),
+        ]
     }
 }
 
@@ -99,7 +106,7 @@ struct Stage3 {
 
 impl<const V: usize> Default for AxisStep<V> {
     fn default() -> Self {
-        Self::with_bits(V)
+        Self::with_bits(V, 6)
     }
 }
 
@@ -107,11 +114,13 @@ impl<const V: usize> AxisStep<V> {
     /// A step computing at `bits` of its `V`-bit ports: for a function
     /// whose every value (at a corner, its interval's ends, `δ`, `ε`, the
     /// sums) fits `bits` signed bits, so its inputs' higher bits are only
-    /// their sign; its `value` is sign-extended back to `V`.
-    pub fn with_bits(bits: usize) -> Self {
+    /// their sign; its `value` is sign-extended back to `V`. It shifts by
+    /// `level - 1` modulo `2^shift_bits`, for callers whose levels are at
+    /// most `2^shift_bits`.
+    pub fn with_bits(bits: usize, shift_bits: usize) -> Self {
         assert!(
-            (8..=127).contains(&V) && (8..=V).contains(&bits),
-            "axis step of {bits} bits in {V} is not supported"
+            (8..=127).contains(&V) && (8..=V).contains(&bits) && (1..=6).contains(&shift_bits),
+            "axis step of {bits} bits in {V}, {shift_bits}-bit shifts, is not supported"
         );
         Self {
             clock: Default::default(),
@@ -131,6 +140,7 @@ impl<const V: usize> AxisStep<V> {
             _s2: Stage2::default(),
             _s3: Stage3::default(),
             _bits: bits,
+            _shift_bits: shift_bits,
         }
     }
 }
@@ -179,9 +189,10 @@ impl<const V: usize> Logic for AxisStep<V> {
             low: s1.low,
             high: s1.high,
         };
-        // Stage 1: shifts (Verilog's `<<` by `level - 1`, six bits, modulo
-        // 2^bits), of the inputs' low `bits` bits.
-        let shift = (self.level.val().index() as u32).wrapping_sub(1) & 63;
+        // Stage 1: shifts (Verilog's `<<` by `level - 1` in `shift_bits`
+        // bits, modulo 2^bits), of the inputs' low `bits` bits.
+        let shift = (self.level.val().index() as u32).wrapping_sub(1)
+            & ((1u32 << self._shift_bits) - 1);
         let octant = self.octant.val().index() as u8;
         let gradient = [
             self.gradient_x.val(),
@@ -211,6 +222,18 @@ impl<const V: usize> Logic for AxisStep<V> {
     fn hdl(&self) -> Verilog {
         let w = self._bits;
         let w1 = w - 1;
+        let sb = self._shift_bits;
+        // The level's bits above the shift's are not read (their names tell
+        // Verilator's lint so).
+        let shift = if sb == 6 {
+            "wire [5:0] shift = level - 6'd1;\n".to_string()
+        } else {
+            format!(
+                "wire [{sb1}:0] shift = level[{sb1}:0] - {sb}'d1;\n\
+                 wire unused_level = ^level[5:{sb}];\n",
+                sb1 = sb - 1
+            )
+        };
         // The inputs at the step's width: their low `w` bits (the rest is
         // their sign), and the value back at the ports' width.
         let (narrow, widen) = if w == V {
@@ -255,7 +278,7 @@ reg [{w1}:0] value_2, negative_2, positive_2, low_2, high_2;
 // Stage 3: delta = high - value - negative, epsilon = low - value - positive.
 reg [{w1}:0] s_3 [0:7];
 reg [{w1}:0] value_3, delta_3, epsilon_3;
-wire [5:0] shift = level - 6'd1;
+{shift}\
 integer i;
 initial begin
     q0_1 = {w}'d0; q1_1 = {w}'d0; q2_1 = {w}'d0; at_lo_1 = {w}'d0; low_1 = {w}'d0; high_1 = {w}'d0; step_1 = 3'd0;

@@ -36,7 +36,8 @@ pub struct CellClassifier<const V: usize> {
     pub advance: Signal<In, Bit>,
     pub in_valid: Signal<In, Bit>,
     pub in_tag: Signal<In, Bits<TAG_BITS>>,
-    /// Level of the classified cell (>= 1: it has children).
+    /// Level of the classified cell (>= 1: it has children; at most the
+    /// grid's `G`, the root cube's).
     pub in_level: Signal<In, Bits<6>>,
     /// The values are over the parent; classify its child `in_octant`.
     pub in_descend: Signal<In, Bit>,
@@ -81,6 +82,7 @@ impl<const V: usize> crate::unit::Unit for CellClassifier<V> {
 /// * the plane: the full `V` ([`super::value_bits`]).
 ///
 /// One bit of slack on each; a padding function (zero) fits any width.
+/// The steps shift by `level - 1` in [`shift_bits`] bits.
 pub fn function_bits(v: usize) -> [usize; AXES] {
     let g = (v - 6) / 3;
     let axis = (g + 4).min(v);
@@ -92,9 +94,17 @@ pub fn function_bits(v: usize) -> [usize; AXES] {
     })
 }
 
+/// Bits of `level - 1` for the levels of a `G = (V - 6) / 3`-bit grid: a
+/// cell of the root cube is at most at level `G`.
+pub fn shift_bits(v: usize) -> usize {
+    let g = (v - 6) / 3;
+    (usize::BITS - (g - 1).leading_zeros()) as usize
+}
+
 impl<const V: usize> Default for CellClassifier<V> {
     fn default() -> Self {
         let bits = function_bits(V);
+        let shift = shift_bits(V);
         CellClassifier {
             clock: Default::default(),
             reset: Default::default(),
@@ -114,7 +124,7 @@ impl<const V: usize> Default for CellClassifier<V> {
             out_tag: Default::default(),
             out_mask: Default::default(),
             out_at_lo: Default::default(),
-            axis: std::array::from_fn(|i| AxisStep::with_bits(bits[i])),
+            axis: std::array::from_fn(|i| AxisStep::with_bits(bits[i], shift)),
             mask_q: Default::default(),
             value_q: Default::default(),
             tag: Default::default(),
