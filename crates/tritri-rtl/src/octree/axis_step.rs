@@ -191,8 +191,8 @@ impl<const V: usize> Logic for AxisStep<V> {
         };
         // Stage 1: shifts (Verilog's `<<` by `level - 1` in `shift_bits`
         // bits, modulo 2^bits), of the inputs' low `bits` bits.
-        let shift = (self.level.val().index() as u32).wrapping_sub(1)
-            & ((1u32 << self._shift_bits) - 1);
+        let shift =
+            (self.level.val().index() as u32).wrapping_sub(1) & ((1u32 << self._shift_bits) - 1);
         let octant = self.octant.val().index() as u8;
         let gradient = [
             self.gradient_x.val(),
