@@ -240,6 +240,22 @@ pub struct TopRun {
     pub faults: usize,
 }
 
+impl TopRun {
+    /// The run ended cleanly (no error response, no overflow, no fault)
+    /// and streamed the exact pairs and the uncertain ones, each once.
+    pub fn is_exact(&self, pairs: &[(u32, u32)], uncertain: &[(u32, u32)]) -> anyhow::Result<()> {
+        anyhow::ensure!(
+            !self.error && !self.overflow && self.faults == 0,
+            "error {}, overflow {}, {} faults",
+            self.error,
+            self.overflow,
+            self.faults
+        );
+        once_and_exact(&self.pairs, pairs, "intersecting")?;
+        once_and_exact(&self.uncertain, uncertain, "without a certificate")
+    }
+}
+
 /// The rust-hdl top on `case` against the Rust memory model, the pairs'
 /// reader always ready; an error past `limit` clocks.
 pub fn run_top_rusthdl(case: &TopCase, limit: u64) -> anyhow::Result<TopRun> {

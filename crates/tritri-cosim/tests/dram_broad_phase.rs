@@ -4,8 +4,7 @@
 //! each once.
 
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, once_and_exact, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
-    uncertain_in_leaves,
+    exact_on_grid, run_top_model, run_top_rusthdl, run_top_simulator, top_case, uncertain_in_leaves,
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
@@ -53,9 +52,8 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
         let (case, _) = top_case(&accelerator, &prepared, pass(), params, 1 << 24).unwrap();
         let uncertain = uncertain_in_leaves(&case).unwrap();
         let run = run_top_rusthdl(&case, 5_000_000).unwrap();
-        assert!(!run.error && !run.overflow && run.faults == 0, "{run:?}");
-        once_and_exact(&run.pairs, &pairs, "intersecting").unwrap();
-        once_and_exact(&run.uncertain, &uncertain, "without a certificate").unwrap();
+        run.is_exact(&pairs, &uncertain)
+            .unwrap_or_else(|e| panic!("{e}: {run:?}"));
         assert!(run.binned_at <= run.tested_at && run.tested_at <= run.cycles);
         // The clock-exact model to the last verdict.
         let model = run_top_model(&case, 5_000_000).unwrap();
@@ -145,9 +143,8 @@ fn the_256_bit_top_streams_the_exact_pairs_at_the_models_clocks() {
         let (case, _) = top_case(&accelerator, &prepared, port(256), params, 1 << 24).unwrap();
         let uncertain = uncertain_in_leaves(&case).unwrap();
         let run = run_top_simulator(Simulator::Verilator, &case, 5_000_000).unwrap();
-        assert!(!run.error && !run.overflow && run.faults == 0, "{run:?}");
-        once_and_exact(&run.pairs, &pairs, "intersecting").unwrap();
-        once_and_exact(&run.uncertain, &uncertain, "without a certificate").unwrap();
+        run.is_exact(&pairs, &uncertain)
+            .unwrap_or_else(|e| panic!("{e}: {run:?}"));
         // The model has no shared rare-case unit: its walk is the top's,
         // its last verdict no later.
         let model = run_top_model(&case, 5_000_000).unwrap();
