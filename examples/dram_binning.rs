@@ -16,7 +16,7 @@
 //! in clocks of the unit's port, with the memory's bandwidth in bytes per
 //! clock beside it; no clock frequency is assumed.
 //!
-//! Then the controller itself (`tritri_rtl::octree::dram_binning_unit`)
+//! Then the controller itself (`tritri_rtl::broad_phase::dram_binning_unit`)
 //! runs on the same scene, 64-bit port, in rust-hdl and, emitted, in
 //! Verilator against `axi_memory.sv`, with an ideal memory and with one
 //! that stalls 20 % of clocks; each must equal the clock-exact model in
@@ -29,8 +29,8 @@ use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::octree::leaf_cost::leaf_cost;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::broad_phase::leaf_cost::leaf_cost;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 
 /// The collision system's clocks on the leaves of `schedule`, as the
 /// split rule counts them.

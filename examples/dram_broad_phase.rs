@@ -49,10 +49,10 @@ use tritri_geom::certificate::decide_again;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::dram_broad_phase_unit::emit_dram_broad_phase;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
 use tritri_rtl::measured::Measurements;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::RareCasePath;
 
 /// The owner filter's tables of the design that fits the ECP5-85.

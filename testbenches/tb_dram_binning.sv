@@ -2,11 +2,11 @@
 // external memory, against the memory model.
 //
 // Purpose: loads the memory model (axi_memory.sv) from a hex file, starts
-//   the binning controller (tritri_rtl::octree::dram_binning_unit) on the
+//   the binning controller (tritri_rtl::broad_phase::dram_binning_unit) on the
 //   root's lists, prints every leaf as it goes out, counts the clocks and
 //   writes the memory back out, so the co-simulation compares the leaves,
 //   clocks and memory with the rust-hdl run and the clock-exact model
-//   (tritri_rtl::octree::dram_binning_machine). It runs in both Verilator
+//   (tritri_rtl::broad_phase::dram_binning_machine). It runs in both Verilator
 //   5.006 (`verilator --binary`) and Icarus (iverilog -g2012).
 //
 // Parameters: GRID_BITS, the memory's (DATA_BITS, BYTES, READ_LATENCY,

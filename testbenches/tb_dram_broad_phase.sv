@@ -3,7 +3,7 @@
 //
 // Purpose: loads the memory model (axi_memory.sv) from a hex file (the
 //   root lists as the host writes them), starts the top
-//   (tritri_rtl::octree::dram_broad_phase) and prints every pair it
+//   (tritri_rtl::broad_phase::dram_broad_phase) and prints every pair it
 //   streams and the clocks at which it is binned, tested and done, so the
 //   co-simulation compares them with the rust-hdl run, the exact answer on
 //   the grid and the cycle model. It runs in Verilator 5.006

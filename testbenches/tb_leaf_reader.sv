@@ -2,10 +2,10 @@
 // the memory model.
 //
 // Purpose: loads the memory model (axi_memory.sv) from a hex file, starts
-//   the leaf reader (tritri_rtl::octree::leaf_reader) on one leaf, takes its
+//   the leaf reader (tritri_rtl::broad_phase::leaf_reader) on one leaf, takes its
 //   stream with a fixed pattern of out_ready and prints every word taken and
 //   the clocks, so the co-simulation compares them with the rust-hdl run and
-//   the clock-exact model (tritri_rtl::octree::leaf_reader_machine). It runs
+//   the clock-exact model (tritri_rtl::broad_phase::leaf_reader_machine). It runs
 //   in both Verilator 5.006 (`verilator --binary`) and Icarus (iverilog
 //   -g2012).
 //

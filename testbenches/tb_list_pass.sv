@@ -2,10 +2,10 @@
 // the memory model.
 //
 // Purpose: loads the memory model (axi_memory.sv) from a hex file, starts
-//   one pass of the list pass unit (tritri_rtl::octree::list_pass), counts
+//   one pass of the list pass unit (tritri_rtl::broad_phase::list_pass), counts
 //   its clocks and writes the memory back out, so the co-simulation
 //   compares the children's lists, counts and cycles with the rust-hdl run
-//   and the clock-exact model (tritri_rtl::octree::list_pass_machine). It
+//   and the clock-exact model (tritri_rtl::broad_phase::list_pass_machine). It
 //   runs in both Verilator 5.006 (`verilator --binary`) and Icarus
 //   (iverilog -g2012).
 //

@@ -121,6 +121,12 @@ use anyhow::Context;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use tritri_geom::scene::load::Pose;
+use tritri_rtl::broad_phase::binning_machine::BinningParams;
+use tritri_rtl::broad_phase::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
+use tritri_rtl::broad_phase::dram_binning_machine::DramBinningConfig;
+use tritri_rtl::broad_phase::dram_binning_unit::WAITING_CAPACITY;
+use tritri_rtl::broad_phase::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{
@@ -155,12 +161,6 @@ use tritri_rtl::emit::voxel_units::{
 };
 use tritri_rtl::emit::EmittedDesign;
 use tritri_rtl::measured::{device, DEVICES};
-use tritri_rtl::octree::binning_machine::BinningParams;
-use tritri_rtl::octree::binning_unit::{BinningUnitConfig, LEAF_ADDRESS_BITS};
-use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
-use tritri_rtl::octree::dram_binning_unit::WAITING_CAPACITY;
-use tritri_rtl::octree::list_packer::{INDEX_BITS, LIST_ADDRESS_BITS};
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::pipeline_unit::{emit_pipeline_for, pipeline_unit_name_for};
 use tritri_rtl::pipeline::RareCasePath;

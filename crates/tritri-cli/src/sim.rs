@@ -89,7 +89,7 @@ use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{PairDiff, PairSet};
 use tritri_geom::scene::render::render_pairs;
 use tritri_geom::scene::PreparedScene;
-use tritri_rtl::octree::owner_filter::SLOT_WORD_BITS;
+use tritri_rtl::broad_phase::owner_filter::SLOT_WORD_BITS;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::RareCasePath;
 

@@ -1,7 +1,7 @@
-//! Co-simulation of the binning unit ([`tritri_rtl::octree::binning_unit`]):
+//! Co-simulation of the binning unit ([`tritri_rtl::broad_phase::binning_unit`]):
 //! a scene's two arrays streamed in, the leaves streamed out, in the rust-hdl
 //! model and in the emitted Verilog (Icarus or Verilator), against the
-//! cycle-exact model ([`tritri_rtl::octree::binning_machine`]), whose leaves
+//! cycle-exact model ([`tritri_rtl::broad_phase::binning_machine`]), whose leaves
 //! are the broad phase planner's.
 //!
 //! Vectors for the emitted unit: a first line `0 x y z level enable
@@ -20,12 +20,12 @@ use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::PreparedScene;
-use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
-use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
-use tritri_rtl::octree::binning_unit::{
+use tritri_rtl::broad_phase::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::broad_phase::binning_unit::{
     on_unit_stack, BinningUnit, BinningUnitConfig, BINNING_GRID_WIDTHS,
 };
-use tritri_rtl::octree::broad_phase_system::leaf_tiles;
+use tritri_rtl::broad_phase::broad_phase_system::leaf_tiles;
+use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};

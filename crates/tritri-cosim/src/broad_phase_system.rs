@@ -1,4 +1,4 @@
-//! Drives the broad-phase top ([`tritri_rtl::octree::broad_phase_system`]):
+//! Drives the broad-phase top ([`tritri_rtl::broad_phase::broad_phase_system`]):
 //! a scene's arrays in, on the grid the binning unit was built for, each
 //! leaf's pairs out, with the clocks from the first triangle in to `done`.
 
@@ -13,12 +13,12 @@ use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
+use tritri_rtl::broad_phase::binning_machine::BinningRun;
+use tritri_rtl::broad_phase::binning_unit::on_unit_stack;
+use tritri_rtl::broad_phase::broad_phase_system::BroadPhaseSystem;
+use tritri_rtl::broad_phase::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
-use tritri_rtl::octree::binning_machine::BinningRun;
-use tritri_rtl::octree::binning_unit::on_unit_stack;
-use tritri_rtl::octree::broad_phase_system::BroadPhaseSystem;
 use tritri_rtl::octree::cell_classifier::AXES;
-use tritri_rtl::octree::owner_chain_filter::{decide, streamed, Streamed};
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
@@ -441,7 +441,7 @@ pub fn run_scene_on_top(
         .context("the scene has no octree root")?;
     let a: Vec<FixedTriangle> = scene.kept_a.iter().map(|t| t.triangle).collect();
     let b: Vec<FixedTriangle> = scene.kept_b.iter().map(|t| t.triangle).collect();
-    let slots = tritri_rtl::octree::broad_phase_system::stream_slots(
+    let slots = tritri_rtl::broad_phase::broad_phase_system::stream_slots(
         system.triangles_per_bank,
         &binning.run,
     )
@@ -459,7 +459,7 @@ pub fn run_scene_on_top(
         anyhow::anyhow!("the broad-phase top cannot be built for this scene: {why}")
     })?;
     let model_cycles =
-        tritri_rtl::octree::broad_phase_system::broad_phase_cycles(system, &binning.run);
+        tritri_rtl::broad_phase::broad_phase_system::broad_phase_cycles(system, &binning.run);
     let model = top_model(&binning.run, system.triangles_per_bank, &a, &b);
     let output = match simulator {
         None => run_rusthdl(&config, &a, &b, root, max_leaf_level)?,

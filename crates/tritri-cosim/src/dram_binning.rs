@@ -1,12 +1,12 @@
 //! The broad phase's binning with every list in external memory, on a
 //! prepared scene: the host's lists written into the memory, the
 //! controller's clock-exact model
-//! ([`tritri_rtl::octree::dram_binning_machine`]) run over the list pass
+//! ([`tritri_rtl::broad_phase::dram_binning_machine`]) run over the list pass
 //! unit's (co-simulated in tests/list_pass.rs) against the memory model,
 //! and its leaves held to the planner's for a binner that streams its
 //! leaves ([`DramSplitRule`]), cell for cell and triangle for triangle.
 //!
-//! The controller itself (`tritri_rtl::octree::dram_binning_unit`) runs on
+//! The controller itself (`tritri_rtl::broad_phase::dram_binning_unit`) runs on
 //! the same case in rust-hdl against the Rust memory model
 //! ([`run_rusthdl`]) and, emitted, in Verilator or Icarus against
 //! `axi_memory.sv` ([`run_simulator`]); [`UnitRun::check_against`] holds
@@ -28,17 +28,17 @@ use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::octree::{schedule, OctreeSchedule};
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, ManagerSignals, MemoryOutputs, MemoryParams};
-use tritri_rtl::emit::dram_binning_unit_unit::{
-    dram_binning_unit_name, emit_dram_binning, with_dram_binning, DramBinningVisitor,
-};
-use tritri_rtl::octree::binning_machine::BinningParams;
-use tritri_rtl::octree::dram_binning_machine::{
+use tritri_rtl::broad_phase::binning_machine::BinningParams;
+use tritri_rtl::broad_phase::dram_binning_machine::{
     read_list, run_dram_binning_beside, Beside, DramBinningConfig, DramBinningRun, DramLeaf,
     DramSplitRule, ListPlace, TakesEveryLeaf,
 };
-use tritri_rtl::octree::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
-use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::broad_phase::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
+use tritri_rtl::broad_phase::list_entry::{pack, unpack, ENTRY_BYTES};
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
+use tritri_rtl::emit::dram_binning_unit_unit::{
+    dram_binning_unit_name, emit_dram_binning, with_dram_binning, DramBinningVisitor,
+};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 use crate::scene_query::Accelerator;

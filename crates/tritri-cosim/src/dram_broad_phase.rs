@@ -1,5 +1,5 @@
 //! The broad-phase accelerator with its scene in DRAM
-//! ([`tritri_rtl::octree::dram_broad_phase`]) on a prepared scene: the
+//! ([`tritri_rtl::broad_phase::dram_broad_phase`]) on a prepared scene: the
 //! host's root lists in the memory model, the top run in rust-hdl until
 //! `done`, each pair it streams recorded; and the exact answer on the grid
 //! it is held to: every intersecting pair of A's and B's kept triangles,
@@ -15,14 +15,14 @@ use tritri_geom::fixed_point::intersects;
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::broad_phase::broad_phase_system::slots_of_leaves;
+use tritri_rtl::broad_phase::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
+use tritri_rtl::broad_phase::dram_broad_phase_machine::run_dram_broad_phase;
+use tritri_rtl::broad_phase::list_entry::{pack, unpack, ENTRY_BYTES};
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::dram_broad_phase_unit::{
     emit_dram_broad_phase, with_dram_broad_phase, DramBroadPhaseConfig, DramBroadPhaseVisitor,
 };
-use tritri_rtl::octree::broad_phase_system::slots_of_leaves;
-use tritri_rtl::octree::dram_broad_phase::{DramBroadPhase, SharedDramBroadPhase};
-use tritri_rtl::octree::dram_broad_phase_machine::run_dram_broad_phase;
-use tritri_rtl::octree::list_entry::{pack, unpack, ENTRY_BYTES};
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 use crate::axi_copy::AXI_MEMORY;

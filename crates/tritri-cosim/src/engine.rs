@@ -35,7 +35,7 @@ use tritri_geom::certificate::{certified_intersects, CertifiedVerdict};
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::owner_slots::OwnerSlots;
 use tritri_geom::scene::reference::{fixed_point_pairs, quantized_exact_pairs, PairDiff, PairSet};
-use tritri_geom::scene::PreparedScene;
+use tritri_geom::scene::{Batch, PreparedScene};
 use tritri_rtl::pipeline::pipeline_for_width::{pipeline_for_width, PipelineInput};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::pipeline::RareCasePath;
@@ -226,7 +226,7 @@ pub struct OwnerFiltering {
     /// Pairs the filter let through: each intersecting pair once.
     pub pairs: u64,
     /// The filter's cycles for those hits offered back to back (its cycle
-    /// model, `tritri_rtl::octree::owner_filter::pair_cycles`).
+    /// model, `tritri_rtl::broad_phase::owner_filter::pair_cycles`).
     pub cycles: u64,
     /// Words of A's and B's slot tables (one per triangle per leaf).
     pub slots: (u64, u64),
@@ -352,7 +352,7 @@ pub fn run_scene(
     // The system's hits in the order they leave it (ids, or slots).
     let (hits, uncertain, cycles, counters) = match engine {
         Engine::Model => {
-            let (hits, uncertain) = owner_filter::reported(&batches, progress);
+            let (hits, uncertain) = narrow_phase(&batches, progress);
             (hits, uncertain, model_cycles, None)
         }
         _ => {
@@ -444,7 +444,7 @@ pub fn run_scene(
             .collect(),
         None => uncertain.into_iter().collect(),
     };
-    uncertain.extend(owner_filter::reported(&scene.host_batches(), &|_| {}).1);
+    uncertain.extend(narrow_phase(&scene.host_batches(), &|_| {}).1);
     Ok(SceneRun {
         engine,
         pairs,
@@ -464,6 +464,33 @@ pub fn check_quantized(scene: &PreparedScene, pairs: &PairSet) -> (PairSet, Pair
     exact.extend(quantized_exact_pairs(&scene.host_batches()));
     let diff = PairDiff::between(&exact, pairs);
     (exact, diff)
+}
+
+/// The model engine's narrow phase: what the system reports of `batches`, as `(id_a, id_b)` (slots, for the
+/// leaves' slotted batches), batch by batch, in the order the system tests
+/// them (A's triangles, then B's, within a batch): its hits, and the pairs
+/// whose verdict has no certificate (`tritri_geom::certificate`), one pass
+/// over the pairs for both; `progress` is told of each batch's pairs.
+pub fn narrow_phase(
+    batches: &[Batch],
+    progress: &dyn Fn(u64),
+) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
+    let (mut hits, mut uncertain) = (Vec::new(), Vec::new());
+    for batch in batches {
+        for x in batch.a {
+            for y in batch.b {
+                let v = certified_intersects(&x.triangle, &y.triangle);
+                if v.hit {
+                    hits.push((x.id, y.id));
+                }
+                if !v.certain {
+                    uncertain.push((x.id, y.id));
+                }
+            }
+        }
+        progress(batch.pairs());
+    }
+    (hits, uncertain)
 }
 
 #[cfg(test)]

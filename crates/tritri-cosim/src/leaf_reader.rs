@@ -1,8 +1,8 @@
-//! Drives the leaf reader ([`tritri_rtl::octree::leaf_reader`]) against
+//! Drives the leaf reader ([`tritri_rtl::broad_phase::leaf_reader`]) against
 //! the memory model: in rust-hdl (the Rust memory model), in Icarus or
 //! Verilator (`testbenches/axi_memory.sv` with `testbenches/tb_leaf_reader.sv`),
 //! and beside them the clock-exact model
-//! ([`tritri_rtl::octree::leaf_reader_machine`]). All three give a
+//! ([`tritri_rtl::broad_phase::leaf_reader_machine`]). All three give a
 //! [`LeafOutcome`], every word of the stream with the clock it was taken
 //! in, so they compare with `==`; [`LeafCase::expected_words`] is the
 //! stream without clocks, from the lists themselves.
@@ -18,13 +18,13 @@ use rust_hdl::prelude::*;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::broad_phase::leaf_reader::LeafReader;
+use tritri_rtl::broad_phase::leaf_reader_machine::{read_leaf, LeafRequest, LeafWord};
+use tritri_rtl::broad_phase::list_entry::{unpack, ENTRY_BYTES};
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::leaf_reader_unit::{
     emit_leaf_reader, leaf_reader_unit_name, with_leaf_reader, LeafReaderVisitor,
 };
-use tritri_rtl::octree::leaf_reader::LeafReader;
-use tritri_rtl::octree::leaf_reader_machine::{read_leaf, LeafRequest, LeafWord};
-use tritri_rtl::octree::list_entry::{unpack, ENTRY_BYTES};
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// The leaf reader's testbench.
@@ -37,7 +37,7 @@ pub struct LeafCase {
     pub config: ListPassConfig,
     pub params: MemoryParams,
     pub cell: Cell,
-    /// Object `k`'s list of entries ([`tritri_rtl::octree::list_entry`]).
+    /// Object `k`'s list of entries ([`tritri_rtl::broad_phase::list_entry`]).
     pub lists: [Vec<[u8; ENTRY_BYTES]>; 2],
     /// `out_ready` in clock `t` is `(7 t + 3) mod 10 < ready_tenths`
     /// (10: always), the testbench's rule.

@@ -1,12 +1,12 @@
 //! Drives a cell's pass over lists in external memory
-//! ([`tritri_rtl::octree::list_pass`]) against the memory model: in
+//! ([`tritri_rtl::broad_phase::list_pass`]) against the memory model: in
 //! rust-hdl (the Rust memory model, [`tritri_rtl::axi::memory_model`]), in
 //! Icarus or Verilator (its Verilog twin, `testbenches/axi_memory.sv`, with
 //! `testbenches/tb_list_pass.sv`), and beside them the clock-exact model
-//! ([`tritri_rtl::octree::list_pass_machine`]). All three give a
+//! ([`tritri_rtl::broad_phase::list_pass_machine`]). All three give a
 //! [`PassOutcome`], so they compare with `==`; [`PassCase::child_lists`]
 //! reads the children's lists out of the memory afterwards, to compare with
-//! the software answer ([`tritri_rtl::octree::list_pass_machine::child_lists`]).
+//! the software answer ([`tritri_rtl::broad_phase::list_pass_machine::child_lists`]).
 
 use crate::axi_copy::AXI_MEMORY;
 use crate::axi_drive::{
@@ -19,12 +19,12 @@ use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_geom::octree::cell::Cell;
 use tritri_rtl::axi::memory_model::{AxiMemory, MemoryParams};
+use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
+use tritri_rtl::broad_phase::list_pass::{ListPass, CHILDREN};
+use tritri_rtl::broad_phase::list_pass_machine::{run_pass, ListPassConfig, PassRequest};
 use tritri_rtl::emit::list_pass_unit::{
     emit_list_pass, list_pass_unit_name, with_list_pass, ListPassVisitor,
 };
-use tritri_rtl::octree::list_entry::ENTRY_BYTES;
-use tritri_rtl::octree::list_pass::{ListPass, CHILDREN};
-use tritri_rtl::octree::list_pass_machine::{run_pass, ListPassConfig, PassRequest};
 use tritri_rtl::sim_drive::reset_one_clock;
 
 /// The pass unit's testbench.
@@ -40,7 +40,7 @@ pub struct PassCase {
     pub config: ListPassConfig,
     pub params: MemoryParams,
     pub cell: Cell,
-    /// Object `k`'s list of entries ([`tritri_rtl::octree::list_entry`]).
+    /// Object `k`'s list of entries ([`tritri_rtl::broad_phase::list_entry`]).
     pub lists: [Vec<[u8; ENTRY_BYTES]>; 2],
     /// Clocks to wait for `done`.
     pub limit: u64,

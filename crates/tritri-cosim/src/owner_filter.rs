@@ -1,4 +1,4 @@
-//! Co-simulation of the owner filter ([`tritri_rtl::octree::owner_filter`]):
+//! Co-simulation of the owner filter ([`tritri_rtl::broad_phase::owner_filter`]):
 //! the hits of an octree schedule's leaves, as slots, through the software
 //! model (`tritri_geom::scene::owner_slots`), the rust-hdl model and the
 //! emitted Verilog in Icarus and Verilator.
@@ -15,11 +15,9 @@ use crate::simulator::{
 };
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
-use tritri_geom::certificate::certified_intersects;
 use tritri_geom::scene::owner_slots::{OwnerSlots, Slot};
-use tritri_geom::scene::Batch;
+use tritri_rtl::broad_phase::owner_filter::{pair_cycles, slot_word, OwnerFilter, SLOT_BITS};
 use tritri_rtl::emit::owner_filter_unit::emit_owner_filter;
-use tritri_rtl::octree::owner_filter::{pair_cycles, slot_word, OwnerFilter, SLOT_BITS};
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 
 /// Owned pairs `(id_a, id_b)` in the order they left, and the edge at
@@ -28,30 +26,6 @@ use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock, settle};
 pub struct OwnerRun {
     pub pairs: Vec<(u32, u32)>,
     pub edges: Vec<u64>,
-}
-
-/// What the system reports of `batches`, as `(id_a, id_b)` (slots, for the
-/// leaves' slotted batches), batch by batch, in the order the system tests
-/// them (A's triangles, then B's, within a batch): its hits, and the pairs
-/// whose verdict has no certificate (`tritri_geom::certificate`), one pass
-/// over the pairs for both; `progress` is told of each batch's pairs.
-pub fn reported(batches: &[Batch], progress: &dyn Fn(u64)) -> (Vec<(u32, u32)>, Vec<(u32, u32)>) {
-    let (mut hits, mut uncertain) = (Vec::new(), Vec::new());
-    for batch in batches {
-        for x in batch.a {
-            for y in batch.b {
-                let v = certified_intersects(&x.triangle, &y.triangle);
-                if v.hit {
-                    hits.push((x.id, y.id));
-                }
-                if !v.certain {
-                    uncertain.push((x.id, y.id));
-                }
-            }
-        }
-        progress(batch.pairs());
-    }
-    (hits, uncertain)
 }
 
 /// What the model says the filter does with `hits` offered back to back.
@@ -73,7 +47,7 @@ pub fn model(slots: &OwnerSlots, hits: &[(u32, u32)]) -> (OwnerRun, u64) {
     (OwnerRun { pairs, edges }, busy)
 }
 
-fn word(slot: &Slot) -> Bits<{ tritri_rtl::octree::owner_filter::SLOT_WORD_BITS }> {
+fn word(slot: &Slot) -> Bits<{ tritri_rtl::broad_phase::owner_filter::SLOT_WORD_BITS }> {
     slot_word(slot.id, slot.leaf, slot.first)
 }
 

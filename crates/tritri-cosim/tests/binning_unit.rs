@@ -13,8 +13,8 @@ use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, PreparedScene, SceneOptions};
-use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
-use tritri_rtl::octree::binning_unit::BinningUnitConfig;
+use tritri_rtl::broad_phase::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::broad_phase::binning_unit::BinningUnitConfig;
 use tritri_rtl::system::SystemConfig;
 
 /// A torus and a sphere in contact, at memory depth `depth` (small: many

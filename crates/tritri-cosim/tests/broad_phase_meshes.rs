@@ -17,10 +17,10 @@ use tritri_geom::fixed_point::{intersects, FixedTriangle};
 use tritri_geom::scene::load::{load_object, Pose};
 use tritri_geom::scene::reference::fixed_point_pairs;
 use tritri_geom::scene::{prepare, prepare_octree, SceneOptions};
+use tritri_rtl::broad_phase::binning_machine::{run_binning, BinningParams};
+use tritri_rtl::broad_phase::binning_unit::BinningUnitConfig;
+use tritri_rtl::broad_phase::broad_phase_system::{broad_phase_cycles, stream_slots};
 use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
-use tritri_rtl::octree::binning_machine::{run_binning, BinningParams};
-use tritri_rtl::octree::binning_unit::BinningUnitConfig;
-use tritri_rtl::octree::broad_phase_system::{broad_phase_cycles, stream_slots};
 use tritri_rtl::pipeline::triangle_pipeline::latency;
 use tritri_rtl::system::SystemConfig;
 

@@ -19,10 +19,10 @@ use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::octree::LocalFrames;
 use tritri_geom::scene::reference::fixed_point_pairs;
 use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneOptions, TaggedTriangle};
+use tritri_rtl::broad_phase::binning_machine::{run_binning, BinningParams, BinningRun};
+use tritri_rtl::broad_phase::binning_unit::BinningUnitConfig;
+use tritri_rtl::broad_phase::broad_phase_system::{broad_phase_cycles, leaf_batches, stream_slots};
 use tritri_rtl::emit::broad_phase_system_unit::BroadPhaseConfig;
-use tritri_rtl::octree::binning_machine::{run_binning, BinningParams, BinningRun};
-use tritri_rtl::octree::binning_unit::BinningUnitConfig;
-use tritri_rtl::octree::broad_phase_system::{broad_phase_cycles, leaf_batches, stream_slots};
 use tritri_rtl::system::cycle_model::BatchSizes;
 use tritri_rtl::system::SystemConfig;
 

@@ -12,8 +12,8 @@ use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::octree::list_entry::unpack;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::broad_phase::list_entry::unpack;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 
 fn scene() -> (Accelerator, PreparedScene) {
     let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 48, 24));
@@ -106,7 +106,7 @@ fn a_memory_that_stalls_changes_the_clocks_only() {
         1 << 24,
     )
     .unwrap();
-    let places = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+    let places = |run: &tritri_rtl::broad_phase::dram_binning_machine::DramBinningRun| {
         run.leaves
             .iter()
             .map(|l| (l.cell, l.lists, l.entries.clone()))
@@ -136,7 +136,7 @@ fn an_arena_too_small_for_the_tree_raises_its_flag_and_loses_no_pair() {
         small.run.peak_arena,
         full.run.peak_arena
     );
-    let ids = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+    let ids = |run: &tritri_rtl::broad_phase::dram_binning_machine::DramBinningRun| {
         pairs(run.leaves.iter().map(|l| {
             l.entries
                 .clone()
@@ -238,7 +238,7 @@ fn a_full_waiting_memory_keeps_the_tried_splits_and_loses_no_pair() {
     small.config.waiting_capacity = 1;
     let (model, bytes) = run_model(&small).unwrap();
     assert!(model.waiting_commits > 0 && model.peak_waiting <= 1);
-    let held = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+    let held = |run: &tritri_rtl::broad_phase::dram_binning_machine::DramBinningRun| {
         pairs(run.leaves.iter().map(|l| {
             l.entries
                 .clone()
@@ -285,7 +285,7 @@ fn a_narrow_phase_that_pushes_back_delays_the_walk_only() {
         let (at_once, at_once_bytes) = run_model(&taken).unwrap();
         let (model, bytes) = run_model(&held).unwrap();
         assert!(model.leaves_dropped > 0 || model.waiting_commits > 0);
-        let places = |run: &tritri_rtl::octree::dram_binning_machine::DramBinningRun| {
+        let places = |run: &tritri_rtl::broad_phase::dram_binning_machine::DramBinningRun| {
             run.leaves
                 .iter()
                 .map(|l| (l.cell, l.lists))

@@ -12,7 +12,7 @@ use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::PreparedScene;
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 
 fn pass() -> ListPassConfig {
     ListPassConfig {

@@ -13,7 +13,7 @@ use tritri_cosim::leaf_reader::{
 };
 use tritri_cosim::simulator::Simulator;
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 
 fn case(grid_bits: usize, data_bits: usize, params: MemoryParams, ready_tenths: u64) -> LeafCase {
     let (lists, root) = scene(grid_bits, 24, 16);

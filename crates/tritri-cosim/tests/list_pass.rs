@@ -13,9 +13,9 @@ use tritri_cosim::list_pass::{run_model, run_rusthdl, run_simulator, PassCase, P
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::octree::cell::Cell;
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::octree::classify_lane::LANE_LATENCY;
-use tritri_rtl::octree::list_entry::ENTRY_BYTES;
-use tritri_rtl::octree::list_pass_machine::{child_lists, ListPassConfig};
+use tritri_rtl::broad_phase::classify_lane::LANE_LATENCY;
+use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
+use tritri_rtl::broad_phase::list_pass_machine::{child_lists, ListPassConfig};
 
 const GRID_BITS: usize = 24;
 
@@ -222,7 +222,7 @@ fn a_pass_of_one_entry_each_costs_its_latencies() {
 #[test]
 fn b_entries_go_only_to_the_children_a_reached() {
     use tritri_geom::octree::triangle_cell::{TriangleCellTest, BROAD_PHASE_MARGIN};
-    use tritri_rtl::octree::list_entry::unpack;
+    use tritri_rtl::broad_phase::list_entry::unpack;
     let (lists, root) = scene(24, 16);
     let mask = |e: &[u8; ENTRY_BYTES]| {
         let (_, t) = unpack(e, GRID_BITS);

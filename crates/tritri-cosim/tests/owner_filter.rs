@@ -4,7 +4,8 @@
 //! comes out once, as triangle ids. rust-hdl, Icarus and Verilator give the
 //! model's pairs in the model's order at the cycle model's edges.
 
-use tritri_cosim::owner_filter::{expected, reported, run_emitted, run_rusthdl};
+use tritri_cosim::engine::narrow_phase;
+use tritri_cosim::owner_filter::{expected, run_emitted, run_rusthdl};
 use tritri_cosim::simulator::Simulator;
 use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::scene::load::SceneObject;
@@ -39,7 +40,7 @@ fn slots_and_hits(scene: &PreparedScene) -> (OwnerSlots, Vec<(u32, u32)>) {
     let schedule = scene.octree.as_ref().expect("an octree schedule");
     let slots = OwnerSlots::of(schedule);
     let (a, b) = slots.slotted(schedule);
-    let (hits, _) = reported(&scene.leaf_batches(&a, &b), &|_| {});
+    let (hits, _) = narrow_phase(&scene.leaf_batches(&a, &b), &|_| {});
     (slots, hits)
 }
 

@@ -12,9 +12,10 @@
 //!   [`system`];
 //! * [`system`]: the thesis's bounding-volume system (memories, address
 //!   generator, P pipelines, result FIFO) and its cycle model;
-//! * [`octree`]: the octree engine's units and the octree broad phase's
-//!   binning unit, owner filter and broad-phase top; [`bezier`]: the
-//!   patch tessellation unit;
+//! * [`octree`]: the octree engine's units (its classifier among them);
+//!   [`broad_phase`]: the collision system's broad phase (binning unit,
+//!   list passes over DRAM, owner filters, the broad-phase tops);
+//!   [`bezier`]: the patch tessellation unit;
 //! * [`mod@unit`]: what every unit tells the emitter (its type, latency and
 //!   sub-units); [`emit`]: rust-hdl's Verilog to a package an FPGA flow
 //!   takes (names, headers, widths, ANSI ports, README, FuseSoC core);
@@ -26,6 +27,7 @@
 pub mod arith;
 pub mod axi;
 pub mod bezier;
+pub mod broad_phase;
 pub mod emit;
 pub mod measured;
 pub mod octree;

@@ -10,6 +10,11 @@
 //! tests/triangle_voxelizer.rs and tests/octree_builder.rs.)
 
 use tritri_rtl::axi::DATA_WIDTHS;
+use tritri_rtl::broad_phase::binning_machine::BinningParams;
+use tritri_rtl::broad_phase::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
+use tritri_rtl::broad_phase::dram_binning_machine::DramBinningConfig;
+use tritri_rtl::broad_phase::dram_binning_unit::WAITING_CAPACITY;
+use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::axi_copy_unit::{emit_axi_copy, AxiCopyConfig};
 use tritri_rtl::emit::binning_unit_unit::emit_binning_unit;
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
@@ -24,11 +29,6 @@ use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
 use tritri_rtl::emit::triangle_voxelizer_unit::emit_triangle_voxelizer;
 use tritri_rtl::emit::voxel_units::{emit_octant_clipper, emit_set_operation, emit_voxel_fill};
 use tritri_rtl::emit::EmittedDesign;
-use tritri_rtl::octree::binning_machine::BinningParams;
-use tritri_rtl::octree::binning_unit::{BinningUnitConfig, BINNING_GRID_WIDTHS};
-use tritri_rtl::octree::dram_binning_machine::DramBinningConfig;
-use tritri_rtl::octree::dram_binning_unit::WAITING_CAPACITY;
-use tritri_rtl::octree::list_pass_machine::ListPassConfig;
 use tritri_rtl::system::SystemConfig;
 use tritri_rtl::tools::{run, IVERILOG};
 

@@ -1,4 +1,4 @@
-//! The leaf cost's Verilog (`octree::leaf_cost::leaf_cost_verilog`), run in
+//! The leaf cost's Verilog (`broad_phase::leaf_cost::leaf_cost_verilog`), run in
 //! Icarus, equals the closed form `leaf_cost` on the ends of its ranges
 //! (counts 0, 1, around the depth and its multiples, up to 2^20 - 1) and on
 //! random counts, for depths 1 to 2^16 and 1 to 16 pipelines: its
@@ -8,7 +8,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::fmt::Write as _;
-use tritri_rtl::octree::leaf_cost::{
+use tritri_rtl::broad_phase::leaf_cost::{
     leaf_cost, leaf_cost_verilog, COST_BITS, COUNT_BITS, LEAF_COST_LATENCY,
 };
 use tritri_rtl::tools::{run, IVERILOG, VVP};

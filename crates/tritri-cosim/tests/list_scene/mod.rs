@@ -5,7 +5,7 @@ use tritri_geom::builtin_scene::{sphere, torus};
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::{prepare_octree, SceneOptions, TaggedTriangle};
-use tritri_rtl::octree::list_entry::{pack, ENTRY_BYTES};
+use tritri_rtl::broad_phase::list_entry::{pack, ENTRY_BYTES};
 use tritri_rtl::system::SystemConfig;
 
 /// A torus and a sphere in contact on a `grid_bits`-bit grid: each

@@ -1,12 +1,12 @@
-//! The emitted binning unit ([`crate::octree::binning_unit`]): its name,
+//! The emitted binning unit ([`crate::broad_phase::binning_unit`]): its name,
 //! port meanings and timing.
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::binning_machine::PASS_DRAIN;
-use crate::octree::binning_unit::{on_unit_stack, BinningUnit, BinningUnitConfig};
+use crate::broad_phase::binning_machine::PASS_DRAIN;
+use crate::broad_phase::binning_unit::{on_unit_stack, BinningUnit, BinningUnitConfig};
+use crate::broad_phase::leaf_cost::COUNT_BITS;
+use crate::broad_phase::list_packer::INDEX_BITS;
 use crate::octree::cell_classifier::AXES;
-use crate::octree::leaf_cost::COUNT_BITS;
-use crate::octree::list_packer::INDEX_BITS;
 use crate::octree::value_bits;
 use rust_hdl::prelude::*;
 
@@ -64,7 +64,7 @@ pub fn binning_unit(config: &BinningUnitConfig) -> UnitDescription {
     .detail(&format!(
         "Cycles: a pass over a cell of a and b entries takes ceil(max(a, b) / 2) + {PASS_DRAIN} clocks; the clock \
          count from the first triangle in to `binned` is the cycle-exact model's \
-         (tritri_rtl::octree::binning_machine::run_binning), which co-simulation holds the unit to."
+         (tritri_rtl::broad_phase::binning_machine::run_binning), which co-simulation holds the unit to."
     ))
     .detail(&format!(
         "Memories: {:.2} Mbit in all (four triangle memories of {} words x {} bits, sixteen list memories of {} words \

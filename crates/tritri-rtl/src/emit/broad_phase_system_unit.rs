@@ -1,13 +1,15 @@
-//! The emitted broad-phase top ([`crate::octree::broad_phase_system`]):
+//! The emitted broad-phase top ([`crate::broad_phase::broad_phase_system`]):
 //! its name, port meanings and timing.
 
 use super::binning_unit_unit::BinningEmitError;
 use super::dsp_mapping::MultiplierMapping;
 use super::{emit_with, EmitOptions, EmittedDesign, UnitDescription};
-use crate::octree::binning_unit::{on_unit_stack, BinningUnitConfig};
-use crate::octree::broad_phase_system::{BroadPhaseSystem, BROAD_PHASE_WIDTHS, FIRST_HEADER_DELAY};
+use crate::broad_phase::binning_unit::{on_unit_stack, BinningUnitConfig};
+use crate::broad_phase::broad_phase_system::{
+    BroadPhaseSystem, BROAD_PHASE_WIDTHS, FIRST_HEADER_DELAY,
+};
+use crate::broad_phase::owner_chain_filter::CHAIN_SLOT_BITS;
 use crate::octree::cell_classifier::AXES;
-use crate::octree::owner_chain_filter::CHAIN_SLOT_BITS;
 use crate::octree::value_bits;
 use crate::system::SystemConfig;
 use rust_hdl::prelude::*;
@@ -148,7 +150,7 @@ pub fn broad_phase_system(config: &BroadPhaseConfig) -> UnitDescription {
     .detail(&format!(
         "Cycles from the first triangle in to done: the binning unit's (its clock-exact model), {FIRST_HEADER_DELAY} \
          to the first header, then the system's bank recurrence fed one word per clock with one idle clock per leaf \
-         (tritri_rtl::octree::broad_phase_system::broad_phase_cycles, which co-simulation holds the system's part \
+         (tritri_rtl::broad_phase::broad_phase_system::broad_phase_cycles, which co-simulation holds the system's part \
          to); the owner filter then takes 2 clocks per hit, plus one per step back through the triangles' earlier \
          leaves, plus one per pair out."
     ))

@@ -1,12 +1,12 @@
 //! The emitted binning controller over DRAM passes
-//! ([`crate::octree::dram_binning_unit`]): its name, ports and the widths it
+//! ([`crate::broad_phase::dram_binning_unit`]): its name, ports and the widths it
 //! is built for.
 
 use super::axi_copy_unit::axi_manager_ports;
 use super::list_pass_unit::LIST_PASS_GRID_WIDTHS;
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::dram_binning_machine::DramBinningConfig;
-use crate::octree::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
+use crate::broad_phase::dram_binning_machine::DramBinningConfig;
+use crate::broad_phase::dram_binning_unit::{DramBinningUnit, WAITING_CAPACITY};
 use crate::octree::value_bits;
 use rust_hdl::prelude::*;
 
@@ -156,7 +156,7 @@ pub fn dram_binning_unit(config: &DramBinningConfig) -> UnitDescription {
         config.waiting_capacity
     ))
     .detail(
-        "Cycles: tritri_rtl::octree::dram_binning_machine, clock-exact against the memory model \
+        "Cycles: tritri_rtl::broad_phase::dram_binning_machine, clock-exact against the memory model \
          tritri_rtl::axi::memory_model.",
     )
     .port("clock", "Clock; every register updates on the rising edge.")

@@ -1,15 +1,17 @@
 //! The broad-phase accelerator with its scene in DRAM
-//! ([`crate::octree::dram_broad_phase`]): what it is built for, and the
+//! ([`crate::broad_phase::dram_broad_phase`]): what it is built for, and the
 //! dispatch from run-time widths to the type's constants.
 
 use super::axi_copy_unit::axi_manager_ports;
 use super::dsp_mapping::MultiplierMapping;
 use super::{emit_with, EmitOptions, EmittedDesign, UnitDescription};
-use crate::octree::binning_unit::on_unit_stack;
-use crate::octree::dram_binning_machine::DramBinningConfig;
-use crate::octree::dram_binning_unit::WAITING_CAPACITY;
-use crate::octree::dram_broad_phase::{DramBroadPhase, DramBroadPhaseBuild, SharedDramBroadPhase};
-use crate::octree::owner_chain_filter::CHAIN_SLOT_BITS;
+use crate::broad_phase::binning_unit::on_unit_stack;
+use crate::broad_phase::dram_binning_machine::DramBinningConfig;
+use crate::broad_phase::dram_binning_unit::WAITING_CAPACITY;
+use crate::broad_phase::dram_broad_phase::{
+    DramBroadPhase, DramBroadPhaseBuild, SharedDramBroadPhase,
+};
+use crate::broad_phase::owner_chain_filter::CHAIN_SLOT_BITS;
 use crate::octree::value_bits;
 use crate::pipeline::RareCasePath;
 use crate::system::SystemConfig;
@@ -102,11 +104,12 @@ impl DramBroadPhaseConfig {
                 1u64 << CHAIN_SLOT_BITS
             ));
         }
-        if self.triangles == 0 || self.triangles > 1 << crate::octree::list_packer::INDEX_BITS {
+        if self.triangles == 0 || self.triangles > 1 << crate::broad_phase::list_packer::INDEX_BITS
+        {
             return Err(format!(
                 "triangles {}: 1 to {}",
                 self.triangles,
-                1u64 << crate::octree::list_packer::INDEX_BITS
+                1u64 << crate::broad_phase::list_packer::INDEX_BITS
             ));
         }
         Ok(())

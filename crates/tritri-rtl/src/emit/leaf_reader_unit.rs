@@ -1,11 +1,11 @@
-//! The emitted leaf reader ([`crate::octree::leaf_reader`]): its name,
+//! The emitted leaf reader ([`crate::broad_phase::leaf_reader`]): its name,
 //! ports and the widths it is built for.
 
 use super::axi_copy_unit::axi_manager_ports;
 use super::list_pass_unit::LIST_PASS_GRID_WIDTHS;
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::leaf_reader::LeafReader;
-use crate::octree::list_pass_machine::ListPassConfig;
+use crate::broad_phase::leaf_reader::LeafReader;
+use crate::broad_phase::list_pass_machine::ListPassConfig;
 use rust_hdl::prelude::*;
 
 /// `tritri_leaf_reader_g<G>_d<DW>_r<read burst>_o<outstanding>`.
@@ -87,7 +87,7 @@ pub fn leaf_reader_unit(config: &ListPassConfig) -> UnitDescription {
         config.max_read_burst, config.outstanding
     ))
     .detail(
-        "Cycles: tritri_rtl::octree::leaf_reader_machine, clock-exact against the memory model \
+        "Cycles: tritri_rtl::broad_phase::leaf_reader_machine, clock-exact against the memory model \
          tritri_rtl::axi::memory_model.",
     )
     .parameter("GRID_BITS", &format!("{g}: bits of a vertex coordinate"))

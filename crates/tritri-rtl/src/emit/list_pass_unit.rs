@@ -1,11 +1,11 @@
 //! The emitted pass over lists in external memory
-//! ([`crate::octree::list_pass`]): its name, ports and the widths it is
+//! ([`crate::broad_phase::list_pass`]): its name, ports and the widths it is
 //! built for.
 
 use super::axi_copy_unit::axi_manager_ports;
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::list_pass::{ListPass, WRITE_BURST_BEATS};
-use crate::octree::list_pass_machine::ListPassConfig;
+use crate::broad_phase::list_pass::{ListPass, WRITE_BURST_BEATS};
+use crate::broad_phase::list_pass_machine::ListPassConfig;
 use crate::octree::value_bits;
 use rust_hdl::prelude::*;
 
@@ -109,7 +109,7 @@ pub fn list_pass_unit(config: &ListPassConfig) -> UnitDescription {
         config.max_read_burst, config.outstanding, config.outstanding
     ))
     .detail(
-        "Cycles: tritri_rtl::octree::list_pass_machine, clock-exact against the memory model \
+        "Cycles: tritri_rtl::broad_phase::list_pass_machine, clock-exact against the memory model \
          tritri_rtl::axi::memory_model.",
     )
     .parameter("GRID_BITS", &format!("{g}: bits of a vertex coordinate"))

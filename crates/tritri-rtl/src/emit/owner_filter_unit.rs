@@ -1,8 +1,8 @@
-//! The emitted owner filter ([`crate::octree::owner_filter`]): its name,
+//! The emitted owner filter ([`crate::broad_phase::owner_filter`]): its name,
 //! port meanings and timing.
 
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
-use crate::octree::owner_filter::{OwnerFilter, LEAF_BITS, SLOT_BITS, SLOT_WORD_BITS};
+use crate::broad_phase::owner_filter::{OwnerFilter, LEAF_BITS, SLOT_BITS, SLOT_WORD_BITS};
 use crate::system::ID_BITS;
 use rust_hdl::prelude::*;
 
@@ -45,7 +45,7 @@ pub fn owner_filter_unit(slots: usize) -> UnitDescription {
     .detail(
         "Cycles: a hit accepted at edge t whose merge makes m comparisons leaves at edge t + 2 + m if owned \
          (out_ready high), and the next hit can be accepted at that edge; a duplicate frees the filter at t + 2 + m \
-         too (tritri_rtl::octree::owner_filter::pair_cycles). A hit whose triangles are in one leaf each takes 2 cycles.",
+         too (tritri_rtl::broad_phase::owner_filter::pair_cycles). A hit whose triangles are in one leaf each takes 2 cycles.",
     )
     .parameter("SLOTS", &format!("{slots}: words per slot table (one table per object)"))
     .parameter("SLOT_BITS", &format!("{SLOT_BITS}: bits of a slot number"))

@@ -15,7 +15,7 @@
 //! ```
 
 use crate::arith::convert::from_i128;
-use crate::octree::binning_unit::on_unit_stack;
+use crate::broad_phase::binning_unit::on_unit_stack;
 use crate::pipeline::shared_rare_pipeline::SharedRarePipeline;
 use crate::pipeline::triangle_pipeline::{latency, TrianglePipeline};
 use crate::pipeline::RareCasePath;

@@ -189,7 +189,7 @@ impl BatchCost for SystemConfig {
     }
 
     fn classify_cycles(&self, a: usize, b: usize) -> u64 {
-        crate::octree::binning_model::cell_cycles(a as u64, b as u64)
+        crate::broad_phase::binning_cost::cell_cycles(a as u64, b as u64)
     }
 }
 

@@ -17,11 +17,11 @@
 //! clock. So binning takes `N + setup + Σ_cells (ceil(max(a, b) / 2) +
 //! latency + 1)` clocks.
 
-use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
+use crate::octree::cell_classifier::CELL_CLASSIFIER_LATENCY;
 
 /// Clocks from a triangle into the setup unit to its root entry (the
 /// built unit's latency); paid once per run.
-pub const SETUP_LATENCY: u64 = super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64;
+pub const SETUP_LATENCY: u64 = crate::octree::triangle_setup::TRIANGLE_SETUP_LATENCY as u64;
 
 /// Classifiers per object. Two rather than one: classifying is the larger
 /// part of the time on real scenes, and with one the split rule stops

@@ -22,10 +22,10 @@
 //! (two indices) per clock.
 
 use super::binning_machine::{BinningParams, BinningRun, IDENTITY_LIST, PASS_DRAIN};
-use super::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY};
 use super::classify_lane::{ClassifyLane, LANE_LATENCY};
 use super::leaf_cost::{LeafCost, COUNT_BITS, LEAF_COST_LATENCY};
 use super::list_packer::{ListPacker, INDEX_BITS, LIST_ADDRESS_BITS, LIST_WORD_BITS};
+use crate::octree::cell_classifier::{AXES, CELL_CLASSIFIER_LATENCY};
 use crate::system::dual_port_ram::SimpleDualPortRam;
 use rust_hdl::prelude::*;
 use rust_hdl::widgets::prelude::DFF;
@@ -48,7 +48,7 @@ const _: () = assert!(
         && INDEX_BITS == 18
         && COUNT_BITS == 20
 );
-/// `binning_model::cell_cycles(0, 0)`: what the split rule charges a cell
+/// `binning_cost::cell_cycles(0, 0)`: what the split rule charges a cell
 /// besides its entries.
 const CLASSIFY_BASE: u64 = CELL_CLASSIFIER_LATENCY as u64 + 1;
 
@@ -237,7 +237,7 @@ pub enum BinState {
 }
 
 /// A cell's pass: `ceil(max(a, b) / 2)` list words per object and clock,
-/// and what the split rule charges for it, `binning_model::cell_cycles`.
+/// and what the split rule charges for it, `binning_cost::cell_cycles`.
 /// Combinational, and a block of its own: in the unit's one combinational
 /// block, a multiplexer read back through a continuous assignment would
 /// look like a loop to Verilator.
@@ -485,7 +485,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> BinningUnit
     /// memory and `leaves` leaf descriptors.
     pub fn new(triangles: usize, list_words: usize, leaves: usize) -> Self {
         assert!(
-            V == super::value_bits(G) && N == AXES * V && T == 9 * G && G <= 32,
+            V == crate::octree::value_bits(G) && N == AXES * V && T == 9 * G && G <= 32,
             "binning unit for G = {G}"
         );
         BinningUnit {

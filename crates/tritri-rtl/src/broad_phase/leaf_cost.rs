@@ -15,7 +15,7 @@
 //! Stages: split into quotients and remainders (1); the three `f` and
 //! `qa · qb` (2); the products by the quotients (3); the sum (4). One query
 //! per clock. A custom-Verilog primitive with an exact model evaluated at
-//! clock edges, like [`super::axis_step::AxisStep`].
+//! clock edges, like [`crate::octree::axis_step::AxisStep`].
 
 use rust_hdl::prelude::*;
 

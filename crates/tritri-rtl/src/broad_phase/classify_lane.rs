@@ -1,14 +1,14 @@
 //! One lane of the binning unit ([`super::binning_unit`]): a triangle's
 //! vertices and a cell in, the children of the cell the triangle meets out,
-//! one triangle per clock. The setup ([`super::triangle_setup`]) takes the
+//! one triangle per clock. The setup ([`crate::octree::triangle_setup`]) takes the
 //! cell's low corner as its root, so the classifier step
-//! ([`super::cell_classifier`]) starts every triangle at the cell itself
+//! ([`crate::octree::cell_classifier`]) starts every triangle at the cell itself
 //! with zero values there; an index rides alongside.
 
-use super::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
 use super::list_packer::INDEX_BITS;
-use super::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
 use crate::arith::delay_line::DelayLine;
+use crate::octree::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use crate::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clocks from a triangle in to its mask out: setup and classifier.
@@ -60,7 +60,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
 {
     fn default() -> Self {
         assert!(
-            V == super::value_bits(G) && N == AXES * V && T == 9 * G,
+            V == crate::octree::value_bits(G) && N == AXES * V && T == 9 * G,
             "classify lane for G = {G}"
         );
         ClassifyLane {

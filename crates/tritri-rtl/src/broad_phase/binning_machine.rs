@@ -46,8 +46,8 @@
 //!   out as tiles of at most the depth per object, every A tile with every B tile,
 //!   each under a header of its own.
 
-use super::cell_classifier::CELL_CLASSIFIER_LATENCY;
 use super::leaf_cost::{leaf_cost, LEAF_COST_LATENCY};
+use crate::octree::cell_classifier::CELL_CLASSIFIER_LATENCY;
 use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::cell::Cell;
 use tritri_geom::octree::triangle_cell::{TriangleCellTest, BROAD_PHASE_MARGIN};
@@ -57,8 +57,10 @@ use tritri_geom::scene::octree::LOOKAHEAD;
 /// list memory (1), triangle memory (1), setup and classifier (the last
 /// masks are written into the list memories as they come out), and the
 /// packers' flush of a half word (1).
-pub const PASS_DRAIN: u64 =
-    2 + super::triangle_setup::TRIANGLE_SETUP_LATENCY as u64 + CELL_CLASSIFIER_LATENCY as u64 + 1;
+pub const PASS_DRAIN: u64 = 2
+    + crate::octree::triangle_setup::TRIANGLE_SETUP_LATENCY as u64
+    + CELL_CLASSIFIER_LATENCY as u64
+    + 1;
 /// Clocks of the cost queries after a pass: the eight children and the
 /// cell, one per clock, and the last one's latency.
 pub const COSTS_CLOCKS: u64 = 9 + LEAF_COST_LATENCY as u64;
@@ -115,9 +117,9 @@ pub struct BinningRun {
 }
 
 /// The classification cost the split rule charges a cell of `a` and `b`
-/// triangles (`binning_model::cell_cycles`).
+/// triangles (`binning_cost::cell_cycles`).
 fn classify_cost(a: u64, b: u64) -> u64 {
-    super::binning_model::cell_cycles(a, b)
+    super::binning_cost::cell_cycles(a, b)
 }
 
 struct Frame {
