@@ -1,18 +1,19 @@
 //! One lane of the binning unit ([`super::binning_unit`]): a triangle's
 //! vertices and a cell in, the children of the cell the triangle meets out,
 //! one triangle per clock. The setup ([`crate::octree::triangle_setup`]) takes the
-//! cell's low corner as its root, so the classifier step
-//! ([`crate::octree::cell_classifier`]) starts every triangle at the cell itself
-//! with zero values there; an index rides alongside.
+//! cell's low corner as its root, so the classifier
+//! ([`crate::octree::corner_classifier`]) starts every triangle at the cell
+//! itself with zero values there; an index rides alongside.
 
 use super::list_packer::INDEX_BITS;
 use crate::arith::delay_line::DelayLine;
-use crate::octree::cell_classifier::{CellClassifier, AXES, CELL_CLASSIFIER_LATENCY};
+use crate::octree::cell_classifier::AXES;
+use crate::octree::corner_classifier::{CornerClassifier, CORNER_CLASSIFIER_LATENCY};
 use crate::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
 use rust_hdl::prelude::*;
 
 /// Clocks from a triangle in to its mask out: setup and classifier.
-pub const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CELL_CLASSIFIER_LATENCY;
+pub const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CORNER_CLASSIFIER_LATENCY;
 
 #[derive(LogicBlock)]
 pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T: usize> {
@@ -35,7 +36,7 @@ pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T:
     /// Bit `o`: the triangle meets child `o` of the cell.
     pub out_mask: Signal<Out, Bits<8>>,
     setup: TriangleSetup<G, V, N>,
-    classifier: CellClassifier<V>,
+    classifier: CornerClassifier<V>,
     index_line: DelayLine<Bits<INDEX_BITS>, LANE_LATENCY>,
     // Where each vertex coordinate sits in `in_vertices`, each test
     // function in the setup's packed outputs.
@@ -142,11 +143,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
         self.classifier.in_valid.next = self.setup.out_valid.val();
         self.classifier.in_tag.next = 0.into();
         self.classifier.in_level.next = self.in_level.val();
-        self.classifier.in_descend.next = false;
-        self.classifier.in_octant.next = 0.into();
         // Relative to the cell's corner, every function is zero there.
         for i in 0..13 {
-            self.classifier.in_at_lo[i].next = 0.into();
             self.classifier.in_gradient_x[i].next = self
                 .setup
                 .out_gradient_x
@@ -178,21 +176,8 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
         self.out_valid.next = self.classifier.out_valid.val();
         self.out_index.next = self.index_line.q.val();
         self.out_mask.next = self.classifier.out_mask.val();
-        self.unused_outputs.next = self.setup.out_tag.val().any()
-            ^ self.classifier.out_tag.val().any()
-            ^ self.classifier.out_at_lo[0].val().any()
-            ^ self.classifier.out_at_lo[1].val().any()
-            ^ self.classifier.out_at_lo[2].val().any()
-            ^ self.classifier.out_at_lo[3].val().any()
-            ^ self.classifier.out_at_lo[4].val().any()
-            ^ self.classifier.out_at_lo[5].val().any()
-            ^ self.classifier.out_at_lo[6].val().any()
-            ^ self.classifier.out_at_lo[7].val().any()
-            ^ self.classifier.out_at_lo[8].val().any()
-            ^ self.classifier.out_at_lo[9].val().any()
-            ^ self.classifier.out_at_lo[10].val().any()
-            ^ self.classifier.out_at_lo[11].val().any()
-            ^ self.classifier.out_at_lo[12].val().any();
+        self.unused_outputs.next =
+            self.setup.out_tag.val().any() ^ self.classifier.out_tag.val().any();
     }
 }
 

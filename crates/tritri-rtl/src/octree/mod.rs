@@ -11,6 +11,8 @@
 //!   functions relative to the root cell (the multiplications);
 //! * [`cell_classifier`]: thirteen axis steps side by side, one entry
 //!   (triangle in a cell) per clock, the children mask out;
+//!   [`corner_classifier`] the same for entries set up at their cell's
+//!   own corner, of [`corner_step`]s that compare at the gradient's width;
 //! * [`plane_traversal`]: the seed's core circuit, the grid classified
 //!   against a plane one octant per clock, with a stack in block RAM
 //!   ([`centre_test`]: the half-space test of a level-1 cell's voxels);
@@ -31,6 +33,8 @@
 pub mod axis_step;
 pub mod cell_classifier;
 pub mod centre_test;
+pub mod corner_classifier;
+pub mod corner_step;
 pub mod octant_clipper;
 pub mod octree_builder;
 pub mod octree_builder_machine;
