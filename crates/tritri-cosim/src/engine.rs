@@ -466,11 +466,12 @@ pub fn check_quantized(scene: &PreparedScene, pairs: &PairSet) -> (PairSet, Pair
     (exact, diff)
 }
 
-/// The model engine's narrow phase: what the system reports of `batches`, as `(id_a, id_b)` (slots, for the
-/// leaves' slotted batches), batch by batch, in the order the system tests
-/// them (A's triangles, then B's, within a batch): its hits, and the pairs
-/// whose verdict has no certificate (`tritri_geom::certificate`), one pass
-/// over the pairs for both; `progress` is told of each batch's pairs.
+/// The model engine's narrow phase: what the system reports of `batches`,
+/// as `(id_a, id_b)` (slots, for the leaves' slotted batches), batch by
+/// batch, in the order the system tests them (A's triangles, then B's,
+/// within a batch): its hits, and the pairs whose verdict has no
+/// certificate (`tritri_geom::certificate`), one pass over the pairs for
+/// both; `progress` is told of each batch's pairs.
 pub fn narrow_phase(
     batches: &[Batch],
     progress: &dyn Fn(u64),
