@@ -143,7 +143,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
         self.classifier.in_valid.next = self.setup.out_valid.val();
         self.classifier.in_tag.next = 0.into();
         self.classifier.in_level.next = self.in_level.val();
-        // Relative to the cell's corner, every function is zero there.
+        // The setup's functions, relative to the cell's corner.
         for i in 0..13 {
             self.classifier.in_gradient_x[i].next = self
                 .setup

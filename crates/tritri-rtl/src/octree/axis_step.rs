@@ -145,6 +145,27 @@ impl<const V: usize> AxisStep<V> {
     }
 }
 
+/// The shift `level - 1` in `shift_bits` bits (Verilog's wrap), as the
+/// steps' model computes it.
+pub(super) fn level_shift(level: Bits<6>, shift_bits: usize) -> u32 {
+    (level.index() as u32).wrapping_sub(1) & ((1u32 << shift_bits) - 1)
+}
+
+/// The steps' Verilog wire `shift`, `level - 1` in `shift_bits` bits; the
+/// level's bits above the shift's are not read (their names tell
+/// Verilator's lint so).
+pub(super) fn level_shift_verilog(shift_bits: usize) -> String {
+    if shift_bits == 6 {
+        "wire [5:0] shift = level - 6'd1;\n".to_string()
+    } else {
+        format!(
+            "wire [{sb1}:0] shift = level[{sb1}:0] - {shift_bits}'d1;\n\
+             wire unused_level = ^level[5:{shift_bits}];\n",
+            sb1 = shift_bits - 1
+        )
+    }
+}
+
 /// `S_o` for the eight octants: the subset sums of `q`.
 fn subset_sums(q: [i128; 3], bits: usize) -> [i128; 8] {
     let mut sums = [0i128; 8];
@@ -191,8 +212,7 @@ impl<const V: usize> Logic for AxisStep<V> {
         };
         // Stage 1: shifts (Verilog's `<<` by `level - 1` in `shift_bits`
         // bits, modulo 2^bits), of the inputs' low `bits` bits.
-        let shift =
-            (self.level.val().index() as u32).wrapping_sub(1) & ((1u32 << self._shift_bits) - 1);
+        let shift = level_shift(self.level.val(), self._shift_bits);
         let octant = self.octant.val().index() as u8;
         let gradient = [
             self.gradient_x.val(),
@@ -222,18 +242,7 @@ impl<const V: usize> Logic for AxisStep<V> {
     fn hdl(&self) -> Verilog {
         let w = self._bits;
         let w1 = w - 1;
-        let sb = self._shift_bits;
-        // The level's bits above the shift's are not read (their names tell
-        // Verilator's lint so).
-        let shift = if sb == 6 {
-            "wire [5:0] shift = level - 6'd1;\n".to_string()
-        } else {
-            format!(
-                "wire [{sb1}:0] shift = level[{sb1}:0] - {sb}'d1;\n\
-                 wire unused_level = ^level[5:{sb}];\n",
-                sb1 = sb - 1
-            )
-        };
+        let shift = level_shift_verilog(self._shift_bits);
         // The inputs at the step's width: their low `w` bits (the rest is
         // their sign), and the value back at the ports' width.
         let (narrow, widen) = if w == V {

@@ -24,6 +24,7 @@
 //! A custom-Verilog primitive with an exact i128 model evaluated only at
 //! clock edges, like [`super::axis_step::AxisStep`].
 
+use super::axis_step::{level_shift, level_shift_verilog};
 use crate::arith::convert::{to_i128, wrap_i128};
 use rust_hdl::prelude::*;
 
@@ -122,12 +123,6 @@ impl<const V: usize> CornerStep<V> {
     }
 }
 
-impl<const V: usize> Default for CornerStep<V> {
-    fn default() -> Self {
-        Self::new(V, V - 1, 6)
-    }
-}
-
 /// `x` clamped to `bits` signed bits.
 fn saturate(x: i128, bits: usize) -> i128 {
     let max = (1i128 << (bits - 1)) - 1;
@@ -167,9 +162,7 @@ impl<const V: usize> Logic for CornerStep<V> {
         // Stage 1: ⌈low / 2^s⌉ = -(-low >> s) and ⌊high / 2^s⌋ = high >> s
         // (arithmetic shifts by `level - 1` in `shift_bits` bits, of the
         // inputs' low `w` bits); the gradient's low `t` bits.
-        let shift = ((self.level.val().index() as u32).wrapping_sub(1)
-            & ((1u32 << self._shift_bits) - 1))
-            .min(127);
+        let shift = level_shift(self.level.val(), self._shift_bits);
         let low = wrap_i128(to_i128(self.low.val()), w);
         let high = wrap_i128(to_i128(self.high.val()), w);
         self._s1 = Stage1 {
@@ -192,16 +185,7 @@ impl<const V: usize> Logic for CornerStep<V> {
         let (w, t, sb) = (self._bits, self._gradient_bits, self._shift_bits);
         let (w1, t1, c) = (w - 1, t - 1, t + 1);
         let c1 = c - 1;
-        // The level's bits above the shift's are not read.
-        let shift = if sb == 6 {
-            "wire [5:0] shift = level - 6'd1;\n".to_string()
-        } else {
-            format!(
-                "wire [{sb1}:0] shift = level[{sb1}:0] - {sb}'d1;\n\
-                 wire unused_level = ^level[5:{sb}];\n",
-                sb1 = sb - 1
-            )
-        };
+        let shift = level_shift_verilog(sb);
         // The inputs at their widths: the rest of each is its sign, folded
         // into a wire whose name tells Verilator's lint it is unread.
         let mut narrow = String::new();
