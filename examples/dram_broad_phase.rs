@@ -45,6 +45,7 @@ use tritri_cosim::dram_broad_phase::{
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
+use tritri_examples::{at_bandwidth, VERSA_GBYTES};
 use tritri_geom::certificate::decide_again;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::exact_f64_pairs;
@@ -201,18 +202,6 @@ fn main() -> anyhow::Result<()> {
     let (run, case, params) = runs.next().expect("the ideal memory ran");
     let at_versa = runs.nth(1).map(|(run, _, _)| run);
     exact_answer_and_speed(&a, &b, &run, &case, &params, routed.zip(at_versa))
-}
-
-/// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s.
-const VERSA_GBYTES: f64 = 1.6;
-
-/// `memory` moving `gbytes` GB/s in all at `mhz`: bytes a clock as a
-/// fraction, GB/s * 1000 / MHz.
-fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams {
-    MemoryParams {
-        bytes_per_clock: ((gbytes * 1000.0).round() as u64, mhz.round() as u64),
-        ..memory
-    }
 }
 
 /// The route's end on the host and the speed against software: the

@@ -4,6 +4,19 @@
 
 use anyhow::Context as _;
 use tritri_geom::scene::load::{load_object, Pose, SceneObject};
+use tritri_rtl::axi::memory_model::MemoryParams;
+
+/// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s, 1.6 GB/s.
+pub const VERSA_GBYTES: f64 = 1.6;
+
+/// `memory` moving `gbytes` GB/s in all at `mhz`: bytes a clock as a
+/// fraction, GB/s * 1000 / MHz.
+pub fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams {
+    MemoryParams {
+        bytes_per_clock: ((gbytes * 1000.0).round() as u64, mhz.round() as u64),
+        ..memory
+    }
+}
 
 /// The two objects of `A B [SCALE_B TX TY TZ]` (none: the built-in torus
 /// and sphere), B scaled and moved; `usage` names the program in the error.

@@ -24,3 +24,8 @@ for bits in 64 256; do
     target/release/examples/dram_broad_phase --data-bits $bits build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0
     target/release/examples/dram_broad_phase --data-bits $bits build/meshes/armadillo.off build/meshes/camel.off 127 55 0 0
 done
+
+# How it grows: camel × elephant at 1, 4 and 16 times its triangles and
+# at 1.25 M × 1.42 M, in the top's clock-exact model (docs/axi-port.md,
+# "Scaling"). About a minute.
+target/release/examples/dram_scaling build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0

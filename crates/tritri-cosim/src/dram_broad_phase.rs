@@ -487,8 +487,8 @@ pub fn run_top_simulator(
 }
 
 /// The top's clock-exact model ([`run_dram_broad_phase`]) on `case`: the
-/// clocks of `binned` and `tested` and the leaves, as the runs above
-/// record them.
+/// clocks of `binned` and `tested`, the leaves and the memory's beats, as
+/// the runs above record them.
 pub fn run_top_model(case: &TopCase, limit: u64) -> anyhow::Result<TopRun> {
     let binning = &case.binning;
     let mut memory = AxiMemory::new(binning.params, binning.bytes.clone());
@@ -508,6 +508,8 @@ pub fn run_top_model(case: &TopCase, limit: u64) -> anyhow::Result<TopRun> {
         leaves: times.leaves,
         passes: times.walk.passes,
         stalled: memory.stalled,
+        beats_read: memory.beats_read,
+        beats_written: memory.beats_written,
         ..TopRun::default()
     })
 }

@@ -63,16 +63,20 @@ fn the_rust_hdl_top_streams_the_exact_pairs_once() {
                 model.tested_at,
                 model.leaves,
                 model.passes,
-                model.stalled
+                model.stalled,
+                model.beats_read,
+                model.beats_written
             ),
             (
                 run.binned_at,
                 run.tested_at,
                 run.leaves,
                 run.passes,
-                run.stalled
+                run.stalled,
+                run.beats_read,
+                run.beats_written
             ),
-            "the model against rust-hdl (binned, tested, leaves, passes, stalled)"
+            "the model against rust-hdl (binned, tested, leaves, passes, stalled, beats read and written)"
         );
         eprintln!(
             "stalls {}%: {} pairs ({} uncertain), {} leaves, {} passes, binned at {}, tested at {}, done at {} ({} stalled)",
@@ -149,9 +153,23 @@ fn the_256_bit_top_streams_the_exact_pairs_at_the_models_clocks() {
         // its last verdict no later.
         let model = run_top_model(&case, 5_000_000).unwrap();
         assert_eq!(
-            (model.binned_at, model.leaves, model.passes, model.stalled),
-            (run.binned_at, run.leaves, run.passes, run.stalled),
-            "the model against Verilator (binned, leaves, passes, stalled)"
+            (
+                model.binned_at,
+                model.leaves,
+                model.passes,
+                model.stalled,
+                model.beats_read,
+                model.beats_written
+            ),
+            (
+                run.binned_at,
+                run.leaves,
+                run.passes,
+                run.stalled,
+                run.beats_read,
+                run.beats_written
+            ),
+            "the model against Verilator (binned, leaves, passes, stalled, beats read and written)"
         );
         assert!(model.tested_at <= run.tested_at);
         eprintln!(
