@@ -17,7 +17,9 @@
 //!     build/meshes/camel.off build/meshes/elephant.off 1 0.3 0 0
 //! ```
 //!
-//! `--levels` lists the cuts of A and of B, row by row (default
+//! It fails if a row takes more clocks per triangle in the common box
+//! than an earlier row by a tenth (the run must grow with those
+//! triangles, no faster). `--levels` lists the cuts of A and of B, row by row (default
 //! `0:0,1:1,2:2,3:4`: camel × elephant at 1, 4 and 16 times its triangles,
 //! and 1.25 M × 1.42 M). Scenes larger than the routed design's owner
 //! filter tables (8,192 triangles and entries per object) run in a top
@@ -68,6 +70,8 @@ fn main() -> anyhow::Result<()> {
     let ideal = MemoryParams::ideal(DATA_BITS as u64 / 8, 24);
     println!("| K (A, B) | N1 × N2 | in the common box | leaves | passes | DRAM read / written | peak arena | clocks to the last verdict | × the port's bound | at {VERSA_GBYTES} GB/s: clocks | time at the routed clock | software | model's run |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    // Clocks per triangle in the common box, row by row.
+    let mut per_triangle: Vec<(String, f64)> = Vec::new();
     for (ka, kb) in levels {
         let (a, b) = (a.subdivided(ka), b.subdivided(kb));
         // The project's software path, one thread, triangles in memory.
@@ -108,6 +112,10 @@ fn main() -> anyhow::Result<()> {
             }
             None => ("-".into(), "not routed".into()),
         };
+        per_triangle.push((
+            format!("{ka}, {kb}"),
+            run.tested_at as f64 / kept.max(1) as f64,
+        ));
         println!(
             "| {ka}, {kb} | {} × {} | {} + {} | {} | {} | {:.1} / {:.1} MiB | {:.1} MiB | {} | {:.2} | {versa} | {time} | {} pairs in {:.1} ms | {:.1} s |",
             a.triangles.len(),
@@ -125,6 +133,16 @@ fn main() -> anyhow::Result<()> {
             software_time * 1e3,
             started.elapsed().as_secs_f64()
         );
+    }
+    // The run grows with the triangles in the common box, no faster: no
+    // row's clocks per triangle there exceed an earlier row's by a tenth.
+    for (i, (row, clocks)) in per_triangle.iter().enumerate() {
+        for (earlier, before) in &per_triangle[..i] {
+            anyhow::ensure!(
+                *clocks <= before * 1.1,
+                "K = {row}: {clocks:.2} clocks per triangle in the common box, where K = {earlier} took {before:.2}"
+            );
+        }
     }
     if routed.is_none() {
         println!("{ROUTED_UNIT} has no post-route clock in rtl-out/measurements.json: clocks only");
