@@ -38,36 +38,55 @@ use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::measured::Measurements;
 use tritri_rtl::pipeline::RareCasePath;
 
-/// The port of the design that fits the ECP5-85 at the Versa's bandwidth.
-const DATA_BITS: usize = 256;
 /// The unit whose post-route clock times the rows.
 const ROUTED_UNIT: &str = "tritri_dram_broad_phase_g16_w16_d256_p1_t256_i8192_s8192_shared";
 
 fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let levels = match args.iter().position(|a| a == "--levels") {
-        Some(i) if i + 1 < args.len() => {
-            let list = args.remove(i + 1);
-            args.remove(i);
-            parse_levels(&list)?
-        }
-        Some(_) => anyhow::bail!("--levels takes KA:KB[,KA:KB...]"),
+    let levels = match take_option(&mut args, "--levels")? {
+        Some(list) => parse_levels(&list)?,
         None => vec![(0, 0), (1, 1), (2, 2), (3, 4)],
     };
-    let (a, b) = tritri_examples::scene_objects(&args, "dram_scaling [--levels KA:KB,...]")?;
+    let data_bits = match take_option(&mut args, "--data-bits")? {
+        Some(bits) if ["64", "128", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
+        Some(bits) => anyhow::bail!("--data-bits takes 64, 128 or 256, not {bits:?}"),
+        None => 256,
+    };
+    let bytes_per_clock = match take_option(&mut args, "--bytes-per-clock")? {
+        Some(b) => {
+            let b: u64 = b.parse().ok().filter(|&b| b >= 1).with_context(|| {
+                format!("--bytes-per-clock takes a whole number of bytes, at least 1, not {b:?}")
+            })?;
+            Some(b)
+        }
+        None => None,
+    };
+    let (a, b) = tritri_examples::scene_objects(
+        &args,
+        "dram_scaling [--levels KA:KB,...] [--data-bits 64|128|256] [--bytes-per-clock B]",
+    )?;
+    // The routed design is the 256-bit one.
     let routed = Measurements::committed()
         .ecp5(ROUTED_UNIT)
-        .map(|row| row.fmax_mhz);
+        .map(|row| row.fmax_mhz)
+        .filter(|_| data_bits == 256);
     let mut accelerator = Accelerator::new(16);
     accelerator.pipelines = 1;
     accelerator.rare_cases = RareCasePath::Shared;
     let pass = ListPassConfig {
         grid_bits: 16,
-        data_bits: DATA_BITS,
+        data_bits,
         max_read_burst: 16,
         outstanding: 4,
     };
-    let ideal = MemoryParams::ideal(DATA_BITS as u64 / 8, 24);
+    let mut ideal = MemoryParams::ideal(data_bits as u64 / 8, 24);
+    if let Some(bytes) = bytes_per_clock {
+        ideal.bytes_per_clock = (bytes, 1);
+    }
+    println!(
+        "{data_bits}-bit port; the memory moves {} bytes a clock in all, latency 24",
+        ideal.bytes_per_clock.0
+    );
     println!("| K (A, B) | N1 × N2 | in the common box | leaves | passes | DRAM read / written | peak arena | clocks to the last verdict | × the port's bound | at {VERSA_GBYTES} GB/s: clocks | time at the routed clock | software | model's run |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     // Clocks per triangle in the common box, row by row.
@@ -95,8 +114,11 @@ fn main() -> anyhow::Result<()> {
             run.beats_read * ideal.beat_bytes,
             run.beats_written * ideal.beat_bytes,
         );
-        // A beat a clock each way: the reads or the writes, whichever is more.
-        let bound = run.beats_read.max(run.beats_written);
+        // A beat a clock each way, and the memory's bytes a clock in all.
+        let bound = run
+            .beats_read
+            .max(run.beats_written)
+            .max((read + written).div_ceil(ideal.bytes_per_clock.0));
         let (versa, time) = match routed {
             Some(mhz) => {
                 let mut case = wide.clone();
@@ -145,7 +167,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     if routed.is_none() {
-        println!("{ROUTED_UNIT} has no post-route clock in rtl-out/measurements.json: clocks only");
+        println!("no post-route clock for this port in rtl-out/measurements.json ({ROUTED_UNIT} is the 256-bit design): clocks only");
     }
     Ok(())
 }
@@ -169,4 +191,17 @@ fn parse_levels(list: &str) -> anyhow::Result<Vec<(u32, u32)>> {
             Ok((level(ka)?, level(kb)?))
         })
         .collect()
+}
+
+/// The value after `name` in `args`, both taken out; an error if it has none.
+fn take_option(args: &mut Vec<String>, name: &str) -> anyhow::Result<Option<String>> {
+    match args.iter().position(|a| a == name) {
+        Some(i) if i + 1 < args.len() => {
+            let value = args.remove(i + 1);
+            args.remove(i);
+            Ok(Some(value))
+        }
+        Some(_) => anyhow::bail!("{name} takes a value"),
+        None => Ok(None),
+    }
 }
