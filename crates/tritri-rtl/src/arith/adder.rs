@@ -267,3 +267,96 @@ end
         ))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::adder::{
+        RegisteredDifference, RegisteredDifferenceSign, RegisteredSum3, ADDER_LATENCY, SUM3_LATENCY,
+    };
+    use crate::arith::convert::{from_i128, to_i128, wrap_i128};
+    use crate::arith::unit_vectors::tuples;
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    #[test]
+    fn adders_wrap_modulo_their_width() {
+        let mut uut = RegisteredSum3::<50>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        // Random sums, and sums of 0: `c = -(a + b)`, with and without a wrap.
+        let mut sums = tuples::<3>(11, 50);
+        let zeros: Vec<[i128; 3]> = sums
+            .iter()
+            .map(|[a, b, _]| [*a, *b, wrap_i128(-(a + b), 50)])
+            .collect();
+        assert!(zeros.iter().any(|[a, b, _]| wrap_i128(a + b, 50) != a + b));
+        sums.extend(zeros.iter().step_by(3));
+        sums.extend([
+            [0, 0, 0],
+            [1, -1, 0],
+            [0, 1, -1],
+            [-(1 << 49), -(1 << 49), 0],
+        ]);
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &sums,
+            SUM3_LATENCY,
+            |u, [a, b, c]| {
+                u.a.next = from_i128(*a);
+                u.b.next = from_i128(*b);
+                u.c.next = from_i128(*c);
+            },
+            |u| (to_i128(u.sum.val()), u.zero_parts.val().all()),
+            |[a, b, c]| {
+                let sum = wrap_i128(a + b + c, 50);
+                (sum, sum == 0)
+            },
+        );
+        let mut uut = RegisteredDifference::<50>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &tuples::<2>(12, 50),
+            ADDER_LATENCY,
+            |u, [a, b]| {
+                u.a.next = from_i128(*a);
+                u.b.next = from_i128(*b);
+            },
+            |u| to_i128(u.difference.val()),
+            |[a, b]| wrap_i128(a - b, 50),
+        );
+        // The sign and the equality in parts: random pairs, equal pairs, and
+        // pairs that differ in one bit, every bit (each part's test, the sign's
+        // borrow from each bit).
+        let mut uut = RegisteredDifferenceSign::<50>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        let mut pairs = tuples::<2>(13, 50);
+        let equal: Vec<[i128; 2]> = pairs.iter().map(|[a, _]| [*a, *a]).collect();
+        pairs.extend(equal.iter().step_by(4));
+        for bit in 0..50 {
+            let [a, _] = pairs[bit];
+            pairs.push([a, wrap_i128(a ^ (1 << bit), 50)]);
+        }
+        pairs.extend([
+            [0, 0],
+            [-(1 << 49), (1 << 49) - 1],
+            [(1 << 49) - 1, -(1 << 49)],
+        ]);
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &pairs,
+            ADDER_LATENCY,
+            |u, [a, b]| {
+                u.a.next = from_i128(*a);
+                u.b.next = from_i128(*b);
+            },
+            |u| (u.negative.val(), u.equal_parts.val().all()),
+            |[a, b]| (wrap_i128(a - b, 50) < 0, a == b),
+        );
+    }
+}

@@ -248,3 +248,79 @@ impl<const D: usize, const C: usize> Logic for CrossProduct2d<D, C> {
         self.product.next = self.difference.difference.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::{from_i128, to_i128};
+    use crate::arith::cross_product::{
+        CrossProduct, CrossProduct2d, TwoWayCrossProduct, CROSS_PRODUCT_LATENCY,
+    };
+    use crate::arith::unit_vectors::{edge_vectors, narrow};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::cross;
+
+    #[test]
+    fn cross_products_are_exact() {
+        let mut uut = CrossProduct::<25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &edge_vectors(5),
+            CROSS_PRODUCT_LATENCY,
+            |u, [e1, e2, _]| {
+                for k in 0..3 {
+                    u.u[k].next = from_i128(e1[k]);
+                    u.v[k].next = from_i128(e2[k]);
+                }
+            },
+            |u| u.product.each_ref().map(|p| to_i128(p.val())),
+            |[e1, e2, _]| cross(narrow(*e1), narrow(*e2)),
+        );
+        // Both ways: the product and its negation from the same stage.
+        let mut uut = TwoWayCrossProduct::<25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &edge_vectors(8),
+            CROSS_PRODUCT_LATENCY,
+            |u, [e1, e2, _]| {
+                for k in 0..3 {
+                    u.u[k].next = from_i128(e1[k]);
+                    u.v[k].next = from_i128(e2[k]);
+                }
+            },
+            |u| {
+                (
+                    u.product.each_ref().map(|p| to_i128(p.val())),
+                    u.negated.each_ref().map(|p| to_i128(p.val())),
+                )
+            },
+            |[e1, e2, _]| {
+                let n = cross(narrow(*e1), narrow(*e2));
+                (n, n.map(|c| -c))
+            },
+        );
+        let mut uut = CrossProduct2d::<25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &edge_vectors(6),
+            CROSS_PRODUCT_LATENCY,
+            |u, [e1, e2, _]| {
+                u.u_x.next = from_i128(e1[0]);
+                u.u_y.next = from_i128(e1[1]);
+                u.w_x.next = from_i128(e2[0]);
+                u.w_y.next = from_i128(e2[1]);
+            },
+            |u| to_i128(u.product.val()),
+            |[e1, e2, _]| e1[0] * e2[1] - e1[1] * e2[0],
+        );
+    }
+}

@@ -76,3 +76,38 @@ impl<const D: usize, const C: usize, const O: usize> Logic for DotProduct<D, C, 
         self.zero_parts.next = self.sum.zero_parts.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::{from_i128, to_i128};
+    use crate::arith::dot_product::{DotProduct, DOT_PRODUCT_LATENCY};
+    use crate::arith::unit_vectors::{edge_vectors, narrow};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::cross;
+
+    #[test]
+    fn dot_product_is_exact() {
+        let mut uut = DotProduct::<25, 49, 74>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        let vectors: Vec<([i128; 3], [i128; 3])> = edge_vectors(7)
+            .into_iter()
+            .map(|[e1, e2, e3]| (e3, cross(narrow(e1), narrow(e2))))
+            .collect();
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            DOT_PRODUCT_LATENCY,
+            |uut, (u, v)| {
+                for k in 0..3 {
+                    uut.u[k].next = from_i128(u[k]);
+                    uut.v[k].next = from_i128(v[k]);
+                }
+            },
+            |uut| to_i128(uut.product.val()),
+            |(u, v)| (0..3).map(|k| u[k] * v[k]).sum(),
+        );
+    }
+}

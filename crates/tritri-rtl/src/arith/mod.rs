@@ -13,4 +13,6 @@ pub mod one_hot_choice;
 pub mod register_copy;
 pub mod sign;
 pub mod subtractor;
+#[cfg(test)]
+pub(crate) mod unit_vectors;
 pub mod valid_line;

@@ -388,3 +388,34 @@ endmodule
 /* verilator lint_on UNUSED */
 `endif
 "#;
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::{from_i128, to_i128};
+    use crate::arith::multiplier::{Multiplier, MULTIPLIER_LATENCY};
+    use crate::arith::unit_vectors::tuples;
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    #[test]
+    fn multiplier_is_the_exact_product() {
+        let mut uut = Multiplier::<25, 49, 74>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        let a = tuples::<1>(1, 25);
+        let b = tuples::<1>(2, 49);
+        let pairs: Vec<(i128, i128)> = a.iter().zip(&b).map(|(a, b)| (a[0], b[0])).collect();
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &pairs,
+            MULTIPLIER_LATENCY,
+            |u, (a, b)| {
+                u.a.next = from_i128(*a);
+                u.b.next = from_i128(*b);
+            },
+            |u| to_i128(u.product.val()),
+            |(a, b)| a * b,
+        );
+    }
+}

@@ -428,3 +428,48 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod random_vectors {
+    use crate::arith::convert::{from_i128, to_i128};
+    use crate::arith::subtractor::{Subtractor, VectorSubtractor, SUBTRACTOR_LATENCY};
+    use crate::arith::unit_vectors::tuples;
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    #[test]
+    fn subtractors_are_exact() {
+        let mut uut = Subtractor::<24, 25>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &tuples::<2>(3, 24),
+            SUBTRACTOR_LATENCY,
+            |u, [a, b]| {
+                u.a.next = from_i128(*a);
+                u.b.next = from_i128(*b);
+            },
+            |u| to_i128(u.difference.val()),
+            |[a, b]| a - b,
+        );
+        let mut uut = VectorSubtractor::<24, 25>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &tuples::<6>(4, 24),
+            SUBTRACTOR_LATENCY,
+            |u, v| {
+                for k in 0..3 {
+                    u.a[k].next = from_i128(v[k]);
+                    u.b[k].next = from_i128(v[3 + k]);
+                }
+            },
+            |u| u.difference.each_ref().map(|d| to_i128(d.val())),
+            |v| std::array::from_fn(|k| v[k] - v[3 + k]),
+        );
+    }
+}

@@ -171,3 +171,87 @@ impl Logic for AlignT1 {
         self.t2_swap.next = self.t2_swap_q.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::align_t1::{AlignT1, ALIGN_T1_LATENCY};
+    use crate::pipeline::align_t2::{AlignT2, ALIGN_T2_LATENCY};
+    use crate::pipeline::unit_vectors::{set_signs, sign_triples};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+    use tritri_geom::devillers_guigue::{align_t1, align_t2};
+    use tritri_geom::sign::Sign;
+
+    /// Steps (5) and (6) against `align_t1` and `align_t2` on labelled
+    /// vertices (T1 = 0, 1, 2; T2 = 3, 4, 5), for every pair of sign triples.
+    #[test]
+    fn alignment_units_follow_the_models_sign_tables() {
+        let vectors: Vec<([Sign; 3], [Sign; 3])> = sign_triples()
+            .into_iter()
+            .flat_map(|d1| sign_triples().into_iter().map(move |d2| (d1, d2)))
+            .collect();
+        let mut uut = AlignT1::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            ALIGN_T1_LATENCY,
+            |u, (d1, d2)| {
+                set_signs(&mut u.t1_negative, &mut u.t1_zero, d1);
+                set_signs(&mut u.t2_negative, &mut u.t2_zero, d2);
+            },
+            |u| {
+                let aligned = std::array::from_fn::<_, 3, _>(|k| {
+                    (u.t2_aligned_negative[k].val(), u.t2_aligned_zero[k].val())
+                });
+                (
+                    u.t1_rotation.val().to_u64() as usize,
+                    u.t2_swap.val(),
+                    aligned,
+                )
+            },
+            |(d1, d2)| {
+                let (t1, t2, d2) = align_t1([0usize, 1, 2], [3usize, 4, 5], *d1, *d2);
+                (
+                    t1[0],
+                    t2 != [3, 4, 5],
+                    d2.map(|s| (s == Sign::Negative, s == Sign::Zero)),
+                )
+            },
+        );
+        // Step (6): T2's rotation and T1's swap; step (5)'s pass through.
+        let vectors: Vec<([Sign; 3], usize, bool)> = sign_triples()
+            .into_iter()
+            .enumerate()
+            .map(|(k, d2)| (d2, k % 3, k % 2 == 0))
+            .collect();
+        let mut uut = AlignT2::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            ALIGN_T2_LATENCY,
+            |u, (d2, rotation, swap)| {
+                set_signs(&mut u.t2_aligned_negative, &mut u.t2_aligned_zero, d2);
+                u.t1_rotation_in.next = (*rotation as u64).into();
+                u.t2_swap_in.next = *swap;
+            },
+            |u| {
+                (
+                    u.t2_rotation.val().to_u64() as usize,
+                    u.t1_swap.val(),
+                    u.t1_rotation.val().to_u64() as usize,
+                    u.t2_swap.val(),
+                )
+            },
+            |(d2, rotation, swap)| {
+                let aligned = align_t2([0usize, 1, 2], *d2);
+                (aligned.t2[0], aligned.swap_t1, *rotation, *swap)
+            },
+        );
+    }
+}

@@ -171,3 +171,73 @@ impl<const W: usize, const D: usize, const C: usize> Logic for BasePolygon<W, D,
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::{from_i128, to_i128};
+    use crate::pipeline::base_polygon::BasePolygon;
+    use crate::pipeline::unit_vectors::{edges_bits, normal, set_vertices, triangles};
+    use crate::sim_drive::{assert_stream_matches, clock_cycle};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::FixedTriangle;
+
+    /// The base polygon latches a record when `load_ahead` was high at the
+    /// enabled edge before, and holds it otherwise.
+    #[test]
+    fn base_polygon_holds_the_last_loaded_record() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let records: Vec<(u32, FixedTriangle)> =
+            triangles(13).into_iter().map(|t| (rng.gen(), t)).collect();
+        let loads: Vec<bool> = (0..records.len())
+            .map(|k| k == 0 || rng.gen_bool(0.2))
+            .collect();
+        // (the next record's load, offered record, the record held after the clock)
+        let mut held = records[0];
+        let vectors: Vec<(bool, (u32, FixedTriangle), (u32, FixedTriangle))> = records
+            .iter()
+            .enumerate()
+            .map(|(k, r)| {
+                if loads[k] {
+                    held = *r;
+                }
+                (loads.get(k + 1).copied().unwrap_or(false), *r, held)
+            })
+            .collect();
+        let mut uut = BasePolygon::<24, 25, 49>::default();
+        uut.connect_all();
+        // The first record's load, an edge ahead.
+        uut.advance.next = true;
+        uut.load_ahead.next = loads[0];
+        clock_cycle(&mut uut, |u| &mut u.clock);
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            1,
+            |u, (load_next, (id, t), _)| {
+                u.advance.next = true;
+                u.load_ahead.next = *load_next;
+                u.id_in.next = (*id as u64).into();
+                set_vertices(&mut u.vertices_in, t);
+                for (k, c) in normal(t).iter().enumerate() {
+                    u.normal_in[k].next = from_i128(*c);
+                }
+                u.edges_bits_in.next = edges_bits(t).into();
+            },
+            |u| {
+                let t: FixedTriangle = std::array::from_fn(|v| {
+                    std::array::from_fn(|i| to_i128(u.vertices[3 * v + i].val()) as i64)
+                });
+                (
+                    u.id.val().to_u64() as u32,
+                    t,
+                    u.normal.each_ref().map(|n| to_i128(n.val())),
+                    u.edges_bits.val().to_u64(),
+                )
+            },
+            |(_, _, (id, t))| (*id, *t, normal(t), edges_bits(t)),
+        );
+    }
+}

@@ -184,3 +184,68 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         self.certain.next = self.sign.certain.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::certificate::{CERTAIN_SIGN_LATENCY, CERTIFICATE_LATENCY};
+    use crate::arith::convert::from_i128;
+    use crate::pipeline::certified_orient3d::{CertifiedOrient3d, CERTIFIED_ORIENT3D_LATENCY};
+    use crate::pipeline::unit_vectors::{point, LIMIT, VECTORS};
+    use crate::sim_drive::assert_stream_matches;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::certificate::orient3d_certified;
+    use tritri_geom::fixed_point::FixedPoint3;
+    use tritri_geom::sign::Sign;
+
+    #[test]
+    fn certified_orient3d_is_the_models_sign_and_certificate() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let vectors: Vec<[FixedPoint3; 4]> = (0..VECTORS)
+            .map(|k| {
+                let [a, b, c] = [point(&mut rng, k), point(&mut rng, k), point(&mut rng, k)];
+                // d on or next to the plane of a, b, c half the time.
+                let d = if k % 2 == 0 {
+                    std::array::from_fn(|i| (b[i] + rng.gen_range(-1..2)).clamp(-LIMIT, LIMIT - 1))
+                } else {
+                    point(&mut rng, k)
+                };
+                [a, b, c, d]
+            })
+            .collect();
+        // The sign, then the certificate two clocks later (`CERTIFICATE_LATENCY`).
+        for certificates in [false, true] {
+            let mut uut = CertifiedOrient3d::<24, 25, 49, 74>::default();
+            uut.connect_all();
+            uut.advance.next = true;
+            let shown = move |(negative, zero, certain): (bool, bool, bool)| {
+                if certificates {
+                    (false, false, certain)
+                } else {
+                    (negative, zero, false)
+                }
+            };
+            assert_stream_matches(
+                &mut uut,
+                |u| &mut u.clock,
+                &vectors,
+                CERTIFIED_ORIENT3D_LATENCY
+                    + usize::from(certificates) * (CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY),
+                |u, [a, b, c, d]| {
+                    for k in 0..3 {
+                        u.a[k].next = from_i128(a[k] as i128);
+                        u.b[k].next = from_i128(b[k] as i128);
+                        u.c[k].next = from_i128(c[k] as i128);
+                        u.d[k].next = from_i128(d[k] as i128);
+                    }
+                },
+                |u| shown((u.negative.val(), u.zero.val(), u.certain.val())),
+                |[a, b, c, d]| {
+                    let (sign, certain) = orient3d_certified(*a, *b, *c, *d);
+                    shown((sign == Sign::Negative, sign == Sign::Zero, certain))
+                },
+            );
+        }
+    }
+}

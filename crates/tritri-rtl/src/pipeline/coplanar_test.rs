@@ -271,3 +271,55 @@ impl<const W: usize, const D: usize, const C: usize> Logic for CoplanarTest<W, D
         self.hit.next = self.decision.hit.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::coplanar_test::{CoplanarTest, COPLANAR_TEST_LATENCY};
+    use crate::pipeline::unit_vectors::{coplanar_pairs, normal, set_vertices};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+    use tritri_geom::devillers_guigue::coplanar_triangles;
+    use tritri_geom::fixed_point::{dominant_axis, FixedPoint, FixedTriangle};
+
+    /// Coplanar triangles (T1 proper) on T1's dominant projection:
+    /// `coplanar_triangles`.
+    #[test]
+    fn coplanar_test_is_the_closed_2d_test() {
+        let vectors: Vec<(FixedTriangle, FixedTriangle)> = coplanar_pairs(8)
+            .into_iter()
+            .filter(|(t1, _)| normal(t1) != [0, 0, 0])
+            .collect();
+        let hits = vectors
+            .iter()
+            .filter(|(t1, t2)| coplanar_triangles::<FixedPoint>(*t1, *t2))
+            .count();
+        assert!(
+            hits > vectors.len() / 5 && hits < vectors.len() * 4 / 5,
+            "{hits} hits of {}",
+            vectors.len()
+        );
+        let mut uut = CoplanarTest::<24, 25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            COPLANAR_TEST_LATENCY,
+            |u, (t1, t2)| {
+                set_vertices(&mut u.t1_vertices, t1);
+                set_vertices(&mut u.t2_vertices, t2);
+                let (n1, n2) = (normal(t1), normal(t2));
+                u.axis.next = (dominant_axis(n1.map(|c| c.unsigned_abs())) as u64).into();
+                for k in 0..3 {
+                    u.t1_normal_negative[k].next = n1[k] < 0;
+                    u.t1_normal_zero[k].next = n1[k] == 0;
+                    u.t2_normal_negative[k].next = n2[k] < 0;
+                    u.t2_normal_zero[k].next = n2[k] == 0;
+                }
+            },
+            |u| u.hit.val(),
+            |(t1, t2)| coplanar_triangles::<FixedPoint>(*t1, *t2),
+        );
+    }
+}

@@ -203,3 +203,48 @@ impl<const W: usize, const D: usize, const C: usize> Logic for DegeneratePair<W,
         self.hit.next = self.decision.hit.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::degenerate_pair::{DegeneratePair, DEGENERATE_PAIR_LATENCY};
+    use crate::pipeline::unit_vectors::{
+        degenerate_pairs, lexicographic_ends, segments_meet, set_vertices,
+    };
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    /// Two degenerate triangles: their segments (lexicographic ends) meet in all
+    /// three axis projections (`degenerate_pair` without its orient3d, which
+    /// the shared orient3d unit computes).
+    #[test]
+    fn degenerate_pair_is_the_three_projection_segment_test() {
+        let vectors = degenerate_pairs();
+        let model = segments_meet;
+        let hits = vectors.iter().filter(|v| model(v)).count();
+        assert!(
+            hits > 20 && hits < vectors.len() - 20,
+            "{hits} hits of {}",
+            vectors.len()
+        );
+        let mut uut = DegeneratePair::<24, 25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            DEGENERATE_PAIR_LATENCY,
+            |u, (t1, t2)| {
+                set_vertices(&mut u.t1_vertices, t1);
+                set_vertices(&mut u.t2_vertices, t2);
+                let ((a, b), (c, d)) = (lexicographic_ends(t1), lexicographic_ends(t2));
+                u.t1_segment_low.next = (a as u64).into();
+                u.t1_segment_high.next = (b as u64).into();
+                u.t2_segment_low.next = (c as u64).into();
+                u.t2_segment_high.next = (d as u64).into();
+            },
+            |u| u.hit.val(),
+            model,
+        );
+    }
+}

@@ -94,3 +94,45 @@ impl<const C: usize> Logic for DominantAxis<C> {
         self.axis.next = self.axis_q.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::from_i128;
+    use crate::pipeline::dominant_axis::{DominantAxis, DOMINANT_AXIS_LATENCY};
+    use crate::pipeline::unit_vectors::{normal, triangles};
+    use crate::sim_drive::assert_stream_matches;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::dominant_axis;
+
+    #[test]
+    fn dominant_axis_is_the_largest_component_ties_low() {
+        // Normals of random triangles, and ties: equal magnitudes of either sign.
+        let mut normals: Vec<[i128; 3]> = triangles(2).iter().map(normal).collect();
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        for _ in 0..100 {
+            let m: i128 = rng.gen_range(0..1 << 40);
+            let s = |rng: &mut ChaCha8Rng| if rng.gen_bool(0.5) { m } else { -m };
+            normals.push([s(&mut rng), s(&mut rng), rng.gen_range(-m..=m)]);
+            normals.push([rng.gen_range(-m..=m), s(&mut rng), s(&mut rng)]);
+        }
+        let mut uut = DominantAxis::<49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &normals,
+            DOMINANT_AXIS_LATENCY,
+            |u, n| {
+                for k in 0..3 {
+                    u.normal[k].next = from_i128(n[k]);
+                    u.negated[k].next = from_i128(-n[k]);
+                }
+            },
+            |u| u.axis.val().to_u64() as usize,
+            |n| dominant_axis(n.map(|c| c.unsigned_abs())),
+        );
+    }
+}

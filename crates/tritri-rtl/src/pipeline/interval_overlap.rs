@@ -117,3 +117,51 @@ impl Logic for IntervalOverlap {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::interval_overlap::{IntervalOverlap, INTERVAL_OVERLAP_LATENCY};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    /// Step (7)'s vertex indices: with T1 rotated (and its last two swapped)
+    /// and T2 swapped then rotated, the determinants `[q1, p2, p1, q2]` and
+    /// `[p1, p2, r1, r2]` of `interval_overlap`, for every rotation and swap.
+    #[test]
+    fn interval_overlap_names_the_models_determinants() {
+        let vectors: Vec<(usize, bool, usize, bool)> = (0..36)
+            .map(|k| (k % 3, k / 3 % 2 == 1, k / 6 % 3, k / 18 == 1))
+            .collect();
+        let mut uut = IntervalOverlap::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            INTERVAL_OVERLAP_LATENCY,
+            |u, (r1, s2, r2, s1)| {
+                u.t1_rotation.next = (*r1 as u64).into();
+                u.t2_swap.next = *s2;
+                u.t2_rotation.next = (*r2 as u64).into();
+                u.t1_swap.next = *s1;
+            },
+            |u| {
+                (
+                    u.first.each_ref().map(|i| i.val().to_u64()),
+                    u.second.each_ref().map(|i| i.val().to_u64()),
+                )
+            },
+            |(r1, s2, r2, s1)| {
+                let rotate = |t: [u64; 3], k: usize| [t[k], t[(k + 1) % 3], t[(k + 2) % 3]];
+                let [p1, mut q1, mut r1v] = rotate([0, 1, 2], *r1);
+                if *s1 {
+                    std::mem::swap(&mut q1, &mut r1v);
+                }
+                let t2 = if *s2 { [3, 5, 4] } else { [3, 4, 5] };
+                let [p2, q2, r2v] = rotate(t2, *r2);
+                ([q1, p2, p1, q2], [p1, p2, r1v, r2v])
+            },
+        );
+    }
+}

@@ -28,6 +28,8 @@ pub mod shared_rare_pipeline;
 pub mod third_determinant;
 pub mod triangle_front_end;
 pub mod triangle_pipeline;
+#[cfg(test)]
+pub(crate) mod unit_vectors;
 pub mod verdict_queue;
 
 /// Width of the triangle ids carried with each triangle (the one place).

@@ -69,3 +69,49 @@ impl<const W: usize, const D: usize, const C: usize> Logic for NormalUnit<W, D, 
         self.edges_bits.next = self.edge_bits.bits.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::to_i128;
+    use crate::pipeline::normal::{NormalUnit, EDGES_BITS_LATENCY, NORMAL_LATENCY};
+    use crate::pipeline::unit_vectors::{edges_bits, normal, set_vertices, triangles};
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+
+    #[test]
+    fn normal_unit_gives_the_cross_product_its_negation_and_its_edges_bit_length() {
+        let vectors = triangles(1);
+        let mut uut = NormalUnit::<24, 25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            NORMAL_LATENCY,
+            |u, t| set_vertices(&mut u.vertices, t),
+            |u| {
+                (
+                    u.normal.each_ref().map(|n| to_i128(n.val())),
+                    u.negated_normal.each_ref().map(|n| to_i128(n.val())),
+                )
+            },
+            |t| {
+                let n = normal(t);
+                (n, n.map(|c| -c))
+            },
+        );
+        let mut uut = NormalUnit::<24, 25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            EDGES_BITS_LATENCY,
+            |u, t| set_vertices(&mut u.vertices, t),
+            |u| u.edges_bits.val().to_u64(),
+            edges_bits,
+        );
+    }
+}

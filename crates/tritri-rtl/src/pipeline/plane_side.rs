@@ -231,3 +231,89 @@ impl<const W: usize, const D: usize, const C: usize, const O: usize> Logic
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::certificate::{CERTAIN_SIGN_LATENCY, CERTIFICATE_LATENCY};
+    use crate::arith::convert::from_i128;
+    use crate::pipeline::plane_side::{PlaneSide, PLANE_SIDE_LATENCY};
+    use crate::pipeline::unit_vectors::{
+        edges_bits, normal, point, set_vertices, triangles, LIMIT,
+    };
+    use crate::sim_drive::assert_stream_matches;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::certificate::orient3d_certified;
+    use tritri_geom::fixed_point::{FixedPoint3, FixedTriangle};
+    use tritri_geom::sign::Sign;
+
+    /// The signs of three vertices against a plane and their certificates:
+    /// `orient3d_certified(p, q, r, v)` for each vertex `v`.
+    #[test]
+    fn plane_side_signs_and_certificates() {
+        let planes = triangles(5);
+        let mut rng = ChaCha8Rng::seed_from_u64(6);
+        let vectors: Vec<(FixedTriangle, FixedTriangle)> = planes
+            .iter()
+            .enumerate()
+            .map(|(k, plane)| {
+                // Vertices near the plane (small offsets from its points) as
+                // well as anywhere, so that zero and uncertain signs occur.
+                let near = |rng: &mut ChaCha8Rng| -> FixedPoint3 {
+                    let p = plane[rng.gen_range(0..3)];
+                    std::array::from_fn(|i| (p[i] + rng.gen_range(-2..3)).clamp(-LIMIT, LIMIT - 1))
+                };
+                let t = if k % 2 == 0 {
+                    std::array::from_fn(|_| near(&mut rng))
+                } else {
+                    std::array::from_fn(|_| point(&mut rng, k))
+                };
+                (*plane, t)
+            })
+            .collect();
+        // The signs, then the certificates two clocks later (`CERTIFICATE_LATENCY`).
+        for certificates in [false, true] {
+            let mut uut = PlaneSide::<24, 25, 49, 74>::default();
+            uut.connect_all();
+            uut.advance.next = true;
+            let shown = move |(negative, zero, certain): (bool, bool, bool)| {
+                if certificates {
+                    (false, false, certain)
+                } else {
+                    (negative, zero, false)
+                }
+            };
+            assert_stream_matches(
+                &mut uut,
+                |u| &mut u.clock,
+                &vectors,
+                PLANE_SIDE_LATENCY
+                    + usize::from(certificates) * (CERTIFICATE_LATENCY - CERTAIN_SIGN_LATENCY),
+                |u, (plane, t)| {
+                    for k in 0..3 {
+                        u.plane_point[k].next = from_i128(plane[0][k] as i128);
+                    }
+                    // The normal and edges' bit length arrive from the base polygon,
+                    // computed by the normal unit (tested above).
+                    for (k, n) in normal(plane).iter().enumerate() {
+                        u.plane_normal[k].next = from_i128(*n);
+                    }
+                    u.plane_edges_bits.next = edges_bits(plane).into();
+                    set_vertices(&mut u.vertices, t);
+                },
+                |u| {
+                    std::array::from_fn::<_, 3, _>(|k| {
+                        shown((u.negative[k].val(), u.zero[k].val(), u.certain[k].val()))
+                    })
+                },
+                |(plane, t)| {
+                    t.map(|v| {
+                        let (sign, certain) = orient3d_certified(plane[0], plane[1], plane[2], v);
+                        shown((sign == Sign::Negative, sign == Sign::Zero, certain))
+                    })
+                },
+            );
+        }
+    }
+}

@@ -107,3 +107,40 @@ impl<const W: usize> Logic for SegmentEnds<W> {
         self.high.next = self.high_q.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::segment_ends::{SegmentEnds, SEGMENT_ENDS_LATENCY};
+    use crate::pipeline::unit_vectors::{lexicographic_ends, set_vertices, VECTORS};
+    use crate::sim_drive::assert_stream_matches;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::FixedTriangle;
+
+    #[test]
+    fn segment_ends_are_the_lexicographic_extremes_first_index_on_ties() {
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        // Small coordinates: many equal coordinates and equal vertices.
+        let vectors: Vec<FixedTriangle> = (0..VECTORS)
+            .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-1..2))))
+            .collect();
+        let mut uut = SegmentEnds::<24>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &vectors,
+            SEGMENT_ENDS_LATENCY,
+            |u, t| set_vertices(&mut u.vertices, t),
+            |u| {
+                (
+                    u.low.val().to_u64() as usize,
+                    u.high.val().to_u64() as usize,
+                )
+            },
+            lexicographic_ends,
+        );
+    }
+}

@@ -945,3 +945,139 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         self.hit.next = self.hit_q.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::pipeline::shared_rare_cases::{
+        SharedRareCases, COPLANAR_STEPS, SEGMENTS_STEPS, SHARED_RARE_CASES_LATENCY,
+    };
+    use crate::pipeline::unit_vectors::{
+        coplanar_pairs, degenerate_pairs, lexicographic_ends, normal, segments_meet, set_vertices,
+    };
+    use crate::sim_drive::{clock_cycle, reset_one_clock};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::devillers_guigue::coplanar_triangles;
+    use tritri_geom::fixed_point::{dominant_axis, FixedPoint, FixedTriangle};
+
+    /// The shared rare-case unit gives the parallel tests' verdicts: coplanar
+    /// pairs and degenerate pairs interleaved, offered with gaps and back to
+    /// back, each verdict in order and exactly its kind's latency after the
+    /// job was taken; jobs offered back to back are taken a job's steps apart.
+    #[test]
+    fn shared_rare_cases_equal_the_parallel_tests() {
+        let coplanar = coplanar_pairs(8)
+            .into_iter()
+            .filter(|(t1, _)| normal(t1) != [0, 0, 0]);
+        let segments = degenerate_pairs();
+        // (segments?, t1, t2), alternating in runs.
+        let mut jobs: Vec<(bool, FixedTriangle, FixedTriangle)> = Vec::new();
+        for (i, (c, d)) in coplanar.zip(segments).enumerate() {
+            let first_segments = i % 3 == 0;
+            jobs.push((
+                first_segments,
+                if first_segments { d.0 } else { c.0 },
+                if first_segments { d.1 } else { c.1 },
+            ));
+            jobs.push((
+                !first_segments,
+                if first_segments { c.0 } else { d.0 },
+                if first_segments { c.1 } else { d.1 },
+            ));
+        }
+        let expected: Vec<bool> = jobs
+            .iter()
+            .map(|&(is_segments, t1, t2)| {
+                if is_segments {
+                    segments_meet(&(t1, t2))
+                } else {
+                    coplanar_triangles::<FixedPoint>(t1, t2)
+                }
+            })
+            .collect();
+        let mut uut = SharedRareCases::<24, 25, 49>::default();
+        uut.connect_all();
+        reset_one_clock(&mut uut, |u| &mut u.reset, |u| &mut u.clock);
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let (mut next, mut cycle) = (0usize, 0u64);
+        let mut taken_at: Vec<u64> = Vec::new();
+        let mut offered_since: Option<u64> = None;
+        let mut back_to_back = 0;
+        let mut verdicts: Vec<(bool, u64)> = Vec::new();
+        while verdicts.len() < jobs.len() {
+            assert!(
+                cycle < 20 * jobs.len() as u64 + 100,
+                "no verdicts after {cycle} clocks"
+            );
+            // Offer the next job, now and then after a gap.
+            let offer = next < jobs.len() && (offered_since.is_some() || rng.gen_bool(0.7));
+            uut.in_valid.next = offer;
+            for copy in uut.in_valid_copies.iter_mut() {
+                copy.next = offer;
+            }
+            if offer {
+                let (is_segments, t1, t2) = &jobs[next];
+                uut.in_segments.next = *is_segments;
+                set_vertices(&mut uut.t1_vertices, t1);
+                set_vertices(&mut uut.t2_vertices, t2);
+                let (n1, n2) = (normal(t1), normal(t2));
+                uut.axis.next = (dominant_axis(n1.map(|c| c.unsigned_abs())) as u64).into();
+                for k in 0..3 {
+                    uut.t1_normal_negative[k].next = n1[k] < 0;
+                    uut.t1_normal_zero[k].next = n1[k] == 0;
+                    uut.t2_normal_negative[k].next = n2[k] < 0;
+                    uut.t2_normal_zero[k].next = n2[k] == 0;
+                }
+                let ((a, b), (c, d)) = (lexicographic_ends(t1), lexicographic_ends(t2));
+                uut.t1_segment_low.next = (a as u64).into();
+                uut.t1_segment_high.next = (b as u64).into();
+                uut.t2_segment_low.next = (c as u64).into();
+                uut.t2_segment_high.next = (d as u64).into();
+                offered_since.get_or_insert(cycle);
+            }
+            uut.update_all();
+            let taken = offer && uut.ready.val();
+            clock_cycle(&mut uut, |u| &mut u.clock);
+            cycle += 1;
+            if taken {
+                // Offered since the previous job was taken: taken exactly
+                // that job's steps after it.
+                if let (Some(&previous), Some(since)) = (taken_at.last(), offered_since) {
+                    if since < previous + 1 {
+                        let steps = if jobs[next - 1].0 {
+                            SEGMENTS_STEPS
+                        } else {
+                            COPLANAR_STEPS
+                        };
+                        assert_eq!(
+                            cycle - previous,
+                            steps as u64,
+                            "job {next} taken back to back"
+                        );
+                        back_to_back += 1;
+                    }
+                }
+                taken_at.push(cycle);
+                offered_since = None;
+                next += 1;
+            }
+            if uut.done.val() {
+                verdicts.push((uut.hit.val(), cycle));
+            }
+        }
+        assert!(
+            back_to_back > jobs.len() / 4,
+            "{back_to_back} jobs back to back"
+        );
+        for (j, ((hit, at), expected)) in verdicts.iter().zip(&expected).enumerate() {
+            assert_eq!(*hit, *expected, "job {j}: {:?}", jobs[j]);
+            let latency = if jobs[j].0 {
+                SHARED_RARE_CASES_LATENCY - (COPLANAR_STEPS - SEGMENTS_STEPS)
+            } else {
+                SHARED_RARE_CASES_LATENCY
+            };
+            assert_eq!(at - taken_at[j], latency as u64, "job {j}'s latency");
+        }
+    }
+}

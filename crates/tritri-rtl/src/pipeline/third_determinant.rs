@@ -184,3 +184,119 @@ impl<const O: usize> Logic for ThirdDeterminant<O> {
         self.zero.next = self.zero_q.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::{from_i128, to_i128, wrap_i128};
+    use crate::pipeline::third_determinant::{
+        EndsDifference, ThirdDeterminant, ENDS_DIFFERENCE_LATENCY, THIRD_DETERMINANT_LATENCY,
+    };
+    use crate::pipeline::unit_vectors::{point, VECTORS};
+    use crate::sim_drive::assert_stream_matches;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::{orient3d_value, FixedPoint3, FixedTriangle};
+
+    /// The segment-triangle case's third determinant: `s_b - s_a` of the
+    /// degenerate triangle's chosen ends, then `[a, b, r, p]`'s sign from it and
+    /// `[a, b, p, q]`, `[a, b, q, r]` (the identity in
+    /// `pipeline::third_determinant`), at W = 24's extremes where the 74-bit
+    /// arithmetic wraps.
+    #[test]
+    fn third_determinant_is_the_models_sign() {
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        // [p, q, r, a, b], and the pair's other triangle's vertices.
+        let points: Vec<([FixedPoint3; 5], FixedTriangle)> = (0..VECTORS)
+            .map(|k| {
+                let pts: [FixedPoint3; 5] = std::array::from_fn(|_| point(&mut rng, k));
+                (pts, std::array::from_fn(|_| point(&mut rng, k + 1)))
+            })
+            .collect();
+        let vectors: Vec<_> = points
+            .iter()
+            .enumerate()
+            .map(|(k, &([p, q, r, a, b], other))| {
+                // The segment [a, b] among T1's or T2's vertices, its ends at
+                // random indices; the other triangle's values are decoys.
+                let t1_degenerate = k % 2 == 0;
+                let (low, high) = (rng.gen_range(0..3usize), rng.gen_range(0..3usize));
+                let mut segment = other;
+                segment[low] = a;
+                segment[high] = b;
+                let side = |t: FixedTriangle| t.map(|v| orient3d_value(p, q, r, v));
+                let ends = side(segment);
+                let (t1, t2) = if t1_degenerate {
+                    (ends, side(other))
+                } else {
+                    (side(other), ends)
+                };
+                // s_b - s_a may pass 74 bits (it is a sum of three orient3d
+                // values); its residue is what the unit keeps.
+                (
+                    t1_degenerate,
+                    low,
+                    high,
+                    t1,
+                    t2,
+                    wrap_i128(ends[high] - ends[low], 74),
+                )
+            })
+            .collect();
+        let mut ends = EndsDifference::<74>::default();
+        ends.connect_all();
+        ends.advance.next = true;
+        assert_stream_matches(
+            &mut ends,
+            |u| &mut u.clock,
+            &vectors,
+            ENDS_DIFFERENCE_LATENCY,
+            |u, (t1_degenerate, low, high, t1, t2, _)| {
+                u.t1_degenerate.next = *t1_degenerate;
+                for (segment_low, segment_high) in [
+                    (&mut u.t1_segment_low, &mut u.t1_segment_high),
+                    (&mut u.t2_segment_low, &mut u.t2_segment_high),
+                ] {
+                    segment_low.next = (*low as u64).into();
+                    segment_high.next = (*high as u64).into();
+                }
+                for v in 0..3 {
+                    u.t1_distance[v].next = from_i128(t1[v]);
+                    u.t2_distance[v].next = from_i128(t2[v]);
+                }
+            },
+            |u| to_i128(u.difference.val()),
+            |(.., difference)| *difference,
+        );
+        let determinants: Vec<[i128; 4]> = points
+            .iter()
+            .map(|&([p, q, r, a, b], _)| {
+                [
+                    wrap_i128(orient3d_value(p, q, r, b) - orient3d_value(p, q, r, a), 74),
+                    orient3d_value(a, b, p, q),
+                    orient3d_value(a, b, q, r),
+                    orient3d_value(a, b, r, p),
+                ]
+            })
+            .collect();
+        // Zero determinants too: the unit finds them from its operands.
+        assert!(determinants.iter().any(|d| d[3] == 0));
+        assert!(determinants.iter().any(|d| d[3] != 0));
+        let mut third = ThirdDeterminant::<74>::default();
+        third.connect_all();
+        third.advance.next = true;
+        assert_stream_matches(
+            &mut third,
+            |u| &mut u.clock,
+            &determinants,
+            THIRD_DETERMINANT_LATENCY,
+            |u, [ends_difference, first, second, _]| {
+                u.ends_difference.next = from_i128(*ends_difference);
+                u.first.next = from_i128(*first);
+                u.second.next = from_i128(*second);
+            },
+            |u| (u.negative.val(), u.zero.val()),
+            |[.., third]| (*third < 0, *third == 0),
+        );
+    }
+}

@@ -134,3 +134,68 @@ impl<const W: usize, const D: usize, const C: usize> Logic for TriangleFrontEnd<
         self.segment_high.next = self.segment_high_delay.q.val();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::arith::convert::to_i128;
+    use crate::pipeline::triangle_front_end::{TriangleFrontEnd, FRONT_END_LATENCY};
+    use crate::pipeline::unit_vectors::{
+        edges_bits, lexicographic_ends, normal, set_vertices, triangles_and_degenerate_ones,
+    };
+    use crate::sim_drive::assert_stream_matches;
+    use rust_hdl::prelude::*;
+    use tritri_geom::fixed_point::FixedPoint;
+    use tritri_geom::kernel::ExactKernel;
+
+    /// The front end: the vertices, the normal and its signs, the degenerate
+    /// flag, the dominant axis, the segment ends and the edges' bit length of
+    /// each triangle, all `FRONT_END_LATENCY` clocks later.
+    #[test]
+    fn front_end_describes_each_triangle() {
+        type Description = (
+            [i128; 9],
+            [i128; 3],
+            [(bool, bool); 3],
+            bool,
+            usize,
+            (usize, usize),
+            u64,
+        );
+        let mut uut = TriangleFrontEnd::<24, 25, 49>::default();
+        uut.connect_all();
+        uut.advance.next = true;
+        assert_stream_matches(
+            &mut uut,
+            |u| &mut u.clock,
+            &triangles_and_degenerate_ones(11),
+            FRONT_END_LATENCY,
+            |u, t| set_vertices(&mut u.vertices_in, t),
+            |u| -> Description {
+                (
+                    u.vertices.each_ref().map(|v| to_i128(v.val())),
+                    u.normal.each_ref().map(|n| to_i128(n.val())),
+                    std::array::from_fn(|k| (u.normal_negative[k].val(), u.normal_zero[k].val())),
+                    u.degenerate.val(),
+                    u.dominant_axis.val().to_u64() as usize,
+                    (
+                        u.segment_low.val().to_u64() as usize,
+                        u.segment_high.val().to_u64() as usize,
+                    ),
+                    u.edges_bits.val().to_u64(),
+                )
+            },
+            |t| -> Description {
+                let n = normal(t);
+                (
+                    std::array::from_fn(|k| t[k / 3][k % 3] as i128),
+                    n,
+                    n.map(|c| (c < 0, c == 0)),
+                    n == [0, 0, 0],
+                    FixedPoint::dominant_normal_axis(t[0], t[1], t[2]),
+                    lexicographic_ends(t),
+                    edges_bits(t),
+                )
+            },
+        );
+    }
+}
