@@ -166,6 +166,33 @@ pub(super) fn level_shift_verilog(shift_bits: usize) -> String {
     }
 }
 
+/// The steps' wires `<port>_w`, each `V`-bit input port at its own width:
+/// its low bits (the rest is its sign). The higher bits fold into a wire
+/// whose name tells Verilator's lint they are unread on purpose.
+pub(super) fn narrow_ports_verilog(ports: &[(&str, usize)], v: usize) -> String {
+    let mut narrow = String::new();
+    let mut unread = Vec::new();
+    for &(port, width) in ports {
+        if width == v {
+            narrow.push_str(&format!("wire [{}:0] {port}_w = {port};\n", width - 1));
+        } else {
+            narrow.push_str(&format!(
+                "wire [{}:0] {port}_w = {port}[{}:0];\n",
+                width - 1,
+                width - 1
+            ));
+            unread.push(format!("{port}[{}:{width}]", v - 1));
+        }
+    }
+    if !unread.is_empty() {
+        narrow.push_str(&format!(
+            "wire unused_signs = ^{{{}}};\n",
+            unread.join(", ")
+        ));
+    }
+    narrow
+}
+
 /// `S_o` for the eight octants: the subset sums of `q`.
 fn subset_sums(q: [i128; 3], bits: usize) -> [i128; 8] {
     let mut sums = [0i128; 8];
@@ -243,36 +270,23 @@ impl<const V: usize> Logic for AxisStep<V> {
         let w = self._bits;
         let w1 = w - 1;
         let shift = level_shift_verilog(self._shift_bits);
-        // The inputs at the step's width: their low `w` bits (the rest is
-        // their sign), and the value back at the ports' width.
-        let (narrow, widen) = if w == V {
-            (
-                "wire [{w1}:0] gradient_x_w = gradient_x;\n\
-                 wire [{w1}:0] gradient_y_w = gradient_y;\n\
-                 wire [{w1}:0] gradient_z_w = gradient_z;\n\
-                 wire [{w1}:0] at_lo_w = at_lo;\n\
-                 wire [{w1}:0] low_w = low;\n\
-                 wire [{w1}:0] high_w = high;\n"
-                    .replace("{w1}", &w1.to_string()),
-                "value_3".to_string(),
-            )
+        // The inputs at the step's width, and the value back at the ports'.
+        let narrow = narrow_ports_verilog(
+            &[
+                "gradient_x",
+                "gradient_y",
+                "gradient_z",
+                "at_lo",
+                "low",
+                "high",
+            ]
+            .map(|p| (p, w)),
+            V,
+        );
+        let widen = if w == V {
+            "value_3".to_string()
         } else {
-            (
-                // The higher bits, only signs, fold into a wire whose name
-                // tells Verilator's lint they are unread on purpose.
-                "wire [{w1}:0] gradient_x_w = gradient_x[{w1}:0];\n\
-                 wire [{w1}:0] gradient_y_w = gradient_y[{w1}:0];\n\
-                 wire [{w1}:0] gradient_z_w = gradient_z[{w1}:0];\n\
-                 wire [{w1}:0] at_lo_w = at_lo[{w1}:0];\n\
-                 wire [{w1}:0] low_w = low[{w1}:0];\n\
-                 wire [{w1}:0] high_w = high[{w1}:0];\n\
-                 wire unused_signs = ^{gradient_x[{v1}:{w}], gradient_y[{v1}:{w}], \
-                 gradient_z[{v1}:{w}], at_lo[{v1}:{w}], low[{v1}:{w}], high[{v1}:{w}]};\n"
-                    .replace("{w1}", &w1.to_string())
-                    .replace("{v1}", &(V - 1).to_string())
-                    .replace("{w}", &w.to_string()),
-                format!("{{{{{}{{value_3[{w1}]}}}}, value_3}}", V - w),
-            )
+            format!("{{{{{}{{value_3[{w1}]}}}}, value_3}}", V - w)
         };
         let text = format!(
             "\

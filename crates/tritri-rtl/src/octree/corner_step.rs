@@ -24,7 +24,7 @@
 //! A custom-Verilog primitive with an exact i128 model evaluated only at
 //! clock edges, like [`super::axis_step::AxisStep`].
 
-use super::axis_step::{level_shift, level_shift_verilog};
+use super::axis_step::{level_shift, level_shift_verilog, narrow_ports_verilog};
 use crate::arith::convert::{to_i128, wrap_i128};
 use rust_hdl::prelude::*;
 
@@ -186,34 +186,17 @@ impl<const V: usize> Logic for CornerStep<V> {
         let (w1, t1, c) = (w - 1, t - 1, t + 1);
         let c1 = c - 1;
         let shift = level_shift_verilog(sb);
-        // The inputs at their widths: the rest of each is its sign, folded
-        // into a wire whose name tells Verilator's lint it is unread.
-        let mut narrow = String::new();
-        let mut unread = Vec::new();
-        for (port, width) in [
-            ("gradient_x", t),
-            ("gradient_y", t),
-            ("gradient_z", t),
-            ("low", w),
-            ("high", w),
-        ] {
-            if width == V {
-                narrow.push_str(&format!("wire [{}:0] {port}_w = {port};\n", width - 1));
-            } else {
-                narrow.push_str(&format!(
-                    "wire [{}:0] {port}_w = {port}[{}:0];\n",
-                    width - 1,
-                    width - 1
-                ));
-                unread.push(format!("{port}[{}:{width}]", V - 1));
-            }
-        }
-        if !unread.is_empty() {
-            narrow.push_str(&format!(
-                "wire unused_signs = ^{{{}}};\n",
-                unread.join(", ")
-            ));
-        }
+        // The inputs at their widths (the gradient's at its sums').
+        let narrow = narrow_ports_verilog(
+            &[
+                ("gradient_x", t),
+                ("gradient_y", t),
+                ("gradient_z", t),
+                ("low", w),
+                ("high", w),
+            ],
+            V,
+        );
         let text = format!(
             "\
 // The ends at {w} bits, the gradient's sums at {t}, compared at {c}.
