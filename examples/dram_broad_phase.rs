@@ -45,7 +45,7 @@ use tritri_cosim::dram_broad_phase::{
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
-use tritri_examples::{at_bandwidth, VERSA_GBYTES};
+use tritri_examples::{at_bandwidth, take_option, VERSA_GBYTES};
 use tritri_geom::certificate::decide_again;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::exact_f64_pairs;
@@ -61,21 +61,10 @@ const TABLE: usize = 8192;
 
 fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let write_case = match args.iter().position(|a| a == "--write-case") {
-        Some(i) if i + 1 < args.len() => {
-            let dir = std::path::PathBuf::from(args.remove(i + 1));
-            args.remove(i);
-            Some(dir)
-        }
-        Some(_) => anyhow::bail!("--write-case takes a directory"),
-        None => None,
-    };
-    let data_bits = match args.iter().position(|a| a == "--data-bits") {
-        Some(i) if i + 1 < args.len() && ["64", "256"].contains(&args[i + 1].as_str()) => {
-            let bits = args.remove(i + 1).parse::<usize>()?;
-            args.remove(i);
-            bits
-        }
+    let write_case =
+        take_option(&mut args, "--write-case", "a directory")?.map(std::path::PathBuf::from);
+    let data_bits = match take_option(&mut args, "--data-bits", "64 or 256")? {
+        Some(bits) if ["64", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
         Some(_) => anyhow::bail!("--data-bits takes 64 or 256"),
         None => 64,
     };

@@ -38,7 +38,7 @@ use anyhow::Context as _;
 use tritri_cosim::dram_binning::run_model;
 use tritri_cosim::dram_broad_phase::{run_top_model, top_case};
 use tritri_cosim::scene_query::Accelerator;
-use tritri_examples::{at_bandwidth, VERSA_GBYTES};
+use tritri_examples::{at_bandwidth, take_option, VERSA_GBYTES};
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
@@ -50,24 +50,27 @@ const ROUTED_UNIT: &str = "tritri_dram_broad_phase_g16_w16_d256_p1_t256_i8192_s8
 
 fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let levels = match take_option(&mut args, "--levels")? {
+    let levels = match take_option(&mut args, "--levels", "KA:KB[,KA:KB...]")? {
         Some(list) => parse_levels(&list)?,
         None => vec![(0, 0), (1, 1), (2, 2), (3, 4)],
     };
-    let data_bits = match take_option(&mut args, "--data-bits")? {
+    let data_bits = match take_option(&mut args, "--data-bits", "64, 128 or 256")? {
         Some(bits) if ["64", "128", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
         Some(bits) => anyhow::bail!("--data-bits takes 64, 128 or 256, not {bits:?}"),
         None => 256,
     };
-    let bytes_per_clock = match take_option(&mut args, "--bytes-per-clock")? {
-        Some(b) => {
-            let b: u64 = b.parse().ok().filter(|&b| b >= 1).with_context(|| {
-                format!("--bytes-per-clock takes a whole number of bytes, at least 1, not {b:?}")
-            })?;
-            Some(b)
-        }
-        None => None,
-    };
+    let bytes_per_clock =
+        match take_option(&mut args, "--bytes-per-clock", "a whole number of bytes")? {
+            Some(b) => {
+                let b: u64 = b.parse().ok().filter(|&b| b >= 1).with_context(|| {
+                    format!(
+                        "--bytes-per-clock takes a whole number of bytes, at least 1, not {b:?}"
+                    )
+                })?;
+                Some(b)
+            }
+            None => None,
+        };
     let (a, b) = tritri_examples::scene_objects(
         &args,
         "dram_scaling [--levels KA:KB,...] [--data-bits 64|128|256] [--bytes-per-clock B]",
@@ -200,17 +203,4 @@ fn parse_levels(list: &str) -> anyhow::Result<Vec<(u32, u32)>> {
             Ok((level(ka)?, level(kb)?))
         })
         .collect()
-}
-
-/// The value after `name` in `args`, both taken out; an error if it has none.
-fn take_option(args: &mut Vec<String>, name: &str) -> anyhow::Result<Option<String>> {
-    match args.iter().position(|a| a == name) {
-        Some(i) if i + 1 < args.len() => {
-            let value = args.remove(i + 1);
-            args.remove(i);
-            Ok(Some(value))
-        }
-        Some(_) => anyhow::bail!("{name} takes a value"),
-        None => Ok(None),
-    }
 }

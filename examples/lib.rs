@@ -18,6 +18,25 @@ pub fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams
     }
 }
 
+/// The value after the option `name` in `args`, both taken out (`None`
+/// without the option); an error saying it takes `what` when no value
+/// follows.
+pub fn take_option(
+    args: &mut Vec<String>,
+    name: &str,
+    what: &str,
+) -> anyhow::Result<Option<String>> {
+    match args.iter().position(|a| a == name) {
+        Some(i) if i + 1 < args.len() => {
+            let value = args.remove(i + 1);
+            args.remove(i);
+            Ok(Some(value))
+        }
+        Some(_) => anyhow::bail!("{name} takes {what}"),
+        None => Ok(None),
+    }
+}
+
 /// The two objects of `A B [SCALE_B TX TY TZ]` (none: the built-in torus
 /// and sphere), B scaled and moved; `usage` names the program in the error.
 pub fn scene_objects(args: &[String], usage: &str) -> anyhow::Result<(SceneObject, SceneObject)> {
