@@ -98,6 +98,8 @@ pub enum OctreeFormatError {
     Placement,
     #[error("{0} bytes after the tree")]
     Trailing(usize),
+    #[error("the last byte's {0} unused bits after the tree's last node are not zero")]
+    Padding(u32),
 }
 
 /// The file's first bytes.
@@ -409,6 +411,12 @@ impl OctreeFile {
         if packed.len() > used {
             return Err(OctreeFormatError::Trailing(packed.len() - used));
         }
+        // The bits after the last node pad its byte with zeros: a file
+        // reads back to one set of bytes only.
+        let nodes_in_last = nodes.len() % 4;
+        if nodes_in_last != 0 && packed[used - 1] >> (2 * nodes_in_last) != 0 {
+            return Err(OctreeFormatError::Padding(8 - 2 * nodes_in_last as u32));
+        }
         // Canonical: no mixed node with eight equal leaves.
         for (index, window) in nodes.windows(9).enumerate() {
             if window[0] == Node::Mixed
@@ -660,6 +668,10 @@ mod tests {
         let mut extra = bytes.clone();
         extra.push(0);
         assert_eq!(read(&extra), Err(OctreeFormatError::Trailing(1)));
+        // 17 nodes: the last byte holds one node and six bits of padding.
+        let mut padding = bytes.clone();
+        *padding.last_mut().unwrap() |= 0b0010_0000;
+        assert_eq!(read(&padding), Err(OctreeFormatError::Padding(6)));
         let mut count = bytes.clone();
         count[HEADER_BYTES - 8] += 1;
         assert!(matches!(read(&count), Err(OctreeFormatError::Count { .. })));
