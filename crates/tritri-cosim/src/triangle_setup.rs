@@ -17,9 +17,9 @@ use tritri_geom::fixed_point::FixedTriangle;
 use tritri_geom::octree::triangle_cell::{root_relative_axes, BROAD_PHASE_MARGIN, MAX_AXES};
 use tritri_rtl::arith::convert::{from_i128, to_i128};
 use tritri_rtl::emit::cell_classifier_unit::CLASSIFIER_GRID_WIDTHS;
-use tritri_rtl::emit::triangle_setup_unit::emit_triangle_setup;
+use tritri_rtl::emit::triangle_setup_unit::emit_phased_triangle_setup;
 use tritri_rtl::octree::cell_classifier::AXES;
-use tritri_rtl::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use tritri_rtl::octree::triangle_setup::{setup_latency, TriangleSetup};
 use tritri_rtl::octree::value_bits;
 use tritri_rtl::sim_drive::{clock_cycle, reset_one_clock};
 
@@ -45,10 +45,13 @@ pub fn expected(triangles: &[FixedTriangle], root: [i64; 3], grow: bool) -> Vec<
         .collect()
 }
 
-/// The triangles through the rust-hdl model of the `grid_bits` setup, one
-/// per clock.
+/// The triangles through the rust-hdl model of the `grid_bits` setup
+/// sharing its products over `phases` clocks, one triangle every `phases`
+/// clocks (other values on the vertex inputs between them, which a phased
+/// setup must not take).
 pub fn run_rusthdl(
     grid_bits: usize,
+    phases: usize,
     triangles: &[FixedTriangle],
     root: [i64; 3],
     grow: bool,
@@ -58,17 +61,17 @@ pub fn run_rusthdl(
             16,
             { value_bits(16) },
             { AXES * value_bits(16) },
-        >(triangles, root, grow)),
+        >(phases, triangles, root, grow)),
         24 => Ok(run_rusthdl_g::<
             24,
             { value_bits(24) },
             { AXES * value_bits(24) },
-        >(triangles, root, grow)),
+        >(phases, triangles, root, grow)),
         32 => Ok(run_rusthdl_g::<
             32,
             { value_bits(32) },
             { AXES * value_bits(32) },
-        >(triangles, root, grow)),
+        >(phases, triangles, root, grow)),
         g => bail!("no setup for a {g}-bit grid (have {CLASSIFIER_GRID_WIDTHS:?})"),
     }
 }
@@ -78,11 +81,12 @@ fn unpack<const N: usize, const V: usize>(bus: Bits<N>) -> [i128; AXES] {
 }
 
 fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(
+    phases: usize,
     triangles: &[FixedTriangle],
     root: [i64; 3],
     grow: bool,
 ) -> Vec<SetupAnswer> {
-    let mut uut = TriangleSetup::<G, V, N>::default();
+    let mut uut = TriangleSetup::<G, V, N>::with_phases(phases);
     uut.connect_all();
     uut.advance.next = true;
     uut.grow.next = grow;
@@ -92,16 +96,20 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(
     uut.in_root_y.next = g(root[1]);
     uut.in_root_z.next = g(root[2]);
     let mut answers = Vec::new();
-    let idle = std::iter::repeat_n(None, TRIANGLE_SETUP_LATENCY + 1);
-    for (tag, t) in triangles
-        .iter()
-        .enumerate()
+    let idle = std::iter::repeat_n(None, setup_latency(phases) + 1);
+    // Each triangle, then `phases - 1` clocks of the next triangle's
+    // vertices (or the first's) without in_valid.
+    let spaced = triangles.iter().enumerate().flat_map(|(i, t)| {
+        let other = &triangles[(i + 1) % triangles.len()];
+        std::iter::once((i, t, true)).chain(std::iter::repeat_n((i, other, false), phases - 1))
+    });
+    for (tag, t, valid) in spaced
         .map(Some)
         .chain(idle)
-        .map(|x| x.map_or((0, None), |(i, t)| (i, Some(t))))
+        .map(|x| x.map_or((0, None, false), |(i, t, valid)| (i, Some(t), valid)))
     {
-        uut.in_valid.next = t.is_some();
-        uut.in_tag.next = (tag as u64).into();
+        uut.in_valid.next = valid;
+        uut.in_tag.next = (if valid { tag } else { !tag & 0xffff } as u64).into();
         if let Some(t) = t {
             let inputs = [
                 &mut uut.in_x0,
@@ -136,19 +144,21 @@ fn run_rusthdl_g<const G: usize, const V: usize, const N: usize>(
     answers
 }
 
-/// The triangles through the emitted `grid_bits` setup.
+/// The triangles through the emitted `grid_bits` setup sharing its
+/// products over `phases` clocks, spaced as [`run_rusthdl`] spaces them.
 pub fn run_emitted(
     grid_bits: usize,
+    phases: usize,
     triangles: &[FixedTriangle],
     root: [i64; 3],
     grow: bool,
     simulator: Simulator,
 ) -> anyhow::Result<Vec<SetupAnswer>> {
-    let design = emit_triangle_setup(grid_bits)?;
+    let design = emit_phased_triangle_setup(grid_bits, phases)?;
     let v = value_bits(grid_bits);
     let mut files = vec![(
         "tb_triangle_setup.sv".to_string(),
-        testbench(&design.top, grid_bits, v),
+        testbench(&design.top, grid_bits, v, phases),
     )];
     files.extend(
         design
@@ -206,9 +216,10 @@ fn parse_answer(line: &str, v: usize) -> anyhow::Result<SetupAnswer> {
     ))
 }
 
-/// The testbench: reads one triangle per line, drives it for one clock,
-/// and writes `tag` and the five buses for every valid output.
-fn testbench(top: &str, g: usize, v: usize) -> String {
+/// The testbench: reads one triangle per line, drives it for one clock
+/// after `phases - 1` clocks of other values without `in_valid`, and
+/// writes `tag` and the five buses for every valid output.
+fn testbench(top: &str, g: usize, v: usize, phases: usize) -> String {
     let (g1, n1) = (g - 1, AXES * v - 1);
     let body = format!(
         "\
@@ -240,7 +251,13 @@ fn testbench(top: &str, g: usize, v: usize) -> String {
         body,
         start: "        for (i = 0; i < 12; i = i + 1) c[i] = 0;".into(),
         read: "$fscanf(vectors, \"%h\", tag) == 1".into(),
-        fill: "            for (i = 0; i < 12; i = i + 1) begin r = $fscanf(vectors, \"%h\", field); c[i] = field; end".into(),
-        drain: TRIANGLE_SETUP_LATENCY + 2,
+        fill: format!(
+            "            in_valid = 1'b0;
+            for (i = 0; i < 9; i = i + 1) c[i] = $random;
+            repeat ({}) @(negedge clock);
+            for (i = 0; i < 12; i = i + 1) begin r = $fscanf(vectors, \"%h\", field); c[i] = field; end",
+            phases - 1
+        ),
+        drain: setup_latency(phases) + 2,
     })
 }

@@ -60,20 +60,78 @@ fn scene_triangles_agree_in_rust_hdl_icarus_and_verilator() {
     let want = expected(&triangles, root.lo, true);
     eprintln!("{} triangles, root {:?}", triangles.len(), root);
     assert_eq!(
-        run_rusthdl(24, &triangles, root.lo, true).unwrap(),
+        run_rusthdl(24, 1, &triangles, root.lo, true).unwrap(),
         want,
         "rust-hdl"
     );
     assert_eq!(
-        run_emitted(24, &triangles, root.lo, true, Simulator::Icarus).unwrap(),
+        run_emitted(24, 1, &triangles, root.lo, true, Simulator::Icarus).unwrap(),
         want,
         "Icarus"
     );
     assert_eq!(
-        run_emitted(24, &triangles, root.lo, true, Simulator::Verilator).unwrap(),
+        run_emitted(24, 1, &triangles, root.lo, true, Simulator::Verilator).unwrap(),
         want,
         "Verilator"
     );
+}
+
+/// A setup sharing its products over 2, 3 or 4 clocks (a lane behind a
+/// 128- or 64-bit port) answers as the software, one triangle every
+/// `phases` clocks with other vertices on its inputs in between: rust-hdl,
+/// Icarus and Verilator, on the scene's triangles at G = 24 and the
+/// extreme ones at G = 16.
+#[test]
+fn phased_setups_agree_in_rust_hdl_icarus_and_verilator() {
+    let (scene, root) = scene_triangles();
+    let scene = &scene[..200];
+    let want = expected(scene, root.lo, true);
+    let extreme = extreme_triangles(16);
+    let root16 = [-(1i64 << 15); 3];
+    let want16 = expected(&extreme, root16, true);
+    for phases in [2, 3, 4] {
+        assert_eq!(
+            run_rusthdl(24, phases, scene, root.lo, true).unwrap(),
+            want,
+            "rust-hdl, {phases} phases"
+        );
+        assert_eq!(
+            run_rusthdl(16, phases, &extreme, root16, true).unwrap(),
+            want16,
+            "rust-hdl, G = 16, {phases} phases"
+        );
+        for simulator in [Simulator::Icarus, Simulator::Verilator] {
+            assert_eq!(
+                run_emitted(24, phases, scene, root.lo, true, simulator).unwrap(),
+                want,
+                "{simulator:?}, {phases} phases"
+            );
+        }
+        assert_eq!(
+            run_emitted(16, phases, &extreme, root16, true, Simulator::Verilator).unwrap(),
+            want16,
+            "Verilator, G = 16, {phases} phases"
+        );
+    }
+}
+
+/// Triangles with vertices at the corners of the `g`-bit grid, and some
+/// anywhere in it.
+fn extreme_triangles(g: usize) -> Vec<FixedTriangle> {
+    let mut rng = ChaCha8Rng::seed_from_u64(g as u64 + 100);
+    let half = 1i64 << (g - 1);
+    let corner =
+        |rng: &mut ChaCha8Rng| [0; 3].map(|_| if rng.gen_bool(0.5) { -half } else { half - 1 });
+    let any = |rng: &mut ChaCha8Rng| [0; 3].map(|_| rng.gen_range(-half..half));
+    (0..80)
+        .map(|i| {
+            if i % 2 == 0 {
+                [corner(&mut rng), corner(&mut rng), corner(&mut rng)]
+            } else {
+                [any(&mut rng), corner(&mut rng), any(&mut rng)]
+            }
+        })
+        .collect()
 }
 
 /// Vertices at the ends of the grid and the root at its low end: normals
@@ -81,20 +139,8 @@ fn scene_triangles_agree_in_rust_hdl_icarus_and_verilator() {
 #[test]
 fn extreme_triangles_at_every_grid_width() {
     for g in [16usize, 24, 32] {
-        let mut rng = ChaCha8Rng::seed_from_u64(g as u64 + 100);
         let half = 1i64 << (g - 1);
-        let corner =
-            |rng: &mut ChaCha8Rng| [0; 3].map(|_| if rng.gen_bool(0.5) { -half } else { half - 1 });
-        let any = |rng: &mut ChaCha8Rng| [0; 3].map(|_| rng.gen_range(-half..half));
-        let triangles: Vec<FixedTriangle> = (0..80)
-            .map(|i| {
-                if i % 2 == 0 {
-                    [corner(&mut rng), corner(&mut rng), corner(&mut rng)]
-                } else {
-                    [any(&mut rng), corner(&mut rng), any(&mut rng)]
-                }
-            })
-            .collect();
+        let triangles = extreme_triangles(g);
         let root = [-half; 3];
         // Grown by a step (the broad phase) at G = 16 and 32, exact at 24.
         let grow = g != 24;
@@ -117,12 +163,12 @@ fn extreme_triangles_at_every_grid_width() {
             "G = {g}: the values do not reach 2^(3G-1)"
         );
         assert_eq!(
-            run_rusthdl(g, &triangles, root, grow).unwrap(),
+            run_rusthdl(g, 1, &triangles, root, grow).unwrap(),
             want,
             "rust-hdl, G = {g}"
         );
         assert_eq!(
-            run_emitted(g, &triangles, root, grow, Simulator::Icarus).unwrap(),
+            run_emitted(g, 1, &triangles, root, grow, Simulator::Icarus).unwrap(),
             want,
             "Icarus, G = {g}"
         );
@@ -134,7 +180,7 @@ fn extreme_triangles_at_every_grid_width() {
 #[test]
 fn setup_then_classifier_decide_as_the_software() {
     let (triangles, root) = scene_triangles();
-    let answers = run_rusthdl(24, &triangles, root.lo, true).unwrap();
+    let answers = run_rusthdl(24, 1, &triangles, root.lo, true).unwrap();
     let entries: Vec<ClassifierEntry> = answers
         .iter()
         .map(|&(tag, axes)| ClassifierEntry {

@@ -19,6 +19,11 @@ pub trait Unit {
     /// Clock edges from the unit's inputs to its outputs, for a unit that is
     /// a fixed pipeline.
     const LATENCY: Option<usize> = None;
+    /// This unit's latency, where a setting given at construction changes
+    /// it (a setup sharing its products over several clocks).
+    fn latency(&self) -> Option<usize> {
+        Self::LATENCY
+    }
     /// Records the units in this unit's fields ([`sub_units!`](crate::sub_units)).
     fn sub_units(&self, _units: &mut UnitWalk) {}
     /// Values given at construction that shape the circuit beside the
@@ -109,7 +114,7 @@ impl UnitInfo {
         UnitInfo {
             type_name,
             parameters,
-            latency: T::LATENCY,
+            latency: unit.latency(),
         }
     }
 

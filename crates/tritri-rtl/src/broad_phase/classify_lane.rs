@@ -4,16 +4,30 @@
 //! cell's low corner as its root, so the classifier
 //! ([`crate::octree::corner_classifier`]) starts every triangle at the cell
 //! itself with zero values there; an index rides alongside.
+//!
+//! A lane built [`ClassifyLane::with_phases`]`(R)` takes a triangle at most
+//! every `R` clocks and shares its setup's products over them
+//! ([`crate::octree::triangle_setup`], "Phases"): the lane of a list pass
+//! behind a port that brings an entry every `R` beats. Its latency is
+//! [`lane_latency`]`(R)`.
 
 use super::list_packer::INDEX_BITS;
 use crate::arith::delay_line::DelayLine;
 use crate::octree::cell_classifier::AXES;
 use crate::octree::corner_classifier::{CornerClassifier, CORNER_CLASSIFIER_LATENCY};
-use crate::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use crate::octree::triangle_setup::{setup_latency, TriangleSetup};
 use rust_hdl::prelude::*;
+use rust_hdl::widgets::prelude::DFF;
 
-/// Clocks from a triangle in to its mask out: setup and classifier.
-pub const LANE_LATENCY: usize = TRIANGLE_SETUP_LATENCY + CORNER_CLASSIFIER_LATENCY;
+/// Clocks from a triangle in to its mask out in a lane whose setup shares
+/// its products over `phases` clocks: setup and classifier.
+pub const fn lane_latency(phases: usize) -> usize {
+    setup_latency(phases) + CORNER_CLASSIFIER_LATENCY
+}
+
+/// Clocks from a triangle in to its mask out: a lane taking a triangle
+/// every clock.
+pub const LANE_LATENCY: usize = lane_latency(1);
 
 #[derive(LogicBlock)]
 pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T: usize> {
@@ -37,7 +51,12 @@ pub struct ClassifyLane<const G: usize, const V: usize, const N: usize, const T:
     pub out_mask: Signal<Out, Bits<8>>,
     setup: TriangleSetup<G, V, N>,
     classifier: CornerClassifier<V>,
-    index_line: DelayLine<Bits<INDEX_BITS>, LANE_LATENCY>,
+    /// The index, taken with `in_valid` and held until the next triangle:
+    /// at the end of the line it shows the triangle's index from
+    /// `LANE_LATENCY` clocks after the triangle to `R - 1` clocks later,
+    /// so a lane of any phases `R` reads it there.
+    index_q: DFF<Bits<INDEX_BITS>>,
+    index_line: DelayLine<Bits<INDEX_BITS>, { LANE_LATENCY - 1 }>,
     // Where each vertex coordinate sits in `in_vertices`, each test
     // function in the setup's packed outputs.
     vertex_offset: [Constant<Bits<16>>; 9],
@@ -51,8 +70,21 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> crate::unit
     for ClassifyLane<G, V, N, T>
 {
     const LATENCY: Option<usize> = Some(LANE_LATENCY);
+    fn latency(&self) -> Option<usize> {
+        Some(lane_latency(self.setup.phases()))
+    }
     fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
-        crate::sub_units!(self, units, setup, classifier, index_line);
+        crate::sub_units!(self, units, setup, classifier, index_q, index_line);
+    }
+}
+
+impl<const G: usize, const V: usize, const N: usize, const T: usize> ClassifyLane<G, V, N, T> {
+    /// A lane taking a triangle at most every `phases` clocks (module docs).
+    pub fn with_phases(phases: usize) -> Self {
+        Self {
+            setup: TriangleSetup::with_phases(phases),
+            ..Self::default()
+        }
     }
 }
 
@@ -79,6 +111,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Default
             out_mask: Default::default(),
             setup: Default::default(),
             classifier: Default::default(),
+            index_q: Default::default(),
             index_line: Default::default(),
             vertex_offset: std::array::from_fn(|k| Constant::new(Bits::<16>::from((k * G) as u64))),
             field_offset: std::array::from_fn(|i| Constant::new(Bits::<16>::from((i * V) as u64))),
@@ -93,6 +126,7 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
     #[hdl_gen]
     fn update(&mut self) {
         clock!(self, clock, setup, classifier, index_line);
+        dff_setup!(self, clock, index_q);
         self.setup.reset.next = self.reset.val();
         self.setup.advance.next = true;
         self.setup.in_valid.next = self.in_valid.val();
@@ -171,8 +205,11 @@ impl<const G: usize, const V: usize, const N: usize, const T: usize> Logic
                 .val()
                 .get_bits::<V>(self.field_offset[i].val().index());
         }
+        if self.in_valid.val() {
+            self.index_q.d.next = self.in_index.val();
+        }
         self.index_line.advance.next = true;
-        self.index_line.d.next = self.in_index.val();
+        self.index_line.d.next = self.index_q.q.val();
         self.out_valid.next = self.classifier.out_valid.val();
         self.out_index.next = self.index_line.q.val();
         self.out_mask.next = self.classifier.out_mask.val();

@@ -435,7 +435,9 @@ impl<
             m_axi_bvalid: Default::default(),
             m_axi_bready: Default::default(),
             reader: BurstReader::new(max_read_burst, outstanding),
-            lane: Default::default(),
+            // An entry comes at most every `ENTRY_BITS / DW` clocks: the
+            // lane shares its setup's products over them.
+            lane: ClassifyLane::with_phases(ENTRY_BITS / DW),
             entries: Default::default(),
             masks: BeatFifo::in_distributed_ram(),
             select: Default::default(),

@@ -8,7 +8,7 @@
 //! then what they take at the edge, in the order `update` writes them, so
 //! the model and the circuit can be compared a clock at a time.
 
-use super::classify_lane::LANE_LATENCY;
+use super::classify_lane::lane_latency;
 use super::list_entry::{unpack, ENTRY_BYTES};
 use super::list_pass::{
     CHILDREN, ENTRY_QUEUE_ADDRESS_BITS, READ_QUEUE_ADDRESS_BITS, WRITE_BURST_BEATS,
@@ -164,7 +164,9 @@ impl Machine {
             reader: ReaderModel::new(config.reader()),
             entries: Queue::default(),
             masks: Queue::default(),
-            lane: std::iter::repeat_n(None, LANE_LATENCY).collect(),
+            // The lane shares its products over an entry's beats.
+            lane: std::iter::repeat_n(None, lane_latency(config.beats_per_entry() as usize))
+                .collect(),
             buffer: vec![vec![0; config.beat_bytes() as usize]; 2 * CHILDREN * WRITE_BURST_BEATS],
             read_data: vec![0; config.beat_bytes() as usize],
             commands: Queue::default(),

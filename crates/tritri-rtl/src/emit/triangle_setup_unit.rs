@@ -4,13 +4,23 @@
 use super::cell_classifier_unit::{UnsupportedGrid, CLASSIFIER_GRID_WIDTHS};
 use super::{emit, EmitError, EmittedDesign, UnitDescription};
 use crate::octree::cell_classifier::{AXES, TAG_BITS};
-use crate::octree::triangle_setup::{TriangleSetup, TRIANGLE_SETUP_LATENCY};
+use crate::octree::triangle_setup::{setup_latency, TriangleSetup, SETUP_PRODUCTS};
 use crate::octree::value_bits;
 use rust_hdl::prelude::*;
 
 /// Top module name for `grid_bits`-bit grids: `tritri_triangle_setup_g<G>`.
 pub fn triangle_setup_unit_name(grid_bits: usize) -> String {
-    format!("tritri_triangle_setup_g{grid_bits}")
+    phased_triangle_setup_unit_name(grid_bits, 1)
+}
+
+/// Top module name of a setup sharing its products over `phases` clocks:
+/// `tritri_triangle_setup_g<G>_ph<R>` (one phase: the name above).
+pub fn phased_triangle_setup_unit_name(grid_bits: usize, phases: usize) -> String {
+    if phases == 1 {
+        format!("tritri_triangle_setup_g{grid_bits}")
+    } else {
+        format!("tritri_triangle_setup_g{grid_bits}_ph{phases}")
+    }
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -25,32 +35,44 @@ pub enum SetupEmitError {
 /// classifier is emitted for).
 pub fn raw_triangle_setup_verilog(
     grid_bits: usize,
+    phases: usize,
 ) -> Result<crate::unit::RawDesign, UnsupportedGrid> {
-    fn raw<const G: usize, const V: usize, const N: usize>() -> crate::unit::RawDesign {
-        let mut uut = TriangleSetup::<G, V, N>::default();
+    fn raw<const G: usize, const V: usize, const N: usize>(
+        phases: usize,
+    ) -> crate::unit::RawDesign {
+        let mut uut = TriangleSetup::<G, V, N>::with_phases(phases);
         uut.connect_all();
         crate::unit::RawDesign::of(&uut)
     }
     match grid_bits {
-        16 => Ok(raw::<16, { value_bits(16) }, { AXES * value_bits(16) }>()),
-        24 => Ok(raw::<24, { value_bits(24) }, { AXES * value_bits(24) }>()),
-        32 => Ok(raw::<32, { value_bits(32) }, { AXES * value_bits(32) }>()),
+        16 => Ok(raw::<16, { value_bits(16) }, { AXES * value_bits(16) }>(
+            phases,
+        )),
+        24 => Ok(raw::<24, { value_bits(24) }, { AXES * value_bits(24) }>(
+            phases,
+        )),
+        32 => Ok(raw::<32, { value_bits(32) }, { AXES * value_bits(32) }>(
+            phases,
+        )),
         g => Err(UnsupportedGrid(g)),
     }
 }
 
 /// The description of the setup for the emitter.
-pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, UnsupportedGrid> {
+pub fn triangle_setup_unit(
+    grid_bits: usize,
+    phases: usize,
+) -> Result<UnitDescription, UnsupportedGrid> {
     if !CLASSIFIER_GRID_WIDTHS.contains(&grid_bits) {
         return Err(UnsupportedGrid(grid_bits));
     }
     let v = value_bits(grid_bits);
-    let l = TRIANGLE_SETUP_LATENCY as u64;
+    let l = setup_latency(phases) as u64;
     let field = |what: &str| {
         format!("{what} of the {AXES} test functions, packed: function i at bits [i*V +: V], V-bit two's complement.")
     };
     let unit = UnitDescription::new(
-        &triangle_setup_unit_name(grid_bits),
+        &phased_triangle_setup_unit_name(grid_bits, phases),
         &format!(
             "Octree classifier setup for a {grid_bits}-bit grid: one triangle per clock in, its {AXES} affine test functions \
              relative to the root cell's low corner out after {l} clocks, ready for the classifier step at the root."
@@ -80,9 +102,17 @@ pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppor
     .port("out_gradient_z", &field("Gradients, z"))
     .port("out_low", &field("Low ends of the triangle's intervals"))
     .port("out_high", &field("High ends of the triangle's intervals"))
-    .latency(l)
-    .throughput("one triangle per clock while `advance` is high.");
-    let mut unit = unit;
+    .latency(l);
+    let mut unit = if phases == 1 {
+        unit.throughput("one triangle per clock while `advance` is high.")
+    } else {
+        unit.throughput(&format!(
+            "one triangle every {phases} clocks: in_valid at most once in any {phases} clocks. Stage 2's \
+             {SETUP_PRODUCTS} products share {} multipliers over those clocks; stage 1 holds its triangle until \
+             the next in_valid, and the outputs hold theirs until the next triangle's.",
+            SETUP_PRODUCTS.div_ceil(phases)
+        ))
+    };
     for i in 0..3 {
         for c in ["x", "y", "z"] {
             unit = unit.port(
@@ -96,7 +126,16 @@ pub fn triangle_setup_unit(grid_bits: usize) -> Result<UnitDescription, Unsuppor
 
 /// The emitted setup for a `grid_bits`-bit grid.
 pub fn emit_triangle_setup(grid_bits: usize) -> Result<EmittedDesign, SetupEmitError> {
-    let unit = triangle_setup_unit(grid_bits)?;
-    let raw = raw_triangle_setup_verilog(grid_bits)?;
+    emit_phased_triangle_setup(grid_bits, 1)
+}
+
+/// The emitted setup for a `grid_bits`-bit grid, its products shared over
+/// `phases` clocks (`crate::octree::triangle_setup`, "Phases").
+pub fn emit_phased_triangle_setup(
+    grid_bits: usize,
+    phases: usize,
+) -> Result<EmittedDesign, SetupEmitError> {
+    let unit = triangle_setup_unit(grid_bits, phases)?;
+    let raw = raw_triangle_setup_verilog(grid_bits, phases)?;
     Ok(emit(&raw, &unit)?)
 }

@@ -39,6 +39,15 @@
 //! the outputs `V = 3G + 6` bits ([`super::value_bits`]), which hold every
 //! value exactly.
 //!
+//! **Phases.** A setup built [`TriangleSetup::with_phases`]`(R)` takes a
+//! triangle at most every `R` clocks (a lane behind a memory port that
+//! brings an entry every `R` clocks) and shares stage 2's 24 products over
+//! `R` clocks: `⌈24 / R⌉` multipliers, each fed group `r` of the products
+//! in the `r`-th clock after stage 1 took the triangle. Stage 1 then holds
+//! its triangle until the next `in_valid`, and the output registers hold
+//! theirs until the next triangle's, so a phased consumer can read them
+//! over `R` clocks. Latency [`setup_latency`]`(R)`: `R - 1` more clocks.
+//!
 //! A custom-Verilog primitive with an exact i128 model evaluated only at
 //! clock edges, like [`super::axis_step::AxisStep`]. The outputs are packed:
 //! function `i`'s field is bits `[i V +: V]` of each bus.
@@ -54,6 +63,16 @@ use rust_hdl::prelude::*;
 
 /// Clock edges from a triangle to its functions.
 pub const TRIANGLE_SETUP_LATENCY: usize = 5;
+
+/// Stage 2's products: three pairs for the normal, nine pairs for the edge
+/// starts.
+pub const SETUP_PRODUCTS: usize = 24;
+
+/// Clock edges from a triangle to its functions in a setup whose products
+/// are shared over `phases` clocks (module docs, "Phases").
+pub const fn setup_latency(phases: usize) -> usize {
+    TRIANGLE_SETUP_LATENCY + phases - 1
+}
 
 #[derive(LogicBlock)]
 pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
@@ -89,10 +108,46 @@ pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
     pub out_low: Signal<Out, Bits<N>>,
     pub out_high: Signal<Out, Bits<N>>,
     _stages: [Stage; TRIANGLE_SETUP_LATENCY],
+    /// Clocks a triangle's products are shared over (module docs, "Phases").
+    _phases: usize,
+    /// Stage 1's triangle in each of its product phases after the first:
+    /// `_phases - 1` records between stage 1 and stage 2.
+    _waiting: Vec<Stage>,
 }
 
 impl<const G: usize, const V: usize, const N: usize> crate::unit::Unit for TriangleSetup<G, V, N> {
     const LATENCY: Option<usize> = Some(TRIANGLE_SETUP_LATENCY);
+    fn latency(&self) -> Option<usize> {
+        Some(setup_latency(self._phases))
+    }
+    fn settings(&self) -> Vec<(&'static str, String)> {
+        // A setup of one phase keeps the module name it always had.
+        if self._phases == 1 {
+            Vec::new()
+        } else {
+            vec![("phases", self._phases.to_string())]
+        }
+    }
+}
+
+impl<const G: usize, const V: usize, const N: usize> TriangleSetup<G, V, N> {
+    /// A setup taking a triangle at most every `phases` clocks, its products
+    /// shared over them (module docs, "Phases").
+    pub fn with_phases(phases: usize) -> Self {
+        assert!(
+            (1..=SETUP_PRODUCTS).contains(&phases),
+            "a setup shares its products over 1 to {SETUP_PRODUCTS} clocks, not {phases}"
+        );
+        Self {
+            _phases: phases,
+            _waiting: vec![Stage::default(); phases - 1],
+            ..Self::default()
+        }
+    }
+
+    pub fn phases(&self) -> usize {
+        self._phases
+    }
 }
 
 /// What one pipeline stage holds (the model keeps every stage's values in
@@ -145,6 +200,8 @@ impl<const G: usize, const V: usize, const N: usize> Default for TriangleSetup<G
             out_low: Default::default(),
             out_high: Default::default(),
             _stages: [Stage::default(); TRIANGLE_SETUP_LATENCY],
+            _phases: 1,
+            _waiting: Vec::new(),
         }
     }
 }
@@ -245,7 +302,10 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
                 start,
                 ..s2
             };
-            let next2 = s1;
+            // A phased setup's triangle waits in stage 1 for its product
+            // phases (the Verilog's ph_1 ...), then enters stage 2.
+            self._waiting.insert(0, s1);
+            let next2 = self._waiting.pop().expect("one record more than waiting");
             // Stage 1: relative coordinates and edges.
             let v = [
                 [&self.in_x0, &self.in_y0, &self.in_z0].map(|x| to_i128(x.val())),
@@ -256,23 +316,31 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
                 [&self.in_root_x, &self.in_root_y, &self.in_root_z].map(|x| to_i128(x.val()));
             let p = v.map(|q| [0, 1, 2].map(|k| w(q[k] - root[k])));
             let edge = |a: usize, b: usize| [0, 1, 2].map(|k| w(v[b][k] - v[a][k]));
-            let next1 = Stage {
-                valid: self.in_valid.val(),
-                tag: self.in_tag.val().index() as u64,
-                p,
-                e: [edge(0, 1), edge(1, 2), edge(2, 0)],
-                ..Stage::default()
+            let next1 = if self._phases > 1 && !self.in_valid.val() {
+                // A phased stage 1 holds its triangle for the phases.
+                Stage { valid: false, ..s1 }
+            } else {
+                Stage {
+                    valid: self.in_valid.val(),
+                    tag: self.in_tag.val().index() as u64,
+                    p,
+                    e: [edge(0, 1), edge(1, 2), edge(2, 0)],
+                    ..Stage::default()
+                }
             };
             self._stages = [next1, next2, next3, next4, next5];
-            self.out_gradient_x.next = pack(f.map(|a| a.0[0]), V);
-            self.out_gradient_y.next = pack(f.map(|a| a.0[1]), V);
-            self.out_gradient_z.next = pack(f.map(|a| a.0[2]), V);
-            self.out_low.next = pack(f.map(|a| a.1), V);
-            self.out_high.next = pack(f.map(|a| a.2), V);
-            self.out_tag.next = Bits::from(s4.tag);
+            // A phased setup's outputs hold until the next triangle's.
+            if self._phases == 1 || s4.valid {
+                self.out_gradient_x.next = pack(f.map(|a| a.0[0]), V);
+                self.out_gradient_y.next = pack(f.map(|a| a.0[1]), V);
+                self.out_gradient_z.next = pack(f.map(|a| a.0[2]), V);
+                self.out_low.next = pack(f.map(|a| a.1), V);
+                self.out_high.next = pack(f.map(|a| a.2), V);
+                self.out_tag.next = Bits::from(s4.tag);
+            }
         }
         if self.reset.val() {
-            for s in self._stages.iter_mut() {
+            for s in self._stages.iter_mut().chain(self._waiting.iter_mut()) {
                 s.valid = false;
             }
         }
@@ -290,7 +358,7 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
     }
 
     fn hdl(&self) -> Verilog {
-        Verilog::Custom(setup_verilog(G, V))
+        Verilog::Custom(setup_verilog(G, V, self._phases))
     }
 }
 
@@ -345,8 +413,10 @@ fn sign_extend(x: &str, from: usize, to: usize) -> String {
     }
 }
 
-/// The Verilog of the setup (module docs), for `g`-bit grids and `v`-bit values.
-fn setup_verilog(g: usize, v: usize) -> String {
+/// The Verilog of the setup (module docs), for `g`-bit grids and `v`-bit
+/// values, its products shared over `phases` clocks.
+fn setup_verilog(g: usize, v: usize, phases: usize) -> String {
+    let phased = phases > 1;
     let v1 = v - 1;
     let wd = SetupWidths::new(g);
     assert!(wd.plane + 2 < v, "the plane's sum of three products fits V");
@@ -405,14 +475,110 @@ fn setup_verilog(g: usize, v: usize) -> String {
         TAG_BITS - 1
     ));
     line("reg valid_1, valid_2, valid_3, valid_4;".into());
+    // Stage 2's products, `(register, operand, operand)`: n_k = e0_a e1_b -
+    // e0_b e1_a with (a, b) = (k+1, k+2) mod 3; edge j across axis k: g =
+    // e_j × u_k, start = g · p_j as two products (x: e_z p_y - e_y p_z; y:
+    // e_x p_z - e_z p_x; z: e_y p_x - e_x p_y).
+    let mut products = Vec::with_capacity(SETUP_PRODUCTS);
+    for k in 0..3 {
+        let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
+        products.push((format!("na{k}_2"), format!("e0{a}_1"), format!("e1{b}_1")));
+        products.push((format!("nb{k}_2"), format!("e0{b}_1"), format!("e1{a}_1")));
+    }
+    for j in 0..3 {
+        for k in 0..3 {
+            let (a, b) = (xyz[(k + 2) % 3], xyz[(k + 1) % 3]);
+            let i = 3 * j + k;
+            products.push((
+                format!("sa{i}_2"),
+                format!("e{j}{a}_1"),
+                format!("p{j}{b}_1"),
+            ));
+            products.push((
+                format!("sb{i}_2"),
+                format!("e{j}{b}_1"),
+                format!("p{j}{a}_1"),
+            ));
+        }
+    }
+    assert_eq!(products.len(), SETUP_PRODUCTS);
+    let difference = |x: String| sign_extend(&x, wd.difference, wd.product);
+    let product = |a: &str, b: &str| {
+        format!(
+            "{} * {}",
+            difference(a.to_string()),
+            difference(b.to_string())
+        )
+    };
+    // Phased: multiplier m computes product r M + m in phase r; ph_r is
+    // high in the r-th clock after stage 1 took a triangle (phase 0 is
+    // valid_1). Each operand is chosen at the differences' width and
+    // widened after, so that Yosys still sees a narrow multiplier.
+    let multipliers = SETUP_PRODUCTS.div_ceil(phases);
+    let phase = |r: usize| {
+        if r == 0 {
+            "valid_1".to_string()
+        } else {
+            format!("ph_{r}")
+        }
+    };
+    if phased {
+        line(format!(
+            "// Stage 2 shares its {SETUP_PRODUCTS} products over {phases} clocks: {multipliers} multipliers."
+        ));
+        line(format!(
+            "reg {};",
+            (1..phases).map(phase).collect::<Vec<_>>().join(", ")
+        ));
+        for m in 0..multipliers {
+            for (side, pick) in [("a", 1), ("b", 2)] {
+                let operand = |r: usize| {
+                    let (_, a, b) = &products[r * multipliers + m];
+                    if pick == 1 {
+                        a.clone()
+                    } else {
+                        b.clone()
+                    }
+                };
+                let mut choice = operand(0);
+                for r in 1..phases {
+                    if r * multipliers + m < SETUP_PRODUCTS {
+                        choice = format!("{} ? {} : {choice}", phase(r), operand(r));
+                    }
+                }
+                line(format!(
+                    "wire signed [{}:0] mul_{side}{m} = {choice};",
+                    wd.difference - 1
+                ));
+            }
+            line(format!(
+                "wire signed [{}:0] mul{m} = {};",
+                wd.product - 1,
+                product(&format!("mul_a{m}"), &format!("mul_b{m}"))
+            ));
+        }
+    }
+    let last_phase = phase(phases - 1);
     line("always @(posedge clock) begin".into());
     line("    if (reset) begin".into());
-    line("        valid_1 <= 1'b0; valid_2 <= 1'b0; valid_3 <= 1'b0; valid_4 <= 1'b0; out_valid <= 1'b0;".into());
+    let phases_off: String = (1..phases).map(|r| format!(" ph_{r} <= 1'b0;")).collect();
+    line(format!("        valid_1 <= 1'b0; valid_2 <= 1'b0; valid_3 <= 1'b0; valid_4 <= 1'b0; out_valid <= 1'b0;{phases_off}"));
     line("    end else if (advance) begin".into());
-    line("        valid_1 <= in_valid; valid_2 <= valid_1; valid_3 <= valid_2; valid_4 <= valid_3; out_valid <= valid_4;".into());
+    let phases_on: String = (1..phases)
+        .map(|r| format!(" ph_{r} <= {};", phase(r - 1)))
+        .collect();
+    line(format!("        valid_1 <= in_valid; valid_2 <= {last_phase}; valid_3 <= valid_2; valid_4 <= valid_3; out_valid <= valid_4;{phases_on}"));
     line("    end".into());
     line("    if (advance) begin".into());
-    line("        tag_1 <= in_tag; tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3; out_tag <= tag_4;".into());
+    if phased {
+        // Stage 1 and the outputs hold their triangle (module docs).
+        line("        tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3;".into());
+        line("        if (valid_4) out_tag <= tag_4;".into());
+        line("        if (in_valid) begin".into());
+        line("        tag_1 <= in_tag;".into());
+    } else {
+        line("        tag_1 <= in_tag; tag_2 <= tag_1; tag_3 <= tag_2; tag_4 <= tag_3; out_tag <= tag_4;".into());
+    }
     let input = |port: String| sign_extend(&port, g, wd.difference);
     for i in 0..3 {
         for c in xyz {
@@ -429,35 +595,21 @@ fn setup_verilog(g: usize, v: usize) -> String {
             ));
         }
     }
-    // Stage 2. n_k = e0_a e1_b - e0_b e1_a with (a, b) = (k+1, k+2) mod 3.
-    let difference = |x: String| sign_extend(&x, wd.difference, wd.product);
-    let product = |a: String, b: String| format!("{} * {}", difference(a), difference(b));
-    for k in 0..3 {
-        let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
-        line(format!(
-            "        na{k}_2 <= {};",
-            product(format!("e0{a}_1"), format!("e1{b}_1"))
-        ));
-        line(format!(
-            "        nb{k}_2 <= {};",
-            product(format!("e0{b}_1"), format!("e1{a}_1"))
-        ));
-    }
-    // Edge j across axis k: g = e_j × u_k, start = g · p_j as two products
-    // (x: e_z p_y - e_y p_z; y: e_x p_z - e_z p_x; z: e_y p_x - e_x p_y).
-    for j in 0..3 {
-        for k in 0..3 {
-            let (a, b) = (xyz[(k + 2) % 3], xyz[(k + 1) % 3]);
-            line(format!(
-                "        sa{}_2 <= {};",
-                3 * j + k,
-                product(format!("e{j}{a}_1"), format!("p{j}{b}_1"))
-            ));
-            line(format!(
-                "        sb{}_2 <= {};",
-                3 * j + k,
-                product(format!("e{j}{b}_1"), format!("p{j}{a}_1"))
-            ));
+    if phased {
+        line("        end".into());
+        // Stage 2: product group r from the multipliers in phase r.
+        for r in 0..phases {
+            line(format!("        if ({}) begin", phase(r)));
+            for m in 0..multipliers {
+                if let Some((register, _, _)) = products.get(r * multipliers + m) {
+                    line(format!("            {register} <= mul{m};"));
+                }
+            }
+            line("        end".into());
+        }
+    } else {
+        for (register, a, b) in &products {
+            line(format!("        {register} <= {};", product(a, b)));
         }
     }
     let pass = |line: &mut dyn FnMut(String), from: usize, to: usize| {
@@ -585,6 +737,9 @@ fn setup_verilog(g: usize, v: usize) -> String {
         }
     }
     // Each field is a V-bit signed expression written into its slice.
+    if phased {
+        line("        if (valid_4) begin".into());
+    }
     for (name, fields) in [
         ("out_gradient_x", &gradient[0]),
         ("out_gradient_y", &gradient[1]),
@@ -599,6 +754,9 @@ fn setup_verilog(g: usize, v: usize) -> String {
                 i * v
             ));
         }
+    }
+    if phased {
+        line("        end".into());
     }
     line("    end".into());
     line("end".into());
