@@ -1,14 +1,14 @@
 //! The broad-phase accelerator with its scene in DRAM on a scene of your
 //! own: the design `tritri gen --dram-broad-phase --width 16 --pipelines 1
-//! --rare-cases shared --triangles 8192 --slots 8192 [--data-bits 256]`
+//! --rare-cases shared --triangles 8192 --slots 8192 [--data-bits 128|256]`
 //! writes (the one that fits the ECP5-85; its route is still to finish,
-//! docs/axi-port.md), on a 64-bit port or a 256-bit one, emitted and run
+//! docs/axi-port.md), on a 64-, 128- or 256-bit port, emitted and run
 //! in Verilator against the AXI4 memory model
 //! `axi_memory.sv`, with an ideal memory and with one that stalls 20 % of
 //! clocks, beside its clock-exact model.
 //!
 //! ```sh
-//! cargo run --release --example dram_broad_phase [-- [--data-bits 64|256] A B [SCALE_B TX TY TZ]]
+//! cargo run --release --example dram_broad_phase [-- [--data-bits 64|128|256] A B [SCALE_B TX TY TZ]]
 //! TRITRI_RUSTHDL=1 cargo run --release --example dram_broad_phase   # rust-hdl too
 //! cargo run --release --example dram_broad_phase -- --write-case DIR [A B ...]
 //! ```
@@ -63,15 +63,15 @@ fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let write_case =
         take_option(&mut args, "--write-case", "a directory")?.map(std::path::PathBuf::from);
-    let data_bits = match take_option(&mut args, "--data-bits", "64 or 256")? {
-        Some(bits) if ["64", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
-        Some(_) => anyhow::bail!("--data-bits takes 64 or 256"),
+    let data_bits = match take_option(&mut args, "--data-bits", "64, 128 or 256")? {
+        Some(bits) if ["64", "128", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
+        Some(bits) => anyhow::bail!("--data-bits {bits}: the top's port is 64, 128 or 256 bits"),
         None => 64,
     };
     let with_rusthdl = std::env::var_os("TRITRI_RUSTHDL").is_some_and(|v| v == "1");
     let (a, b) = tritri_examples::scene_objects(
         &args,
-        "dram_broad_phase [--data-bits 64|256] [--write-case DIR]",
+        "dram_broad_phase [--data-bits 64|128|256] [--write-case DIR]",
     )?;
 
     let mut accelerator = Accelerator::new(16);

@@ -20,12 +20,15 @@ use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 
 /// (grid bits, system width, port bits) the top is instantiated for: the
 /// torus and sphere of the tests on a 24-bit grid, and the 16-bit grid the
-/// controller routes at on the ECP5-85, on a 64-bit port and on a 256-bit
-/// one. A 256-bit port takes an entry a clock, where the 64-bit port takes
-/// one every four: the passes, which are most of a run, go up to four
-/// times as fast on a memory that keeps up.
-pub const DRAM_BROAD_PHASE_WIDTHS: [(usize, usize, usize); 3] =
-    [(24, 24, 64), (16, 16, 64), (16, 16, 256)];
+/// controller routes at on the ECP5-85, on 64-, 128- and 256-bit ports. A
+/// 256-bit port takes an entry a clock, where the 64-bit port takes one
+/// every four: the passes, which are most of a run, go up to four times as
+/// fast on a memory that keeps up. A narrower port's lane shares its
+/// setup's products over an entry's beats (`classify_lane::lane_latency`):
+/// the 128-bit top is the one sized to a memory of about 32 bytes a clock
+/// in all, as the ECP5-5G Versa's.
+pub const DRAM_BROAD_PHASE_WIDTHS: [(usize, usize, usize); 4] =
+    [(24, 24, 64), (16, 16, 64), (16, 16, 128), (16, 16, 256)];
 
 /// What the top is built for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -200,6 +203,9 @@ pub fn with_dram_broad_phase<R: Send>(
             (_, RareCasePath::Parallel) => top!(DramBroadPhase, visit, 16, V16, 64),
             (_, RareCasePath::Shared) if port == 256 => {
                 top!(SharedDramBroadPhase, visit_shared, 16, V16, 256)
+            }
+            (_, RareCasePath::Shared) if port == 128 => {
+                top!(SharedDramBroadPhase, visit_shared, 16, V16, 128)
             }
             (_, RareCasePath::Shared) => top!(SharedDramBroadPhase, visit_shared, 16, V16, 64),
         }
