@@ -571,8 +571,8 @@ fn options_a_design_does_not_take_are_refused_by_name() {
             "--list-words does not apply to --dram-broad-phase (it takes --width, --data-bits, --dsp, --rare-cases, --pipelines, --depth, --triangles, --slots)",
         ),
         (
-            &["--dram-broad-phase", "--width", "16", "--data-bits", "128", "--rare-cases", "shared"][..],
-            "not (16, 16, 128)",
+            &["--dram-broad-phase", "--width", "24", "--data-bits", "128", "--rare-cases", "shared"][..],
+            "not (24, 24, 128)",
         ),
         (
             &["--dram-broad-phase", "--width", "16", "--data-bits", "256"][..],
