@@ -232,9 +232,11 @@ pub struct Args {
     /// (the W = 16 pipeline with --rare-cases shared).
     #[arg(long, value_parser = Router::NAMES)]
     router: Option<String>,
-    /// With --synth ecp5: nextpnr's placer [default: heap]. `static`, its
-    /// electrostatic placer, left a fifth as many paths short of 150 MHz
-    /// on the whole W = 16 pipeline with --rare-cases shared.
+    /// With --synth ecp5: nextpnr's placer [default: heap; static for the
+    /// --dram-broad-phase top, which router1 routed only from its
+    /// placement]. `static`, the electrostatic placer, also left a fifth as
+    /// many paths short of 150 MHz on the whole W = 16 pipeline with
+    /// --rare-cases shared.
     #[arg(long, value_parser = Placer::NAMES)]
     placer: Option<String>,
     /// With --synth ecp5: the heap placer's weight of timing against wire
@@ -893,12 +895,19 @@ fn place_and_route(
         .as_deref()
         .and_then(Router::from_name)
         .unwrap_or(options.router);
-    // And only Placer::NAMES.
+    // And only Placer::NAMES. The DRAM top routed only from the
+    // electrostatic placer's placement (router1 left it unrouted from the
+    // heap placer's: docs/axi-port.md, "Where the router fails").
+    let placer = if whole && args.dram_broad_phase {
+        Placer::Static
+    } else {
+        Placer::default()
+    };
     options.placer = args
         .placer
         .as_deref()
         .and_then(Placer::from_name)
-        .unwrap_or_default();
+        .unwrap_or(placer);
     options.timing_weight = args.timing_weight.unwrap_or(options.timing_weight);
     let table = dir.join("route_ecp5.md");
     if let [] | [_] = args.seed.as_slice() {
