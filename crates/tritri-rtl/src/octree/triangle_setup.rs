@@ -475,15 +475,15 @@ fn setup_verilog(g: usize, v: usize, phases: usize) -> String {
         TAG_BITS - 1
     ));
     line("reg valid_1, valid_2, valid_3, valid_4;".into());
-    // Stage 2's products, `(register, operand, operand)`: n_k = e0_a e1_b -
+    // Stage 2's products, `(register, [operand, operand])`: n_k = e0_a e1_b -
     // e0_b e1_a with (a, b) = (k+1, k+2) mod 3; edge j across axis k: g =
     // e_j × u_k, start = g · p_j as two products (x: e_z p_y - e_y p_z; y:
     // e_x p_z - e_z p_x; z: e_y p_x - e_x p_y).
     let mut products = Vec::with_capacity(SETUP_PRODUCTS);
     for k in 0..3 {
         let (a, b) = (xyz[(k + 1) % 3], xyz[(k + 2) % 3]);
-        products.push((format!("na{k}_2"), format!("e0{a}_1"), format!("e1{b}_1")));
-        products.push((format!("nb{k}_2"), format!("e0{b}_1"), format!("e1{a}_1")));
+        products.push((format!("na{k}_2"), [format!("e0{a}_1"), format!("e1{b}_1")]));
+        products.push((format!("nb{k}_2"), [format!("e0{b}_1"), format!("e1{a}_1")]));
     }
     for j in 0..3 {
         for k in 0..3 {
@@ -491,13 +491,11 @@ fn setup_verilog(g: usize, v: usize, phases: usize) -> String {
             let i = 3 * j + k;
             products.push((
                 format!("sa{i}_2"),
-                format!("e{j}{a}_1"),
-                format!("p{j}{b}_1"),
+                [format!("e{j}{a}_1"), format!("p{j}{b}_1")],
             ));
             products.push((
                 format!("sb{i}_2"),
-                format!("e{j}{b}_1"),
-                format!("p{j}{a}_1"),
+                [format!("e{j}{b}_1"), format!("p{j}{a}_1")],
             ));
         }
     }
@@ -531,15 +529,8 @@ fn setup_verilog(g: usize, v: usize, phases: usize) -> String {
             (1..phases).map(phase).collect::<Vec<_>>().join(", ")
         ));
         for m in 0..multipliers {
-            for (side, pick) in [("a", 1), ("b", 2)] {
-                let operand = |r: usize| {
-                    let (_, a, b) = &products[r * multipliers + m];
-                    if pick == 1 {
-                        a.clone()
-                    } else {
-                        b.clone()
-                    }
-                };
+            for (pick, side) in ["a", "b"].into_iter().enumerate() {
+                let operand = |r: usize| products[r * multipliers + m].1[pick].clone();
                 let mut choice = operand(0);
                 for r in 1..phases {
                     if r * multipliers + m < SETUP_PRODUCTS {
@@ -601,14 +592,14 @@ fn setup_verilog(g: usize, v: usize, phases: usize) -> String {
         for r in 0..phases {
             line(format!("        if ({}) begin", phase(r)));
             for m in 0..multipliers {
-                if let Some((register, _, _)) = products.get(r * multipliers + m) {
+                if let Some((register, _)) = products.get(r * multipliers + m) {
                     line(format!("            {register} <= mul{m};"));
                 }
             }
             line("        end".into());
         }
     } else {
-        for (register, a, b) in &products {
+        for (register, [a, b]) in &products {
             line(format!("        {register} <= {};", product(a, b)));
         }
     }
