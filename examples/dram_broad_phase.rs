@@ -45,7 +45,7 @@ use tritri_cosim::dram_broad_phase::{
 };
 use tritri_cosim::scene_query::Accelerator;
 use tritri_cosim::simulator::Simulator;
-use tritri_examples::{at_bandwidth, take_option, VERSA_GBYTES};
+use tritri_examples::{at_bandwidth, take_data_bits, take_option, VERSA_GBYTES};
 use tritri_geom::certificate::decide_again;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::exact_f64_pairs;
@@ -63,11 +63,7 @@ fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let write_case =
         take_option(&mut args, "--write-case", "a directory")?.map(std::path::PathBuf::from);
-    let data_bits = match take_option(&mut args, "--data-bits", "64, 128 or 256")? {
-        Some(bits) if ["64", "128", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
-        Some(bits) => anyhow::bail!("--data-bits {bits}: the top's port is 64, 128 or 256 bits"),
-        None => 64,
-    };
+    let data_bits = take_data_bits(&mut args, 64)?;
     let with_rusthdl = std::env::var_os("TRITRI_RUSTHDL").is_some_and(|v| v == "1");
     let (a, b) = tritri_examples::scene_objects(
         &args,

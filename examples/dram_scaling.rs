@@ -38,7 +38,7 @@ use anyhow::Context as _;
 use tritri_cosim::dram_binning::run_model;
 use tritri_cosim::dram_broad_phase::{run_top_model, top_case};
 use tritri_cosim::scene_query::Accelerator;
-use tritri_examples::{at_bandwidth, take_option, VERSA_GBYTES};
+use tritri_examples::{at_bandwidth, take_data_bits, take_option, VERSA_GBYTES};
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
@@ -54,11 +54,7 @@ fn main() -> anyhow::Result<()> {
         Some(list) => parse_levels(&list)?,
         None => vec![(0, 0), (1, 1), (2, 2), (3, 4)],
     };
-    let data_bits = match take_option(&mut args, "--data-bits", "64, 128 or 256")? {
-        Some(bits) if ["64", "128", "256"].contains(&bits.as_str()) => bits.parse::<usize>()?,
-        Some(bits) => anyhow::bail!("--data-bits takes 64, 128 or 256, not {bits:?}"),
-        None => 256,
-    };
+    let data_bits = take_data_bits(&mut args, 256)?;
     let bytes_per_clock =
         match take_option(&mut args, "--bytes-per-clock", "a whole number of bytes")? {
             Some(b) => {

@@ -5,6 +5,7 @@
 use anyhow::Context as _;
 use tritri_geom::scene::load::{load_object, Pose, SceneObject};
 use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::broad_phase::list_pass_machine::PASS_DATA_BITS;
 
 /// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s, 1.6 GB/s.
 pub const VERSA_GBYTES: f64 = 1.6;
@@ -34,6 +35,21 @@ pub fn take_option(
         }
         Some(_) => anyhow::bail!("{name} takes {what}"),
         None => Ok(None),
+    }
+}
+
+/// The port width after `--data-bits` in `args`, both taken out
+/// (`default` without the option); an error naming the value when the
+/// pass units are not built for it.
+pub fn take_data_bits(args: &mut Vec<String>, default: usize) -> anyhow::Result<usize> {
+    let widths = PASS_DATA_BITS.map(|b| b.to_string()).join(", ");
+    match take_option(args, "--data-bits", &format!("one of {widths}"))? {
+        None => Ok(default),
+        Some(bits) => bits
+            .parse()
+            .ok()
+            .filter(|b| PASS_DATA_BITS.contains(b))
+            .with_context(|| format!("--data-bits {bits:?}: the port is {widths} bits wide")),
     }
 }
 

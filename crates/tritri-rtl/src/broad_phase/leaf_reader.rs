@@ -184,7 +184,7 @@ impl<const G: usize, const T: usize, const DW: usize, const S: usize> LeafReader
     /// `outstanding` in flight.
     pub fn new(max_read_burst: usize, outstanding: usize) -> Self {
         assert!(
-            [64, 128, 256].contains(&DW) && S * 8 == DW,
+            super::list_pass_machine::PASS_DATA_BITS.contains(&DW) && S * 8 == DW,
             "LeafReader: a 64-, 128- or 256-bit port, not {DW}"
         );
         assert!(T == 9 * G && T <= INDEX_OFFSET, "LeafReader: T = 9 G");

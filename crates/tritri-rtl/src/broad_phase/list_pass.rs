@@ -379,7 +379,7 @@ impl<
     /// flight.
     pub fn new(max_read_burst: usize, outstanding: usize) -> Self {
         assert!(
-            [64, 128, 256].contains(&DW) && S * 8 == DW,
+            super::list_pass_machine::PASS_DATA_BITS.contains(&DW) && S * 8 == DW,
             "ListPass: a 64-, 128- or 256-bit port, not {DW}"
         );
         let burst = WRITE_BURST_BEATS;

@@ -25,6 +25,10 @@ const ENTRY_CAPACITY: usize = (1 << ENTRY_QUEUE_ADDRESS_BITS) + 2;
 /// Beats of the W side's queue.
 const W_CAPACITY: usize = (1 << 4) + 2;
 
+/// The port widths a pass unit (and the leaf reader) is built for: an
+/// entry is one to four beats.
+pub const PASS_DATA_BITS: [usize; 3] = [64, 128, 256];
+
 /// How a pass unit is built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ListPassConfig {
@@ -64,7 +68,7 @@ impl ListPassConfig {
 
     /// An error naming the parameter the unit is not built for, if any.
     pub fn check(&self) -> Result<(), String> {
-        if ![64, 128, 256].contains(&self.data_bits) {
+        if !PASS_DATA_BITS.contains(&self.data_bits) {
             return Err(format!(
                 "a pass's port is 64, 128 or 256 bits wide, not {}",
                 self.data_bits

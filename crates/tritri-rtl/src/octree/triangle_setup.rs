@@ -108,24 +108,23 @@ pub struct TriangleSetup<const G: usize, const V: usize, const N: usize> {
     pub out_low: Signal<Out, Bits<N>>,
     pub out_high: Signal<Out, Bits<N>>,
     _stages: [Stage; TRIANGLE_SETUP_LATENCY],
-    /// Clocks a triangle's products are shared over (module docs, "Phases").
-    _phases: usize,
-    /// Stage 1's triangle in each of its product phases after the first:
-    /// `_phases - 1` records between stage 1 and stage 2.
+    /// Stage 1's triangle in each of its product phases after the first
+    /// (module docs, "Phases"): `phases - 1` records between stage 1 and
+    /// stage 2.
     _waiting: Vec<Stage>,
 }
 
 impl<const G: usize, const V: usize, const N: usize> crate::unit::Unit for TriangleSetup<G, V, N> {
     const LATENCY: Option<usize> = Some(TRIANGLE_SETUP_LATENCY);
     fn latency(&self) -> Option<usize> {
-        Some(setup_latency(self._phases))
+        Some(setup_latency(self.phases()))
     }
     fn settings(&self) -> Vec<(&'static str, String)> {
         // A setup of one phase keeps the module name it always had.
-        if self._phases == 1 {
+        if self.phases() == 1 {
             Vec::new()
         } else {
-            vec![("phases", self._phases.to_string())]
+            vec![("phases", self.phases().to_string())]
         }
     }
 }
@@ -139,14 +138,14 @@ impl<const G: usize, const V: usize, const N: usize> TriangleSetup<G, V, N> {
             "a setup shares its products over 1 to {SETUP_PRODUCTS} clocks, not {phases}"
         );
         Self {
-            _phases: phases,
             _waiting: vec![Stage::default(); phases - 1],
             ..Self::default()
         }
     }
 
+    /// Clocks a triangle's products are shared over.
     pub fn phases(&self) -> usize {
-        self._phases
+        self._waiting.len() + 1
     }
 }
 
@@ -200,7 +199,6 @@ impl<const G: usize, const V: usize, const N: usize> Default for TriangleSetup<G
             out_low: Default::default(),
             out_high: Default::default(),
             _stages: [Stage::default(); TRIANGLE_SETUP_LATENCY],
-            _phases: 1,
             _waiting: Vec::new(),
         }
     }
@@ -316,7 +314,7 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
                 [&self.in_root_x, &self.in_root_y, &self.in_root_z].map(|x| to_i128(x.val()));
             let p = v.map(|q| [0, 1, 2].map(|k| w(q[k] - root[k])));
             let edge = |a: usize, b: usize| [0, 1, 2].map(|k| w(v[b][k] - v[a][k]));
-            let next1 = if self._phases > 1 && !self.in_valid.val() {
+            let next1 = if self.phases() > 1 && !self.in_valid.val() {
                 // A phased stage 1 holds its triangle for the phases.
                 Stage { valid: false, ..s1 }
             } else {
@@ -330,7 +328,7 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
             };
             self._stages = [next1, next2, next3, next4, next5];
             // A phased setup's outputs hold until the next triangle's.
-            if self._phases == 1 || s4.valid {
+            if self.phases() == 1 || s4.valid {
                 self.out_gradient_x.next = pack(f.map(|a| a.0[0]), V);
                 self.out_gradient_y.next = pack(f.map(|a| a.0[1]), V);
                 self.out_gradient_z.next = pack(f.map(|a| a.0[2]), V);
@@ -358,7 +356,7 @@ impl<const G: usize, const V: usize, const N: usize> Logic for TriangleSetup<G, 
     }
 
     fn hdl(&self) -> Verilog {
-        Verilog::Custom(setup_verilog(G, V, self._phases))
+        Verilog::Custom(setup_verilog(G, V, self.phases()))
     }
 }
 
