@@ -57,6 +57,11 @@
 //! `--owner-filter` writes the filter that
 //! reports each pair of the octree broad phase once (`--slots N` words per
 //! object's slot table, default 65536), top `tritri_owner_filter_s<N>`.
+//! `--owner-chain-filter` writes the broad-phase tops' own filter alone
+//! (tables written as the entries stream: `--triangles N` heads and
+//! `--slots N` records per object), top
+//! `tritri_owner_chain_filter_t<N>_s<N>`, so that its clock is measured in
+//! a route of minutes.
 //! `--plane-traversal` writes the octree engine's plane classification
 //! (grids up to 1024^3, one octant per clock), top `tritri_plane_traversal`;
 //! `--set-operation` its set-operation unit (two voxel models, a 64-voxel
@@ -144,6 +149,9 @@ use tritri_rtl::emit::list_pass_unit::{
 };
 use tritri_rtl::emit::memory_mapping::{map_delay_lines, DelayLineMapping};
 use tritri_rtl::emit::octree_builder_unit::{emit_octree_builder, OCTREE_BUILDER_NAME};
+use tritri_rtl::emit::owner_chain_filter_unit::{
+    emit_owner_chain_filter, owner_chain_filter_unit_name,
+};
 use tritri_rtl::emit::owner_filter_unit::{emit_owner_filter, owner_filter_unit_name, MAX_SLOTS};
 use tritri_rtl::emit::patch_tessellator_unit::{
     emit_patch_tessellator, emit_patch_triangles, patch_tessellator_unit_name,
@@ -263,6 +271,11 @@ pub struct Args {
     /// not apply.
     #[arg(long)]
     owner_filter: bool,
+    /// Emit the broad-phase tops' owner filter alone instead (chain form:
+    /// tables written as the entries stream, --triangles heads and --slots
+    /// records per object); --width does not apply.
+    #[arg(long)]
+    owner_chain_filter: bool,
     /// Emit the octree engine's plane classification instead (the grid
     /// against a plane, one octant per clock); --width does not apply.
     #[arg(long)]
@@ -350,7 +363,7 @@ pub struct Args {
     /// 4x4x4 brick of voxels in per clock, the canonical tree's nodes out).
     #[arg(long)]
     octree_builder: bool,
-    /// With --owner-filter, --broad-phase or --dram-broad-phase: words of each object's slot
+    /// With --owner-filter, --owner-chain-filter, --broad-phase or --dram-broad-phase: words of each object's slot
     /// table, one per triangle per leaf (1 to 16777216) [default: 65536].
     #[arg(long, value_parser = crate::input::whole::<u64>(1..=MAX_SLOTS as u64))]
     slots: Option<u64>,
@@ -374,7 +387,7 @@ pub struct Args {
     /// --list-words and --leaves the binning unit's memories.
     #[arg(long)]
     broad_phase: bool,
-    /// With --binning-unit, --broad-phase or --dram-broad-phase: triangles per object (1 to
+    /// With --binning-unit, --broad-phase, --dram-broad-phase or --owner-chain-filter: triangles per object (1 to
     /// 262144) [default: 8192].
     #[arg(long, value_parser = crate::input::whole::<u64>(1..=1 << INDEX_BITS))]
     triangles: Option<u64>,
@@ -456,6 +469,12 @@ impl Args {
         self.pipelines.unwrap_or(2)
     }
 
+    /// `--triangles`: per object, for the binning unit's and the owner
+    /// filter's tables.
+    fn triangles(&self) -> usize {
+        self.triangles.unwrap_or(8192) as usize
+    }
+
     fn slots(&self) -> usize {
         self.slots.unwrap_or(65536) as usize
     }
@@ -474,7 +493,7 @@ impl Args {
     fn binning_config(&self, grid_bits: usize) -> BinningUnitConfig {
         BinningUnitConfig {
             grid_bits,
-            triangles: self.triangles.unwrap_or(8192) as usize,
+            triangles: self.triangles(),
             list_words: self.list_words.unwrap_or(16384) as usize,
             leaves: self.leaves.unwrap_or(4096) as usize,
             log_depth: self.depth().trailing_zeros(),
@@ -522,6 +541,7 @@ impl Args {
             (Design::BinningUnit, self.binning_unit),
             (Design::BroadPhase, self.broad_phase),
             (Design::OwnerFilter, self.owner_filter),
+            (Design::OwnerChainFilter, self.owner_chain_filter),
             (Design::PlaneTraversal, self.plane_traversal),
             (Design::SetOperation, self.set_operation),
             (Design::OctantClipper, self.octant_clipper),
@@ -739,6 +759,7 @@ impl Args {
                 emit_broad_phase_system_with(&self.broad_phase_config(width), self.multipliers())?
             }
             Design::OwnerFilter => emit_owner_filter(self.slots())?,
+            Design::OwnerChainFilter => emit_owner_chain_filter(self.triangles(), self.slots())?,
             Design::PlaneTraversal => emit_plane_traversal()?,
             Design::SetOperation => emit_set_operation()?,
             Design::OctantClipper => emit_octant_clipper()?,
@@ -778,6 +799,9 @@ impl Args {
             Design::BinningUnit => self.binning_config(width).unit_name(),
             Design::BroadPhase => self.broad_phase_config(width).unit_name(),
             Design::OwnerFilter => owner_filter_unit_name(self.slots()),
+            Design::OwnerChainFilter => {
+                owner_chain_filter_unit_name(self.triangles(), self.slots())
+            }
             Design::PlaneTraversal => PLANE_TRAVERSAL_NAME.to_string(),
             Design::SetOperation => SET_OPERATION_NAME.to_string(),
             Design::OctantClipper => OCTANT_CLIPPER_NAME.to_string(),
@@ -807,7 +831,7 @@ impl Args {
         DramBroadPhaseConfig {
             binning: self.dram_binning_config(width),
             system: self.system_config(width),
-            triangles: self.triangles.unwrap_or(8192) as usize,
+            triangles: self.triangles(),
             slots: self.slots(),
             local_frames: false,
             rare_cases: self.rare_case_path(),

@@ -527,6 +527,10 @@ fn options_a_design_does_not_take_are_refused_by_name() {
             "--width does not apply to --owner-filter (it takes --slots)",
         ),
         (
+            &["--owner-chain-filter", "--width", "16"][..],
+            "--width does not apply to --owner-chain-filter (it takes --triangles, --slots)",
+        ),
+        (
             &["--classifier", "--depth", "64"][..],
             "--depth does not apply to --classifier (it takes --width)",
         ),

@@ -16,7 +16,7 @@ use tritri_geom::widths::{cross_bits, difference_bits, orient3d_bits};
 use tritri_rtl::broad_phase::binning_machine::BinningRun;
 use tritri_rtl::broad_phase::binning_unit::on_unit_stack;
 use tritri_rtl::broad_phase::broad_phase_system::BroadPhaseSystem;
-use tritri_rtl::broad_phase::owner_chain_filter::{decide, streamed, Streamed};
+use tritri_rtl::broad_phase::owner_chain_filter::{decide, hit_clocks, streamed, Streamed};
 use tritri_rtl::emit::broad_phase_system_unit::{emit_broad_phase_system, BroadPhaseConfig};
 use tritri_rtl::octree::cell_classifier::AXES;
 use tritri_rtl::octree::value_bits;
@@ -81,7 +81,7 @@ pub fn top_model(
     let decisions = decide(&entries, &reported);
     let filter_clocks = decisions
         .iter()
-        .map(|(owned, steps)| 2 + steps + owned.is_some() as u64)
+        .map(|(owned, steps)| hit_clocks(owned.is_some(), *steps))
         .sum();
     let owned: Vec<(u32, u32)> = decisions
         .into_iter()

@@ -42,6 +42,7 @@ pub mod fault;
 pub mod leaf_reader;
 pub mod list_pass;
 pub mod octree_builder;
+pub mod owner_chain_filter;
 pub mod owner_filter;
 pub mod patch_tessellator;
 pub mod patch_triangles;

@@ -73,6 +73,7 @@ pub mod list_pass_unit;
 pub mod memory_mapping;
 pub mod modules;
 pub mod octree_builder_unit;
+pub mod owner_chain_filter_unit;
 pub mod owner_filter_unit;
 pub mod package;
 pub mod part_selects;

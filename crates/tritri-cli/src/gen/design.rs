@@ -24,6 +24,8 @@ pub enum Design {
     BroadPhase,
     /// The broad phase's owner filter, slot-table form.
     OwnerFilter,
+    /// The broad-phase tops' owner filter, chain form.
+    OwnerChainFilter,
     /// The octree engine's plane classification.
     PlaneTraversal,
     /// The octree engine's set operations on voxel models.
@@ -109,7 +111,7 @@ use DesignOption::*;
 
 /// Every design, once. `--dsp` is taken by the designs with multipliers
 /// (the MULT18X18D mapping applies to them).
-pub const DESIGNS: [Row; 20] = [
+pub const DESIGNS: [Row; 21] = [
     Row {
         design: Design::Pipeline,
         flag: None,
@@ -146,6 +148,11 @@ pub const DESIGNS: [Row; 20] = [
         design: Design::OwnerFilter,
         flag: Some("--owner-filter"),
         takes: &[Slots],
+    },
+    Row {
+        design: Design::OwnerChainFilter,
+        flag: Some("--owner-chain-filter"),
+        takes: &[Triangles, Slots],
     },
     Row {
         design: Design::PlaneTraversal,

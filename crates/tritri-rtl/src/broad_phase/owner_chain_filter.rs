@@ -22,19 +22,29 @@
 //! ```text
 //! Idle ──(in_valid: read A[s_a], B[s_b])──► First
 //! First: either has no previous appearance ───────────────────► Emit
-//!        else read both previous slots ───────────────────────► Walk
+//!        else read both previous slots ───────────────────────► Load
+//! Load:  keep both records, read the slots before them ───────► Walk
 //! Walk:  equal leaves below L (a duplicate) ──────────────────► Idle
 //!        else step the chain at L or at the higher leaf:
 //!        its end ─────────────────────────────────────────────► Emit
-//!        else read its previous slot ─────────────────────────► Walk
+//!        else keep the record read ahead, read the one before ► Walk
 //! Emit:  out_valid until out_ready ───────────────────────────► Idle
 //! ```
 //!
-//! A hit taken at edge `t` whose walk makes `m` steps frees the unit at
-//! `t + 2 + m` when dropped and leaves at `t + 3 + m` when owned with
-//! `out_ready` high ([`decide`] counts `m`). The records are written one
-//! clock after their entry (the head is read, then the record and the new
-//! head written); a hit reads them some pipeline latency later.
+//! The walk compares records held in registers (`cur_a`, `cur_b`), while
+//! each table already shows the record before its chain's (read ahead in
+//! Load and at every step): a step takes the table's word and reads the
+//! slot it names, so no comparison lies between a table's output and a
+//! table's read enable. Comparing the tables' outputs directly put a
+//! block RAM's clock-to-output, two 20-bit compares and the enable's fan-out
+//! in one clock: the DRAM top's worst path at 43.6 MHz.
+//!
+//! A hit taken at edge `t` whose walk makes `m` steps frees the unit after
+//! [`hit_clocks`]`(owned, m)` clocks: `t + 2` and one more when owned (with
+//! `out_ready` high) if there is no walk, plus `1 + m` for a walk
+//! ([`decide`] counts `m`). The records are written one clock after their
+//! entry (the head is read, then the record and the new head written); a
+//! hit reads them some pipeline latency later.
 
 use super::list_packer::INDEX_BITS;
 use crate::system::dual_port_ram::SimpleDualPortRam;
@@ -67,6 +77,7 @@ pub struct ChainHead {
 pub enum ChainState {
     Idle,
     First,
+    Load,
     Walk,
     Emit,
 }
@@ -122,6 +133,9 @@ pub struct OwnerChainFilter {
     entry_leaf_q: DFF<Bits<CHAIN_LEAF_BITS>>,
     state: DFF<ChainState>,
     hit_leaf: DFF<Bits<CHAIN_LEAF_BITS>>,
+    /// The walk's place in each chain (the tables show the records before).
+    cur_a: DFF<ChainRecord>,
+    cur_b: DFF<ChainRecord>,
     index_a: DFF<Bits<INDEX_BITS>>,
     index_b: DFF<Bits<INDEX_BITS>>,
     hit_q: DFF<Bit>,
@@ -158,6 +172,8 @@ impl crate::unit::Unit for OwnerChainFilter {
             entry_leaf_q,
             state,
             hit_leaf,
+            cur_a,
+            cur_b,
             index_a,
             index_b,
             hit_q,
@@ -206,6 +222,8 @@ impl OwnerChainFilter {
             entry_leaf_q: Default::default(),
             state: Default::default(),
             hit_leaf: Default::default(),
+            cur_a: Default::default(),
+            cur_b: Default::default(),
             index_a: Default::default(),
             index_b: Default::default(),
             hit_q: Default::default(),
@@ -236,6 +254,8 @@ impl Logic for OwnerChainFilter {
             entry_leaf_q,
             state,
             hit_leaf,
+            cur_a,
+            cur_b,
             index_a,
             index_b,
             hit_q,
@@ -323,12 +343,13 @@ impl Logic for OwnerChainFilter {
         self.records[1].read_address.next = self.record_b.val().prev;
         // In Walk: step the chain at the hit's own leaf, else the one at
         // the higher leaf; neither: equal leaves below it, a duplicate.
-        self.step_a.next = (self.record_a.val().leaf == self.hit_leaf.q.val())
-            | ((self.record_b.val().leaf != self.hit_leaf.q.val())
-                & (self.record_a.val().leaf > self.record_b.val().leaf));
+        // Registers only: the tables' outputs feed addresses, not this.
+        self.step_a.next = (self.cur_a.q.val().leaf == self.hit_leaf.q.val())
+            | ((self.cur_b.q.val().leaf != self.hit_leaf.q.val())
+                & (self.cur_a.q.val().leaf > self.cur_b.q.val().leaf));
         self.step_b.next = !self.step_a.val()
-            & ((self.record_b.val().leaf == self.hit_leaf.q.val())
-                | (self.record_b.val().leaf > self.record_a.val().leaf));
+            & ((self.cur_b.q.val().leaf == self.hit_leaf.q.val())
+                | (self.cur_b.q.val().leaf > self.cur_a.q.val().leaf));
         self.in_ready.next = self.state.q.val() == ChainState::Idle;
         self.out_valid.next = self.state.q.val() == ChainState::Emit;
         self.out_index_a.next = bit_cast::<ID_BITS, INDEX_BITS>(self.index_a.q.val());
@@ -360,20 +381,31 @@ impl Logic for OwnerChainFilter {
                 if self.record_a.val().has_prev & self.record_b.val().has_prev {
                     self.records[0].read_enable.next = true;
                     self.records[1].read_enable.next = true;
-                    self.state.d.next = ChainState::Walk;
+                    self.state.d.next = ChainState::Load;
                 } else {
                     self.state.d.next = ChainState::Emit;
                 }
             }
+            ChainState::Load => {
+                // A record without a previous one names slot 0 (a cleared
+                // head's), a word the table holds: reading it is harmless.
+                self.cur_a.d.next = self.record_a.val();
+                self.cur_b.d.next = self.record_b.val();
+                self.records[0].read_enable.next = true;
+                self.records[1].read_enable.next = true;
+                self.state.d.next = ChainState::Walk;
+            }
             ChainState::Walk => {
                 if self.step_a.val() {
-                    if self.record_a.val().has_prev {
+                    if self.cur_a.q.val().has_prev {
+                        self.cur_a.d.next = self.record_a.val();
                         self.records[0].read_enable.next = true;
                     } else {
                         self.state.d.next = ChainState::Emit;
                     }
                 } else if self.step_b.val() {
-                    if self.record_b.val().has_prev {
+                    if self.cur_b.q.val().has_prev {
+                        self.cur_b.d.next = self.record_b.val();
                         self.records[1].read_enable.next = true;
                     } else {
                         self.state.d.next = ChainState::Emit;
@@ -433,6 +465,13 @@ pub struct Streamed {
     pub entries: Vec<(bool, u32, u32)>,
     pub hits: Vec<(u32, u32)>,
     pub hit_leaves: Vec<usize>,
+}
+
+/// Clocks from taking a hit to taking the next (`out_ready` high): a hit
+/// decided in First takes 2 (and one in Emit when owned); a walk of
+/// `steps` steps adds Load and one clock a step.
+pub fn hit_clocks(owned: bool, steps: u64) -> u64 {
+    2 + owned as u64 + if steps > 0 { 1 + steps } else { 0 }
 }
 
 /// The filter's decision on each hit, with the steps its walk makes: the
