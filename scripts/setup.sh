@@ -1,20 +1,24 @@
 #!/usr/bin/env bash
-# Installs the FPGA tools tritri drives (Debian packages) when they are missing.
+# Installs the FPGA tools tritri drives, and CGAL (the software baseline,
+# compiled by tritri-cosim's `cgal` module), from Debian's packages when
+# they are missing.
 set -euo pipefail
 need=()
 for tool in iverilog verilator yosys; do
   command -v "$tool" >/dev/null 2>&1 || need+=("$tool")
 done
+[ -f /usr/include/CGAL/box_intersection_d.h ] || need+=(libcgal-dev)
 if [ ${#need[@]} -gt 0 ]; then
   SUDO=""
   [ "$(id -u)" -eq 0 ] || SUDO="sudo"
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq iverilog verilator yosys >/dev/null
+  $SUDO apt-get install -y -qq iverilog verilator yosys libcgal-dev >/dev/null
 fi
 echo "iverilog: $(iverilog -V 2>&1 | head -1)"
 echo "verilator: $(verilator --version)"
 echo "yosys: $(yosys -V)"
+echo "cgal: $(dpkg-query -W -f '${Version}' libcgal-dev)"
 
 # Python tools of the examples (cocotb, FuseSoC), pinned in
 # scripts/python-requirements.txt, in a project-local virtual environment.

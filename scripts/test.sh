@@ -17,7 +17,7 @@ cargo test --release --workspace
 # The examples (examples/README.md): each checks what it shows and fails
 # otherwise. Built with the workspace's features, as the tests were.
 cargo build --release --workspace --bins --examples
-for example in classify_pairs scene_pairs emit_and_synthesize dram_binning dram_scaling; do
+for example in classify_pairs scene_pairs emit_and_synthesize dram_binning dram_scaling software_baseline; do
   echo "example: $example"
   target/release/examples/$example
 done

@@ -34,6 +34,7 @@ mod axi_drive;
 pub mod binning_unit;
 pub mod broad_phase_system;
 pub mod cell_classifier;
+pub mod cgal;
 pub mod cone_unit;
 pub mod dram_binning;
 pub mod dram_broad_phase;

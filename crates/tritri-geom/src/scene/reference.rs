@@ -140,9 +140,16 @@ pub struct ExactF64Result {
 }
 
 /// Exact predicates on the original coordinates, every pair of `a × b`
-/// whose triangle boxes overlap (a sweep along x over the boxes).
+/// whose triangle boxes overlap (found by a sweep over the boxes,
+/// [`f64_pairs_on`]).
 pub fn exact_f64_pairs(a: &[Triangle], b: &[Triangle]) -> ExactF64Result {
     f64_pairs_with(a, b, exact_f64::intersects)
+}
+
+/// [`exact_f64_pairs`] on `threads` threads (the same pairs, in the same
+/// set): the sweep's scans split among them.
+pub fn exact_f64_pairs_threads(a: &[Triangle], b: &[Triangle], threads: usize) -> ExactF64Result {
+    f64_pairs_on(a, b, exact_f64::intersects, threads.max(1))
 }
 
 /// [`exact_f64_pairs`] with another decision function (for timing the
@@ -150,59 +157,169 @@ pub fn exact_f64_pairs(a: &[Triangle], b: &[Triangle]) -> ExactF64Result {
 pub fn f64_pairs_with(
     a: &[Triangle],
     b: &[Triangle],
-    test: impl Fn(&Triangle, &Triangle) -> bool,
+    test: impl Fn(&Triangle, &Triangle) -> bool + Sync,
 ) -> ExactF64Result {
-    let boxes_a: Vec<Aabb<f64>> = a.iter().map(triangle_box).collect();
-    let mut order_b: Vec<(Aabb<f64>, u32)> = b
+    f64_pairs_on(a, b, test, 1)
+}
+
+/// A triangle's box and its index, as the sweep keeps them.
+#[derive(Clone, Copy)]
+struct SweepBox {
+    lo: [f64; 3],
+    hi: [f64; 3],
+    index: u32,
+}
+
+impl SweepBox {
+    /// The closed boxes overlap.
+    #[inline(always)]
+    fn meets(&self, other: &SweepBox) -> bool {
+        (0..3).all(|k| self.lo[k] <= other.hi[k] && other.lo[k] <= self.hi[k])
+    }
+}
+
+/// The boxes of `triangles` that meet `within` (closed boxes).
+fn boxes_within(triangles: &[Triangle], within: &SweepBox) -> Vec<SweepBox> {
+    triangles
         .iter()
         .enumerate()
-        .map(|(j, t)| (triangle_box(t), j as u32))
-        .collect();
-    order_b.sort_by(|x, y| x.0.lo[0].total_cmp(&y.0.lo[0]));
-    // Widths rounded up, so `widest_b` is at least every true width.
-    let widest_b = order_b
-        .iter()
-        .map(|(bb, _)| next_up(bb.hi[0] - bb.lo[0]))
-        .fold(0.0, f64::max);
+        .map(|(i, t)| {
+            let bb = triangle_box(t);
+            SweepBox {
+                lo: bb.lo,
+                hi: bb.hi,
+                index: i as u32,
+            }
+        })
+        .filter(|bb| bb.meets(within))
+        .collect()
+}
+
+/// The box around `triangles` (`None` for none).
+fn bounds(triangles: &[Triangle]) -> Option<SweepBox> {
+    let bb = Aabb::of_triangles(triangles.iter())?;
+    Some(SweepBox {
+        lo: bb.lo,
+        hi: bb.hi,
+        index: 0,
+    })
+}
+
+/// The axis to sweep along: the one where the fewest pairs of boxes are
+/// expected to overlap, `(n_b Σ w_a + n_a Σ w_b) / L` with `w` the boxes'
+/// widths and `L` the common box's, as if the boxes were spread evenly over
+/// it. A sweep along the axis two objects in contact are side by side on
+/// scans little more than the contact; along another it can scan most of
+/// `n_a × n_b`.
+fn sweep_axis(a: &[SweepBox], b: &[SweepBox], common: &SweepBox) -> usize {
+    let expected = |k: usize| {
+        let width = |boxes: &[SweepBox]| boxes.iter().map(|bb| bb.hi[k] - bb.lo[k]).sum::<f64>();
+        let all = a.len() as f64 * b.len() as f64;
+        let spread = common.hi[k] - common.lo[k];
+        if spread > 0.0 {
+            ((b.len() as f64 * width(a) + a.len() as f64 * width(b)) / spread).min(all)
+        } else {
+            all
+        }
+    };
+    (0..3)
+        .map(|k| (k, expected(k)))
+        .fold(
+            (0, f64::INFINITY),
+            |best, (k, e)| if e < best.1 { (k, e) } else { best },
+        )
+        .0
+}
+
+/// The sweep behind [`exact_f64_pairs`]: only the triangles whose boxes
+/// meet the common box of the two objects (no other can meet a triangle of
+/// the other object), swept along [`sweep_axis`] by the one-way scan of
+/// Zomorodian and Edelsbrunner (the step at the leaves of CGAL's
+/// `box_intersection_d`) on both sides: both sets sorted by their boxes'
+/// low end, each box scans the other set's boxes that start inside its
+/// extent, an A box the B boxes starting no lower, a B box the A boxes
+/// starting strictly higher, so each pair of boxes overlapping on the axis
+/// is met exactly once, whatever the boxes' widths. Thread `k` of
+/// `threads` takes the boxes `k, k + threads, ...` of each sorted set.
+fn f64_pairs_on(
+    a: &[Triangle],
+    b: &[Triangle],
+    test: impl Fn(&Triangle, &Triangle) -> bool + Sync,
+    threads: usize,
+) -> ExactF64Result {
     let mut result = ExactF64Result {
         pairs: PairSet::new(),
         pairs_decided: 0,
     };
-    for (i, ba) in boxes_a.iter().enumerate() {
-        // A B box that overlaps has hi >= ba.lo, so lo = hi - width >= ba.lo - widest,
-        // and lo <= ba.hi. The subtraction rounds; one step down keeps the bound below.
-        let from = next_down(ba.lo[0] - widest_b);
-        let start = order_b.partition_point(|(bb, _)| bb.lo[0] < from);
-        for (bb, j) in &order_b[start..] {
-            if bb.lo[0] > ba.hi[0] {
-                break;
-            }
-            if ba.overlap(bb).is_some() {
-                result.pairs_decided += 1;
-                if test(&a[i], &b[*j as usize]) {
-                    result.pairs.insert((i as u32, *j));
+    let (Some(bounds_a), Some(bounds_b)) = (bounds(a), bounds(b)) else {
+        return result;
+    };
+    let mut boxes_a = boxes_within(a, &bounds_b);
+    let mut boxes_b = boxes_within(b, &bounds_a);
+    let common = SweepBox {
+        lo: std::array::from_fn(|k| bounds_a.lo[k].max(bounds_b.lo[k])),
+        hi: std::array::from_fn(|k| bounds_a.hi[k].min(bounds_b.hi[k])),
+        index: 0,
+    };
+    let axis = sweep_axis(&boxes_a, &boxes_b, &common);
+    boxes_a.sort_unstable_by(|x, y| x.lo[axis].total_cmp(&y.lo[axis]));
+    boxes_b.sort_unstable_by(|x, y| x.lo[axis].total_cmp(&y.lo[axis]));
+    let (boxes_a, boxes_b) = (&boxes_a, &boxes_b);
+    let test = &test;
+    let part = move |k: usize| {
+        let mut hits = Vec::new();
+        let mut decided = 0u64;
+        let mut decide = |x: &SweepBox, y: &SweepBox| {
+            if x.meets(y) {
+                decided += 1;
+                if test(&a[x.index as usize], &b[y.index as usize]) {
+                    hits.push((x.index, y.index));
                 }
             }
+        };
+        // Each scan's first candidate, advanced as the scanning boxes rise.
+        let mut first = 0;
+        for x in boxes_a.iter().skip(k).step_by(threads) {
+            while first < boxes_b.len() && boxes_b[first].lo[axis] < x.lo[axis] {
+                first += 1;
+            }
+            for y in boxes_b[first..]
+                .iter()
+                .take_while(|y| y.lo[axis] <= x.hi[axis])
+            {
+                decide(x, y);
+            }
         }
+        let mut first = 0;
+        for y in boxes_b.iter().skip(k).step_by(threads) {
+            while first < boxes_a.len() && boxes_a[first].lo[axis] <= y.lo[axis] {
+                first += 1;
+            }
+            for x in boxes_a[first..]
+                .iter()
+                .take_while(|x| x.lo[axis] <= y.hi[axis])
+            {
+                decide(x, y);
+            }
+        }
+        (hits, decided)
+    };
+    let parts: Vec<(Vec<(u32, u32)>, u64)> = if threads == 1 {
+        vec![part(0)]
+    } else {
+        std::thread::scope(|s| {
+            let handles: Vec<_> = (0..threads).map(|k| s.spawn(move || part(k))).collect();
+            handles
+                .into_iter()
+                .map(|h| h.join().expect("sweep thread panicked"))
+                .collect()
+        })
+    };
+    for (hits, decided) in parts {
+        result.pairs.extend(hits);
+        result.pairs_decided += decided;
     }
     result
-}
-
-/// The largest f64 below `x` (`x` itself for NaN and -inf).
-fn next_down(x: f64) -> f64 {
-    if x.is_nan() || x == f64::NEG_INFINITY {
-        return x;
-    }
-    if x == 0.0 {
-        return -f64::from_bits(1);
-    }
-    let bits = x.to_bits();
-    f64::from_bits(if x > 0.0 { bits - 1 } else { bits + 1 })
-}
-
-/// The smallest f64 above `x`.
-fn next_up(x: f64) -> f64 {
-    -next_down(-x)
 }
 
 /// How a list of pairs differs from the reference, as multisets: a pair
@@ -296,5 +413,112 @@ mod pair_diff_tests {
         assert_eq!(diff.missing, vec![(1, 2)]);
         assert_eq!(diff.extra, vec![(0, 5), (4, 4)]);
         assert!(PairDiff::between(&other, &other).is_empty());
+    }
+}
+
+#[cfg(test)]
+mod sweep_tests {
+    use super::*;
+    use crate::triangle::Point;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Triangles with corners on a small lattice around `centre`: many
+    /// boxes share an end (ties in the sort, boxes that only touch), some
+    /// triangles are degenerate. `spread` scales where the triangles sit,
+    /// not their size.
+    fn lattice_triangles(
+        rng: &mut ChaCha8Rng,
+        n: usize,
+        centre: [i32; 3],
+        spread: [f64; 3],
+    ) -> Vec<Triangle> {
+        (0..n)
+            .map(|_| {
+                let p: Point = std::array::from_fn(|k| {
+                    (centre[k] + rng.gen_range(-6..=6)) as f64 * 0.5 * spread[k]
+                });
+                let near = |rng: &mut ChaCha8Rng| -> Point {
+                    std::array::from_fn(|k| p[k] + rng.gen_range(-2..=2) as f64 * 0.5)
+                };
+                [p, near(rng), near(rng)]
+            })
+            .collect()
+    }
+
+    /// The sweep finds what testing every pair finds, and decides exactly
+    /// the pairs whose boxes overlap, on one to three threads, with the
+    /// objects side by side along each axis in turn (so each axis is swept).
+    #[test]
+    fn the_sweep_is_every_pair_tested() {
+        let mut rng = ChaCha8Rng::seed_from_u64(66);
+        for offset in [[4, 0, 0], [0, 4, 0], [0, 0, 4], [0, 0, 0], [40, 0, 0]] {
+            let a = lattice_triangles(&mut rng, 300, [0, 0, 0], [1.0; 3]);
+            let b = lattice_triangles(&mut rng, 200, offset, [1.0; 3]);
+            let mut every = PairSet::new();
+            let mut boxes = 0;
+            for (i, x) in a.iter().enumerate() {
+                for (j, y) in b.iter().enumerate() {
+                    if triangle_box(x).overlap(&triangle_box(y)).is_some() {
+                        boxes += 1;
+                        if exact_f64::intersects(x, y) {
+                            every.insert((i as u32, j as u32));
+                        }
+                    }
+                }
+            }
+            for threads in 1..=3 {
+                let swept = exact_f64_pairs_threads(&a, &b, threads);
+                assert_eq!(swept.pairs, every, "offset {offset:?}, {threads} threads");
+                assert_eq!(
+                    swept.pairs_decided, boxes,
+                    "offset {offset:?}, {threads} threads"
+                );
+            }
+            if offset != [40, 0, 0] {
+                assert!(every.len() > 20, "offset {offset:?}: {} pairs", every.len());
+            }
+        }
+        assert!(
+            exact_f64_pairs(&[], &lattice_triangles(&mut rng, 5, [0; 3], [1.0; 3]))
+                .pairs
+                .is_empty()
+        );
+    }
+
+    /// Objects spread along one axis (small triangles over a long extent)
+    /// are swept along it, where the fewest pairs of boxes overlap.
+    #[test]
+    fn the_sweep_runs_along_the_axis_the_boxes_spread_on() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for axis in 0..3 {
+            let spread = std::array::from_fn(|k| if k == axis { 8.0 } else { 1.0 });
+            let a = lattice_triangles(&mut rng, 200, [0, 0, 0], spread);
+            let b = lattice_triangles(&mut rng, 200, [1, 1, 1], spread);
+            let (ba, bb) = (bounds(&a).unwrap(), bounds(&b).unwrap());
+            let common = SweepBox {
+                lo: std::array::from_fn(|k| ba.lo[k].max(bb.lo[k])),
+                hi: std::array::from_fn(|k| ba.hi[k].min(bb.hi[k])),
+                index: 0,
+            };
+            let (xa, xb) = (boxes_within(&a, &bb), boxes_within(&b, &ba));
+            let on = |k: usize| {
+                xa.iter()
+                    .flat_map(|x| xb.iter().map(move |y| (x, y)))
+                    .filter(|(x, y)| x.lo[k] <= y.hi[k] && y.lo[k] <= x.hi[k])
+                    .count()
+            };
+            let counts = [on(0), on(1), on(2)];
+            assert_eq!(
+                counts.iter().min(),
+                Some(&counts[axis]),
+                "spread along {axis}: {counts:?}"
+            );
+            assert_eq!(
+                sweep_axis(&xa, &xb, &common),
+                axis,
+                "spread along {axis}: {counts:?}"
+            );
+        }
     }
 }
