@@ -1,0 +1,59 @@
+//! The host's share of the accelerator's route, against memory speed
+//! (issue 66): what the host does before the hardware is to find the
+//! common box, cull to it and quantize what is left (`scene::prepare`, the
+//! whole of it for the DRAM top, which bins on chip). Beside it, in the
+//! same run: the two objects' bounding boxes, one pass over every
+//! coordinate (the memory-speed floor),
+//! and the exact software path on the same scene (the baseline every
+//! speed line is measured against). A torus of 100k triangles and a
+//! sphere of 20k in contact.
+//! `cargo bench -p tritri-geom --bench host_prepare`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use tritri_geom::bounding_volume::Aabb;
+use tritri_geom::builtin_scene::{sphere, torus};
+use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::reference::exact_f64_pairs;
+use tritri_geom::scene::{prepare, SceneOptions};
+
+fn host_prepare(c: &mut Criterion) {
+    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 500, 100));
+    let b = SceneObject::from_triangles("sphere", sphere([1.0, 0.0, 0.55], 0.4, 200, 50));
+    let options = SceneOptions {
+        grid_bits: 16,
+        depth: 256,
+        split: true,
+    };
+    let mut group = c.benchmark_group("host_prepare_100k");
+    group.sample_size(20);
+    // The floor: one pass over every coordinate, the two objects' boxes.
+    group.bench_function("bounding_boxes", |bench| {
+        bench.iter(|| {
+            (
+                black_box(Aabb::of_triangles(black_box(&a.triangles))),
+                black_box(Aabb::of_triangles(black_box(&b.triangles))),
+            )
+        })
+    });
+    group.bench_function("prepare", |bench| {
+        bench.iter(|| {
+            black_box(prepare(black_box(&a), black_box(&b), &options).unwrap())
+                .kept_a
+                .len()
+        })
+    });
+    group.bench_function("exact_software_path", |bench| {
+        bench.iter(|| {
+            black_box(exact_f64_pairs(
+                black_box(&a.triangles),
+                black_box(&b.triangles),
+            ))
+            .pairs
+            .len()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, host_prepare);
+criterion_main!(benches);
