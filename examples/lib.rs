@@ -10,6 +10,24 @@ use tritri_rtl::broad_phase::list_pass_machine::PASS_DATA_BITS;
 /// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s, 1.6 GB/s.
 pub const VERSA_GBYTES: f64 = 1.6;
 
+/// The ECP5-5G Versa board's host link: PCI Express, one Gen 2 lane, 5
+/// GT/s with 8b/10b coding, 0.5 GB/s each way before the protocol's
+/// overhead, so a transfer at this rate is the least it takes.
+pub const VERSA_LINK_GBYTES: f64 = 0.5;
+
+/// The median of `runs` runs of `f`, each timed.
+pub fn median_time(runs: usize, mut f: impl FnMut()) -> std::time::Duration {
+    let mut times: Vec<_> = (0..runs.max(1))
+        .map(|_| {
+            let started = std::time::Instant::now();
+            f();
+            started.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[times.len() / 2]
+}
+
 /// `memory` moving `gbytes` GB/s in all at `mhz`: bytes a clock as a
 /// fraction, GB/s * 1000 / MHz.
 pub fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams {
