@@ -448,6 +448,7 @@ fn print_summary(
     let clock = answer.accelerator.clock;
     if let Some(whole) = answer.end_to_end() {
         let software = answer.check.as_ref().map(|c| c.software);
+        let two_threads = answer.check.as_ref().map(|c| c.software_two_threads);
         let ratio = |t: Duration| {
             software.map_or(String::new(), |s| {
                 format!(
@@ -464,7 +465,7 @@ fn print_summary(
             clock.mhz,
             clock.source.name(),
             ratio(whole.accelerator),
-            software.map_or(String::new(), |s| format!(" the software baseline {} (box sweep + exact predicates, one thread)", human(s))),
+            software.zip(two_threads).map_or(String::new(), |(s, s2)| format!(" the software baseline {} (box sweep + exact predicates, one thread; {} on two)", human(s), human(s2))),
             human(whole.total()),
             human(whole.host),
             human(whole.redecide),
@@ -754,6 +755,7 @@ fn answer_json(args: &Args, answer: &SceneAnswer, hardware: &HardwareRun) -> ser
             "redecide": hardware.redecided.host.as_secs_f64(),
             "end_to_end": whole.map(|w| w.total().as_secs_f64()),
             "software": answer.check.as_ref().map(|c| c.software.as_secs_f64()),
+            "software_two_threads": answer.check.as_ref().map(|c| c.software_two_threads.as_secs_f64()),
         },
         "check": answer.check.as_ref().map(|c| serde_json::json!({
             "engine_vs_grid": diff(&c.engine_vs_grid),

@@ -40,7 +40,9 @@ use std::time::{Duration, Instant};
 use tritri_geom::certificate::recheck_pairs;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::octree::{LocalFrames, OctreeSchedule};
-use tritri_geom::scene::reference::{exact_f64_pairs, ExactF64Result, PairDiff, PairSet};
+use tritri_geom::scene::reference::{
+    exact_f64_pairs, exact_f64_pairs_threads, ExactF64Result, PairDiff, PairSet,
+};
 use tritri_geom::scene::{prepare, prepare_octree, PreparedScene, SceneError, SceneOptions};
 use tritri_rtl::broad_phase::binning_cost::{binning_cycles, BinningWork};
 use tritri_rtl::broad_phase::broad_phase_system::broad_phase_cycles;
@@ -650,6 +652,8 @@ pub struct Check {
     /// triangles in memory).
     pub truth: ExactF64Result,
     pub software: Duration,
+    /// The same path on two threads (the machine's cores), timed after.
+    pub software_two_threads: Duration,
     /// The grid's answer against the truth (quantization error).
     pub grid_vs_truth: PairDiff,
     /// The exact answer against the truth (empty unless a certificate is wrong).
@@ -668,6 +672,9 @@ impl Check {
         let started = Instant::now();
         let truth = exact_f64_pairs(&a.triangles, &b.triangles);
         let software = started.elapsed();
+        let started = Instant::now();
+        std::hint::black_box(exact_f64_pairs_threads(&a.triangles, &b.triangles, 2));
+        let software_two_threads = started.elapsed();
         Check {
             grid_vs_truth: PairDiff::between(&truth.pairs, &quantized),
             answer_vs_truth: PairDiff::between(&truth.pairs, answer),
@@ -675,6 +682,7 @@ impl Check {
             engine_vs_grid,
             truth,
             software,
+            software_two_threads,
         }
     }
 }

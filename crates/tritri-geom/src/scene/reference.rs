@@ -307,12 +307,16 @@ fn f64_pairs_on(
     let parts: Vec<(Vec<(u32, u32)>, u64)> = if threads == 1 {
         vec![part(0)]
     } else {
+        // Part 0 on this thread, the others on threads of their own.
         std::thread::scope(|s| {
-            let handles: Vec<_> = (0..threads).map(|k| s.spawn(move || part(k))).collect();
-            handles
-                .into_iter()
-                .map(|h| h.join().expect("sweep thread panicked"))
-                .collect()
+            let handles: Vec<_> = (1..threads).map(|k| s.spawn(move || part(k))).collect();
+            let mut parts = vec![part(0)];
+            parts.extend(
+                handles
+                    .into_iter()
+                    .map(|h| h.join().expect("sweep thread panicked")),
+            );
+            parts
         })
     };
     for (hits, decided) in parts {
