@@ -11,9 +11,9 @@
 //! Without a scene: the built-in torus and sphere.
 
 use anyhow::{ensure, Context as _};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use tritri_cosim::cgal::cgal_pairs;
-use tritri_examples::{scene_objects, take_option};
+use tritri_examples::{median_time, scene_objects, take_option};
 use tritri_geom::scene::reference::{exact_f64_pairs, exact_f64_pairs_threads};
 
 fn main() -> anyhow::Result<()> {
@@ -34,22 +34,13 @@ fn main() -> anyhow::Result<()> {
         b.name,
         b.triangles.len()
     );
-    let median = |f: &dyn Fn() -> Duration| {
-        let mut times: Vec<Duration> = (0..repeats).map(|_| f()).collect();
-        times.sort();
-        times[times.len() / 2]
-    };
     let one = exact_f64_pairs(&a.triangles, &b.triangles);
-    let ours_one = median(&|| {
-        let started = Instant::now();
+    let ours_one = median_time(repeats, || {
         std::hint::black_box(exact_f64_pairs(&a.triangles, &b.triangles));
-        started.elapsed()
     });
     let two = exact_f64_pairs_threads(&a.triangles, &b.triangles, 2);
-    let ours_two = median(&|| {
-        let started = Instant::now();
+    let ours_two = median_time(repeats, || {
         std::hint::black_box(exact_f64_pairs_threads(&a.triangles, &b.triangles, 2));
-        started.elapsed()
     });
     let cgal = cgal_pairs(&a.triangles, &b.triangles, repeats)?;
     ensure!(

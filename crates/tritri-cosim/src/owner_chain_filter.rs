@@ -12,10 +12,10 @@
 //! per owned pair, `edge index_a index_b`, `edge` the rising edge (counted
 //! from reset) at which it left.
 
+use crate::owner_filter::pairs_at_edges;
 use crate::simulator::{
     compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
 };
-use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use tritri_rtl::broad_phase::owner_chain_filter::{
     decide, hit_clocks, OwnerChainFilter, Streamed, CHAIN_LEAF_BITS, CHAIN_SLOT_BITS,
@@ -168,27 +168,8 @@ pub fn run_emitted(stream: &Streamed, simulator: Simulator) -> anyhow::Result<Ch
         .map(|[k, a, b, c, d]| format!("{k:x} {a:x} {b:x} {c:x} {d:x}\n"))
         .collect();
     let (text, _) = run_on_vectors(&compiled, "owner-chain-filter-run", &vectors, &[])?;
-    let mut run = ChainRun::default();
-    for line in text.lines() {
-        let fields: Vec<&str> = line.split_whitespace().collect();
-        if fields.len() != 3 {
-            bail!(
-                "owner chain filter output line `{line}` has {} fields, not 3",
-                fields.len()
-            );
-        }
-        let number = |s: &str, radix| {
-            u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
-        };
-        let edge = number(fields[0], 10)?;
-        run.edges.push(
-            edge.checked_sub(first_hit)
-                .with_context(|| format!("a pair left at edge {edge}, before the first hit"))?,
-        );
-        run.pairs
-            .push((number(fields[1], 16)? as u32, number(fields[2], 16)? as u32));
-    }
-    Ok(run)
+    let (pairs, edges) = pairs_at_edges(&text, first_hit, "owner chain filter")?;
+    Ok(ChainRun { pairs, edges })
 }
 
 /// The testbench: one line per clock, a hit held until taken; the reader

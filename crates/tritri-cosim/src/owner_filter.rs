@@ -153,12 +153,24 @@ pub fn run_emitted(
     let (text, _) = run_on_vectors(&compiled, "owner-filter-run", &vectors, &[])?;
     // The first hit is offered at the edge after the table writes.
     let first_hit_edge = (slots.a.len() + slots.b.len()) as u64;
-    let mut run = OwnerRun::default();
+    let (pairs, edges) = pairs_at_edges(&text, first_hit_edge, "owner filter")?;
+    Ok(OwnerRun { pairs, edges })
+}
+
+/// The pairs an owner filter's testbench wrote, `edge a b` a line (`edge`
+/// in decimal from reset, `a` and `b` in hex), and their edges counted
+/// from `first_hit_edge`; `unit` names the filter in errors.
+pub(crate) fn pairs_at_edges(
+    text: &str,
+    first_hit_edge: u64,
+    unit: &str,
+) -> anyhow::Result<(Vec<(u32, u32)>, Vec<u64>)> {
+    let (mut pairs, mut edges) = (Vec::new(), Vec::new());
     for line in text.lines() {
         let fields: Vec<&str> = line.split_whitespace().collect();
         if fields.len() != 3 {
             bail!(
-                "owner filter output line `{line}` has {} fields, not 3",
+                "{unit} output line `{line}` has {} fields, not 3",
                 fields.len()
             );
         }
@@ -166,14 +178,13 @@ pub fn run_emitted(
             u64::from_str_radix(s, radix).with_context(|| format!("`{s}` in `{line}`"))
         };
         let edge = number(fields[0], 10)?;
-        run.edges.push(
+        edges.push(
             edge.checked_sub(first_hit_edge)
                 .with_context(|| format!("a pair left at edge {edge}, before the first hit"))?,
         );
-        run.pairs
-            .push((number(fields[1], 16)? as u32, number(fields[2], 16)? as u32));
+        pairs.push((number(fields[1], 16)? as u32, number(fields[2], 16)? as u32));
     }
-    Ok(run)
+    Ok((pairs, edges))
 }
 
 /// The testbench: table writes one per clock, then each hit held until
