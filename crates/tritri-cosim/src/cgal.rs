@@ -133,6 +133,13 @@ pub fn cgal_pairs(a: &[Triangle], b: &[Triangle], repeats: usize) -> anyhow::Res
             .with_context(|| format!("CGAL's pair line `{line}`"))?;
         pairs.insert(pair);
     }
+    if times.len() != repeats.max(1) {
+        bail!(
+            "CGAL's baseline printed {} times for {} runs",
+            times.len(),
+            repeats.max(1)
+        );
+    }
     Ok(CgalRun {
         pairs,
         box_pairs: box_pairs.context("CGAL's baseline printed no `boxes` line")?,
