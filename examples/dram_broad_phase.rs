@@ -208,9 +208,12 @@ fn exact_answer_and_speed(
     memory: &MemoryParams,
     routed: Option<(f64, TopRun)>,
 ) -> anyhow::Result<()> {
-    let started = std::time::Instant::now();
+    // The answer once, then its time as the median of five (one figure
+    // for every line below).
     let software = exact_f64_pairs(&a.triangles, &b.triangles);
-    let software_time = started.elapsed();
+    let software_time = median_time(5, || {
+        std::hint::black_box(exact_f64_pairs(&a.triangles, &b.triangles));
+    });
     let started = std::time::Instant::now();
     let uncertain: BTreeSet<_> = run.uncertain.iter().copied().collect();
     let mut answer: BTreeSet<(u32, u32)> = run
@@ -236,7 +239,7 @@ fn exact_answer_and_speed(
     );
     println!();
     println!(
-        "exact answer on the f64 meshes: {} pairs, equal to the software's (box sweep + exact predicates, one thread: {:.2} ms); the host decided {} pairs again in {:.1} us",
+        "exact answer on the f64 meshes: {} pairs, equal to the software's (box sweep + exact predicates, one thread, median of five: {:.2} ms); the host decided {} pairs again in {:.1} us",
         answer.len(),
         software_time.as_secs_f64() * 1e3,
         uncertain.len(),
@@ -272,6 +275,7 @@ fn exact_answer_and_speed(
                 run.pairs.len(),
                 host_time.as_secs_f64(),
                 time(versa.cycles),
+                software,
             )?;
             // The ideal memory's bytes a clock at the routed clock.
             let gbytes = num as f64 / den as f64 * mhz * 1e6 / 1e9;
@@ -300,7 +304,7 @@ fn exact_answer_and_speed(
 /// list entries over the Versa's link, the top runs (`accelerator`
 /// seconds, at the routed clock with the Versa's memory), the `pairs` come
 /// back over the link, and the host decides the uncertain ones again
-/// (`redecide` seconds).
+/// (`redecide` seconds). `one` is the software's time on one thread.
 fn end_to_end(
     a: &SceneObject,
     b: &SceneObject,
@@ -308,6 +312,7 @@ fn end_to_end(
     pairs: usize,
     redecide: f64,
     accelerator: f64,
+    one: f64,
 ) -> anyhow::Result<()> {
     let options = SceneOptions {
         grid_bits: 16,
@@ -322,10 +327,6 @@ fn end_to_end(
     let link = |bytes: usize| bytes as f64 / (VERSA_LINK_GBYTES * 1e9);
     let (sent, back) = (kept * ENTRY_BYTES, pairs * 8);
     let whole = host + link(sent) + accelerator + link(back) + redecide;
-    let one = median_time(5, || {
-        std::hint::black_box(exact_f64_pairs(&a.triangles, &b.triangles));
-    })
-    .as_secs_f64();
     let two = median_time(5, || {
         std::hint::black_box(exact_f64_pairs_threads(&a.triangles, &b.triangles, 2));
     })

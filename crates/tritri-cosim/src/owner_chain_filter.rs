@@ -12,10 +12,8 @@
 //! per owned pair, `edge index_a index_b`, `edge` the rising edge (counted
 //! from reset) at which it left.
 
-use crate::owner_filter::pairs_at_edges;
-use crate::simulator::{
-    compile, run_on_vectors, vector_testbench, Simulator, Testbench, VectorTestbench,
-};
+use crate::owner_filter::{filter_testbench, pairs_at_edges};
+use crate::simulator::{compile, run_on_vectors, Simulator, Testbench};
 use rust_hdl::prelude::*;
 use tritri_rtl::broad_phase::owner_chain_filter::{
     decide, hit_clocks, OwnerChainFilter, Streamed, CHAIN_LEAF_BITS, CHAIN_SLOT_BITS,
@@ -177,11 +175,9 @@ pub fn run_emitted(stream: &Streamed, simulator: Simulator) -> anyhow::Result<Ch
 fn testbench(top: &str, drain: usize) -> String {
     let s1 = CHAIN_SLOT_BITS - 1;
     let l1 = CHAIN_LEAF_BITS - 1;
-    let body = format!(
+    let declarations = format!(
         "\
     reg [2:0] kind = 3'd4;
-    reg [31:0] f1, f2, f3, f4;
-    reg [63:0] edge_count = 64'd0;
     wire in_ready, out_valid, out_hit, out_certain, idle, overflow;
     wire [31:0] out_index_a, out_index_b;
     {top} dut (
@@ -194,27 +190,13 @@ fn testbench(top: &str, drain: usize) -> String {
         .out_valid(out_valid), .out_ready(1'b1), .out_index_a(out_index_a), .out_index_b(out_index_b),
         .out_hit(out_hit), .out_certain(out_certain), .idle(idle), .overflow(overflow)
     );
-
-    always @(posedge clock) if (!reset) edge_count <= edge_count + 64'd1;
-
-    // Outputs are registered, stable at the falling edge; a pair shown
-    // there leaves at the next rising edge, number edge_count.
-    always @(negedge clock) begin
-        if (!reset && out_valid) begin
-            $fwrite(outputs, \"%0d %h %h\\n\", edge_count, out_index_a, out_index_b);
-        end
-    end
 "
     );
-    vector_testbench(&VectorTestbench {
-        name: "tb_owner_chain_filter",
-        body,
-        start: "        f1 = 0; f2 = 0; f3 = 0; f4 = 0;".into(),
-        read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
-        // A hit waits, offered, until the filter is ready to take it.
-        fill: "            r = $fscanf(vectors, \"%h %h %h %h\", f1, f2, f3, f4);\n            \
-               if (kind == 3'd3) begin in_valid = 1'b1; while (!in_ready) @(negedge clock); end"
-            .into(),
+    filter_testbench(
+        "tb_owner_chain_filter",
+        &declarations,
+        ["out_index_a", "out_index_b"],
+        "3'd3",
         drain,
-    })
+    )
 }

@@ -191,11 +191,9 @@ pub(crate) fn pairs_at_edges(
 /// taken; the reader always ready; every owned pair written with its edge.
 fn testbench(top: &str, drain: usize) -> String {
     let s1 = SLOT_BITS - 1;
-    let body = format!(
+    let declarations = format!(
         "\
     reg [1:0] kind = 2'd0;
-    reg [31:0] f1, f2, f3, f4;
-    reg [63:0] edge_count = 64'd0;
     wire in_ready, out_valid;
     wire [31:0] out_id_a, out_id_b;
     wire [71:0] word = {{f2, f3[15:0], f4[{s1}:0]}};
@@ -206,27 +204,57 @@ fn testbench(top: &str, drain: usize) -> String {
         .in_valid(in_valid && kind == 2'd2), .in_ready(in_ready), .in_slot_a(f1[{s1}:0]), .in_slot_b(f2[{s1}:0]),
         .out_valid(out_valid), .out_ready(1'b1), .out_id_a(out_id_a), .out_id_b(out_id_b)
     );
+"
+    );
+    filter_testbench(
+        "tb_owner_filter",
+        &declarations,
+        ["out_id_a", "out_id_b"],
+        "2'd2",
+        drain,
+    )
+}
 
+/// What both owner filters' testbenches share around `declarations` (the
+/// `kind` register, the unit's wires and instance, reading the fields
+/// `f1`..`f4`): a line of `kind f1 f2 f3 f4` a clock, a hit (kind
+/// `hit_kind`, a Verilog literal) held until `in_ready`; the edges counted
+/// from reset; each pair `out_valid` shows written with its edge and the
+/// two output wires `pair` ([`pairs_at_edges`] reads them).
+pub(crate) fn filter_testbench(
+    name: &str,
+    declarations: &str,
+    pair: [&str; 2],
+    hit_kind: &str,
+    drain: usize,
+) -> String {
+    let [a, b] = pair;
+    let body = format!(
+        "\
+    reg [31:0] f1, f2, f3, f4;
+    reg [63:0] edge_count = 64'd0;
+{declarations}
     always @(posedge clock) if (!reset) edge_count <= edge_count + 64'd1;
 
     // Outputs are registered, stable at the falling edge; a pair shown
     // there leaves at the next rising edge, number edge_count.
     always @(negedge clock) begin
         if (!reset && out_valid) begin
-            $fwrite(outputs, \"%0d %h %h\\n\", edge_count, out_id_a, out_id_b);
+            $fwrite(outputs, \"%0d %h %h\\n\", edge_count, {a}, {b});
         end
     end
 "
     );
     vector_testbench(&VectorTestbench {
-        name: "tb_owner_filter",
+        name,
         body,
         start: "        f1 = 0; f2 = 0; f3 = 0; f4 = 0;".into(),
         read: "$fscanf(vectors, \"%h\", kind) == 1".into(),
         // A hit waits, offered, until the filter is ready to take it.
-        fill: "            r = $fscanf(vectors, \"%h %h %h %h\", f1, f2, f3, f4);\n            \
-               if (kind == 2'd2) begin in_valid = 1'b1; while (!in_ready) @(negedge clock); end"
-            .into(),
+        fill: format!(
+            "            r = $fscanf(vectors, \"%h %h %h %h\", f1, f2, f3, f4);\n            \
+             if (kind == {hit_kind}) begin in_valid = 1'b1; while (!in_ready) @(negedge clock); end"
+        ),
         drain,
     })
 }

@@ -171,6 +171,15 @@ struct SweepBox {
 }
 
 impl SweepBox {
+    /// The box both boxes hold (empty on an axis where `lo > hi`).
+    fn common(&self, other: &SweepBox) -> SweepBox {
+        SweepBox {
+            lo: std::array::from_fn(|k| self.lo[k].max(other.lo[k])),
+            hi: std::array::from_fn(|k| self.hi[k].min(other.hi[k])),
+            index: 0,
+        }
+    }
+
     /// The closed boxes overlap.
     #[inline(always)]
     fn meets(&self, other: &SweepBox) -> bool {
@@ -256,11 +265,7 @@ fn f64_pairs_on(
     };
     let mut boxes_a = boxes_within(a, &bounds_b);
     let mut boxes_b = boxes_within(b, &bounds_a);
-    let common = SweepBox {
-        lo: std::array::from_fn(|k| bounds_a.lo[k].max(bounds_b.lo[k])),
-        hi: std::array::from_fn(|k| bounds_a.hi[k].min(bounds_b.hi[k])),
-        index: 0,
-    };
+    let common = bounds_a.common(&bounds_b);
     let axis = sweep_axis(&boxes_a, &boxes_b, &common);
     boxes_a.sort_unstable_by(|x, y| x.lo[axis].total_cmp(&y.lo[axis]));
     boxes_b.sort_unstable_by(|x, y| x.lo[axis].total_cmp(&y.lo[axis]));
@@ -500,11 +505,7 @@ mod sweep_tests {
             let a = lattice_triangles(&mut rng, 200, [0, 0, 0], spread);
             let b = lattice_triangles(&mut rng, 200, [1, 1, 1], spread);
             let (ba, bb) = (bounds(&a).unwrap(), bounds(&b).unwrap());
-            let common = SweepBox {
-                lo: std::array::from_fn(|k| ba.lo[k].max(bb.lo[k])),
-                hi: std::array::from_fn(|k| ba.hi[k].min(bb.hi[k])),
-                index: 0,
-            };
+            let common = ba.common(&bb);
             let (xa, xb) = (boxes_within(&a, &bb), boxes_within(&b, &ba));
             let on = |k: usize| {
                 xa.iter()
