@@ -38,30 +38,22 @@
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;
-use tritri_cosim::dram_binning::{dram_case, run_model};
 use tritri_cosim::dram_broad_phase::{
-    exact_on_grid, once_and_exact, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
+    exact_on_grid, once_and_exact, run_top_model, run_top_rusthdl, run_top_simulator,
     uncertain_in_leaves, TopCase, TopRun,
 };
-use tritri_cosim::scene_query::Accelerator;
+use tritri_cosim::dram_query::{device_case, DramAccelerator};
+use tritri_cosim::scene_query::ClockSource;
 use tritri_cosim::simulator::Simulator;
-use tritri_examples::{
-    at_bandwidth, median_time, take_data_bits, take_option, VERSA_GBYTES, VERSA_LINK_GBYTES,
-};
+use tritri_examples::{median_time, take_data_bits, take_option, VERSA_GBYTES, VERSA_LINK_GBYTES};
 use tritri_geom::certificate::decide_again;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{exact_f64_pairs, exact_f64_pairs_threads};
 use tritri_geom::scene::{prepare, SceneOptions};
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
-use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
 use tritri_rtl::emit::dram_broad_phase_unit::emit_dram_broad_phase;
 use tritri_rtl::emit::dsp_mapping::MultiplierMapping;
-use tritri_rtl::measured::Measurements;
-use tritri_rtl::pipeline::RareCasePath;
-
-/// The owner filter's tables of the design that fits the ECP5-85.
-const TABLE: usize = 8192;
 
 fn main() -> anyhow::Result<()> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
@@ -74,10 +66,8 @@ fn main() -> anyhow::Result<()> {
         "dram_broad_phase [--data-bits 64|128|256] [--write-case DIR]",
     )?;
 
-    let mut accelerator = Accelerator::new(16);
-    accelerator.pipelines = 1;
-    accelerator.rare_cases = RareCasePath::Shared;
-    let scene = accelerator.prepare(&a, &b)?;
+    let dram = DramAccelerator::with_port(data_bits);
+    let scene = prepare(&a, &b, &dram.accelerator().scene_options())?;
     let pairs = exact_on_grid(&scene);
     println!(
         "{} x {} triangles, {} + {} in the common box on a 16-bit grid; the exact answer on the grid: {} pairs",
@@ -87,15 +77,9 @@ fn main() -> anyhow::Result<()> {
         scene.kept_b.len(),
         pairs.len(),
     );
-    let pass = ListPassConfig {
-        grid_bits: 16,
-        data_bits,
-        max_read_burst: 16,
-        outstanding: 4,
-    };
     let ideal = MemoryParams::ideal(data_bits as u64 / 8, 24);
     if let Some(dir) = write_case {
-        let case = device_case(&accelerator, &scene, pass, ideal)?;
+        let case = device_case(&dram, &scene, ideal)?;
         return write_case_files(&dir, &case);
     }
     println!();
@@ -103,14 +87,8 @@ fn main() -> anyhow::Result<()> {
     println!("|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---|");
     // The post-route clock, where the top was routed: then a memory of
     // the ECP5-5G Versa's 1.6 GB/s at that clock too.
-    // The ideal memory's case names the unit and is the first run's.
-    let mut ideal_case = Some(device_case(&accelerator, &scene, pass, ideal)?);
-    let routed = ideal_case.as_ref().and_then(|case| {
-        let unit = case.config.unit_name();
-        Measurements::committed()
-            .ecp5(&unit)
-            .map(|row| row.fmax_mhz)
-    });
+    let mut ideal_case = Some(device_case(&dram, &scene, ideal)?);
+    let routed = (dram.clock.source == ClockSource::PostRouteTop).then_some(dram.clock.mhz);
     let mut memories = vec![
         (
             format!(
@@ -127,14 +105,14 @@ fn main() -> anyhow::Result<()> {
     if let Some(mhz) = routed {
         memories.push((
             format!("{VERSA_GBYTES} GB/s at {mhz:.1} MHz, latency 24"),
-            at_bandwidth(ideal, VERSA_GBYTES, mhz),
+            ideal.at_bandwidth(VERSA_GBYTES, mhz),
         ));
     }
     let mut runs = Vec::new();
     for (name, params) in memories {
         let case = match ideal_case.take() {
             Some(case) => case,
-            None => device_case(&accelerator, &scene, pass, params)?,
+            None => device_case(&dram, &scene, params)?,
         };
         let uncertain = uncertain_in_leaves(&case)?;
         let started = std::time::Instant::now();
@@ -363,7 +341,7 @@ fn bandwidth_table(case: &TopCase, mhz: f64, software: f64) -> anyhow::Result<()
     println!("|---:|---:|---:|---:|---:|");
     for gbytes in [0.4, 0.8, 1.6, 3.2, 6.4, 12.8, 25.6] {
         let mut case = case.clone();
-        case.binning.params = at_bandwidth(case.binning.params, gbytes, mhz);
+        case.binning.params = case.binning.params.at_bandwidth(gbytes, mhz);
         let model = run_top_model(&case, 1_000_000_000)?;
         let seconds = model.tested_at as f64 / (mhz * 1e6);
         println!(
@@ -375,32 +353,6 @@ fn bandwidth_table(case: &TopCase, mhz: f64, software: f64) -> anyhow::Result<()
         );
     }
     Ok(())
-}
-
-/// The top of the design that fits the ECP5-85 on `scene`: the arena cut to what the
-/// controller's walk takes (so that the Verilog memory stays small), the
-/// owner filter's tables of [`TABLE`] words.
-fn device_case(
-    accelerator: &Accelerator,
-    scene: &tritri_geom::scene::PreparedScene,
-    pass: ListPassConfig,
-    params: MemoryParams,
-) -> anyhow::Result<TopCase> {
-    let (wide, _) = dram_case(accelerator, scene, pass, params, 256 << 20)?;
-    let (walk, _) = run_model(&wide)?;
-    let (mut case, _) = top_case(accelerator, scene, pass, params, walk.peak_arena.max(1))?;
-    for (what, need) in [
-        ("triangle indices", case.config.triangles),
-        ("entries streamed per object", case.config.slots),
-    ] {
-        anyhow::ensure!(
-            need <= TABLE,
-            "the scene needs {need} {what}; the ECP5-85 design's owner filter holds {TABLE}"
-        );
-    }
-    case.config.triangles = TABLE;
-    case.config.slots = TABLE;
-    Ok(case)
 }
 
 /// The files of `--write-case` in `dir`.

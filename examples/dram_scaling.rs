@@ -38,7 +38,7 @@ use anyhow::Context as _;
 use tritri_cosim::dram_binning::run_model;
 use tritri_cosim::dram_broad_phase::{run_top_model, top_case};
 use tritri_cosim::scene_query::Accelerator;
-use tritri_examples::{at_bandwidth, take_data_bits, take_option, VERSA_GBYTES};
+use tritri_examples::{take_data_bits, take_option, VERSA_GBYTES};
 use tritri_geom::scene::reference::exact_f64_pairs;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_pass_machine::ListPassConfig;
@@ -128,7 +128,7 @@ fn main() -> anyhow::Result<()> {
         let (versa, time) = match routed {
             Some(mhz) => {
                 let mut case = wide.clone();
-                case.binning.params = at_bandwidth(ideal, VERSA_GBYTES, mhz);
+                case.binning.params = ideal.at_bandwidth(VERSA_GBYTES, mhz);
                 let versa = run_top_model(&case, u64::MAX)?;
                 let seconds = versa.tested_at as f64 / (mhz * 1e6);
                 (

@@ -4,16 +4,9 @@
 
 use anyhow::Context as _;
 use tritri_geom::scene::load::{load_object, Pose, SceneObject};
-use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_pass_machine::PASS_DATA_BITS;
 
-/// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s, 1.6 GB/s.
-pub const VERSA_GBYTES: f64 = 1.6;
-
-/// The ECP5-5G Versa board's host link: PCI Express, one Gen 2 lane, 5
-/// GT/s with 8b/10b coding, 0.5 GB/s each way before the protocol's
-/// overhead, so a transfer at this rate is the least it takes.
-pub const VERSA_LINK_GBYTES: f64 = 0.5;
+pub use tritri_cosim::dram_query::{VERSA_GBYTES, VERSA_LINK_GBYTES};
 
 /// The median of `runs` runs of `f`, each timed.
 pub fn median_time(runs: usize, mut f: impl FnMut()) -> std::time::Duration {
@@ -26,15 +19,6 @@ pub fn median_time(runs: usize, mut f: impl FnMut()) -> std::time::Duration {
         .collect();
     times.sort();
     times[times.len() / 2]
-}
-
-/// `memory` moving `gbytes` GB/s in all at `mhz`: bytes a clock as a
-/// fraction, GB/s * 1000 / MHz.
-pub fn at_bandwidth(memory: MemoryParams, gbytes: f64, mhz: f64) -> MemoryParams {
-    MemoryParams {
-        bytes_per_clock: ((gbytes * 1000.0).round() as u64, mhz.round() as u64),
-        ..memory
-    }
 }
 
 /// The value after the option `name` in `args`, both taken out (`None`

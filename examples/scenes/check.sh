@@ -41,10 +41,10 @@ while IFS='|' read -r name args needs; do
   report=$out/$name.txt
   # shellcheck disable=SC2086
   $tritri sim $args --verbose --out "$out/$name.pairs" > "$report"
-  grep -E '^(scene|intersecting pairs on the grid|pairs tested|quantization error)' "$report" | sed "s/^/$name: /"
-  grep -q '^check: engine = exact model on the quantized coordinates .*: equal$' "$report" \
+  grep -E '^(scene|exact pairs: [0-9]+ \(|walk|DRAM)' "$report" | sed "s/^/$name: /"
+  grep -q '^check: engine against the exact model on the quantized coordinates .*: equal$' "$report" \
     || { echo "error: $name: the engine differs from the exact model ($report)" >&2; exit 1; }
-  grep -q '^quantization error (grid of [0-9]* bits): 0 pairs missing, 0 extra against exact f64$' "$report" \
+  grep -q 'quantization error on the [0-9]*-bit grid: 0 missing, 0 extra; exact pairs: 0 missing, 0 extra$' "$report" \
     || { echo "error: $name: the quantized answer differs from the exact answer on the original coordinates ($report)" >&2; exit 1; }
   if [ "$update" = 1 ]; then
     cp "$out/$name.pairs" "examples/scenes/expected/$name.pairs"

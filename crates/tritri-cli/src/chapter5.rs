@@ -20,8 +20,8 @@
 //! * fixed point: the bit-exact model on the same pairs, quantized.
 //!
 //! The last three columns are the same scene with the octree broad phase
-//! (whatever `--broad-phase` says; the other columns are the thesis's flat
-//! system): pairs tested, hardware time, and exact f64's time over it.
+//! (the other columns are the thesis's flat system): pairs tested,
+//! hardware time, and exact f64's time over it.
 //!
 //! Ratios are software time / hardware time: they compare this machine with
 //! the cycle model at the given clock, nothing more.

@@ -144,6 +144,28 @@ pub fn parse_clock_mhz(s: &str) -> Result<f64, String> {
     }
 }
 
+/// A bandwidth in GB/s, from 0.001 to 10000.
+pub fn parse_gbytes(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if (0.001..=10_000.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not a bandwidth in GB/s (a number from 0.001 to 10000)"
+        )),
+    }
+}
+
+/// An AXI4 port's data width the DRAM top is built for: 64, 128 or 256.
+pub fn parse_port_bits(s: &str) -> Result<usize, String> {
+    use tritri_rtl::broad_phase::list_pass_machine::PASS_DATA_BITS;
+    match s.trim().parse::<usize>() {
+        Ok(v) if PASS_DATA_BITS.contains(&v) => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not a port width the DRAM top is built for ({})",
+            PASS_DATA_BITS.map(|b| b.to_string()).join(", ")
+        )),
+    }
+}
+
 /// A percentage in (0, 100].
 pub fn parse_percentage(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

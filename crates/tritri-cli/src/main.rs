@@ -73,7 +73,7 @@ fn main() -> ExitCode {
     clean_up_on_interrupt();
     let matches = command_line().get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
-    let result = dispatch(cli);
+    let result = dispatch(cli, &matches);
     match result {
         Ok(code) => code,
         Err(e) => {
@@ -149,12 +149,25 @@ fn clean_up_on_interrupt() {
     }
 }
 
-/// Runs one parsed command line.
-fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
+/// The options of subcommand `name` given on the command line (not left at
+/// their defaults), by their ids (`grid_bits`): a design refuses those that
+/// do not apply to it by name.
+fn given_options(matches: &clap::ArgMatches, name: &str) -> Vec<String> {
+    let Some(sub) = matches.subcommand_matches(name) else {
+        return Vec::new();
+    };
+    sub.ids()
+        .filter(|id| sub.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine))
+        .map(|id| id.to_string())
+        .collect()
+}
+
+/// Runs one parsed command line (`matches`, its raw form).
+fn dispatch(cli: Cli, matches: &clap::ArgMatches) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Classify(args) => classify::run(args),
         Command::Eval(args) => eval::run(args),
-        Command::Sim(args) => sim::run(args),
+        Command::Sim(args) => sim::run(args, &given_options(matches, "sim")),
         Command::Chapter5(args) => chapter5::run(args),
         Command::Gen(args) => gen::run(args),
         Command::Bench(args) => bench::run(args),
@@ -165,7 +178,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Demo(args) => demo::run(args, |words| {
             let argv = std::iter::once("tritri".to_string()).chain(words);
             let matches = command_line().try_get_matches_from(argv)?;
-            dispatch(Cli::from_arg_matches(&matches)?)
+            dispatch(Cli::from_arg_matches(&matches)?, &matches)
         }),
     }
 }

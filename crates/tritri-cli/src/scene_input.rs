@@ -246,11 +246,6 @@ pub struct HardwareArgs {
     /// Clock frequency in MHz, for times (0.001 to 100000).
     #[arg(long, default_value_t = 100.0, value_name = "F", allow_negative_numbers = true, value_parser = input::parse_clock_mhz)]
     pub clock_mhz: f64,
-    /// Broad phase: `octree` subdivides the common box and schedules only
-    /// leaves holding triangles of both objects; `flat` tests every pair in
-    /// the common box (the thesis's system).
-    #[arg(long, value_enum, default_value_t = BroadPhase::Octree)]
-    pub broad_phase: BroadPhase,
     /// Bits of the one grid the scene is quantized onto (W to 32; default
     /// W). Above W, each octree leaf goes to the W-bit hardware in a frame
     /// of its own: the same W gives a finer step.
@@ -261,9 +256,10 @@ pub struct HardwareArgs {
 pub use tritri_cosim::scene_query::BroadPhase;
 
 impl HardwareArgs {
-    /// The accelerator these options describe (the rare pairs on parallel
-    /// units; `tritri sim --rare-cases` sets them), at `--clock-mhz`,
-    /// assumed. Every other fact below is the accelerator's.
+    /// The accelerator these options describe (the octree broad phase and
+    /// the rare pairs on parallel units; `tritri sim --broad-phase` and
+    /// `--rare-cases` set them), at `--clock-mhz`, assumed. Every other
+    /// fact below is the accelerator's.
     pub fn accelerator(&self) -> Accelerator {
         Accelerator {
             width: self.width,
@@ -271,7 +267,7 @@ impl HardwareArgs {
             pipelines: self.pipelines,
             depth: self.depth as u32,
             split: !self.no_split,
-            broad_phase: self.broad_phase,
+            broad_phase: BroadPhase::Octree,
             rare_cases: RareCasePath::Parallel,
             clock: Clock {
                 mhz: self.clock_mhz,

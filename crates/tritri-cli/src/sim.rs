@@ -1,19 +1,27 @@
 //! `tritri sim [--scene A B] [--pose-b tx,ty,tz,rx,ry,rz] [--scale-b S]
-//! [--width W] [--pipelines P] [--depth N] [--broad-phase octree|flat]
-//! [--grid-bits G] [--subdivide K] [--engine model|rusthdl|icarus|verilator]
-//! [--clock-mhz F] [--out PAIRS] [--grid-verdicts] [--verbose] [--json FILE]
-//! [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]]
-//! [--tolerance T] [--broad-phase-top] [--rare-cases parallel|shared]`
+//! [--subdivide K] [--engine model|rusthdl|icarus|verilator] [--out PAIRS]
+//! [--grid-verdicts] [--verbose] [--json FILE]
+//! [--png FILE [--eye X,Y,Z] [--up x|y|z] [--size PX]] [--tolerance T]
+//! [--data-bits 64|128|256] [--memory-gbytes G] [--link-gbytes G] [--clock-mhz F]
+//! [--broad-phase octree|flat [--width W] [--pipelines P] [--depth N]
+//! [--grid-bits G] [--broad-phase-top] [--rare-cases parallel|shared]
+//! [--vcd FILE]]`
 //!
 //! Two objects (without `--scene`, the built-in torus and sphere) to their
-//! exact intersecting pairs through the accelerator. The route is the
-//! library's, `tritri_cosim::scene_query::find_pairs`: the host prepares
-//! the scene (common box, one grid of G bits, the broad phase: octree
-//! leaves by default, or the thesis's flat common box;
-//! `docs/broad-phase.md`), the engine runs the accelerator, and the
-//! verdicts without a certificate (`out_certain = 0`,
+//! exact intersecting pairs through the accelerator. By default
+//! (`--broad-phase dram`) that is the design that fits the ECP5-85: the
+//! scene in DRAM behind an AXI4 port, binned, tested and reported once in
+//! hardware, timed at its post-route clock with the board's memory and
+//! link (the library's `tritri_cosim::dram_query::find_pairs_in_dram`;
+//! this command's `dram` module prints it). `--broad-phase octree` and
+//! `flat` run the on-chip design studies instead, through
+//! `tritri_cosim::scene_query::find_pairs`: the host prepares the scene
+//! (common box, one grid of G bits, the broad phase: octree leaves, or the
+//! thesis's flat common box; `docs/broad-phase.md`), the engine runs the
+//! system, and the verdicts without a certificate (`out_certain = 0`,
 //! docs/certificates.md) are decided again on the original coordinates.
-//! This command parses the options and prints the answer: four lines by
+//! An option of one design given to the other is refused by name. This
+//! command parses the options and prints the answer: four lines by
 //! default (the scene, the exact pairs, the time against the software
 //! baseline, the checks), every line of the run with `--verbose`, every
 //! figure as JSON with `--json`. The report goes to stdout, or to stderr
@@ -40,14 +48,19 @@
 //! scene's centre; `--up` names the axis pointing up) with the triangles
 //! of the written pairs highlighted: A's in red, B's in magenta.
 //!
-//! Engines (`tritri_cosim::engine`): `model` is the bit-exact fixed-point
-//! model with the system's exact cycle model; `rusthdl` simulates the
-//! system (memories, address generator, P Devillers–Guigue pipelines,
-//! result FIFO) in rust-hdl, and `icarus` and `verilator` run its emitted
-//! Verilog, all cycle by cycle (slow: use small scenes), reporting the
-//! simulated cycle count.
+//! Engines (`tritri_cosim::engine`), on the DRAM design: `model` is the
+//! top's clock-exact model with the bit-exact narrow phase on its leaves;
+//! `rusthdl` simulates the top in rust-hdl against the AXI4 memory model,
+//! and `icarus` and `verilator` run its emitted Verilog against
+//! `axi_memory.sv`, cycle by cycle, held to the model's walk and pairs
+//! (`--max-cycles` refuses a run whose model takes longer). On the design
+//! studies: `model` is the bit-exact fixed-point model with the system's
+//! exact cycle model; `rusthdl` simulates the system (memories, address
+//! generator, P Devillers–Guigue pipelines, result FIFO) in rust-hdl, and
+//! `icarus` and `verilator` run its emitted Verilog, all cycle by cycle
+//! (slow: use small scenes), reporting the simulated cycle count.
 //!
-//! Before a cycle-by-cycle run (`rusthdl`, `icarus`, `verilator`) the report gives
+//! Before a design study's cycle-by-cycle run the report gives
 //! an estimate (cycles from the cycle model, time at the engine's measured
 //! speed, vector file size); above `--max-cycles` (default: what the
 //! engine runs in about five minutes) the run is refused. The vectors are
@@ -92,6 +105,8 @@ use tritri_geom::scene::PreparedScene;
 use tritri_rtl::broad_phase::owner_filter::SLOT_WORD_BITS;
 use tritri_rtl::pipeline::pipeline_for_width::check_width;
 use tritri_rtl::pipeline::RareCasePath;
+
+mod dram;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -141,6 +156,26 @@ pub struct Args {
     png: Option<String>,
     #[command(flatten)]
     view: ViewArgs,
+    /// The design: `dram`, the accelerator that fits the ECP5-85 (the scene
+    /// in DRAM behind an AXI4 port, binned, tested and reported once in
+    /// hardware; W = 16, one pipeline, depth 256; docs/axi-port.md);
+    /// `octree` and `flat`, the on-chip design studies that --width,
+    /// --pipelines, --depth and --grid-bits set (the octree broad phase, or
+    /// every pair in the common box as in the thesis; docs/broad-phase.md).
+    #[arg(long, value_enum, default_value_t = Design::Dram)]
+    broad_phase: Design,
+    /// With --broad-phase dram: the AXI4 port's data width, 64, 128 or 256
+    /// bits [default: 256, the top routed on the ECP5-85].
+    #[arg(long, value_name = "BITS", value_parser = crate::input::parse_port_bits)]
+    data_bits: Option<usize>,
+    /// With --broad-phase dram: the DRAM's bandwidth in GB/s, reads and
+    /// writes together [default: 1.6, the ECP5-5G Versa's DDR3].
+    #[arg(long, value_name = "GB/S", allow_negative_numbers = true, value_parser = crate::input::parse_gbytes)]
+    memory_gbytes: Option<f64>,
+    /// With --broad-phase dram: the host link's bandwidth in GB/s each way
+    /// [default: 0.5, the Versa's PCI Express Gen 2 x1].
+    #[arg(long, value_name = "GB/S", allow_negative_numbers = true, value_parser = crate::input::parse_gbytes)]
+    link_gbytes: Option<f64>,
     /// With a hardware engine: run the broad-phase top (binning unit,
     /// system and owner filter: triangles in, each pair out once) on the
     /// scene instead of the system fed by the host's octree; W = 24, or
@@ -170,6 +205,58 @@ const VECTOR_BYTES_PER_TRIANGLE: u64 = 90;
 /// built-in scene, W = 24, P = 2, depth 256, 72.3 MB for 1,316 cycles).
 const VCD_BYTES_PER_CYCLE: u64 = 55_000;
 
+/// The design `tritri sim` runs (`--broad-phase`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Design {
+    /// The accelerator with its scene in DRAM (`tritri_cosim::dram_query`).
+    Dram,
+    /// The on-chip octree broad phase.
+    Octree,
+    /// The thesis's flat common box.
+    Flat,
+}
+
+/// Options of the on-chip design studies, by their ids, and of the DRAM
+/// design: each refused by name under the other.
+const STUDY_OPTIONS: [&str; 9] = [
+    "width",
+    "pipelines",
+    "depth",
+    "no_split",
+    "grid_bits",
+    "rare_cases",
+    "broad_phase_top",
+    "vcd",
+    "vcd_max_cycles",
+];
+const DRAM_OPTIONS: [&str; 3] = ["data_bits", "memory_gbytes", "link_gbytes"];
+
+/// An error naming the first option `given` on the command line that does
+/// not apply to the chosen design.
+fn refuse_options(design: Design, given: &[String]) -> Result<(), String> {
+    let flag = |id: &str| format!("--{}", id.replace('_', "-"));
+    let (refused, why) = match design {
+        Design::Dram => (
+            &STUDY_OPTIONS[..],
+            "sets the on-chip design studies (--broad-phase octree or flat); the DRAM design is fixed: W = 16 on a 16-bit grid, one pipeline, depth 256, the rare pairs on a shared unit",
+        ),
+        Design::Octree | Design::Flat => (
+            &DRAM_OPTIONS[..],
+            "applies to --broad-phase dram, the design with its scene in DRAM",
+        ),
+    };
+    match given.iter().find(|id| refused.contains(&id.as_str())) {
+        Some(id) => Err(format!(
+            "{} does not apply to --broad-phase {}: it {why}",
+            flag(id),
+            design
+                .to_possible_value()
+                .map_or(String::new(), |v| v.get_name().to_string())
+        )),
+        None => Ok(()),
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Indices {
     Triangles,
@@ -182,17 +269,32 @@ pub const DEFAULT_SCENE: [&str; 2] = ["@torus", "@sphere"];
 /// Pairs above which the model's progress is shown.
 const PROGRESS_THRESHOLD: u64 = 5_000_000;
 
-pub fn run(args: Args) -> anyhow::Result<ExitCode> {
-    let rare_cases = RareCasePath::parse(&args.rare_cases).unwrap_or_default();
-    let accelerator = Accelerator {
-        rare_cases,
-        ..args.hardware.accelerator()
-    };
-    if let Err(e) = accelerator.validate() {
+pub fn run(args: Args, given: &[String]) -> anyhow::Result<ExitCode> {
+    if let Err(e) = refuse_options(args.broad_phase, given) {
         eprintln!("error: {e}");
         return Ok(ExitCode::from(2));
     }
-    if let (true, Err(e)) = (
+    let rare_cases = RareCasePath::parse(&args.rare_cases).unwrap_or_default();
+    let accelerator = Accelerator {
+        rare_cases,
+        broad_phase: match args.broad_phase {
+            Design::Flat => BroadPhase::Flat,
+            Design::Octree | Design::Dram => BroadPhase::Octree,
+        },
+        ..args.hardware.accelerator()
+    };
+    let dram = dram::accelerator(&args, given);
+    let checked = if args.broad_phase == Design::Dram {
+        dram.validate()
+    } else {
+        accelerator.validate()
+    };
+    if let Err(e) = checked {
+        eprintln!("error: {e}");
+        return Ok(ExitCode::from(2));
+    }
+    if let (true, true, Err(e)) = (
+        args.broad_phase != Design::Dram,
         args.engine.is_hardware(),
         check_width(args.hardware.width as usize),
     ) {
@@ -204,9 +306,7 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(2));
     }
     if args.broad_phase_top
-        && (!args.engine.is_hardware()
-            || args.vcd.is_some()
-            || args.hardware.broad_phase != BroadPhase::Octree)
+        && (!args.engine.is_hardware() || args.vcd.is_some() || args.broad_phase != Design::Octree)
     {
         eprintln!("error: --broad-phase-top runs the emitted top: it needs --engine rusthdl, icarus or verilator, the octree broad phase, and no --vcd");
         return Ok(ExitCode::from(2));
@@ -295,6 +395,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if args.verbose {
         writeln!(report, "box of A: {}", show_box(&scene_box(&a)))?;
         writeln!(report, "box of B: {}", show_box(&scene_box(&b)))?;
+    }
+    if args.broad_phase == Design::Dram {
+        let files = dram::Files { output, json, png };
+        return dram::run(&args, &dram, &a, &b, files, &mut report);
     }
 
     let prepared = match prepare_query(&a, &b, &accelerator) {

@@ -60,9 +60,50 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
         (&["chapter5", "--fractions", "0"], "--fractions"),
         (&["sim", "--tessellation", "100000"], "--tessellation"),
         (
-            &["sim", "--width", "10", "--engine", "verilator"],
+            &[
+                "sim",
+                "--broad-phase",
+                "octree",
+                "--width",
+                "10",
+                "--engine",
+                "verilator",
+            ],
             "--width 10 --engine verilator",
         ),
+        // The DRAM design (the default) is fixed; the design studies take
+        // none of its board's options.
+        (
+            &["sim", "--width", "16"],
+            "--width does not apply to --broad-phase dram",
+        ),
+        (
+            &["sim", "--pipelines", "1"],
+            "--pipelines does not apply to --broad-phase dram",
+        ),
+        (
+            &["sim", "--grid-bits", "24"],
+            "--grid-bits does not apply to --broad-phase dram",
+        ),
+        (
+            &["sim", "--rare-cases", "shared"],
+            "--rare-cases does not apply to --broad-phase dram",
+        ),
+        (
+            &["sim", "--no-split"],
+            "--no-split does not apply to --broad-phase dram",
+        ),
+        (
+            &["sim", "--broad-phase", "octree", "--data-bits", "256"],
+            "--data-bits does not apply to --broad-phase octree",
+        ),
+        (
+            &["sim", "--broad-phase", "flat", "--memory-gbytes", "3.2"],
+            "--memory-gbytes does not apply to --broad-phase flat",
+        ),
+        (&["sim", "--data-bits", "100"], "--data-bits"),
+        (&["sim", "--memory-gbytes", "0"], "--memory-gbytes"),
+        (&["sim", "--link-gbytes", "-1"], "--link-gbytes"),
         (
             &["sim", "--out", "/nonexistent-directory/pairs.txt"],
             "--out",
@@ -79,21 +120,39 @@ fn out_of_range_options_are_usage_errors_naming_the_option() {
             ],
             "--max-cycles",
         ),
-        (&["sim", "--vcd", "wave.vcd"], "--vcd"),
+        (
+            &["sim", "--broad-phase", "octree", "--vcd", "wave.vcd"],
+            "--vcd needs --engine icarus or verilator",
+        ),
         (
             &[
                 "sim",
+                "--broad-phase",
+                "octree",
                 "--engine",
                 "icarus",
                 "--vcd",
                 "/nonexistent-directory/wave.vcd",
             ],
-            "--vcd",
+            "--vcd: ",
         ),
-        (&["sim", "--engine", "icarus", "--vcd", "-"], "--vcd"),
         (
             &[
                 "sim",
+                "--broad-phase",
+                "octree",
+                "--engine",
+                "icarus",
+                "--vcd",
+                "-",
+            ],
+            "--vcd -",
+        ),
+        (
+            &[
+                "sim",
+                "--broad-phase",
+                "octree",
                 "--engine",
                 "verilator",
                 "--vcd",
@@ -338,7 +397,16 @@ fn an_unwritable_output_is_refused_before_the_work() {
         ),
         (
             &[
-                "sim", "--scene", "@torus", "@sphere", "--engine", "icarus", "--vcd", "",
+                "sim",
+                "--scene",
+                "@torus",
+                "@sphere",
+                "--broad-phase",
+                "octree",
+                "--engine",
+                "icarus",
+                "--vcd",
+                "",
             ],
             "--vcd: an empty path",
         ),

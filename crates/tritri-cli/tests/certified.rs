@@ -104,7 +104,7 @@ fn sim_answer_is_exact_by_default_on_the_built_in_scene() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let report = text(&out.stdout);
     assert!(
-        report.contains("exact pairs: 113 (the grid's 114 hits; 4 verdicts without a certificate"),
+        report.contains("exact pairs: 113 (the grid's 114 hits; 37 verdicts without a certificate"),
         "{report}"
     );
     assert!(report.contains("(0 missing, 0 extra)"), "{report}");
@@ -112,12 +112,15 @@ fn sim_answer_is_exact_by_default_on_the_built_in_scene() {
     let verbose = tritri(&["sim", "--verbose"]);
     let verbose = text(&verbose.stdout);
     assert!(
-        verbose.contains("certificates: 4 pairs without one"),
+        verbose.contains("114 hits on the grid and 37 without a certificate"),
         "{verbose}"
     );
-    assert!(verbose.contains("1 extra against exact f64"), "{verbose}");
     assert!(
-        verbose.contains("exact pairs: 0 missing, 0 extra against exact f64"),
+        verbose.contains("quantization error on the 16-bit grid: 0 missing, 1 extra"),
+        "{verbose}"
+    );
+    assert!(
+        verbose.contains("exact pairs: 0 missing, 0 extra"),
         "{verbose}"
     );
     let out = tritri(&["sim", "--grid-verdicts", "--out", grid.to_str().unwrap()]);

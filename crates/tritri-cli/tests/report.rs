@@ -217,6 +217,8 @@ fn report_agrees_with_eval_sim_and_the_measurements() {
         let rare_cases = row["rare_cases"].as_str().unwrap();
         let sim = tritri(&[
             "sim",
+            "--broad-phase",
+            "octree",
             "--verbose",
             "--width",
             &w,

@@ -77,8 +77,9 @@ fn no_overlap_says_so_and_writes_no_pairs() {
     assert_eq!(std::fs::read_to_string(&pairs).unwrap(), "");
 }
 
-/// `tritri sim` alone runs the built-in scene, the common BV saves pairs,
-/// and the engine agrees with the exact model on the quantized coordinates.
+/// `tritri sim` alone runs the built-in scene on the accelerator that fits
+/// the ECP5-85 (its scene in DRAM), at that top's post-route clock with the
+/// Versa's memory, and its exact pairs are exact f64's.
 #[test]
 fn sim_alone_runs_the_default_scene() {
     let out = tritri(&["sim", "--verbose"]);
@@ -87,16 +88,19 @@ fn sim_alone_runs_the_default_scene() {
     for needle in [
         "@torus (2304 triangles)",
         "@sphere (960 triangles)",
-        "pairs tested:",
-        "of N1*N2 = 2211840",
-        "cycles:",
-        "time at 100 MHz (assumed)",
-        ": equal",
-        "quantization error (grid of 24 bits)",
-        "broad phase: octree",
+        "exact pairs: 113",
+        "at 43.6 MHz (post-route on the ECP5-85), 256-bit AXI4 port, 1.6 GB/s of DRAM",
+        "design: tritri_dram_broad_phase_g16_w16_d256_p1_t256_i8192_s8192_shared",
+        "KiB read",
+        "that traffic takes at least",
+        "over memory bandwidth",
+        "25.6 GB/s: ",
+        "(114 pairs): equal",
+        "exact pairs: 0 missing, 0 extra",
     ] {
         assert!(report.contains(needle), "missing `{needle}` in:\n{report}");
     }
+    assert!(!report.contains("assumed"), "{report}");
     // Without --verbose: the scene, the exact pairs, the time against the
     // software baseline, the check, where the details are.
     let out = tritri(&["sim"]);
@@ -111,9 +115,97 @@ fn sim_alone_runs_the_default_scene() {
         ["scene", "exact pairs", "time", "check", "details"],
         "{short}"
     );
+    // The same exact pairs as the on-chip octree design, and every figure
+    // in --json: the DRAM traffic, the memory's bound, the times.
+    let (dram, octree, json) = (
+        scratch_path("dram_default.txt"),
+        scratch_path("octree_for_dram.txt"),
+        scratch_path("dram_default.json"),
+    );
+    let o = tritri(&[
+        "sim",
+        "--out",
+        dram.to_str().unwrap(),
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let o = tritri(&[
+        "sim",
+        "--broad-phase",
+        "octree",
+        "--out",
+        octree.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    assert_eq!(
+        std::fs::read_to_string(&dram).unwrap(),
+        std::fs::read_to_string(&octree).unwrap()
+    );
+    let value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(value["accelerator"]["broad_phase"], "dram");
+    assert_eq!(value["pairs"].as_array().unwrap().len(), 113);
+    let clocks = value["clocks"].as_u64().unwrap();
+    let bound = value["dram"]["memory_bound_clocks"].as_u64().unwrap();
+    assert!(bound > 0 && clocks >= bound, "{value}");
+    assert!(value["dram"]["bytes_read"].as_u64().unwrap() > 0, "{value}");
+    let seconds = &value["seconds"];
+    let whole = seconds["end_to_end"].as_f64().unwrap();
+    let parts: f64 = ["host", "link_in", "accelerator", "link_back", "redecide"]
+        .iter()
+        .map(|k| seconds[k].as_f64().unwrap())
+        .sum();
+    assert!((whole - parts).abs() < 1e-9, "{value}");
+    assert_eq!(value["over_bandwidth"].as_array().unwrap().len(), 7);
 }
 
-/// The octree broad phase (the default) reports the flat system's pairs
+/// A faster memory never makes the top slower, and the link's bandwidth
+/// moves only the transfer's share of the end-to-end time.
+#[test]
+fn the_memory_and_the_link_are_options() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let path = scratch_path(&format!("dram-{}.json", args.join("_")));
+        let mut all = vec!["sim", "--no-compare", "--json", path.to_str().unwrap()];
+        all.extend(args);
+        let o = tritri(&all);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap()
+    };
+    let (slow, fast) = (
+        json(&["--memory-gbytes", "0.4"]),
+        json(&["--memory-gbytes", "12.8"]),
+    );
+    assert!(
+        slow["clocks"].as_u64() > fast["clocks"].as_u64(),
+        "{slow} {fast}"
+    );
+    let (narrow, wide) = (
+        json(&["--link-gbytes", "0.1"]),
+        json(&["--link-gbytes", "10"]),
+    );
+    assert_eq!(narrow["clocks"], wide["clocks"]);
+    let link = |v: &serde_json::Value| v["seconds"]["link_in"].as_f64().unwrap();
+    // (Durations are whole nanoseconds.)
+    assert!((link(&narrow) / link(&wide) - 100.0).abs() < 0.1);
+    // An assumed clock is named as such.
+    let out = tritri(&["sim", "--no-compare", "--clock-mhz", "50"]);
+    assert!(
+        text(&out.stdout).contains("at 50.0 MHz (assumed)"),
+        "{}",
+        text(&out.stdout)
+    );
+    // A port without a post-route clock is at the assumed 100 MHz.
+    let out = tritri(&["sim", "--no-compare", "--data-bits", "64"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("at 100.0 MHz (assumed), 64-bit AXI4 port"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
+/// The octree broad phase reports the flat system's pairs
 /// while testing far fewer pairs in far fewer cycles.
 #[test]
 fn octree_gives_the_flat_pairs_with_less_work() {
@@ -260,6 +352,8 @@ fn tiled_run_writes_the_same_pairs_as_untiled_with_degenerate_triangles() {
         let octree = scratch_path(&format!("octree{depth}.txt"));
         let r = tritri(&[
             "sim",
+            "--broad-phase",
+            "octree",
             "--verbose",
             "--scene",
             a.to_str().unwrap(),
@@ -406,6 +500,8 @@ fn rusthdl_engine_agrees_with_the_model() {
     let run = |engine: &str, out: &PathBuf| {
         let o = tritri(&[
             "sim",
+            "--broad-phase",
+            "octree",
             "--verbose",
             "--scene",
             a.to_str().unwrap(),
@@ -441,6 +537,8 @@ fn local_frames_give_the_answer_of_the_finer_grid() {
     let (local, flat) = (scratch_path("local.txt"), scratch_path("flat20.txt"));
     let o = tritri(&[
         "sim",
+        "--broad-phase",
+        "octree",
         "--verbose",
         "--width",
         "16",
@@ -471,7 +569,15 @@ fn local_frames_give_the_answer_of_the_finer_grid() {
         std::fs::read_to_string(&flat).unwrap()
     );
     for bad in [
-        &["sim", "--width", "24", "--grid-bits", "16"][..],
+        &[
+            "sim",
+            "--broad-phase",
+            "octree",
+            "--width",
+            "24",
+            "--grid-bits",
+            "16",
+        ][..],
         &[
             "sim",
             "--verbose",
@@ -560,6 +666,8 @@ fn tolerance_tessellates_only_what_the_query_needs() {
     let patch = scratch("wavy.bpt", &bpt);
     let out = tritri(&[
         "sim",
+        "--broad-phase",
+        "octree",
         "--verbose",
         "--scene",
         patch.to_str().unwrap(),
@@ -597,6 +705,8 @@ fn tolerance_tessellates_only_what_the_query_needs() {
     // (its triangles assembled) in it, and the contact is still found.
     let out = tritri(&[
         "sim",
+        "--broad-phase",
+        "octree",
         "--verbose",
         "--scene",
         patch.to_str().unwrap(),
@@ -645,6 +755,8 @@ fn tolerance_tessellates_only_what_the_query_needs() {
 fn broad_phase_top_runs_from_the_command_line() {
     let out = tritri(&[
         "sim",
+        "--broad-phase",
+        "octree",
         "--verbose",
         "--broad-phase-top",
         "--engine",
@@ -667,7 +779,7 @@ fn broad_phase_top_runs_from_the_command_line() {
     ] {
         assert!(report.contains(needle), "no `{needle}` in:\n{report}");
     }
-    let out = tritri(&["sim", "--broad-phase-top"]);
+    let out = tritri(&["sim", "--broad-phase", "octree", "--broad-phase-top"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         text(&out.stderr).contains("--broad-phase-top"),

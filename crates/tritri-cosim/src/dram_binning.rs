@@ -128,6 +128,22 @@ impl Beside for Pushback {
     }
 }
 
+/// The controller for `accelerator` (its split rule: the system's depth and
+/// pipelines, the levels local frames split) over passes of `pass`; the
+/// arena is the run's (empty here).
+pub fn binning_config(accelerator: &Accelerator, pass: ListPassConfig) -> DramBinningConfig {
+    DramBinningConfig {
+        pass,
+        rule: BinningParams {
+            log_depth: accelerator.depth.ilog2(),
+            log_pipelines: accelerator.pipelines.ilog2(),
+            max_leaf_level: accelerator.local_frames().map(|l| l.max_leaf_level()),
+        },
+        arena: (0, 0),
+        waiting_capacity: WAITING_CAPACITY,
+    }
+}
+
 /// The case of `scene` (prepared for `accelerator`) with its lists in a
 /// memory of `params`, the arena `arena_bytes` long, and the planner's
 /// tree for the same rule.
@@ -184,14 +200,8 @@ pub fn dram_case(
         }
     }
     let config = DramBinningConfig {
-        pass,
-        rule: BinningParams {
-            log_depth: depth.ilog2(),
-            log_pipelines: accelerator.pipelines.ilog2(),
-            max_leaf_level: local_frames.map(|l| l.max_leaf_level()),
-        },
         arena: (arena_start, arena_end),
-        waiting_capacity: WAITING_CAPACITY,
+        ..binning_config(accelerator, pass)
     };
     let case = DramCase {
         config,

@@ -10,7 +10,7 @@ use crate::scene_query::Accelerator;
 use anyhow::{bail, Context as _};
 use rust_hdl::prelude::*;
 use std::collections::BTreeSet;
-use tritri_geom::certificate::certain;
+use tritri_geom::certificate::certified_intersects;
 use tritri_geom::fixed_point::intersects;
 use tritri_geom::scene::octree::OctreeSchedule;
 use tritri_geom::scene::{PreparedScene, TaggedTriangle};
@@ -188,30 +188,58 @@ pub fn once_and_exact(got: &[(u32, u32)], want: &[(u32, u32)], what: &str) -> an
     Ok(())
 }
 
-/// The pairs without a certificate that the top must stream: every (A, B)
-/// pair that shares a leaf of the controller's walk (the model's, on the
-/// case's memory) whose verdict the certified predicate cannot certify,
-/// sorted. This depends on the leaves: two triangles a step apart on the
-/// grid may be uncertain (their originals may touch) and be tested only
-/// where they share a leaf.
-pub fn uncertain_in_leaves(case: &TopCase) -> anyhow::Result<Vec<(u32, u32)>> {
+/// What the top must stream, from the leaves of the controller's walk (the
+/// model's, on the case's memory), as the meshes number their triangles,
+/// sorted: every (A, B) pair sharing a leaf that intersects on the grid
+/// (`hits`), and every one whose verdict the certified predicate cannot
+/// certify (`uncertain`). This is the model engine's narrow phase: the
+/// owner filter passes each pair once, so the top's stream is these sets.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LeafPairs {
+    pub hits: Vec<(u32, u32)>,
+    pub uncertain: Vec<(u32, u32)>,
+    /// Pairs tested over all leaves (a pair in several leaves each time).
+    pub tested: u64,
+}
+
+/// [`LeafPairs`] of `case`'s walk.
+pub fn leaf_pairs(case: &TopCase) -> anyhow::Result<LeafPairs> {
     let (walk, _) = run_model(&case.binning)?;
     let g = case.binning.config.pass.grid_bits;
-    let mut uncertain = BTreeSet::new();
+    let (mut hits, mut uncertain) = (BTreeSet::new(), BTreeSet::new());
+    let mut tested = 0;
     for leaf in &walk.leaves {
         let [a, b] = leaf
             .entries
             .each_ref()
             .map(|list| list.iter().map(|e| unpack(e, g)).collect::<Vec<_>>());
+        tested += (a.len() * b.len()) as u64;
         for (ia, ta) in &a {
             for (ib, tb) in &b {
-                if !certain(ta, tb) {
-                    uncertain.insert((case.ids[0][*ia as usize], case.ids[1][*ib as usize]));
+                let verdict = certified_intersects(ta, tb);
+                let pair = (case.ids[0][*ia as usize], case.ids[1][*ib as usize]);
+                if verdict.hit {
+                    hits.insert(pair);
+                }
+                if !verdict.certain {
+                    uncertain.insert(pair);
                 }
             }
         }
     }
-    Ok(uncertain.into_iter().collect())
+    Ok(LeafPairs {
+        hits: hits.into_iter().collect(),
+        uncertain: uncertain.into_iter().collect(),
+        tested,
+    })
+}
+
+/// The pairs without a certificate that the top must stream
+/// ([`LeafPairs::uncertain`]). This depends on the leaves: two triangles a
+/// step apart on the grid may be uncertain (their originals may touch) and
+/// be tested only where they share a leaf.
+pub fn uncertain_in_leaves(case: &TopCase) -> anyhow::Result<Vec<(u32, u32)>> {
+    Ok(leaf_pairs(case)?.uncertain)
 }
 
 /// What a run of the top gave.

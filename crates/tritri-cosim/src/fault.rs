@@ -27,6 +27,13 @@ pub enum Fault {
     /// The binning unit's clock-exact model and the broad phase's planner
     /// give other leaves.
     BinningLeaves { unit: usize, planner: usize },
+    /// The emitted DRAM top walked the octree otherwise than its
+    /// clock-exact model: `what` differs.
+    TopWalk {
+        what: &'static str,
+        top: u64,
+        model: u64,
+    },
 }
 
 impl std::fmt::Display for Fault {
@@ -73,6 +80,10 @@ impl std::fmt::Display for Fault {
             Fault::BinningLeaves { unit, planner } => write!(
                 f,
                 "the binning unit's model streams other leaves than the broad phase's planner ({unit} against {planner}; a bug)"
+            ),
+            Fault::TopWalk { what, top, model } => write!(
+                f,
+                "the DRAM top's {what}: {top}, its clock-exact model's {model} (a bug)"
             ),
         }
     }

@@ -38,6 +38,7 @@ pub mod cgal;
 pub mod cone_unit;
 pub mod dram_binning;
 pub mod dram_broad_phase;
+pub mod dram_query;
 pub mod engine;
 pub mod fault;
 pub mod leaf_reader;

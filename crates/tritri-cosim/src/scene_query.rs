@@ -72,6 +72,9 @@ pub enum ClockSource {
     PostRouteSystem,
     /// The post-route clock of one pipeline routed alone.
     PostRoutePipeline,
+    /// The ECP5 post-route clock of the broad-phase top with its scene in
+    /// DRAM ([`crate::dram_query`]).
+    PostRouteTop,
 }
 
 impl ClockSource {
@@ -80,6 +83,7 @@ impl ClockSource {
             ClockSource::Assumed => "assumed",
             ClockSource::PostRouteSystem => "post-route, system",
             ClockSource::PostRoutePipeline => "post-route, pipeline",
+            ClockSource::PostRouteTop => "post-route on the ECP5-85",
         }
     }
 
@@ -560,12 +564,17 @@ impl PreparedQuery<'_> {
 pub const INJECT_FAULT: &str = "TRITRI_INJECT_FAULT";
 
 fn inject_fault(mut run: SceneRun) -> SceneRun {
-    if std::env::var(INJECT_FAULT).as_deref() == Ok("drop-grid-pair") {
+    if fault_injected() {
         if let Some(&first) = run.pairs.iter().next() {
             run.pairs.remove(&first);
         }
     }
     run
+}
+
+/// Whether [`INJECT_FAULT`] asks to lose a pair.
+pub(crate) fn fault_injected() -> bool {
+    std::env::var(INJECT_FAULT).as_deref() == Ok("drop-grid-pair")
 }
 
 /// Both steps: [`prepare_query`], then [`PreparedQuery::run`].
@@ -668,7 +677,19 @@ impl Check {
         grid: &PairSet,
         answer: &PairSet,
     ) -> Check {
-        let (quantized, engine_vs_grid) = check_quantized(scene, grid);
+        let (quantized, _) = check_quantized(scene, grid);
+        Check::against(quantized, a, b, grid, answer)
+    }
+
+    /// The check with the exact model's pairs on the grid given.
+    pub(crate) fn against(
+        quantized: PairSet,
+        a: &SceneObject,
+        b: &SceneObject,
+        grid: &PairSet,
+        answer: &PairSet,
+    ) -> Check {
+        let engine_vs_grid = PairDiff::between(&quantized, grid);
         let started = Instant::now();
         let truth = exact_f64_pairs(&a.triangles, &b.triangles);
         let software = started.elapsed();

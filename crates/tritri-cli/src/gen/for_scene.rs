@@ -35,7 +35,7 @@
 //! given as a lower bound). The chosen configuration is run once more in
 //! the model to measure what the README states.
 
-use crate::scene_input::{BroadPhase, HardwareArgs, SceneArgs};
+use crate::scene_input::{HardwareArgs, SceneArgs};
 use crate::stdout::out;
 use anyhow::Context;
 use std::fmt::Write as _;
@@ -304,7 +304,6 @@ fn hardware(c: &Candidate, pipelines: u32, depth: u64) -> HardwareArgs {
         depth,
         no_split: false,
         clock_mhz: 100.0,
-        broad_phase: BroadPhase::Octree,
         grid_bits: (c.grid_bits > c.width).then_some(c.grid_bits),
     }
 }

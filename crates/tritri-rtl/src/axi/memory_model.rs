@@ -80,6 +80,25 @@ impl MemoryParams {
         }
     }
 
+    /// This memory moving `gbytes` GB/s in all (reads and writes together)
+    /// for a port clocked at `mhz`: bytes a clock as the fraction
+    /// `gbytes * 1000 / mhz`, both rounded to whole numbers.
+    pub fn at_bandwidth(self, gbytes: f64, mhz: f64) -> Self {
+        MemoryParams {
+            bytes_per_clock: (
+                ((gbytes * 1000.0).round() as u64).max(1),
+                (mhz.round() as u64).max(1),
+            ),
+            ..self
+        }
+    }
+
+    /// GB/s at a port clocked at `mhz`.
+    pub fn gbytes_at(&self, mhz: f64) -> f64 {
+        let (num, den) = self.bytes_per_clock;
+        num as f64 / den as f64 * mhz * 1e6 / 1e9
+    }
+
     /// The bucket's units per beat and its size: bytes are counted in
     /// `1 / denominator`.
     fn beat_cost(&self) -> u64 {

@@ -1,0 +1,582 @@
+//! Two objects to their exact intersecting pairs on the accelerator that
+//! fits the ECP5-85: the scene in DRAM behind one AXI4 port, binned,
+//! tested and reported once in hardware
+//! ([`tritri_rtl::broad_phase::dram_broad_phase`], docs/axi-port.md). The
+//! route `tritri sim` runs by default, as one call.
+//!
+//! 1. The host culls both objects to their common box and quantizes what
+//!    is left onto a 16-bit grid (`tritri_geom::scene::prepare`): all it
+//!    does before the hardware. It writes each object's kept triangles
+//!    into DRAM as a root list (32-byte entries, their vertices inside).
+//! 2. The top bins the lists in DRAM, tests each leaf's pairs on its
+//!    W = 16 pipeline and streams each pair once, with its certificate.
+//!    On the model [`Engine`] that is the top's clock-exact model and the
+//!    bit-exact narrow phase on the model's leaves; on `rusthdl`, `icarus`
+//!    and `verilator` the emitted top itself against the AXI4 memory model,
+//!    held to the model clock for clock (binning) and pair for pair.
+//! 3. The host decides the pairs without a certificate again on the f64
+//!    coordinates: the exact answer.
+//!
+//! The time runs from the first f64 triangle on the host to the last exact
+//! pair on the host: the host's preparation, the root lists over the
+//! host's link, the top's clocks at its post-route clock with the board's
+//! memory ([`DramAccelerator::memory`]), the pairs back over the link, the
+//! re-decisions. The software baseline beside it is the project's exact
+//! path (box sweep and exact predicates, triangles in memory), which is
+//! faster than CGAL's `box_intersection_d` (`examples/software_baseline`).
+//!
+//! ```
+//! use tritri_cosim::dram_query::{find_pairs_in_dram, DramAccelerator, DramQueryOptions};
+//! use tritri_geom::scene::load::load_object;
+//! let (a, b) = (load_object("@torus", 8).unwrap(), load_object("@sphere", 8).unwrap());
+//! let answer = find_pairs_in_dram(&a, &b, &DramAccelerator::versa(), &DramQueryOptions::default()).unwrap();
+//! assert!(answer.faults.is_empty());
+//! // The exact answer on the f64 coordinates.
+//! assert_eq!(answer.pairs, answer.check.as_ref().unwrap().truth.pairs);
+//! let time = answer.end_to_end().unwrap();
+//! assert!(time.total() > time.accelerator);
+//! ```
+
+use crate::dram_binning::{binning_config, dram_case, run_model};
+use crate::dram_broad_phase::{
+    exact_on_grid, leaf_pairs, run_top_model, run_top_rusthdl, run_top_simulator, top_case,
+    TopCase, TopRun,
+};
+use crate::engine::{no_progress, Engine};
+use crate::fault::Fault;
+use crate::scene_query::{
+    fault_injected, Accelerator, Check, Clock, ClockSource, QueryError, Redecided,
+};
+use std::time::{Duration, Instant};
+use tritri_geom::certificate::recheck_pairs;
+use tritri_geom::scene::load::SceneObject;
+use tritri_geom::scene::reference::PairSet;
+use tritri_geom::scene::{prepare, PreparedScene};
+use tritri_rtl::axi::memory_model::MemoryParams;
+use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
+use tritri_rtl::broad_phase::list_pass_machine::{ListPassConfig, PASS_DATA_BITS};
+use tritri_rtl::emit::dram_broad_phase_unit::DramBroadPhaseConfig;
+use tritri_rtl::measured::Measurements;
+use tritri_rtl::pipeline::RareCasePath;
+
+/// The ECP5-5G Versa board's DDR3: 16 bits at 800 MT/s, 1.6 GB/s.
+pub const VERSA_GBYTES: f64 = 1.6;
+
+/// The ECP5-5G Versa board's host link: PCI Express, one Gen 2 lane, 5
+/// GT/s with 8b/10b coding, 0.5 GB/s each way before the protocol's
+/// overhead, so a transfer at this rate is the least it takes.
+pub const VERSA_LINK_GBYTES: f64 = 0.5;
+
+/// Words of the owner filter's tables in the design that fits the
+/// ECP5-85 (its head and record tables take 80 of the 208 block RAMs):
+/// the triangles of each object in the common box, and the entries a
+/// leaf streams per object, are at most this.
+pub const TABLE_WORDS: usize = 8192;
+
+/// Clocks from a burst's address to its first beat in the memory model.
+pub const DRAM_LATENCY: u64 = 24;
+
+/// Bytes a pair takes on its way back to the host (two 32-bit indices).
+pub const PAIR_BYTES: u64 = 8;
+
+/// The arena the first walk may use, before it is cut to the walk's peak.
+const WIDE_ARENA: u64 = 64 << 20;
+
+/// The accelerator that fits the ECP5-85, and the board around it. Its
+/// system is fixed: W = 16 pipelines on a 16-bit grid, one pipeline, depth
+/// 256, the rare pairs on a shared unit, the owner filter's tables of
+/// [`TABLE_WORDS`] (`tritri gen --dram-broad-phase --width 16 --pipelines
+/// 1 --rare-cases shared --triangles 8192 --slots 8192 --data-bits DW`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DramAccelerator {
+    /// The AXI4 port's data width: 64, 128 or 256 bits.
+    pub data_bits: usize,
+    /// The memory's bandwidth, reads and writes together.
+    pub memory_gbytes: f64,
+    /// The host link's bandwidth, each way.
+    pub link_gbytes: f64,
+    /// The top's clock: its post-route clock where it was routed
+    /// (rtl-out/measurements.json), else assumed.
+    pub clock: Clock,
+}
+
+impl DramAccelerator {
+    /// The 256-bit top, routed on the ECP5-85, with the ECP5-5G Versa's
+    /// DDR3 and PCIe link.
+    pub fn versa() -> Self {
+        Self::with_port(256)
+    }
+
+    /// The top on a `data_bits` port with the Versa's memory and link, at
+    /// that top's post-route clock, or at the assumed 100 MHz if it has
+    /// none.
+    pub fn with_port(data_bits: usize) -> Self {
+        let mut dram = DramAccelerator {
+            data_bits,
+            memory_gbytes: VERSA_GBYTES,
+            link_gbytes: VERSA_LINK_GBYTES,
+            clock: Clock::ASSUMED,
+        };
+        if let Some(row) = Measurements::committed().ecp5(&dram.unit_name()) {
+            dram.clock = Clock {
+                mhz: row.fmax_mhz,
+                source: ClockSource::PostRouteTop,
+            };
+        }
+        dram
+    }
+
+    /// Why these parameters do not make the top, naming the option.
+    pub fn validate(&self) -> Result<(), String> {
+        if !PASS_DATA_BITS.contains(&self.data_bits) {
+            return Err(format!(
+                "--data-bits {}: the port is {:?} bits wide",
+                self.data_bits, PASS_DATA_BITS
+            ));
+        }
+        for (option, value) in [
+            ("--memory-gbytes", self.memory_gbytes),
+            ("--link-gbytes", self.link_gbytes),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(format!("{option} {value}: a bandwidth above 0 GB/s"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The collision system inside the top, and the grid the host
+    /// prepares the scene for.
+    pub fn accelerator(&self) -> Accelerator {
+        Accelerator {
+            pipelines: 1,
+            rare_cases: RareCasePath::Shared,
+            clock: self.clock,
+            ..Accelerator::new(16)
+        }
+    }
+
+    /// One pass of the binning over the port.
+    pub fn pass(&self) -> ListPassConfig {
+        ListPassConfig {
+            grid_bits: 16,
+            data_bits: self.data_bits,
+            max_read_burst: 16,
+            outstanding: 4,
+        }
+    }
+
+    /// The emitted top's parameters (the arena is the run's).
+    pub fn top_config(&self) -> DramBroadPhaseConfig {
+        DramBroadPhaseConfig {
+            binning: binning_config(&self.accelerator(), self.pass()),
+            system: self.accelerator().system_config(),
+            triangles: TABLE_WORDS,
+            slots: TABLE_WORDS,
+            local_frames: false,
+            rare_cases: RareCasePath::Shared,
+        }
+    }
+
+    /// The emitted top's name (`tritri gen` writes it under this name).
+    pub fn unit_name(&self) -> String {
+        self.top_config().unit_name()
+    }
+
+    /// The memory: [`DRAM_LATENCY`], at most a beat a clock each way, and
+    /// `memory_gbytes` in all at the top's clock.
+    pub fn memory(&self) -> MemoryParams {
+        MemoryParams::ideal(self.data_bits as u64 / 8, DRAM_LATENCY)
+            .at_bandwidth(self.memory_gbytes, self.clock.mhz)
+    }
+
+    /// `bytes` over the host link.
+    pub fn link_time(&self, bytes: u64) -> Duration {
+        Duration::from_secs_f64(bytes as f64 / (self.link_gbytes * 1e9))
+    }
+}
+
+/// How [`find_pairs_in_dram`] runs.
+#[derive(Clone, Copy)]
+pub struct DramQueryOptions<'a> {
+    pub engine: Engine,
+    /// Hold the answer to the exact model on the grid and to exact f64 on
+    /// the originals, and time the software baseline.
+    pub check: bool,
+    /// A hardware engine stops past this many clocks (an error).
+    pub max_clocks: Option<u64>,
+    /// Told of the top's clocks as the model counts them, once it ran.
+    pub progress: &'a (dyn Fn(u64) + Sync),
+}
+
+impl Default for DramQueryOptions<'static> {
+    fn default() -> Self {
+        DramQueryOptions {
+            engine: Engine::Model,
+            check: true,
+            max_clocks: None,
+            progress: &no_progress,
+        }
+    }
+}
+
+/// The top's run on a scene whose boxes meet.
+#[derive(Clone, Debug)]
+pub struct DramRun {
+    /// The engine's run: the pairs it streamed (as the meshes number their
+    /// triangles), its clocks and the memory's beats. On the model engine,
+    /// the model's clocks with the model's leaves' pairs.
+    pub top: TopRun,
+    /// The clock-exact model's run on the same memory.
+    pub model: TopRun,
+    /// The case: the memory as the host leaves it, the top's inputs.
+    pub case: TopCase,
+    /// Pairs the leaves held, tested one by one (with repeats).
+    pub pairs_tested: u64,
+    pub redecided: Redecided,
+}
+
+impl DramRun {
+    /// Clocks from `start` to the last pair out: the emitted top's `done`,
+    /// or the model's last verdict (the model leaves out the result FIFO's
+    /// back-pressure and the shared rare-case unit's holds; the owner
+    /// filter finished with the last verdict on every co-simulated scene).
+    pub fn clocks(&self) -> u64 {
+        self.top.cycles
+    }
+
+    /// Bytes the top read from and wrote to DRAM.
+    pub fn dram_bytes(&self) -> (u64, u64) {
+        let beat = self.case.binning.params.beat_bytes;
+        (self.top.beats_read * beat, self.top.beats_written * beat)
+    }
+
+    /// The fewest clocks that traffic takes on this memory: a beat a clock
+    /// each way, and the memory's bytes a clock in all.
+    pub fn memory_bound(&self) -> u64 {
+        let params = &self.case.binning.params;
+        let (read, written) = self.dram_bytes();
+        let (num, den) = params.bytes_per_clock;
+        let total = ((read + written) * den).div_ceil(num);
+        self.top.beats_read.max(self.top.beats_written).max(total)
+    }
+
+    /// Bytes the host writes into DRAM: both root lists.
+    pub fn bytes_in(&self) -> u64 {
+        let [a, b] = self.case.binning.root_lists.map(|(_, n)| n);
+        (a + b) * ENTRY_BYTES as u64
+    }
+
+    /// Bytes of the pairs streamed back (each pair once, hit or uncertain).
+    pub fn bytes_back(&self) -> u64 {
+        let mut streamed: PairSet = self.top.pairs.iter().copied().collect();
+        streamed.extend(self.top.uncertain.iter().copied());
+        streamed.len() as u64 * PAIR_BYTES
+    }
+}
+
+/// One row of [`DramAnswer::over_bandwidth`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BandwidthRow {
+    pub gbytes: f64,
+    /// The model's clocks to the last verdict with that memory.
+    pub clocks: u64,
+    pub time: Duration,
+}
+
+/// From the first f64 triangle on the host to the last exact pair on the
+/// host.
+#[derive(Clone, Copy, Debug)]
+pub struct DramEndToEnd {
+    /// Cull and quantize.
+    pub host: Duration,
+    /// The root lists to the board.
+    pub link_in: Duration,
+    pub clocks: u64,
+    /// The top's clocks at its clock.
+    pub accelerator: Duration,
+    /// The pairs back.
+    pub link_back: Duration,
+    /// The uncertain pairs decided again.
+    pub redecide: Duration,
+}
+
+impl DramEndToEnd {
+    pub fn total(&self) -> Duration {
+        self.host + self.link_in + self.accelerator + self.link_back + self.redecide
+    }
+}
+
+/// A query's answer and every figure of its run.
+pub struct DramAnswer {
+    /// The exact answer on the user's f64 coordinates: pairs `(i, j)` of
+    /// A's and B's triangles that intersect.
+    pub pairs: PairSet,
+    pub engine: Engine,
+    pub dram: DramAccelerator,
+    pub scene: PreparedScene,
+    /// The host's preparation (cull and quantize).
+    pub host: Duration,
+    /// `None` when the objects' boxes do not meet: no pair can intersect.
+    pub run: Option<DramRun>,
+    /// What says the hardware or a model is wrong (each a bug).
+    pub faults: Vec<Fault>,
+    /// With [`DramQueryOptions::check`], on a scene whose boxes meet.
+    pub check: Option<Check>,
+}
+
+impl DramAnswer {
+    /// The grid's own verdicts (the raw hardware answer).
+    pub fn grid_pairs(&self) -> PairSet {
+        self.run
+            .as_ref()
+            .map_or_else(PairSet::new, |r| r.top.pairs.iter().copied().collect())
+    }
+
+    pub fn end_to_end(&self) -> Option<DramEndToEnd> {
+        let run = self.run.as_ref()?;
+        Some(DramEndToEnd {
+            host: self.host,
+            link_in: self.dram.link_time(run.bytes_in()),
+            clocks: run.clocks(),
+            accelerator: self.dram.clock.time_of(run.clocks()),
+            link_back: self.dram.link_time(run.bytes_back()),
+            redecide: run.redecided.host,
+        })
+    }
+
+    /// The software baseline over the end-to-end time.
+    pub fn speedup(&self) -> Option<f64> {
+        let software = self.check.as_ref()?.software.as_secs_f64();
+        let whole = self.end_to_end()?.total().as_secs_f64();
+        Some(software / whole.max(f64::MIN_POSITIVE))
+    }
+
+    /// The model's clocks and time at the top's clock with memories of
+    /// `gbytes` GB/s (latency and port as [`DramAccelerator::memory`]), so
+    /// that a user of a larger board reads their own row.
+    pub fn over_bandwidth(&self, gbytes: &[f64]) -> Result<Vec<BandwidthRow>, QueryError> {
+        let Some(run) = &self.run else {
+            return Ok(Vec::new());
+        };
+        gbytes
+            .iter()
+            .map(|&g| {
+                let mut case = run.case.clone();
+                let dram = DramAccelerator {
+                    memory_gbytes: g,
+                    ..self.dram
+                };
+                case.binning.params = dram.memory();
+                let model = run_top_model(&case, u64::MAX).map_err(QueryError::Failed)?;
+                Ok(BandwidthRow {
+                    gbytes: g,
+                    clocks: model.tested_at,
+                    time: self.dram.clock.time_of(model.tested_at),
+                })
+            })
+            .collect()
+    }
+}
+
+/// The memories of [`DramAnswer::over_bandwidth`]'s table: 0.4 to 25.6
+/// GB/s, the Versa's 1.6 among them.
+pub const BANDWIDTHS: [f64; 7] = [0.4, 0.8, 1.6, 3.2, 6.4, 12.8, 25.6];
+
+/// The case of `scene` for the top of `dram` on a memory of `params`
+/// (`dram.memory()` for the board's): the walk run once on a wide arena,
+/// then the arena cut to its peak (so that a simulator's memory stays
+/// small), the owner filter's tables of [`TABLE_WORDS`]. A scene that
+/// needs larger tables is refused, naming what it needs.
+pub fn device_case(
+    dram: &DramAccelerator,
+    scene: &PreparedScene,
+    params: MemoryParams,
+) -> Result<TopCase, QueryError> {
+    let (accelerator, pass) = (dram.accelerator(), dram.pass());
+    let failed = QueryError::Failed;
+    let (wide, _) = dram_case(&accelerator, scene, pass, params, WIDE_ARENA).map_err(failed)?;
+    let (walk, _) = run_model(&wide).map_err(failed)?;
+    if walk.arena_full != 0 {
+        return Err(QueryError::Unsupported(format!(
+            "the scene's lists need more than {} MiB of DRAM arena",
+            WIDE_ARENA >> 20
+        )));
+    }
+    let (mut case, _) =
+        top_case(&accelerator, scene, pass, params, walk.peak_arena.max(1)).map_err(failed)?;
+    for (what, need) in [
+        (
+            "triangles of one object in the common box",
+            case.config.triangles,
+        ),
+        ("entries of one object in a leaf", case.config.slots),
+    ] {
+        if need > TABLE_WORDS {
+            return Err(QueryError::Unsupported(format!(
+                "the scene has {need} {what}; the owner filter of the design that fits the ECP5-85 holds {TABLE_WORDS}"
+            )));
+        }
+    }
+    case.config.triangles = TABLE_WORDS;
+    case.config.slots = TABLE_WORDS;
+    Ok(case)
+}
+
+/// Runs the top of `dram` on `a` and `b` and returns the exact answer.
+pub fn find_pairs_in_dram(
+    a: &SceneObject,
+    b: &SceneObject,
+    dram: &DramAccelerator,
+    options: &DramQueryOptions,
+) -> Result<DramAnswer, QueryError> {
+    dram.validate().map_err(QueryError::Unsupported)?;
+    let accelerator = dram.accelerator();
+    let started = Instant::now();
+    let scene = prepare(a, b, &accelerator.scene_options())?;
+    let host = started.elapsed();
+    let mut answer = DramAnswer {
+        pairs: PairSet::new(),
+        engine: options.engine,
+        dram: *dram,
+        scene,
+        host,
+        run: None,
+        faults: Vec::new(),
+        check: None,
+    };
+    if answer.scene.integer_box.is_none() {
+        return Ok(answer);
+    }
+    let case = device_case(dram, &answer.scene, dram.memory())?;
+    let run = run_engine(case, a, b, options, &mut answer.faults)?;
+    answer.pairs = run.redecided.pairs.clone();
+    answer.run = Some(run);
+    if options.check {
+        let grid = answer.grid_pairs();
+        let quantized: PairSet = exact_on_grid(&answer.scene).into_iter().collect();
+        let check = Check::against(quantized, a, b, &grid, &answer.pairs);
+        if !check.engine_vs_grid.is_empty() {
+            answer.faults.push(Fault::DiffersFromGrid {
+                engine: options.engine,
+                missing: check.engine_vs_grid.missing.clone(),
+                extra: check.engine_vs_grid.extra.clone(),
+            });
+        }
+        answer.check = Some(check);
+    }
+    Ok(answer)
+}
+
+/// The model, then the engine's run held to it, then the re-decisions.
+fn run_engine(
+    case: TopCase,
+    a: &SceneObject,
+    b: &SceneObject,
+    options: &DramQueryOptions,
+    faults: &mut Vec<Fault>,
+) -> Result<DramRun, QueryError> {
+    let mut model = run_top_model(&case, u64::MAX).map_err(QueryError::Failed)?;
+    model.cycles = model.tested_at;
+    let leaves = leaf_pairs(&case).map_err(QueryError::Failed)?;
+    let limit = options
+        .max_clocks
+        .unwrap_or(u64::MAX)
+        .min(model.cycles.saturating_mul(4).max(100_000));
+    if let Some(max) = options.max_clocks {
+        if options.engine.is_hardware() && model.cycles > max {
+            return Err(QueryError::Unsupported(format!(
+                "the top takes {} clocks (its model), above --max-cycles {max}",
+                model.cycles
+            )));
+        }
+    }
+    let top = match (options.engine, options.engine.simulator()) {
+        (Engine::Model, _) => TopRun {
+            pairs: leaves.hits.clone(),
+            uncertain: leaves.uncertain.clone(),
+            pairs_tested: leaves.tested,
+            ..model.clone()
+        },
+        (_, Some(simulator)) => {
+            run_top_simulator(simulator, &case, limit).map_err(QueryError::Failed)?
+        }
+        (_, None) => run_top_rusthdl(&case, limit).map_err(QueryError::Failed)?,
+    };
+    let mut top = top;
+    if fault_injected() && !top.pairs.is_empty() {
+        top.pairs.remove(0);
+    }
+    (options.progress)(top.cycles);
+    if options.engine.is_hardware() {
+        faults.extend(top_faults(&top, &model, &leaves.uncertain));
+    }
+    let uncertain: PairSet = top.uncertain.iter().copied().collect();
+    let grid: PairSet = top.pairs.iter().copied().collect();
+    let started = Instant::now();
+    let redecided = recheck_pairs(&grid, &uncertain, &a.triangles, &b.triangles);
+    let redecide = started.elapsed();
+    Ok(DramRun {
+        top,
+        model,
+        case,
+        pairs_tested: leaves.tested,
+        redecided: Redecided {
+            pairs: redecided.pairs,
+            changed: redecided.changed,
+            host: redecide,
+        },
+    })
+}
+
+/// Where the emitted top's run differs from its model's: a flag raised,
+/// a pair streamed twice, other uncertain pairs than the leaves hold,
+/// another walk, or a last verdict before the model's (the model leaves
+/// out only holds, so it is never later).
+fn top_faults(top: &TopRun, model: &TopRun, uncertain: &[(u32, u32)]) -> Vec<Fault> {
+    let mut faults = Vec::new();
+    if top.error || top.overflow || top.faults != 0 {
+        faults.push(Fault::Overflow {
+            what: "the DRAM top's error, overflow or memory fault",
+        });
+    }
+    let streamed: PairSet = top.pairs.iter().copied().collect();
+    if streamed.len() != top.pairs.len() {
+        faults.push(Fault::OwnerDuplicates {
+            through: top.pairs.len() as u64,
+            distinct: streamed.len() as u64,
+        });
+    }
+    let top_uncertain: PairSet = top.uncertain.iter().copied().collect();
+    if top_uncertain != uncertain.iter().copied().collect::<PairSet>() {
+        faults.push(Fault::TopPairs {
+            top: top_uncertain.len(),
+            model: uncertain.len(),
+        });
+    }
+    for (what, got, want) in [
+        ("leaves", top.leaves, model.leaves),
+        ("passes", top.passes, model.passes),
+        (
+            "clock of the last leaf binned",
+            top.binned_at,
+            model.binned_at,
+        ),
+    ] {
+        if got != want {
+            faults.push(Fault::TopWalk {
+                what,
+                top: got,
+                model: want,
+            });
+        }
+    }
+    if top.tested_at < model.tested_at {
+        faults.push(Fault::Cycles {
+            simulated: top.tested_at,
+            low: model.tested_at,
+            high: u64::MAX,
+        });
+    }
+    faults
+}
