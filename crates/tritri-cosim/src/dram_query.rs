@@ -48,10 +48,12 @@ use crate::scene_query::{
     fault_injected, Accelerator, Check, Clock, ClockSource, QueryError, Redecided,
 };
 use std::time::{Duration, Instant};
+use tritri_geom::bounding_volume::grown_triangle_touches_box;
 use tritri_geom::certificate::recheck_pairs;
+use tritri_geom::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
-use tritri_geom::scene::{prepare, PreparedScene};
+use tritri_geom::scene::{prepare, PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
 use tritri_rtl::broad_phase::list_pass_machine::{ListPassConfig, PASS_DATA_BITS};
@@ -229,8 +231,11 @@ pub struct DramRun {
     pub top: TopRun,
     /// The clock-exact model's run on the same memory.
     pub model: TopRun,
-    /// The case: the memory as the host leaves it, the top's inputs.
-    pub case: TopCase,
+    /// The regions' cases, run one after another (one unless the scene
+    /// overflows the owner filter's tables, [`fitting_cases`]): the memory
+    /// as the host leaves it, the top's inputs. The runs above are their
+    /// sums.
+    pub cases: Vec<TopCase>,
     /// Pairs the leaves held, tested one by one (with repeats).
     pub pairs_tested: u64,
     pub redecided: Redecided,
@@ -245,26 +250,39 @@ impl DramRun {
         self.top.cycles
     }
 
+    /// The memory every region ran with.
+    pub fn memory(&self) -> MemoryParams {
+        self.cases.first().map_or_else(
+            || MemoryParams::ideal(32, DRAM_LATENCY),
+            |c| c.binning.params,
+        )
+    }
+
     /// Bytes the top read from and wrote to DRAM.
     pub fn dram_bytes(&self) -> (u64, u64) {
-        let beat = self.case.binning.params.beat_bytes;
+        let beat = self.memory().beat_bytes;
         (self.top.beats_read * beat, self.top.beats_written * beat)
     }
 
     /// The fewest clocks that traffic takes on this memory: a beat a clock
     /// each way, and the memory's bytes a clock in all.
     pub fn memory_bound(&self) -> u64 {
-        let params = &self.case.binning.params;
+        let params = self.memory();
         let (read, written) = self.dram_bytes();
         let (num, den) = params.bytes_per_clock;
         let total = ((read + written) * den).div_ceil(num);
         self.top.beats_read.max(self.top.beats_written).max(total)
     }
 
-    /// Bytes the host writes into DRAM: both root lists.
+    /// Bytes the host writes into DRAM: both root lists of every region.
     pub fn bytes_in(&self) -> u64 {
-        let [a, b] = self.case.binning.root_lists.map(|(_, n)| n);
-        (a + b) * ENTRY_BYTES as u64
+        self.cases
+            .iter()
+            .map(|c| {
+                let [a, b] = c.binning.root_lists.map(|(_, n)| n);
+                (a + b) * ENTRY_BYTES as u64
+            })
+            .sum()
     }
 
     /// Bytes of the pairs streamed back (each pair once, hit or uncertain).
@@ -362,17 +380,22 @@ impl DramAnswer {
         gbytes
             .iter()
             .map(|&g| {
-                let mut case = run.case.clone();
                 let dram = DramAccelerator {
                     memory_gbytes: g,
                     ..self.dram
                 };
-                case.binning.params = dram.memory();
-                let model = run_top_model(&case, u64::MAX).map_err(QueryError::Failed)?;
+                let mut clocks = 0;
+                for case in &run.cases {
+                    let mut case = case.clone();
+                    case.binning.params = dram.memory();
+                    clocks += run_top_model(&case, u64::MAX)
+                        .map_err(QueryError::Failed)?
+                        .tested_at;
+                }
                 Ok(BandwidthRow {
                     gbytes: g,
-                    clocks: model.tested_at,
-                    time: self.dram.clock.time_of(model.tested_at),
+                    clocks,
+                    time: self.dram.clock.time_of(clocks),
                 })
             })
             .collect()
@@ -387,12 +410,26 @@ pub const BANDWIDTHS: [f64; 7] = [0.4, 0.8, 1.6, 3.2, 6.4, 12.8, 25.6];
 /// (`dram.memory()` for the board's): the walk run once on a wide arena,
 /// then the arena cut to its peak (so that a simulator's memory stays
 /// small), the owner filter's tables of [`TABLE_WORDS`]. A scene that
-/// needs larger tables is refused, naming what it needs.
+/// needs larger tables is refused, naming what it needs
+/// ([`fitting_cases`] cuts it into regions instead).
 pub fn device_case(
     dram: &DramAccelerator,
     scene: &PreparedScene,
     params: MemoryParams,
 ) -> Result<TopCase, QueryError> {
+    case_within_tables(dram, scene, params)?.map_err(|need| {
+        QueryError::Unsupported(format!(
+            "the scene has {need}; the owner filter of the design that fits the ECP5-85 holds {TABLE_WORDS}"
+        ))
+    })
+}
+
+/// [`device_case`], or what the scene needs that the tables do not hold.
+fn case_within_tables(
+    dram: &DramAccelerator,
+    scene: &PreparedScene,
+    params: MemoryParams,
+) -> Result<Result<TopCase, String>, QueryError> {
     let (accelerator, pass) = (dram.accelerator(), dram.pass());
     let failed = QueryError::Failed;
     let (wide, _) = dram_case(&accelerator, scene, pass, params, WIDE_ARENA).map_err(failed)?;
@@ -410,17 +447,95 @@ pub fn device_case(
             "triangles of one object in the common box",
             case.config.triangles,
         ),
-        ("entries of one object in a leaf", case.config.slots),
+        (
+            "entries of one object streamed over the run",
+            case.config.slots,
+        ),
     ] {
         if need > TABLE_WORDS {
-            return Err(QueryError::Unsupported(format!(
-                "the scene has {need} {what}; the owner filter of the design that fits the ECP5-85 holds {TABLE_WORDS}"
-            )));
+            return Ok(Err(format!("{need} {what}")));
         }
     }
     case.config.triangles = TABLE_WORDS;
     case.config.slots = TABLE_WORDS;
-    Ok(case)
+    Ok(Ok(case))
+}
+
+/// Halvings of a region before a scene is refused: a region a grid step
+/// wide that still overflows the tables (thousands of triangles through
+/// one point) cannot be cut further.
+const MAX_SPLITS: u32 = 24;
+
+/// The cases that cover `scene` within the owner filter's tables: the
+/// whole common box if its tables hold it; else its two halves along the
+/// longest axis, each with the kept triangles whose grown triangle touches
+/// it (the host's own cull, `grown_triangle_touches_box`), each cut again
+/// until it fits. The top runs them one after another. Every intersecting
+/// pair is found: its triangles share a point, which lies in some region
+/// (the regions cover the common box, and the point is in it), and both
+/// touch that region, so both are in its lists; a pair found in two
+/// regions is one pair of the answer. Halves without both objects are
+/// skipped: no pair can be there.
+pub fn fitting_cases(
+    dram: &DramAccelerator,
+    scene: &PreparedScene,
+    params: MemoryParams,
+) -> Result<Vec<TopCase>, QueryError> {
+    let mut cases = Vec::new();
+    cut_to_fit(dram, scene, params, 0, &mut cases)?;
+    Ok(cases)
+}
+
+fn cut_to_fit(
+    dram: &DramAccelerator,
+    region: &PreparedScene,
+    params: MemoryParams,
+    splits: u32,
+    cases: &mut Vec<TopCase>,
+) -> Result<(), QueryError> {
+    let need = match case_within_tables(dram, region, params)? {
+        Ok(case) => {
+            cases.push(case);
+            return Ok(());
+        }
+        Err(need) => need,
+    };
+    let Some(bounds) = region.integer_box else {
+        return Ok(());
+    };
+    let axis = (0..3)
+        .max_by_key(|&k| bounds.hi[k] - bounds.lo[k])
+        .unwrap_or(0);
+    if splits >= MAX_SPLITS || bounds.hi[axis] - bounds.lo[axis] < 2 {
+        return Err(QueryError::Unsupported(format!(
+            "a region of the scene {} grid steps wide has {need}; the owner filter of the design that fits the ECP5-85 holds {TABLE_WORDS}",
+            bounds.hi[axis] - bounds.lo[axis]
+        )));
+    }
+    let middle = bounds.lo[axis] + (bounds.hi[axis] - bounds.lo[axis]) / 2;
+    let (mut low, mut high) = (bounds, bounds);
+    low.hi[axis] = middle;
+    high.lo[axis] = middle;
+    for half in [low, high] {
+        let touching = |list: &[TaggedTriangle]| -> Vec<TaggedTriangle> {
+            list.iter()
+                .filter(|t| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &half))
+                .copied()
+                .collect()
+        };
+        let (kept_a, kept_b) = (touching(&region.kept_a), touching(&region.kept_b));
+        if kept_a.is_empty() || kept_b.is_empty() {
+            continue;
+        }
+        let part = PreparedScene {
+            integer_box: Some(half),
+            kept_a,
+            kept_b,
+            ..region.clone()
+        };
+        cut_to_fit(dram, &part, params, splits + 1, cases)?;
+    }
+    Ok(())
 }
 
 /// Runs the top of `dram` on `a` and `b` and returns the exact answer.
@@ -448,8 +563,8 @@ pub fn find_pairs_in_dram(
     if answer.scene.integer_box.is_none() {
         return Ok(answer);
     }
-    let case = device_case(dram, &answer.scene, dram.memory())?;
-    let run = run_engine(case, a, b, options, &mut answer.faults)?;
+    let cases = fitting_cases(dram, &answer.scene, dram.memory())?;
+    let run = run_engine(cases, a, b, options, &mut answer.faults)?;
     answer.pairs = run.redecided.pairs.clone();
     answer.run = Some(run);
     if options.check {
@@ -468,65 +583,92 @@ pub fn find_pairs_in_dram(
     Ok(answer)
 }
 
-/// The model, then the engine's run held to it, then the re-decisions.
+/// Each region's model, then the engine's run held to it, one region
+/// after another; then the re-decisions.
 fn run_engine(
-    case: TopCase,
+    cases: Vec<TopCase>,
     a: &SceneObject,
     b: &SceneObject,
     options: &DramQueryOptions,
     faults: &mut Vec<Fault>,
 ) -> Result<DramRun, QueryError> {
-    let mut model = run_top_model(&case, u64::MAX).map_err(QueryError::Failed)?;
-    model.cycles = model.tested_at;
-    let leaves = leaf_pairs(&case).map_err(QueryError::Failed)?;
-    let limit = options
-        .max_clocks
-        .unwrap_or(u64::MAX)
-        .min(model.cycles.saturating_mul(4).max(100_000));
-    if let Some(max) = options.max_clocks {
-        if options.engine.is_hardware() && model.cycles > max {
-            return Err(QueryError::Unsupported(format!(
-                "the top takes {} clocks (its model), above --max-cycles {max}",
-                model.cycles
-            )));
+    let (mut top, mut model) = (TopRun::default(), TopRun::default());
+    let (mut grid, mut uncertain) = (PairSet::new(), PairSet::new());
+    let mut pairs_tested = 0;
+    for case in &cases {
+        let mut region_model = run_top_model(case, u64::MAX).map_err(QueryError::Failed)?;
+        region_model.cycles = region_model.tested_at;
+        let leaves = leaf_pairs(case).map_err(QueryError::Failed)?;
+        if let Some(max) = options.max_clocks {
+            if options.engine.is_hardware() && model.cycles + region_model.cycles > max {
+                return Err(QueryError::Unsupported(format!(
+                    "the top takes more than {max} clocks (its model), above --max-cycles"
+                )));
+            }
+        }
+        let limit = region_model.cycles.saturating_mul(4).max(100_000);
+        let region_top = match (options.engine, options.engine.simulator()) {
+            (Engine::Model, _) => TopRun {
+                pairs: leaves.hits.clone(),
+                uncertain: leaves.uncertain.clone(),
+                pairs_tested: leaves.tested,
+                ..region_model.clone()
+            },
+            (_, Some(simulator)) => {
+                run_top_simulator(simulator, case, limit).map_err(QueryError::Failed)?
+            }
+            (_, None) => run_top_rusthdl(case, limit).map_err(QueryError::Failed)?,
+        };
+        if options.engine.is_hardware() {
+            faults.extend(top_faults(&region_top, &region_model, &leaves.uncertain));
+        }
+        (options.progress)(region_top.cycles);
+        grid.extend(region_top.pairs.iter().copied());
+        uncertain.extend(region_top.uncertain.iter().copied());
+        pairs_tested += leaves.tested;
+        add_run(&mut top, &region_top);
+        add_run(&mut model, &region_model);
+    }
+    if fault_injected() {
+        if let Some(&first) = grid.iter().next() {
+            grid.remove(&first);
         }
     }
-    let top = match (options.engine, options.engine.simulator()) {
-        (Engine::Model, _) => TopRun {
-            pairs: leaves.hits.clone(),
-            uncertain: leaves.uncertain.clone(),
-            pairs_tested: leaves.tested,
-            ..model.clone()
-        },
-        (_, Some(simulator)) => {
-            run_top_simulator(simulator, &case, limit).map_err(QueryError::Failed)?
-        }
-        (_, None) => run_top_rusthdl(&case, limit).map_err(QueryError::Failed)?,
-    };
-    let mut top = top;
-    if fault_injected() && !top.pairs.is_empty() {
-        top.pairs.remove(0);
-    }
-    (options.progress)(top.cycles);
-    if options.engine.is_hardware() {
-        faults.extend(top_faults(&top, &model, &leaves.uncertain));
-    }
-    let uncertain: PairSet = top.uncertain.iter().copied().collect();
-    let grid: PairSet = top.pairs.iter().copied().collect();
+    // Each pair once over the regions, in order.
+    top.pairs = grid.iter().copied().collect();
+    top.uncertain = uncertain.iter().copied().collect();
     let started = Instant::now();
     let redecided = recheck_pairs(&grid, &uncertain, &a.triangles, &b.triangles);
     let redecide = started.elapsed();
     Ok(DramRun {
         top,
         model,
-        case,
-        pairs_tested: leaves.tested,
+        cases,
+        pairs_tested,
         redecided: Redecided {
             pairs: redecided.pairs,
             changed: redecided.changed,
             host: redecide,
         },
     })
+}
+
+/// `run` after `total`: the regions run one after another, so clocks,
+/// beats and counts add.
+fn add_run(total: &mut TopRun, run: &TopRun) {
+    total.binned_at += run.binned_at;
+    total.tested_at += run.tested_at;
+    total.cycles += run.cycles;
+    total.leaves += run.leaves;
+    total.passes += run.passes;
+    total.pairs_tested += run.pairs_tested;
+    total.hits += run.hits;
+    total.stalled += run.stalled;
+    total.beats_read += run.beats_read;
+    total.beats_written += run.beats_written;
+    total.error |= run.error;
+    total.overflow |= run.overflow;
+    total.faults += run.faults;
 }
 
 /// Where the emitted top's run differs from its model's: a flag raised,

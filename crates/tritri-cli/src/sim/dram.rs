@@ -12,6 +12,7 @@ use std::process::ExitCode;
 use std::time::Duration;
 use tritri_cosim::dram_query::{
     find_pairs_in_dram, DramAccelerator, DramAnswer, DramQueryOptions, DramRun, BANDWIDTHS,
+    TABLE_WORDS,
 };
 use tritri_cosim::engine::Engine;
 use tritri_cosim::scene_query::{Clock, ClockSource, QueryError};
@@ -217,7 +218,7 @@ fn print_details(
         dram.data_bits,
         clock_name(&dram.clock)
     )?;
-    let memory = run.case.binning.params;
+    let memory = run.memory();
     let (num, den) = memory.bytes_per_clock;
     writeln!(
         report,
@@ -232,7 +233,11 @@ fn print_details(
     let top = &run.top;
     writeln!(
         report,
-        "walk: {} passes, {} leaves; binned at clock {}, last verdict at {}{}; {} pairs tested in the leaves",
+        "walk: {}{} passes, {} leaves; binned at clock {}, last verdict at {}{}; {} pairs tested in the leaves",
+        match run.cases.len() {
+            1 => String::new(),
+            n => format!("the common box cut into {n} regions, each within the owner filter's tables of {TABLE_WORDS} (run one after another, the clocks summed); "),
+        },
         top.passes,
         top.leaves,
         top.binned_at,
@@ -381,6 +386,7 @@ fn answer_json(
         "uncertain": run.top.uncertain.iter().map(|&(i, j)| [i, j]).collect::<Vec<_>>(),
         "changed": run.redecided.changed,
         "walk": {
+            "regions": run.cases.len(),
             "passes": run.top.passes,
             "leaves": run.top.leaves,
             "pairs_tested": run.pairs_tested,
