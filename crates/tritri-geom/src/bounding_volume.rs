@@ -106,16 +106,19 @@ pub fn triangle_touches_box(t: &FixedTriangle, b: &Aabb<i64>) -> bool {
 /// thirteen-axis test (a fifth of the time the host spent preparing a
 /// scene went to it on triangles far inside).
 pub fn grown_triangle_touches_box(t: &FixedTriangle, margin: i128, b: &Aabb<i64>) -> bool {
+    // In i64, saturating: a grid coordinate is far inside it (i128 here
+    // cost a third of the host's preparation), and a grown bound that
+    // saturates is still beyond every box.
+    let step = margin.clamp(-(i64::MAX as i128), i64::MAX as i128) as i64;
     let mut inside = true;
     for k in 0..3 {
-        let coordinates = t.map(|p| p[k] as i128);
-        let lo = coordinates.into_iter().min().unwrap_or(0) - margin;
-        let hi = coordinates.into_iter().max().unwrap_or(0) + margin;
-        let (box_lo, box_hi) = (b.lo[k] as i128, b.hi[k] as i128);
-        if hi < box_lo || lo > box_hi {
+        let [x, y, z] = [t[0][k], t[1][k], t[2][k]];
+        let lo = x.min(y).min(z).saturating_sub(step);
+        let hi = x.max(y).max(z).saturating_add(step);
+        if hi < b.lo[k] || lo > b.hi[k] {
             return false;
         }
-        inside &= box_lo <= lo && hi <= box_hi;
+        inside &= b.lo[k] <= lo && hi <= b.hi[k];
     }
     inside || TriangleCellTest::widened(t, margin).touches_box(b)
 }

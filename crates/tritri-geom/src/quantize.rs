@@ -71,13 +71,26 @@ impl Frame {
                 return Err(QuantizeError::NotFinite { triangle: i, value });
             }
         }
+        Ok(Frame::of_bounds(widths, lo, hi))
+    }
+
+    /// The frame [`Frame::fit`] gives for triangles whose vertices span
+    /// `lo ..= hi` (finite), from the bounds alone: a caller that has the
+    /// bounds saves the pass over the vertices. `lo[0] > hi[0]` stands for
+    /// no triangles.
+    pub fn fit_bounds(lo: [f64; 3], hi: [f64; 3], width: u32) -> Result<Frame, QuantizeError> {
+        Ok(Frame::of_bounds(FixedWidths::new(width)?, lo, hi))
+    }
+
+    fn of_bounds(widths: FixedWidths, lo: [f64; 3], hi: [f64; 3]) -> Frame {
+        let width = widths.coordinate;
         if lo[0] > hi[0] {
             // No triangles: any frame will do.
-            return Ok(Frame {
+            return Frame {
                 widths,
                 centre: [0.0; 3],
                 step: 1.0,
-            });
+            };
         }
         // A batch with coordinates of both signs near ±1e308 spans more than
         // f64::MAX: `hi - lo` overflows to infinity, its halves do not (and
@@ -118,11 +131,11 @@ impl Frame {
         } else {
             1.0
         };
-        Ok(Frame {
+        Frame {
             widths,
             centre,
             step,
-        })
+        }
     }
 
     /// The integer grid point nearest to `p`.

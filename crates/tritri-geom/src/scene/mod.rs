@@ -270,40 +270,61 @@ pub fn prepare(
     };
     scene.candidates_a = touching(&a.triangles);
     scene.candidates_b = touching(&b.triangles);
-    let frame = Frame::fit(
-        scene
-            .candidates_a
-            .iter()
-            .map(|&i| &a.triangles[i as usize])
-            .chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
-        options.grid_bits,
-    )?;
-    let quantize = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
-        ids.iter()
-            .map(|&id| TaggedTriangle {
-                id,
-                triangle: frame.quantize(&ts[id as usize]),
-            })
-            .collect()
+    // One pass over each object's candidates for their bounds: the frame
+    // is fitted over both (as `Frame::fit` over the candidates would), and
+    // since quantizing is monotone on each axis (a difference, a division
+    // by the positive step, a rounding: none reorders two values), the
+    // candidates' quantized box is their f64 box quantized, so the integer
+    // common box is known before any triangle is quantized. Then one pass
+    // quantizes each candidate and keeps it at once if its grown triangle
+    // touches that box: no array of every quantized candidate is written
+    // and read again (at 72 bytes a triangle, that was most of the time).
+    let bounds_a = candidate_bounds(&scene.candidates_a, &a.triangles);
+    let bounds_b = candidate_bounds(&scene.candidates_b, &b.triangles);
+    let frame = match (bounds_a, bounds_b) {
+        (Ok(x), Ok(y)) => {
+            let (lo, hi) = union_bounds(x, y);
+            Frame::fit_bounds(lo, hi, options.grid_bits)?
+        }
+        // A coordinate that is not finite: the error names it.
+        _ => Frame::fit(
+            scene
+                .candidates_a
+                .iter()
+                .map(|&i| &a.triangles[i as usize])
+                .chain(scene.candidates_b.iter().map(|&i| &b.triangles[i as usize])),
+            options.grid_bits,
+        )?,
     };
-    let qa = quantize(&scene.candidates_a, &a.triangles);
-    let qb = quantize(&scene.candidates_b, &b.triangles);
     scene.frame = Some(frame);
 
     let margin = BROAD_PHASE_MARGIN as i64;
-    let integer_box = match (
-        Aabb::of_triangles(qa.iter().map(|t| &t.triangle)),
-        Aabb::of_triangles(qb.iter().map(|t| &t.triangle)),
-    ) {
+    let quantized_box = |bounds: Result<Option<([f64; 3], [f64; 3])>, ()>| {
+        bounds.ok().flatten().map(|(lo, hi)| Aabb {
+            lo: frame.quantize_point(lo),
+            hi: frame.quantize_point(hi),
+        })
+    };
+    let integer_box = match (quantized_box(bounds_a), quantized_box(bounds_b)) {
         (Some(x), Some(y)) => x.grown(margin).overlap(&y.grown(margin)),
         _ => None,
     };
     scene.integer_box = integer_box;
     if let Some(ibox) = integer_box {
-        let near =
-            |t: &TaggedTriangle| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &ibox);
-        scene.kept_a = qa.into_iter().filter(near).collect();
-        scene.kept_b = qb.into_iter().filter(near).collect();
+        let kept = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
+            // Room for every candidate at once: most are kept, and a
+            // growing array would copy them again.
+            let mut kept = Vec::with_capacity(ids.len());
+            for &id in ids {
+                let triangle = frame.quantize(&ts[id as usize]);
+                if grown_triangle_touches_box(&triangle, BROAD_PHASE_MARGIN, &ibox) {
+                    kept.push(TaggedTriangle { id, triangle });
+                }
+            }
+            kept
+        };
+        scene.kept_a = kept(&scene.candidates_a, &a.triangles);
+        scene.kept_b = kept(&scene.candidates_b, &b.triangles);
     }
     let (ka, kb, depth) = (scene.kept_a.len(), scene.kept_b.len(), options.depth);
     if (ka > depth || kb > depth) && !options.split {
@@ -320,6 +341,46 @@ pub fn prepare(
         b_tiles: kb.div_ceil(depth),
     };
     Ok(scene)
+}
+
+/// The bounds of the triangles `ids` of `ts`: `Ok(None)` for none, `Err`
+/// if a coordinate is not finite.
+fn candidate_bounds(ids: &[u32], ts: &[Triangle]) -> Result<Option<([f64; 3], [f64; 3])>, ()> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    let mut finite = true;
+    for &id in ids {
+        for p in &ts[id as usize] {
+            for k in 0..3 {
+                let v = p[k];
+                finite &= v.is_finite();
+                lo[k] = if v < lo[k] { v } else { lo[k] };
+                hi[k] = if v > hi[k] { v } else { hi[k] };
+            }
+        }
+    }
+    match (finite, ids.is_empty()) {
+        (false, _) => Err(()),
+        (true, true) => Ok(None),
+        (true, false) => Ok(Some((lo, hi))),
+    }
+}
+
+/// Both objects' bounds together (`lo[0] > hi[0]` for none).
+fn union_bounds(
+    x: Option<([f64; 3], [f64; 3])>,
+    y: Option<([f64; 3], [f64; 3])>,
+) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    // Compared as `Frame::fit` compares, A's bounds first.
+    for (l, h) in x.into_iter().chain(y) {
+        for k in 0..3 {
+            lo[k] = if l[k] < lo[k] { l[k] } else { lo[k] };
+            hi[k] = if h[k] > hi[k] { h[k] } else { hi[k] };
+        }
+    }
+    (lo, hi)
 }
 
 /// [`prepare`], then the octree broad phase ([`octree`]) over the kept

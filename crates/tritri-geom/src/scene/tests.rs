@@ -673,3 +673,78 @@ fn local_frames_keep_the_grid_answer_with_fewer_bits() {
         "host {hosted}, hardware {sent}, intersecting {hits}"
     );
 }
+
+/// The host's preparation as it was written before it fused its passes:
+/// the frame fitted over the candidates, every candidate quantized, the
+/// integer box from the quantized candidates, then the kept ones.
+fn prepare_in_passes(
+    a: &SceneObject,
+    b: &SceneObject,
+    grid_bits: u32,
+) -> (
+    Frame,
+    Option<Aabb<i64>>,
+    Vec<TaggedTriangle>,
+    Vec<TaggedTriangle>,
+) {
+    let scene = prepare(a, b, &options(grid_bits, 64)).unwrap();
+    let candidates = |ids: &[u32], ts: &[Triangle]| -> Vec<Triangle> {
+        ids.iter().map(|&i| ts[i as usize]).collect()
+    };
+    let (ca, cb) = (
+        candidates(&scene.candidates_a, &a.triangles),
+        candidates(&scene.candidates_b, &b.triangles),
+    );
+    let frame = Frame::fit(ca.iter().chain(&cb), grid_bits).unwrap();
+    let quantize = |ids: &[u32], ts: &[Triangle]| -> Vec<TaggedTriangle> {
+        ids.iter()
+            .map(|&id| TaggedTriangle {
+                id,
+                triangle: frame.quantize(&ts[id as usize]),
+            })
+            .collect()
+    };
+    let qa = quantize(&scene.candidates_a, &a.triangles);
+    let qb = quantize(&scene.candidates_b, &b.triangles);
+    let margin = BROAD_PHASE_MARGIN as i64;
+    let ibox = match (
+        Aabb::of_triangles(qa.iter().map(|t| &t.triangle)),
+        Aabb::of_triangles(qb.iter().map(|t| &t.triangle)),
+    ) {
+        (Some(x), Some(y)) => x.grown(margin).overlap(&y.grown(margin)),
+        _ => None,
+    };
+    let keep = |q: Vec<TaggedTriangle>| -> Vec<TaggedTriangle> {
+        match ibox {
+            Some(ibox) => q
+                .into_iter()
+                .filter(|t| grown_triangle_touches_box(&t.triangle, BROAD_PHASE_MARGIN, &ibox))
+                .collect(),
+            None => Vec::new(),
+        }
+    };
+    (frame, ibox, keep(qa), keep(qb))
+}
+
+/// `prepare`'s one pass (the integer box from the candidates' f64 bounds
+/// quantized, each candidate kept as it is quantized) gives the frame, the
+/// integer box and the kept arrays of the passes it replaced, on random
+/// scenes at every grid width, apart, touching and overlapping.
+#[test]
+fn the_fused_preparation_is_the_passes_it_replaced() {
+    let mut rng = ChaCha8Rng::seed_from_u64(61);
+    for round in 0..300 {
+        let spread = 10f64.powi(rng.gen_range(-3..=3));
+        let offset = [0; 3].map(|_| rng.gen_range(-1.5..1.5) * spread);
+        let a = random_object(&mut rng, 60, [0.0; 3], spread, 3);
+        let b = random_object(&mut rng, 60, offset, spread, 3);
+        let grid_bits = rng.gen_range(8..=32);
+        let scene = prepare(&a, &b, &options(grid_bits, 64)).unwrap();
+        let (frame, ibox, kept_a, kept_b) = prepare_in_passes(&a, &b, grid_bits);
+        let context = format!("round {round}, G = {grid_bits}");
+        assert_eq!(scene.frame, Some(frame), "{context}");
+        assert_eq!(scene.integer_box, ibox, "{context}");
+        assert_eq!(scene.kept_a, kept_a, "{context}");
+        assert_eq!(scene.kept_b, kept_b, "{context}");
+    }
+}
