@@ -514,8 +514,24 @@ pub fn run(args: Args, given: &[String]) -> anyhow::Result<ExitCode> {
     }
     write_pairs(output, args.indices, &a, &b, written)?;
     write_render(png, &args, &a, &b, written, &mut report)?;
+    finish(
+        json,
+        || Ok(answer_json(&args, &answer, hardware)),
+        &answer.faults,
+        &mut report,
+    )
+}
+
+/// The end of a run: `--json` written (when reserved), each fault named on
+/// stderr; the status, 1 on a fault.
+fn finish(
+    json: Option<OutputFile>,
+    value: impl FnOnce() -> anyhow::Result<serde_json::Value>,
+    faults: &[tritri_cosim::fault::Fault],
+    report: &mut dyn Write,
+) -> anyhow::Result<ExitCode> {
     if let Some(json) = json {
-        let value = answer_json(&args, &answer, hardware);
+        let value = value()?;
         json.commit(|w| {
             serde_json::to_writer_pretty(&mut *w, &value)?;
             writeln!(w)?;
@@ -523,7 +539,7 @@ pub fn run(args: Args, given: &[String]) -> anyhow::Result<ExitCode> {
         })?;
     }
     let mut status = ExitCode::SUCCESS;
-    for fault in &answer.faults {
+    for fault in faults {
         eprintln!("fault: {fault}");
         status = ExitCode::from(1);
     }

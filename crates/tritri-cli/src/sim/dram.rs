@@ -3,7 +3,7 @@
 //! (`tritri_cosim::dram_query::find_pairs_in_dram`). This module only
 //! builds the route's options from the command line and prints its answer.
 
-use super::{examples, write_pairs, write_render, Args};
+use super::{examples, finish, write_pairs, write_render, Args};
 use crate::output_file::OutputFile;
 use crate::scene_input::human;
 use serde_json::json;
@@ -103,21 +103,12 @@ pub(super) fn run(
     }
     write_pairs(files.output, args.indices, a, b, written)?;
     write_render(files.png, args, a, b, written, report)?;
-    if let Some(json) = files.json {
-        let value = answer_json(args, &answer, run)?;
-        json.commit(|w| {
-            serde_json::to_writer_pretty(&mut *w, &value)?;
-            writeln!(w)?;
-            Ok(())
-        })?;
-    }
-    let mut status = ExitCode::SUCCESS;
-    for fault in &answer.faults {
-        eprintln!("fault: {fault}");
-        status = ExitCode::from(1);
-    }
-    report.flush()?;
-    Ok(status)
+    finish(
+        files.json,
+        || answer_json(args, &answer, run),
+        &answer.faults,
+        report,
+    )
 }
 
 /// `software / t` as "R x", or nothing without the check.
