@@ -56,6 +56,7 @@ module tb_dram_broad_phase #(
     wire [31:0] passes, arena_full, waiting_commits, pairs_tested, hits;
     wire [19:0] leaves;
     integer cycles = 0;
+    reg finished = 0;
     integer binned_at = -1, tested_at = -1;
     wire [31:0] araddr, awaddr;
     wire [7:0] arlen, awlen;
@@ -138,8 +139,11 @@ module tb_dram_broad_phase #(
         reset = 0;
         enable = 1;
         // The loop of cosim::dram_broad_phase::run_top_rusthdl: a pair is
-        // taken in any clock, the flags looked at from clock 1.
-        for (cycles = 0; cycles < LIMIT; cycles = cycles + 1) begin
+        // taken in any clock, the flags looked at from clock 1. It ends in
+        // the clock `done` rises, which `cycles` then counts (a flag, not
+        // `break`, which Icarus does not take).
+        cycles = 0;
+        while (cycles < LIMIT && !finished) begin
             start = cycles == 0;
             #1;
             if (out_valid)
@@ -148,9 +152,12 @@ module tb_dram_broad_phase #(
             if (cycles > 0) begin
                 if (binned && binned_at < 0) binned_at = cycles;
                 if (tested && tested_at < 0) tested_at = cycles;
-                if (done) break;
+                if (done) finished = 1;
             end
-            @(negedge clock);
+            if (!finished) begin
+                @(negedge clock);
+                cycles = cycles + 1;
+            end
         end
         $display("# binned %0d", binned_at);
         $display("# tested %0d", tested_at);

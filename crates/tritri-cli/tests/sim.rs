@@ -814,3 +814,41 @@ fn a_fault_exits_with_status_1_and_names_what_differed() {
     assert!(std::fs::read_to_string(&pairs).unwrap().lines().count() > 100);
     assert_eq!(tritri(&["sim"]).status.code(), Some(0));
 }
+
+/// Every engine runs the DRAM top on the built-in scene: rust-hdl, Icarus
+/// and Verilator simulate the emitted design against the AXI4 memory model
+/// and give the model's pairs and clocks (a difference would be a fault,
+/// status 1).
+#[test]
+fn every_engine_runs_the_dram_top() {
+    let run = |engine: &str| {
+        let pairs = scratch_path(&format!("dram-{engine}.txt"));
+        let json = scratch_path(&format!("dram-{engine}.json"));
+        let out = tritri(&[
+            "sim",
+            "--engine",
+            engine,
+            "--out",
+            pairs.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ]);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{engine}: {}",
+            text(&out.stderr)
+        );
+        let value: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        (
+            std::fs::read_to_string(&pairs).unwrap(),
+            value["clocks"].clone(),
+        )
+    };
+    let model = run("model");
+    assert_eq!(model.0.lines().count(), 113);
+    for engine in ["rusthdl", "icarus", "verilator"] {
+        assert_eq!(run(engine), model, "{engine}");
+    }
+}
