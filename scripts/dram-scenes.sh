@@ -13,20 +13,8 @@
 # this machine (they vary by a third from run to run here).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-m=build/meshes
-[ -s "$m/camel.off" ] || { echo "error: $m/camel.off missing; run: bash scripts/fetch-meshes.sh" >&2; exit 1; }
-cargo build --release -q --workspace --bins --examples
-tritri=target/release/tritri
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-scenes=(
-  "bunny x armadillo|$m/bunny.off $m/armadillo.off --scale-b 0.008 --pose-b 0.6,0,0"
-  "armadillo x camel|$m/armadillo.off $m/camel.off --scale-b 127 --pose-b 55,0,0"
-  "camel x elephant|$m/camel.off $m/elephant.off --pose-b 0.3,0,0"
-  "teapot (16) x bunny|$m/teapot.bpt $m/bunny.off --tessellation 16 --scale-b 3 --pose-b 3,0,1.5"
-  "bunny x bunny (README)|$m/bunny.off $m/bunny.off --pose-b 0.02,0.01,0,0,30,0"
-)
+# shellcheck source=scripts/public-scenes.sh
+source scripts/public-scenes.sh
 
 echo "| scene | in the common box | exact pairs (decided again) | top: clocks | DRAM read / written | x the memory's bound | top at the post-route clock | host | link in + out | end to end | software, 1 thread (2) | top / software | end to end / software |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"

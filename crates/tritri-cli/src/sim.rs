@@ -592,21 +592,32 @@ fn print_summary(
             ratio(whole.total()),
         )?;
     }
-    match &answer.check {
+    print_check(report, answer.engine, answer.check.as_ref())?;
+    writeln!(
+        report,
+        "details: --verbose (broad phase, binning, cycles, certificates); every figure: --json FILE"
+    )?;
+    Ok(())
+}
+
+/// The summary's check line, for both designs: the engine against the
+/// exact model on the grid, the exact pairs against exact f64.
+fn print_check(
+    report: &mut dyn Write,
+    engine: Engine,
+    check: Option<&tritri_cosim::scene_query::Check>,
+) -> anyhow::Result<()> {
+    match check {
         Some(check) => writeln!(
             report,
             "check: {} = exact model on the grid ({}); exact pairs = exact f64 on the original coordinates ({} missing, {} extra)",
-            answer.engine.name(),
+            engine.name(),
             if check.engine_vs_grid.is_empty() { "equal".to_string() } else { format!("{} missing, {} extra: a bug", check.engine_vs_grid.missing.len(), check.engine_vs_grid.extra.len()) },
             check.answer_vs_truth.missing.len(),
             check.answer_vs_truth.extra.len()
         )?,
         None => writeln!(report, "check: skipped (--no-compare)")?,
     }
-    writeln!(
-        report,
-        "details: --verbose (broad phase, binning, cycles, certificates); every figure: --json FILE"
-    )?;
     Ok(())
 }
 

@@ -3,7 +3,7 @@
 //! (`tritri_cosim::dram_query::find_pairs_in_dram`). This module only
 //! builds the route's options from the command line and prints its answer.
 
-use super::{examples, finish, write_pairs, write_render, Args};
+use super::{examples, finish, print_check, write_pairs, write_render, Args};
 use crate::output_file::OutputFile;
 use crate::scene_input::human;
 use serde_json::json;
@@ -170,17 +170,7 @@ fn print_summary(
             ratio(answer, whole.total()),
         )?;
     }
-    match &answer.check {
-        Some(check) => writeln!(
-            report,
-            "check: {} = exact model on the grid ({}); exact pairs = exact f64 on the original coordinates ({} missing, {} extra)",
-            answer.engine.name(),
-            if check.engine_vs_grid.is_empty() { "equal".to_string() } else { format!("{} missing, {} extra: a bug", check.engine_vs_grid.missing.len(), check.engine_vs_grid.extra.len()) },
-            check.answer_vs_truth.missing.len(),
-            check.answer_vs_truth.extra.len()
-        )?,
-        None => writeln!(report, "check: skipped (--no-compare)")?,
-    }
+    print_check(report, answer.engine, answer.check.as_ref())?;
     Ok(())
 }
 
