@@ -14,12 +14,15 @@
 //! ```
 //!
 //! `--write-case DIR` writes the ideal memory's case for another testbench
-//! instead (examples/dram-broad-phase, cocotb against cocotbext-axi's
-//! AxiRam): the emitted top in `DIR/rtl`, the memory as the host leaves it
-//! in `DIR/memory.bin`, and in `DIR/case.txt` the top's inputs (a name and
-//! a number a line), each list's triangle numbers (`ids_0`, `ids_1`), and
-//! the pairs the top must stream (`pair A B`, `uncertain A B`, as the
-//! meshes number their triangles) with the clock of `done` in Verilator.
+//! instead (examples/dram-broad-phase and examples/fpga-top, cocotb against
+//! cocotbext-axi's AxiRam): the emitted top in `DIR/rtl`, the memory as the
+//! host leaves it in `DIR/memory.bin`, and in `DIR/case.txt` the top's
+//! inputs (a name and a number a line), each list's triangle numbers
+//! (`ids_0`, `ids_1`), the pairs the top must stream (`pair A B`,
+//! `uncertain A B V` with V the host's verdict when it decides the pair
+//! again on the f64 meshes, as the meshes number their triangles) with the
+//! clock of `done` in Verilator, and the exact answer on the f64 meshes
+//! (`exact A B`).
 //!
 //! A and B are as `examples/dram_binning.rs` takes them (default: the
 //! built-in torus and sphere). The host's part is what the top expects:
@@ -42,7 +45,7 @@ use tritri_cosim::dram_broad_phase::{
     exact_on_grid, once_and_exact, run_top_model, run_top_rusthdl, run_top_simulator,
     uncertain_in_leaves, TopCase, TopRun,
 };
-use tritri_cosim::dram_query::{device_case, DramAccelerator};
+use tritri_cosim::dram_query::{device_case, host_root_lists, DramAccelerator};
 use tritri_cosim::scene_query::ClockSource;
 use tritri_cosim::simulator::Simulator;
 use tritri_examples::{median_time, take_data_bits, take_option, VERSA_GBYTES, VERSA_LINK_GBYTES};
@@ -80,7 +83,7 @@ fn main() -> anyhow::Result<()> {
     let ideal = MemoryParams::ideal(data_bits as u64 / 8, 24);
     if let Some(dir) = write_case {
         let case = device_case(&dram, &scene, ideal)?;
-        return write_case_files(&dir, &case);
+        return write_case_files(&dir, &case, &a, &b);
     }
     println!();
     println!("| memory | pairs = exact, once | without a certificate | leaves | passes | binned at | tested at | done at | model: tested at | stalled | DRAM read | DRAM written | bytes a clock | Verilator | rust-hdl = Verilator |");
@@ -249,6 +252,7 @@ fn exact_answer_and_speed(
             end_to_end(
                 a,
                 b,
+                case,
                 kept,
                 run.pairs.len(),
                 host_time.as_secs_f64(),
@@ -278,14 +282,16 @@ fn exact_answer_and_speed(
 /// The whole route against the best software, both measured here (medians
 /// of five runs): from the f64 meshes on the host to the exact pairs on the
 /// host. The host prepares the scene (common box, cull, quantize:
-/// `scene::prepare`, all the DRAM top needs), sends the `kept` triangles'
-/// list entries over the Versa's link, the top runs (`accelerator`
+/// `scene::prepare`) and packs `case`'s root lists (`host_root_lists`): all
+/// the DRAM top needs. It sends the `kept` triangles' list entries over
+/// the Versa's link, the top runs (`accelerator`
 /// seconds, at the routed clock with the Versa's memory), the `pairs` come
 /// back over the link, and the host decides the uncertain ones again
 /// (`redecide` seconds). `one` is the software's time on one thread.
 fn end_to_end(
     a: &SceneObject,
     b: &SceneObject,
+    case: &TopCase,
     kept: usize,
     pairs: usize,
     redecide: f64,
@@ -297,9 +303,12 @@ fn end_to_end(
         depth: 256,
         split: true,
     };
-    prepare(a, b, &options)?;
+    let scene = prepare(a, b, &options)?;
+    let cases = std::slice::from_ref(case);
+    host_root_lists(&scene, cases)?;
     let host = median_time(5, || {
-        std::hint::black_box(prepare(a, b, &options).ok());
+        let scene = prepare(a, b, &options).ok();
+        std::hint::black_box(scene.map(|scene| host_root_lists(&scene, cases).ok()));
     })
     .as_secs_f64();
     let link = |bytes: usize| bytes as f64 / (VERSA_LINK_GBYTES * 1e9);
@@ -311,7 +320,7 @@ fn end_to_end(
     .as_secs_f64();
     let ms = |s: f64| s * 1e3;
     println!(
-        "end to end, f64 meshes to exact pairs on the host: {:.3} ms = host preparation {:.3} + {} KiB in over the Versa's PCIe Gen 2 x1 ({VERSA_LINK_GBYTES} GB/s) {:.3} + the top {:.3} + {pairs} pairs back {:.3} + uncertain pairs decided again {:.3}",
+        "end to end, f64 meshes to exact pairs on the host: {:.3} ms = host preparation and root lists {:.3} + {} KiB in over the Versa's PCIe Gen 2 x1 ({VERSA_LINK_GBYTES} GB/s) {:.3} + the top {:.3} + {pairs} pairs back {:.3} + uncertain pairs decided again {:.3}",
         ms(whole),
         ms(host),
         sent / 1024,
@@ -355,8 +364,13 @@ fn bandwidth_table(case: &TopCase, mhz: f64, software: f64) -> anyhow::Result<()
     Ok(())
 }
 
-/// The files of `--write-case` in `dir`.
-fn write_case_files(dir: &std::path::Path, case: &TopCase) -> anyhow::Result<()> {
+/// The files of `--write-case` in `dir`, for the scene of `a` and `b`.
+fn write_case_files(
+    dir: &std::path::Path,
+    case: &TopCase,
+    a: &SceneObject,
+    b: &SceneObject,
+) -> anyhow::Result<()> {
     use std::fmt::Write as _;
     let design = emit_dram_broad_phase(&case.config, MultiplierMapping::Inferred)?;
     design
@@ -379,8 +393,14 @@ fn write_case_files(dir: &std::path::Path, case: &TopCase) -> anyhow::Result<()>
     for (a, b) in &run.pairs {
         writeln!(text, "pair {a} {b}")?;
     }
-    for (a, b) in &run.uncertain {
-        writeln!(text, "uncertain {a} {b}")?;
+    // The host's part after the run: each pair without a certificate
+    // decided again on the f64 meshes, and the exact answer they give.
+    for &(i, j) in &run.uncertain {
+        let verdict = decide_again(&a.triangles[i as usize], &b.triangles[j as usize]);
+        writeln!(text, "uncertain {i} {j} {}", u8::from(verdict))?;
+    }
+    for (i, j) in exact_f64_pairs(&a.triangles, &b.triangles).pairs {
+        writeln!(text, "exact {i} {j}")?;
     }
     std::fs::write(dir.join("case.txt"), text)
         .with_context(|| format!("writing {}", dir.join("case.txt").display()))?;

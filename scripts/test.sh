@@ -21,7 +21,7 @@ for example in classify_pairs scene_pairs emit_and_synthesize dram_binning dram_
   echo "example: $example"
   target/release/examples/$example
 done
-echo "example: fpga-top"
+echo "example: fpga-top (the accelerator as a kernel: FuseSoC lint, cocotb sim, synth)"
 bash examples/fpga-top/run.sh
 echo "example: cocotb"
 bash examples/cocotb/run.sh

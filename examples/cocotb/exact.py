@@ -66,8 +66,8 @@ def intersects(t1, t2):
 
 
 if __name__ == "__main__":
-    # The cases of ../fpga-top/tb/tb_fpga_top.sv, whose answers
-    # `tritri classify --arith exact` gives: a check of this oracle.
+    # Hand-made cases (a crossing, coplanar contacts, degenerate triangles),
+    # whose answers `tritri classify --arith exact` gives: a check of this oracle.
     a0 = ((0, 0, 0), (100, 0, 0), (0, 100, 0))
     assert intersects(a0, ((10, 10, -50), (10, 10, 50), (60, 20, 0)))        # crossing
     assert intersects(a0, ((50, 50, 0), (150, 50, 0), (50, 150, 0)))         # coplanar, one point

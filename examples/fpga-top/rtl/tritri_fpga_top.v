@@ -1,122 +1,238 @@
-// tritri_fpga_top: a board-independent top level around the emitted
-// collision system. Part of examples/fpga-top (hand-written: copy it into
-// your design and connect the two streams to your host link: a UART, a
-// PCIe or Ethernet DMA, an AXI4-Stream interconnect).
+// tritri_fpga_top: a board-independent top level around the broad-phase
+// accelerator with its scene in DRAM (tritri gen --dram-broad-phase). Part
+// of examples/fpga-top (hand-written: copy it into your design).
 //
-//   s_* host words ──► tritri_host_in ──► triangle FIFO ──► system
-//                                                             │ pairs
-//   m_* host words ◄── tritri_host_out ◄── pair FIFO ◄────────┘
+// It has the shape of an accelerator kernel in a Xilinx, Intel or LiteX SoC:
 //
-// Both streams follow the valid/ready rules of README.md ("Streams"); the
-// word formats are in README.md ("Host words") and in tritri_host_in.v.
+//   host (CPU, PCIe) ── AXI4-Lite ──► tritri_control_regs ──► the run's inputs, start
+//                                                               │
+//   DRAM controller ◄──── AXI4 (m_axi_*, DATA_BITS) ──── emitted accelerator
+//   (MIG, LiteDRAM, EMIF)                                       │ pairs
+//   host (DMA S2MM) ◄── AXI4-Stream (m_axis_*, 64 bits) ◄────────┘
 //
-// The system module's name carries its configuration (tritri gen --system
-// --width W --pipelines P --depth D writes tritri_system_w<W>_p<P>_d<D>):
-// define TRITRI_SYSTEM to the one you generated and set W to its width.
+// * The host writes the scene (each object's root list, README.md "Scene
+//   memory") into DRAM by its own path, writes the registers, and writes 1
+//   to CONTROL.
+// * Each intersecting pair, and each pair without a certificate, leaves
+//   once on the stream as one 64-bit word: index_a in bits 31:0, index_b in
+//   61:32, certain in 62, hit in 63 (the indices are the triangles'
+//   places in the root lists). After the last pair, one word with TLAST:
+//   the run's clocks in bits 31:0 and its pair words in 63:32. A DMA that
+//   ends its transfer at TLAST gets one packet per run.
+// * Status and the run's counters read back over AXI4-Lite.
+//
+// The accelerator's module name carries its configuration; define
+// TRITRI_DRAM_TOP to the one you generated, and set G and DATA_BITS to its
+// grid width and port width.
 `default_nettype none
 
-`ifndef TRITRI_SYSTEM
-`define TRITRI_SYSTEM tritri_system_w16_p1_d64
+`ifndef TRITRI_DRAM_TOP
+`define TRITRI_DRAM_TOP tritri_dram_broad_phase_g16_w16_d256_p1_t256_i8192_s8192_shared
 `endif
 
 module tritri_fpga_top #(
-    parameter integer W                   = 16,  // the generated system's coordinate width
-    parameter integer LOG2_TRIANGLE_FIFO  = 4,   // 16 triangles between the host and the system
-    parameter integer LOG2_PAIR_FIFO      = 5    // 32 pairs between the system and the host
+    parameter integer G         = 16,   // the grid's width (tritri gen --width)
+    parameter integer DATA_BITS = 256   // the AXI4 port's data width (--data-bits)
 ) (
-    input  wire        clock,
-    input  wire        reset,            // synchronous, active high, at least 2 cycles
+    input  wire                   clock,
+    input  wire                   reset,          // synchronous, active high
 
-    // Host words in: triangles and end-of-batch words.
-    input  wire        s_valid,
-    output wire        s_ready,
-    input  wire [31:0] s_data,
+    // Registers (AXI4-Lite subordinate, 32-bit data, byte addresses).
+    input  wire [7:0]             s_axil_awaddr,
+    input  wire [2:0]             s_axil_awprot,
+    input  wire                   s_axil_awvalid,
+    output wire                   s_axil_awready,
+    input  wire [31:0]            s_axil_wdata,
+    input  wire [3:0]             s_axil_wstrb,
+    input  wire                   s_axil_wvalid,
+    output wire                   s_axil_wready,
+    output wire [1:0]             s_axil_bresp,
+    output wire                   s_axil_bvalid,
+    input  wire                   s_axil_bready,
+    input  wire [7:0]             s_axil_araddr,
+    input  wire [2:0]             s_axil_arprot,
+    input  wire                   s_axil_arvalid,
+    output wire                   s_axil_arready,
+    output wire [31:0]            s_axil_rdata,
+    output wire [1:0]             s_axil_rresp,
+    output wire                   s_axil_rvalid,
+    input  wire                   s_axil_rready,
 
-    // Host words out: each reported pair as id_a, id_b, then its flags
-    // (m_last; bit 0 hit, bit 1 certain). Pairs without a certificate come
-    // out whatever their verdict: the host decides them again.
-    output wire        m_valid,
-    input  wire        m_ready,
-    output wire [31:0] m_data,
-    output wire        m_last,
+    // Pairs (AXI4-Stream manager).
+    output reg  [63:0]            m_axis_tdata,
+    output reg                    m_axis_tlast,
+    output reg                    m_axis_tvalid,
+    input  wire                   m_axis_tready,
 
-    // Status.
-    output wire        idle,             // every word taken is processed and every pair has left
-    output wire        overflow,         // sticky: a batch had more triangles per object than the depth
-    output wire [15:0] bad_words,        // headers that name no kind (skipped)
-    output wire [15:0] range_errors,     // coordinates outside the W-bit range (low W bits used)
-    output wire [31:0] pairs_tested,     // since reset; see the system's README
-    output wire [31:0] hits,
-    output wire [31:0] stall_cycles
+    // Scene memory (AXI4 manager, to the DRAM controller).
+    output wire                   m_axi_arid,
+    output wire [31:0]            m_axi_araddr,
+    output wire [7:0]             m_axi_arlen,
+    output wire [2:0]             m_axi_arsize,
+    output wire [1:0]             m_axi_arburst,
+    output wire [3:0]             m_axi_arcache,
+    output wire [2:0]             m_axi_arprot,
+    output wire                   m_axi_arvalid,
+    input  wire                   m_axi_arready,
+    input  wire                   m_axi_rid,
+    input  wire [DATA_BITS-1:0]   m_axi_rdata,
+    input  wire [1:0]             m_axi_rresp,
+    input  wire                   m_axi_rlast,
+    input  wire                   m_axi_rvalid,
+    output wire                   m_axi_rready,
+    output wire                   m_axi_awid,
+    output wire [31:0]            m_axi_awaddr,
+    output wire [7:0]             m_axi_awlen,
+    output wire [2:0]             m_axi_awsize,
+    output wire [1:0]             m_axi_awburst,
+    output wire [3:0]             m_axi_awcache,
+    output wire [2:0]             m_axi_awprot,
+    output wire                   m_axi_awvalid,
+    input  wire                   m_axi_awready,
+    output wire [DATA_BITS-1:0]   m_axi_wdata,
+    output wire [DATA_BITS/8-1:0] m_axi_wstrb,
+    output wire                   m_axi_wlast,
+    output wire                   m_axi_wvalid,
+    input  wire                   m_axi_wready,
+    input  wire                   m_axi_bid,
+    input  wire [1:0]             m_axi_bresp,
+    input  wire                   m_axi_bvalid,
+    output wire                   m_axi_bready,
+
+    // For LEDs: a run is under way; the last run ended with an error
+    // response or an overflow (README.md, "Status").
+    output wire                   busy,
+    output wire                   fault
 );
-    localparam integer TRIANGLE_BITS = 2 + 32 + 9 * W;
+    // ---- Registers.
+    wire [G-1:0] corner_x, corner_y, corner_z;
+    wire [5:0]   level;
+    wire [31:0]  list_base_0, list_count_0, index_count_0;
+    wire [31:0]  list_base_1, list_count_1, index_count_1;
+    wire [31:0]  arena_start, arena_end;
+    wire         start;
+    wire [31:0]  status;
+    reg  [31:0]  clocks, pairs_out;
+    wire [31:0]  passes, arena_full, waiting_commits, pairs_tested, hits;
+    wire [19:0]  leaves;
 
-    // Host words to triangle words.
-    wire                     words_valid, words_ready, host_in_busy;
-    wire [TRIANGLE_BITS-1:0] words_data;
-    tritri_host_in #(.W(W)) host_in (
+    tritri_control_regs #(.G(G)) regs (
         .clock(clock), .reset(reset),
-        .s_valid(s_valid), .s_ready(s_ready), .s_data(s_data),
-        .out_valid(words_valid), .out_ready(words_ready), .out_data(words_data),
-        .busy(host_in_busy), .bad_words(bad_words), .range_errors(range_errors)
+        .s_axil_awaddr(s_axil_awaddr), .s_axil_awvalid(s_axil_awvalid),
+        .s_axil_awready(s_axil_awready), .s_axil_wdata(s_axil_wdata),
+        .s_axil_wstrb(s_axil_wstrb), .s_axil_wvalid(s_axil_wvalid),
+        .s_axil_wready(s_axil_wready), .s_axil_bresp(s_axil_bresp),
+        .s_axil_bvalid(s_axil_bvalid), .s_axil_bready(s_axil_bready),
+        .s_axil_araddr(s_axil_araddr), .s_axil_arvalid(s_axil_arvalid),
+        .s_axil_arready(s_axil_arready), .s_axil_rdata(s_axil_rdata),
+        .s_axil_rresp(s_axil_rresp), .s_axil_rvalid(s_axil_rvalid),
+        .s_axil_rready(s_axil_rready),
+        .corner_x(corner_x), .corner_y(corner_y), .corner_z(corner_z), .level(level),
+        .list_base_0(list_base_0), .list_count_0(list_count_0), .index_count_0(index_count_0),
+        .list_base_1(list_base_1), .list_count_1(list_count_1), .index_count_1(index_count_1),
+        .arena_start(arena_start), .arena_end(arena_end), .start(start),
+        .status(status), .clocks(clocks), .pairs_out(pairs_out), .passes(passes),
+        .leaves({12'd0, leaves}), .pairs_tested(pairs_tested), .hits(hits),
+        .arena_full(arena_full), .waiting_commits(waiting_commits), .busy(busy)
     );
 
-    // Triangle FIFO: the host keeps writing while the system's write bank
-    // is busy.
-    wire                     triangle_valid, triangle_ready;
-    wire [TRIANGLE_BITS-1:0] triangle;
-    tritri_sync_fifo #(.WIDTH(TRIANGLE_BITS), .LOG2_DEPTH(LOG2_TRIANGLE_FIFO)) triangle_fifo (
-        .clock(clock), .reset(reset),
-        .in_valid(words_valid), .in_ready(words_ready), .in_data(words_data),
-        .out_valid(triangle_valid), .out_ready(triangle_ready), .out_data(triangle)
+    // ---- The emitted accelerator.
+    wire        out_valid, out_ready, out_hit, out_certain;
+    wire [31:0] out_index_a, out_index_b;
+    wire        binned, tested, done, error, overflow;
+
+    `TRITRI_DRAM_TOP accelerator (
+        .clock(clock), .reset(reset), .start(start),
+        .corner_x(corner_x), .corner_y(corner_y), .corner_z(corner_z), .level(level),
+        .list_base_0(list_base_0), .list_base_1(list_base_1),
+        .list_count_0(list_count_0), .list_count_1(list_count_1),
+        .index_count_0(index_count_0), .index_count_1(index_count_1),
+        .arena_start(arena_start), .arena_end(arena_end),
+        .out_valid(out_valid), .out_ready(out_ready),
+        .out_index_a(out_index_a), .out_index_b(out_index_b),
+        .out_hit(out_hit), .out_certain(out_certain),
+        .binned(binned), .tested(tested), .done(done), .error(error), .overflow(overflow),
+        .passes(passes), .leaves(leaves), .arena_full(arena_full),
+        .waiting_commits(waiting_commits), .pairs_tested(pairs_tested), .hits(hits),
+        .m_axi_arid(m_axi_arid), .m_axi_araddr(m_axi_araddr), .m_axi_arlen(m_axi_arlen),
+        .m_axi_arsize(m_axi_arsize), .m_axi_arburst(m_axi_arburst),
+        .m_axi_arcache(m_axi_arcache), .m_axi_arprot(m_axi_arprot),
+        .m_axi_arvalid(m_axi_arvalid), .m_axi_arready(m_axi_arready),
+        .m_axi_rid(m_axi_rid), .m_axi_rdata(m_axi_rdata), .m_axi_rresp(m_axi_rresp),
+        .m_axi_rlast(m_axi_rlast), .m_axi_rvalid(m_axi_rvalid), .m_axi_rready(m_axi_rready),
+        .m_axi_awid(m_axi_awid), .m_axi_awaddr(m_axi_awaddr), .m_axi_awlen(m_axi_awlen),
+        .m_axi_awsize(m_axi_awsize), .m_axi_awburst(m_axi_awburst),
+        .m_axi_awcache(m_axi_awcache), .m_axi_awprot(m_axi_awprot),
+        .m_axi_awvalid(m_axi_awvalid), .m_axi_awready(m_axi_awready),
+        .m_axi_wdata(m_axi_wdata), .m_axi_wstrb(m_axi_wstrb), .m_axi_wlast(m_axi_wlast),
+        .m_axi_wvalid(m_axi_wvalid), .m_axi_wready(m_axi_wready),
+        .m_axi_bid(m_axi_bid), .m_axi_bresp(m_axi_bresp), .m_axi_bvalid(m_axi_bvalid),
+        .m_axi_bready(m_axi_bready)
     );
 
-    // The emitted system. Its triangle word: {end, object, id, x0 .. z2}.
-    wire        pair_valid, pair_ready, pair_hit, pair_certain;
-    wire [31:0] pair_id_a, pair_id_b;
-    wire        system_done, results_empty;
-    `TRITRI_SYSTEM system (
-        .clock(clock),
-        .reset(reset),
-        .in_valid(triangle_valid),
-        .in_ready(triangle_ready),
-        .in_end(triangle[TRIANGLE_BITS-1]),
-        .in_object(triangle[TRIANGLE_BITS-2]),
-        .in_id(triangle[9*W +: 32]),
-        .in_x0(triangle[8*W +: W]), .in_y0(triangle[7*W +: W]), .in_z0(triangle[6*W +: W]),
-        .in_x1(triangle[5*W +: W]), .in_y1(triangle[4*W +: W]), .in_z1(triangle[3*W +: W]),
-        .in_x2(triangle[2*W +: W]), .in_y2(triangle[1*W +: W]), .in_z2(triangle[0*W +: W]),
-        .out_valid(pair_valid),
-        .out_ready(pair_ready),
-        .out_id_a(pair_id_a),
-        .out_id_b(pair_id_b),
-        .out_hit(pair_hit),
-        .out_certain(pair_certain),
-        .done(system_done),
-        .results_empty(results_empty),
-        .overflow(overflow),
-        .pairs_tested(pairs_tested),
-        .hits(hits),
-        .stall_cycles(stall_cycles)
-    );
+    // ---- The run: from start until its last word has left on the stream.
+    // `running` until the accelerator's done (it falls the clock after
+    // start, so it is read from the next clock on), then `closing` until
+    // the TLAST word is taken.
+    reg running, closing, ended_badly;
+    assign busy   = running || closing;
+    assign fault  = ended_badly;
+    // CONTROL reads: bit 0 busy, 1 done (the last run ended), 2 error,
+    // 3 overflow, 4 binned, 5 tested.
+    assign status = {26'd0, tested, binned, overflow, error, done && !busy, busy};
 
-    // Pair FIFO: a slow host link does not stall the pipelines until both
-    // this FIFO and the system's own result FIFO are full.
-    wire        queued_valid, queued_ready;
-    wire [65:0] queued_pair;
-    tritri_sync_fifo #(.WIDTH(66), .LOG2_DEPTH(LOG2_PAIR_FIFO)) pair_fifo (
-        .clock(clock), .reset(reset),
-        .in_valid(pair_valid), .in_ready(pair_ready), .in_data({pair_certain, pair_hit, pair_id_a, pair_id_b}),
-        .out_valid(queued_valid), .out_ready(queued_ready), .out_data(queued_pair)
-    );
+    // The stream's register: the accelerator's pair moves in when the
+    // register is empty or its word is being taken.
+    wire stage_free = !m_axis_tvalid || m_axis_tready;
+    assign out_ready = stage_free;
+    wire take_pair = out_valid && stage_free;
+    wire take_end  = closing && !out_valid && stage_free && !(m_axis_tvalid && m_axis_tlast);
 
-    tritri_host_out host_out (
-        .clock(clock), .reset(reset),
-        .in_valid(queued_valid), .in_ready(queued_ready), .in_data(queued_pair),
-        .m_valid(m_valid), .m_ready(m_ready), .m_data(m_data), .m_last(m_last)
-    );
+    always @(posedge clock) begin
+        if (reset) begin
+            running       <= 1'b0;
+            closing       <= 1'b0;
+            ended_badly   <= 1'b0;
+            clocks        <= 32'd0;
+            pairs_out     <= 32'd0;
+            m_axis_tvalid <= 1'b0;
+            m_axis_tlast  <= 1'b0;
+            m_axis_tdata  <= 64'd0;
+        end else begin
+            if (start) begin
+                running     <= 1'b1;
+                ended_badly <= 1'b0;
+                clocks      <= 32'd0;
+                pairs_out   <= 32'd0;
+            end else if (running) begin
+                clocks <= clocks + 32'd1;
+                if (done) begin
+                    running     <= 1'b0;
+                    closing     <= 1'b1;
+                    ended_badly <= error || overflow;
+                end
+            end
+            if (m_axis_tvalid && m_axis_tready) begin
+                m_axis_tvalid <= 1'b0;
+                if (m_axis_tlast)
+                    closing <= 1'b0;
+            end
+            if (take_pair) begin
+                m_axis_tvalid <= 1'b1;
+                m_axis_tlast  <= 1'b0;
+                m_axis_tdata  <= {out_hit, out_certain, out_index_b[29:0], out_index_a};
+                pairs_out     <= pairs_out + 32'd1;
+            end else if (take_end) begin
+                m_axis_tvalid <= 1'b1;
+                m_axis_tlast  <= 1'b1;
+                m_axis_tdata  <= {pairs_out, clocks};
+            end
+        end
+    end
 
-    assign idle = !host_in_busy && !triangle_valid && system_done && results_empty && !queued_valid;
+    // AXI4-Lite's protection bits are accepted and ignored, as the unused
+    // high bits of index_b: the lists' indices stay below 2^30.
+    wire unused = &{1'b0, s_axil_awprot, s_axil_arprot, out_index_b[31:30]};
 endmodule
 
 `default_nettype wire
