@@ -5,9 +5,10 @@
 //! route `tritri sim` runs by default, as one call.
 //!
 //! 1. The host culls both objects to their common box and quantizes what
-//!    is left onto a 16-bit grid (`tritri_geom::scene::prepare`): all it
-//!    does before the hardware. It writes each object's kept triangles
-//!    into DRAM as a root list (32-byte entries, their vertices inside).
+//!    is left onto a 16-bit grid (`tritri_geom::scene::prepare`), and packs
+//!    each object's kept triangles as a root list (32-byte entries, their
+//!    vertices inside, [`host_root_lists`]): all it does before the
+//!    hardware. It writes the lists into DRAM.
 //! 2. The top bins the lists in DRAM, tests each leaf's pairs on its
 //!    W = 16 pipeline and streams each pair once, with its certificate.
 //!    On the model [`Engine`] that is the top's clock-exact model and the
@@ -55,7 +56,7 @@ use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
 use tritri_geom::scene::{prepare, PreparedScene, TaggedTriangle};
 use tritri_rtl::axi::memory_model::MemoryParams;
-use tritri_rtl::broad_phase::list_entry::ENTRY_BYTES;
+use tritri_rtl::broad_phase::list_entry::{pack, ENTRY_BYTES};
 use tritri_rtl::broad_phase::list_pass_machine::{ListPassConfig, PASS_DATA_BITS};
 use tritri_rtl::emit::dram_broad_phase_unit::DramBroadPhaseConfig;
 use tritri_rtl::measured::Measurements;
@@ -306,7 +307,7 @@ pub struct BandwidthRow {
 /// host.
 #[derive(Clone, Copy, Debug)]
 pub struct DramEndToEnd {
-    /// Cull and quantize.
+    /// Cull, quantize, pack the root lists.
     pub host: Duration,
     /// The root lists to the board.
     pub link_in: Duration,
@@ -333,7 +334,7 @@ pub struct DramAnswer {
     pub engine: Engine,
     pub dram: DramAccelerator,
     pub scene: PreparedScene,
-    /// The host's preparation (cull and quantize).
+    /// The host's preparation: cull, quantize, and pack the root lists.
     pub host: Duration,
     /// `None` when the objects' boxes do not meet: no pair can intersect.
     pub run: Option<DramRun>,
@@ -564,6 +565,13 @@ pub fn find_pairs_in_dram(
         return Ok(answer);
     }
     let cases = fitting_cases(dram, &answer.scene, dram.memory())?;
+    // The host's packing of every region's root lists, timed with its
+    // preparation (the choice of regions is the model's, not timed: a
+    // host rule for it is still to come) (the lists the simulated memory holds are the same
+    // bytes: tests/dram_query.rs).
+    let started = Instant::now();
+    std::hint::black_box(host_root_lists(&answer.scene, &cases)?);
+    answer.host += started.elapsed();
     let run = run_engine(cases, a, b, options, &mut answer.faults)?;
     answer.pairs = run.redecided.pairs.clone();
     answer.run = Some(run);
@@ -581,6 +589,44 @@ pub fn find_pairs_in_dram(
         answer.check = Some(check);
     }
     Ok(answer)
+}
+
+/// The root lists of `cases` (the regions of `scene`) as the host writes
+/// them into DRAM: for each region, each object's triangles of the region
+/// in the order of the case's lists, as entries numbered 0, 1, ... (the
+/// pairs come back as these numbers). The region's triangles are found
+/// among the scene's kept ones by their mesh numbers, through a table of
+/// each number's place in the kept list, made once for all regions.
+pub fn host_root_lists(
+    scene: &PreparedScene,
+    cases: &[TopCase],
+) -> Result<Vec<[Vec<u8>; 2]>, QueryError> {
+    let kept = [&scene.kept_a, &scene.kept_b];
+    let mut places = [scene.n_a, scene.n_b].map(|n| vec![u32::MAX; n]);
+    for (k, list) in kept.iter().enumerate() {
+        for (place, t) in list.iter().enumerate() {
+            places[k][t.id as usize] = place as u32;
+        }
+    }
+    let mut out = Vec::with_capacity(cases.len());
+    for case in cases {
+        let grid_bits = case.binning.config.pass.grid_bits;
+        let mut lists = [Vec::new(), Vec::new()];
+        for (k, list) in lists.iter_mut().enumerate() {
+            list.reserve(case.ids[k].len() * ENTRY_BYTES);
+            for (i, &id) in case.ids[k].iter().enumerate() {
+                let place = places[k].get(id as usize).copied().unwrap_or(u32::MAX);
+                let Some(t) = kept[k].get(place as usize) else {
+                    return Err(QueryError::Failed(anyhow::anyhow!(
+                        "triangle {id} of a region's list is not among object {k}'s kept triangles (a bug)"
+                    )));
+                };
+                list.extend_from_slice(&pack(i as u32, &t.triangle, grid_bits));
+            }
+        }
+        out.push(lists);
+    }
+    Ok(out)
 }
 
 /// Each region's model, then the engine's run held to it, one region

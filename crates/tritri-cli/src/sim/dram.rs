@@ -184,7 +184,7 @@ fn print_details(
     let (dram, scene) = (&answer.dram, &answer.scene);
     writeln!(
         report,
-        "host: cull to the common box and quantize onto the 16-bit grid in {} (this machine): A {} of {} triangles kept, B {} of {}; written into DRAM as two root lists of 32-byte entries, {} KiB",
+        "host: cull to the common box, quantize onto the 16-bit grid and pack the root lists (32-byte entries) in {} (this machine): A {} of {} triangles kept, B {} of {}; written into DRAM, {} KiB",
         human(answer.host),
         scene.kept_a.len(),
         scene.n_a,
