@@ -13,6 +13,7 @@
 
 use crate::input;
 use crate::model_files::write_png;
+use crate::octree::{routed_clock, EngineArgs};
 use crate::output_file::OutputFile;
 use crate::stdout::outln;
 use clap::Subcommand;
@@ -25,7 +26,10 @@ use tritri_geom::bezier::view::plan;
 use tritri_geom::bezier::{oriented_outwards, read_bpt, BezierPatch};
 use tritri_geom::raster::{Camera, Canvas};
 use tritri_rtl::bezier::patch_tessellator::tessellation_clocks;
-use tritri_rtl::emit::patch_tessellator_unit::TESSELLATOR_CONFIGURATIONS;
+use tritri_rtl::emit::cone_unit_unit::cone_unit_name;
+use tritri_rtl::emit::patch_tessellator_unit::{
+    patch_tessellator_unit_name, TESSELLATOR_CONFIGURATIONS,
+};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -60,10 +64,12 @@ struct ConesArgs {
     /// Cut every patch in two this many times first (0 to 6).
     #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=6))]
     subdivide: u32,
-    /// What classifies: the exact fixed-point model, or the unit in
-    /// rust-hdl, Icarus or Verilator (checked against the model).
-    #[arg(long, value_enum, default_value_t = Engine::Model)]
-    engine: Engine,
+    /// What classifies (`--engine`: the exact fixed-point model, or the
+    /// unit in rust-hdl, Icarus or Verilator, checked against the model),
+    /// and the clock of its time (`--clock-mhz`; else the unit's
+    /// post-route clock, and no time for a unit not routed).
+    #[command(flatten)]
+    hardware: EngineArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -76,13 +82,16 @@ struct TessellateArgs {
     /// 2^K steps a side (1 to 4).
     #[arg(long, default_value_t = 3, value_name = "K", value_parser = crate::input::whole::<usize>(1..=4))]
     steps: usize,
-    /// Cut every patch in two this many times first (0 to 6).
+    /// Cut every patch in two this many times first (0 to 6; the teapot's
+    /// 32 patches become 64 to 512 for 1 to 4).
     #[arg(long, default_value_t = 0, value_name = "K", value_parser = crate::input::whole::<u32>(0..=6))]
     subdivide: u32,
-    /// What tessellates: the exact fixed-point model, or the unit in
-    /// rust-hdl, Icarus or Verilator (checked against the model).
-    #[arg(long, value_enum, default_value_t = Engine::Model)]
-    engine: Engine,
+    /// What tessellates (`--engine`: the exact fixed-point model, or the
+    /// unit in rust-hdl, Icarus or Verilator, checked against the model),
+    /// and the clock of its time (`--clock-mhz`; else the unit's
+    /// post-route clock, and no time for a unit not routed).
+    #[command(flatten)]
+    hardware: EngineArgs,
 }
 
 #[derive(clap::Args, Debug)]
@@ -239,7 +248,7 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
     let model: Vec<Vec<[i64; 3]>> = nets.iter().map(|net| fixed_grid(net, k as u32)).collect();
     let formula = patches.len() as u64 * tessellation_clocks(k as u32);
     let mut status = ExitCode::SUCCESS;
-    let clocks = match a.engine {
+    let clocks = match a.hardware.engine {
         Engine::Model => formula,
         engine => {
             let runs = match engine.simulator() {
@@ -289,11 +298,38 @@ fn tessellate(a: TessellateArgs) -> anyhow::Result<ExitCode> {
         patches.len() * side * side
     )?;
     outln!("error against the f64 patches: at most {worst:.3} grid steps per coordinate ({:.3e} in the file's units; the bound is 1 step)", worst * frame.step)?;
+    let unit = patch_tessellator_unit_name(a.width, k);
     outln!(
-        "clocks: {clocks}, one vertex per clock after 2 a patch; {:.2} us at an assumed 100 MHz",
-        clocks as f64 / 100.0
+        "clocks: {clocks}, one vertex per clock after 2 a patch; {}",
+        rates(&a.hardware, &unit, clocks, patches.len(), Some(triangles))
     )?;
     Ok(status)
+}
+
+/// A unit's time and rates at its clock (`--clock-mhz` or its post-route
+/// clock): patches, and `triangles` when it makes them, per second; for a
+/// unit not routed, only that it is not.
+fn rates(
+    hardware: &EngineArgs,
+    unit: &str,
+    clocks: u64,
+    patches: usize,
+    triangles: Option<usize>,
+) -> String {
+    let Some((mhz, how)) = routed_clock(hardware, unit) else {
+        return format!("{unit} is not routed (no time without a clock; --clock-mhz F gives one)");
+    };
+    let seconds = clocks as f64 / (mhz * 1e6);
+    let per_second = |n: usize| n as f64 / seconds;
+    let mut line = format!(
+        "at {mhz:.1} MHz{how}: {:.2} us, {:.3e} patches/s",
+        seconds * 1e6,
+        per_second(patches)
+    );
+    if let Some(t) = triangles {
+        line += &format!(", {:.3e} triangles/s", per_second(t));
+    }
+    line
 }
 
 /// Triangles of one patch's vertex grid, two per cell as in
@@ -343,15 +379,16 @@ fn cones(a: ConesArgs) -> anyhow::Result<ExitCode> {
     };
     let started = std::time::Instant::now();
     let model = expected(&inputs);
-    let classes = match a.engine.simulator() {
-        _ if a.engine == Engine::Model => model.clone(),
+    let engine = a.hardware.engine;
+    let classes = match engine.simulator() {
+        _ if engine == Engine::Model => model.clone(),
         None => tritri_cosim::cone_unit::run_rusthdl(a.width, &inputs)?,
         Some(simulator) => tritri_cosim::cone_unit::run_emitted(a.width, &inputs, simulator)?,
     };
     anyhow::ensure!(
         classes == model,
         "the cone unit in {} differs from the fixed-point model (a bug)",
-        a.engine.name()
+        engine.name()
     );
     let count = |f: Facing| classes.iter().filter(|&&c| c == f).count();
     let f64_culled: Vec<bool> = patches
@@ -375,14 +412,24 @@ fn cones(a: ConesArgs) -> anyhow::Result<ExitCode> {
         count(Facing::Silhouette),
         f64_culled.iter().filter(|&&c| c).count(),
     )?;
-    if a.engine != Engine::Model {
-        let cycles = patches.len() + CONE_UNIT_LATENCY;
-        outln!(
-            "hardware ({}): the model's classes, one patch a clock: {cycles} cycles = {:.3} us at an assumed 100 MHz (not routed; simulated in {:.1} s)",
-            a.engine.name(),
-            cycles as f64 / 100.0,
+    let cycles = (patches.len() + CONE_UNIT_LATENCY) as u64;
+    let simulated = match engine {
+        Engine::Model => String::new(),
+        _ => format!(
+            " (the model's classes in {}, simulated in {:.1} s)",
+            engine.name(),
             started.elapsed().as_secs_f64()
-        )?;
-    }
+        ),
+    };
+    outln!(
+        "clocks: {cycles}, one patch a clock after {CONE_UNIT_LATENCY}{simulated}; {}",
+        rates(
+            &a.hardware,
+            &cone_unit_name(a.width),
+            cycles,
+            patches.len(),
+            None
+        )
+    )?;
     Ok(ExitCode::SUCCESS)
 }

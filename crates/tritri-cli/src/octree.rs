@@ -88,13 +88,19 @@ pub const ASSUMED_CLOCK_MHZ: f64 = 100.0;
 /// (`rtl-out/measurements.json`), else [`ASSUMED_CLOCK_MHZ`]; with words
 /// saying which.
 pub fn unit_clock(hardware: &EngineArgs, unit: &str) -> (f64, &'static str) {
+    routed_clock(hardware, unit).unwrap_or((ASSUMED_CLOCK_MHZ, " (assumed: not routed)"))
+}
+
+/// `--clock-mhz`, else the unit's post-route clock on the ECP5-85, with
+/// words saying which; `None` for a unit not routed (no time is given).
+pub fn routed_clock(hardware: &EngineArgs, unit: &str) -> Option<(f64, &'static str)> {
     match (
         hardware.clock_mhz,
         tritri_rtl::measured::Measurements::committed().ecp5(unit),
     ) {
-        (Some(f), _) => (f, ""),
-        (None, Some(row)) => (row.fmax_mhz, " (post-route, ECP5-85)"),
-        (None, None) => (ASSUMED_CLOCK_MHZ, " (assumed: not routed)"),
+        (Some(f), _) => Some((f, "")),
+        (None, Some(row)) => Some((row.fmax_mhz, " (post-route, ECP5-85)")),
+        (None, None) => None,
     }
 }
 

@@ -100,7 +100,8 @@ fn tessellate_runs_the_unit_and_reports_the_error() {
         String::from_utf8_lossy(&out.stderr)
     );
     let text = String::from_utf8_lossy(&out.stdout);
-    for needle in ["engine: verilator: 0 of 2 patches differ from the fixed-point model; 166 clocks (formula: 166)", "2 patches at 8 steps a side", "162 vertices, 256 triangles"] {
+    // Its time at the unit's post-route clock, named (rtl-out/measurements.json).
+    for needle in ["engine: verilator: 0 of 2 patches differ from the fixed-point model; 166 clocks (formula: 166)", "2 patches at 8 steps a side", "162 vertices, 256 triangles", "MHz (post-route, ECP5-85): ", "triangles/s"] {
         assert!(text.contains(needle), "no `{needle}` in:\n{text}");
     }
     let steps: f64 = text
@@ -146,7 +147,7 @@ fn cones_runs_the_unit_and_compares_with_f64() {
         String::from_utf8_lossy(&out.stderr)
     );
     let text = String::from_utf8_lossy(&out.stdout);
-    for needle in ["2 patches from (3, 1.5, 10) on a 24-bit grid: 1 culled, 1 front-facing, 0 possible silhouettes; the f64 guarantee culls 1, 0 answers differ", "hardware (verilator): the model's classes"] {
+    for needle in ["2 patches from (3, 1.5, 10) on a 24-bit grid: 1 culled, 1 front-facing, 0 possible silhouettes; the f64 guarantee culls 1, 0 answers differ", "clocks: 6, one patch a clock after 4 (the model's classes in verilator", "tritri_cone_unit_w24 is not routed (no time without a clock"] {
         assert!(text.contains(needle), "no `{needle}` in:\n{text}");
     }
     let out = tritri(&["bezier", "cones", file.to_str().unwrap(), "--width", "20"]);
