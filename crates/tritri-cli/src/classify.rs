@@ -6,10 +6,11 @@
 //! and the exit status is 2, so a partial answer is never mistaken for the
 //! file's.
 //! With `--arith fixed` the whole file is quantized into one W-bit frame,
-//! whose step is printed on stderr as a note. With `--certified` every
-//! verdict whose certificate (the pipeline's `out_certain`) is 0 is decided
-//! again with exact predicates on the file's coordinates, so the answer is
-//! the exact answer; a note says how many pairs went back to the host.
+//! whose step is printed on stderr as a note, and every verdict whose
+//! certificate (the pipeline's `out_certain`) is 0 is decided again with
+//! exact predicates on the file's coordinates, so the answer is the exact
+//! answer; a note says how many pairs went back to the host and what that
+//! took. `--grid-verdicts` prints the grid's own verdicts instead.
 
 use crate::input;
 use anyhow::Context;
@@ -39,10 +40,15 @@ pub struct Args {
     /// signals, or of the emitted Verilog in Icarus or Verilator); keep the file small.
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
-    /// With `--arith fixed`: decide every uncertain verdict (`out_certain = 0`)
-    /// again on the original coordinates; the answer is then exact.
-    #[arg(long)]
+    /// The default, kept for scripts: with `--arith fixed`, every verdict
+    /// without a certificate (`out_certain = 0`) is decided again on the
+    /// original coordinates.
+    #[arg(long, hide = true, conflicts_with = "grid_verdicts")]
     certified: bool,
+    /// With `--arith fixed`: print the grid's raw verdicts instead of the
+    /// exact answer, for studying quantization.
+    #[arg(long)]
+    grid_verdicts: bool,
     /// Pair file: 18 numbers per line, or a JSON array of {t1, t2}; `-` reads standard input.
     file: PathBuf,
 }
@@ -73,10 +79,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         (ArithName::F32, None) => Arithmetic::F32,
         (ArithName::Moller, None) => Arithmetic::Moller,
     };
-    if (args.engine != Engine::Model || args.vcd.is_some() || args.certified)
+    if (args.engine != Engine::Model || args.vcd.is_some() || args.certified || args.grid_verdicts)
         && !matches!(arith, Arithmetic::Fixed(_))
     {
-        eprintln!("error: --engine, --vcd and --certified apply only to --arith fixed");
+        eprintln!(
+            "error: --engine, --vcd, --certified and --grid-verdicts apply only to --arith fixed"
+        );
         return Ok(ExitCode::from(2));
     }
     if let (Arithmetic::Fixed(width), true) = (arith, args.engine.is_hardware()) {
@@ -115,7 +123,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         );
     }
     let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
-    let model_alone = args.engine == Engine::Model && !args.certified;
+    // The grid's verdicts from the model alone are `classify`'s already.
+    let model_alone = args.engine == Engine::Model && args.grid_verdicts;
     if let (Arithmetic::Fixed(width), Some(frame), false) = (arith, result.frame, model_alone) {
         let grid: Vec<CertifiedVerdict> = if args.engine == Engine::Model {
             pairs
@@ -132,14 +141,16 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             )?
         };
         result.verdicts = grid.iter().map(|v| v.hit).collect();
-        if args.certified {
+        if !args.grid_verdicts {
+            let started = std::time::Instant::now();
             let run = recheck(&pairs, &grid);
             eprintln!(
-                "note: {}: certified: {} of {} verdicts uncertain ({:.3} %), decided again on the original coordinates; {} of them changed",
+                "note: {}: exact answer: {} of {} verdicts without a certificate ({:.3} %), decided again on the original coordinates in {:.3} ms; {} of them changed (--grid-verdicts prints the grid's own)",
                 args.file.display(),
                 run.uncertain,
                 pairs.len(),
                 100.0 * run.uncertain as f64 / pairs.len().max(1) as f64,
+                started.elapsed().as_secs_f64() * 1e3,
                 run.changed
             );
             result.verdicts = run.verdicts;

@@ -1,14 +1,22 @@
-//! `tritri classify --arith fixed --engine E` prints the same verdicts from
-//! the software model, the rust-hdl pipeline and the emitted Verilog in
-//! Icarus and Verilator, on pairs that include touching, coplanar and
-//! degenerate ones; `--vcd FILE` writes a waveform from every hardware engine.
+//! `tritri classify --arith fixed --grid-verdicts --engine E` prints the
+//! same grid verdicts from the software model, the rust-hdl pipeline and
+//! the emitted Verilog in Icarus and Verilator, on pairs that include
+//! touching, coplanar and degenerate ones; `--vcd FILE` writes a waveform
+//! from every hardware engine.
 
 use std::process::Command;
 
 fn classify(file: &std::path::Path, engine: &str, extra: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_tritri"))
         .args([
-            "classify", "--arith", "fixed", "--width", "16", "--engine", engine,
+            "classify",
+            "--arith",
+            "fixed",
+            "--width",
+            "16",
+            "--grid-verdicts",
+            "--engine",
+            engine,
         ])
         .args(extra)
         .arg(file)

@@ -690,7 +690,8 @@ fn for_scene_sizes_the_system_and_says_why() {
             "*Why not one more pipeline:* P = 4 does not fit",
             "| W = 20 (chosen) | 252 |",
             "--width 20 --pipelines 2 --depth",
-            "--engine verilator --certified",
+            "--broad-phase octree --width 20 --pipelines 2 --depth",
+            "--engine verilator`",
         ],
     );
     assert!(std::fs::read_dir(&out).unwrap().any(|e| e

@@ -569,7 +569,7 @@ fn explain(
     );
     let _ = writeln!(
         s,
-        "\nRun this design on the scene in Verilator: `tritri sim {scene_flags} {} --pipelines {} --depth {} --engine verilator --certified`.",
+        "\nRun this design on the scene in Verilator (the on-chip broad phase that batches for it): `tritri sim {scene_flags} --broad-phase octree {} --pipelines {} --depth {} --engine verilator`.",
         c.sim_flags(),
         sizing.pipelines,
         sizing.depth
