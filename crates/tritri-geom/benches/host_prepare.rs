@@ -6,7 +6,9 @@
 //! coordinate (the memory-speed floor),
 //! and the exact software path on the same scene (the baseline every
 //! speed line is measured against). A torus of 100k triangles and a
-//! sphere of 20k in contact.
+//! sphere of 20k in contact; then two tori of 100k, one moved a little,
+//! where nearly every triangle is in the common box (as on bunny x bunny),
+//! so that quantizing, not culling, is most of the work.
 //! `cargo bench -p tritri-geom --bench host_prepare`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
@@ -50,6 +52,32 @@ fn host_prepare(c: &mut Criterion) {
             ))
             .pairs
             .len()
+        })
+    });
+    group.finish();
+
+    let a = SceneObject::from_triangles("torus", torus([0.0, 0.0, 0.0], 1.0, 0.35, 500, 100));
+    let b = SceneObject::from_triangles("torus", torus([0.02, 0.01, 0.0], 1.0, 0.35, 500, 100));
+    let kept = prepare(&a, &b, &options).unwrap();
+    assert!(
+        kept.kept_a.len() + kept.kept_b.len() > 190_000,
+        "nearly all kept"
+    );
+    let mut group = c.benchmark_group("host_prepare_2x100k_all_kept");
+    group.sample_size(20);
+    group.bench_function("bounding_boxes", |bench| {
+        bench.iter(|| {
+            (
+                black_box(Aabb::of_triangles(black_box(&a.triangles))),
+                black_box(Aabb::of_triangles(black_box(&b.triangles))),
+            )
+        })
+    });
+    group.bench_function("prepare", |bench| {
+        bench.iter(|| {
+            black_box(prepare(black_box(&a), black_box(&b), &options).unwrap())
+                .kept_a
+                .len()
         })
     });
     group.finish();
