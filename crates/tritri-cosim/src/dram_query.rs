@@ -566,9 +566,9 @@ pub fn find_pairs_in_dram(
     }
     let cases = fitting_cases(dram, &answer.scene, dram.memory())?;
     // The host's packing of every region's root lists, timed with its
-    // preparation (the choice of regions is the model's, not timed: a
-    // host rule for it is still to come) (the lists the simulated memory holds are the same
-    // bytes: tests/dram_query.rs).
+    // preparation; they are the bytes the simulated memory holds
+    // (tests/dram_query.rs). Which regions, the top's model chose above,
+    // untimed: a host would learn it from a run that overflows.
     let started = Instant::now();
     std::hint::black_box(host_root_lists(&answer.scene, &cases)?);
     answer.host += started.elapsed();
