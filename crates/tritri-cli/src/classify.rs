@@ -19,7 +19,7 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use tritri_cosim::engine::{run_pipeline, Engine};
-use tritri_geom::arithmetic::{classify, Arithmetic, DEFAULT_WIDTH};
+use tritri_geom::arithmetic::{classify, fit_frame, Arithmetic, Classification, DEFAULT_WIDTH};
 use tritri_geom::certificate::{certified_intersects, recheck, CertifiedVerdict};
 use tritri_geom::scene::TaggedTriangle;
 use tritri_rtl::pipeline::pipeline_for_width::PipelineInput;
@@ -122,9 +122,20 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             args.file.display()
         );
     }
-    let mut result = classify(arith, &pairs).with_context(|| format!("{}", args.file.display()))?;
-    // The grid's verdicts from the model alone are `classify`'s already.
+    // The grid's verdicts from the model alone are `classify`'s. Every
+    // other fixed-point answer is decided below, with its certificates:
+    // here only the frame is fitted, so that no pair is decided twice.
     let model_alone = args.engine == Engine::Model && args.grid_verdicts;
+    let mut result = match arith {
+        Arithmetic::Fixed(width) if !model_alone => {
+            fit_frame(&pairs, width).map(|frame| Classification {
+                verdicts: Vec::new(),
+                frame: Some(frame),
+            })
+        }
+        _ => classify(arith, &pairs),
+    }
+    .with_context(|| format!("{}", args.file.display()))?;
     if let (Arithmetic::Fixed(width), Some(frame), false) = (arith, result.frame, model_alone) {
         let grid: Vec<CertifiedVerdict> = if args.engine == Engine::Model {
             pairs
