@@ -3,7 +3,7 @@
 # for it, then runs the top's FuseSoC targets: lint (Verilator -Wall), sim
 # (Icarus, the cocotb test tb/test_fpga_top.py against cocotbext-axi's
 # AxiLiteMaster, AxiRam and AxiStreamSink) and synth (Yosys synth_ecp5,
-# about 6 minutes; --no-synth leaves it out) with its resources. Fails if
+# about 7 minutes; --no-synth leaves it out) with its resources. Fails if
 # any of them fails or a cocotb test fails.
 #
 #   bash examples/fpga-top/run.sh [--no-synth] [A B [SCALE_B TX TY TZ]]   # after bash scripts/setup.sh

@@ -61,7 +61,6 @@ class Host:
     """The board's host side: registers, DRAM, the pair stream."""
 
     def __init__(self, dut, size):
-        self.dut = dut
         self.regs = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.clock, dut.reset)
         self.ram = AxiRam(AxiBus.from_prefix(dut, "m_axi"), dut.clock, dut.reset, size=size)
         self.pairs = AxiStreamSink(AxiStreamBus.from_prefix(dut, "m_axis"), dut.clock, dut.reset)
