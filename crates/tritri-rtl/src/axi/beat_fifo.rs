@@ -1,17 +1,24 @@
 //! A first-word-fall-through queue of beats: a RAM of `2^A` words (block
-//! RAM, or LUTs with [`BeatFifo::in_distributed_ram`]), its read register (the *stage*) and a head register, so the reader of
-//! the queue sees a registered word and a pop reaches the RAM only through
-//! its read enable.
+//! RAM, or LUTs with [`BeatFifo::in_distributed_ram`]), its read register
+//! (the *stage*), a head register and a spare behind it, so the reader of
+//! the queue sees a registered word and the RAM's read enable depends on
+//! registers only.
 //!
 //! * A word pushed at edge `t` is in the RAM after `t`; it is fetched into
 //!   the stage at `t + 1` and moves to the head at `t + 2`, so an empty
 //!   queue shows it (`out_valid`) from the clock after edge `t + 2`.
-//! * The stage and the head move together: the head takes the stage when
-//!   it is empty or popped, and the stage fetches when it is empty or
-//!   moves, so a full queue delivers a word every clock.
-//! * `count` (words held: RAM, stage and head) is a register. It holds at
-//!   most `2^A + 2`; the caller does not push into a full queue (the
-//!   reader's credits and the writer's `in_ready` see to it).
+//! * The stage fetches while the stage, the head and the spare are not all
+//!   full. The stage's word moves on every clock it can: to the head when
+//!   the head is free (empty or popped) and the spare is empty, else to
+//!   the spare, which hands its word to the head first. A full queue so
+//!   delivers a word every clock, at the same clocks as a queue whose
+//!   stage fetched whenever the head was popped, but a pop reaches only
+//!   the head's and the spare's registers: in a 257-bit queue of block
+//!   RAMs, a pop that drove the RAMs' clock enables was the list pass's
+//!   critical path (23.3 ns, most of it routing across the die).
+//! * `count` (words held: RAM, stage, head and spare) is a register. It
+//!   holds at most `2^A + 2`; the caller does not push into a full queue
+//!   (the reader's credits and the writer's `in_ready` see to it).
 
 use crate::system::dual_port_ram::SimpleDualPortRam;
 use rust_hdl::prelude::*;
@@ -40,8 +47,16 @@ pub struct BeatFifo<const DW: usize, const A: usize> {
     stage_valid: DFF<Bit>,
     head_valid: DFF<Bit>,
     head: DFF<Bits<DW>>,
+    /// The word after the head, when the stage's word could not go to the
+    /// head (only while the head is full).
+    spare_valid: DFF<Bit>,
+    spare: DFF<Bits<DW>>,
     held: DFF<Bits<COUNT_BITS>>,
     head_free: Signal<Local, Bit>,
+    /// The spare takes the stage's word this clock.
+    spare_load: Signal<Local, Bit>,
+    /// The stage's word leaves it this clock.
+    stage_moves: Signal<Local, Bit>,
     fetch: Signal<Local, Bit>,
     popped: Signal<Local, Bit>,
 }
@@ -58,6 +73,8 @@ impl<const DW: usize, const A: usize> crate::unit::Unit for BeatFifo<DW, A> {
             stage_valid,
             head_valid,
             head,
+            spare_valid,
+            spare,
             held
         );
     }
@@ -87,8 +104,12 @@ impl<const DW: usize, const A: usize> Default for BeatFifo<DW, A> {
             stage_valid: Default::default(),
             head_valid: Default::default(),
             head: Default::default(),
+            spare_valid: Default::default(),
+            spare: Default::default(),
             held: Default::default(),
             head_free: Default::default(),
+            spare_load: Default::default(),
+            stage_moves: Default::default(),
             fetch: Default::default(),
             popped: Default::default(),
         }
@@ -118,6 +139,8 @@ impl<const DW: usize, const A: usize> Logic for BeatFifo<DW, A> {
             stage_valid,
             head_valid,
             head,
+            spare_valid,
+            spare,
             held
         );
         clock!(self, clock, memory);
@@ -126,20 +149,37 @@ impl<const DW: usize, const A: usize> Logic for BeatFifo<DW, A> {
         self.count.next = self.held.q.val();
         self.popped.next = self.pop.val() & self.head_valid.q.val();
         self.head_free.next = !self.head_valid.q.val() | self.popped.val();
-        // The head takes the stage's word, or empties when popped.
+        // A free head takes the spare's word, else the stage's (or empties).
         if self.head_free.val() {
             self.head_valid.d.next = self.stage_valid.q.val();
             self.head.d.next = self.memory.read_data.val();
+            if self.spare_valid.q.val() {
+                self.head_valid.d.next = true;
+                self.head.d.next = self.spare.q.val();
+            }
         }
-        // The stage fetches when it is empty or its word moves on.
+        // The spare takes the stage's word when its own goes to the head,
+        // or when it is empty and the head is not free (the spare is only
+        // ever full behind a full head).
+        self.spare_load.next = self.head_free.val() == self.spare_valid.q.val();
+        if self.spare_load.val() {
+            self.spare_valid.d.next = self.stage_valid.q.val();
+            self.spare.d.next = self.memory.read_data.val();
+        }
+        self.stage_moves.next =
+            self.stage_valid.q.val() & (self.head_free.val() | !self.spare_valid.q.val());
+        // The stage fetches unless it, the head and the spare are all full:
+        // registers only, so a pop never reaches the RAM's clock enable.
+        // When the stage is full and fetches, its word moves this clock.
         self.fetch.next =
-            (!self.stage_valid.q.val() | self.head_free.val()) & (self.stored.q.val() != 0);
+            !(self.stage_valid.q.val() & self.head_valid.q.val() & self.spare_valid.q.val())
+                & (self.stored.q.val() != 0);
         self.memory.read_enable.next = self.fetch.val();
         self.memory.read_address.next = self.read_pointer.q.val();
         if self.fetch.val() {
             self.read_pointer.d.next = self.read_pointer.q.val() + 1;
             self.stage_valid.d.next = true;
-        } else if self.head_free.val() {
+        } else if self.stage_moves.val() {
             self.stage_valid.d.next = false;
         }
         self.memory.write_enable.next = self.push.val();
@@ -164,6 +204,7 @@ impl<const DW: usize, const A: usize> Logic for BeatFifo<DW, A> {
             self.stored.d.next = 0.into();
             self.stage_valid.d.next = false;
             self.head_valid.d.next = false;
+            self.spare_valid.d.next = false;
             self.held.d.next = 0.into();
         }
     }

@@ -220,11 +220,6 @@ pub struct ListPass<
     mask_left: DFF<Bits<8>>,
     /// The children an entry of object A has been written to in this pass.
     reached: DFF<Bits<8>>,
-    /// The children an entry in the distributor may go to: all of them for
-    /// an A entry, those in `reached` for a B entry (`reached` as of this
-    /// clock: the register is kept equal to that function of `object` and
-    /// `reached`, so that `live` is a continuous assignment).
-    gate: DFF<Bits<8>>,
     beat: DFF<Bits<3>>,
     /// The entry's beats not yet written to this child, next at bit 0: a
     /// shift by a constant a beat, where indexing the entry by the beat
@@ -261,8 +256,12 @@ pub struct ListPass<
     tagged: Signal<Local, Bits<TAGGED_ENTRY_BITS>>,
     sel_address: Signal<Local, Bits<BA>>,
     write: Signal<Local, Bit>,
-    /// The octants left of the entry in the distributor, gated.
+    /// The octants left of the entry in the distributor, gated: a B entry
+    /// goes only to the children an A entry went to.
     live: Signal<Local, Bits<8>>,
+    /// The gate after this clock: all children for an A entry, those in
+    /// `reached` for a B entry.
+    gate_next: Signal<Local, Bits<8>>,
     /// The chosen child among A's (zero for a B entry).
     target_low: Signal<Local, Bits<8>>,
     entry_done: Signal<Local, Bit>,
@@ -331,7 +330,6 @@ impl<
             object,
             mask_left,
             reached,
-            gate,
             beat,
             beat_data,
             flushing,
@@ -492,7 +490,6 @@ impl<
             object: Default::default(),
             mask_left: Default::default(),
             reached: Default::default(),
-            gate: Default::default(),
             beat: Default::default(),
             beat_data: Default::default(),
             flushing: Default::default(),
@@ -522,6 +519,7 @@ impl<
             sel_address: Default::default(),
             write: Default::default(),
             live: Default::default(),
+            gate_next: Default::default(),
             target_low: Default::default(),
             entry_done: Default::default(),
             last_child: Default::default(),
@@ -579,7 +577,6 @@ impl<
             object,
             mask_left,
             reached,
-            gate,
             beat,
             beat_data,
             flushing,
@@ -614,7 +611,10 @@ impl<
             self.region[i].d.next = self.region[i].q.val();
             self.child_count[i].next = self.count[i].q.val();
         }
-        clock!(self, clock, reader, lane, entries, masks, buffer, commands, bursts, w_data, w_last);
+        clock!(
+            self, clock, reader, lane, entries, masks, select, buffer, commands, bursts, w_data,
+            w_last
+        );
         self.reader.reset.next = self.reset.val();
         self.entries.reset.next = self.reset.val();
         self.masks.reset.next = self.reset.val();
@@ -696,25 +696,16 @@ impl<
         // A B entry goes only to children that A's entries reached: a child
         // without A is dropped by the split rule, so its B list would never
         // be read (the controller reads the shorter list as A).
-        self.live.next = self.mask_left.q.val() & self.gate.q.val();
-        self.select.mask_left.next = self.live.val();
-        self.select.object.next = self.object.q.val();
-        self.select.flushing.next = self.flushing.q.val();
-        self.select.flush_child.next = self.flush_child.q.val();
-        for i in 0..16 {
-            self.select.fill[i].next = self.fill[i].q.val();
-            self.select.half[i].next = self.half[i].q.val();
-            self.select.pending_low[i].next = self.pending_low[i].q.val();
-            self.select.pending_high[i].next = self.pending_high[i].q.val();
-            self.select.region[i].next = self.region[i].q.val();
-        }
+        // The choice is registered: `select` made it on this clock's state
+        // in the clock before (its inputs are set at the end).
+        self.live.next = self.select.live.val();
         self.sel_address.next = (bit_cast::<BA, SLOT_BITS>(self.select.slot.val())
             << self.log_burst_beats.val())
             + bit_cast::<BA, 9>(self.select.fill_of.val());
         self.write.next =
             (self.live.val() != 0) & !self.select.blocked.val() & !self.flushing.q.val();
         self.entry_done.next = self.write.val() & (self.beat.q.val() == self.last_beat.val());
-        self.last_child.next = (self.live.val() & (self.live.val() - 1)) == 0;
+        self.last_child.next = self.select.single.val();
         self.slot_full.next =
             self.write.val() & (self.select.fill_of.val() == self.slot_full_beats.val());
         self.flush_out.next = self.flushing.q.val() & (self.select.fill_of.val() != 0);
@@ -952,10 +943,22 @@ impl<
             self.feed_left.d.next = 0.into();
             self.read_valid.d.next = false;
         }
-        // `gate` follows `object` and `reached` (see its field).
-        self.gate.d.next = 255.into();
+        // The next clock's choice, on the registers' next values (every
+        // one of them is written above).
+        self.gate_next.next = 255.into();
         if self.object.d.val() {
-            self.gate.d.next = self.reached.d.val();
+            self.gate_next.next = self.reached.d.val();
+        }
+        self.select.mask_left.next = self.mask_left.d.val() & self.gate_next.val();
+        self.select.object.next = self.object.d.val();
+        self.select.flushing.next = self.flushing.d.val();
+        self.select.flush_child.next = self.flush_child.d.val();
+        for i in 0..16 {
+            self.select.fill[i].next = self.fill[i].d.val();
+            self.select.half[i].next = self.half[i].d.val();
+            self.select.pending_low[i].next = self.pending_low[i].d.val();
+            self.select.pending_high[i].next = self.pending_high[i].d.val();
+            self.select.region[i].next = self.region[i].d.val();
         }
         self.unused_outputs.next = self.reader.out_last.val()
             ^ self.lane.out_index.val().any()
