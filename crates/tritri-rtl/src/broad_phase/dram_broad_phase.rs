@@ -204,6 +204,12 @@ macro_rules! dram_broad_phase {
             next_number: DFF<Bits<CHAIN_LEAF_BITS>>,
             /// Heads still to clear, object by object.
             clear_left: [DFF<Bits<ENTRY_COUNT_BITS>>; 2],
+            /// Some head is still to clear: set from the counts' next values,
+            /// so that the leaf sequencer and the list pass's hold start from a
+            /// register rather than from two 13-bit compares (the routed top's
+            /// worst path began at `clear_left`). Zero at power-on, as the
+            /// counts are.
+            clearing: DFF<Bit>,
             /// Constants of the build: the system's depth, a tile's bytes.
             depth: Constant<Bits<ENTRY_COUNT_BITS>>,
             tile_bytes: Constant<Bits<ADDRESS_BITS>>,
@@ -233,7 +239,7 @@ macro_rules! dram_broad_phase {
             fn sub_units(&self, units: &mut crate::unit::UnitWalk) {
                 crate::sub_units!(
                     self, units, controller, reader, batcher, system, owner, seq, leaf, a_at, a_rest, b_at,
-                    b_rest, number, next_number, clear_left
+                    b_rest, number, next_number, clear_left, clearing
                 );
             }
         }
@@ -344,6 +350,7 @@ macro_rules! dram_broad_phase {
                     number: Default::default(),
                     next_number: Default::default(),
                     clear_left: Default::default(),
+                    clearing: Default::default(),
                     depth: Constant::new((depth as u64).into()),
                     tile_bytes: Constant::new(((depth * ENTRY_BYTES) as u64).into()),
                     reader_owns: Default::default(),
@@ -376,7 +383,9 @@ macro_rules! dram_broad_phase {
         {
             #[hdl_gen]
             fn update(&mut self) {
-                dff_setup!(self, clock, seq, leaf, a_at, a_rest, b_at, b_rest, number, next_number);
+                dff_setup!(
+                    self, clock, seq, leaf, a_at, a_rest, b_at, b_rest, number, next_number, clearing
+                );
                 self.clear_left[0].clock.next = self.clock.val();
                 self.clear_left[0].d.next = self.clear_left[0].q.val();
                 self.clear_left[1].clock.next = self.clock.val();
@@ -403,8 +412,7 @@ macro_rules! dram_broad_phase {
 
                 // ---- The owner filter's heads, cleared one index a clock from
                 // the clock after `start`: A's, then B's.
-                self.cleared.next =
-                    (self.clear_left[0].q.val() == 0) & (self.clear_left[1].q.val() == 0);
+                self.cleared.next = !self.clearing.q.val();
                 self.owner.start.next = self.start.val();
                 self.owner.load_valid.next = !self.cleared.val();
                 self.owner.load_object.next = self.clear_left[0].q.val() == 0;
@@ -498,6 +506,8 @@ macro_rules! dram_broad_phase {
                     self.clear_left[0].d.next = 0.into();
                     self.clear_left[1].d.next = 0.into();
                 }
+                self.clearing.d.next =
+                    (self.clear_left[0].d.val() != 0) | (self.clear_left[1].d.val() != 0);
 
                 // ---- The port: AR and R are the reader's while the sequencer
                 // holds a leaf, the controller's otherwise; AW, W and B are always
