@@ -55,6 +55,7 @@ use tritri_geom::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::PairSet;
 use tritri_geom::scene::{prepare, PreparedScene, TaggedTriangle};
+use tritri_geom::two_objects::on_both;
 use tritri_rtl::axi::memory_model::MemoryParams;
 use tritri_rtl::broad_phase::list_entry::{pack, ENTRY_BYTES};
 use tritri_rtl::broad_phase::list_pass_machine::{ListPassConfig, PASS_DATA_BITS};
@@ -601,32 +602,38 @@ pub fn host_root_lists(
     scene: &PreparedScene,
     cases: &[TopCase],
 ) -> Result<Vec<[Vec<u8>; 2]>, QueryError> {
-    let kept = [&scene.kept_a, &scene.kept_b];
-    let mut places = [scene.n_a, scene.n_b].map(|n| vec![u32::MAX; n]);
-    for (k, list) in kept.iter().enumerate() {
-        for (place, t) in list.iter().enumerate() {
-            places[k][t.id as usize] = place as u32;
+    // Object `k`'s lists of every region, the two objects on two threads
+    // when they are large (as `prepare` does).
+    let lists_of = |k: usize| -> Result<Vec<Vec<u8>>, QueryError> {
+        let kept = [&scene.kept_a, &scene.kept_b][k];
+        let mut places = vec![u32::MAX; [scene.n_a, scene.n_b][k]];
+        for (place, t) in kept.iter().enumerate() {
+            places[t.id as usize] = place as u32;
         }
-    }
-    let mut out = Vec::with_capacity(cases.len());
-    for case in cases {
-        let grid_bits = case.binning.config.pass.grid_bits;
-        let mut lists = [Vec::new(), Vec::new()];
-        for (k, list) in lists.iter_mut().enumerate() {
-            list.reserve(case.ids[k].len() * ENTRY_BYTES);
-            for (i, &id) in case.ids[k].iter().enumerate() {
-                let place = places[k].get(id as usize).copied().unwrap_or(u32::MAX);
-                let Some(t) = kept[k].get(place as usize) else {
-                    return Err(QueryError::Failed(anyhow::anyhow!(
-                        "triangle {id} of a region's list is not among object {k}'s kept triangles (a bug)"
-                    )));
-                };
-                list.extend_from_slice(&pack(i as u32, &t.triangle, grid_bits));
-            }
-        }
-        out.push(lists);
-    }
-    Ok(out)
+        cases
+            .iter()
+            .map(|case| {
+                let grid_bits = case.binning.config.pass.grid_bits;
+                let mut list = Vec::with_capacity(case.ids[k].len() * ENTRY_BYTES);
+                for (i, &id) in case.ids[k].iter().enumerate() {
+                    let place = places.get(id as usize).copied().unwrap_or(u32::MAX);
+                    let Some(t) = kept.get(place as usize) else {
+                        return Err(QueryError::Failed(anyhow::anyhow!(
+                            "triangle {id} of a region's list is not among object {k}'s kept triangles (a bug)"
+                        )));
+                    };
+                    list.extend_from_slice(&pack(i as u32, &t.triangle, grid_bits));
+                }
+                Ok(list)
+            })
+            .collect()
+    };
+    let (a, b) = on_both(
+        scene.kept_a.len() + scene.kept_b.len(),
+        || lists_of(0),
+        || lists_of(1),
+    );
+    Ok(a?.into_iter().zip(b?).map(|(a, b)| [a, b]).collect())
 }
 
 /// Each region's model, then the engine's run held to it, one region

@@ -38,6 +38,7 @@ pub mod scene;
 pub mod sign;
 mod text;
 pub mod triangle;
+pub mod two_objects;
 pub mod widths;
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ use crate::fixed_point::FixedTriangle;
 use crate::octree::triangle_cell::BROAD_PHASE_MARGIN;
 use crate::quantize::{Frame, QuantizeError};
 use crate::triangle::Triangle;
+use crate::two_objects::on_both;
 use load::SceneObject;
 use octree::{BatchCost, LocalFrames, OctreeSchedule};
 
@@ -268,8 +269,21 @@ pub fn prepare(
             .map(|(i, _)| i as u32)
             .collect()
     };
-    scene.candidates_a = touching(&a.triangles);
-    scene.candidates_b = touching(&b.triangles);
+    // Each object's candidates and their bounds, the objects on two
+    // threads when they are large (`on_both`).
+    let triangles = a.triangles.len() + b.triangles.len();
+    let candidates_and_bounds = |ts: &[Triangle]| {
+        let ids = touching(ts);
+        let bounds = candidate_bounds(&ids, ts);
+        (ids, bounds)
+    };
+    let ((candidates_a, bounds_a), (candidates_b, bounds_b)) = on_both(
+        triangles,
+        || candidates_and_bounds(&a.triangles),
+        || candidates_and_bounds(&b.triangles),
+    );
+    scene.candidates_a = candidates_a;
+    scene.candidates_b = candidates_b;
     // One pass over each object's candidates for their bounds: the frame
     // is fitted over both (as `Frame::fit` over the candidates would), and
     // since quantizing is monotone on each axis (a difference, a division
@@ -279,8 +293,6 @@ pub fn prepare(
     // quantizes each candidate and keeps it at once if its grown triangle
     // touches that box: no array of every quantized candidate is written
     // and read again (at 72 bytes a triangle, that was most of the time).
-    let bounds_a = candidate_bounds(&scene.candidates_a, &a.triangles);
-    let bounds_b = candidate_bounds(&scene.candidates_b, &b.triangles);
     let frame = match (bounds_a, bounds_b) {
         (Ok(x), Ok(y)) => {
             let (lo, hi) = union_bounds(x, y);
@@ -323,8 +335,11 @@ pub fn prepare(
             }
             kept
         };
-        scene.kept_a = kept(&scene.candidates_a, &a.triangles);
-        scene.kept_b = kept(&scene.candidates_b, &b.triangles);
+        (scene.kept_a, scene.kept_b) = on_both(
+            triangles,
+            || kept(&scene.candidates_a, &a.triangles),
+            || kept(&scene.candidates_b, &b.triangles),
+        );
     }
     let (ka, kb, depth) = (scene.kept_a.len(), scene.kept_b.len(), options.depth);
     if (ka > depth || kb > depth) && !options.split {
