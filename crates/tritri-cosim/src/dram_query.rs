@@ -628,11 +628,8 @@ pub fn host_root_lists(
             })
             .collect()
     };
-    let (a, b) = on_both(
-        scene.kept_a.len() + scene.kept_b.len(),
-        || lists_of(0),
-        || lists_of(1),
-    );
+    // The objects' sizes decide the threads, as in `prepare`.
+    let (a, b) = on_both(scene.n_a + scene.n_b, || lists_of(0), || lists_of(1));
     Ok(a?.into_iter().zip(b?).map(|(a, b)| [a, b]).collect())
 }
 

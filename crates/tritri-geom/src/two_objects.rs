@@ -8,6 +8,17 @@
 /// tens of microseconds, as much as preparing a few thousand triangles.
 pub const THREADED_FROM: usize = 16_384;
 
+/// The threads [`on_both`] uses for a scene of `triangles` (both objects
+/// together): 1 or 2.
+pub fn threads(triangles: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if triangles < THREADED_FROM || cores < 2 {
+        1
+    } else {
+        2
+    }
+}
+
 /// `(for_a(), for_b())`, on two threads when `triangles` (both objects'
 /// together) reaches [`THREADED_FROM`] and the machine has two cores, else
 /// in order on this one. The results are the same either way; only the
@@ -17,8 +28,7 @@ pub fn on_both<A: Send, B: Send>(
     for_a: impl FnOnce() -> A + Send,
     for_b: impl FnOnce() -> B + Send,
 ) -> (A, B) {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if triangles < THREADED_FROM || cores < 2 {
+    if threads(triangles) == 1 {
         return (for_a(), for_b());
     }
     std::thread::scope(|scope| {

@@ -18,6 +18,7 @@ use tritri_cosim::engine::Engine;
 use tritri_cosim::scene_query::{Clock, ClockSource, QueryError};
 use tritri_geom::scene::load::SceneObject;
 use tritri_geom::scene::reference::{PairDiff, PairSet};
+use tritri_geom::two_objects;
 
 /// The files reserved before any work.
 pub(super) struct Files {
@@ -182,10 +183,13 @@ fn print_details(
     run: &DramRun,
 ) -> anyhow::Result<()> {
     let (dram, scene) = (&answer.dram, &answer.scene);
+    let host_threads = two_objects::threads(scene.n_a + scene.n_b);
     writeln!(
         report,
-        "host: cull to the common box, quantize onto the 16-bit grid and pack the root lists (32-byte entries) in {} (this machine): A {} of {} triangles kept, B {} of {}; written into DRAM, {} KiB",
+        "host: cull to the common box, quantize onto the 16-bit grid and pack the root lists (32-byte entries) in {} (this machine, {} thread{}): A {} of {} triangles kept, B {} of {}; written into DRAM, {} KiB",
         human(answer.host),
+        host_threads,
+        if host_threads == 1 { "" } else { "s" },
         scene.kept_a.len(),
         scene.n_a,
         scene.kept_b.len(),
