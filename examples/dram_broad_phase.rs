@@ -1,7 +1,7 @@
 //! The broad-phase accelerator with its scene in DRAM on a scene of your
 //! own: the design `tritri gen --dram-broad-phase --width 16 --pipelines 1
 //! --rare-cases shared --triangles 8192 --slots 8192 [--data-bits 128|256]`
-//! writes (the one that fits the ECP5-85; the 256-bit top routes at 48.1
+//! writes (the one that fits the ECP5-85; the 256-bit top routes at 52.9
 //! MHz, docs/axi-port.md), on a 64-, 128- or 256-bit port, emitted and run
 //! in Verilator against the AXI4 memory model
 //! `axi_memory.sv`, with an ideal memory and with one that stalls 20 % of

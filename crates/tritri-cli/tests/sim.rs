@@ -89,7 +89,7 @@ fn sim_alone_runs_the_default_scene() {
         "@torus (2304 triangles)",
         "@sphere (960 triangles)",
         "exact pairs: 113",
-        "at 48.1 MHz (post-route on the ECP5-85), 256-bit AXI4 port, 1.6 GB/s of DRAM",
+        "at 52.9 MHz (post-route on the ECP5-85), 256-bit AXI4 port, 1.6 GB/s of DRAM",
         "design: tritri_dram_broad_phase_g16_w16_d256_p1_t256_i8192_s8192_shared",
         "KiB read",
         "that traffic takes at least",
