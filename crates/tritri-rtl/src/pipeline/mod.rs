@@ -25,6 +25,7 @@ pub mod rare_decisions;
 pub mod segment_ends;
 pub mod shared_rare_cases;
 pub mod shared_rare_pipeline;
+pub mod step_programs;
 pub mod third_determinant;
 pub mod triangle_front_end;
 pub mod triangle_pipeline;

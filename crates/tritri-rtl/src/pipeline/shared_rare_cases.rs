@@ -33,6 +33,7 @@ use super::rare_decisions::{
     CoplanarContacts, CoplanarDecision, SegmentContacts, SegmentsDecision,
     COPLANAR_DECISION_LATENCY, SEGMENTS_DECISION_LATENCY,
 };
+use super::step_programs::StepPrograms;
 use crate::arith::compare::{SplitCompare, SPLIT_COMPARE_LATENCY};
 use crate::arith::cross_product::{CrossProduct2d, CROSS_PRODUCT_LATENCY};
 use crate::arith::delay_line::DelayLine;
@@ -157,16 +158,7 @@ pub struct SharedRareCases<const W: usize, const D: usize, const C: usize> {
     stage1_q: [OneHotChoice<W>; 24],
     /// The point each of them takes at the next clock edge, one-hot: copy
     /// `c`'s program at the step and kind that copy `c` holds then.
-    pick_q: [DFF<Bits<6>>; 24],
-    /// Copy `c`'s program at the step after its current one, from its
-    /// registers alone (a LUT a bit), and that step. Decoded from the step
-    /// after the copy's next value (its load, its count), the pick was
-    /// five levels behind the copy's steps left, 6 of the 11 register
-    /// inputs short of 150 MHz (W = 16, ECP5, 134.8 MHz); now the load and
-    /// the count only choose among this, the first step's constant and
-    /// the pick held.
-    next_pick: [Signal<Local, Bits<6>>; 24],
-    step_ahead: [Signal<Local, Bits<3>>; 24],
+    programs: StepPrograms,
     /// Copy `c`'s step and kind after this clock's edge.
     step_next: [Signal<Local, Bits<3>>; IN_VALID_COPIES],
     segments_next: [Signal<Local, Bit>; IN_VALID_COPIES],
@@ -242,7 +234,7 @@ impl<const W: usize, const D: usize, const C: usize> crate::unit::Unit
             segments_copy_q,
             remaining_copy_q,
             stage1_q,
-            pick_q,
+            programs,
             lane_axis_q,
             u_difference,
             w_difference_0,
@@ -282,6 +274,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         clock!(
             self,
             clock,
+            programs,
             u_difference,
             w_difference_0,
             w_difference_1,
@@ -443,7 +436,7 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
             self.lane_axis_q[2].d.next = 2.into();
         }
         // Each destination coordinate's point: a one-hot choice among the
-        // six points, `pick_q`, registered a clock ahead from the next step
+        // six points, `programs.pick`, registered a clock ahead from the next step
         // and kind by the program of its kind, so that stage 1 is an
         // AND-OR of six (two LUT levels; decoding the step there was a
         // chain of six LUTs shared between bits, the whole W = 16 shared
@@ -455,9 +448,8 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
         // each: 107.8 MHz.)
         for d in 0..8 {
             for k in 0..3 {
-                self.pick_q[3 * d + k].clock.next = self.clock.val();
                 self.stage1_q[3 * d + k].clock.next = self.clock.val();
-                self.stage1_q[3 * d + k].pick.next = self.pick_q[3 * d + k].q.val();
+                self.stage1_q[3 * d + k].pick.next = self.programs.pick[3 * d + k].val();
                 self.stage1_q[3 * d + k].point_0.next = self.points_q[k].q.val();
                 self.stage1_q[3 * d + k].point_1.next = self.points_q[3 + k].q.val();
                 self.stage1_q[3 * d + k].point_2.next = self.points_q[6 + k].q.val();
@@ -466,242 +458,14 @@ impl<const W: usize, const D: usize, const C: usize> Logic for SharedRareCases<W
                 self.stage1_q[3 * d + k].point_5.next = self.points_q[15 + k].q.val();
             }
         }
-        // The programs: point `p` (bit `p` of the pick) at each step, read
-        // at the step after the copy's current one.
+        // The programs: each destination coordinate's point at each step.
         for c in 0..24 {
-            self.step_ahead[c].next = self.step_copy_q[c].q.val() + 1;
+            self.programs.load[c].next = self.copy_loads[c].val();
+            self.programs.step[c].next = self.step_copy_q[c].q.val();
+            self.programs.segments[c].next = self.segments_copy_q[c].q.val();
+            self.programs.moving[c].next = self.remaining_copy_q[c].q.val() != 0;
         }
-        // u0
-        for k in 0..3 {
-            if self.segments_copy_q[k].q.val() {
-                if self.step_ahead[k].val() == 0 || self.step_ahead[k].val() == 1 {
-                    self.next_pick[k].next = 1.into();
-                } else {
-                    self.next_pick[k].next = 8.into();
-                }
-            } else {
-                if self.step_ahead[k].val() == 0 {
-                    self.next_pick[k].next = 1.into();
-                } else if self.step_ahead[k].val() == 1 {
-                    self.next_pick[k].next = 2.into();
-                } else if self.step_ahead[k].val() == 2 {
-                    self.next_pick[k].next = 4.into();
-                } else if self.step_ahead[k].val() == 3 {
-                    self.next_pick[k].next = 8.into();
-                } else if self.step_ahead[k].val() == 4 {
-                    self.next_pick[k].next = 16.into();
-                } else {
-                    self.next_pick[k].next = 32.into();
-                }
-            }
-        }
-        // u1
-        for k in 0..3 {
-            if self.segments_copy_q[3 + k].q.val() {
-                if self.step_ahead[3 + k].val() == 0 || self.step_ahead[3 + k].val() == 1 {
-                    self.next_pick[3 + k].next = 2.into();
-                } else {
-                    self.next_pick[3 + k].next = 16.into();
-                }
-            } else {
-                if self.step_ahead[3 + k].val() == 0 {
-                    self.next_pick[3 + k].next = 2.into();
-                } else if self.step_ahead[3 + k].val() == 1 {
-                    self.next_pick[3 + k].next = 4.into();
-                } else if self.step_ahead[3 + k].val() == 2 {
-                    self.next_pick[3 + k].next = 1.into();
-                } else if self.step_ahead[3 + k].val() == 3 {
-                    self.next_pick[3 + k].next = 16.into();
-                } else if self.step_ahead[3 + k].val() == 4 {
-                    self.next_pick[3 + k].next = 32.into();
-                } else {
-                    self.next_pick[3 + k].next = 8.into();
-                }
-            }
-        }
-        // w0 lane 0
-        for k in 0..3 {
-            if self.segments_copy_q[6 + k].q.val() {
-                if self.step_ahead[6 + k].val() == 0 || self.step_ahead[6 + k].val() == 1 {
-                    self.next_pick[6 + k].next = 1.into();
-                } else {
-                    self.next_pick[6 + k].next = 8.into();
-                }
-            } else {
-                if self.step_ahead[6 + k].val() == 0
-                    || self.step_ahead[6 + k].val() == 3
-                    || self.step_ahead[6 + k].val() == 4
-                    || self.step_ahead[6 + k].val() == 5
-                {
-                    self.next_pick[6 + k].next = 1.into();
-                } else if self.step_ahead[6 + k].val() == 1 {
-                    self.next_pick[6 + k].next = 2.into();
-                } else {
-                    self.next_pick[6 + k].next = 4.into();
-                }
-            }
-        }
-        // w0 lane 1
-        for k in 0..3 {
-            if self.segments_copy_q[9 + k].q.val() {
-                if self.step_ahead[9 + k].val() == 0 || self.step_ahead[9 + k].val() == 1 {
-                    self.next_pick[9 + k].next = 1.into();
-                } else {
-                    self.next_pick[9 + k].next = 8.into();
-                }
-            } else {
-                if self.step_ahead[9 + k].val() == 0 {
-                    self.next_pick[9 + k].next = 1.into();
-                } else if self.step_ahead[9 + k].val() == 1
-                    || self.step_ahead[9 + k].val() == 3
-                    || self.step_ahead[9 + k].val() == 4
-                    || self.step_ahead[9 + k].val() == 5
-                {
-                    self.next_pick[9 + k].next = 2.into();
-                } else {
-                    self.next_pick[9 + k].next = 4.into();
-                }
-            }
-        }
-        // w0 lane 2
-        for k in 0..3 {
-            if self.segments_copy_q[12 + k].q.val() {
-                if self.step_ahead[12 + k].val() == 0 || self.step_ahead[12 + k].val() == 1 {
-                    self.next_pick[12 + k].next = 1.into();
-                } else {
-                    self.next_pick[12 + k].next = 8.into();
-                }
-            } else {
-                if self.step_ahead[12 + k].val() == 0 {
-                    self.next_pick[12 + k].next = 1.into();
-                } else if self.step_ahead[12 + k].val() == 1 {
-                    self.next_pick[12 + k].next = 2.into();
-                } else {
-                    self.next_pick[12 + k].next = 4.into();
-                }
-            }
-        }
-        // w1 lane 0
-        for k in 0..3 {
-            if self.segments_copy_q[15 + k].q.val() {
-                if self.step_ahead[15 + k].val() == 0 {
-                    self.next_pick[15 + k].next = 8.into();
-                } else if self.step_ahead[15 + k].val() == 1 {
-                    self.next_pick[15 + k].next = 16.into();
-                } else if self.step_ahead[15 + k].val() == 2 {
-                    self.next_pick[15 + k].next = 1.into();
-                } else {
-                    self.next_pick[15 + k].next = 2.into();
-                }
-            } else {
-                if self.step_ahead[15 + k].val() == 0
-                    || self.step_ahead[15 + k].val() == 1
-                    || self.step_ahead[15 + k].val() == 2
-                    || self.step_ahead[15 + k].val() == 3
-                {
-                    self.next_pick[15 + k].next = 8.into();
-                } else if self.step_ahead[15 + k].val() == 4 {
-                    self.next_pick[15 + k].next = 16.into();
-                } else {
-                    self.next_pick[15 + k].next = 32.into();
-                }
-            }
-        }
-        // w1 lane 1
-        for k in 0..3 {
-            if self.segments_copy_q[18 + k].q.val() {
-                if self.step_ahead[18 + k].val() == 0 {
-                    self.next_pick[18 + k].next = 8.into();
-                } else if self.step_ahead[18 + k].val() == 1 {
-                    self.next_pick[18 + k].next = 16.into();
-                } else if self.step_ahead[18 + k].val() == 2 {
-                    self.next_pick[18 + k].next = 1.into();
-                } else {
-                    self.next_pick[18 + k].next = 2.into();
-                }
-            } else {
-                if self.step_ahead[18 + k].val() == 0
-                    || self.step_ahead[18 + k].val() == 1
-                    || self.step_ahead[18 + k].val() == 2
-                    || self.step_ahead[18 + k].val() == 4
-                {
-                    self.next_pick[18 + k].next = 16.into();
-                } else if self.step_ahead[18 + k].val() == 3 {
-                    self.next_pick[18 + k].next = 8.into();
-                } else {
-                    self.next_pick[18 + k].next = 32.into();
-                }
-            }
-        }
-        // w1 lane 2
-        for k in 0..3 {
-            if self.segments_copy_q[21 + k].q.val() {
-                if self.step_ahead[21 + k].val() == 0 {
-                    self.next_pick[21 + k].next = 8.into();
-                } else if self.step_ahead[21 + k].val() == 1 {
-                    self.next_pick[21 + k].next = 16.into();
-                } else if self.step_ahead[21 + k].val() == 2 {
-                    self.next_pick[21 + k].next = 1.into();
-                } else {
-                    self.next_pick[21 + k].next = 2.into();
-                }
-            } else {
-                if self.step_ahead[21 + k].val() == 0
-                    || self.step_ahead[21 + k].val() == 1
-                    || self.step_ahead[21 + k].val() == 2
-                    || self.step_ahead[21 + k].val() == 5
-                {
-                    self.next_pick[21 + k].next = 32.into();
-                } else if self.step_ahead[21 + k].val() == 3 {
-                    self.next_pick[21 + k].next = 8.into();
-                } else {
-                    self.next_pick[21 + k].next = 16.into();
-                }
-            }
-        }
-        // The next pick: the program's where the copy moves on, its first
-        // step's where it takes a job (as the programs above give it at
-        // step 0), else the pick held.
-        for c in 0..24 {
-            self.pick_q[c].d.next = self.pick_q[c].q.val();
-            if self.remaining_copy_q[c].q.val() != 0 {
-                self.pick_q[c].d.next = self.next_pick[c].val();
-            }
-        }
-        for k in 0..3 {
-            if self.copy_loads[k].val() {
-                self.pick_q[k].d.next = 1.into();
-            }
-            if self.copy_loads[3 + k].val() {
-                self.pick_q[3 + k].d.next = 2.into();
-            }
-            if self.copy_loads[6 + k].val() {
-                self.pick_q[6 + k].d.next = 1.into();
-            }
-            if self.copy_loads[9 + k].val() {
-                self.pick_q[9 + k].d.next = 1.into();
-            }
-            if self.copy_loads[12 + k].val() {
-                self.pick_q[12 + k].d.next = 1.into();
-            }
-            if self.copy_loads[15 + k].val() {
-                self.pick_q[15 + k].d.next = 8.into();
-            }
-            if self.copy_loads[18 + k].val() {
-                if self.in_segments.val() {
-                    self.pick_q[18 + k].d.next = 8.into();
-                } else {
-                    self.pick_q[18 + k].d.next = 16.into();
-                }
-            }
-            if self.copy_loads[21 + k].val() {
-                if self.in_segments.val() {
-                    self.pick_q[21 + k].d.next = 8.into();
-                } else {
-                    self.pick_q[21 + k].d.next = 32.into();
-                }
-            }
-        }
+        self.programs.load_segments.next = self.in_segments.val();
         self.issue_line.d.next = self.remaining_q.q.val() != 0;
         self.last_line.d.next = self.remaining_q.q.val() == 1;
         self.step_line.d.next = self.step_copy_q[24].q.val();
