@@ -3,6 +3,8 @@
 //! other's triangles, and the machines the project runs on have two cores
 //! or more (the software baseline gives a two-thread figure as well).
 
+use std::sync::OnceLock;
+
 /// Below this many triangles in both objects together the two objects are
 /// done one after the other on the calling thread: spawning a thread costs
 /// tens of microseconds, as much as preparing a few thousand triangles.
@@ -11,8 +13,14 @@ pub const THREADED_FROM: usize = 16_384;
 /// The threads [`on_both`] uses for a scene of `triangles` (both objects
 /// together): 1 or 2.
 pub fn threads(triangles: usize) -> usize {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if triangles < THREADED_FROM || cores < 2 {
+    // The scene's size first, and the cores asked once per process:
+    // `available_parallelism` reads the cgroup files on Linux, about 30 us
+    // a call, which a small scene's whole preparation would pay again at
+    // every call.
+    static CORES: OnceLock<usize> = OnceLock::new();
+    if triangles < THREADED_FROM
+        || *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get())) < 2
+    {
         1
     } else {
         2

@@ -262,18 +262,17 @@ pub fn prepare(
         return Ok(scene);
     };
 
-    let touching = |ts: &[Triangle]| -> Vec<u32> {
-        ts.iter()
+    // Each object's candidates (triangles whose box meets the common box)
+    // and their bounds, the objects on two threads when they are large
+    // (`on_both`).
+    let triangles = a.triangles.len() + b.triangles.len();
+    let candidates_and_bounds = |ts: &[Triangle]| {
+        let ids: Vec<u32> = ts
+            .iter()
             .enumerate()
             .filter(|(_, t)| triangle_box_overlap_conservative(t, &common))
             .map(|(i, _)| i as u32)
-            .collect()
-    };
-    // Each object's candidates and their bounds, the objects on two
-    // threads when they are large (`on_both`).
-    let triangles = a.triangles.len() + b.triangles.len();
-    let candidates_and_bounds = |ts: &[Triangle]| {
-        let ids = touching(ts);
+            .collect();
         let bounds = candidate_bounds(&ids, ts);
         (ids, bounds)
     };
@@ -284,7 +283,7 @@ pub fn prepare(
     );
     scene.candidates_a = candidates_a;
     scene.candidates_b = candidates_b;
-    // One pass over each object's candidates for their bounds: the frame
+    // The candidates' bounds, one pass over each object's: the frame
     // is fitted over both (as `Frame::fit` over the candidates would), and
     // since quantizing is monotone on each axis (a difference, a division
     // by the positive step, a rounding: none reorders two values), the
